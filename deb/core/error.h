@@ -1,0 +1,23 @@
+// Two failure channels, as in the rest of deb:
+//  - InputError: the user's input (budget file, data file, parameters) breaks a
+//    rule. Thrown, caught by the CLI, reported with where/what/rule, exit != 0.
+//  - DEB_DEMAND: a programming error (a broken internal invariant). Aborts with
+//    file:line, because continuing would produce wrong numbers.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace deb {
+
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+[[noreturn]] void DemandFailed(const char* condition, const char* file, int line);
+
+}  // namespace deb
+
+#define DEB_DEMAND(condition) \
+  do { if (!(condition)) ::deb::DemandFailed(#condition, __FILE__, __LINE__); } while (0)

@@ -1,0 +1,57 @@
+#include "deb/core/integrate.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "deb/core/error.h"
+
+namespace deb {
+
+double PowerLawIntervalIntegral(double f1_hz, double f2_hz, double s1, double s2) {
+  DEB_DEMAND(f1_hz > 0.0 && f2_hz > f1_hz && s1 >= 0.0 && s2 >= 0.0);
+  const double width = f2_hz - f1_hz;
+  if (s1 == 0.0 || s2 == 0.0) return 0.5 * (s1 + s2) * width;
+  const double log_ratio_f = std::log(f2_hz / f1_hz);
+  const double a = std::log(s2 / s1) / log_ratio_f;  // s = s1 (f/f1)^a
+  const double e = (a + 1.0) * log_ratio_f;           // ln((f2/f1)^(a+1))
+  // integral = s1 f1 ((f2/f1)^(a+1) - 1)/(a+1) = s1 f1 ln(f2/f1) (exp(e) - 1)/e
+  if (std::abs(e) < 1e-8) return s1 * f1_hz * log_ratio_f * (1.0 + 0.5 * e);
+  return s1 * f1_hz * log_ratio_f * std::expm1(e) / e;
+}
+
+std::vector<double> CumulativeIntegral(const std::vector<double>& f_hz,
+                                       const std::vector<double>& s) {
+  DEB_DEMAND(f_hz.size() == s.size() && !f_hz.empty());
+  std::vector<double> cumulative(f_hz.size());
+  cumulative[0] = 0.0;
+  for (std::size_t i = 1; i < f_hz.size(); ++i)
+    cumulative[i] = cumulative[i - 1] + PowerLawIntervalIntegral(f_hz[i - 1], f_hz[i], s[i - 1], s[i]);
+  return cumulative;
+}
+
+namespace {
+
+// Value at f in [f1, f2] of the power law (or line, where an end is zero).
+double Interpolate(double f1, double f2, double s1, double s2, double f) {
+  if (s1 == 0.0 || s2 == 0.0) return s1 + (s2 - s1) * (f - f1) / (f2 - f1);
+  return s1 * std::pow(f / f1, std::log(s2 / s1) / std::log(f2 / f1));
+}
+
+}  // namespace
+
+double IntegralBetween(const std::vector<double>& f_hz, const std::vector<double>& s, double lo_hz,
+                       double hi_hz) {
+  DEB_DEMAND(f_hz.size() == s.size() && f_hz.size() >= 2);
+  DEB_DEMAND(lo_hz >= f_hz.front() && hi_hz <= f_hz.back() && lo_hz <= hi_hz);
+  double total = 0.0;
+  for (std::size_t i = 1; i < f_hz.size(); ++i) {
+    const double a = std::max(f_hz[i - 1], lo_hz), b = std::min(f_hz[i], hi_hz);
+    if (!(b > a)) continue;
+    const double sa = (a == f_hz[i - 1]) ? s[i - 1] : Interpolate(f_hz[i - 1], f_hz[i], s[i - 1], s[i], a);
+    const double sb = (b == f_hz[i]) ? s[i] : Interpolate(f_hz[i - 1], f_hz[i], s[i - 1], s[i], b);
+    total += PowerLawIntervalIntegral(a, b, sa, sb);
+  }
+  return total;
+}
+
+}  // namespace deb

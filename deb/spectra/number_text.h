@@ -1,0 +1,17 @@
+// Shortest decimal text that reads back to the same double, for error
+// messages and Describe(): a message must quote the value the user wrote
+// (0.1, not 0.10000000000000001) and still tell two close values apart.
+#pragma once
+
+#include <charconv>
+#include <string>
+
+namespace deb {
+
+inline std::string NumberText(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace deb

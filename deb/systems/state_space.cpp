@@ -1,0 +1,114 @@
+#include "deb/systems/state_space.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "deb/core/error.h"
+
+namespace deb {
+namespace {
+
+void RequireFinite(const Eigen::MatrixXd& m, const char* name) {
+  for (Eigen::Index j = 0; j < m.cols(); ++j)
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+      if (!std::isfinite(m(i, j))) {
+        std::ostringstream os;
+        os << "state space: " << name << "(" << i + 1 << "," << j + 1 << ") = " << m(i, j)
+           << " is not finite";
+        throw InputError(os.str());
+      }
+}
+
+}  // namespace
+
+StateSpace::StateSpace(Eigen::MatrixXd a, Eigen::MatrixXd b, Eigen::MatrixXd c,
+                       Eigen::MatrixXd d)
+    : a_(std::move(a)), b_(std::move(b)), c_(std::move(c)), d_(std::move(d)) {
+  const auto n = a_.rows();
+  std::ostringstream os;
+  if (a_.cols() != n) {
+    os << "state space: A must be square, got " << a_.rows() << "x" << a_.cols();
+  } else if (b_.rows() != n) {
+    os << "state space: B must have " << n << " rows (states), got " << b_.rows();
+  } else if (c_.cols() != n) {
+    os << "state space: C must have " << n << " columns (states), got " << c_.cols();
+  } else if (d_.rows() != c_.rows() || d_.cols() != b_.cols()) {
+    os << "state space: D must be " << c_.rows() << "x" << b_.cols() << " (outputs x inputs), got "
+       << d_.rows() << "x" << d_.cols();
+  }
+  if (!os.str().empty()) throw InputError(os.str());
+  RequireFinite(a_, "A");
+  RequireFinite(b_, "B");
+  RequireFinite(c_, "C");
+  RequireFinite(d_, "D");
+}
+
+StateSpace StateSpace::Gain(Eigen::MatrixXd d) {
+  const auto p = d.rows(), m = d.cols();
+  return StateSpace(Eigen::MatrixXd(0, 0), Eigen::MatrixXd(0, m), Eigen::MatrixXd(p, 0),
+                    std::move(d));
+}
+
+Eigen::VectorXcd StateSpace::Poles() const {
+  if (states() == 0) return Eigen::VectorXcd(0);
+  return Eigen::EigenSolver<Eigen::MatrixXd>(a_, false).eigenvalues();
+}
+
+bool StateSpace::IsStable() const {
+  const Eigen::VectorXcd p = Poles();
+  for (Eigen::Index i = 0; i < p.size(); ++i)
+    if (!(p(i).real() < 0.0)) return false;
+  return true;
+}
+
+StateSpace StateSpace::SelectOutputs(const std::vector<int>& rows) const {
+  Eigen::MatrixXd c(rows.size(), states()), d(rows.size(), inputs());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    DEB_DEMAND(rows[k] >= 0 && rows[k] < outputs());
+    c.row(k) = c_.row(rows[k]);
+    d.row(k) = d_.row(rows[k]);
+  }
+  return StateSpace(a_, b_, std::move(c), std::move(d));
+}
+
+StateSpace StateSpace::SelectInputs(const std::vector<int>& cols) const {
+  Eigen::MatrixXd b(states(), cols.size()), d(outputs(), cols.size());
+  for (std::size_t k = 0; k < cols.size(); ++k) {
+    DEB_DEMAND(cols[k] >= 0 && cols[k] < inputs());
+    b.col(k) = b_.col(cols[k]);
+    d.col(k) = d_.col(cols[k]);
+  }
+  return StateSpace(a_, std::move(b), c_, std::move(d));
+}
+
+StateSpace StateSpace::Balanced() const {
+  const Eigen::Index n = a_.rows();
+  Eigen::MatrixXd a = a_, b = b_, c = c_;
+  // Each pass scales state i by a power of two f so that the off-diagonal
+  // column norm (times f) and row norm (divided by f) approach each other.
+  constexpr int kMaxPasses = 100;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    bool changed = false;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double col = a.col(i).norm(), row = a.row(i).norm(), diag = std::abs(a(i, i));
+      const double col_off = std::sqrt(std::max(0.0, col * col - diag * diag));
+      const double row_off = std::sqrt(std::max(0.0, row * row - diag * diag));
+      if (col_off == 0.0 || row_off == 0.0) continue;
+      const int e = static_cast<int>(std::lround(0.5 * std::log2(row_off / col_off)));
+      if (e == 0) continue;
+      const double f = std::ldexp(1.0, e);
+      // Only accept scalings that reduce the combined norm noticeably.
+      if (col_off * f + row_off / f >= 0.95 * (col_off + row_off)) continue;
+      a.col(i) *= f;
+      a.row(i) /= f;
+      b.row(i) /= f;
+      c.col(i) *= f;
+      changed = true;
+    }
+    if (!changed) break;
+  }
+  return StateSpace(std::move(a), std::move(b), std::move(c), d_);
+}
+
+}  // namespace deb

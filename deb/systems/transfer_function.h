@@ -1,0 +1,58 @@
+// A SISO rational transfer function H(s) = num(s) / den(s), the form in which
+// filters, sensors and simple plants are usually written down. deb keeps it
+// only as an entry format: everything downstream works on a StateSpace, so a
+// transfer function is converted once, by ToStateSpace(). Closed loops are then
+// built in state space (interconnect.h), never by multiplying polynomials,
+// which loses accuracy quickly.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+#include "deb/systems/state_space.h"
+
+namespace deb {
+
+class TransferFunction {
+ public:
+  // Coefficients highest power first, as in MATLAB: {1, 2, 3} = s^2 + 2 s + 3.
+  // Leading zeros are trimmed. An empty or all-zero numerator is the zero
+  // function.
+  // @throws InputError if a coefficient is not finite, if the denominator is
+  //         empty or all zero, or if the function is improper
+  //         (deg num > deg den; the message states both degrees).
+  TransferFunction(std::vector<double> num, std::vector<double> den);
+
+  // A static gain k (= k / 1).
+  static TransferFunction Gain(double k);
+
+  const std::vector<double>& num() const { return num_; }
+  const std::vector<double>& den() const { return den_; }
+  // Degree of the denominator = number of states of ToStateSpace().
+  int order() const { return static_cast<int>(den_.size()) - 1; }
+
+  // num(s) / den(s) by Horner's rule. For checks and small orders only: the
+  // state-space route (FrequencyResponse) is the accurate one.
+  std::complex<double> Evaluate(std::complex<double> s) const;
+
+ private:
+  std::vector<double> num_, den_;
+};
+
+// Realisation in controllable canonical form (that of MATLAB's tf2ss) with the
+// denominator made monic, followed by StateSpace::Balanced(). The companion
+// matrix of a polynomial with widely spread roots has entries over many
+// decades; balancing brings them together without changing H(s).
+// A transfer function of order n gives n states, one input, one output.
+StateSpace ToStateSpace(const TransferFunction& tf);
+
+// MIMO transfer matrix, tf[i][j] = path from input j to output i. Each entry is
+// realised on its own and the realisations are stacked block-diagonally, so the
+// result has sum(order) states and is in general NOT minimal (entries sharing a
+// denominator get separate copies of its poles). That is harmless for
+// frequency responses and Lyapunov variances, which depend only on H(s); call
+// a model-reduction step first if the state count matters.
+// @throws InputError if the matrix is empty or its rows differ in length.
+StateSpace ToStateSpace(const std::vector<std::vector<TransferFunction>>& tf);
+
+}  // namespace deb
