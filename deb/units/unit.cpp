@@ -16,7 +16,8 @@ namespace deb {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kMaxDerivativeOrder = 2;
+// Time-derivative orders ConvertUnit tries, the plain scale first.
+constexpr int kDerivativeOrders[] = {0, -1, 1, -2, 2};
 constexpr const char* kDatabasePackage = "libudunits2-data";
 constexpr const char* kExamples = "examples: um/s, m/s^2, m s-2, nm, urad, N, 1";
 
@@ -133,9 +134,16 @@ std::string Format(const ut_unit* unit) {
   }
 }
 
+std::string DefinitionForMessage(const ut_unit* unit) {
+  const std::string definition = Format(unit);
+  return definition.empty() ? "not expressible in ASCII" : definition;
+}
+
 enum class Relation { kNone, kNonLinear, kScale };
 
 // Whether values in `from` map to `to` as y = scale x (+ offset, dropped).
+// ut_are_convertible() also accepts reciprocal units (m and 1/m, s and Hz,
+// converted by y = 1/x); those are different quantities here.
 // Caller holds LibraryMutex().
 Relation ScaleBetween(ut_unit* from, ut_unit* to, double* scale) {
   if (!ut_are_convertible(from, to)) return Relation::kNone;
@@ -144,15 +152,18 @@ Relation ScaleBetween(ut_unit* from, ut_unit* to, double* scale) {
   const double y0 = cv_convert_double(converter.get(), 0.0);
   const double y1 = cv_convert_double(converter.get(), 1.0);
   const double y2 = cv_convert_double(converter.get(), 2.0);
+  constexpr double kTol = 1e-9;
+  if (std::isfinite(y1) && y1 != 0.0 && std::abs(y1 - 2.0 * y2) <= kTol * std::abs(y1)) {
+    return Relation::kNone;  // y = k / x
+  }
   if (!std::isfinite(y0) || !std::isfinite(y1) || !std::isfinite(y2)) return Relation::kNonLinear;
-  if (std::abs(y2 - 2.0 * y1 + y0) > 1e-9 * (std::abs(y0) + std::abs(y1) + std::abs(y2))) {
+  if (std::abs(y2 - 2.0 * y1 + y0) > kTol * (std::abs(y0) + std::abs(y1) + std::abs(y2))) {
     return Relation::kNonLinear;
   }
   // With an offset (degC -> K), a large argument keeps the slope's rounding
   // error at machine precision.
   constexpr double kProbe = 1e6;
-  const double s =
-      y0 == 0.0 ? y1 : (cv_convert_double(converter.get(), kProbe) - y0) / kProbe;
+  const double s = y0 == 0.0 ? y1 : (cv_convert_double(converter.get(), kProbe) - y0) / kProbe;
   if (!std::isfinite(s) || s == 0.0) return Relation::kNonLinear;
   *scale = s;
   return Relation::kScale;
@@ -208,8 +219,9 @@ UnitConversion ConvertUnit(const std::string& from, const std::string& to) {
   const std::string from_text = DisplayUnit(from);
   const std::string to_text = DisplayUnit(to);
 
-  // to = scale * from * s^-n; the order 0 is tried first.
-  for (const int n : {0, -1, 1, -2, 2}) {
+  // to = scale * from * s^-n.
+  bool non_linear = false;
+  for (const int n : kDerivativeOrders) {
     UnitPtr candidate;
     if (n != 0) {
       const UnitPtr time_power(ut_raise(second.get(), -n));
@@ -218,22 +230,20 @@ UnitConversion ConvertUnit(const std::string& from, const std::string& to) {
     }
     ut_unit* source = n == 0 ? from_unit.get() : candidate.get();
     double scale = 1.0;
-    switch (ScaleBetween(source, to_unit.get(), &scale)) {
-      case Relation::kScale:
-        return UnitConversion{scale, n};
-      case Relation::kNonLinear:
-        throw InputError("cannot convert '" + from_text + "' to '" + to_text +
-                         "': UDUNITS-2 relates them non-linearly (e.g. a logarithmic "
-                         "unit); deb needs a linear scale");
-      case Relation::kNone:
-        break;
-    }
+    const Relation relation = ScaleBetween(source, to_unit.get(), &scale);
+    if (relation == Relation::kScale) return UnitConversion{scale, n};
+    non_linear = non_linear || relation == Relation::kNonLinear;
+  }
+  if (non_linear) {
+    throw InputError("cannot convert '" + from_text + "' to '" + to_text +
+                     "': UDUNITS-2 relates them non-linearly (e.g. a logarithmic unit); deb "
+                     "needs a linear scale");
   }
   throw InputError("cannot convert '" + from_text + "' to '" + to_text +
-                   "': not the same quantity, nor related by up to " +
-                   std::to_string(kMaxDerivativeOrder) + " time derivatives ('" + from_text +
-                   "' is " + Format(from_unit.get()) + ", '" + to_text + "' is " +
-                   Format(to_unit.get()) + ")" + GramHint(from_text, to_text));
+                   "': not the same quantity, nor related by up to two time derivatives ('" +
+                   from_text + "' is " + DefinitionForMessage(from_unit.get()) + ", '" + to_text +
+                   "' is " + DefinitionForMessage(to_unit.get()) + ")" +
+                   GramHint(from_text, to_text));
 }
 
 bool UnitsCommensurate(const std::string& a, const std::string& b) {

@@ -13,6 +13,8 @@
 //    (9.80665 m/s^2).
 //  - Units with an offset (`degC`, `degF`) convert by their slope only: deb
 //    converts fluctuations, whose spectra do not see a constant offset.
+//  - Reciprocal units (m and 1/m) are different quantities here, although
+//    UDUNITS-2 alone would convert them by y = 1/x.
 //  - Logarithmic units (`lg(re 1 mW)`) are rejected.
 #pragma once
 
