@@ -7,12 +7,22 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace deb {
 
 class InputError : public std::runtime_error {
  public:
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
+  // key_path locates the offending value in the budget, e.g.
+  // "contributors[1].source"; the YAML loader turns it into file:line:col.
+  InputError(std::string key_path, const std::string& message)
+      : std::runtime_error(message), key_path_(std::move(key_path)) {}
+
+  const std::string& key_path() const { return key_path_; }
+
+ private:
+  std::string key_path_;
 };
 
 [[noreturn]] void DemandFailed(const char* condition, const char* file, int line);

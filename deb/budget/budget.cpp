@@ -1,0 +1,184 @@
+#include "deb/budget/budget.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/units/unit.h"
+
+namespace deb {
+namespace {
+
+std::string Indexed(const char* list, std::size_t i) {
+  return std::string(list) + "[" + std::to_string(i) + "]";
+}
+
+template <typename T>
+void RequireUniqueNames(const std::vector<T>& items, const char* list) {
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (items[i].name.empty()) throw InputError(Indexed(list, i) + ".name", "a name is required");
+    if (!seen.insert(items[i].name).second)
+      throw InputError(Indexed(list, i) + ".name",
+                       "name '" + items[i].name + "' is used twice in " + list);
+  }
+}
+
+// Re-throws an InputError without a key path under `key`.
+template <typename F>
+void AtKey(const std::string& key, F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    if (!e.key_path().empty()) throw;
+    throw InputError(key, e.what());
+  }
+}
+
+}  // namespace
+
+GridKind ParseGridKind(const std::string& text) {
+  if (text == "auto") return GridKind::kAuto;
+  if (text == "log") return GridKind::kLog;
+  if (text == "linear") return GridKind::kLinear;
+  if (text == "explicit") return GridKind::kExplicit;
+  throw InputError("unknown grid type '" + text + "'; allowed: auto, log, linear, explicit");
+}
+
+std::string ToString(GridKind kind) {
+  switch (kind) {
+    case GridKind::kAuto: return "auto";
+    case GridKind::kLog: return "log";
+    case GridKind::kLinear: return "linear";
+    case GridKind::kExplicit: return "explicit";
+  }
+  return "?";
+}
+
+ExactVariance ParseExactVariance(const std::string& text) {
+  if (text == "auto") return ExactVariance::kAuto;
+  if (text == "required") return ExactVariance::kRequired;
+  if (text == "off") return ExactVariance::kOff;
+  throw InputError("unknown exact-variance mode '" + text + "'; allowed: auto, required, off");
+}
+
+std::string ToString(ExactVariance mode) {
+  switch (mode) {
+    case ExactVariance::kAuto: return "auto";
+    case ExactVariance::kRequired: return "required";
+    case ExactVariance::kOff: return "off";
+  }
+  return "?";
+}
+
+const Source& Budget::FindSource(const std::string& n) const {
+  for (const auto& s : sources)
+    if (s.name == n) return s;
+  DEB_DEMAND(false);
+}
+
+const Path& Budget::FindPath(const std::string& n) const {
+  for (const auto& p : paths)
+    if (p.name == n) return p;
+  DEB_DEMAND(false);
+}
+
+void Budget::Validate() const {
+  if (name.empty()) throw InputError("name", "the budget needs a name");
+  RequireUniqueNames(sources, "sources");
+  RequireUniqueNames(paths, "paths");
+  RequireUniqueNames(contributors, "contributors");
+  RequireUniqueNames(outputs, "outputs");
+  if (contributors.empty()) throw InputError("contributors", "at least one contributor is required");
+  if (outputs.empty()) throw InputError("outputs", "at least one output is required");
+
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const Source& s = sources[i];
+    const std::string key = Indexed("sources", i);
+    DEB_DEMAND(s.spectrum != nullptr);
+    AtKey(key + ".unit", [&] { ValidateUnit(s.unit); });
+    if (static_cast<int>(s.channel_names.size()) != s.channels())
+      throw InputError(key + ".channels", "source '" + s.name + "' has " +
+                                              std::to_string(s.channels()) + " channels but " +
+                                              std::to_string(s.channel_names.size()) + " names");
+  }
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    AtKey(Indexed("paths", i), [&] {
+      paths[i].Validate();
+      for (const auto& u : paths[i].input_units) ValidateUnit(u);
+      for (const auto& u : paths[i].output_units) ValidateUnit(u);
+    });
+  }
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const Output& o = outputs[i];
+    const std::string key = Indexed("outputs", i);
+    AtKey(key + ".unit", [&] { ValidateUnit(o.unit); });
+    if (o.rms_max && !(std::isfinite(*o.rms_max) && *o.rms_max > 0.0)) {
+      std::ostringstream os;
+      os << "rms_max must be finite and > 0, got " << *o.rms_max;
+      throw InputError(key + ".rms_max", os.str());
+    }
+    if (o.weighting) {
+      if (o.weighting->system.inputs() != 1 || o.weighting->system.outputs() != 1)
+        throw InputError(key + ".weighting", "a weighting must be SISO (1 input, 1 output)");
+      AtKey(key + ".weighting.unit", [&] { ValidateUnit(o.weighting->unit); });
+    }
+  }
+  for (std::size_t i = 0; i < contributors.size(); ++i) {
+    const Contributor& c = contributors[i];
+    const std::string key = Indexed("contributors", i);
+    bool source_found = false, path_found = false;
+    for (const auto& s : sources) source_found |= s.name == c.source;
+    for (const auto& p : paths) path_found |= p.name == c.path;
+    if (!source_found) throw InputError(key + ".source", "no source named '" + c.source + "'");
+    if (!path_found) throw InputError(key + ".path", "no path named '" + c.path + "'");
+    const Source& s = FindSource(c.source);
+    const Path& p = FindPath(c.path);
+    if (s.channels() != p.system.inputs()) {
+      std::ostringstream os;
+      os << "source '" << s.name << "' has " << s.channels() << " channel(s) but path '" << p.name
+         << "' has " << p.system.inputs() << " input(s)";
+      throw InputError(key, os.str());
+    }
+    for (std::size_t k = 0; k < p.input_units.size(); ++k) {
+      AtKey(key, [&] {
+        try {
+          ConvertUnit(s.unit, p.input_units[k]);
+        } catch (const InputError& e) {
+          throw InputError("source '" + s.name + "' (unit " + s.unit + ") does not fit input '" +
+                           p.input_names[k] + "' of path '" + p.name + "' (unit " +
+                           p.input_units[k] + "): " + e.what());
+        }
+      });
+    }
+    for (std::size_t o = 0; o < outputs.size(); ++o) {
+      const Output& out = outputs[o];
+      const int row = p.OutputIndex(out.signal);
+      if (row < 0)
+        throw InputError(Indexed("outputs", o) + ".signal",
+                         "output '" + out.name + "' reads signal '" + out.signal + "', which path '" +
+                             p.name + "' (contributor '" + c.name + "') does not have");
+      const std::string from = out.weighting ? UnitProduct(p.output_units[row], out.weighting->unit)
+                                             : p.output_units[row];
+      AtKey(Indexed("outputs", o) + ".unit", [&] {
+        try {
+          ConvertUnit(from, out.unit);
+        } catch (const InputError& e) {
+          throw InputError("output '" + out.name + "' in " + out.unit + " cannot be formed from signal '" +
+                           out.signal + "' of path '" + p.name + "' in " + from + ": " + e.what());
+        }
+      });
+    }
+  }
+  for (std::size_t i = 0; i < bands.size(); ++i) {
+    const Band& b = bands[i];
+    if (!(std::isfinite(b.lo_hz) && std::isfinite(b.hi_hz) && b.lo_hz > 0.0 && b.hi_hz > b.lo_hz)) {
+      std::ostringstream os;
+      os << "band [" << b.lo_hz << ", " << b.hi_hz << "] Hz is empty or invalid; need 0 < lo_hz < hi_hz";
+      throw InputError(Indexed("bands", i), os.str());
+    }
+  }
+}
+
+}  // namespace deb

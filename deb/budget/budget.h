@@ -1,0 +1,87 @@
+// An error budget as deb evaluates it: sources, paths, contributors (source x
+// path), outputs (a named signal of the paths, in a declared unit, optionally
+// through a weighting filter), frequency bands and requirements. The YAML
+// loader builds one; the engine evaluates it. Validate() checks every cross
+// reference and unit, naming the key path of the offending entry.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "deb/budget/path.h"
+#include "deb/budget/source.h"
+#include "deb/core/frequency_grid.h"
+#include "deb/systems/state_space.h"
+
+namespace deb {
+
+enum class GridKind { kAuto, kLog, kLinear, kExplicit };
+GridKind ParseGridKind(const std::string& text);  // @throws InputError listing allowed values
+std::string ToString(GridKind kind);
+
+struct GridSpec {
+  GridKind kind = GridKind::kAuto;
+  // kAuto: range and densities; when range_given is false the range is
+  // [0.1, 1000] Hz widened to cover every band.
+  AutoGridOptions auto_options;
+  bool range_given = false;
+  int points = 1000;            // kLog, kLinear
+  std::vector<double> f_hz;     // kExplicit
+};
+
+// A SISO filter applied to a signal to form an output, e.g. the thesis'
+// leaky integrator 1/(s + 0.02 pi) that turns a velocity into a "position".
+struct Weighting {
+  StateSpace system = StateSpace::Gain(Eigen::MatrixXd::Identity(1, 1));
+  std::string unit = "1";  // unit of the filter's gain (s for an integrator)
+  std::string description;
+};
+
+struct Output {
+  std::string name;
+  std::string signal;  // output row name in every contributor's path
+  std::string unit;
+  std::optional<Weighting> weighting;
+  std::optional<double> rms_max;  // requirement, in `unit`
+};
+
+// Whether a contributor gets an exact (Lyapunov) variance beside its CPS.
+// kAuto: whenever the source is white and the path stable; kRequired: an
+// error if that is not possible; kOff: never.
+enum class ExactVariance { kAuto, kRequired, kOff };
+ExactVariance ParseExactVariance(const std::string& text);
+std::string ToString(ExactVariance mode);
+
+struct Contributor {
+  std::string name;
+  std::string source;
+  std::string path;
+  ExactVariance exact = ExactVariance::kAuto;
+};
+
+struct Band {
+  double lo_hz = 0.0;
+  double hi_hz = 0.0;
+};
+
+struct Budget {
+  std::string name;
+  std::string description;
+  std::string source_file;  // where it was loaded from, if anywhere
+  GridSpec grid;
+  std::vector<Source> sources;
+  std::vector<Path> paths;
+  std::vector<Contributor> contributors;
+  std::vector<Output> outputs;
+  std::vector<Band> bands;
+
+  // Checks names, references, channel counts and units.
+  // @throws InputError with the key path (e.g. "contributors[2].path").
+  void Validate() const;
+
+  const Source& FindSource(const std::string& name) const;  // DEB_DEMAND it exists
+  const Path& FindPath(const std::string& name) const;
+};
+
+}  // namespace deb

@@ -1,0 +1,328 @@
+#include "deb/budget/engine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/core/integrate.h"
+#include "deb/systems/frequency_response.h"
+#include "deb/systems/interconnect.h"
+#include "deb/systems/lyapunov.h"
+#include "deb/units/unit.h"
+
+namespace deb {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+std::string Key(const char* list, std::size_t i, const std::string& field = "") {
+  std::string k = std::string(list) + "[" + std::to_string(i) + "]";
+  return field.empty() ? k : k + "." + field;
+}
+
+// Natural frequency and damping of every pole with Im > 0 or real pole.
+void AddResonances(const StateSpace& sys, std::vector<Resonance>* out) {
+  const Eigen::VectorXcd poles = sys.Poles();
+  for (Eigen::Index i = 0; i < poles.size(); ++i) {
+    const std::complex<double> p = poles(i);
+    const double mag = std::abs(p);
+    if (mag == 0.0 || p.imag() < 0.0) continue;
+    out->push_back({mag / kTwoPi, -p.real() / mag});
+  }
+}
+
+std::string FormatPoles(const std::vector<std::complex<double>>& poles) {
+  std::ostringstream os;
+  for (std::size_t i = 0; i < poles.size() && i < 4; ++i) {
+    if (i) os << ", ";
+    os << poles[i].real() << (poles[i].imag() < 0 ? " - " : " + ") << std::abs(poles[i].imag()) << "j";
+  }
+  if (poles.size() > 4) os << ", ... (" << poles.size() << " in all)";
+  return os.str();
+}
+
+// Variance of a power law continued beyond the grid ends through the first and
+// last two points; infinite where the power law does not converge.
+double TailEstimate(const std::vector<double>& f, const std::vector<double>& s) {
+  const std::size_t n = f.size();
+  double tail = 0.0;
+  if (s[0] > 0.0 && s[1] > 0.0) {
+    const double a = std::log(s[1] / s[0]) / std::log(f[1] / f[0]);
+    tail += a > -1.0 ? s[0] * f[0] / (a + 1.0) : std::numeric_limits<double>::infinity();
+  }
+  if (s[n - 1] > 0.0 && s[n - 2] > 0.0) {
+    const double a = std::log(s[n - 1] / s[n - 2]) / std::log(f[n - 1] / f[n - 2]);
+    tail += a < -1.0 ? s[n - 1] * f[n - 1] / (-(a + 1.0)) : std::numeric_limits<double>::infinity();
+  }
+  return tail;
+}
+
+std::vector<Band> DecadeBands(const FrequencyGrid& grid) {
+  std::vector<Band> bands;
+  const int k0 = static_cast<int>(std::floor(std::log10(grid.min_hz()) + 1e-12));
+  const int k1 = static_cast<int>(std::ceil(std::log10(grid.max_hz()) - 1e-12));
+  for (int k = k0; k < k1; ++k) {
+    const double lo = std::max(std::pow(10.0, k), grid.min_hz());
+    const double hi = std::min(std::pow(10.0, k + 1), grid.max_hz());
+    if (hi > lo * (1.0 + 1e-9)) bands.push_back({lo, hi});
+  }
+  return bands;
+}
+
+struct PathStability {
+  std::vector<std::complex<double>> unstable;
+  std::vector<std::complex<double>> marginal;
+};
+
+PathStability ClassifyPoles(const StateSpace& sys) {
+  PathStability s;
+  const Eigen::VectorXcd poles = sys.Poles();
+  for (Eigen::Index i = 0; i < poles.size(); ++i) {
+    const std::complex<double> p = poles(i);
+    const double tol = 1e-9 * std::max(1.0, std::abs(p));
+    if (p.real() > tol) s.unstable.push_back(p);
+    else if (p.real() >= -tol) s.marginal.push_back(p);
+  }
+  return s;
+}
+
+}  // namespace
+
+double OutputResult::rms() const { return std::sqrt(variance); }
+
+bool OutputResult::pass() const { return !rms_max || rms() <= *rms_max; }
+
+std::vector<double> ReverseCps(const std::vector<double>& cps) {
+  std::vector<double> r(cps.size());
+  for (std::size_t i = 0; i < cps.size(); ++i) r[i] = cps.back() - cps[i];
+  return r;
+}
+
+FrequencyGrid BuildGrid(const Budget& budget) {
+  const GridSpec& g = budget.grid;
+  switch (g.kind) {
+    case GridKind::kExplicit:
+      return FrequencyGrid(g.f_hz);
+    case GridKind::kLog:
+      return FrequencyGrid::Log(g.auto_options.min_hz, g.auto_options.max_hz, g.points);
+    case GridKind::kLinear:
+      return FrequencyGrid::Linear(g.auto_options.min_hz, g.auto_options.max_hz, g.points);
+    case GridKind::kAuto:
+      break;
+  }
+  AutoGridOptions options = g.auto_options;
+  if (!g.range_given) {
+    options.min_hz = 0.1;
+    options.max_hz = 1000.0;
+    for (const Band& b : budget.bands) {
+      options.min_hz = std::min(options.min_hz, b.lo_hz);
+      options.max_hz = std::max(options.max_hz, b.hi_hz);
+    }
+  }
+  std::vector<Resonance> resonances;
+  std::vector<double> breakpoints;
+  std::map<std::string, bool> seen_path;
+  for (const Contributor& c : budget.contributors) {
+    if (!seen_path[c.path]) AddResonances(budget.FindPath(c.path).system, &resonances);
+    seen_path[c.path] = true;
+  }
+  for (const Output& o : budget.outputs)
+    if (o.weighting) AddResonances(o.weighting->system, &resonances);
+  for (const Source& s : budget.sources) {
+    const auto b = s.spectrum->BreakpointsHz();
+    breakpoints.insert(breakpoints.end(), b.begin(), b.end());
+  }
+  for (const Band& b : budget.bands) {
+    breakpoints.push_back(b.lo_hz);
+    breakpoints.push_back(b.hi_hz);
+  }
+  return AutoGrid(options, resonances, breakpoints);
+}
+
+BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
+  budget.Validate();
+  BudgetResult result;
+  result.budget_name = budget.name;
+  result.grid = BuildGrid(budget);
+  const std::vector<double>& f = result.grid.f_hz();
+  const std::size_t n = f.size();
+
+  std::vector<Band> bands = budget.bands.empty() ? DecadeBands(result.grid) : budget.bands;
+  for (std::size_t i = 0; i < budget.bands.size(); ++i) {
+    const Band& b = budget.bands[i];
+    if (b.lo_hz < result.grid.min_hz() * (1 - 1e-12) || b.hi_hz > result.grid.max_hz() * (1 + 1e-12)) {
+      std::ostringstream os;
+      os << "band [" << b.lo_hz << ", " << b.hi_hz << "] Hz extends beyond the frequency grid ["
+         << result.grid.min_hz() << ", " << result.grid.max_hz() << "] Hz";
+      throw InputError(Key("bands", i), os.str());
+    }
+  }
+
+  // Weighting responses, shared by all contributors of an output.
+  std::vector<std::vector<double>> weighting_gain2(budget.outputs.size());
+  for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+    const Output& out = budget.outputs[o];
+    if (!out.weighting) continue;
+    const PathStability st = ClassifyPoles(out.weighting->system);
+    if (!st.unstable.empty())
+      throw InputError(Key("outputs", o, "weighting"),
+                       "the weighting of output '" + out.name + "' is unstable: pole(s) at " +
+                           FormatPoles(st.unstable) + " rad/s");
+    weighting_gain2[o].resize(n);
+    FrequencyResponse(out.weighting->system)
+        .ForEach(f, [&](std::size_t k, const Eigen::MatrixXcd& h) { weighting_gain2[o][k] = std::norm(h(0, 0)); },
+                 options.threads);
+  }
+
+  result.outputs.resize(budget.outputs.size());
+  for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+    OutputResult& r = result.outputs[o];
+    r.name = budget.outputs[o].name;
+    r.signal = budget.outputs[o].signal;
+    r.unit = budget.outputs[o].unit;
+    r.rms_max = budget.outputs[o].rms_max;
+    r.total_psd.assign(n, 0.0);
+  }
+
+  for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
+    const Contributor& c = budget.contributors[ci];
+    const Source& source = budget.FindSource(c.source);
+    const Path& path = budget.FindPath(c.path);
+    const int m = path.system.inputs();
+
+    const PathStability stability = ClassifyPoles(path.system);
+    if (!stability.unstable.empty())
+      throw InputError(Key("contributors", ci, "path"),
+                       "path '" + path.name + "' is unstable: pole(s) at " + FormatPoles(stability.unstable) +
+                           " rad/s; a stationary output spectrum does not exist");
+    if (!stability.marginal.empty())
+      result.warnings.push_back("path '" + path.name + "' has pole(s) on the imaginary axis (" +
+                                FormatPoles(stability.marginal) +
+                                " rad/s): its variance depends on the grid's ends");
+
+    std::vector<UnitConversion> in_conv(m);
+    bool inputs_pure_scale = true;
+    for (int k = 0; k < m; ++k) {
+      in_conv[k] = ConvertUnit(source.unit, path.input_units[k]);
+      inputs_pure_scale &= in_conv[k].IsPureScale();
+    }
+
+    std::vector<int> rows;
+    std::vector<int> row_of_output(budget.outputs.size());
+    std::vector<UnitConversion> out_conv(budget.outputs.size());
+    for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+      const Output& out = budget.outputs[o];
+      const int row = path.OutputIndex(out.signal);
+      auto it = std::find(rows.begin(), rows.end(), row);
+      row_of_output[o] = static_cast<int>(it - rows.begin());
+      if (it == rows.end()) rows.push_back(row);
+      const std::string from =
+          out.weighting ? UnitProduct(path.output_units[row], out.weighting->unit) : path.output_units[row];
+      out_conv[o] = ConvertUnit(from, out.unit);
+    }
+    const StateSpace sub = path.system.SelectOutputs(rows);
+    const FrequencyResponse response(sub);
+
+    std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
+    const bool diagonal = source.spectrum->IsDiagonal();
+    response.ForEach(
+        f,
+        [&](std::size_t k, const Eigen::MatrixXcd& h) {
+          Eigen::VectorXcd in_factor(m);
+          for (int j = 0; j < m; ++j) in_factor(j) = in_conv[j].ResponseFactor(f[k]);
+          Eigen::VectorXd s_diag;
+          Eigen::MatrixXcd s_full;
+          if (diagonal) s_diag = source.spectrum->Psd(f[k]);
+          else s_full = source.spectrum->Csd(f[k]);
+          for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+            const Eigen::RowVectorXcd hr = h.row(row_of_output[o]).cwiseProduct(in_factor.transpose());
+            double s = diagonal ? (hr.cwiseAbs2() * s_diag)(0) : (hr * s_full * hr.adjoint())(0, 0).real();
+            s *= out_conv[o].PsdFactor(f[k]);
+            if (!weighting_gain2[o].empty()) s *= weighting_gain2[o][k];
+            psd[o][k] = std::max(s, 0.0);  // rounding of a PSD-valued S_u
+          }
+        },
+        options.threads);
+
+    for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+      const Output& out = budget.outputs[o];
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!std::isfinite(psd[o][k])) {
+          std::ostringstream os;
+          os << "contributor '" << c.name << "' gives a non-finite PSD on output '" << out.name << "' at "
+             << f[k] << " Hz (a pole on the frequency axis, or a source that is not finite there)";
+          throw InputError(Key("contributors", ci), os.str());
+        }
+      }
+      ContributorResult cr;
+      cr.name = c.name;
+      cr.psd = std::move(psd[o]);
+      cr.cps = CumulativeIntegral(f, cr.psd);
+      cr.variance = cr.cps.back();
+      cr.tail_variance_estimate = TailEstimate(f, cr.psd);
+
+      // Exact variance: white source, pure unit scales, stable strictly proper path.
+      const auto white = source.spectrum->WhiteLevel();
+      std::string why_not;
+      if (c.exact == ExactVariance::kOff) why_not = "not requested";
+      else if (!white) why_not = "the source is not white (exact variance needs a flat spectrum without band limits)";
+      else if (!inputs_pure_scale || !out_conv[o].IsPureScale())
+        why_not = "the units differ by a time derivative (a factor j 2 pi f is not a rational path)";
+      else if (!stability.marginal.empty()) why_not = "the path has poles on the imaginary axis";
+      if (why_not.empty()) {
+        const int row = path.OutputIndex(out.signal);
+        Eigen::MatrixXd in_scale = Eigen::MatrixXd::Zero(m, m);
+        for (int j = 0; j < m; ++j) in_scale(j, j) = in_conv[j].scale;
+        const Eigen::MatrixXd w_two_sided = in_scale * (*white) * in_scale / 2.0;
+        StateSpace row_sys = path.system.SelectOutputs({row});
+        if (out.weighting) row_sys = Series(row_sys, out.weighting->system);
+        try {
+          const double var = OutputCovariance(row_sys, w_two_sided)(0, 0);
+          cr.exact_variance = var * out_conv[o].scale * out_conv[o].scale;
+        } catch (const InputError& e) {
+          why_not = e.what();
+        }
+      }
+      if (!cr.exact_variance) {
+        cr.exact_note = why_not;
+        if (c.exact == ExactVariance::kRequired)
+          throw InputError(Key("contributors", ci, "exact"),
+                           "exact variance of contributor '" + c.name + "' on output '" + out.name +
+                               "' is required but cannot be computed: " + why_not);
+      } else if (*cr.exact_variance > 0.0 && std::isfinite(cr.tail_variance_estimate)) {
+        const double rel =
+            std::abs(*cr.exact_variance - (cr.variance + cr.tail_variance_estimate)) / *cr.exact_variance;
+        if (rel > options.exact_tolerance) {
+          std::ostringstream os;
+          os << "contributor '" << c.name << "' on output '" << out.name << "': exact variance "
+             << *cr.exact_variance << " and grid variance " << cr.variance << " (+ " << cr.tail_variance_estimate
+             << " estimated beyond the grid) differ by " << rel
+             << " relative; refine the grid or widen its range";
+          result.warnings.push_back(os.str());
+        }
+      }
+      OutputResult& r = result.outputs[o];
+      for (std::size_t k = 0; k < n; ++k) r.total_psd[k] += cr.psd[k];
+      r.contributors.push_back(std::move(cr));
+    }
+  }
+
+  for (OutputResult& r : result.outputs) {
+    r.total_cps = CumulativeIntegral(f, r.total_psd);
+    r.variance = r.total_cps.back();
+    for (const Band& b : bands) {
+      BandResult br;
+      br.band = b;
+      br.variance = IntegralBetween(f, r.total_psd, b.lo_hz, b.hi_hz);
+      for (const auto& cr : r.contributors) br.contributor_variance.push_back(IntegralBetween(f, cr.psd, b.lo_hz, b.hi_hz));
+      r.bands.push_back(std::move(br));
+    }
+  }
+  return result;
+}
+
+}  // namespace deb

@@ -1,0 +1,79 @@
+// Evaluates a budget: for every contributor (source x path) and output,
+//   S_y(f) = h(f) S_u(f) h(f)^H,   h = unit/weighting factors x row of H(j 2 pi f),
+// on one frequency grid; CPS(f) = integral of S_y from f_min to f; RMS and
+// share of variance per contributor; RMS per band; and, where the source is
+// white and the path stable and strictly proper, the exact variance from the
+// Lyapunov equation beside the CPS figure (METHOD.md conventions 1-3).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/core/frequency_grid.h"
+
+namespace deb {
+
+struct EngineOptions {
+  int threads = 0;  // <= 0: DefaultThreadCount()
+  // Relative difference between the exact variance and (CPS + estimated
+  // tails beyond the grid) above which a warning is issued.
+  double exact_tolerance = 1e-3;
+};
+
+struct ContributorResult {
+  std::string name;
+  std::vector<double> psd;  // one-sided, output unit^2/Hz, per grid point
+  std::vector<double> cps;  // forward CPS, output unit^2
+  double variance = 0.0;    // cps.back()
+  std::optional<double> exact_variance;  // Lyapunov, over 0..infinity
+  std::string exact_note;                // why there is none, if none
+  double tail_variance_estimate = 0.0;   // power-law extrapolation beyond the grid
+};
+
+struct BandResult {
+  Band band;
+  double variance = 0.0;
+  std::vector<double> contributor_variance;  // same order as OutputResult::contributors
+};
+
+struct OutputResult {
+  std::string name;
+  std::string signal;
+  std::string unit;
+  std::vector<ContributorResult> contributors;
+  std::vector<double> total_psd;
+  std::vector<double> total_cps;
+  double variance = 0.0;
+  std::optional<double> rms_max;
+  std::vector<BandResult> bands;
+
+  double rms() const;
+  bool pass() const;  // true when there is no requirement
+};
+
+struct BudgetResult {
+  std::string budget_name;
+  FrequencyGrid grid{std::vector<double>{1.0, 2.0}};
+  std::vector<OutputResult> outputs;
+  std::vector<std::string> warnings;
+};
+
+// The grid the budget asks for. For the automatic grid: resonances from the
+// poles of every contributor's path and every weighting, breakpoints from
+// every source and band edge; the default range [0.1, 1000] Hz is widened to
+// cover every band.
+// @throws InputError (key "grid" or "bands[i]") if a band lies outside an
+//         explicit grid range.
+FrequencyGrid BuildGrid(const Budget& budget);
+
+// Reverse CPS: integral of S from f to f_max, from a forward CPS.
+std::vector<double> ReverseCps(const std::vector<double>& cps);
+
+// @throws InputError with a key path for anything the budget asks that cannot
+//         be computed (an unstable path, exact variance required but
+//         impossible, a band outside the grid).
+BudgetResult Evaluate(const Budget& budget, const EngineOptions& options = {});
+
+}  // namespace deb

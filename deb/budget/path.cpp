@@ -1,0 +1,42 @@
+#include "deb/budget/path.h"
+
+#include <set>
+#include <sstream>
+
+#include "deb/core/error.h"
+
+namespace deb {
+namespace {
+
+void RequireNames(const std::vector<std::string>& names, int expected, const std::string& what,
+                  const std::string& path_name) {
+  if (static_cast<int>(names.size()) != expected) {
+    std::ostringstream os;
+    os << "path '" << path_name << "': " << expected << " " << what << " expected (the system's size), got "
+       << names.size();
+    throw InputError(os.str());
+  }
+}
+
+}  // namespace
+
+void Path::Validate() const {
+  RequireNames(input_names, system.inputs(), "input names", name);
+  RequireNames(output_names, system.outputs(), "output names", name);
+  RequireNames(input_units, system.inputs(), "input units", name);
+  RequireNames(output_units, system.outputs(), "output units", name);
+  for (const auto* list : {&input_names, &output_names}) {
+    std::set<std::string> seen;
+    for (const auto& n : *list)
+      if (!seen.insert(n).second)
+        throw InputError("path '" + name + "': channel name '" + n + "' appears twice");
+  }
+}
+
+int Path::OutputIndex(const std::string& signal) const {
+  for (std::size_t i = 0; i < output_names.size(); ++i)
+    if (output_names[i] == signal) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace deb
