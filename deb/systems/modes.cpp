@@ -1,0 +1,35 @@
+#include "deb/systems/modes.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace deb {
+namespace {
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+}  // namespace
+
+double Mode::damped_f_hz() const { return pole_rad_s.imag() / kTwoPi; }
+
+std::vector<Mode> ModesFromPoles(const Eigen::VectorXcd& poles_rad_s) {
+  std::vector<Mode> modes;
+  for (Eigen::Index k = 0; k < poles_rad_s.size(); ++k) {
+    const std::complex<double> p = poles_rad_s(k);
+    if (p.imag() < 0.0) continue;
+    Mode m;
+    m.pole_rad_s = p;
+    m.pair = p.imag() > 0.0;
+    const double mag = std::abs(p);
+    m.f_n_hz = mag / kTwoPi;
+    m.damping_ratio = mag > 0.0 ? -p.real() / mag : 1.0;
+    modes.push_back(m);
+  }
+  std::sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) {
+    if (a.f_n_hz != b.f_n_hz) return a.f_n_hz < b.f_n_hz;
+    return a.damping_ratio < b.damping_ratio;
+  });
+  return modes;
+}
+
+std::vector<Mode> Modes(const StateSpace& sys) { return ModesFromPoles(sys.Poles()); }
+
+}  // namespace deb

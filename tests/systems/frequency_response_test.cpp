@@ -1,0 +1,170 @@
+#include "deb/systems/frequency_response.h"
+
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <complex>
+#include <random>
+
+#include "deb/core/error.h"
+#include "deb/systems/transfer_function.h"
+#include "test_util.h"
+
+namespace deb {
+namespace {
+
+using Complex = std::complex<double>;
+using Eigen::MatrixXcd;
+using Method = FrequencyResponse::Method;
+using testing::Contains;
+using testing::MessageOf;
+constexpr double kTwoPi = 2.0 * M_PI;
+
+// 1000 frequencies 1 mHz .. 5 kHz, plus points on the flanks and the peak of
+// the zeta = 1e-4 resonance at 10 Hz (half-power width 2 mHz).
+std::vector<double> TestFrequencies() {
+  std::vector<double> f = testing::LogSpace(1e-3, 5e3, 990);
+  const double fd = 10.0 * std::sqrt(1.0 - 1e-8);
+  for (double df : {-1e-2, -1e-3, -2e-4, -1e-5, 0.0, 1e-5, 2e-4, 1e-3, 1e-2, 1e-1})
+    f.push_back(fd + df);
+  return f;
+}
+
+// Worst relative (Frobenius) error against a dense LU solve per frequency.
+double WorstErrorVsDense(const StateSpace& sys, const FrequencyResponse& h,
+                         const std::vector<double>& f) {
+  double worst = 0.0;
+  for (double fk : f)
+    worst = std::max(worst, testing::RelativeError(h.At(fk), testing::DenseResponse(sys, fk)));
+  return worst;
+}
+
+TEST_CASE("a random 12-state MIMO response matches a dense solve at 1000 frequencies") {
+  // Includes a zeta = 1e-4 pair and an integrator (evaluated off the pole).
+  // Tolerance 1e-9 relative, for both the modal and the Schur form, on the
+  // input-heavy (6 x 10) and the output-heavy (10 x 6) shape.
+  std::mt19937 rng(2015);
+  for (const auto& [p, m] : {std::pair{6, 10}, std::pair{10, 6}}) {
+    const StateSpace sys = testing::RandomSystem(testing::TwelveStateSpec(), p, m, rng);
+    CHECK(sys.states() == 12);
+    const FrequencyResponse automatic(sys), schur(sys, Method::kSchur);
+    CHECK(automatic.method() == Method::kModal);
+    CHECK(schur.method() == Method::kSchur);
+    const std::vector<double> f = TestFrequencies();
+    CHECK(WorstErrorVsDense(sys, automatic, f) <= 1e-9);
+    CHECK(WorstErrorVsDense(sys, schur, f) <= 1e-9);
+  }
+}
+
+TEST_CASE("the resonance peak of a zeta = 1e-4 oscillator has its closed-form height") {
+  // H = w^2 / (s^2 + 2 zeta w s + w^2): |H| at the damped frequency is
+  // 1 / (2 zeta sqrt(1 - zeta^2)). Tolerance 1e-10 relative.
+  const double w = kTwoPi * 37.0, zeta = 1e-4;
+  const StateSpace sys = ToStateSpace(TransferFunction({w * w}, {1.0, 2 * zeta * w, w * w}));
+  const double peak_hz = 37.0 * std::sqrt(1.0 - 2 * zeta * zeta);  // max of |H|
+  const double peak = 1.0 / (2 * zeta * std::sqrt(1.0 - zeta * zeta));
+  for (Method method : {Method::kAuto, Method::kSchur})
+    CHECK(std::abs(FrequencyResponse(sys, method).At(peak_hz)(0, 0)) ==
+          doctest::Approx(peak).epsilon(1e-10));
+}
+
+TEST_CASE("batch evaluation equals single evaluation bitwise") {
+  std::mt19937 rng(7);
+  const StateSpace sys = testing::RandomSystem(testing::TwelveStateSpec(), 6, 10, rng);
+  const std::vector<double> f = testing::LogSpace(0.01, 1000.0, 3000);
+  for (Method method : {Method::kAuto, Method::kSchur}) {
+    const FrequencyResponse h(sys, method);
+    const std::vector<MatrixXcd> batch = h.Evaluate(f, 1);
+    REQUIRE(batch.size() == f.size());
+    bool equal = true;
+    for (std::size_t k = 0; k < f.size(); ++k) equal = equal && batch[k] == h.At(f[k]);
+    CHECK(equal);
+  }
+}
+
+TEST_CASE("threaded evaluation equals single-threaded evaluation bitwise") {
+  std::mt19937 rng(8);
+  const StateSpace sys = testing::RandomSystem(testing::TwelveStateSpec(), 10, 6, rng);
+  const std::vector<double> f = testing::LogSpace(0.01, 1000.0, 5000);
+  for (Method method : {Method::kAuto, Method::kSchur}) {
+    const FrequencyResponse h(sys, method);
+    const std::vector<MatrixXcd> one = h.Evaluate(f, 1), four = h.Evaluate(f, 4);
+    bool equal = true;
+    for (std::size_t k = 0; k < f.size(); ++k) equal = equal && one[k] == four[k];
+    CHECK(equal);
+  }
+}
+
+TEST_CASE("ForEach visits every frequency once with the batch matrices") {
+  std::mt19937 rng(9);
+  const StateSpace sys = testing::RandomSystem(testing::TwelveStateSpec(), 3, 4, rng);
+  const FrequencyResponse h(sys);
+  const std::vector<double> f = testing::LogSpace(0.01, 1000.0, 4000);
+  const std::vector<MatrixXcd> batch = h.Evaluate(f, 1);
+  std::vector<std::atomic<int>> visits(f.size());
+  std::vector<char> same(f.size(), 0);
+  h.ForEach(
+      f,
+      [&](std::size_t k, const MatrixXcd& hk) {
+        visits[k]++;
+        same[k] = hk == batch[k];
+      },
+      3);
+  int once = 0, equal = 0;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    once += visits[k] == 1;
+    equal += same[k];
+  }
+  CHECK(once == static_cast<int>(f.size()));
+  CHECK(equal == static_cast<int>(f.size()));
+}
+
+TEST_CASE("a defective A (double pole) falls back to the Schur form and stays exact") {
+  // 1/(s + 2)^2 realised as a Jordan chain: cond(V) is infinite or huge.
+  Eigen::MatrixXd a(2, 2), b(2, 1), c(1, 2), d = Eigen::MatrixXd::Zero(1, 1);
+  a << -2.0, 1.0, 0.0, -2.0;
+  b << 0.0, 1.0;
+  c << 1.0, 0.0;
+  const FrequencyResponse h(StateSpace(a, b, c, d));
+  CHECK(h.method() == Method::kSchur);
+  CHECK(h.eigenvector_condition() > FrequencyResponse::kMaxModalCondition);
+  for (double f : {0.0, 0.1, 1.0, 10.0}) {
+    const Complex s(0.0, kTwoPi * f);
+    const Complex expected = 1.0 / ((s + 2.0) * (s + 2.0));
+    CHECK(std::abs(h.At(f)(0, 0) - expected) <= 1e-12 * std::abs(expected));
+  }
+}
+
+TEST_CASE("the response at negative frequency is the complex conjugate") {
+  std::mt19937 rng(10);
+  const FrequencyResponse h(testing::RandomSystem(testing::TwelveStateSpec(), 2, 3, rng));
+  for (double f : {0.3, 10.0, 123.0})
+    CHECK((h.At(-f) - h.At(f).conjugate()).norm() <= 1e-13 * h.At(f).norm());
+}
+
+TEST_CASE("a static gain responds with D at every frequency") {
+  const Eigen::MatrixXd d = Eigen::MatrixXd::Random(2, 3);
+  const FrequencyResponse h(StateSpace::Gain(d));
+  CHECK(h.states() == 0);
+  CHECK(h.At(0.0) == d.cast<Complex>());
+  CHECK(h.At(1e3) == d.cast<Complex>());
+}
+
+TEST_CASE("a frequency on a pole is an InputError naming the frequency") {
+  // f = 0 on an integrator; f = 5 Hz on an undamped 5 Hz oscillator.
+  const StateSpace integrator = ToStateSpace(TransferFunction({1.0}, {1.0, 0.0}));
+  for (Method method : {Method::kAuto, Method::kSchur}) {
+    const FrequencyResponse h(integrator, method);
+    const std::string msg = MessageOf([&] { h.At(0.0); });
+    CHECK(Contains(msg, "frequency 0 Hz coincides with a pole"));
+    CHECK(std::abs(h.At(1e-6)(0, 0)) == doctest::Approx(1.0 / (kTwoPi * 1e-6)).epsilon(1e-12));
+    CHECK_THROWS_AS(h.Evaluate({1.0, 0.0, 2.0}), InputError);
+  }
+  const double w = kTwoPi * 5.0;
+  const FrequencyResponse osc(ToStateSpace(TransferFunction({1.0}, {1.0, 0.0, w * w})));
+  CHECK(Contains(MessageOf([&] { osc.At(5.0); }), "frequency 5 Hz coincides with a pole"));
+  CHECK(Contains(MessageOf([&] { osc.At(NAN); }), "not finite"));
+}
+
+}  // namespace
+}  // namespace deb

@@ -1,0 +1,151 @@
+#include "deb/systems/lyapunov.h"
+
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include "deb/core/error.h"
+#include "deb/systems/frequency_response.h"
+#include "deb/systems/interconnect.h"
+#include "deb/systems/transfer_function.h"
+#include "test_util.h"
+
+namespace deb {
+namespace {
+
+using Eigen::MatrixXd;
+using testing::Contains;
+using testing::MessageOf;
+
+MatrixXd Scalar(double v) { return MatrixXd::Constant(1, 1, v); }
+
+TEST_CASE("a first-order low-pass has H2 norm squared 1/(2 tau)") {
+  // Unit two-sided intensity gives sigma^2 = ||H||_2^2 = 1/(2 tau); a
+  // one-sided white level S0 (W = S0/2) gives S0/(4 tau). Tolerance 1e-12.
+  const double tau = 0.025, s0 = 3.0;
+  const StateSpace lp = ToStateSpace(TransferFunction({1.0}, {tau, 1.0}));
+  CHECK(OutputCovariance(lp, Scalar(1.0))(0, 0) == doctest::Approx(1.0 / (2 * tau)).epsilon(1e-12));
+  CHECK(OutputCovariance(lp, Scalar(s0 / 2))(0, 0) ==
+        doctest::Approx(s0 / (4 * tau)).epsilon(1e-12));
+}
+
+TEST_CASE("a mass-spring-damper under white force has variances W/(2ck) and W/(2cm)") {
+  // m x'' + c x' + k x = F, F white with two-sided intensity W; state (x, v).
+  // Displacement and velocity are uncorrelated. Tolerance 1e-10.
+  const double m = 2.1, c = 0.35, k = 480.0, w = 0.7;
+  MatrixXd a(2, 2), b(2, 1);
+  a << 0.0, 1.0, -k / m, -c / m;
+  b << 0.0, 1.0 / m;
+  const StateSpace msd(a, b, MatrixXd::Identity(2, 2), MatrixXd::Zero(2, 1));
+  const MatrixXd cov = OutputCovariance(msd, Scalar(w));
+  CHECK(cov(0, 0) == doctest::Approx(w / (2 * c * k)).epsilon(1e-10));
+  CHECK(cov(1, 1) == doctest::Approx(w / (2 * c * m)).epsilon(1e-10));
+  CHECK(std::abs(cov(0, 1)) <= 1e-10 * std::sqrt(cov(0, 0) * cov(1, 1)));
+  // The same through the transfer function 1/(m s^2 + c s + k).
+  const StateSpace tf = ToStateSpace(TransferFunction({1.0}, {m, c, k}));
+  CHECK(OutputCovariance(tf, Scalar(w))(0, 0) == doctest::Approx(w / (2 * c * k)).epsilon(1e-10));
+}
+
+TEST_CASE("SolveLyapunov leaves a residual below 1e-10 |Q| on a random stable 20x20") {
+  std::mt19937 rng(20);
+  const MatrixXd r = testing::RandomMatrix(20, 20, rng);
+  const double spectral_abscissa = Eigen::EigenSolver<MatrixXd>(r).eigenvalues().real().maxCoeff();
+  const MatrixXd a = r - (spectral_abscissa + 0.5) * MatrixXd::Identity(20, 20);
+  const MatrixXd g = testing::RandomMatrix(20, 5, rng);
+  const MatrixXd q = g * g.transpose();
+  const MatrixXd p = SolveLyapunov(a, q);
+  CHECK((a * p + p * a.transpose() + q).norm() <= 1e-10 * q.norm());
+  CHECK((p - p.transpose()).norm() == 0.0);
+  CHECK(Eigen::SelfAdjointEigenSolver<MatrixXd>(p).eigenvalues().minCoeff() > 0.0);
+}
+
+TEST_CASE("SolveLyapunov handles a non-symmetric Q") {
+  // Residual 1e-12 relative for an arbitrary right-hand side.
+  std::mt19937 rng(21);
+  const MatrixXd a = testing::DenseFromModes({{-1.0, -5.0}, {{3.0, 0.2}, {8.0, 0.01}}}, rng);
+  const MatrixXd q = testing::RandomMatrix(6, 6, rng);
+  const MatrixXd p = SolveLyapunov(a, q);
+  CHECK((a * p + p * a.transpose() + q).norm() <= 1e-12 * (a.norm() * p.norm() + q.norm()));
+}
+
+TEST_CASE("output variance equals the integral of the output PSD over frequency") {
+  // Random stable 6-state system, 2 outputs, 3 correlated inputs; variance
+  // as (1/pi) int_0^inf diag(H W H^H) dw by Simpson's rule in w = tan(theta).
+  // Tolerance 1e-8 relative.
+  std::mt19937 rng(22);
+  const StateSpace sys =
+      testing::RandomSystem({{-0.7, -4.0}, {{2.0, 0.3}, {9.0, 0.1}}}, 2, 3, rng, false);
+  const MatrixXd g = testing::RandomMatrix(3, 3, rng);
+  const MatrixXd w = g * g.transpose();
+  const MatrixXd cov = OutputCovariance(sys, w);
+  const FrequencyResponse h(sys);
+  const int intervals = 200000;  // even
+  const double dt = (M_PI / 2) / intervals;
+  // End points: w = 0, and w -> inf where |H|^2 (1 + w^2) -> |C B|^2.
+  const Eigen::MatrixXcd h0 = h.At(0.0);
+  const MatrixXd cb = sys.C() * sys.B();
+  Eigen::VectorXd sum = (h0 * w * h0.adjoint()).diagonal().real() +
+                        (cb * w * cb.transpose()).diagonal();
+  for (int i = 1; i < intervals; ++i) {
+    const double theta = i * dt, omega = std::tan(theta);
+    const Eigen::MatrixXcd hf = h.At(omega / (2 * M_PI));
+    const Eigen::VectorXd psd = (hf * w * hf.adjoint()).diagonal().real();
+    sum += (i % 2 ? 4.0 : 2.0) * psd * (1.0 + omega * omega);
+  }
+  const Eigen::VectorXd integral = sum * dt / 3.0 / M_PI;
+  for (int i = 0; i < 2; ++i) CHECK(integral(i) == doctest::Approx(cov(i, i)).epsilon(1e-8));
+}
+
+TEST_CASE("an unstable path is rejected listing the unstable pole") {
+  const StateSpace sys(Scalar(0.3), Scalar(1.0), Scalar(1.0), Scalar(0.0));
+  const std::string msg = MessageOf([&] { OutputCovariance(sys, Scalar(1.0)); });
+  CHECK(Contains(msg, "exact variance needs a stable path"));
+  CHECK(Contains(msg, "pole at +0.3 rad/s"));
+  // An integrator is not stable either.
+  const StateSpace integrator = ToStateSpace(TransferFunction({1.0}, {1.0, 0.0}));
+  CHECK(Contains(MessageOf([&] { OutputCovariance(integrator, Scalar(1.0)); }), "pole at"));
+  // An undamped pair is listed once, as a pair.
+  const StateSpace osc = ToStateSpace(TransferFunction({1.0}, {1.0, 0.0, 4.0}));
+  CHECK(Contains(MessageOf([&] { OutputCovariance(osc, Scalar(1.0)); }), "\u00b12j rad/s"));
+}
+
+TEST_CASE("direct feedthrough under white noise is rejected as infinite variance") {
+  const StateSpace sys = ToStateSpace(TransferFunction({2.0, 1.0}, {1.0, 5.0}));
+  CHECK(Contains(MessageOf([&] { OutputCovariance(sys, Scalar(1.0)); }),
+                 "infinite variance: direct feedthrough D != 0 under white noise"));
+  // Feedthrough from an input without noise does no harm.
+  const StateSpace two = StackOutputs(sys, sys).SelectInputs({0});
+  const StateSpace mixed = Append(ToStateSpace(TransferFunction({1.0}, {1.0, 5.0})),
+                                  StateSpace::Gain(Scalar(1.0)));
+  MatrixXd w = MatrixXd::Zero(2, 2);
+  w(0, 0) = 1.0;
+  CHECK(OutputCovariance(mixed, w)(0, 0) == doctest::Approx(0.1).epsilon(1e-12));
+  CHECK(two.outputs() == 2);
+}
+
+TEST_CASE("a wrong-sized or asymmetric intensity is rejected") {
+  const StateSpace sys = ToStateSpace(TransferFunction({1.0}, {1.0, 5.0}));
+  CHECK(Contains(MessageOf([&] { OutputCovariance(sys, MatrixXd::Identity(2, 2)); }),
+                 "W is 2x2 but the path has 1 inputs"));
+  MatrixXd w(2, 2);
+  w << 1.0, 0.5, 0.4, 1.0;
+  const StateSpace two = Append(sys, sys);
+  CHECK(Contains(MessageOf([&] { OutputCovariance(two, w); }), "not symmetric"));
+  CHECK(Contains(MessageOf([&] { OutputCovariance(sys, Scalar(-1.0)); }), "negative"));
+}
+
+TEST_CASE("a Lyapunov equation with poles summing to zero is singular") {
+  MatrixXd a(2, 2);
+  a << 0.0, 1.0, -4.0, 0.0;  // poles +-2j
+  CHECK(Contains(MessageOf([&] { SolveLyapunov(a, MatrixXd::Identity(2, 2)); }),
+                 "singular equation"));
+  CHECK_THROWS_AS(SolveLyapunov(a, MatrixXd::Identity(3, 3)), InputError);
+}
+
+TEST_CASE("a path without states has zero covariance") {
+  const MatrixXd cov = OutputCovariance(StateSpace::Gain(MatrixXd::Zero(2, 1)), Scalar(1.0));
+  CHECK(cov == MatrixXd::Zero(2, 2));
+}
+
+}  // namespace
+}  // namespace deb
