@@ -1,0 +1,59 @@
+// Reads tabulated spectra (measured floor vibration, sensor noise curves) from
+// a small self-describing text format, and converts them once, at load, to
+// deb's convention: one-sided PSD (METHOD.md, conventions 1-2).
+//
+//   # unit: um/s          unit of the quantity (optional)
+//   # quantity: asd       psd (default) or asd: ASD columns are squared
+//   # sides: two          one (default) or two: PSD_one = 2 PSD_two
+//   f_hz, x, y, z         optional header row: frequency name, channel names
+//   0.5, 1.2e-3, ...      frequency [Hz] first, then one column per channel
+//
+// Cells are separated by commas or by whitespace; '#' starts a comment (a
+// comment line "# key: value" with another key is just a comment). Errors
+// quote file:line:column, the offending text and the rule it breaks.
+#pragma once
+
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "deb/spectra/measured_spectrum.h"
+
+namespace deb {
+
+enum class SpectrumQuantity { kPsd, kAsd };
+enum class SpectrumSides { kOne, kTwo };
+
+// "psd", "asd" / "one", "two".
+std::string ToString(SpectrumQuantity quantity);
+std::string ToString(SpectrumSides sides);
+// @throws InputError naming the text and listing the allowed values.
+SpectrumQuantity ParseSpectrumQuantity(const std::string& text);
+SpectrumSides ParseSpectrumSides(const std::string& text);
+
+struct SpectrumCsv {
+  std::string path;                        // as given to the reader
+  std::vector<double> f_hz;                // strictly increasing, > 0
+  Eigen::MatrixXd psd;                     // one-sided PSD, rows = f_hz, cols = channels
+  std::vector<std::string> channel_names;  // from the header row, else "ch1", ...
+  std::optional<std::string> unit;         // from "# unit:"
+  SpectrumQuantity quantity = SpectrumQuantity::kPsd;  // as declared in the file
+  SpectrumSides sides = SpectrumSides::kOne;           // as declared in the file
+};
+
+// @throws InputError if the file cannot be read or breaks a rule: a cell that
+//   is not a number or not finite, a frequency <= 0 or not greater than the
+//   one before, a negative PSD/ASD, a row with a different number of cells, a
+//   bad or repeated "# quantity:"/"# sides:"/"# unit:", fewer than 2 rows.
+SpectrumCsv ReadSpectrumCsv(const std::string& path);
+
+// Same, from a stream; name stands for the file name in messages.
+SpectrumCsv ParseSpectrumCsv(std::istream& in, const std::string& name);
+
+// The table as a spectrum source (independent channels).
+std::shared_ptr<const MeasuredSpectrum> MakeMeasuredSpectrum(
+    const SpectrumCsv& csv, Extrapolation extrapolation = Extrapolation::kError);
+
+}  // namespace deb
