@@ -1,2 +1,143 @@
+// deb: the command-line front end. Thin: parses arguments, calls the library,
+// maps failures to documented exit codes.
+//
+// Exit codes: 0 success; 2 usage error; 3 invalid input (budget, data file,
+// model); 4 cannot write the report; 70 internal error.
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
 #include <cstdio>
-int main() { std::puts("deb: under construction"); return 0; }
+#include <filesystem>
+#include <iostream>
+
+#include "deb/budget/engine.h"
+#include "deb/core/error.h"
+#include "deb/core/parallel.h"
+#include "deb/io/budget_yaml.h"
+#include "deb/io/result_writer.h"
+#include "deb/units/unit.h"
+
+namespace {
+
+constexpr int kExitUsage = 2;
+constexpr int kExitInput = 3;
+constexpr int kExitWrite = 4;
+constexpr int kExitInternal = 70;
+
+struct WriteError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds, const std::string& out_dir) {
+  std::printf("budget %s: %zu frequencies, %g-%g Hz, evaluated in %.3f s\n", budget.name.c_str(), r.grid.size(),
+              r.grid.min_hz(), r.grid.max_hz(), seconds);
+  for (const auto& o : r.outputs) {
+    std::printf("\noutput %s [%s]: rms %.6g", o.name.c_str(), o.unit.c_str(), o.rms());
+    if (o.rms_max) std::printf("  (requirement %.6g: %s)", *o.rms_max, o.pass() ? "PASS" : "FAIL");
+    std::printf("\n  %-24s %14s %8s %14s\n", "contributor", "rms", "share", "exact rms");
+    for (const auto& c : o.contributors) {
+      const double share = o.variance > 0 ? 100.0 * c.variance / o.variance : 0.0;
+      if (c.exact_variance)
+        std::printf("  %-24s %14.6g %7.2f%% %14.6g\n", c.name.c_str(), std::sqrt(c.variance), share,
+                    std::sqrt(*c.exact_variance));
+      else
+        std::printf("  %-24s %14.6g %7.2f%% %14s\n", c.name.c_str(), std::sqrt(c.variance), share, "-");
+    }
+  }
+  std::printf("\nreport: %s\n", out_dir.c_str());
+}
+
+int Run(const std::string& budget_file, std::string out_dir, int threads, bool quiet) {
+  const deb::Budget budget = deb::LoadBudgetFile(budget_file);
+  if (out_dir.empty()) out_dir = (std::filesystem::path("reports") / budget.name).string();
+  deb::EngineOptions options;
+  options.threads = threads;
+  const auto t0 = std::chrono::steady_clock::now();
+  const deb::BudgetResult result = deb::Evaluate(budget, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
+  try {
+    deb::WriteResultDirectory(budget, result, {budget_file, seconds}, out_dir);
+  } catch (const deb::InputError& e) {
+    throw WriteError(e.what());
+  }
+  if (!quiet) PrintBrief(budget, result, seconds, out_dir);
+  return 0;
+}
+
+int Check(const std::string& budget_file) {
+  const deb::Budget budget = deb::LoadBudgetFile(budget_file);
+  const deb::FrequencyGrid grid = deb::BuildGrid(budget);
+  std::printf("budget %s: valid\n", budget.name.c_str());
+  if (!budget.description.empty()) std::printf("  %s\n", budget.description.c_str());
+  std::printf("grid: %s, %zu frequencies, %g-%g Hz\n", deb::ToString(budget.grid.kind).c_str(), grid.size(),
+              grid.min_hz(), grid.max_hz());
+  std::printf("sources:\n");
+  for (const auto& s : budget.sources) {
+    std::printf("  %-20s %d channel(s) in %s: %s\n", s.name.c_str(), s.channels(), s.unit.c_str(),
+                s.spectrum->Describe().c_str());
+  }
+  std::printf("paths:\n");
+  for (const auto& p : budget.paths) {
+    std::printf("  %-20s %d input(s) -> %d output(s), %d state(s), %s\n", p.name.c_str(), p.system.inputs(),
+                p.system.outputs(), p.system.states(), p.system.IsStable() ? "stable" : "NOT stable");
+  }
+  std::printf("contributors:\n");
+  for (const auto& c : budget.contributors)
+    std::printf("  %-20s source %s, path %s, exact variance: %s\n", c.name.c_str(), c.source.c_str(),
+                c.path.c_str(), deb::ToString(c.exact).c_str());
+  std::printf("outputs:\n");
+  for (const auto& o : budget.outputs) {
+    std::printf("  %-20s signal %s in %s", o.name.c_str(), o.signal.c_str(), o.unit.c_str());
+    if (o.weighting) std::printf(", weighted (%s)", o.weighting->unit.c_str());
+    if (o.rms_max) std::printf(", rms_max %g", *o.rms_max);
+    std::printf("\n");
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"deb: frequency-domain dynamic error budgeting for precision machines"};
+  app.set_version_flag("--version", std::string("deb ") + DEB_VERSION);
+  app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 success, 2 usage error, 3 invalid input (budget, data file, model), "
+      "4 cannot write the report, 70 internal error.");
+
+  std::string budget_file, out_dir;
+  int threads = 0;
+  bool quiet = false;
+  CLI::App* run = app.add_subcommand("run", "Evaluate a budget and write its report directory");
+  run->add_option("budget", budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
+  run->add_option("--out,-o", out_dir, "Report directory (default: reports/<budget-name>)");
+  run->add_option("--threads,-j", threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  run->add_flag("--quiet,-q", quiet, "Print nothing but warnings and errors");
+
+  std::string check_file;
+  CLI::App* check = app.add_subcommand("check", "Validate a budget and describe it, without computing");
+  check->add_option("budget", check_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitUsage;
+  }
+  try {
+    if (*run) return Run(budget_file, out_dir, threads, quiet);
+    if (*check) return Check(check_file);
+  } catch (const deb::InputError& e) {
+    std::fprintf(stderr, "deb: error: %s\n", e.what());
+    return kExitInput;
+  } catch (const WriteError& e) {
+    std::fprintf(stderr, "deb: error: %s\n", e.what());
+    return kExitWrite;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "deb: internal error: %s\n", e.what());
+    return kExitInternal;
+  }
+  return kExitUsage;
+}

@@ -1,5 +1,6 @@
 #include "deb/budget/budget.h"
 
+#include <cctype>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -19,6 +20,10 @@ void RequireUniqueNames(const std::vector<T>& items, const char* list) {
   std::set<std::string> seen;
   for (std::size_t i = 0; i < items.size(); ++i) {
     if (items[i].name.empty()) throw InputError(Indexed(list, i) + ".name", "a name is required");
+    for (char ch : items[i].name)
+      if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
+        throw InputError(Indexed(list, i) + ".name", "name '" + items[i].name +
+                                                         "' may contain only letters, digits, '_', '-' and '.'");
     if (!seen.insert(items[i].name).second)
       throw InputError(Indexed(list, i) + ".name",
                        "name '" + items[i].name + "' is used twice in " + list);

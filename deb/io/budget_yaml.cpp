@@ -1,0 +1,133 @@
+#include "deb/io/budget_yaml.h"
+
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "deb/io/path_yaml.h"
+#include "deb/io/source_yaml.h"
+#include "deb/io/yaml_reader.h"
+
+namespace deb {
+namespace {
+
+using io::YamlNode;
+using io::YamlReader;
+
+GridSpec ParseGrid(const YamlNode& node) {
+  node.AllowOnly({"type", "min_hz", "max_hz", "points", "points_per_decade", "points_per_resonance",
+                  "resonance_flank_points_per_decade", "max_refined_zeta", "f_hz"});
+  GridSpec g;
+  if (auto t = node.Optional("type")) g.kind = io::AtNode(*t, [&] { return ParseGridKind(t->AsString()); });
+  auto& o = g.auto_options;
+  const auto min = node.Optional("min_hz"), max = node.Optional("max_hz");
+  if (min) o.min_hz = min->AsPositive();
+  if (max) o.max_hz = max->AsPositive();
+  if (min.has_value() != max.has_value())
+    node.Fail("give both min_hz and max_hz, or neither (the automatic grid then covers 0.1-1000 Hz and every band)");
+  g.range_given = min.has_value();
+  if (g.kind == GridKind::kLog || g.kind == GridKind::kLinear) {
+    if (!g.range_given) node.Fail("a " + ToString(g.kind) + " grid needs min_hz and max_hz");
+    g.points = node.Required("points").AsInt();
+  } else if (node.Has("points")) {
+    node.Required("points").Fail("'points' applies to log and linear grids only");
+  }
+  if (g.kind == GridKind::kExplicit) {
+    g.f_hz = node.Required("f_hz").AsDoubles();
+  } else if (node.Has("f_hz")) {
+    node.Required("f_hz").Fail("'f_hz' applies to explicit grids only");
+  }
+  if (auto v = node.Optional("points_per_decade")) o.points_per_decade = v->AsInt();
+  if (auto v = node.Optional("points_per_resonance")) o.points_per_resonance = v->AsInt();
+  if (auto v = node.Optional("resonance_flank_points_per_decade")) o.resonance_flank_points_per_decade = v->AsInt();
+  if (auto v = node.Optional("max_refined_zeta")) o.max_refined_zeta = v->AsDouble();
+  if (g.kind == GridKind::kAuto && g.range_given) io::AtNode(node, [&] { o.Validate(); });
+  else if (g.kind == GridKind::kAuto) {
+    AutoGridOptions check = o;
+    check.min_hz = 0.1;
+    check.max_hz = 1000.0;
+    io::AtNode(node, [&] { check.Validate(); });
+  }
+  return g;
+}
+
+Output ParseOutput(const YamlNode& node) {
+  node.AllowOnly({"name", "signal", "unit", "weighting", "rms_max", "description"});
+  Output o;
+  o.name = node.Required("name").AsString();
+  o.signal = node.Has("signal") ? node.Required("signal").AsString() : o.name;
+  o.unit = node.Required("unit").AsString();
+  if (auto w = node.Optional("weighting")) o.weighting = io::ParseWeighting(*w);
+  if (auto r = node.Optional("rms_max")) o.rms_max = r->AsPositive();
+  return o;
+}
+
+Contributor ParseContributor(const YamlNode& node) {
+  node.AllowOnly({"name", "source", "path", "exact", "description"});
+  Contributor c;
+  c.name = node.Required("name").AsString();
+  c.source = node.Required("source").AsString();
+  c.path = node.Required("path").AsString();
+  if (auto e = node.Optional("exact")) c.exact = io::AtNode(*e, [&] { return ParseExactVariance(e->AsString()); });
+  return c;
+}
+
+Band ParseBand(const YamlNode& node) {
+  Band b;
+  if (node.IsSequence()) {
+    const auto v = node.AsDoubles();
+    if (v.size() != 2) node.Fail("a band is [lo_hz, hi_hz], got " + std::to_string(v.size()) + " numbers");
+    b = {v[0], v[1]};
+  } else {
+    node.AllowOnly({"lo_hz", "hi_hz"});
+    b = {node.Required("lo_hz").AsDouble(), node.Required("hi_hz").AsDouble()};
+  }
+  if (!(b.lo_hz > 0.0 && b.hi_hz > b.lo_hz)) {
+    std::ostringstream os;
+    os << "band [" << b.lo_hz << ", " << b.hi_hz << "] Hz is empty or invalid; need 0 < lo_hz < hi_hz";
+    node.Fail(os.str());
+  }
+  return b;
+}
+
+Budget Load(const YamlReader& reader, const std::string& base_dir) {
+  const YamlNode root = reader.Root();
+  root.AllowOnly({"name", "description", "grid", "sources", "paths", "contributors", "outputs", "bands"});
+  Budget b;
+  b.source_file = reader.name();
+  b.name = root.Required("name").AsString();
+  for (char ch : b.name)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
+      root.Required("name").Fail("budget name '" + b.name +
+                                 "' may contain only letters, digits, '_', '-' and '.' (it names the report directory)");
+  if (auto d = root.Optional("description")) b.description = d->AsString();
+  if (auto g = root.Optional("grid")) b.grid = ParseGrid(*g);
+  io::PathContext paths(base_dir);
+  for (const auto& n : root.Required("sources").Elements()) b.sources.push_back(io::ParseSource(n, base_dir));
+  for (const auto& n : root.Required("paths").Elements()) b.paths.push_back(paths.Parse(n));
+  for (const auto& n : root.Required("contributors").Elements()) b.contributors.push_back(ParseContributor(n));
+  for (const auto& n : root.Required("outputs").Elements()) b.outputs.push_back(ParseOutput(n));
+  if (auto bands = root.Optional("bands"))
+    for (const auto& n : bands->Elements()) b.bands.push_back(ParseBand(n));
+  try {
+    b.Validate();
+  } catch (const InputError& e) {
+    if (e.key_path().empty()) throw InputError(reader.name() + ": " + e.what());
+    throw InputError(e.key_path(), reader.Locate(e.key_path(), e.what()));
+  }
+  return b;
+}
+
+}  // namespace
+
+Budget LoadBudgetFile(const std::string& path) {
+  const YamlReader reader = YamlReader::FromFile(path);
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return Load(reader, dir.empty() ? "." : dir);
+}
+
+Budget LoadBudgetText(const std::string& text, const std::string& name, const std::string& base_dir) {
+  return Load(YamlReader::FromString(text, name), base_dir);
+}
+
+}  // namespace deb

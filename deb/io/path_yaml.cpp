@@ -1,0 +1,186 @@
+#include "deb/io/path_yaml.h"
+
+#include "deb/systems/interconnect.h"
+#include "deb/systems/transfer_function.h"
+#include "deb/units/unit.h"
+
+namespace deb::io {
+namespace {
+
+const std::set<std::string> kCommonKeys = {"name", "description", "type", "inputs", "outputs",
+                                           "input_unit", "input_units", "output_unit", "output_units"};
+
+std::set<std::string> With(std::set<std::string> keys, std::initializer_list<std::string> more) {
+  keys.insert(more);
+  return keys;
+}
+
+std::vector<std::string> Names(const YamlNode& node, const char* field, int count, const std::string& stem) {
+  if (auto n = node.Optional(field)) {
+    auto names = n->AsStrings();
+    if (static_cast<int>(names.size()) != count)
+      n->Fail(std::to_string(names.size()) + " name(s) given, the system has " + std::to_string(count));
+    return names;
+  }
+  if (count == 1) return {stem};
+  std::vector<std::string> names;
+  for (int i = 1; i <= count; ++i) names.push_back(stem + std::to_string(i));
+  return names;
+}
+
+std::vector<std::string> Units(const YamlNode& node, const std::string& single, const std::string& list, int count) {
+  const auto one = node.Optional(single), many = node.Optional(list);
+  if (one && many) many->Fail("give '" + single + "' or '" + list + "', not both");
+  if (one) return std::vector<std::string>(count, one->AsString());
+  if (many) {
+    auto units = many->AsStrings();
+    if (static_cast<int>(units.size()) != count)
+      many->Fail(std::to_string(units.size()) + " unit(s) given, the system has " + std::to_string(count));
+    return units;
+  }
+  node.Fail("missing '" + single + "' (one unit for all) or '" + list + "' (one per channel)");
+}
+
+TransferFunction ParseTf(const YamlNode& node) {
+  return AtNode(node, [&] { return TransferFunction(node.Required("num").AsDoubles(), node.Required("den").AsDoubles()); });
+}
+
+// Gain matrix diag(scale_k) turning signals in `from` units into `to` units.
+// @throws at `node` if a pair differs by more than a scale.
+Eigen::MatrixXd ScaleBetween(const YamlNode& node, const std::vector<std::string>& from,
+                             const std::vector<std::string>& to, const std::string& what) {
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(to.size(), from.size());
+  for (std::size_t k = 0; k < from.size(); ++k) {
+    const UnitConversion c = AtNode(node, [&] { return ConvertUnit(from[k], to[k]); });
+    if (!c.IsPureScale())
+      node.Fail(what + ": channel " + std::to_string(k + 1) + " carries '" + from[k] + "' into '" + to[k] +
+                "', which differ by a time derivative; insert the derivative explicitly");
+    g(k, k) = c.scale;
+  }
+  return g;
+}
+
+}  // namespace
+
+const Path& PathContext::Lookup(const YamlNode& name_node) const {
+  const std::string name = name_node.AsString();
+  const auto it = parsed_.find(name);
+  if (it == parsed_.end()) name_node.Fail("no path named '" + name + "' is defined before this one");
+  return it->second;
+}
+
+Path PathContext::Parse(const YamlNode& node) {
+  Path p;
+  p.name = node.Required("name").AsString();
+  if (auto d = node.Optional("description")) p.description = d->AsString();
+  const YamlNode type_node = node.Required("type");
+  const std::string type = type_node.AsString();
+  bool composite = false;
+
+  if (type == "transfer_function") {
+    node.AllowOnly(With(kCommonKeys, {"num", "den", "matrix"}));
+    if (auto m = node.Optional("matrix")) {
+      std::vector<std::vector<TransferFunction>> rows;
+      for (const auto& row : m->Elements()) {
+        rows.emplace_back();
+        for (const auto& e : row.Elements()) {
+          e.AllowOnly({"num", "den"});
+          rows.back().push_back(ParseTf(e));
+        }
+      }
+      p.system = AtNode(*m, [&] { return ToStateSpace(rows); });
+    } else {
+      p.system = ToStateSpace(ParseTf(node));
+    }
+  } else if (type == "state_space") {
+    node.AllowOnly(With(kCommonKeys, {"A", "B", "C", "D"}));
+    const Eigen::MatrixXd a = node.Required("A").AsMatrix(), b = node.Required("B").AsMatrix(),
+                          c = node.Required("C").AsMatrix();
+    const Eigen::MatrixXd d = node.Has("D") ? node.Required("D").AsMatrix() : Eigen::MatrixXd::Zero(c.rows(), b.cols());
+    p.system = AtNode(node, [&] { return StateSpace(a, b, c, d); });
+  } else if (type == "gain") {
+    node.AllowOnly(With(kCommonKeys, {"gain"}));
+    p.system = StateSpace::Gain(node.Required("gain").AsMatrix());
+  } else if (type == "series" || type == "parallel") {
+    node.AllowOnly({"name", "description", "type", "inputs", "outputs", "of"});
+    composite = true;
+    const auto parts = node.Required("of").Elements();
+    if (parts.size() < 2) node.Required("of").Fail("list at least two paths");
+    Path acc = Lookup(parts[0]);
+    for (std::size_t i = 1; i < parts.size(); ++i) {
+      const Path& next = Lookup(parts[i]);
+      if (type == "series") {
+        if (next.system.inputs() != acc.system.outputs())
+          parts[i].Fail("path '" + next.name + "' has " + std::to_string(next.system.inputs()) +
+                        " input(s) but follows " + std::to_string(acc.system.outputs()) + " output(s)");
+        const Eigen::MatrixXd g = ScaleBetween(parts[i], acc.output_units, next.input_units, "series");
+        acc.system = Series(Series(acc.system, StateSpace::Gain(g)), next.system);
+        acc.output_names = next.output_names;
+        acc.output_units = next.output_units;
+      } else {
+        if (next.system.inputs() != acc.system.inputs() || next.system.outputs() != acc.system.outputs())
+          parts[i].Fail("parallel paths must have the same numbers of inputs and outputs");
+        const Eigen::MatrixXd gi = ScaleBetween(parts[i], acc.input_units, next.input_units, "parallel inputs");
+        const Eigen::MatrixXd go = ScaleBetween(parts[i], next.output_units, acc.output_units, "parallel outputs");
+        acc.system = Parallel(acc.system, Series(Series(StateSpace::Gain(gi), next.system), StateSpace::Gain(go)));
+      }
+    }
+    p.system = acc.system;
+    p.input_units = acc.input_units;
+    p.output_units = acc.output_units;
+    p.input_names = acc.input_names;
+    p.output_names = acc.output_names;
+  } else if (type == "feedback") {
+    node.AllowOnly({"name", "description", "type", "inputs", "outputs", "plant", "controller", "sign"});
+    composite = true;
+    const Path& plant = Lookup(node.Required("plant"));
+    const Path& ctrl = Lookup(node.Required("controller"));
+    int sign = -1;
+    if (auto s = node.Optional("sign")) {
+      sign = s->AsInt();
+      if (sign != 1 && sign != -1) s->Fail("sign must be -1 (negative feedback) or +1, got " + std::to_string(sign));
+    }
+    if (ctrl.system.inputs() != plant.system.outputs() || ctrl.system.outputs() != plant.system.inputs())
+      node.Required("controller").Fail("controller '" + ctrl.name + "' must have " +
+                                       std::to_string(plant.system.outputs()) + " input(s) and " +
+                                       std::to_string(plant.system.inputs()) + " output(s) to close a loop around '" +
+                                       plant.name + "'");
+    const Eigen::MatrixXd gi = ScaleBetween(node.Required("controller"), plant.output_units, ctrl.input_units, "feedback");
+    const Eigen::MatrixXd go = ScaleBetween(node.Required("controller"), ctrl.output_units, plant.input_units, "feedback");
+    const StateSpace k = Series(Series(StateSpace::Gain(gi), ctrl.system), StateSpace::Gain(go));
+    p.system = AtNode(node, [&] { return Feedback(plant.system, k, sign); });
+    p.input_units = plant.input_units;
+    p.output_units = plant.output_units;
+    p.input_names = plant.input_names;
+    p.output_names = plant.output_names;
+  } else {
+    type_node.Fail("unknown path type '" + type +
+                   "'; allowed: transfer_function, state_space, gain, series, parallel, feedback");
+  }
+
+  if (composite) {
+    if (node.Has("inputs")) p.input_names = Names(node, "inputs", p.system.inputs(), "u");
+    if (node.Has("outputs")) p.output_names = Names(node, "outputs", p.system.outputs(), "y");
+  } else {
+    p.input_names = Names(node, "inputs", p.system.inputs(), "u");
+    p.output_names = Names(node, "outputs", p.system.outputs(), "y");
+    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+  }
+  AtNode(node, [&] { p.Validate(); });
+  if (parsed_.count(p.name)) node.Required("name").Fail("name '" + p.name + "' is used twice in paths");
+  parsed_.emplace(p.name, p);
+  return p;
+}
+
+Weighting ParseWeighting(const YamlNode& node) {
+  node.AllowOnly({"num", "den", "unit", "description"});
+  Weighting w;
+  w.system = ToStateSpace(ParseTf(node));
+  if (auto u = node.Optional("unit")) w.unit = u->AsString();
+  AtNode(node, [&] { ValidateUnit(w.unit); });
+  if (auto d = node.Optional("description")) w.description = d->AsString();
+  return w;
+}
+
+}  // namespace deb::io

@@ -1,0 +1,30 @@
+// YAML -> Path: the `paths:` entries of a budget (transfer_function,
+// state_space, gain, and series/parallel/feedback of earlier paths, with units
+// checked and scaled at every connection), and output weightings.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "deb/budget/budget.h"
+#include "deb/budget/path.h"
+#include "deb/io/yaml_reader.h"
+
+namespace deb::io {
+
+class PathContext {
+ public:
+  explicit PathContext(std::string base_dir) : base_dir_(std::move(base_dir)) {}
+
+  // Parses one entry; composite paths may name entries parsed before.
+  Path Parse(const YamlNode& node);
+
+ private:
+  const Path& Lookup(const YamlNode& name_node) const;
+  std::string base_dir_;
+  std::map<std::string, Path> parsed_;
+};
+
+Weighting ParseWeighting(const YamlNode& node);
+
+}  // namespace deb::io

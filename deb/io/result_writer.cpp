@@ -1,0 +1,195 @@
+#include "deb/io/result_writer.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/units/unit.h"
+
+namespace deb {
+namespace fs = std::filesystem;
+namespace {
+
+nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json Conventions() {
+  return {
+      {"frequency", "Hz"},
+      {"psd", "one-sided: variance = integral of S(f) df over 0 < f < infinity; unit^2/Hz"},
+      {"asd", "sqrt(PSD), unit/sqrt(Hz)"},
+      {"cps", "cumulative power spectrum, integral of the PSD from the grid's lowest frequency up to f; "
+              "rms = sqrt(cps at the highest frequency)"},
+      {"two_sided_sources", "sources declared two-sided are converted once at load: S_one = 2 S_two"},
+      {"h2_norm", "||H||_2^2 = (1/2pi) integral over all omega of tr(H H^H); white one-sided S0 gives "
+                  "variance = S0 ||H||_2^2 / 2"},
+      {"exact_variance", "Lyapunov A P + P A^T + B W B^T = 0, variance = C P C^T, W = S0/2; over 0 < f < infinity"},
+      {"contributors", "mutually uncorrelated; variances add"},
+  };
+}
+
+}  // namespace
+
+std::string SummaryJson(const Budget& budget, const BudgetResult& result, const RunInfo& info) {
+  nlohmann::json j;
+  j["budget"] = budget.name;
+  j["description"] = budget.description;
+  j["budget_file"] = info.budget_file;
+  j["deb_version"] = DEB_VERSION;
+  j["conventions"] = Conventions();
+  j["grid"] = {{"type", ToString(budget.grid.kind)},
+               {"points", result.grid.size()},
+               {"min_hz", result.grid.min_hz()},
+               {"max_hz", result.grid.max_hz()}};
+  j["seconds"] = info.seconds;
+  bool all_pass = true;
+  nlohmann::json outputs = nlohmann::json::array();
+  for (const OutputResult& o : result.outputs) {
+    nlohmann::json jo;
+    jo["name"] = o.name;
+    jo["signal"] = o.signal;
+    jo["unit"] = o.unit;
+    jo["rms"] = o.rms();
+    jo["variance"] = o.variance;
+    if (o.rms_max) {
+      jo["requirement"] = {{"rms_max", *o.rms_max}, {"pass", o.pass()}, {"margin", *o.rms_max - o.rms()}};
+    } else {
+      jo["requirement"] = nullptr;
+    }
+    all_pass &= o.pass();
+    nlohmann::json contributors = nlohmann::json::array();
+    for (std::size_t c = 0; c < o.contributors.size(); ++c) {
+      const ContributorResult& cr = o.contributors[c];
+      const Contributor& spec = budget.contributors[c];
+      nlohmann::json jc;
+      jc["name"] = cr.name;
+      jc["source"] = spec.source;
+      jc["path"] = spec.path;
+      jc["rms"] = std::sqrt(cr.variance);
+      jc["variance"] = cr.variance;
+      jc["share"] = o.variance > 0.0 ? cr.variance / o.variance : 0.0;
+      if (cr.exact_variance) {
+        jc["exact_rms"] = std::sqrt(*cr.exact_variance);
+        jc["exact_variance"] = *cr.exact_variance;
+        jc["beyond_grid_variance"] = *cr.exact_variance - cr.variance;
+        jc["exact_note"] = nullptr;
+      } else {
+        jc["exact_rms"] = nullptr;
+        jc["exact_variance"] = nullptr;
+        jc["beyond_grid_variance"] = nullptr;
+        jc["exact_note"] = cr.exact_note;
+      }
+      jc["tail_variance_estimate"] = NumberOrNull(cr.tail_variance_estimate);
+      contributors.push_back(jc);
+    }
+    jo["contributors"] = contributors;
+    nlohmann::json bands = nlohmann::json::array();
+    for (const BandResult& b : o.bands) {
+      nlohmann::json jb = {{"lo_hz", b.band.lo_hz}, {"hi_hz", b.band.hi_hz}, {"rms", std::sqrt(b.variance)},
+                           {"variance", b.variance}};
+      nlohmann::json bc = nlohmann::json::array();
+      for (std::size_t c = 0; c < o.contributors.size(); ++c)
+        bc.push_back({{"name", o.contributors[c].name},
+                      {"rms", std::sqrt(b.contributor_variance[c])},
+                      {"variance", b.contributor_variance[c]}});
+      jb["contributors"] = bc;
+      bands.push_back(jb);
+    }
+    jo["bands"] = bands;
+    outputs.push_back(jo);
+  }
+  j["outputs"] = outputs;
+  j["pass"] = all_pass;
+  j["warnings"] = result.warnings;
+  return j.dump(2) + "\n";
+}
+
+std::string OutputCsvName(const std::string& output_name) {
+  std::string s = output_name;
+  for (char& ch : s)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.')) ch = '_';
+  return s + ".csv";
+}
+
+std::string OutputCsv(const BudgetResult& result, const OutputResult& o) {
+  std::ostringstream os;
+  os.precision(10);
+  os << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ", output " << o.name << " (signal "
+     << o.signal << ")\n"
+     << "# psd_*: one-sided PSD in " << PsdUnitLabel(o.unit) << "; cps_*: cumulative from " << result.grid.min_hz()
+     << " Hz in (" << o.unit << ")^2; reverse_cps_total: integral from f to " << result.grid.max_hz() << " Hz\n";
+  os << "frequency_hz";
+  for (const auto& c : o.contributors) os << ",psd_" << c.name;
+  os << ",psd_total";
+  for (const auto& c : o.contributors) os << ",cps_" << c.name;
+  os << ",cps_total,reverse_cps_total\n";
+  const std::vector<double> reverse = ReverseCps(o.total_cps);
+  const auto& f = result.grid.f_hz();
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    os << f[k];
+    for (const auto& c : o.contributors) os << ',' << c.psd[k];
+    os << ',' << o.total_psd[k];
+    for (const auto& c : o.contributors) os << ',' << c.cps[k];
+    os << ',' << o.total_cps[k] << ',' << reverse[k] << '\n';
+  }
+  return os.str();
+}
+
+void WriteDirectoryAtomically(const std::string& out_dir, const std::function<void(const std::string&)>& fill) {
+  const fs::path target = fs::absolute(out_dir).lexically_normal();
+  const fs::path parent = target.parent_path();
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw InputError("cannot create directory " + parent.string() + ": " + ec.message());
+  const std::string stem = "." + target.filename().string() + ".tmp-" + std::to_string(::getpid());
+  const fs::path tmp = parent / stem;
+  fs::remove_all(tmp, ec);
+  fs::create_directory(tmp, ec);
+  if (ec) throw InputError("cannot create directory " + tmp.string() + ": " + ec.message());
+  try {
+    fill(tmp.string());
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+  const fs::path old = parent / (stem + ".old");
+  if (fs::exists(target)) {
+    fs::rename(target, old, ec);
+    if (ec) {
+      fs::remove_all(tmp, ec);
+      throw InputError("cannot replace " + target.string() + ": " + ec.message());
+    }
+  }
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    if (fs::exists(old)) fs::rename(old, target, ec);
+    fs::remove_all(tmp, ec);
+    throw InputError("cannot move the report into " + target.string() + ": " + why);
+  }
+  fs::remove_all(old, ec);
+}
+
+namespace {
+void WriteText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw InputError("cannot write " + path.string());
+}
+}  // namespace
+
+void WriteResultDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
+                          const std::string& out_dir) {
+  WriteDirectoryAtomically(out_dir, [&](const std::string& dir) {
+    WriteText(fs::path(dir) / "summary.json", SummaryJson(budget, result, info));
+    for (const OutputResult& o : result.outputs) WriteText(fs::path(dir) / OutputCsvName(o.name), OutputCsv(result, o));
+  });
+}
+
+}  // namespace deb

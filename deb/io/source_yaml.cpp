@@ -1,0 +1,169 @@
+#include "deb/io/source_yaml.h"
+
+#include <filesystem>
+
+#include "deb/spectra/channel_set.h"
+#include "deb/spectra/flat_spectrum.h"
+#include "deb/spectra/measured_spectrum.h"
+#include "deb/spectra/scaled_spectrum.h"
+#include "deb/spectra/spectrum_csv.h"
+#include "deb/spectra/vc_curve.h"
+#include "deb/units/unit.h"
+
+namespace deb::io {
+namespace {
+
+// Channel names from `channels:` (a count or a list); `fallback` for none.
+std::vector<std::string> ChannelNames(const YamlNode& source, const std::string& fallback_name, int fallback_count) {
+  if (auto c = source.Optional("channels")) {
+    if (c->IsScalar()) {
+      const int n = c->AsInt();
+      if (n < 1) c->Fail("channels must be >= 1, got " + std::to_string(n));
+      std::vector<std::string> names;
+      for (int i = 1; i <= n; ++i) names.push_back(fallback_name + std::to_string(i));
+      return names;
+    }
+    auto names = c->AsStrings();
+    if (names.empty()) c->Fail("at least one channel is needed");
+    return names;
+  }
+  if (fallback_count == 1) return {fallback_name};
+  std::vector<std::string> names;
+  for (int i = 1; i <= fallback_count; ++i) names.push_back(fallback_name + std::to_string(i));
+  return names;
+}
+
+std::shared_ptr<const Spectrum> Repeat(std::shared_ptr<const Spectrum> one, std::size_t count) {
+  if (count == 1) return one;
+  return std::make_shared<IndependentChannels>(std::vector<std::shared_ptr<const Spectrum>>(count, one));
+}
+
+// Factor from the declared convention to one-sided PSD.
+double ConventionFactor(const YamlNode& source) {
+  const auto c = source.Optional("convention");
+  if (!c) return 1.0;
+  const std::string text = c->AsString();
+  if (text == "one-sided") return 1.0;
+  if (text == "two-sided") return 2.0;  // S_one(f) = 2 S_two(f) for f > 0
+  c->Fail("unknown convention '" + text + "'; allowed: one-sided, two-sided");
+}
+
+}  // namespace
+
+Source ParseSource(const YamlNode& node, const std::string& base_dir) {
+  node.AllowOnly({"name", "description", "unit", "channels", "convention", "spectrum", "correlation"});
+  Source s;
+  s.name = node.Required("name").AsString();
+  if (auto d = node.Optional("description")) s.description = d->AsString();
+  const YamlNode spec = node.Required("spectrum");
+  const std::string type = spec.Required("type").AsString();
+  const auto unit_node = node.Optional("unit");
+  std::shared_ptr<const Spectrum> spectrum;
+
+  if (type == "flat") {
+    spec.AllowOnly({"type", "level", "quantity", "lo_hz", "hi_hz"});
+    if (!unit_node) node.Fail("missing required key 'unit' (the unit of the signal; the level is in unit^2/Hz)");
+    s.unit = unit_node->AsString();
+    double level = spec.Required("level").AsNonNegative();
+    if (auto q = spec.Optional("quantity")) {
+      const auto quantity = AtNode(*q, [&] { return ParseSpectrumQuantity(q->AsString()); });
+      if (quantity == SpectrumQuantity::kAsd) level *= level;
+    }
+    level *= ConventionFactor(node);
+    s.channel_names = ChannelNames(node, s.name, 1);
+    const auto lo = spec.Optional("lo_hz"), hi = spec.Optional("hi_hz");
+    std::shared_ptr<const Spectrum> one;
+    if (lo || hi) {
+      const double lo_hz = lo ? lo->AsNonNegative() : 0.0;
+      const double hi_hz = hi ? hi->AsPositive() : std::numeric_limits<double>::infinity();
+      one = AtNode(spec, [&] { return std::make_shared<FlatSpectrum>(level, lo_hz, hi_hz); });
+    } else {
+      one = AtNode(spec, [&] { return std::make_shared<FlatSpectrum>(level); });
+    }
+    spectrum = Repeat(one, s.channel_names.size());
+  } else if (type == "vc") {
+    spec.AllowOnly({"type", "class", "lowest_band_hz", "highest_band_hz", "low_frequency_extension", "series"});
+    const YamlNode cls = spec.Required("class");
+    const VcClass vc_class = AtNode(cls, [&] { return ParseVcClass(cls.AsString()); });
+    VcOptions options;
+    if (auto v = spec.Optional("lowest_band_hz")) options.lowest_band_hz = v->AsPositive();
+    if (auto v = spec.Optional("highest_band_hz")) options.highest_band_hz = v->AsPositive();
+    if (auto v = spec.Optional("low_frequency_extension")) options.low_frequency_extension = v->AsBool();
+    if (auto v = spec.Optional("series"))
+      options.series = AtNode(*v, [&] { return ParseThirdOctaveSeries(v->AsString()); });
+    s.unit = unit_node ? unit_node->AsString() : VcSpectrum::kUnit;
+    const UnitConversion conv =
+        AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(VcSpectrum::kUnit, s.unit); });
+    if (!conv.IsPureScale())
+      unit_node->Fail("a VC curve is a velocity; unit '" + s.unit + "' is not a velocity unit");
+    std::shared_ptr<const Spectrum> one = AtNode(spec, [&] { return std::make_shared<VcSpectrum>(vc_class, options); });
+    const double factor = conv.scale * conv.scale * ConventionFactor(node);
+    if (factor != 1.0) one = std::make_shared<ScaledSpectrum>(one, factor);
+    s.channel_names = ChannelNames(node, s.name, 1);
+    spectrum = Repeat(one, s.channel_names.size());
+  } else if (type == "measured") {
+    spec.AllowOnly({"type", "file", "columns", "extrapolation"});
+    if (node.Has("convention"))
+      node.Required("convention").Fail("a measured spectrum declares its convention in the file ('# sides: one|two')");
+    const YamlNode file = spec.Required("file");
+    std::filesystem::path p(file.AsString());
+    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+    SpectrumCsv csv = AtNode(file, [&] { return ReadSpectrumCsv(p.string()); });
+    if (auto cols = spec.Optional("columns")) {
+      const auto wanted = cols->AsStrings();
+      Eigen::MatrixXd picked(csv.psd.rows(), static_cast<Eigen::Index>(wanted.size()));
+      for (std::size_t j = 0; j < wanted.size(); ++j) {
+        const auto it = std::find(csv.channel_names.begin(), csv.channel_names.end(), wanted[j]);
+        if (it == csv.channel_names.end()) {
+          std::string have;
+          for (const auto& n : csv.channel_names) have += (have.empty() ? "" : ", ") + n;
+          cols->Fail("column '" + wanted[j] + "' is not in " + p.string() + " (columns: " + have + ")");
+        }
+        picked.col(static_cast<Eigen::Index>(j)) = csv.psd.col(it - csv.channel_names.begin());
+      }
+      csv.psd = picked;
+      csv.channel_names = wanted;
+    }
+    Extrapolation extrapolation = Extrapolation::kError;
+    if (auto e = spec.Optional("extrapolation"))
+      extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
+    if (!unit_node && !csv.unit) node.Fail("missing 'unit': neither the budget nor " + p.string() + " ('# unit:') gives one");
+    s.unit = unit_node ? unit_node->AsString() : *csv.unit;
+    double factor = 1.0;
+    if (csv.unit) {
+      const UnitConversion conv = AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(*csv.unit, s.unit); });
+      if (!conv.IsPureScale())
+        unit_node->Fail("the file's unit '" + *csv.unit + "' and '" + s.unit + "' are not the same quantity");
+      factor = conv.scale * conv.scale;
+    }
+    std::shared_ptr<const Spectrum> m = AtNode(file, [&] { return MakeMeasuredSpectrum(csv, extrapolation); });
+    if (factor != 1.0) m = std::make_shared<ScaledSpectrum>(m, factor);
+    s.channel_names = node.Has("channels") ? ChannelNames(node, s.name, m->channels()) : csv.channel_names;
+    if (static_cast<int>(s.channel_names.size()) != m->channels())
+      node.Required("channels").Fail("the file gives " + std::to_string(m->channels()) + " column(s) but " +
+                                     std::to_string(s.channel_names.size()) + " channel names are listed");
+    spectrum = m;
+  } else {
+    spec.Required("type").Fail("unknown spectrum type '" + type + "'; allowed: flat, vc, measured");
+  }
+
+  if (auto c = node.Optional("correlation")) {
+    const int n = spectrum->channels();
+    Eigen::MatrixXd rho;
+    if (c->IsScalar()) {
+      rho = Eigen::MatrixXd::Constant(n, n, c->AsDouble());
+      rho.diagonal().setOnes();
+    } else {
+      rho = c->AsMatrix();
+    }
+    if (rho.rows() != n || rho.cols() != n)
+      c->Fail("correlation must be a number or a " + std::to_string(n) + "x" + std::to_string(n) + " matrix, got " +
+              std::to_string(rho.rows()) + "x" + std::to_string(rho.cols()));
+    spectrum = AtNode(*c, [&] { return std::make_shared<CorrelatedChannels>(spectrum, rho); });
+  }
+  AtNode(unit_node ? *unit_node : node, [&] { ValidateUnit(s.unit); });
+  s.spectrum = spectrum;
+  return s;
+}
+
+}  // namespace deb::io

@@ -1,0 +1,14 @@
+// YAML -> Source: the `sources:` entries of a budget (flat, vc, measured),
+// converted at load to deb's internal convention (one-sided PSD, unit^2/Hz).
+#pragma once
+
+#include <string>
+
+#include "deb/budget/source.h"
+#include "deb/io/yaml_reader.h"
+
+namespace deb::io {
+
+Source ParseSource(const YamlNode& node, const std::string& base_dir);
+
+}  // namespace deb::io

@@ -1,0 +1,96 @@
+// The one place deb reads YAML. A YamlReader walks a document keeping the key
+// path of every node ("sources[1].spectrum.level") and its position in the
+// file, so every error — from the loader or from later validation that only
+// knows the key path — reads "file:line:col: key.path: what is wrong".
+// Unknown keys are rejected. Internal to deb/io: not a public header.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/Dense>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "deb/core/error.h"
+
+namespace deb::io {
+
+class YamlReader;
+
+// A node together with its key path.
+class YamlNode {
+ public:
+  YamlNode(const YamlReader* reader, YAML::Node node, std::string key);
+
+  const std::string& key() const { return key_; }
+  bool IsMap() const { return node_.IsMap(); }
+  bool IsSequence() const { return node_.IsSequence(); }
+  bool IsScalar() const { return node_.IsScalar(); }
+  bool Has(const std::string& field) const;
+
+  // Child of a map; Required throws when missing.
+  YamlNode Required(const std::string& field) const;
+  std::optional<YamlNode> Optional(const std::string& field) const;
+  // Elements of a sequence. @throws InputError if this is not a sequence.
+  std::vector<YamlNode> Elements() const;
+  std::size_t size() const { return node_.size(); }
+
+  // @throws InputError if this map has a key outside `allowed` (listed in the message).
+  void AllowOnly(const std::set<std::string>& allowed) const;
+
+  std::string AsString() const;
+  double AsDouble() const;             // finite number
+  double AsPositive() const;           // finite and > 0
+  double AsNonNegative() const;        // finite and >= 0
+  int AsInt() const;
+  bool AsBool() const;
+  std::vector<double> AsDoubles() const;       // a scalar or a sequence of numbers
+  std::vector<std::string> AsStrings() const;  // a scalar or a sequence of strings
+  Eigen::MatrixXd AsMatrix() const;            // scalar (1x1), vector (1xn) or list of rows
+
+  // An InputError located at this node.
+  [[noreturn]] void Fail(const std::string& message) const;
+
+ private:
+  const YamlReader* reader_;
+  YAML::Node node_;
+  std::string key_;
+};
+
+class YamlReader {
+ public:
+  // @throws InputError "file:line:col: ..." if the file cannot be read or parsed.
+  static YamlReader FromFile(const std::string& path);
+  static YamlReader FromString(const std::string& text, const std::string& name);
+
+  YamlNode Root() const;
+  const std::string& name() const { return name_; }
+
+  // "file:line:col: key: message" using the position of the deepest node
+  // recorded for `key` or its closest recorded parent.
+  std::string Locate(const std::string& key, const std::string& message) const;
+  void Record(const std::string& key, const YAML::Mark& mark) const;
+
+ private:
+  YamlReader(YAML::Node root, std::string name);
+  YAML::Node root_;
+  std::string name_;
+  mutable std::map<std::string, YAML::Mark> marks_;
+};
+
+// Runs f; an InputError it throws is re-thrown located at `node`'s key (or at
+// the error's own key path, if it has one).
+template <typename F>
+auto AtNode(const YamlNode& node, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    if (!e.key_path().empty()) throw;
+    node.Fail(e.what());
+  }
+}
+
+}  // namespace deb::io
