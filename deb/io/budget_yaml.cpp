@@ -33,7 +33,9 @@ GridSpec ParseGrid(const YamlNode& node) {
     node.Required("points").Fail("'points' applies to log and linear grids only");
   }
   if (g.kind == GridKind::kExplicit) {
-    g.f_hz = node.Required("f_hz").AsDoubles();
+    const YamlNode f = node.Required("f_hz");
+    g.f_hz = f.AsDoubles();
+    io::AtNode(f, [&] { FrequencyGrid check(g.f_hz); });
   } else if (node.Has("f_hz")) {
     node.Required("f_hz").Fail("'f_hz' applies to explicit grids only");
   }

@@ -1,0 +1,159 @@
+// The deb command line as a user meets it: exit codes, messages, and the
+// report directory (complete, or not there at all).
+#include <doctest/doctest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string ReadAll(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("deb_cli_test_" + name + "_" + std::to_string(::rand()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+Result RunDeb(const std::string& args) {
+  static const fs::path dir = TempDir("io");
+  const fs::path out = dir / "stdout", err = dir / "stderr";
+  const std::string cmd = std::string("\"") + DEB_BINARY + "\" " + args + " > \"" + out.string() + "\" 2> \"" +
+                          err.string() + "\"";
+  const int status = std::system(cmd.c_str());
+  Result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = ReadAll(out);
+  r.err = ReadAll(err);
+  return r;
+}
+
+std::string Budget(const std::string& file) { return std::string(DEB_SOURCE_DIR) + "/budgets/" + file; }
+
+fs::path WriteFile(const fs::path& dir, const std::string& name, const std::string& text) {
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+}  // namespace
+
+TEST_CASE("deb run writes summary.json with the documented shape and one CSV per output") {
+  const fs::path dir = TempDir("run");
+  const Result r = RunDeb("run " + Budget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const auto j = nlohmann::json::parse(ReadAll(dir / "rep" / "summary.json"));
+  CHECK(j["budget"] == "single_axis_isolator");
+  CHECK(j["conventions"].is_object());
+  CHECK(j["grid"]["points"].get<int>() > 100);
+  CHECK(j["grid"]["min_hz"] == 0.1);
+  REQUIRE(j["outputs"].size() == 2);
+  for (const auto& o : j["outputs"]) {
+    CHECK(o["unit"].is_string());
+    CHECK(o["rms"].get<double>() == doctest::Approx(std::sqrt(o["variance"].get<double>())).epsilon(1e-12));
+    CHECK(o["requirement"]["rms_max"].is_number());
+    CHECK(o["requirement"]["pass"].is_boolean());
+    double share = 0.0;
+    for (const auto& c : o["contributors"]) {
+      share += c["share"].get<double>();
+      CHECK(c.contains("exact_rms"));
+    }
+    CHECK(share == doctest::Approx(1.0).epsilon(1e-12));
+    REQUIRE(o["bands"].size() == 4);
+    CHECK(o["bands"][0]["lo_hz"] == 0.1);
+    CHECK(o["bands"][0]["contributors"].size() == 2);
+    CHECK(fs::exists(dir / "rep" / (o["name"].get<std::string>() + ".csv")));
+  }
+  // Sensor noise on the velocity output is white through a strictly proper path: exact RMS present.
+  CHECK(j["outputs"][0]["contributors"][1]["exact_rms"].is_number());
+  CHECK(r.out.find("output z_velocity [um/s]") != std::string::npos);
+  // Nothing else was left beside the report.
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) entries += e.exists();
+  CHECK(entries == 1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the CSV has a header row and one row per grid frequency") {
+  const fs::path dir = TempDir("csv");
+  REQUIRE(RunDeb("run -q " + Budget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string()).exit_code == 0);
+  const auto j = nlohmann::json::parse(ReadAll(dir / "rep" / "summary.json"));
+  std::ifstream in(dir / "rep" / "z_velocity.csv");
+  std::string line;
+  int comments = 0, rows = 0;
+  std::string header;
+  while (std::getline(in, line)) {
+    if (line.rfind("#", 0) == 0) ++comments;
+    else if (header.empty()) header = line;
+    else ++rows;
+  }
+  CHECK(comments >= 1);
+  CHECK(header == "frequency_hz,psd_floor,psd_sensor_noise,psd_total,cps_floor,cps_sensor_noise,cps_total,reverse_cps_total");
+  CHECK(rows == j["grid"]["points"].get<int>());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a bad budget exits 3 with file:line:col and leaves no report behind") {
+  const fs::path dir = TempDir("bad");
+  std::string text = ReadAll(Budget("single_axis_isolator.yaml"));
+  text.replace(text.find("level: 0.01"), 11, "level: -0.01");
+  const fs::path bad = WriteFile(dir, "bad.yaml", text);
+  const Result r = RunDeb("run " + bad.string() + " --out " + (dir / "rep").string());
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find(bad.string() + ":") != std::string::npos);
+  CHECK(r.err.find("sources[1].spectrum.level: value -0.01 must be >= 0") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "rep"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a failing run keeps the previous report intact") {
+  const fs::path dir = TempDir("keep");
+  REQUIRE(RunDeb("run -q " + Budget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string()).exit_code == 0);
+  const std::string before = ReadAll(dir / "rep" / "summary.json");
+  // Unstable path: caught during evaluation, after loading succeeded.
+  std::string text = ReadAll(Budget("single_axis_isolator.yaml"));
+  text.replace(text.find("den: [1, 13.82301, 157.9137]"), 28, "den: [1, -13.82301, 157.9137]");
+  const fs::path bad = WriteFile(dir, "unstable.yaml", text);
+  const Result r = RunDeb("run " + bad.string() + " --out " + (dir / "rep").string());
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("is unstable") != std::string::npos);
+  CHECK(ReadAll(dir / "rep" / "summary.json") == before);
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) entries += e.exists();
+  CHECK(entries == 2);  // rep/ and unstable.yaml
+  fs::remove_all(dir);
+}
+
+TEST_CASE("usage errors exit 2 and --help exits 0") {
+  CHECK(RunDeb("").exit_code == 2);
+  CHECK(RunDeb("run").exit_code == 2);
+  CHECK(RunDeb("run /nonexistent/budget.yaml").exit_code == 2);
+  const Result help = RunDeb("run --help");
+  CHECK(help.exit_code == 0);
+  CHECK(help.out.find("--out") != std::string::npos);
+  CHECK(RunDeb("--help").out.find("Exit codes") != std::string::npos);
+}
+
+TEST_CASE("deb check validates and describes without writing anything") {
+  const Result r = RunDeb("check " + Budget("single_axis_isolator.yaml"));
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("budget single_axis_isolator: valid") != std::string::npos);
+  CHECK(r.out.find("transmissibility") != std::string::npos);
+}

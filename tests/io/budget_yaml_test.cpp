@@ -1,0 +1,162 @@
+#include "deb/io/budget_yaml.h"
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "deb/core/error.h"
+
+namespace deb {
+namespace {
+
+// A valid budget; tests replace one line to break one rule at a time.
+const char* kBudget = R"(name: unit_test
+grid: {type: log, min_hz: 0.1, max_hz: 100, points: 200}
+sources:
+  - name: noise
+    unit: um/s
+    spectrum: {type: flat, level: 2}
+paths:
+  - name: lowpass
+    type: transfer_function
+    num: [1]
+    den: [0.01, 1]
+    input_unit: um/s
+    output_unit: um/s
+    outputs: [v]
+contributors:
+  - {name: sensor, source: noise, path: lowpass}
+outputs:
+  - {name: velocity, signal: v, unit: um/s}
+bands:
+  - [1, 10]
+)";
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE_MESSAGE(at != std::string::npos, from);
+  return text.replace(at, from.size(), to);
+}
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    LoadBudgetText(text, "b.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("a valid budget loads with every section") {
+  const Budget b = LoadBudgetText(kBudget, "b.yaml");
+  CHECK(b.name == "unit_test");
+  CHECK(b.grid.kind == GridKind::kLog);
+  CHECK(b.grid.points == 200);
+  REQUIRE(b.sources.size() == 1);
+  CHECK(b.sources[0].spectrum->Psd(3.0)(0) == 2.0);
+  CHECK(b.paths[0].output_names[0] == "v");
+  CHECK(b.paths[0].input_names[0] == "u");
+  CHECK(b.bands.size() == 1);
+}
+
+TEST_CASE("a two-sided level is doubled and an ASD level squared at load") {
+  auto text = Replace(kBudget, "    unit: um/s\n    spectrum: {type: flat, level: 2}",
+                      "    unit: um/s\n    convention: two-sided\n    spectrum: {type: flat, level: 3, quantity: asd}");
+  const Budget b = LoadBudgetText(text, "b.yaml");
+  CHECK(b.sources[0].spectrum->Psd(1.0)(0) == doctest::Approx(18.0).epsilon(1e-15));
+}
+
+TEST_CASE("an unknown key is rejected with its position and the allowed keys") {
+  const std::string e = ErrorOf(Replace(kBudget, "    outputs: [v]", "    outputs: [v]\n    gain: 3"));
+  CHECK(e.find("b.yaml:15:5: paths[0].gain: unknown key 'gain'; allowed here:") == 0);
+  CHECK(e.find("num") != std::string::npos);
+}
+
+TEST_CASE("a negative PSD level names file, line, column, key and value") {
+  CHECK(ErrorOf(Replace(kBudget, "level: 2", "level: -2")) ==
+        "b.yaml:6:35: sources[0].spectrum.level: value -2 must be >= 0");
+}
+
+TEST_CASE("a non-numeric value is reported as such") {
+  CHECK(ErrorOf(Replace(kBudget, "den: [0.01, 1]", "den: [0.01, one]")) ==
+        "b.yaml:11:17: paths[0].den[1]: expected a number, got 'one'");
+}
+
+TEST_CASE("a non-finite value is rejected") {
+  CHECK(ErrorOf(Replace(kBudget, "level: 2", "level: .nan")).find("is not finite") != std::string::npos);
+}
+
+TEST_CASE("non-increasing explicit grid frequencies are rejected") {
+  const std::string e =
+      ErrorOf(Replace(kBudget, "{type: log, min_hz: 0.1, max_hz: 100, points: 200}", "{type: explicit, f_hz: [1, 3, 2]}"));
+  CHECK(e == "b.yaml:2:30: grid.f_hz: frequency grid: frequencies must increase strictly, but [1] = 3 Hz >= [2] = 2 Hz");
+}
+
+TEST_CASE("a contributor naming an unknown source points at its key") {
+  CHECK(ErrorOf(Replace(kBudget, "source: noise", "source: nois")) ==
+        "b.yaml:16:28: contributors[0].source: no source named 'nois'");
+}
+
+TEST_CASE("a source whose channel count differs from the path's inputs is rejected") {
+  const std::string e = ErrorOf(Replace(kBudget, "    unit: um/s\n    spectrum", "    unit: um/s\n    channels: [a, b]\n    spectrum"));
+  CHECK(e.find("contributors[0]: source 'noise' has 2 channel(s) but path 'lowpass' has 1 input(s)") !=
+        std::string::npos);
+  CHECK(e.find("b.yaml:17:5:") == 0);
+}
+
+TEST_CASE("incompatible units are an error naming both units") {
+  const std::string e = ErrorOf(Replace(kBudget, "{name: velocity, signal: v, unit: um/s}", "{name: velocity, signal: v, unit: N}"));
+  CHECK(e.find("outputs[0].unit:") != std::string::npos);
+  CHECK(e.find("'um/s'") != std::string::npos);
+  CHECK(e.find("'N'") != std::string::npos);
+}
+
+TEST_CASE("an unknown unit string is an error at the unit's position") {
+  const std::string e = ErrorOf(Replace(kBudget, "    unit: um/s\n    spectrum", "    unit: umm/s\n    spectrum"));
+  CHECK(e.find("b.yaml:5:11: sources[0].unit: unknown unit 'umm/s'") == 0);
+}
+
+TEST_CASE("an empty band is an error") {
+  CHECK(ErrorOf(Replace(kBudget, "  - [1, 10]", "  - [10, 10]")) ==
+        "b.yaml:20:5: bands[0]: band [10, 10] Hz is empty or invalid; need 0 < lo_hz < hi_hz");
+}
+
+TEST_CASE("an output reading a signal the path lacks is an error") {
+  CHECK(ErrorOf(Replace(kBudget, "signal: v,", "signal: w,")).find(
+            "outputs[0].signal: output 'velocity' reads signal 'w', which path 'lowpass'") != std::string::npos);
+}
+
+TEST_CASE("invalid YAML syntax is reported with its position") {
+  CHECK(ErrorOf("name: [unclosed\n").find("b.yaml:") == 0);
+}
+
+TEST_CASE("an unknown enum value lists the allowed values") {
+  CHECK(ErrorOf(Replace(kBudget, "type: flat", "type: pink")) ==
+        "b.yaml:6:22: sources[0].spectrum.type: unknown spectrum type 'pink'; allowed: flat, vc, measured");
+  CHECK(ErrorOf(Replace(kBudget, "path: lowpass}", "path: lowpass, exact: always}")).find(
+            "allowed: auto, required, off") != std::string::npos);
+}
+
+TEST_CASE("series paths chain units and scale between them") {
+  auto text = Replace(kBudget, "contributors:", R"(  - name: to_mm
+    type: gain
+    gain: 1
+    input_unit: mm/s
+    output_unit: mm/s
+  - name: chain
+    type: series
+    of: [lowpass, to_mm]
+contributors:)");
+  text = Replace(text, "path: lowpass}", "path: chain}");
+  text = Replace(text, "signal: v,", "signal: y,");
+  const Budget b = LoadBudgetText(text, "b.yaml");
+  const Path& chain = b.FindPath("chain");
+  CHECK(chain.output_units[0] == "mm/s");
+  // um/s -> mm/s is a factor 1e-3 at DC.
+  CHECK(chain.system.D()(0, 0) + (chain.system.C() * (-chain.system.A()).inverse() * chain.system.B())(0, 0) ==
+        doctest::Approx(1e-3).epsilon(1e-12));
+}
+
+}  // namespace deb
