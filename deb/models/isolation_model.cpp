@@ -69,7 +69,7 @@ Matrix6d Stiffness(const IsolationSystem& s, const Eigen::VectorXd& forces) {
     k(3, 3) += forces(i) * iso.position.z();
     k(4, 4) += forces(i) * iso.position.z();
   }
-  return k;
+  return 0.5 * (k + k.transpose());  // exactly symmetric, not just to round-off
 }
 
 Matrix6d Damping(const IsolationSystem& s) {
@@ -79,7 +79,7 @@ Matrix6d Damping(const IsolationSystem& s) {
     const Eigen::Matrix<double, 6, 3> t = PointMap(iso.position);
     d += t * (r * iso.damping.asDiagonal() * r.transpose()) * t.transpose();
   }
-  return d;
+  return 0.5 * (d + d.transpose());
 }
 
 Eigen::Vector3d Unit(int axis) { return Eigen::Vector3d::Unit(axis); }
@@ -136,12 +136,9 @@ std::vector<IsolationMode> Modes(const Matrix6d& m, const Matrix6d& k, const Mat
     mode.f_hz = (w2 >= 0 ? 1.0 : -1.0) * std::sqrt(std::abs(w2)) / (2 * kPi);
     mode.damping_ratio = w2 > 0 ? phi.dot(d * phi) / (2 * std::sqrt(w2))
                                 : std::numeric_limits<double>::quiet_NaN();
-    const Vector6d share = phi.cwiseProduct(m * phi);
-    share.maxCoeff(&mode.dominant_dof);
-    mode.dominant_share = share(mode.dominant_dof);
-    Eigen::Index big;
-    phi.cwiseAbs().maxCoeff(&big);
-    mode.shape = phi / phi(big);
+    mode.energy_share = phi.cwiseProduct(m * phi);
+    mode.energy_share.maxCoeff(&mode.dominant_dof);
+    mode.shape = phi / phi(mode.dominant_dof);
     modes.push_back(mode);
   }
   return modes;
@@ -286,21 +283,21 @@ std::string IsolationModelSummary::Report() const {
 
   const auto table = [&os](const char* title, const std::vector<IsolationMode>& modes) {
     os << title << "\n";
-    os << "   #    f [Hz]  zeta [%]  dominant (share)";
+    os << "   #    f [Hz]  zeta [%]  dominant   energy share [%], signed as the shape:\n";
+    os << "                                   ";
     for (const auto& n : CogDofNames()) os << std::setw(8) << n;
     os << "\n";
     for (std::size_t j = 0; j < modes.size(); ++j) {
       const IsolationMode& m = modes[j];
-      std::ostringstream dom;
-      dom << CogDofNames()[m.dominant_dof] << " (" << std::fixed << std::setprecision(0)
-          << 100 * m.dominant_share << "%)";
       os << std::setw(4) << j + 1 << std::setw(10) << std::setprecision(4) << m.f_hz;
       if (std::isnan(m.damping_ratio))
         os << std::setw(10) << "-";
       else
         os << std::setw(10) << std::setprecision(2) << 100 * m.damping_ratio;
-      os << "  " << std::left << std::setw(16) << dom.str() << std::right << std::setprecision(3);
-      for (int k = 0; k < 6; ++k) os << std::setw(8) << m.shape(k);
+      os << "  " << std::left << std::setw(9) << CogDofNames()[m.dominant_dof] << std::right
+         << std::setprecision(1);
+      for (int k = 0; k < 6; ++k)
+        os << std::setw(8) << (m.shape(k) < 0 ? -100.0 : 100.0) * m.energy_share(k);
       os << "\n";
     }
   };
@@ -314,9 +311,12 @@ std::string IsolationModelSummary::Report() const {
   }
   os << "Closed-loop poles (" << (closed_loop_stable ? "stable" : "NOT stable") << "):\n";
   os << "      f [Hz]  zeta [%]      Re [rad/s]      Im [rad/s]\n";
-  for (Eigen::Index i = 0; i < closed_loop_poles.size(); ++i) {
-    const std::complex<double> p = closed_loop_poles(i);
-    if (p.imag() < 0.0) continue;
+  std::vector<std::complex<double>> poles;
+  for (Eigen::Index i = 0; i < closed_loop_poles.size(); ++i)
+    if (closed_loop_poles(i).imag() >= 0.0) poles.push_back(closed_loop_poles(i));
+  std::sort(poles.begin(), poles.end(),
+            [](auto a, auto b) { return std::abs(a) < std::abs(b); });
+  for (const std::complex<double> p : poles) {
     const double w = std::abs(p);
     os << std::setw(12) << std::setprecision(4) << w / (2 * kPi) << std::setw(10)
        << std::setprecision(2) << (w > 0 ? -100 * p.real() / w : 0.0) << std::setw(16)

@@ -59,9 +59,11 @@ struct IsolationMode {
   // phi^T D phi / (2 omega) with phi^T M phi = 1: exact for proportional
   // damping, the usual estimate otherwise. NaN for a divergent or rigid mode.
   double damping_ratio = 0.0;
-  Vector6d shape = Vector6d::Zero();  // largest |component| = 1, and positive
-  int dominant_dof = 0;               // index into CogDofNames(): largest kinetic-energy share
-  double dominant_share = 0.0;        // that share of phi^T M phi, 0..1
+  // Kinetic-energy share of each DOF, phi_j (M phi)_j / phi^T M phi (sums to
+  // 1; unit-free, unlike the shape, which mixes lengths and angles).
+  Vector6d energy_share = Vector6d::Zero();
+  int dominant_dof = 0;               // index into CogDofNames(): largest energy share
+  Vector6d shape = Vector6d::Zero();  // phi scaled so that its dominant component is 1
 };
 
 struct IsolationModelSummary {
@@ -74,7 +76,8 @@ struct IsolationModelSummary {
   bool closed_loop_stable = false;
 
   // Plain-text tables: pre-stress per isolator, modes with and without
-  // gravity terms (f, damping, dominant DOF, shape), closed-loop poles.
+  // gravity terms (f, damping, dominant DOF, signed energy shares), closed-loop
+  // poles sorted by frequency.
   std::string Report() const;
 };
 
