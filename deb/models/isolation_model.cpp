@@ -112,16 +112,26 @@ std::string PoleText(std::complex<double> p) {
 
 // Exact variances need every pole strictly in the left half plane; a pole at
 // (numerically) zero is a DOF that is neither supported nor controlled.
-void RequireStable(const Eigen::MatrixXd& a, const char* what) {
+bool IsUnstablePole(std::complex<double> p, double scale) { return p.real() >= -1e-10 * scale; }
+
+double PoleScale(const Eigen::VectorXcd& p) {
+  return p.size() ? std::max(1.0, p.cwiseAbs().maxCoeff()) : 1.0;
+}
+
+bool IsAsymptoticallyStable(const Eigen::VectorXcd& p) {
+  for (Eigen::Index i = 0; i < p.size(); ++i)
+    if (IsUnstablePole(p(i), PoleScale(p))) return false;
+  return true;
+}
+
+void RequireStable(const Eigen::MatrixXd& a, const std::string& what) {
   const Eigen::VectorXcd p = Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();
-  const double scale = std::max(1.0, p.cwiseAbs().maxCoeff());
   std::string bad;
   for (Eigen::Index i = 0; i < p.size(); ++i)
-    if (p(i).real() >= -1e-10 * scale && p(i).imag() >= 0.0)
+    if (IsUnstablePole(p(i), PoleScale(p)) && p(i).imag() >= 0.0)
       bad += (bad.empty() ? "" : ", ") + PoleText(p(i));
   if (!bad.empty())
-    throw InputError(std::string(what) +
-                     " is not stable; poles with Re >= 0 [rad/s]: " + bad +
+    throw InputError(what + " is not stable; poles with Re >= 0 [rad/s]: " + bad +
                      " (check the skyhook gains, the sensing and motor matrices and their signs, "
                      "and that every DOF is supported or controlled)");
 }
@@ -211,7 +221,7 @@ StateSpace IsolationModel::Path(Loop loop, const Eigen::MatrixXd& b, Outputs out
     if (!has_control())
       throw InputError(std::string(what) +
                        ": a closed loop needs at least one sensor and one actuator");
-    RequireStable(a_closed_, (std::string("closed loop (") + what + ")").c_str());
+    RequireStable(a_closed_, std::string("closed loop (") + what + ")");
   }
   const int ny = outputs == Outputs::kVelocity ? 6 : 12;
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(ny, 12);
@@ -263,10 +273,9 @@ IsolationModelSummary IsolationModel::Summary() const {
   sum.modes_without_gravity = Modes(mass_, stiffness_no_gravity_, damping_);
   sum.has_control = has_control();
   if (has_control()) {
-    sum.closed_loop_poles = Eigen::EigenSolver<Eigen::MatrixXd>(a_closed_, false).eigenvalues();
-    const double scale = std::max(1.0, sum.closed_loop_poles.cwiseAbs().maxCoeff());
-    sum.closed_loop_stable =
-        (sum.closed_loop_poles.real().array() < -1e-10 * scale).all();
+    const Eigen::VectorXcd poles = Eigen::EigenSolver<Eigen::MatrixXd>(a_closed_, false).eigenvalues();
+    sum.closed_loop_modes = ModesFromPoles(poles);
+    sum.closed_loop_stable = IsAsymptoticallyStable(poles);
   }
   return sum;
 }
@@ -296,8 +305,10 @@ std::string IsolationModelSummary::Report() const {
         os << std::setw(10) << std::setprecision(2) << 100 * m.damping_ratio;
       os << "  " << std::left << std::setw(9) << CogDofNames()[m.dominant_dof] << std::right
          << std::setprecision(1);
-      for (int k = 0; k < 6; ++k)
-        os << std::setw(8) << (m.shape(k) < 0 ? -100.0 : 100.0) * m.energy_share(k);
+      for (int k = 0; k < 6; ++k) {
+        const double pct = (m.shape(k) < 0 ? -100.0 : 100.0) * m.energy_share(k);
+        os << std::setw(8) << (std::abs(pct) < 0.05 ? 0.0 : pct);  // no "-0.0"
+      }
       os << "\n";
     }
   };
@@ -309,19 +320,12 @@ std::string IsolationModelSummary::Report() const {
     os << "Closed loop: none (no sensors or no actuators).\n";
     return os.str();
   }
-  os << "Closed-loop poles (" << (closed_loop_stable ? "stable" : "NOT stable") << "):\n";
-  os << "      f [Hz]  zeta [%]      Re [rad/s]      Im [rad/s]\n";
-  std::vector<std::complex<double>> poles;
-  for (Eigen::Index i = 0; i < closed_loop_poles.size(); ++i)
-    if (closed_loop_poles(i).imag() >= 0.0) poles.push_back(closed_loop_poles(i));
-  std::sort(poles.begin(), poles.end(),
-            [](auto a, auto b) { return std::abs(a) < std::abs(b); });
-  for (const std::complex<double> p : poles) {
-    const double w = std::abs(p);
-    os << std::setw(12) << std::setprecision(4) << w / (2 * kPi) << std::setw(10)
-       << std::setprecision(2) << (w > 0 ? -100 * p.real() / w : 0.0) << std::setw(16)
-       << std::setprecision(5) << p.real() << std::setw(16) << p.imag() << "\n";
-  }
+  os << "Closed-loop modes (" << (closed_loop_stable ? "stable" : "NOT stable") << "):\n";
+  os << "      f [Hz]  zeta [%]      pole [rad/s]\n";
+  for (const Mode& m : closed_loop_modes)
+    os << std::setw(12) << std::setprecision(4) << m.f_n_hz << std::setw(10)
+       << std::setprecision(2) << 100 * m.damping_ratio << "      " << PoleText(m.pole_rad_s)
+       << (m.pair ? " (pair)" : "") << "\n";
   return os.str();
 }
 

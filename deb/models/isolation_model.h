@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "deb/models/isolation_system.h"
+#include "deb/systems/modes.h"
 #include "deb/systems/state_space.h"
 
 namespace deb {
@@ -72,12 +73,13 @@ struct IsolationModelSummary {
   std::vector<IsolationMode> modes;                  // gravity terms as modelled
   std::vector<IsolationMode> modes_without_gravity;  // the same system with g = 0
   bool has_control = false;
-  Eigen::VectorXcd closed_loop_poles;  // eigenvalues of A_cl [rad/s]; empty without control
+  // Poles of A_cl as modes (deb/systems/modes.h); empty without control.
+  std::vector<Mode> closed_loop_modes;
   bool closed_loop_stable = false;
 
   // Plain-text tables: pre-stress per isolator, modes with and without
   // gravity terms (f, damping, dominant DOF, signed energy shares), closed-loop
-  // poles sorted by frequency.
+  // modes.
   std::string Report() const;
 };
 

@@ -343,7 +343,7 @@ TEST_CASE("the summary gives the vertical mode of the thesis case and a readable
   INFO(report);
   CHECK(report.find("P3") != std::string::npos);
   CHECK(report.find("Open-loop modes without gravity terms") != std::string::npos);
-  CHECK(report.find("Closed-loop poles (stable)") != std::string::npos);
+  CHECK(report.find("Closed-loop modes (stable)") != std::string::npos);
 }
 
 TEST_CASE("derived sensing and motor matrices make the logical axes the CoG DOF") {
