@@ -97,6 +97,21 @@ int Check(const std::string& budget_file) {
   return 0;
 }
 
+int Model(const std::string& budget_file) {
+  const deb::Budget budget = deb::LoadBudgetFile(budget_file);
+  if (budget.models.empty()) {
+    std::printf("budget %s has no physical model (no path of type isolation_system)\n", budget.name.c_str());
+    return 0;
+  }
+  for (const auto& m : budget.models) std::printf("%s\n", m.report.c_str());
+  std::printf("paths from the model(s):\n");
+  for (const auto& p : budget.paths) {
+    if (p.description.empty()) continue;
+    std::printf("  %-28s %s\n", p.name.c_str(), p.description.c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -120,6 +135,11 @@ int main(int argc, char** argv) {
   CLI::App* check = app.add_subcommand("check", "Validate a budget and describe it, without computing");
   check->add_option("budget", check_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
 
+  std::string model_file;
+  CLI::App* model = app.add_subcommand(
+      "model", "Describe the physical models of a budget: natural frequencies, mode shapes, static pre-stress");
+  model->add_option("budget", model_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -129,6 +149,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return Run(budget_file, out_dir, threads, quiet);
     if (*check) return Check(check_file);
+    if (*model) return Model(model_file);
   } catch (const deb::InputError& e) {
     std::fprintf(stderr, "deb: error: %s\n", e.what());
     return kExitInput;

@@ -65,6 +65,12 @@ struct Band {
   double hi_hz = 0.0;
 };
 
+// A physical model behind some of the paths, described for `deb model`.
+struct ModelReport {
+  std::string name;
+  std::string report;  // plain text: natural frequencies, mode shapes, pre-stress
+};
+
 struct Budget {
   std::string name;
   std::string description;
@@ -75,6 +81,7 @@ struct Budget {
   std::vector<Contributor> contributors;
   std::vector<Output> outputs;
   std::vector<Band> bands;
+  std::vector<ModelReport> models;
 
   // Checks names, references, channel counts and units.
   // @throws InputError with the key path (e.g. "contributors[2].path").

@@ -40,7 +40,7 @@ struct Resonance {
 struct AutoGridOptions {
   double min_hz = 0.1;
   double max_hz = 1000.0;
-  int points_per_decade = 100;     // log base grid
+  int points_per_decade = 200;     // log base grid
   int points_per_resonance = 100;  // across the half-power core of each resonance
   int resonance_flank_points_per_decade = 200;  // in distance from f_n, on its flanks
   double max_refined_zeta = 0.3;   // resonances with zeta below this are refined

@@ -106,7 +106,9 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
   if (auto g = root.Optional("grid")) b.grid = ParseGrid(*g);
   io::PathContext paths(base_dir);
   for (const auto& n : root.Required("sources").Elements()) b.sources.push_back(io::ParseSource(n, base_dir));
-  for (const auto& n : root.Required("paths").Elements()) b.paths.push_back(paths.Parse(n));
+  for (const auto& n : root.Required("paths").Elements())
+    for (Path& p : paths.Parse(n)) b.paths.push_back(std::move(p));
+  b.models = paths.models();
   for (const auto& n : root.Required("contributors").Elements()) b.contributors.push_back(ParseContributor(n));
   for (const auto& n : root.Required("outputs").Elements()) b.outputs.push_back(ParseOutput(n));
   if (auto bands = root.Optional("bands"))

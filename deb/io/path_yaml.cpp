@@ -1,5 +1,6 @@
 #include "deb/io/path_yaml.h"
 
+#include "deb/io/isolation_yaml.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/transfer_function.h"
 #include "deb/units/unit.h"
@@ -69,7 +70,16 @@ const Path& PathContext::Lookup(const YamlNode& name_node) const {
   return it->second;
 }
 
-Path PathContext::Parse(const YamlNode& node) {
+std::vector<Path> PathContext::Parse(const YamlNode& node) {
+  if (node.Has("type") && node.Required("type").AsString() == "isolation_system") {
+    ParsedModel model = ParseIsolationSystem(node);
+    models_.push_back({node.Required("name").AsString(), model.report});
+    for (const Path& p : model.paths) {
+      if (parsed_.count(p.name)) node.Required("name").Fail("path name '" + p.name + "' is used twice");
+      parsed_.emplace(p.name, p);
+    }
+    return model.paths;
+  }
   Path p;
   p.name = node.Required("name").AsString();
   if (auto d = node.Optional("description")) p.description = d->AsString();
@@ -155,7 +165,7 @@ Path PathContext::Parse(const YamlNode& node) {
     p.output_names = plant.output_names;
   } else {
     type_node.Fail("unknown path type '" + type +
-                   "'; allowed: transfer_function, state_space, gain, series, parallel, feedback");
+                   "'; allowed: transfer_function, state_space, gain, series, parallel, feedback, isolation_system");
   }
 
   if (composite) {
@@ -170,7 +180,7 @@ Path PathContext::Parse(const YamlNode& node) {
   AtNode(node, [&] { p.Validate(); });
   if (parsed_.count(p.name)) node.Required("name").Fail("name '" + p.name + "' is used twice in paths");
   parsed_.emplace(p.name, p);
-  return p;
+  return {p};
 }
 
 Weighting ParseWeighting(const YamlNode& node) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <vector>
 #include <string>
 
 #include "deb/budget/budget.h"
@@ -16,13 +17,16 @@ class PathContext {
  public:
   explicit PathContext(std::string base_dir) : base_dir_(std::move(base_dir)) {}
 
-  // Parses one entry; composite paths may name entries parsed before.
-  Path Parse(const YamlNode& node);
+  // Parses one entry; composite paths may name entries parsed before. A model
+  // entry (type isolation_system) yields several paths and a model report.
+  std::vector<Path> Parse(const YamlNode& node);
+  const std::vector<ModelReport>& models() const { return models_; }
 
  private:
   const Path& Lookup(const YamlNode& name_node) const;
   std::string base_dir_;
   std::map<std::string, Path> parsed_;
+  std::vector<ModelReport> models_;
 };
 
 Weighting ParseWeighting(const YamlNode& node);
