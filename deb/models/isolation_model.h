@@ -70,8 +70,10 @@ struct IsolationMode {
 struct IsolationModelSummary {
   std::vector<std::string> isolators;
   Eigen::VectorXd static_forces;                     // F_i, vertical spring pre-stress
+  // Ascending in f. "Without gravity": the same system with g = 0; where
+  // k_p, k_q are given as net values only the rotational term is dropped.
   std::vector<IsolationMode> modes;                  // gravity terms as modelled
-  std::vector<IsolationMode> modes_without_gravity;  // the same system with g = 0
+  std::vector<IsolationMode> modes_without_gravity;
   bool has_control = false;
   // Poles of A_cl as modes (deb/systems/modes.h); empty without control.
   std::vector<Mode> closed_loop_modes;
@@ -144,5 +146,12 @@ class IsolationModel {
   Eigen::MatrixXd sensor_kinematics_, actuator_map_, sensing_, motor_;
   Eigen::MatrixXd a_open_, a_closed_;
 };
+
+// "open" / "closed" and "velocity" / "velocity_and_position", for YAML and CLI.
+std::string ToString(IsolationModel::Loop loop);
+std::string ToString(IsolationModel::Outputs outputs);
+// @throws InputError listing the allowed values.
+IsolationModel::Loop ParseLoop(const std::string& text);
+IsolationModel::Outputs ParseOutputs(const std::string& text);
 
 }  // namespace deb
