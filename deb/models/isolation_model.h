@@ -18,7 +18,7 @@
 // Static pre-stress: the body settles on its vertical springs by a rigid
 // displacement (w, a, b), so F_i = k_ri (w + a y_i + b x_i); the three follow
 // from sum F_i = m g and no moment about the CoG (sum F_i x_i = sum F_i y_i = 0).
-// For 3 supports this is the statics alone; for the thesis' symmetric 4 it is
+// For 3 supports this is the statics alone; for the thesis' 4 (k_r per eq. 3-4, 3-5) it is
 // eq. 3-6. The small static tilt itself is not linearised about.
 //
 // Floor input (eq. 3-22..3-24): a rigid, non-rotating floor with velocity
