@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -130,14 +131,24 @@ std::string OutputCsv(const BudgetResult& result, const OutputResult& o) {
   os << ",cps_total,reverse_cps_total\n";
   const std::vector<double> reverse = ReverseCps(o.total_cps);
   const auto& f = result.grid.f_hz();
+  // std::to_chars: the table has grid points x (2 contributors + 2) numbers,
+  // easily 10^5..10^6 of them; stream formatting would dominate `deb run`.
+  std::string text = os.str();
+  char buf[32];
+  const auto put = [&](double v, char sep) {
+    text += sep;
+    text.append(buf, std::to_chars(buf, buf + sizeof(buf), v, std::chars_format::general, 10).ptr);
+  };
   for (std::size_t k = 0; k < f.size(); ++k) {
-    os << f[k];
-    for (const auto& c : o.contributors) os << ',' << c.psd[k];
-    os << ',' << o.total_psd[k];
-    for (const auto& c : o.contributors) os << ',' << c.cps[k];
-    os << ',' << o.total_cps[k] << ',' << reverse[k] << '\n';
+    text.append(buf, std::to_chars(buf, buf + sizeof(buf), f[k], std::chars_format::general, 10).ptr);
+    for (const auto& c : o.contributors) put(c.psd[k], ',');
+    put(o.total_psd[k], ',');
+    for (const auto& c : o.contributors) put(c.cps[k], ',');
+    put(o.total_cps[k], ',');
+    put(reverse[k], ',');
+    text += '\n';
   }
-  return os.str();
+  return text;
 }
 
 void WriteDirectoryAtomically(const std::string& out_dir, const std::function<void(const std::string&)>& fill) {
