@@ -39,8 +39,8 @@ class FrequencyResponse {
  public:
   enum class Method { kAuto, kModal, kSchur };
 
-  // Largest condition number of the (unit-column) eigenvector matrix for which
-  // Method::kAuto picks the modal form; relative errors scale like
+  // Largest 1-norm condition number of the (unit-column) eigenvector matrix
+  // for which Method::kAuto picks the modal form; relative errors scale like
   // 1e-16 * cond(V), so this keeps them near 1e-10 or below.
   static constexpr double kMaxModalCondition = 1e6;
 
@@ -53,8 +53,8 @@ class FrequencyResponse {
   int outputs() const { return p_; }
   // The reduction in use: kModal or kSchur.
   Method method() const { return method_; }
-  // 2-norm condition number of the eigenvector matrix (computed also when
-  // kSchur is forced; infinity if A is numerically defective).
+  // 1-norm condition number of the unit-column eigenvector matrix (computed
+  // also when kSchur is forced; huge or infinite if A is defective).
   double eigenvector_condition() const { return eigenvector_condition_; }
 
   // H(j 2 pi f), outputs x inputs.
@@ -95,8 +95,14 @@ class FrequencyResponse {
   std::vector<Term> terms_;
   Eigen::MatrixXd residues_;  // (outputs*inputs) x columns, column-major H layout
 
-  // Schur form: H = cs_ (sI - t_)^-1 bs_ + D.
-  Eigen::MatrixXcd t_, bs_, cs_;
+  // Schur form, arranged so that the substitution runs on r = min(outputs,
+  // inputs) rows: G = L (sI - T)^-1 R with T upper triangular (n x n), L r x n,
+  // R n x max(outputs, inputs); H = G + D, or H = G^T + D when the inputs are
+  // fewer (then T is J T_schur^T J with J the reversal, still triangular).
+  // Real and imaginary parts are stored apart for the inner loops.
+  bool schur_transposed_ = false;
+  Eigen::VectorXcd schur_diag_;
+  Eigen::MatrixXd tr_, ti_, lr_, li_, rr_, ri_;
 };
 
 }  // namespace deb
