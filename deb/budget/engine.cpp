@@ -73,6 +73,86 @@ std::vector<Band> DecadeBands(const FrequencyGrid& grid) {
   return bands;
 }
 
+// S_u of a source as the path's inputs see it, F S_u F^H with F = diag of the
+// input unit factors. A white source in pure-scale units gives the same
+// matrix at every frequency, formed once; otherwise the spectrum is evaluated
+// (and allocates) per frequency.
+class InputSpectrum {
+ public:
+  InputSpectrum(const Spectrum& spectrum, const std::vector<UnitConversion>& conv)
+      : spectrum_(spectrum), conv_(conv), diagonal_(spectrum.IsDiagonal()), pure_scale_(true) {
+    for (const UnitConversion& u : conv) pure_scale_ &= u.IsPureScale();
+    const auto white = spectrum.WhiteLevel();
+    if (!white || !pure_scale_) return;
+    constant_ = true;
+    Eigen::MatrixXd level = *white;
+    for (Eigen::Index i = 0; i < level.rows(); ++i)
+      for (Eigen::Index j = 0; j < level.cols(); ++j) level(i, j) *= conv[i].scale * conv[j].scale;
+    diag_ = level.diagonal();
+    full_ = level.cast<std::complex<double>>();
+  }
+
+  bool diagonal() const { return diagonal_; }
+
+  // The diagonal at f_hz (for a diagonal source); `scratch` holds it unless constant.
+  const Eigen::VectorXd& Diagonal(double f_hz, Eigen::VectorXd& scratch) const {
+    if (constant_) return diag_;
+    scratch = spectrum_.Psd(f_hz);
+    for (Eigen::Index j = 0; j < scratch.size(); ++j) scratch(j) *= conv_[j].PsdFactor(f_hz);
+    return scratch;
+  }
+
+  // The full matrix at f_hz; `scratch` holds it unless constant.
+  const Eigen::MatrixXcd& Full(double f_hz, Eigen::MatrixXcd& scratch) const {
+    if (constant_) return full_;
+    scratch = spectrum_.Csd(f_hz);
+    const Eigen::Index m = scratch.rows();
+    if (pure_scale_) {  // real factors: no complex products
+      for (Eigen::Index j = 0; j < m; ++j)
+        for (Eigen::Index i = 0; i < m; ++i) scratch(i, j) *= conv_[i].scale * conv_[j].scale;
+      return scratch;
+    }
+    Eigen::VectorXcd factor(m);
+    for (Eigen::Index j = 0; j < m; ++j) factor(j) = conv_[j].ResponseFactor(f_hz);
+    for (Eigen::Index j = 0; j < m; ++j)
+      for (Eigen::Index i = 0; i < m; ++i) scratch(i, j) *= factor(i) * std::conj(factor(j));
+    return scratch;
+  }
+
+ private:
+  const Spectrum& spectrum_;
+  const std::vector<UnitConversion>& conv_;
+  bool diagonal_;
+  bool pure_scale_;  // every input conversion is a scale (no time derivative)
+  bool constant_ = false;
+  Eigen::VectorXd diag_;
+  Eigen::MatrixXcd full_;
+};
+
+// sum_j |h_rj|^2 s_j: row r of h through uncorrelated inputs.
+double DiagonalForm(const Eigen::MatrixXcd& h, int r, const Eigen::VectorXd& s) {
+  double y = 0.0;
+  for (Eigen::Index j = 0; j < h.cols(); ++j) y += std::norm(h(r, j)) * s(j);
+  return y;
+}
+
+// Re(h_r S h_r^H) for Hermitian S, from its diagonal and upper triangle:
+// sum_j |h_rj|^2 S_jj + 2 Re(conj(h_rj) sum_{i<j} h_ri S_ij). Written in real
+// arithmetic: std::complex products carry NaN checks that triple the cost.
+double HermitianForm(const Eigen::MatrixXcd& h, int r, const Eigen::MatrixXcd& s) {
+  double y = 0.0;
+  for (Eigen::Index j = 0; j < h.cols(); ++j) {
+    double ur = 0.0, ui = 0.0;
+    for (Eigen::Index i = 0; i < j; ++i) {
+      const double hr = h(r, i).real(), hi = h(r, i).imag(), sr = s(i, j).real(), si = s(i, j).imag();
+      ur += hr * sr - hi * si;
+      ui += hr * si + hi * sr;
+    }
+    y += std::norm(h(r, j)) * s(j, j).real() + 2.0 * (ur * h(r, j).real() + ui * h(r, j).imag());
+  }
+  return y;
+}
+
 struct PathStability {
   std::vector<std::complex<double>> unstable;
   std::vector<std::complex<double>> marginal;
@@ -228,20 +308,20 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     const FrequencyResponse response(sub);
 
     std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
-    const bool diagonal = source.spectrum->IsDiagonal();
+    const InputSpectrum input(*source.spectrum, in_conv);
     response.ForEach(
         f,
         [&](std::size_t k, const Eigen::MatrixXcd& h) {
-          Eigen::VectorXcd in_factor(m);
-          for (int j = 0; j < m; ++j) in_factor(j) = in_conv[j].ResponseFactor(f[k]);
-          Eigen::VectorXd s_diag;
-          Eigen::MatrixXcd s_full;
-          if (diagonal) s_diag = source.spectrum->Psd(f[k]);
-          else s_full = source.spectrum->Csd(f[k]);
+          // Allocates only where the spectrum must be evaluated per frequency.
+          Eigen::VectorXd diag_scratch;
+          Eigen::MatrixXcd full_scratch;
+          const Eigen::VectorXd* s_diag = input.diagonal() ? &input.Diagonal(f[k], diag_scratch) : nullptr;
+          const Eigen::MatrixXcd* s_full = input.diagonal() ? nullptr : &input.Full(f[k], full_scratch);
           for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
-            const Eigen::RowVectorXcd hr = h.row(row_of_output[o]).cwiseProduct(in_factor.transpose());
-            double s = diagonal ? (hr.cwiseAbs2() * s_diag)(0) : (hr * s_full * hr.adjoint())(0, 0).real();
-            s *= out_conv[o].PsdFactor(f[k]);
+            const int row = row_of_output[o];
+            double s = s_diag ? DiagonalForm(h, row, *s_diag) : HermitianForm(h, row, *s_full);
+            const UnitConversion& u = out_conv[o];
+            s *= u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f[k]);  // no pow() when not needed
             if (!weighting_gain2[o].empty()) s *= weighting_gain2[o][k];
             psd[o][k] = std::max(s, 0.0);  // rounding of a PSD-valued S_u
           }
@@ -311,14 +391,21 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     }
   }
 
+  // Totals are sums of the contributors' integrals, not integrals of the total
+  // PSD: the power-law rule is not linear in S, and stacked CPS curves must
+  // add up to the total exactly.
   for (OutputResult& r : result.outputs) {
-    r.total_cps = CumulativeIntegral(f, r.total_psd);
+    r.total_cps.assign(n, 0.0);
+    for (const auto& cr : r.contributors)
+      for (std::size_t k = 0; k < n; ++k) r.total_cps[k] += cr.cps[k];
     r.variance = r.total_cps.back();
     for (const Band& b : bands) {
       BandResult br;
       br.band = b;
-      br.variance = IntegralBetween(f, r.total_psd, b.lo_hz, b.hi_hz);
-      for (const auto& cr : r.contributors) br.contributor_variance.push_back(IntegralBetween(f, cr.psd, b.lo_hz, b.hi_hz));
+      for (const auto& cr : r.contributors) {
+        br.contributor_variance.push_back(IntegralBetween(f, cr.psd, b.lo_hz, b.hi_hz));
+        br.variance += br.contributor_variance.back();
+      }
       r.bands.push_back(std::move(br));
     }
   }

@@ -25,15 +25,18 @@ FrequencyGrid::FrequencyGrid(std::vector<double> f_hz) : f_hz_(std::move(f_hz)) 
                      std::to_string(f_hz_.size()));
   }
   for (std::size_t i = 0; i < f_hz_.size(); ++i) {
+    const bool bad_value = !std::isfinite(f_hz_[i]) || f_hz_[i] <= 0.0;
+    const bool bad_order = !bad_value && i > 0 && !(f_hz_[i] > f_hz_[i - 1]);
+    if (!bad_value && !bad_order) continue;  // no stream per point: grids hold 10^5 of them
     std::ostringstream os;
-    if (!std::isfinite(f_hz_[i]) || f_hz_[i] <= 0.0) {
+    if (bad_value) {
       os << "frequency grid: frequency [" << i << "] = " << f_hz_[i]
          << " Hz must be finite and > 0";
-    } else if (i > 0 && !(f_hz_[i] > f_hz_[i - 1])) {
+    } else {
       os << "frequency grid: frequencies must increase strictly, but [" << i - 1
          << "] = " << f_hz_[i - 1] << " Hz >= [" << i << "] = " << f_hz_[i] << " Hz";
     }
-    if (!os.str().empty()) throw InputError(os.str());
+    throw InputError(os.str());
   }
 }
 
