@@ -10,12 +10,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <set>
+#include <unistd.h>
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/result_writer.h"
+#include "deb/report/report_writer.h"
 #include "deb/units/unit.h"
 
 namespace {
@@ -48,7 +51,7 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
   std::printf("\nreport: %s\n", out_dir.c_str());
 }
 
-int Run(const std::string& budget_file, std::string out_dir, int threads, bool quiet) {
+int Run(const std::string& budget_file, std::string out_dir, int threads, bool quiet, deb::ReportOptions report) {
   const deb::Budget budget = deb::LoadBudgetFile(budget_file);
   if (out_dir.empty()) out_dir = (std::filesystem::path("reports") / budget.name).string();
   deb::EngineOptions options;
@@ -58,7 +61,9 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
   try {
-    deb::WriteResultDirectory(budget, result, {budget_file, seconds}, out_dir);
+    report.progress = !quiet && ::isatty(STDERR_FILENO);
+    report.threads = threads;
+    deb::WriteReportDirectory(budget, result, {budget_file, seconds}, report, out_dir);
   } catch (const deb::InputError& e) {
     throw WriteError(e.what());
   }
@@ -130,6 +135,22 @@ int main(int argc, char** argv) {
   run->add_option("--out,-o", out_dir, "Report directory (default: reports/<budget-name>)");
   run->add_option("--threads,-j", threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet,-q", quiet, "Print nothing but warnings and errors");
+  deb::ReportOptions report;
+  run->add_option_function<std::vector<std::string>>(
+         "--format",
+         [&report](const std::vector<std::string>& names) {
+           if (std::set<std::string>(names.begin(), names.end()).size() != names.size())
+             throw CLI::ValidationError("--format", "a format is given twice");
+           report.formats.clear();
+           for (const auto& n : names) report.formats.push_back(deb::ParsePlotFormat(n));
+         },
+         "Plot formats, comma-separated: png (index.html), pdf (report.pdf), svg; default png,pdf")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"png", "pdf", "svg"}));
+  run->add_flag("--asd", report.asd, "Plot amplitude spectral densities (unit/sqrt(Hz)) instead of PSDs");
+  run->add_flag("--reverse-cps", report.reverse_cps, "Add a stacked reverse-CPS plot (variance above f) per output");
+  run->add_flag_callback("--no-plots", [&report] { report.plots = false; },
+                         "Write tables, data and documents only; gnuplot is not needed");
 
   std::string check_file;
   CLI::App* check = app.add_subcommand("check", "Validate a budget and describe it, without computing");
@@ -147,7 +168,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kExitUsage;
   }
   try {
-    if (*run) return Run(budget_file, out_dir, threads, quiet);
+    if (*run) return Run(budget_file, out_dir, threads, quiet, report);
     if (*check) return Check(check_file);
     if (*model) return Model(model_file);
   } catch (const deb::InputError& e) {

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "deb/budget/path_response.h"
 #include "deb/core/error.h"
 #include "deb/core/integrate.h"
 #include "deb/systems/frequency_response.h"
@@ -252,10 +253,7 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
       throw InputError(Key("outputs", o, "weighting"),
                        "the weighting of output '" + out.name + "' is unstable: pole(s) at " +
                            FormatPoles(st.unstable) + " rad/s");
-    weighting_gain2[o].resize(n);
-    FrequencyResponse(out.weighting->system)
-        .ForEach(f, [&](std::size_t k, const Eigen::MatrixXcd& h) { weighting_gain2[o][k] = std::norm(h(0, 0)); },
-                 options.threads);
+    weighting_gain2[o] = WeightingGain2(out, f, options.threads);
   }
 
   result.outputs.resize(budget.outputs.size());
@@ -284,12 +282,9 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
                                 FormatPoles(stability.marginal) +
                                 " rad/s): its variance depends on the grid's ends");
 
-    std::vector<UnitConversion> in_conv(m);
+    const std::vector<UnitConversion> in_conv = InputConversions(source, path);
     bool inputs_pure_scale = true;
-    for (int k = 0; k < m; ++k) {
-      in_conv[k] = ConvertUnit(source.unit, path.input_units[k]);
-      inputs_pure_scale &= in_conv[k].IsPureScale();
-    }
+    for (const UnitConversion& u : in_conv) inputs_pure_scale &= u.IsPureScale();
 
     std::vector<int> rows;
     std::vector<int> row_of_output(budget.outputs.size());
@@ -300,9 +295,7 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
       auto it = std::find(rows.begin(), rows.end(), row);
       row_of_output[o] = static_cast<int>(it - rows.begin());
       if (it == rows.end()) rows.push_back(row);
-      const std::string from =
-          out.weighting ? UnitProduct(path.output_units[row], out.weighting->unit) : path.output_units[row];
-      out_conv[o] = ConvertUnit(from, out.unit);
+      out_conv[o] = OutputConversion(path, row, out);
     }
     const StateSpace sub = path.system.SelectOutputs(rows);
     const FrequencyResponse response(sub);

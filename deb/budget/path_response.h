@@ -1,0 +1,50 @@
+// The transfer of one contributor to one output as the engine applies it:
+//   h_k(f) = c_out(f) · w(f) · H_row,k(j 2 pi f) · c_in,k(f)
+// with c_in,k the conversion from the source's unit to the path's input unit
+// k, H_row the path row of the output's signal, w the output's weighting and
+// c_out the conversion from the (weighted) signal's unit to the output's unit.
+// For a source with uncorrelated channels the contributor's PSD on the output
+// is sum_k |h_k|^2 S_kk; with correlated channels cross terms add to that.
+// The engine calls the conversion helpers below, so reports that show path
+// magnitudes use exactly the factors behind the budget's numbers.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/units/unit.h"
+
+namespace deb {
+
+// Source unit -> path input unit, one per input channel.
+// @throws InputError (from ConvertUnit) if a pair does not convert.
+std::vector<UnitConversion> InputConversions(const Source& source, const Path& path);
+
+// Unit of path row `row` after the output's weighting (the product with the
+// weighting's unit), and its conversion to the output's unit.
+std::string WeightedSignalUnit(const Path& path, int row, const Output& output);
+UnitConversion OutputConversion(const Path& path, int row, const Output& output);
+
+// |w(j 2 pi f)|^2 of the output's weighting at every f; empty without one.
+// @throws InputError if f coincides with a pole of the weighting.
+std::vector<double> WeightingGain2(const Output& output, const std::vector<double>& f_hz, int threads = 0);
+
+struct PathResponse {
+  std::string contributor;
+  std::string output;
+  std::vector<std::string> channels;  // the source's channel names
+  std::string unit;                   // "output unit / source unit", for labels
+  // gain2[k][i] = |h_k(f_i)|^2, output unit^2 per source unit^2.
+  std::vector<std::vector<double>> gain2;
+};
+
+// |h_k(f)|^2 for contributor `contributor` (index into budget.contributors)
+// and output `output` (index into budget.outputs) at every f.
+// DEB_DEMANDs valid indices of a validated budget.
+// @throws InputError as the engine does for units and poles on the grid.
+PathResponse ComputePathResponse(const Budget& budget, std::size_t contributor, std::size_t output,
+                                 const std::vector<double>& f_hz, int threads = 0);
+
+}  // namespace deb

@@ -1,0 +1,91 @@
+#include "deb/report/path_plots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "deb/budget/path_response.h"
+#include "deb/report/plot_style.h"
+
+namespace deb::report {
+namespace {
+
+constexpr double kDecades = 8.0;  // of magnitude shown below the peak
+
+Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, std::size_t o, int threads) {
+  const std::vector<double>& f = result.grid.f_hz();
+  const PathResponse r = ComputePathResponse(budget, c, o, f, threads);
+  const Contributor& contributor = budget.contributors[c];
+  const Output& output = budget.outputs[o];
+  const std::size_t m = r.gain2.size();
+  Plot p;
+  p.name = "path_" + FileStem(contributor.name) + "_to_" + FileStem(output.name);
+  p.kind = PlotKind::kPath;
+  p.output = static_cast<int>(o);
+  p.caption = "Magnitude of the transfer from " + contributor.name + " (source " + contributor.source + ", path " +
+              contributor.path + ") to " + output.name + (output.weighting ? ", weighting included" : "") +
+              ", per source channel.";
+
+  std::ostringstream csv;
+  csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ": |h| from contributor "
+      << contributor.name << " to output " << output.name << " in " << r.unit << ", per source channel\n";
+  csv << "frequency_hz";
+  for (const auto& ch : r.channels) csv << ',' << CsvField(ch);
+  csv << '\n';
+  double top = 0.0, bottom = HUGE_VAL;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    csv << CsvNumber(f[i]);
+    for (std::size_t k = 0; k < m; ++k) {
+      const double mag = std::sqrt(r.gain2[k][i]);
+      csv << ',' << CsvNumber(mag);
+      if (mag > 0.0) {
+        top = std::max(top, mag);
+        bottom = std::min(bottom, mag);
+      }
+    }
+    csv << '\n';
+  }
+  p.csv = csv.str();
+
+  std::ostringstream s;
+  s << "reset\n" << StylePreamble();
+  s << "set logscale x 10\nset format x '%g'\nset xrange [" << CsvNumber(f.front()) << ":" << CsvNumber(f.back())
+    << "]\nset xlabel 'frequency [Hz]'\n";
+  s << "set title " << Quote("path " + Enhanced(contributor.name) + " → " + Enhanced(output.name) + " (" +
+                             Enhanced(contributor.path) + (output.weighting ? ", weighted" : "") + ")")
+    << "\n";
+  s << "set ylabel " << Quote("magnitude |h| [" + UnitLabel(r.unit) + "]") << "\n";
+  s << "set logscale y 10\nset format y '10^{%L}'\n";
+  if (top > 0.0) {
+    const double lo = std::max(bottom, top * std::pow(10.0, -kDecades));
+    s << "set yrange [" << CsvNumber(std::pow(10.0, std::floor(std::log10(lo)))) << ":"
+      << CsvNumber(std::pow(10.0, std::ceil(std::log10(top * 1.2)))) << "]\n";
+  } else {
+    s << "set yrange [0.1:10]\nset label 1 'zero transfer at every frequency' at graph 0.5,0.5 center\n";
+  }
+  s << "set key outside right top Left reverse title 'source channel'\n";
+  const std::string data = Quote(p.name + ".csv");
+  s << "plot ";
+  for (std::size_t k = 0; k < m; ++k) {
+    // One channel: the contributor's own style; several: one style per channel.
+    const SeriesStyle st = ContributorStyle(m == 1 ? c : k);
+    const std::string col = "column(" + std::to_string(k + 2) + ")";
+    s << (k ? ", \\\n     " : "") << data << " using 1:(" << col << " > 0 ? " << col
+      << " : NaN) with lines linecolor rgb " << Quote(st.colour) << " dashtype " << st.dash << " linewidth 2 title "
+      << Quote(Enhanced(k < r.channels.size() ? r.channels[k] : std::to_string(k + 1)));
+  }
+  s << "\n";
+  p.script = s.str();
+  return p;
+}
+
+}  // namespace
+
+std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, int threads) {
+  std::vector<Plot> plots;
+  for (std::size_t c = 0; c < budget.contributors.size(); ++c)
+    for (std::size_t o = 0; o < budget.outputs.size(); ++o) plots.push_back(PathPlot(budget, result, c, o, threads));
+  return plots;
+}
+
+}  // namespace deb::report

@@ -1,0 +1,106 @@
+#include "deb/report/plot_style.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+namespace deb::report {
+namespace {
+
+constexpr double kPi = 3.141592653589793238462643383279502884;
+
+// Lightness levels in an order that keeps neighbours >= 18 L* apart.
+constexpr std::array<double, 6> kLightness = {34, 70, 50, 80, 42, 60};
+constexpr std::array<const char*, 4> kDashes = {"solid", "(10,5)", "(12,4,2,4)", "(4,4)"};
+constexpr double kGoldenAngleDeg = 137.50776405;
+constexpr double kFirstHueDeg = 255.0;  // a blue
+constexpr double kChroma = 58.0;
+
+// Linear sRGB of CIE L*a*b* (D65 white).
+std::array<double, 3> LabToLinearRgb(double l, double a, double b) {
+  const double fy = (l + 16.0) / 116.0, fx = fy + a / 500.0, fz = fy - b / 200.0;
+  const auto finv = [](double t) {
+    constexpr double d = 6.0 / 29.0;
+    return t > d ? t * t * t : 3.0 * d * d * (t - 4.0 / 29.0);
+  };
+  const double x = 0.95047 * finv(fx), y = finv(fy), z = 1.08883 * finv(fz);
+  return {3.2404542 * x - 1.5371385 * y - 0.4985314 * z, -0.9692660 * x + 1.8760108 * y + 0.0415560 * z,
+          0.0556434 * x - 0.2040259 * y + 1.0572252 * z};
+}
+
+bool InGamut(const std::array<double, 3>& rgb) {
+  return std::all_of(rgb.begin(), rgb.end(), [](double v) { return v >= -1e-9 && v <= 1.0 + 1e-9; });
+}
+
+int Encode(double linear) {
+  const double v = std::clamp(linear, 0.0, 1.0);
+  const double s = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+  return static_cast<int>(std::lround(255.0 * s));
+}
+
+}  // namespace
+
+std::string LchColour(double l, double c, double h_deg) {
+  const double h = h_deg * kPi / 180.0;
+  double lo = 0.0, hi = c;
+  if (!InGamut(LabToLinearRgb(l, c * std::cos(h), c * std::sin(h)))) {
+    for (int i = 0; i < 40; ++i) {  // largest in-gamut chroma by bisection
+      const double mid = 0.5 * (lo + hi);
+      (InGamut(LabToLinearRgb(l, mid * std::cos(h), mid * std::sin(h))) ? lo : hi) = mid;
+    }
+    c = lo;
+  }
+  const auto rgb = LabToLinearRgb(l, c * std::cos(h), c * std::sin(h));
+  char text[8];
+  std::snprintf(text, sizeof(text), "#%02x%02x%02x", Encode(rgb[0]), Encode(rgb[1]), Encode(rgb[2]));
+  return text;
+}
+
+SeriesStyle ContributorStyle(std::size_t index) {
+  SeriesStyle s;
+  const double hue = std::fmod(kFirstHueDeg + kGoldenAngleDeg * static_cast<double>(index), 360.0);
+  s.lightness = kLightness[index % kLightness.size()];
+  s.colour = LchColour(s.lightness, kChroma, hue);
+  s.edge_colour = LchColour(std::max(s.lightness - 28.0, 12.0), kChroma, hue);
+  s.dash = kDashes[index % kDashes.size()];
+  return s;
+}
+
+std::string TerminalCommand(Terminal terminal) {
+  const std::string font = std::string(" font '") + kFont + ",";
+  switch (terminal) {
+    case Terminal::kPng:
+      return "set terminal pngcairo enhanced size 1200,720 background '#ffffff'" + font + "11' linewidth 1.2\n";
+    case Terminal::kSvg:
+      return "set terminal svg enhanced size 1200,720 background '#ffffff'" + font + "13' linewidth 1.2\n";
+    case Terminal::kPdf:
+      return "set terminal pdfcairo enhanced size 29.7cm,21cm background '#ffffff'" + font + "11' linewidth 1.0\n";
+  }
+  return "";
+}
+
+std::string FileExtension(Terminal terminal) {
+  switch (terminal) {
+    case Terminal::kPng: return "png";
+    case Terminal::kSvg: return "svg";
+    case Terminal::kPdf: return "pdf";
+  }
+  return "";
+}
+
+std::string StylePreamble() {
+  return "set encoding utf8\n"
+         "set datafile separator comma\n"
+         "set border 3 linewidth 1.0 linecolor rgb '#404040'\n"
+         "set tics nomirror out scale 0.6 textcolor rgb '#202020'\n"
+         "set style line 101 linecolor rgb '#c8c8c8' linewidth 0.7 dashtype solid\n"
+         "set style line 102 linecolor rgb '#e6e6e6' linewidth 0.6 dashtype solid\n"
+         "set grid xtics ytics mxtics linestyle 101, linestyle 102\n"
+         "set title font ',14' offset 0,-0.3\n"
+         "set key font ',10' samplen 2.5 spacing 1.15 nobox opaque\n"
+         "set xlabel offset 0,0.4\n"
+         "set style fill solid 1.0 noborder\n";
+}
+
+}  // namespace deb::report

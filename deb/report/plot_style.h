@@ -1,0 +1,48 @@
+// The one visual style of a deb report. Contributors keep one colour and one
+// dash pattern in every plot of a report, keyed by their index in the budget
+// (not by their share, which differs per output). Colours are built in CIE
+// L*C*h: hues step by the golden angle, so any run of neighbours differs in
+// hue, and lightness L* cycles through six well separated levels, so that a
+// greyscale print still tells layers and lines apart; lines add a dash
+// pattern (4 patterns x 6 lightness levels = 12 distinct greyscale styles).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace deb::report {
+
+struct SeriesStyle {
+  std::string colour;       // "#rrggbb"
+  std::string edge_colour;  // darker, for outlines of filled layers
+  std::string dash;         // gnuplot dash type: "solid" or "(a,b,...)"
+  double lightness = 0.0;   // CIE L* of colour, 0..100
+};
+
+// Style of the contributor with budget index `index`; the same for every
+// report and every run.
+SeriesStyle ContributorStyle(std::size_t index);
+
+// Sum of all contributors; the requirement line.
+inline constexpr const char* kTotalColour = "#000000";
+inline constexpr const char* kRequirementColour = "#b2182b";
+inline constexpr const char* kRequirementDash = "(14,6)";
+
+inline constexpr const char* kFont = "DejaVu Sans";
+inline constexpr const char* kMonoFont = "DejaVu Sans Mono";
+
+// Terminal settings for one output file. PNG and SVG pages are 1200 x 720
+// pixels; PDF pages are A4 landscape.
+enum class Terminal { kPng, kSvg, kPdf };
+std::string TerminalCommand(Terminal terminal);
+std::string FileExtension(Terminal terminal);  // "png", "svg", "pdf"
+
+// Settings every plot script starts with (after `reset`): encoding, CSV
+// input, grid, borders, fonts of titles and keys.
+std::string StylePreamble();
+
+// sRGB colour "#rrggbb" of CIE L*C*h (D65) lightness l, chroma c and hue
+// h_deg; the chroma is reduced until the colour lies inside the sRGB gamut.
+std::string LchColour(double l, double c, double h_deg);
+
+}  // namespace deb::report

@@ -1,0 +1,172 @@
+#include "deb/report/report_documents.h"
+
+#include <sstream>
+
+#include "deb/report/title_page.h"
+
+namespace deb::report {
+namespace {
+
+constexpr const char* kCss = R"(
+:root { --ink: #1a1a1a; --muted: #5c5c5c; --line: #d9d9d9; --fail: #b2182b; }
+body { font-family: "DejaVu Sans", system-ui, "Segoe UI", Helvetica, Arial, sans-serif; color: var(--ink);
+       max-width: 1240px; margin: 2rem auto; padding: 0 1.5rem; line-height: 1.45; }
+h1 { font-size: 1.7rem; margin-bottom: 0.2rem; }
+h2 { border-bottom: 1px solid var(--line); padding-bottom: 0.2rem; margin-top: 2.4rem; }
+h3 { margin-top: 1.6rem; }
+p.lead { color: var(--muted); margin-top: 0; }
+nav { font-size: 0.92rem; margin: 1rem 0; }
+nav a { margin-right: 1rem; }
+table { border-collapse: collapse; margin: 0.6rem 0 1.4rem; font-size: 0.92rem; }
+caption { text-align: left; font-weight: bold; padding: 0.3rem 0; }
+th, td { border-bottom: 1px solid var(--line); padding: 0.25rem 0.7rem; text-align: left; vertical-align: top; }
+th { background: #f2f2f2; }
+.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+table.facts td:first-child { color: var(--muted); white-space: nowrap; }
+table.facts td { font-family: "DejaVu Sans Mono", monospace; font-size: 0.88rem; }
+strong.fail, td strong { color: inherit; }
+.fail { color: var(--fail); font-weight: bold; }
+figure { margin: 1rem 0 2.2rem; }
+figure img { max-width: 100%; height: auto; border: 1px solid var(--line); }
+figcaption { color: var(--muted); font-size: 0.9rem; }
+ul.files { font-family: "DejaVu Sans Mono", monospace; font-size: 0.88rem; }
+@media print { nav { display: none; } figure { break-inside: avoid; } }
+)";
+
+std::string Href(const std::string& path) {
+  std::string out;
+  for (char c : path) out += c == ' ' ? std::string("%20") : c == '"' ? std::string("%22") : std::string(1, c);
+  return out;
+}
+
+std::string HtmlFigure(const Plot& p, const std::string& ext) {
+  std::ostringstream s;
+  s << "<figure id=\"" << HtmlEscape(p.name) << "\">\n";
+  if (!ext.empty())
+    s << "<img src=\"" << Href("plots/" + p.name + "." + ext) << "\" alt=\"" << HtmlEscape(p.caption) << "\">\n";
+  s << "<figcaption>" << HtmlEscape(p.caption) << " Data: <a href=\"" << Href("plots/" + p.name + ".csv")
+    << "\">" << HtmlEscape(p.name) << ".csv</a>, script: <a href=\"" << Href("plots/" + p.name + ".gp") << "\">"
+    << HtmlEscape(p.name) << ".gp</a>.</figcaption>\n</figure>\n";
+  return s.str();
+}
+
+std::string MarkdownFigure(const Plot& p, const std::string& ext) {
+  std::string s;
+  if (!ext.empty()) s += "![" + p.caption + "](" + Href("plots/" + p.name + "." + ext) + ")\n\n";
+  s += "*" + p.caption + "* Data: [" + p.name + ".csv](" + Href("plots/" + p.name + ".csv") + "), script: [" + p.name +
+       ".gp](" + Href("plots/" + p.name + ".gp") + ").\n\n";
+  return s;
+}
+
+std::string OutputLine(const OutputResult& o) {
+  std::string s = "RMS " + Sig(o.rms(), 4) + " " + UnitText(o.unit);
+  if (o.rms_max)
+    s += "; requirement " + Short(*o.rms_max) + " " + UnitText(o.unit) + ": " + (o.pass() ? "pass" : "FAIL") +
+         " (margin " + Sig(*o.rms_max - o.rms(), 4) + ")";
+  return s + ". Signal " + o.signal + ".";
+}
+
+template <typename Fn>
+void ForPlots(const std::vector<Plot>& plots, PlotKind kind, int output, Fn fn) {
+  for (const Plot& p : plots)
+    if (p.kind == kind && (output < 0 || p.output == output)) fn(p);
+}
+
+}  // namespace
+
+std::string OutputAnchor(const std::string& output_name) { return "output-" + FileStem(output_name); }
+
+std::string IndexHtml(const DocumentInputs& in) {
+  const Budget& budget = *in.budget;
+  const BudgetResult& result = *in.result;
+  std::ostringstream s;
+  s << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+    << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+    << "<title>deb report: " << HtmlEscape(budget.name) << "</title>\n<style>" << kCss << "</style>\n</head>\n<body>\n";
+  s << "<h1>Dynamic error budget: " << HtmlEscape(budget.name) << "</h1>\n";
+  if (!budget.description.empty()) s << "<p class=\"lead\">" << HtmlEscape(budget.description) << "</p>\n";
+  s << "<nav><a href=\"#summary\">Summary</a><a href=\"#overview\">Overview</a>";
+  for (const OutputResult& o : result.outputs)
+    s << "<a href=\"#" << HtmlEscape(OutputAnchor(o.name)) << "\">" << HtmlEscape(o.name) << "</a>";
+  s << "<a href=\"#paths\">Paths</a><a href=\"#files\">Files</a></nav>\n";
+
+  s << "<h2 id=\"summary\">Summary</h2>\n<table class=\"facts\">\n";
+  for (const auto& [key, value] : in.facts.items)
+    s << "<tr><td>" << HtmlEscape(key) << "</td><td>" << HtmlEscape(value) << "</td></tr>\n";
+  s << "</table>\n" << ToHtml(SummaryTable(result));
+  s << "<h3>Conventions</h3>\n<ul>\n";
+  for (const auto& c : in.facts.conventions) s << "<li>" << HtmlEscape(c) << "</li>\n";
+  s << "</ul>\n";
+  if (!result.warnings.empty()) {
+    s << "<h3>Warnings</h3>\n<ul>\n";
+    for (const auto& w : result.warnings) s << "<li>" << HtmlEscape(w) << "</li>\n";
+    s << "</ul>\n";
+  }
+
+  s << "<h2 id=\"overview\">Overview</h2>\n";
+  ForPlots(in.plots, PlotKind::kOverview, -1, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+
+  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
+    const OutputResult& out = result.outputs[o];
+    const int oi = static_cast<int>(o);
+    s << "<h2 id=\"" << HtmlEscape(OutputAnchor(out.name)) << "\">Output " << HtmlEscape(out.name) << " ["
+      << HtmlEscape(UnitText(out.unit)) << "]</h2>\n<p" << (out.pass() ? "" : " class=\"fail\"") << ">"
+      << HtmlEscape(OutputLine(out)) << "</p>\n";
+    s << ToHtml(ContributorTable(budget, out));
+    for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
+      ForPlots(in.plots, k, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+    s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out));
+    ForPlots(in.plots, PlotKind::kBands, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+  }
+
+  s << "<h2 id=\"paths\">Paths</h2>\n<p>Magnitude of each contributor's transfer to each output, per source channel, "
+       "with the unit conversions and weightings the budget applies.</p>\n";
+  ForPlots(in.plots, PlotKind::kPath, -1, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+
+  s << "<h2 id=\"files\">Files</h2>\n<ul class=\"files\">\n";
+  if (in.pdf) s << "<li><a href=\"report.pdf\">report.pdf</a> — every plot, after a title page</li>\n";
+  s << "<li><a href=\"report.md\">report.md</a> — these tables as Markdown</li>\n";
+  for (const auto& f : in.data_files) s << "<li><a href=\"" << Href(f) << "\">" << HtmlEscape(f) << "</a></li>\n";
+  s << "<li><a href=\"plots/colours.csv\">plots/colours.csv</a> — the colour and dash pattern of each "
+       "contributor</li>\n";
+  s << "</ul>\n<p class=\"lead\">Written by deb " << DEB_VERSION << ".</p>\n</body>\n</html>\n";
+  return s.str();
+}
+
+std::string ReportMarkdown(const DocumentInputs& in) {
+  const Budget& budget = *in.budget;
+  const BudgetResult& result = *in.result;
+  std::ostringstream s;
+  s << "# Dynamic error budget: " << budget.name << "\n\n";
+  if (!budget.description.empty()) s << budget.description << "\n\n";
+  s << "## Summary\n\n| | |\n| --- | --- |\n";
+  for (const auto& [key, value] : in.facts.items) s << "| " << key << " | `" << value << "` |\n";
+  s << "\n" << ToMarkdown(SummaryTable(result)) << "\n### Conventions\n\n";
+  for (const auto& c : in.facts.conventions) s << "- " << c << "\n";
+  if (!result.warnings.empty()) {
+    s << "\n### Warnings\n\n";
+    for (const auto& w : result.warnings) s << "- " << w << "\n";
+  }
+  s << "\n## Overview\n\n";
+  ForPlots(in.plots, PlotKind::kOverview, -1, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
+  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
+    const OutputResult& out = result.outputs[o];
+    const int oi = static_cast<int>(o);
+    s << "## Output " << out.name << " [" << UnitText(out.unit) << "]\n\n" << OutputLine(out) << "\n\n";
+    s << ToMarkdown(ContributorTable(budget, out)) << "\n";
+    for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
+      ForPlots(in.plots, k, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
+    s << "### Frequency bands\n\n" << ToMarkdown(BandTable(out)) << "\n";
+    ForPlots(in.plots, PlotKind::kBands, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
+  }
+  s << "## Paths\n\n";
+  ForPlots(in.plots, PlotKind::kPath, -1, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
+  s << "## Files\n\n";
+  if (in.pdf) s << "- [report.pdf](report.pdf): every plot, after a title page\n";
+  s << "- [index.html](index.html): this report for a browser\n";
+  for (const auto& f : in.data_files) s << "- [" << f << "](" << Href(f) << ")\n";
+  s << "- [plots/colours.csv](plots/colours.csv): the colour and dash pattern of each contributor\n";
+  return s.str();
+}
+
+}  // namespace deb::report

@@ -1,0 +1,33 @@
+// The two readable documents of a report directory: index.html, one
+// self-contained page (inline CSS, no scripts, nothing fetched from the
+// network; images by relative path) for a browser, and report.md with the
+// same sections and tables for terminals and repositories.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/budget/engine.h"
+#include "deb/report/plot.h"
+#include "deb/report/report_tables.h"
+
+namespace deb::report {
+
+struct DocumentInputs {
+  const Budget* budget = nullptr;
+  const BudgetResult* result = nullptr;
+  ReportFacts facts;
+  std::vector<Plot> plots;            // in report order
+  std::string image_extension;        // "png", "svg", or "" for no images
+  bool pdf = false;                   // report.pdf exists
+  std::vector<std::string> data_files;  // summary.json, output CSVs: relative paths that exist
+};
+
+std::string IndexHtml(const DocumentInputs& in);
+std::string ReportMarkdown(const DocumentInputs& in);
+
+// The anchor of an output's section, e.g. "output-z_velocity".
+std::string OutputAnchor(const std::string& output_name);
+
+}  // namespace deb::report

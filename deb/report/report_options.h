@@ -1,0 +1,33 @@
+// What a report contains and how it is drawn. The defaults give what most
+// readers want: PNG plots for index.html and one multi-page report.pdf.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace deb {
+
+// File formats of the plots: kPng and kSvg write one file per plot under
+// plots/ (index.html shows the PNGs, or the SVGs without PNGs); kPdf writes
+// all plots, after a title page, into report.pdf.
+enum class PlotFormat { kPng, kPdf, kSvg };
+std::string ToString(PlotFormat format);
+// @throws InputError quoting the text and listing png, pdf, svg.
+PlotFormat ParsePlotFormat(const std::string& text);
+
+struct ReportOptions {
+  std::vector<PlotFormat> formats = {PlotFormat::kPng, PlotFormat::kPdf};
+  bool plots = true;         // false: tables, data and documents only; gnuplot is not needed
+  bool asd = false;          // spectra as ASD (unit/sqrt(Hz)) instead of PSD
+  bool reverse_cps = false;  // add a stacked reverse-CPS plot per output
+  bool progress = false;     // report progress on stderr (the caller decides, e.g. isatty)
+  int threads = 0;           // gnuplot processes at a time; <= 0: DefaultThreadCount()
+  // gnuplot executable; empty: $DEB_GNUPLOT if set, else "gnuplot" on PATH.
+  std::string gnuplot;
+
+  bool Has(PlotFormat format) const;
+  // False, with the reason in *error, for an empty or repeated format list.
+  bool IsValid(std::string* error) const;
+};
+
+}  // namespace deb

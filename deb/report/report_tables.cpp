@@ -1,0 +1,236 @@
+#include "deb/report/report_tables.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "deb/report/comparison_plots.h"
+#include "deb/report/plot.h"
+#include "deb/report/spectrum_plots.h"
+#include "deb/units/unit.h"
+
+namespace deb::report {
+namespace {
+
+
+// Characters of a UTF-8 string (for alignment of µ, –, …).
+std::size_t Width(const std::string& s) {
+  return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+
+std::string Shorten(const std::string& s, std::size_t max) {
+  if (Width(s) <= max) return s;
+  std::string out;
+  std::size_t chars = 0;
+  for (char c : s) {
+    if ((c & 0xC0) != 0x80 && ++chars == max) break;
+    out += c;
+  }
+  return out + "…";
+}
+
+std::string MarkdownEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '|' || c == '*' || c == '_' || c == '\\' || c == '`' || c == '[' || c == ']' || c == '<') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+bool Emphasised(const Table& t, std::size_t r, std::size_t c) {
+  return r < t.emphasis.size() && c < t.emphasis[r].size() && t.emphasis[r][c];
+}
+
+}  // namespace
+
+Table SummaryTable(const BudgetResult& result) {
+  Table t;
+  t.title = "Summary";
+  t.header = {"output", "unit", "RMS", "requirement", "margin", "status", "largest contributor"};
+  t.numeric = {false, false, true, true, true, false, false};
+  for (const OutputResult& o : result.outputs) {
+    std::string largest = "–";
+    if (!o.contributors.empty()) {
+      const std::size_t c = ShareOrder(o).front();
+      largest = o.contributors[c].name + " (" + Share(o.contributors[c].variance, o.variance) + ")";
+    }
+    t.rows.push_back({o.name, UnitText(o.unit), Sig(o.rms(), 4), o.rms_max ? Short(*o.rms_max) : "–",
+                      o.rms_max ? Sig(*o.rms_max - o.rms(), 4) : "–", o.rms_max ? (o.pass() ? "pass" : "FAIL") : "–",
+                      largest});
+    t.emphasis.push_back({false, false, false, false, false, o.rms_max && !o.pass(), false});
+  }
+  return t;
+}
+
+Table ContributorTable(const Budget& budget, const OutputResult& o) {
+  Table t;
+  t.title = "Contributors to " + o.name + " [" + UnitText(o.unit) + "]";
+  t.header = {"contributor", "source", "path", "RMS", "share", "exact RMS", "note"};
+  t.numeric = {false, false, false, true, true, true, false};
+  for (std::size_t c : ShareOrder(o)) {
+    const ContributorResult& cr = o.contributors[c];
+    const Contributor& spec = budget.contributors[c];
+    std::string note = cr.exact_note;
+    if (cr.exact_variance && *cr.exact_variance > 0.0)
+      note = "grid holds " + Sig(100.0 * cr.variance / *cr.exact_variance, 4) + " % of the exact variance";
+    t.rows.push_back({cr.name, spec.source, spec.path, Sig(std::sqrt(cr.variance), 4), Share(cr.variance, o.variance),
+                      cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), 4) : "–", note});
+  }
+  t.rows.push_back({"total", "", "", Sig(o.rms(), 4), o.variance > 0 ? "100 %" : "–", "", ""});
+  return t;
+}
+
+Table BandTable(const OutputResult& o) {
+  Table t;
+  t.title = "RMS of " + o.name + " per band [" + UnitText(o.unit) + "]";
+  t.header = {"contributor"};
+  t.numeric = {false};
+  for (const BandResult& b : o.bands) {
+    t.header.push_back(BandText(b.band.lo_hz, b.band.hi_hz));
+    t.numeric.push_back(true);
+  }
+  t.header.push_back("whole grid");
+  t.numeric.push_back(true);
+  std::vector<std::size_t> largest(o.bands.size(), 0);
+  for (std::size_t b = 0; b < o.bands.size(); ++b)
+    for (std::size_t c = 0; c < o.contributors.size(); ++c)
+      if (o.bands[b].contributor_variance[c] > o.bands[b].contributor_variance[largest[b]]) largest[b] = c;
+  for (std::size_t c : ShareOrder(o)) {
+    std::vector<std::string> row = {o.contributors[c].name};
+    std::vector<bool> bold = {false};
+    for (std::size_t b = 0; b < o.bands.size(); ++b) {
+      row.push_back(Sig(std::sqrt(o.bands[b].contributor_variance[c]), 3));
+      bold.push_back(largest[b] == c && o.bands[b].variance > 0.0);
+    }
+    row.push_back(Sig(std::sqrt(o.contributors[c].variance), 3));
+    bold.push_back(false);
+    t.rows.push_back(row);
+    t.emphasis.push_back(bold);
+  }
+  std::vector<std::string> total = {"total"};
+  for (const BandResult& b : o.bands) total.push_back(Sig(std::sqrt(b.variance), 3));
+  total.push_back(Sig(o.rms(), 3));
+  t.rows.push_back(total);
+  return t;
+}
+
+ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const std::string& budget_file,
+                      const std::string& sha256, const std::string& date, double seconds) {
+  ReportFacts f;
+  std::size_t failed = 0, required = 0;
+  for (const OutputResult& o : result.outputs) {
+    required += o.rms_max ? 1 : 0;
+    failed += o.pass() ? 0 : 1;
+  }
+  f.items = {
+      {"budget", budget.name},
+      {"budget file", budget_file.empty() ? "–" : budget_file},
+      {"SHA-256", sha256.empty() ? "–" : sha256},
+      {"date", date},
+      {"deb version", DEB_VERSION},
+      {"grid", ToString(budget.grid.kind) + ", " + std::to_string(result.grid.size()) + " frequencies, " +
+                   Short(result.grid.min_hz()) + "–" + Short(result.grid.max_hz()) + " Hz"},
+      {"bands", budget.bands.empty() ? "decades of the grid" : "as the budget defines them"},
+      {"evaluation", Sig(seconds, 3) + " s"},
+      {"requirements", required == 0 ? "none given"
+                                     : (failed == 0 ? "all " + std::to_string(required) + " met"
+                                                    : std::to_string(failed) + " of " + std::to_string(required) +
+                                                          " FAILED")},
+  };
+  f.conventions = {
+      "Frequencies in Hz. PSDs are one-sided: variance = ∫ S(f) df over 0 < f < ∞, in unit²/Hz; ASD = √PSD.",
+      "CPS(f) = ∫ S from the lowest grid frequency to f; RMS = √CPS(f_max); the reverse CPS integrates from f up.",
+      "Contributors (source × path) are mutually uncorrelated and their variances add; S_y = H S_u Hᴴ.",
+      "Exact RMS: Lyapunov A P + P Aᵀ + B W Bᵀ = 0, W = S₀/2, over 0 < f < ∞ (white sources only).",
+      "Sources declared two-sided were converted once at load: S_one-sided = 2 S_two-sided.",
+  };
+  return f;
+}
+
+std::string HtmlEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string ToHtml(const Table& t) {
+  std::string s = "<table>\n<caption>" + HtmlEscape(t.title) + "</caption>\n<thead><tr>";
+  for (std::size_t c = 0; c < t.header.size(); ++c)
+    s += std::string(t.numeric[c] ? "<th class=\"num\">" : "<th>") + HtmlEscape(t.header[c]) + "</th>";
+  s += "</tr></thead>\n<tbody>\n";
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    s += "<tr>";
+    for (std::size_t c = 0; c < t.rows[r].size(); ++c) {
+      std::string cell = HtmlEscape(t.rows[r][c]);
+      if (Emphasised(t, r, c)) cell = "<strong>" + cell + "</strong>";
+      s += std::string(t.numeric[c] ? "<td class=\"num\">" : "<td>") + cell + "</td>";
+    }
+    s += "</tr>\n";
+  }
+  return s + "</tbody>\n</table>\n";
+}
+
+std::string ToMarkdown(const Table& t) {
+  std::string s = "| ";
+  for (const auto& h : t.header) s += MarkdownEscape(h) + " | ";
+  s.pop_back();
+  s += "\n|";
+  for (std::size_t c = 0; c < t.header.size(); ++c) s += t.numeric[c] ? " ---: |" : " --- |";
+  s += "\n";
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    s += "| ";
+    for (std::size_t c = 0; c < t.rows[r].size(); ++c) {
+      const std::string cell = MarkdownEscape(t.rows[r][c]);
+      s += (Emphasised(t, r, c) && !cell.empty() ? "**" + cell + "**" : cell) + " | ";
+    }
+    s.pop_back();
+    s += "\n";
+  }
+  return s;
+}
+
+std::vector<std::string> ToText(const Table& t, std::size_t max_cell, std::size_t max_line) {
+  std::vector<std::vector<std::string>> cells = {t.header};
+  for (const auto& row : t.rows) cells.push_back(row);
+  const std::size_t columns = t.header.size();
+  std::vector<std::size_t> width(columns, 0);
+  for (auto& row : cells)
+    for (std::size_t c = 0; c + 1 < columns && c < row.size(); ++c) {
+      row[c] = Shorten(row[c], max_cell);
+      width[c] = std::max(width[c], Width(row[c]));
+    }
+  std::size_t used = 0;
+  for (std::size_t c = 0; c + 1 < columns; ++c) used += width[c] + 2;
+  const std::size_t last = std::max<std::size_t>(max_line > used ? max_line - used : 0, 12);
+  for (auto& row : cells)
+    if (row.size() == columns) {
+      row.back() = Shorten(row.back(), last);
+      width.back() = std::max(width.back(), Width(row.back()));
+    }
+  std::vector<std::string> lines;
+  for (std::size_t r = 0; r < cells.size(); ++r) {
+    std::string line;
+    for (std::size_t c = 0; c < cells[r].size(); ++c) {
+      const std::string pad(width[c] - Width(cells[r][c]), ' ');
+      line += (c ? "  " : "") + (t.numeric[c] ? pad + cells[r][c] : cells[r][c] + pad);
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    lines.push_back(line);
+    if (r == 0) {
+      std::size_t total = 0;
+      for (std::size_t w : width) total += w;
+      lines.push_back(std::string(total + 2 * (width.size() - 1), '-'));
+    }
+  }
+  return lines;
+}
+
+}  // namespace deb::report

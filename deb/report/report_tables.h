@@ -1,0 +1,51 @@
+// The tables of a report, built once and rendered three ways: HTML for
+// index.html, Markdown for report.md and aligned monospace text for the
+// title pages of report.pdf, so that all three say the same thing.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/budget/engine.h"
+
+namespace deb::report {
+
+struct Table {
+  std::string title;
+  std::vector<std::string> header;
+  std::vector<bool> numeric;  // per column: right-aligned
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::vector<bool>> emphasis;  // per cell (may be empty): bold
+};
+
+// One row per output: unit, RMS, requirement, margin, status, largest contributor.
+Table SummaryTable(const BudgetResult& result);
+
+// One row per contributor of an output, by share: source, path, RMS, share,
+// exact (Lyapunov) RMS or why there is none.
+Table ContributorTable(const Budget& budget, const OutputResult& output);
+
+// Rows: contributors by share, then the total; columns: the bands and the
+// whole grid. The largest contributor of each band is emphasised.
+Table BandTable(const OutputResult& output);
+
+// Facts about the run for the head of every document, as (label, value).
+struct ReportFacts {
+  std::vector<std::pair<std::string, std::string>> items;
+  std::vector<std::string> conventions;  // one sentence each
+};
+ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const std::string& budget_file,
+                      const std::string& sha256, const std::string& date, double seconds);
+
+std::string HtmlEscape(const std::string& text);
+std::string ToHtml(const Table& table);
+std::string ToMarkdown(const Table& table);
+// Aligned columns, a header line and a rule; cells longer than max_cell
+// characters are shortened with "…", except the last column, which may use
+// what is left of max_line.
+std::vector<std::string> ToText(const Table& table, std::size_t max_cell = 30, std::size_t max_line = 128);
+
+}  // namespace deb::report

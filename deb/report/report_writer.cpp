@@ -1,0 +1,237 @@
+#include "deb/report/report_writer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/core/parallel.h"
+#include "deb/report/comparison_plots.h"
+#include "deb/report/file_digest.h"
+#include "deb/report/gnuplot_runner.h"
+#include "deb/report/path_plots.h"
+#include "deb/report/plot_style.h"
+#include "deb/report/report_documents.h"
+#include "deb/report/spectrum_plots.h"
+#include "deb/report/title_page.h"
+
+namespace deb {
+namespace fs = std::filesystem;
+using namespace report;
+
+namespace {
+
+class Writer {
+ public:
+  Writer(fs::path root, ReportManifest* manifest) : root_(std::move(root)), manifest_(manifest) {}
+  void Write(const std::string& relative, const std::string& text) {
+    const fs::path path = root_ / relative;
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw InputError("cannot write " + path.string());
+    manifest_->files.push_back(relative);
+  }
+
+ private:
+  fs::path root_;
+  ReportManifest* manifest_;
+};
+
+// Progress on stderr as one rewritten line; nothing unless enabled.
+class Progress {
+ public:
+  Progress(bool enabled, int steps) : enabled_(enabled && steps > 0), steps_(steps) {}
+  ~Progress() {
+    if (enabled_) std::fprintf(stderr, "\r%-78s\r", "");
+  }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  void Step(const std::string& what) {
+    if (!enabled_) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::fprintf(stderr, "\rdeb: drawing %d/%d %-50.50s", ++done_, steps_, what.c_str());
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_;
+  int steps_, done_ = 0;
+  std::mutex mutex_;
+};
+
+// Calls job(i) for i in [0, n) on up to `threads` workers (<= 0: the default
+// count), each taking the next index; after the first exception no new job
+// starts, and that exception is rethrown once all workers have stopped.
+void RunJobs(std::size_t n, int threads, const std::function<void(std::size_t)>& job) {
+  const std::size_t workers =
+      std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1, threads > 0 ? threads : DefaultThreadCount())));
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  const auto work = [&] {
+    for (std::size_t i; !failed && (i = next++) < n;) {
+      try {
+        job(i);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+// The report's date: now, or $SOURCE_DATE_EPOCH for reproducible reports.
+std::string ReportDate() {
+  std::time_t t = std::time(nullptr);
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
+    char* end = nullptr;
+    const long long v = std::strtoll(epoch, &end, 10);
+    if (end && *end == '\0' && end != epoch) t = static_cast<std::time_t>(v);
+  }
+  std::tm utc{};
+  gmtime_r(&t, &utc);
+  char text[40];
+  std::strftime(text, sizeof(text), "%Y-%m-%d %H:%M:%S UTC", &utc);
+  return text;
+}
+
+std::string ColoursCsv(const Budget& budget) {
+  std::ostringstream s;
+  s << "# deb " << DEB_VERSION << ": style of each contributor in every plot, keyed by its index in the budget\n";
+  s << "index,contributor,colour,edge_colour,dash,lightness\n";
+  for (std::size_t c = 0; c < budget.contributors.size(); ++c) {
+    const SeriesStyle st = ContributorStyle(c);
+    s << c << ',' << CsvField(budget.contributors[c].name) << ',' << st.colour << ',' << st.edge_colour << ','
+      << CsvField(st.dash) << ',' << st.lightness << '\n';
+  }
+  return s.str();
+}
+
+void RequireFile(const fs::path& path, const std::string& what) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) == 0)
+    throw InputError("cannot draw " + what + ": gnuplot reported success but wrote no " + path.filename().string());
+}
+
+}  // namespace
+
+ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, const RunInfo& info,
+                           const ReportOptions& options, const std::string& dir) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("report options: " + why);
+  ReportManifest manifest;
+  const fs::path root(dir), plots_dir = root / "plots";
+  std::error_code ec;
+  fs::create_directories(plots_dir, ec);
+  if (ec) throw InputError("cannot create directory " + plots_dir.string() + ": " + ec.message());
+  Writer writer(root, &manifest);
+
+  const std::string sha256 = info.budget_file.empty() ? "" : FileSha256(info.budget_file);
+  const ReportFacts facts = MakeFacts(budget, result, info.budget_file, sha256, ReportDate(), info.seconds);
+
+  std::vector<Plot> plots = OverviewPlots(result);
+  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
+    for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
+    plots.push_back(BandPlot(result, o));
+  }
+  for (Plot& p : PathPlots(budget, result)) plots.push_back(std::move(p));
+  for (const Plot& p : plots) {
+    writer.Write("plots/" + p.name + ".csv", p.csv);
+    writer.Write("plots/" + p.name + ".gp", p.script);
+    manifest.plots.push_back(p.name);
+  }
+  writer.Write("plots/colours.csv", ColoursCsv(budget));
+
+  const bool pdf = options.plots && options.Has(PlotFormat::kPdf);
+  if (options.plots) {
+    std::vector<Table> tables = {SummaryTable(result)};
+    for (const OutputResult& o : result.outputs) tables.push_back(ContributorTable(budget, o));
+    const TitlePages title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings);
+    if (pdf) writer.Write("plots/title_page.gp", title.script);
+
+    // One gnuplot process per file, report.pdf (the longest) first, several
+    // at a time (options.threads).
+    const std::string gnuplot = FindGnuplot(options.gnuplot);
+    struct Job {
+      std::string file;    // relative to the report directory
+      std::string script;
+    };
+    std::vector<Job> jobs;
+    if (pdf) {
+      std::string script = TerminalCommand(Terminal::kPdf) + "set output '../report.pdf'\nload 'title_page.gp'\n";
+      for (const Plot& p : plots) script += "load " + Quote(p.name + ".gp") + "\n";
+      jobs.push_back({"report.pdf", script + "unset output\n"});
+    }
+    for (Terminal t : {Terminal::kPng, Terminal::kSvg}) {
+      if (!options.Has(t == Terminal::kPng ? PlotFormat::kPng : PlotFormat::kSvg)) continue;
+      for (const Plot& p : plots) {
+        const std::string file = p.name + "." + FileExtension(t);
+        jobs.push_back({"plots/" + file, TerminalCommand(t) + "set output " + Quote(file) + "\nload " +
+                                             Quote(p.name + ".gp") + "\nunset output\n"});
+      }
+    }
+    Progress progress(options.progress, static_cast<int>(jobs.size()));
+    RunJobs(jobs.size(), options.threads, [&](std::size_t i) {
+      progress.Step(jobs[i].file);
+      const std::string what = i == 0 && pdf ? "report.pdf" : "plot " + fs::path(jobs[i].file).filename().string();
+      RunGnuplot(gnuplot, plots_dir.string(), jobs[i].script, what);
+      RequireFile(root / jobs[i].file, what);
+    });
+    for (const Job& j : jobs) manifest.files.push_back(j.file);
+    if (pdf) {
+      manifest.title_pages = title.pages;
+      manifest.pdf_pages = title.pages + static_cast<int>(plots.size());
+    }
+  }
+
+  DocumentInputs doc;
+  doc.budget = &budget;
+  doc.result = &result;
+  doc.facts = facts;
+  doc.plots = plots;
+  doc.pdf = pdf;
+  if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
+  std::vector<std::string> data = {"summary.json"};
+  for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));
+  for (const auto& f : data)
+    if (fs::is_regular_file(root / f, ec)) doc.data_files.push_back(f);
+  writer.Write("index.html", IndexHtml(doc));
+  writer.Write("report.md", ReportMarkdown(doc));
+  return manifest;
+}
+
+ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
+                                    const ReportOptions& options, const std::string& out_dir) {
+  ReportManifest manifest;
+  WriteDirectoryAtomically(out_dir, [&](const std::string& dir) {
+    const auto write = [&](const std::string& name, const std::string& text) {
+      std::ofstream out(fs::path(dir) / name, std::ios::binary);
+      out << text;
+      out.close();
+      if (!out) throw InputError("cannot write " + (fs::path(out_dir) / name).string());
+    };
+    write("summary.json", SummaryJson(budget, result, info));
+    for (const OutputResult& o : result.outputs) write(OutputCsvName(o.name), OutputCsv(result, o));
+    manifest = WriteReport(budget, result, info, options, dir);
+  });
+  return manifest;
+}
+
+}  // namespace deb

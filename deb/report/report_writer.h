@@ -1,0 +1,45 @@
+// Writes the report of an evaluated budget: plots (stacked CPS, PSD or ASD,
+// optional reverse CPS, frequency bands, path magnitudes, an overview), the
+// CSV and gnuplot script behind every plot, report.pdf (title page + every
+// plot), index.html and report.md. This is what `deb run` leaves in its
+// report directory beside summary.json and the per-output CSVs.
+//
+// Layout of a report directory:
+//   summary.json, <output>.csv           (WriteReportDirectory, deb/io)
+//   index.html, report.md, report.pdf
+//   plots/<name>.png|.svg, plots/<name>.csv, plots/<name>.gp, plots/colours.csv
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/budget/engine.h"
+#include "deb/io/result_writer.h"
+#include "deb/report/report_options.h"
+
+namespace deb {
+
+// What WriteReport wrote.
+struct ReportManifest {
+  std::vector<std::string> plots;  // plot names (file stems under plots/), in report order
+  std::vector<std::string> files;  // every file written, relative to the report directory
+  int title_pages = 0;             // text pages at the start of report.pdf
+  int pdf_pages = 0;               // title_pages + plots.size(), or 0 without report.pdf
+};
+
+// Writes the report into `dir`, an existing directory (normally the
+// temporary directory of WriteDirectoryAtomically). Links summary.json and
+// the output CSVs from index.html if they are already in `dir`.
+// @throws InputError if the options are invalid, gnuplot is missing or fails
+//         (naming the plot and quoting gnuplot), or a file cannot be written.
+ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, const RunInfo& info,
+                           const ReportOptions& options, const std::string& dir);
+
+// summary.json, the output CSVs and WriteReport, atomically into out_dir: on
+// any failure out_dir is left as it was.
+// @throws InputError as WriteReport and WriteDirectoryAtomically.
+ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
+                                    const ReportOptions& options, const std::string& out_dir);
+
+}  // namespace deb

@@ -1,0 +1,229 @@
+#include "deb/report/spectrum_plots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "deb/report/plot_style.h"
+#include "deb/units/unit.h"
+
+namespace deb::report {
+namespace {
+
+std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
+
+// "floor: 12.3 (78.1 %)" for a key whose title names the unit.
+std::string Entry(const std::string& name, double variance, double total_variance) {
+  std::string s = Enhanced(name) + ": " + SigLabel(std::sqrt(variance));
+  if (total_variance > 0.0) s += " (" + Share(variance, total_variance) + ")";
+  return s;
+}
+
+std::string FrequencyAxis(const FrequencyGrid& grid) {
+  std::ostringstream os;
+  os << "set logscale x 10\nset format x '%g'\nset xrange [" << CsvNumber(grid.min_hz()) << ":"
+     << CsvNumber(grid.max_hz()) << "]\nset xlabel 'frequency [Hz]'\n";
+  return os.str();
+}
+
+// Smallest "nice" step (1, 2, 2.5, 5 x 10^n) not below x.
+double NiceStep(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * p >= x * (1 - 1e-12)) return m * p;
+  return 10.0 * p;
+}
+
+// Stacked CPS (reverse = false) or reverse CPS of one output.
+Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
+  const OutputResult& out = result.outputs[o];
+  const std::size_t n = out.contributors.size();
+  const std::vector<double>& f = result.grid.f_hz();
+  Plot p;
+  p.name = FileStem(out.name) + (reverse ? "_reverse_cps" : "_cps");
+  p.kind = reverse ? PlotKind::kReverseCps : PlotKind::kCps;
+  p.output = static_cast<int>(o);
+  p.caption = std::string(reverse ? "Reverse cumulative power spectrum (variance above f)" :
+                                    "Cumulative power spectrum (variance below f)") +
+              " of " + out.name + ", contributors stacked by share; left axis variance, right axis RMS.";
+
+  std::vector<std::vector<double>> series(n);
+  for (std::size_t c = 0; c < n; ++c)
+    series[c] = reverse ? ReverseCps(out.contributors[c].cps) : out.contributors[c].cps;
+  const std::vector<double> total = reverse ? ReverseCps(out.total_cps) : out.total_cps;
+  const std::string unit = DisplayUnit(out.unit);
+
+  std::ostringstream csv;
+  csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ", output " << out.name << ": "
+      << (reverse ? "variance from f to " + CsvNumber(result.grid.max_hz()) + " Hz"
+                  : "variance from " + CsvNumber(result.grid.min_hz()) + " Hz to f")
+      << " in (" << unit << ")^2, per contributor and total\n";
+  csv << "frequency_hz";
+  for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
+  csv << ",total\n";
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    csv << CsvNumber(f[k]);
+    for (std::size_t c = 0; c < n; ++c) csv << ',' << CsvNumber(series[c][k]);
+    csv << ',' << CsvNumber(total[k]) << '\n';
+  }
+  p.csv = csv.str();
+
+  const double y_max = std::max({out.variance, out.rms_max ? *out.rms_max * *out.rms_max : 0.0, 1e-300}) * 1.06;
+  // Variance axis in units of 10^e where the numbers would be long.
+  const int e = static_cast<int>(std::floor(std::log10(y_max)));
+  const double scale = (e >= 4 || e <= -3) ? std::pow(10.0, e) : 1.0;
+  const std::string per = scale == 1.0 ? "" : "/" + CsvNumber(scale);
+  const std::string scale_label = scale == 1.0 ? "" : "10^{" + std::to_string(e) + "} ";
+  std::ostringstream s;
+  s << "reset\n" << StylePreamble() << FrequencyAxis(result.grid);
+  s << "set title " << Quote(Enhanced(out.name) + (reverse ? ": reverse cumulative power spectrum, stacked by share"
+                                                            : ": cumulative power spectrum, stacked by share"))
+    << "\n";
+  s << "set ylabel " << Quote(std::string(reverse ? "variance above f" : "cumulative variance") + " [" +
+                              scale_label + UnitLabel(VarianceUnit(unit)) + "]")
+    << "\n";
+  s << "set y2label " << Quote(std::string(reverse ? "RMS above f" : "cumulative RMS") + " [" + UnitLabel(unit) + "]")
+    << "\n";
+  s << "set yrange [0:" << CsvNumber(y_max / scale) << "]\nset y2range [0:" << CsvNumber(y_max / scale) << "]\n";
+  s << "set format y '%g'\nset ytics nomirror\n" << RmsTics(y_max, scale) << "\n";
+  s << "set key outside right top Left reverse invert title " << Quote("RMS [" + UnitLabel(unit) + "] (share)")
+    << "\n";
+  const std::string data = Quote(p.name + ".csv");
+  const std::vector<std::size_t> order = ShareOrder(out);
+  std::vector<std::string> plots, edges;
+  std::string below = "0";
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const std::size_t c = order[i];
+    const SeriesStyle st = ContributorStyle(c);
+    const std::string top = i == 0 ? Col(2 + c) : below + "+" + Col(2 + c);
+    plots.push_back(data + " using 1:((" + below + ")" + per + "):((" + top + ")" + per + ") with filledcurves fillcolor rgb " +
+                    Quote(st.colour) + " title " +
+                    Quote(Entry(out.contributors[c].name, out.contributors[c].variance, out.variance)));
+    // Boundary to the next layer: white between dark layers, near-black
+    // between light ones, so that neighbours stay apart in greyscale too.
+    if (i + 1 < order.size()) {
+      const double l = 0.5 * (st.lightness + ContributorStyle(order[i + 1]).lightness);
+      edges.push_back(data + " using 1:((" + top + ")" + per + ") with lines linecolor rgb " +
+                      Quote(l < 58.0 ? "#ffffff" : "#262626") + " linewidth 1.1 notitle");
+    }
+    below = top;
+  }
+  plots.insert(plots.end(), edges.begin(), edges.end());
+  plots.push_back(data + " using 1:(" + Col(2 + n) + per + ") with lines linecolor rgb " + Quote(kTotalColour) +
+                  " linewidth 2.5 title " + Quote("total: " + SigLabel(out.rms())));
+  if (out.rms_max) {
+    plots.push_back(CsvNumber(*out.rms_max * *out.rms_max / scale) + " with lines linecolor rgb " +
+                    Quote(kRequirementColour) + " dashtype " + kRequirementDash + " linewidth 2 title " +
+                    Quote("requirement: " + Short(*out.rms_max) + (out.pass() ? " (pass)" : " (FAIL)")));
+  }
+  s << "plot ";
+  for (std::size_t i = 0; i < plots.size(); ++i) s << (i ? ", \\\n     " : "") << plots[i];
+  s << "\n";
+  p.script = s.str();
+  return p;
+}
+
+Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd) {
+  const OutputResult& out = result.outputs[o];
+  const std::size_t n = out.contributors.size();
+  const std::vector<double>& f = result.grid.f_hz();
+  const std::string unit = DisplayUnit(out.unit);
+  const std::string quantity = asd ? "ASD" : "PSD";
+  const std::string unit_text = asd ? AsdUnitLabel(unit) : PsdUnitLabel(unit);
+  Plot p;
+  p.name = FileStem(out.name) + (asd ? "_asd" : "_psd");
+  p.kind = PlotKind::kSpectrum;
+  p.output = static_cast<int>(o);
+  p.caption = (asd ? "Amplitude spectral density" : "Power spectral density (one-sided)") + std::string(" of ") +
+              out.name + " per contributor and in total.";
+
+  const auto value = [&](double psd) { return asd ? std::sqrt(psd) : psd; };
+  std::ostringstream csv;
+  csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ", output " << out.name
+      << ": one-sided " << quantity << " in " << unit_text << ", per contributor and total\n";
+  csv << "frequency_hz";
+  for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
+  csv << ",total\n";
+  double top = 0.0, bottom = HUGE_VAL;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    csv << CsvNumber(f[k]);
+    for (std::size_t c = 0; c < n; ++c) {
+      const double v = value(out.contributors[c].psd[k]);
+      csv << ',' << CsvNumber(v);
+      if (v > 0.0) bottom = std::min(bottom, v);
+    }
+    const double v = value(out.total_psd[k]);
+    csv << ',' << CsvNumber(v) << '\n';
+    top = std::max(top, v);
+  }
+  p.csv = csv.str();
+
+  std::ostringstream s;
+  s << "reset\n" << StylePreamble() << FrequencyAxis(result.grid);
+  s << "set title " << Quote(Enhanced(out.name) + ": " + (asd ? "amplitude" : "power") + " spectral density") << "\n";
+  s << "set ylabel " << Quote(quantity + " [" + UnitLabel(unit_text) + "]") << "\n";
+  s << "set logscale y 10\nset format y '10^{%L}'\n";
+  // At most 10 decades (PSD) below the peak: deeper roll-offs only squeeze the figure.
+  const double decades = asd ? 5.0 : 10.0;
+  if (top > 0.0) {
+    const double lo = std::max(bottom, top * std::pow(10.0, -decades));
+    s << "set yrange [" << CsvNumber(std::pow(10.0, std::floor(std::log10(lo)))) << ":"
+      << CsvNumber(std::pow(10.0, std::ceil(std::log10(top)))) << "]\n";
+  } else {
+    s << "set yrange [0.1:10]\nset label 1 'every contributor is zero on this output' at graph 0.5,0.5 center\n";
+  }
+  s << "set key outside right top Left reverse title " << Quote("RMS [" + UnitLabel(unit) + "] (share)") << "\n";
+  const std::string data = Quote(p.name + ".csv");
+  const auto positive = [](std::size_t col) { return "(" + Col(col) + " > 0 ? " + Col(col) + " : NaN)"; };
+  s << "plot " << data << " using 1:" << positive(2 + n) << " with lines linecolor rgb " << Quote(kTotalColour)
+    << " linewidth 2.5 title " << Quote("total: " + SigLabel(out.rms()));
+  for (std::size_t c : ShareOrder(out)) {
+    const SeriesStyle st = ContributorStyle(c);
+    s << ", \\\n     " << data << " using 1:" << positive(2 + c) << " with lines linecolor rgb " << Quote(st.colour)
+      << " dashtype " << st.dash << " linewidth 2 title "
+      << Quote(Entry(out.contributors[c].name, out.contributors[c].variance, out.variance));
+  }
+  s << "\n";
+  p.script = s.str();
+  return p;
+}
+
+}  // namespace
+
+std::vector<std::size_t> ShareOrder(const OutputResult& output) {
+  std::vector<std::size_t> order(output.contributors.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return output.contributors[a].variance > output.contributors[b].variance;
+  });
+  return order;
+}
+
+std::string RmsTics(double variance_max, double scale) {
+  const double rms_max = std::sqrt(variance_max);
+  const double step = NiceStep(rms_max / 6.0);
+  std::ostringstream os;
+  os << "set y2tics nomirror (";
+  double last = 0.0;
+  os << "'0' 0";
+  for (int k = 1; k * step <= rms_max * (1 + 1e-12); ++k) {
+    const double r = k * step;
+    if (r * r - last * last < 0.04 * variance_max) continue;  // too close to the previous label
+    os << ", " << Quote(Short(r)) << " " << CsvNumber(r * r / scale);
+    last = r;
+  }
+  os << ")";
+  return os.str();
+}
+
+std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output,
+                                const ReportOptions& options) {
+  std::vector<Plot> plots;
+  plots.push_back(StackedPlot(result, output, false));
+  if (options.reverse_cps) plots.push_back(StackedPlot(result, output, true));
+  plots.push_back(SpectrumPlot(result, output, options.asd));
+  return plots;
+}
+
+}  // namespace deb::report

@@ -1,0 +1,87 @@
+// Helpers for the report tests: temporary directories, running the deb CLI
+// and external checkers (pdfinfo), reading files.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace deb::test {
+
+namespace fs = std::filesystem;
+
+struct Command {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+inline std::string ReadAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline fs::path TempDir(const std::string& name) {
+  static std::atomic<int> counter{0};
+  const fs::path d = fs::temp_directory_path() /
+                     ("deb_report_test_" + name + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Runs a shell command line, capturing stdout and stderr.
+inline Command Shell(const std::string& command_line) {
+  static const fs::path dir = TempDir("io");
+  const fs::path out = dir / "stdout", err = dir / "stderr";
+  const std::string cmd = command_line + " > \"" + out.string() + "\" 2> \"" + err.string() + "\"";
+  const int status = std::system(cmd.c_str());
+  Command r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = ReadAll(out);
+  r.err = ReadAll(err);
+  return r;
+}
+
+// deb with arguments; `env` is prepended (e.g. "DEB_GNUPLOT=/nonexistent").
+inline Command RunDeb(const std::string& args, const std::string& env = "") {
+  return Shell((env.empty() ? "" : env + " ") + "\"" + DEB_BINARY + "\" " + args);
+}
+
+inline std::string ExampleBudget(const std::string& file = "single_axis_isolator.yaml") {
+  return std::string(DEB_SOURCE_DIR) + "/budgets/" + file;
+}
+
+inline fs::path WriteFile(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// Page count of a PDF according to pdfinfo (poppler-utils), -1 on failure.
+inline int PdfPages(const fs::path& pdf) {
+  const Command r = Shell("pdfinfo \"" + pdf.string() + "\"");
+  if (r.exit_code != 0) return -1;
+  std::istringstream lines(r.out);
+  std::string line;
+  while (std::getline(lines, line))
+    if (line.rfind("Pages:", 0) == 0) return std::stoi(line.substr(6));
+  return -1;
+}
+
+// Entries of `dir` whose name starts with `prefix` (left-over temporaries).
+inline int CountWithPrefix(const fs::path& dir, const std::string& prefix) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind(prefix, 0) == 0) ++n;
+  return n;
+}
+
+}  // namespace deb::test
