@@ -12,7 +12,7 @@ namespace deb::report {
 namespace {
 
 constexpr const char* kBarEdge = "#303030";
-constexpr std::size_t kPanelsPerPage = 6;
+constexpr std::size_t kPanelsPerPage = 8;
 
 std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
 
@@ -63,7 +63,8 @@ Plot BandPlot(const BudgetResult& result, std::size_t o) {
   s << "set title " << Quote(Enhanced(out.name) + ": RMS per frequency band") << "\n";
   s << "set xrange [0.5:" << bands + 0.5 << "]\nset xtics scale 0 (";
   for (std::size_t b = 0; b < bands; ++b)
-    s << (b ? ", " : "") << Quote(BandText(out.bands[b].band.lo_hz, out.bands[b].band.hi_hz)) << " " << b + 1;
+    s << (b ? ", " : "") << Quote(HzLabel(out.bands[b].band.lo_hz) + "–" + HzLabel(out.bands[b].band.hi_hz) + " Hz")
+      << " " << b + 1;
   s << ")\nset xlabel 'frequency band'\nset grid noxtics nomxtics ytics\n";
   s << "set ylabel " << Quote("RMS in band [" + UnitLabel(unit) + "]") << "\n";
   s << "set logscale y 10\nset format y '10^{%L}'\n";
@@ -100,9 +101,11 @@ Plot BandPlot(const BudgetResult& result, std::size_t o) {
 std::vector<Plot> OverviewPlots(const BudgetResult& result) {
   std::vector<Plot> plots;
   const std::size_t outputs = result.outputs.size();
+  // Outputs spread evenly over the pages (7 outputs: 4 + 3, not 6 + 1).
   const std::size_t pages = (outputs + kPanelsPerPage - 1) / kPanelsPerPage;
+  const std::size_t per_page = pages ? (outputs + pages - 1) / pages : 0;
   for (std::size_t page = 0; page < pages; ++page) {
-    const std::size_t first = page * kPanelsPerPage, last = std::min(outputs, first + kPanelsPerPage);
+    const std::size_t first = page * per_page, last = std::min(outputs, first + per_page);
     const std::size_t panels = last - first;
     Plot p;
     p.name = pages == 1 ? "overview" : "overview_" + std::to_string(page + 1);
@@ -133,7 +136,7 @@ std::vector<Plot> OverviewPlots(const BudgetResult& result) {
     }
     p.csv = csv.str();
 
-    const std::size_t cols = panels <= 2 ? panels : (panels <= 4 ? 2 : 3);
+    const std::size_t cols = panels <= 2 ? panels : panels <= 4 ? 2 : panels <= 6 ? 3 : 4;
     const std::size_t rows = (panels + cols - 1) / cols;
     const std::string data = Quote(p.name + ".csv");
     std::ostringstream s;

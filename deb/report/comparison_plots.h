@@ -2,7 +2,7 @@
 // contributor in every frequency band (which contributor dominates which
 // band), and an overview of the RMS of every output and contributor against
 // the requirements (one panel per output, in the output's own unit; at most
-// six panels per page).
+// eight panels per page).
 #pragma once
 
 #include <cstddef>

@@ -6,6 +6,7 @@
 
 #include "deb/budget/path_response.h"
 #include "deb/report/plot_style.h"
+#include "deb/report/spectrum_plots.h"
 
 namespace deb::report {
 namespace {
@@ -22,9 +23,10 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
   p.name = "path_" + FileStem(contributor.name) + "_to_" + FileStem(output.name);
   p.kind = PlotKind::kPath;
   p.output = static_cast<int>(o);
+  const FrequencyRange range = DisplayRange(result.outputs[o], result.grid);
   p.caption = "Magnitude of the transfer from " + contributor.name + " (source " + contributor.source + ", path " +
               contributor.path + ") to " + output.name + (output.weighting ? ", weighting included" : "") +
-              ", per source channel.";
+              ", per source channel." + RangeCaption(range);
 
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ": |h| from contributor "
@@ -32,33 +34,36 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
   csv << "frequency_hz";
   for (const auto& ch : r.channels) csv << ',' << CsvField(ch);
   csv << '\n';
+  // y range from what is shown: the display range of the output.
   double top = 0.0, bottom = HUGE_VAL;
+  std::vector<double> channel_top(m, 0.0);
   for (std::size_t i = 0; i < f.size(); ++i) {
     csv << CsvNumber(f[i]);
+    const bool shown = f[i] >= range.lo_hz && f[i] <= range.hi_hz;
     for (std::size_t k = 0; k < m; ++k) {
       const double mag = std::sqrt(r.gain2[k][i]);
       csv << ',' << CsvNumber(mag);
-      if (mag > 0.0) {
+      if (mag > 0.0 && shown) {
         top = std::max(top, mag);
         bottom = std::min(bottom, mag);
+        channel_top[k] = std::max(channel_top[k], mag);
       }
     }
     csv << '\n';
   }
   p.csv = csv.str();
+  const double floor = top > 0.0 ? std::pow(10.0, std::floor(std::log10(std::max(bottom, top * std::pow(10.0, -kDecades))))) : 0.0;
 
   std::ostringstream s;
   s << "reset\n" << StylePreamble();
-  s << "set logscale x 10\nset format x '%g'\nset xrange [" << CsvNumber(f.front()) << ":" << CsvNumber(f.back())
-    << "]\nset xlabel 'frequency [Hz]'\n";
+  s << FrequencyAxis(range, result.grid);
   s << "set title " << Quote("path " + Enhanced(contributor.name) + " → " + Enhanced(output.name) + " (" +
                              Enhanced(contributor.path) + (output.weighting ? ", weighted" : "") + ")")
     << "\n";
   s << "set ylabel " << Quote("magnitude |h| [" + UnitLabel(r.unit) + "]") << "\n";
   s << "set logscale y 10\nset format y '10^{%L}'\n";
   if (top > 0.0) {
-    const double lo = std::max(bottom, top * std::pow(10.0, -kDecades));
-    s << "set yrange [" << CsvNumber(std::pow(10.0, std::floor(std::log10(lo)))) << ":"
+    s << "set yrange [" << CsvNumber(floor) << ":"
       << CsvNumber(std::pow(10.0, std::ceil(std::log10(top * 1.2)))) << "]\n";
   } else {
     s << "set yrange [0.1:10]\nset label 1 'zero transfer at every frequency' at graph 0.5,0.5 center\n";
@@ -72,7 +77,8 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
     const std::string col = "column(" + std::to_string(k + 2) + ")";
     s << (k ? ", \\\n     " : "") << data << " using 1:(" << col << " > 0 ? " << col
       << " : NaN) with lines linecolor rgb " << Quote(st.colour) << " dashtype " << st.dash << " linewidth 2 title "
-      << Quote(Enhanced(k < r.channels.size() ? r.channels[k] : std::to_string(k + 1)));
+      << Quote(Enhanced(k < r.channels.size() ? r.channels[k] : std::to_string(k + 1)) +
+               (channel_top[k] == 0.0 ? " (zero)" : channel_top[k] < floor ? " (below the axis)" : ""));
   }
   s << "\n";
   p.script = s.str();

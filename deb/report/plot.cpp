@@ -118,6 +118,13 @@ std::string Short(double value) {
   return text;
 }
 
+std::string HzLabel(double f_hz) {
+  const double e = std::round(std::log10(f_hz));
+  if (std::fabs(e) >= 4 && std::fabs(f_hz / std::pow(10.0, e) - 1.0) < 1e-9)
+    return "10^{" + std::to_string(static_cast<int>(e)) + "}";
+  return Short(f_hz);
+}
+
 std::string Share(double part, double whole) {
   if (!(whole > 0.0)) return "–";
   const double percent = 100.0 * part / whole;

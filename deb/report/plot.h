@@ -53,6 +53,10 @@ std::string Short(double value);
 // A share of a variance in percent: "78.1 %", "< 0.01 %".
 std::string Share(double part, double whole);
 
+// A frequency for an enhanced-mode label: powers of ten from 10^4 up or
+// 10^-4 down as "10^{8}", anything else as Short.
+std::string HzLabel(double f_hz);
+
 // A name as a file stem: characters outside [A-Za-z0-9_.-] become '_'.
 std::string FileStem(const std::string& name);
 

@@ -41,7 +41,7 @@ std::string Href(const std::string& path) {
 
 std::string HtmlFigure(const Plot& p, const std::string& ext) {
   std::ostringstream s;
-  s << "<figure id=\"" << HtmlEscape(p.name) << "\">\n";
+  s << "<figure id=\"plot-" << HtmlEscape(p.name) << "\">\n";
   if (!ext.empty())
     s << "<img src=\"" << Href("plots/" + p.name + "." + ext) << "\" alt=\"" << HtmlEscape(p.caption) << "\">\n";
   s << "<figcaption>" << HtmlEscape(p.caption) << " Data: <a href=\"" << Href("plots/" + p.name + ".csv")

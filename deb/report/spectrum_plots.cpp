@@ -20,13 +20,6 @@ std::string Entry(const std::string& name, double variance, double total_varianc
   return s;
 }
 
-std::string FrequencyAxis(const FrequencyGrid& grid) {
-  std::ostringstream os;
-  os << "set logscale x 10\nset format x '%g'\nset xrange [" << CsvNumber(grid.min_hz()) << ":"
-     << CsvNumber(grid.max_hz()) << "]\nset xlabel 'frequency [Hz]'\n";
-  return os.str();
-}
-
 // Smallest "nice" step (1, 2, 2.5, 5 x 10^n) not below x.
 double NiceStep(double x) {
   const double p = std::pow(10.0, std::floor(std::log10(x)));
@@ -44,9 +37,11 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
   p.name = FileStem(out.name) + (reverse ? "_reverse_cps" : "_cps");
   p.kind = reverse ? PlotKind::kReverseCps : PlotKind::kCps;
   p.output = static_cast<int>(o);
+  const FrequencyRange range = DisplayRange(out, result.grid);
   p.caption = std::string(reverse ? "Reverse cumulative power spectrum (variance above f)" :
                                     "Cumulative power spectrum (variance below f)") +
-              " of " + out.name + ", contributors stacked by share; left axis variance, right axis RMS.";
+              " of " + out.name + ", contributors stacked by share; left axis variance, right axis RMS." +
+              RangeCaption(range);
 
   std::vector<std::vector<double>> series(n);
   for (std::size_t c = 0; c < n; ++c)
@@ -76,7 +71,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
   const std::string per = scale == 1.0 ? "" : "/" + CsvNumber(scale);
   const std::string scale_label = scale == 1.0 ? "" : "10^{" + std::to_string(e) + "} ";
   std::ostringstream s;
-  s << "reset\n" << StylePreamble() << FrequencyAxis(result.grid);
+  s << "reset\n" << StylePreamble() << FrequencyAxis(range, result.grid);
   s << "set title " << Quote(Enhanced(out.name) + (reverse ? ": reverse cumulative power spectrum, stacked by share"
                                                             : ": cumulative power spectrum, stacked by share"))
     << "\n";
@@ -86,7 +81,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
   s << "set y2label " << Quote(std::string(reverse ? "RMS above f" : "cumulative RMS") + " [" + UnitLabel(unit) + "]")
     << "\n";
   s << "set yrange [0:" << CsvNumber(y_max / scale) << "]\nset y2range [0:" << CsvNumber(y_max / scale) << "]\n";
-  s << "set format y '%g'\nset ytics nomirror\n" << RmsTics(y_max, scale) << "\n";
+  s << "set format y '%g'\nset ytics nomirror\n" << RmsTics(y_max, scale, out.rms()) << "\n";
   s << "set key outside right top Left reverse invert title " << Quote("RMS [" + UnitLabel(unit) + "] (share)")
     << "\n";
   const std::string data = Quote(p.name + ".csv");
@@ -135,8 +130,9 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd) {
   p.name = FileStem(out.name) + (asd ? "_asd" : "_psd");
   p.kind = PlotKind::kSpectrum;
   p.output = static_cast<int>(o);
+  const FrequencyRange range = DisplayRange(out, result.grid);
   p.caption = (asd ? "Amplitude spectral density" : "Power spectral density (one-sided)") + std::string(" of ") +
-              out.name + " per contributor and in total.";
+              out.name + " per contributor and in total." + RangeCaption(range);
 
   const auto value = [&](double psd) { return asd ? std::sqrt(psd) : psd; };
   std::ostringstream csv;
@@ -148,19 +144,20 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd) {
   double top = 0.0, bottom = HUGE_VAL;
   for (std::size_t k = 0; k < f.size(); ++k) {
     csv << CsvNumber(f[k]);
+    const bool shown = f[k] >= range.lo_hz && f[k] <= range.hi_hz;
     for (std::size_t c = 0; c < n; ++c) {
       const double v = value(out.contributors[c].psd[k]);
       csv << ',' << CsvNumber(v);
-      if (v > 0.0) bottom = std::min(bottom, v);
+      if (v > 0.0 && shown) bottom = std::min(bottom, v);
     }
     const double v = value(out.total_psd[k]);
     csv << ',' << CsvNumber(v) << '\n';
-    top = std::max(top, v);
+    if (shown) top = std::max(top, v);
   }
   p.csv = csv.str();
 
   std::ostringstream s;
-  s << "reset\n" << StylePreamble() << FrequencyAxis(result.grid);
+  s << "reset\n" << StylePreamble() << FrequencyAxis(range, result.grid);
   s << "set title " << Quote(Enhanced(out.name) + ": " + (asd ? "amplitude" : "power") + " spectral density") << "\n";
   s << "set ylabel " << Quote(quantity + " [" + UnitLabel(unit_text) + "]") << "\n";
   s << "set logscale y 10\nset format y '10^{%L}'\n";
@@ -191,6 +188,59 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd) {
 
 }  // namespace
 
+FrequencyRange DisplayRange(const OutputResult& output, const FrequencyGrid& grid) {
+  const std::vector<double>& f = grid.f_hz();
+  double lo = HUGE_VAL, hi = 0.0;
+  for (const ContributorResult& c : output.contributors) {
+    if (!(c.variance > 0.0)) continue;
+    const double tail = kDisplayTail * c.variance;
+    std::size_t first = 0, last = f.size() - 1;
+    while (first + 1 < f.size() && c.cps[first + 1] <= tail) ++first;
+    while (last > 0 && c.variance - c.cps[last - 1] <= tail) --last;
+    lo = std::min(lo, f[first]);
+    hi = std::max(hi, f[last]);
+  }
+  FrequencyRange r{grid.min_hz(), grid.max_hz(), false};
+  if (!(hi > 0.0)) return r;
+  lo = std::max(std::pow(10.0, std::floor(std::log10(lo) + 1e-9)), grid.min_hz());
+  hi = std::min(std::pow(10.0, std::ceil(std::log10(hi) - 1e-9)), grid.max_hz());
+  if (hi < 10.0 * lo) {  // at least one decade, within the grid
+    const double mid = std::sqrt(lo * hi);
+    lo = std::max(mid / std::sqrt(10.0), grid.min_hz());
+    hi = std::min(lo * 10.0, grid.max_hz());
+  }
+  r.trimmed = lo > grid.min_hz() * (1 + 1e-9) || hi < grid.max_hz() * (1 - 1e-9);
+  if (r.trimmed) {
+    r.lo_hz = lo;
+    r.hi_hz = hi;
+  }
+  return r;
+}
+
+std::string RangeCaption(const FrequencyRange& range) {
+  return range.trimmed ? " Shown: " + Short(range.lo_hz) + "–" + Short(range.hi_hz) +
+                             " Hz; the CSV covers the whole grid."
+                       : "";
+}
+
+std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid) {
+  const double decades = std::log10(range.hi_hz / range.lo_hz);
+  const bool powers = decades > 6.0 || range.lo_hz < 1e-3 || range.hi_hz > 1e5;
+  std::ostringstream os;
+  os << "set logscale x 10\nset format x " << (powers ? "'10^{%L}'" : "'%g'") << "\nset xrange ["
+     << CsvNumber(range.lo_hz) << ":" << CsvNumber(range.hi_hz) << "]\nset xlabel 'frequency [Hz]'\n";
+  if (decades > 6.0) os << "set grid nomxtics\n";
+  // The note sits in the right margin, under the key.
+  if (range.trimmed) {
+    const std::string lines[] = {"grid: " + HzLabel(grid.min_hz()) + " to " + HzLabel(grid.max_hz()) + " Hz",
+                                 "shown: all but 10^{-3} of every", "contributor's variance"};
+    for (int i = 0; i < 3; ++i)
+      os << "set label " << 97 + i << " " << Quote(lines[i]) << " at screen 0.985, screen " << CsvNumber(0.11 - 0.03 * i)
+         << " right font ',9' textcolor rgb '#606060'\n";
+  }
+  return os.str();
+}
+
 std::vector<std::size_t> ShareOrder(const OutputResult& output) {
   std::vector<std::size_t> order(output.contributors.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
@@ -200,19 +250,23 @@ std::vector<std::size_t> ShareOrder(const OutputResult& output) {
   return order;
 }
 
-std::string RmsTics(double variance_max, double scale) {
+std::string RmsTics(double variance_max, double scale, double marked_rms) {
   const double rms_max = std::sqrt(variance_max);
   const double step = NiceStep(rms_max / 6.0);
-  std::ostringstream os;
-  os << "set y2tics nomirror (";
-  double last = 0.0;
-  os << "'0' 0";
+  const double gap = 0.04 * variance_max;  // closest two labels may sit, in variance
+  std::vector<std::pair<double, std::string>> tics = {{0.0, "0"}};
   for (int k = 1; k * step <= rms_max * (1 + 1e-12); ++k) {
     const double r = k * step;
-    if (r * r - last * last < 0.04 * variance_max) continue;  // too close to the previous label
-    os << ", " << Quote(Short(r)) << " " << CsvNumber(r * r / scale);
-    last = r;
+    if (r * r - tics.back().first * tics.back().first < gap) continue;
+    if (marked_rms > 0.0 && std::fabs(r * r - marked_rms * marked_rms) < 1.5 * gap) continue;
+    tics.push_back({r, Short(r)});
   }
+  if (marked_rms > 0.0 && marked_rms * marked_rms >= gap) tics.push_back({marked_rms, Sig(marked_rms)});
+  std::sort(tics.begin(), tics.end());
+  std::ostringstream os;
+  os << "set y2tics nomirror (";
+  for (std::size_t i = 0; i < tics.size(); ++i)
+    os << (i ? ", " : "") << Quote(tics[i].second) << " " << CsvNumber(tics[i].first * tics[i].first / scale);
   os << ")";
   return os.str();
 }

@@ -14,6 +14,25 @@
 
 namespace deb::report {
 
+// Frequencies shown in an output's plots. A budget's grid may reach far
+// beyond where anything happens (the thesis budgets run 1e-4..1e8 Hz for
+// accurate integrals); plots show the smallest range of whole decades that
+// holds all but kDisplayTail of every contributor's variance at either end
+// (less than a CPS plot can show).
+// The CSVs always cover the whole grid.
+inline constexpr double kDisplayTail = 1e-3;
+struct FrequencyRange {
+  double lo_hz = 0.0, hi_hz = 0.0;
+  bool trimmed = false;  // narrower than the grid
+};
+FrequencyRange DisplayRange(const OutputResult& output, const FrequencyGrid& grid);
+
+// " Shown: 0.001–100 Hz; the CSV covers the whole grid." when trimmed, else "".
+std::string RangeCaption(const FrequencyRange& range);
+
+// Logarithmic frequency axis over `range`, with a note under it when trimmed.
+std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid);
+
 // Contributor indices of an output by decreasing variance (ties: budget order).
 std::vector<std::size_t> ShareOrder(const OutputResult& output);
 
@@ -23,7 +42,7 @@ std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, 
 // Tics for an RMS axis drawn beside a linear variance axis [0, variance_max]
 // plotted in units of `scale`: "set y2tics (...)" with labels r at positions
 // r^2/scale, r on a 1-2-2.5-5 step, thinned near zero where the squares
-// crowd together.
-std::string RmsTics(double variance_max, double scale = 1.0);
+// crowd together, plus a tic at marked_rms (the total) if > 0.
+std::string RmsTics(double variance_max, double scale = 1.0, double marked_rms = 0.0);
 
 }  // namespace deb::report

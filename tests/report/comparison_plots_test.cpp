@@ -34,7 +34,7 @@ TEST_CASE("the band plot's CSV holds the engine's band RMS per contributor and i
   }
 }
 
-TEST_CASE("the overview has one panel per output and at most six panels per page") {
+TEST_CASE("the overview has one panel per output, at most eight per page, spread evenly over the pages") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   BudgetResult result = Evaluate(budget);
   std::vector<Plot> pages = OverviewPlots(result);
@@ -45,10 +45,14 @@ TEST_CASE("the overview has one panel per output and at most six panels per page
   const auto copy = result.outputs;
   for (int i = 0; i < 3; ++i) result.outputs.insert(result.outputs.end(), copy.begin(), copy.end());
   pages = OverviewPlots(result);  // 8 outputs
+  REQUIRE(pages.size() == 1);
+  CHECK(pages[0].script.find("set multiplot layout 2,4") != std::string::npos);
+  result.outputs.push_back(copy[0]);
+  pages = OverviewPlots(result);  // 9 outputs: 5 + 4
   REQUIRE(pages.size() == 2);
   CHECK(pages[0].name == "overview_1");
   CHECK(pages[0].script.find("set multiplot layout 2,3") != std::string::npos);
-  CHECK(pages[1].script.find("set multiplot layout 1,2") != std::string::npos);
+  CHECK(pages[1].script.find("set multiplot layout 2,2") != std::string::npos);
 }
 
 }  // namespace deb::report

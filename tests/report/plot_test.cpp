@@ -40,6 +40,10 @@ TEST_CASE("numbers keep their significant digits in fixed notation over a readab
   CHECK(Sig(0.0) == "0");
   CHECK(SigLabel(2.5e-7) == "2.50·10^{-7}");
   CHECK(SigLabel(3.25) == "3.25");
+  CHECK(HzLabel(1e8) == "10^{8}");
+  CHECK(HzLabel(1e-4) == "10^{-4}");
+  CHECK(HzLabel(1000) == "1000");
+  CHECK(HzLabel(0.5) == "0.5");
   CHECK(Short(20.0) == "20");
   CHECK(Short(0.1) == "0.1");
   CHECK(Share(1.0, 4.0) == "25.0 %");

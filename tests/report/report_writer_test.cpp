@@ -105,6 +105,14 @@ TEST_CASE("index.html and report.md reference only files that exist and nothing 
   CHECK(refs.count("report.pdf") == 1);
   CHECK(refs.count("summary.json") == 1);
   for (const auto& r : MarkdownReferences(ReadAll(dir / "report.md"))) CHECK_MESSAGE(fs::is_regular_file(dir / r), r);
+  // Every id is unique and every in-page link has a target.
+  std::set<std::string> ids;
+  const std::regex id(R"re(id="([^"]*)")re");
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), id); it != std::sregex_iterator(); ++it)
+    CHECK_MESSAGE(ids.insert((*it)[1]).second, (*it)[1]);
+  const std::regex anchor(R"re(href="#([^"]*)")re");
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), anchor); it != std::sregex_iterator(); ++it)
+    CHECK_MESSAGE(ids.count((*it)[1]) == 1, (*it)[1]);
 }
 
 TEST_CASE("SVG plots are XML documents and replace PNGs in index.html when PNG is not asked for") {

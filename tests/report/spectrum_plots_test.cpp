@@ -18,6 +18,38 @@ TEST_CASE("the RMS axis puts each label r at the variance r squared, thinned nea
   const std::string tics = RmsTics(1e4);
   CHECK(tics.find("'20' 400") != std::string::npos);
   CHECK(tics.find("'100' 10000") != std::string::npos);
+  // The total gets its own tic; regular ones too close to it give way.
+  CHECK(RmsTics(420.0, 1.0, 14.03) == "set y2tics nomirror ('0' 0, '5' 25, '10' 100, '14.0' 196.8409, '15' 225, '20' 400)");
+  CHECK(RmsTics(420.0, 1.0, 19.9).find("'20' 400") == std::string::npos);
+}
+
+TEST_CASE("the display range holds all but a thousandth of every contributor's variance, in whole decades") {
+  const FrequencyGrid grid = FrequencyGrid::Log(1e-4, 1e8, 1201);
+  OutputResult o;
+  ContributorResult c;
+  // A white PSD on 3..70 Hz: the CPS rises linearly between the band edges.
+  for (double f : grid.f_hz()) c.psd.push_back(f >= 3 && f <= 70 ? 1.0 : 0.0);
+  double sum = 0.0;
+  for (std::size_t k = 0; k < grid.size(); ++k) {
+    if (k) sum += 0.5 * (c.psd[k] + c.psd[k - 1]) * (grid.f_hz()[k] - grid.f_hz()[k - 1]);
+    c.cps.push_back(sum);
+  }
+  c.variance = sum;
+  o.contributors.push_back(c);
+  const FrequencyRange r = DisplayRange(o, grid);
+  CHECK(r.trimmed);
+  CHECK(r.lo_hz == doctest::Approx(1.0));
+  CHECK(r.hi_hz == doctest::Approx(100.0));
+  CHECK(RangeCaption(r) == " Shown: 1–100 Hz; the CSV covers the whole grid.");
+  CHECK(FrequencyAxis(r, grid).find("grid: 10^{-4} to 10^{8} Hz") != std::string::npos);
+  // A contributor spread over the whole grid keeps the whole grid.
+  ContributorResult flat;
+  flat.cps = {0.0};
+  for (std::size_t k = 1; k < grid.size(); ++k) flat.cps.push_back(static_cast<double>(k));
+  flat.variance = flat.cps.back();
+  o.contributors.push_back(flat);
+  CHECK_FALSE(DisplayRange(o, grid).trimmed);
+  CHECK(RangeCaption(DisplayRange(o, grid)).empty());
 }
 
 TEST_CASE("share order sorts contributors by variance, largest first, ties in budget order") {
