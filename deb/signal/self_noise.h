@@ -22,10 +22,12 @@
 // = |H_a|^2 S_u. The real part is taken (the imaginary part is estimation
 // scatter).
 //
-// Both are differences of nearly equal numbers where the common signal
-// dominates: the scatter of N is about S_aa / sqrt(K) (K averages), so N below
-// a few percent of S_aa needs many averages. Estimates below zero are set to 0
-// and counted in clamped_bins.
+// Both subtract nearly equal numbers where the common signal dominates, but
+// the terms linear in the signal-noise cross-spectra cancel (expand S_ab =
+// S_u + <U* n_b> + <n_a* U> + ...), so the scatter of N stays of relative
+// order 1/sqrt(K) (K averages) until the noise is many orders below the
+// signal. Estimates below zero (rounding, or noise too small to resolve) are
+// set to 0 and counted in clamped_bins.
 #pragma once
 
 #include <string>

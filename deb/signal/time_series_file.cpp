@@ -209,6 +209,9 @@ class CsvReader {
         Fail(lines_[r], columns_of_first_cell_[r],
              "time " + NumberText(t) + " s is not greater than " + NumberText(previous) + " s on line " +
                  std::to_string(lines_[r - 1]) + "; time stamps must increase");
+    }
+    for (std::size_t r = 1; r < rows; ++r) {
+      const double t = values_[r * columns_];
       const double expected = t0 + static_cast<double>(r) * dt;
       if (!(std::abs(t - expected) <= 0.01 * dt))
         Fail(lines_[r], columns_of_first_cell_[r],
