@@ -159,9 +159,12 @@ std::vector<Plot> OverviewPlots(const BudgetResult& result) {
       s << "set title " << Quote(title) << " font '," << (panels > 2 ? 12 : 13) << "' textcolor rgb "
         << Quote(out.rms_max && !out.pass() ? kRequirementColour : "#202020") << "\n";
       s << "set xrange [0.4:" << CsvNumber(n + 1.9) << "]\n";
-      s << "set yrange [0:" << CsvNumber(top > 0 ? top * 1.2 : 1.0) << "]\n";
+      // Many bars: names at a steeper angle, values upright above the bars.
+      const bool crowded = (n + 1) * panels > 16;
+      s << "set yrange [0:" << CsvNumber(top > 0 ? top * (crowded ? 1.3 : 1.2) : 1.0) << "]\n";
       s << "set ylabel " << Quote("RMS [" + UnitLabel(unit) + "]") << "\n";
-      s << "set xtics scale 0 " << (n > 3 || panels > 2 ? "rotate by 30 right " : "norotate ") << "(";
+      s << "set xtics scale 0 " << (crowded ? "rotate by 50 right " : n > 3 || panels > 2 ? "rotate by 30 right " : "norotate ")
+        << "(";
       for (std::size_t c = 0; c < n; ++c) s << Quote(Enhanced(out.contributors[c].name)) << " " << c + 1 << ", ";
       s << "'total' " << CsvNumber(n + 1.3) << ")\n";
       const std::string here = "(column(1) == " + std::to_string(panel) + " ? column(3) : NaN)";
@@ -172,7 +175,8 @@ std::vector<Plot> OverviewPlots(const BudgetResult& result) {
                           (c == n ? CsvNumber(n + 1.3) : std::to_string(c + 1)) +
                           " ? column(3) : NaN) with boxes fillcolor rgb " + Quote(colour));
       }
-      clauses.push_back(data + " using 2:" + here + ":4 with labels offset 0,0.8 font ',9' textcolor rgb '#202020'");
+      clauses.push_back(data + " using 2:" + here + ":4 with labels " +
+                        (crowded ? "rotate by 90 left offset 0,0.5" : "offset 0,0.8") + " font ',9' textcolor rgb '#202020'");
       if (out.rms_max)
         clauses.push_back(CsvNumber(*out.rms_max) + " with lines linecolor rgb " + Quote(kRequirementColour) +
                           " dashtype " + kRequirementDash + " linewidth 2");

@@ -10,8 +10,10 @@ namespace {
 
 constexpr double kPi = 3.141592653589793238462643383279502884;
 
-// Lightness levels in an order that keeps neighbours >= 18 L* apart.
-constexpr std::array<double, 6> kLightness = {34, 70, 50, 80, 42, 60};
+// Lightness levels in an order that keeps neighbours >= 19 L* apart and,
+// since the 4 dash patterns repeat every 4 indices, gives the contributors
+// sharing a pattern (i, i+4, i+8: every other level) levels >= 20 apart.
+constexpr std::array<double, 6> kLightness = {30, 56, 80, 36, 55, 76};
 constexpr std::array<const char*, 4> kDashes = {"solid", "(10,5)", "(12,4,2,4)", "(4,4)"};
 constexpr double kGoldenAngleDeg = 137.50776405;
 constexpr double kFirstHueDeg = 255.0;  // a blue

@@ -4,7 +4,8 @@
 // L*C*h: hues step by the golden angle, so any run of neighbours differs in
 // hue, and lightness L* cycles through six well separated levels, so that a
 // greyscale print still tells layers and lines apart; lines add a dash
-// pattern (4 patterns x 6 lightness levels = 12 distinct greyscale styles).
+// pattern (4 patterns x 6 lightness levels = 12 distinct greyscale styles,
+// and lines with the same pattern differ clearly in lightness).
 #pragma once
 
 #include <cstddef>

@@ -81,7 +81,8 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
   s << "set y2label " << Quote(std::string(reverse ? "RMS above f" : "cumulative RMS") + " [" + UnitLabel(unit) + "]")
     << "\n";
   s << "set yrange [0:" << CsvNumber(y_max / scale) << "]\nset y2range [0:" << CsvNumber(y_max / scale) << "]\n";
-  s << "set format y '%g'\nset ytics nomirror\n" << RmsTics(y_max, scale, out.rms()) << "\n";
+  s << "set format y '%g'\nset ytics nomirror\n" << RmsTics(y_max, scale, {{out.rms(), Sig(out.rms())}, {out.rms_max.value_or(0.0), Short(out.rms_max.value_or(0.0))}})
+    << "\n";
   s << "set key outside right top Left reverse invert title " << Quote("RMS [" + UnitLabel(unit) + "] (share)")
     << "\n";
   const std::string data = Quote(p.name + ".csv");
@@ -250,18 +251,28 @@ std::vector<std::size_t> ShareOrder(const OutputResult& output) {
   return order;
 }
 
-std::string RmsTics(double variance_max, double scale, double marked_rms) {
+std::string RmsTics(double variance_max, double scale, const std::vector<std::pair<double, std::string>>& marked_rms) {
   const double rms_max = std::sqrt(variance_max);
   const double step = NiceStep(rms_max / 6.0);
   const double gap = 0.04 * variance_max;  // closest two labels may sit, in variance
+  const auto near_marked = [&](double r) {
+    for (const auto& [m, label] : marked_rms)
+      if (m > 0.0 && std::fabs(r * r - m * m) < 1.5 * gap) return true;
+    return false;
+  };
   std::vector<std::pair<double, std::string>> tics = {{0.0, "0"}};
   for (int k = 1; k * step <= rms_max * (1 + 1e-12); ++k) {
     const double r = k * step;
-    if (r * r - tics.back().first * tics.back().first < gap) continue;
-    if (marked_rms > 0.0 && std::fabs(r * r - marked_rms * marked_rms) < 1.5 * gap) continue;
+    if (r * r - tics.back().first * tics.back().first < gap || near_marked(r)) continue;
     tics.push_back({r, Short(r)});
   }
-  if (marked_rms > 0.0 && marked_rms * marked_rms >= gap) tics.push_back({marked_rms, Sig(marked_rms)});
+  std::vector<double> marked;
+  for (const auto& [m, label] : marked_rms) {  // closer than `gap` to an earlier marked value: gives way
+    if (m * m < gap || std::any_of(marked.begin(), marked.end(), [&](double x) { return std::fabs(x * x - m * m) < gap; }))
+      continue;
+    marked.push_back(m);
+    tics.push_back({m, label});
+  }
   std::sort(tics.begin(), tics.end());
   std::ostringstream os;
   os << "set y2tics nomirror (";

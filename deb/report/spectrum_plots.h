@@ -6,6 +6,8 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "deb/budget/engine.h"
@@ -42,7 +44,9 @@ std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, 
 // Tics for an RMS axis drawn beside a linear variance axis [0, variance_max]
 // plotted in units of `scale`: "set y2tics (...)" with labels r at positions
 // r^2/scale, r on a 1-2-2.5-5 step, thinned near zero where the squares
-// crowd together, plus a tic at marked_rms (the total) if > 0.
-std::string RmsTics(double variance_max, double scale = 1.0, double marked_rms = 0.0);
+// crowd together, plus a labelled tic at each marked RMS (the total, the
+// requirement) that is > 0, the earlier winning where two crowd.
+std::string RmsTics(double variance_max, double scale = 1.0,
+                    const std::vector<std::pair<double, std::string>>& marked_rms = {});
 
 }  // namespace deb::report

@@ -51,9 +51,13 @@ TEST_CASE("contributor styles are valid colours, distinct for 16 contributors, a
   CHECK(grey_styles.size() == 12);  // lightness x dash tells 12 lines apart without colour
 }
 
-TEST_CASE("neighbouring contributors differ clearly in lightness, for greyscale print") {
+TEST_CASE("neighbouring contributors, and lines with the same dash pattern, differ clearly in lightness") {
   for (std::size_t i = 0; i + 1 < 24; ++i)
     CHECK(std::abs(ContributorStyle(i).lightness - ContributorStyle(i + 1).lightness) >= 15.0);
+  for (std::size_t i = 0; i < 12; ++i)
+    for (std::size_t j = i + 1; j < 12; ++j)
+      if (ContributorStyle(i).dash == ContributorStyle(j).dash)
+        CHECK(std::abs(ContributorStyle(i).lightness - ContributorStyle(j).lightness) >= 20.0);
 }
 
 TEST_CASE("CIE L*C*h colours: achromatic lightness gives the sRGB grey, and out-of-gamut chroma is reduced") {
