@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/systems/block_schur.h"
 #include "deb/core/parallel.h"
 
 namespace deb {
@@ -17,6 +18,9 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // |j omega - lambda| <= kPoleSlack * eps * (|A| + |omega|) is "on the pole":
 // eigenvalues are only known to about eps * |A|.
 constexpr double kPoleSlack = 64.0;
+// Block Schur blocks up to this size are expanded into residue columns,
+// size (size + 1) of them; larger ones are solved by substitution.
+constexpr int kMaxExpandedBlock = 4;
 
 // out[e] = d[e] + sum_k (wr[k] + j wi[k]) g[e + k pm] for e in [begin, end)
 // in chunks of kChunk entries held in registers over all k (an axpy per k
@@ -45,27 +49,21 @@ Eigen::Index AccumulateChunks(Eigen::Index begin, Eigen::Index end, int columns,
 }  // namespace
 
 struct FrequencyResponse::Workspace {
-  explicit Workspace(const FrequencyResponse& r) {
-    if (r.method_ == Method::kModal) {
-      wr.resize(r.residues_.cols());
-      wi.resize(r.residues_.cols());
-    } else {
-      yr.resize(r.lr_.rows(), r.n_);
-      yi.resize(r.lr_.rows(), r.n_);
-      gr.resize(r.lr_.rows(), r.rr_.cols());
-      gi.resize(r.lr_.rows(), r.rr_.cols());
+  explicit Workspace(const FrequencyResponse& r)
+      : wr(r.columns_), wi(r.columns_), g(r.transposed_ ? r.rows_ : 0, r.transposed_ ? r.cols_ : 0) {
+    if (r.largest_block_ > kMaxExpandedBlock) {
+      yr.resize(r.rows_, r.largest_block_);
+      yi.resize(r.rows_, r.largest_block_);
     }
   }
-  Eigen::VectorXd wr, wi;  // modal: complex weight of each residue column
-  Eigen::MatrixXd yr, yi;  // Schur: Y = L (sI - T)^-1
-  Eigen::MatrixXd gr, gi;  // Schur: G = Y R
+  Eigen::VectorXd wr, wi;  // complex weight of each residue column
+  Eigen::MatrixXcd g;      // G = H^T when transposed
+  Eigen::MatrixXd yr, yi;  // large block: Y = L_c (sI - T_c)^-1
 };
 
 FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
-    : n_(sys.states()), m_(sys.inputs()), p_(sys.outputs()), d_(sys.D()) {
+    : n_(sys.states()), m_(sys.inputs()), p_(sys.outputs()), rows_(p_), cols_(m_), d_(sys.D()) {
   if (n_ == 0) {
-    method_ = Method::kModal;
-    eigenvector_condition_ = 1.0;
     residues_.resize(p_ * m_, 0);
     return;
   }
@@ -83,61 +81,88 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
   // inverse is needed anyway for the residues. A defective A gives a
   // numerically singular V and an infinite or huge condition number.
   const Eigen::MatrixXcd v_inv = v.partialPivLu().inverse();
-  const auto norm1 = [](const Eigen::MatrixXcd& x) { return x.cwiseAbs().colwise().sum().maxCoeff(); };
+  const auto norm1 = [](const Eigen::MatrixXcd& x) {
+    return x.cwiseAbs().colwise().sum().maxCoeff();
+  };
   eigenvector_condition_ = v_inv.allFinite() ? norm1(v) * norm1(v_inv)
                                              : std::numeric_limits<double>::infinity();
-  const bool modal =
-      method == Method::kModal ||
-      (method == Method::kAuto && eigenvector_condition_ <= kMaxModalCondition);
-
+  const bool modal = method == Method::kModal ||
+                     (method == Method::kAuto && eigenvector_condition_ <= kMaxModalCondition);
+  std::vector<Eigen::VectorXd> cols;
   if (modal) {
     method_ = Method::kModal;
-    const Eigen::MatrixXcd ct = bal.C() * v;                            // p x n
+    const Eigen::MatrixXcd ct = bal.C() * v;  // p x n
     const Eigen::MatrixXcd bt = v_inv * bal.B();  // n x m
     // Real eigenvalues have im == 0 exactly; complex ones come in exact
     // conjugate pairs (real Schur 2x2 blocks), of which the im > 0 member
     // carries the pair.
-    std::vector<Eigen::VectorXd> cols;
     for (int k = 0; k < n_; ++k) {
       const double re = lambda(k).real(), im = lambda(k).imag();
       if (im < 0.0) continue;
       const Eigen::MatrixXcd r = ct.col(k) * bt.row(k);  // residue, p x m
       const Eigen::Map<const Eigen::VectorXcd> rv(r.data(), p_ * m_);
       if (im == 0.0) {
-        terms_.push_back({re, 0.0, false});
+        terms_.push_back({TermKind::kRealPole, re, 0.0, 0, 1});
         cols.push_back(rv.real());
       } else {
-        terms_.push_back({re, im, true});
-        cols.push_back(2.0 * rv.real());                             // P
-        cols.push_back(2.0 * (rv * std::conj(lambda(k))).real());    // Q
+        terms_.push_back({TermKind::kPolePair, re, im, 0, 2});
+        cols.push_back(2.0 * rv.real());                           // P
+        cols.push_back(2.0 * (rv * std::conj(lambda(k))).real());  // Q
       }
     }
-    residues_.resize(p_ * m_, static_cast<Eigen::Index>(cols.size()));
-    for (std::size_t c = 0; c < cols.size(); ++c) residues_.col(c) = cols[c];
-    return;
+  } else {
+    method_ = Method::kSchur;
+    const BlockSchurForm form = BlockDiagonalSchur(a);
+    largest_block_ = form.largest_block();
+    Eigen::MatrixXcd t = form.t;
+    Eigen::MatrixXcd l = bal.C().cast<Complex>() * form.s;  // p x n
+    Eigen::MatrixXcd r = form.s_inv * bal.B();              // n x m
+    std::vector<int> start(form.block_start.begin(), form.block_start.end() - 1);
+    std::vector<int> size(start.size());
+    for (int i = 0; i < form.blocks(); ++i) size[i] = form.block_size(i);
+    transposed_ = m_ < p_ && largest_block_ > kMaxExpandedBlock;
+    if (transposed_) {
+      // H^T = (R^T J) (sI - J T^T J)^-1 (J L^T), J the reversal: the blocks
+      // stay upper triangular (in reverse order) and the substitution runs
+      // on the m < p inputs.
+      const Eigen::MatrixXcd rt = r.transpose().rowwise().reverse();
+      r = l.transpose().colwise().reverse();
+      l = rt;
+      t = t.transpose().colwise().reverse().rowwise().reverse().eval();
+      for (std::size_t i = 0; i < start.size(); ++i) start[i] = n_ - start[i] - size[i];
+      rows_ = m_;
+      cols_ = p_;
+      d_.transposeInPlace();
+    }
+    for (std::size_t i = 0; i < start.size(); ++i) {
+      const int s0 = start[i], k = size[i];
+      if (k > kMaxExpandedBlock) {
+        terms_.push_back({TermKind::kLargeBlock, 0.0, 0.0, s0, k});
+        continue;
+      }
+      terms_.push_back({TermKind::kBlock, 0.0, 0.0, s0, k});
+      // Column pairs (Re, Im) of L_a R_b for a <= b, in the order the
+      // weights are computed.
+      for (int bi = 0; bi < k; ++bi)
+        for (int ai = bi; ai >= 0; --ai) {
+          const Eigen::MatrixXcd outer = l.col(s0 + ai) * r.row(s0 + bi);
+          const Eigen::Map<const Eigen::VectorXcd> ov(outer.data(), outer.size());
+          cols.push_back(ov.real());
+          cols.push_back(ov.imag());
+        }
+    }
+    tr_ = t.real();
+    ti_ = t.imag();
+    if (largest_block_ > kMaxExpandedBlock) {
+      lr_ = l.real();
+      li_ = l.imag();
+      rr_ = r.real();
+      ri_ = r.imag();
+    }
   }
-
-  method_ = Method::kSchur;
-  const Eigen::ComplexSchur<Eigen::MatrixXcd> schur(a.cast<Complex>());
-  DEB_DEMAND(schur.info() == Eigen::Success);
-  Eigen::MatrixXcd t = schur.matrixT().triangularView<Eigen::Upper>();
-  Eigen::MatrixXcd l = bal.C().cast<Complex>() * schur.matrixU();           // p x n
-  Eigen::MatrixXcd r = schur.matrixU().adjoint() * bal.B().cast<Complex>();  // n x m
-  schur_transposed_ = m_ < p_;
-  if (schur_transposed_) {
-    // H^T = (R^T J) (sI - J T^T J)^-1 (J L^T): fewer rows to substitute.
-    const Eigen::MatrixXcd rt = r.transpose().rowwise().reverse();
-    r = l.transpose().colwise().reverse();
-    l = rt;
-    t = t.transpose().colwise().reverse().rowwise().reverse().eval();
-  }
-  schur_diag_ = t.diagonal();
-  tr_ = t.real();
-  ti_ = t.imag();
-  lr_ = l.real();
-  li_ = l.imag();
-  rr_ = r.real();
-  ri_ = r.imag();
+  columns_ = static_cast<int>(cols.size());
+  residues_.resize(static_cast<Eigen::Index>(rows_) * cols_, columns_);
+  for (std::size_t c = 0; c < cols.size(); ++c) residues_.col(c) = cols[c];
 }
 
 Eigen::MatrixXcd FrequencyResponse::At(double f_hz) const {
@@ -184,79 +209,119 @@ void FrequencyResponse::EvaluateInto(double f_hz, Workspace& w, Eigen::MatrixXcd
     os << "frequency response: frequency " << f_hz << " Hz is not finite";
     throw InputError(os.str());
   }
-  if (method_ == Method::kModal)
-    EvaluateModal(kTwoPi * f_hz, w, h);
-  else
-    EvaluateSchur(kTwoPi * f_hz, w, h);
+  const double omega = kTwoPi * f_hz;
+  ComputeWeights(omega, w);
+  // G = D + sum_c weight_c residues_.col(c), then the large blocks.
+  Complex* g = transposed_ ? w.g.data() : h.data();
+  const Eigen::Index size = static_cast<Eigen::Index>(rows_) * cols_;
+  const double* res = residues_.data();
+  const double* wr = w.wr.data();
+  const double* wi = w.wi.data();
+  Eigen::Index e = AccumulateChunks<8>(0, size, columns_, res, d_.data(), wr, wi, g);
+  e = AccumulateChunks<2>(e, size, columns_, res, d_.data(), wr, wi, g);
+  AccumulateChunks<1>(e, size, columns_, res, d_.data(), wr, wi, g);
+  if (largest_block_ > kMaxExpandedBlock)
+    for (const Term& t : terms_)
+      if (t.kind == TermKind::kLargeBlock) AddLargeBlock(t, omega, w, g);
+  if (transposed_) h = w.g.transpose();
 }
 
-void FrequencyResponse::EvaluateModal(double omega, Workspace& w, Eigen::MatrixXcd& h) const {
+void FrequencyResponse::ComputeWeights(double omega, Workspace& w) const {
   const double tol = pole_tolerance_ + kPoleSlack * kEps * std::abs(omega);
   const double tol2 = tol * tol;  // squared distances: no hypot in the loop
   double* wr = w.wr.data();
   double* wi = w.wi.data();
   int c = 0;
   for (const Term& t : terms_) {
-    if (!t.pair) {
-      // 1 / (j omega - re) = (-re - j omega) / (re^2 + omega^2)
-      const double den = t.re * t.re + omega * omega;
-      if (den <= tol2) ThrowOnPole(omega / kTwoPi, {t.re, 0.0});
-      wr[c] = -t.re / den;
-      wi[c] = -omega / den;
-      ++c;
-    } else {
-      // q = (j omega - lambda)(j omega - conj lambda)
-      //   = (-re + j below)(-re + j above) with below = omega - im, above =
-      // omega + im formed first: accurate near a lightly damped resonance.
-      const double below = omega - t.im, above = omega + t.im, re2 = t.re * t.re;
-      if (std::min(below * below, above * above) + re2 <= tol2)
-        ThrowOnPole(omega / kTwoPi, {t.re, omega >= 0.0 ? t.im : -t.im});
-      const double qr = re2 - below * above, qi = -t.re * (below + above);
-      const double qq = qr * qr + qi * qi;
-      const double cr = qr / qq, ci = -qi / qq;  // 1/q
-      // (cr + j ci)(j omega P - Q)
-      wr[c] = -ci * omega;
-      wi[c] = cr * omega;
-      wr[c + 1] = -cr;
-      wi[c + 1] = -ci;
-      c += 2;
+    switch (t.kind) {
+      case TermKind::kRealPole: {
+        // 1 / (j omega - re) = (-re - j omega) / (re^2 + omega^2)
+        const double den = t.re * t.re + omega * omega;
+        if (den <= tol2) ThrowOnPole(omega / kTwoPi, {t.re, 0.0});
+        wr[c] = -t.re / den;
+        wi[c] = -omega / den;
+        c += 1;
+        break;
+      }
+      case TermKind::kPolePair: {
+        // q = (j omega - lambda)(j omega - conj lambda)
+        //   = (-re + j below)(-re + j above) with below = omega - im, above =
+        // omega + im formed first: accurate near a lightly damped resonance.
+        const double below = omega - t.im, above = omega + t.im, re2 = t.re * t.re;
+        if (std::min(below * below, above * above) + re2 <= tol2)
+          ThrowOnPole(omega / kTwoPi, {t.re, omega >= 0.0 ? t.im : -t.im});
+        const double qr = re2 - below * above, qi = -t.re * (below + above);
+        const double qq = qr * qr + qi * qi;
+        const double cr = qr / qq, ci = -qi / qq;  // 1/q
+        // (cr + j ci)(j omega P - Q)
+        wr[c] = -ci * omega;
+        wi[c] = cr * omega;
+        wr[c + 1] = -cr;
+        wi[c + 1] = -ci;
+        c += 2;
+        break;
+      }
+      case TermKind::kBlock: {
+        // W = (j omega I - T_c)^-1, upper triangular, column by column:
+        //   W_bb = 1/(s - t_bb),  W_ab = sum_{a<q<=b} t_aq W_qb / (s - t_aa).
+        // Column pair (Re, Im) of L_a R_b gets weights W_ab and j W_ab.
+        Complex inv_diag[kMaxExpandedBlock], col[kMaxExpandedBlock];
+        for (int i = 0; i < t.size; ++i) {
+          const int d = t.start + i;
+          const double zr = -tr_(d, d), zi = omega - ti_(d, d), zz = zr * zr + zi * zi;
+          if (zz <= tol2) ThrowOnPole(omega / kTwoPi, {tr_(d, d), ti_(d, d)});
+          inv_diag[i] = Complex(zr / zz, -zi / zz);
+        }
+        for (int b = 0; b < t.size; ++b) {
+          for (int a = b; a >= 0; --a) {
+            Complex v = a == b ? Complex(1.0) : Complex(0.0);
+            for (int q = a + 1; q <= b; ++q)
+              v += Complex(tr_(t.start + a, t.start + q), ti_(t.start + a, t.start + q)) * col[q];
+            col[a] = v * inv_diag[a];
+            wr[c] = col[a].real();
+            wi[c] = col[a].imag();
+            wr[c + 1] = -col[a].imag();
+            wi[c + 1] = col[a].real();
+            c += 2;
+          }
+        }
+        break;
+      }
+      case TermKind::kLargeBlock:
+        for (int i = t.start; i < t.start + t.size; ++i)
+          if (tr_(i, i) * tr_(i, i) + (omega - ti_(i, i)) * (omega - ti_(i, i)) <= tol2)
+            ThrowOnPole(omega / kTwoPi, {tr_(i, i), ti_(i, i)});
+        break;
     }
   }
-  // H = D + sum_k (wr_k + j wi_k) G_k.
-  const Eigen::Index pm = static_cast<Eigen::Index>(p_) * m_;
-  Eigen::Index e = AccumulateChunks<8>(0, pm, c, residues_.data(), d_.data(), wr, wi, h.data());
-  e = AccumulateChunks<2>(e, pm, c, residues_.data(), d_.data(), wr, wi, h.data());
-  AccumulateChunks<1>(e, pm, c, residues_.data(), d_.data(), wr, wi, h.data());
+  DEB_DEMAND(c == columns_);
 }
 
-void FrequencyResponse::EvaluateSchur(double omega, Workspace& w, Eigen::MatrixXcd& h) const {
-  const double tol = pole_tolerance_ + kPoleSlack * kEps * std::abs(omega);
-  for (int i = 0; i < n_; ++i)
-    if (std::norm(Complex(0.0, omega) - schur_diag_(i)) <= tol * tol)
-      ThrowOnPole(omega / kTwoPi, schur_diag_(i));
-  const int r = static_cast<int>(lr_.rows()), c = static_cast<int>(rr_.cols());
-  // Y = L (sI - T)^-1 by forward substitution on Y (sI - T) = L, column i:
-  //   y_i = (l_i + sum_{k<i} t_ki y_k) / (s - t_ii).
+void FrequencyResponse::AddLargeBlock(const Term& term, double omega, Workspace& w,
+                                      Complex* g) const {
+  const int r = rows_, k = term.size, s0 = term.start;
+  // Y = L_c (sI - T_c)^-1 by forward substitution on Y (sI - T_c) = L_c:
+  //   y_i = (l_i + sum_{q<i} t_qi y_q) / (s - t_ii).
   double* yr = w.yr.data();
   double* yi = w.yi.data();
-  for (int i = 0; i < n_; ++i) {
+  for (int i = 0; i < k; ++i) {
     double* ur = yr + static_cast<Eigen::Index>(i) * r;
     double* ui = yi + static_cast<Eigen::Index>(i) * r;
     for (int q = 0; q < r; ++q) {
-      ur[q] = lr_(q, i);
-      ui[q] = li_(q, i);
+      ur[q] = lr_(q, s0 + i);
+      ui[q] = li_(q, s0 + i);
     }
-    for (int k = 0; k < i; ++k) {
-      const double a = tr_(k, i), b = ti_(k, i);
-      const double* vr = yr + static_cast<Eigen::Index>(k) * r;
-      const double* vi = yi + static_cast<Eigen::Index>(k) * r;
+    for (int j = 0; j < i; ++j) {
+      const double a = tr_(s0 + j, s0 + i), b = ti_(s0 + j, s0 + i);
+      const double* vr = yr + static_cast<Eigen::Index>(j) * r;
+      const double* vi = yi + static_cast<Eigen::Index>(j) * r;
       for (int q = 0; q < r; ++q) {
         ur[q] += a * vr[q] - b * vi[q];
         ui[q] += a * vi[q] + b * vr[q];
       }
     }
     // 1 / (s - t_ii) = conj(z) / |z|^2
-    const double zr = -schur_diag_(i).real(), zi = omega - schur_diag_(i).imag();
+    const double zr = -tr_(s0 + i, s0 + i), zi = omega - ti_(s0 + i, s0 + i);
     const double zz = zr * zr + zi * zi, cr = zr / zz, ci = -zi / zz;
     for (int q = 0; q < r; ++q) {
       const double vr = ur[q], vi = ui[q];
@@ -264,31 +329,21 @@ void FrequencyResponse::EvaluateSchur(double omega, Workspace& w, Eigen::MatrixX
       ui[q] = cr * vi + ci * vr;
     }
   }
-  // G = Y R, column by column.
-  double* gr = w.gr.data();
-  double* gi = w.gi.data();
-  for (int j = 0; j < c; ++j) {
-    double* hr = gr + static_cast<Eigen::Index>(j) * r;
-    double* hi = gi + static_cast<Eigen::Index>(j) * r;
-    for (int q = 0; q < r; ++q) hr[q] = hi[q] = 0.0;
-    for (int i = 0; i < n_; ++i) {
-      const double a = rr_(i, j), b = ri_(i, j);
-      const double* vr = yr + static_cast<Eigen::Index>(i) * r;
-      const double* vi = yi + static_cast<Eigen::Index>(i) * r;
-      for (int q = 0; q < r; ++q) {
-        hr[q] += a * vr[q] - b * vi[q];
-        hi[q] += a * vi[q] + b * vr[q];
+  // G += Y R_c, column by column.
+  for (int j = 0; j < cols_; ++j) {
+    Complex* gj = g + static_cast<Eigen::Index>(j) * r;
+    for (int q = 0; q < r; ++q) {
+      double sr = 0.0, si = 0.0;
+      for (int i = 0; i < k; ++i) {
+        const double a = rr_(s0 + i, j), b = ri_(s0 + i, j);
+        const double vr = yr[static_cast<Eigen::Index>(i) * r + q];
+        const double vi = yi[static_cast<Eigen::Index>(i) * r + q];
+        sr += a * vr - b * vi;
+        si += a * vi + b * vr;
       }
+      gj[q] += Complex(sr, si);
     }
   }
-  for (int j = 0; j < c; ++j)
-    for (int q = 0; q < r; ++q) {
-      const Complex g(w.gr(q, j), w.gi(q, j));
-      if (schur_transposed_)
-        h(j, q) = g + d_(j, q);
-      else
-        h(q, j) = g + d_(q, j);
-    }
 }
 
 void FrequencyResponse::ThrowOnPole(double f_hz, std::complex<double> pole) const {

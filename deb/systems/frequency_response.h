@@ -11,11 +11,14 @@
 //    lightly damped poles (zeta = 1e-4 and below) keep full relative accuracy.
 //    Rounding in V^-1 is amplified by cond(V), hence the modal form is used
 //    only if cond(V) <= kMaxModalCondition.
-//  - Schur form (fallback, backward stable for any A, e.g. defective or
-//    nearly repeated poles): A = U T U^H, T upper triangular, and
-//      H(s) = (C U) (sI - T)^-1 (U^H B) + D
-//    by triangular substitution on the cheaper side, min(outputs, inputs)
-//    right-hand sides.
+//  - block Schur form (fallback when cond(V) is large: defective or nearly
+//    repeated poles): A = S T S^-1 with T block diagonal, upper triangular
+//    blocks, S well conditioned (block_schur.h). A 1x1 block is a modal term
+//    with a complex residue; a block of a few states contributes
+//      sum_{a<=b} [(sI - T_c)^-1]_ab (C S)_a (S^-1 B)_b;
+//    a larger block is solved by triangular substitution on the cheaper side,
+//    min(outputs, inputs) right-hand sides. With one block this is the plain
+//    Schur method, backward stable for any A.
 //
 // Before either reduction the state is balanced (StateSpace::Balanced), which
 // changes nothing in H but reduces cond(V) for models in mixed units.
@@ -45,7 +48,7 @@ class FrequencyResponse {
   static constexpr double kMaxModalCondition = 1e6;
 
   // Reduces A once. kModal forces the modal form even when cond(V) is large
-  // (for benchmarks and tests); kSchur forces the Schur form.
+  // (for benchmarks and tests); kSchur forces the block Schur form.
   explicit FrequencyResponse(const StateSpace& sys, Method method = Method::kAuto);
 
   int states() const { return n_; }
@@ -56,6 +59,9 @@ class FrequencyResponse {
   // 1-norm condition number of the unit-column eigenvector matrix (computed
   // also when kSchur is forced; huge or infinite if A is defective).
   double eigenvector_condition() const { return eigenvector_condition_; }
+  // Size of the largest diagonal block of the block Schur form (1 for the
+  // modal form): 2 for a double pole, n if no eigenvalue could be split off.
+  int largest_block() const { return largest_block_; }
 
   // H(j 2 pi f), outputs x inputs.
   // @throws InputError if f_hz is not finite or j 2 pi f coincides with a pole.
@@ -75,33 +81,45 @@ class FrequencyResponse {
 
  private:
   struct Workspace;
+  enum class TermKind { kRealPole, kPolePair, kBlock, kLargeBlock };
+  // kRealPole at re, kPolePair at re +- j im (modal form); kBlock and
+  // kLargeBlock: diagonal block [start, start + size) of the block Schur T.
+  struct Term {
+    TermKind kind;
+    double re, im;
+    int start, size;
+  };
   void EvaluateInto(double f_hz, Workspace& w, Eigen::MatrixXcd& h) const;
-  void EvaluateModal(double omega, Workspace& w, Eigen::MatrixXcd& h) const;
-  void EvaluateSchur(double omega, Workspace& w, Eigen::MatrixXcd& h) const;
+  // Complex weight of every residue column at omega; throws on a pole.
+  void ComputeWeights(double omega, Workspace& w) const;
+  // g += L_c (j omega I - T_c)^-1 R_c for a large block, by substitution.
+  void AddLargeBlock(const Term& term, double omega, Workspace& w,
+                     std::complex<double>* g) const;
   [[noreturn]] void ThrowOnPole(double f_hz, std::complex<double> pole) const;
 
   int n_ = 0, m_ = 0, p_ = 0;
-  Method method_ = Method::kSchur;
-  double eigenvector_condition_ = 0.0;
+  Method method_ = Method::kModal;
+  double eigenvector_condition_ = 1.0;
   double pole_tolerance_ = 0.0;  // |j omega - lambda| below this counts as on a pole
+  int largest_block_ = 1;
+
+  // Everything is computed as G = H, or as G = H^T when the block Schur form
+  // has fewer inputs than outputs (then its substitutions run on the inputs);
+  // G is rows_ x cols_, and d_ is D in the layout of G.
+  bool transposed_ = false;
+  int rows_ = 0, cols_ = 0;
   Eigen::MatrixXd d_;
 
-  // Modal form: one real pole or one conjugate pair (re, im > 0) per term.
-  // Real pole: H += R / (s - re), column R of residues_. Pair: columns P, Q.
-  struct Term {
-    double re, im;
-    bool pair;
-  };
+  // G = D + sum over columns c of residues_ of (weight_c) * residues_.col(c),
+  // a column holding a real (rows_*cols_) matrix in column-major order, plus
+  // the large blocks.
   std::vector<Term> terms_;
-  Eigen::MatrixXd residues_;  // (outputs*inputs) x columns, column-major H layout
+  Eigen::MatrixXd residues_;
+  int columns_ = 0;
 
-  // Schur form, arranged so that the substitution runs on r = min(outputs,
-  // inputs) rows: G = L (sI - T)^-1 R with T upper triangular (n x n), L r x n,
-  // R n x max(outputs, inputs); H = G + D, or H = G^T + D when the inputs are
-  // fewer (then T is J T_schur^T J with J the reversal, still triangular).
-  // Real and imaginary parts are stored apart for the inner loops.
-  bool schur_transposed_ = false;
-  Eigen::VectorXcd schur_diag_;
+  // Block Schur form, real and imaginary parts apart for the inner loops:
+  // T (n x n, block diagonal with upper triangular blocks), and for large
+  // blocks L = C S (rows_ x n) and R = S^-1 B (n x cols_).
   Eigen::MatrixXd tr_, ti_, lr_, li_, rr_, ri_;
 };
 

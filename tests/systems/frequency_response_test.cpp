@@ -127,11 +127,66 @@ TEST_CASE("a defective A (double pole) falls back to the Schur form and stays ex
   c << 1.0, 0.0;
   const FrequencyResponse h(StateSpace(a, b, c, d));
   CHECK(h.method() == Method::kSchur);
+  CHECK(h.largest_block() == 2);
   CHECK(h.eigenvector_condition() > FrequencyResponse::kMaxModalCondition);
   for (double f : {0.0, 0.1, 1.0, 10.0}) {
     const Complex s(0.0, kTwoPi * f);
     const Complex expected = 1.0 / ((s + 2.0) * (s + 2.0));
     CHECK(std::abs(h.At(f)(0, 0) - expected) <= 1e-12 * std::abs(expected));
+  }
+}
+
+TEST_CASE("a 12-state system with a defective double pole matches a dense solve") {
+  // A Jordan block at -3 rad/s next to the modes of the 12-state test system
+  // (zeta = 1e-4 pair, integrator). The modal form is rejected; the block
+  // Schur form keeps the pair in one 2x2 block. Tolerance 1e-9 relative at
+  // the 1000 test frequencies, both shapes.
+  std::mt19937 rng(31);
+  Eigen::MatrixXd blocks = Eigen::MatrixXd::Zero(12, 12);
+  blocks(0, 0) = blocks(1, 1) = -3.0;
+  blocks(0, 1) = 1.0;
+  const double two_pi = 2.0 * M_PI;
+  blocks.bottomRightCorner(10, 10) = testing::DenseFromModes(
+      {{0.0, -40.0}, {{two_pi * 10.0, 1e-4}, {two_pi * 2.0, 0.05}, {two_pi * 55.0, 0.02},
+                      {two_pi * 300.0, 0.3}}},
+      rng);
+  const Eigen::MatrixXd s = Eigen::MatrixXd::Identity(12, 12) + 0.3 * testing::RandomMatrix(12, 12, rng);
+  const Eigen::MatrixXd a = s * blocks * s.inverse();
+  for (const auto& [p, m] : {std::pair{6, 10}, std::pair{10, 6}}) {
+    const StateSpace sys(a, testing::RandomMatrix(12, m, rng), testing::RandomMatrix(p, 12, rng),
+                         testing::RandomMatrix(p, m, rng));
+    const FrequencyResponse h(sys);
+    CHECK(h.method() == Method::kSchur);
+    CHECK(h.largest_block() == 2);
+    CHECK(WorstErrorVsDense(sys, h, TestFrequencies()) <= 1e-9);
+  }
+}
+
+TEST_CASE("a chain of six identical low-passes is one block solved by substitution") {
+  // x1' = -x1 + u, x(k+1)' = -x(k+1) + xk: a 6x6 Jordan block at -1, which
+  // no split can separate. SISO: H = 1/(s+1)^6 (1e-12 relative); MIMO with
+  // more outputs than inputs and vice versa: dense solve (1e-10).
+  Eigen::MatrixXd a = -Eigen::MatrixXd::Identity(6, 6);
+  for (int i = 1; i < 6; ++i) a(i, i - 1) = 1.0;
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(6, 1), c = Eigen::MatrixXd::Zero(1, 6);
+  b(0, 0) = 1.0;
+  c(0, 5) = 1.0;
+  const FrequencyResponse chain(StateSpace(a, b, c, Eigen::MatrixXd::Zero(1, 1)));
+  CHECK(chain.method() == Method::kSchur);
+  CHECK(chain.largest_block() == 6);
+  for (double f : {0.0, 0.05, 0.16, 1.0, 3.0}) {
+    const Complex s(0.0, kTwoPi * f);
+    const Complex expected = 1.0 / std::pow(s + 1.0, 6);
+    CHECK(std::abs(chain.At(f)(0, 0) - expected) <= 1e-12 * std::abs(expected));
+  }
+  std::mt19937 rng(32);
+  for (const auto& [p, m] : {std::pair{3, 2}, std::pair{2, 3}}) {
+    const StateSpace sys(a, testing::RandomMatrix(6, m, rng), testing::RandomMatrix(p, 6, rng),
+                         testing::RandomMatrix(p, m, rng));
+    const FrequencyResponse h(sys);
+    CHECK(h.largest_block() == 6);
+    CHECK(WorstErrorVsDense(sys, h, testing::LogSpace(1e-3, 1e3, 300)) <= 1e-10);
+    CHECK_THROWS_AS(FrequencyResponse(StateSpace(a, sys.B(), sys.C(), sys.D())).At(NAN), InputError);
   }
 }
 
