@@ -16,6 +16,17 @@ constexpr std::size_t kPanelsPerPage = 8;
 
 std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
 
+// A gnuplot string of two lines (double quotes, so that \n is a line break;
+// backslashes of enhanced-text escapes doubled).
+std::string TwoLines(const std::string& first, const std::string& second) {
+  std::string q = "\"";
+  for (char c : first + "\n" + second) {
+    if (c == '\\' || c == '"') q += '\\';
+    q += c == '\n' ? std::string("\\n") : std::string(1, c);
+  }
+  return q + "\"";
+}
+
 std::string PlotList(const std::vector<std::string>& clauses) {
   std::string s = "plot ";
   for (std::size_t i = 0; i < clauses.size(); ++i) s += (i ? ", \\\n     " : "") + clauses[i];
@@ -42,12 +53,13 @@ Plot BandPlot(const BudgetResult& result, std::size_t o) {
   csv << "band,lo_hz,hi_hz,total";
   for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
   csv << '\n';
-  double top = 0.0, bottom = HUGE_VAL;
+  double top = 0.0, bottom = HUGE_VAL, smallest_total = HUGE_VAL;
   for (std::size_t b = 0; b < bands; ++b) {
     const BandResult& br = out.bands[b];
     csv << b + 1 << ',' << CsvNumber(br.band.lo_hz) << ',' << CsvNumber(br.band.hi_hz) << ','
         << CsvNumber(std::sqrt(br.variance));
     top = std::max(top, std::sqrt(br.variance));
+    if (br.variance > 0.0) smallest_total = std::min(smallest_total, std::sqrt(br.variance));
     for (std::size_t c = 0; c < n; ++c) {
       const double rms = std::sqrt(br.contributor_variance[c]);
       csv << ',' << CsvNumber(rms);
@@ -69,7 +81,8 @@ Plot BandPlot(const BudgetResult& result, std::size_t o) {
   s << "set ylabel " << Quote("RMS in band [" + UnitLabel(unit) + "]") << "\n";
   s << "set logscale y 10\nset format y '10^{%L}'\n";
   if (top > 0.0) {
-    const double lo = std::max(bottom, top * 1e-5);
+    // Five decades below the largest bar, deeper if a band's total needs it.
+    const double lo = std::min(std::max(bottom, top * 1e-5), smallest_total);
     s << "set yrange [" << CsvNumber(std::pow(10.0, std::floor(std::log10(lo)))) << ":"
       << CsvNumber(std::pow(10.0, std::ceil(std::log10(top * 1.5)))) << "]\n";
   } else {
@@ -146,21 +159,24 @@ std::vector<Plot> OverviewPlots(const BudgetResult& result) {
                                                                             std::to_string(pages) + ")"
                                                                       : ""))
       << " font '," << 15 << "'\n";
-    s << "unset key\nset grid noxtics nomxtics ytics\nset boxwidth 0.7 absolute\n";
+    s << "unset key\nset grid noxtics nomxtics ytics\nset boxwidth 0.7 absolute\n"
+         "set style textbox opaque noborder margins 0.5,0.5\n";  // value labels stay readable over lines
     s << "set style fill solid 1.0 border linecolor rgb " << Quote(kBarEdge) << "\n";
     for (std::size_t o = first; o < last; ++o) {
       const OutputResult& out = result.outputs[o];
       const std::size_t n = out.contributors.size(), panel = o - first + 1;
       const std::string unit = DisplayUnit(out.unit);
-      std::string title = Enhanced(out.name) + ": " + SigLabel(out.rms()) + " " + UnitLabel(unit) + " RMS";
+      // Two lines: the output, then its figure against the requirement.
+      std::string status = "RMS " + SigLabel(out.rms()) + " " + UnitLabel(unit);
       if (out.rms_max)
-        title += std::string(out.pass() ? ", PASS" : ", FAIL") + " (requirement " + Short(*out.rms_max) + ")";
+        status += std::string(out.pass() ? ": PASS" : ": FAIL") + " (requirement " + Short(*out.rms_max) + ")";
+      const std::string title = TwoLines(Enhanced(out.name), status);
       const double top = std::max(out.rms(), out.rms_max ? *out.rms_max : 0.0);
-      s << "set title " << Quote(title) << " font '," << (panels > 2 ? 12 : 13) << "' textcolor rgb "
+      s << "set title " << title << " font '," << (panels > 2 ? 12 : 13) << "' textcolor rgb "
         << Quote(out.rms_max && !out.pass() ? kRequirementColour : "#202020") << "\n";
       s << "set xrange [0.4:" << CsvNumber(n + 1.9) << "]\n";
       // Many bars: names at a steeper angle, values upright above the bars.
-      const bool crowded = (n + 1) * panels > 16;
+      const bool crowded = 1200.0 / static_cast<double>(cols) / static_cast<double>(n + 2) < 60.0;  // px per bar
       s << "set yrange [0:" << CsvNumber(top > 0 ? top * (crowded ? 1.3 : 1.2) : 1.0) << "]\n";
       s << "set ylabel " << Quote("RMS [" + UnitLabel(unit) + "]") << "\n";
       s << "set xtics scale 0 " << (crowded ? "rotate by 50 right " : n > 3 || panels > 2 ? "rotate by 30 right " : "norotate ")
@@ -175,11 +191,12 @@ std::vector<Plot> OverviewPlots(const BudgetResult& result) {
                           (c == n ? CsvNumber(n + 1.3) : std::to_string(c + 1)) +
                           " ? column(3) : NaN) with boxes fillcolor rgb " + Quote(colour));
       }
-      clauses.push_back(data + " using 2:" + here + ":4 with labels " +
-                        (crowded ? "rotate by 90 left offset 0,0.5" : "offset 0,0.8") + " font ',9' textcolor rgb '#202020'");
       if (out.rms_max)
         clauses.push_back(CsvNumber(*out.rms_max) + " with lines linecolor rgb " + Quote(kRequirementColour) +
                           " dashtype " + kRequirementDash + " linewidth 2");
+      clauses.push_back(data + " using 2:" + here + ":4 with labels " +
+                        (crowded ? "rotate by 90 left offset 0,0.5" : "offset 0,0.8") +
+                        " boxed font ',9' textcolor rgb '#202020'");  // last: over the requirement line
       s << PlotList(clauses);
     }
     s << "unset multiplot\n";
