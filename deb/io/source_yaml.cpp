@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "deb/signal/time_series_file.h"
+#include "deb/signal/welch.h"
 #include "deb/spectra/channel_set.h"
 #include "deb/spectra/flat_spectrum.h"
 #include "deb/spectra/measured_spectrum.h"
@@ -46,6 +48,78 @@ double ConventionFactor(const YamlNode& source) {
   if (text == "one-sided") return 1.0;
   if (text == "two-sided") return 2.0;  // S_one(f) = 2 S_two(f) for f > 0
   c->Fail("unknown convention '" + text + "'; allowed: one-sided, two-sided");
+}
+
+// `type: timeseries`: a recording, turned into a Welch PSD at load.
+std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const YamlNode& spec,
+                                                   const std::string& base_dir, Source* s) {
+  spec.AllowOnly({"type", "file", "format", "rate_hz", "file_channels", "columns", "window", "segment_length",
+                  "overlap", "detrend", "averaging", "extrapolation"});
+  if (node.Has("convention"))
+    node.Required("convention").Fail("a time series gives a one-sided PSD by construction; remove 'convention'");
+  const YamlNode file = spec.Required("file");
+  std::filesystem::path p(file.AsString());
+  if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  const std::string format = spec.Optional("format") ? spec.Required("format").AsString() : "csv";
+  const auto rate = spec.Optional("rate_hz");
+  const auto unit_node = node.Optional("unit");
+  TimeSeries series = [&] {
+    if (format == "csv") {
+      if (spec.Has("file_channels"))
+        spec.Required("file_channels").Fail("file_channels is for raw files; a CSV names its columns in its header");
+      TimeSeriesCsvOptions o;
+      if (rate) o.rate_hz = rate->AsPositive();
+      return AtNode(file, [&] { return ReadTimeSeriesCsv(p.string(), o); });
+    }
+    const YamlNode format_node = spec.Required("format");
+    if (format != "float32" && format != "float64")
+      format_node.Fail("unknown format '" + format + "'; allowed: csv, float32, float64");
+    RawTimeSeriesOptions o;
+    o.format = ParseRawSampleFormat(format);
+    if (!rate) spec.Fail("missing 'rate_hz': a raw " + format + " file carries no sample rate");
+    o.rate_hz = rate->AsPositive();
+    const YamlNode channels = spec.Required("file_channels");
+    if (channels.IsScalar()) {
+      o.channels = channels.AsInt();
+    } else {
+      o.channel_names = channels.AsStrings();
+      o.channels = static_cast<int>(o.channel_names.size());
+    }
+    return AtNode(file, [&] { return ReadRawTimeSeries(p.string(), o); });
+  }();
+  if (auto cols = spec.Optional("columns")) series = AtNode(*cols, [&] { return series.Select(cols->AsStrings()); });
+
+  WelchOptions welch;
+  if (auto v = spec.Optional("window")) welch.window = AtNode(*v, [&] { return ParseWindowKind(v->AsString()); });
+  if (auto v = spec.Optional("segment_length")) {
+    welch.segment_length = v->AsInt();
+    if (welch.segment_length < 2) v->Fail("segment_length must be >= 2 samples, got " + std::to_string(welch.segment_length));
+  }
+  if (auto v = spec.Optional("overlap")) welch.overlap = v->AsNonNegative();
+  if (auto v = spec.Optional("detrend")) welch.detrend = AtNode(*v, [&] { return ParseDetrend(v->AsString()); });
+  if (auto v = spec.Optional("averaging")) welch.averaging = AtNode(*v, [&] { return ParseAveraging(v->AsString()); });
+  const PsdEstimate estimate = AtNode(spec, [&] { return WelchPsd(series, welch); });
+  Extrapolation extrapolation = Extrapolation::kError;
+  if (auto e = spec.Optional("extrapolation"))
+    extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
+
+  if (!unit_node && series.unit().empty())
+    node.Fail("missing 'unit': neither the budget nor " + p.string() + " ('# unit:') gives one");
+  s->unit = unit_node ? unit_node->AsString() : series.unit();
+  double factor = 1.0;
+  if (!series.unit().empty()) {
+    const UnitConversion conv = AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(series.unit(), s->unit); });
+    if (!conv.IsPureScale())
+      unit_node->Fail("the file's unit '" + series.unit() + "' and '" + s->unit + "' are not the same quantity");
+    factor = conv.scale * conv.scale;
+  }
+  std::shared_ptr<const Spectrum> m = AtNode(file, [&] { return ToMeasuredSpectrum(estimate, extrapolation); });
+  if (factor != 1.0) m = std::make_shared<ScaledSpectrum>(m, factor);
+  s->channel_names = node.Has("channels") ? ChannelNames(node, s->name, m->channels()) : estimate.channel_names;
+  if (static_cast<int>(s->channel_names.size()) != m->channels())
+    node.Required("channels").Fail("the recording gives " + std::to_string(m->channels()) + " channel(s) but " +
+                                   std::to_string(s->channel_names.size()) + " channel names are listed");
+  return m;
 }
 
 }  // namespace
@@ -143,8 +217,10 @@ Source ParseSource(const YamlNode& node, const std::string& base_dir) {
       node.Required("channels").Fail("the file gives " + std::to_string(m->channels()) + " column(s) but " +
                                      std::to_string(s.channel_names.size()) + " channel names are listed");
     spectrum = m;
+  } else if (type == "timeseries") {
+    spectrum = TimeSeriesSpectrum(node, spec, base_dir, &s);
   } else {
-    spec.Required("type").Fail("unknown spectrum type '" + type + "'; allowed: flat, vc, measured");
+    spec.Required("type").Fail("unknown spectrum type '" + type + "'; allowed: flat, vc, measured, timeseries");
   }
 
   if (auto c = node.Optional("correlation")) {
