@@ -20,6 +20,7 @@
 #include "deb/io/result_writer.h"
 #include "deb/report/report_writer.h"
 #include "deb/units/unit.h"
+#include "tools/spectrum_command.h"
 
 namespace {
 
@@ -161,6 +162,8 @@ int main(int argc, char** argv) {
       "model", "Describe the physical models of a budget: natural frequencies, mode shapes, static pre-stress");
   model->add_option("budget", model_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
 
+  CLI::App* spectrum = deb::tools::AddSpectrumCommand(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -171,6 +174,7 @@ int main(int argc, char** argv) {
     if (*run) return Run(budget_file, out_dir, threads, quiet, report);
     if (*check) return Check(check_file);
     if (*model) return Model(model_file);
+    if (*spectrum) return deb::tools::RunSpectrumCommand(*spectrum);
   } catch (const deb::InputError& e) {
     std::fprintf(stderr, "deb: error: %s\n", e.what());
     return kExitInput;

@@ -1,0 +1,160 @@
+// `deb spectrum ...` as a user meets it: files in, spectrum CSVs out, exit 3
+// with file:line:col messages for bad input.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+#include "deb/spectra/spectrum_csv.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string Slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path Scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("deb_spectrum_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+Result Deb(const std::string& args) {
+  static const fs::path dir = Scratch("io");
+  const fs::path out = dir / "stdout", err = dir / "stderr";
+  const std::string cmd = std::string("\"") + DEB_BINARY + "\" " + args + " > \"" + out.string() + "\" 2> \"" +
+                          err.string() + "\"";
+  const int status = std::system(cmd.c_str());
+  Result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = Slurp(out);
+  r.err = Slurp(err);
+  return r;
+}
+
+// Three co-located sensors: common white ground motion (sigma 1 um/s) plus
+// independent noise of 0.1, 0.1 and 0.2 um/s, at 200 Hz.
+fs::path Recording(const fs::path& dir, const std::string& header = "# rate_hz: 200\n# unit: um/s\n") {
+  std::ofstream out(dir / "rec.csv");
+  out << header << "a, b, c\n";
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int i = 0; i < 1 << 15; ++i) {
+    const double u = normal(rng);
+    out << u + 0.1 * normal(rng) << ", " << u + 0.1 * normal(rng) << ", " << u + 0.2 * normal(rng) << "\n";
+  }
+  return dir / "rec.csv";
+}
+
+}  // namespace
+
+TEST_CASE("deb spectrum welch writes a spectrum CSV that reads back with the white level 2 s^2 / fs (4 sigma)") {
+  const fs::path dir = Scratch("welch");
+  const Result r = Deb("spectrum welch " + Recording(dir).string() + " --segment 512 --columns a -o " +
+                       (dir / "psd.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  CHECK(r.out.find("127 averages") != std::string::npos);
+  const deb::SpectrumCsv csv = deb::ReadSpectrumCsv((dir / "psd.csv").string());
+  CHECK(csv.unit == std::string("um/s"));
+  CHECK(csv.channel_names == std::vector<std::string>{"a"});
+  CHECK(csv.f_hz.front() == doctest::Approx(200.0 / 512));
+  const double level = 2.0 * (1.0 + 0.01) / 200.0;
+  const double mean = csv.psd.col(0).head(250).mean();
+  // nu ~ 1.89 K per bin, Hann neighbours correlated: sigma of the mean of
+  // 250 bins ~ sqrt(2 / (1.89 * 127) * 1.944 / 250) = 0.8 %.
+  CHECK(std::abs(mean / level - 1.0) < 4.0 * 0.008);
+  CHECK(Slurp(dir / "psd.csv").find("# welch: window hann, segment 512 samples") != std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("deb spectrum convert --from-bands then bands: a floor built at VC-D is VC-D in every band") {
+  const fs::path dir = Scratch("bands");
+  {
+    std::ofstream table(dir / "vcd.csv");
+    table << "# unit: um/s\ncentre_hz, floor\n";
+    for (double f : {8.0, 10.0, 12.5, 16.0, 20.0, 25.0, 31.5, 40.0, 50.0, 63.0, 80.0}) table << f << ", 6.25\n";
+  }
+  Result r = Deb("spectrum convert --from-bands " + (dir / "vcd.csv").string() + " -o " + (dir / "psd.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  r = Deb("spectrum bands " + (dir / "psd.csv").string() + " --lowest 8 --highest 63 --criteria vc -o " +
+          (dir / "bands.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  CHECK(r.out.find("floor: 10 bands, VC-D; limiting band") != std::string::npos);
+  const std::string bands = Slurp(dir / "bands.csv");
+  CHECK(bands.find("centre_hz, lo_hz, hi_hz, points, floor, floor_class") != std::string::npos);
+  std::size_t count = 0;
+  for (std::size_t at = bands.find(", VC-D"); at != std::string::npos; at = bands.find(", VC-D", at + 1)) ++count;
+  CHECK(count == 10);
+  // The same floor in nm (displacement) converts back through (2 pi f)^2.
+  r = Deb("spectrum convert " + (dir / "psd.csv").string() + " --to nm -o " + (dir / "nm.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  r = Deb("spectrum bands " + (dir / "nm.csv").string() + " --lowest 8 --highest 63 --criteria vc");
+  count = 0;
+  for (std::size_t at = r.out.find(", 6.24999999"); at != std::string::npos; at = r.out.find(", 6.24999999", at + 1)) ++count;
+  CHECK(count == 10);  // 6.25 to 1e-9: the table's two points per band carry the (2 pi f)^2 as a power law
+  fs::remove_all(dir);
+}
+
+TEST_CASE("deb spectrum selfnoise writes one noise spectrum per sensor, usable as a measured source") {
+  const fs::path dir = Scratch("selfnoise");
+  const Result r = Deb("spectrum selfnoise " + Recording(dir).string() + " --sensors a,b,c --segment 512 -o " +
+                       (dir / "noise.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  CHECK(r.out.find("Sleeman") != std::string::npos);
+  const deb::SpectrumCsv noise = deb::ReadSpectrumCsv((dir / "noise.csv").string());
+  REQUIRE(noise.psd.cols() == 3);
+  // Truth: 2 n^2 / fs = 1e-4 and 4e-4 (um/s)^2/Hz; the mean over 250 bins
+  // scatters by a few percent (see tests/signal/self_noise_test.cpp).
+  CHECK(noise.psd.col(0).head(250).mean() == doctest::Approx(1e-4).epsilon(0.1));
+  CHECK(noise.psd.col(2).head(250).mean() == doctest::Approx(4e-4).epsilon(0.1));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("deb spectrum reference writes Peterson's NLNM in the unit asked for") {
+  const Result r = Deb("spectrum reference nlnm --to m/s^2 --points-per-decade 1");
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  CHECK(r.out.find("f_hz, nlnm") != std::string::npos);
+  CHECK(r.out.find("\n1, 2.290867653e-17\n") != std::string::npos);  // -166.4 dB at 1 s
+}
+
+TEST_CASE("deb spectrum: missing rate, too few samples, non-uniform stamps and unknown options fail cleanly") {
+  const fs::path dir = Scratch("errors");
+  const fs::path norate = Recording(dir, "# unit: um/s\n");
+  Result r = Deb("spectrum welch " + norate.string() + " -o " + (dir / "x.csv").string());
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("missing sample rate") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "x.csv"));
+  r = Deb("spectrum welch " + norate.string() + " --rate 200 --segment 100000");
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("too few samples") != std::string::npos);
+  std::ofstream(dir / "uneven.csv") << "t, x\n0, 1\n0.1, 2\n0.3, 3\n0.4, 4\n";
+  r = Deb("spectrum welch " + (dir / "uneven.csv").string());
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("uneven.csv:3:1: non-uniform time stamps") != std::string::npos);
+  r = Deb("spectrum selfnoise " + norate.string() + " --rate 200 --sensors a");
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("give 2 (Holcomb") != std::string::npos);
+  r = Deb("spectrum welch " + norate.string() + " --window kaiser --rate 200");
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("allowed: rectangular, hann") != std::string::npos);
+  CHECK(Deb("spectrum welch").exit_code == 2);
+  fs::remove_all(dir);
+}

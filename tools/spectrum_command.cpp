@@ -1,0 +1,462 @@
+#include "tools/spectrum_command.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/signal/self_noise.h"
+#include "deb/signal/time_series_file.h"
+#include "deb/signal/welch.h"
+#include "deb/spectra/band_rms.h"
+#include "deb/spectra/building_criteria.h"
+#include "deb/spectra/peterson_noise_model.h"
+#include "deb/spectra/spectrum_csv.h"
+#include "deb/units/unit.h"
+
+namespace deb::tools {
+namespace {
+
+// Options shared by the commands that read a recording.
+struct RecordingOptions {
+  std::string file;
+  double rate_hz = 0.0;
+  std::string format = "csv";
+  std::vector<std::string> file_channels;  // raw: names, or one count
+  std::vector<std::string> columns;
+  std::string unit;
+  std::string window = "hann";
+  int segment = 0;
+  double overlap = 0.5;
+  std::string detrend = "mean";
+  std::string averaging = "mean";
+  double confidence = 0.95;
+  int threads = 0;
+};
+
+struct Settings {
+  RecordingOptions rec;
+  std::string out;
+  bool bounds = false;
+  std::string coherence_out;
+  // bands
+  std::string spectrum_file;
+  std::string series = "base2_1hz";
+  double lowest_hz = 0.0, highest_hz = 0.0;
+  std::string criteria = "all";
+  bool extend = false;
+  std::string unit;
+  // convert
+  std::string to_unit;
+  bool asd = false;
+  bool from_bands = false;
+  // selfnoise
+  std::vector<std::string> sensors;
+  // reference
+  std::string model;
+  double points_per_decade = 50.0;
+  CLI::App *welch = nullptr, *bands = nullptr, *convert = nullptr, *selfnoise = nullptr, *reference = nullptr;
+};
+
+Settings& S() {
+  static Settings settings;
+  return settings;
+}
+
+void AddRecordingOptions(CLI::App* c, RecordingOptions& r) {
+  c->add_option("recording", r.file, "Time series: CSV (time column or '# rate_hz:') or raw little-endian floats")
+      ->required()
+      ->check(CLI::ExistingFile);
+  c->add_option("--rate", r.rate_hz, "Sample rate, Hz (raw files; CSV files without one)")->check(CLI::PositiveNumber);
+  c->add_option("--format", r.format, "csv, float32 or float64")->check(CLI::IsMember({"csv", "float32", "float64"}));
+  c->add_option("--file-channels", r.file_channels, "Raw files: channel names, or their count")->delimiter(',');
+  c->add_option("--columns", r.columns, "Channels to analyse (default: all)")->delimiter(',');
+  c->add_option("--unit", r.unit, "Unit of the samples (if the file has no '# unit:')");
+  c->add_option("--window", r.window, "rectangular, hann, hamming, blackman_harris, flattop");
+  c->add_option("--segment", r.segment, "Samples per segment (default: largest power of two giving >= 8 segments)")
+      ->check(CLI::Range(2, 1 << 30));
+  c->add_option("--overlap", r.overlap, "Fraction of a segment shared with the next, [0, 1)");
+  c->add_option("--detrend", r.detrend, "none, mean or linear (per segment)");
+  c->add_option("--average", r.averaging, "mean or median (bias-corrected)");
+  c->add_option("--confidence", r.confidence, "Level of the chi-square bounds");
+  c->add_option("--threads,-j", r.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+}
+
+TimeSeries ReadRecording(const RecordingOptions& r) {
+  TimeSeries series = [&] {
+    if (r.format == "csv") {
+      TimeSeriesCsvOptions o;
+      if (r.rate_hz > 0.0) o.rate_hz = r.rate_hz;
+      o.unit = r.unit;
+      return ReadTimeSeriesCsv(r.file, o);
+    }
+    RawTimeSeriesOptions o;
+    o.format = ParseRawSampleFormat(r.format);
+    o.rate_hz = r.rate_hz;
+    o.unit = r.unit;
+    if (r.file_channels.size() == 1 && std::isdigit(static_cast<unsigned char>(r.file_channels[0][0]))) {
+      o.channels = std::stoi(r.file_channels[0]);
+    } else if (!r.file_channels.empty()) {
+      o.channel_names = r.file_channels;
+      o.channels = static_cast<int>(r.file_channels.size());
+    }
+    return ReadRawTimeSeries(r.file, o);
+  }();
+  return r.columns.empty() ? series : series.Select(r.columns);
+}
+
+WelchOptions Welch(const RecordingOptions& r) {
+  WelchOptions o;
+  o.window = ParseWindowKind(r.window);
+  o.segment_length = r.segment;
+  o.overlap = r.overlap;
+  o.detrend = ParseDetrend(r.detrend);
+  o.averaging = ParseAveraging(r.averaging);
+  o.confidence = r.confidence;
+  o.threads = r.threads;
+  return o;
+}
+
+// Writes text to path through a temporary file renamed at the end, so a
+// failure never leaves a half-written file; "" or "-" is standard output.
+void WriteText(const std::string& path, const std::string& text) {
+  if (path.empty() || path == "-") {
+    std::cout << text;
+    return;
+  }
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << text;
+    out.close();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw InputError(path + ": cannot write the output file: " + std::strerror(errno));
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw InputError(path + ": cannot write the output file: " + ec.message());
+  }
+}
+
+std::string Number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+// A spectrum CSV (spectrum_csv.h): comments, header, rows above 0 Hz.
+std::string SpectrumCsvText(const std::vector<std::string>& comments, const std::string& unit, bool asd,
+                            const std::vector<double>& f_hz, const Eigen::MatrixXd& psd,
+                            const std::vector<std::string>& names, const Eigen::MatrixXd* extra = nullptr,
+                            const std::vector<std::string>& extra_names = {}) {
+  std::ostringstream out;
+  for (const std::string& c : comments) out << "# " << c << "\n";
+  if (!unit.empty()) out << "# unit: " << unit << "\n";
+  out << "# quantity: " << (asd ? "asd" : "psd") << "\n# sides: one\nf_hz";
+  for (const auto& n : names) out << ", " << n;
+  for (const auto& n : extra_names) out << ", " << n;
+  out << "\n";
+  for (std::size_t k = 0; k < f_hz.size(); ++k) {
+    if (!(f_hz[k] > 0.0)) continue;
+    out << Number(f_hz[k]);
+    for (Eigen::Index c = 0; c < psd.cols(); ++c)
+      out << ", " << Number(asd ? std::sqrt(psd(static_cast<Eigen::Index>(k), c)) : psd(static_cast<Eigen::Index>(k), c));
+    if (extra)
+      for (Eigen::Index c = 0; c < extra->cols(); ++c) out << ", " << Number((*extra)(static_cast<Eigen::Index>(k), c));
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::vector<std::string> Provenance(const std::string& what, const PsdEstimate& e, const std::string& source) {
+  std::vector<std::string> lines = {what + " of " + source};
+  for (const std::string& l : e.provenance.Describe()) lines.push_back(l);
+  return lines;
+}
+
+int RunWelch(const Settings& s) {
+  const TimeSeries series = ReadRecording(s.rec);
+  const WelchOptions o = Welch(s.rec);
+  const bool cross = !s.coherence_out.empty();
+  const CsdEstimate csd = cross ? WelchCsd(series, o) : CsdEstimate{};
+  const PsdEstimate e = cross ? csd.AutoSpectra() : WelchPsd(series, o);
+  Eigen::MatrixXd bounds;
+  std::vector<std::string> bound_names;
+  if (s.bounds) {
+    bounds.resize(e.psd.rows(), 2 * e.psd.cols());
+    for (Eigen::Index c = 0; c < e.psd.cols(); ++c) {
+      bounds.col(2 * c) = e.psd.col(c) * e.provenance.lower_factor;
+      bounds.col(2 * c + 1) = e.psd.col(c) * e.provenance.upper_factor;
+      bound_names.push_back(e.channel_names[static_cast<std::size_t>(c)] + "_lo");
+      bound_names.push_back(e.channel_names[static_cast<std::size_t>(c)] + "_hi");
+    }
+  }
+  WriteText(s.out, SpectrumCsvText(Provenance("Welch PSD", e, s.rec.file), e.unit, false, e.f_hz, e.psd,
+                                   e.channel_names, s.bounds ? &bounds : nullptr, bound_names));
+  if (cross) {
+    std::ostringstream out;
+    out << "# coherence |S_ab|^2/(S_aa S_bb) and CSD phase arg S_ab = arg <conj(X_a) X_b>, rad\n";
+    for (const std::string& l : e.provenance.Describe()) out << "# " << l << "\n";
+    out << "f_hz";
+    for (int b = 0; b < csd.channels; ++b)
+      for (int a = 0; a < b; ++a) {
+        const std::string pair = csd.channel_names[static_cast<std::size_t>(a)] + "_" +
+                                 csd.channel_names[static_cast<std::size_t>(b)];
+        out << ", coherence_" << pair << ", phase_" << pair;
+      }
+    out << "\n";
+    for (std::size_t k = 0; k < csd.f_hz.size(); ++k) {
+      out << Number(csd.f_hz[k]);
+      for (int b = 0; b < csd.channels; ++b)
+        for (int a = 0; a < b; ++a)
+          out << ", " << Number(csd.Coherence(a, b)(static_cast<Eigen::Index>(k))) << ", "
+              << Number(std::arg(csd.Cross(a, b)(static_cast<Eigen::Index>(k))));
+      out << "\n";
+    }
+    WriteText(s.coherence_out, out.str());
+  }
+  if (!s.out.empty() && s.out != "-") {
+    std::printf("%s: %zu channel(s), %lld samples at %g Hz\n", s.rec.file.c_str(), e.channel_names.size(),
+                static_cast<long long>(series.size()), series.rate_hz());
+    for (const std::string& l : e.provenance.Describe()) std::printf("  %s\n", l.c_str());
+    std::printf("wrote %s\n", s.out.c_str());
+  }
+  return 0;
+}
+
+int RunBands(const Settings& s) {
+  const SpectrumCsv csv = ReadSpectrumCsv(s.spectrum_file);
+  std::string unit = csv.unit.value_or("");
+  if (!s.unit.empty()) {
+    if (!unit.empty() && unit != s.unit)
+      throw InputError(s.spectrum_file + ": the file declares '# unit: " + unit + "' but --unit " + s.unit +
+                       " is given");
+    unit = s.unit;
+  }
+  const bool classify = s.criteria != "none";
+  const ThirdOctaveSeries series = ParseThirdOctaveSeries(s.series);
+  ClassifyOptions options;
+  if (classify) {
+    options.set = ParseCriteriaSet(s.criteria);
+    options.series = series;
+    options.low_frequency_extension = s.extend;
+    if (unit.empty())
+      throw InputError(s.spectrum_file + ": classification needs the unit of the spectrum: give '# unit:' in the "
+                       "file or --unit (any velocity, displacement or acceleration unit)");
+  }
+  // Criteria are band RMS velocities in um/s: convert (with (2 pi f)^2n for
+  // displacement or acceleration) before integrating.
+  const UnitConversion to_velocity = classify ? ConvertUnit(unit, "um/s") : UnitConversion{};
+  const std::string band_unit = classify ? "um/s" : unit;
+  std::ostringstream out;
+  out << "# one-third-octave band RMS (" << ToString(series) << " centres)"
+      << (band_unit.empty() ? "" : " in " + band_unit) << " of " << s.spectrum_file << "\n";
+  if (classify && !to_velocity.IsPureScale()) out << "# converted from " << unit << ": " << to_velocity.Describe() << "\n";
+  std::vector<std::vector<BandRms>> per_channel;
+  std::vector<Classification> verdicts;
+  for (Eigen::Index c = 0; c < csv.psd.cols(); ++c) {
+    std::vector<double> psd(csv.f_hz.size());
+    for (std::size_t k = 0; k < psd.size(); ++k)
+      psd[k] = csv.psd(static_cast<Eigen::Index>(k), c) * (classify ? to_velocity.PsdFactor(csv.f_hz[k]) : 1.0);
+    per_channel.push_back(s.lowest_hz > 0.0 ? ThirdOctaveBandRms(csv.f_hz, psd, series, s.lowest_hz, s.highest_hz)
+                                            : ThirdOctaveBandRms(csv.f_hz, psd, series));
+    if (classify) verdicts.push_back(Classify(per_channel.back(), options));
+  }
+  out << "centre_hz, lo_hz, hi_hz, points";
+  for (const std::string& n : csv.channel_names) out << ", " << n << (classify ? ", " + n + "_class" : "");
+  out << "\n";
+  for (std::size_t i = 0; i < per_channel.front().size(); ++i) {
+    const BandRms& b = per_channel.front()[i];
+    out << Number(b.band.centre_hz) << ", " << Number(b.band.lo_hz) << ", " << Number(b.band.hi_hz) << ", " << b.points;
+    for (std::size_t c = 0; c < per_channel.size(); ++c) {
+      out << ", " << Number(per_channel[c][i].rms);
+      if (classify) {
+        const BandVerdict& v = verdicts[c].bands[i];
+        out << ", " << (!v.assessed ? "-" : v.best ? verdicts[c].criteria[*v.best].name : "none");
+      }
+    }
+    out << "\n";
+  }
+  WriteText(s.out, out.str());
+  if (!s.out.empty() && s.out != "-") {
+    for (std::size_t c = 0; c < per_channel.size(); ++c) {
+      int coarse = 0;
+      for (const BandRms& b : per_channel[c]) coarse += b.points < 5;
+      std::printf("%s: %zu bands", csv.channel_names[c].c_str(), per_channel[c].size());
+      if (classify) std::printf(", %s", verdicts[c].Summary().c_str());
+      std::printf("\n");
+      if (coarse > 0)
+        std::printf("  warning: %d band(s) hold fewer than 5 spectral lines; use a longer segment to resolve them\n",
+                    coarse);
+    }
+    std::printf("wrote %s\n", s.out.c_str());
+  }
+  return 0;
+}
+
+int RunConvert(const Settings& s) {
+  if (s.from_bands) {
+    // A band table: centre_hz and one band-RMS column per channel.
+    const SpectrumCsv table = ReadSpectrumCsv(s.spectrum_file);  // same cell rules
+    if (table.quantity != SpectrumQuantity::kPsd || table.sides != SpectrumSides::kOne)
+      throw InputError(s.spectrum_file + ": a band table holds band RMS values; remove '# quantity:'/'# sides:'");
+    const ThirdOctaveSeries series = ParseThirdOctaveSeries(s.series);
+    std::vector<ThirdOctaveBand> bands;
+    for (double f : table.f_hz) bands.push_back(ThirdOctaveBandNear(f, series));
+    std::vector<double> f_out;
+    Eigen::MatrixXd psd;
+    for (Eigen::Index c = 0; c < table.psd.cols(); ++c) {
+      const Eigen::VectorXd col = table.psd.col(c);
+      const PsdTable t = BandRmsToPsd(bands, std::vector<double>(col.data(), col.data() + col.size()));
+      if (c == 0) {
+        f_out = t.f_hz;
+        psd.resize(static_cast<Eigen::Index>(t.f_hz.size()), table.psd.cols());
+      }
+      psd.col(c) = Eigen::Map<const Eigen::VectorXd>(t.psd.data(), static_cast<Eigen::Index>(t.psd.size()));
+    }
+    WriteText(s.out, SpectrumCsvText({"PSD from the one-third-octave band RMS table " + s.spectrum_file +
+                                          " (constant in each band, " + ToString(series) + " edges)"},
+                                     table.unit.value_or(""), s.asd, f_out, psd, table.channel_names));
+    return 0;
+  }
+  const SpectrumCsv csv = ReadSpectrumCsv(s.spectrum_file);
+  const std::string from = csv.unit.value_or(s.unit);
+  std::string to = s.to_unit.empty() ? from : s.to_unit;
+  Eigen::MatrixXd psd = csv.psd;
+  std::vector<std::string> comments = {"converted from " + s.spectrum_file};
+  if (!s.to_unit.empty()) {
+    if (from.empty())
+      throw InputError(s.spectrum_file + ": --to needs the spectrum's unit: give '# unit:' in the file or --unit");
+    const UnitConversion conv = ConvertUnit(from, to);
+    for (std::size_t k = 0; k < csv.f_hz.size(); ++k) psd.row(static_cast<Eigen::Index>(k)) *= conv.PsdFactor(csv.f_hz[k]);
+    comments.push_back(from + " -> " + to + ": " + conv.Describe());
+  }
+  WriteText(s.out, SpectrumCsvText(comments, to, s.asd, csv.f_hz, psd, csv.channel_names));
+  return 0;
+}
+
+int RunSelfNoise(const Settings& s) {
+  if (s.sensors.size() != 2 && s.sensors.size() != 3)
+    throw InputError("--sensors: give 2 (Holcomb, identical sensors) or 3 (Sleeman) channel names, got " +
+                     std::to_string(s.sensors.size()));
+  RecordingOptions r = s.rec;
+  r.columns = s.sensors;
+  const TimeSeries series = ReadRecording(r);
+  const CsdEstimate csd = WelchCsd(series, Welch(r));
+  const SelfNoiseEstimate n = s.sensors.size() == 2 ? TwoSensorSelfNoise(csd, 0, 1) : ThreeSensorSelfNoise(csd, 0, 1, 2);
+  std::vector<std::string> comments = Provenance("sensor self-noise", n.noise, s.rec.file);
+  comments.insert(comments.begin() + 1, n.method);
+  for (std::size_t c = 0; c < n.clamped_bins.size(); ++c)
+    if (n.clamped_bins[c] > 0)
+      comments.push_back(n.noise.channel_names[c] + ": " + std::to_string(n.clamped_bins[c]) +
+                         " bins estimated below zero, set to 0");
+  WriteText(s.out, SpectrumCsvText(comments, n.noise.unit, false, n.noise.f_hz, n.noise.psd, n.noise.channel_names));
+  if (!s.out.empty() && s.out != "-") {
+    std::printf("%s\n", n.method.c_str());
+    for (std::size_t c = 0; c < n.clamped_bins.size(); ++c)
+      std::printf("  %s: median noise PSD %.4g %s^2/Hz; %d bins clamped at 0\n", n.noise.channel_names[c].c_str(),
+                  [&] {
+                    std::vector<double> v(n.noise.psd.col(static_cast<Eigen::Index>(c)).data() + 1,
+                                          n.noise.psd.col(static_cast<Eigen::Index>(c)).data() + n.noise.psd.rows());
+                    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+                    return v[v.size() / 2];
+                  }(),
+                  n.noise.unit.empty() ? "unit" : ("(" + n.noise.unit + ")").c_str(), n.clamped_bins[c]);
+    std::printf("wrote %s\n", s.out.c_str());
+  }
+  return 0;
+}
+
+int RunReference(const Settings& s) {
+  const PetersonModel model = ParsePetersonModel(s.model);
+  const std::string unit = s.to_unit.empty() ? PetersonSpectrum::kUnit : s.to_unit;
+  const UnitConversion conv = ConvertUnit(PetersonSpectrum::kUnit, unit);
+  if (!(s.points_per_decade >= 1.0)) throw InputError("--points-per-decade must be >= 1");
+  std::vector<double> f;
+  const int n = static_cast<int>(std::ceil(6.0 * s.points_per_decade));
+  for (int i = 0; i <= n; ++i) f.push_back(PetersonSpectrum::kMinHz * std::pow(10.0, 6.0 * i / n));
+  f.back() = PetersonSpectrum::kMaxHz;
+  Eigen::MatrixXd psd(static_cast<Eigen::Index>(f.size()), 1);
+  for (std::size_t k = 0; k < f.size(); ++k)
+    psd(static_cast<Eigen::Index>(k), 0) = PetersonAccelerationPsd(model, f[k]) * conv.PsdFactor(f[k]);
+  WriteText(s.out, SpectrumCsvText({"Peterson (1993), USGS OFR 93-322, " + ToString(model) +
+                                        ": vertical ground motion, converted from m/s^2: " + conv.Describe()},
+                                   unit, s.asd, f, psd, {ToString(model)}));
+  return 0;
+}
+
+}  // namespace
+
+CLI::App* AddSpectrumCommand(CLI::App& app) {
+  Settings& s = S();
+  CLI::App* spectrum = app.add_subcommand("spectrum", "Measured data: Welch spectra, band RMS and VC/ISO classes, "
+                                                      "conversions, sensor self-noise, reference spectra");
+  spectrum->require_subcommand(1);
+
+  s.welch = spectrum->add_subcommand("welch", "One-sided Welch PSD of a recording, as a spectrum CSV");
+  AddRecordingOptions(s.welch, s.rec);
+  s.welch->add_option("--out,-o", s.out, "Output spectrum CSV (default: standard output)");
+  s.welch->add_flag("--bounds", s.bounds, "Add <channel>_lo/_hi columns: the chi-square confidence bounds");
+  s.welch->add_option("--coherence", s.coherence_out, "Also write coherence and CSD phase of every pair to this CSV");
+
+  s.bands = spectrum->add_subcommand("bands", "One-third-octave band RMS of a spectrum CSV and its VC/ISO class");
+  s.bands->add_option("spectrum", s.spectrum_file, "Spectrum CSV")->required()->check(CLI::ExistingFile);
+  s.bands->add_option("--series", s.series, "base2_1hz, iec_base2 or iec_base10");
+  s.bands->add_option("--lowest", s.lowest_hz, "Nominal centre of the lowest band (default: all bands in the data)");
+  s.bands->add_option("--highest", s.highest_hz, "Nominal centre of the highest band")->needs("--lowest");
+  s.bands->add_option("--criteria", s.criteria, "vc, iso, all, or none (band RMS only, in the file's unit)")
+      ->check(CLI::IsMember({"vc", "iso", "all", "none"}));
+  s.bands->add_flag("--extend", s.extend, "Continue the VC curves' constant velocity below 8 Hz (thesis' modified VC)");
+  s.bands->add_option("--unit", s.unit, "Unit of the spectrum's signal, if the file has no '# unit:'");
+  s.bands->add_option("--out,-o", s.out, "Output CSV (default: standard output)");
+
+  s.convert = spectrum->add_subcommand("convert", "Convert a spectrum CSV: unit (displacement, velocity, "
+                                                  "acceleration), PSD or ASD, band RMS table to PSD");
+  s.convert->add_option("spectrum", s.spectrum_file, "Spectrum CSV (or band table with --from-bands)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  s.convert->add_option("--to", s.to_unit, "Target unit, e.g. um/s, nm, m/s^2");
+  s.convert->add_option("--unit", s.unit, "Unit of the input, if the file has no '# unit:'");
+  s.convert->add_flag("--asd", s.asd, "Write an ASD (unit/sqrt(Hz)) instead of a PSD");
+  s.convert->add_flag("--from-bands", s.from_bands,
+                      "Input rows are band centres and band RMS values: write the PSD constant in each band");
+  s.convert->add_option("--series", s.series, "Band series for --from-bands: base2_1hz, iec_base2, iec_base10");
+  s.convert->add_option("--out,-o", s.out, "Output spectrum CSV (default: standard output)");
+
+  s.selfnoise = spectrum->add_subcommand("selfnoise", "Sensor self-noise from co-located recordings: two sensors "
+                                                      "(Holcomb, identical sensors) or three (Sleeman)");
+  AddRecordingOptions(s.selfnoise, s.rec);
+  s.selfnoise->add_option("--sensors", s.sensors, "2 or 3 channel names")->required()->delimiter(',');
+  s.selfnoise->add_option("--out,-o", s.out, "Output noise spectrum CSV (default: standard output)");
+
+  s.reference = spectrum->add_subcommand("reference", "Peterson's New Low/High Noise Model as a spectrum CSV");
+  s.reference->add_option("model", s.model, "nlnm or nhnm")->required();
+  s.reference->add_option("--to", s.to_unit, "Unit (default m/s^2; e.g. um/s, nm)");
+  s.reference->add_option("--points-per-decade", s.points_per_decade, "Frequencies per decade, 1e-5-10 Hz");
+  s.reference->add_flag("--asd", s.asd, "Write an ASD instead of a PSD");
+  s.reference->add_option("--out,-o", s.out, "Output spectrum CSV (default: standard output)");
+  return spectrum;
+}
+
+int RunSpectrumCommand(const CLI::App& spectrum) {
+  (void)spectrum;
+  const Settings& s = S();
+  if (*s.welch) return RunWelch(s);
+  if (*s.bands) return RunBands(s);
+  if (*s.convert) return RunConvert(s);
+  if (*s.selfnoise) return RunSelfNoise(s);
+  if (*s.reference) return RunReference(s);
+  return 2;
+}
+
+}  // namespace deb::tools
