@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "deb/report/plot_points.h"
 #include "deb/budget/path_response.h"
 #include "deb/report/plot_style.h"
 #include "deb/report/spectrum_plots.h"
@@ -37,7 +38,9 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
   // y range from what is shown: the display range of the output.
   double top = 0.0, bottom = HUGE_VAL;
   std::vector<double> channel_top(m, 0.0);
-  for (std::size_t i = 0; i < f.size(); ++i) {
+  std::vector<const std::vector<double>*> drawn;
+  for (const auto& g : r.gain2) drawn.push_back(&g);
+  for (std::size_t i : PlotPoints(f, drawn, range.lo_hz, range.hi_hz)) {
     csv << CsvNumber(f[i]);
     const bool shown = f[i] >= range.lo_hz && f[i] <= range.hi_hz;
     for (std::size_t k = 0; k < m; ++k) {

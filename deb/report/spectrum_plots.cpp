@@ -5,6 +5,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "deb/report/plot_points.h"
 #include "deb/report/plot_style.h"
 #include "deb/units/unit.h"
 
@@ -57,7 +58,9 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
   csv << "frequency_hz";
   for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
   csv << ",total\n";
-  for (std::size_t k = 0; k < f.size(); ++k) {
+  std::vector<const std::vector<double>*> drawn = {&total};
+  for (const auto& s : series) drawn.push_back(&s);
+  for (std::size_t k : PlotPoints(f, drawn, range.lo_hz, range.hi_hz, PlotScale::kLinear)) {
     csv << CsvNumber(f[k]);
     for (std::size_t c = 0; c < n; ++c) csv << ',' << CsvNumber(series[c][k]);
     csv << ',' << CsvNumber(total[k]) << '\n';
@@ -143,7 +146,9 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd) {
   for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
   csv << ",total\n";
   double top = 0.0, bottom = HUGE_VAL;
-  for (std::size_t k = 0; k < f.size(); ++k) {
+  std::vector<const std::vector<double>*> drawn = {&out.total_psd};
+  for (const auto& c : out.contributors) drawn.push_back(&c.psd);
+  for (std::size_t k : PlotPoints(f, drawn, range.lo_hz, range.hi_hz)) {
     csv << CsvNumber(f[k]);
     const bool shown = f[k] >= range.lo_hz && f[k] <= range.hi_hz;
     for (std::size_t c = 0; c < n; ++c) {
