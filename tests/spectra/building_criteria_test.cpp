@@ -2,11 +2,9 @@
 
 #include <doctest/doctest.h>
 
-#include <fstream>
-#include <sstream>
-
 #include "deb/core/error.h"
 #include "deb/spectra/vc_curve.h"
+#include "tests/spectra/data_file.h"
 #include "tests/spectra/error_text.h"
 
 namespace deb {
@@ -100,22 +98,10 @@ TEST_CASE("criteria set names round-trip and an unknown one lists the allowed on
 
 TEST_CASE("spectra/iso_building_curves.csv matches the compiled ISO table exactly and cites its sources") {
   const std::string path = std::string(DEB_SOURCE_DIR) + "/spectra/iso_building_curves.csv";
-  std::ifstream in(path);
-  REQUIRE_MESSAGE(in.good(), "cannot open " << path);
-  std::string line, comments;
-  std::vector<std::vector<std::string>> rows;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    if (line[0] == '#') {
-      comments += line + "\n";
-      continue;
-    }
-    std::vector<std::string> cells;
-    std::stringstream cells_in(line);
-    std::string cell;
-    while (std::getline(cells_in, cell, ',')) cells.push_back(cell);
-    rows.push_back(cells);
-  }
+  const test::DataFile file = test::ReadDataFile(path);
+  REQUIRE_MESSAGE(file.opened, "cannot open " << path);
+  const std::string& comments = file.comments;
+  const std::vector<std::vector<std::string>>& rows = file.rows;
   CHECK(comments.find("Proc. SPIE 1619") != std::string::npos);
   CHECK(comments.find("Proc. SPIE 5933") != std::string::npos);
   CHECK(comments.find("could not be verified") != std::string::npos);

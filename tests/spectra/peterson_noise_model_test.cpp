@@ -3,10 +3,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "deb/core/error.h"
+#include "tests/spectra/data_file.h"
 #include "tests/spectra/error_text.h"
 
 namespace deb {
@@ -57,22 +56,10 @@ TEST_CASE("outside 1e-5-10 Hz the model is an error unless an extrapolation is c
 
 TEST_CASE("spectra/peterson_1993_noise_models.csv matches the compiled tables exactly and cites OFR 93-322") {
   const std::string path = std::string(DEB_SOURCE_DIR) + "/spectra/peterson_1993_noise_models.csv";
-  std::ifstream in(path);
-  REQUIRE_MESSAGE(in.good(), "cannot open " << path);
-  std::string line, comments;
-  std::vector<std::vector<std::string>> rows;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    if (line[0] == '#') {
-      comments += line + "\n";
-      continue;
-    }
-    std::vector<std::string> cells;
-    std::stringstream cells_in(line);
-    std::string cell;
-    while (std::getline(cells_in, cell, ',')) cells.push_back(cell);
-    rows.push_back(cells);
-  }
+  const test::DataFile file = test::ReadDataFile(path);
+  REQUIRE_MESSAGE(file.opened, "cannot open " << path);
+  const std::string& comments = file.comments;
+  const std::vector<std::vector<std::string>>& rows = file.rows;
   CHECK(comments.find("Open-File Report 93-322") != std::string::npos);
   REQUIRE(rows.size() == 1 + 21 + 11);
   CHECK(rows[0] == std::vector<std::string>{"model", "period_from_s", "period_to_s", "a_db", "b_db"});
