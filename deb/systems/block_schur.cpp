@@ -93,7 +93,8 @@ BlockSchurForm BlockDiagonalSchur(const Eigen::MatrixXd& a, double max_coupling)
   BlockSchurForm f;
   f.block_start.push_back(0);
   if (n == 0) return f;
-  const Eigen::ComplexSchur<MatrixXcd> schur(a.cast<Complex>());
+  // Real input: Eigen goes through the real Schur form, cheaper than complex QR.
+  const Eigen::ComplexSchur<Eigen::MatrixXd> schur(a);
   DEB_DEMAND(schur.info() == Eigen::Success);
   f.t = schur.matrixT().triangularView<Eigen::Upper>();
   f.s = schur.matrixU();

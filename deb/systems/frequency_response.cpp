@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "deb/core/error.h"
-#include "deb/systems/block_schur.h"
 #include "deb/core/parallel.h"
+#include "deb/systems/block_schur.h"
 
 namespace deb {
 namespace {

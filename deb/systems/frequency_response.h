@@ -26,7 +26,9 @@
 // A frequency at which j 2 pi f is (numerically) a pole has no finite response;
 // such a frequency comes from the user's grid (e.g. f = 0 with an integrator
 // in the path), so it is reported as InputError rather than returned as
-// inf/NaN.
+// inf/NaN. "Numerically" means within 64 eps (|A| + |omega|) of a computed
+// eigenvalue; a pole of multiplicity k is only known to about eps^(1/k) |A|,
+// so right next to a multiple pole H may come out large but finite.
 #pragma once
 
 #include <Eigen/Dense>

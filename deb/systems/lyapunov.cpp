@@ -48,13 +48,20 @@ Eigen::MatrixXd SolveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q
   RequireFinite(q, "SolveLyapunov", "Q");
   if (n == 0) return Eigen::MatrixXd(0, 0);
 
-  // A = U T U^H; with Y = U^H P U the equation becomes T Y + Y T^H = -U^H Q U.
-  const Eigen::ComplexSchur<Eigen::MatrixXcd> schur(a.cast<Complex>());
+  // Balancing (exact powers of two) helps models in mixed units: with
+  // A = T A_b T^-1, P = T P_b T where A_b P_b + P_b A_b^T + T^-1 Q T^-1 = 0.
+  const Eigen::VectorXd scale = BalancingScale(a), inv = scale.cwiseInverse();
+  const Eigen::MatrixXd ab = inv.asDiagonal() * a * scale.asDiagonal();
+  const Eigen::MatrixXd qb = inv.asDiagonal() * q * inv.asDiagonal();
+
+  // A_b = U T U^H; with Y = U^H P_b U the equation becomes T Y + Y T^H = -U^H Q_b U.
+  // Real input: Eigen goes through the real Schur form, cheaper than complex QR.
+  const Eigen::ComplexSchur<Eigen::MatrixXd> schur(ab);
   DEB_DEMAND(schur.info() == Eigen::Success);
   const Eigen::MatrixXcd& t = schur.matrixT();
   const Eigen::MatrixXcd& u = schur.matrixU();
 
-  const double tol = 1e3 * kEps * std::max(a.norm(), std::numeric_limits<double>::min());
+  const double tol = 1e3 * kEps * std::max(ab.norm(), std::numeric_limits<double>::min());
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = i; j < n; ++j)
       if (std::abs(t(i, i) + std::conj(t(j, j))) <= tol) {
@@ -65,27 +72,28 @@ Eigen::MatrixXd SolveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q
         throw InputError(os.str());
       }
 
-  Eigen::MatrixXcd y = -(u.adjoint() * q.cast<Complex>() * u);
+  Eigen::MatrixXcd y = -(u.adjoint() * qb.cast<Complex>() * u);
   // Column j of T Y + Y T^H = R, with T^H lower triangular:
-  //   (T + conj(t_jj) I) y_j = r_j - sum_{k>j} conj(t_jk) y_k,  j = n-1 ... 0.
+  //   (T + conj(t_jj) I) y_j = r_j - sum_{k>j} conj(t_jk) y_k,  j = n-1 ... 0,
+  // each a back substitution, column-oriented.
   for (Eigen::Index j = n - 1; j >= 0; --j) {
-    for (Eigen::Index k = j + 1; k < n; ++k) y.col(j) -= std::conj(t(j, k)) * y.col(k);
+    const Eigen::Index rest = n - j - 1;
+    if (rest > 0) y.col(j).noalias() -= y.rightCols(rest) * t.row(j).tail(rest).adjoint();
     const Complex shift = std::conj(t(j, j));
     for (Eigen::Index i = n - 1; i >= 0; --i) {
-      Complex v = y(i, j);
-      for (Eigen::Index k = i + 1; k < n; ++k) v -= t(i, k) * y(k, j);
-      y(i, j) = v / (t(i, i) + shift);
+      y(i, j) /= t(i, i) + shift;
+      if (i > 0) y.col(j).head(i) -= y(i, j) * t.col(i).head(i);
     }
   }
-  Eigen::MatrixXd p = (u * y * u.adjoint()).real();
-  if (q == q.transpose()) p = 0.5 * (p + p.transpose()).eval();
+  Eigen::MatrixXd pb = (u * y * u.adjoint()).real();
+  if (q == q.transpose()) pb = 0.5 * (pb + pb.transpose()).eval();
 
   // Bartels-Stewart is backward stable: the residual is a few eps relative to
   // |A||P| + |Q| however ill-conditioned the equation; a larger one is a bug.
-  const double residual = (a * p + p * a.transpose() + q).norm();
+  const double residual = (ab * pb + pb * ab.transpose() + qb).norm();
   DEB_DEMAND(residual <= 1e-10 * std::sqrt(static_cast<double>(n)) *
-                             (2.0 * a.norm() * p.norm() + q.norm()));
-  return p;
+                             (2.0 * ab.norm() * pb.norm() + qb.norm()));
+  return scale.asDiagonal() * pb * scale.asDiagonal();
 }
 
 Eigen::MatrixXd OutputCovariance(const StateSpace& sys, const Eigen::MatrixXd& w_two_sided) {

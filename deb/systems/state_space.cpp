@@ -82,33 +82,45 @@ StateSpace StateSpace::SelectInputs(const std::vector<int>& cols) const {
   return StateSpace(a_, std::move(b), c_, std::move(d));
 }
 
-StateSpace StateSpace::Balanced() const {
-  const Eigen::Index n = a_.rows();
-  Eigen::MatrixXd a = a_, b = b_, c = c_;
+Eigen::VectorXd BalancingScale(const Eigen::MatrixXd& a) {
+  DEB_DEMAND(a.rows() == a.cols());
+  const Eigen::Index n = a.rows();
+  Eigen::MatrixXd ab = a;
+  Eigen::VectorXd t = Eigen::VectorXd::Ones(n);
+  const auto off_diagonal_norm = [&](const auto& v, Eigen::Index skip) {
+    double sum = 0.0;
+    for (Eigen::Index k = 0; k < v.size(); ++k)
+      if (k != skip) sum += v(k) * v(k);
+    return std::sqrt(sum);
+  };
   // Each pass scales state i by a power of two f so that the off-diagonal
   // column norm (times f) and row norm (divided by f) approach each other.
   constexpr int kMaxPasses = 100;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     bool changed = false;
     for (Eigen::Index i = 0; i < n; ++i) {
-      const double col = a.col(i).norm(), row = a.row(i).norm(), diag = std::abs(a(i, i));
-      const double col_off = std::sqrt(std::max(0.0, col * col - diag * diag));
-      const double row_off = std::sqrt(std::max(0.0, row * row - diag * diag));
-      if (col_off == 0.0 || row_off == 0.0) continue;
-      const int e = static_cast<int>(std::lround(0.5 * std::log2(row_off / col_off)));
+      const double col = off_diagonal_norm(ab.col(i), i), row = off_diagonal_norm(ab.row(i), i);
+      if (col == 0.0 || row == 0.0) continue;
+      const int e = static_cast<int>(std::lround(0.5 * std::log2(row / col)));
       if (e == 0) continue;
       const double f = std::ldexp(1.0, e);
       // Only accept scalings that reduce the combined norm noticeably.
-      if (col_off * f + row_off / f >= 0.95 * (col_off + row_off)) continue;
-      a.col(i) *= f;
-      a.row(i) /= f;
-      b.row(i) /= f;
-      c.col(i) *= f;
+      if (col * f + row / f >= 0.95 * (col + row)) continue;
+      ab.col(i) *= f;
+      ab.row(i) /= f;
+      t(i) *= f;
       changed = true;
     }
     if (!changed) break;
   }
-  return StateSpace(std::move(a), std::move(b), std::move(c), d_);
+  return t;
+}
+
+StateSpace StateSpace::Balanced() const {
+  const Eigen::VectorXd t = BalancingScale(a_);
+  const Eigen::VectorXd t_inv = t.cwiseInverse();  // exact: powers of two
+  return StateSpace(t_inv.asDiagonal() * a_ * t.asDiagonal(), t_inv.asDiagonal() * b_,
+                    c_ * t.asDiagonal(), d_);
 }
 
 }  // namespace deb

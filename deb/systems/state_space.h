@@ -48,4 +48,8 @@ class StateSpace {
   Eigen::MatrixXd a_, b_, c_, d_;
 };
 
+// The diagonal of the scaling T used by StateSpace::Balanced(): powers of two
+// with T^-1 A T balanced. For other solvers on A (Lyapunov).
+Eigen::VectorXd BalancingScale(const Eigen::MatrixXd& a);
+
 }  // namespace deb
