@@ -90,6 +90,15 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
                      (method == Method::kAuto && eigenvector_condition_ <= kMaxModalCondition);
   std::vector<Eigen::VectorXd> cols;
   if (modal) {
+    // Beyond 1e-3 / eps the eigenvectors are numerically dependent: modal
+    // results would carry errors of 1e-3 and more.
+    if (!(eigenvector_condition_ * kEps <= 1e-3)) {
+      std::ostringstream os;
+      os << "frequency response: the modal form was requested but A is numerically defective "
+            "(eigenvector condition number " << eigenvector_condition_
+         << "); use Method::kAuto or kSchur";
+      throw InputError(os.str());
+    }
     method_ = Method::kModal;
     const Eigen::MatrixXcd ct = bal.C() * v;  // p x n
     const Eigen::MatrixXcd bt = v_inv * bal.B();  // n x m

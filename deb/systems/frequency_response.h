@@ -51,6 +51,8 @@ class FrequencyResponse {
 
   // Reduces A once. kModal forces the modal form even when cond(V) is large
   // (for benchmarks and tests); kSchur forces the block Schur form.
+  // @throws InputError if kModal is forced on a numerically defective A
+  //         (cond(V) > 1e-3 / eps).
   explicit FrequencyResponse(const StateSpace& sys, Method method = Method::kAuto);
 
   int states() const { return n_; }

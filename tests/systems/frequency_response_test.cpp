@@ -129,6 +129,9 @@ TEST_CASE("a defective A (double pole) falls back to the Schur form and stays ex
   CHECK(h.method() == Method::kSchur);
   CHECK(h.largest_block() == 2);
   CHECK(h.eigenvector_condition() > FrequencyResponse::kMaxModalCondition);
+  // Exactly defective: eigenvector matrix singular, the modal form impossible.
+  CHECK(Contains(MessageOf([&] { FrequencyResponse(StateSpace(a, b, c, d), Method::kModal); }),
+                 "defective"));
   for (double f : {0.0, 0.1, 1.0, 10.0}) {
     const Complex s(0.0, kTwoPi * f);
     const Complex expected = 1.0 / ((s + 2.0) * (s + 2.0));

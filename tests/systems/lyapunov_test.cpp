@@ -59,6 +59,29 @@ TEST_CASE("SolveLyapunov leaves a residual below 1e-10 |Q| on a random stable 20
   CHECK(Eigen::SelfAdjointEigenSolver<MatrixXd>(p).eigenvalues().minCoeff() > 0.0);
 }
 
+TEST_CASE("SolveLyapunov is as accurate for a model in mixed units") {
+  // States rescaled by T = diag(1, 1e6, 1, 1e6, ...) (m next to um): A_s =
+  // T^-1 A T, Q_s = T^-1 Q T^-1 must give P_s = T^-1 P T^-1 entry by entry,
+  // to 1e-10 relative to each entry's own scale sqrt(P_s,ii P_s,jj).
+  std::mt19937 rng(23);
+  const MatrixXd a = testing::DenseFromModes({{-1.0, -5.0}, {{3.0, 0.02}, {8.0, 0.1}}}, rng);
+  const MatrixXd g = testing::RandomMatrix(6, 2, rng);
+  const MatrixXd q = g * g.transpose();
+  Eigen::VectorXd t(6);
+  t << 1.0, 1e6, 1.0, 1e6, 1.0, 1e6;
+  const Eigen::VectorXd ti = t.cwiseInverse();
+  const MatrixXd p = SolveLyapunov(a, q);
+  const MatrixXd ps = SolveLyapunov(ti.asDiagonal() * a * t.asDiagonal(),
+                                    ti.asDiagonal() * q * ti.asDiagonal());
+  const MatrixXd expected = ti.asDiagonal() * p * ti.asDiagonal();
+  double worst = 0.0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      worst = std::max(worst, std::abs(ps(i, j) - expected(i, j)) /
+                                  std::sqrt(expected(i, i) * expected(j, j)));
+  CHECK(worst <= 1e-10);
+}
+
 TEST_CASE("SolveLyapunov handles a non-symmetric Q") {
   // Residual 1e-12 relative for an arbitrary right-hand side.
   std::mt19937 rng(21);
