@@ -2,7 +2,8 @@
 // maps failures to documented exit codes.
 //
 // Exit codes: 0 success; 2 usage error; 3 invalid input (budget, data file,
-// model); 4 cannot write the report; 70 internal error.
+// model); 4 cannot write the report; 5 a requirement failed (`run --strict`;
+// the report is written); 70 internal error.
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -20,6 +21,7 @@
 #include "deb/io/result_writer.h"
 #include "deb/report/report_writer.h"
 #include "deb/units/unit.h"
+#include "tools/compare_command.h"
 #include "tools/spectrum_command.h"
 
 namespace {
@@ -27,6 +29,7 @@ namespace {
 constexpr int kExitUsage = 2;
 constexpr int kExitInput = 3;
 constexpr int kExitWrite = 4;
+constexpr int kExitRequirement = 5;
 constexpr int kExitInternal = 70;
 
 struct WriteError : std::runtime_error {
@@ -52,7 +55,8 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
   std::printf("\nreport: %s\n", out_dir.c_str());
 }
 
-int Run(const std::string& budget_file, std::string out_dir, int threads, bool quiet, deb::ReportOptions report) {
+int Run(const std::string& budget_file, std::string out_dir, int threads, bool quiet, bool strict,
+        deb::ReportOptions report) {
   const deb::Budget budget = deb::LoadBudgetFile(budget_file);
   if (out_dir.empty()) out_dir = (std::filesystem::path("reports") / budget.name).string();
   deb::EngineOptions options;
@@ -69,6 +73,12 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
     throw WriteError(e.what());
   }
   if (!quiet) PrintBrief(budget, result, seconds, out_dir);
+  int failed = 0;
+  for (const auto& o : result.outputs) failed += o.pass() ? 0 : 1;
+  if (strict && failed > 0) {
+    std::fprintf(stderr, "deb: %d output(s) fail their requirement (--strict)\n", failed);
+    return kExitRequirement;
+  }
   return 0;
 }
 
@@ -97,6 +107,7 @@ int Check(const std::string& budget_file) {
   for (const auto& o : budget.outputs) {
     std::printf("  %-20s signal %s in %s", o.name.c_str(), o.signal.c_str(), o.unit.c_str());
     if (o.weighting) std::printf(", weighted (%s)", o.weighting->unit.c_str());
+    if (o.metric) std::printf(", %s", o.metric->Describe().c_str());
     if (o.rms_max) std::printf(", rms_max %g", *o.rms_max);
     std::printf("\n");
   }
@@ -126,16 +137,18 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 2 usage error, 3 invalid input (budget, data file, model), "
-      "4 cannot write the report, 70 internal error.");
+      "4 cannot write the report, 5 a requirement failed (run --strict), 70 internal error.");
 
   std::string budget_file, out_dir;
   int threads = 0;
   bool quiet = false;
+  bool strict = false;
   CLI::App* run = app.add_subcommand("run", "Evaluate a budget and write its report directory");
   run->add_option("budget", budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
   run->add_option("--out,-o", out_dir, "Report directory (default: reports/<budget-name>)");
   run->add_option("--threads,-j", threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet,-q", quiet, "Print nothing but warnings and errors");
+  run->add_flag("--strict", strict, "Exit with code 5 when an output fails its requirement (report still written)");
   deb::ReportOptions report;
   run->add_option_function<std::vector<std::string>>(
          "--format",
@@ -163,6 +176,7 @@ int main(int argc, char** argv) {
   model->add_option("budget", model_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
 
   CLI::App* spectrum = deb::tools::AddSpectrumCommand(app);
+  CLI::App* compare = deb::tools::AddCompareCommand(app);
 
   try {
     app.parse(argc, argv);
@@ -171,10 +185,11 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kExitUsage;
   }
   try {
-    if (*run) return Run(budget_file, out_dir, threads, quiet, report);
+    if (*run) return Run(budget_file, out_dir, threads, quiet, strict, report);
     if (*check) return Check(check_file);
     if (*model) return Model(model_file);
     if (*spectrum) return deb::tools::RunSpectrumCommand(*spectrum);
+    if (*compare) return deb::tools::RunCompareCommand(*compare);
   } catch (const deb::InputError& e) {
     std::fprintf(stderr, "deb: error: %s\n", e.what());
     return kExitInput;

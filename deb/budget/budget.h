@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/budget/output_metric.h"
 #include "deb/budget/path.h"
 #include "deb/budget/source.h"
 #include "deb/core/frequency_grid.h"
@@ -43,6 +44,7 @@ struct Output {
   std::string signal;  // output row name in every contributor's path
   std::string unit;
   std::optional<Weighting> weighting;
+  std::optional<OutputMetric> metric;  // moving average / std over a window, after the weighting
   std::optional<double> rms_max;  // requirement, in `unit`
 };
 

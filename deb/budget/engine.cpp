@@ -243,16 +243,17 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     }
   }
 
-  // Weighting responses, shared by all contributors of an output.
+  // Weighting responses and metric factors, shared by all contributors of an output.
   std::vector<std::vector<double>> weighting_gain2(budget.outputs.size());
   for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
     const Output& out = budget.outputs[o];
-    if (!out.weighting) continue;
-    const PathStability st = ClassifyPoles(out.weighting->system);
-    if (!st.unstable.empty())
-      throw InputError(Key("outputs", o, "weighting"),
-                       "the weighting of output '" + out.name + "' is unstable: pole(s) at " +
-                           FormatPoles(st.unstable) + " rad/s");
+    if (out.weighting) {
+      const PathStability st = ClassifyPoles(out.weighting->system);
+      if (!st.unstable.empty())
+        throw InputError(Key("outputs", o, "weighting"),
+                         "the weighting of output '" + out.name + "' is unstable: pole(s) at " +
+                             FormatPoles(st.unstable) + " rad/s");
+    }
     weighting_gain2[o] = WeightingGain2(out, f, options.threads);
   }
 
@@ -263,6 +264,7 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     r.signal = budget.outputs[o].signal;
     r.unit = budget.outputs[o].unit;
     r.rms_max = budget.outputs[o].rms_max;
+    r.metric = budget.outputs[o].metric;
     r.total_psd.assign(n, 0.0);
   }
 
@@ -346,6 +348,9 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
       else if (!inputs_pure_scale || !out_conv[o].IsPureScale())
         why_not = "the units differ by a time derivative (a factor j 2 pi f is not a rational path)";
       else if (!stability.marginal.empty()) why_not = "the path has poles on the imaginary axis";
+      else if (out.metric)
+        why_not = "the " + ToString(out.metric->type) +
+                  " weighting |sinc(pi f T)|^2 is not rational in s: no Lyapunov form";
       if (why_not.empty()) {
         const int row = path.OutputIndex(out.signal);
         Eigen::MatrixXd in_scale = Eigen::MatrixXd::Zero(m, m);

@@ -47,6 +47,7 @@ struct OutputResult {
   std::vector<double> total_cps;
   double variance = 0.0;
   std::optional<double> rms_max;
+  std::optional<OutputMetric> metric;  // variance is then E[MA^2] or E[MSD^2]
   std::vector<BandResult> bands;
 
   double rms() const;

@@ -30,10 +30,13 @@ UnitConversion OutputConversion(const Path& path, int row, const Output& output)
 }
 
 std::vector<double> WeightingGain2(const Output& output, const std::vector<double>& f_hz, int threads) {
-  if (!output.weighting) return {};
-  std::vector<double> g(f_hz.size());
-  FrequencyResponse(output.weighting->system)
-      .ForEach(f_hz, [&](std::size_t k, const Eigen::MatrixXcd& h) { g[k] = std::norm(h(0, 0)); }, threads);
+  if (!output.weighting && !output.metric) return {};
+  std::vector<double> g(f_hz.size(), 1.0);
+  if (output.weighting)
+    FrequencyResponse(output.weighting->system)
+        .ForEach(f_hz, [&](std::size_t k, const Eigen::MatrixXcd& h) { g[k] = std::norm(h(0, 0)); }, threads);
+  if (output.metric)
+    for (std::size_t k = 0; k < f_hz.size(); ++k) g[k] *= output.metric->PsdFactor(f_hz[k]);
   return g;
 }
 

@@ -27,7 +27,8 @@ std::vector<UnitConversion> InputConversions(const Source& source, const Path& p
 std::string WeightedSignalUnit(const Path& path, int row, const Output& output);
 UnitConversion OutputConversion(const Path& path, int row, const Output& output);
 
-// |w(j 2 pi f)|^2 of the output's weighting at every f; empty without one.
+// |w(j 2 pi f)|^2 of the output's weighting times its metric's PSD factor
+// (OutputMetric::PsdFactor) at every f; empty without either.
 // @throws InputError if f coincides with a pole of the weighting.
 std::vector<double> WeightingGain2(const Output& output, const std::vector<double>& f_hz, int threads = 0);
 

@@ -54,12 +54,20 @@ GridSpec ParseGrid(const YamlNode& node) {
 }
 
 Output ParseOutput(const YamlNode& node) {
-  node.AllowOnly({"name", "signal", "unit", "weighting", "rms_max", "description"});
+  node.AllowOnly({"name", "signal", "unit", "weighting", "metric", "rms_max", "description"});
   Output o;
   o.name = node.Required("name").AsString();
   o.signal = node.Has("signal") ? node.Required("signal").AsString() : o.name;
   o.unit = node.Required("unit").AsString();
   if (auto w = node.Optional("weighting")) o.weighting = io::ParseWeighting(*w);
+  if (auto m = node.Optional("metric")) {
+    m->AllowOnly({"type", "window_s"});
+    const YamlNode type = m->Required("type");
+    OutputMetric metric;
+    metric.type = io::AtNode(type, [&] { return ParseMetricType(type.AsString()); });
+    metric.window_s = m->Required("window_s").AsPositive();
+    o.metric = metric;
+  }
   if (auto r = node.Optional("rms_max")) o.rms_max = r->AsPositive();
   return o;
 }

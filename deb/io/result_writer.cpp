@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "deb/budget/allocation.h"
 #include "deb/core/error.h"
 #include "deb/units/unit.h"
 
@@ -57,6 +58,10 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
     jo["unit"] = o.unit;
     jo["rms"] = o.rms();
     jo["variance"] = o.variance;
+    if (o.metric)  // rms is then sqrt(E[MA^2]) or sqrt(E[MSD^2]) over the window
+      jo["metric"] = {{"type", ToString(o.metric->type)}, {"window_s", o.metric->window_s}};
+    else
+      jo["metric"] = nullptr;
     if (o.rms_max) {
       jo["requirement"] = {{"rms_max", *o.rms_max}, {"pass", o.pass()}, {"margin", *o.rms_max - o.rms()}};
     } else {
@@ -86,6 +91,11 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
         jc["exact_note"] = cr.exact_note;
       }
       jc["tail_variance_estimate"] = NumberOrNull(cr.tail_variance_estimate);
+      if (o.rms_max) {  // factor on this source's PSD that puts the output at its limit
+        const Allocation a = AllocationFactor(o, c);
+        jc["allocation_factor"] = a.factor ? nlohmann::json(*a.factor) : nlohmann::json(nullptr);
+        jc["allocation_note"] = a.factor ? nlohmann::json(nullptr) : nlohmann::json(a.note);
+      }
       contributors.push_back(jc);
     }
     jo["contributors"] = contributors;

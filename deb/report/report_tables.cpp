@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "deb/budget/allocation.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/spectrum_plots.h"
@@ -64,19 +65,37 @@ Table SummaryTable(const BudgetResult& result) {
 
 Table ContributorTable(const Budget& budget, const OutputResult& o) {
   Table t;
-  t.title = "Contributors to " + o.name + " [" + UnitText(o.unit) + "]";
-  t.header = {"contributor", "source", "path", "RMS", "share", "exact RMS", "note"};
-  t.numeric = {false, false, false, true, true, true, false};
+  t.title = "Contributors to " + o.name + " [" + UnitText(o.unit) + "]" +
+            (o.metric ? ", " + o.metric->Describe() : std::string());
+  t.header = {"contributor", "source", "path", "RMS", "share", "exact RMS"};
+  t.numeric = {false, false, false, true, true, true};
+  if (o.rms_max) {  // the factor on the source's PSD that puts the output at its limit
+    t.header.push_back("allocation k");
+    t.numeric.push_back(true);
+  }
+  t.header.push_back("note");
+  t.numeric.push_back(false);
   for (std::size_t c : ShareOrder(o)) {
     const ContributorResult& cr = o.contributors[c];
     const Contributor& spec = budget.contributors[c];
     std::string note = cr.exact_note;
     if (cr.exact_variance && *cr.exact_variance > 0.0)
       note = "grid holds " + Sig(100.0 * cr.variance / *cr.exact_variance, 4) + " % of the exact variance";
-    t.rows.push_back({cr.name, spec.source, spec.path, Sig(std::sqrt(cr.variance), 4), Share(cr.variance, o.variance),
-                      cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), 4) : "–", note});
+    std::vector<std::string> row = {cr.name, spec.source, spec.path, Sig(std::sqrt(cr.variance), 4),
+                                    Share(cr.variance, o.variance),
+                                    cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), 4) : "–"};
+    if (o.rms_max) {
+      const Allocation a = AllocationFactor(o, c);
+      row.push_back(a.factor ? Sig(*a.factor, 4) : "–");
+      if (!a.factor) note += std::string(note.empty() ? "" : "; ") + "no allocation: " + a.note;
+    }
+    row.push_back(note);
+    t.rows.push_back(row);
   }
-  t.rows.push_back({"total", "", "", Sig(o.rms(), 4), o.variance > 0 ? "100 %" : "–", "", ""});
+  std::vector<std::string> total = {"total", "", "", Sig(o.rms(), 4), o.variance > 0 ? "100 %" : "–", ""};
+  if (o.rms_max) total.push_back("");
+  total.push_back("");
+  t.rows.push_back(total);
   return t;
 }
 

@@ -160,4 +160,20 @@ contributors:)");
         doctest::Approx(1e-3).epsilon(1e-12));
 }
 
+TEST_CASE("an output metric loads its type and window, and a bad one names its position and the allowed values") {
+  const std::string ma = Replace(kBudget, "{name: velocity, signal: v, unit: um/s}",
+                                 "{name: velocity, signal: v, unit: um/s, metric: {type: moving_std, window_s: 0.02}}");
+  const Budget b = LoadBudgetText(ma, "b.yaml");
+  REQUIRE(b.outputs[0].metric.has_value());
+  CHECK(b.outputs[0].metric->type == MetricType::kMovingStd);
+  CHECK(b.outputs[0].metric->window_s == 0.02);
+  const std::string bad_type = ErrorOf(Replace(ma, "moving_std", "moving_median"));
+  CHECK(bad_type.rfind("b.yaml:18:60: outputs[0].metric.type: ", 0) == 0);
+  CHECK(bad_type.find("outputs[0].metric.type") != std::string::npos);
+  CHECK(bad_type.find("moving_average, moving_std") != std::string::npos);
+  const std::string bad_window = ErrorOf(Replace(ma, "window_s: 0.02", "window_s: 0"));
+  CHECK(bad_window.find("outputs[0].metric.window_s") != std::string::npos);
+  CHECK(ErrorOf(Replace(ma, "window_s: 0.02", "window_s: 0.02, step: 1")).find("step") != std::string::npos);
+}
+
 }  // namespace deb

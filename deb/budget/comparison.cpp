@@ -1,0 +1,130 @@
+#include "deb/budget/comparison.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace deb {
+namespace {
+
+std::string BandLabel(double lo, double hi) {
+  std::ostringstream os;
+  os << lo << "-" << hi << " Hz";
+  return os.str();
+}
+
+bool SameEdge(double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)); }
+
+ComparedFigure Figure(const ResultFigures::Output& oa, const std::string& contributor, const std::string& band,
+                      double var_a, double var_b, double total) {
+  ComparedFigure f;
+  f.output = oa.name;
+  f.unit = oa.unit;
+  f.contributor = contributor;
+  f.band = band;
+  f.rms_a = std::sqrt(var_a);
+  f.rms_b = std::sqrt(var_b);
+  f.difference = f.rms_b - f.rms_a;
+  if (f.rms_a > 0.0) f.ratio = f.rms_b / f.rms_a;
+  else if (f.rms_b == 0.0) f.ratio = 1.0;
+  f.variance_change_of_total = total > 0.0 ? (var_b - var_a) / total : 0.0;
+  return f;
+}
+
+template <typename T, typename Key>
+const T* Find(const std::vector<T>& items, const Key& key) {
+  for (const T& item : items)
+    if (key(item)) return &item;
+  return nullptr;
+}
+
+}  // namespace
+
+ResultFigures FiguresOf(const std::string& label, const BudgetResult& result) {
+  ResultFigures r;
+  r.label = label;
+  for (const OutputResult& o : result.outputs) {
+    ResultFigures::Output fo;
+    fo.name = o.name;
+    fo.unit = o.unit;
+    fo.variance = o.variance;
+    fo.rms_max = o.rms_max;
+    for (const ContributorResult& c : o.contributors) fo.contributors.push_back({c.name, c.variance});
+    for (const BandResult& b : o.bands) fo.bands.push_back({b.band.lo_hz, b.band.hi_hz, b.variance, b.contributor_variance});
+    r.outputs.push_back(std::move(fo));
+  }
+  return r;
+}
+
+Comparison Compare(const ResultFigures& a, const ResultFigures& b) {
+  Comparison cmp;
+  cmp.label_a = a.label;
+  cmp.label_b = b.label;
+  for (const auto& oa : a.outputs) {
+    const auto* ob = Find(b.outputs, [&](const ResultFigures::Output& o) { return o.name == oa.name; });
+    if (!ob) {
+      cmp.unmatched.push_back("output '" + oa.name + "' is only in " + a.label);
+      continue;
+    }
+    if (ob->unit != oa.unit) {
+      cmp.unmatched.push_back("output '" + oa.name + "' is in " + oa.unit + " in " + a.label + " but in " + ob->unit +
+                              " in " + b.label + ": not compared");
+      continue;
+    }
+    const double total = std::max(oa.variance, ob->variance);
+    cmp.figures.push_back(Figure(oa, "total", "", oa.variance, ob->variance, total));
+    for (const auto& ca : oa.contributors) {
+      const auto* cb = Find(ob->contributors, [&](const ResultFigures::Contributor& c) { return c.name == ca.name; });
+      if (!cb) {
+        cmp.unmatched.push_back("contributor '" + ca.name + "' on output '" + oa.name + "' is only in " + a.label);
+        continue;
+      }
+      cmp.figures.push_back(Figure(oa, ca.name, "", ca.variance, cb->variance, total));
+    }
+    for (const auto& cb : ob->contributors)
+      if (!Find(oa.contributors, [&](const ResultFigures::Contributor& c) { return c.name == cb.name; }))
+        cmp.unmatched.push_back("contributor '" + cb.name + "' on output '" + oa.name + "' is only in " + b.label);
+    for (const auto& ba : oa.bands) {
+      const auto* bb = Find(ob->bands, [&](const ResultFigures::Band& x) {
+        return SameEdge(x.lo_hz, ba.lo_hz) && SameEdge(x.hi_hz, ba.hi_hz);
+      });
+      const std::string label = BandLabel(ba.lo_hz, ba.hi_hz);
+      if (!bb) {
+        cmp.unmatched.push_back("band " + label + " of output '" + oa.name + "' is only in " + a.label);
+        continue;
+      }
+      cmp.figures.push_back(Figure(oa, "total", label, ba.variance, bb->variance, total));
+      for (std::size_t c = 0; c < oa.contributors.size() && c < ba.contributor_variance.size(); ++c) {
+        const std::string& name = oa.contributors[c].name;
+        for (std::size_t d = 0; d < ob->contributors.size() && d < bb->contributor_variance.size(); ++d)
+          if (ob->contributors[d].name == name)
+            cmp.figures.push_back(
+                Figure(oa, name, label, ba.contributor_variance[c], bb->contributor_variance[d], total));
+      }
+    }
+  }
+  for (const auto& ob : b.outputs)
+    if (!Find(a.outputs, [&](const ResultFigures::Output& o) { return o.name == ob.name; }))
+      cmp.unmatched.push_back("output '" + ob.name + "' is only in " + b.label);
+  return cmp;
+}
+
+std::vector<ComparedFigure> Comparison::LargestChanges(std::size_t count) const {
+  std::vector<ComparedFigure> out;
+  std::vector<std::string> outputs;
+  for (const auto& f : figures)
+    if (std::find(outputs.begin(), outputs.end(), f.output) == outputs.end()) outputs.push_back(f.output);
+  for (const std::string& name : outputs) {
+    std::vector<ComparedFigure> of;
+    for (const auto& f : figures)
+      if (f.output == name && f.band.empty() && f.contributor != "total") of.push_back(f);
+    std::stable_sort(of.begin(), of.end(), [](const ComparedFigure& x, const ComparedFigure& y) {
+      return std::abs(x.variance_change_of_total) > std::abs(y.variance_change_of_total);
+    });
+    if (of.size() > count) of.resize(count);
+    out.insert(out.end(), of.begin(), of.end());
+  }
+  return out;
+}
+
+}  // namespace deb

@@ -1,0 +1,71 @@
+#include "deb/budget/comparison.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+namespace deb {
+namespace {
+
+ResultFigures Example(double floor_scale) {
+  ResultFigures r;
+  r.label = "x";
+  ResultFigures::Output o;
+  o.name = "z";
+  o.unit = "um/s";
+  o.contributors = {{"floor", 4.0 * floor_scale}, {"sensor", 1.0}};
+  o.variance = 4.0 * floor_scale + 1.0;
+  o.bands = {{1.0, 10.0, 3.0 * floor_scale + 0.5, {3.0 * floor_scale, 0.5}},
+             {10.0, 100.0, 1.0 * floor_scale + 0.5, {1.0 * floor_scale, 0.5}}};
+  r.outputs = {o};
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("a result compared with itself shows zero differences and ratio 1 everywhere") {
+  const Comparison cmp = Compare(Example(1.0), Example(1.0));
+  REQUIRE(cmp.figures.size() == 1 + 2 + 2 * 3);  // total, contributors, two bands x (total + 2)
+  for (const ComparedFigure& f : cmp.figures) {
+    CHECK(f.difference == 0.0);
+    REQUIRE(f.ratio.has_value());
+    CHECK(*f.ratio == 1.0);
+    CHECK(f.variance_change_of_total == 0.0);
+  }
+  CHECK(cmp.unmatched.empty());
+}
+
+TEST_CASE("a changed contributor shows its RMS ratio and leads the largest changes") {
+  const Comparison cmp = Compare(Example(1.0), Example(0.25));  // floor PSD / 4: floor RMS / 2
+  const auto largest = cmp.LargestChanges(1);
+  REQUIRE(largest.size() == 1);
+  CHECK(largest[0].contributor == "floor");
+  CHECK(*largest[0].ratio == doctest::Approx(0.5).epsilon(1e-15));
+  CHECK(largest[0].difference == doctest::Approx(-1.0).epsilon(1e-15));
+  CHECK(largest[0].variance_change_of_total == doctest::Approx(-3.0 / 5.0).epsilon(1e-15));
+  for (const ComparedFigure& f : cmp.figures)
+    if (f.contributor == "sensor") CHECK(*f.ratio == 1.0);
+  const auto total = cmp.figures.front();
+  CHECK(total.contributor == "total");
+  CHECK(*total.ratio == doctest::Approx(std::sqrt(2.0 / 5.0)).epsilon(1e-15));
+}
+
+TEST_CASE("outputs, contributors and units present on one side only are listed, not compared") {
+  ResultFigures b = Example(1.0);
+  b.label = "y";
+  b.outputs[0].contributors[1].name = "actuator";
+  ResultFigures::Output extra = b.outputs[0];
+  extra.name = "x";
+  b.outputs.push_back(extra);
+  const Comparison cmp = Compare(Example(1.0), b);
+  CHECK(cmp.unmatched.size() == 3);  // sensor only in A, actuator only in B, output x only in B
+  ResultFigures c = Example(1.0);
+  c.outputs[0].unit = "nm";
+  const Comparison units = Compare(Example(1.0), c);
+  CHECK(units.figures.empty());
+  REQUIRE(units.unmatched.size() == 1);
+  CHECK(units.unmatched[0].find("um/s") != std::string::npos);
+}
+
+}  // namespace deb

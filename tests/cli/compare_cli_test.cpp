@@ -1,0 +1,63 @@
+// deb compare as a user meets it: a budget against itself and against its
+// own result directory; the three files, written atomically.
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string ReadAll(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int RunDeb(const std::string& args, const fs::path& dir) {
+  const std::string cmd = std::string("cd \"") + dir.string() + "\" && \"" + DEB_BINARY + "\" " + args +
+                          " > stdout.txt 2> stderr.txt";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+TEST_CASE("deb compare of a budget with itself writes zero differences and ratio 1 into the default directory") {
+  const fs::path dir = fs::temp_directory_path() / ("deb_compare_cli_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string budget = std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml";
+  REQUIRE(RunDeb("compare " + budget + " " + budget + " -q", dir) == 0);
+  const fs::path out = dir / "reports" / "compare_single_axis_isolator_vs_single_axis_isolator";
+  const auto j = nlohmann::json::parse(ReadAll(out / "compare.json"));
+  REQUIRE(j["figures"].size() > 10);
+  for (const auto& f : j["figures"]) {
+    CHECK(f["difference"].get<double>() == 0.0);
+    CHECK(f["ratio"].get<double>() == 1.0);
+  }
+  CHECK(ReadAll(out / "compare.md").find("| **total** | **whole grid** | **14.03** | **14.03** | **0** | **1.000** |") != std::string::npos);
+  CHECK(ReadAll(out / "compare.csv").rfind("output,unit,contributor,band,", 0) == 0);
+
+  // Against a result directory of the same budget: the same figures.
+  REQUIRE(RunDeb("run " + budget + " --no-plots -q --out run_a", dir) == 0);
+  REQUIRE(RunDeb("compare run_a " + budget + " -q --out cmp", dir) == 0);
+  const auto k = nlohmann::json::parse(ReadAll(dir / "cmp" / "compare.json"));
+  CHECK(k["a"] == "run_a");
+  for (const auto& f : k["figures"]) CHECK(f["ratio"].get<double>() == doctest::Approx(1.0).epsilon(1e-15));
+
+  // A directory without summary.json is invalid input, and nothing is written.
+  fs::create_directories(dir / "empty");
+  CHECK(RunDeb("compare empty " + budget + " -q --out none", dir) == 3);
+  CHECK(ReadAll(dir / "stderr.txt").find("summary.json") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "none"));
+  fs::remove_all(dir);
+}

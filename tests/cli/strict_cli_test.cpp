@@ -1,0 +1,98 @@
+// deb run --strict: a failed requirement becomes exit code 5 (for CI), the
+// report is still written and names the allocation factor of every contributor.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int exit_code = -1;
+  std::string err;
+};
+
+std::string ReadAll(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("deb_strict_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+Result RunDeb(const std::string& args, const fs::path& dir) {
+  const std::string cmd =
+      std::string("\"") + DEB_BINARY + "\" " + args + " > /dev/null 2> \"" + (dir / "stderr").string() + "\"";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadAll(dir / "stderr")};
+}
+
+// The single-axis example with its velocity requirement replaced.
+fs::path BudgetWithVelocityLimit(const fs::path& dir, const std::string& limit) {
+  std::string text = ReadAll(std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml");
+  const std::string key = "rms_max: 20";
+  REQUIRE(text.find(key) != std::string::npos);
+  text.replace(text.find(key), key.size(), "rms_max: " + limit);
+  const fs::path p = dir / "budget.yaml";
+  std::ofstream(p) << text;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("run --strict exits with code 5 when a requirement fails, and still writes the report") {
+  const fs::path dir = TempDir("fail");
+  const fs::path budget = BudgetWithVelocityLimit(dir, "0.001");
+  const Result lenient = RunDeb("run " + budget.string() + " --no-plots -q --out " + (dir / "a").string(), dir);
+  CHECK(lenient.exit_code == 0);
+  const Result strict =
+      RunDeb("run " + budget.string() + " --strict --no-plots -q --out " + (dir / "b").string(), dir);
+  CHECK(strict.exit_code == 5);
+  CHECK(strict.err.find("fail their requirement") != std::string::npos);
+  const auto j = nlohmann::json::parse(ReadAll(dir / "b" / "summary.json"));
+  CHECK(j["pass"] == false);
+  const auto& velocity = j["outputs"][0];
+  CHECK(velocity["requirement"]["pass"] == false);
+  CHECK(velocity["requirement"]["margin"].get<double>() < 0.0);
+  // 0.001 um/s is below what either contributor gives alone: no factor, a reason instead.
+  for (const auto& c : velocity["contributors"]) {
+    CHECK(c["allocation_factor"].is_null());
+    CHECK(c["allocation_note"].get<std::string>().find("other contributors") != std::string::npos);
+  }
+  CHECK(ReadAll(dir / "b" / "report.md").find("allocation k") != std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("run --strict exits with 0 when every requirement is met, and reports allocation factors above 1") {
+  const fs::path dir = TempDir("pass");
+  const fs::path budget = BudgetWithVelocityLimit(dir, "1000");
+  const Result r = RunDeb("run " + budget.string() + " --strict --no-plots -q --out " + (dir / "r").string(), dir);
+  CHECK(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(ReadAll(dir / "r" / "summary.json"));
+  const auto& velocity = j["outputs"][0];
+  REQUIRE(velocity["requirement"]["pass"] == true);
+  const double limit2 = 1000.0 * 1000.0, total = velocity["variance"].get<double>();
+  for (const auto& c : velocity["contributors"]) {
+    const double own = c["variance"].get<double>();
+    REQUIRE(c["allocation_factor"].is_number());
+    CHECK(c["allocation_factor"].get<double>() > 1.0);
+    CHECK(c["allocation_factor"].get<double>() == doctest::Approx((limit2 - (total - own)) / own).epsilon(1e-12));
+    CHECK(c["allocation_note"].is_null());
+  }
+  fs::remove_all(dir);
+}

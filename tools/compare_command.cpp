@@ -1,0 +1,154 @@
+#include "tools/compare_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "deb/budget/comparison.h"
+#include "deb/budget/engine.h"
+#include "deb/core/error.h"
+#include "deb/io/budget_yaml.h"
+#include "deb/io/comparison_files.h"
+#include "deb/io/result_writer.h"
+#include "deb/report/plot.h"
+#include "deb/report/report_tables.h"
+
+namespace deb::tools {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CompareSettings {
+  std::vector<std::string> inputs;
+  std::string out_dir;
+  int threads = 0;
+  bool quiet = false;
+};
+
+CompareSettings& Settings() {
+  static CompareSettings settings;
+  return settings;
+}
+
+// A budget file is evaluated; a directory (or a summary.json) is read.
+ResultFigures Load(const std::string& input, int threads) {
+  const fs::path p(input);
+  if (fs::is_directory(p)) {
+    const fs::path summary = p / "summary.json";
+    if (!fs::exists(summary))
+      throw InputError(input + ": a directory given to compare must hold summary.json (written by deb run)");
+    return ReadSummaryFigures(summary.string(), p.filename().empty() ? p.parent_path().filename().string()
+                                                                     : p.filename().string());
+  }
+  if (p.extension() == ".json") return ReadSummaryFigures(input, p.parent_path().filename().string());
+  const Budget budget = LoadBudgetFile(input);
+  EngineOptions options;
+  options.threads = threads;
+  return FiguresOf(budget.name, Evaluate(budget, options));
+}
+
+std::string Ratio(const ComparedFigure& f) { return f.ratio ? report::Sig(*f.ratio, 4) : "–"; }
+
+std::string Markdown(const Comparison& cmp) {
+  std::ostringstream md;
+  md << "# Comparison: " << cmp.label_a << " (A) vs " << cmp.label_b << " (B)\n\n"
+     << "RMS per output, contributor and band; difference B − A in the output's unit; ratio B / A.\n\n";
+  std::string current;
+  report::Table t;
+  auto flush = [&] {
+    if (!t.rows.empty()) md << "## " << t.title << "\n\n" << report::ToMarkdown(t) << "\n";
+    t = report::Table();
+  };
+  for (const ComparedFigure& f : cmp.figures) {
+    if (f.output != current) {
+      flush();
+      current = f.output;
+      t.title = f.output + " [" + report::UnitText(f.unit) + "]";
+      t.header = {"contributor", "band", "A: " + cmp.label_a, "B: " + cmp.label_b, "B − A", "B / A"};
+      t.numeric = {false, false, true, true, true, true};
+    }
+    t.rows.push_back({f.contributor, f.band.empty() ? "whole grid" : f.band, report::Sig(f.rms_a, 4),
+                      report::Sig(f.rms_b, 4), report::Sig(f.difference, 4), Ratio(f)});
+    const bool total = f.contributor == "total";
+    t.emphasis.push_back(std::vector<bool>(6, total && f.band.empty()));
+  }
+  flush();
+  report::Table largest;
+  largest.title = "Contributors that changed most";
+  largest.header = {"output", "contributor", "A", "B", "B / A", "variance change / total"};
+  largest.numeric = {false, false, true, true, true, true};
+  for (const ComparedFigure& f : cmp.LargestChanges())
+    largest.rows.push_back({f.output, f.contributor, report::Sig(f.rms_a, 4), report::Sig(f.rms_b, 4), Ratio(f),
+                            report::Sig(100.0 * f.variance_change_of_total, 3) + " %"});
+  md << "## " << largest.title << "\n\n" << report::ToMarkdown(largest) << "\n";
+  if (!cmp.unmatched.empty()) {
+    md << "## Not compared\n\n";
+    for (const std::string& s : cmp.unmatched) md << "- " << s << "\n";
+  }
+  return md.str();
+}
+
+std::string Safe(const std::string& label) {
+  std::string s = label;
+  for (char& ch : s)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.')) ch = '_';
+  return s;
+}
+
+void WriteComparison(const Comparison& cmp, const std::string& out_dir) {
+  WriteDirectoryAtomically(out_dir, [&](const std::string& dir) {
+    const std::vector<std::pair<std::string, std::string>> files = {
+        {"compare.json", ComparisonJson(cmp)}, {"compare.md", Markdown(cmp)}, {"compare.csv", ComparisonCsv(cmp)}};
+    for (const auto& [name, text] : files) {
+      std::ofstream out(fs::path(dir) / name, std::ios::binary);
+      out << text;
+      if (!out) throw InputError(dir + "/" + name + ": cannot be written");
+    }
+  });
+}
+
+}  // namespace
+
+CLI::App* AddCompareCommand(CLI::App& app) {
+  CompareSettings& s = Settings();
+  CLI::App* c = app.add_subcommand(
+      "compare", "Compare budgets or result directories: RMS per output, contributor and band, B - A and B / A");
+  c->add_option("inputs", s.inputs, "Budget YAML files or result directories (summary.json); the first is A")
+      ->required()
+      ->expected(2, 1000)
+      ->check(CLI::ExistingPath);
+  c->add_option("--out,-o", s.out_dir, "Report directory, for two inputs (default: reports/compare_<A>_vs_<B>)");
+  c->add_option("--threads,-j", s.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
+  return c;
+}
+
+int RunCompareCommand(const CLI::App& /*compare*/) {
+  const CompareSettings& s = Settings();
+  if (!s.out_dir.empty() && s.inputs.size() != 2)
+    throw InputError("--out names one directory: give exactly two inputs, or leave --out out");
+  const ResultFigures a = Load(s.inputs[0], s.threads);
+  for (std::size_t i = 1; i < s.inputs.size(); ++i) {
+    const ResultFigures b = Load(s.inputs[i], s.threads);
+    const Comparison cmp = Compare(a, b);
+    const std::string dir = s.out_dir.empty()
+                                ? (fs::path("reports") / ("compare_" + Safe(a.label) + "_vs_" + Safe(b.label))).string()
+                                : s.out_dir;
+    WriteComparison(cmp, dir);
+    if (s.quiet) continue;
+    std::printf("%s (A) vs %s (B):\n", a.label.c_str(), b.label.c_str());
+    for (const ComparedFigure& f : cmp.figures)
+      if (f.contributor == "total" && f.band.empty())
+        std::printf("  %-24s rms %12.6g -> %12.6g %s  (B/A %s)\n", f.output.c_str(), f.rms_a, f.rms_b,
+                    f.unit.c_str(), Ratio(f).c_str());
+    for (const std::string& u : cmp.unmatched) std::printf("  not compared: %s\n", u.c_str());
+    std::printf("report: %s\n", dir.c_str());
+  }
+  return 0;
+}
+
+}  // namespace deb::tools
