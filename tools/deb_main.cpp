@@ -23,6 +23,7 @@
 #include "deb/units/unit.h"
 #include "tools/compare_command.h"
 #include "tools/spectrum_command.h"
+#include "tools/sweep_command.h"
 
 namespace {
 
@@ -177,6 +178,7 @@ int main(int argc, char** argv) {
 
   CLI::App* spectrum = deb::tools::AddSpectrumCommand(app);
   CLI::App* compare = deb::tools::AddCompareCommand(app);
+  CLI::App* sweep = deb::tools::AddSweepCommand(app);
 
   try {
     app.parse(argc, argv);
@@ -190,6 +192,7 @@ int main(int argc, char** argv) {
     if (*model) return Model(model_file);
     if (*spectrum) return deb::tools::RunSpectrumCommand(*spectrum);
     if (*compare) return deb::tools::RunCompareCommand(*compare);
+    if (*sweep) return deb::tools::RunSweepCommand(*sweep);
   } catch (const deb::InputError& e) {
     std::fprintf(stderr, "deb: error: %s\n", e.what());
     return kExitInput;

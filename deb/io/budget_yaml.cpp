@@ -102,7 +102,8 @@ Band ParseBand(const YamlNode& node) {
 
 Budget Load(const YamlReader& reader, const std::string& base_dir) {
   const YamlNode root = reader.Root();
-  root.AllowOnly({"name", "description", "grid", "sources", "paths", "contributors", "outputs", "bands"});
+  // sweep: read by deb sweep (deb/io/sweep_yaml.h); a run evaluates the budget as written.
+  root.AllowOnly({"name", "description", "grid", "sources", "paths", "contributors", "outputs", "bands", "sweep"});
   Budget b;
   b.source_file = reader.name();
   b.name = root.Required("name").AsString();

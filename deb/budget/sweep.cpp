@@ -1,0 +1,140 @@
+#include "deb/budget/sweep.h"
+
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/core/parallel.h"
+
+namespace deb {
+
+SweepMode ParseSweepMode(const std::string& text) {
+  if (text == "grid") return SweepMode::kGrid;
+  if (text == "zip") return SweepMode::kZip;
+  throw InputError("sweep mode '" + text + "' is not known; allowed: grid, zip");
+}
+
+std::string ToString(SweepMode mode) { return mode == SweepMode::kGrid ? "grid" : "zip"; }
+
+std::vector<std::vector<double>> SweepSpec::Variants() const {
+  std::vector<std::vector<double>> rows;
+  if (parameters.empty()) return rows;
+  for (const auto& p : parameters) DEB_DEMAND(!p.values.empty());
+  if (mode == SweepMode::kZip) {
+    const std::size_t n = parameters[0].values.size();
+    for (const auto& p : parameters) DEB_DEMAND(p.values.size() == n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<double> row;
+      for (const auto& p : parameters) row.push_back(p.values[i]);
+      rows.push_back(row);
+    }
+    return rows;
+  }
+  std::vector<std::size_t> index(parameters.size(), 0);
+  while (true) {
+    std::vector<double> row;
+    for (std::size_t k = 0; k < parameters.size(); ++k) row.push_back(parameters[k].values[index[k]]);
+    rows.push_back(row);
+    std::size_t k = parameters.size();
+    while (k > 0) {  // odometer: the last parameter fastest
+      --k;
+      if (++index[k] < parameters[k].values.size()) break;
+      index[k] = 0;
+      if (k == 0) return rows;
+    }
+  }
+}
+
+std::vector<double> LinearRange(double from, double to, int count) {
+  if (count < 1) throw InputError("a range needs count >= 1, got " + std::to_string(count));
+  if (count == 1) return {from};
+  std::vector<double> v(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) v[static_cast<std::size_t>(i)] = from + (to - from) * i / (count - 1);
+  v.back() = to;
+  return v;
+}
+
+std::vector<double> LogRange(double from, double to, int count) {
+  if (!(from > 0.0 && to > 0.0)) {
+    std::ostringstream os;
+    os << "a log range needs ends > 0, got from " << from << " to " << to;
+    throw InputError(os.str());
+  }
+  std::vector<double> v = LinearRange(std::log(from), std::log(to), count);
+  for (double& x : v) x = std::exp(x);
+  v.front() = from;
+  if (count > 1) v.back() = to;
+  return v;
+}
+
+std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector<Budget>& variants, int threads,
+                                        const std::function<void(std::size_t, std::size_t)>& progress) {
+  const auto values = spec.Variants();
+  DEB_DEMAND(values.size() == variants.size());
+  std::vector<BudgetResult> results(variants.size());
+  std::atomic<std::size_t> done{0};
+  std::mutex progress_mutex;
+  EngineOptions options;
+  options.threads = 1;  // parallel across variants, not within
+  // One variant per block: variants differ in cost (grid refinement).
+  ParallelFor(
+      variants.size(),
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+          try {
+            results[i] = Evaluate(variants[i], options);
+          } catch (const InputError& e) {
+            std::ostringstream os;
+            os << "sweep variant " << i + 1 << " (";
+            for (std::size_t k = 0; k < spec.parameters.size(); ++k)
+              os << (k ? ", " : "") << spec.parameters[k].key_path << " = " << values[i][k];
+            os << "): " << e.what();
+            throw InputError(os.str());
+          }
+          const std::size_t n = ++done;
+          if (progress) {
+            const std::lock_guard<std::mutex> lock(progress_mutex);
+            progress(n, variants.size());
+          }
+        }
+      },
+      threads);
+  return results;
+}
+
+std::string SweepCsv(const SweepSpec& spec, const std::vector<BudgetResult>& results) {
+  const auto values = spec.Variants();
+  DEB_DEMAND(values.size() == results.size());
+  auto field = [](const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+  };
+  std::ostringstream os;
+  os.precision(10);
+  bool first = true;
+  for (const auto& p : spec.parameters) {
+    os << (first ? "" : ",") << field(p.key_path);
+    first = false;
+  }
+  if (!results.empty())
+    for (const auto& o : results[0].outputs) {
+      os << "," << field(o.name + ".rms");
+      for (const auto& c : o.contributors) os << "," << field(o.name + "." + c.name + ".rms");
+    }
+  os << "\n";
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    for (std::size_t k = 0; k < values[i].size(); ++k) os << (k ? "," : "") << values[i][k];
+    for (const auto& o : results[i].outputs) {
+      os << "," << o.rms();
+      for (const auto& c : o.contributors) os << "," << std::sqrt(c.variance);
+    }
+    os << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace deb

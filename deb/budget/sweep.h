@@ -1,0 +1,55 @@
+// Parameter sweeps: one budget evaluated over a set of values of some of its
+// numeric parameters (an isolator's height, the skyhook gains, a source
+// level), named by key path as in error messages, e.g.
+// "paths[0].isolators[*].position[2]". Values come as lists or linear / log
+// ranges, combined as a full grid (every combination; the last parameter
+// varies fastest) or zipped (the i-th value of every parameter together).
+// The YAML loader builds the variants (deb/io/sweep_yaml.h); the results
+// become one CSV row per variant.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "deb/budget/engine.h"
+
+namespace deb {
+
+enum class SweepMode { kGrid, kZip };
+SweepMode ParseSweepMode(const std::string& text);  // @throws InputError listing allowed values
+std::string ToString(SweepMode mode);
+
+struct SweepParameter {
+  std::string key_path;        // into the budget file; [*] means every element
+  std::vector<double> values;  // not empty
+};
+
+struct SweepSpec {
+  SweepMode mode = SweepMode::kGrid;
+  std::vector<SweepParameter> parameters;
+
+  // One row per variant, one value per parameter. DEB_DEMANDs non-empty
+  // values and, for kZip, equal lengths (the loader checks both).
+  std::vector<std::vector<double>> Variants() const;
+};
+
+// count values from `from` to `to` inclusive, evenly spaced (linear) or
+// evenly spaced in log (both ends > 0). @throws InputError for count < 1 or
+// log ends <= 0.
+std::vector<double> LinearRange(double from, double to, int count);
+std::vector<double> LogRange(double from, double to, int count);
+
+// Evaluates every variant budget, `threads` variants at a time (each
+// single-threaded inside). progress(done, total) is called after each
+// variant from the worker that finished it (may be empty).
+// @throws InputError of the first variant that fails, naming its values.
+std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector<Budget>& variants, int threads,
+                                        const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// CSV: one row per variant: the parameter values, then per output its RMS
+// and the RMS of every contributor ("<output>.rms", "<output>.<contributor>.rms").
+std::string SweepCsv(const SweepSpec& spec, const std::vector<BudgetResult>& results);
+
+}  // namespace deb

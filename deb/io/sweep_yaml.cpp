@@ -1,0 +1,203 @@
+#include "deb/io/sweep_yaml.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/io/budget_yaml.h"
+#include "deb/io/yaml_reader.h"
+
+namespace deb {
+namespace {
+
+using io::YamlNode;
+using io::YamlReader;
+
+// One step of a key path: a map key, or an index (-1: every element).
+struct Step {
+  std::string key;
+  long index = 0;
+  bool is_key = true;
+};
+
+std::vector<Step> ParseKeyPath(const YamlNode& node) {
+  const std::string path = node.AsString();
+  std::vector<Step> steps;
+  std::size_t i = 0;
+  auto fail = [&](const std::string& why) {
+    node.Fail("key path '" + path + "': " + why + " (write e.g. paths[0].isolators[*].position[2])");
+  };
+  while (i < path.size()) {
+    std::string key;
+    while (i < path.size() && path[i] != '.' && path[i] != '[') key += path[i++];
+    if (key.empty()) fail("empty key at character " + std::to_string(i + 1));
+    steps.push_back({key, 0, true});
+    while (i < path.size() && path[i] == '[') {
+      const std::size_t close = path.find(']', i);
+      if (close == std::string::npos) fail("'[' without ']'");
+      const std::string inside = path.substr(i + 1, close - i - 1);
+      if (inside == "*") {
+        steps.push_back({"", -1, false});
+      } else {
+        if (inside.empty() || inside.find_first_not_of("0123456789") != std::string::npos)
+          fail("index '" + inside + "' is neither a number nor *");
+        steps.push_back({"", std::stol(inside), false});
+      }
+      i = close + 1;
+    }
+    if (i < path.size()) {
+      if (path[i] != '.') fail("unexpected '" + std::string(1, path[i]) + "'");
+      ++i;
+      if (i == path.size()) fail("ends with '.'");
+    }
+  }
+  if (steps.empty()) fail("empty");
+  return steps;
+}
+
+std::string Text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+bool IsNumber(const YAML::Node& n) {
+  if (!n.IsScalar()) return false;
+  double d;
+  return YAML::convert<double>::decode(n, d);
+}
+
+// Writes v at every node the steps reach from n; `where` is the path so far.
+// Returns an empty string or why the path does not reach a number.
+std::string Assign(YAML::Node n, const std::vector<Step>& steps, std::size_t s, double v, const std::string& where) {
+  if (s == steps.size()) {
+    if (IsNumber(n)) {
+      n = Text(v);
+      return "";
+    }
+    if (n.IsSequence() && n.size() > 0) {
+      for (std::size_t k = 0; k < n.size(); ++k)
+        if (!IsNumber(n[k])) return where + " is a list that holds something other than numbers";
+      for (std::size_t k = 0; k < n.size(); ++k) n[k] = Text(v);
+      return "";
+    }
+    return where + " is not a number or a list of numbers";
+  }
+  const Step& step = steps[s];
+  if (step.is_key) {
+    if (!n.IsMap()) return where + " is not a map, so it has no key '" + step.key + "'";
+    const YAML::Node& cn = n;
+    if (!cn[step.key]) {
+      std::string keys;
+      for (const auto& kv : n) keys += (keys.empty() ? "" : ", ") + kv.first.as<std::string>();
+      return (where.empty() ? std::string("the budget") : where) + " has no key '" + step.key + "' (it has: " + keys +
+             ")";
+    }
+    return Assign(n[step.key], steps, s + 1, v, where.empty() ? step.key : where + "." + step.key);
+  }
+  if (!n.IsSequence()) return where + " is not a list, so it has no element [" + (step.index < 0 ? std::string("*") : std::to_string(step.index)) + "]";
+  if (step.index >= 0) {
+    if (static_cast<std::size_t>(step.index) >= n.size())
+      return where + " has " + std::to_string(n.size()) + " element(s), so no [" + std::to_string(step.index) + "]";
+    return Assign(n[static_cast<std::size_t>(step.index)], steps, s + 1, v, where + "[" + std::to_string(step.index) + "]");
+  }
+  if (n.size() == 0) return where + " is an empty list: [*] reaches nothing";
+  for (std::size_t k = 0; k < n.size(); ++k) {
+    const std::string why = Assign(n[k], steps, s + 1, v, where + "[" + std::to_string(k) + "]");
+    if (!why.empty()) return why;
+  }
+  return "";
+}
+
+std::vector<double> ParseValues(const YamlNode& p) {
+  int given = 0;
+  for (const char* k : {"values", "linear", "log"}) given += p.Has(k) ? 1 : 0;
+  if (given != 1) p.Fail("give exactly one of values, linear, log");
+  if (auto v = p.Optional("values")) {
+    std::vector<double> values = v->AsDoubles();
+    if (values.empty()) v->Fail("the list of values is empty");
+    return values;
+  }
+  const bool log = p.Has("log");
+  const YamlNode r = p.Required(log ? "log" : "linear");
+  r.AllowOnly({"from", "to", "count"});
+  const double from = r.Required("from").AsDouble(), to = r.Required("to").AsDouble();
+  const YamlNode count = r.Required("count");
+  const int n = count.AsInt();
+  if (n < 1) count.Fail("count " + std::to_string(n) + " gives an empty range; need count >= 1");
+  return io::AtNode(r, [&] { return log ? LogRange(from, to, n) : LinearRange(from, to, n); });
+}
+
+SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::string& base_dir) {
+  const YamlNode root = reader.Root();
+  const YamlNode sweep = root.Required("sweep");
+  sweep.AllowOnly({"mode", "parameters"});
+  SweepBudget out;
+  if (auto m = sweep.Optional("mode")) out.spec.mode = io::AtNode(*m, [&] { return ParseSweepMode(m->AsString()); });
+  const YamlNode params = sweep.Required("parameters");
+  std::vector<std::vector<Step>> steps;
+  std::vector<YamlNode> path_nodes;
+  for (const YamlNode& p : params.Elements()) {
+    p.AllowOnly({"path", "values", "linear", "log"});
+    const YamlNode path = p.Required("path");
+    steps.push_back(ParseKeyPath(path));
+    path_nodes.push_back(path);
+    out.spec.parameters.push_back({path.AsString(), ParseValues(p)});
+  }
+  if (out.spec.parameters.empty()) params.Fail("no parameters to sweep");
+  if (out.spec.mode == SweepMode::kZip)
+    for (std::size_t k = 1; k < out.spec.parameters.size(); ++k)
+      if (out.spec.parameters[k].values.size() != out.spec.parameters[0].values.size())
+        params.Elements()[k].Fail("zipped parameters need equally many values: " +
+                                  std::to_string(out.spec.parameters[k].values.size()) + " here, " +
+                                  std::to_string(out.spec.parameters[0].values.size()) + " for the first");
+  YAML::Node base = YAML::Clone(raw);
+  base.remove("sweep");
+  // Check every path once (with its first value) before building variants.
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    YAML::Node probe = YAML::Clone(base);
+    const std::string why = Assign(probe, steps[k], 0, out.spec.parameters[k].values[0], "");
+    if (!why.empty()) path_nodes[k].Fail("key path '" + out.spec.parameters[k].key_path + "' does not reach a number: " + why);
+  }
+  const auto rows = out.spec.Variants();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    YAML::Node v = YAML::Clone(base);
+    for (std::size_t k = 0; k < steps.size(); ++k) Assign(v, steps[k], 0, rows[i][k], "");
+    YAML::Emitter emitter;
+    emitter << v;
+    std::ostringstream label;
+    label << reader.name() << " (sweep variant " << i + 1 << ":";
+    for (std::size_t k = 0; k < steps.size(); ++k)
+      label << " " << out.spec.parameters[k].key_path << " = " << rows[i][k];
+    label << ")";
+    out.variants.push_back(LoadBudgetText(emitter.c_str(), label.str(), base_dir));
+  }
+  out.name = out.variants.front().name;
+  return out;
+}
+
+}  // namespace
+
+SweepBudget LoadSweepFile(const std::string& path) {
+  const YamlReader reader = YamlReader::FromFile(path);
+  YAML::Node raw;
+  try {
+    raw = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw InputError(path + ": " + e.what());
+  }
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return Load(reader, raw, dir.empty() ? "." : dir);
+}
+
+SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir) {
+  const YamlReader reader = YamlReader::FromString(text, name);
+  return Load(reader, YAML::Load(text), base_dir);
+}
+
+}  // namespace deb

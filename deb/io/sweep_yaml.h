@@ -1,0 +1,38 @@
+// Budgets with a `sweep` section: the section names numeric parameters by
+// key path and their values; every variant is the budget file with those
+// values written in, loaded as any budget is (so every rule still applies).
+//
+//   sweep:
+//     mode: grid                                  # grid (every combination) | zip
+//     parameters:
+//       - {path: "paths[0].isolators[*].position[2]", linear: {from: 0, to: -300, count: 7}}
+//       - {path: "paths[0].control.gains", values: [0, 50, 100, 200]}
+//       - {path: "sources[1].spectrum.level", log: {from: 1, to: 100, count: 5}}
+//
+// A path segment is a map key with optional [i] (an element) or [*] (every
+// element). The value it reaches must be a number, or a list of numbers
+// (then every element is set).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/budget/sweep.h"
+
+namespace deb {
+
+struct SweepBudget {
+  std::string name;               // the budget's name
+  SweepSpec spec;
+  std::vector<Budget> variants;   // one per spec.Variants() row, in that order
+};
+
+// @throws InputError "file:line:col: sweep....: ..." for a missing section, a
+//         key path that does not reach a number, an empty range, zipped
+//         lists of different lengths; and a variant's own load errors,
+//         naming the variant.
+SweepBudget LoadSweepFile(const std::string& path);
+SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir = ".");
+
+}  // namespace deb

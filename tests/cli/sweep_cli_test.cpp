@@ -1,0 +1,42 @@
+// deb sweep on the shipped thesis sweep: h = 0...300 mm x K_v = 0...200.
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+TEST_CASE("deb sweep of the thesis case study writes one row per variant; K_v = 0 has no sensor-noise term") {
+  const fs::path dir = fs::temp_directory_path() / ("deb_sweep_cli_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string cmd = std::string("\"") + DEB_BINARY + "\" sweep " + DEB_SOURCE_DIR +
+                          "/budgets/nizamoglu2015_sweep.yaml -q --out \"" + dir.string() + "\"";
+  const int status = std::system(cmd.c_str());
+  REQUIRE((WIFEXITED(status) && WEXITSTATUS(status) == 0));
+  std::ifstream in(dir / "sweep.csv");
+  std::string line;
+  std::vector<std::string> lines;
+  while (std::getline(in, line)) lines.push_back(line);
+  REQUIRE(lines.size() == 1 + 7 * 5);
+  CHECK(lines[0].rfind("paths[0].isolators[*].position[2],paths[0].control.gains,z_velocity.rms,"
+                       "z_velocity.floor.rms,z_velocity.sensor_noise.rms,",
+                       0) == 0);
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    std::stringstream row(lines[i]);
+    std::vector<double> v;
+    std::string cell;
+    while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
+    REQUIRE(v.size() > 4);
+    if (v[1] == 0.0) CHECK(v[4] == 0.0);  // passive: the sensor-noise path is zero
+    else CHECK(v[4] > 5.0);               // about 11 um/s at K_v = 50 (thesis Table 5-4)
+    if (v[0] == -200.0 && v[1] == 50.0) CHECK(std::abs(v[4] - 11.1981) < 0.01);
+  }
+  fs::remove_all(dir);
+}

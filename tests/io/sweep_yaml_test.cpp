@@ -1,0 +1,118 @@
+#include "deb/io/sweep_yaml.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "deb/budget/engine.h"
+#include "deb/core/error.h"
+#include "deb/io/budget_yaml.h"
+
+namespace deb {
+namespace {
+
+// A budget with a sweep over a source level and a path coefficient.
+const char* kSweep = R"(name: sweep_test
+grid: {type: log, min_hz: 0.1, max_hz: 100, points: 400}
+sources:
+  - name: noise
+    unit: um/s
+    spectrum: {type: flat, level: 2}
+paths:
+  - name: lowpass
+    type: transfer_function
+    num: [1]
+    den: [0.01, 1]
+    input_unit: um/s
+    output_unit: um/s
+    outputs: [v]
+contributors:
+  - {name: sensor, source: noise, path: lowpass}
+outputs:
+  - {name: velocity, signal: v, unit: um/s}
+sweep:
+  mode: grid
+  parameters:
+    - {path: "sources[0].spectrum.level", values: [1, 4]}
+    - {path: "paths[0].den[0]", log: {from: 0.001, to: 0.1, count: 3}}
+)";
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE_MESSAGE(at != std::string::npos, from);
+  return text.replace(at, from.size(), to);
+}
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    LoadSweepText(text, "s.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("every sweep variant gives the figures of the budget written out by hand with its values") {
+  const SweepBudget sweep = LoadSweepText(kSweep, "s.yaml");
+  REQUIRE(sweep.variants.size() == 6);  // 2 x 3, the last parameter fastest
+  const auto rows = sweep.spec.Variants();
+  CHECK(rows[1] == std::vector<double>{1.0, sweep.spec.parameters[1].values[1]});
+  CHECK(sweep.spec.parameters[1].values[1] == doctest::Approx(0.01).epsilon(1e-15));
+  const auto results = EvaluateSweep(sweep.spec, sweep.variants, 2);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    CAPTURE(i);
+    char den[64];
+    std::snprintf(den, sizeof den, "den: [%.17g, 1]", rows[i][1]);
+    std::string text = Replace(kSweep, "level: 2", "level: " + std::to_string(static_cast<int>(rows[i][0])));
+    text = Replace(text, "den: [0.01, 1]", den);
+    text = text.substr(0, text.find("sweep:"));
+    const BudgetResult single = Evaluate(LoadBudgetText(text, "b.yaml"));
+    CHECK(results[i].outputs[0].variance == doctest::Approx(single.outputs[0].variance).epsilon(1e-14));
+    // White noise through 1/(tau s + 1): variance S0 / (4 tau) minus what lies outside 0.1-100 Hz.
+    CHECK(results[i].outputs[0].variance < rows[i][0] / (4.0 * rows[i][1]));
+  }
+  const std::string csv = SweepCsv(sweep.spec, results);
+  CHECK(csv.rfind("sources[0].spectrum.level,paths[0].den[0],velocity.rms,velocity.sensor.rms\n", 0) == 0);
+}
+
+TEST_CASE("zipped parameters pair their values; a [*] path sets every element") {
+  std::string text = Replace(kSweep, "mode: grid", "mode: zip");
+  text = Replace(text, "log: {from: 0.001, to: 0.1, count: 3}", "values: [0.02, 0.03]");
+  text = Replace(text, "\"paths[0].den[0]\"", "\"paths[0].den[*]\"");
+  const SweepBudget sweep = LoadSweepText(text, "s.yaml");
+  REQUIRE(sweep.variants.size() == 2);
+  // den [0.03, 0.03]: 0.03 / (0.03 s + 0.03) has the DC gain 1.
+  const StateSpace& sys = sweep.variants[1].paths[0].system;
+  CHECK(-sys.A()(0, 0) == doctest::Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("bad key paths, empty ranges and unequal zipped lists are errors at their position") {
+  CHECK(ErrorOf(Replace(kSweep, "sources[0].spectrum.level", "sources[0].spectrum.lvl"))
+            .rfind("s.yaml:22:14: sweep.parameters[0].path: key path 'sources[0].spectrum.lvl' does not reach a "
+                   "number: sources[0].spectrum has no key 'lvl'",
+                   0) == 0);
+  CHECK(ErrorOf(Replace(kSweep, "sources[0].spectrum.level", "sources[3].spectrum.level"))
+            .find("sources has 1 element(s), so no [3]") != std::string::npos);
+  CHECK(ErrorOf(Replace(kSweep, "sources[0].spectrum.level", "sources[0].spectrum"))
+            .find("is not a number or a list of numbers") != std::string::npos);
+  CHECK(ErrorOf(Replace(kSweep, "sources[0].spectrum.level", "sources[0.spectrum"))
+            .find("'[' without ']'") != std::string::npos);
+  CHECK(ErrorOf(Replace(kSweep, "values: [1, 4]", "values: []")).find("sweep.parameters[0].values: the list of values is empty") !=
+        std::string::npos);
+  CHECK(ErrorOf(Replace(kSweep, "count: 3", "count: 0")).find("sweep.parameters[1].log.count: count 0 gives an empty range") !=
+        std::string::npos);
+  CHECK(ErrorOf(Replace(kSweep, "mode: grid", "mode: zip")).find("equally many values") != std::string::npos);
+  CHECK(ErrorOf(Replace(kSweep, "mode: grid", "mode: all")).find("allowed: grid, zip") != std::string::npos);
+  CHECK(ErrorOf(Replace(kSweep, "    - {path: \"sources[0].spectrum.level\", values: [1, 4]}\n", ""))
+            .find("(no error)") != std::string::npos);  // one parameter is a sweep too
+}
+
+TEST_CASE("a budget with a sweep section runs as written") {
+  const Budget b = LoadBudgetText(kSweep, "s.yaml");
+  CHECK(b.sources[0].spectrum->Psd(1.0)(0) == 2.0);
+}
+
+}  // namespace deb

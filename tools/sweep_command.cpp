@@ -1,0 +1,65 @@
+#include "tools/sweep_command.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "deb/budget/sweep.h"
+#include "deb/core/error.h"
+#include "deb/io/result_writer.h"
+#include "deb/io/sweep_yaml.h"
+
+namespace deb::tools {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SweepSettings {
+  std::string budget_file;
+  std::string out_dir;
+  int threads = 0;
+  bool quiet = false;
+};
+
+SweepSettings& Settings() {
+  static SweepSettings settings;
+  return settings;
+}
+
+}  // namespace
+
+CLI::App* AddSweepCommand(CLI::App& app) {
+  SweepSettings& s = Settings();
+  CLI::App* c = app.add_subcommand("sweep", "Evaluate every variant of a budget's sweep section; write sweep.csv");
+  c->add_option("budget", s.budget_file, "Budget YAML file with a sweep section")->required()->check(CLI::ExistingFile);
+  c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_sweep)");
+  c->add_option("--threads,-j", s.threads, "Variants evaluated at once (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
+  return c;
+}
+
+int RunSweepCommand(const CLI::App& /*sweep*/) {
+  const SweepSettings& s = Settings();
+  const SweepBudget sweep = LoadSweepFile(s.budget_file);
+  const bool progress = !s.quiet && ::isatty(STDERR_FILENO);
+  const auto results = EvaluateSweep(sweep.spec, sweep.variants, s.threads, [&](std::size_t done, std::size_t total) {
+    if (progress) std::fprintf(stderr, "\rdeb: sweep %zu/%zu variants", done, total);
+  });
+  if (progress) std::fprintf(stderr, "\n");
+  const std::string csv = SweepCsv(sweep.spec, results);
+  const std::string dir = s.out_dir.empty() ? (fs::path("reports") / (sweep.name + "_sweep")).string() : s.out_dir;
+  WriteDirectoryAtomically(dir, [&](const std::string& tmp) {
+    std::ofstream out(fs::path(tmp) / "sweep.csv", std::ios::binary);
+    out << csv;
+    if (!out) throw InputError(tmp + "/sweep.csv: cannot be written");
+  });
+  if (!s.quiet) std::printf("sweep of %s: %zu variants\nreport: %s/sweep.csv\n", sweep.name.c_str(), results.size(),
+                            dir.c_str());
+  return 0;
+}
+
+}  // namespace deb::tools
