@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "deb/io/budget_yaml.h"
 #include "deb/io/comparison_files.h"
 #include "deb/io/result_writer.h"
+#include "deb/report/overlay_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/report_tables.h"
 
@@ -27,6 +29,13 @@ struct CompareSettings {
   std::string out_dir;
   int threads = 0;
   bool quiet = false;
+  bool plots = true;
+};
+
+// Figures, and the full result where the input was a budget (for plots).
+struct Loaded {
+  ResultFigures figures;
+  std::optional<BudgetResult> result;
 };
 
 CompareSettings& Settings() {
@@ -35,25 +44,28 @@ CompareSettings& Settings() {
 }
 
 // A budget file is evaluated; a directory (or a summary.json) is read.
-ResultFigures Load(const std::string& input, int threads) {
+Loaded Load(const std::string& input, int threads) {
   const fs::path p(input);
   if (fs::is_directory(p)) {
     const fs::path summary = p / "summary.json";
     if (!fs::exists(summary))
       throw InputError(input + ": a directory given to compare must hold summary.json (written by deb run)");
-    return ReadSummaryFigures(summary.string(), p.filename().empty() ? p.parent_path().filename().string()
-                                                                     : p.filename().string());
+    return {ReadSummaryFigures(summary.string(), p.filename().empty() ? p.parent_path().filename().string()
+                                                                      : p.filename().string()),
+            std::nullopt};
   }
-  if (p.extension() == ".json") return ReadSummaryFigures(input, p.parent_path().filename().string());
+  if (p.extension() == ".json") return {ReadSummaryFigures(input, p.parent_path().filename().string()), std::nullopt};
   const Budget budget = LoadBudgetFile(input);
   EngineOptions options;
   options.threads = threads;
-  return FiguresOf(budget.name, Evaluate(budget, options));
+  BudgetResult result = Evaluate(budget, options);
+  ResultFigures figures = FiguresOf(budget.name, result);
+  return {std::move(figures), std::move(result)};
 }
 
 std::string Ratio(const ComparedFigure& f) { return f.ratio ? report::Sig(*f.ratio, 4) : "–"; }
 
-std::string Markdown(const Comparison& cmp) {
+std::string Markdown(const Comparison& cmp, const std::vector<report::Plot>& plots) {
   std::ostringstream md;
   md << "# Comparison: " << cmp.label_a << " (A) vs " << cmp.label_b << " (B)\n\n"
      << "RMS per output, contributor and band; difference B − A in the output's unit; ratio B / A.\n\n";
@@ -85,6 +97,8 @@ std::string Markdown(const Comparison& cmp) {
     largest.rows.push_back({f.output, f.contributor, report::Sig(f.rms_a, 4), report::Sig(f.rms_b, 4), Ratio(f),
                             report::Sig(100.0 * f.variance_change_of_total, 3) + " %"});
   md << "## " << largest.title << "\n\n" << report::ToMarkdown(largest) << "\n";
+  for (const report::Plot& p : plots)
+    md << "![" << p.caption << "](plots/" << p.name << ".png)\n\n" << p.caption << "\n\n";
   if (!cmp.unmatched.empty()) {
     md << "## Not compared\n\n";
     for (const std::string& s : cmp.unmatched) md << "- " << s << "\n";
@@ -99,10 +113,15 @@ std::string Safe(const std::string& label) {
   return s;
 }
 
-void WriteComparison(const Comparison& cmp, const std::string& out_dir) {
+void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plots, const std::string& out_dir) {
   WriteDirectoryAtomically(out_dir, [&](const std::string& dir) {
-    const std::vector<std::pair<std::string, std::string>> files = {
-        {"compare.json", ComparisonJson(cmp)}, {"compare.md", Markdown(cmp)}, {"compare.csv", ComparisonCsv(cmp)}};
+    if (!plots.empty()) {
+      fs::create_directories(fs::path(dir) / "plots");
+      report::WriteOverlayPlots(plots, (fs::path(dir) / "plots").string());
+    }
+    const std::vector<std::pair<std::string, std::string>> files = {{"compare.json", ComparisonJson(cmp)},
+                                                                    {"compare.md", Markdown(cmp, plots)},
+                                                                    {"compare.csv", ComparisonCsv(cmp)}};
     for (const auto& [name, text] : files) {
       std::ofstream out(fs::path(dir) / name, std::ios::binary);
       out << text;
@@ -124,6 +143,8 @@ CLI::App* AddCompareCommand(CLI::App& app) {
   c->add_option("--out,-o", s.out_dir, "Report directory, for two inputs (default: reports/compare_<A>_vs_<B>)");
   c->add_option("--threads,-j", s.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
+  c->add_flag_callback("--no-plots", [&s] { s.plots = false; },
+                       "No overlay plots (drawn only when both inputs are budgets; need gnuplot)");
   return c;
 }
 
@@ -131,14 +152,18 @@ int RunCompareCommand(const CLI::App& /*compare*/) {
   const CompareSettings& s = Settings();
   if (!s.out_dir.empty() && s.inputs.size() != 2)
     throw InputError("--out names one directory: give exactly two inputs, or leave --out out");
-  const ResultFigures a = Load(s.inputs[0], s.threads);
+  const Loaded la = Load(s.inputs[0], s.threads);
+  const ResultFigures& a = la.figures;
   for (std::size_t i = 1; i < s.inputs.size(); ++i) {
-    const ResultFigures b = Load(s.inputs[i], s.threads);
+    const Loaded lb = Load(s.inputs[i], s.threads);
+    const ResultFigures& b = lb.figures;
     const Comparison cmp = Compare(a, b);
+    std::vector<report::Plot> plots;
+    if (s.plots && la.result && lb.result) plots = report::OverlayPlots(a.label + " (A)", *la.result, b.label + " (B)", *lb.result);
     const std::string dir = s.out_dir.empty()
                                 ? (fs::path("reports") / ("compare_" + Safe(a.label) + "_vs_" + Safe(b.label))).string()
                                 : s.out_dir;
-    WriteComparison(cmp, dir);
+    WriteComparison(cmp, plots, dir);
     if (s.quiet) continue;
     std::printf("%s (A) vs %s (B):\n", a.label.c_str(), b.label.c_str());
     for (const ComparedFigure& f : cmp.figures)

@@ -46,6 +46,13 @@ TEST_CASE("deb compare of a budget with itself writes zero differences and ratio
   }
   CHECK(ReadAll(out / "compare.md").find("| **total** | **whole grid** | **14.03** | **14.03** | **0** | **1.000** |") != std::string::npos);
   CHECK(ReadAll(out / "compare.csv").rfind("output,unit,contributor,band,", 0) == 0);
+  // Two budgets: PSD and CPS overlays per output, as PNG with their data and script.
+  for (const char* stem : {"z_velocity_psd_overlay", "z_displacement_cps_overlay"}) {
+    CAPTURE(stem);
+    CHECK(fs::file_size(out / "plots" / (std::string(stem) + ".png")) > 1000);
+    CHECK(fs::exists(out / "plots" / (std::string(stem) + ".gp")));
+    CHECK(ReadAll(out / "compare.md").find(std::string("(plots/") + stem + ".png)") != std::string::npos);
+  }
 
   // Against a result directory of the same budget: the same figures.
   REQUIRE(RunDeb("run " + budget + " --no-plots -q --out run_a", dir) == 0);

@@ -1,0 +1,23 @@
+// Overlay plots of `deb compare`: per output present in both results, the
+// PSD and the CPS of A (solid) and B (dashed) in one figure each, the total
+// in black and every contributor in its report colour, so that a reader
+// sees where in frequency two design options differ.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/engine.h"
+#include "deb/report/plot.h"
+
+namespace deb::report {
+
+// Two plots (PSD, CPS) per output name found in both a and b with the same unit.
+std::vector<Plot> OverlayPlots(const std::string& label_a, const BudgetResult& a, const std::string& label_b,
+                               const BudgetResult& b);
+
+// Writes every plot's CSV, script and PNG into plots_dir (which must exist).
+// @throws InputError if gnuplot is missing or fails (FindGnuplot, RunGnuplot).
+void WriteOverlayPlots(const std::vector<Plot>& plots, const std::string& plots_dir);
+
+}  // namespace deb::report
