@@ -22,6 +22,7 @@
 #include "deb/report/report_writer.h"
 #include "deb/units/unit.h"
 #include "tools/compare_command.h"
+#include "tools/sensitivity_command.h"
 #include "tools/spectrum_command.h"
 #include "tools/sweep_command.h"
 
@@ -179,6 +180,7 @@ int main(int argc, char** argv) {
   CLI::App* spectrum = deb::tools::AddSpectrumCommand(app);
   CLI::App* compare = deb::tools::AddCompareCommand(app);
   CLI::App* sweep = deb::tools::AddSweepCommand(app);
+  CLI::App* sensitivity = deb::tools::AddSensitivityCommand(app);
 
   try {
     app.parse(argc, argv);
@@ -193,6 +195,7 @@ int main(int argc, char** argv) {
     if (*spectrum) return deb::tools::RunSpectrumCommand(*spectrum);
     if (*compare) return deb::tools::RunCompareCommand(*compare);
     if (*sweep) return deb::tools::RunSweepCommand(*sweep);
+    if (*sensitivity) return deb::tools::RunSensitivityCommand(*sensitivity);
   } catch (const deb::InputError& e) {
     std::fprintf(stderr, "deb: error: %s\n", e.what());
     return kExitInput;

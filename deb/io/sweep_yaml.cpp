@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "deb/core/error.h"
@@ -25,12 +26,13 @@ struct Step {
   bool is_key = true;
 };
 
-std::vector<Step> ParseKeyPath(const YamlNode& node) {
-  const std::string path = node.AsString();
+// @throws via fail(why) for a malformed path.
+template <typename Fail>
+std::vector<Step> ParseKeyPath(const std::string& path, Fail&& fail_with) {
   std::vector<Step> steps;
   std::size_t i = 0;
   auto fail = [&](const std::string& why) {
-    node.Fail("key path '" + path + "': " + why + " (write e.g. paths[0].isolators[*].position[2])");
+    fail_with("key path '" + path + "': " + why + " (write e.g. paths[0].isolators[*].position[2])");
   };
   while (i < path.size()) {
     std::string key;
@@ -60,6 +62,12 @@ std::vector<Step> ParseKeyPath(const YamlNode& node) {
   return steps;
 }
 
+std::vector<Step> ParseKeyPath(const YamlNode& node) {
+  return ParseKeyPath(node.AsString(), [&](const std::string& why) { node.Fail(why); });
+}
+
+using Transform = std::function<double(double)>;
+
 std::string Text(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -72,18 +80,19 @@ bool IsNumber(const YAML::Node& n) {
   return YAML::convert<double>::decode(n, d);
 }
 
-// Writes v at every node the steps reach from n; `where` is the path so far.
-// Returns an empty string or why the path does not reach a number.
-std::string Assign(YAML::Node n, const std::vector<Step>& steps, std::size_t s, double v, const std::string& where) {
+// Replaces every number x the steps reach from n by t(x); `where` is the
+// path so far. Returns an empty string or why the path does not reach a number.
+std::string Apply(YAML::Node n, const std::vector<Step>& steps, std::size_t s, const Transform& t,
+                  const std::string& where) {
   if (s == steps.size()) {
     if (IsNumber(n)) {
-      n = Text(v);
+      n = Text(t(n.as<double>()));
       return "";
     }
     if (n.IsSequence() && n.size() > 0) {
       for (std::size_t k = 0; k < n.size(); ++k)
         if (!IsNumber(n[k])) return where + " is a list that holds something other than numbers";
-      for (std::size_t k = 0; k < n.size(); ++k) n[k] = Text(v);
+      for (std::size_t k = 0; k < n.size(); ++k) n[k] = Text(t(n[k].as<double>()));
       return "";
     }
     return where + " is not a number or a list of numbers";
@@ -98,20 +107,24 @@ std::string Assign(YAML::Node n, const std::vector<Step>& steps, std::size_t s, 
       return (where.empty() ? std::string("the budget") : where) + " has no key '" + step.key + "' (it has: " + keys +
              ")";
     }
-    return Assign(n[step.key], steps, s + 1, v, where.empty() ? step.key : where + "." + step.key);
+    return Apply(n[step.key], steps, s + 1, t, where.empty() ? step.key : where + "." + step.key);
   }
   if (!n.IsSequence()) return where + " is not a list, so it has no element [" + (step.index < 0 ? std::string("*") : std::to_string(step.index)) + "]";
   if (step.index >= 0) {
     if (static_cast<std::size_t>(step.index) >= n.size())
       return where + " has " + std::to_string(n.size()) + " element(s), so no [" + std::to_string(step.index) + "]";
-    return Assign(n[static_cast<std::size_t>(step.index)], steps, s + 1, v, where + "[" + std::to_string(step.index) + "]");
+    return Apply(n[static_cast<std::size_t>(step.index)], steps, s + 1, t, where + "[" + std::to_string(step.index) + "]");
   }
   if (n.size() == 0) return where + " is an empty list: [*] reaches nothing";
   for (std::size_t k = 0; k < n.size(); ++k) {
-    const std::string why = Assign(n[k], steps, s + 1, v, where + "[" + std::to_string(k) + "]");
+    const std::string why = Apply(n[k], steps, s + 1, t, where + "[" + std::to_string(k) + "]");
     if (!why.empty()) return why;
   }
   return "";
+}
+
+std::string Assign(YAML::Node n, const std::vector<Step>& steps, double v) {
+  return Apply(n, steps, 0, [v](double) { return v; }, "");
 }
 
 std::vector<double> ParseValues(const YamlNode& p) {
@@ -161,13 +174,13 @@ SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::str
   // Check every path once (with its first value) before building variants.
   for (std::size_t k = 0; k < steps.size(); ++k) {
     YAML::Node probe = YAML::Clone(base);
-    const std::string why = Assign(probe, steps[k], 0, out.spec.parameters[k].values[0], "");
+    const std::string why = Assign(probe, steps[k], out.spec.parameters[k].values[0]);
     if (!why.empty()) path_nodes[k].Fail("key path '" + out.spec.parameters[k].key_path + "' does not reach a number: " + why);
   }
   const auto rows = out.spec.Variants();
   for (std::size_t i = 0; i < rows.size(); ++i) {
     YAML::Node v = YAML::Clone(base);
-    for (std::size_t k = 0; k < steps.size(); ++k) Assign(v, steps[k], 0, rows[i][k], "");
+    for (std::size_t k = 0; k < steps.size(); ++k) Assign(v, steps[k], rows[i][k]);
     YAML::Emitter emitter;
     emitter << v;
     std::ostringstream label;
@@ -193,6 +206,25 @@ SweepBudget LoadSweepFile(const std::string& path) {
   }
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return Load(reader, raw, dir.empty() ? "." : dir);
+}
+
+Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor) {
+  YAML::Node raw;
+  try {
+    raw = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw InputError(path + ": " + e.what());
+  }
+  const auto steps = ParseKeyPath(key_path, [](const std::string& why) -> void { throw InputError(why); });
+  if (raw.IsMap()) raw.remove("sweep");
+  const std::string why = Apply(raw, steps, 0, [factor](double x) { return x * factor; }, "");
+  if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
+  YAML::Emitter emitter;
+  emitter << raw;
+  std::ostringstream label;
+  label << path << " (" << key_path << " x " << factor << ")";
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return LoadBudgetText(emitter.c_str(), label.str(), dir.empty() ? "." : dir);
 }
 
 SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir) {

@@ -35,4 +35,11 @@ struct SweepBudget {
 SweepBudget LoadSweepFile(const std::string& path);
 SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir = ".");
 
+// The budget in `path` (its sweep section ignored) with every number that
+// key_path reaches multiplied by factor: the perturbed budgets of a
+// finite-difference sensitivity.
+// @throws InputError for a malformed key path or one that reaches no number,
+//         and for the budget's own load errors.
+Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor);
+
 }  // namespace deb

@@ -115,4 +115,16 @@ TEST_CASE("a budget with a sweep section runs as written") {
   CHECK(b.sources[0].spectrum->Psd(1.0)(0) == 2.0);
 }
 
+TEST_CASE("a scaled parameter multiplies every number its key path reaches; a bad path names why") {
+  const std::string file = std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml";
+  const Budget nominal = LoadBudgetFile(file);
+  const Budget scaled = LoadBudgetWithScaledParameter(file, "paths[0].den[*]", 2.0);
+  // Every coefficient doubled: the same poles.
+  CHECK(scaled.paths[0].system.Poles()(0).real() == doctest::Approx(nominal.paths[0].system.Poles()(0).real()));
+  const Budget louder = LoadBudgetWithScaledParameter(file, "sources[1].spectrum.level", 3.0);
+  CHECK(louder.sources[1].spectrum->Psd(1.0)(0) == doctest::Approx(9.0 * nominal.sources[1].spectrum->Psd(1.0)(0)));
+  CHECK_THROWS_WITH_AS(LoadBudgetWithScaledParameter(file, "paths[9].den", 2.0),
+                       doctest::Contains(("does not reach a number in " + file + ": paths has 2 element(s), so no [9]").c_str()), InputError);
+}
+
 }  // namespace deb

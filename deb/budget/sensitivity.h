@@ -1,0 +1,37 @@
+// Sensitivity of a budget's variances to one parameter, by central finite
+// differences in the parameter's logarithm: the parameter is multiplied by
+// (1 + h) and by (1 - h), both perturbed budgets are evaluated on the
+// nominal frequency grid (a grid refined around moving poles would add
+// discretisation noise to the difference), and
+//   d var / d ln p ~ (var(p (1 + h)) - var(p (1 - h))) / (ln(1 + h) - ln(1 - h)),
+// with an O(h^2) truncation error. The elasticity (d var / var) / (dp / p)
+// says how many percent the variance moves per percent of the parameter;
+// divided by p it is the plain derivative d var / dp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/engine.h"
+
+namespace deb {
+
+struct Sensitivity {
+  std::string parameter;
+  std::string output;
+  std::string unit;         // of the output; the variance is in unit^2
+  std::string contributor;  // "total" for the output's total
+  double variance = 0.0;    // nominal
+  double d_variance_d_log_p = 0.0;
+  double elasticity = 0.0;  // d ln var / d ln p; 0 where the variance is 0
+};
+
+// One entry per output and per contributor (and the total), in the order of
+// the nominal result. DEB_DEMANDs results of the same budget structure.
+std::vector<Sensitivity> Sensitivities(const std::string& parameter, double relative_step, const BudgetResult& nominal,
+                                       const BudgetResult& up, const BudgetResult& down);
+
+// Entries of one output ranked by |d variance / d ln p|, largest first.
+std::vector<Sensitivity> RankedForOutput(const std::vector<Sensitivity>& all, const std::string& output);
+
+}  // namespace deb

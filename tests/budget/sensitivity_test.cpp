@@ -1,0 +1,68 @@
+#include "deb/budget/sensitivity.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "deb/spectra/flat_spectrum.h"
+#include "deb/systems/transfer_function.h"
+
+namespace deb {
+namespace {
+
+// White S0 through 1/(tau s + 1) on a fixed log grid 1e-4...1e6 Hz:
+// variance S0 / (4 tau) up to what lies outside the grid (< 1e-4 here).
+Budget LowPass(double s0, double tau) {
+  Budget b;
+  b.name = "sensitivity";
+  b.grid.kind = GridKind::kLog;
+  b.grid.auto_options.min_hz = 1e-4;
+  b.grid.auto_options.max_hz = 1e6;
+  b.grid.points = 20000;
+  Source s;
+  s.name = "w";
+  s.unit = "N";
+  s.channel_names = {"w"};
+  s.spectrum = std::make_shared<FlatSpectrum>(s0);
+  Path p;
+  p.name = "lag";
+  p.system = ToStateSpace(TransferFunction({1.0}, {tau, 1.0}));
+  p.input_names = {"u"};
+  p.output_names = {"y"};
+  p.input_units = {"N"};
+  p.output_units = {"um"};
+  b.sources = {s};
+  b.paths = {p};
+  b.contributors = {{"c", "w", "lag", ExactVariance::kAuto}};
+  Output o;
+  o.name = "y";
+  o.signal = "y";
+  o.unit = "um";
+  b.outputs = {o};
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("central differences give the elasticities of S0 / (4 tau): +1 in the level, -1 in the time constant") {
+  const double s0 = 2.0, tau = 0.01, h = 1e-3;
+  const BudgetResult nominal = Evaluate(LowPass(s0, tau));
+  const auto level = Sensitivities("level", h, nominal, Evaluate(LowPass(s0 * (1 + h), tau)),
+                                   Evaluate(LowPass(s0 * (1 - h), tau)));
+  REQUIRE(level.size() == 2);  // total and the one contributor
+  CHECK(level[0].contributor == "total");
+  // Linear in p is exponential in ln p: the central difference is 1 + h^2/3 + O(h^4) off.
+  CHECK(level[0].elasticity == doctest::Approx(1.0).epsilon(1e-6));
+  const auto time_constant = Sensitivities("tau", h, nominal, Evaluate(LowPass(s0, tau * (1 + h))),
+                                           Evaluate(LowPass(s0, tau * (1 - h))));
+  // Truncation O(h^2) = 1e-6; the grid's missing tails move with tau by < 1e-4.
+  CHECK(time_constant[1].elasticity == doctest::Approx(-1.0).epsilon(2e-4));
+  CHECK(time_constant[1].d_variance_d_log_p == doctest::Approx(-s0 / (4.0 * tau)).epsilon(3e-4));
+  const auto ranked = RankedForOutput(time_constant, "y");
+  CHECK(ranked.size() == 2);
+  CHECK(RankedForOutput(time_constant, "none").empty());
+}
+
+}  // namespace deb

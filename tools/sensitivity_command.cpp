@@ -1,0 +1,134 @@
+#include "tools/sensitivity_command.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "deb/budget/engine.h"
+#include "deb/budget/sensitivity.h"
+#include "deb/core/error.h"
+#include "deb/io/budget_yaml.h"
+#include "deb/io/result_writer.h"
+#include "deb/io/sweep_yaml.h"
+#include "deb/report/plot.h"
+#include "deb/report/report_tables.h"
+
+namespace deb::tools {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SensitivitySettings {
+  std::string budget_file;
+  std::vector<std::string> parameters;
+  double step = 1e-3;
+  std::string out_dir;
+  int threads = 0;
+  bool quiet = false;
+};
+
+SensitivitySettings& Settings() {
+  static SensitivitySettings settings;
+  return settings;
+}
+
+std::string Csv(const std::vector<Sensitivity>& all) {
+  std::ostringstream os;
+  os.precision(10);
+  os << "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity\n";
+  for (const auto& s : all)
+    os << report::CsvField(s.parameter) << ',' << report::CsvField(s.output) << ',' << report::CsvField(s.unit) << ','
+       << report::CsvField(s.contributor) << ',' << s.variance << ',' << s.d_variance_d_log_p << ',' << s.elasticity
+       << '\n';
+  return os.str();
+}
+
+std::string Markdown(const std::string& name, double step, const std::vector<std::string>& outputs,
+                     const std::vector<Sensitivity>& all) {
+  std::ostringstream md;
+  md << "# Sensitivities of " << name << "\n\n"
+     << "Central differences with the parameter multiplied by 1 ± " << step
+     << " (every number its key path reaches), on the nominal frequency grid. "
+        "d var / d ln p is the change of variance per relative change of the parameter (divide by p for d var / dp); "
+        "the elasticity is (d var / var) / (dp / p).\n\n";
+  for (const std::string& o : outputs) {
+    const auto ranked = RankedForOutput(all, o);
+    if (ranked.empty()) continue;
+    report::Table t;
+    t.title = o;
+    t.header = {"parameter", "contributor", "variance [" + report::UnitText(report::VarianceUnit(ranked[0].unit)) + "]",
+                "d var / d ln p", "elasticity"};
+    t.numeric = {false, false, true, true, true};
+    for (const auto& s : ranked)
+      t.rows.push_back({s.parameter, s.contributor, report::Sig(s.variance, 4), report::Sig(s.d_variance_d_log_p, 4),
+                        report::Sig(s.elasticity, 4)});
+    md << "## " << o << "\n\n" << report::ToMarkdown(t) << "\n";
+  }
+  return md.str();
+}
+
+}  // namespace
+
+CLI::App* AddSensitivityCommand(CLI::App& app) {
+  SensitivitySettings& s = Settings();
+  CLI::App* c = app.add_subcommand(
+      "sensitivity", "Derivatives of every output's variance with respect to parameters (by key path), ranked");
+  c->add_option("budget", s.budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
+  c->add_option("--parameter,-p", s.parameters, "Key path of a numeric parameter, e.g. paths[0].control.gains")
+      ->required();
+  c->add_option("--step", s.step, "Relative step h of the central difference (default 1e-3)")
+      ->check(CLI::Range(1e-8, 0.5));
+  c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_sensitivity)");
+  c->add_option("--threads,-j", s.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
+  return c;
+}
+
+int RunSensitivityCommand(const CLI::App& /*sensitivity*/) {
+  const SensitivitySettings& s = Settings();
+  const Budget budget = LoadBudgetFile(s.budget_file);
+  EngineOptions options;
+  options.threads = s.threads;
+  const BudgetResult nominal = Evaluate(budget, options);
+  std::vector<Sensitivity> all;
+  for (const std::string& key : s.parameters) {
+    BudgetResult perturbed[2];
+    for (int side = 0; side < 2; ++side) {
+      Budget b = LoadBudgetWithScaledParameter(s.budget_file, key, side == 0 ? 1.0 + s.step : 1.0 - s.step);
+      b.grid = GridSpec();
+      b.grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
+      b.grid.f_hz = nominal.grid.f_hz();
+      if (b.bands.empty()) b.bands = budget.bands;
+      perturbed[side] = Evaluate(b, options);
+    }
+    const auto part = Sensitivities(key, s.step, nominal, perturbed[0], perturbed[1]);
+    all.insert(all.end(), part.begin(), part.end());
+  }
+  std::vector<std::string> outputs;
+  for (const auto& o : nominal.outputs) outputs.push_back(o.name);
+  const std::string dir =
+      s.out_dir.empty() ? (fs::path("reports") / (budget.name + "_sensitivity")).string() : s.out_dir;
+  WriteDirectoryAtomically(dir, [&](const std::string& tmp) {
+    for (const auto& [name, text] : {std::pair<std::string, std::string>{"sensitivity.csv", Csv(all)},
+                                     {"sensitivity.md", Markdown(budget.name, s.step, outputs, all)}}) {
+      std::ofstream out(fs::path(tmp) / name, std::ios::binary);
+      out << text;
+      if (!out) throw InputError(tmp + "/" + name + ": cannot be written");
+    }
+  });
+  if (!s.quiet) {
+    for (const std::string& o : outputs) {
+      std::printf("output %s: variance per relative change of the parameter, ranked\n", o.c_str());
+      for (const auto& r : RankedForOutput(all, o))
+        std::printf("  %-36s %-20s d var/d ln p %12.5g  elasticity %9.4g\n", r.parameter.c_str(),
+                    r.contributor.c_str(), r.d_variance_d_log_p, r.elasticity);
+    }
+    std::printf("report: %s\n", dir.c_str());
+  }
+  return 0;
+}
+
+}  // namespace deb::tools
