@@ -117,7 +117,7 @@ void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plo
   WriteDirectoryAtomically(out_dir, [&](const std::string& dir) {
     if (!plots.empty()) {
       fs::create_directories(fs::path(dir) / "plots");
-      report::WriteOverlayPlots(plots, (fs::path(dir) / "plots").string());
+      report::WritePlotsAsPng(plots, (fs::path(dir) / "plots").string());
     }
     const std::vector<std::pair<std::string, std::string>> files = {{"compare.json", ComparisonJson(cmp)},
                                                                     {"compare.md", Markdown(cmp, plots)},

@@ -11,6 +11,8 @@
 #include "deb/core/error.h"
 #include "deb/io/result_writer.h"
 #include "deb/io/sweep_yaml.h"
+#include "deb/report/overlay_plots.h"
+#include "deb/report/sweep_plots.h"
 
 namespace deb::tools {
 namespace {
@@ -22,6 +24,7 @@ struct SweepSettings {
   std::string out_dir;
   int threads = 0;
   bool quiet = false;
+  bool plots = true;
 };
 
 SweepSettings& Settings() {
@@ -39,6 +42,7 @@ CLI::App* AddSweepCommand(CLI::App& app) {
   c->add_option("--threads,-j", s.threads, "Variants evaluated at once (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
+  c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write sweep.csv only; gnuplot is not needed");
   return c;
 }
 
@@ -56,6 +60,10 @@ int RunSweepCommand(const CLI::App& /*sweep*/) {
     std::ofstream out(fs::path(tmp) / "sweep.csv", std::ios::binary);
     out << csv;
     if (!out) throw InputError(tmp + "/sweep.csv: cannot be written");
+    if (s.plots) {
+      fs::create_directories(fs::path(tmp) / "plots");
+      report::WritePlotsAsPng(report::SweepPlots(sweep.spec, results), (fs::path(tmp) / "plots").string());
+    }
   });
   if (!s.quiet) std::printf("sweep of %s: %zu variants\nreport: %s/sweep.csv\n", sweep.name.c_str(), results.size(),
                             dir.c_str());

@@ -95,7 +95,7 @@ std::vector<Plot> OverlayPlots(const std::string& label_a, const BudgetResult& a
   return plots;
 }
 
-void WriteOverlayPlots(const std::vector<Plot>& plots, const std::string& plots_dir) {
+void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_dir) {
   if (plots.empty()) return;
   const std::string gnuplot = FindGnuplot("");
   namespace fs = std::filesystem;

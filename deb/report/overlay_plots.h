@@ -16,8 +16,9 @@ namespace deb::report {
 std::vector<Plot> OverlayPlots(const std::string& label_a, const BudgetResult& a, const std::string& label_b,
                                const BudgetResult& b);
 
-// Writes every plot's CSV, script and PNG into plots_dir (which must exist).
+// Writes every plot's CSV, script and PNG into plots_dir (which must exist);
+// also used for the plots of deb sweep.
 // @throws InputError if gnuplot is missing or fails (FindGnuplot, RunGnuplot).
-void WriteOverlayPlots(const std::vector<Plot>& plots, const std::string& plots_dir);
+void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_dir);
 
 }  // namespace deb::report
