@@ -336,7 +336,7 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
       ContributorResult cr;
       cr.name = c.name;
       cr.psd = std::move(psd[o]);
-      cr.cps = CumulativeIntegral(f, cr.psd);
+      cr.cps = CumulativeIntegral(f, cr.psd, options.threads);
       cr.variance = cr.cps.back();
       cr.tail_variance_estimate = TailEstimate(f, cr.psd);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "deb/core/error.h"
+#include "deb/core/parallel.h"
 
 namespace deb {
 
@@ -20,12 +21,18 @@ double PowerLawIntervalIntegral(double f1_hz, double f2_hz, double s1, double s2
 }
 
 std::vector<double> CumulativeIntegral(const std::vector<double>& f_hz,
-                                       const std::vector<double>& s) {
+                                       const std::vector<double>& s, int threads) {
   DEB_DEMAND(f_hz.size() == s.size() && !f_hz.empty());
   std::vector<double> cumulative(f_hz.size());
   cumulative[0] = 0.0;
-  for (std::size_t i = 1; i < f_hz.size(); ++i)
-    cumulative[i] = cumulative[i - 1] + PowerLawIntervalIntegral(f_hz[i - 1], f_hz[i], s[i - 1], s[i]);
+  ParallelFor(
+      f_hz.size() - 1,
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin + 1; i <= end; ++i)
+          cumulative[i] = PowerLawIntervalIntegral(f_hz[i - 1], f_hz[i], s[i - 1], s[i]);
+      },
+      threads);
+  for (std::size_t i = 1; i < f_hz.size(); ++i) cumulative[i] += cumulative[i - 1];
   return cumulative;
 }
 

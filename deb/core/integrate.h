@@ -17,8 +17,11 @@ double PowerLawIntervalIntegral(double f1_hz, double f2_hz, double s1, double s2
 
 // cumulative[i] = integral of s from f[0] to f[i] (cumulative[0] = 0).
 // f and s must have the same size >= 1; f strictly increasing and > 0.
+// The interval integrals (a log and an expm1 each) are computed on `threads`
+// threads (<= 0: DefaultThreadCount()); the running sum is serial, so the
+// result does not depend on the thread count.
 std::vector<double> CumulativeIntegral(const std::vector<double>& f_hz,
-                                       const std::vector<double>& s);
+                                       const std::vector<double>& s, int threads = 1);
 
 // Integral of s over [lo_hz, hi_hz] ⊂ [f.front(), f.back()], with partial
 // intervals at both ends evaluated on the same power law.

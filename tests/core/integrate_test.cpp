@@ -38,6 +38,13 @@ TEST_CASE("a partial-interval integral agrees with the full cumulative integral"
         doctest::Approx(c.back()).epsilon(1e-13));
 }
 
+TEST_CASE("the cumulative integral is the same, bit for bit, on one thread and on four") {
+  const std::vector<double> f = FrequencyGrid::Log(0.01, 1000.0, 20001).f_hz();
+  std::vector<double> s;
+  for (double x : f) s.push_back(1.0 / (1.0 + std::pow(x - 3.0, 2)));
+  CHECK(CumulativeIntegral(f, s, 1) == CumulativeIntegral(f, s, 4));
+}
+
 TEST_CASE("a flat spectrum's band integral is level times bandwidth") {
   const std::vector<double> f = {0.5, 2.0, 7.0};
   const std::vector<double> s = {4.0, 4.0, 4.0};
