@@ -54,7 +54,10 @@ Loaded Load(const std::string& input, int threads) {
                                                                       : p.filename().string()),
             std::nullopt};
   }
-  if (p.extension() == ".json") return {ReadSummaryFigures(input, p.parent_path().filename().string()), std::nullopt};
+  if (p.extension() == ".json") {
+    const std::string dir = fs::absolute(p).parent_path().filename().string();
+    return {ReadSummaryFigures(input, dir.empty() ? p.stem().string() : dir), std::nullopt};
+  }
   const Budget budget = LoadBudgetFile(input);
   EngineOptions options;
   options.threads = threads;

@@ -77,6 +77,7 @@ ResultFigures ReadSummaryFigures(const std::string& file, const std::string& lab
   ResultFigures r;
   r.label = label;
   const json& outputs = Member(j, "outputs", "", file);
+  if (!outputs.is_array()) throw InputError("outputs", file + ": outputs: not a list (is this a summary.json written by deb run?)");
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const json& o = outputs[i];
     const std::string where = Index("outputs", i);

@@ -123,6 +123,36 @@ std::string Apply(YAML::Node n, const std::vector<Step>& steps, std::size_t s, c
   return "";
 }
 
+// Walks the steps through const nodes (operator[] on a const node does not
+// insert), recording the position of each node reached.
+void Deepest(const YAML::Node& n, const std::vector<Step>& steps, std::size_t i, const std::string& name,
+             std::string* position) {
+  if (i == steps.size()) return;
+  const Step& s = steps[i];
+  const bool key_ok = s.is_key && n.IsMap() && n[s.key];
+  const bool index_ok = !s.is_key && s.index >= 0 && n.IsSequence() && static_cast<std::size_t>(s.index) < n.size();
+  if (!key_ok && !index_ok) return;
+  const YAML::Node next = key_ok ? n[s.key] : n[static_cast<std::size_t>(s.index)];
+  const YAML::Mark m = next.Mark();
+  if (!m.is_null()) *position = name + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1);
+  Deepest(next, steps, i + 1, name, position);
+}
+
+// "file:line:col" of the deepest node of the original document along
+// key_path (a variant's error names a key of the written-out variant, whose
+// positions mean nothing to the user); the file name alone if none is found.
+std::string PositionInOriginal(const YAML::Node& raw, const std::string& name, const std::string& key_path) {
+  std::vector<Step> steps;
+  try {
+    steps = ParseKeyPath(key_path, [](const std::string& why) -> void { throw InputError(why); });
+  } catch (const InputError&) {
+    return name;
+  }
+  std::string position = name;
+  Deepest(raw, steps, 0, name, &position);
+  return position;
+}
+
 std::string Assign(YAML::Node n, const std::vector<Step>& steps, double v) {
   return Apply(n, steps, 0, [v](double) { return v; }, "");
 }
@@ -186,9 +216,20 @@ SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::str
     std::ostringstream label;
     label << reader.name() << " (sweep variant " << i + 1 << ":";
     for (std::size_t k = 0; k < steps.size(); ++k)
-      label << " " << out.spec.parameters[k].key_path << " = " << rows[i][k];
+      label << (k ? ", " : " ") << out.spec.parameters[k].key_path << " = " << rows[i][k];
     label << ")";
-    out.variants.push_back(LoadBudgetText(emitter.c_str(), label.str(), base_dir));
+    try {
+      out.variants.push_back(LoadBudgetText(emitter.c_str(), label.str(), base_dir));
+    } catch (const InputError& e) {
+      // Re-locate in the user's file: "file:line:col: key: sweep variant i (...): rule".
+      const std::string what = e.what(), key = e.key_path();
+      const auto at = key.empty() ? std::string::npos : what.find(": " + key + ": ");
+      if (at == std::string::npos) throw;
+      const std::string rule = what.substr(at + key.size() + 4);
+      throw InputError(key, PositionInOriginal(raw, reader.name(), key) + ": " + key + ": " +
+                                label.str().substr(reader.name().size() + 2, label.str().size() - reader.name().size() - 3) +
+                                ": " + rule);
+    }
   }
   out.name = out.variants.front().name;
   return out;

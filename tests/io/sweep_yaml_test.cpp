@@ -127,4 +127,11 @@ TEST_CASE("a scaled parameter multiplies every number its key path reaches; a ba
                        doctest::Contains(("does not reach a number in " + file + ": paths has 2 element(s), so no [9]").c_str()), InputError);
 }
 
+TEST_CASE("a variant that breaks a rule is reported at the swept value's position in the user's file") {
+  const std::string e = ErrorOf(Replace(kSweep, "values: [1, 4]", "values: [1, -4]"));
+  CHECK(e.rfind("s.yaml:6:35: sources[0].spectrum.level: sweep variant 4: sources[0].spectrum.level = -4, "
+                "paths[0].den[0] = 0.001: value -4 must be >= 0",
+                0) == 0);
+}
+
 }  // namespace deb
