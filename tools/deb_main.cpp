@@ -76,7 +76,7 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
   }
   if (!quiet) PrintBrief(budget, result, seconds, out_dir);
   int failed = 0;
-  for (const auto& o : result.outputs) failed += o.pass() ? 0 : 1;
+  for (const auto& o : result.outputs) failed += o.AllPass() ? 0 : 1;
   if (strict && failed > 0) {
     std::fprintf(stderr, "deb: %d output(s) fail their requirement (--strict)\n", failed);
     return kExitRequirement;

@@ -124,6 +124,16 @@ void Budget::Validate() const {
       os << "rms_max must be finite and > 0, got " << *o.rms_max;
       throw InputError(key + ".rms_max", os.str());
     }
+    for (std::size_t b = 0; b < o.band_requirements.size(); ++b) {
+      const BandRequirement& r = o.band_requirements[b];
+      if (!(r.lo_hz > 0.0 && r.hi_hz > r.lo_hz && std::isfinite(r.hi_hz) && std::isfinite(r.rms_max) &&
+            r.rms_max > 0.0)) {
+        std::ostringstream os;
+        os << "band requirement [" << r.lo_hz << ", " << r.hi_hz << "] Hz, rms_max " << r.rms_max
+           << ": need 0 < lo_hz < hi_hz and a finite rms_max > 0";
+        throw InputError(key + ".band_requirements[" + std::to_string(b) + "]", os.str());
+      }
+    }
     if (o.weighting) {
       if (o.weighting->system.inputs() != 1 || o.weighting->system.outputs() != 1)
         throw InputError(key + ".weighting", "a weighting must be SISO (1 input, 1 output)");

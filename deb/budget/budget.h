@@ -39,6 +39,13 @@ struct Weighting {
   std::string description;
 };
 
+// An RMS limit on one frequency band of an output, in the output's unit.
+struct BandRequirement {
+  double lo_hz = 0.0;
+  double hi_hz = 0.0;
+  double rms_max = 0.0;
+};
+
 struct Output {
   std::string name;
   std::string signal;  // output row name in every contributor's path
@@ -46,6 +53,7 @@ struct Output {
   std::optional<Weighting> weighting;
   std::optional<OutputMetric> metric;  // moving average / std over a window, after the weighting
   std::optional<double> rms_max;  // requirement, in `unit`
+  std::vector<BandRequirement> band_requirements;
 };
 
 // Whether a contributor gets an exact (Lyapunov) variance beside its CPS.

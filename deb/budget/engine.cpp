@@ -177,6 +177,16 @@ double OutputResult::rms() const { return std::sqrt(variance); }
 
 bool OutputResult::pass() const { return !rms_max || rms() <= *rms_max; }
 
+double BandRequirementResult::rms() const { return std::sqrt(variance); }
+
+bool BandRequirementResult::pass() const { return rms() <= requirement.rms_max; }
+
+bool OutputResult::AllPass() const {
+  for (const auto& b : band_requirements)
+    if (!b.pass()) return false;
+  return pass();
+}
+
 std::vector<double> ReverseCps(const std::vector<double>& cps) {
   std::vector<double> r(cps.size());
   for (std::size_t i = 0; i < cps.size(); ++i) r[i] = cps.back() - cps[i];
@@ -203,6 +213,11 @@ FrequencyGrid BuildGrid(const Budget& budget) {
       options.min_hz = std::min(options.min_hz, b.lo_hz);
       options.max_hz = std::max(options.max_hz, b.hi_hz);
     }
+    for (const Output& o : budget.outputs)
+      for (const BandRequirement& q : o.band_requirements) {
+        options.min_hz = std::min(options.min_hz, q.lo_hz);
+        options.max_hz = std::max(options.max_hz, q.hi_hz);
+      }
   }
   std::vector<Resonance> resonances;
   std::vector<double> breakpoints;
@@ -221,6 +236,11 @@ FrequencyGrid BuildGrid(const Budget& budget) {
     breakpoints.push_back(b.lo_hz);
     breakpoints.push_back(b.hi_hz);
   }
+  for (const Output& o : budget.outputs)
+    for (const BandRequirement& q : o.band_requirements) {
+      breakpoints.push_back(q.lo_hz);
+      breakpoints.push_back(q.hi_hz);
+    }
   return AutoGrid(options, resonances, breakpoints);
 }
 
@@ -392,7 +412,8 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
   // Totals are sums of the contributors' integrals, not integrals of the total
   // PSD: the power-law rule is not linear in S, and stacked CPS curves must
   // add up to the total exactly.
-  for (OutputResult& r : result.outputs) {
+  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
+    OutputResult& r = result.outputs[o];
     r.total_cps.assign(n, 0.0);
     for (const auto& cr : r.contributors)
       for (std::size_t k = 0; k < n; ++k) r.total_cps[k] += cr.cps[k];
@@ -405,6 +426,20 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
         br.variance += br.contributor_variance.back();
       }
       r.bands.push_back(std::move(br));
+    }
+    const auto& limits = budget.outputs[o].band_requirements;
+    for (std::size_t b = 0; b < limits.size(); ++b) {
+      const BandRequirement& q = limits[b];
+      if (q.lo_hz < result.grid.min_hz() * (1 - 1e-12) || q.hi_hz > result.grid.max_hz() * (1 + 1e-12)) {
+        std::ostringstream os;
+        os << "band requirement [" << q.lo_hz << ", " << q.hi_hz << "] Hz extends beyond the frequency grid ["
+           << result.grid.min_hz() << ", " << result.grid.max_hz() << "] Hz";
+        throw InputError(Key("outputs", o) + ".band_requirements[" + std::to_string(b) + "]", os.str());
+      }
+      BandRequirementResult br;
+      br.requirement = q;
+      for (const auto& cr : r.contributors) br.variance += IntegralBetween(f, cr.psd, q.lo_hz, q.hi_hz);
+      r.band_requirements.push_back(br);
     }
   }
   return result;

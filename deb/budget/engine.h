@@ -38,6 +38,14 @@ struct BandResult {
   std::vector<double> contributor_variance;  // same order as OutputResult::contributors
 };
 
+struct BandRequirementResult {
+  BandRequirement requirement;
+  double variance = 0.0;  // of the output within the band
+
+  double rms() const;
+  bool pass() const;
+};
+
 struct OutputResult {
   std::string name;
   std::string signal;
@@ -49,9 +57,11 @@ struct OutputResult {
   std::optional<double> rms_max;
   std::optional<OutputMetric> metric;  // variance is then E[MA^2] or E[MSD^2]
   std::vector<BandResult> bands;
+  std::vector<BandRequirementResult> band_requirements;
 
   double rms() const;
-  bool pass() const;  // true when there is no requirement
+  bool pass() const;      // the whole-grid requirement; true when there is none
+  bool AllPass() const;   // pass() and every band requirement
 };
 
 struct BudgetResult {

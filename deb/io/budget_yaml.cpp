@@ -54,7 +54,7 @@ GridSpec ParseGrid(const YamlNode& node) {
 }
 
 Output ParseOutput(const YamlNode& node) {
-  node.AllowOnly({"name", "signal", "unit", "weighting", "metric", "rms_max", "description"});
+  node.AllowOnly({"name", "signal", "unit", "weighting", "metric", "rms_max", "band_requirements", "description"});
   Output o;
   o.name = node.Required("name").AsString();
   o.signal = node.Has("signal") ? node.Required("signal").AsString() : o.name;
@@ -69,6 +69,18 @@ Output ParseOutput(const YamlNode& node) {
     o.metric = metric;
   }
   if (auto r = node.Optional("rms_max")) o.rms_max = r->AsPositive();
+  if (auto list = node.Optional("band_requirements"))
+    for (const auto& b : list->Elements()) {
+      b.AllowOnly({"lo_hz", "hi_hz", "rms_max"});
+      BandRequirement q{b.Required("lo_hz").AsPositive(), b.Required("hi_hz").AsPositive(),
+                        b.Required("rms_max").AsPositive()};
+      if (!(q.hi_hz > q.lo_hz)) {
+        std::ostringstream os;
+        os << "band [" << q.lo_hz << ", " << q.hi_hz << "] Hz is empty; need lo_hz < hi_hz";
+        b.Fail(os.str());
+      }
+      o.band_requirements.push_back(q);
+    }
   return o;
 }
 

@@ -67,7 +67,16 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
     } else {
       jo["requirement"] = nullptr;
     }
-    all_pass &= o.pass();
+    nlohmann::json band_requirements = nlohmann::json::array();
+    for (const BandRequirementResult& b : o.band_requirements)
+      band_requirements.push_back({{"lo_hz", b.requirement.lo_hz},
+                                   {"hi_hz", b.requirement.hi_hz},
+                                   {"rms_max", b.requirement.rms_max},
+                                   {"rms", b.rms()},
+                                   {"pass", b.pass()},
+                                   {"margin", b.requirement.rms_max - b.rms()}});
+    jo["band_requirements"] = band_requirements;
+    all_pass &= o.AllPass();
     nlohmann::json contributors = nlohmann::json::array();
     for (std::size_t c = 0; c < o.contributors.size(); ++c) {
       const ContributorResult& cr = o.contributors[c];

@@ -59,6 +59,12 @@ Table SummaryTable(const BudgetResult& result) {
                       o.rms_max ? Sig(*o.rms_max - o.rms(), 4) : "–", o.rms_max ? (o.pass() ? "pass" : "FAIL") : "–",
                       largest});
     t.emphasis.push_back({false, false, false, false, false, o.rms_max && !o.pass(), false});
+    for (const BandRequirementResult& b : o.band_requirements) {
+      t.rows.push_back({o.name + ", " + BandText(b.requirement.lo_hz, b.requirement.hi_hz), UnitText(o.unit),
+                        Sig(b.rms(), 4), Short(b.requirement.rms_max), Sig(b.requirement.rms_max - b.rms(), 4),
+                        b.pass() ? "pass" : "FAIL", "–"});
+      t.emphasis.push_back({false, false, false, false, false, !b.pass(), false});
+    }
   }
   return t;
 }
@@ -138,8 +144,9 @@ ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const st
   ReportFacts f;
   std::size_t failed = 0, required = 0;
   for (const OutputResult& o : result.outputs) {
-    required += o.rms_max ? 1 : 0;
+    required += (o.rms_max ? 1 : 0) + o.band_requirements.size();
     failed += o.pass() ? 0 : 1;
+    for (const BandRequirementResult& r : o.band_requirements) failed += r.pass() ? 0 : 1;
   }
   f.items = {
       {"budget", budget.name},

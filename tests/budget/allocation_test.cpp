@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/error.h"
 #include "deb/spectra/flat_spectrum.h"
 #include "deb/spectra/scaled_spectrum.h"
 #include "deb/systems/transfer_function.h"
@@ -120,6 +121,23 @@ TEST_CASE("the allocation factor follows the closed form (limit^2 - others) / ow
   o.rms_max = 3.0;
   CHECK_FALSE(AllocationFactor(o, 0).factor.has_value());  // 16 alone > 9
   CHECK_FALSE(AllocationFactor(o, 1).factor.has_value());  // 9 alone reaches 9: k would be 0
+}
+
+TEST_CASE("a band requirement holds the output's RMS within the band and fails on its own") {
+  Budget b = TwoContributors(1e6);  // the whole-grid requirement passes
+  b.bands = {{1.0, 10.0}};
+  b.outputs[0].band_requirements = {{1.0, 10.0, 1e6}, {3.0, 7.0, 1e-9}};
+  const OutputResult r = Evaluate(b).outputs[0];
+  REQUIRE(r.band_requirements.size() == 2);
+  // The same band integrals as the band table's.
+  CHECK(r.band_requirements[0].variance == doctest::Approx(r.bands[0].variance).epsilon(1e-14));
+  CHECK(r.band_requirements[0].variance < r.variance);
+  CHECK(r.band_requirements[0].pass());
+  CHECK_FALSE(r.band_requirements[1].pass());
+  CHECK(r.pass());           // whole grid
+  CHECK_FALSE(r.AllPass());  // but not the 3-7 Hz band
+  b.outputs[0].band_requirements = {{1.0, 1e5, 1.0}};
+  CHECK_THROWS_WITH_AS(Evaluate(b), doctest::Contains("extends beyond the frequency grid"), InputError);
 }
 
 }  // namespace deb

@@ -96,3 +96,25 @@ TEST_CASE("run --strict exits with 0 when every requirement is met, and reports 
   }
   fs::remove_all(dir);
 }
+
+TEST_CASE("run --strict also fails on a band requirement, which summary.json and report.md list") {
+  const fs::path dir = TempDir("band");
+  std::string text = ReadAll(std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml");
+  const std::string key = "rms_max: 20";
+  REQUIRE(text.find(key) != std::string::npos);
+  text.replace(text.find(key), key.size(),
+               "rms_max: 1000\n    band_requirements: [{lo_hz: 1, hi_hz: 10, rms_max: 0.5}]");
+  const fs::path budget = dir / "budget.yaml";
+  std::ofstream(budget) << text;
+  const Result r = RunDeb("run " + budget.string() + " --strict --no-plots -q --out " + (dir / "r").string(), dir);
+  CHECK(r.exit_code == 5);
+  const auto j = nlohmann::json::parse(ReadAll(dir / "r" / "summary.json"));
+  const auto& velocity = j["outputs"][0];
+  CHECK(velocity["requirement"]["pass"] == true);
+  REQUIRE(velocity["band_requirements"].size() == 1);
+  CHECK(velocity["band_requirements"][0]["pass"] == false);
+  CHECK(velocity["band_requirements"][0]["rms"].get<double>() > 0.5);
+  CHECK(j["pass"] == false);
+  CHECK(ReadAll(dir / "r" / "report.md").find("z\\_velocity, 1–10 Hz") != std::string::npos);
+  fs::remove_all(dir);
+}
