@@ -46,6 +46,7 @@ TEST_CASE("deb compare of a budget with itself writes zero differences and ratio
   }
   CHECK(ReadAll(out / "compare.md").find("| **total** | **whole grid** | **14.03** | **14.03** | **0** | **1.000** |") != std::string::npos);
   CHECK(ReadAll(out / "compare.csv").rfind("output,unit,contributor,band,", 0) == 0);
+  CHECK(ReadAll(out / "compare.html").find("<caption>Contributors that changed most</caption>") != std::string::npos);
   // Two budgets: PSD and CPS overlays per output, as PNG with their data and script.
   for (const char* stem : {"z_velocity_psd_overlay", "z_displacement_cps_overlay"}) {
     CAPTURE(stem);
