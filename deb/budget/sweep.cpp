@@ -18,6 +18,18 @@ SweepMode ParseSweepMode(const std::string& text) {
 
 std::string ToString(SweepMode mode) { return mode == SweepMode::kGrid ? "grid" : "zip"; }
 
+std::string SweepParameter::Text(double value) const {
+  if (!texts.empty()) {
+    const auto i = static_cast<std::size_t>(value);
+    DEB_DEMAND(value >= 0.0 && i < texts.size());
+    return texts[i];
+  }
+  std::ostringstream os;
+  os.precision(10);
+  os << value;
+  return os.str();
+}
+
 std::vector<std::vector<double>> SweepSpec::Variants() const {
   std::vector<std::vector<double>> rows;
   if (parameters.empty()) return rows;
@@ -89,7 +101,7 @@ std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector
             std::ostringstream os;
             os << "sweep variant " << i + 1 << " (";
             for (std::size_t k = 0; k < spec.parameters.size(); ++k)
-              os << (k ? ", " : "") << spec.parameters[k].key_path << " = " << values[i][k];
+              os << (k ? ", " : "") << spec.parameters[k].key_path << " = " << spec.parameters[k].Text(values[i][k]);
             os << "): " << e.what();
             throw InputError(os.str());
           }
@@ -127,7 +139,7 @@ std::string SweepCsv(const SweepSpec& spec, const std::vector<BudgetResult>& res
     }
   os << "\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
-    for (std::size_t k = 0; k < values[i].size(); ++k) os << (k ? "," : "") << values[i][k];
+    for (std::size_t k = 0; k < values[i].size(); ++k) os << (k ? "," : "") << field(spec.parameters[k].Text(values[i][k]));
     for (const auto& o : results[i].outputs) {
       os << "," << o.rms();
       for (const auto& c : o.contributors) os << "," << std::sqrt(c.variance);

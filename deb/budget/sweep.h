@@ -24,6 +24,12 @@ std::string ToString(SweepMode mode);
 struct SweepParameter {
   std::string key_path;        // into the budget file; [*] means every element
   std::vector<double> values;  // not empty
+  // A textual parameter (e.g. a VC class): the values are the indices
+  // 0, 1, ... into texts, which the budget receives.
+  std::vector<std::string> texts;
+
+  // The value as the budget file receives it: a number, or texts[index].
+  std::string Text(double value) const;
 };
 
 struct SweepSpec {

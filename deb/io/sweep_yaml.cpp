@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -153,18 +154,54 @@ std::string PositionInOriginal(const YAML::Node& raw, const std::string& name, c
   return position;
 }
 
-std::string Assign(YAML::Node n, const std::vector<Step>& steps, double v) {
+// Writes a text at every scalar the steps reach (a textual parameter).
+std::string ApplyText(YAML::Node n, const std::vector<Step>& steps, std::size_t s, const std::string& text,
+                      const std::string& where) {
+  if (s == steps.size()) {
+    if (!n.IsScalar()) return where + " is not a single value";
+    n = text;
+    return "";
+  }
+  const Step& step = steps[s];
+  if (step.is_key) {
+    const YAML::Node& cn = n;
+    if (!n.IsMap() || !cn[step.key]) return (where.empty() ? std::string("the budget") : where) + " has no key '" + step.key + "'";
+    return ApplyText(n[step.key], steps, s + 1, text, where.empty() ? step.key : where + "." + step.key);
+  }
+  if (!n.IsSequence()) return where + " is not a list";
+  const std::size_t lo = step.index < 0 ? 0 : static_cast<std::size_t>(step.index);
+  const std::size_t hi = step.index < 0 ? n.size() : lo + 1;
+  if (hi > n.size() || lo >= hi) return where + " has " + std::to_string(n.size()) + " element(s)";
+  for (std::size_t k = lo; k < hi; ++k) {
+    const std::string why = ApplyText(n[k], steps, s + 1, text, where + "[" + std::to_string(k) + "]");
+    if (!why.empty()) return why;
+  }
+  return "";
+}
+
+std::string Assign(YAML::Node n, const std::vector<Step>& steps, const SweepParameter& p, double v) {
+  if (!p.texts.empty()) return ApplyText(n, steps, 0, p.Text(v), "");
   return Apply(n, steps, 0, [v](double) { return v; }, "");
 }
 
-std::vector<double> ParseValues(const YamlNode& p) {
+std::vector<double> ParseValues(const YamlNode& p, std::vector<std::string>* texts) {
   int given = 0;
   for (const char* k : {"values", "linear", "log"}) given += p.Has(k) ? 1 : 0;
   if (given != 1) p.Fail("give exactly one of values, linear, log");
   if (auto v = p.Optional("values")) {
-    std::vector<double> values = v->AsDoubles();
-    if (values.empty()) v->Fail("the list of values is empty");
-    return values;
+    if (v->IsSequence() && v->size() == 0) v->Fail("the list of values is empty");
+    const std::vector<std::string> words = v->AsStrings();
+    bool numbers = true;
+    for (const std::string& w : words) {
+      char* end = nullptr;
+      std::strtod(w.c_str(), &end);
+      numbers &= !w.empty() && end && *end == '\0';
+    }
+    if (numbers) return v->AsDoubles();
+    *texts = words;  // e.g. VC classes: the budget receives the words
+    std::vector<double> index(words.size());
+    for (std::size_t i = 0; i < words.size(); ++i) index[i] = static_cast<double>(i);
+    return index;
   }
   const bool log = p.Has("log");
   const YamlNode r = p.Required(log ? "log" : "linear");
@@ -190,7 +227,10 @@ SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::str
     const YamlNode path = p.Required("path");
     steps.push_back(ParseKeyPath(path));
     path_nodes.push_back(path);
-    out.spec.parameters.push_back({path.AsString(), ParseValues(p)});
+    SweepParameter param;
+    param.key_path = path.AsString();
+    param.values = ParseValues(p, &param.texts);
+    out.spec.parameters.push_back(param);
   }
   if (out.spec.parameters.empty()) params.Fail("no parameters to sweep");
   if (out.spec.mode == SweepMode::kZip)
@@ -204,19 +244,21 @@ SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::str
   // Check every path once (with its first value) before building variants.
   for (std::size_t k = 0; k < steps.size(); ++k) {
     YAML::Node probe = YAML::Clone(base);
-    const std::string why = Assign(probe, steps[k], out.spec.parameters[k].values[0]);
-    if (!why.empty()) path_nodes[k].Fail("key path '" + out.spec.parameters[k].key_path + "' does not reach a number: " + why);
+    const std::string why = Assign(probe, steps[k], out.spec.parameters[k], out.spec.parameters[k].values[0]);
+    if (!why.empty())
+      path_nodes[k].Fail("key path '" + out.spec.parameters[k].key_path + "' does not reach " +
+                         (out.spec.parameters[k].texts.empty() ? "a number: " : "a value: ") + why);
   }
   const auto rows = out.spec.Variants();
   for (std::size_t i = 0; i < rows.size(); ++i) {
     YAML::Node v = YAML::Clone(base);
-    for (std::size_t k = 0; k < steps.size(); ++k) Assign(v, steps[k], rows[i][k]);
+    for (std::size_t k = 0; k < steps.size(); ++k) Assign(v, steps[k], out.spec.parameters[k], rows[i][k]);
     YAML::Emitter emitter;
     emitter << v;
     std::ostringstream label;
     label << reader.name() << " (sweep variant " << i + 1 << ":";
     for (std::size_t k = 0; k < steps.size(); ++k)
-      label << (k ? ", " : " ") << out.spec.parameters[k].key_path << " = " << rows[i][k];
+      label << (k ? ", " : " ") << out.spec.parameters[k].key_path << " = " << out.spec.parameters[k].Text(rows[i][k]);
     label << ")";
     try {
       out.variants.push_back(LoadBudgetText(emitter.c_str(), label.str(), base_dir));

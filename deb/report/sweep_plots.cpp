@@ -45,7 +45,7 @@ std::vector<Plot> SweepPlots(const SweepSpec& spec, const std::vector<BudgetResu
     for (const auto& rest : order) {
       std::string label;
       for (std::size_t k = 1; k < spec.parameters.size(); ++k)
-        label += (k > 1 ? ", " : "") + spec.parameters[k].key_path + " = " + Short(rest[k - 1]);
+        label += (k > 1 ? ", " : "") + spec.parameters[k].key_path + " = " + spec.parameters[k].Text(rest[k - 1]);
       if (block) csv << "\n\n";
       csv << "# " << (label.empty() ? "all variants" : label) << "\n" << CsvField(spec.parameters[0].key_path);
       for (const auto& c : out0.contributors) csv << ',' << CsvField(c.name);
@@ -76,6 +76,12 @@ std::vector<Plot> SweepPlots(const SweepSpec& spec, const std::vector<BudgetResu
     s << "set xlabel " << Quote(Enhanced(spec.parameters[0].key_path)) << "\n";
     s << "set ylabel " << Quote("RMS [" + UnitLabel(out0.unit) + "]") << "\n";
     s << "set key outside right top\nset yrange [0:*]\n";
+    if (!spec.parameters[0].texts.empty()) {  // a textual parameter: its index on the axis, named
+      const auto& texts = spec.parameters[0].texts;
+      s << "set xrange [-0.5:" << texts.size() - 0.5 << "]\nset xtics (";
+      for (std::size_t i = 0; i < texts.size(); ++i) s << (i ? ", " : "") << Quote(Enhanced(texts[i])) << " " << i;
+      s << ")\n";
+    }
     if (out0.rms_max)
       s << "set arrow from graph 0, first " << CsvNumber(*out0.rms_max) << " to graph 1, first "
         << CsvNumber(*out0.rms_max) << " nohead linewidth 1.5 linecolor rgb " << Quote(kRequirementColour)

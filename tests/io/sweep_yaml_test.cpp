@@ -134,4 +134,22 @@ TEST_CASE("a variant that breaks a rule is reported at the swept value's positio
                 0) == 0);
 }
 
+TEST_CASE("a list of words sweeps a textual parameter such as a VC class") {
+  std::string text = Replace(kSweep, "spectrum: {type: flat, level: 2}",
+                             "spectrum: {type: vc, class: VC-D, lowest_band_hz: 8, highest_band_hz: 80}");
+  text = Replace(text, "{path: \"sources[0].spectrum.level\", values: [1, 4]}",
+                 "{path: \"sources[0].spectrum.class\", values: [VC-C, VC-D]}");
+  text = Replace(text, "log: {from: 0.001, to: 0.1, count: 3}", "values: [0.01]");
+  const SweepBudget sweep = LoadSweepText(text, "s.yaml");
+  REQUIRE(sweep.variants.size() == 2);
+  CHECK(sweep.spec.parameters[0].texts == std::vector<std::string>{"VC-C", "VC-D"});
+  const auto results = EvaluateSweep(sweep.spec, sweep.variants, 1);
+  // VC-C is 12.5 um/s per band, VC-D 6.25: every RMS halves.
+  CHECK(results[0].outputs[0].rms() == doctest::Approx(2.0 * results[1].outputs[0].rms()).epsilon(1e-12));
+  const std::string csv = SweepCsv(sweep.spec, results);
+  CHECK(csv.find("\nVC-C,0.01,") != std::string::npos);
+  CHECK(ErrorOf(Replace(text, "sources[0].spectrum.class", "sources[0].spectrum")).find("does not reach a value") !=
+        std::string::npos);
+}
+
 }  // namespace deb
