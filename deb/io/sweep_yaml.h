@@ -11,7 +11,8 @@
 //
 // A path segment is a map key with optional [i] (an element) or [*] (every
 // element). The value it reaches must be a number, or a list of numbers
-// (then every element is set).
+// (then every element is set). `values` that are not all numbers (e.g.
+// [VC-C, VC-D]) make a textual parameter: each word replaces a single value.
 #pragma once
 
 #include <string>
