@@ -5,9 +5,11 @@
 #include <cstdint>
 #include <regex>
 #include <set>
+#include <sys/stat.h>
 
 #include "deb/core/error.h"
 #include "deb/io/budget_yaml.h"
+#include "deb/report/gnuplot_runner.h"
 #include "report_test_support.h"
 
 namespace deb {
@@ -184,6 +186,29 @@ TEST_CASE("invalid report options are an error before anything is drawn") {
   CHECK_THROWS_WITH_AS(WriteReportDirectory(e.budget, e.result, {}, options, (parent / "r").string()),
                        doctest::Contains("png, pdf, svg"), InputError);
   CHECK_FALSE(fs::exists(parent / "r"));
+}
+
+TEST_CASE("plots are drawn in batches, yet a failing plot is named in the error and nothing is left behind") {
+  const Evaluated e = EvaluateExample();
+  const fs::path parent = TempDir("batch_error");
+  // The real gnuplot, except that it fails on the script that draws z_velocity_psd.png.
+  const fs::path exe = WriteFile(parent / "picky-gnuplot",
+                                 "#!/bin/sh\nscript=$(cat)\ncase \"$script\" in *\"set output 'z_velocity_psd.png'\"*)\n"
+                                 "  echo 'line 3: picky gnuplot refuses this plot' >&2; exit 1;;\nesac\n"
+                                 "printf '%s\\n' \"$script\" | exec '" + report::FindGnuplot("") + "' \"$@\"\n");
+  ::chmod(exe.c_str(), 0755);
+  for (int threads : {1, 2, 3}) {
+    CAPTURE(threads);
+    ReportOptions options;
+    options.gnuplot = exe.string();
+    options.threads = threads;
+    const fs::path dir = parent / ("report" + std::to_string(threads));
+    CHECK_THROWS_WITH_AS(WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string()),
+                         doctest::Contains("cannot draw plot z_velocity_psd.png: gnuplot"), InputError);
+    CHECK_THROWS_WITH_AS(WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string()),
+                         doctest::Contains("picky gnuplot refuses this plot"), InputError);
+    CHECK_FALSE(fs::exists(dir));
+  }
 }
 
 }  // namespace deb
