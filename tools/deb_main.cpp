@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <unistd.h>
 
@@ -18,6 +19,7 @@
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 #include "deb/io/budget_yaml.h"
+#include "deb/io/sweep_yaml.h"
 #include "deb/io/result_writer.h"
 #include "deb/report/report_writer.h"
 #include "deb/units/unit.h"
@@ -87,6 +89,9 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
 int Check(const std::string& budget_file) {
   const deb::Budget budget = deb::LoadBudgetFile(budget_file);
   const deb::FrequencyGrid grid = deb::BuildGrid(budget);
+  // Every sweep variant is loaded and validated, as deb sweep would before computing.
+  std::optional<deb::SweepBudget> sweep;
+  if (budget.has_sweep) sweep = deb::LoadSweepFile(budget_file);
   std::printf("budget %s: valid\n", budget.name.c_str());
   if (!budget.description.empty()) std::printf("  %s\n", budget.description.c_str());
   std::printf("grid: %s, %zu frequencies, %g-%g Hz\n", deb::ToString(budget.grid.kind).c_str(), grid.size(),
@@ -112,6 +117,15 @@ int Check(const std::string& budget_file) {
     if (o.metric) std::printf(", %s", o.metric->Describe().c_str());
     if (o.rms_max) std::printf(", rms_max %g", *o.rms_max);
     std::printf("\n");
+  }
+  if (sweep) {
+    std::printf("sweep: %s of %zu parameter(s), %zu variants, each valid:\n", deb::ToString(sweep->spec.mode).c_str(),
+                sweep->spec.parameters.size(), sweep->variants.size());
+    for (const deb::SweepParameter& p : sweep->spec.parameters) {
+      std::printf("  %-40s %zu value(s): %s", p.key_path.c_str(), p.values.size(), p.Text(p.values.front()).c_str());
+      if (p.values.size() > 1) std::printf(" ... %s", p.Text(p.values.back()).c_str());
+      std::printf("\n");
+    }
   }
   return 0;
 }

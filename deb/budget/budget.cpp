@@ -143,6 +143,9 @@ void Budget::Validate() const {
   for (std::size_t i = 0; i < contributors.size(); ++i) {
     const Contributor& c = contributors[i];
     const std::string key = Indexed("contributors", i);
+    // "total" names the sum of all contributors in every table, CSV column and plot.
+    if (c.name == "total")
+      throw InputError(key + ".name", "contributor name 'total' is reserved for the sum of all contributors");
     bool source_found = false, path_found = false;
     for (const auto& s : sources) source_found |= s.name == c.source;
     for (const auto& p : paths) path_found |= p.name == c.path;

@@ -92,6 +92,7 @@ struct Budget {
   std::vector<Output> outputs;
   std::vector<Band> bands;
   std::vector<ModelReport> models;
+  bool has_sweep = false;  // the file has a `sweep` section (read by deb sweep, checked by deb check)
 
   // Checks names, references, channel counts and units.
   // @throws InputError with the key path (e.g. "contributors[2].path").

@@ -124,6 +124,7 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
       root.Required("name").Fail("budget name '" + b.name +
                                  "' may contain only letters, digits, '_', '-' and '.' (it names the report directory)");
   if (auto d = root.Optional("description")) b.description = d->AsString();
+  b.has_sweep = root.Optional("sweep").has_value();
   if (auto g = root.Optional("grid")) b.grid = ParseGrid(*g);
   io::PathContext paths(base_dir);
   for (const auto& n : root.Required("sources").Elements()) b.sources.push_back(io::ParseSource(n, base_dir));

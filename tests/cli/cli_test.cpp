@@ -157,3 +157,23 @@ TEST_CASE("deb check validates and describes without writing anything") {
   CHECK(r.out.find("budget single_axis_isolator: valid") != std::string::npos);
   CHECK(r.out.find("transmissibility") != std::string::npos);
 }
+
+TEST_CASE("deb check validates a sweep section and every variant it makes") {
+  const Result ok = RunDeb("check " + Budget("nizamoglu2015_sweep.yaml"));
+  CHECK(ok.exit_code == 0);
+  CHECK(ok.out.find("sweep: grid of 2 parameter(s), 32 variants, each valid") != std::string::npos);
+  CHECK(ok.out.find("paths[0].control.gains") != std::string::npos);
+
+  const fs::path dir = TempDir("check_sweep");
+  std::string text = ReadAll(Budget("nizamoglu2015_sweep.yaml"));
+  const std::string good = "path: \"paths[0].control.gains\"";
+  REQUIRE(text.find(good) != std::string::npos);
+  const fs::path bad = WriteFile(dir, "bad_sweep.yaml",
+                                 text.replace(text.find(good), good.size(), "path: \"paths[0].control.gainz\""));
+  const Result r = RunDeb("check " + bad.string());
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("sweep.parameters[0].path: key path 'paths[0].control.gainz' does not reach a number") !=
+        std::string::npos);
+  CHECK(r.out.empty());
+  fs::remove_all(dir);
+}

@@ -99,6 +99,11 @@ TEST_CASE("a contributor naming an unknown source points at its key") {
         "b.yaml:16:28: contributors[0].source: no source named 'nois'");
 }
 
+TEST_CASE("a contributor may not be called total: that name is the sum in every table") {
+  CHECK(ErrorOf(Replace(kBudget, "name: sensor,", "name: total,")) ==
+        "b.yaml:16:12: contributors[0].name: contributor name 'total' is reserved for the sum of all contributors");
+}
+
 TEST_CASE("a source whose channel count differs from the path's inputs is rejected") {
   const std::string e = ErrorOf(Replace(kBudget, "    unit: um/s\n    spectrum", "    unit: um/s\n    channels: [a, b]\n    spectrum"));
   CHECK(e.find("contributors[0]: source 'noise' has 2 channel(s) but path 'lowpass' has 1 input(s)") !=
