@@ -5,8 +5,10 @@
 #include "deb/signal/time_series_file.h"
 #include "deb/signal/welch.h"
 #include "deb/spectra/channel_set.h"
+#include "deb/spectra/converted_spectrum.h"
 #include "deb/spectra/flat_spectrum.h"
 #include "deb/spectra/measured_spectrum.h"
+#include "deb/spectra/peterson_noise_model.h"
 #include "deb/spectra/scaled_spectrum.h"
 #include "deb/spectra/spectrum_csv.h"
 #include "deb/spectra/vc_curve.h"
@@ -50,11 +52,29 @@ double ConventionFactor(const YamlNode& source) {
   c->Fail("unknown convention '" + text + "'; allowed: one-sided, two-sided");
 }
 
-// `type: timeseries`: a recording, turned into a Welch PSD at load.
+// What a multi-channel recording keeps of its channels' relation.
+enum class CrossSpectra {
+  kFull,  // the Welch cross-spectral matrix: coherence and phase between channels
+  kNone,  // auto-PSDs only: channels independent (diagonal S_u)
+};
+
+std::string ToString(CrossSpectra c) { return c == CrossSpectra::kFull ? "full" : "none"; }
+
+CrossSpectra ParseCrossSpectra(const std::string& text) {
+  for (CrossSpectra c : {CrossSpectra::kFull, CrossSpectra::kNone})
+    if (text == ToString(c)) return c;
+  throw InputError("unknown cross_spectra '" + text + "'; allowed: full, none");
+}
+
+// `type: timeseries`: a recording, turned into a Welch PSD (one channel, or
+// cross_spectra: none) or a Welch cross-spectral matrix at load.
 std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const YamlNode& spec,
                                                    const std::string& base_dir, Source* s) {
   spec.AllowOnly({"type", "file", "format", "rate_hz", "file_channels", "columns", "window", "segment_length",
-                  "overlap", "detrend", "averaging", "extrapolation"});
+                  "overlap", "detrend", "averaging", "extrapolation", "cross_spectra"});
+  CrossSpectra cross = CrossSpectra::kFull;
+  if (auto c = spec.Optional("cross_spectra"))
+    cross = AtNode(*c, [&] { return ParseCrossSpectra(c->AsString()); });
   if (node.Has("convention"))
     node.Required("convention").Fail("a time series gives a one-sided PSD by construction; remove 'convention'");
   const YamlNode file = spec.Required("file");
@@ -98,10 +118,25 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
   if (auto v = spec.Optional("overlap")) welch.overlap = v->AsNonNegative();
   if (auto v = spec.Optional("detrend")) welch.detrend = AtNode(*v, [&] { return ParseDetrend(v->AsString()); });
   if (auto v = spec.Optional("averaging")) welch.averaging = AtNode(*v, [&] { return ParseAveraging(v->AsString()); });
-  const PsdEstimate estimate = AtNode(spec, [&] { return WelchPsd(series, welch); });
   Extrapolation extrapolation = Extrapolation::kError;
   if (auto e = spec.Optional("extrapolation"))
     extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
+  const bool keep_cross = cross == CrossSpectra::kFull && series.channels() > 1;
+  if (keep_cross && welch.averaging == Averaging::kMedian)
+    spec.Required("averaging")
+        .Fail("median averaging does not give a positive semi-definite cross-spectral matrix (real and imaginary "
+              "parts are medianed apart); use averaging: mean, or cross_spectra: none for independent channels");
+  std::shared_ptr<const Spectrum> m;
+  std::vector<std::string> estimate_names;
+  if (keep_cross) {
+    const CsdEstimate estimate = AtNode(spec, [&] { return WelchCsd(series, welch); });
+    m = AtNode(file, [&] { return ToTabulatedCsd(estimate, extrapolation); });
+    estimate_names = estimate.channel_names;
+  } else {
+    const PsdEstimate estimate = AtNode(spec, [&] { return WelchPsd(series, welch); });
+    m = AtNode(file, [&] { return ToMeasuredSpectrum(estimate, extrapolation); });
+    estimate_names = estimate.channel_names;
+  }
 
   if (!unit_node && series.unit().empty())
     node.Fail("missing 'unit': neither the budget nor " + p.string() + " ('# unit:') gives one");
@@ -113,13 +148,36 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
       unit_node->Fail("the file's unit '" + series.unit() + "' and '" + s->unit + "' are not the same quantity");
     factor = conv.scale * conv.scale;
   }
-  std::shared_ptr<const Spectrum> m = AtNode(file, [&] { return ToMeasuredSpectrum(estimate, extrapolation); });
   if (factor != 1.0) m = std::make_shared<ScaledSpectrum>(m, factor);
-  s->channel_names = node.Has("channels") ? ChannelNames(node, s->name, m->channels()) : estimate.channel_names;
+  s->channel_names = node.Has("channels") ? ChannelNames(node, s->name, m->channels()) : estimate_names;
   if (static_cast<int>(s->channel_names.size()) != m->channels())
     node.Required("channels").Fail("the recording gives " + std::to_string(m->channels()) + " channel(s) but " +
                                    std::to_string(s->channel_names.size()) + " channel names are listed");
   return m;
+}
+
+// `type: reference`: Peterson's NLNM / NHNM, a vertical ground acceleration
+// PSD, in the source's unit (um/s gives velocity: / (2 pi f)^2, as
+// `deb spectrum reference --to` does). Extrapolation acts on the model's
+// acceleration, so the physics does not depend on the unit chosen.
+std::shared_ptr<const Spectrum> ReferenceSpectrum(const YamlNode& node, const YamlNode& spec, Source* s) {
+  spec.AllowOnly({"type", "model", "extrapolation"});
+  if (node.Has("convention"))
+    node.Required("convention").Fail("a reference model is a one-sided PSD by definition; remove 'convention'");
+  const YamlNode model_node = spec.Required("model");
+  const PetersonModel model = AtNode(model_node, [&] { return ParsePetersonModel(model_node.AsString()); });
+  Extrapolation extrapolation = Extrapolation::kError;
+  if (auto e = spec.Optional("extrapolation"))
+    extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
+  const auto unit_node = node.Optional("unit");
+  s->unit = unit_node ? unit_node->AsString() : PetersonSpectrum::kUnit;
+  const UnitConversion conv =
+      AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(PetersonSpectrum::kUnit, s->unit); });
+  std::shared_ptr<const Spectrum> one = std::make_shared<PetersonSpectrum>(model, extrapolation);
+  if (!conv.IsPureScale() || conv.scale != 1.0)
+    one = std::make_shared<ConvertedSpectrum>(one, conv.scale, conv.derivative_order, s->unit);
+  s->channel_names = ChannelNames(node, s->name, 1);
+  return Repeat(one, s->channel_names.size());
 }
 
 }  // namespace
@@ -219,11 +277,17 @@ Source ParseSource(const YamlNode& node, const std::string& base_dir) {
     spectrum = m;
   } else if (type == "timeseries") {
     spectrum = TimeSeriesSpectrum(node, spec, base_dir, &s);
+  } else if (type == "reference") {
+    spectrum = ReferenceSpectrum(node, spec, &s);
   } else {
-    spec.Required("type").Fail("unknown spectrum type '" + type + "'; allowed: flat, vc, measured, timeseries");
+    spec.Required("type").Fail("unknown spectrum type '" + type +
+                               "'; allowed: flat, vc, measured, timeseries, reference");
   }
 
   if (auto c = node.Optional("correlation")) {
+    if (type == "timeseries" && !spectrum->IsDiagonal())
+      c->Fail("the recording's cross-spectra already give the channels' correlation; remove 'correlation', or "
+              "set cross_spectra: none to impose one on independent channels");
     const int n = spectrum->channels();
     Eigen::MatrixXd rho;
     if (c->IsScalar()) {

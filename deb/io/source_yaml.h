@@ -1,5 +1,5 @@
-// YAML -> Source: the `sources:` entries of a budget (flat, vc, measured),
-// converted at load to deb's internal convention (one-sided PSD, unit^2/Hz).
+// YAML -> Source: the `sources:` entries of a budget (flat, vc, measured,
+// timeseries, reference), converted at load to deb's internal convention (one-sided PSD, unit^2/Hz).
 #pragma once
 
 #include <string>

@@ -81,24 +81,59 @@ PsdEstimate CsdEstimate::AutoSpectra() const {
   return e;
 }
 
-std::shared_ptr<const MeasuredSpectrum> ToMeasuredSpectrum(const PsdEstimate& estimate, Extrapolation extrapolation) {
+namespace {
+
+// First bin above 0 Hz; @throws InputError if fewer than 2 bins remain.
+std::size_t FirstPositiveBin(const std::vector<double>& f_hz) {
   std::size_t first = 0;
-  while (first < estimate.f_hz.size() && !(estimate.f_hz[first] > 0.0)) ++first;
-  const std::size_t n = estimate.f_hz.size() - first;
+  while (first < f_hz.size() && !(f_hz[first] > 0.0)) ++first;
+  const std::size_t n = f_hz.size() - first;
   if (n < 2)
     throw InputError("spectral estimate has " + std::to_string(n) +
                      " bins above 0 Hz; a spectrum needs at least 2 (use a longer segment)");
+  return first;
+}
+
+std::string Origin(const WelchProvenance& p) {
+  return "Welch estimate (" + ToString(p.window) + ", " + std::to_string(p.segment_length) + " samples, " +
+         std::to_string(p.segments) + " averages, resolution " + NumberText(p.resolution_hz) + " Hz)";
+}
+
+}  // namespace
+
+std::shared_ptr<const MeasuredSpectrum> ToMeasuredSpectrum(const PsdEstimate& estimate, Extrapolation extrapolation) {
+  const std::size_t first = FirstPositiveBin(estimate.f_hz);
+  const std::size_t n = estimate.f_hz.size() - first;
   MeasuredSpectrumOptions options;
   options.extrapolation = extrapolation;
   options.channel_names = estimate.channel_names;
   options.unit = estimate.unit;
-  options.origin = "Welch estimate (" + ToString(estimate.provenance.window) + ", " +
-                   std::to_string(estimate.provenance.segment_length) + " samples, " +
-                   std::to_string(estimate.provenance.segments) + " averages, resolution " +
-                   NumberText(estimate.provenance.resolution_hz) + " Hz)";
+  options.origin = Origin(estimate.provenance);
   return std::make_shared<MeasuredSpectrum>(
       std::vector<double>(estimate.f_hz.begin() + static_cast<std::ptrdiff_t>(first), estimate.f_hz.end()),
       estimate.psd.bottomRows(static_cast<Eigen::Index>(n)), options);
+}
+
+std::shared_ptr<const TabulatedCsd> ToTabulatedCsd(const CsdEstimate& estimate, Extrapolation extrapolation) {
+  if (estimate.provenance.averaging == Averaging::kMedian && estimate.channels > 1)
+    throw InputError("a median-averaged cross-spectral matrix need not be positive semi-definite (real and "
+                     "imaginary parts are medianed apart); use mean averaging for cross-spectra");
+  const std::size_t first = FirstPositiveBin(estimate.f_hz);
+  const auto n = static_cast<Eigen::Index>(estimate.f_hz.size() - first);
+  const int c = estimate.channels;
+  // Welch pairs conj(X_a) X_b in column a + c b; deb's S_ab is E[U_a U_b^*],
+  // its conjugate, which for a Hermitian matrix is the transpose.
+  Eigen::MatrixXcd csd(n, estimate.csd.cols());
+  for (int b = 0; b < c; ++b)
+    for (int a = 0; a < c; ++a) csd.col(a + c * b) = estimate.csd.col(b + c * a).bottomRows(n);
+  TabulatedCsdOptions options;
+  options.extrapolation = extrapolation;
+  options.channel_names = estimate.channel_names;
+  options.unit = estimate.unit;
+  options.origin = Origin(estimate.provenance);
+  return std::make_shared<TabulatedCsd>(
+      std::vector<double>(estimate.f_hz.begin() + static_cast<std::ptrdiff_t>(first), estimate.f_hz.end()), c, csd,
+      options);
 }
 
 }  // namespace deb

@@ -12,6 +12,7 @@
 
 #include "deb/signal/window.h"
 #include "deb/spectra/measured_spectrum.h"
+#include "deb/spectra/tabulated_csd.h"
 
 namespace deb {
 
@@ -76,5 +77,13 @@ struct CsdEstimate {
 // defined for f > 0). @throws InputError if fewer than 2 bins remain.
 std::shared_ptr<const MeasuredSpectrum> ToMeasuredSpectrum(const PsdEstimate& estimate,
                                                            Extrapolation extrapolation = Extrapolation::kError);
+
+// The full estimate as a budget source, in deb's orientation (S_ab =
+// E[U_a U_b^*], the conjugate of CsdEstimate's Welch pairing); the 0 Hz bin is
+// dropped. @throws InputError if fewer than 2 bins remain, or the estimate
+// is median-averaged with more than one channel (its matrix need not be
+// positive semi-definite), or the table breaks TabulatedCsd's rules.
+std::shared_ptr<const TabulatedCsd> ToTabulatedCsd(const CsdEstimate& estimate,
+                                                   Extrapolation extrapolation = Extrapolation::kError);
 
 }  // namespace deb

@@ -42,6 +42,9 @@ double PetersonSpectrum::PsdAt(double f_hz) const {
   if (f_hz < kMinHz || f_hz > kMaxHz) {
     if (extrapolation_ == Extrapolation::kZero) return 0.0;
     if (extrapolation_ == Extrapolation::kHold) return PetersonAccelerationPsd(model_, f_hz < kMinHz ? kMinHz : kMaxHz);
+    throw InputError("Peterson " + ToString(model_) + ": " + NumberText(f_hz) +
+                     " Hz is outside the model's range, 1e-05-10 Hz (periods 0.1-100000 s; extrapolation: error); "
+                     "keep the frequency range inside it or choose extrapolation zero or hold");
   }
   return PetersonAccelerationPsd(model_, f_hz);
 }

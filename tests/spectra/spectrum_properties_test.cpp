@@ -8,9 +8,12 @@
 #include <thread>
 
 #include "deb/spectra/channel_set.h"
+#include "deb/spectra/converted_spectrum.h"
 #include "deb/spectra/flat_spectrum.h"
 #include "deb/spectra/measured_spectrum.h"
+#include "deb/spectra/peterson_noise_model.h"
 #include "deb/spectra/scaled_spectrum.h"
+#include "deb/spectra/tabulated_csd.h"
 #include "deb/spectra/vc_curve.h"
 
 namespace deb {
@@ -29,6 +32,17 @@ std::vector<SpectrumPtr> EveryKind() {
   Eigen::Matrix3d rho;
   rho << 1.0, 0.8, 0.6, 0.8, 1.0, 0.7, 0.6, 0.7, 1.0;
   const auto coherent_floor = std::make_shared<CorrelatedChannels>(floor, rho);
+  // Two channels, coherency 0.9 e^{j phi} turning with frequency (a delay).
+  const std::vector<double> csd_f{0.2, 3.0, 40.0, 800.0};
+  Eigen::MatrixXcd csd_table(4, 4);
+  for (int i = 0; i < 4; ++i) {
+    const double saa = 1e-3 / csd_f[static_cast<std::size_t>(i)], sbb = 2e-3;
+    const std::complex<double> sab = 0.9 * std::sqrt(saa * sbb) * std::polar(1.0, 0.01 * csd_f[static_cast<std::size_t>(i)]);
+    csd_table.row(i) << saa, std::conj(sab), sab, sbb;
+  }
+  TabulatedCsdOptions csd_hold;
+  csd_hold.extrapolation = Extrapolation::kHold;
+  const auto tabulated = std::make_shared<TabulatedCsd>(csd_f, 2, csd_table, csd_hold);
   const auto noise = std::make_shared<IndependentChannels>(std::vector<SpectrumPtr>(
       7, std::make_shared<FlatSpectrum>(20.0)));
   return {std::make_shared<FlatSpectrum>(20.0),
@@ -36,6 +50,10 @@ std::vector<SpectrumPtr> EveryKind() {
           vc,
           std::make_shared<VcSpectrum>(VcClass::kA),
           measured,
+          tabulated,
+          std::make_shared<ConvertedSpectrum>(std::make_shared<PetersonSpectrum>(PetersonModel::kLow, Extrapolation::kHold),
+                                              1e6, -1, "um/s"),
+          std::make_shared<ConvertedSpectrum>(coherent_floor, 1e-3, 0, "mm/s"),
           floor,
           coherent_floor,
           std::make_shared<ScaledSpectrum>(coherent_floor, 2.0),
