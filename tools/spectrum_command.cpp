@@ -1,5 +1,6 @@
 #include "tools/spectrum_command.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -8,9 +9,14 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/report/measurement_plots.h"
+#include "deb/report/plot_files.h"
+#include "deb/report/report_options.h"
 #include "deb/signal/self_noise.h"
 #include "deb/signal/time_series_file.h"
 #include "deb/signal/welch.h"
@@ -22,6 +28,8 @@
 
 namespace deb::tools {
 namespace {
+
+namespace fs = std::filesystem;
 
 // Options shared by the commands that read a recording.
 struct RecordingOptions {
@@ -61,6 +69,10 @@ struct Settings {
   // reference
   std::string model;
   double points_per_decade = 50.0;
+  // plots
+  bool plots = true;
+  std::string plot_file;                 // --plot: the main plot's file
+  std::vector<PlotFormat> plot_formats;  // --plot-format; empty: --plot's extension, else png
   CLI::App *welch = nullptr, *bands = nullptr, *convert = nullptr, *selfnoise = nullptr, *reference = nullptr;
 };
 
@@ -123,30 +135,131 @@ WelchOptions Welch(const RecordingOptions& r) {
   return o;
 }
 
-// Writes text to path through a temporary file renamed at the end, so a
-// failure never leaves a half-written file; "" or "-" is standard output.
-void WriteText(const std::string& path, const std::string& text) {
-  if (path.empty() || path == "-") {
-    std::cout << text;
-    return;
+// Where a plot goes: beside the file it shows, named after it.
+struct PlotPlace {
+  std::string directory, stem;
+};
+
+// The main plot goes to --plot if given, else beside the output file; a
+// second plot (coherence) beside its own file. Output on standard output
+// ("" or "-") has no plot unless --plot names one.
+std::optional<PlotPlace> PlacePlot(const Settings& s, const std::string& out, bool main) {
+  if (!s.plots) return std::nullopt;
+  const std::string file = main && !s.plot_file.empty() ? s.plot_file : out;
+  if (file.empty() || file == "-") return std::nullopt;
+  const fs::path p(file);
+  return PlotPlace{p.parent_path().string(), p.stem().string()};
+}
+
+// The plot formats: --plot-format, else the extension of --plot, else png.
+std::vector<PlotFormat> PlotFormats(const Settings& s) {
+  const std::string ext = s.plot_file.empty() ? "" : fs::path(s.plot_file).extension().string().substr(1);
+  if (s.plot_formats.empty()) return {ext.empty() ? PlotFormat::kPng : ParsePlotFormat(ext)};
+  if (!ext.empty() && std::find(s.plot_formats.begin(), s.plot_formats.end(), ParsePlotFormat(ext)) ==
+                          s.plot_formats.end())
+    throw InputError("--plot " + s.plot_file + " is a ." + ext + " file but --plot-format does not include " + ext);
+  return s.plot_formats;
+}
+
+// Everything one command writes: text files (or standard output) and plots
+// beside them. Write() draws the plots first, in hidden directories, then
+// writes every file through a temporary name and renames them all, so that
+// a missing gnuplot or an unwritable file leaves nothing half-written.
+class Outputs {
+ public:
+  explicit Outputs(const Settings& s) : settings_(s) {}
+
+  // path "" or "-": standard output.
+  void Text(const std::string& path, std::string text, const std::string& what) {
+    texts_.push_back({path, std::move(text), what});
   }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << text;
-    out.close();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw InputError(path + ": cannot write the output file: " + std::strerror(errno));
+  // plot.name must be place.stem: its script reads the data by that name.
+  void Plot(const PlotPlace& place, report::Plot plot) {
+    DEB_DEMAND(plot.name == place.stem);
+    plots_.push_back({std::move(plot), place.directory});
+  }
+  const std::vector<std::string>& written() const { return written_; }
+
+  void Write() {
+    if (plots_.empty() && settings_.plots && !settings_.plot_formats.empty())
+      std::fprintf(stderr, "deb: note: no plot: the CSV goes to standard output; name the plot with --plot\n");
+    const std::vector<PlotFormat> formats = plots_.empty() ? std::vector<PlotFormat>{} : PlotFormats(settings_);
+    RefuseCollisions(formats);
+    std::optional<report::StagedPlots> staged;
+    if (!plots_.empty()) staged.emplace(plots_, formats);
+    std::vector<std::pair<std::string, std::string>> renames;  // temporary, final
+    const auto discard = [&] {
+      for (const auto& [tmp, final_path] : renames) std::remove(tmp.c_str());
+    };
+    for (const File& f : texts_) {
+      if (f.path.empty() || f.path == "-") continue;
+      const std::string tmp = f.path + ".tmp";
+      std::ofstream out(tmp, std::ios::binary);
+      out << f.text;
+      out.close();
+      if (!out) {
+        const std::string why = std::strerror(errno);
+        std::remove(tmp.c_str());
+        discard();
+        throw InputError(f.path + ": cannot write the output file: " + why);
+      }
+      renames.push_back({tmp, f.path});
+    }
+    for (const auto& [tmp, final_path] : renames) {
+      std::error_code ec;
+      fs::rename(tmp, final_path, ec);
+      if (ec) {
+        discard();
+        throw InputError(final_path + ": cannot write the output file: " + ec.message());
+      }
+      written_.push_back(final_path);
+    }
+    for (const File& f : texts_)
+      if (f.path.empty() || f.path == "-") std::cout << f.text;
+    if (staged)
+      for (std::string& p : staged->Commit()) written_.push_back(std::move(p));
+  }
+
+ private:
+  struct File {
+    std::string path, text, what;
+  };
+
+  // Two outputs with one name would overwrite each other (e.g. -o psd.png).
+  void RefuseCollisions(const std::vector<PlotFormat>& formats) const {
+    std::vector<std::pair<std::string, std::string>> named;  // path, what
+    for (const File& f : texts_)
+      if (!f.path.empty() && f.path != "-") named.push_back({f.path, f.what});
+    for (const report::StandalonePlot& p : plots_)
+      for (const std::string& path : report::StandalonePlotPaths(p, formats))
+        named.push_back({path, "a file of the plot " + p.plot.name});
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < named.size(); ++i) {
+      const std::string key = fs::absolute(named[i].first).lexically_normal().string();
+      if (seen.insert(key).second) continue;
+      for (std::size_t j = 0; j < i; ++j)
+        if (fs::absolute(named[j].first).lexically_normal().string() == key)
+          throw InputError(named[i].first + " would be written twice: as " + named[j].second + " and as " +
+                           named[i].second + "; name the plot with --plot, or give --no-plots");
     }
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw InputError(path + ": cannot write the output file: " + ec.message());
-  }
+
+  const Settings& settings_;
+  std::vector<File> texts_;
+  std::vector<report::StandalonePlot> plots_;
+  std::vector<std::string> written_;
+};
+
+// "wrote psd.csv, psd.plot.csv, psd.gp, psd.png": on standard output, or on
+// standard error when the CSV itself went to standard output.
+void PrintWritten(const Outputs& outputs, const std::string& out) {
+  if (outputs.written().empty()) return;
+  std::string line = "wrote ";
+  for (std::size_t i = 0; i < outputs.written().size(); ++i) line += (i ? ", " : "") + outputs.written()[i];
+  std::fprintf(out.empty() || out == "-" ? stderr : stdout, "%s\n", line.c_str());
 }
+
+std::string SourceName(const std::string& path) { return fs::path(path).filename().string(); }
 
 std::string Number(double v) {
   char text[32];
@@ -201,8 +314,12 @@ int RunWelch(const Settings& s) {
       bound_names.push_back(e.channel_names[static_cast<std::size_t>(c)] + "_hi");
     }
   }
-  WriteText(s.out, SpectrumCsvText(Provenance("Welch PSD", e, s.rec.file), e.unit, false, e.f_hz, e.psd,
-                                   e.channel_names, s.bounds ? &bounds : nullptr, bound_names));
+  Outputs outputs(s);
+  outputs.Text(s.out, SpectrumCsvText(Provenance("Welch PSD", e, s.rec.file), e.unit, false, e.f_hz, e.psd,
+                                      e.channel_names, s.bounds ? &bounds : nullptr, bound_names),
+               "the output CSV (-o)");
+  if (const auto place = PlacePlot(s, s.out, true))
+    outputs.Plot(*place, report::WelchPsdPlot(e, SourceName(s.rec.file), s.bounds, place->stem));
   if (cross) {
     std::ostringstream out;
     out << "# coherence |S_ab|^2/(S_aa S_bb) and CSD phase arg S_ab = arg <conj(X_a) X_b>, rad\n";
@@ -223,14 +340,18 @@ int RunWelch(const Settings& s) {
               << Number(std::arg(csd.Cross(a, b)(static_cast<Eigen::Index>(k))));
       out << "\n";
     }
-    WriteText(s.coherence_out, out.str());
+    outputs.Text(s.coherence_out, out.str(), "the coherence CSV (--coherence)");
+    // A single channel has no pair: its coherence CSV holds frequencies only.
+    if (const auto place = PlacePlot(s, s.coherence_out, false); place && csd.channels >= 2)
+      outputs.Plot(*place, report::CoherencePlot(csd, SourceName(s.rec.file), place->stem));
   }
+  outputs.Write();
   if (!s.out.empty() && s.out != "-") {
     std::printf("%s: %zu channel(s), %lld samples at %g Hz\n", s.rec.file.c_str(), e.channel_names.size(),
                 static_cast<long long>(series.size()), series.rate_hz());
     for (const std::string& l : e.provenance.Describe()) std::printf("  %s\n", l.c_str());
-    std::printf("wrote %s\n", s.out.c_str());
   }
+  PrintWritten(outputs, s.out);
   return 0;
 }
 
@@ -287,7 +408,16 @@ int RunBands(const Settings& s) {
     }
     out << "\n";
   }
-  WriteText(s.out, out.str());
+  Outputs outputs(s);
+  outputs.Text(s.out, out.str(), "the output CSV (-o)");
+  if (const auto place = PlacePlot(s, s.out, true)) {
+    ClassifyOptions drawn = options;
+    drawn.series = series;
+    drawn.low_frequency_extension = s.extend;
+    outputs.Plot(*place, report::BandClassPlot(csv.channel_names, per_channel, verdicts, drawn, band_unit,
+                                               SourceName(s.spectrum_file), place->stem));
+  }
+  outputs.Write();
   if (!s.out.empty() && s.out != "-") {
     for (std::size_t c = 0; c < per_channel.size(); ++c) {
       int coarse = 0;
@@ -299,8 +429,8 @@ int RunBands(const Settings& s) {
         std::printf("  warning: %d band(s) hold fewer than 5 spectral lines; use a longer segment to resolve them\n",
                     coarse);
     }
-    std::printf("wrote %s\n", s.out.c_str());
   }
+  PrintWritten(outputs, s.out);
   return 0;
 }
 
@@ -324,9 +454,19 @@ int RunConvert(const Settings& s) {
       }
       psd.col(c) = Eigen::Map<const Eigen::VectorXd>(t.psd.data(), static_cast<Eigen::Index>(t.psd.size()));
     }
-    WriteText(s.out, SpectrumCsvText({"PSD from the one-third-octave band RMS table " + s.spectrum_file +
-                                          " (constant in each band, " + ToString(series) + " edges)"},
-                                     table.unit.value_or(""), s.asd, f_out, psd, table.channel_names));
+    Outputs outputs(s);
+    outputs.Text(s.out, SpectrumCsvText({"PSD from the one-third-octave band RMS table " + s.spectrum_file +
+                                             " (constant in each band, " + ToString(series) + " edges)"},
+                                        table.unit.value_or(""), s.asd, f_out, psd, table.channel_names),
+                 "the output CSV (-o)");
+    if (const auto place = PlacePlot(s, s.out, true))
+      outputs.Plot(*place, report::SpectrumTablePlot(
+                               f_out, psd, table.channel_names, table.unit.value_or(""), s.asd,
+                               std::string(s.asd ? "ASD" : "PSD") + " from the band RMS table " +
+                                   SourceName(s.spectrum_file) + " (constant in each band)",
+                               place->stem));
+    outputs.Write();
+    PrintWritten(outputs, s.out);
     return 0;
   }
   const SpectrumCsv csv = ReadSpectrumCsv(s.spectrum_file);
@@ -341,7 +481,15 @@ int RunConvert(const Settings& s) {
     for (std::size_t k = 0; k < csv.f_hz.size(); ++k) psd.row(static_cast<Eigen::Index>(k)) *= conv.PsdFactor(csv.f_hz[k]);
     comments.push_back(from + " -> " + to + ": " + conv.Describe());
   }
-  WriteText(s.out, SpectrumCsvText(comments, to, s.asd, csv.f_hz, psd, csv.channel_names));
+  Outputs outputs(s);
+  outputs.Text(s.out, SpectrumCsvText(comments, to, s.asd, csv.f_hz, psd, csv.channel_names), "the output CSV (-o)");
+  if (const auto place = PlacePlot(s, s.out, true)) {
+    std::string title = std::string(s.asd ? "ASD" : "PSD") + " of " + SourceName(s.spectrum_file);
+    if (!s.to_unit.empty()) title += ", converted from " + report::UnitText(from) + " to " + report::UnitText(to);
+    outputs.Plot(*place, report::SpectrumTablePlot(csv.f_hz, psd, csv.channel_names, to, s.asd, title, place->stem));
+  }
+  outputs.Write();
+  PrintWritten(outputs, s.out);
   return 0;
 }
 
@@ -360,7 +508,12 @@ int RunSelfNoise(const Settings& s) {
     if (n.clamped_bins[c] > 0)
       comments.push_back(n.noise.channel_names[c] + ": " + std::to_string(n.clamped_bins[c]) +
                          " bins estimated below zero, set to 0");
-  WriteText(s.out, SpectrumCsvText(comments, n.noise.unit, false, n.noise.f_hz, n.noise.psd, n.noise.channel_names));
+  Outputs outputs(s);
+  outputs.Text(s.out, SpectrumCsvText(comments, n.noise.unit, false, n.noise.f_hz, n.noise.psd, n.noise.channel_names),
+               "the output CSV (-o)");
+  if (const auto place = PlacePlot(s, s.out, true))
+    outputs.Plot(*place, report::SelfNoisePlot(csd.AutoSpectra(), n, SourceName(s.rec.file), place->stem));
+  outputs.Write();
   if (!s.out.empty() && s.out != "-") {
     std::printf("%s\n", n.method.c_str());
     for (std::size_t c = 0; c < n.clamped_bins.size(); ++c)
@@ -372,8 +525,8 @@ int RunSelfNoise(const Settings& s) {
                     return v[v.size() / 2];
                   }(),
                   n.noise.unit.empty() ? "unit" : ("(" + n.noise.unit + ")").c_str(), n.clamped_bins[c]);
-    std::printf("wrote %s\n", s.out.c_str());
   }
+  PrintWritten(outputs, s.out);
   return 0;
 }
 
@@ -389,10 +542,46 @@ int RunReference(const Settings& s) {
   Eigen::MatrixXd psd(static_cast<Eigen::Index>(f.size()), 1);
   for (std::size_t k = 0; k < f.size(); ++k)
     psd(static_cast<Eigen::Index>(k), 0) = PetersonAccelerationPsd(model, f[k]) * conv.PsdFactor(f[k]);
-  WriteText(s.out, SpectrumCsvText({"Peterson (1993), USGS OFR 93-322, " + ToString(model) +
-                                        ": vertical ground motion, converted from m/s^2: " + conv.Describe()},
-                                   unit, s.asd, f, psd, {ToString(model)}));
+  Outputs outputs(s);
+  outputs.Text(s.out, SpectrumCsvText({"Peterson (1993), USGS OFR 93-322, " + ToString(model) +
+                                           ": vertical ground motion, converted from m/s^2: " + conv.Describe()},
+                                      unit, s.asd, f, psd, {ToString(model)}),
+               "the output CSV (-o)");
+  if (const auto place = PlacePlot(s, s.out, true))
+    outputs.Plot(*place, report::PetersonPlot(model, f, unit, s.asd, place->stem));
+  outputs.Write();
+  PrintWritten(outputs, s.out);
   return 0;
+}
+
+// --plot, --plot-format and --no-plots (recordings already take --format).
+void AddPlotOptions(CLI::App* c, Settings& s) {
+  CLI::Option* plot =
+      c->add_option("--plot", s.plot_file,
+                    "Plot file, .png, .svg or .pdf (default: beside -o, named after it: psd.csv -> psd.png, with "
+                    "psd.gp and psd.plot.csv; none when the CSV goes to standard output)")
+          ->check(CLI::Validator(
+              [](std::string& file) -> std::string {
+                const std::string ext = fs::path(file).extension().string();
+                if (ext == ".png" || ext == ".svg" || ext == ".pdf") return "";
+                return "the plot file must end in .png, .svg or .pdf: " + file;
+              },
+              "FILE.png|svg|pdf"));
+  CLI::Option* formats =
+      c->add_option_function<std::vector<std::string>>(
+           "--plot-format",
+           [&s](const std::vector<std::string>& names) {
+             if (std::set<std::string>(names.begin(), names.end()).size() != names.size())
+               throw CLI::ValidationError("--plot-format", "a format is given twice");
+             s.plot_formats.clear();
+             for (const auto& n : names) s.plot_formats.push_back(ParsePlotFormat(n));
+           },
+           "Plot formats, comma-separated: png, pdf, svg (default: png, or the extension of --plot)")
+          ->delimiter(',')
+          ->check(CLI::IsMember({"png", "pdf", "svg"}));
+  c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write the CSV only; gnuplot is not needed")
+      ->excludes(plot)
+      ->excludes(formats);
 }
 
 }  // namespace
@@ -407,7 +596,9 @@ CLI::App* AddSpectrumCommand(CLI::App& app) {
   AddRecordingOptions(s.welch, s.rec);
   s.welch->add_option("--out,-o", s.out, "Output spectrum CSV (default: standard output)");
   s.welch->add_flag("--bounds", s.bounds, "Add <channel>_lo/_hi columns: the chi-square confidence bounds");
-  s.welch->add_option("--coherence", s.coherence_out, "Also write coherence and CSD phase of every pair to this CSV");
+  s.welch->add_option("--coherence", s.coherence_out, "Also write coherence and CSD phase of every pair to this CSV "
+                                                      "(and its plot beside it, as for -o)");
+  AddPlotOptions(s.welch, s);
 
   s.bands = spectrum->add_subcommand("bands", "One-third-octave band RMS of a spectrum CSV and its VC/ISO class");
   s.bands->add_option("spectrum", s.spectrum_file, "Spectrum CSV")->required()->check(CLI::ExistingFile);
@@ -419,6 +610,7 @@ CLI::App* AddSpectrumCommand(CLI::App& app) {
   s.bands->add_flag("--extend", s.extend, "Continue the VC curves' constant velocity below 8 Hz (thesis' modified VC)");
   s.bands->add_option("--unit", s.unit, "Unit of the spectrum's signal, if the file has no '# unit:'");
   s.bands->add_option("--out,-o", s.out, "Output CSV (default: standard output)");
+  AddPlotOptions(s.bands, s);
 
   s.convert = spectrum->add_subcommand("convert", "Convert a spectrum CSV: unit (displacement, velocity, "
                                                   "acceleration), PSD or ASD, band RMS table to PSD");
@@ -432,12 +624,14 @@ CLI::App* AddSpectrumCommand(CLI::App& app) {
                       "Input rows are band centres and band RMS values: write the PSD constant in each band");
   s.convert->add_option("--series", s.series, "Band series for --from-bands: base2_1hz, iec_base2, iec_base10");
   s.convert->add_option("--out,-o", s.out, "Output spectrum CSV (default: standard output)");
+  AddPlotOptions(s.convert, s);
 
   s.selfnoise = spectrum->add_subcommand("selfnoise", "Sensor self-noise from co-located recordings: two sensors "
                                                       "(Holcomb, identical sensors) or three (Sleeman)");
   AddRecordingOptions(s.selfnoise, s.rec);
   s.selfnoise->add_option("--sensors", s.sensors, "2 or 3 channel names")->required()->delimiter(',');
   s.selfnoise->add_option("--out,-o", s.out, "Output noise spectrum CSV (default: standard output)");
+  AddPlotOptions(s.selfnoise, s);
 
   s.reference = spectrum->add_subcommand("reference", "Peterson's New Low/High Noise Model as a spectrum CSV");
   s.reference->add_option("model", s.model, "nlnm or nhnm")->required();
@@ -445,6 +639,7 @@ CLI::App* AddSpectrumCommand(CLI::App& app) {
   s.reference->add_option("--points-per-decade", s.points_per_decade, "Frequencies per decade, 1e-5-10 Hz");
   s.reference->add_flag("--asd", s.asd, "Write an ASD instead of a PSD");
   s.reference->add_option("--out,-o", s.out, "Output spectrum CSV (default: standard output)");
+  AddPlotOptions(s.reference, s);
   return spectrum;
 }
 

@@ -2,7 +2,8 @@
 // of recordings, third-octave band RMS and VC/ISO classification, unit and
 // PSD/ASD conversion, sensor self-noise, and Peterson's reference models.
 // Every command writes a spectrum CSV that `type: measured` budget sources
-// read back (deb/spectra/spectrum_csv.h).
+// read back (deb/spectra/spectrum_csv.h), and a plot of it beside the CSV
+// (deb/report/measurement_plots.h, plot_files.h) unless --no-plots.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -13,7 +14,8 @@ namespace deb::tools {
 CLI::App* AddSpectrumCommand(CLI::App& app);
 
 // Runs the chosen subcommand of `spectrum` (after parsing).
-// @throws InputError for bad input or an output that cannot be written.
+// @throws InputError for bad input, an output that cannot be written, or a
+//   missing or failing gnuplot; nothing is written then.
 int RunSpectrumCommand(const CLI::App& spectrum);
 
 }  // namespace deb::tools
