@@ -50,8 +50,17 @@ std::string PlotList(const std::vector<std::string>& clauses) {
 // stay short, powers of ten over wide or extreme ranges.
 std::string FrequencyAxis(double lo_hz, double hi_hz) {
   const bool powers = std::log10(hi_hz / lo_hz) > 6.0 || lo_hz < 1e-3 || hi_hz > 1e5;
-  return "set logscale x 10\nset format x " + std::string(powers ? "'10^{%L}'" : "'%g'") + "\nset xrange [" +
-         CsvNumber(lo_hz) + ":" + CsvNumber(hi_hz) + "]\nset xlabel 'frequency [Hz]'\n";
+  std::string s = "set logscale x 10\nset format x " + std::string(powers ? "'10^{%L}'" : "'%g'") +
+                  "\nset xrange [" + CsvNumber(lo_hz) + ":" + CsvNumber(hi_hz) + "]\nset xlabel 'frequency [Hz]'\n";
+  // Under two decades the powers of ten alone leave the axis nearly bare: label 2 and 5 too.
+  if (!powers && std::log10(hi_hz / lo_hz) < 2.0) {
+    std::string tics;
+    for (double decade = std::pow(10.0, std::floor(std::log10(lo_hz))); decade <= hi_hz; decade *= 10.0)
+      for (double m : {2.0, 5.0})
+        if (m * decade >= lo_hz && m * decade <= hi_hz) tics += (tics.empty() ? "" : ", ") + CsvNumber(m * decade);
+    if (!tics.empty()) s += "set xtics add (" + tics + ")\n";
+  }
+  return s;
 }
 
 // Whole decades around the values in [bottom, top], at most `decades` below
