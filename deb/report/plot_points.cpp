@@ -23,17 +23,27 @@ std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
       for (std::size_t k = first; k < last; ++k) largest = std::max(largest, std::abs((*s)[k]));
     scale = largest > 0.0 ? largest : 1.0;
   }
-  // The drawn y of a value; NaN where a log axis cannot show it.
-  const auto y = [&](double v) { return y_scale == PlotScale::kLog ? (v > 0.0 ? std::log10(v) : NAN) : v / scale; };
+  // Drawn coordinates, computed once: x = log10 f; y per series (NaN where a
+  // log axis cannot show the value). The chord test below visits each point
+  // many times, so no logarithm is taken inside it.
+  const std::size_t m = last - first;
+  std::vector<double> x(m);
+  for (std::size_t k = 0; k < m; ++k) x[k] = std::log10(f_hz[first + k]);
+  std::vector<std::vector<double>> ys(series.size(), std::vector<double>(m));
+  for (std::size_t c = 0; c < series.size(); ++c)
+    for (std::size_t k = 0; k < m; ++k) {
+      const double v = (*series[c])[first + k];
+      ys[c][k] = y_scale == PlotScale::kLog ? (v > 0.0 ? std::log10(v) : NAN) : v / scale;
+    }
 
   // Extend the drawn segment from the last kept point a to b while every point
   // between them stays within tolerance of the chord; segments span at most
-  // kMaxSpanDecades so that the check stays cheap.
+  // kMaxSpanDecades so that the check stays cheap. Indices are relative to first.
   constexpr double kMaxSpanDecades = 0.05;
   const auto deviates = [&](std::size_t a, std::size_t i, std::size_t b) {
-    const double t = std::log(f_hz[i] / f_hz[a]) / std::log(f_hz[b] / f_hz[a]);
-    for (const auto* s : series) {
-      const double ya = y((*s)[a]), yi = y((*s)[i]), yb = y((*s)[b]);
+    const double t = (x[i] - x[a]) / (x[b] - x[a]);
+    for (const std::vector<double>& yc : ys) {
+      const double ya = yc[a], yi = yc[i], yb = yc[b];
       if (std::isnan(ya) || std::isnan(yi) || std::isnan(yb)) {
         // Where a curve starts or stops being drawable, keep the point.
         if (std::isnan(ya) != std::isnan(yi) || std::isnan(yi) != std::isnan(yb)) return true;
@@ -43,14 +53,15 @@ std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
     }
     return false;
   };
-  keep.push_back(first);
-  for (std::size_t k = first + 1; k + 1 < last; ++k) {
+  keep.push_back(0);
+  for (std::size_t k = 1; k + 1 < m; ++k) {
     const std::size_t a = keep.back(), b = k + 1;
-    bool split = std::log10(f_hz[b] / f_hz[a]) > kMaxSpanDecades;
+    bool split = x[b] - x[a] > kMaxSpanDecades;
     for (std::size_t i = a + 1; i < b && !split; ++i) split = deviates(a, i, b);
     if (split) keep.push_back(k);
   }
-  if (last - 1 > first) keep.push_back(last - 1);
+  if (m > 1) keep.push_back(m - 1);
+  for (std::size_t& k : keep) k += first;
   return keep;
 }
 
