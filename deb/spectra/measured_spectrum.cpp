@@ -21,23 +21,6 @@ double Interpolate(double f_hz, double log_f, double f0, double log_f0, double s
 
 }  // namespace
 
-std::string ToString(Extrapolation extrapolation) {
-  switch (extrapolation) {
-    case Extrapolation::kError: return "error";
-    case Extrapolation::kZero: return "zero";
-    case Extrapolation::kHold: return "hold";
-  }
-  DEB_DEMAND(false);
-  return {};
-}
-
-Extrapolation ParseExtrapolation(const std::string& text) {
-  for (auto e : {Extrapolation::kError, Extrapolation::kZero, Extrapolation::kHold}) {
-    if (text == ToString(e)) return e;
-  }
-  throw InputError("unknown extrapolation '" + text + "'; allowed: error, zero, hold");
-}
-
 MeasuredSpectrum::MeasuredSpectrum(std::vector<double> f_hz, Eigen::MatrixXd psd,
                                    MeasuredSpectrumOptions options)
     : f_hz_(std::move(f_hz)), psd_(std::move(psd)), options_(std::move(options)) {

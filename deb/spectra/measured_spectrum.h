@@ -9,21 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/extrapolation.h"
 #include "deb/spectra/spectrum.h"
 
 namespace deb {
-
-// What Psd()/Csd() do at a frequency outside [f_first, f_last].
-enum class Extrapolation {
-  kError,  // throw InputError naming the frequency and the data range
-  kZero,   // S = 0 outside the data
-  kHold,   // S = value at the nearest end of the data
-};
-
-// "error", "zero", "hold".
-std::string ToString(Extrapolation extrapolation);
-// @throws InputError naming the text and listing the allowed values.
-Extrapolation ParseExtrapolation(const std::string& text);
 
 struct MeasuredSpectrumOptions {
   Extrapolation extrapolation = Extrapolation::kError;
