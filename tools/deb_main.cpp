@@ -66,7 +66,14 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
   deb::EngineOptions options;
   options.threads = threads;
   const auto t0 = std::chrono::steady_clock::now();
-  const deb::BudgetResult result = deb::Evaluate(budget, options);
+  const deb::BudgetResult result = [&] {
+    try {
+      return deb::Evaluate(budget, options);
+    } catch (const deb::InputError& e) {
+      if (e.key_path().empty()) throw;
+      throw deb::InputError(e.key_path(), deb::LocateInBudgetFile(budget_file, e.key_path(), e.what()));
+    }
+  }();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
   try {

@@ -223,7 +223,17 @@ FrequencyGrid BuildGrid(const Budget& budget) {
   std::vector<double> breakpoints;
   std::map<std::string, bool> seen_path;
   for (const Contributor& c : budget.contributors) {
-    if (!seen_path[c.path]) AddResonances(budget.FindPath(c.path).system, &resonances);
+    if (!seen_path[c.path]) {
+      const Path& path = budget.FindPath(c.path);
+      AddResonances(path.system, &resonances);
+      if (path.HasMeasuredData()) {
+        // The rational blocks' poles, and every data point: between data
+        // points |H|^2 is a power law, which the grid's rule integrates exactly.
+        for (const StateSpace& part : path.measured->RationalParts()) AddResonances(part, &resonances);
+        const std::vector<double> data = path.measured->DataFrequencies();
+        breakpoints.insert(breakpoints.end(), data.begin(), data.end());
+      }
+    }
     seen_path[c.path] = true;
   }
   for (const Output& o : budget.outputs)
@@ -294,7 +304,20 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     const Path& path = budget.FindPath(c.path);
     const int m = path.system.inputs();
 
-    const PathStability stability = ClassifyPoles(path.system);
+    PathStability stability = ClassifyPoles(path.system);
+    if (path.HasMeasuredData()) {
+      if (path.measured->HasLoopAroundData()) {
+        result.warnings.push_back("path '" + path.name +
+                                  "' closes a loop around measured data: its stability is not verified "
+                                  "(check the loop's Nyquist plot)");
+      } else {
+        for (const StateSpace& part : path.measured->RationalParts()) {
+          const PathStability s = ClassifyPoles(part);
+          stability.unstable.insert(stability.unstable.end(), s.unstable.begin(), s.unstable.end());
+          stability.marginal.insert(stability.marginal.end(), s.marginal.begin(), s.marginal.end());
+        }
+      }
+    }
     if (!stability.unstable.empty())
       throw InputError(Key("contributors", ci, "path"),
                        "path '" + path.name + "' is unstable: pole(s) at " + FormatPoles(stability.unstable) +
@@ -319,29 +342,33 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
       if (it == rows.end()) rows.push_back(row);
       out_conv[o] = OutputConversion(path, row, out);
     }
-    const StateSpace sub = path.system.SelectOutputs(rows);
-    const FrequencyResponse response(sub);
 
     std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
     const InputSpectrum input(*source.spectrum, in_conv);
-    response.ForEach(
-        f,
-        [&](std::size_t k, const Eigen::MatrixXcd& h) {
-          // Allocates only where the spectrum must be evaluated per frequency.
-          Eigen::VectorXd diag_scratch;
-          Eigen::MatrixXcd full_scratch;
-          const Eigen::VectorXd* s_diag = input.diagonal() ? &input.Diagonal(f[k], diag_scratch) : nullptr;
-          const Eigen::MatrixXcd* s_full = input.diagonal() ? nullptr : &input.Full(f[k], full_scratch);
-          for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
-            const int row = row_of_output[o];
-            double s = s_diag ? DiagonalForm(h, row, *s_diag) : HermitianForm(h, row, *s_full);
-            const UnitConversion& u = out_conv[o];
-            s *= u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f[k]);  // no pow() when not needed
-            if (!weighting_gain2[o].empty()) s *= weighting_gain2[o][k];
-            psd[o][k] = std::max(s, 0.0);  // rounding of a PSD-valued S_u
-          }
-        },
-        options.threads);
+    try {
+      path.ForEachResponse(
+          rows, f,
+          [&](std::size_t k, const Eigen::MatrixXcd& h) {
+            // Allocates only where the spectrum must be evaluated per frequency.
+            Eigen::VectorXd diag_scratch;
+            Eigen::MatrixXcd full_scratch;
+            const Eigen::VectorXd* s_diag = input.diagonal() ? &input.Diagonal(f[k], diag_scratch) : nullptr;
+            const Eigen::MatrixXcd* s_full = input.diagonal() ? nullptr : &input.Full(f[k], full_scratch);
+            for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+              const int row = row_of_output[o];
+              double s = s_diag ? DiagonalForm(h, row, *s_diag) : HermitianForm(h, row, *s_full);
+              const UnitConversion& u = out_conv[o];
+              s *= u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f[k]);  // no pow() when not needed
+              if (!weighting_gain2[o].empty()) s *= weighting_gain2[o][k];
+              psd[o][k] = std::max(s, 0.0);  // rounding of a PSD-valued S_u
+            }
+          },
+          options.threads);
+    } catch (const InputError& e) {
+      // A pole on the grid, data (spectrum or response) that do not reach: point at the contributor.
+      if (!e.key_path().empty()) throw;
+      throw InputError(Key("contributors", ci), "contributor '" + c.name + "': " + e.what());
+    }
 
     for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
       const Output& out = budget.outputs[o];
@@ -364,6 +391,8 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
       const auto white = source.spectrum->WhiteLevel();
       std::string why_not;
       if (c.exact == ExactVariance::kOff) why_not = "not requested";
+      else if (path.HasMeasuredData())
+        why_not = "the path holds measured frequency data (no state-space model for a Lyapunov solution)";
       else if (!white) why_not = "the source is not white (exact variance needs a flat spectrum without band limits)";
       else if (!inputs_pure_scale || !out_conv[o].IsPureScale())
         why_not = "the units differ by a time derivative (a factor j 2 pi f is not a rational path)";

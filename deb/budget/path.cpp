@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/systems/frequency_response.h"
 
 namespace deb {
 namespace {
@@ -37,6 +38,22 @@ int Path::OutputIndex(const std::string& signal) const {
   for (std::size_t i = 0; i < output_names.size(); ++i)
     if (output_names[i] == signal) return static_cast<int>(i);
   return -1;
+}
+
+FrequencyModel Path::Model() const { return measured ? *measured : FrequencyModel(system); }
+
+void Path::ForEachResponse(const std::vector<int>& rows, const std::vector<double>& f_hz,
+                           const FrequencyModel::Visitor& fn, int threads) const {
+  if (measured) {
+    const FrequencyModel sub = measured->SelectOutputs(rows);
+    try {
+      sub.ForEach(f_hz, fn, threads);
+    } catch (const InputError& e) {
+      throw InputError("path '" + name + "': " + e.what());
+    }
+    return;
+  }
+  FrequencyResponse(system.SelectOutputs(rows)).ForEach(f_hz, fn, threads);
 }
 
 }  // namespace deb

@@ -61,9 +61,8 @@ PathResponse ComputePathResponse(const Budget& budget, std::size_t contributor, 
   r.channels = source.channel_names;
   r.unit = Grouped(out.unit) + "/" + Grouped(source.unit);
   r.gain2.assign(m, std::vector<double>(f_hz.size(), 0.0));
-  FrequencyResponse(path.system.SelectOutputs({row}))
-      .ForEach(
-          f_hz,
+  path.ForEachResponse(
+          {row}, f_hz,
           [&](std::size_t i, const Eigen::MatrixXcd& h) {
             const double common = out_conv.PsdFactor(f_hz[i]) * (w2.empty() ? 1.0 : w2[i]);
             for (int k = 0; k < m; ++k)

@@ -152,6 +152,21 @@ Budget LoadBudgetFile(const std::string& path) {
   return Load(reader, dir.empty() ? "." : dir);
 }
 
+std::string LocateInBudgetFile(const std::string& path, const std::string& key_path, const std::string& message) {
+  try {
+    const YamlReader reader = YamlReader::FromFile(path);
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    try {
+      Load(reader, dir.empty() ? "." : dir);  // records the position of every key
+    } catch (const InputError&) {
+      // The file changed since it was loaded: locate what was recorded.
+    }
+    return reader.Locate(key_path, message);
+  } catch (const InputError&) {
+    return path + ": " + key_path + ": " + message;
+  }
+}
+
 Budget LoadBudgetText(const std::string& text, const std::string& name, const std::string& base_dir) {
   return Load(YamlReader::FromString(text, name), base_dir);
 }

@@ -17,4 +17,9 @@ Budget LoadBudgetFile(const std::string& path);
 // relative data-file paths.
 Budget LoadBudgetText(const std::string& text, const std::string& name, const std::string& base_dir = ".");
 
+// "file:line:col: key_path: message" for an error found after loading (the
+// engine knows key paths, not positions): the budget at `path` is read again
+// to find where key_path, or its closest parent, stands.
+std::string LocateInBudgetFile(const std::string& path, const std::string& key_path, const std::string& message);
+
 }  // namespace deb

@@ -1,6 +1,10 @@
 #include "deb/io/path_yaml.h"
 
+#include <filesystem>
+#include <memory>
+
 #include "deb/io/isolation_yaml.h"
+#include "deb/systems/frf_csv.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/transfer_function.h"
 #include "deb/units/unit.h"
@@ -59,6 +63,29 @@ Eigen::MatrixXd ScaleBetween(const YamlNode& node, const std::vector<std::string
     g(k, k) = c.scale;
   }
   return g;
+}
+
+// Sets p's transfer to the combination of a and b: in state space when both
+// are rational (poles and Lyapunov variances stay available), else as a
+// diagram evaluated per frequency, with a zero gain of the result's size as
+// `system`.
+template <typename StateSpaceOp, typename ModelOp>
+void Combine(Path* p, const Path& a, const Path& b, StateSpaceOp rational, ModelOp diagram) {
+  if (!a.HasMeasuredData() && !b.HasMeasuredData()) {
+    p->system = rational(a.system, b.system);
+    p->measured.reset();
+    return;
+  }
+  auto model = std::make_shared<const FrequencyModel>(diagram(a.Model(), b.Model()));
+  p->system = StateSpace::Gain(Eigen::MatrixXd::Zero(model->outputs(), model->inputs()));
+  p->measured = std::move(model);
+}
+
+// A path of the gain g (no states) for scaling between parts.
+Path GainPath(const Eigen::MatrixXd& g) {
+  Path p;
+  p.system = StateSpace::Gain(g);
+  return p;
 }
 
 }  // namespace
@@ -124,7 +151,11 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
           parts[i].Fail("path '" + next.name + "' has " + std::to_string(next.system.inputs()) +
                         " input(s) but follows " + std::to_string(acc.system.outputs()) + " output(s)");
         const Eigen::MatrixXd g = ScaleBetween(parts[i], acc.output_units, next.input_units, "series");
-        acc.system = Series(Series(acc.system, StateSpace::Gain(g)), next.system);
+        const auto series = [](const auto& x, const auto& y) { return Series(x, y); };
+        const auto diagram = [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); };
+        Path scaled = acc;
+        Combine(&scaled, acc, GainPath(g), series, diagram);
+        Combine(&acc, scaled, next, series, diagram);
         acc.output_names = next.output_names;
         acc.output_units = next.output_units;
       } else {
@@ -132,10 +163,18 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
           parts[i].Fail("parallel paths must have the same numbers of inputs and outputs");
         const Eigen::MatrixXd gi = ScaleBetween(parts[i], acc.input_units, next.input_units, "parallel inputs");
         const Eigen::MatrixXd go = ScaleBetween(parts[i], next.output_units, acc.output_units, "parallel outputs");
-        acc.system = Parallel(acc.system, Series(Series(StateSpace::Gain(gi), next.system), StateSpace::Gain(go)));
+        const auto series = [](const auto& x, const auto& y) { return Series(x, y); };
+        const auto diagram = [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); };
+        Path other = next;
+        Combine(&other, GainPath(gi), next, series, diagram);
+        Combine(&other, other, GainPath(go), series, diagram);
+        const Path before = acc;
+        Combine(&acc, before, other, [](const StateSpace& x, const StateSpace& y) { return Parallel(x, y); },
+                [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Parallel(x, y); });
       }
     }
     p.system = acc.system;
+    p.measured = acc.measured;
     p.input_units = acc.input_units;
     p.output_units = acc.output_units;
     p.input_names = acc.input_names;
@@ -157,15 +196,42 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
                                        plant.name + "'");
     const Eigen::MatrixXd gi = ScaleBetween(node.Required("controller"), plant.output_units, ctrl.input_units, "feedback");
     const Eigen::MatrixXd go = ScaleBetween(node.Required("controller"), ctrl.output_units, plant.input_units, "feedback");
-    const StateSpace k = Series(Series(StateSpace::Gain(gi), ctrl.system), StateSpace::Gain(go));
-    p.system = AtNode(node, [&] { return Feedback(plant.system, k, sign); });
+    const auto series = [](const auto& x, const auto& y) { return Series(x, y); };
+    const auto diagram = [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); };
+    Path k = ctrl;
+    Combine(&k, GainPath(gi), ctrl, series, diagram);
+    Combine(&k, k, GainPath(go), series, diagram);
+    AtNode(node, [&] {
+      Combine(&p, plant, k, [&](const StateSpace& g, const StateSpace& c) { return Feedback(g, c, sign); },
+              [&](const FrequencyModel& g, const FrequencyModel& c) { return FrequencyModel::Feedback(g, c, sign); });
+    });
     p.input_units = plant.input_units;
     p.output_units = plant.output_units;
     p.input_names = plant.input_names;
     p.output_names = plant.output_names;
+  } else if (type == "frf") {
+    node.AllowOnly(With(kCommonKeys, {"file", "extrapolation"}));
+    const YamlNode file = node.Required("file");
+    std::filesystem::path f(file.AsString());
+    if (f.is_relative()) f = std::filesystem::path(base_dir_) / f;
+    const Extrapolation extrapolation =
+        node.Has("extrapolation")
+            ? AtNode(node.Required("extrapolation"), [&] { return ParseExtrapolation(node.Required("extrapolation").AsString()); })
+            : Extrapolation::kError;
+    const std::vector<std::string> outs = node.Has("outputs") ? node.Required("outputs").AsStrings() : std::vector<std::string>{};
+    const std::vector<std::string> ins = node.Has("inputs") ? node.Required("inputs").AsStrings() : std::vector<std::string>{};
+    FrfCsv frf = AtNode(file, [&] { return ReadFrfCsv(f.lexically_normal().string(), outs, ins, extrapolation); });
+    p.input_names = frf.inputs;
+    p.output_names = frf.outputs;
+    p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(frf.response.outputs(), frf.response.inputs()));
+    p.measured = std::make_shared<const FrequencyModel>(std::move(frf.response));
+    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+    composite = true;  // names come from the file
   } else {
     type_node.Fail("unknown path type '" + type +
-                   "'; allowed: transfer_function, state_space, gain, series, parallel, feedback, isolation_system");
+                   "'; allowed: transfer_function, state_space, gain, frf, series, parallel, feedback, "
+                   "isolation_system");
   }
 
   if (composite) {

@@ -102,7 +102,7 @@ Eigen::MatrixXcd MeasuredSpectrum::Csd(double f_hz) const {
   return Psd(f_hz).cast<std::complex<double>>().asDiagonal();
 }
 
-std::vector<double> MeasuredSpectrum::BreakpointsHz() const { return {f_hz_.front(), f_hz_.back()}; }
+std::vector<double> MeasuredSpectrum::BreakpointsHz() const { return f_hz_; }
 
 std::string MeasuredSpectrum::Describe() const {
   std::string names;

@@ -48,7 +48,10 @@ class MeasuredSpectrum final : public Spectrum {
   // @throws InputError outside the data range with Extrapolation::kError.
   Eigen::VectorXd Psd(double f_hz) const override;
   bool IsDiagonal() const override { return true; }
-  // The two ends of the data range.
+  // Every data frequency: the grid then holds every tabulated point, so a
+  // narrow peak (a machine tone in a Welch estimate) is not stepped over, and
+  // between points the log-log interpolant is a power law, which the grid's
+  // integration rule integrates exactly.
   std::vector<double> BreakpointsHz() const override;
   std::string Describe() const override;
 

@@ -128,7 +128,7 @@ TEST_CASE("outside the table: an error naming the range, zero, or the end matrix
   const TabulatedCsd held(t.f_hz, 3, Pack(t.nodes), hold);
   CHECK(held.Csd(0.1) == held.Csd(0.5));
   CHECK(held.Csd(1000.0) == held.Csd(300.0));
-  CHECK(held.BreakpointsHz() == std::vector<double>{0.5, 300.0});
+  CHECK(held.BreakpointsHz() == t.f_hz);  // every data point
 }
 
 TEST_CASE("a table that is not Hermitian, not positive semi-definite or misshapen is rejected, naming entry and frequency") {

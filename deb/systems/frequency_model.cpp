@@ -1,0 +1,171 @@
+#include "deb/systems/frequency_model.h"
+
+#include <algorithm>
+#include <optional>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/core/parallel.h"
+#include "deb/systems/frequency_response.h"
+
+namespace deb {
+
+struct FrequencyModel::Node {
+  enum class Kind { kRational, kMeasured, kSeries, kParallel, kFeedback, kSelect };
+  Kind kind = Kind::kRational;
+  int inputs = 0, outputs = 0;
+  std::optional<StateSpace> rational;
+  std::shared_ptr<const FrequencyResponse> response;  // of `rational`, reduced once
+  std::optional<MeasuredResponse> measured;
+  std::shared_ptr<const Node> a, b;  // series: first, second; feedback: plant, controller
+  int sign = -1;
+  std::vector<int> rows;  // kSelect
+
+  Eigen::MatrixXcd At(double f_hz) const {
+    switch (kind) {
+      case Kind::kRational: return response->At(f_hz);
+      case Kind::kMeasured: return measured->At(f_hz);
+      case Kind::kSeries: return b->At(f_hz) * a->At(f_hz);
+      case Kind::kParallel: return a->At(f_hz) + b->At(f_hz);
+      case Kind::kFeedback: {
+        const Eigen::MatrixXcd g = a->At(f_hz), k = b->At(f_hz);
+        const Eigen::MatrixXcd loop =
+            Eigen::MatrixXcd::Identity(g.rows(), g.rows()) - static_cast<double>(sign) * g * k;
+        const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(loop);
+        if (!(lu.rcond() > 1e-13)) {
+          std::ostringstream os;
+          os << "the feedback loop is singular at " << f_hz << " Hz: I - sign G K has reciprocal condition "
+             << lu.rcond() << " there";
+          throw InputError(os.str());
+        }
+        return lu.solve(g);
+      }
+      case Kind::kSelect: {
+        const Eigen::MatrixXcd h = a->At(f_hz);
+        Eigen::MatrixXcd s(static_cast<Eigen::Index>(rows.size()), h.cols());
+        for (std::size_t r = 0; r < rows.size(); ++r) s.row(static_cast<Eigen::Index>(r)) = h.row(rows[r]);
+        return s;
+      }
+    }
+    DEB_DEMAND(false);
+    return {};
+  }
+
+  void Collect(std::vector<StateSpace>* parts, std::vector<double>* f_hz, bool* loop_around_data) const {
+    if (rational && parts) parts->push_back(*rational);
+    if (measured && f_hz) f_hz->insert(f_hz->end(), measured->f_hz().begin(), measured->f_hz().end());
+    if (kind == Kind::kFeedback && loop_around_data && (a->HasData() || b->HasData())) *loop_around_data = true;
+    if (a) a->Collect(parts, f_hz, loop_around_data);
+    if (b) b->Collect(parts, f_hz, loop_around_data);
+  }
+
+  bool HasData() const { return measured || (a && a->HasData()) || (b && b->HasData()); }
+};
+
+FrequencyModel::FrequencyModel(const StateSpace& rational) {
+  auto n = std::make_shared<Node>();
+  n->kind = Node::Kind::kRational;
+  n->inputs = rational.inputs();
+  n->outputs = rational.outputs();
+  n->rational = rational;
+  n->response = std::make_shared<const FrequencyResponse>(rational);
+  node_ = std::move(n);
+}
+
+FrequencyModel::FrequencyModel(MeasuredResponse measured) {
+  auto n = std::make_shared<Node>();
+  n->kind = Node::Kind::kMeasured;
+  n->inputs = measured.inputs();
+  n->outputs = measured.outputs();
+  n->measured = std::move(measured);
+  node_ = std::move(n);
+}
+
+FrequencyModel FrequencyModel::Series(const FrequencyModel& first, const FrequencyModel& second) {
+  if (second.inputs() != first.outputs())
+    throw InputError("series: the second block has " + std::to_string(second.inputs()) + " input(s), the first " +
+                     std::to_string(first.outputs()) + " output(s)");
+  auto n = std::make_shared<Node>();
+  n->kind = Node::Kind::kSeries;
+  n->inputs = first.inputs();
+  n->outputs = second.outputs();
+  n->a = first.node_;
+  n->b = second.node_;
+  return FrequencyModel(std::move(n));
+}
+
+FrequencyModel FrequencyModel::Parallel(const FrequencyModel& a, const FrequencyModel& b) {
+  if (a.inputs() != b.inputs() || a.outputs() != b.outputs())
+    throw InputError("parallel: the blocks must have the same numbers of inputs and outputs");
+  auto n = std::make_shared<Node>();
+  n->kind = Node::Kind::kParallel;
+  n->inputs = a.inputs();
+  n->outputs = a.outputs();
+  n->a = a.node_;
+  n->b = b.node_;
+  return FrequencyModel(std::move(n));
+}
+
+FrequencyModel FrequencyModel::Feedback(const FrequencyModel& plant, const FrequencyModel& controller, int sign) {
+  if (sign != 1 && sign != -1) throw InputError("feedback: sign must be +1 or -1, got " + std::to_string(sign));
+  if (controller.inputs() != plant.outputs() || controller.outputs() != plant.inputs())
+    throw InputError("feedback: the controller must have " + std::to_string(plant.outputs()) + " input(s) and " +
+                     std::to_string(plant.inputs()) + " output(s)");
+  auto n = std::make_shared<Node>();
+  n->kind = Node::Kind::kFeedback;
+  n->inputs = plant.inputs();
+  n->outputs = plant.outputs();
+  n->a = plant.node_;
+  n->b = controller.node_;
+  n->sign = sign;
+  return FrequencyModel(std::move(n));
+}
+
+FrequencyModel FrequencyModel::SelectOutputs(const std::vector<int>& rows) const {
+  for (int r : rows) DEB_DEMAND(r >= 0 && r < outputs());
+  if (node_->kind == Node::Kind::kRational) return FrequencyModel(node_->rational->SelectOutputs(rows));
+  if (node_->kind == Node::Kind::kMeasured) return FrequencyModel(node_->measured->SelectOutputs(rows));
+  auto n = std::make_shared<Node>();
+  n->kind = Node::Kind::kSelect;
+  n->inputs = inputs();
+  n->outputs = static_cast<int>(rows.size());
+  n->a = node_;
+  n->rows = rows;
+  return FrequencyModel(std::move(n));
+}
+
+int FrequencyModel::inputs() const { return node_->inputs; }
+int FrequencyModel::outputs() const { return node_->outputs; }
+
+std::vector<StateSpace> FrequencyModel::RationalParts() const {
+  std::vector<StateSpace> parts;
+  node_->Collect(&parts, nullptr, nullptr);
+  return parts;
+}
+
+std::vector<double> FrequencyModel::DataFrequencies() const {
+  std::vector<double> f;
+  node_->Collect(nullptr, &f, nullptr);
+  std::sort(f.begin(), f.end());
+  f.erase(std::unique(f.begin(), f.end()), f.end());
+  return f;
+}
+
+bool FrequencyModel::HasLoopAroundData() const {
+  bool loop = false;
+  node_->Collect(nullptr, nullptr, &loop);
+  return loop;
+}
+
+Eigen::MatrixXcd FrequencyModel::At(double f_hz) const { return node_->At(f_hz); }
+
+void FrequencyModel::ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads) const {
+  ParallelFor(
+      f_hz.size(),
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) fn(k, node_->At(f_hz[k]));
+      },
+      threads);
+}
+
+}  // namespace deb

@@ -1,0 +1,64 @@
+// A linear transfer evaluated frequency by frequency, for paths that hold
+// measured data. Rational models are joined in state space (interconnect.h),
+// where poles and Lyapunov variances stay available; a chain or loop with a
+// measured frequency response (measured_response.h) cannot be, so it is kept
+// as a block diagram and evaluated at each frequency by the same algebra as
+// interconnect.h:
+//   series    H = H_second H_first
+//   parallel  H = H_a + H_b
+//   feedback  H = (I - sign G K)^-1 G   (sign = -1: negative feedback)
+// The stability of a loop closed around measured data cannot be read from a
+// table of values (it needs a Nyquist argument over all frequencies), so
+// HasLoopAroundData() lets callers say that it was not verified.
+#pragma once
+
+#include <Eigen/Dense>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "deb/systems/measured_response.h"
+#include "deb/systems/state_space.h"
+
+namespace deb {
+
+class FrequencyModel {
+ public:
+  explicit FrequencyModel(const StateSpace& rational);
+  explicit FrequencyModel(MeasuredResponse measured);
+
+  // @throws InputError if the sizes do not fit (as interconnect.h).
+  static FrequencyModel Series(const FrequencyModel& first, const FrequencyModel& second);
+  static FrequencyModel Parallel(const FrequencyModel& a, const FrequencyModel& b);
+  static FrequencyModel Feedback(const FrequencyModel& plant, const FrequencyModel& controller, int sign = -1);
+
+  // The rows `rows` of H (0-based).
+  FrequencyModel SelectOutputs(const std::vector<int>& rows) const;
+
+  int inputs() const;
+  int outputs() const;
+  // The rational blocks of the diagram, whose poles shape H (for the grid).
+  std::vector<StateSpace> RationalParts() const;
+  // The frequencies of every measured table in the diagram, sorted, unique.
+  std::vector<double> DataFrequencies() const;
+  // A feedback loop whose plant or controller holds measured data.
+  bool HasLoopAroundData() const;
+
+  // H(j 2 pi f), outputs x inputs.
+  // @throws InputError outside a table's range (Extrapolation::kError), on a
+  //   pole of a rational block, or where a loop's I - sign G K is singular.
+  Eigen::MatrixXcd At(double f_hz) const;
+
+  // fn(k, H(f_hz[k])) for every k, on worker threads (threads <= 0: the
+  // default count); fn is called concurrently with distinct k.
+  using Visitor = std::function<void(std::size_t k, const Eigen::MatrixXcd& h)>;
+  void ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads = 0) const;
+
+ private:
+  struct Node;
+  explicit FrequencyModel(std::shared_ptr<const Node> node) : node_(std::move(node)) {}
+  std::shared_ptr<const Node> node_;
+};
+
+}  // namespace deb

@@ -1,0 +1,145 @@
+#include "deb/systems/frf_csv.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <map>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/core/numeric_table.h"
+
+namespace deb {
+namespace {
+
+constexpr double kPi = 3.141592653589793238462643383279502884;
+
+enum class Part { kRe, kIm, kMag, kDb, kPhaseDeg };
+
+// The two columns of one entry, by part.
+struct Entry {
+  std::map<Part, std::size_t> column;
+};
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+int IndexIn(std::vector<std::string>& names, const std::string& name, bool fixed) {
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it != names.end()) return static_cast<int>(it - names.begin());
+  if (fixed) return -1;
+  names.push_back(name);
+  return static_cast<int>(names.size()) - 1;
+}
+
+FrfCsv FromTable(const NumericTable& t, std::vector<std::string> outputs, std::vector<std::string> inputs,
+                 Extrapolation extrapolation) {
+  if (t.header.empty()) {
+    const int line = t.rows.empty() ? 1 : t.rows.front().line;
+    t.Fail(line, 1,
+           "a frequency response file needs a header row: the frequency column, then OUTPUT/INPUT.PART per column "
+           "(parts re, im | mag, phase_deg | db, phase_deg)");
+  }
+  const bool fixed_out = !outputs.empty(), fixed_in = !inputs.empty();
+  std::map<std::pair<int, int>, Entry> entries;
+  const std::map<std::string, Part> parts = {
+      {"re", Part::kRe}, {"im", Part::kIm}, {"mag", Part::kMag}, {"db", Part::kDb}, {"phase_deg", Part::kPhaseDeg}};
+  for (std::size_t c = 1; c < t.header.size(); ++c) {
+    const std::string& name = t.header[c];
+    const int line = t.header_line, col = t.header_columns[c];
+    const std::size_t slash = name.find('/'), dot = name.rfind('.');
+    if (slash == std::string::npos || dot == std::string::npos || dot < slash || slash == 0 || dot == slash + 1)
+      t.Fail(line, col, "column '" + name + "' is not named OUTPUT/INPUT.PART (e.g. z/F.re)");
+    const auto part = parts.find(name.substr(dot + 1));
+    if (part == parts.end())
+      t.Fail(line, col, "column '" + name + "': unknown part '" + name.substr(dot + 1) +
+                            "'; allowed: re, im, mag, db, phase_deg");
+    const std::string out = name.substr(0, slash), in = name.substr(slash + 1, dot - slash - 1);
+    const int o = IndexIn(outputs, out, fixed_out), i = IndexIn(inputs, in, fixed_in);
+    if (o < 0) t.Fail(line, col, "column '" + name + "': output '" + out + "' is not one of the path's outputs (" + Join(outputs) + ")");
+    if (i < 0) t.Fail(line, col, "column '" + name + "': input '" + in + "' is not one of the path's inputs (" + Join(inputs) + ")");
+    Entry& e = entries[{o, i}];
+    if (e.column.count(part->second)) t.Fail(line, col, "column '" + name + "' is given twice");
+    e.column[part->second] = c;
+  }
+  for (int o = 0; o < static_cast<int>(outputs.size()); ++o)
+    for (int i = 0; i < static_cast<int>(inputs.size()); ++i) {
+      const std::string stem = outputs[o] + "/" + inputs[i];
+      const auto it = entries.find({o, i});
+      const std::map<Part, std::size_t> cols = it == entries.end() ? std::map<Part, std::size_t>{} : it->second.column;
+      const bool re_im = cols.size() == 2 && cols.count(Part::kRe) && cols.count(Part::kIm);
+      const bool polar = cols.size() == 2 && cols.count(Part::kPhaseDeg) && (cols.count(Part::kMag) || cols.count(Part::kDb));
+      if (!re_im && !polar)
+        t.Fail(t.header_line, 1,
+               "entry " + stem + " needs two columns: " + stem + ".re and " + stem + ".im, or " + stem + ".mag (or " +
+                   stem + ".db) and " + stem + ".phase_deg");
+    }
+
+  std::vector<double> f_hz;
+  std::vector<Eigen::MatrixXcd> h;
+  int last_line = 0;
+  for (const NumericTable::Row& row : t.rows) {
+    const double f = row.values[0];
+    std::ostringstream fs;
+    fs << f;
+    if (f <= 0.0) t.Fail(row.line, row.columns[0], "frequency " + fs.str() + " Hz is not > 0");
+    if (!f_hz.empty() && !(f > f_hz.back())) {
+      std::ostringstream prev;
+      prev << f_hz.back();
+      t.Fail(row.line, row.columns[0],
+             "frequency " + fs.str() + " Hz is not greater than " + prev.str() + " Hz on line " +
+                 std::to_string(last_line) + "; frequencies must increase strictly");
+    }
+    Eigen::MatrixXcd m(static_cast<Eigen::Index>(outputs.size()), static_cast<Eigen::Index>(inputs.size()));
+    for (const auto& [oi, e] : entries) {
+      const auto v = [&](Part p) { return row.values[e.column.at(p)]; };
+      std::complex<double> value;
+      if (e.column.count(Part::kRe)) {
+        value = {v(Part::kRe), v(Part::kIm)};
+      } else {
+        double mag = 0.0;
+        if (e.column.count(Part::kMag)) {
+          mag = v(Part::kMag);
+          if (mag < 0.0)
+            t.Fail(row.line, row.columns[e.column.at(Part::kMag)],
+                   "column '" + t.header[e.column.at(Part::kMag)] + "': a magnitude must be >= 0");
+        } else {
+          mag = std::pow(10.0, v(Part::kDb) / 20.0);
+        }
+        value = std::polar(mag, v(Part::kPhaseDeg) * kPi / 180.0);
+      }
+      m(oi.first, oi.second) = value;
+    }
+    f_hz.push_back(f);
+    h.push_back(std::move(m));
+    last_line = row.line;
+  }
+  if (t.rows.size() < 2)
+    throw InputError(t.name + ": " + std::to_string(t.rows.size()) +
+                     " data rows; a frequency response needs at least 2");
+  return {outputs, inputs, MeasuredResponse(std::move(f_hz), std::move(h), extrapolation, t.name)};
+}
+
+NumericTableOptions FrfTableOptions() {
+  NumericTableOptions options;
+  options.first_column = "frequency";
+  return options;
+}
+
+}  // namespace
+
+FrfCsv ReadFrfCsv(const std::string& path, const std::vector<std::string>& outputs,
+                  const std::vector<std::string>& inputs, Extrapolation extrapolation) {
+  return FromTable(ReadNumericTable(path, FrfTableOptions(), "frequency response file"), outputs, inputs,
+                   extrapolation);
+}
+
+FrfCsv ParseFrfCsv(std::istream& in, const std::string& name, const std::vector<std::string>& outputs,
+                   const std::vector<std::string>& inputs, Extrapolation extrapolation) {
+  return FromTable(ParseNumericTable(in, name, FrfTableOptions()), outputs, inputs, extrapolation);
+}
+
+}  // namespace deb

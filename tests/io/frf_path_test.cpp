@@ -1,0 +1,141 @@
+// Budget paths of `type: frf`: a measured frequency response from a file,
+// alone and joined with rational paths in series and feedback.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <complex>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "deb/budget/engine.h"
+#include "deb/core/error.h"
+#include "deb/io/budget_yaml.h"
+
+namespace deb {
+namespace {
+
+constexpr double kPi = 3.141592653589793238462643383279502884;
+
+// plant.csv: the mass-spring-damper 1/(s^2 + 2 s + 400) (m/N; f_n = 3.18 Hz,
+// zeta = 0.05) tabulated at 400 points per decade over 0.01-1000 Hz as
+// magnitude and phase: the "measurement" of the rational path `model`.
+class FrfDir {
+ public:
+  FrfDir() : dir_(std::filesystem::temp_directory_path() / ("deb_frf_" + std::to_string(::getpid()))) {
+    std::filesystem::create_directories(dir_);
+    std::ofstream out(dir_ / "plant.csv");
+    out.precision(17);
+    out << "# mass-spring-damper, m = 1 kg, c = 2 N s/m, k = 400 N/m\nf_hz, x/F.mag, x/F.phase_deg\n";
+    for (int i = 0; i <= 2000; ++i) {
+      const double f = std::pow(10.0, -2.0 + i / 400.0);
+      const std::complex<double> s(0.0, 2.0 * kPi * f);
+      const std::complex<double> h = 1.0 / (s * s + 2.0 * s + 400.0);
+      out << f << ", " << std::abs(h) << ", " << std::arg(h) * 180.0 / kPi << "\n";
+    }
+  }
+  ~FrfDir() { std::filesystem::remove_all(dir_); }
+  std::string Write(const std::string& budget) const {
+    std::ofstream((dir_ / "b.yaml").string()) << budget;
+    return (dir_ / "b.yaml").string();
+  }
+
+ private:
+  std::filesystem::path dir_;
+};
+
+const char* kBudget = R"(name: frf
+grid: {type: auto, min_hz: 0.01, max_hz: 1000}
+sources:
+  - {name: force, unit: N, spectrum: {type: flat, level: 1}}
+paths:
+  - {name: measured, type: frf, file: plant.csv, input_unit: N, output_unit: m}
+  - {name: model, type: transfer_function, num: [1], den: [1, 2, 400], inputs: [F], outputs: [x], input_unit: N, output_unit: m}
+  - {name: k, type: gain, gain: [[1000]], input_unit: m, output_unit: N}
+  - {name: loop_measured, type: feedback, plant: measured, controller: k}
+  - {name: loop_model, type: feedback, plant: model, controller: k}
+  - {name: to_mm, type: gain, gain: 1, input_unit: m, output_unit: mm, inputs: [x], outputs: [x_mm]}
+  - {name: chain, type: series, of: [measured, to_mm]}
+contributors:
+  - {name: measured, source: force, path: measured}
+  - {name: model, source: force, path: model}
+  - {name: loop_measured, source: force, path: loop_measured}
+  - {name: loop_model, source: force, path: loop_model}
+outputs:
+  - {name: x, signal: x, unit: um}
+)";
+
+double VarianceOf(const OutputResult& o, const std::string& name) {
+  for (const auto& c : o.contributors)
+    if (c.name == name) return c.variance;
+  FAIL("no contributor " << name);
+  return 0.0;
+}
+
+std::string ErrorOf(const std::string& file) {
+  try {
+    Evaluate(LoadBudgetFile(file));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+TEST_CASE("a measured SDOF response gives the variance of its rational model to 1e-3, open and closed loop") {
+  const FrfDir dir;
+  const Budget b = LoadBudgetFile(dir.Write(kBudget));
+  CHECK(b.FindPath("measured").HasMeasuredData());
+  CHECK(b.FindPath("chain").HasMeasuredData());
+  CHECK(b.FindPath("chain").output_units[0] == "mm");
+  const BudgetResult r = Evaluate(b);
+  const OutputResult& x = r.outputs[0];
+  // sigma^2 = S0 / (4 c k) = 1 / 3200 m^2 for the whole axis (one-sided S0 = 1 N^2/Hz).
+  const double closed_form_um2 = 1e12 / 3200.0;
+  const double measured = VarianceOf(x, "measured"), model = VarianceOf(x, "model");
+  MESSAGE("measured " << measured << ", model " << model << ", closed form " << closed_form_um2);
+  CHECK(std::abs(measured - model) / model < 1e-3);            // interpolation of the table only
+  CHECK(std::abs(measured - closed_form_um2) / closed_form_um2 < 2e-3);  // + the grid's low end
+  const double loop_m = VarianceOf(x, "loop_measured"), loop_r = VarianceOf(x, "loop_model");
+  CHECK(std::abs(loop_m - loop_r) / loop_r < 1e-3);
+  for (const auto& c : x.contributors)
+    if (c.name == "measured" || c.name == "loop_measured") {
+      CHECK_FALSE(c.exact_variance.has_value());
+      CHECK(c.exact_note.find("measured frequency data") != std::string::npos);
+    }
+  bool warned = false;
+  for (const auto& w : r.warnings) warned |= w.find("'loop_measured' closes a loop around measured data") != std::string::npos;
+  CHECK(warned);
+}
+
+TEST_CASE("a grid beyond the measured range is an error naming the path, the file and the range") {
+  const FrfDir dir;
+  const std::string file = dir.Write(Replace(kBudget, "max_hz: 1000}", "max_hz: 2000}"));
+  const std::string m = ErrorOf(file);
+  CHECK(m.find("contributor 'measured': path 'measured': measured response") != std::string::npos);
+  CHECK(m.find("outside the data range 0.01-1000 Hz") != std::string::npos);
+  const std::string held = dir.Write(Replace(Replace(kBudget, "max_hz: 1000}", "max_hz: 2000}"),
+                                             "file: plant.csv,", "file: plant.csv, extrapolation: zero,"));
+  CHECK_NOTHROW(Evaluate(LoadBudgetFile(held)));
+}
+
+TEST_CASE("bad frf entries point at the budget key") {
+  const FrfDir dir;
+  const std::string missing = ErrorOf(dir.Write(Replace(kBudget, "file: plant.csv", "file: nowhere.csv")));
+  CHECK(missing.find("b.yaml:6:39: paths[0].file:") != std::string::npos);
+  CHECK(missing.find("cannot open frequency response file") != std::string::npos);
+  const std::string extrap = ErrorOf(dir.Write(Replace(kBudget, "file: plant.csv,", "file: plant.csv, extrapolation: clamp,")));
+  CHECK(extrap.find("allowed: error, zero, hold") != std::string::npos);
+  const std::string names = ErrorOf(dir.Write(Replace(kBudget, "file: plant.csv,", "file: plant.csv, outputs: [z],")));
+  CHECK(names.find("output 'x' is not one of the path's outputs (z)") != std::string::npos);
+  const std::string key = ErrorOf(dir.Write(Replace(kBudget, "file: plant.csv,", "file: plant.csv, num: [1],")));
+  CHECK(key.find("unknown key 'num'") != std::string::npos);
+}
+
+}  // namespace
+}  // namespace deb
