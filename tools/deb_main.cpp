@@ -110,6 +110,13 @@ int Check(const std::string& budget_file) {
   }
   std::printf("paths:\n");
   for (const auto& p : budget.paths) {
+    if (p.HasMeasuredData()) {
+      const std::vector<double> f = p.measured->DataFrequencies();
+      std::printf("  %-20s %d input(s) -> %d output(s), measured frequency data (%zu points, %g-%g Hz)%s\n",
+                  p.name.c_str(), p.system.inputs(), p.system.outputs(), f.size(), f.front(), f.back(),
+                  p.measured->HasLoopAroundData() ? ", loop stability not verified" : "");
+      continue;
+    }
     std::printf("  %-20s %d input(s) -> %d output(s), %d state(s), %s\n", p.name.c_str(), p.system.inputs(),
                 p.system.outputs(), p.system.states(), p.system.IsStable() ? "stable" : "NOT stable");
   }

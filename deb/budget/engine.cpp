@@ -438,6 +438,12 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     }
   }
 
+  // A path shared by several contributors warns once.
+  std::vector<std::string> unique;
+  for (std::string& w : result.warnings)
+    if (std::find(unique.begin(), unique.end(), w) == unique.end()) unique.push_back(std::move(w));
+  result.warnings = std::move(unique);
+
   // Totals are sums of the contributors' integrals, not integrals of the total
   // PSD: the power-law rule is not linear in S, and stacked CPS curves must
   // add up to the total exactly.

@@ -108,9 +108,9 @@ TEST_CASE("a measured SDOF response gives the variance of its rational model to 
       CHECK_FALSE(c.exact_variance.has_value());
       CHECK(c.exact_note.find("measured frequency data") != std::string::npos);
     }
-  bool warned = false;
-  for (const auto& w : r.warnings) warned |= w.find("'loop_measured' closes a loop around measured data") != std::string::npos;
-  CHECK(warned);
+  int warned = 0;
+  for (const auto& w : r.warnings) warned += w.find("'loop_measured' closes a loop around measured data") != std::string::npos;
+  CHECK(warned == 1);
 }
 
 TEST_CASE("a grid beyond the measured range is an error naming the path, the file and the range") {
@@ -135,6 +135,16 @@ TEST_CASE("bad frf entries point at the budget key") {
   CHECK(names.find("output 'x' is not one of the path's outputs (z)") != std::string::npos);
   const std::string key = ErrorOf(dir.Write(Replace(kBudget, "file: plant.csv,", "file: plant.csv, num: [1],")));
   CHECK(key.find("unknown key 'num'") != std::string::npos);
+}
+
+TEST_CASE("the shipped measured-stage budget matches the rational model of its loop to 1e-5") {
+  // budgets/measured_stage.yaml's FRF is tabulated from P(s) = w^2 / (m s^2 (s^2 +
+  // 2 zeta w s + w^2)); the same loop from that transfer function (state space,
+  // same grid) gives 7.14202 nm (amplifier) and 7.02927 nm (cable slab).
+  const BudgetResult r = Evaluate(LoadBudgetFile(std::string(DEB_SOURCE_DIR) + "/budgets/measured_stage.yaml"));
+  const OutputResult& x = r.outputs[0];
+  CHECK(std::sqrt(VarianceOf(x, "amplifier")) == doctest::Approx(7.14202).epsilon(1e-5));
+  CHECK(std::sqrt(VarianceOf(x, "cable_slab")) == doctest::Approx(7.02927).epsilon(1e-5));
 }
 
 }  // namespace
