@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -325,19 +326,21 @@ int RunWelch(const Settings& s) {
     out << "# coherence |S_ab|^2/(S_aa S_bb) and CSD phase arg S_ab = arg <conj(X_a) X_b>, rad\n";
     for (const std::string& l : e.provenance.Describe()) out << "# " << l << "\n";
     out << "f_hz";
+    // Coherence and phase of each pair over all bins, built once per pair.
+    Eigen::MatrixXd columns(static_cast<Eigen::Index>(csd.f_hz.size()), csd.channels * (csd.channels - 1));
+    Eigen::Index column = 0;
     for (int b = 0; b < csd.channels; ++b)
       for (int a = 0; a < b; ++a) {
         const std::string pair = csd.channel_names[static_cast<std::size_t>(a)] + "_" +
                                  csd.channel_names[static_cast<std::size_t>(b)];
         out << ", coherence_" << pair << ", phase_" << pair;
+        columns.col(column++) = csd.Coherence(a, b);
+        columns.col(column++) = csd.Cross(a, b).unaryExpr([](const std::complex<double>& s) { return std::arg(s); });
       }
     out << "\n";
-    for (std::size_t k = 0; k < csd.f_hz.size(); ++k) {
-      out << Number(csd.f_hz[k]);
-      for (int b = 0; b < csd.channels; ++b)
-        for (int a = 0; a < b; ++a)
-          out << ", " << Number(csd.Coherence(a, b)(static_cast<Eigen::Index>(k))) << ", "
-              << Number(std::arg(csd.Cross(a, b)(static_cast<Eigen::Index>(k))));
+    for (Eigen::Index k = 0; k < columns.rows(); ++k) {
+      out << Number(csd.f_hz[static_cast<std::size_t>(k)]);
+      for (Eigen::Index c = 0; c < columns.cols(); ++c) out << ", " << Number(columns(k, c));
       out << "\n";
     }
     outputs.Text(s.coherence_out, out.str(), "the coherence CSV (--coherence)");
