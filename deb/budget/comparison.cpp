@@ -15,6 +15,10 @@ std::string BandLabel(double lo, double hi) {
 
 bool SameEdge(double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)); }
 
+bool SameBand(const ResultFigures::Band& x, const ResultFigures::Band& y) {
+  return SameEdge(x.lo_hz, y.lo_hz) && SameEdge(x.hi_hz, y.hi_hz);
+}
+
 ComparedFigure Figure(const ResultFigures::Output& oa, const std::string& contributor, const std::string& band,
                       double var_a, double var_b, double total) {
   ComparedFigure f;
@@ -85,9 +89,7 @@ Comparison Compare(const ResultFigures& a, const ResultFigures& b) {
       if (!Find(oa.contributors, [&](const ResultFigures::Contributor& c) { return c.name == cb.name; }))
         cmp.unmatched.push_back("contributor '" + cb.name + "' on output '" + oa.name + "' is only in " + b.label);
     for (const auto& ba : oa.bands) {
-      const auto* bb = Find(ob->bands, [&](const ResultFigures::Band& x) {
-        return SameEdge(x.lo_hz, ba.lo_hz) && SameEdge(x.hi_hz, ba.hi_hz);
-      });
+      const auto* bb = Find(ob->bands, [&](const ResultFigures::Band& x) { return SameBand(x, ba); });
       const std::string label = BandLabel(ba.lo_hz, ba.hi_hz);
       if (!bb) {
         cmp.unmatched.push_back("band " + label + " of output '" + oa.name + "' is only in " + a.label);
@@ -102,6 +104,10 @@ Comparison Compare(const ResultFigures& a, const ResultFigures& b) {
                 Figure(oa, name, label, ba.contributor_variance[c], bb->contributor_variance[d], total));
       }
     }
+    for (const auto& bb : ob->bands)
+      if (!Find(oa.bands, [&](const ResultFigures::Band& x) { return SameBand(x, bb); }))
+        cmp.unmatched.push_back("band " + BandLabel(bb.lo_hz, bb.hi_hz) + " of output '" + oa.name + "' is only in " +
+                                b.label);
   }
   for (const auto& ob : b.outputs)
     if (!Find(a.outputs, [&](const ResultFigures::Output& o) { return o.name == ob.name; }))

@@ -68,4 +68,20 @@ TEST_CASE("outputs, contributors and units present on one side only are listed, 
   CHECK(units.unmatched[0].find("um/s") != std::string::npos);
 }
 
+TEST_CASE("a band on one side only is listed as only in that side, whichever side it is on") {
+  ResultFigures b = Example(1.0);
+  b.label = "y";
+  b.outputs[0].bands[1].lo_hz = 100.0;
+  b.outputs[0].bands[1].hi_hz = 1000.0;
+  const Comparison cmp = Compare(Example(1.0), b);
+  CHECK(cmp.figures.size() == 1 + 2 + 3);  // total, contributors, the 1-10 Hz band x (total + 2)
+  REQUIRE(cmp.unmatched.size() == 2);
+  CHECK(cmp.unmatched[0] == "band 10-100 Hz of output 'z' is only in x");
+  CHECK(cmp.unmatched[1] == "band 100-1000 Hz of output 'z' is only in y");
+  const Comparison reversed = Compare(b, Example(1.0));
+  REQUIRE(reversed.unmatched.size() == 2);
+  CHECK(reversed.unmatched[0] == "band 100-1000 Hz of output 'z' is only in y");
+  CHECK(reversed.unmatched[1] == "band 10-100 Hz of output 'z' is only in x");
+}
+
 }  // namespace deb
