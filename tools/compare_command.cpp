@@ -185,26 +185,40 @@ int RunCompareCommand(const CLI::App& /*compare*/) {
   const CompareSettings& s = Settings();
   if (!s.out_dir.empty() && s.inputs.size() != 2)
     throw InputError("--out names one directory: give exactly two inputs, or leave --out out");
-  const Loaded la = Load(s.inputs[0], s.threads);
-  const ResultFigures& a = la.figures;
-  for (std::size_t i = 1; i < s.inputs.size(); ++i) {
-    const Loaded lb = Load(s.inputs[i], s.threads);
-    const ResultFigures& b = lb.figures;
-    const Comparison cmp = Compare(a, b);
+  // All or nothing: every input is loaded (a budget evaluated) and every
+  // comparison built before the first directory is written.
+  std::vector<Loaded> loaded;
+  loaded.reserve(s.inputs.size());
+  for (const std::string& input : s.inputs) loaded.push_back(Load(input, s.threads));
+  struct Pending {
+    Comparison cmp;
     std::vector<report::Plot> plots;
-    if (s.plots && la.result && lb.result) plots = report::OverlayPlots(a.label + " (A)", *la.result, b.label + " (B)", *lb.result);
-    const std::string dir = s.out_dir.empty()
-                                ? (fs::path("reports") / ("compare_" + Safe(a.label) + "_vs_" + Safe(b.label))).string()
-                                : s.out_dir;
-    WriteComparison(cmp, plots, dir);
+    std::string dir;
+  };
+  std::vector<Pending> reports;
+  const Loaded& la = loaded.front();
+  const ResultFigures& a = la.figures;
+  for (std::size_t i = 1; i < loaded.size(); ++i) {
+    const Loaded& lb = loaded[i];
+    const ResultFigures& b = lb.figures;
+    Pending r;
+    r.cmp = Compare(a, b);
+    if (s.plots && la.result && lb.result)
+      r.plots = report::OverlayPlots(a.label + " (A)", *la.result, b.label + " (B)", *lb.result);
+    r.dir = s.out_dir.empty() ? (fs::path("reports") / ("compare_" + Safe(a.label) + "_vs_" + Safe(b.label))).string()
+                              : s.out_dir;
+    reports.push_back(std::move(r));
+  }
+  for (const Pending& r : reports) {
+    WriteComparison(r.cmp, r.plots, r.dir);
     if (s.quiet) continue;
-    std::printf("%s (A) vs %s (B):\n", a.label.c_str(), b.label.c_str());
-    for (const ComparedFigure& f : cmp.figures)
+    std::printf("%s (A) vs %s (B):\n", r.cmp.label_a.c_str(), r.cmp.label_b.c_str());
+    for (const ComparedFigure& f : r.cmp.figures)
       if (f.contributor == "total" && f.band.empty())
         std::printf("  %-24s rms %12.6g -> %12.6g %s  (B/A %s)\n", f.output.c_str(), f.rms_a, f.rms_b,
                     f.unit.c_str(), Ratio(f).c_str());
-    for (const std::string& u : cmp.unmatched) std::printf("  not compared: %s\n", u.c_str());
-    std::printf("report: %s\n", dir.c_str());
+    for (const std::string& u : r.cmp.unmatched) std::printf("  not compared: %s\n", u.c_str());
+    std::printf("report: %s\n", r.dir.c_str());
   }
   return 0;
 }

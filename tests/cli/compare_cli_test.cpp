@@ -69,3 +69,18 @@ TEST_CASE("deb compare of a budget with itself writes zero differences and ratio
   CHECK_FALSE(fs::exists(dir / "none"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("deb compare A B C with an invalid C exits 3 and writes no comparison, not even A vs B") {
+  const fs::path dir = fs::temp_directory_path() / ("deb_compare_cli_all_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string budget = std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml";
+  std::ofstream(dir / "broken.yaml") << "name: broken\nbogus_key: 1\n";
+  CHECK(RunDeb("compare " + budget + " " + budget + " broken.yaml -q --no-plots", dir) == 3);
+  CHECK(ReadAll(dir / "stderr.txt").find("broken.yaml:2:1: bogus_key: unknown key") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "reports"));
+  // The valid inputs alone still compare.
+  REQUIRE(RunDeb("compare " + budget + " " + budget + " -q --no-plots", dir) == 0);
+  CHECK(fs::exists(dir / "reports" / "compare_single_axis_isolator_vs_single_axis_isolator" / "compare.json"));
+  fs::remove_all(dir);
+}
