@@ -24,6 +24,7 @@
 #include "deb/spectra/band_rms.h"
 #include "deb/spectra/building_criteria.h"
 #include "deb/spectra/peterson_noise_model.h"
+#include "deb/spectra/number_text.h"
 #include "deb/spectra/spectrum_csv.h"
 #include "deb/units/unit.h"
 
@@ -282,7 +283,7 @@ std::string SpectrumCsvText(const std::vector<std::string>& comments, const std:
   out << "\n";
   for (std::size_t k = 0; k < f_hz.size(); ++k) {
     if (!(f_hz[k] > 0.0)) continue;
-    out << Number(f_hz[k]);
+    out << NumberText(f_hz[k]);  // every digit: band edges 1e-9 apart must stay apart
     for (Eigen::Index c = 0; c < psd.cols(); ++c)
       out << ", " << Number(asd ? std::sqrt(psd(static_cast<Eigen::Index>(k), c)) : psd(static_cast<Eigen::Index>(k), c));
     if (extra)
@@ -295,6 +296,7 @@ std::string SpectrumCsvText(const std::vector<std::string>& comments, const std:
 std::vector<std::string> Provenance(const std::string& what, const PsdEstimate& e, const std::string& source) {
   std::vector<std::string> lines = {what + " of " + source};
   for (const std::string& l : e.provenance.Describe()) lines.push_back(l);
+  lines.push_back("interpolation: bins");  // read back as the estimate's bins (measured_spectrum.h)
   return lines;
 }
 
@@ -392,8 +394,9 @@ int RunBands(const Settings& s) {
     std::vector<double> psd(csv.f_hz.size());
     for (std::size_t k = 0; k < psd.size(); ++k)
       psd[k] = csv.psd(static_cast<Eigen::Index>(k), c) * (classify ? to_velocity.PsdFactor(csv.f_hz[k]) : 1.0);
-    per_channel.push_back(s.lowest_hz > 0.0 ? ThirdOctaveBandRms(csv.f_hz, psd, series, s.lowest_hz, s.highest_hz)
-                                            : ThirdOctaveBandRms(csv.f_hz, psd, series));
+    per_channel.push_back(s.lowest_hz > 0.0
+                              ? ThirdOctaveBandRms(csv.f_hz, psd, series, s.lowest_hz, s.highest_hz, csv.interpolation)
+                              : ThirdOctaveBandRms(csv.f_hz, psd, series, csv.interpolation));
     if (classify) verdicts.push_back(Classify(per_channel.back(), options));
   }
   out << "centre_hz, lo_hz, hi_hz, points";
@@ -477,6 +480,7 @@ int RunConvert(const Settings& s) {
   std::string to = s.to_unit.empty() ? from : s.to_unit;
   Eigen::MatrixXd psd = csv.psd;
   std::vector<std::string> comments = {"converted from " + s.spectrum_file};
+  if (csv.interpolation == SpectrumInterpolation::kBins) comments.push_back("interpolation: bins");
   if (!s.to_unit.empty()) {
     if (from.empty())
       throw InputError(s.spectrum_file + ": --to needs the spectrum's unit: give '# unit:' in the file or --unit");

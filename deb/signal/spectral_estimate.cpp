@@ -106,6 +106,7 @@ std::shared_ptr<const MeasuredSpectrum> ToMeasuredSpectrum(const PsdEstimate& es
   const std::size_t n = estimate.f_hz.size() - first;
   MeasuredSpectrumOptions options;
   options.extrapolation = extrapolation;
+  options.interpolation = SpectrumInterpolation::kBins;  // Welch bins: keep Parseval's sum
   options.channel_names = estimate.channel_names;
   options.unit = estimate.unit;
   options.origin = Origin(estimate.provenance);
@@ -128,6 +129,7 @@ std::shared_ptr<const TabulatedCsd> ToTabulatedCsd(const CsdEstimate& estimate, 
     for (int a = 0; a < c; ++a) csd.col(a + c * b) = estimate.csd.col(b + c * a).bottomRows(n);
   TabulatedCsdOptions options;
   options.extrapolation = extrapolation;
+  options.interpolation = SpectrumInterpolation::kBins;
   options.channel_names = estimate.channel_names;
   options.unit = estimate.unit;
   options.origin = Origin(estimate.provenance);

@@ -12,10 +12,13 @@ namespace {
 
 struct Samples {
   std::vector<double> f_hz, psd;
+  std::vector<double> edges_hz;  // kBins: the bins' edges (measured_spectrum.h)
+  double lo_hz = 0.0, hi_hz = 0.0;  // the range the data cover
 };
 
 // The samples above 0 Hz, validated.
-Samples Positive(const std::vector<double>& f_hz, const std::vector<double>& psd) {
+Samples Positive(const std::vector<double>& f_hz, const std::vector<double>& psd,
+                 SpectrumInterpolation interpolation) {
   if (f_hz.size() != psd.size())
     throw InputError("band RMS: " + std::to_string(f_hz.size()) + " frequencies but " + std::to_string(psd.size()) +
                      " PSD values");
@@ -33,13 +36,32 @@ Samples Positive(const std::vector<double>& f_hz, const std::vector<double>& psd
   }
   if (s.f_hz.size() < 2)
     throw InputError("band RMS: " + std::to_string(s.f_hz.size()) + " samples above 0 Hz; at least 2 are needed");
+  s.lo_hz = s.f_hz.front();
+  s.hi_hz = s.f_hz.back();
+  if (interpolation == SpectrumInterpolation::kBins) {
+    MeasuredSpectrumOptions o;
+    o.interpolation = interpolation;
+    s.edges_hz = MeasuredSpectrum(s.f_hz, Eigen::Map<const Eigen::MatrixXd>(s.psd.data(), s.psd.size(), 1), o)
+                     .bin_edges_hz();
+    s.lo_hz = s.edges_hz.front();
+    s.hi_hz = s.edges_hz.back();
+  }
   return s;
 }
 
 BandRms Integrate(const Samples& s, const ThirdOctaveBand& band) {
   BandRms r;
   r.band = band;
-  r.rms = std::sqrt(IntegralBetween(s.f_hz, s.psd, band.lo_hz, band.hi_hz));
+  if (s.edges_hz.empty()) {
+    r.rms = std::sqrt(IntegralBetween(s.f_hz, s.psd, band.lo_hz, band.hi_hz));
+  } else {
+    double variance = 0.0;
+    for (std::size_t i = 0; i < s.psd.size(); ++i) {
+      const double width = std::min(s.edges_hz[i + 1], band.hi_hz) - std::max(s.edges_hz[i], band.lo_hz);
+      if (width > 0.0) variance += s.psd[i] * width;
+    }
+    r.rms = std::sqrt(variance);
+  }
   const auto lo = std::lower_bound(s.f_hz.begin(), s.f_hz.end(), band.lo_hz);
   const auto hi = std::lower_bound(s.f_hz.begin(), s.f_hz.end(), band.hi_hz);
   r.points = static_cast<int>(hi - lo);
@@ -50,31 +72,31 @@ BandRms Integrate(const Samples& s, const ThirdOctaveBand& band) {
 
 std::vector<BandRms> ThirdOctaveBandRms(const std::vector<double>& f_hz, const std::vector<double>& psd,
                                         ThirdOctaveSeries series, double lowest_nominal_hz,
-                                        double highest_nominal_hz) {
-  const Samples s = Positive(f_hz, psd);
+                                        double highest_nominal_hz, SpectrumInterpolation interpolation) {
+  const Samples s = Positive(f_hz, psd, interpolation);
   std::vector<BandRms> result;
   for (const ThirdOctaveBand& band : ThirdOctaveBandsBetween(lowest_nominal_hz, highest_nominal_hz, series)) {
-    if (band.lo_hz < s.f_hz.front() || band.hi_hz > s.f_hz.back())
+    if (band.lo_hz < s.lo_hz || band.hi_hz > s.hi_hz)
       throw InputError("band RMS: the one-third-octave band at " + NumberText(band.centre_hz) + " Hz (" +
                        NumberText(band.lo_hz) + "-" + NumberText(band.hi_hz) + " Hz) reaches outside the data, " +
-                       NumberText(s.f_hz.front()) + "-" + NumberText(s.f_hz.back()) + " Hz");
+                       NumberText(s.lo_hz) + "-" + NumberText(s.hi_hz) + " Hz");
     result.push_back(Integrate(s, band));
   }
   return result;
 }
 
 std::vector<BandRms> ThirdOctaveBandRms(const std::vector<double>& f_hz, const std::vector<double>& psd,
-                                        ThirdOctaveSeries series) {
-  const Samples s = Positive(f_hz, psd);
-  // First band whose lower edge is at or above the first sample.
+                                        ThirdOctaveSeries series, SpectrumInterpolation interpolation) {
+  const Samples s = Positive(f_hz, psd, interpolation);
+  // First band whose lower edge is at or above the start of the data.
   int k = ThirdOctaveBandAt(0, series).index;
-  while (ThirdOctaveBandAt(k, series).lo_hz < s.f_hz.front()) ++k;
-  while (k > -1000 && ThirdOctaveBandAt(k - 1, series).lo_hz >= s.f_hz.front()) --k;
+  while (ThirdOctaveBandAt(k, series).lo_hz < s.lo_hz) ++k;
+  while (k > -1000 && ThirdOctaveBandAt(k - 1, series).lo_hz >= s.lo_hz) --k;
   std::vector<BandRms> result;
-  for (; ThirdOctaveBandAt(k, series).hi_hz <= s.f_hz.back(); ++k) result.push_back(Integrate(s, ThirdOctaveBandAt(k, series)));
+  for (; ThirdOctaveBandAt(k, series).hi_hz <= s.hi_hz; ++k) result.push_back(Integrate(s, ThirdOctaveBandAt(k, series)));
   if (result.empty())
-    throw InputError("band RMS: no one-third-octave band fits inside the data, " + NumberText(s.f_hz.front()) +
-                     "-" + NumberText(s.f_hz.back()) + " Hz");
+    throw InputError("band RMS: no one-third-octave band fits inside the data, " + NumberText(s.lo_hz) +
+                     "-" + NumberText(s.hi_hz) + " Hz");
   return result;
 }
 
@@ -94,7 +116,8 @@ PsdTable BandRmsToPsd(const std::vector<ThirdOctaveBand>& bands, const std::vect
     const double level = rms[i] * rms[i] / bands[i].BandwidthHz();
     t.f_hz.push_back(bands[i].lo_hz);
     t.psd.push_back(level);
-    t.f_hz.push_back(bands[i].hi_hz * (1.0 - 1e-9));
+    // The last band ends on its edge, so the table covers every band it holds.
+    t.f_hz.push_back(i + 1 == bands.size() ? bands[i].hi_hz : bands[i].hi_hz * (1.0 - 1e-9));
     t.psd.push_back(level);
   }
   return t;

@@ -4,7 +4,10 @@
 //
 // RMS_i = sqrt( integral of S over [f_c G^(-1/6), f_c G^(1/6)] ), integrated
 // with deb's power-law rule between the samples (core/integrate.h), the band
-// edges interpolated on the same law. A band is analysed only when the data
+// edges interpolated on the same law; or, for the bins of a spectral estimate
+// (SpectrumInterpolation::kBins, measured_spectrum.h), as the sum of each
+// bin's PSD times the part of its width inside the band, which keeps the
+// estimate's variance exactly (a tone a few bins wide is not cut down). A band is analysed only when the data
 // cover it entirely; `points` says how many samples fall inside it, and a
 // band with fewer than about 5 is resolved too coarsely to trust (raise the
 // frequency resolution, i.e. the segment length, to fix it).
@@ -12,6 +15,7 @@
 
 #include <vector>
 
+#include "deb/spectra/measured_spectrum.h"
 #include "deb/spectra/third_octave.h"
 
 namespace deb {
@@ -30,17 +34,19 @@ struct BandRms {
 //   edges and the data range).
 std::vector<BandRms> ThirdOctaveBandRms(const std::vector<double>& f_hz, const std::vector<double>& psd,
                                         ThirdOctaveSeries series, double lowest_nominal_hz,
-                                        double highest_nominal_hz);
+                                        double highest_nominal_hz,
+                                        SpectrumInterpolation interpolation = SpectrumInterpolation::kLogLog);
 
 // Every band the data cover entirely.
 // @throws InputError as above, or if no band fits inside the data range.
 std::vector<BandRms> ThirdOctaveBandRms(const std::vector<double>& f_hz, const std::vector<double>& psd,
-                                        ThirdOctaveSeries series);
+                                        ThirdOctaveSeries series,
+                                        SpectrumInterpolation interpolation = SpectrumInterpolation::kLogLog);
 
 // A PSD table that holds rms_i^2 / bandwidth_i across band i, so that each
 // band integral returns rms_i^2 (as a VC curve). Bands must be contiguous
 // and increasing. The table has two points per band: lo_hz and
-// hi_hz (1 - 1e-9); the step between bands is taken across that last 1e-9 of
+// hi_hz (1 - 1e-9) (the last band: hi_hz, so the table covers it); the step between bands is taken across that last 1e-9 of
 // the band, which changes a band integral by about 5e-9 times the ratio of
 // neighbouring levels (negligible for any real spectrum).
 // @throws InputError if sizes differ, an RMS is negative or not finite, or

@@ -21,6 +21,16 @@ double Interpolate(double f_hz, double log_f, double f0, double log_f0, double s
 
 }  // namespace
 
+std::string ToString(SpectrumInterpolation interpolation) {
+  return interpolation == SpectrumInterpolation::kBins ? "bins" : "log-log";
+}
+
+SpectrumInterpolation ParseSpectrumInterpolation(const std::string& text) {
+  for (auto i : {SpectrumInterpolation::kLogLog, SpectrumInterpolation::kBins})
+    if (text == ToString(i)) return i;
+  throw InputError("unknown spectrum interpolation '" + text + "'; allowed: log-log, bins");
+}
+
 MeasuredSpectrum::MeasuredSpectrum(std::vector<double> f_hz, Eigen::MatrixXd psd,
                                    MeasuredSpectrumOptions options)
     : f_hz_(std::move(f_hz)), psd_(std::move(psd)), options_(std::move(options)) {
@@ -63,12 +73,28 @@ MeasuredSpectrum::MeasuredSpectrum(std::vector<double> f_hz, Eigen::MatrixXd psd
     }
   }
   for (double f : f_hz_) log_f_.push_back(std::log(f));
+  lo_hz_ = f_hz_.front();
+  hi_hz_ = f_hz_.back();
+  if (options_.interpolation == SpectrumInterpolation::kBins) {
+    edges_hz_.push_back(std::max(f_hz_[0] - 0.5 * (f_hz_[1] - f_hz_[0]), 0.5 * f_hz_[0]));
+    for (std::size_t i = 1; i < n; ++i) edges_hz_.push_back(0.5 * (f_hz_[i - 1] + f_hz_[i]));
+    edges_hz_.push_back(f_hz_[n - 1] + 0.5 * (f_hz_[n - 1] - f_hz_[n - 2]));
+    lo_hz_ = edges_hz_.front();
+    hi_hz_ = edges_hz_.back();
+  }
+}
+
+std::size_t MeasuredSpectrum::BinOf(double f_hz) const {
+  DEB_DEMAND(!edges_hz_.empty());
+  const auto above = std::upper_bound(edges_hz_.begin(), edges_hz_.end(), f_hz);
+  const std::size_t i = static_cast<std::size_t>(above - edges_hz_.begin());
+  return std::min(i == 0 ? 0 : i - 1, f_hz_.size() - 1);
 }
 
 Eigen::VectorXd MeasuredSpectrum::Psd(double f_hz) const {
   DEB_DEMAND(std::isfinite(f_hz) && f_hz > 0.0);
-  const double f_first = f_hz_.front();
-  const double f_last = f_hz_.back();
+  const double f_first = lo_hz_;
+  const double f_last = hi_hz_;
   if (f_hz < f_first || f_hz > f_last) {
     switch (options_.extrapolation) {
       case Extrapolation::kError:
@@ -82,6 +108,8 @@ Eigen::VectorXd MeasuredSpectrum::Psd(double f_hz) const {
       case Extrapolation::kHold: return psd_.row(f_hz < f_first ? 0 : psd_.rows() - 1).transpose();
     }
   }
+  if (options_.interpolation == SpectrumInterpolation::kBins)
+    return psd_.row(static_cast<Eigen::Index>(BinOf(f_hz))).transpose();
   // Interval [f_hz_[i], f_hz_[i+1]] holding f; a data point returns its value.
   const auto above = std::upper_bound(f_hz_.begin(), f_hz_.end(), f_hz);
   const std::size_t i1 = std::min(static_cast<std::size_t>(above - f_hz_.begin()), f_hz_.size() - 1);
@@ -102,7 +130,9 @@ Eigen::MatrixXcd MeasuredSpectrum::Csd(double f_hz) const {
   return Psd(f_hz).cast<std::complex<double>>().asDiagonal();
 }
 
-std::vector<double> MeasuredSpectrum::BreakpointsHz() const { return f_hz_; }
+std::vector<double> MeasuredSpectrum::BreakpointsHz() const {
+  return options_.interpolation == SpectrumInterpolation::kBins ? edges_hz_ : f_hz_;
+}
 
 std::string MeasuredSpectrum::Describe() const {
   std::string names;
@@ -111,7 +141,11 @@ std::string MeasuredSpectrum::Describe() const {
   if (!options_.origin.empty()) text += " '" + options_.origin + "'";
   text += ", " + std::to_string(psd_.cols()) + (psd_.cols() == 1 ? " channel (" : " channels (") + names +
           "), " + std::to_string(f_hz_.size()) + " points " + NumberText(f_hz_.front()) + "-" +
-          NumberText(f_hz_.back()) + " Hz, log-log interpolation, extrapolation " +
+          NumberText(f_hz_.back()) + " Hz, " +
+          (options_.interpolation == SpectrumInterpolation::kBins
+               ? "constant over each bin (" + NumberText(lo_hz_) + "-" + NumberText(hi_hz_) + " Hz)"
+               : std::string("log-log interpolation")) +
+          ", extrapolation " +
           ToString(options_.extrapolation);
   if (!options_.unit.empty()) text += "; PSD in (" + options_.unit + ")^2/Hz";
   return text;

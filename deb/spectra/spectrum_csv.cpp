@@ -32,6 +32,7 @@ SpectrumCsv FromTable(const NumericTable& table) {
   meta("unit", [&](const std::string& v) { csv.unit = v; });
   meta("quantity", [&](const std::string& v) { csv.quantity = ParseSpectrumQuantity(Lower(v)); });
   meta("sides", [&](const std::string& v) { csv.sides = ParseSpectrumSides(Lower(v)); });
+  meta("interpolation", [&](const std::string& v) { csv.interpolation = ParseSpectrumInterpolation(Lower(v)); });
 
   const std::size_t columns = table.columns();
   if (columns == 1) {
@@ -75,7 +76,7 @@ SpectrumCsv FromTable(const NumericTable& table) {
 
 NumericTableOptions SpectrumTableOptions() {
   NumericTableOptions options;
-  options.metadata_keys = {"unit", "quantity", "sides"};
+  options.metadata_keys = {"unit", "quantity", "sides", "interpolation"};
   options.first_column = "frequency";
   options.unnamed_prefix = "ch";
   return options;
@@ -110,6 +111,7 @@ SpectrumCsv ReadSpectrumCsv(const std::string& path) {
 std::shared_ptr<const MeasuredSpectrum> MakeMeasuredSpectrum(const SpectrumCsv& csv, Extrapolation extrapolation) {
   MeasuredSpectrumOptions options;
   options.extrapolation = extrapolation;
+  options.interpolation = csv.interpolation;
   options.channel_names = csv.channel_names;
   options.unit = csv.unit.value_or("");
   options.origin = csv.path;

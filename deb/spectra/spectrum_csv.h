@@ -5,6 +5,8 @@
 //   # unit: um/s          unit of the quantity (optional)
 //   # quantity: asd       psd (default) or asd: ASD columns are squared
 //   # sides: two          one (default) or two: PSD_one = 2 PSD_two
+//   # interpolation: bins log-log (default) or bins: constant over each bin
+//                         (the bins of a spectral estimate, measured_spectrum.h)
 //   f_hz, x, y, z         optional header row: frequency name, channel names
 //   0.5, 1.2e-3, ...      frequency [Hz] first, then one column per channel
 //
@@ -41,6 +43,7 @@ struct SpectrumCsv {
   std::optional<std::string> unit;         // from "# unit:"
   SpectrumQuantity quantity = SpectrumQuantity::kPsd;  // as declared in the file
   SpectrumSides sides = SpectrumSides::kOne;           // as declared in the file
+  SpectrumInterpolation interpolation = SpectrumInterpolation::kLogLog;  // as declared in the file
 };
 
 // @throws InputError if the file cannot be read or breaks a rule: a cell that

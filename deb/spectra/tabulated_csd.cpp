@@ -42,6 +42,7 @@ MeasuredSpectrum AutoSpectra(std::vector<double> f_hz, int channels, const Eigen
   }
   MeasuredSpectrumOptions m;
   m.extrapolation = options.extrapolation;
+  m.interpolation = options.interpolation;
   m.channel_names = options.channel_names;
   m.unit = options.unit;
   m.origin = options.origin;
@@ -140,10 +141,11 @@ Eigen::MatrixXcd TabulatedCsd::Csd(double f_hz) const {
   // The autos first: outside the data they throw (kError) or give the policy.
   const Eigen::VectorXd d = autos_.Psd(f_hz);
   const std::vector<double>& f = autos_.f_hz();
-  if (f_hz < f.front() || f_hz > f.back()) {
-    if (options_.extrapolation == Extrapolation::kHold) return Node(f_hz < f.front() ? 0 : f.size() - 1);
+  if (f_hz < autos_.lo_hz() || f_hz > autos_.hi_hz()) {
+    if (options_.extrapolation == Extrapolation::kHold) return Node(f_hz < autos_.lo_hz() ? 0 : f.size() - 1);
     return Eigen::MatrixXcd::Zero(channels_, channels_);
   }
+  if (options_.interpolation == SpectrumInterpolation::kBins) return Node(autos_.BinOf(f_hz));
   const auto above = std::upper_bound(f.begin(), f.end(), f_hz);
   const std::size_t i1 = std::min(static_cast<std::size_t>(above - f.begin()), f.size() - 1);
   const std::size_t i0 = i1 - 1;
@@ -172,7 +174,11 @@ std::string TabulatedCsd::Describe() const {
   if (!options_.origin.empty()) text += " '" + options_.origin + "'";
   text += ", " + std::to_string(channels_) + (channels_ == 1 ? " channel (" : " channels (") + names + "), " +
           std::to_string(f.size()) + " points " + NumberText(f.front()) + "-" + NumberText(f.back()) +
-          " Hz, auto-PSDs log-log, coherency linear in log f, extrapolation " +
+          " Hz, " +
+          (options_.interpolation == SpectrumInterpolation::kBins
+               ? "constant over each bin (" + NumberText(autos_.lo_hz()) + "-" + NumberText(autos_.hi_hz()) + " Hz)"
+               : std::string("auto-PSDs log-log, coherency linear in log f")) +
+          ", extrapolation " +
           ToString(options_.extrapolation);
   if (!options_.unit.empty()) text += "; CSD in (" + options_.unit + ")^2/Hz";
   return text;

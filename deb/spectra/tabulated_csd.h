@@ -20,6 +20,8 @@
 // combination, and D C D is a congruence of it: every interpolated matrix is
 // Hermitian and positive semi-definite, and the auto-PSDs match the
 // diagonal-only MeasuredSpectrum exactly. At a node the table is returned.
+// With SpectrumInterpolation::kBins (a Welch estimate) the matrix is instead
+// held constant over each node's bin, as MeasuredSpectrum does with the autos.
 #pragma once
 
 #include <complex>
@@ -33,6 +35,7 @@ namespace deb {
 
 struct TabulatedCsdOptions {
   Extrapolation extrapolation = Extrapolation::kError;
+  SpectrumInterpolation interpolation = SpectrumInterpolation::kLogLog;
   // One name per channel; empty means "ch1", "ch2", ...
   std::vector<std::string> channel_names;
   // Unit of the signal (CSD in unit^2/Hz); "" if undeclared.
@@ -71,7 +74,7 @@ class TabulatedCsd final : public Spectrum {
   Eigen::VectorXd Psd(double f_hz) const override;
   // False: the table carries cross terms (even if some happen to be 0).
   bool IsDiagonal() const override { return false; }
-  // The two ends of the data range.
+  // As MeasuredSpectrum: every node (log-log) or every bin edge (bins).
   std::vector<double> BreakpointsHz() const override;
   std::string Describe() const override;
 

@@ -97,15 +97,16 @@ TEST_CASE("deb spectrum convert --from-bands then bands: a floor built at VC-D i
   }
   Result r = Deb("spectrum convert --from-bands " + (dir / "vcd.csv").string() + " -o " + (dir / "psd.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
-  r = Deb("spectrum bands " + (dir / "psd.csv").string() + " --lowest 8 --highest 63 --criteria vc -o " +
+  // All 11 bands come back, the top one too: its edge is written to every digit.
+  r = Deb("spectrum bands " + (dir / "psd.csv").string() + " --lowest 8 --highest 80 --criteria vc -o " +
           (dir / "bands.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
-  CHECK(r.out.find("floor: 10 bands, VC-D; limiting band") != std::string::npos);
+  CHECK(r.out.find("floor: 11 bands, VC-D; limiting band") != std::string::npos);
   const std::string bands = Slurp(dir / "bands.csv");
   CHECK(bands.find("centre_hz, lo_hz, hi_hz, points, floor, floor_class") != std::string::npos);
   std::size_t count = 0;
   for (std::size_t at = bands.find(", VC-D"); at != std::string::npos; at = bands.find(", VC-D", at + 1)) ++count;
-  CHECK(count == 10);
+  CHECK(count == 11);
   // The same floor in nm (displacement) converts back through (2 pi f)^2.
   r = Deb("spectrum convert " + (dir / "psd.csv").string() + " --to nm -o " + (dir / "nm.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);

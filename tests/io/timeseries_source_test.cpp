@@ -115,7 +115,7 @@ TEST_CASE("a recorded tone is not stepped over by the automatic grid") {
   // bins carry the tone's variance in a few bins 0.39 Hz apart; a grid that
   // does not hold every bin (the 200-per-decade base grid is 0.43 Hz apart
   // there) misses most of the peak: RMS 0.42 instead of 0.71 before every
-  // data point became a grid breakpoint.
+  // bin edge became a grid breakpoint.
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("deb_ts_tone_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
@@ -132,10 +132,10 @@ TEST_CASE("a recorded tone is not stepped over by the automatic grid") {
   std::filesystem::remove_all(dir);
   const double rms = r.outputs[0].rms();
   MESSAGE("tone RMS through the budget: " << rms << " (true 0.7071)");
-  // Log-log interpolation between the bins of a Hann peak gives less area than
-  // the bins' sum (Parseval); what remains is that model's bias, 0.59 here.
-  CHECK(rms > 0.55);
-  CHECK(rms < 0.7072);
+  // The bins are held constant over their width, so the budget integrates
+  // Parseval's sum of the estimate: the tone's 0.5 (um/s)^2 (log-log
+  // interpolation between the bins of the Hann peak gave 0.62).
+  CHECK(rms == doctest::Approx(std::sqrt(0.5 + 1e-6 * 99.0 / 200.0)).epsilon(2e-3));
 }
 
 }  // namespace

@@ -79,5 +79,34 @@ TEST_CASE("a band outside the data, a negative PSD and mismatched sizes are inpu
   CHECK_THROWS_AS(ThirdOctaveBandRms(f, {1.0}, ThirdOctaveSeries::kBase2From1Hz), InputError);
 }
 
+
+TEST_CASE("the bins of a spectral estimate give each band the part of each bin inside it (exact)") {
+  // Bins 1 Hz apart at 1..100 Hz, each holding 1 except 3 bins of a tone at
+  // 39-41 Hz: the 40 Hz band (35.92-45.25 Hz) holds the 9 whole bins 37..45
+  // (edges 36.5..45.5 minus the parts outside) plus the tone.
+  const std::vector<double> f = LinearGrid(1.0, 100.0, 100);
+  std::vector<double> psd(f.size(), 1.0);
+  psd[38] = psd[40] = 2.0;  // 39 and 41 Hz
+  psd[39] = 5.0;            // 40 Hz
+  const std::vector<BandRms> bands =
+      ThirdOctaveBandRms(f, psd, ThirdOctaveSeries::kBase2From1Hz, 40.0, 40.0, SpectrumInterpolation::kBins);
+  REQUIRE(bands.size() == 1);
+  const ThirdOctaveBand& b = bands[0].band;
+  const double expected = (b.hi_hz - b.lo_hz) * 1.0 + (1.0 + 4.0 + 1.0);  // flat part + the tone above it
+  CHECK(bands[0].rms * bands[0].rms == doctest::Approx(expected).epsilon(1e-13));
+  // The bins cover half a spacing beyond the first and last point.
+  CHECK_NOTHROW(ThirdOctaveBandRms(f, psd, ThirdOctaveSeries::kBase2From1Hz, 0.63, 80.0, SpectrumInterpolation::kBins));
+  CHECK_THROWS_AS(ThirdOctaveBandRms(f, psd, ThirdOctaveSeries::kBase2From1Hz, 0.63, 80.0), InputError);
+}
+
+TEST_CASE("a band RMS table as PSD covers its last band up to the band's edge") {
+  const std::vector<ThirdOctaveBand> bands = ThirdOctaveBandsBetween(8.0, 80.0, ThirdOctaveSeries::kBase2From1Hz);
+  const PsdTable t = BandRmsToPsd(bands, std::vector<double>(bands.size(), 6.25));
+  CHECK(t.f_hz.back() == bands.back().hi_hz);
+  const std::vector<BandRms> back = ThirdOctaveBandRms(t.f_hz, t.psd, ThirdOctaveSeries::kBase2From1Hz, 8.0, 80.0);
+  CHECK(back.size() == 11);
+  CHECK(back.back().rms == doctest::Approx(6.25).epsilon(1e-8));
+}
+
 }  // namespace
 }  // namespace deb

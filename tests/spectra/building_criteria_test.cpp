@@ -16,10 +16,7 @@ std::vector<BandRms> FlatBands(double level, double lowest_hz = 1.0) {
   const std::vector<ThirdOctaveBand> bands =
       ThirdOctaveBandsBetween(lowest_hz, 80.0, ThirdOctaveSeries::kBase2From1Hz);
   const PsdTable t = BandRmsToPsd(bands, std::vector<double>(bands.size(), level));
-  std::vector<double> f = t.f_hz, psd = t.psd;
-  f.push_back(bands.back().hi_hz);  // close the last band
-  psd.push_back(psd.back());
-  return ThirdOctaveBandRms(f, psd, ThirdOctaveSeries::kBase2From1Hz, lowest_hz, 80.0);
+  return ThirdOctaveBandRms(t.f_hz, t.psd, ThirdOctaveSeries::kBase2From1Hz, lowest_hz, 80.0);
 }
 
 std::size_t IndexOf(const Classification& c, const std::string& name) {

@@ -114,5 +114,32 @@ TEST_CASE("extrapolation names round-trip and an unknown name lists the allowed 
         std::string::npos);
 }
 
+
+TEST_CASE("the bins of an estimate hold their value across their width, and the grid sees every edge") {
+  Eigen::MatrixXd psd(3, 1);
+  psd << 1.0, 8.0, 2.0;
+  MeasuredSpectrumOptions o;
+  o.interpolation = SpectrumInterpolation::kBins;
+  const MeasuredSpectrum bins({1.0, 2.0, 3.0}, psd, o);
+  CHECK(bins.bin_edges_hz() == std::vector<double>{0.5, 1.5, 2.5, 3.5});
+  CHECK(bins.lo_hz() == 0.5);
+  CHECK(bins.hi_hz() == 3.5);
+  CHECK(bins.BreakpointsHz() == bins.bin_edges_hz());
+  CHECK(bins.Psd(0.6)(0) == 1.0);
+  CHECK(bins.Psd(1.49)(0) == 1.0);
+  CHECK(bins.Psd(1.5)(0) == 8.0);  // an edge belongs to the bin above it
+  CHECK(bins.Psd(3.5)(0) == 2.0);
+  CHECK(bins.Psd(2.0)(0) == 8.0);
+  CHECK(bins.Describe().find("constant over each bin (0.5-3.5 Hz)") != std::string::npos);
+  CHECK_THROWS_AS(bins.Psd(3.6), InputError);
+  // A first point close to 0 Hz: the lowest edge stays above 0.
+  const MeasuredSpectrum low({0.1, 5.0}, Eigen::MatrixXd::Ones(2, 1), o);
+  CHECK(low.lo_hz() == 0.05);
+  CHECK(ToString(SpectrumInterpolation::kBins) == "bins");
+  CHECK(ParseSpectrumInterpolation("log-log") == SpectrumInterpolation::kLogLog);
+  CHECK_THROWS_WITH_AS(ParseSpectrumInterpolation("linear"), "unknown spectrum interpolation 'linear'; allowed: log-log, bins",
+                       InputError);
+}
+
 }  // namespace
 }  // namespace deb

@@ -148,5 +148,14 @@ TEST_CASE("quantity and sides names round-trip") {
   for (auto s : {SpectrumSides::kOne, SpectrumSides::kTwo}) CHECK(ParseSpectrumSides(ToString(s)) == s);
 }
 
+
+TEST_CASE("a file may declare that its rows are the bins of a spectral estimate") {
+  const SpectrumCsv bins = Parse("# interpolation: bins\n1, 2\n2, 3\n");
+  CHECK(bins.interpolation == SpectrumInterpolation::kBins);
+  CHECK(MakeMeasuredSpectrum(bins)->Psd(2.4)(0) == 3.0);
+  CHECK(Parse("1, 2\n2, 3\n").interpolation == SpectrumInterpolation::kLogLog);
+  CHECK(ErrorOf("# interpolation: cubic\n1, 2\n2, 3\n").find("floor.csv:1:18: unknown spectrum interpolation 'cubic'") == 0);
+}
+
 }  // namespace
 }  // namespace deb

@@ -189,5 +189,19 @@ TEST_CASE("Describe names the origin, channels, points, interpolation and extrap
         "in log f, extrapolation error; CSD in (um/s)^2/Hz");
 }
 
+
+TEST_CASE("with bins, the matrix is the node's across its bin, and the bin edges are the breakpoints") {
+  const Table t = ThreeChannels();
+  TabulatedCsdOptions o;
+  o.interpolation = SpectrumInterpolation::kBins;
+  const TabulatedCsd s(t.f_hz, 3, Pack(t.nodes), o);
+  CHECK(s.Csd(1.2) == s.Csd(0.5));    // bin of 0.5 Hz: 0.5 - 0.75 ... 1.25 Hz
+  CHECK(s.Csd(1.3) == s.Csd(2.0));    // bin of 2 Hz: 1.25-4.5 Hz
+  CHECK(s.Csd(400.0) == s.Csd(300.0));  // the last bin reaches 300 + 130 Hz
+  CHECK(s.BreakpointsHz() == std::vector<double>{0.25, 1.25, 4.5, 23.5, 170.0, 430.0});
+  CHECK(s.Csd(2.5)(0, 0).real() == s.Psd(2.5)(0));
+  CHECK_THROWS_AS(s.Csd(431.0), InputError);
+}
+
 }  // namespace
 }  // namespace deb
