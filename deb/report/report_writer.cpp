@@ -128,6 +128,21 @@ std::string ColoursCsv(const Budget& budget) {
   return s.str();
 }
 
+// A plot's script as a page of report.pdf: inside a margin a printer
+// keeps (single plots; a multiplot places its own panels), with the footer
+// set before the last `plot` so that a multiplot draws it once.
+std::string PdfPage(std::string script, const std::string& footer) {
+  const bool multiplot = script.find("set multiplot") != std::string::npos;
+  // A multiplot's panels reach the page's bottom: its footer goes to the top right corner.
+  const std::string label = "set label 9000 " + Quote(footer) +
+                            (multiplot ? " at screen 0.99,0.985 right" : " at screen 0.5,0.015 center") +
+                            " font ',8' textcolor rgb '#707070' noenhanced\n";
+  const std::size_t last_plot = script.rfind("\nplot ");
+  DEB_DEMAND(last_plot != std::string::npos);
+  script.insert(last_plot + 1, label + (multiplot ? "" : "set size 0.95,0.92\nset origin 0.025,0.045\n"));
+  return script + "unset label 9000\n";
+}
+
 void RequireFile(const fs::path& path, const std::string& what) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) == 0)
@@ -166,8 +181,14 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   const bool pdf = options.plots && options.Has(PlotFormat::kPdf);
   if (options.plots) {
     std::vector<Table> tables = {SummaryTable(result)};
-    for (const OutputResult& o : result.outputs) tables.push_back(ContributorTable(budget, o));
-    const TitlePages title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings);
+    for (const OutputResult& o : result.outputs) {
+      tables.push_back(ContributorTable(budget, o));
+      tables.push_back(BandTable(o));
+    }
+    // Twice: the footers number every page, and the title pages' count is known after the first.
+    TitlePages title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings);
+    const int total_pages = title.pages + static_cast<int>(plots.size());
+    title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings, total_pages, sha256);
     if (pdf) writer.Write("plots/title_page.gp", title.script);
 
     // One gnuplot process per file, report.pdf (the longest) first, several
@@ -180,7 +201,9 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
     std::vector<Job> jobs;
     if (pdf) {
       std::string script = TerminalCommand(Terminal::kPdf) + "set output '../report.pdf'\nload 'title_page.gp'\n";
-      for (const Plot& p : plots) script += "load " + Quote(p.name + ".gp") + "\n";
+      for (std::size_t i = 0; i < plots.size(); ++i)
+        script += PdfPage(plots[i].script, PageFooter(budget.name, sha256, title.pages + static_cast<int>(i) + 1,
+                                                      total_pages));
       jobs.push_back({"report.pdf", script + "unset output\n"});
     }
     for (Terminal t : {Terminal::kPng, Terminal::kSvg}) {

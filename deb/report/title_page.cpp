@@ -56,8 +56,15 @@ std::vector<std::string> Wrap(const std::string& text, std::size_t width) {
   return lines;
 }
 
+std::string PageFooter(const std::string& budget_name, const std::string& digest, int page, int total_pages) {
+  return "deb " + std::string(DEB_VERSION) + " · " + budget_name +
+         (digest.empty() ? "" : " · SHA-256 " + digest.substr(0, 12)) + " · page " + std::to_string(page) + "/" +
+         std::to_string(total_pages);
+}
+
 TitlePages MakeTitlePages(const std::string& budget_name, const std::string& description, const ReportFacts& facts,
-                          const std::vector<Table>& tables, const std::vector<std::string>& warnings) {
+                          const std::vector<Table>& tables, const std::vector<std::string>& warnings,
+                          int total_pages, const std::string& digest) {
   // Blocks: a heading, lines repeated at the top of a continuation (a
   // table's column header), and the body.
   struct Block {
@@ -137,8 +144,8 @@ TitlePages MakeTitlePages(const std::string& budget_name, const std::string& des
         << " textcolor rgb '#1a1a1a' noenhanced\n";
     }
     s << "set label " << ++n << " "
-      << Quote("deb " + std::string(DEB_VERSION) + " · " + budget_name +
-               (pages.size() > 1 ? " · " + std::to_string(p + 1) + "/" + std::to_string(pages.size()) : ""))
+      << Quote(PageFooter(budget_name, digest, static_cast<int>(p) + 1,
+                          total_pages > 0 ? total_pages : static_cast<int>(pages.size())))
       << " at screen " << CsvNumber(1.0 - kLeftCm / kPageWidthCm) << "," << CsvNumber(0.6 / kPageHeightCm)
       << " right font " << Quote(std::string(kFont) + ",8") << " textcolor rgb '#707070' noenhanced\n";
     s << "plot 2 notitle\n";

@@ -17,9 +17,15 @@ struct TitlePages {
 };
 
 // `tables` are set in order after the facts and conventions; `warnings`
-// follow them.
+// follow them. Each page's footer is PageFooter(budget_name, digest, k,
+// total_pages), with total_pages = the title pages alone when 0.
 TitlePages MakeTitlePages(const std::string& budget_name, const std::string& description, const ReportFacts& facts,
-                          const std::vector<Table>& tables, const std::vector<std::string>& warnings);
+                          const std::vector<Table>& tables, const std::vector<std::string>& warnings,
+                          int total_pages = 0, const std::string& digest = "");
+
+// "deb VERSION · BUDGET · SHA-256 0123456789ab · page K/N" (the digest part
+// only when given): a loose printout names its budget file and its place.
+std::string PageFooter(const std::string& budget_name, const std::string& digest, int page, int total_pages);
 
 // `text` broken at spaces into lines of at most `width` characters.
 std::vector<std::string> Wrap(const std::string& text, std::size_t width);

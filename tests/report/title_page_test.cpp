@@ -49,4 +49,12 @@ TEST_CASE("a long table continues on further pages with its heading and column h
   CHECK(p.script.find("'c99" + std::string(10, ' ') + "1.0'") != std::string::npos);
 }
 
+TEST_CASE("every page's footer names deb, the budget, the file's digest and the page among all") {
+  CHECK(PageFooter("b", "0123456789abcdef", 3, 40) ==
+        "deb " + std::string(DEB_VERSION) + " · b · SHA-256 0123456789ab · page 3/40");
+  CHECK(PageFooter("b", "", 1, 2) == "deb " + std::string(DEB_VERSION) + " · b · page 1/2");
+  const TitlePages p = MakeTitlePages("b", "", {}, {Rows(100)}, {}, 50, "feedbeef");
+  CHECK(p.script.find("'deb " + std::string(DEB_VERSION) + " · b · SHA-256 feedbeef · page 3/50'") != std::string::npos);
+}
+
 }  // namespace deb::report
