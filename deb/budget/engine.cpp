@@ -251,6 +251,18 @@ FrequencyGrid BuildGrid(const Budget& budget) {
       breakpoints.push_back(q.lo_hz);
       breakpoints.push_back(q.hi_hz);
     }
+  // A moving average or std weights the PSD by sinc^2(pi f T) or its
+  // complement, which ripples with zeros at k/T: points across each lobe
+  // that the weight resolves (output_metric.h; beyond, it is smooth).
+  for (const Output& o : budget.outputs) {
+    if (!o.metric) continue;
+    const double step_hz = 1.0 / (OutputMetric::kPointsPerLobe * o.metric->window_s);
+    for (int j = 1; j <= OutputMetric::kResolvedLobes * OutputMetric::kPointsPerLobe; ++j) {
+      const double f = j * step_hz;
+      if (f > options.max_hz) break;
+      if (f >= options.min_hz) breakpoints.push_back(f);
+    }
+  }
   return AutoGrid(options, resonances, breakpoints);
 }
 

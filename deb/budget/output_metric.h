@@ -19,10 +19,20 @@ MetricType ParseMetricType(const std::string& text);  // @throws InputError list
 std::string ToString(MetricType type);
 
 struct OutputMetric {
+  // sinc^2 ripples with zeros at k/T. The first kResolvedLobes lobes are
+  // evaluated exactly, and the automatic grid puts kPointsPerLobe points
+  // across each; beyond f T = kResolvedLobes the weight is its average over
+  // a lobe, 1/(2 (pi f T)^2), because no grid of a budget's size resolves
+  // thousands of lobes and a PSD that varies slowly across a lobe sees only
+  // that average (relative error of order (1/(f T))^2 times S''/S).
+  static constexpr int kResolvedLobes = 32;
+  static constexpr int kPointsPerLobe = 64;
+
   MetricType type = MetricType::kMovingAverage;
   double window_s = 1.0;  // exposure time T > 0
 
-  // |sinc(pi f T)|^2 (moving average) or 1 - |sinc(pi f T)|^2 (moving std) at f_hz.
+  // |sinc(pi f T)|^2 (moving average) or 1 - |sinc(pi f T)|^2 (moving std) at
+  // f_hz, with the lobe average beyond kResolvedLobes (above).
   double PsdFactor(double f_hz) const;
   std::string Describe() const;  // e.g. "moving average over 0.01 s"
 };
