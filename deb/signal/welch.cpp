@@ -140,8 +140,9 @@ bool WelchOptions::IsValid(std::string* error) const {
     if (error) *error = message;
     return false;
   };
-  if (segment_length < 0)
-    return fail("segment_length " + std::to_string(segment_length) + " is invalid; it must be >= 1 (or 0: automatic)");
+  if (segment_length != 0 && segment_length < kMinSegmentLength)
+    return fail("segment_length " + std::to_string(segment_length) + " is invalid; a segment needs at least " +
+                std::to_string(kMinSegmentLength) + " samples (8 bins above 0 Hz), or 0: automatic");
   if (!(overlap >= 0.0 && overlap < 1.0))
     return fail("overlap " + NumberText(overlap) + " is invalid; it is a fraction of a segment in [0, 1)");
   if (!(confidence > 0.0 && confidence < 1.0))
@@ -159,13 +160,14 @@ int SegmentLengthFor(Eigen::Index samples, const WelchOptions& options) {
                        " samples; use a shorter segment_length or a longer recording");
     return options.segment_length;
   }
-  for (int length = 1 << 30; length >= 2; length /= 2) {
+  for (int length = 1 << 30; length >= WelchOptions::kMinSegmentLength; length /= 2) {
     const Segmentation s = Segment(samples, length, options.overlap);
     if (s.count >= 8) return length;
   }
-  throw InputError("too few samples: " + std::to_string(samples) +
-                   " samples cannot give 8 segments of at least 2 samples; give segment_length or a longer "
-                   "recording");
+  if (samples >= WelchOptions::kMinSegmentLength) return WelchOptions::kMinSegmentLength;  // fewer averages
+  throw InputError("too few samples: " + std::to_string(samples) + " samples are fewer than one segment of " +
+                   std::to_string(WelchOptions::kMinSegmentLength) +
+                   " (the shortest, 8 bins above 0 Hz); record longer");
 }
 
 double WelchDegreesOfFreedom(const std::vector<double>& window, int step, int segments, Averaging averaging) {

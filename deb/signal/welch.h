@@ -40,9 +40,13 @@
 namespace deb {
 
 struct WelchOptions {
+  // The shortest segment: 8 bins above 0 Hz. Shorter segments give a
+  // "spectrum" of a few bins that no band analysis or budget can use.
+  static constexpr int kMinSegmentLength = 16;
+
   WindowKind window = WindowKind::kHann;
-  // Samples per segment; 0 picks the largest power of two that still gives
-  // at least 8 segments with the chosen overlap.
+  // Samples per segment, >= kMinSegmentLength; 0 picks the largest power of
+  // two that still gives at least 8 segments with the chosen overlap.
   int segment_length = 0;
   double overlap = 0.5;  // fraction of a segment shared with the next, [0, 1)
   Detrend detrend = Detrend::kMean;
@@ -51,8 +55,8 @@ struct WelchOptions {
   int threads = 0;           // 0: DefaultThreadCount()
 
   // False, with the field, its value and the rule in *error, if a field is
-  // out of range (segment_length < 0, overlap outside [0, 1), confidence
-  // outside (0, 1)).
+  // out of range (segment_length neither 0 nor >= kMinSegmentLength,
+  // overlap outside [0, 1), confidence outside (0, 1)).
   bool IsValid(std::string* error) const;
 };
 

@@ -308,7 +308,11 @@ TEST_CASE("bad input: too few samples for a segment, NaN in the data, invalid op
   const std::string message = InputErrorText([&] { WelchPsd(x, o); });
   CHECK(message.find("too few samples: 1000 samples are fewer than one segment of 1024") != std::string::npos);
   CHECK_THROWS_AS(WelchCsd(x, o), InputError);
-  CHECK(InputErrorText([] { SegmentLengthFor(8, WelchOptions{}); }).find("too few samples") != std::string::npos);
+  CHECK(InputErrorText([] { SegmentLengthFor(8, WelchOptions{}); }).find("too few samples: 8 samples are fewer than one segment of 16") != std::string::npos);
+  CHECK(SegmentLengthFor(40, WelchOptions{}) == 16);  // fewer than 8 segments, but a spectrum
+  WelchOptions two;
+  two.segment_length = 2;
+  CHECK(InputErrorText([&] { SegmentLengthFor(100, two); }).find("at least 16 samples") != std::string::npos);
 
   Eigen::MatrixXd bad = Eigen::MatrixXd::Zero(100, 2);
   bad(42, 1) = std::nan("");
