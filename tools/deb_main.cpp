@@ -55,6 +55,9 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
       else
         std::printf("  %-24s %14.6g %7.2f%% %14s\n", c.name.c_str(), std::sqrt(c.variance), share, "-");
     }
+    for (const auto& b : o.band_requirements)
+      std::printf("  band %g-%g Hz: rms %.6g (requirement %.6g: %s)\n", b.requirement.lo_hz, b.requirement.hi_hz,
+                  b.rms(), b.requirement.rms_max, b.pass() ? "PASS" : "FAIL");
   }
   std::printf("\nreport: %s\n", out_dir.c_str());
 }
@@ -87,7 +90,17 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
   int failed = 0;
   for (const auto& o : result.outputs) failed += o.AllPass() ? 0 : 1;
   if (strict && failed > 0) {
-    std::fprintf(stderr, "deb: %d output(s) fail their requirement (--strict)\n", failed);
+    std::string which;
+    for (const auto& o : result.outputs) {
+      if (!o.pass()) which += (which.empty() ? "" : ", ") + o.name;
+      for (const auto& b : o.band_requirements) {
+        if (b.pass()) continue;
+        char band[96];
+        std::snprintf(band, sizeof band, " (band %g-%g Hz)", b.requirement.lo_hz, b.requirement.hi_hz);
+        which += (which.empty() ? "" : ", ") + o.name + band;
+      }
+    }
+    std::fprintf(stderr, "deb: %d output(s) fail their requirement (--strict): %s\n", failed, which.c_str());
     return kExitRequirement;
   }
   return 0;

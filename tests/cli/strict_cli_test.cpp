@@ -116,5 +116,13 @@ TEST_CASE("run --strict also fails on a band requirement, which summary.json and
   CHECK(velocity["band_requirements"][0]["rms"].get<double>() > 0.5);
   CHECK(j["pass"] == false);
   CHECK(ReadAll(dir / "r" / "report.md").find("z\\_velocity, 1–10 Hz") != std::string::npos);
+  // The console names the failing band, both in the run's table and in the --strict verdict.
+  CHECK(r.err.find("fail their requirement (--strict): z_velocity (band 1-10 Hz)") != std::string::npos);
+  const std::string cmd = std::string("\"") + DEB_BINARY + "\" run " + budget.string() + " --no-plots --out " +
+                          (dir / "r2").string() + " > \"" + (dir / "stdout").string() + "\" 2>&1";
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  const std::string out = ReadAll(dir / "stdout");
+  CHECK(out.find("band 1-10 Hz: rms") != std::string::npos);
+  CHECK(out.find("(requirement 0.5: FAIL)") != std::string::npos);
   fs::remove_all(dir);
 }
