@@ -8,14 +8,23 @@
 namespace deb {
 
 Allocation AllocationFactor(const OutputResult& output, std::size_t contributor) {
-  DEB_DEMAND(contributor < output.contributors.size());
+  return SourceAllocationFactor(output, {contributor});
+}
+
+Allocation SourceAllocationFactor(const OutputResult& output, const std::vector<std::size_t>& group) {
+  DEB_DEMAND(!group.empty());
   Allocation a;
   if (!output.rms_max) {
     a.note = "no requirement";
     return a;
   }
   const double limit2 = *output.rms_max * *output.rms_max;
-  const double own = output.contributors[contributor].variance;
+  double own = 0.0;
+  for (std::size_t i = 0; i < group.size(); ++i) {
+    DEB_DEMAND(group[i] < output.contributors.size());
+    for (std::size_t j = 0; j < i; ++j) DEB_DEMAND(group[j] != group[i]);
+    own += output.contributors[group[i]].variance;
+  }
   const double others = output.variance - own;
   if (others >= limit2) {
     std::ostringstream os;

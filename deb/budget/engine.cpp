@@ -285,6 +285,19 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     }
   }
 
+  // Contributors add as uncorrelated; one source feeding several of them is
+  // one realisation seen through several paths, whose sum is coherent.
+  for (const Source& s : budget.sources) {
+    std::string users;
+    int count = 0;
+    for (const Contributor& c : budget.contributors)
+      if (c.source == s.name) users += (count++ ? ", " : "") + ("'" + c.name + "'");
+    if (count > 1)
+      result.warnings.push_back("source '" + s.name + "' feeds contributors " + users +
+                                ", whose variances are added as uncorrelated; if they are one disturbance seen "
+                                "through several paths, join the paths (type: parallel) in one contributor");
+  }
+
   // Weighting responses and metric factors, shared by all contributors of an output.
   std::vector<std::vector<double>> weighting_gain2(budget.outputs.size());
   for (std::size_t o = 0; o < budget.outputs.size(); ++o) {

@@ -104,6 +104,21 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
         const Allocation a = AllocationFactor(o, c);
         jc["allocation_factor"] = a.factor ? nlohmann::json(*a.factor) : nlohmann::json(nullptr);
         jc["allocation_note"] = a.factor ? nlohmann::json(nullptr) : nlohmann::json(a.note);
+        // A source feeding several contributors: its own factor scales them all.
+        const std::string& source = budget.contributors[c].source;
+        std::vector<std::size_t> group;
+        nlohmann::json shared = nlohmann::json::array();
+        for (std::size_t k = 0; k < budget.contributors.size(); ++k)
+          if (budget.contributors[k].source == source) {
+            group.push_back(k);
+            if (k != c) shared.push_back(budget.contributors[k].name);
+          }
+        if (group.size() > 1) {
+          const Allocation g = SourceAllocationFactor(o, group);
+          jc["source_shared_with"] = shared;
+          jc["source_allocation_factor"] = g.factor ? nlohmann::json(*g.factor) : nlohmann::json(nullptr);
+          jc["source_allocation_note"] = g.factor ? nlohmann::json(nullptr) : nlohmann::json(g.note);
+        }
       }
       contributors.push_back(jc);
     }

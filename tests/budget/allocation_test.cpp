@@ -140,4 +140,23 @@ TEST_CASE("a band requirement holds the output's RMS within the band and fails o
   CHECK_THROWS_WITH_AS(Evaluate(b), doctest::Contains("extends beyond the frequency grid"), InputError);
 }
 
+TEST_CASE("a source shared by two contributors has a joint factor that puts the output at the limit (1e-6)") {
+  // Source a feeds both paths; each contributor's own factor assumes the other
+  // stays, which scaling the shared source does not do.
+  Budget b = TwoContributors(1.0);
+  b.contributors[1].source = "a";
+  const double nominal = Evaluate(b).outputs[0].rms();
+  for (const double fraction : {1.5, 0.9}) {
+    b.outputs[0].rms_max = fraction * nominal;
+    const OutputResult r = Evaluate(b).outputs[0];
+    const Allocation joint = SourceAllocationFactor(r, {0, 1});
+    REQUIRE(joint.factor.has_value());
+    CHECK(*joint.factor == doctest::Approx(fraction * fraction).epsilon(1e-12));  // everything scales together
+    CHECK(std::abs(RmsWithScaledSource(b, 0, *joint.factor) - *b.outputs[0].rms_max) / *b.outputs[0].rms_max < 1e-6);
+    const Allocation own = AllocationFactor(r, 0);
+    REQUIRE(own.factor.has_value());
+    CHECK(std::abs(RmsWithScaledSource(b, 0, *own.factor) - *b.outputs[0].rms_max) / *b.outputs[0].rms_max > 1e-3);
+  }
+}
+
 }  // namespace deb
