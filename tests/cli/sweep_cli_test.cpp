@@ -36,7 +36,9 @@ TEST_CASE("deb sweep of the thesis case study writes one row per variant; K_v = 
     REQUIRE(v.size() > 4);
     if (v[0] == 0.0) CHECK(v[4] == 0.0);  // passive: the sensor-noise path is zero
     else CHECK(v[4] > 1.0);               // grows with K_v: about 11 um/s at K_v = 50 (thesis Table 5-4)
-    if (v[0] == 50.0 && v[1] == -200.0) CHECK(std::abs(v[4] - 11.1981) < 0.01);
+    // The thesis' two cases (Table 5-4) among the variants, on the sweep's coarser grid.
+    if (v[0] == 50.0 && std::abs(v[1] + 210.0) < 1e-9) CHECK(std::abs(v[4] - 11.1981) < 0.01);
+    if (v[0] == 50.0 && v[1] == 0.0) CHECK(std::abs(v[4] - 11.2137) < 0.01);
   }
   CHECK(fs::file_size(dir / "plots" / "z_velocity_sweep.png") > 1000);  // RMS against K_v
   fs::remove_all(dir);
