@@ -11,7 +11,7 @@ namespace deb {
 
 TEST_CASE("a grid sweep holds every combination with the last parameter fastest; a zip pairs values") {
   SweepSpec s;
-  s.parameters = {{"a", {1, 2}}, {"b", {10, 20, 30}}};
+  s.parameters = {{"a", {1, 2}, {}}, {"b", {10, 20, 30}, {}}};
   const auto grid = s.Variants();
   REQUIRE(grid.size() == 6);
   CHECK(grid[0] == std::vector<double>{1, 10});

@@ -12,7 +12,7 @@ namespace deb::report {
 TEST_CASE("sweep plots hold one data block per combination of the other parameters, ordered by the first") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   SweepSpec spec;
-  spec.parameters = {{"a", {3, 1, 2}}, {"b", {10, 20}}};  // 6 variants, a unsorted
+  spec.parameters = {{"a", {3, 1, 2}, {}}, {"b", {10, 20}, {}}};  // 6 variants, a unsorted
   std::vector<BudgetResult> results(6, Evaluate(budget));
   const auto plots = SweepPlots(spec, results);
   REQUIRE(plots.size() == budget.outputs.size());
