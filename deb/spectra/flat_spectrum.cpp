@@ -61,7 +61,7 @@ std::optional<Eigen::MatrixXd> FlatSpectrum::WhiteLevel() const {
 }
 
 std::string FlatSpectrum::Describe() const {
-  std::string text = "flat, one-sided PSD " + NumberText(level_psd_) + " /Hz";
+  std::string text = "flat, one-sided PSD " + NumberText(level_psd_) + " unit^2/Hz";
   if (IsBandLimited()) {
     text += ", band " + NumberText(lo_hz_) + "-" + NumberText(hi_hz_) + " Hz (zero outside)";
   }
