@@ -169,6 +169,9 @@ ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const st
       "Contributors (source × path) are mutually uncorrelated and their variances add; S_y = H S_u Hᴴ.",
       "Exact RMS: Lyapunov A P + P Aᵀ + B W Bᵀ = 0, W = S₀/2, over 0 < f < ∞ (white sources only).",
       "Sources declared two-sided were converted once at load: S_one-sided = 2 S_two-sided.",
+      "Share: a contributor's fraction of the output's variance (shares add to 100 %; RMS values do not add).",
+      "Allocation k = (rms_max² − (σ² − σ_c²)) / σ_c²: the factor on a contributor's source PSD that puts the "
+      "output at its limit, the others unchanged (k > 1: room to grow).",
   };
   return f;
 }
@@ -223,9 +226,11 @@ std::string ToMarkdown(const Table& t) {
   return s;
 }
 
-std::vector<std::string> ToText(const Table& t, std::size_t max_cell, std::size_t max_line) {
+std::vector<std::string> ToText(const Table& t, std::size_t max_cell, std::size_t max_line,
+                                std::vector<std::string>* shortened) {
   std::vector<std::vector<std::string>> cells = {t.header};
   for (const auto& row : t.rows) cells.push_back(row);
+  const std::vector<std::vector<std::string>> full = cells;
   const std::size_t columns = t.header.size();
   std::vector<std::size_t> width(columns, 0);
   for (auto& row : cells)
@@ -241,6 +246,10 @@ std::vector<std::string> ToText(const Table& t, std::size_t max_cell, std::size_
       row.back() = Shorten(row.back(), last);
       width.back() = std::max(width.back(), Width(row.back()));
     }
+  if (shortened)
+    for (std::size_t r = 1; r < cells.size(); ++r)
+      for (std::size_t c = 0; c < cells[r].size(); ++c)
+        if (cells[r][c] != full[r][c]) shortened->push_back(full[r][0] + ": " + t.header[c] + ": " + full[r][c]);
   std::vector<std::string> lines;
   for (std::size_t r = 0; r < cells.size(); ++r) {
     std::string line;

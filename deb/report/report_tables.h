@@ -45,7 +45,10 @@ std::string ToHtml(const Table& table);
 std::string ToMarkdown(const Table& table);
 // Aligned columns, a header line and a rule; cells longer than max_cell
 // characters are shortened with "…", except the last column, which may use
-// what is left of max_line.
-std::vector<std::string> ToText(const Table& table, std::size_t max_cell = 30, std::size_t max_line = 128);
+// what is left of max_line. With `shortened`, each cell cut so is added to it
+// in full, as "ROW: HEADER: TEXT" (ROW the row's first cell), so that a
+// document can print what the table could not.
+std::vector<std::string> ToText(const Table& table, std::size_t max_cell = 30, std::size_t max_line = 128,
+                                std::vector<std::string>* shortened = nullptr);
 
 }  // namespace deb::report

@@ -81,9 +81,16 @@ TitlePages MakeTitlePages(const std::string& budget_name, const std::string& des
   blocks.push_back({{{Kind::kHeading, "Conventions"}}, {}, {}});
   for (const auto& c : facts.conventions) blocks.back().body.push_back({Kind::kText, c});
   for (const Table& t : tables) {
-    const std::vector<std::string> text = ToText(t, 30, kMaxLineChars);
+    std::vector<std::string> shortened;
+    const std::vector<std::string> text = ToText(t, 30, kMaxLineChars, &shortened);
     blocks.push_back({{{Kind::kHeading, t.title}}, {{Kind::kMono, text[0]}, {Kind::kMono, text[1]}}, {}});
     for (std::size_t i = 2; i < text.size(); ++i) blocks.back().body.push_back({Kind::kMono, text[i]});
+    // What the columns cut ("…"), in full below the table.
+    for (const std::string& cell : shortened) {
+      const auto wrapped = Wrap(cell, kMaxLineChars - 4);
+      for (std::size_t i = 0; i < wrapped.size(); ++i)
+        blocks.back().body.push_back({Kind::kMono, (i ? "    " : "  * ") + wrapped[i]});
+    }
   }
   if (!warnings.empty()) {
     blocks.push_back({{{Kind::kHeading, "Warnings"}}, {}, {}});

@@ -49,6 +49,18 @@ TEST_CASE("a long table continues on further pages with its heading and column h
   CHECK(p.script.find("'c99" + std::string(10, ' ') + "1.0'") != std::string::npos);
 }
 
+TEST_CASE("a cell the table shortens is printed in full below it") {
+  Table t;
+  t.title = "Contributors";
+  t.header = {"contributor", "note"};
+  t.numeric = {false, false};
+  const std::string name = "a_contributor_with_a_very_long_descriptive_name";
+  t.rows = {{name, "short"}};
+  const TitlePages p = MakeTitlePages("b", "", {}, {t}, {});
+  CHECK(p.script.find("…") != std::string::npos);  // the table's cell
+  CHECK(p.script.find("'  * " + name + ": contributor: " + name + "'") != std::string::npos);
+}
+
 TEST_CASE("every page's footer names deb, the budget, the file's digest and the page among all") {
   CHECK(PageFooter("b", "0123456789abcdef", 3, 40) ==
         "deb " + std::string(DEB_VERSION) + " · b · SHA-256 0123456789ab · page 3/40");
