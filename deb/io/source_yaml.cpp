@@ -113,7 +113,9 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
   if (auto v = spec.Optional("window")) welch.window = AtNode(*v, [&] { return ParseWindowKind(v->AsString()); });
   if (auto v = spec.Optional("segment_length")) {
     welch.segment_length = v->AsInt();
-    if (welch.segment_length < 2) v->Fail("segment_length must be >= 2 samples, got " + std::to_string(welch.segment_length));
+    if (welch.segment_length < WelchOptions::kMinSegmentLength)
+      v->Fail("segment_length must be >= " + std::to_string(WelchOptions::kMinSegmentLength) +
+              " samples (8 bins above 0 Hz), got " + std::to_string(welch.segment_length));
   }
   if (auto v = spec.Optional("overlap")) welch.overlap = v->AsNonNegative();
   if (auto v = spec.Optional("detrend")) welch.detrend = AtNode(*v, [&] { return ParseDetrend(v->AsString()); });

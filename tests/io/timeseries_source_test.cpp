@@ -106,6 +106,8 @@ TEST_CASE("timeseries sources report a missing rate, too few samples, a bad colu
   CHECK(ErrorOf(Replace(kBudget, "window: hann", "window: kaiser"), shorter.path()).find("allowed: rectangular") !=
         std::string::npos);
   CHECK(ErrorOf(Replace(kBudget, "window: hann", "nfft: 10"), shorter.path()).find("nfft") != std::string::npos);
+  const std::string short_segment = ErrorOf(Replace(kBudget, "segment_length: 1024", "segment_length: 8"), shorter.path());
+  CHECK(short_segment.find("b.yaml:10:23: sources[0].spectrum.segment_length: segment_length must be >= 16") == 0);
 }
 
 
