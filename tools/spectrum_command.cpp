@@ -24,7 +24,7 @@
 #include "deb/spectra/band_rms.h"
 #include "deb/spectra/building_criteria.h"
 #include "deb/spectra/peterson_noise_model.h"
-#include "deb/spectra/number_text.h"
+#include "deb/core/number_text.h"
 #include "deb/spectra/spectrum_csv.h"
 #include "deb/units/unit.h"
 

@@ -4,7 +4,7 @@
 #include <set>
 
 #include "deb/core/error.h"
-#include "deb/spectra/number_text.h"
+#include "deb/core/number_text.h"
 
 namespace deb {
 

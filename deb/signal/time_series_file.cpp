@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "deb/core/error.h"
-#include "deb/spectra/number_text.h"
+#include "deb/core/number_text.h"
 
 namespace deb {
 namespace {

@@ -9,7 +9,7 @@
 #include "deb/core/parallel.h"
 #include "deb/signal/chi_square.h"
 #include "deb/signal/fft.h"
-#include "deb/spectra/number_text.h"
+#include "deb/core/number_text.h"
 
 namespace deb {
 namespace {

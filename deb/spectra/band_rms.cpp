@@ -5,7 +5,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/integrate.h"
-#include "deb/spectra/number_text.h"
+#include "deb/core/number_text.h"
 
 namespace deb {
 namespace {

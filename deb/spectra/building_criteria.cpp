@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "deb/core/error.h"
-#include "deb/spectra/number_text.h"
+#include "deb/core/number_text.h"
 #include "deb/spectra/vc_curve.h"
 
 namespace deb {

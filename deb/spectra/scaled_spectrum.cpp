@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "deb/core/error.h"
-#include "deb/spectra/number_text.h"
+#include "deb/core/number_text.h"
 
 namespace deb {
 

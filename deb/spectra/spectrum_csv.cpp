@@ -4,7 +4,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/numeric_table.h"
-#include "deb/spectra/number_text.h"
+#include "deb/core/number_text.h"
 
 namespace deb {
 namespace {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <complex>
 #include <map>
-#include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/number_text.h"
 #include "deb/core/numeric_table.h"
 
 namespace deb {
@@ -83,16 +83,11 @@ FrfCsv FromTable(const NumericTable& t, std::vector<std::string> outputs, std::v
   int last_line = 0;
   for (const NumericTable::Row& row : t.rows) {
     const double f = row.values[0];
-    std::ostringstream fs;
-    fs << f;
-    if (f <= 0.0) t.Fail(row.line, row.columns[0], "frequency " + fs.str() + " Hz is not > 0");
-    if (!f_hz.empty() && !(f > f_hz.back())) {
-      std::ostringstream prev;
-      prev << f_hz.back();
+    if (f <= 0.0) t.Fail(row.line, row.columns[0], "frequency " + NumberText(f) + " Hz is not > 0");
+    if (!f_hz.empty() && !(f > f_hz.back()))
       t.Fail(row.line, row.columns[0],
-             "frequency " + fs.str() + " Hz is not greater than " + prev.str() + " Hz on line " +
+             "frequency " + NumberText(f) + " Hz is not greater than " + NumberText(f_hz.back()) + " Hz on line " +
                  std::to_string(last_line) + "; frequencies must increase strictly");
-    }
     Eigen::MatrixXcd m(static_cast<Eigen::Index>(outputs.size()), static_cast<Eigen::Index>(inputs.size()));
     for (const auto& [oi, e] : entries) {
       const auto v = [&](Part p) { return row.values[e.column.at(p)]; };

@@ -2,21 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/number_text.h"
 
 namespace deb {
 namespace {
 
 constexpr double kPi = 3.141592653589793238462643383279502884;
-
-std::string Number(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
 
 }  // namespace
 
@@ -32,17 +25,17 @@ MeasuredResponse::MeasuredResponse(std::vector<double> f_hz, std::vector<Eigen::
   for (std::size_t i = 0; i < f_hz_.size(); ++i) {
     const double f = f_hz_[i];
     if (!std::isfinite(f) || f <= 0.0)
-      throw InputError(where + "frequency " + Number(f) + " Hz (point " + std::to_string(i + 1) +
+      throw InputError(where + "frequency " + NumberText(f) + " Hz (point " + std::to_string(i + 1) +
                        ") is not finite and > 0");
     if (i > 0 && !(f > f_hz_[i - 1]))
-      throw InputError(where + "frequency " + Number(f) + " Hz (point " + std::to_string(i + 1) +
-                       ") is not greater than " + Number(f_hz_[i - 1]) + " Hz; frequencies must increase strictly");
+      throw InputError(where + "frequency " + NumberText(f) + " Hz (point " + std::to_string(i + 1) +
+                       ") is not greater than " + NumberText(f_hz_[i - 1]) + " Hz; frequencies must increase strictly");
     if (h_[i].rows() != h_.front().rows() || h_[i].cols() != h_.front().cols())
       throw InputError(where + "point " + std::to_string(i + 1) + " is " + std::to_string(h_[i].rows()) + "x" +
                        std::to_string(h_[i].cols()) + ", the first is " + std::to_string(h_.front().rows()) + "x" +
                        std::to_string(h_.front().cols()));
     if (!h_[i].allFinite())
-      throw InputError(where + "a response value at " + Number(f) + " Hz is not finite");
+      throw InputError(where + "a response value at " + NumberText(f) + " Hz is not finite");
   }
   const Eigen::Index p = h_.front().rows(), m = h_.front().cols();
   for (std::size_t i = 0; i < f_hz_.size(); ++i) {
@@ -69,8 +62,8 @@ Eigen::MatrixXcd MeasuredResponse::At(double f_hz) const {
     switch (extrapolation_) {
       case Extrapolation::kError:
         throw InputError("measured response" + (origin_.empty() ? std::string() : " '" + origin_ + "'") +
-                         ": frequency " + Number(f_hz) + " Hz is outside the data range " + Number(first) + "-" +
-                         Number(last) +
+                         ": frequency " + NumberText(f_hz) + " Hz is outside the data range " + NumberText(first) + "-" +
+                         NumberText(last) +
                          " Hz (extrapolation: error); keep the grid inside the data or choose extrapolation zero "
                          "or hold");
       case Extrapolation::kZero: return Eigen::MatrixXcd::Zero(outputs(), inputs());
