@@ -18,6 +18,7 @@
 #include "deb/report/measurement_plots.h"
 #include "deb/report/plot_files.h"
 #include "deb/report/report_options.h"
+#include "deb/signal/frf_estimate.h"
 #include "deb/signal/self_noise.h"
 #include "deb/signal/time_series_file.h"
 #include "deb/signal/welch.h"
@@ -26,6 +27,7 @@
 #include "deb/spectra/peterson_noise_model.h"
 #include "deb/core/number_text.h"
 #include "deb/spectra/spectrum_csv.h"
+#include "deb/systems/frf_csv.h"
 #include "deb/units/unit.h"
 
 namespace deb::tools {
@@ -68,6 +70,10 @@ struct Settings {
   bool from_bands = false;
   // selfnoise
   std::vector<std::string> sensors;
+  // frf
+  std::string input;
+  std::vector<std::string> outputs;
+  std::string frf_unit;
   // reference
   std::string model;
   double points_per_decade = 50.0;
@@ -75,7 +81,8 @@ struct Settings {
   bool plots = true;
   std::string plot_file;                 // --plot: the main plot's file
   std::vector<PlotFormat> plot_formats;  // --plot-format; empty: --plot's extension, else png
-  CLI::App *welch = nullptr, *bands = nullptr, *convert = nullptr, *selfnoise = nullptr, *reference = nullptr;
+  CLI::App *welch = nullptr, *bands = nullptr, *convert = nullptr, *selfnoise = nullptr, *frf = nullptr,
+           *reference = nullptr;
 };
 
 Settings& S() {
@@ -537,6 +544,28 @@ int RunSelfNoise(const Settings& s) {
   return 0;
 }
 
+int RunFrf(const Settings& s) {
+  RecordingOptions r = s.rec;
+  r.columns = {s.input};
+  r.columns.insert(r.columns.end(), s.outputs.begin(), s.outputs.end());
+  const TimeSeries series = ReadRecording(r);
+  const CsdEstimate csd = WelchCsd(series, Welch(r));
+  const FrfEstimate e = H1Estimate(csd, s.input, s.outputs);
+  std::vector<std::string> comments = {"frequency response H1 = S_xy / S_xx from " + s.input + " of " +
+                                       SourceName(s.rec.file) + "; coherence |S_xy|^2 / (S_xx S_yy)"};
+  for (const std::string& l : e.provenance.Describe())
+    if (l.rfind("one-sided", 0) != 0) comments.push_back(l);
+  if (!s.frf_unit.empty()) comments.push_back("unit of H: " + s.frf_unit);
+  if (e.empty_bins > 0) comments.push_back(std::to_string(e.empty_bins) + " bins without input power: H set to 0");
+  Outputs outputs(s);
+  outputs.Text(s.out, FrfCsvText(comments, e.f_hz, e.input, e.outputs, e.h, e.coherence), "the output CSV (-o)");
+  if (const auto place = PlacePlot(s, s.out, true))
+    outputs.Plot(*place, report::FrfPlot(e, s.frf_unit, SourceName(s.rec.file), place->stem));
+  outputs.Write();
+  PrintWritten(outputs, s.out);
+  return 0;
+}
+
 int RunReference(const Settings& s) {
   const PetersonModel model = ParsePetersonModel(s.model);
   const std::string unit = s.to_unit.empty() ? PetersonSpectrum::kUnit : s.to_unit;
@@ -640,6 +669,15 @@ CLI::App* AddSpectrumCommand(CLI::App& app) {
   s.selfnoise->add_option("--out,-o", s.out, "Output noise spectrum CSV (default: standard output)");
   AddPlotOptions(s.selfnoise, s);
 
+  s.frf = spectrum->add_subcommand("frf", "Frequency response (H1 = S_xy/S_xx) and coherence from recordings of "
+                                          "an input and outputs, as a file a `type: frf` path reads");
+  AddRecordingOptions(s.frf, s.rec);
+  s.frf->add_option("--input", s.input, "The input channel (e.g. the shaker force)")->required();
+  s.frf->add_option("--outputs", s.outputs, "Output channels, comma-separated")->required()->delimiter(',');
+  s.frf->add_option("--frf-unit", s.frf_unit, "Unit of H (output unit/input unit) for the file's note and the plot");
+  s.frf->add_option("--out,-o", s.out, "Output FRF CSV (default: standard output)");
+  AddPlotOptions(s.frf, s);
+
   s.reference = spectrum->add_subcommand("reference", "Peterson's New Low/High Noise Model as a spectrum CSV");
   s.reference->add_option("model", s.model, "nlnm or nhnm")->required();
   s.reference->add_option("--to", s.to_unit, "Unit (default m/s^2; e.g. um/s, nm)");
@@ -657,6 +695,7 @@ int RunSpectrumCommand(const CLI::App& spectrum) {
   if (*s.bands) return RunBands(s);
   if (*s.convert) return RunConvert(s);
   if (*s.selfnoise) return RunSelfNoise(s);
+  if (*s.frf) return RunFrf(s);
   if (*s.reference) return RunReference(s);
   return 2;
 }

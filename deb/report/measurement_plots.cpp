@@ -250,6 +250,29 @@ Plot WelchPsdPlot(const PsdEstimate& e, const std::string& source, bool bounds, 
   return LogLogPlot(fig);
 }
 
+Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& source, const std::string& name) {
+  const std::vector<std::size_t> bins = PositiveBins(e.f_hz, name);
+  Figure fig;
+  fig.name = name;
+  fig.f_hz = Pick(e.f_hz, bins);
+  fig.comment = "|H1| from " + e.input + " to each output of " + source + (unit.empty() ? "" : ", in " + unit);
+  fig.caption = "Magnitude of the H1 estimate from " + e.input + " to each output of " + source + ".";
+  fig.title = {"Frequency response (H1) of " + Enhanced(source) + " from " + Enhanced(e.input),
+               WelchSettings(e.provenance)};
+  fig.ylabel = unit.empty() ? "magnitude |H_1|" : "magnitude |H_1| [" + UnitLabel(unit) + "]";
+  fig.key_title = "output";
+  for (std::size_t o = 0; o < e.outputs.size(); ++o) {
+    Curve curve;
+    curve.column = e.outputs[o];
+    curve.title = Enhanced(curve.column);
+    for (std::size_t k : bins) curve.y.push_back(std::abs(e.h(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(o))));
+    curve.colour = ContributorStyle(o).colour;
+    curve.width = 1.5;
+    fig.curves.push_back(std::move(curve));
+  }
+  return LogLogPlot(fig);
+}
+
 Plot CoherencePlot(const CsdEstimate& csd, const std::string& source, const std::string& name) {
   DEB_DEMAND(csd.channels >= 2);
   const std::vector<std::size_t> bins = PositiveBins(csd.f_hz, name);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "deb/report/plot.h"
+#include "deb/signal/frf_estimate.h"
 #include "deb/signal/self_noise.h"
 #include "deb/signal/spectral_estimate.h"
 #include "deb/spectra/building_criteria.h"
@@ -29,6 +30,11 @@ Plot WelchPsdPlot(const PsdEstimate& estimate, const std::string& source, bool b
 // confidence: 1 - (1 - p)^(1 / (n - 1)), n = nu / 2 independent averages
 // (Carter, Knapp & Nuttall 1973). DEB_DEMANDs at least two channels.
 Plot CoherencePlot(const CsdEstimate& csd, const std::string& source, const std::string& name);
+
+// |H1| of every output of a frequency response estimate (log-log), in
+// `unit` ("output unit/input unit", "" when not known); the coherence is in
+// the CSV the command writes, not in this plot.
+Plot FrfPlot(const FrfEstimate& estimate, const std::string& unit, const std::string& source, const std::string& name);
 
 // Each sensor's PSD (solid) and its self-noise estimate (dashed, darker).
 // DEB_DEMANDs the sensors and the noise on the same bins and channels.

@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kPi = 3.141592653589793238462643383279502884;
 
-enum class Part { kRe, kIm, kMag, kDb, kPhaseDeg };
+enum class Part { kRe, kIm, kMag, kDb, kPhaseDeg, kCoherence };  // coherence: skipped
 
 // The two columns of one entry, by part.
 struct Entry {
@@ -46,7 +46,8 @@ FrfCsv FromTable(const NumericTable& t, std::vector<std::string> outputs, std::v
   const bool fixed_out = !outputs.empty(), fixed_in = !inputs.empty();
   std::map<std::pair<int, int>, Entry> entries;
   const std::map<std::string, Part> parts = {
-      {"re", Part::kRe}, {"im", Part::kIm}, {"mag", Part::kMag}, {"db", Part::kDb}, {"phase_deg", Part::kPhaseDeg}};
+      {"re", Part::kRe}, {"im", Part::kIm}, {"mag", Part::kMag}, {"db", Part::kDb}, {"phase_deg", Part::kPhaseDeg},
+      {"coherence", Part::kCoherence}};
   for (std::size_t c = 1; c < t.header.size(); ++c) {
     const std::string& name = t.header[c];
     const int line = t.header_line, col = t.header_columns[c];
@@ -56,7 +57,8 @@ FrfCsv FromTable(const NumericTable& t, std::vector<std::string> outputs, std::v
     const auto part = parts.find(name.substr(dot + 1));
     if (part == parts.end())
       t.Fail(line, col, "column '" + name + "': unknown part '" + name.substr(dot + 1) +
-                            "'; allowed: re, im, mag, db, phase_deg");
+                            "'; allowed: re, im, mag, db, phase_deg (and coherence, skipped)");
+    if (part->second == Part::kCoherence) continue;
     const std::string out = name.substr(0, slash), in = name.substr(slash + 1, dot - slash - 1);
     const int o = IndexIn(outputs, out, fixed_out), i = IndexIn(inputs, in, fixed_in);
     if (o < 0) t.Fail(line, col, "column '" + name + "': output '" + out + "' is not one of the path's outputs (" + Join(outputs) + ")");
@@ -125,6 +127,34 @@ NumericTableOptions FrfTableOptions() {
 }
 
 }  // namespace
+
+std::string FrfCsvText(const std::vector<std::string>& comments, const std::vector<double>& f_hz,
+                       const std::string& input, const std::vector<std::string>& outputs, const Eigen::MatrixXcd& h,
+                       const Eigen::MatrixXd& coherence) {
+  const auto rows = static_cast<Eigen::Index>(f_hz.size()), cols = static_cast<Eigen::Index>(outputs.size());
+  DEB_DEMAND(h.rows() == rows && h.cols() == cols);
+  const bool with_coherence = coherence.size() > 0;
+  DEB_DEMAND(!with_coherence || (coherence.rows() == rows && coherence.cols() == cols));
+  std::string text;
+  for (const std::string& c : comments) text += "# " + c + "\n";
+  text += "f_hz";
+  for (const std::string& o : outputs) {
+    const std::string stem = o + "/" + input;
+    text += ", " + stem + ".mag, " + stem + ".phase_deg";
+    if (with_coherence) text += ", " + stem + ".coherence";
+  }
+  text += "\n";
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    if (!(f_hz[static_cast<std::size_t>(k)] > 0.0)) continue;
+    text += NumberText(f_hz[static_cast<std::size_t>(k)]);
+    for (Eigen::Index o = 0; o < cols; ++o) {
+      text += ", " + NumberText(std::abs(h(k, o))) + ", " + NumberText(std::arg(h(k, o)) * 180.0 / kPi);
+      if (with_coherence) text += ", " + NumberText(coherence(k, o));
+    }
+    text += "\n";
+  }
+  return text;
+}
 
 FrfCsv ReadFrfCsv(const std::string& path, const std::vector<std::string>& outputs,
                   const std::vector<std::string>& inputs, Extrapolation extrapolation) {

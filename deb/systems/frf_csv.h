@@ -10,7 +10,9 @@
 //
 // The outputs and inputs are the names found, in order of first appearance,
 // unless the caller lists them (then the file must hold exactly those). Every
-// entry H_ij must be present. Errors quote file:line:column and the rule.
+// entry H_ij must be present. A column OUTPUT/INPUT.coherence (as `deb
+// spectrum frf` writes) is information for the reader and is skipped. Errors
+// quote file:line:column and the rule.
 #pragma once
 
 #include <string>
@@ -34,5 +36,14 @@ FrfCsv ReadFrfCsv(const std::string& path, const std::vector<std::string>& outpu
                   const std::vector<std::string>& inputs = {}, Extrapolation extrapolation = Extrapolation::kError);
 FrfCsv ParseFrfCsv(std::istream& in, const std::string& name, const std::vector<std::string>& outputs = {},
                    const std::vector<std::string>& inputs = {}, Extrapolation extrapolation = Extrapolation::kError);
+
+// The responses from one input as a file ReadFrfCsv reads: each line of
+// `comments` as "# ...", then f_hz and OUTPUT/INPUT.mag, .phase_deg (and
+// .coherence with a non-empty `coherence`) per output, every digit; rows
+// at f <= 0 are left out. h and coherence are f_hz.size() x outputs.size().
+// DEB_DEMANDs matching sizes.
+std::string FrfCsvText(const std::vector<std::string>& comments, const std::vector<double>& f_hz,
+                       const std::string& input, const std::vector<std::string>& outputs, const Eigen::MatrixXcd& h,
+                       const Eigen::MatrixXd& coherence = {});
 
 }  // namespace deb

@@ -2,7 +2,7 @@
 // with file:line:col messages for bad input.
 #include <doctest/doctest.h>
 
-#include <chrono>
+#include <complex>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "deb/spectra/spectrum_csv.h"
+#include "deb/systems/frf_csv.h"
 
 namespace fs = std::filesystem;
 
@@ -129,6 +130,34 @@ TEST_CASE("deb spectrum selfnoise writes one noise spectrum per sensor, usable a
   // scatters by a few percent (see tests/signal/self_noise_test.cpp).
   CHECK(noise.psd.col(0).head(250).mean() == doctest::Approx(1e-4).epsilon(0.1));
   CHECK(noise.psd.col(2).head(250).mean() == doctest::Approx(4e-4).epsilon(0.1));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("deb spectrum frf writes a response that a frf path reads: sensors a, b, c against a") {
+  // b = a + noise, c = a + more noise (Recording): H1 from a is 1 with zero
+  // phase for both, the coherence 1/(1 + 0.02) and 1/(1 + 0.05) (noise
+  // variances 0.01 + 0.01 and 0.01 + 0.04 against 1: H1 ignores the output's
+  // share; the input's noise biases |H1| low by 1/(1 + 0.01)).
+  const fs::path dir = Scratch("frf");
+  const Result r = Deb("spectrum frf " + Recording(dir).string() + " --input a --outputs b,c --segment 512 --no-plots -o " +
+                       (dir / "frf.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const deb::FrfCsv frf = deb::ReadFrfCsv((dir / "frf.csv").string());
+  CHECK(frf.outputs == std::vector<std::string>{"b", "c"});
+  CHECK(frf.inputs == std::vector<std::string>{"a"});
+  std::complex<double> mean_b = 0.0;
+  const std::vector<double>& f = frf.response.f_hz();
+  for (double fk : f) mean_b += frf.response.At(fk)(0, 0) / static_cast<double>(f.size());
+  CHECK(std::abs(mean_b - 1.0 / 1.01) < 0.005);
+  const std::string text = Slurp(dir / "frf.csv");
+  CHECK(text.find("f_hz, b/a.mag, b/a.phase_deg, b/a.coherence, c/a.mag, c/a.phase_deg, c/a.coherence") !=
+        std::string::npos);
+  CHECK(text.find("# frequency response H1 = S_xy / S_xx from a of rec.csv") == 0);
+  const Result bad = Deb("spectrum frf " + Recording(dir).string() + " --input q --outputs b --no-plots -o " +
+                         (dir / "bad.csv").string());
+  CHECK(bad.exit_code == 3);
+  CHECK(bad.err.find("no channel 'q'") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "bad.csv"));
   fs::remove_all(dir);
 }
 

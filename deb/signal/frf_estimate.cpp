@@ -1,0 +1,51 @@
+#include "deb/signal/frf_estimate.h"
+
+#include <algorithm>
+
+#include "deb/core/error.h"
+
+namespace deb {
+namespace {
+
+int ChannelOf(const CsdEstimate& csd, const std::string& name, const char* role) {
+  const auto it = std::find(csd.channel_names.begin(), csd.channel_names.end(), name);
+  if (it == csd.channel_names.end()) {
+    std::string names;
+    for (const auto& n : csd.channel_names) names += (names.empty() ? "" : ", ") + n;
+    throw InputError(std::string(role) + " '" + name + "' is not a channel of the recording (" + names + ")");
+  }
+  return static_cast<int>(it - csd.channel_names.begin());
+}
+
+}  // namespace
+
+FrfEstimate H1Estimate(const CsdEstimate& csd, const std::string& input, const std::vector<std::string>& outputs) {
+  if (outputs.empty()) throw InputError("a frequency response needs at least one output channel");
+  const int x = ChannelOf(csd, input, "input");
+  FrfEstimate e;
+  e.f_hz = csd.f_hz;
+  e.input = input;
+  e.outputs = outputs;
+  e.provenance = csd.provenance;
+  const auto bins = static_cast<Eigen::Index>(csd.f_hz.size());
+  e.h = Eigen::MatrixXcd::Zero(bins, static_cast<Eigen::Index>(outputs.size()));
+  e.coherence = Eigen::MatrixXd::Zero(bins, static_cast<Eigen::Index>(outputs.size()));
+  const Eigen::VectorXd sxx = csd.Auto(x);
+  for (std::size_t o = 0; o < outputs.size(); ++o) {
+    const int y = ChannelOf(csd, outputs[o], "output");
+    if (y == x) throw InputError("output '" + outputs[o] + "' is the input channel");
+    const Eigen::VectorXcd sxy = csd.Cross(x, y);  // conj(X) Y
+    const Eigen::VectorXd gamma2 = csd.Coherence(x, y);
+    for (Eigen::Index k = 0; k < bins; ++k) {
+      if (!(sxx(k) > 0.0)) {
+        if (o == 0) ++e.empty_bins;
+        continue;
+      }
+      e.h(k, static_cast<Eigen::Index>(o)) = sxy(k) / sxx(k);
+      e.coherence(k, static_cast<Eigen::Index>(o)) = gamma2(k);
+    }
+  }
+  return e;
+}
+
+}  // namespace deb
