@@ -40,7 +40,7 @@ std::vector<Plot> SweepPlots(const SweepSpec& spec, const std::vector<BudgetResu
     csv << "# deb " << DEB_VERSION << ", sweep, output " << out0.name << " RMS in " << out0.unit
         << "; one block per combination of the other parameters\n";
     std::size_t block = 0;
-    std::vector<std::string> clauses;
+    std::vector<std::string> clauses, legend_dashes;
     const std::string file = Quote(p.name + ".csv");
     for (const auto& rest : order) {
       std::string label;
@@ -57,17 +57,35 @@ std::vector<Plot> SweepPlots(const SweepSpec& spec, const std::vector<BudgetResu
         csv << ',' << CsvNumber(r.rms()) << '\n';
       }
       const std::string dash = dashes[block % 6];
-      const std::string suffix = label.empty() ? "" : " (" + label + ")";
+      // One block: each curve names itself. Several: the key names the
+      // colours (contributors) and the dashes (the other parameters) apart,
+      // so it has contributors + blocks entries, not their product.
+      const bool own_titles = order.size() == 1;
+      const auto title = [&](const std::string& name) {
+        return own_titles ? " title " + Quote(Enhanced(name)) : std::string(" notitle");
+      };
       for (std::size_t c = 0; c < out0.contributors.size(); ++c)
         clauses.push_back(file + " index " + std::to_string(block) + " using 1:" + std::to_string(c + 2) +
                           " with linespoints pointtype 7 pointsize 0.6 linewidth 1.5 linecolor rgb " +
-                          Quote(ContributorStyle(c).colour) + " dashtype " + dash + " title " +
-                          Quote(Enhanced(out0.contributors[c].name + suffix)));
+                          Quote(ContributorStyle(c).colour) + " dashtype " + dash + title(out0.contributors[c].name));
       clauses.push_back(file + " index " + std::to_string(block) + " using 1:" +
                         std::to_string(out0.contributors.size() + 2) +
                         " with linespoints pointtype 7 pointsize 0.6 linewidth 2.5 linecolor rgb " +
-                        Quote(kTotalColour) + " dashtype " + dash + " title " + Quote(Enhanced("total" + suffix)));
+                        Quote(kTotalColour) + " dashtype " + dash + title("total"));
+      if (!own_titles)
+        legend_dashes.push_back("keyentry with lines linewidth 1.5 linecolor rgb '#606060' dashtype " + dash +
+                                " title " + Quote(Enhanced(label)));
       ++block;
+    }
+    if (order.size() > 1) {
+      std::vector<std::string> keys;
+      for (std::size_t c = 0; c < out0.contributors.size(); ++c)
+        keys.push_back("keyentry with linespoints pointtype 7 pointsize 0.6 linewidth 1.5 linecolor rgb " +
+                       Quote(ContributorStyle(c).colour) + " title " + Quote(Enhanced(out0.contributors[c].name)));
+      keys.push_back("keyentry with linespoints pointtype 7 pointsize 0.6 linewidth 2.5 linecolor rgb " +
+                     Quote(kTotalColour) + " title 'total'");
+      keys.insert(keys.end(), legend_dashes.begin(), legend_dashes.end());
+      clauses.insert(clauses.end(), keys.begin(), keys.end());
     }
     p.csv = csv.str();
     std::ostringstream s;
