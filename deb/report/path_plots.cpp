@@ -7,7 +7,7 @@
 #include "deb/report/plot_points.h"
 #include "deb/budget/path_response.h"
 #include "deb/report/plot_style.h"
-#include "deb/report/spectrum_plots.h"
+#include "deb/systems/modes.h"
 
 namespace deb::report {
 namespace {
@@ -24,10 +24,19 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
   p.name = "path_" + FileStem(contributor.name) + "_to_" + FileStem(output.name);
   p.kind = PlotKind::kPath;
   p.output = static_cast<int>(o);
-  const FrequencyRange range = DisplayRange(result.outputs[o], result.grid);
+  std::pair<double, double> poles_hz{0.0, 0.0};
+  const FrequencyRange display = DisplayRange(result.outputs[o], result.grid);
+  const FrequencyRange range = PathRange(budget.FindPath(contributor.path), display, result.grid, &poles_hz);
+  const bool widened = range.lo_hz < display.lo_hz || range.hi_hz > display.hi_hz;
+  const std::string poles = (poles_hz.first == poles_hz.second ? Sig(poles_hz.first)
+                                                                 : Sig(poles_hz.first) + "–" + Sig(poles_hz.second)) +
+                            " Hz";
   p.caption = "Magnitude of the transfer from " + contributor.name + " (source " + contributor.source + ", path " +
               contributor.path + ") to " + output.name + (output.weighting ? ", weighting included" : "") +
-              ", per source channel." + RangeCaption(range);
+              ", per source channel." + RangeCaption(range) +
+              (widened ? " The range reaches half a decade beyond the natural frequency of every pole of the path (f_n " +
+                             poles + ")."
+                       : "");
 
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ": |h| from contributor "
@@ -59,7 +68,9 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
 
   std::ostringstream s;
   s << "reset\n" << StylePreamble();
-  s << FrequencyAxis(range, result.grid);
+  s << FrequencyAxis(range, result.grid,
+                     widened ? std::string(kDisplayTailNote) + ", widened to the path's poles (f_{n} " + poles + ")"
+                             : kDisplayTailNote);
   s << "set title " << Quote("path " + Enhanced(contributor.name) + " → " + Enhanced(output.name) + " (" +
                              Enhanced(contributor.path) + (output.weighting ? ", weighted" : "") + ")")
     << "\n";
@@ -89,6 +100,27 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
 }
 
 }  // namespace
+
+FrequencyRange PathRange(const Path& path, const FrequencyRange& display, const FrequencyGrid& grid,
+                         std::pair<double, double>* poles_hz) {
+  if (path.HasMeasuredData() || path.system.states() == 0) return display;
+  double first = HUGE_VAL, last = 0.0;
+  for (const Mode& m : Modes(path.system)) {
+    if (!(m.f_n_hz >= grid.min_hz() && m.f_n_hz <= grid.max_hz())) continue;  // integrators have f_n = 0
+    first = std::min(first, m.f_n_hz);
+    last = std::max(last, m.f_n_hz);
+  }
+  if (!(last > 0.0)) return display;
+  if (poles_hz) *poles_hz = {first, last};
+  const double margin = std::sqrt(10.0);  // half a decade
+  FrequencyRange r = display;
+  if (first / margin < r.lo_hz)
+    r.lo_hz = std::max(std::pow(10.0, std::floor(std::log10(first / margin) + 1e-9)), grid.min_hz());
+  if (last * margin > r.hi_hz)
+    r.hi_hz = std::min(std::pow(10.0, std::ceil(std::log10(last * margin) - 1e-9)), grid.max_hz());
+  r.trimmed = r.lo_hz > grid.min_hz() * (1 + 1e-9) || r.hi_hz < grid.max_hz() * (1 - 1e-9);
+  return r;
+}
 
 std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, int threads) {
   std::vector<Plot> plots;
