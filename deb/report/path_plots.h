@@ -1,7 +1,9 @@
 // Magnitude plots of each contributor's transfer to each output (the thesis'
 // transmissibility and sensor-sensitivity plots), one line per source
 // channel, in output unit per source unit, with exactly the unit factors and
-// weighting the engine applies (ComputePathResponse).
+// weighting the engine applies (ComputePathResponse). Several channels are
+// drawn in the channel styles (ChannelStyle), not in contributor colours;
+// channels whose curves coincide are drawn once, titled "z1 = z4".
 #pragma once
 
 #include <vector>

@@ -69,6 +69,31 @@ SeriesStyle ContributorStyle(std::size_t index) {
   return s;
 }
 
+SeriesStyle ChannelStyle(std::size_t index) {
+  // Open markers first: they keep the curve beneath visible.
+  constexpr std::array<int, 12> kPoints = {6, 4, 8, 12, 10, 2, 1, 3, 7, 5, 9, 13};
+  constexpr std::array<double, 4> kChannelLightness = {38, 58, 48, 66};
+  constexpr double kFirstChannelHueDeg = 75.0, kAvoidDeg = 25.0;
+  const auto hue_distance = [](double a, double b) {
+    const double d = std::fmod(std::abs(a - b), 360.0);
+    return std::min(d, 360.0 - d);
+  };
+  double hue = kFirstChannelHueDeg;
+  for (std::size_t accepted = 0, j = 0;; ++j) {
+    hue = std::fmod(kFirstChannelHueDeg + kGoldenAngleDeg * static_cast<double>(j), 360.0);
+    if (hue_distance(hue, kFirstHueDeg) < kAvoidDeg || hue_distance(hue, kFirstHueDeg + kGoldenAngleDeg) < kAvoidDeg)
+      continue;  // the hues of contributors 0 and 1
+    if (accepted++ == index) break;
+  }
+  SeriesStyle s;
+  s.lightness = kChannelLightness[index % kChannelLightness.size()];
+  s.colour = LchColour(s.lightness, 70.0, hue);
+  s.edge_colour = LchColour(std::max(s.lightness - 28.0, 12.0), 70.0, hue);
+  s.dash = "solid";
+  s.point_type = kPoints[index % kPoints.size()];
+  return s;
+}
+
 std::string TerminalCommand(Terminal terminal) {
   const std::string font = std::string(" font '") + kFont + ",";
   switch (terminal) {

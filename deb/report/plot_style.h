@@ -18,11 +18,22 @@ struct SeriesStyle {
   std::string edge_colour;  // darker, for outlines of filled layers
   std::string dash;         // gnuplot dash type: "solid" or "(a,b,...)"
   double lightness = 0.0;   // CIE L* of colour, 0..100
+  int point_type = 0;       // gnuplot point type of the markers on a line; 0: no markers
 };
 
 // Style of the contributor with budget index `index`; the same for every
 // report and every run.
 SeriesStyle ContributorStyle(std::size_t index);
+
+// Style of source channel `index` in a path plot with several channels: a
+// family of its own, so that a channel is never taken for a contributor of
+// the same report. Channels are solid lines with open markers (circle,
+// square, triangle, diamond, ...: a distinct point type for 12 channels), in
+// colours of a separate palette: hues step by the golden angle from 75°,
+// skipping those within 25° of the hues of contributors 0 and 1 (present in
+// almost every report), at lightness 38, 58, 48, 66 (lines that read on white).
+SeriesStyle ChannelStyle(std::size_t index);
+inline constexpr int kChannelMarkers = 14;  // markers per curve, about
 
 // Sum of all contributors; the requirement line.
 inline constexpr const char* kTotalColour = "#000000";

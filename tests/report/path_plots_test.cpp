@@ -6,6 +6,7 @@
 
 #include "deb/budget/path_response.h"
 #include "deb/io/budget_yaml.h"
+#include "deb/report/plot_style.h"
 #include "report_test_support.h"
 
 namespace deb::report {
@@ -115,6 +116,45 @@ TEST_CASE("the avis case study's path plots show its closed-loop poles up to 7.4
     CHECK(p.script.find("set xrange [0.01:100]") != std::string::npos);
   }
   CHECK(found == 1);
+}
+
+TEST_CASE("channels with identical curves are drawn once and named together, in channel styles") {
+  const Budget budget = LoadBudgetText(R"(
+name: twins
+grid: {type: log, min_hz: 1, max_hz: 100, points: 30}
+sources:
+  - {name: v, unit: um/s, channels: [a, b, c], spectrum: {type: flat, level: 1}}
+paths:
+  - {name: g, type: gain, gain: [[1, 1, 2]], input_unit: um/s, output_unit: um/s, outputs: [y]}
+contributors:
+  - {name: c, source: v, path: g}
+outputs:
+  - {name: out, signal: y, unit: um/s}
+)",
+                                       "twins.yaml");
+  const std::vector<Plot> plots = PathPlots(budget, Evaluate(budget));
+  REQUIRE(plots.size() == 1);
+  const std::string& script = plots[0].script;
+  CHECK(script.find("title 'a = b'") != std::string::npos);
+  CHECK(script.find("title 'b'") == std::string::npos);
+  CHECK(script.find("title 'c'") != std::string::npos);
+  CHECK(script.find("column(3)") == std::string::npos);  // b is not drawn under a
+  CHECK(plots[0].caption.find("named together") != std::string::npos);
+  // The channel family, with markers, not the contributor colours.
+  CHECK(script.find("'" + ChannelStyle(0).colour + "'") != std::string::npos);
+  CHECK(script.find("'" + ChannelStyle(2).colour + "'") != std::string::npos);
+  CHECK(script.find("pointtype " + std::to_string(ChannelStyle(2).point_type)) != std::string::npos);
+  for (std::size_t i = 0; i < 3; ++i) CHECK(script.find("'" + ContributorStyle(i).colour + "'") == std::string::npos);
+  // The CSV still holds every channel.
+  CHECK(plots[0].csv.find("frequency_hz,a,b,c\n") != std::string::npos);
+}
+
+TEST_CASE("a single-channel path plot keeps its contributor's colour") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  const std::vector<Plot> plots = PathPlots(budget, Evaluate(budget));
+  CHECK(plots[0].script.find("'" + ContributorStyle(0).colour + "'") != std::string::npos);
+  CHECK(plots[0].script.find("with lines") != std::string::npos);
+  CHECK(plots[0].script.find("pointtype") == std::string::npos);
 }
 
 }  // namespace deb::report

@@ -60,6 +60,24 @@ TEST_CASE("neighbouring contributors, and lines with the same dash pattern, diff
         CHECK(std::abs(ContributorStyle(i).lightness - ContributorStyle(j).lightness) >= 20.0);
 }
 
+TEST_CASE("source channels have a style family of their own: distinct markers, none of the contributor colours") {
+  std::set<std::string> colours, contributor_colours;
+  std::set<int> markers;
+  for (std::size_t i = 0; i < 12; ++i) contributor_colours.insert(ContributorStyle(i).colour);
+  for (std::size_t i = 0; i < 12; ++i) {
+    const SeriesStyle s = ChannelStyle(i);
+    CHECK(std::regex_match(s.colour, std::regex("#[0-9a-f]{6}")));
+    CHECK(s.point_type > 0);
+    CHECK(ContributorStyle(i).point_type == 0);  // contributors are lines without markers
+    CHECK(contributor_colours.count(s.colour) == 0);
+    colours.insert(s.colour);
+    markers.insert(s.point_type);
+  }
+  CHECK(colours.size() == 12);
+  CHECK(markers.size() == 12);
+  CHECK(ChannelStyle(3).colour == ChannelStyle(3).colour);
+}
+
 TEST_CASE("CIE L*C*h colours: achromatic lightness gives the sRGB grey, and out-of-gamut chroma is reduced") {
   CHECK(LchColour(0, 0, 0) == "#000000");
   CHECK(LchColour(100, 0, 0) == "#ffffff");
