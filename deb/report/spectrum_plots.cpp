@@ -96,9 +96,10 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
     const std::size_t c = order[i];
     const SeriesStyle st = ContributorStyle(c);
     const std::string top = i == 0 ? Col(2 + c) : below + "+" + Col(2 + c);
-    plots.push_back(data + " using 1:((" + below + ")" + per + "):((" + top + ")" + per + ") with filledcurves fillcolor rgb " +
-                    Quote(st.colour) + " title " +
-                    Quote(Entry(out.contributors[c].name, out.contributors[c].variance, out.variance)));
+    for (std::string& clause :
+         FillClauses(st, data + " using 1:((" + below + ")" + per + "):((" + top + ")" + per + ")", "filledcurves",
+                     "title " + Quote(Entry(out.contributors[c].name, out.contributors[c].variance, out.variance))))
+      plots.push_back(std::move(clause));
     // Boundary to the next layer: white between dark layers, near-black
     // between light ones, so that neighbours stay apart in greyscale too.
     if (i + 1 < order.size()) {
