@@ -103,8 +103,10 @@ Plot BandPlot(const BudgetResult& result, std::size_t o) {
   const std::vector<std::size_t> order = ShareOrder(out);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const std::size_t c = order[i];
-    clauses.push_back(data + " using " + x(i + 1) + ":" + positive(5 + c) + " with boxes fillcolor rgb " +
-                      Quote(ContributorStyle(c).colour) + " title " + Quote(Enhanced(out.contributors[c].name)));
+    for (std::string& clause : FillClauses(ContributorStyle(c), data + " using " + x(i + 1) + ":" + positive(5 + c),
+                                           "boxes", "title " + Quote(Enhanced(out.contributors[c].name)),
+                                           kBarEdge))
+      clauses.push_back(std::move(clause));
   }
   s << PlotList(clauses);
   p.script = s.str();
@@ -186,10 +188,15 @@ std::vector<Plot> OverviewPlots(const BudgetResult& result) {
       const std::string here = "(column(1) == " + std::to_string(panel) + " ? column(3) : NaN)";
       std::vector<std::string> clauses;
       for (std::size_t c = 0; c <= n; ++c) {
-        const std::string colour = c == n ? std::string(kTotalColour) : ContributorStyle(c).colour;
-        clauses.push_back(data + " using 2:(column(1) == " + std::to_string(panel) + " && column(2) == " +
-                          (c == n ? CsvNumber(n + 1.3) : std::to_string(c + 1)) +
-                          " ? column(3) : NaN) with boxes fillcolor rgb " + Quote(colour));
+        SeriesStyle st;
+        st.colour = kTotalColour;
+        if (c < n) st = ContributorStyle(c);
+        for (std::string& clause : FillClauses(st, data + " using 2:(column(1) == " + std::to_string(panel) +
+                                                       " && column(2) == " +
+                                                       (c == n ? CsvNumber(n + 1.3) : std::to_string(c + 1)) +
+                                                       " ? column(3) : NaN)",
+                                               "boxes", "notitle", kBarEdge))
+          clauses.push_back(std::move(clause));
       }
       if (out.rms_max)
         clauses.push_back(CsvNumber(*out.rms_max) + " with lines linecolor rgb " + Quote(kRequirementColour) +

@@ -1,7 +1,9 @@
 // Magnitude plots of each contributor's transfer to each output (the thesis'
 // transmissibility and sensor-sensitivity plots), one line per source
 // channel, in output unit per source unit, with exactly the unit factors and
-// weighting the engine applies (ComputePathResponse).
+// weighting the engine applies (ComputePathResponse). Several channels are
+// drawn in the channel styles (ChannelStyle), not in contributor colours;
+// channels whose curves coincide are drawn once, titled "z1 = z4".
 #pragma once
 
 #include <vector>
@@ -9,8 +11,19 @@
 #include "deb/budget/budget.h"
 #include "deb/budget/engine.h"
 #include "deb/report/plot.h"
+#include "deb/report/spectrum_plots.h"
 
 namespace deb::report {
+
+// Frequencies a path plot shows. The output's display range (DisplayRange)
+// follows the variance and can hide a resonance of the path above or below
+// it; a magnitude plot shows every pole of its path whose natural frequency
+// lies within the grid: `display` is widened to whole decades reaching at
+// least half a decade beyond each such f_n, within the grid. A measured path
+// (Path::HasMeasuredData) has no poles and keeps `display`. `poles_hz`, if
+// given, receives the lowest and highest such f_n (unchanged without any).
+FrequencyRange PathRange(const Path& path, const FrequencyRange& display, const FrequencyGrid& grid,
+                         std::pair<double, double>* poles_hz = nullptr);
 
 // One plot per (contributor, output), contributors outer.
 // @throws InputError as ComputePathResponse.

@@ -47,6 +47,16 @@ std::string Quote(const std::string& text) {
   return q + "'";
 }
 
+std::string QuoteLines(const std::string& text) {
+  std::string q = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') q += '\\';
+    if (c == '\n') q += "\\n";
+    else q += c;
+  }
+  return q + "\"";
+}
+
 std::string Enhanced(const std::string& text) {
   std::string out;
   for (char c : text) {

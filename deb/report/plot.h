@@ -24,6 +24,9 @@ struct Plot {
 
 // A gnuplot string literal in single quotes ('' stands for ').
 std::string Quote(const std::string& text);
+// A gnuplot string literal in double quotes that keeps line breaks ("\n");
+// " and \ are escaped, so enhanced-text escapes pass through as with Quote.
+std::string QuoteLines(const std::string& text);
 
 // Text safe inside gnuplot's enhanced mode: _ ^ @ & ~ { } \ are escaped, so
 // that a name such as sensor_noise is not typeset with a subscript.

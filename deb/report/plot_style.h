@@ -2,14 +2,20 @@
 // dash pattern in every plot of a report, keyed by their index in the budget
 // (not by their share, which differs per output). Colours are built in CIE
 // L*C*h: hues step by the golden angle, so any run of neighbours differs in
-// hue, and lightness L* cycles through six well separated levels, so that a
-// greyscale print still tells layers and lines apart; lines add a dash
-// pattern (4 patterns x 6 lightness levels = 12 distinct greyscale styles,
-// and lines with the same pattern differ clearly in lightness).
+// hue, and lightness runs through a ladder of 12 levels (25..80, alternating
+// dark and light), so that a greyscale print still tells layers and lines
+// apart. The level is met both by the colour's L* and by the grey a printer
+// makes of it (Rec. 601 luma), within 3; greens and cyans lose chroma for it.
+// Filled layers and bars of contributors 6-17 (then of every other six) are
+// hatched over their colour (gnuplot fill patterns, 6 kinds), so that 12
+// fills differ in grey and the second six also in texture, and 24 fills
+// differ in one or the other. Lines add one of 6 dash patterns; lines
+// sharing a pattern differ by >= 25 in lightness.
 #pragma once
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace deb::report {
 
@@ -18,11 +24,39 @@ struct SeriesStyle {
   std::string edge_colour;  // darker, for outlines of filled layers
   std::string dash;         // gnuplot dash type: "solid" or "(a,b,...)"
   double lightness = 0.0;   // CIE L* of colour, 0..100
+  int point_type = 0;       // gnuplot point type of the markers on a line; 0: no markers
+  int fill_pattern = 0;     // gnuplot fill pattern hatched over a fill of colour; 0: solid
+  std::string hatch_colour; // of the hatch lines: dark on a light colour, light on a dark one
 };
 
 // Style of the contributor with budget index `index`; the same for every
 // report and every run.
 SeriesStyle ContributorStyle(std::size_t index);
+
+// Style of source channel `index` in a path plot with several channels: a
+// family of its own, so that a channel is never taken for a contributor of
+// the same report. Channels are solid lines with open markers (circle,
+// square, triangle, diamond, ...: a distinct point type for 12 channels), in
+// colours of a separate palette: hues step by the golden angle from 75°,
+// skipping those within 25° of the hues of contributors 0 and 1 (present in
+// almost every report), at lightness 38, 58, 48, 66 (lines that read on white).
+SeriesStyle ChannelStyle(std::size_t index);
+inline constexpr int kChannelMarkers = 14;  // markers per curve, about
+
+// The plot clauses that fill `source` ("'f.csv' using 1:2:3") drawn `with`
+// ("filledcurves", "boxes") in `style`: the solid colour, and for a hatched
+// style the hatch over it (a transparent pattern bordered in the colour) and,
+// if `outline_colour` is given, an outline in it (bars keep their edge).
+// `key` ("title '...'" or "notitle") goes on the solid fill, or on the hatch
+// of a hatched style so that the key shows it.
+std::vector<std::string> FillClauses(const SeriesStyle& style, const std::string& source, const std::string& with,
+                                     const std::string& key, const std::string& outline_colour = "");
+
+// CIE L* of an sRGB colour "#rrggbb", and the L* of the grey a greyscale
+// print makes of it (Rec. 601 luma of the encoded components, as printers
+// and most converters do).
+double Lightness(const std::string& colour);
+double GreyLightness(const std::string& colour);
 
 // Sum of all contributors; the requirement line.
 inline constexpr const char* kTotalColour = "#000000";

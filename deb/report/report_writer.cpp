@@ -119,11 +119,11 @@ std::string ReportDate() {
 std::string ColoursCsv(const Budget& budget) {
   std::ostringstream s;
   s << "# deb " << DEB_VERSION << ": style of each contributor in every plot, keyed by its index in the budget\n";
-  s << "index,contributor,colour,edge_colour,dash,lightness\n";
+  s << "index,contributor,colour,edge_colour,dash,lightness,fill_pattern,hatch_colour\n";
   for (std::size_t c = 0; c < budget.contributors.size(); ++c) {
     const SeriesStyle st = ContributorStyle(c);
     s << c << ',' << CsvField(budget.contributors[c].name) << ',' << st.colour << ',' << st.edge_colour << ','
-      << CsvField(st.dash) << ',' << st.lightness << '\n';
+      << CsvField(st.dash) << ',' << st.lightness << ',' << st.fill_pattern << ',' << st.hatch_colour << '\n';
   }
   return s.str();
 }

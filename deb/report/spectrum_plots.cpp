@@ -96,9 +96,10 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
     const std::size_t c = order[i];
     const SeriesStyle st = ContributorStyle(c);
     const std::string top = i == 0 ? Col(2 + c) : below + "+" + Col(2 + c);
-    plots.push_back(data + " using 1:((" + below + ")" + per + "):((" + top + ")" + per + ") with filledcurves fillcolor rgb " +
-                    Quote(st.colour) + " title " +
-                    Quote(Entry(out.contributors[c].name, out.contributors[c].variance, out.variance)));
+    for (std::string& clause :
+         FillClauses(st, data + " using 1:((" + below + ")" + per + "):((" + top + ")" + per + ")", "filledcurves",
+                     "title " + Quote(Entry(out.contributors[c].name, out.contributors[c].variance, out.variance))))
+      plots.push_back(std::move(clause));
     // Boundary to the next layer: white between dark layers, near-black
     // between light ones, so that neighbours stay apart in greyscale too.
     if (i + 1 < order.size()) {
@@ -229,21 +230,19 @@ std::string RangeCaption(const FrequencyRange& range) {
                        : "";
 }
 
-std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid) {
+std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid, const std::string& shown) {
   const double decades = std::log10(range.hi_hz / range.lo_hz);
   const bool powers = decades > 6.0 || range.lo_hz < 1e-3 || range.hi_hz > 1e5;
   std::ostringstream os;
   os << "set logscale x 10\nset format x " << (powers ? "'10^{%L}'" : "'%g'") << "\nset xrange ["
-     << CsvNumber(range.lo_hz) << ":" << CsvNumber(range.hi_hz) << "]\nset xlabel 'frequency [Hz]'\n";
+     << CsvNumber(range.lo_hz) << ":" << CsvNumber(range.hi_hz) << "]\n";
+  // The note is a second, smaller line of the x label: gnuplot reserves room
+  // for it, so it never meets the frame, the tic labels or the key.
+  std::string label = "frequency [Hz]";
+  if (range.trimmed)
+    label += "\n{/*0.8 grid: " + HzLabel(grid.min_hz()) + " to " + HzLabel(grid.max_hz()) + " Hz; shown: " + shown + "}";
+  os << "set xlabel " << (range.trimmed ? QuoteLines(label) : Quote(label)) << "\n";
   if (decades > 6.0) os << "set grid nomxtics\n";
-  // The note sits in the right margin, under the key.
-  if (range.trimmed) {
-    const std::string lines[] = {"grid: " + HzLabel(grid.min_hz()) + " to " + HzLabel(grid.max_hz()) + " Hz",
-                                 "shown: all but 10^{-3} of every", "contributor's variance"};
-    for (int i = 0; i < 3; ++i)
-      os << "set label " << 97 + i << " " << Quote(lines[i]) << " at screen 0.985, screen " << CsvNumber(0.11 - 0.03 * i)
-         << " right font ',9' textcolor rgb '#606060'\n";
-  }
   return os.str();
 }
 

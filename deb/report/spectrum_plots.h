@@ -32,8 +32,11 @@ FrequencyRange DisplayRange(const OutputResult& output, const FrequencyGrid& gri
 // " Shown: 0.001–100 Hz; the CSV covers the whole grid." when trimmed, else "".
 std::string RangeCaption(const FrequencyRange& range);
 
-// Logarithmic frequency axis over `range`, with a note under it when trimmed.
-std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid);
+// Logarithmic frequency axis over `range`. When trimmed, the x label gets a
+// second line naming the grid and what the range shows (`shown`, enhanced text).
+inline constexpr const char* kDisplayTailNote = "the decades holding all but 10^{-3} of every contributor's variance";
+std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid,
+                          const std::string& shown = kDisplayTailNote);
 
 // Contributor indices of an output by decreasing variance (ties: budget order).
 std::vector<std::size_t> ShareOrder(const OutputResult& output);

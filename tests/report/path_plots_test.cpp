@@ -6,6 +6,7 @@
 
 #include "deb/budget/path_response.h"
 #include "deb/io/budget_yaml.h"
+#include "deb/report/plot_style.h"
 #include "report_test_support.h"
 
 namespace deb::report {
@@ -49,6 +50,111 @@ outputs:
   REQUIRE(plots.size() == 1);
   CHECK(plots[0].script.find("title 'x (zero)'") != std::string::npos);
   CHECK(plots[0].script.find("title 'z'") != std::string::npos);
+}
+
+TEST_CASE("a path plot reaches half a decade beyond every pole of its path, though the variance lies below it") {
+  // The source holds all its variance in 2-5 Hz, so the output's plots show
+  // 1-10 Hz; the path has a lightly damped resonance at 200 Hz.
+  const Budget budget = LoadBudgetText(R"(
+name: hidden_resonance
+grid: {type: log, min_hz: 0.1, max_hz: 10000, points: 600}
+sources:
+  - {name: v, unit: um, spectrum: {type: flat, level: 1, lo_hz: 2, hi_hz: 5}}
+paths:
+  - {name: mode, type: transfer_function, num: [1579136.7], den: [1, 25.13274, 1579136.7], input_unit: um, output_unit: um, outputs: [y]}
+contributors:
+  - {name: c, source: v, path: mode}
+outputs:
+  - {name: out, signal: y, unit: um}
+)",
+                                       "hidden_resonance.yaml");
+  const BudgetResult result = Evaluate(budget);
+  const FrequencyRange display = DisplayRange(result.outputs[0], result.grid);
+  REQUIRE(display.hi_hz == doctest::Approx(10.0));
+  std::pair<double, double> poles{0.0, 0.0};
+  const FrequencyRange r = PathRange(budget.paths[0], display, result.grid, &poles);
+  CHECK(poles.first == doctest::Approx(200.0).epsilon(1e-6));
+  CHECK(poles.second == doctest::Approx(200.0).epsilon(1e-6));
+  CHECK(r.lo_hz == doctest::Approx(display.lo_hz));
+  CHECK(r.hi_hz == doctest::Approx(1000.0));  // 200 Hz x 10^0.5 = 632 Hz, to the decade
+  CHECK(r.trimmed);
+  const std::vector<Plot> plots = PathPlots(budget, result);
+  REQUIRE(plots.size() == 1);
+  CHECK(plots[0].script.find("set xrange [1:1000]") != std::string::npos);
+  CHECK(plots[0].script.find("widened to the path's poles (f_{n} 200 Hz)") != std::string::npos);
+  CHECK(plots[0].caption.find("Shown: 1–1000 Hz") != std::string::npos);
+  // The CSV holds the resonance: its largest |h| is near 1 / (2 zeta) = 50.
+  double peak = 0.0;
+  std::istringstream lines(plots[0].csv);
+  std::string line;
+  std::getline(lines, line);
+  std::getline(lines, line);
+  while (std::getline(lines, line)) {
+    double f, mag;
+    REQUIRE(std::sscanf(line.c_str(), "%lf,%lf", &f, &mag) == 2);
+    peak = std::max(peak, mag);
+  }
+  CHECK(peak > 10.0);
+
+  // Clamped to the grid: a grid ending at 300 Hz ends the plot there.
+  const FrequencyGrid short_grid = FrequencyGrid::Log(0.1, 300.0, 400);
+  const FrequencyRange clamped = PathRange(budget.paths[0], FrequencyRange{1.0, 10.0, true}, short_grid);
+  CHECK(clamped.hi_hz == doctest::Approx(300.0));
+  // A pole outside the grid does not widen it.
+  const FrequencyGrid low_grid = FrequencyGrid::Log(0.1, 100.0, 400);
+  CHECK(PathRange(budget.paths[0], FrequencyRange{1.0, 10.0, true}, low_grid).hi_hz == doctest::Approx(10.0));
+}
+
+TEST_CASE("the avis case study's path plots show its closed-loop poles up to 7.4 Hz, to 100 Hz") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("avis_case_study.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  REQUIRE(DisplayRange(result.outputs[0], result.grid).hi_hz == doctest::Approx(10.0));
+  int found = 0;
+  for (const Plot& p : PathPlots(budget, result)) {
+    if (p.name != "path_sensor_noise_to_z_displacement") continue;
+    ++found;
+    CHECK(p.script.find("set xrange [0.01:100]") != std::string::npos);
+  }
+  CHECK(found == 1);
+}
+
+TEST_CASE("channels with identical curves are drawn once and named together, in channel styles") {
+  const Budget budget = LoadBudgetText(R"(
+name: twins
+grid: {type: log, min_hz: 1, max_hz: 100, points: 30}
+sources:
+  - {name: v, unit: um/s, channels: [a, b, c], spectrum: {type: flat, level: 1}}
+paths:
+  - {name: g, type: gain, gain: [[1, 1, 2]], input_unit: um/s, output_unit: um/s, outputs: [y]}
+contributors:
+  - {name: c, source: v, path: g}
+outputs:
+  - {name: out, signal: y, unit: um/s}
+)",
+                                       "twins.yaml");
+  const std::vector<Plot> plots = PathPlots(budget, Evaluate(budget));
+  REQUIRE(plots.size() == 1);
+  const std::string& script = plots[0].script;
+  CHECK(script.find("title 'a = b'") != std::string::npos);
+  CHECK(script.find("title 'b'") == std::string::npos);
+  CHECK(script.find("title 'c'") != std::string::npos);
+  CHECK(script.find("column(3)") == std::string::npos);  // b is not drawn under a
+  CHECK(plots[0].caption.find("named together") != std::string::npos);
+  // The channel family, with markers, not the contributor colours.
+  CHECK(script.find("'" + ChannelStyle(0).colour + "'") != std::string::npos);
+  CHECK(script.find("'" + ChannelStyle(2).colour + "'") != std::string::npos);
+  CHECK(script.find("pointtype " + std::to_string(ChannelStyle(2).point_type)) != std::string::npos);
+  for (std::size_t i = 0; i < 3; ++i) CHECK(script.find("'" + ContributorStyle(i).colour + "'") == std::string::npos);
+  // The CSV still holds every channel.
+  CHECK(plots[0].csv.find("frequency_hz,a,b,c\n") != std::string::npos);
+}
+
+TEST_CASE("a single-channel path plot keeps its contributor's colour") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  const std::vector<Plot> plots = PathPlots(budget, Evaluate(budget));
+  CHECK(plots[0].script.find("'" + ContributorStyle(0).colour + "'") != std::string::npos);
+  CHECK(plots[0].script.find("with lines") != std::string::npos);
+  CHECK(plots[0].script.find("pointtype") == std::string::npos);
 }
 
 }  // namespace deb::report

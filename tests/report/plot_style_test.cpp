@@ -2,9 +2,11 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <regex>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "deb/io/budget_yaml.h"
 #include "deb/report/report_writer.h"
@@ -58,6 +60,102 @@ TEST_CASE("neighbouring contributors, and lines with the same dash pattern, diff
     for (std::size_t j = i + 1; j < 12; ++j)
       if (ContributorStyle(i).dash == ContributorStyle(j).dash)
         CHECK(std::abs(ContributorStyle(i).lightness - ContributorStyle(j).lightness) >= 20.0);
+}
+
+TEST_CASE("in a greyscale print the first 12 contributors keep 12 grey levels, the colour's L* and its grey agreeing") {
+  std::vector<double> grey;
+  for (std::size_t i = 0; i < 12; ++i) {
+    const SeriesStyle s = ContributorStyle(i);
+    // Both the CIE L* and the Rec. 601 grey a printer makes: greens and
+    // cyans of high chroma print 10 L* darker than their L*.
+    CHECK_MESSAGE(std::abs(Lightness(s.colour) - s.lightness) <= 3.0, i << " " << s.colour);
+    CHECK_MESSAGE(std::abs(GreyLightness(s.colour) - s.lightness) <= 3.0, i << " " << s.colour);
+    grey.push_back(GreyLightness(s.colour));
+  }
+  for (std::size_t i = 0; i < 12; ++i) {
+    CHECK(std::abs(grey[i] - grey[(i + 1) % 12]) >= 14.0);  // neighbours, also 11 and 12
+    for (std::size_t j = i + 1; j < 12; ++j) {
+      CHECK_MESSAGE(std::abs(grey[i] - grey[j]) >= 1.0, i << " " << j);  // 12 distinct levels
+      // Fills of one kind (solid 0-5, hatched 6-11) are 10 L* apart, less the tolerance.
+      if ((i < 6) == (j < 6)) CHECK_MESSAGE(std::abs(grey[i] - grey[j]) >= 4.0, i << " " << j);
+    }
+  }
+  // Levels 5 L* apart: rounded to 5, the 12 greys fall on 12 steps.
+  std::set<long> levels;
+  for (std::size_t i = 0; i < 12; ++i) levels.insert(std::lround(ContributorStyle(i).lightness / 5.0));
+  CHECK(levels.size() == 12);
+  CHECK(GreyLightness("#777777") == doctest::Approx(50.0).epsilon(0.01));
+  CHECK(GreyLightness("#00ff00") == doctest::Approx(Lightness("#969696")).epsilon(0.01));  // 0.587 x 255
+}
+
+TEST_CASE("fills beyond the first six contributors are hatched, in a pattern of their own and a contrasting colour") {
+  std::set<int> patterns;
+  std::set<std::pair<double, int>> fills;
+  for (std::size_t i = 0; i < 24; ++i) {
+    const SeriesStyle s = ContributorStyle(i);
+    const bool hatched = (i % 12 >= 6) != (i >= 12);
+    CHECK_MESSAGE((s.fill_pattern != 0) == hatched, i);
+    if (i >= 6 && i < 12) patterns.insert(s.fill_pattern);
+    if (hatched) CHECK(std::abs(GreyLightness(s.hatch_colour) - GreyLightness(s.colour)) >= 25.0);
+    fills.insert({s.lightness, s.fill_pattern});
+  }
+  CHECK(patterns.size() == 6);
+  CHECK(fills.size() == 24);  // 24 contributors, 24 fills told apart without colour
+
+  const std::vector<std::string> solid = FillClauses(ContributorStyle(0), "'d.csv' using 1:2", "boxes", "title 'a'", "#303030");
+  REQUIRE(solid.size() == 1);
+  CHECK(solid[0] == "'d.csv' using 1:2 with boxes fillcolor rgb '" + ContributorStyle(0).colour + "' title 'a'");
+  const SeriesStyle h = ContributorStyle(6);
+  const std::vector<std::string> hatched = FillClauses(h, "'d.csv' using 1:2", "boxes", "title 'g'", "#303030");
+  REQUIRE(hatched.size() == 3);
+  CHECK(hatched[0] == "'d.csv' using 1:2 with boxes fillcolor rgb '" + h.colour + "' notitle");
+  CHECK(hatched[1] == "'d.csv' using 1:2 with boxes fillstyle transparent pattern " + std::to_string(h.fill_pattern) +
+                          " border linecolor rgb '" + h.colour + "' fillcolor rgb '" + h.hatch_colour + "' title 'g'");
+  CHECK(hatched[2].find("fillstyle empty border linecolor rgb '#303030'") != std::string::npos);
+  CHECK(FillClauses(h, "x", "filledcurves", "notitle").size() == 2);
+}
+
+TEST_CASE("the stacked CPS and the band bars of a budget with 8 contributors hatch the 7th and 8th") {
+  std::string yaml = "name: eight\ngrid: {type: log, min_hz: 1, max_hz: 100, points: 50}\nsources:\n";
+  for (int i = 0; i < 8; ++i)
+    yaml += "  - {name: s" + std::to_string(i) + ", unit: nm, spectrum: {type: flat, level: " + std::to_string(i + 1) + "}}\n";
+  yaml += "paths:\n  - {name: one, type: gain, gain: [[1]], input_unit: nm, output_unit: nm, outputs: [z]}\ncontributors:\n";
+  for (int i = 0; i < 8; ++i) yaml += "  - {name: c" + std::to_string(i) + ", source: s" + std::to_string(i) + ", path: one}\n";
+  yaml += "outputs:\n  - {name: z, signal: z, unit: nm}\n";
+  const Budget budget = LoadBudgetText(yaml, "eight.yaml");
+  const fs::path dir = TempDir("eight") / "report";
+  ReportOptions options;
+  options.plots = false;
+  WriteReportDirectory(budget, Evaluate(budget), {}, options, dir.string());
+  for (const char* plot : {"z_cps.gp", "z_bands.gp", "overview.gp"}) {
+    const std::string script = ReadAll(dir / "plots" / plot);
+    CHECK_MESSAGE(script.find("fillstyle transparent pattern " + std::to_string(ContributorStyle(6).fill_pattern) +
+                              " border linecolor rgb '" + ContributorStyle(6).colour + "'") != std::string::npos,
+                  plot);
+    CHECK_MESSAGE(script.find("fillcolor rgb '" + ContributorStyle(7).hatch_colour + "'") != std::string::npos, plot);
+  }
+  // The key shows the hatch: the title sits on the hatched clause.
+  CHECK(ReadAll(dir / "plots" / "z_bands.gp").find("'" + ContributorStyle(6).hatch_colour + "' title 'c6'") !=
+        std::string::npos);
+  CHECK(ReadAll(dir / "plots" / "colours.csv").find("6,c6," + ContributorStyle(6).colour + ",") != std::string::npos);
+}
+
+TEST_CASE("source channels have a style family of their own: distinct markers, none of the contributor colours") {
+  std::set<std::string> colours, contributor_colours;
+  std::set<int> markers;
+  for (std::size_t i = 0; i < 12; ++i) contributor_colours.insert(ContributorStyle(i).colour);
+  for (std::size_t i = 0; i < 12; ++i) {
+    const SeriesStyle s = ChannelStyle(i);
+    CHECK(std::regex_match(s.colour, std::regex("#[0-9a-f]{6}")));
+    CHECK(s.point_type > 0);
+    CHECK(ContributorStyle(i).point_type == 0);  // contributors are lines without markers
+    CHECK(contributor_colours.count(s.colour) == 0);
+    colours.insert(s.colour);
+    markers.insert(s.point_type);
+  }
+  CHECK(colours.size() == 12);
+  CHECK(markers.size() == 12);
+  CHECK(ChannelStyle(3).colour == ChannelStyle(3).colour);
 }
 
 TEST_CASE("CIE L*C*h colours: achromatic lightness gives the sRGB grey, and out-of-gamut chroma is reduced") {

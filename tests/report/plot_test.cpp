@@ -10,6 +10,12 @@ TEST_CASE("gnuplot strings are single-quoted with doubled quotes and no line bre
   CHECK(Quote("two\nlines") == "'two lines'");
 }
 
+TEST_CASE("double-quoted gnuplot strings keep line breaks and escape quotes and backslashes") {
+  CHECK(QuoteLines("two\nlines") == "\"two\\nlines\"");
+  CHECK(QuoteLines("say \"hi\"") == "\"say \\\"hi\\\"\"");
+  CHECK(QuoteLines(Enhanced("a_b")) == "\"a\\\\_b\"");  // gnuplot reads a\_b, as from Quote
+}
+
 TEST_CASE("names are escaped for enhanced text so that underscores are not subscripts") {
   CHECK(Enhanced("sensor_noise") == "sensor\\_noise");
   CHECK(Enhanced("a^b{c}@&~") == "a\\^b\\{c\\}\\@\\&\\~");

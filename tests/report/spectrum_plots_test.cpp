@@ -44,7 +44,13 @@ TEST_CASE("the display range holds all but a thousandth of every contributor's v
   CHECK(r.lo_hz == doctest::Approx(1.0));
   CHECK(r.hi_hz == doctest::Approx(100.0));
   CHECK(RangeCaption(r) == " Shown: 1–100 Hz; the CSV covers the whole grid.");
-  CHECK(FrequencyAxis(r, grid).find("grid: 10^{-4} to 10^{8} Hz") != std::string::npos);
+  // The note is a second line of the x label, so gnuplot makes room for it
+  // below the tic labels instead of printing it over the frame (a label at screen coordinates).
+  const std::string axis = FrequencyAxis(r, grid);
+  CHECK(axis.find("set xlabel \"frequency [Hz]\\n{/*0.8 grid: 10^{-4} to 10^{8} Hz; shown: the decades holding all but "
+                  "10^{-3} of every contributor's variance}\"") != std::string::npos);
+  CHECK(axis.find("at screen") == std::string::npos);
+  CHECK(FrequencyAxis(r, grid, "what is shown").find("shown: what is shown}") != std::string::npos);
   // A contributor spread over the whole grid keeps the whole grid.
   ContributorResult flat;
   flat.cps = {0.0};
@@ -53,6 +59,7 @@ TEST_CASE("the display range holds all but a thousandth of every contributor's v
   o.contributors.push_back(flat);
   CHECK_FALSE(DisplayRange(o, grid).trimmed);
   CHECK(RangeCaption(DisplayRange(o, grid)).empty());
+  CHECK(FrequencyAxis(DisplayRange(o, grid), grid).find("set xlabel 'frequency [Hz]'\n") != std::string::npos);
 }
 
 TEST_CASE("share order sorts contributors by variance, largest first, ties in budget order") {
