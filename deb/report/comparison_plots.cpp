@@ -27,11 +27,6 @@ std::string TwoLines(const std::string& first, const std::string& second) {
   return q + "\"";
 }
 
-std::string PlotList(const std::vector<std::string>& clauses) {
-  std::string s = "plot ";
-  for (std::size_t i = 0; i < clauses.size(); ++i) s += (i ? ", \\\n     " : "") + clauses[i];
-  return s + "\n";
-}
 
 }  // namespace
 

@@ -40,11 +40,6 @@ std::string Lines(const std::vector<std::string>& lines) {
 // 0.95 -> "95"
 std::string Percent(double fraction) { return Short(std::round(fraction * 1e4) / 100.0); }
 
-std::string PlotList(const std::vector<std::string>& clauses) {
-  std::string s = "plot ";
-  for (std::size_t i = 0; i < clauses.size(); ++i) s += (i ? ", \\\n     " : "") + clauses[i];
-  return s + "\n";
-}
 
 // Logarithmic frequency axis over [lo_hz, hi_hz]: plain numbers where they
 // stay short, powers of ten over wide or extreme ranges.

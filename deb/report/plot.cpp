@@ -162,4 +162,10 @@ std::string CsvNumber(double value) {
   return text;
 }
 
+std::string PlotList(const std::vector<std::string>& clauses) {
+  std::string s = "plot ";
+  for (std::size_t i = 0; i < clauses.size(); ++i) s += (i ? ", \\\n     " : "") + clauses[i];
+  return s + "\n";
+}
+
 }  // namespace deb::report

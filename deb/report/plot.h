@@ -69,4 +69,7 @@ std::string CsvField(const std::string& text);
 // Number text for CSV files (10 significant digits).
 std::string CsvNumber(double value);
 
+// One gnuplot `plot` command over the clauses, a clause per line.
+std::string PlotList(const std::vector<std::string>& clauses);
+
 }  // namespace deb::report
