@@ -247,25 +247,78 @@ Plot WelchPsdPlot(const PsdEstimate& e, const std::string& source, bool bounds, 
 
 Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& source, const std::string& name) {
   const std::vector<std::size_t> bins = PositiveBins(e.f_hz, name);
-  Figure fig;
-  fig.name = name;
-  fig.f_hz = Pick(e.f_hz, bins);
-  fig.comment = "|H1| from " + e.input + " to each output of " + source + (unit.empty() ? "" : ", in " + unit);
-  fig.caption = "Magnitude of the H1 estimate from " + e.input + " to each output of " + source + ".";
-  fig.title = {"Frequency response (H1) of " + Enhanced(source) + " from " + Enhanced(e.input),
-               WelchSettings(e.provenance)};
-  fig.ylabel = unit.empty() ? "magnitude |H_1|" : "magnitude |H_1| [" + UnitLabel(unit) + "]";
-  fig.key_title = "output";
-  for (std::size_t o = 0; o < e.outputs.size(); ++o) {
-    Curve curve;
-    curve.column = e.outputs[o];
-    curve.title = Enhanced(curve.column);
-    for (std::size_t k : bins) curve.y.push_back(std::abs(e.h(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(o))));
-    curve.colour = ContributorStyle(o).colour;
-    curve.width = 1.5;
-    fig.curves.push_back(std::move(curve));
+  const std::vector<double> f = Pick(e.f_hz, bins);
+  const std::size_t n = e.outputs.size();
+  std::vector<std::vector<double>> mag(n), coh(n);
+  for (std::size_t o = 0; o < n; ++o)
+    for (std::size_t k : bins) {
+      mag[o].push_back(std::abs(e.h(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(o))));
+      coh[o].push_back(e.coherence(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(o)));
+    }
+  // The points either panel needs: |H1| on its log axis, gamma^2 on its linear one.
+  std::vector<const std::vector<double>*> mags, cohs;
+  for (std::size_t o = 0; o < n; ++o) {
+    mags.push_back(&mag[o]);
+    cohs.push_back(&coh[o]);
   }
-  return LogLogPlot(fig);
+  std::vector<std::size_t> rows = PlotPoints(f, mags, f.front(), f.back());
+  const std::vector<std::size_t> more = PlotPoints(f, cohs, f.front(), f.back(), PlotScale::kLinear);
+  rows.insert(rows.end(), more.begin(), more.end());
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+
+  Plot p;
+  p.name = name;
+  p.kind = PlotKind::kSpectrum;
+  p.caption = "H1 frequency response from " + e.input + " to each output of " + source +
+              ": magnitude (top) and coherence (bottom).";
+  std::ostringstream csv;
+  csv << "# deb " << DEB_VERSION << ": |H1| from " << e.input << " to each output of " << source
+      << (unit.empty() ? "" : ", in " + unit) << ", and the coherence gamma^2\nf_hz";
+  for (const auto& o : e.outputs) csv << ',' << CsvField("mag_" + o);
+  for (const auto& o : e.outputs) csv << ',' << CsvField("coherence_" + o);
+  csv << '\n';
+  double top = 0.0, bottom = HUGE_VAL;
+  for (std::size_t k : rows) {
+    csv << CsvNumber(f[k]);
+    for (const auto& m : mag) {
+      csv << ',' << CsvNumber(m[k]);
+      if (m[k] > 0.0) top = std::max(top, m[k]), bottom = std::min(bottom, m[k]);
+    }
+    for (const auto& c : coh) csv << ',' << CsvNumber(c[k]);
+    csv << '\n';
+  }
+  p.csv = csv.str();
+
+  const std::string data = Quote(StandaloneDataFile(name));
+  std::ostringstream s;
+  s << "reset\n" << StylePreamble() << FrequencyAxis(f.front(), f.back());
+  s << "set multiplot title " << Lines({"Frequency response (H1) of " + Enhanced(source) + " from " + Enhanced(e.input),
+                                        WelchSettings(e.provenance)})
+    << "\n";
+  s << "set key outside right top Left reverse title 'output'\nset lmargin 12\nset rmargin 16\n";
+  // Top panel: |H1|, log-log; the x labels belong to the bottom panel.
+  s << "set origin 0,0.36\nset size 1,0.56\nset format x ''\nunset xlabel\n"
+    << LogYRange(bottom, top, 10.0)
+    << "set ylabel " << Quote(unit.empty() ? "magnitude |H_1|" : "magnitude |H_1| [" + UnitLabel(unit) + "]") << "\n";
+  std::vector<std::string> top_clauses, bottom_clauses;
+  for (std::size_t o = 0; o < n; ++o) {
+    const std::string colour = Quote(ContributorStyle(o).colour);
+    top_clauses.push_back(data + " using 1:" + Positive(o + 2) + " with lines linecolor rgb " + colour +
+                          " linewidth 1.5 title " + Quote(Enhanced(e.outputs[o])));
+    bottom_clauses.push_back(data + " using 1:" + std::to_string(n + o + 2) + " with lines linecolor rgb " + colour +
+                             " linewidth 1.5 notitle");
+  }
+  s << PlotList(top_clauses);
+  // Bottom panel: gamma^2, linear 0..1.
+  s << "set origin 0,0\nset size 1,0.38\nunset logscale y\nset format y '%g'\nset format x "
+    << (FrequencyAxis(f.front(), f.back()).find("10^{%L}") != std::string::npos ? "'10^{%L}'" : "'%g'")
+    << "\nset xlabel 'frequency [Hz]'\nset ylabel 'coherence γ^{2}'\nset yrange [0:1.05]\nset ytics 0,0.25,1\n"
+    << "unset key\n";
+  s << PlotList(bottom_clauses);
+  s << "unset multiplot\n";
+  p.script = s.str();
+  return p;
 }
 
 Plot CoherencePlot(const CsdEstimate& csd, const std::string& source, const std::string& name) {

@@ -31,9 +31,9 @@ Plot WelchPsdPlot(const PsdEstimate& estimate, const std::string& source, bool b
 // (Carter, Knapp & Nuttall 1973). DEB_DEMANDs at least two channels.
 Plot CoherencePlot(const CsdEstimate& csd, const std::string& source, const std::string& name);
 
-// |H1| of every output of a frequency response estimate (log-log), in
-// `unit` ("output unit/input unit", "" when not known); the coherence is in
-// the CSV the command writes, not in this plot.
+// A frequency response estimate: |H1| of every output (log-log, in `unit`,
+// "output unit/input unit", "" when not known) above its coherence gamma^2
+// (linear, 0..1), which says where the estimate can be trusted.
 Plot FrfPlot(const FrfEstimate& estimate, const std::string& unit, const std::string& source, const std::string& name);
 
 // Each sensor's PSD (solid) and its self-noise estimate (dashed, darker).

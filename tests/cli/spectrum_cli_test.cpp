@@ -153,6 +153,15 @@ TEST_CASE("deb spectrum frf writes a response that a frf path reads: sensors a, 
   CHECK(text.find("f_hz, b/a.mag, b/a.phase_deg, b/a.coherence, c/a.mag, c/a.phase_deg, c/a.coherence") !=
         std::string::npos);
   CHECK(text.find("# frequency response H1 = S_xy / S_xx from a of rec.csv") == 0);
+  // The plot beside it: |H1| above, the coherence below.
+  const Result plotted = Deb("spectrum frf " + Recording(dir).string() + " --input a --outputs b,c --segment 512 -o " +
+                             (dir / "frf2.csv").string());
+  REQUIRE_MESSAGE(plotted.exit_code == 0, plotted.err);
+  CHECK(fs::file_size(dir / "frf2.png") > 1000);
+  const std::string script = Slurp(dir / "frf2.gp");
+  CHECK(script.find("set multiplot") != std::string::npos);
+  CHECK(script.find("coherence γ^{2}") != std::string::npos);
+  CHECK(Slurp(dir / "frf2.plot.csv").find("f_hz,mag_b,mag_c,coherence_b,coherence_c") != std::string::npos);
   const Result bad = Deb("spectrum frf " + Recording(dir).string() + " --input q --outputs b --no-plots -o " +
                          (dir / "bad.csv").string());
   CHECK(bad.exit_code == 3);
