@@ -134,6 +134,9 @@ TEST_CASE("a failing run keeps the previous report intact") {
   const Result r = RunDeb("run " + bad.string() + " --out " + (dir / "rep").string());
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("is unstable") != std::string::npos);
+  // Found during evaluation, located all the same: the contributor whose path it is.
+  CHECK(r.err.find(bad.string() + ":") != std::string::npos);
+  CHECK(r.err.find(": contributors[0].path: path '") != std::string::npos);
   CHECK(ReadAll(dir / "rep" / "summary.json") == before);
   int entries = 0;
   for (const auto& e : fs::directory_iterator(dir)) entries += e.exists();
