@@ -74,6 +74,7 @@ struct Settings {
   std::string input;
   std::vector<std::string> outputs;
   std::string frf_unit;
+  std::string estimator = "h1";
   // reference
   std::string model;
   double points_per_decade = 50.0;
@@ -550,8 +551,9 @@ int RunFrf(const Settings& s) {
   r.columns.insert(r.columns.end(), s.outputs.begin(), s.outputs.end());
   const TimeSeries series = ReadRecording(r);
   const CsdEstimate csd = WelchCsd(series, Welch(r));
-  const FrfEstimate e = H1Estimate(csd, s.input, s.outputs);
-  std::vector<std::string> comments = {"frequency response H1 = S_xy / S_xx from " + s.input + " of " +
+  const FrfEstimate e = EstimateFrf(csd, s.input, s.outputs, ParseFrfEstimator(s.estimator));
+  const std::string formula = e.estimator == FrfEstimator::kH1 ? "H1 = S_xy / S_xx" : "H2 = S_yy / S_yx";
+  std::vector<std::string> comments = {"frequency response " + formula + " from " + s.input + " of " +
                                        SourceName(s.rec.file) + "; coherence |S_xy|^2 / (S_xx S_yy)"};
   for (const std::string& l : e.provenance.Describe())
     if (l.rfind("one-sided", 0) != 0) comments.push_back(l);
@@ -675,6 +677,9 @@ CLI::App* AddSpectrumCommand(CLI::App& app) {
   s.frf->add_option("--input", s.input, "The input channel (e.g. the shaker force)")->required();
   s.frf->add_option("--outputs", s.outputs, "Output channels, comma-separated")->required()->delimiter(',');
   s.frf->add_option("--frf-unit", s.frf_unit, "Unit of H (output unit/input unit) for the file's note and the plot");
+  s.frf->add_option("--estimator", s.estimator,
+                    "h1 (S_xy/S_xx: noise on the outputs) or h2 (S_yy/S_yx: noise on the input); default h1")
+      ->check(CLI::IsMember({"h1", "h2"}));
   s.frf->add_option("--out,-o", s.out, "Output FRF CSV (default: standard output)");
   AddPlotOptions(s.frf, s);
 

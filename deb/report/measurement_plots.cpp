@@ -270,7 +270,7 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
   Plot p;
   p.name = name;
   p.kind = PlotKind::kSpectrum;
-  p.caption = "H1 frequency response from " + e.input + " to each output of " + source +
+  p.caption = std::string(e.estimator == FrfEstimator::kH1 ? "H1" : "H2") + " frequency response from " + e.input + " to each output of " + source +
               ": magnitude (top) and coherence (bottom).";
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ": |H1| from " << e.input << " to each output of " << source
@@ -293,14 +293,16 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
   const std::string data = Quote(StandaloneDataFile(name));
   std::ostringstream s;
   s << "reset\n" << StylePreamble() << FrequencyAxis(f.front(), f.back());
-  s << "set multiplot title " << Lines({"Frequency response (H1) of " + Enhanced(source) + " from " + Enhanced(e.input),
+  const std::string est = e.estimator == FrfEstimator::kH1 ? "H_1" : "H_2";
+  s << "set multiplot title " << Lines({"Frequency response (" + est + ") of " + Enhanced(source) + " from " + Enhanced(e.input),
                                         WelchSettings(e.provenance)})
     << "\n";
   s << "set key outside right top Left reverse title 'output'\nset lmargin 12\nset rmargin 16\n";
   // Top panel: |H1|, log-log; the x labels belong to the bottom panel.
   s << "set origin 0,0.36\nset size 1,0.56\nset format x ''\nunset xlabel\n"
     << LogYRange(bottom, top, 10.0)
-    << "set ylabel " << Quote(unit.empty() ? "magnitude |H_1|" : "magnitude |H_1| [" + UnitLabel(unit) + "]") << "\n";
+    << "set ylabel " << Quote(unit.empty() ? "magnitude |" + est + "|" : "magnitude |" + est + "| [" + UnitLabel(unit) + "]")
+    << "\n";
   std::vector<std::string> top_clauses, bottom_clauses;
   for (std::size_t o = 0; o < n; ++o) {
     const std::string colour = Quote(ContributorStyle(o).colour);

@@ -19,10 +19,20 @@ int ChannelOf(const CsdEstimate& csd, const std::string& name, const char* role)
 
 }  // namespace
 
-FrfEstimate H1Estimate(const CsdEstimate& csd, const std::string& input, const std::vector<std::string>& outputs) {
+std::string ToString(FrfEstimator estimator) { return estimator == FrfEstimator::kH1 ? "h1" : "h2"; }
+
+FrfEstimator ParseFrfEstimator(const std::string& text) {
+  for (auto e : {FrfEstimator::kH1, FrfEstimator::kH2})
+    if (text == ToString(e)) return e;
+  throw InputError("unknown frequency response estimator '" + text + "'; allowed: h1, h2");
+}
+
+FrfEstimate EstimateFrf(const CsdEstimate& csd, const std::string& input, const std::vector<std::string>& outputs,
+                        FrfEstimator estimator) {
   if (outputs.empty()) throw InputError("a frequency response needs at least one output channel");
   const int x = ChannelOf(csd, input, "input");
   FrfEstimate e;
+  e.estimator = estimator;
   e.f_hz = csd.f_hz;
   e.input = input;
   e.outputs = outputs;
@@ -35,13 +45,14 @@ FrfEstimate H1Estimate(const CsdEstimate& csd, const std::string& input, const s
     const int y = ChannelOf(csd, outputs[o], "output");
     if (y == x) throw InputError("output '" + outputs[o] + "' is the input channel");
     const Eigen::VectorXcd sxy = csd.Cross(x, y);  // conj(X) Y
-    const Eigen::VectorXd gamma2 = csd.Coherence(x, y);
+    const Eigen::VectorXd syy = csd.Auto(y), gamma2 = csd.Coherence(x, y);
     for (Eigen::Index k = 0; k < bins; ++k) {
-      if (!(sxx(k) > 0.0)) {
+      const bool h1 = estimator == FrfEstimator::kH1;
+      if (!(h1 ? sxx(k) > 0.0 : std::abs(sxy(k)) > 0.0)) {
         if (o == 0) ++e.empty_bins;
         continue;
       }
-      e.h(k, static_cast<Eigen::Index>(o)) = sxy(k) / sxx(k);
+      e.h(k, static_cast<Eigen::Index>(o)) = h1 ? sxy(k) / sxx(k) : syy(k) / std::conj(sxy(k));
       e.coherence(k, static_cast<Eigen::Index>(o)) = gamma2(k);
     }
   }
