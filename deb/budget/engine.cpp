@@ -10,7 +10,6 @@
 #include "deb/budget/path_response.h"
 #include "deb/core/error.h"
 #include "deb/core/integrate.h"
-#include "deb/systems/frequency_response.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/lyapunov.h"
 #include "deb/units/unit.h"

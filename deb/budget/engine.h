@@ -2,8 +2,12 @@
 //   S_y(f) = h(f) S_u(f) h(f)^H,   h = unit/weighting factors x row of H(j 2 pi f),
 // on one frequency grid; CPS(f) = integral of S_y from f_min to f; RMS and
 // share of variance per contributor; RMS per band; and, where the source is
-// white and the path stable and strictly proper, the exact variance from the
-// Lyapunov equation beside the CPS figure (METHOD.md conventions 1-3).
+// white and the path stable, strictly proper and rational (no measured data),
+// the exact variance from the Lyapunov equation beside the CPS figure
+// (METHOD.md conventions 1-3). The automatic grid refines every lightly
+// damped pole, every source breakpoint (VC band edges, the bins of an
+// estimate), every measured response's data point and the sinc^2 lobes of
+// moving-average/std outputs.
 #pragma once
 
 #include <optional>
