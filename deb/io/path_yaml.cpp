@@ -81,6 +81,12 @@ void Combine(Path* p, const Path& a, const Path& b, StateSpaceOp rational, Model
   p->measured = std::move(model);
 }
 
+// p's transfer = b after a (H = H_b H_a).
+void SeriesInto(Path* p, const Path& a, const Path& b) {
+  Combine(p, a, b, [](const StateSpace& x, const StateSpace& y) { return Series(x, y); },
+          [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); });
+}
+
 // A path of the gain g (no states) for scaling between parts.
 Path GainPath(const Eigen::MatrixXd& g) {
   Path p;
@@ -151,11 +157,9 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
           parts[i].Fail("path '" + next.name + "' has " + std::to_string(next.system.inputs()) +
                         " input(s) but follows " + std::to_string(acc.system.outputs()) + " output(s)");
         const Eigen::MatrixXd g = ScaleBetween(parts[i], acc.output_units, next.input_units, "series");
-        const auto series = [](const auto& x, const auto& y) { return Series(x, y); };
-        const auto diagram = [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); };
         Path scaled = acc;
-        Combine(&scaled, acc, GainPath(g), series, diagram);
-        Combine(&acc, scaled, next, series, diagram);
+        SeriesInto(&scaled, acc, GainPath(g));
+        SeriesInto(&acc, scaled, next);
         acc.output_names = next.output_names;
         acc.output_units = next.output_units;
       } else {
@@ -163,11 +167,9 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
           parts[i].Fail("parallel paths must have the same numbers of inputs and outputs");
         const Eigen::MatrixXd gi = ScaleBetween(parts[i], acc.input_units, next.input_units, "parallel inputs");
         const Eigen::MatrixXd go = ScaleBetween(parts[i], next.output_units, acc.output_units, "parallel outputs");
-        const auto series = [](const auto& x, const auto& y) { return Series(x, y); };
-        const auto diagram = [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); };
         Path other = next;
-        Combine(&other, GainPath(gi), next, series, diagram);
-        Combine(&other, other, GainPath(go), series, diagram);
+        SeriesInto(&other, GainPath(gi), next);
+        SeriesInto(&other, other, GainPath(go));
         const Path before = acc;
         Combine(&acc, before, other, [](const StateSpace& x, const StateSpace& y) { return Parallel(x, y); },
                 [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Parallel(x, y); });
@@ -196,11 +198,9 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
                                        plant.name + "'");
     const Eigen::MatrixXd gi = ScaleBetween(node.Required("controller"), plant.output_units, ctrl.input_units, "feedback");
     const Eigen::MatrixXd go = ScaleBetween(node.Required("controller"), ctrl.output_units, plant.input_units, "feedback");
-    const auto series = [](const auto& x, const auto& y) { return Series(x, y); };
-    const auto diagram = [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); };
     Path k = ctrl;
-    Combine(&k, GainPath(gi), ctrl, series, diagram);
-    Combine(&k, k, GainPath(go), series, diagram);
+    SeriesInto(&k, GainPath(gi), ctrl);
+    SeriesInto(&k, k, GainPath(go));
     AtNode(node, [&] {
       Combine(&p, plant, k, [&](const StateSpace& g, const StateSpace& c) { return Feedback(g, c, sign); },
               [&](const FrequencyModel& g, const FrequencyModel& c) { return FrequencyModel::Feedback(g, c, sign); });
