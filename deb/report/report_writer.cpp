@@ -185,10 +185,9 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       tables.push_back(ContributorTable(budget, o));
       tables.push_back(BandTable(o));
     }
-    // Twice: the footers number every page, and the title pages' count is known after the first.
-    TitlePages title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings);
+    const TitlePages title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings,
+                                            static_cast<int>(plots.size()), sha256);
     const int total_pages = title.pages + static_cast<int>(plots.size());
-    title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings, total_pages, sha256);
     if (pdf) writer.Write("plots/title_page.gp", title.script);
 
     // One gnuplot process per file, report.pdf (the longest) first, several

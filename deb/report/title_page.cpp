@@ -64,7 +64,7 @@ std::string PageFooter(const std::string& budget_name, const std::string& digest
 
 TitlePages MakeTitlePages(const std::string& budget_name, const std::string& description, const ReportFacts& facts,
                           const std::vector<Table>& tables, const std::vector<std::string>& warnings,
-                          int total_pages, const std::string& digest) {
+                          int following_pages, const std::string& digest) {
   // Blocks: a heading, lines repeated at the top of a continuation (a
   // table's column header), and the body.
   struct Block {
@@ -152,7 +152,7 @@ TitlePages MakeTitlePages(const std::string& budget_name, const std::string& des
     }
     s << "set label " << ++n << " "
       << Quote(PageFooter(budget_name, digest, static_cast<int>(p) + 1,
-                          total_pages > 0 ? total_pages : static_cast<int>(pages.size())))
+                          static_cast<int>(pages.size()) + following_pages))
       << " at screen " << CsvNumber(1.0 - kLeftCm / kPageWidthCm) << "," << CsvNumber(0.6 / kPageHeightCm)
       << " right font " << Quote(std::string(kFont) + ",8") << " textcolor rgb '#707070' noenhanced\n";
     s << "plot 2 notitle\n";

@@ -17,11 +17,11 @@ struct TitlePages {
 };
 
 // `tables` are set in order after the facts and conventions; `warnings`
-// follow them. Each page's footer is PageFooter(budget_name, digest, k,
-// total_pages), with total_pages = the title pages alone when 0.
+// follow them. Each page's footer is PageFooter(budget_name, digest, k, N),
+// N = the title pages + `following_pages` (the plot pages after them).
 TitlePages MakeTitlePages(const std::string& budget_name, const std::string& description, const ReportFacts& facts,
                           const std::vector<Table>& tables, const std::vector<std::string>& warnings,
-                          int total_pages = 0, const std::string& digest = "");
+                          int following_pages = 0, const std::string& digest = "");
 
 // "deb VERSION · BUDGET · SHA-256 0123456789ab · page K/N" (the digest part
 // only when given): a loose printout names its budget file and its place.

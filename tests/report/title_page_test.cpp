@@ -65,7 +65,7 @@ TEST_CASE("every page's footer names deb, the budget, the file's digest and the 
   CHECK(PageFooter("b", "0123456789abcdef", 3, 40) ==
         "deb " + std::string(DEB_VERSION) + " · b · SHA-256 0123456789ab · page 3/40");
   CHECK(PageFooter("b", "", 1, 2) == "deb " + std::string(DEB_VERSION) + " · b · page 1/2");
-  const TitlePages p = MakeTitlePages("b", "", {}, {Rows(100)}, {}, 50, "feedbeef");
+  const TitlePages p = MakeTitlePages("b", "", {}, {Rows(100)}, {}, 47, "feedbeef");  // 3 title pages + 47
   CHECK(p.script.find("'deb " + std::string(DEB_VERSION) + " · b · SHA-256 feedbeef · page 3/50'") != std::string::npos);
 }
 
