@@ -313,10 +313,9 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
   }
   s << PlotList(top_clauses);
   // Bottom panel: gamma^2, linear 0..1.
-  s << "set origin 0,0\nset size 1,0.38\nunset logscale y\nset format y '%g'\nset format x "
-    << (FrequencyAxis(f.front(), f.back()).find("10^{%L}") != std::string::npos ? "'10^{%L}'" : "'%g'")
-    << "\nset xlabel 'frequency [Hz]'\nset ylabel 'coherence γ^{2}'\nset yrange [0:1.05]\nset ytics 0,0.25,1\n"
-    << "unset key\n";
+  s << "set origin 0,0\nset size 1,0.38\nunset logscale y\nset format y '%g'\n"
+    << FrequencyAxis(f.front(), f.back())  // the x format and label the top panel cleared
+    << "set ylabel 'coherence γ^{2}'\nset yrange [0:1.05]\nset ytics 0,0.25,1\nunset key\n";
   s << PlotList(bottom_clauses);
   s << "unset multiplot\n";
   p.script = s.str();
