@@ -17,9 +17,7 @@ constexpr double kPi = 3.141592653589793238462643383279502884;
 enum class Part { kRe, kIm, kMag, kDb, kPhaseDeg, kCoherence };  // coherence: skipped
 
 // The two columns of one entry, by part.
-struct Entry {
-  std::map<Part, std::size_t> column;
-};
+using Entry = std::map<Part, std::size_t>;
 
 std::string Join(const std::vector<std::string>& names) {
   std::string s;
@@ -64,14 +62,14 @@ FrfCsv FromTable(const NumericTable& t, std::vector<std::string> outputs, std::v
     if (o < 0) t.Fail(line, col, "column '" + name + "': output '" + out + "' is not one of the path's outputs (" + Join(outputs) + ")");
     if (i < 0) t.Fail(line, col, "column '" + name + "': input '" + in + "' is not one of the path's inputs (" + Join(inputs) + ")");
     Entry& e = entries[{o, i}];
-    if (e.column.count(part->second)) t.Fail(line, col, "column '" + name + "' is given twice");
-    e.column[part->second] = c;
+    if (e.count(part->second)) t.Fail(line, col, "column '" + name + "' is given twice");
+    e[part->second] = c;
   }
   for (int o = 0; o < static_cast<int>(outputs.size()); ++o)
     for (int i = 0; i < static_cast<int>(inputs.size()); ++i) {
       const std::string stem = outputs[o] + "/" + inputs[i];
       const auto it = entries.find({o, i});
-      const std::map<Part, std::size_t> cols = it == entries.end() ? std::map<Part, std::size_t>{} : it->second.column;
+      const Entry cols = it == entries.end() ? Entry{} : it->second;
       const bool re_im = cols.size() == 2 && cols.count(Part::kRe) && cols.count(Part::kIm);
       const bool polar = cols.size() == 2 && cols.count(Part::kPhaseDeg) && (cols.count(Part::kMag) || cols.count(Part::kDb));
       if (!re_im && !polar)
@@ -92,17 +90,17 @@ FrfCsv FromTable(const NumericTable& t, std::vector<std::string> outputs, std::v
                  std::to_string(last_line) + "; frequencies must increase strictly");
     Eigen::MatrixXcd m(static_cast<Eigen::Index>(outputs.size()), static_cast<Eigen::Index>(inputs.size()));
     for (const auto& [oi, e] : entries) {
-      const auto v = [&](Part p) { return row.values[e.column.at(p)]; };
+      const auto v = [&](Part p) { return row.values[e.at(p)]; };
       std::complex<double> value;
-      if (e.column.count(Part::kRe)) {
+      if (e.count(Part::kRe)) {
         value = {v(Part::kRe), v(Part::kIm)};
       } else {
         double mag = 0.0;
-        if (e.column.count(Part::kMag)) {
+        if (e.count(Part::kMag)) {
           mag = v(Part::kMag);
           if (mag < 0.0)
-            t.Fail(row.line, row.columns[e.column.at(Part::kMag)],
-                   "column '" + t.header[e.column.at(Part::kMag)] + "': a magnitude must be >= 0");
+            t.Fail(row.line, row.columns[e.at(Part::kMag)],
+                   "column '" + t.header[e.at(Part::kMag)] + "': a magnitude must be >= 0");
         } else {
           mag = std::pow(10.0, v(Part::kDb) / 20.0);
         }
