@@ -11,6 +11,25 @@
 
 namespace deb::report {
 
+// The path plots of a budget with one flat source of `channels` through a
+// static gain row `gain` (e.g. "[[0, 2]]") onto one output.
+std::vector<Plot> GainPathPlots(const std::string& channels, const std::string& gain) {
+  const Budget budget = LoadBudgetText(R"(
+name: gain_paths
+grid: {type: log, min_hz: 1, max_hz: 100, points: 30}
+sources:
+  - {name: v, unit: um/s, channels: )" + channels + R"(, spectrum: {type: flat, level: 1}}
+paths:
+  - {name: g, type: gain, gain: )" + gain + R"(, input_unit: um/s, output_unit: um/s, outputs: [y]}
+contributors:
+  - {name: c, source: v, path: g}
+outputs:
+  - {name: out, signal: y, unit: um/s}
+)",
+                                       "gain_paths.yaml");
+  return PathPlots(budget, Evaluate(budget));
+}
+
 TEST_CASE("one path plot per contributor and output, whose CSV holds |h| of every source channel") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   const BudgetResult result = Evaluate(budget);
@@ -33,20 +52,7 @@ TEST_CASE("one path plot per contributor and output, whose CSV holds |h| of ever
 }
 
 TEST_CASE("a source channel without transfer is named as zero in the key") {
-  const Budget budget = LoadBudgetText(R"(
-name: uncoupled
-grid: {type: log, min_hz: 1, max_hz: 100, points: 30}
-sources:
-  - {name: v, unit: um/s, channels: [x, z], spectrum: {type: flat, level: 1}}
-paths:
-  - {name: g, type: gain, gain: [[0, 2]], input_unit: um/s, output_unit: um/s, outputs: [y]}
-contributors:
-  - {name: c, source: v, path: g}
-outputs:
-  - {name: out, signal: y, unit: um/s}
-)",
-                                       "uncoupled.yaml");
-  const std::vector<Plot> plots = PathPlots(budget, Evaluate(budget));
+  const std::vector<Plot> plots = GainPathPlots("[x, z]", "[[0, 2]]");
   REQUIRE(plots.size() == 1);
   CHECK(plots[0].script.find("title 'x (zero)'") != std::string::npos);
   CHECK(plots[0].script.find("title 'z'") != std::string::npos);
@@ -119,20 +125,7 @@ TEST_CASE("the avis case study's path plots show its closed-loop poles up to 7.4
 }
 
 TEST_CASE("channels with identical curves are drawn once and named together, in channel styles") {
-  const Budget budget = LoadBudgetText(R"(
-name: twins
-grid: {type: log, min_hz: 1, max_hz: 100, points: 30}
-sources:
-  - {name: v, unit: um/s, channels: [a, b, c], spectrum: {type: flat, level: 1}}
-paths:
-  - {name: g, type: gain, gain: [[1, 1, 2]], input_unit: um/s, output_unit: um/s, outputs: [y]}
-contributors:
-  - {name: c, source: v, path: g}
-outputs:
-  - {name: out, signal: y, unit: um/s}
-)",
-                                       "twins.yaml");
-  const std::vector<Plot> plots = PathPlots(budget, Evaluate(budget));
+  const std::vector<Plot> plots = GainPathPlots("[a, b, c]", "[[1, 1, 2]]");
   REQUIRE(plots.size() == 1);
   const std::string& script = plots[0].script;
   CHECK(script.find("title 'a = b'") != std::string::npos);
