@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/output_dir.h"
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
@@ -29,6 +30,7 @@ struct CompareSettings {
   std::string out_dir;
   int threads = 0;
   bool quiet = false;
+  bool force = false;  // --force: replace an output directory deb did not write
   bool plots = true;
 };
 
@@ -145,8 +147,11 @@ std::string Safe(const std::string& label) {
   return s;
 }
 
-void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plots, const std::string& out_dir) {
-  WriteDirectoryAtomically(out_dir, [&](const std::string& dir) {
+void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plots, const std::string& out_dir,
+                     bool force) {
+  ReplaceOptions replace;
+  replace.force = force;
+  ReplaceDirectory(out_dir, [&](const std::string& dir) {
     if (!plots.empty()) {
       fs::create_directories(fs::path(dir) / "plots");
       report::WritePlotsAsPng(plots, (fs::path(dir) / "plots").string());
@@ -155,12 +160,8 @@ void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plo
                                                                     {"compare.md", Markdown(cmp, plots)},
                                                                     {"compare.html", Html(cmp, plots)},
                                                                     {"compare.csv", ComparisonCsv(cmp)}};
-    for (const auto& [name, text] : files) {
-      std::ofstream out(fs::path(dir) / name, std::ios::binary);
-      out << text;
-      if (!out) throw InputError(dir + "/" + name + ": cannot be written");
-    }
-  });
+    for (const auto& [name, text] : files) WriteTextFile((fs::path(dir) / name).string(), text);
+  }, replace);
 }
 
 }  // namespace
@@ -176,6 +177,7 @@ CLI::App* AddCompareCommand(CLI::App& app) {
   c->add_option("--out,-o", s.out_dir, "Report directory, for two inputs (default: reports/compare_<A>_vs_<B>)");
   c->add_option("--threads,-j", s.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
+  c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; },
                        "No overlay plots (drawn only when both inputs are budgets; need gnuplot)");
   return c;
@@ -210,7 +212,7 @@ int RunCompareCommand(const CLI::App& /*compare*/) {
     reports.push_back(std::move(r));
   }
   for (const Pending& r : reports) {
-    WriteComparison(r.cmp, r.plots, r.dir);
+    WriteComparison(r.cmp, r.plots, r.dir, s.force);
     if (s.quiet) continue;
     std::printf("%s (A) vs %s (B):\n", r.cmp.label_a.c_str(), r.cmp.label_b.c_str());
     for (const ComparedFigure& f : r.cmp.figures)

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -36,9 +37,17 @@ constexpr int kExitWrite = 4;
 constexpr int kExitRequirement = 5;
 constexpr int kExitInternal = 70;
 
-struct WriteError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+// Runs f; an InputError that knows its key path (found after loading, by
+// the engine) is located in the budget file.
+template <typename F>
+auto LocatedIn(const std::string& budget_file, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const deb::InputError& e) {
+    if (e.key_path().empty()) throw;
+    throw deb::InputError(e.key_path(), deb::LocateInBudgetFile(budget_file, e.key_path(), e.what()));
+  }
+}
 
 void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds, const std::string& out_dir) {
   std::printf("budget %s: %zu frequencies, %g-%g Hz, evaluated in %.3f s\n", budget.name.c_str(), r.grid.size(),
@@ -69,22 +78,18 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
   deb::EngineOptions options;
   options.threads = threads;
   const auto t0 = std::chrono::steady_clock::now();
-  const deb::BudgetResult result = [&] {
-    try {
-      return deb::Evaluate(budget, options);
-    } catch (const deb::InputError& e) {
-      if (e.key_path().empty()) throw;
-      throw deb::InputError(e.key_path(), deb::LocateInBudgetFile(budget_file, e.key_path(), e.what()));
-    }
-  }();
+  const deb::BudgetResult result = LocatedIn(budget_file, [&] { return deb::Evaluate(budget, options); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
   try {
     report.progress = !quiet && ::isatty(STDERR_FILENO);
     report.threads = threads;
-    deb::WriteReportDirectory(budget, result, {budget_file, seconds}, report, out_dir);
+    // A reproducible report (SOURCE_DATE_EPOCH set) records no wall time.
+    deb::RunInfo info{budget_file, {}};
+    if (!std::getenv("SOURCE_DATE_EPOCH")) info.seconds = seconds;
+    deb::WriteReportDirectory(budget, result, info, report, out_dir);
   } catch (const deb::InputError& e) {
-    throw WriteError(e.what());
+    throw deb::WriteError(e.what());  // found while writing: the report cannot be written
   }
   if (!quiet) PrintBrief(budget, result, seconds, out_dir);
   int failed = 0;
@@ -108,7 +113,7 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
 
 int Check(const std::string& budget_file) {
   const deb::Budget budget = deb::LoadBudgetFile(budget_file);
-  const deb::FrequencyGrid grid = deb::BuildGrid(budget);
+  const deb::FrequencyGrid grid = LocatedIn(budget_file, [&] { return deb::BuildGrid(budget); });
   // Every sweep variant is loaded and validated, as deb sweep would before computing.
   std::optional<deb::SweepBudget> sweep;
   if (budget.has_sweep) sweep = deb::LoadSweepFile(budget_file);
@@ -193,6 +198,7 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet,-q", quiet, "Print nothing but warnings and errors");
   run->add_flag("--strict", strict, "Exit with code 5 when an output fails its requirement (report still written)");
   deb::ReportOptions report;
+  run->add_flag("--force", report.force, "Replace --out even if it is not a directory deb wrote");
   run->add_option_function<std::vector<std::string>>(
          "--format",
          [&report](const std::vector<std::string>& names) {
@@ -240,7 +246,7 @@ int main(int argc, char** argv) {
   } catch (const deb::InputError& e) {
     std::fprintf(stderr, "deb: error: %s\n", e.what());
     return kExitInput;
-  } catch (const WriteError& e) {
+  } catch (const deb::WriteError& e) {
     std::fprintf(stderr, "deb: error: %s\n", e.what());
     return kExitWrite;
   } catch (const std::exception& e) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/output_dir.h"
 #include "deb/budget/engine.h"
 #include "deb/budget/sensitivity.h"
 #include "deb/core/error.h"
@@ -28,6 +29,7 @@ struct SensitivitySettings {
   std::string out_dir;
   int threads = 0;
   bool quiet = false;
+  bool force = false;  // --force: replace an output directory deb did not write
 };
 
 SensitivitySettings& Settings() {
@@ -80,10 +82,25 @@ CLI::App* AddSensitivityCommand(CLI::App& app) {
   c->add_option("--parameter,-p", s.parameters, "Key path of a numeric parameter, e.g. paths[0].control.gains")
       ->required();
   c->add_option("--step", s.step, "Relative step h of the central difference (default 1e-3)")
-      ->check(CLI::Range(1e-8, 0.5));
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            double h = 0.0;
+            try {
+              std::size_t used = 0;
+              h = std::stod(text, &used);
+              if (used != text.size()) return "--step: '" + text + "' is not a number";
+            } catch (const std::exception&) {
+              return "--step: '" + text + "' is not a number";
+            }
+            // written so that NaN fails too
+            if (!(h >= 1e-8 && h <= 0.5)) return "--step " + text + " must be a relative step in [1e-8, 0.5]";
+            return "";
+          },
+          "H in [1e-8, 0.5]"));
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_sensitivity)");
   c->add_option("--threads,-j", s.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
+  c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   return c;
 }
 
@@ -111,14 +128,12 @@ int RunSensitivityCommand(const CLI::App& /*sensitivity*/) {
   for (const auto& o : nominal.outputs) outputs.push_back(o.name);
   const std::string dir =
       s.out_dir.empty() ? (fs::path("reports") / (budget.name + "_sensitivity")).string() : s.out_dir;
-  WriteDirectoryAtomically(dir, [&](const std::string& tmp) {
-    for (const auto& [name, text] : {std::pair<std::string, std::string>{"sensitivity.csv", Csv(all)},
-                                     {"sensitivity.md", Markdown(budget.name, s.step, outputs, all)}}) {
-      std::ofstream out(fs::path(tmp) / name, std::ios::binary);
-      out << text;
-      if (!out) throw InputError(tmp + "/" + name + ": cannot be written");
-    }
-  });
+  ReplaceOptions replace;
+  replace.force = s.force;
+  ReplaceDirectory(dir, [&](const std::string& tmp) {
+    WriteTextFile((fs::path(tmp) / "sensitivity.csv").string(), Csv(all));
+    WriteTextFile((fs::path(tmp) / "sensitivity.md").string(), Markdown(budget.name, s.step, outputs, all));
+  }, replace);
   if (!s.quiet) {
     for (const std::string& o : outputs) {
       std::printf("output %s: variance per relative change of the parameter, ranked\n", o.c_str());

@@ -1,5 +1,7 @@
 #include "tools/spectrum_command.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -15,6 +17,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/output_dir.h"
 #include "deb/report/measurement_plots.h"
 #include "deb/report/plot_files.h"
 #include "deb/report/report_options.h"
@@ -203,15 +206,15 @@ class Outputs {
     };
     for (const File& f : texts_) {
       if (f.path.empty() || f.path == "-") continue;
-      const std::string tmp = f.path + ".tmp";
-      std::ofstream out(tmp, std::ios::binary);
-      out << f.text;
-      out.close();
-      if (!out) {
-        const std::string why = std::strerror(errno);
-        std::remove(tmp.c_str());
+      // Beside the output, so that the rename stays in one file system; a
+      // link or file planted at that name is removed, never written through.
+      const std::string tmp = f.path + ".tmp-" + std::to_string(::getpid());
+      std::remove(tmp.c_str());
+      try {
+        WriteTextFile(tmp, f.text);
+      } catch (const WriteError& e) {
         discard();
-        throw InputError(f.path + ": cannot write the output file: " + why);
+        throw WriteError(f.path + ": cannot write the output file (" + e.what() + ")");
       }
       renames.push_back({tmp, f.path});
     }
@@ -220,7 +223,7 @@ class Outputs {
       fs::rename(tmp, final_path, ec);
       if (ec) {
         discard();
-        throw InputError(final_path + ": cannot write the output file: " + ec.message());
+        throw WriteError(final_path + ": cannot write the output file: " + ec.message());
       }
       written_.push_back(final_path);
     }

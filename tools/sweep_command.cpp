@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "deb/core/output_dir.h"
 #include "deb/budget/sweep.h"
 #include "deb/core/error.h"
 #include "deb/io/result_writer.h"
@@ -24,6 +25,7 @@ struct SweepSettings {
   std::string out_dir;
   int threads = 0;
   bool quiet = false;
+  bool force = false;  // --force: replace an output directory deb did not write
   bool plots = true;
 };
 
@@ -42,6 +44,7 @@ CLI::App* AddSweepCommand(CLI::App& app) {
   c->add_option("--threads,-j", s.threads, "Variants evaluated at once (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
+  c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write sweep.csv only; gnuplot is not needed");
   return c;
 }
@@ -56,15 +59,15 @@ int RunSweepCommand(const CLI::App& /*sweep*/) {
   if (progress) std::fprintf(stderr, "\n");
   const std::string csv = SweepCsv(sweep.spec, results);
   const std::string dir = s.out_dir.empty() ? (fs::path("reports") / (sweep.name + "_sweep")).string() : s.out_dir;
-  WriteDirectoryAtomically(dir, [&](const std::string& tmp) {
-    std::ofstream out(fs::path(tmp) / "sweep.csv", std::ios::binary);
-    out << csv;
-    if (!out) throw InputError(tmp + "/sweep.csv: cannot be written");
+  ReplaceOptions replace;
+  replace.force = s.force;
+  ReplaceDirectory(dir, [&](const std::string& tmp) {
+    WriteTextFile((fs::path(tmp) / "sweep.csv").string(), csv);
     if (s.plots) {
       fs::create_directories(fs::path(tmp) / "plots");
       report::WritePlotsAsPng(report::SweepPlots(sweep.spec, results), (fs::path(tmp) / "plots").string());
     }
-  });
+  }, replace);
   if (!s.quiet) std::printf("sweep of %s: %zu variants\nreport: %s/sweep.csv\n", sweep.name.c_str(), results.size(),
                             dir.c_str());
   return 0;

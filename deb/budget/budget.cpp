@@ -24,6 +24,8 @@ void RequireUniqueNames(const std::vector<T>& items, const char* list) {
       if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
         throw InputError(Indexed(list, i) + ".name", "name '" + items[i].name +
                                                          "' may contain only letters, digits, '_', '-' and '.'");
+    if (items[i].name == "." || items[i].name == "..")
+      throw InputError(Indexed(list, i) + ".name", "name '" + items[i].name + "' is not a name (it names a file)");
     if (!seen.insert(items[i].name).second)
       throw InputError(Indexed(list, i) + ".name",
                        "name '" + items[i].name + "' is used twice in " + list);

@@ -192,7 +192,21 @@ std::vector<double> ReverseCps(const std::vector<double>& cps) {
   return r;
 }
 
+namespace {
+FrequencyGrid BuildGridUnlocated(const Budget& budget);
+}  // namespace
+
 FrequencyGrid BuildGrid(const Budget& budget) {
+  try {
+    return BuildGridUnlocated(budget);
+  } catch (const InputError& e) {
+    if (!e.key_path().empty()) throw;
+    throw InputError("grid", e.what());  // the grid's rules: located at the budget's grid
+  }
+}
+
+namespace {
+FrequencyGrid BuildGridUnlocated(const Budget& budget) {
   const GridSpec& g = budget.grid;
   switch (g.kind) {
     case GridKind::kExplicit:
@@ -264,6 +278,7 @@ FrequencyGrid BuildGrid(const Budget& budget) {
   }
   return AutoGrid(options, resonances, breakpoints);
 }
+}  // namespace
 
 BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
   budget.Validate();

@@ -1,6 +1,9 @@
-// Two failure channels, as in the rest of deb:
+// Three failure channels, as in the rest of deb:
 //  - InputError: the user's input (budget file, data file, parameters) breaks a
-//    rule. Thrown, caught by the CLI, reported with where/what/rule, exit != 0.
+//    rule. Thrown, caught by the CLI, reported with where/what/rule, exit 3.
+//  - WriteError: deb cannot write its output (a report directory, a CSV, a
+//    plot): the target is not deb's to replace, the disk is full, gnuplot is
+//    missing or fails. Exit 4.
 //  - DEB_DEMAND: a programming error (a broken internal invariant). Aborts with
 //    file:line, because continuing would produce wrong numbers.
 #pragma once
@@ -23,6 +26,11 @@ class InputError : public std::runtime_error {
 
  private:
   std::string key_path_;
+};
+
+class WriteError : public std::runtime_error {
+ public:
+  explicit WriteError(const std::string& message) : std::runtime_error(message) {}
 };
 
 [[noreturn]] void DemandFailed(const char* condition, const char* file, int line);

@@ -19,8 +19,13 @@ class FrequencyGrid {
 
   // `points` logarithmically / linearly spaced points from min_hz to max_hz.
   // @throws InputError if 0 < min_hz < max_hz or points >= 2 is violated.
+  // @throws InputError unless limits::kMinGridHz <= min_hz < max_hz <=
+  //         limits::kMaxGridHz and 2 <= points <= limits::kMaxGridPoints.
   static FrequencyGrid Log(double min_hz, double max_hz, int points);
   static FrequencyGrid Linear(double min_hz, double max_hz, int points);
+  // The range rule of Log and Linear alone; `what` names the grid in the message.
+  static void CheckRange(double min_hz, double max_hz, const char* what);
+  static void CheckPoints(double points, const char* what);
 
   const std::vector<double>& f_hz() const { return f_hz_; }
   std::size_t size() const { return f_hz_.size(); }

@@ -5,9 +5,11 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
+#include "deb/core/limits.h"
 
 namespace deb {
 namespace {
@@ -122,11 +124,11 @@ void Row(NumericTable& table, const std::vector<Cell>& cells, int line_no, const
       case NumberStatus::kNotANumber:
         table.Fail(line_no, cell.column,
                    cell.text.empty() ? what + ": empty cell; every cell needs a number"
-                                     : what + ": '" + cell.text + "' is not a number");
+                                     : what + ": '" + Excerpt(cell.text) + "' is not a number");
       case NumberStatus::kNotFinite:
-        table.Fail(line_no, cell.column, what + ": '" + cell.text + "' is not finite; values must be finite");
+        table.Fail(line_no, cell.column, what + ": '" + Excerpt(cell.text) + "' is not finite; values must be finite");
       case NumberStatus::kOutOfRange:
-        table.Fail(line_no, cell.column, what + ": '" + cell.text + "' is outside the range of a double");
+        table.Fail(line_no, cell.column, what + ": '" + Excerpt(cell.text) + "' is outside the range of a double");
     }
     row.values.push_back(value);
     row.columns.push_back(cell.column);
@@ -149,15 +151,16 @@ void NumericTable::Fail(int line, int column, const std::string& message) const 
   throw InputError(name + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
 }
 
-NumericTable ParseNumericTable(std::istream& in, const std::string& name, const NumericTableOptions& options) {
+namespace {
+
+NumericTable ParseText(const std::string& text, const std::string& name, const NumericTableOptions& options) {
   NumericTable table;
   table.name = name;
   table.unnamed_prefix = options.unnamed_prefix;
+  TextLines lines(text, name);
   std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  while (lines.Next(line)) {
+    const int line_no = lines.line_number();
     const std::size_t hash = line.find('#');
     if (hash != std::string::npos) {
       if (Trim(line.substr(0, hash)).empty()) {
@@ -172,11 +175,15 @@ NumericTable ParseNumericTable(std::istream& in, const std::string& name, const 
   return table;
 }
 
+}  // namespace
+
+NumericTable ParseNumericTable(std::istream& in, const std::string& name, const NumericTableOptions& options) {
+  return ParseText(ReadBoundedStream(in, name, limits::kMaxTextFileBytes), name, options);
+}
+
 NumericTable ReadNumericTable(const std::string& path, const NumericTableOptions& options,
                               const std::string& what) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open " + what + " (" + std::strerror(errno) + ")");
-  return ParseNumericTable(in, path, options);
+  return ParseText(ReadInputFile(path, what, limits::kMaxTextFileBytes), path, options);
 }
 
 }  // namespace deb

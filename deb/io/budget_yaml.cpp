@@ -4,6 +4,7 @@
 #include <memory>
 #include <sstream>
 
+#include "deb/core/input_file.h"
 #include "deb/io/path_yaml.h"
 #include "deb/io/source_yaml.h"
 #include "deb/io/yaml_reader.h"
@@ -28,7 +29,11 @@ GridSpec ParseGrid(const YamlNode& node) {
   g.range_given = min.has_value();
   if (g.kind == GridKind::kLog || g.kind == GridKind::kLinear) {
     if (!g.range_given) node.Fail("a " + ToString(g.kind) + " grid needs min_hz and max_hz");
-    g.points = node.Required("points").AsInt();
+    const YamlNode points = node.Required("points");
+    g.points = points.AsInt();
+    const std::string what = ToString(g.kind) + " grid";
+    io::AtNode(points, [&] { FrequencyGrid::CheckPoints(g.points, what.c_str()); });
+    io::AtNode(node, [&] { FrequencyGrid::CheckRange(o.min_hz, o.max_hz, what.c_str()); });
   } else if (node.Has("points")) {
     node.Required("points").Fail("'points' applies to log and linear grids only");
   }
@@ -121,8 +126,10 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
   b.name = root.Required("name").AsString();
   for (char ch : b.name)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
-      root.Required("name").Fail("budget name '" + b.name +
+      root.Required("name").Fail("budget name '" + Excerpt(b.name) +
                                  "' may contain only letters, digits, '_', '-' and '.' (it names the report directory)");
+  if (b.name == "." || b.name == "..")
+    root.Required("name").Fail("budget name '" + Excerpt(b.name) + "' is not a name: it names the report directory");
   if (auto d = root.Optional("description")) b.description = d->AsString();
   b.has_sweep = root.Optional("sweep").has_value();
   if (auto g = root.Optional("grid")) b.grid = ParseGrid(*g);

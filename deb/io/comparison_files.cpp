@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
+#include "deb/core/limits.h"
 
 namespace deb {
 namespace {
@@ -24,14 +26,22 @@ const json& Member(const json& j, const std::string& key, const std::string& whe
 double Number(const json& j, const std::string& key, const std::string& where, const std::string& file) {
   const json& v = Member(j, key, where, file);
   const std::string k = Join(where, key);
-  if (!v.is_number()) throw InputError(k, file + ": " + k + ": " + v.dump() + " is not a number");
+  if (!v.is_number()) throw InputError(k, file + ": " + k + ": " + Excerpt(v.dump()) + " is not a number");
   return v.get<double>();
+}
+
+const json& List(const json& j, const std::string& key, const std::string& where, const std::string& file) {
+  const json& v = Member(j, key, where, file);
+  const std::string k = Join(where, key);
+  if (!v.is_array())
+    throw InputError(k, file + ": " + k + ": " + Excerpt(v.dump()) + " is not a list (is this a summary.json written by deb run?)");
+  return v;
 }
 
 std::string Text(const json& j, const std::string& key, const std::string& where, const std::string& file) {
   const json& v = Member(j, key, where, file);
   const std::string k = Join(where, key);
-  if (!v.is_string()) throw InputError(k, file + ": " + k + ": " + v.dump() + " is not a string");
+  if (!v.is_string()) throw InputError(k, file + ": " + k + ": " + Excerpt(v.dump()) + " is not a string");
   return v.get<std::string>();
 }
 
@@ -66,18 +76,16 @@ std::string Num(double v) {
 }  // namespace
 
 ResultFigures ReadSummaryFigures(const std::string& file, const std::string& label) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file + ": cannot be read");
+  const std::string text = ReadInputFile(file, "the summary", limits::kMaxTextFileBytes);
   json j;
   try {
-    j = json::parse(in);
+    j = json::parse(text);
   } catch (const json::exception& e) {
     throw InputError(file + ": not valid JSON: " + e.what());
   }
   ResultFigures r;
   r.label = label;
-  const json& outputs = Member(j, "outputs", "", file);
-  if (!outputs.is_array()) throw InputError("outputs", file + ": outputs: not a list (is this a summary.json written by deb run?)");
+  const json& outputs = List(j, "outputs", "", file);
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const json& o = outputs[i];
     const std::string where = Index("outputs", i);
@@ -87,17 +95,17 @@ ResultFigures ReadSummaryFigures(const std::string& file, const std::string& lab
     fo.variance = Number(o, "variance", where, file);
     if (o.contains("requirement") && o["requirement"].is_object())
       fo.rms_max = Number(o["requirement"], "rms_max", where + ".requirement", file);
-    const json& cs = Member(o, "contributors", where, file);
+    const json& cs = List(o, "contributors", where, file);
     for (std::size_t c = 0; c < cs.size(); ++c)
       fo.contributors.push_back({Text(cs[c], "name", where + "." + Index("contributors", c), file),
                                  Number(cs[c], "variance", where + "." + Index("contributors", c), file)});
     if (o.contains("bands")) {
-      const json& bs = o["bands"];
+      const json& bs = List(o, "bands", where, file);
       for (std::size_t b = 0; b < bs.size(); ++b) {
         const std::string bw = where + "." + Index("bands", b);
         ResultFigures::Band fb{Number(bs[b], "lo_hz", bw, file), Number(bs[b], "hi_hz", bw, file),
                                Number(bs[b], "variance", bw, file), {}};
-        const json& bc = Member(bs[b], "contributors", bw, file);
+        const json& bc = List(bs[b], "contributors", bw, file);
         for (std::size_t c = 0; c < bc.size(); ++c)
           fb.contributor_variance.push_back(Number(bc[c], "variance", bw + "." + Index("contributors", c), file));
         fo.bands.push_back(std::move(fb));

@@ -48,7 +48,7 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
                {"points", result.grid.size()},
                {"min_hz", result.grid.min_hz()},
                {"max_hz", result.grid.max_hz()}};
-  j["seconds"] = info.seconds;
+  j["seconds"] = info.seconds ? nlohmann::json(*info.seconds) : nlohmann::json(nullptr);
   bool all_pass = true;
   nlohmann::json outputs = nlohmann::json::array();
   for (const OutputResult& o : result.outputs) {
@@ -185,56 +185,16 @@ std::string OutputCsv(const BudgetResult& result, const OutputResult& o) {
   return text;
 }
 
-void WriteDirectoryAtomically(const std::string& out_dir, const std::function<void(const std::string&)>& fill) {
-  const fs::path target = fs::absolute(out_dir).lexically_normal();
-  const fs::path parent = target.parent_path();
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) throw InputError("cannot create directory " + parent.string() + ": " + ec.message());
-  const std::string stem = "." + target.filename().string() + ".tmp-" + std::to_string(::getpid());
-  const fs::path tmp = parent / stem;
-  fs::remove_all(tmp, ec);
-  fs::create_directory(tmp, ec);
-  if (ec) throw InputError("cannot create directory " + tmp.string() + ": " + ec.message());
-  try {
-    fill(tmp.string());
-  } catch (...) {
-    fs::remove_all(tmp, ec);
-    throw;
-  }
-  const fs::path old = parent / (stem + ".old");
-  if (fs::exists(target)) {
-    fs::rename(target, old, ec);
-    if (ec) {
-      fs::remove_all(tmp, ec);
-      throw InputError("cannot replace " + target.string() + ": " + ec.message());
-    }
-  }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    if (fs::exists(old)) fs::rename(old, target, ec);
-    fs::remove_all(tmp, ec);
-    throw InputError("cannot move the report into " + target.string() + ": " + why);
-  }
-  fs::remove_all(old, ec);
-}
-
-namespace {
-void WriteText(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw InputError("cannot write " + path.string());
-}
-}  // namespace
-
 void WriteResultDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                          const std::string& out_dir) {
-  WriteDirectoryAtomically(out_dir, [&](const std::string& dir) {
-    WriteText(fs::path(dir) / "summary.json", SummaryJson(budget, result, info));
-    for (const OutputResult& o : result.outputs) WriteText(fs::path(dir) / OutputCsvName(o.name), OutputCsv(result, o));
-  });
+                          const std::string& out_dir, const ReplaceOptions& options) {
+  ReplaceDirectory(
+      out_dir,
+      [&](const std::string& dir) {
+        WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(budget, result, info));
+        for (const OutputResult& o : result.outputs)
+          WriteTextFile((fs::path(dir) / OutputCsvName(o.name)).string(), OutputCsv(result, o));
+      },
+      options);
 }
 
 }  // namespace deb

@@ -5,16 +5,20 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "deb/budget/budget.h"
 #include "deb/budget/engine.h"
+#include "deb/core/output_dir.h"
 
 namespace deb {
 
 struct RunInfo {
   std::string budget_file;
-  double seconds = 0.0;  // wall time of the evaluation
+  // Wall time of the evaluation; none for a reproducible report
+  // (SOURCE_DATE_EPOCH set: two runs give byte-identical files).
+  std::optional<double> seconds;
 };
 
 // summary.json's text.
@@ -27,14 +31,10 @@ std::string OutputCsvName(const std::string& output_name);
 // One output's CSV text.
 std::string OutputCsv(const BudgetResult& result, const OutputResult& output);
 
-// Creates a temporary directory beside out_dir, lets fill(tmp_dir) write into
-// it, then replaces out_dir by it. If fill throws, the temporary directory is
-// removed and out_dir is left as it was.
-// @throws InputError if the directory cannot be created or replaced.
-void WriteDirectoryAtomically(const std::string& out_dir, const std::function<void(const std::string&)>& fill);
-
-// summary.json and the CSVs, atomically, into out_dir.
+// summary.json and the CSVs, atomically, into out_dir (deb/core/output_dir.h:
+// replaced only if deb wrote it, unless options.force).
+// @throws WriteError if out_dir is not deb's or cannot be written.
 void WriteResultDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                          const std::string& out_dir);
+                          const std::string& out_dir, const ReplaceOptions& options = {});
 
 }  // namespace deb

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "deb/core/limits.h"
 #include "deb/signal/time_series_file.h"
 #include "deb/signal/welch.h"
 #include "deb/spectra/channel_set.h"
@@ -23,6 +24,9 @@ std::vector<std::string> ChannelNames(const YamlNode& source, const std::string&
     if (c->IsScalar()) {
       const int n = c->AsInt();
       if (n < 1) c->Fail("channels must be >= 1, got " + std::to_string(n));
+      if (n > limits::kMaxChannels)
+        c->Fail(std::to_string(n) + " channels is more than the " + std::to_string(limits::kMaxChannels) +
+                " a source may have");
       std::vector<std::string> names;
       for (int i = 1; i <= n; ++i) names.push_back(fallback_name + std::to_string(i));
       return names;
@@ -101,6 +105,9 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
     const YamlNode channels = spec.Required("file_channels");
     if (channels.IsScalar()) {
       o.channels = channels.AsInt();
+      if (o.channels > limits::kMaxChannels)
+        channels.Fail(std::to_string(o.channels) + " channels is more than the " +
+                      std::to_string(limits::kMaxChannels) + " a recording may have");
     } else {
       o.channel_names = channels.AsStrings();
       o.channels = static_cast<int>(o.channel_names.size());

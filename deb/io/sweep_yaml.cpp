@@ -8,9 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <sstream>
+#include <tuple>
 
 #include "deb/core/error.h"
+#include "deb/core/limits.h"
+#include "deb/core/number_text.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/yaml_reader.h"
 
@@ -49,6 +53,7 @@ std::vector<Step> ParseKeyPath(const std::string& path, Fail&& fail_with) {
       } else {
         if (inside.empty() || inside.find_first_not_of("0123456789") != std::string::npos)
           fail("index '" + inside + "' is neither a number nor *");
+        if (inside.size() > 9) fail("index " + inside + " is too large (at most 999999999)");
         steps.push_back({"", std::stol(inside), false});
       }
       i = close + 1;
@@ -69,6 +74,29 @@ std::vector<Step> ParseKeyPath(const YamlNode& node) {
 
 using Transform = std::function<double(double)>;
 
+// The nodes a key path has reached. A YAML alias makes one node appear at
+// several places: it is changed once (a scale applied twice would be wrong),
+// and nested aliases cannot make a short file a walk of 10^9 nodes.
+class Reached {
+ public:
+  // False if n was reached before. Counts every call against the limit.
+  bool First(const YAML::Node& n) {
+    if (++calls_ > limits::kMaxKeyPathVisits) throw Overflow();
+    const YAML::Mark m = n.Mark();
+    if (m.is_null()) return true;
+    return seen_.insert({m.pos, m.line, m.column}).second;
+  }
+  struct Overflow {};
+  static std::string Why() {
+    return "the key path reaches more than " + std::to_string(limits::kMaxKeyPathVisits) +
+           " values (nested YAML aliases?)";
+  }
+
+ private:
+  std::size_t calls_ = 0;
+  std::set<std::tuple<int, int, int>> seen_;
+};
+
 std::string Text(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -84,7 +112,8 @@ bool IsNumber(const YAML::Node& n) {
 // Replaces every number x the steps reach from n by t(x); `where` is the
 // path so far. Returns an empty string or why the path does not reach a number.
 std::string Apply(YAML::Node n, const std::vector<Step>& steps, std::size_t s, const Transform& t,
-                  const std::string& where) {
+                  const std::string& where, Reached& reached) {
+  if (!reached.First(n)) return "";
   if (s == steps.size()) {
     if (IsNumber(n)) {
       n = Text(t(n.as<double>()));
@@ -93,7 +122,8 @@ std::string Apply(YAML::Node n, const std::vector<Step>& steps, std::size_t s, c
     if (n.IsSequence() && n.size() > 0) {
       for (std::size_t k = 0; k < n.size(); ++k)
         if (!IsNumber(n[k])) return where + " is a list that holds something other than numbers";
-      for (std::size_t k = 0; k < n.size(); ++k) n[k] = Text(t(n[k].as<double>()));
+      for (std::size_t k = 0; k < n.size(); ++k)
+        if (reached.First(n[k])) n[k] = Text(t(n[k].as<double>()));
       return "";
     }
     return where + " is not a number or a list of numbers";
@@ -104,21 +134,22 @@ std::string Apply(YAML::Node n, const std::vector<Step>& steps, std::size_t s, c
     const YAML::Node& cn = n;
     if (!cn[step.key]) {
       std::string keys;
-      for (const auto& kv : n) keys += (keys.empty() ? "" : ", ") + kv.first.as<std::string>();
+      for (const auto& kv : n) keys += (keys.empty() ? "" : ", ") + kv.first.Scalar();
       return (where.empty() ? std::string("the budget") : where) + " has no key '" + step.key + "' (it has: " + keys +
              ")";
     }
-    return Apply(n[step.key], steps, s + 1, t, where.empty() ? step.key : where + "." + step.key);
+    return Apply(n[step.key], steps, s + 1, t, where.empty() ? step.key : where + "." + step.key, reached);
   }
   if (!n.IsSequence()) return where + " is not a list, so it has no element [" + (step.index < 0 ? std::string("*") : std::to_string(step.index)) + "]";
   if (step.index >= 0) {
     if (static_cast<std::size_t>(step.index) >= n.size())
       return where + " has " + std::to_string(n.size()) + " element(s), so no [" + std::to_string(step.index) + "]";
-    return Apply(n[static_cast<std::size_t>(step.index)], steps, s + 1, t, where + "[" + std::to_string(step.index) + "]");
+    return Apply(n[static_cast<std::size_t>(step.index)], steps, s + 1, t, where + "[" + std::to_string(step.index) + "]",
+                 reached);
   }
   if (n.size() == 0) return where + " is an empty list: [*] reaches nothing";
   for (std::size_t k = 0; k < n.size(); ++k) {
-    const std::string why = Apply(n[k], steps, s + 1, t, where + "[" + std::to_string(k) + "]");
+    const std::string why = Apply(n[k], steps, s + 1, t, where + "[" + std::to_string(k) + "]", reached);
     if (!why.empty()) return why;
   }
   return "";
@@ -156,7 +187,8 @@ std::string PositionInOriginal(const YAML::Node& raw, const std::string& name, c
 
 // Writes a text at every scalar the steps reach (a textual parameter).
 std::string ApplyText(YAML::Node n, const std::vector<Step>& steps, std::size_t s, const std::string& text,
-                      const std::string& where) {
+                      const std::string& where, Reached& reached) {
+  if (!reached.First(n)) return "";
   if (s == steps.size()) {
     if (!n.IsScalar()) return where + " is not a single value";
     n = text;
@@ -166,22 +198,27 @@ std::string ApplyText(YAML::Node n, const std::vector<Step>& steps, std::size_t 
   if (step.is_key) {
     const YAML::Node& cn = n;
     if (!n.IsMap() || !cn[step.key]) return (where.empty() ? std::string("the budget") : where) + " has no key '" + step.key + "'";
-    return ApplyText(n[step.key], steps, s + 1, text, where.empty() ? step.key : where + "." + step.key);
+    return ApplyText(n[step.key], steps, s + 1, text, where.empty() ? step.key : where + "." + step.key, reached);
   }
   if (!n.IsSequence()) return where + " is not a list";
   const std::size_t lo = step.index < 0 ? 0 : static_cast<std::size_t>(step.index);
   const std::size_t hi = step.index < 0 ? n.size() : lo + 1;
   if (hi > n.size() || lo >= hi) return where + " has " + std::to_string(n.size()) + " element(s)";
   for (std::size_t k = lo; k < hi; ++k) {
-    const std::string why = ApplyText(n[k], steps, s + 1, text, where + "[" + std::to_string(k) + "]");
+    const std::string why = ApplyText(n[k], steps, s + 1, text, where + "[" + std::to_string(k) + "]", reached);
     if (!why.empty()) return why;
   }
   return "";
 }
 
 std::string Assign(YAML::Node n, const std::vector<Step>& steps, const SweepParameter& p, double v) {
-  if (!p.texts.empty()) return ApplyText(n, steps, 0, p.Text(v), "");
-  return Apply(n, steps, 0, [v](double) { return v; }, "");
+  Reached reached;
+  try {
+    if (!p.texts.empty()) return ApplyText(n, steps, 0, p.Text(v), "", reached);
+    return Apply(n, steps, 0, [v](double) { return v; }, "", reached);
+  } catch (const Reached::Overflow&) {
+    return Reached::Why();
+  }
 }
 
 std::vector<double> ParseValues(const YamlNode& p, std::vector<std::string>* texts) {
@@ -210,6 +247,9 @@ std::vector<double> ParseValues(const YamlNode& p, std::vector<std::string>* tex
   const YamlNode count = r.Required("count");
   const int n = count.AsInt();
   if (n < 1) count.Fail("count " + std::to_string(n) + " gives an empty range; need count >= 1");
+  if (static_cast<std::size_t>(n) > limits::kMaxSweepVariants)
+    count.Fail("count " + std::to_string(n) + " is more than the " + std::to_string(limits::kMaxSweepVariants) +
+               " variants a sweep may have");
   return io::AtNode(r, [&] { return log ? LogRange(from, to, n) : LinearRange(from, to, n); });
 }
 
@@ -239,11 +279,23 @@ SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::str
         params.Elements()[k].Fail("zipped parameters need equally many values: " +
                                   std::to_string(out.spec.parameters[k].values.size()) + " here, " +
                                   std::to_string(out.spec.parameters[0].values.size()) + " for the first");
-  YAML::Node base = YAML::Clone(raw);
-  base.remove("sweep");
+  if (out.spec.mode != SweepMode::kZip) {
+    double variants = 1.0;
+    for (const SweepParameter& p : out.spec.parameters) variants *= static_cast<double>(p.values.size());
+    if (variants > static_cast<double>(limits::kMaxSweepVariants))
+      params.Fail("the grid of these parameters has " + NumberText(variants) + " variants, more than the " +
+                  std::to_string(limits::kMaxSweepVariants) + " a sweep may have; sweep fewer values");
+  }
+  // Each variant starts from a fresh parse of the text, not a YAML::Clone:
+  // a clone loses the nodes' positions, which Reached tells aliases apart by.
+  const auto base_copy = [&] {
+    YAML::Node copy = reader.LoadCopy();
+    copy.remove("sweep");
+    return copy;
+  };
   // Check every path once (with its first value) before building variants.
   for (std::size_t k = 0; k < steps.size(); ++k) {
-    YAML::Node probe = YAML::Clone(base);
+    YAML::Node probe = base_copy();
     const std::string why = Assign(probe, steps[k], out.spec.parameters[k], out.spec.parameters[k].values[0]);
     if (!why.empty())
       path_nodes[k].Fail("key path '" + out.spec.parameters[k].key_path + "' does not reach " +
@@ -251,7 +303,7 @@ SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::str
   }
   const auto rows = out.spec.Variants();
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    YAML::Node v = YAML::Clone(base);
+    YAML::Node v = base_copy();
     for (std::size_t k = 0; k < steps.size(); ++k) Assign(v, steps[k], out.spec.parameters[k], rows[i][k]);
     YAML::Emitter emitter;
     emitter << v;
@@ -281,26 +333,22 @@ SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::str
 
 SweepBudget LoadSweepFile(const std::string& path) {
   const YamlReader reader = YamlReader::FromFile(path);
-  YAML::Node raw;
-  try {
-    raw = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw InputError(path + ": " + e.what());
-  }
+  const YAML::Node raw = reader.LoadCopy();
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return Load(reader, raw, dir.empty() ? "." : dir);
 }
 
 Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor) {
-  YAML::Node raw;
-  try {
-    raw = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw InputError(path + ": " + e.what());
-  }
+  YAML::Node raw = YamlReader::FromFile(path).LoadCopy();
   const auto steps = ParseKeyPath(key_path, [](const std::string& why) -> void { throw InputError(why); });
   if (raw.IsMap()) raw.remove("sweep");
-  const std::string why = Apply(raw, steps, 0, [factor](double x) { return x * factor; }, "");
+  Reached reached;
+  std::string why;
+  try {
+    why = Apply(raw, steps, 0, [factor](double x) { return x * factor; }, "", reached);
+  } catch (const Reached::Overflow&) {
+    why = Reached::Why();
+  }
   if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
   YAML::Emitter emitter;
   emitter << raw;

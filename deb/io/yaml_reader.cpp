@@ -1,8 +1,13 @@
 #include "deb/io/yaml_reader.h"
 
 #include <cmath>
-#include <fstream>
+#include <set>
+#include <tuple>
 #include <sstream>
+#include <utility>
+
+#include "deb/core/input_file.h"
+#include "deb/core/limits.h"
 
 namespace deb::io {
 namespace {
@@ -19,6 +24,48 @@ std::string Join(const std::set<std::string>& items) {
   for (const auto& i : items) s += (s.empty() ? "" : ", ") + i;
   return s;
 }
+
+// What every deb document must be, checked once over the whole tree before
+// anything reads it: map keys are plain scalars (a "? {}" key is no name) and
+// no key appears twice in one map (yaml-cpp keeps both and lookups see only
+// the first, so an edited duplicate would be ignored without a word). A node
+// reached again through an alias (same position in the text) is not walked
+// again, so a few lines of nested aliases cannot make the walk explode.
+class DocumentCheck {
+ public:
+  explicit DocumentCheck(const std::string& name) : name_(name) {}
+
+  void Walk(const YAML::Node& node, const std::string& key) {
+    if (!node.IsMap() && !node.IsSequence()) return;
+    const YAML::Mark m = node.Mark();
+    if (!seen_.insert({m.pos, m.line, m.column}).second) return;
+    if (node.IsSequence()) {
+      for (std::size_t i = 0; i < node.size(); ++i) Walk(node[i], key + "[" + std::to_string(i) + "]");
+      return;
+    }
+    std::set<std::string> keys;
+    for (const auto& kv : node) {
+      if (!kv.first.IsScalar())
+        Fail(kv.first.Mark(), key, std::string("a key must be a plain name, not a ") +
+                                       (kv.first.IsMap() ? "map" : kv.first.IsSequence() ? "list" : "null") +
+                                       " (a '?' complex key)");
+      const std::string k = kv.first.Scalar();
+      const std::string path = key.empty() ? k : key + "." + k;
+      if (!keys.insert(k).second)
+        Fail(kv.first.Mark(), path, "key '" + k + "' is given twice in this map; give it once");
+      Walk(kv.second, path);
+    }
+  }
+
+ private:
+  [[noreturn]] void Fail(const YAML::Mark& mark, const std::string& key, const std::string& message) const {
+    throw InputError(key.empty() ? "(document)" : key,
+                     Position(name_, mark) + ": " + (key.empty() ? "" : key + ": ") + message);
+  }
+
+  const std::string& name_;
+  std::set<std::tuple<int, int, int>> seen_;
+};
 
 }  // namespace
 
@@ -57,7 +104,7 @@ std::vector<YamlNode> YamlNode::Elements() const {
 void YamlNode::AllowOnly(const std::set<std::string>& allowed) const {
   if (!node_.IsMap()) Fail("expected a map (key: value pairs)");
   for (const auto& kv : node_) {
-    const std::string k = kv.first.as<std::string>();
+    const std::string k = kv.first.Scalar();  // a plain scalar: DocumentCheck
     if (!allowed.count(k)) {
       YamlNode(reader_, kv.first, key_.empty() ? k : key_ + "." + k)
           .Fail("unknown key '" + k + "'; allowed here: " + Join(allowed));
@@ -81,7 +128,7 @@ double YamlNode::AsDouble() const {
   } catch (const std::exception&) {
     if (text == ".inf" || text == "-.inf" || text == ".nan" || text == ".NaN")
       Fail("value '" + text + "' is not finite; a finite number is required");
-    Fail("expected a number, got '" + text + "'");
+    Fail("expected a number, got '" + Excerpt(text) + "'");
   }
   if (!std::isfinite(value)) Fail("value '" + text + "' is not finite; a finite number is required");
   return value;
@@ -101,7 +148,8 @@ double YamlNode::AsNonNegative() const {
 
 int YamlNode::AsInt() const {
   const double v = AsDouble();
-  if (v != std::floor(v) || std::abs(v) > 2e9) Fail("expected a whole number, got '" + node_.Scalar() + "'");
+  if (v != std::floor(v)) Fail("expected a whole number, got '" + node_.Scalar() + "'");
+  if (std::abs(v) > 2e9) Fail("value " + node_.Scalar() + " is out of range; a whole number here is at most 2000000000");
   return static_cast<int>(v);
 }
 
@@ -109,7 +157,7 @@ bool YamlNode::AsBool() const {
   const std::string t = AsString();
   if (t == "true" || t == "yes" || t == "on") return true;
   if (t == "false" || t == "no" || t == "off") return false;
-  Fail("expected true or false, got '" + t + "'");
+  Fail("expected true or false, got '" + Excerpt(t) + "'");
 }
 
 std::vector<double> YamlNode::AsDoubles() const {
@@ -145,22 +193,22 @@ Eigen::MatrixXd YamlNode::AsMatrix() const {
   return m;
 }
 
-YamlReader::YamlReader(YAML::Node root, std::string name) : root_(std::move(root)), name_(std::move(name)) {}
+YamlReader::YamlReader(YAML::Node root, std::string name, std::string text)
+    : root_(std::move(root)), text_(std::move(text)), name_(std::move(name)) {}
 
 YamlReader YamlReader::FromFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return FromString(text.str(), path);
+  return FromString(ReadInputFile(path, "the budget file", limits::kMaxBudgetFileBytes), path);
 }
 
 YamlReader YamlReader::FromString(const std::string& text, const std::string& name) {
+  YAML::Node root;
   try {
-    return YamlReader(YAML::Load(text), name);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError(Position(name, e.mark) + ": invalid YAML: " + e.msg);
   }
+  DocumentCheck(name).Walk(root, "");
+  return YamlReader(std::move(root), name, text);
 }
 
 YamlNode YamlReader::Root() const {

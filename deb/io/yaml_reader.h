@@ -68,6 +68,10 @@ class YamlReader {
 
   YamlNode Root() const;
   const std::string& name() const { return name_; }
+  // The document's text, e.g. to load a copy to change (a sweep variant).
+  const std::string& text() const { return text_; }
+  // A fresh, changeable copy of the document (already checked when loaded).
+  YAML::Node LoadCopy() const { return YAML::Load(text_); }
 
   // "file:line:col: key: message" using the position of the deepest node
   // recorded for `key` or its closest recorded parent.
@@ -75,8 +79,9 @@ class YamlReader {
   void Record(const std::string& key, const YAML::Mark& mark) const;
 
  private:
-  YamlReader(YAML::Node root, std::string name);
+  YamlReader(YAML::Node root, std::string name, std::string text);
   YAML::Node root_;
+  std::string text_;
   std::string name_;
   mutable std::map<std::string, YAML::Mark> marks_;
 };

@@ -16,16 +16,7 @@ constexpr std::size_t kPanelsPerPage = 8;
 
 std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
 
-// A gnuplot string of two lines (double quotes, so that \n is a line break;
-// backslashes of enhanced-text escapes doubled).
-std::string TwoLines(const std::string& first, const std::string& second) {
-  std::string q = "\"";
-  for (char c : first + "\n" + second) {
-    if (c == '\\' || c == '"') q += '\\';
-    q += c == '\n' ? std::string("\\n") : std::string(1, c);
-  }
-  return q + "\"";
-}
+std::string TwoLines(const std::string& first, const std::string& second) { return QuoteLines({first, second}); }
 
 
 }  // namespace

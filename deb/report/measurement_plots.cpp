@@ -22,19 +22,10 @@ constexpr int kFewLines = 5;                         // band_rms.h: fewer spectr
 std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
 std::string Positive(std::size_t column) { return "(" + Col(column) + " > 0 ? " + Col(column) + " : NaN)"; }
 
-// A gnuplot string of several lines: double quotes, so that \n breaks the
-// line; the backslashes of enhanced-text escapes doubled.
-std::string Lines(const std::vector<std::string>& lines) {
-  std::string q = "\"";
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (i) q += "\\n{/=11 ";  // lines after the first are details, a size smaller
-    for (char c : lines[i]) {
-      if (c == '\\' || c == '"') q += '\\';
-      q += c;
-    }
-    if (i) q += "}";
-  }
-  return q + "\"";
+// A title of several lines; lines after the first are details, a size smaller.
+std::string Lines(std::vector<std::string> lines) {
+  for (std::size_t i = 1; i < lines.size(); ++i) lines[i] = "{/=11 " + lines[i] + "}";
+  return QuoteLines(lines);
 }
 
 // 0.95 -> "95"

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/output_dir.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/plot_style.h"
 
@@ -100,12 +101,8 @@ void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_di
   const std::string gnuplot = FindGnuplot("");
   namespace fs = std::filesystem;
   for (const Plot& p : plots) {
-    for (const auto& [name, text] : {std::pair<std::string, std::string>{p.name + ".csv", p.csv},
-                                     std::pair<std::string, std::string>{p.name + ".gp", p.script}}) {
-      std::ofstream out(fs::path(plots_dir) / name, std::ios::binary);
-      out << text;
-      if (!out) throw InputError(plots_dir + "/" + name + ": cannot be written");
-    }
+    WriteTextFile((fs::path(plots_dir) / (p.name + ".csv")).string(), p.csv);
+    WriteGnuplotScript((fs::path(plots_dir) / (p.name + ".gp")).string(), p.script);
     RunGnuplot(gnuplot, plots_dir,
                TerminalCommand(Terminal::kPng) + "set output " + Quote(p.name + ".png") + "\nload " +
                    Quote(p.name + ".gp") + "\nunset output\n",

@@ -41,20 +41,26 @@ std::string Quote(const std::string& text) {
   std::string q = "'";
   for (char c : text) {
     if (c == '\'') q += "''";
-    else if (c == '\n') q += ' ';
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) q += ' ';  // a line break would end the command
     else q += c;
   }
   return q + "'";
 }
 
+std::string QuoteLines(const std::vector<std::string>& lines) {
+  if (lines.empty()) return Quote("");
+  std::string q = "(";
+  for (std::size_t i = 0; i < lines.size(); ++i) q += (i ? ".\"\\n\"." : "") + Quote(lines[i]);
+  return q + ")";
+}
+
 std::string QuoteLines(const std::string& text) {
-  std::string q = "\"";
+  std::vector<std::string> lines(1);
   for (char c : text) {
-    if (c == '"' || c == '\\') q += '\\';
-    if (c == '\n') q += "\\n";
-    else q += c;
+    if (c == '\n') lines.emplace_back();
+    else lines.back() += c;
   }
-  return q + "\"";
+  return QuoteLines(lines);
 }
 
 std::string Enhanced(const std::string& text) {

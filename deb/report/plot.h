@@ -22,10 +22,15 @@ struct Plot {
   std::string script;   // gnuplot commands; the working directory is plots/
 };
 
-// A gnuplot string literal in single quotes ('' stands for ').
+// The one way user text reaches gnuplot: a string literal in single quotes
+// ('' stands for '), inside which gnuplot expands neither `backquotes` nor
+// @macros; control characters (a line break would end the command) become
+// spaces. gnuplot_runner.h's CheckScript refuses any script that strays.
 std::string Quote(const std::string& text);
-// A gnuplot string literal in double quotes that keeps line breaks ("\n");
-// " and \ are escaped, so enhanced-text escapes pass through as with Quote.
+// Several lines as one gnuplot string expression: single-quoted lines
+// joined by "\n", e.g. ('first'."\n".'second'); usable wherever a string is.
+std::string QuoteLines(const std::vector<std::string>& lines);
+// The same, split at the line breaks of `text`.
 std::string QuoteLines(const std::string& text);
 
 // Text safe inside gnuplot's enhanced mode: _ ^ @ & ~ { } \ are escaped, so

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "deb/core/error.h"
+#include "deb/core/output_dir.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/plot_style.h"
 
@@ -31,12 +32,7 @@ std::vector<std::string> FileNames(const std::string& name, const std::vector<Pl
   return names;
 }
 
-void WriteFile(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw InputError(path.string() + ": cannot be written");
-}
+void WriteFile(const fs::path& path, const std::string& text) { WriteTextFile(path.string(), text); }
 
 // A fresh hidden directory inside `parent`, named after the plot.
 fs::path MakeTemporaryDirectory(const fs::path& parent, const std::string& name) {
@@ -47,10 +43,10 @@ fs::path MakeTemporaryDirectory(const fs::path& parent, const std::string& name)
     std::error_code ec;
     if (fs::create_directory(dir, ec)) return dir;
     if (ec && ec != std::errc::file_exists)
-      throw InputError("cannot draw plot " + name + ": cannot create a directory in " + parent.string() + ": " +
+      throw WriteError("cannot draw plot " + name + ": cannot create a directory in " + parent.string() + ": " +
                        ec.message());
   }
-  throw InputError("cannot draw plot " + name + ": no free temporary directory name in " + parent.string());
+  throw WriteError("cannot draw plot " + name + ": no free temporary directory name in " + parent.string());
 }
 
 }  // namespace
@@ -82,7 +78,7 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
       const fs::path dir = MakeTemporaryDirectory(Directory(p), p.plot.name);
       temporary_dirs_.push_back(dir.string());
       WriteFile(dir / StandaloneDataFile(p.plot.name), p.plot.csv);
-      WriteFile(dir / (p.plot.name + ".gp"), p.plot.script);
+      WriteGnuplotScript((dir / (p.plot.name + ".gp")).string(), p.plot.script);
       for (PlotFormat f : formats) {
         const Terminal t = TerminalOf(f);
         const std::string file = p.plot.name + "." + FileExtension(t);
@@ -93,7 +89,7 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
                        "\nunset output\n",
                    what);
         if (!fs::is_regular_file(dir / file, ec) || fs::file_size(dir / file, ec) == 0)
-          throw InputError("cannot draw " + what + ": gnuplot reported success but wrote no " + file);
+          throw WriteError("cannot draw " + what + ": gnuplot reported success but wrote no " + file);
       }
       for (std::size_t i = 0; i < names.size(); ++i) moves_.push_back({(dir / names[i]).string(), paths[i]});
     }

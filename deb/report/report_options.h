@@ -22,6 +22,7 @@ struct ReportOptions {
   bool reverse_cps = false;  // add a stacked reverse-CPS plot per output
   bool progress = false;     // report progress on stderr (the caller decides, e.g. isatty)
   int threads = 0;           // gnuplot processes at a time; <= 0: DefaultThreadCount()
+  bool force = false;        // replace an output directory deb did not write (deb/core/output_dir.h)
   // gnuplot executable; empty: $DEB_GNUPLOT if set, else "gnuplot" on PATH.
   std::string gnuplot;
 

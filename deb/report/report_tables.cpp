@@ -140,7 +140,7 @@ Table BandTable(const OutputResult& o) {
 }
 
 ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const std::string& budget_file,
-                      const std::string& sha256, const std::string& date, double seconds) {
+                      const std::string& sha256, const std::string& date, std::optional<double> seconds) {
   ReportFacts f;
   std::size_t failed = 0, required = 0;
   for (const OutputResult& o : result.outputs) {
@@ -157,7 +157,7 @@ ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const st
       {"grid", ToString(budget.grid.kind) + ", " + std::to_string(result.grid.size()) + " frequencies, " +
                    Short(result.grid.min_hz()) + "–" + Short(result.grid.max_hz()) + " Hz"},
       {"bands", budget.bands.empty() ? "decades of the grid" : "as the budget defines them"},
-      {"evaluation", Sig(seconds, 3) + " s"},
+      {"evaluation", seconds ? Sig(*seconds, 3) + " s" : "not recorded (reproducible report: SOURCE_DATE_EPOCH)"},
       {"requirements", required == 0 ? "none given"
                                      : (failed == 0 ? "all " + std::to_string(required) + " met"
                                                     : std::to_string(failed) + " of " + std::to_string(required) +

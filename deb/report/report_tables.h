@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,7 +39,7 @@ struct ReportFacts {
   std::vector<std::string> conventions;  // one sentence each
 };
 ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const std::string& budget_file,
-                      const std::string& sha256, const std::string& date, double seconds);
+                      const std::string& sha256, const std::string& date, std::optional<double> seconds);
 
 std::string HtmlEscape(const std::string& text);
 std::string ToHtml(const Table& table);

@@ -7,6 +7,7 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <ctime>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/file_digest.h"
@@ -34,11 +36,11 @@ class Writer {
  public:
   Writer(fs::path root, ReportManifest* manifest) : root_(std::move(root)), manifest_(manifest) {}
   void Write(const std::string& relative, const std::string& text) {
-    const fs::path path = root_ / relative;
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw InputError("cannot write " + path.string());
+    WriteTextFile((root_ / relative).string(), text);
+    manifest_->files.push_back(relative);
+  }
+  void WriteScript(const std::string& relative, const std::string& script) {
+    WriteGnuplotScript((root_ / relative).string(), script);
     manifest_->files.push_back(relative);
   }
 
@@ -101,19 +103,48 @@ void RunJobs(std::size_t n, int threads, const std::function<void(std::size_t)>&
   if (error) std::rethrow_exception(error);
 }
 
-// The report's date: now, or $SOURCE_DATE_EPOCH for reproducible reports.
-std::string ReportDate() {
-  std::time_t t = std::time(nullptr);
-  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
-    char* end = nullptr;
-    const long long v = std::strtoll(epoch, &end, 10);
-    if (end && *end == '\0' && end != epoch) t = static_cast<std::time_t>(v);
-  }
+// $SOURCE_DATE_EPOCH (seconds since 1970) if set to a number: the date of a
+// reproducible report.
+std::optional<std::time_t> SourceDateEpoch() {
+  const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
+  if (!epoch) return std::nullopt;
+  char* end = nullptr;
+  const long long v = std::strtoll(epoch, &end, 10);
+  if (!end || *end != '\0' || end == epoch) return std::nullopt;
+  return static_cast<std::time_t>(v);
+}
+
+std::string UtcText(std::time_t t, const char* format) {
   std::tm utc{};
   gmtime_r(&t, &utc);
   char text[40];
-  std::strftime(text, sizeof(text), "%Y-%m-%d %H:%M:%S UTC", &utc);
+  std::strftime(text, sizeof(text), format, &utc);
   return text;
+}
+
+// The report's date: now, or $SOURCE_DATE_EPOCH for reproducible reports.
+std::string ReportDate() { return UtcText(SourceDateEpoch().value_or(std::time(nullptr)), "%Y-%m-%d %H:%M:%S UTC"); }
+
+// cairo stamps a PDF with the wall clock (/CreationDate (D:YYYYMMDDHHMMSSZ))
+// and ignores SOURCE_DATE_EPOCH: the date is overwritten in place, the same
+// number of bytes, so the file's cross-reference offsets stay valid.
+void StampPdfDate(const fs::path& pdf, std::time_t t) {
+  std::string bytes;
+  {
+    std::ifstream in(pdf, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string key = "/CreationDate (D:";
+  const std::string date = UtcText(t, "%Y%m%d%H%M%S");
+  bool changed = false;
+  for (std::size_t at = bytes.find(key); at != std::string::npos; at = bytes.find(key, at + 1)) {
+    const std::size_t digits = at + key.size();
+    if (digits + date.size() > bytes.size()) break;
+    if (bytes.find_first_not_of("0123456789", digits) < digits + date.size()) continue;  // not cairo's 14 digits
+    bytes.replace(digits, date.size(), date);
+    changed = true;
+  }
+  if (changed) WriteTextFile(pdf.string(), bytes);
 }
 
 std::string ColoursCsv(const Budget& budget) {
@@ -146,7 +177,7 @@ std::string PdfPage(std::string script, const std::string& footer) {
 void RequireFile(const fs::path& path, const std::string& what) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) == 0)
-    throw InputError("cannot draw " + what + ": gnuplot reported success but wrote no " + path.filename().string());
+    throw WriteError("cannot draw " + what + ": gnuplot reported success but wrote no " + path.filename().string());
 }
 
 }  // namespace
@@ -159,7 +190,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   const fs::path root(dir), plots_dir = root / "plots";
   std::error_code ec;
   fs::create_directories(plots_dir, ec);
-  if (ec) throw InputError("cannot create directory " + plots_dir.string() + ": " + ec.message());
+  if (ec) throw WriteError("cannot create directory " + plots_dir.string() + ": " + ec.message());
   Writer writer(root, &manifest);
 
   const std::string sha256 = info.budget_file.empty() ? "" : FileSha256(info.budget_file);
@@ -173,7 +204,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   for (Plot& p : PathPlots(budget, result)) plots.push_back(std::move(p));
   for (const Plot& p : plots) {
     writer.Write("plots/" + p.name + ".csv", p.csv);
-    writer.Write("plots/" + p.name + ".gp", p.script);
+    writer.WriteScript("plots/" + p.name + ".gp", p.script);
     manifest.plots.push_back(p.name);
   }
   writer.Write("plots/colours.csv", ColoursCsv(budget));
@@ -188,7 +219,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
     const TitlePages title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings,
                                             static_cast<int>(plots.size()), sha256);
     const int total_pages = title.pages + static_cast<int>(plots.size());
-    if (pdf) writer.Write("plots/title_page.gp", title.script);
+    if (pdf) writer.WriteScript("plots/title_page.gp", title.script);
 
     // One gnuplot process per file, report.pdf (the longest) first, several
     // at a time (options.threads).
@@ -243,7 +274,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
                     static_cast<int>(batch.size()));
       try {
         RunGnuplot(gnuplot, plots_dir.string(), script, batch.size() == 1 ? what_of(batch[0]) : "the plots");
-      } catch (const InputError&) {
+      } catch (const WriteError&) {
         // Name the plot that failed: draw the batch's files one at a time.
         if (batch.size() == 1) throw;
         for (std::size_t i : batch) RunGnuplot(gnuplot, plots_dir.string(), jobs[i].script, what_of(i));
@@ -252,6 +283,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       for (std::size_t i : batch) RequireFile(root / jobs[i].file, what_of(i));
     });
     for (const Job& j : jobs) manifest.files.push_back(j.file);
+    if (const auto epoch = SourceDateEpoch(); epoch && pdf) StampPdfDate(root / "report.pdf", *epoch);
     if (pdf) {
       manifest.title_pages = title.pages;
       manifest.pdf_pages = title.pages + static_cast<int>(plots.size());
@@ -277,17 +309,17 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
 ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
                                     const ReportOptions& options, const std::string& out_dir) {
   ReportManifest manifest;
-  WriteDirectoryAtomically(out_dir, [&](const std::string& dir) {
-    const auto write = [&](const std::string& name, const std::string& text) {
-      std::ofstream out(fs::path(dir) / name, std::ios::binary);
-      out << text;
-      out.close();
-      if (!out) throw InputError("cannot write " + (fs::path(out_dir) / name).string());
-    };
-    write("summary.json", SummaryJson(budget, result, info));
-    for (const OutputResult& o : result.outputs) write(OutputCsvName(o.name), OutputCsv(result, o));
-    manifest = WriteReport(budget, result, info, options, dir);
-  });
+  ReplaceOptions replace;
+  replace.force = options.force;
+  ReplaceDirectory(
+      out_dir,
+      [&](const std::string& dir) {
+        WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(budget, result, info));
+        for (const OutputResult& o : result.outputs)
+          WriteTextFile((fs::path(dir) / OutputCsvName(o.name)).string(), OutputCsv(result, o));
+        manifest = WriteReport(budget, result, info, options, dir);
+      },
+      replace);
   return manifest;
 }
 

@@ -271,7 +271,9 @@ std::string RmsTics(double variance_max, double scale, const std::vector<std::pa
     tics.push_back({r, Short(r)});
   }
   std::vector<double> marked;
-  for (const auto& [m, label] : marked_rms) {  // closer than `gap` to an earlier marked value: gives way
+  for (const auto& mark : marked_rms) {  // closer than `gap` to an earlier marked value: gives way
+    const double m = mark.first;
+    const std::string& label = mark.second;
     if (m * m < gap || std::any_of(marked.begin(), marked.end(), [&](double x) { return std::fabs(x * x - m * m) < gap; }))
       continue;
     marked.push_back(m);

@@ -8,6 +8,8 @@
 #include <fstream>
 
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
+#include "deb/core/limits.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
@@ -83,13 +85,13 @@ class CsvReader {
   }
 
   TimeSeries Read() {
-    std::ifstream in(path_);
-    if (!in) throw InputError(path_ + ": cannot open the time series file: " + std::strerror(errno));
+    const std::string text = ReadInputFile(path_, "the time series file", limits::kMaxTextFileBytes);
+    TextLines lines(text, path_);
     std::string line;
     std::vector<Cell> cells;
     int line_no = 0;
-    while (std::getline(in, line)) {
-      ++line_no;
+    while (lines.Next(line)) {
+      line_no = lines.line_number();
       const std::size_t hash = line.find('#');
       if (hash != std::string::npos) {
         Comment(line, hash, line_no);
@@ -151,7 +153,7 @@ class CsvReader {
         const std::string text(cells[c].begin, cells[c].end);
         const std::string what = has_time_ && c == 0 ? "time" : "channel '" + ChannelName(c) + "'";
         Fail(line_no, cells[c].column,
-             what + ": '" + text + "' is " + (status == 1 ? "not a number" : "not finite") +
+             what + ": '" + Excerpt(text) + "' is " + (status == 1 ? "not a number" : "not finite") +
                  "; every sample must be a finite number");
       }
       values_.push_back(v);
@@ -280,9 +282,7 @@ TimeSeries ReadRawTimeSeries(const std::string& path, const RawTimeSeriesOptions
     throw InputError(path + ": missing sample rate: a raw file carries none; give it where the file is used");
   if (options.channels < 1)
     throw InputError(path + ": " + std::to_string(options.channels) + " channels; at least 1 is needed");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the raw time series file: " + std::strerror(errno));
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = ReadInputFile(path, "the raw time series file", limits::kMaxRawFileBytes);
   const std::size_t width = options.format == RawSampleFormat::kFloat32 ? 4 : 8;
   const std::size_t frame = width * static_cast<std::size_t>(options.channels);
   if (bytes.empty() || bytes.size() % frame != 0)
@@ -293,7 +293,7 @@ TimeSeries ReadRawTimeSeries(const std::string& path, const RawTimeSeriesOptions
   Eigen::MatrixXd samples(static_cast<Eigen::Index>(rows), options.channels);
   for (std::size_t r = 0; r < rows; ++r) {
     for (int c = 0; c < options.channels; ++c) {
-      const unsigned char* p = bytes.data() + r * frame + static_cast<std::size_t>(c) * width;
+      const unsigned char* p = reinterpret_cast<const unsigned char*>(bytes.data()) + r * frame + static_cast<std::size_t>(c) * width;
       samples(static_cast<Eigen::Index>(r), c) =
           width == 4 ? static_cast<double>(LittleEndian<float>(p)) : LittleEndian<double>(p);
     }

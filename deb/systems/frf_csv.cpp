@@ -89,7 +89,8 @@ FrfCsv FromTable(const NumericTable& t, std::vector<std::string> outputs, std::v
              "frequency " + NumberText(f) + " Hz is not greater than " + NumberText(f_hz.back()) + " Hz on line " +
                  std::to_string(last_line) + "; frequencies must increase strictly");
     Eigen::MatrixXcd m(static_cast<Eigen::Index>(outputs.size()), static_cast<Eigen::Index>(inputs.size()));
-    for (const auto& [oi, e] : entries) {
+    for (const auto& entry : entries) {
+      const auto& e = entry.second;
       const auto v = [&](Part p) { return row.values[e.at(p)]; };
       std::complex<double> value;
       if (e.count(Part::kRe)) {
@@ -106,7 +107,7 @@ FrfCsv FromTable(const NumericTable& t, std::vector<std::string> outputs, std::v
         }
         value = std::polar(mag, v(Part::kPhaseDeg) * kPi / 180.0);
       }
-      m(oi.first, oi.second) = value;
+      m(entry.first.first, entry.first.second) = value;
     }
     f_hz.push_back(f);
     h.push_back(std::move(m));

@@ -370,7 +370,8 @@ TEST_CASE("a static gain mixes fully coherent channels exactly") {
   // y = 2 u1 - 3 u2, S1 = 1, S2 = 4, rho = 1: 4 + 36 - 2*2*3*2 = 16; rho = -1: 64.
   const auto base = std::make_shared<IndependentChannels>(std::vector<std::shared_ptr<const Spectrum>>{
       std::make_shared<FlatSpectrum>(1.0), std::make_shared<FlatSpectrum>(4.0)});
-  for (const auto& [rho, expected] : {std::pair{1.0, 16.0}, std::pair{-1.0, 64.0}, std::pair{0.0, 40.0}}) {
+  for (const auto& rho_expected : {std::pair{1.0, 16.0}, std::pair{-1.0, 64.0}, std::pair{0.0, 40.0}}) {
+    const double rho = rho_expected.first, expected = rho_expected.second;
     CAPTURE(rho);
     const auto corr = std::make_shared<CorrelatedChannels>(base, MatrixXd{{1.0, rho}, {rho, 1.0}});
     const Budget b = OnePathBudget(MakeSource(corr, "N"),

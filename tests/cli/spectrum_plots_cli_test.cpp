@@ -197,7 +197,7 @@ TEST_CASE("a missing gnuplot is a clear error with a non-zero exit, and nothing 
   WriteRecording(dir);
   const Run r = Deb(dir, "spectrum welch rec.csv --segment 256 -o psd.csv --coherence coh.csv",
                     "DEB_GNUPLOT=/nonexistent/gnuplot");
-  CHECK(r.exit_code == 3);
+  CHECK(r.exit_code == 4);
   CHECK(r.err.find("gnuplot executable '/nonexistent/gnuplot' (from DEB_GNUPLOT)") != std::string::npos);
   CHECK(r.err.find("--no-plots") != std::string::npos);
   CHECK(Files(dir) == std::set<std::string>{"rec.csv"});
@@ -213,7 +213,7 @@ TEST_CASE("a failing gnuplot quotes gnuplot, keeps the older outputs and leaves 
   const Run r = Deb(dir, "spectrum welch rec.csv --segment 128 -o psd.csv",
                     "DEB_GNUPLOT=" + FailingGnuplot(fake).string());
   fs::remove_all(fake);
-  CHECK(r.exit_code == 3);
+  CHECK(r.exit_code == 4);
   CHECK(r.err.find("cannot draw plot psd.png") != std::string::npos);
   CHECK(r.err.find("undefined variable: nonsense") != std::string::npos);
   CHECK(ReadAll(dir / "psd.csv") == csv);

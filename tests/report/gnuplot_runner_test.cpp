@@ -25,16 +25,16 @@ fs::path FailingGnuplot(const fs::path& dir) {
 
 TEST_CASE("a missing gnuplot executable is an error that names it and how to fix it") {
   CHECK_THROWS_WITH_AS(FindGnuplot("/nonexistent/gnuplot"),
-                       doctest::Contains("gnuplot executable '/nonexistent/gnuplot'"), InputError);
-  CHECK_THROWS_WITH_AS(FindGnuplot("/nonexistent/gnuplot"), doctest::Contains("DEB_GNUPLOT"), InputError);
-  CHECK_THROWS_WITH_AS(FindGnuplot("no-such-gnuplot-anywhere"), doctest::Contains("(as requested)"), InputError);
+                       doctest::Contains("gnuplot executable '/nonexistent/gnuplot'"), WriteError);
+  CHECK_THROWS_WITH_AS(FindGnuplot("/nonexistent/gnuplot"), doctest::Contains("DEB_GNUPLOT"), WriteError);
+  CHECK_THROWS_WITH_AS(FindGnuplot("no-such-gnuplot-anywhere"), doctest::Contains("(as requested)"), WriteError);
 }
 
 TEST_CASE("without a request or DEB_GNUPLOT, gnuplot is searched on PATH") {
   const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
   ::unsetenv(kGnuplotVariable);
   ::setenv("PATH", TempDir("empty_path").c_str(), 1);
-  CHECK_THROWS_WITH_AS(FindGnuplot(""), doctest::Contains("'gnuplot' (searched on PATH)"), InputError);
+  CHECK_THROWS_WITH_AS(FindGnuplot(""), doctest::Contains("'gnuplot' (searched on PATH)"), WriteError);
   ::setenv("PATH", path.c_str(), 1);
   CHECK(fs::path(FindGnuplot("")).filename() == "gnuplot");
 }
@@ -46,20 +46,20 @@ TEST_CASE("the gnuplot executable comes from the request, then DEB_GNUPLOT, then
   ::setenv(kGnuplotVariable, exe.c_str(), 1);
   CHECK(FindGnuplot("") == exe.string());
   ::setenv(kGnuplotVariable, "/nonexistent/gnuplot", 1);
-  CHECK_THROWS_WITH_AS(FindGnuplot(""), doctest::Contains("from DEB_GNUPLOT"), InputError);
+  CHECK_THROWS_WITH_AS(FindGnuplot(""), doctest::Contains("from DEB_GNUPLOT"), WriteError);
   ::unsetenv(kGnuplotVariable);
   CHECK(fs::path(FindGnuplot("")).filename() == "gnuplot");
 }
 
-TEST_CASE("a gnuplot error is an InputError that quotes gnuplot and names the plot") {
+TEST_CASE("a gnuplot error is a WriteError that quotes gnuplot and names the plot") {
   const fs::path dir = TempDir("error");
   const std::string gnuplot = FindGnuplot("");
   CHECK_THROWS_WITH_AS(RunGnuplot(gnuplot, dir.string(), "plot no_such_function(x)\n", "plot broken"),
-                       doctest::Contains("undefined function"), InputError);
+                       doctest::Contains("undefined function"), WriteError);
   CHECK_THROWS_WITH_AS(RunGnuplot(gnuplot, dir.string(), "plot no_such_function(x)\n", "plot broken"),
-                       doctest::Contains("cannot draw plot broken"), InputError);
+                       doctest::Contains("cannot draw plot broken"), WriteError);
   // Nothing of the failed run is left in the temporary directory.
-  CHECK(CountWithPrefix(fs::temp_directory_path(), "deb-gnuplot-" + std::to_string(::getpid())) == 0);
+  CHECK(CountWithPrefix(fs::temp_directory_path(), "deb-gnuplot-" + std::to_string(::getpid()) + "-") == 0);
 }
 
 TEST_CASE("a working script runs in the given directory") {

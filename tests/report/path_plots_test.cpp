@@ -87,7 +87,7 @@ outputs:
   const std::vector<Plot> plots = PathPlots(budget, result);
   REQUIRE(plots.size() == 1);
   CHECK(plots[0].script.find("set xrange [1:1000]") != std::string::npos);
-  CHECK(plots[0].script.find("widened to the path's poles (f_{n} 200 Hz)") != std::string::npos);
+  CHECK(plots[0].script.find("widened to the path''s poles (f_{n} 200 Hz)") != std::string::npos);
   CHECK(plots[0].caption.find("Shown: 1–1000 Hz") != std::string::npos);
   // The CSV holds the resonance: its largest |h| is near 1 / (2 zeta) = 50.
   double peak = 0.0;

@@ -10,10 +10,11 @@ TEST_CASE("gnuplot strings are single-quoted with doubled quotes and no line bre
   CHECK(Quote("two\nlines") == "'two lines'");
 }
 
-TEST_CASE("double-quoted gnuplot strings keep line breaks and escape quotes and backslashes") {
-  CHECK(QuoteLines("two\nlines") == "\"two\\nlines\"");
-  CHECK(QuoteLines("say \"hi\"") == "\"say \\\"hi\\\"\"");
-  CHECK(QuoteLines(Enhanced("a_b")) == "\"a\\\\_b\"");  // gnuplot reads a\_b, as from Quote
+TEST_CASE("several lines are single-quoted strings joined by a line break, so no user text is double-quoted") {
+  CHECK(QuoteLines("two\nlines") == "('two'.\"\\n\".'lines')");
+  CHECK(QuoteLines("say \"hi\" it's `x`") == "('say \"hi\" it''s `x`')");
+  CHECK(QuoteLines(Enhanced("a_b")) == "('a\\_b')");  // gnuplot reads a\_b, as from Quote
+  CHECK(Quote("a\rb\tc\x01") == "'a b c '");  // control characters would break the command
 }
 
 TEST_CASE("names are escaped for enhanced text so that underscores are not subscripts") {

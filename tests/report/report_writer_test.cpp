@@ -209,9 +209,9 @@ TEST_CASE("plots are drawn in batches, yet a failing plot is named in the error 
     options.threads = threads;
     const fs::path dir = parent / ("report" + std::to_string(threads));
     CHECK_THROWS_WITH_AS(WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string()),
-                         doctest::Contains("cannot draw plot z_velocity_psd.png: gnuplot"), InputError);
+                         doctest::Contains("cannot draw plot z_velocity_psd.png: gnuplot"), WriteError);
     CHECK_THROWS_WITH_AS(WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string()),
-                         doctest::Contains("picky gnuplot refuses this plot"), InputError);
+                         doctest::Contains("picky gnuplot refuses this plot"), WriteError);
     CHECK_FALSE(fs::exists(dir));
   }
 }

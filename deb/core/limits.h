@@ -1,0 +1,35 @@
+// The bounds deb puts on every size that input can ask for, so that a typo or
+// a hostile file ends in a located error instead of exhausting memory or time.
+// Each is far above what a real budget needs; the README lists them.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace deb::limits {
+
+// Frequencies of one grid (any type: auto, log, linear, explicit).
+inline constexpr std::size_t kMaxGridPoints = 5'000'000;
+// Density settings of the automatic grid (points per decade, per resonance).
+inline constexpr double kMaxPointsPerDecade = 100'000;
+inline constexpr double kMaxPointsPerResonance = 100'000;
+// Frequencies a grid may reach, in Hz: beyond them (2 pi f)^2 and the powers
+// of s in a transfer function leave the range of a double.
+inline constexpr double kMinGridHz = 1e-12;
+inline constexpr double kMaxGridHz = 1e15;
+// Channels of one source, inputs or outputs of one path.
+inline constexpr int kMaxChannels = 10'000;
+// Variants of one sweep, values of one swept parameter.
+inline constexpr std::size_t kMaxSweepVariants = 100'000;
+// YAML nodes a sweep key path with [*] may visit (aliases can make a short
+// file name a huge tree).
+inline constexpr std::size_t kMaxKeyPathVisits = 1'000'000;
+// Files read on the user's behalf.
+inline constexpr std::uintmax_t kMaxBudgetFileBytes = 64ull << 20;  // 64 MiB
+inline constexpr std::uintmax_t kMaxTextFileBytes = 1ull << 30;     // 1 GiB: spectra, FRF, CSV recordings, summaries
+inline constexpr std::uintmax_t kMaxRawFileBytes = 8ull << 30;      // 8 GiB: raw binary recordings
+inline constexpr std::size_t kMaxLineBytes = 4u << 20;              // 4 MiB: one line of a text table
+// Seconds one gnuplot run may take before it is stopped (DEB_GNUPLOT_TIMEOUT overrides).
+inline constexpr int kGnuplotTimeoutSeconds = 300;
+
+}  // namespace deb::limits

@@ -1,0 +1,190 @@
+#include "deb/core/output_dir.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>  // renameat2 (glibc >= 2.28)
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <vector>
+
+#include "deb/core/error.h"
+
+namespace deb {
+namespace fs = std::filesystem;
+namespace {
+
+std::string Reason(int error) { return std::strerror(error); }
+
+[[noreturn]] void Fail(const std::string& what, const std::error_code& ec) {
+  throw WriteError(what + ": " + ec.message());
+}
+
+bool HasMarker(const fs::path& dir) {
+  std::error_code ec;
+  return fs::is_regular_file(dir / kOutputMarker, ec) || fs::is_regular_file(dir / "summary.json", ec);
+}
+
+bool IsEmptyDirectory(const fs::path& dir) {
+  std::error_code ec;
+  return fs::is_directory(dir, ec) && fs::is_empty(dir, ec);
+}
+
+// True unless the process is known to be gone (a PID we may not signal is alive).
+bool ProcessAlive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH); }
+
+// ".NAME.tmp-PID" or ".NAME.tmp-PID.old" beside the target: the PID, else -1.
+long TemporaryPid(const std::string& entry, const std::string& prefix, bool* old) {
+  if (entry.compare(0, prefix.size(), prefix) != 0) return -1;
+  std::string rest = entry.substr(prefix.size());
+  *old = rest.size() > 4 && rest.compare(rest.size() - 4, 4, ".old") == 0;
+  if (*old) rest.resize(rest.size() - 4);
+  if (rest.empty() || rest.size() > 10 || rest.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return std::stol(rest);
+}
+
+// Removes what killed runs left beside `target`; puts back a report that a
+// killed two-rename replacement had moved aside while the target is missing.
+void CleanStaleTemporaries(const fs::path& parent, const fs::path& target) {
+  const std::string prefix = "." + target.filename().string() + ".tmp-";
+  std::error_code ec;
+  std::vector<fs::path> stale_old, stale_new;
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+    bool old = false;
+    const long pid = TemporaryPid(it->path().filename().string(), prefix, &old);
+    if (pid < 0 || pid == ::getpid() || ProcessAlive(pid)) continue;
+    if (!it->is_directory(ec) || it->is_symlink(ec) || !HasMarker(it->path())) continue;  // only what deb wrote
+    (old ? stale_old : stale_new).push_back(it->path());
+  }
+  for (const fs::path& p : stale_old) {
+    if (!fs::exists(fs::symlink_status(target, ec))) fs::rename(p, target, ec);  // the old report comes back
+    if (fs::exists(p, ec)) fs::remove_all(p, ec);
+  }
+  for (const fs::path& p : stale_new) fs::remove_all(p, ec);
+}
+
+// Swaps two paths in one step. False (errno set) where the file system or
+// kernel cannot exchange.
+bool Exchange(const fs::path& a, const fs::path& b) {
+#ifdef RENAME_EXCHANGE
+  return ::renameat2(AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0;
+#else
+  (void)a;
+  (void)b;
+  errno = ENOSYS;
+  return false;
+#endif
+}
+
+// The directories create_directories(dir) would create, outermost first.
+std::vector<fs::path> MissingAncestors(fs::path dir) {
+  std::vector<fs::path> missing;
+  std::error_code ec;
+  while (!dir.empty() && !fs::exists(fs::symlink_status(dir, ec))) {
+    missing.insert(missing.begin(), dir);
+    if (dir == dir.parent_path()) break;
+    dir = dir.parent_path();
+  }
+  return missing;
+}
+
+// The directory that out_dir names: a symbolic link is followed to its target.
+fs::path ResolveTarget(const std::string& out_dir) {
+  fs::path target = fs::absolute(out_dir).lexically_normal();
+  if (target.filename().empty()) target = target.parent_path();  // "reports/x/" -> "reports/x"
+  std::error_code ec;
+  for (int hops = 0; fs::is_symlink(target, ec); ++hops) {
+    if (hops == 40) throw WriteError("cannot write " + out_dir + ": too many levels of symbolic links");
+    const fs::path link = fs::read_symlink(target, ec);
+    if (ec) Fail("cannot follow the symbolic link " + target.string(), ec);
+    target = (link.is_absolute() ? link : target.parent_path() / link).lexically_normal();
+  }
+  if (target == target.root_path() || target.filename() == "." || target.filename() == "..")
+    throw WriteError("cannot write the output at " + target.string() + ": it is not a directory deb can replace");
+  return target;
+}
+
+}  // namespace
+
+void WriteTextFile(const std::string& path, const std::string& text) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw WriteError("cannot write " + path + ": " + Reason(errno));
+  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
+  const int write_error = written == text.size() ? 0 : errno;
+  const int close_error = std::fclose(f) == 0 ? 0 : errno;
+  if (write_error || close_error) {
+    std::remove(path.c_str());
+    throw WriteError("cannot write " + path + ": " + Reason(write_error ? write_error : close_error));
+  }
+}
+
+void ReplaceDirectory(const std::string& out_dir, const std::function<void(const std::string&)>& fill,
+                      const ReplaceOptions& options) {
+  const fs::path target = ResolveTarget(out_dir);
+  const fs::path parent = target.parent_path();
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(target, ec);
+  const bool exists = fs::exists(status);
+  if (exists && !options.force) {
+    if (!fs::is_directory(status))
+      throw WriteError("refusing to replace " + target.string() + ": it is " +
+                       (fs::is_regular_file(status) ? "a regular file" : "not a directory") +
+                       ", not a report written by deb; choose another --out, or pass --force to replace it");
+    if (!HasMarker(target) && !IsEmptyDirectory(target))
+      throw WriteError("refusing to replace " + target.string() +
+                       ": it is a directory deb did not write (it has no " + kOutputMarker +
+                       " file); choose another --out, or pass --force to replace it and everything in it");
+  }
+  const std::vector<fs::path> created = MissingAncestors(parent);
+  const auto remove_created = [&] {
+    std::error_code ignored;
+    for (auto it = created.rbegin(); it != created.rend(); ++it) fs::remove(*it, ignored);  // only if empty
+  };
+  fs::create_directories(parent, ec);
+  if (ec) Fail("cannot create directory " + parent.string(), ec);
+  CleanStaleTemporaries(parent, target);
+
+  const std::string stem = "." + target.filename().string() + ".tmp-" + std::to_string(::getpid());
+  const fs::path tmp = parent / stem, old = parent / (stem + ".old");
+  fs::remove_all(tmp, ec);
+  if (!fs::create_directory(tmp, ec) || ec) {
+    const std::error_code why = ec;
+    remove_created();
+    Fail("cannot create directory " + tmp.string(), why);
+  }
+  try {
+    WriteTextFile((tmp / kOutputMarker).string(), "written by deb; deb replaces this directory on its next run\n");
+    fill(tmp.string());
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    remove_created();
+    throw;
+  }
+  const bool target_exists = fs::exists(fs::symlink_status(target, ec));
+  if (target_exists && Exchange(tmp, target)) {
+    fs::remove_all(tmp, ec);  // now the previous content
+    return;
+  }
+  if (target_exists) {
+    // No exchange on this file system: move the old content aside first. A
+    // kill between the renames leaves it in `old`, which the next run restores.
+    if (::rename(target.c_str(), old.c_str()) != 0) {
+      const int why = errno;
+      fs::remove_all(tmp, ec);
+      throw WriteError("cannot replace " + target.string() + ": " + Reason(why));
+    }
+  }
+  if (::rename(tmp.c_str(), target.c_str()) != 0) {
+    const int why = errno;
+    if (target_exists) ::rename(old.c_str(), target.c_str());
+    fs::remove_all(tmp, ec);
+    remove_created();
+    throw WriteError("cannot move the output into " + target.string() + ": " + Reason(why));
+  }
+  if (target_exists) fs::remove_all(old, ec);
+}
+
+}  // namespace deb
