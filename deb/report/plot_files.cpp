@@ -74,7 +74,7 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
       const std::vector<std::string> paths = StandalonePlotPaths(p, formats);
       std::error_code ec;
       if (!fs::is_directory(Directory(p), ec))
-        throw InputError(p.directory + ": no such directory, for the plot " + paths.back());
+        throw WriteError(p.directory + ": no such directory, for the plot " + paths.back());
       const fs::path dir = MakeTemporaryDirectory(Directory(p), p.plot.name);
       temporary_dirs_.push_back(dir.string());
       WriteFile(dir / StandaloneDataFile(p.plot.name), p.plot.csv);

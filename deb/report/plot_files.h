@@ -35,7 +35,7 @@ class StagedPlots {
   // Draws every plot in every format with gnuplot (FindGnuplot(gnuplot):
   // "" means $DEB_GNUPLOT, else gnuplot on PATH), each into a hidden
   // temporary directory inside its directory, which must exist.
-  // @throws InputError if formats is empty or repeats one, gnuplot is
+  // @throws InputError if formats is empty or repeats one; WriteError if gnuplot is
   //   missing or fails (naming the plot), or a file cannot be written; the
   //   temporary directories are removed first.
   StagedPlots(const std::vector<StandalonePlot>& plots, const std::vector<PlotFormat>& formats,

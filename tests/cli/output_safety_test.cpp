@@ -201,3 +201,26 @@ TEST_CASE("only what deb wrote is replaced; --force replaces anything; a symboli
   CHECK(fs::is_symlink(dir / "reports" / "link"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("with SOURCE_DATE_EPOCH two runs give byte-identical report directories") {
+  const fs::path dir = FreshDir("reproducible");
+  ::setenv("SOURCE_DATE_EPOCH", "1700000000", 1);
+  for (const char* out : {"a", "b"})
+    REQUIRE(RunDeb({"run", Budget("single_axis_isolator.yaml"), "--out", (dir / out).string(), "--format",
+                    "png,pdf,svg"}) == 0);
+  ::unsetenv("SOURCE_DATE_EPOCH");
+  const std::set<std::string> files = Files(dir / "a");
+  REQUIRE(files == Files(dir / "b"));
+  const auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  for (const std::string& f : files) {
+    CAPTURE(f);
+    CHECK(bytes(dir / "a" / f) == bytes(dir / "b" / f));
+  }
+  CHECK(bytes(dir / "a" / "report.pdf").find("/CreationDate (D:20231114221320Z)") != std::string::npos);
+  fs::remove_all(dir);
+}

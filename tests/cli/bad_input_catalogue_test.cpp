@@ -1,0 +1,1245 @@
+// The bad-input catalogue: every input of the project's reliability audit
+// (its case ids: Y budget, W sweep, N sensitivity, S spectrum CSV, T time
+// series, F FRF table, C command line, X security-minded) run through the deb binary, one fresh directory per case. Each case states the
+// exit code and the form of the first `deb: error:` line (budget errors:
+// `b.yaml:LINE:COL: KEY.PATH: ...`), and for every case that fails, that the
+// directory is exactly as it was: nothing new (not even an empty reports/),
+// nothing changed, nothing deleted.
+//
+// Ids with a suffix (Y00p, C25f, ...) are follow-ups of the audit's case;
+// ids with a trailing '+' are new cases in the same family.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <utility>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// ---------------------------------------------------------------------------
+// What a case is.
+
+using Files = std::vector<std::pair<std::string, std::string>>;  // name -> content, written in order
+
+struct Result {
+  int exit_code = -1;
+  double seconds = 0.0;
+  std::string out, err;
+};
+
+// Extra assertions for a case; `work` is the case directory. Returns a
+// description of what is wrong, or "" when all is well.
+using Check = std::string (*)(const fs::path& work, const Result& r);
+
+// The form of the first `deb: error:` line.
+struct Where {
+  enum Kind { kSuccess, kUsage, kBudget, kFile, kContains } kind = kUsage;
+  std::string file;    // kBudget, kFile: the file named first
+  std::string marker;  // kBudget: text in `file` at the reported position ('|' marks it); "" = any position
+  std::string key;     // kBudget: key path prefix; "" = not checked
+  std::string text;    // kContains: text the line holds (e.g. "spec.csv:6:4:")
+};
+
+Where Ok() { return {Where::kSuccess, "", "", "", ""}; }
+Where Usage() { return {Where::kUsage, "", "", "", ""}; }
+// b.yaml:LINE:COL: KEY...: the position of `marker` in b.yaml, the key path starting with `key`.
+Where At(const std::string& marker, const std::string& key) { return {Where::kBudget, "b.yaml", marker, key, ""}; }
+Where AtIn(const std::string& file, const std::string& marker, const std::string& key) {
+  return {Where::kBudget, file, marker, key, ""};
+}
+// `deb: error: FILE...`: the message starts with the file's name (no position).
+Where InFile(const std::string& file) { return {Where::kFile, file, "", "", ""}; }
+// The error line holds `text` somewhere (a table position such as "spec.csv:6:4:", or a name).
+Where Names(const std::string& text) { return {Where::kContains, "", "", "", text}; }
+
+struct Case {
+  std::string id;
+  std::string what;
+  Files files;
+  std::string args;  // the deb command line after `deb` (shell syntax), run in the case directory
+  int exit_code;
+  Where where;
+  std::vector<std::string> says = {};   // stderr holds each of these
+  std::vector<std::string> never = {};  // stderr holds none of these
+  std::string setup = "";               // shell, in the case directory, before the snapshot ($DEB is deb)
+  std::string env = "";                 // VAR=value ... for deb
+  double max_seconds = 0;               // 0: only the 60 s timeout
+  Check check = nullptr;
+};
+
+// ---------------------------------------------------------------------------
+// Inputs.
+
+// One flat force source, a 2nd-order transfer function, one output in nm,
+// a log grid 1-100 Hz (the audit's base budget).
+const std::string kBase = R"Y(name: cat
+description: bad-input catalogue base budget
+grid: {type: log, min_hz: 1, max_hz: 100, points: 50}
+sources:
+  - name: noise
+    unit: N
+    spectrum: {type: flat, level: 1.0e-6}
+paths:
+  - name: plant
+    type: transfer_function
+    num: [1]
+    den: [1, 2, 100]
+    inputs: [u]
+    outputs: [y]
+    input_unit: N
+    output_unit: um
+contributors:
+  - {name: c1, source: noise, path: plant}
+outputs:
+  - {name: z, signal: y, unit: nm, rms_max: 5}
+)Y";
+
+const std::string kTf = "type: transfer_function\n    num: [1]\n    den: [1, 2, 100]\n";
+const std::string kSourceBlock = "sources:\n  - name: noise\n    unit: N\n    spectrum: {type: flat, level: 1.0e-6}\n";
+
+// `text` with the first `from` replaced by `to` (which must be there).
+std::string Sub(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos) {
+    std::fprintf(stderr, "catalogue: substitution '%s' not found\n", from.c_str());
+    std::abort();
+  }
+  return text.replace(at, from.size(), to);
+}
+
+Files Budget(const std::string& text) { return {{"b.yaml", text}}; }
+Files B() { return Budget(kBase); }
+Files B(const std::string& from, const std::string& to) { return Budget(Sub(kBase, from, to)); }
+Files B(const std::string& f1, const std::string& t1, const std::string& f2, const std::string& t2) {
+  return Budget(Sub(Sub(kBase, f1, t1), f2, t2));
+}
+Files With(Files files, const std::string& name, const std::string& content) {
+  files.emplace_back(name, content);
+  return files;
+}
+
+// Measured spectrum source reading spec.csv (0.5-200 Hz, 1e-6 N^2/Hz).
+const std::string kMeasured = Sub(kBase, "{type: flat, level: 1.0e-6}", "{type: measured, file: spec.csv}");
+const std::string kSpec =
+    "f_hz,z\n0.5,1e-6\n1,1e-6\n2,1e-6\n5,1e-6\n10,1e-6\n20,1e-6\n50,1e-6\n100,1e-6\n200,1e-6\n";
+const std::string kSpecRows = "0.5,1e-6\n1,1e-6\n2,1e-6\n5,1e-6\n10,1e-6\n20,1e-6\n50,1e-6\n100,1e-6\n200,1e-6\n";
+const std::string kBom = "\xEF\xBB\xBF";
+Files M(const std::string& spec) { return {{"b.yaml", kMeasured}, {"spec.csv", spec}}; }
+Files M(const std::string& from, const std::string& to, const std::string& spec) {
+  return {{"b.yaml", Sub(kMeasured, from, to)}, {"spec.csv", spec}};
+}
+std::string SpecSub(const std::string& from, const std::string& to) { return Sub(kSpec, from, to); }
+std::string Replace(std::string s, char from, char to) {
+  for (char& c : s) c = c == from ? to : c;
+  return s;
+}
+Where AtSpecFile() { return At("file: |spec.csv", "sources[0].spectrum.file"); }
+
+// Time-series source: a recording read by Welch at load; the grid 5-400 Hz
+// lies inside its bins (1000 Hz, default segments of 512 samples).
+const std::string kTsBase = Sub(kBase, "min_hz: 1, max_hz: 100", "min_hz: 5, max_hz: 400");
+std::string Ts(const std::string& spectrum) { return Sub(kTsBase, "{type: flat, level: 1.0e-6}", spectrum); }
+const std::string kTs = Ts("{type: timeseries, file: rec.csv}");
+const std::string kRaw = Ts("{type: timeseries, file: rec.raw, format: float64, rate_hz: 1000, file_channels: 1}");
+
+// Deterministic white noise in [-1, 1].
+std::vector<double> Noise(int n, std::uint64_t seed) {
+  std::vector<double> v;
+  std::uint64_t s = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+  for (int i = 0; i < n; ++i) {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    v.push_back(static_cast<double>(s >> 11) / 9007199254740992.0 * 2.0 - 1.0);
+  }
+  return v;
+}
+std::string Num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
+}
+// One channel x at 1000 Hz, `n` samples scaled by `scale`.
+std::string RecCsv(int n = 4096, double scale = 1.0) {
+  std::string s = "# rate_hz: 1000\nx\n";
+  for (double v : Noise(n, 1)) s += Num(scale * v) + "\n";
+  return s;
+}
+// A time column t (first data row on line 2), `n` samples; `t_of(i)` the stamps.
+std::string RecTimed(int n, const std::function<double(int)>& t_of) {
+  std::string s = "t,x\n";
+  const auto x = Noise(n, 2);
+  for (int i = 0; i < n; ++i) s += Num(t_of(i)) + "," + Num(x[static_cast<std::size_t>(i)]) + "\n";
+  return s;
+}
+// Three co-located sensors (common motion plus independent noise), named as given.
+std::string Rec3(const std::string& header) {
+  std::string s = "# rate_hz: 1000\n# unit: um/s\n" + header + "\n";
+  const auto u = Noise(4096, 3), e1 = Noise(4096, 4), e2 = Noise(4096, 5), e3 = Noise(4096, 6);
+  for (std::size_t i = 0; i < u.size(); ++i)
+    s += Num(u[i] + 0.1 * e1[i]) + "," + Num(u[i] + 0.1 * e2[i]) + "," + Num(u[i] + 0.2 * e3[i]) + "\n";
+  return s;
+}
+// A shaker input F and a response x (a short FIR filter of F plus a little noise).
+std::string RecFrf(const std::string& header) {
+  std::string s = "# rate_hz: 1000\n" + header + "\n";
+  const auto f = Noise(4096, 7), e = Noise(4096, 8);
+  for (std::size_t i = 0; i < f.size(); ++i)
+    s += Num(f[i]) + "," + Num(0.5 * f[i] + 0.3 * (i > 0 ? f[i - 1] : 0.0) + 0.01 * e[i]) + "\n";
+  return s;
+}
+// Raw little-endian float64 samples (this host is little-endian, as deb requires).
+std::string RawF64(const std::vector<double>& v) {
+  std::string s(v.size() * sizeof(double), '\0');
+  if (!v.empty()) std::memcpy(&s[0], v.data(), s.size());
+  return s;
+}
+std::string RawWithNan() {
+  auto v = Noise(4096, 9);
+  v[100] = std::nan("");
+  return RawF64(v);
+}
+
+// A measured FRF path reading frf.csv (0.5-200 Hz, |H| = 0.01 um/N).
+const std::string kFrf = Sub(kBase, "type: transfer_function\n    num: [1]\n    den: [1, 2, 100]\n    inputs: [u]\n"
+                                    "    outputs: [y]\n",
+                             "type: frf\n    file: frf.csv\n");
+const std::string kFrfTable =
+    "f_hz, y/u.mag, y/u.phase_deg\n0.5, 0.01, 0\n1, 0.01, -1\n2, 0.01, -2\n5, 0.01, -5\n10, 0.01, -10\n"
+    "20, 0.01, -20\n50, 0.01, -50\n100, 0.01, -100\n200, 0.01, -150\n";
+Files Fr(const std::string& table) { return {{"b.yaml", kFrf}, {"frf.csv", table}}; }
+Where AtFrfFile() { return At("file: |frf.csv", "paths[0].file"); }
+
+// A sweep section over the base budget.
+std::string Sweep(const std::string& section) { return kBase + "sweep:\n" + section; }
+const std::string kSweep = Sweep("  parameters:\n    - {path: \"sources[0].spectrum.level\", values: [1.0e-6, 2.0e-6]}\n");
+std::string SweepPath(const std::string& path) {
+  return Sweep("  parameters:\n    - {path: \"" + path + "\", values: [1.0e-6, 2.0e-6]}\n");
+}
+
+// Nested aliases: 9 levels of 10, 10^9 leaves if anything expanded them.
+std::string AliasBomb(const std::string& leaf) {
+  std::string s = "[&l0 [" + leaf;
+  for (int i = 1; i < 10; ++i) s += ", " + leaf;
+  s += "]";
+  for (int level = 1; level < 9; ++level) {
+    s += ", &l" + std::to_string(level) + " [*l" + std::to_string(level - 1);
+    for (int i = 1; i < 10; ++i) s += ", *l" + std::to_string(level - 1);
+    s += "]";
+  }
+  return s + "]";
+}
+
+// A two-channel source with a correlation, through a 1 x 2 gain.
+std::string Correlated(const std::string& correlation) {
+  return Sub(Sub(kBase, "    unit: N\n", "    unit: N\n    channels: 2\n    correlation: " + correlation + "\n"),
+             kTf + "    inputs: [u]\n", "type: gain\n    gain: [[1, 1]]\n");
+}
+
+// A feedback loop around the plant with a gain controller.
+std::string Loop(const std::string& controller_units, const std::string& loop_tail) {
+  return Sub(kBase, "contributors:\n",
+             "  - {name: k, type: gain, gain: [[1000]], " + controller_units + "}\n"
+             "  - {name: fb, type: feedback, plant: plant, controller: k" + loop_tail + "}\ncontributors:\n");
+}
+
+// Injection payloads run `touch $DEBINJ`: DEBINJ (set for every case) is the
+// absolute path of INJECTED in the case directory, wherever gnuplot runs.
+// The name has no '_', which gnuplot's enhanced-text escaping would alter.
+// The budget's descriptions and channel names carry a backquoted command.
+const std::string kInjectionBudget = Sub(
+    Sub(Sub(Sub(Sub(Sub(kBase, "description: bad-input catalogue base budget",
+                        "description: \"x`touch $DEBINJ`\""),
+                    "    unit: N\n", "    unit: N\n    description: \"s`touch $DEBINJ`\"\n"),
+                "    type: transfer_function\n", "    description: \"p`touch $DEBINJ`\"\n    type: transfer_function\n"),
+            "{name: c1, source: noise, path: plant}", "{name: c1, source: noise, path: plant, description: \"c`touch $DEBINJ`\"}"),
+        "rms_max: 5}", "rms_max: 5, description: \"o`touch $DEBINJ`\", weighting: {num: [1], den: [0.001, 1], unit: s, description: \"w`touch $DEBINJ`\"}}"),
+    "inputs: [u]", "inputs: [\"u`touch $DEBINJ`\"]");
+const std::string kInjectionChannels =
+    Sub(Sub(kBase, "    unit: N\n", "    unit: N\n    channels: [\"a`touch $DEBINJ`\"]\n"), "inputs: [u]",
+        "inputs: [\"a`touch $DEBINJ`\"]");
+
+// A summary.json as deb compare reads it, with one part replaced.
+std::string Summary(const std::string& contributors, const std::string& bands, const std::string& variance = "1e-3") {
+  return "{\"budget\": \"r\", \"outputs\": [{\"name\": \"z\", \"unit\": \"nm\", \"rms\": 0.03, \"variance\": " +
+         variance + ", \"requirement\": null, \"contributors\": " + contributors + ", \"bands\": " + bands + "}]}\n";
+}
+const std::string kGoodContributors = "[{\"name\": \"c1\", \"variance\": 1e-3}]";
+
+// A deb report written earlier into `dir` from a budget 4x the base level.
+std::string EarlierReport(const std::string& dir) {
+  return "\"$DEB\" run old.yaml -q --no-plots --out " + dir + " && cp " + dir + "/summary.json ../io/old_summary.json";
+}
+const std::string kOld = Sub(kBase, "level: 1.0e-6", "level: 4.0e-6");
+
+std::string CheckInjection(const fs::path& work, const Result& r);
+std::string CheckNoPasswdLine(const fs::path& work, const Result& r);
+std::string CheckDefaultReport(const fs::path& work, const Result& r);
+std::string CheckSymlinkWrittenThrough(const fs::path& work, const Result& r);
+std::string CheckPrevReplaced(const fs::path& work, const Result& r);
+std::string CheckMydataReplaced(const fs::path& work, const Result& r);
+std::string CheckBomRowKept(const fs::path& work, const Result& r);
+std::string CheckCrRowsRead(const fs::path& work, const Result& r);
+
+const std::string kRun = "run b.yaml --no-plots";
+// "not a regular file" or "deb reads regular files only": either way the message says why.
+const std::string kNotRegular = "regular file";
+const std::string kHang = "#!/bin/sh\nsleep 30\n";
+const Files kMydata = {{"b.yaml", kBase}, {"mydata/thesis.tex", "\\documentclass{article}\n"},
+                       {"mydata/main.c", "int main(void) { return 0; }\n"}};
+
+// ---------------------------------------------------------------------------
+// The catalogue.
+
+const std::vector<Case>& Catalogue() {
+  static const std::vector<Case> cases = {
+      // ---- Y: YAML budgets ------------------------------------------------
+      {"Y00", "valid baseline budget", B(), kRun, 0, Ok(), {}, {}, "", "", 0, CheckDefaultReport},
+      {"Y00p", "valid baseline budget, with plots", B(), "run b.yaml", 0, Ok(), {}, {}, "", "", 0, CheckDefaultReport},
+      {"Y00c", "deb check of the baseline", B(), "check b.yaml", 0, Ok()},
+      {"Y01", "syntax: unclosed flow sequence", B("den: [1, 2, 100]", "den: [1, 2, 100"), kRun, 3, At("", "")},
+      {"Y02", "syntax: tab indentation", B("    unit: N\n", "\tunit: N\n"), kRun, 3, At("", "")},
+      {"Y03", "empty file", Budget(""), kRun, 3, InFile("b.yaml")},
+      {"Y04", "root is a list", Budget("- a\n- b\n"), kRun, 3, InFile("b.yaml")},
+      {"Y05", "root is a scalar", Budget("just words\n"), kRun, 3, InFile("b.yaml")},
+      {"Y06", "missing required key name", B("name: cat\n", ""), kRun, 3, At("", ""), {"'name'"}},
+      {"Y07", "missing required key sources", B(kSourceBlock, ""), kRun, 3, At("", ""), {"'sources'"}},
+      {"Y08", "unknown root key", B("paths:\n", "colour: red\npaths:\n"), kRun, 3, At("colour", "colour")},
+      {"Y09", "unknown key in a source", B("    unit: N\n", "    unit: N\n    levle: 3\n"), kRun, 3,
+       At("levle", "sources[0].levle")},
+      {"Y10", "level is a word", B("level: 1.0e-6", "level: abc"), kRun, 3, At("abc", "sources[0].spectrum.level")},
+      {"Y11", "level .nan", B("level: 1.0e-6", "level: .nan"), kRun, 3, At(".nan", "sources[0].spectrum.level")},
+      {"Y12", "level .inf", B("level: 1.0e-6", "level: .inf"), kRun, 3, At(".inf", "sources[0].spectrum.level")},
+      {"Y13", "level negative", B("level: 1.0e-6", "level: -1"), kRun, 3, At("level: |-1", "sources[0].spectrum.level")},
+      {"Y14", "level 1e400", B("level: 1.0e-6", "level: 1e400"), kRun, 3, At("1e400", "sources[0].spectrum.level")},
+      {"Y15", "level is a list", B("level: 1.0e-6", "level: [1, 2]"), kRun, 3,
+       At("level: |[1, 2]", "sources[0].spectrum.level")},
+      {"Y16", "rms_max 0", B("rms_max: 5", "rms_max: 0"), kRun, 3, At("rms_max: |0", "outputs[0].rms_max")},
+      {"Y17", "rms_max negative", B("rms_max: 5", "rms_max: -5"), kRun, 3, At("rms_max: |-5", "outputs[0].rms_max")},
+      {"Y18", "sources: []", B(kSourceBlock, "sources: []\n"), kRun, 3, At("source: |noise", "contributors[0].source")},
+      {"Y19", "contributors: []", B("contributors:\n  - {name: c1, source: noise, path: plant}\n", "contributors: []\n"),
+       kRun, 3, At("contributors: |[]", "contributors")},
+      {"Y20", "outputs: []", B("outputs:\n  - {name: z, signal: y, unit: nm, rms_max: 5}\n", "outputs: []\n"), kRun, 3,
+       At("outputs: |[]", "outputs")},
+      {"Y21", "duplicate source names", B("paths:\n", "  - {name: noise, unit: N, spectrum: {type: flat, level: 1}}\npaths:\n"),
+       kRun, 3, At("{name: |noise, unit", "sources[1].name")},
+      {"Y22", "duplicate path names",
+       B("contributors:\n", "  - {name: plant, type: gain, gain: [[1]], input_unit: N, output_unit: um}\ncontributors:\n"),
+       kRun, 3, At("{name: |plant, type: gain", "paths[1].name")},
+      {"Y23", "duplicate contributor names", B("outputs:\n", "  - {name: c1, path: plant, source: noise}\noutputs:\n"), kRun,
+       3, At("{name: |c1, path", "contributors[1].name")},
+      {"Y24", "duplicate output names", Budget(kBase + "  - {name: z, unit: nm, signal: y}\n"), kRun, 3,
+       At("{name: |z, unit", "outputs[1].name")},
+      {"Y25", "duplicate YAML key (D10): located at the second key", B("level: 1.0e-6}", "level: 1.0e-6, level: 5}"),
+       kRun, 3, At("level: 5", "sources[0].spectrum.level")},
+      {"Y25+", "duplicate YAML key at the root (D10)", Budget(kBase + "name: other\n"), kRun, 3, At("name: other", "name")},
+      {"Y26", "dangling contributor source", B("source: noise", "source: nosuch"), kRun, 3,
+       At("nosuch", "contributors[0].source")},
+      {"Y27", "dangling contributor path", B("path: plant}", "path: nosuch}"), kRun, 3, At("nosuch", "contributors[0].path")},
+      {"Y28", "dangling output signal", B("signal: y", "signal: q"), kRun, 3, At("signal: |q", "outputs[0].signal")},
+      {"Y29", "series referring to itself", B("contributors:\n", "  - {name: loop, type: series, of: [plant, loop]}\ncontributors:\n"),
+       kRun, 3, At("plant, |loop]", "paths[1].of[1]")},
+      {"Y30", "series cycle a -> b -> a",
+       B("contributors:\n",
+         "  - {name: a, type: series, of: [plant, b]}\n  - {name: b, type: series, of: [plant, a]}\ncontributors:\n"),
+       kRun, 3, At("plant, |b]", "paths[1].of[1]")},
+      {"Y31", "feedback around itself",
+       B("contributors:\n", "  - {name: fb, type: feedback, plant: fb, controller: plant}\ncontributors:\n"), kRun, 3,
+       At("plant: |fb", "paths[1].plant")},
+      {"Y32", "series of one path", B("contributors:\n", "  - {name: s, type: series, of: [plant]}\ncontributors:\n"), kRun,
+       3, At("of: |[plant]", "paths[1].of")},
+      {"Y33", "unstable path, exact: required",
+       B("den: [1, 2, 100]", "den: [1, -2, 100]", "path: plant}", "path: plant, exact: required}"), kRun, 3,
+       At("path: |plant, exact", "contributors[0].path")},
+      {"Y34", "unstable path, exact: auto", B("den: [1, 2, 100]", "den: [1, -2, 100]"), kRun, 3,
+       At("path: |plant}", "contributors[0].path")},
+      {"Y35", "undamped pole exactly on an explicit grid point",
+       B("{type: log, min_hz: 1, max_hz: 100, points: 50}", "{type: explicit, f_hz: [1, 10, 100]}", "den: [1, 2, 100]",
+         "den: [1, 0, 3947.8417604357433]"),
+       kRun, 3, At("{name: c1", "contributors[0]")},
+      {"Y36", "channel count mismatch", B("    unit: N\n", "    unit: N\n    channels: 3\n"), kRun, 3,
+       At("{name: c1", "contributors[0]")},
+      {"Y37", "source N into a path input in m", B("input_unit: N", "input_unit: m"), kRun, 3,
+       At("{name: c1", "contributors[0]")},
+      {"Y38", "output unit kg from um", B("unit: nm", "unit: kg"), kRun, 3, At("unit: |kg", "outputs[0].unit")},
+      {"Y39", "nonsense unit string", B("unit: N\n", "unit: furlongs/fortnight^^\n"), kRun, 3,
+       At("furlongs", "sources[0].unit")},
+      {"Y40", "grid points 1e12", B("points: 50", "points: 1e12"), kRun, 3, At("1e12", "grid.points")},
+      {"Y41", "grid points 2000000000 (16 GB)", B("points: 50", "points: 2000000000"), kRun, 3, At("", "grid"), {}, {}, "",
+       "", 30},
+      {"Y42", "grid points 1 (D07)", B("points: 50", "points: 1"), kRun, 3, At("", "grid")},
+      {"Y43", "grid points -5 (D07)", B("points: 50", "points: -5"), kRun, 3, At("", "grid")},
+      {"Y44", "grid points 2.5", B("points: 50", "points: 2.5"), kRun, 3, At("2.5", "grid.points")},
+      {"Y45", "log grid min_hz > max_hz (D07)", B("min_hz: 1, max_hz: 100", "min_hz: 100, max_hz: 1"), kRun, 3,
+       At("", "grid")},
+      {"Y46", "log grid min_hz == max_hz (D07)", B("min_hz: 1, max_hz: 100", "min_hz: 10, max_hz: 10"), kRun, 3,
+       At("", "grid")},
+      {"Y46+", "linear grid min_hz > max_hz (D07)",
+       B("{type: log, min_hz: 1, max_hz: 100, points: 50}", "{type: linear, min_hz: 100, max_hz: 1, points: 50}"), kRun,
+       3, At("", "grid")},
+      {"Y46++", "linear grid min_hz == max_hz (D07)",
+       B("{type: log, min_hz: 1, max_hz: 100, points: 50}", "{type: linear, min_hz: 10, max_hz: 10, points: 50}"), kRun,
+       3, At("", "grid")},
+      {"Y46+++", "linear grid points 1 (D07)",
+       B("{type: log, min_hz: 1, max_hz: 100, points: 50}", "{type: linear, min_hz: 1, max_hz: 100, points: 1}"), kRun,
+       3, At("", "grid")},
+      {"Y47", "grid min_hz 0", B("min_hz: 1,", "min_hz: 0,"), kRun, 3, At("min_hz: |0", "grid.min_hz")},
+      {"Y48", "explicit grid f_hz: []", B("{type: log, min_hz: 1, max_hz: 100, points: 50}", "{type: explicit, f_hz: []}"),
+       kRun, 3, At("", "grid.f_hz")},
+      {"Y49", "explicit grid not increasing",
+       B("{type: log, min_hz: 1, max_hz: 100, points: 50}", "{type: explicit, f_hz: [1, 5, 5, 10]}"), kRun, 3,
+       At("", "grid.f_hz")},
+      {"Y50", "grid type bogus", B("type: log", "type: cubic"), kRun, 3, At("cubic", "grid.type")},
+      {"Y51", "auto grid points_per_decade 2e9 (D06)",
+       B("{type: log, min_hz: 1, max_hz: 100, points: 50}",
+         "{type: auto, min_hz: 1, max_hz: 100, points_per_decade: 2000000000}"),
+       kRun, 3, At("", "grid"), {}, {}, "", "", 30},
+      {"Y52", "auto grid points_per_decade 0",
+       B("{type: log, min_hz: 1, max_hz: 100, points: 50}", "{type: auto, min_hz: 1, max_hz: 100, points_per_decade: 0}"),
+       kRun, 3, At("", "grid")},
+      {"Y53", "auto grid 1e-300..1e300 Hz (D06)",
+       B("{type: log, min_hz: 1, max_hz: 100, points: 50}", "{type: auto, min_hz: 1.0e-300, max_hz: 1.0e300}"), kRun, 3,
+       At("", "grid"), {}, {}, "", "", 30},
+      {"Y54", "log grid 1e-300..1e300 Hz (D22)", B("min_hz: 1, max_hz: 100", "min_hz: 1.0e-300, max_hz: 1.0e300"), kRun,
+       3, At("", "grid"), {}, {}, "", "", 30},
+      {"Y55", "band lo > hi", Budget(kBase + "bands:\n  - [10, 1]\n"), kRun, 3, At("  - |[10, 1]", "bands[0]")},
+      {"Y56", "band with one number", Budget(kBase + "bands:\n  - [1]\n"), kRun, 3, At("  - |[1]", "bands[0]")},
+      {"Y57", "band_requirements lo == hi",
+       B("rms_max: 5}", "rms_max: 5, band_requirements: [{lo_hz: 5, hi_hz: 5, rms_max: 1}]}"), kRun, 3,
+       At("[|{lo_hz: 5", "outputs[0].band_requirements[0]")},
+      {"Y58", "den: []", B("den: [1, 2, 100]", "den: []"), kRun, 3, At("- |name: plant", "paths[0]")},
+      {"Y59", "den all zeros", B("den: [1, 2, 100]", "den: [0, 0, 0]"), kRun, 3, At("- |name: plant", "paths[0]")},
+      {"Y60", "improper transfer function", B("num: [1]", "num: [1, 0, 0, 0]"), kRun, 3, At("- |name: plant", "paths[0]")},
+      {"Y61", "state-space dimension mismatch",
+       B(kTf, "type: state_space\n    A: [[0, 1], [-100, -2]]\n    B: [[0], [1], [2]]\n    C: [[1, 0]]\n    D: [[0]]\n"),
+       kRun, 3, At("- |name: plant", "paths[0]")},
+      {"Y62", "state-space A not square",
+       B(kTf, "type: state_space\n    A: [[0, 1, 0], [-100, -2, 0]]\n    B: [[0], [1]]\n    C: [[1, 0]]\n    D: [[0]]\n"),
+       kRun, 3, At("- |name: plant", "paths[0]")},
+      {"Y63", "ragged matrix",
+       B(kTf, "type: state_space\n    A: [[0, 1], [-100]]\n    B: [[0], [1]]\n    C: [[1, 0]]\n    D: [[0]]\n"), kRun,
+       3, At("[[0, 1], |[-100]]", "paths[0].A[1]")},
+      {"Y64", "gain: []", B(kTf + "    inputs: [u]\n    outputs: [y]\n", "type: gain\n    gain: []\n"), kRun, 3, At("{name: c1", "contributors[0]")},
+      {"Y65", "correlation 1.5", Budget(Correlated("1.5")), kRun, 3, At("correlation: |1.5", "sources[0].correlation")},
+      {"Y65+", "valid correlated two-channel source (baseline)", Budget(Correlated("0.3")), kRun, 0, Ok()},
+      {"Y66", "correlation .nan", Budget(Correlated(".nan")), kRun, 3, At("correlation: |.nan", "sources[0].correlation")},
+      {"Y67", "channels: 0", B("    unit: N\n", "    unit: N\n    channels: 0\n"), kRun, 3,
+       At("channels: |0", "sources[0].channels")},
+      {"Y68", "channels: 2000000000", B("    unit: N\n", "    unit: N\n    channels: 2000000000\n"), kRun, 3,
+       At("channels: |2000000000", "sources[0].channels"), {}, {}, "", "", 30},
+      {"Y69", "vc class bogus", B("{type: flat, level: 1.0e-6}", "{type: vc, class: VC-Z}"), kRun, 3,
+       At("VC-Z", "sources[0].spectrum.class")},
+      {"Y70", "vc lowest_band_hz > highest_band_hz",
+       Budget(Sub(Sub(Sub(kBase, "{type: flat, level: 1.0e-6}", "{type: vc, class: VC-D, lowest_band_hz: 80, highest_band_hz: 2}"),
+                      "    unit: N\n", "    unit: um/s\n"), "input_unit: N", "input_unit: um/s")), kRun, 3,
+       At("spectrum: |{type: vc", "sources[0].spectrum")},
+      {"Y71", "exact: bogus", B("path: plant}", "path: plant, exact: maybe}"), kRun, 3,
+       At("maybe", "contributors[0].exact")},
+      {"Y72", "budget name ../../escape", B("name: cat", "name: ../../escape"), kRun, 3, At("../../escape", "name")},
+      {"Y73", "budget name '..' (D09)", B("name: cat", "name: '..'"), kRun, 3, At("name: |'..'", "name"), {}, {"Success"}},
+      {"Y74", "budget name '.' (D09)", B("name: cat", "name: '.'"), kRun, 3, At("name: |'.'", "name"), {}, {"Success"}},
+      {"Y75", "budget name empty", B("name: cat", "name: ''"), kRun, 3, At("name: |''", "name")},
+      {"Y77", "non-scalar mapping key at the root (D05a)", Budget(kBase + "? [a, b] : 1\n"), kRun, 3, At("", "")},
+      {"Y77b", "the 4-byte budget '? {}' (D05a, fuzzer)", Budget("? {}"), kRun, 3, At("", "")},
+      {"Y77c", "'? {}' through deb check (D05a)", Budget("? {}"), "check b.yaml", 3, At("", "")},
+      {"Y78", "non-scalar mapping key in a source (D05a)", B("    unit: N\n", "    unit: N\n    ? {k: v} : 1\n"), kRun, 3,
+       At("", "sources[0]")},
+      {"Y79", "weighting not SISO", B("rms_max: 5}", "rms_max: 5, weighting: {num: [[1, 2]], den: [1, 1], unit: s}}"),
+       kRun, 3, At("num: [|[1, 2]]", "outputs[0].weighting.num[0]")},
+      {"Y80", "metric window_s 0", B("rms_max: 5}", "rms_max: 5, metric: {type: moving_std, window_s: 0}}"), kRun, 3,
+       At("window_s: |0", "outputs[0].metric.window_s")},
+      {"Y81", "metric window_s 1e300 (valid)", B("rms_max: 5}", "metric: {type: moving_std, window_s: 1.0e300}}"), kRun, 0,
+       Ok()},
+      {"Y82", "metric window_s 1e-300 (valid)", B("rms_max: 5}", "metric: {type: moving_average, window_s: 1.0e-300}}"),
+       kRun, 0, Ok()},
+      {"Y83", "YAML hex number 0x64 (valid)", B("den: [1, 2, 100]", "den: [1, 2, 0x64]"), kRun, 0, Ok()},
+      {"Y84", "NUL byte in the budget name", B("name: cat", std::string("name: \"c\0at\"", 12)), kRun, 3, At("", "name")},
+      {"Y85", "invalid UTF-8 in the budget name", B("name: cat", "name: \"c\xff\xfe" "at\""), kRun, 3, At("", "name")},
+      {"Y86", "reference model bogus", B("{type: flat, level: 1.0e-6}", "{type: reference, model: xlnm}"), kRun, 3,
+       At("xlnm", "sources[0].spectrum.model")},
+      {"Y89", "sign: 0 in feedback", Budget(Loop("input_unit: um, output_unit: N", ", sign: 0")), kRun, 3,
+       At("sign: |0", "paths[2].sign")},
+      {"Y90", "unstable closed loop, exact: required",
+       Budget(Sub(Loop("input_unit: um, output_unit: N", ", sign: 1"), "path: plant}", "path: fb, exact: required}")),
+       kRun, 3, At("path: |fb", "contributors[0].path")},
+      {"Y91", "feedback controller unit mismatch", Budget(Loop("input_unit: kg, output_unit: N", "")), kRun, 3,
+       At("controller: |k", "paths[2].controller")},
+      {"Y92", "flat lo_hz > hi_hz", B("{type: flat, level: 1.0e-6}", "{type: flat, level: 1.0e-6, lo_hz: 50, hi_hz: 5}"),
+       kRun, 3, At("spectrum: |{type: flat", "sources[0].spectrum")},
+      {"Y93", "convention bogus", B("    unit: N\n", "    unit: N\n    convention: three-sided\n"), kRun, 3,
+       At("three-sided", "sources[0].convention")},
+      {"Y94", "correlation matrix with -1 on the diagonal", Budget(Correlated("[[1, 0.5], [0.5, -1]]")), kRun, 3,
+       At("correlation: |[[1", "sources[0].correlation")},
+      {"Y95", "auto grid points_per_resonance 2e9",
+       B("{type: log, min_hz: 1, max_hz: 100, points: 50}",
+         "{type: auto, min_hz: 1, max_hz: 100, points_per_resonance: 2000000000}", "den: [1, 2, 100]",
+         "den: [1, 0.2, 100]"),
+       kRun, 3, At("", "grid"), {}, {}, "", "", 30},
+      {"Y97", "exact: required with a band-limited (not white) source",
+       B("{type: flat, level: 1.0e-6}", "{type: flat, level: 1.0e-6, lo_hz: 2, hi_hz: 50}", "path: plant}",
+         "path: plant, exact: required}"),
+       kRun, 3, At("exact: |required", "contributors[0].exact")},
+      {"Y98", "log grid points 100000000 (800 MB per array)", B("points: 50", "points: 100000000"), kRun, 3,
+       At("", "grid"), {}, {}, "", "", 30},
+      {"Y98+", "deb check with log grid points 2000000000", B("points: 50", "points: 2000000000"), "check b.yaml", 3,
+       At("", "grid"), {}, {}, "", "", 30},
+      {"X10", "YAML nesting 100000 deep", Budget(kBase + "extra: " + std::string(100000, '[') + "\n"), kRun, 3, At("", "")},
+      {"X11", "YAML nesting 1500 deep inside description",
+       B("description: bad-input catalogue base budget", "description: " + std::string(1500, '[') + std::string(1500, ']')),
+       kRun, 3, At("", "")},
+      {"X12", "alias bomb as the description value", B("description: bad-input catalogue base budget", "description: " + AliasBomb("lol")),
+       kRun, 3, At("", "description")},
+      {"X13", "alias bomb as unknown root keys", Budget("a: " + AliasBomb("lol") + "\n" + kBase), kRun, 3, At("", "a")},
+      {"X14", "alias bomb under an unknown key of sources[0]",
+       B("    unit: N\n", "    unit: N\n    extra: " + AliasBomb("lol") + "\n"), kRun, 3, At("extra", "sources[0].extra")},
+      {"X23", "output name ../../z", B("{name: z,", "{name: ../../z,"), kRun, 3, At("../../z", "outputs[0].name")},
+
+      // ---- W: sweeps --------------------------------------------------------
+      {"W00", "valid sweep (baseline)", Budget(kSweep), "sweep b.yaml --no-plots", 0, Ok()},
+      {"W00c", "deb check of a valid sweep", Budget(kSweep), "check b.yaml", 0, Ok()},
+      {"W01", "sweep key path index overflows long (D05b)", Budget(SweepPath("paths[99999999999999999999].den[0]")),
+       "sweep b.yaml --no-plots", 3, At("", "sweep.parameters[0]"), {"99999999999999999999"}},
+      {"W01c", "the same through deb check (D05b)", Budget(SweepPath("paths[99999999999999999999].den[0]")), "check b.yaml",
+       3, At("", "sweep.parameters[0]")},
+      {"W02", "sweep key path not reaching a number", Budget(SweepPath("paths[0].name")), "sweep b.yaml --no-plots", 3,
+       At("path: |\"paths[0].name\"", "sweep.parameters[0].path")},
+      {"W03", "sweep key path missing key", Budget(SweepPath("paths[0].nosuch")), "sweep b.yaml --no-plots", 3,
+       At("path: |\"paths[0].nosuch\"", "sweep.parameters[0].path")},
+      {"W04", "sweep linear count 2e9 (D05d)",
+       Budget(Sweep("  parameters:\n    - {path: \"sources[0].spectrum.level\", linear: {from: 1.0e-6, to: 2.0e-6, count: "
+                    "2000000000}}\n")),
+       "sweep b.yaml --no-plots", 3, At("", "sweep"), {}, {}, "", "", 30},
+      {"W05", "sweep grid of 3 x 1000 values (1e9 variants, D05d)",
+       Budget(Sweep("  parameters:\n"
+                    "    - {path: \"sources[0].spectrum.level\", linear: {from: 1.0e-6, to: 2.0e-6, count: 1000}}\n"
+                    "    - {path: \"paths[0].den[1]\", linear: {from: 1, to: 2, count: 1000}}\n"
+                    "    - {path: \"paths[0].den[2]\", linear: {from: 100, to: 200, count: 1000}}\n")),
+       "sweep b.yaml --no-plots", 3, At("", "sweep"), {}, {}, "", "", 30},
+      {"W05c", "the 1e9-variant sweep through deb check (D05d)",
+       Budget(Sweep("  parameters:\n"
+                    "    - {path: \"sources[0].spectrum.level\", linear: {from: 1.0e-6, to: 2.0e-6, count: 1000}}\n"
+                    "    - {path: \"paths[0].den[1]\", linear: {from: 1, to: 2, count: 1000}}\n"
+                    "    - {path: \"paths[0].den[2]\", linear: {from: 100, to: 200, count: 1000}}\n")),
+       "check b.yaml", 3, At("", "sweep"), {}, {}, "", "", 30},
+      {"W06", "zip with unequal counts",
+       Budget(Sweep("  mode: zip\n  parameters:\n"
+                    "    - {path: \"sources[0].spectrum.level\", values: [1.0e-6, 2.0e-6, 3.0e-6]}\n"
+                    "    - {path: \"paths[0].den[2]\", values: [100, 200]}\n")),
+       "sweep b.yaml --no-plots", 3, At("- |{path: \"paths[0].den[2]\"", "sweep.parameters[1]")},
+      {"W07", "a sweep value making a variant invalid",
+       Budget(Sweep("  parameters:\n    - {path: \"sources[0].spectrum.level\", values: [1.0e-6, -1]}\n")),
+       "sweep b.yaml --no-plots", 3, At("level: |1.0e-6", "sources[0].spectrum.level"), {"sweep variant 2"}},
+      {"W08", "no sweep section, deb sweep", B(), "sweep b.yaml --no-plots", 3, At("", ""), {"'sweep'"}},
+      {"W09", "sweep key path through a map with a non-scalar key (D05a)",
+       Budget(SweepPath("nosuch.x") + "? [a, b] : 1\n"), "sweep b.yaml --no-plots", 3, At("", "")},
+      {"W10", "alias bomb in description, deb sweep",
+       Budget(Sub(kSweep, "description: bad-input catalogue base budget", "description: " + AliasBomb("lol"))),
+       "sweep b.yaml --no-plots", 3, At("", "description")},
+      {"W11", "alias bomb in description, deb check with a sweep",
+       Budget(Sub(kSweep, "description: bad-input catalogue base budget", "description: " + AliasBomb("lol"))),
+       "check b.yaml", 3, At("", "description")},
+      {"W12", "sweep [*] over an alias tree of 10^9 numbers (D13)",
+       Budget(Sub(SweepPath("paths[0].num[*]"), "num: [1]", "num: " + AliasBomb("1"))), "sweep b.yaml --no-plots", 3,
+       At("", ""), {}, {}, "", "", 30},
+      {"W13", "sweep log range from 0",
+       Budget(Sweep("  parameters:\n    - {path: \"sources[0].spectrum.level\", log: {from: 0, to: 1, count: 3}}\n")),
+       "sweep b.yaml --no-plots", 3, At("log: |{from: 0", "sweep.parameters[0].log")},
+      {"W14", "deb sweep --out onto an existing regular file (D02)", With(Budget(kSweep), "existing.txt", "keep me\n"),
+       "sweep b.yaml --no-plots --out existing.txt", 4, Names("existing.txt"), {"not a report written by deb", "--force"}},
+      {"W15", "deb sweep --out onto a directory of user files (D02)", With(kMydata, "b.yaml", kSweep),
+       "sweep b.yaml --no-plots --out mydata", 4, Names("mydata"), {"--force"}},
+
+      // ---- N: sensitivity ---------------------------------------------------
+      {"N00", "valid sensitivity (baseline)", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level'", 0, Ok()},
+      {"N01", "-p a key path that is not a number", B(), "sensitivity b.yaml -p 'paths[0].name'", 3,
+       Names("paths[0].name")},
+      {"N02", "--step 0", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level' --step 0", 2, Usage()},
+      {"N03", "--step 1", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level' --step 1", 2, Usage()},
+      {"N04", "--step nan (D19)", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level' --step nan", 2, Usage()},
+      {"N04+", "--step inf", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level' --step inf", 2, Usage()},
+      {"N05", "-p index overflowing long (D05b)", B(), "sensitivity b.yaml -p 'paths[99999999999999999999].den[0]'", 3,
+       Names("paths[99999999999999999999]")},
+      {"N06", "-p den[0] (valid)", B(), "sensitivity b.yaml -p 'paths[0].den[0]'", 0, Ok()},
+      {"N07", "deb sensitivity --out onto an existing regular file (D02)", With(B(), "existing.txt", "keep me\n"),
+       "sensitivity b.yaml -p 'sources[0].spectrum.level' --out existing.txt", 4, Names("existing.txt"),
+       {"not a report written by deb", "--force"}},
+
+      // ---- S: spectrum CSVs through a budget ----------------------------------
+      {"S00", "valid spectrum CSV (baseline)", M(kSpec), kRun, 0, Ok()},
+      {"S01", "empty spectrum file", M(""), kRun, 3, AtSpecFile(), {"0 data rows"}},
+      {"S02", "header only", M("f_hz,z\n"), kRun, 3, AtSpecFile(), {"0 data rows"}},
+      {"S03", "single data row", M("f_hz,z\n1,1e-6\n"), kRun, 3, AtSpecFile(), {"1 data rows"}},
+      {"S04", "non-numeric cell", M(SpecSub("10,1e-6", "10,abc")), kRun, 3, AtSpecFile(), {"spec.csv:6:4:"}},
+      {"S05", "non-increasing frequency", M(SpecSub("10,1e-6", "4,1e-6")), kRun, 3, AtSpecFile(), {"spec.csv:6:1:"}},
+      {"S06", "negative frequency", M(SpecSub("0.5,1e-6", "-1,1e-6")), kRun, 3, AtSpecFile(), {"spec.csv:2:1:"}},
+      {"S07", "NaN cell", M(SpecSub("10,1e-6", "10,nan")), kRun, 3, AtSpecFile(), {"spec.csv:6:4:"}},
+      {"S08", "negative PSD", M(SpecSub("10,1e-6", "10,-1e-6")), kRun, 3, AtSpecFile(), {"spec.csv:6:4:"}},
+      {"S09", "CRLF line endings (valid)", M(Sub(Sub(kSpec, "\n", "\r\n"), "0.5,1e-6\n", "0.5,1e-6\r\n")), kRun, 0, Ok()},
+      {"S10", "UTF-8 BOM before the header (valid)", M(kBom + kSpec), kRun, 0, Ok()},
+      {"S11", "UTF-8 BOM, no header, columns: [ch1] (D11)",
+       M("{type: measured, file: spec.csv}", "{type: measured, file: spec.csv, columns: [ch1]}", kBom + kSpecRows), kRun,
+       0, Ok()},
+      {"S11n", "no BOM, no header, columns: [ch1] (valid)",
+       M("{type: measured, file: spec.csv}", "{type: measured, file: spec.csv, columns: [ch1]}", kSpecRows), kRun, 0, Ok()},
+      {"S11b", "UTF-8 BOM, no header, no column selection (D11)", M(kBom + kSpecRows), kRun, 0, Ok()},
+      {"S12", "row with an extra cell", M(SpecSub("10,1e-6", "10,1e-6,3")), kRun, 3, AtSpecFile(), {"spec.csv:6:"}},
+      {"S13", "cell 1e400", M(SpecSub("10,1e-6", "10,1e400")), kRun, 3, AtSpecFile(), {"spec.csv:6:4:"}},
+      {"S14", "'# quantity: bogus'", M("# quantity: bogus\n" + kSpec), kRun, 3, AtSpecFile(), {"spec.csv:1:"}},
+      {"S15", "'# unit:' an invalid unit", M("# unit: bananas^\n" + kSpec), kRun, 3, At("unit: |N", "sources[0].unit")},
+      {"S16", "'# unit:' twice", M("# unit: N\n# unit: N\n" + kSpec), kRun, 3, AtSpecFile(), {"spec.csv:2:"}},
+      {"S17", "one column only", M("f_hz\n1\n2\n"), kRun, 3, AtSpecFile(), {"spec.csv:1:1:"}},
+      {"S18", "CR-only line endings (D23): read as lines", M(Replace(kSpec, '\n', '\r')), kRun, 0, Ok()},
+      {"S19", "NUL byte in a cell", M(SpecSub("10,1e-6", std::string("10,1e-6\0" "5", 9))), kRun, 3, AtSpecFile()},
+      {"S20", "semicolon separated", M(Replace(kSpec, ',', ';')), kRun, 3, AtSpecFile(), {"spec.csv:"}},
+      {"S21", "grid outside the data (extrapolation: error)", M("f_hz,z\n0.5,1e-6\n1,1e-6\n3,1e-6\n"), kRun, 3,
+       At("{name: c1", "contributors[0]")},
+      {"S24", "file unit not the source's quantity", M("# unit: m\n" + kSpec), kRun, 3, At("unit: |N", "sources[0].unit")},
+      {"S25", "column selection not in the file",
+       M("{type: measured, file: spec.csv}", "{type: measured, file: spec.csv, columns: [nosuch]}", kSpec), kRun, 3,
+       At("columns: |[nosuch]", "sources[0].spectrum.columns")},
+      {"S26", "denormal first frequency 1e-320 (valid)", M("f_hz,z\n1e-320,1e-6\n" + kSpecRows), kRun, 0, Ok()},
+      {"S27", "PSD 1e308", M("f_hz,z\n0.5,1e308\n1,1e308\n10,1e308\n200,1e308\n"), kRun, 3,
+       At("{name: c1", "contributors[0]")},
+      {"S28+", "spectrum file missing", Budget(kMeasured), kRun, 3, AtSpecFile(), {"spec.csv"}},
+      {"X01", "file: /etc/passwd (content must not be echoed, D14)",
+       Budget(Sub(kMeasured, "file: spec.csv", "file: /etc/passwd")), kRun, 3,
+       At("file: |/etc/passwd", "sources[0].spectrum.file"), {}, {"root:x:0:0"}, "", "", 0, CheckNoPasswdLine},
+      {"X07", "file: ../ traversal to /etc/passwd (D14)",
+       Budget(Sub(kMeasured, "file: spec.csv", "file: ../../../../../../../../../../etc/passwd")), kRun, 3,
+       At("file: |../../", "sources[0].spectrum.file"), {}, {"root:x:0:0"}, "", "", 0, CheckNoPasswdLine},
+      {"X02", "spectrum file is a FIFO without a writer (D12)", Budget(kMeasured), kRun, 3, AtSpecFile(), {kNotRegular}, {},
+       "mkfifo spec.csv", "", 20},
+      {"X03", "spectrum file /dev/zero (D12)", Budget(Sub(kMeasured, "file: spec.csv", "file: /dev/zero")), kRun, 3,
+       At("file: |/dev/zero", "sources[0].spectrum.file"), {kNotRegular}, {}, "", "", 20},
+      {"X05", "spectrum file /dev/urandom", Budget(Sub(kMeasured, "file: spec.csv", "file: /dev/urandom")), kRun, 3,
+       At("file: |/dev/urandom", "sources[0].spectrum.file"), {}, {}, "", "", 20},
+      {"X06", "spectrum file is a directory (D12)", Budget(Sub(kMeasured, "file: spec.csv", "file: sub")), kRun, 3,
+       At("file: |sub", "sources[0].spectrum.file"), {kNotRegular}, {}, "mkdir sub", "", 20},
+      {"X24", "spectrum file /proc/self/mem", Budget(Sub(kMeasured, "file: spec.csv", "file: /proc/self/mem")), kRun, 3,
+       At("file: |/proc/self/mem", "sources[0].spectrum.file"), {}, {}, "", "", 20},
+
+      // ---- S: spectrum CSVs through deb spectrum -------------------------------
+      {"S29+", "spectrum convert, valid (baseline, with plots)", {{"spec.csv", kSpec}},
+       "spectrum convert spec.csv --unit N --to N -o c.csv", 0, Ok()},
+      {"S30", "spectrum convert: empty file", {{"spec.csv", ""}}, "spectrum convert spec.csv --unit N --to N -o c.csv", 3,
+       Names("spec.csv")},
+      {"S31", "spectrum convert: --to an incompatible unit", {{"spec.csv", kSpec}},
+       "spectrum convert spec.csv --unit N --to m -o c.csv", 3, Names("cannot convert")},
+      {"S32", "spectrum bands: header only", {{"spec.csv", "# unit: um/s\nf_hz,z\n"}}, "spectrum bands spec.csv -o bands.csv",
+       3, Names("spec.csv")},
+      {"S32+", "spectrum bands: non-numeric cell", {{"spec.csv", "# unit: um/s\n" + SpecSub("10,1e-6", "10,abc")}},
+       "spectrum bands spec.csv -o bands.csv", 3, Names("spec.csv:7:4:")},
+      {"S33", "spectrum convert --from-bands: negative RMS", {{"spec.csv", "# unit: um/s\nf_hz,z\n1,0.1\n1.25,-1\n1.6,0.1\n"}},
+       "spectrum convert --from-bands spec.csv -o c.csv", 3, Names("spec.csv:4:")},
+      {"S34", "spectrum convert: -o is an existing directory (D20)", {{"spec.csv", kSpec}, {"outdir/keep.txt", "keep\n"}},
+       "spectrum convert spec.csv --unit N --to N -o outdir", 4, Names("outdir")},
+      {"S34b", "spectrum convert: -o into a missing directory (D20)", {{"spec.csv", kSpec}},
+       "spectrum convert spec.csv --unit N --to N -o missing/c.csv", 4, Names("missing")},
+      {"S34d", "spectrum convert --no-plots: -o into a missing directory (D20)", {{"spec.csv", kSpec}},
+       "spectrum convert spec.csv --unit N --to N --no-plots -o missing/c.csv", 4, Names("missing")},
+      {"S34e", "spectrum convert: --plot into a missing directory (D20)", {{"spec.csv", kSpec}},
+       "spectrum convert spec.csv --unit N --to N -o c.csv --plot missing/c.png", 4, Names("missing")},
+      {"S34c", "spectrum reference: -o into a missing directory (D20)", {},
+       "spectrum reference nlnm -o missing/nlnm.csv", 4, Names("missing")},
+      {"S35", "spectrum convert -o out.png (CSV and plot of one name)", {{"spec.csv", kSpec}},
+       "spectrum convert spec.csv --unit N --to N -o out.png", 3, Names("out.png")},
+      {"S36+", "spectrum bands on a FIFO (D12)", {}, "spectrum bands spec.csv -o bands.csv", 3, Names("spec.csv"),
+       {kNotRegular}, {}, "mkfifo spec.csv", "", 20},
+      {"S37+", "spectrum convert of a CR-only file (D23)", {{"spec.csv", Replace("# unit: N\n" + kSpec, '\n', '\r')}},
+       "spectrum convert spec.csv --to N --no-plots -o c.csv", 0, Ok(), {}, {}, "", "", 0, CheckCrRowsRead},
+      {"S38+", "spectrum convert of a BOM-prefixed headerless file keeps every row (D11)", {{"spec.csv", kBom + kSpecRows}},
+       "spectrum convert spec.csv --unit N --to N --no-plots -o c.csv", 0, Ok(), {}, {}, "", "", 0, CheckBomRowKept},
+
+      // ---- T: time series ---------------------------------------------------
+      {"T00", "valid CSV time series (baseline)", {{"b.yaml", kTs}, {"rec.csv", RecCsv()}}, kRun, 0, Ok()},
+      {"T00r", "valid raw float64 time series (baseline)", {{"b.yaml", kRaw}, {"rec.raw", RawF64(Noise(4096, 1))}}, kRun, 0,
+       Ok()},
+      {"T01", "raw float64 file of 4097 bytes", {{"b.yaml", kRaw}, {"rec.raw", RawF64(Noise(512, 1)) + "x"}}, kRun, 3,
+       At("file: |rec.raw", "sources[0].spectrum.file")},
+      {"T02", "raw with rate_hz: 0", {{"b.yaml", Sub(kRaw, "rate_hz: 1000", "rate_hz: 0")}, {"rec.raw", RawF64(Noise(4096, 1))}},
+       kRun, 3, At("rate_hz: |0", "sources[0].spectrum.rate_hz")},
+      {"T03", "CSV with a single sample", {{"b.yaml", kTs}, {"rec.csv", "# rate_hz: 1000\nx\n0.5\n"}}, kRun, 3,
+       At("spectrum: |{type: timeseries", "sources[0].spectrum")},
+      {"T04", "CSV without any rate", {{"b.yaml", kTs}, {"rec.csv", Sub(RecCsv(), "# rate_hz: 1000\n", "")}}, kRun, 3,
+       At("file: |rec.csv", "sources[0].spectrum.file")},
+      {"T05", "CSV time column non-uniform",
+       {{"b.yaml", kTs}, {"rec.csv", RecTimed(4096, [](int i) { return i == 50 ? 0.0505 : i * 0.001; })}}, kRun, 3,
+       At("file: |rec.csv", "sources[0].spectrum.file"), {"rec.csv:52:1:"}},
+      {"T06", "CSV time column decreasing",
+       {{"b.yaml", kTs}, {"rec.csv", RecTimed(4096, [](int i) { return i == 2 ? -0.001 : i * 0.001; })}}, kRun, 3,
+       At("file: |rec.csv", "sources[0].spectrum.file"), {"rec.csv:4:1:"}},
+      {"T07", "CSV time stamps 5e-324 apart",
+       {{"b.yaml", kTs}, {"rec.csv", RecTimed(64, [](int i) { return i * 4.9406564584124654e-324; })}}, kRun, 3,
+       At("file: |rec.csv", "sources[0].spectrum.file")},
+      {"T08", "segment_length longer than the recording",
+       {{"b.yaml", Ts("{type: timeseries, file: rec.csv, segment_length: 65536}")}, {"rec.csv", RecCsv()}}, kRun, 3,
+       At("spectrum: |{type: timeseries", "sources[0].spectrum")},
+      {"T09", "raw empty file", {{"b.yaml", kRaw}, {"rec.raw", ""}}, kRun, 3, At("file: |rec.raw", "sources[0].spectrum.file")},
+      {"T10", "raw file with a NaN sample", {{"b.yaml", kRaw}, {"rec.raw", RawWithNan()}}, kRun, 3,
+       At("file: |rec.raw", "sources[0].spectrum.file")},
+      {"T11", "segment_length 4", {{"b.yaml", Ts("{type: timeseries, file: rec.csv, segment_length: 4}")}, {"rec.csv", RecCsv()}},
+       kRun, 3, At("segment_length: |4", "sources[0].spectrum.segment_length")},
+      {"T12", "overlap 1.0", {{"b.yaml", Ts("{type: timeseries, file: rec.csv, overlap: 1.0}")}, {"rec.csv", RecCsv()}}, kRun,
+       3, At("spectrum: |{type: timeseries", "sources[0].spectrum")},
+      {"T14", "CSV '# rate_hz: 0'", {{"b.yaml", kTs}, {"rec.csv", Sub(RecCsv(), "rate_hz: 1000", "rate_hz: 0")}}, kRun, 3,
+       At("file: |rec.csv", "sources[0].spectrum.file"), {"rec.csv:1:"}},
+      {"T15", "raw file_channels: 0",
+       {{"b.yaml", Sub(kRaw, "file_channels: 1}", "file_channels: 0}")}, {"rec.raw", RawF64(Noise(4096, 1))}},
+       kRun, 3, At("file: |rec.raw", "sources[0].spectrum.file")},
+      {"T16", "raw file_channels: 2000000000",
+       {{"b.yaml", Sub(kRaw, "file_channels: 1}", "file_channels: 2000000000}")},
+        {"rec.raw", RawF64(Noise(4096, 1))}},
+       kRun, 3, At("file_channels: |2000000000", "sources[0].spectrum.file_channels"), {}, {}, "", "", 30},
+      {"T17", "raw format float16", {{"b.yaml", Sub(kRaw, "float64", "float16")}, {"rec.raw", RawF64(Noise(4096, 1))}}, kRun,
+       3, At("float16", "sources[0].spectrum.format")},
+      {"T18", "12 bytes given as float64", {{"b.yaml", kRaw}, {"rec.raw", std::string(12, '\0')}}, kRun, 3,
+       At("file: |rec.raw", "sources[0].spectrum.file")},
+      {"T19", "all-zero recording (valid, RMS 0)", {{"b.yaml", kTs}, {"rec.csv", RecCsv(4096, 0.0)}}, kRun, 0, Ok()},
+      {"T20", "overlap 0.999999 (valid)",
+       {{"b.yaml", Ts("{type: timeseries, file: rec.csv, overlap: 0.999999}")}, {"rec.csv", RecCsv()}}, kRun, 0, Ok()},
+      {"T21", "samples 1e300", {{"b.yaml", kTs}, {"rec.csv", RecCsv(4096, 1e300)}}, kRun, 3,
+       At("file: |rec.csv", "sources[0].spectrum.file")},
+      {"X04", "raw time series file /dev/zero (D12)",
+       Budget(Ts("{type: timeseries, file: /dev/zero, format: float64, rate_hz: 1000, file_channels: 1}")), kRun, 3,
+       At("file: |/dev/zero", "sources[0].spectrum.file"), {kNotRegular}, {}, "", "", 20},
+      {"T22+", "CSV time series file is a FIFO (D12)", Budget(kTs), kRun, 3, At("file: |rec.csv", "sources[0].spectrum.file"),
+       {kNotRegular}, {}, "mkfifo rec.csv", "", 20},
+      {"T23+", "time series file is a directory (D12)", Budget(kTs), kRun, 3,
+       At("file: |rec.csv", "sources[0].spectrum.file"), {kNotRegular}, {}, "mkdir rec.csv", "", 20},
+      {"C27", "spectrum welch: raw file without --rate", {{"rec.raw", RawF64(Noise(4096, 1))}},
+       "spectrum welch rec.raw --format float64 -o psd.csv", 3, Names("rec.raw")},
+      {"C28", "spectrum welch --rate 0", {{"rec.raw", RawF64(Noise(4096, 1))}},
+       "spectrum welch rec.raw --format float64 --rate 0 -o psd.csv", 2, Usage()},
+      {"C29", "spectrum welch --rate -5", {{"rec.raw", RawF64(Noise(4096, 1))}},
+       "spectrum welch rec.raw --format float64 --rate -5 -o psd.csv", 2, Usage()},
+      {"C30", "spectrum welch --segment 3", {{"rec.csv", RecCsv()}}, "spectrum welch rec.csv --segment 3 -o psd.csv", 3,
+       Names("segment")},
+      {"C31", "spectrum welch --file-channels 0", {{"rec.raw", RawF64(Noise(4096, 1))}},
+       "spectrum welch rec.raw --format float64 --rate 1000 --file-channels 0 -o psd.csv", 3, Names("rec.raw")},
+      {"C32", "spectrum frf: --input not a channel", {{"rec.csv", RecCsv()}},
+       "spectrum frf rec.csv --input F --outputs x -o frf.csv", 3, Names("'F'")},
+      {"C33", "spectrum selfnoise with 1 sensor", {{"rec.csv", Rec3("a,b,c")}},
+       "spectrum selfnoise rec.csv --sensors a -o noise.csv", 3, Names("--sensors")},
+      {"C34", "spectrum reference: bogus model", {}, "spectrum reference xlnm -o r.csv", 3, Names("xlnm")},
+      {"C35", "spectrum welch --confidence 1.5", {{"rec.csv", RecCsv()}},
+       "spectrum welch rec.csv --confidence 1.5 -o psd.csv", 3, Names("confidence")},
+      {"C35+", "spectrum welch of /dev/zero as raw (D12)", {},
+       "spectrum welch /dev/zero --format float64 --rate 1000 -o psd.csv", 3, Names("/dev/zero"), {kNotRegular}, {}, "",
+       "", 20},
+      {"C35++", "spectrum welch, valid (baseline, with plots)", {{"rec.csv", RecCsv()}}, "spectrum welch rec.csv -o psd.csv",
+       0, Ok()},
+
+      // ---- F: FRF tables ----------------------------------------------------
+      {"F00", "valid FRF (baseline)", Fr(kFrfTable), kRun, 0, Ok()},
+      {"F01", "no header row", Fr(kFrfTable.substr(kFrfTable.find('\n') + 1)), kRun, 3, AtFrfFile(), {"frf.csv:1:1:"}},
+      {"F02", "column not named OUTPUT/INPUT.PART", Fr(Sub(kFrfTable, "y/u.mag", "mag")), kRun, 3, AtFrfFile(),
+       {"frf.csv:1:"}},
+      {"F03", "phase column missing", Fr("f_hz, y/u.mag\n0.5, 0.01\n1, 0.01\n200, 0.01\n"), kRun, 3, AtFrfFile(),
+       {"frf.csv:1:"}},
+      {"F04", "negative magnitude", Fr(Sub(kFrfTable, "5, 0.01, -5", "5, -0.01, -5")), kRun, 3, AtFrfFile(), {"frf.csv:5:"}},
+      {"F05", "db 1e6", Fr("f_hz, y/u.db, y/u.phase_deg\n0.5, -40, 0\n8, 1e6, 0\n200, -40, 0\n"), kRun, 3, AtFrfFile()},
+      {"F06", "non-increasing frequency", Fr(Sub(kFrfTable, "10, 0.01, -10", "5, 0.01, -10")), kRun, 3, AtFrfFile(),
+       {"frf.csv:6:1:"}},
+      {"F07", "single row", Fr("f_hz, y/u.mag, y/u.phase_deg\n1, 0.01, 0\n"), kRun, 3, AtFrfFile(), {"1 data rows"}},
+      {"F08", "coherence column only", Fr("f_hz, y/u.coherence\n0.5, 1\n1, 1\n200, 1\n"), kRun, 3, AtFrfFile()},
+      {"F09", "duplicate column", Fr(Sub(kFrfTable, "y/u.phase_deg", "y/u.mag")), kRun, 3, AtFrfFile(), {"frf.csv:1:"}},
+      {"F10", "phase_deg 1e300 (valid)", Fr("f_hz, y/u.mag, y/u.phase_deg\n0.5, 1, 1e300\n200, 1, 1e300\n"), kRun, 0, Ok()},
+      {"F11", "re/im 1e308", Fr("f_hz, y/u.re, y/u.im\n0.5, 1e308, 1e308\n200, 1e308, 1e308\n"), kRun, 3,
+       At("{name: c1", "contributors[0]")},
+      {"F12", "outputs: list not in the file",
+       {{"b.yaml", Sub(kFrf, "    file: frf.csv\n", "    file: frf.csv\n    outputs: [q]\n")}, {"frf.csv", kFrfTable}}, kRun,
+       3, AtFrfFile()},
+      {"F13", "FRF file missing", Budget(kFrf), kRun, 3, AtFrfFile(), {"frf.csv"}},
+      {"F14", "FRF with the grid outside its data",
+       Fr("f_hz, y/u.mag, y/u.phase_deg\n3.36375, 0.01, 0\n10, 0.01, -10\n20.5724, 0.01, -20\n"), kRun, 3,
+       At("{name: c1", "contributors[0]")},
+      {"F15", "mag and db for one entry", Fr("f_hz, y/u.mag, y/u.db, y/u.phase_deg\n0.5, 1, 0, 0\n200, 1, 0, 0\n"), kRun, 3,
+       AtFrfFile(), {"frf.csv:1:"}},
+      {"F17+", "FRF file is a directory (D12)", Budget(kFrf), kRun, 3, AtFrfFile(), {kNotRegular}, {}, "mkdir frf.csv", "",
+       20},
+      {"F18+", "FRF file is a FIFO (D12)", Budget(kFrf), kRun, 3, AtFrfFile(), {kNotRegular}, {}, "mkfifo frf.csv", "", 20},
+      {"F19+", "FRF file /dev/zero (D12)", Budget(Sub(kFrf, "file: frf.csv", "file: /dev/zero")), kRun, 3,
+       At("file: |/dev/zero", "paths[0].file"), {kNotRegular}, {}, "", "", 20},
+      {"F20+", "non-scalar key inside an FRF path (D05a)",
+       {{"b.yaml", Sub(kFrf, "    file: frf.csv\n", "    file: frf.csv\n    ? [a] : 1\n")}, {"frf.csv", kFrfTable}}, kRun, 3,
+       At("", "paths[0]")},
+
+      // ---- C: command line --------------------------------------------------
+      {"C01", "budget file missing", {}, "run nosuch.yaml", 2, Usage()},
+      {"C02", "a directory given as budget", {}, "run dir", 2, Usage(), {}, {}, "mkdir dir"},
+      {"C03", "--out onto an existing regular file (D02)", With(B(), "existing.txt", "keep me\n"),
+       "run b.yaml --no-plots --out existing.txt", 4, Names("existing.txt"), {"not a report written by deb", "--force"}},
+      {"C05", "--threads 0 (valid)", B(), "run b.yaml --no-plots --threads 0", 0, Ok()},
+      {"C06", "--threads -1", B(), "run b.yaml --no-plots --threads -1", 2, Usage()},
+      {"C07", "--threads 100000 (valid)", B(), "run b.yaml --no-plots --threads 100000", 0, Ok()},
+      {"C08", "--threads abc", B(), "run b.yaml --no-plots --threads abc", 2, Usage()},
+      {"C09", "--threads 99999999999", B(), "run b.yaml --no-plots --threads 99999999999", 2, Usage()},
+      {"C10", "unknown option", B(), "run b.yaml --frobnicate", 2, Usage()},
+      {"C11", "no subcommand", B(), "", 2, Usage()},
+      {"C12", "--format gif", B(), "run b.yaml --format gif", 2, Usage()},
+      {"C13", "--format png,png", B(), "run b.yaml --format png,png", 2, Usage()},
+      {"C14", "compare with one input", B(), "compare b.yaml", 2, Usage()},
+      {"C15", "compare with a missing second input", B(), "compare b.yaml nosuch.yaml", 2, Usage()},
+      {"C16", "compare with an invalid second budget",
+       With(B(), "bad.yaml", Sub(Sub(kBase, "name: cat", "name: bad"), "level: 1.0e-6", "level: -3")),
+       "compare b.yaml bad.yaml --no-plots", 3, AtIn("bad.yaml", "level: |-3", "sources[0].spectrum.level")},
+      {"C16+", "compare two budgets (valid)", With(B(), "b2.yaml", Sub(kBase, "name: cat", "name: cat2")),
+       "compare b.yaml b2.yaml --no-plots", 0, Ok()},
+      {"C17", "compare a directory without summary.json", B(), "compare emptydir b.yaml --no-plots", 3, Names("emptydir"),
+       {}, {}, "mkdir emptydir"},
+      {"C18", "compare: summary.json not JSON", With(B(), "r/summary.json", "{x\n"), "compare r b.yaml --no-plots", 3,
+       Names("summary.json")},
+      {"C19", "compare: summary.json of the wrong shape", With(B(), "r/summary.json", "{\"outputs\": 5}\n"),
+       "compare r b.yaml --no-plots", 3, Names("summary.json")},
+      {"C20", "compare: summary.json nested 100000 deep",
+       With(B(), "r/summary.json", "{\"outputs\": " + std::string(100000, '[') + "\n"), "compare r b.yaml --no-plots", 3,
+       Names("summary.json")},
+      {"C21", "budget is /dev/null", {}, "run /dev/null --no-plots", 3, Names("/dev/null")},
+      {"C22", "budget is a FIFO without a writer (D12)", {}, "run fifo.yaml --no-plots", 3, Names("fifo.yaml"),
+       {kNotRegular}, {}, "mkfifo fifo.yaml", "", 20},
+      {"C22c", "deb check of a FIFO budget (D12)", {}, "check fifo.yaml", 3, Names("fifo.yaml"), {kNotRegular}, {},
+       "mkfifo fifo.yaml", "", 20},
+      {"C23", "--out '' (the default place)", B(), "run b.yaml --no-plots --out ''", 0, Ok(), {}, {}, "", "", 0,
+       CheckDefaultReport},
+      {"C24", "--out / (D08)", B(), "run b.yaml --no-plots --out /", 4, Usage(), {}, {"Success"}},
+      {"C25", "--out a directory of user files (D02)", kMydata, "run b.yaml --no-plots --out mydata", 4, Names("mydata"),
+       {"--force"}},
+      {"C25f", "--out a directory of user files --force", kMydata, "run b.yaml --no-plots --out mydata --force", 0, Ok(), {},
+       {}, "", "", 0, CheckMydataReplaced},
+      {"C26", "--out . (D08)", B(), "run b.yaml --no-plots --out .", 4, Usage(), {}, {"Success"}},
+      {"C26r", "--out onto a report deb run wrote earlier", With(B(), "old.yaml", kOld), "run b.yaml --no-plots --out prev", 0,
+       Ok(), {}, {}, EarlierReport("prev"), "", 0, CheckPrevReplaced},
+      {"C36", "gnuplot missing (DEB_GNUPLOT=/nonexistent), deb run", B(), "run b.yaml", 4, Names("gnuplot"), {}, {}, "",
+       "DEB_GNUPLOT=/nonexistent"},
+      {"C36n", "gnuplot missing, deb run --no-plots (valid)", B(), "run b.yaml --no-plots", 0, Ok(), {}, {}, "",
+       "DEB_GNUPLOT=/nonexistent", 0, CheckDefaultReport},
+      {"C37", "gnuplot missing, deb spectrum convert (exit 4)", {{"spec.csv", kSpec}},
+       "spectrum convert spec.csv --unit N --to N -o c.csv", 4, Names("gnuplot"), {}, {}, "", "DEB_GNUPLOT=/nonexistent"},
+      {"C37b", "gnuplot missing, deb spectrum bands (exit 4)", {{"spec.csv", "# unit: um/s\n" + kSpec}},
+       "spectrum bands spec.csv -o bands.csv", 4, Names("gnuplot"), {}, {}, "", "DEB_GNUPLOT=/nonexistent"},
+      {"C38", "gnuplot fails (DEB_GNUPLOT=/bin/false)", B(), "run b.yaml", 4, Names("gnuplot"), {}, {}, "",
+       "DEB_GNUPLOT=/bin/false"},
+      {"C39", "gnuplot never exits, DEB_GNUPLOT_TIMEOUT=2 (D15)", With(B(), "hang.sh", kHang), "run b.yaml", 4,
+       Names("gnuplot"), {"did not finish"}, {}, "chmod +x hang.sh", "DEB_GNUPLOT=\"$PWD/hang.sh\" DEB_GNUPLOT_TIMEOUT=2", 15},
+      {"C41", "deb model on a budget without a model (valid)", B(), "model b.yaml", 0, Ok()},
+      {"C42", "sweep --threads 100000 (valid)", Budget(kSweep), "sweep b.yaml --no-plots --threads 100000", 0, Ok()},
+      {"C45", "compare: summary.json whose contributors is a number (D05c)", With(B(), "r/summary.json", Summary("5", "[]")),
+       "compare r b.yaml --no-plots", 3, Names("summary.json")},
+      {"C45+", "compare: summary.json whose contributors is a string (D05c)",
+       With(B(), "r/summary.json", Summary("\"c1\"", "[]")), "compare r b.yaml --no-plots", 3, Names("summary.json")},
+      {"C46", "compare: summary.json whose bands is a string (D05c)",
+       With(B(), "r/summary.json", Summary(kGoodContributors, "\"decades\"")), "compare r b.yaml --no-plots", 3,
+       Names("summary.json")},
+      {"C46+", "compare: summary.json whose bands is a number (D05c)",
+       With(B(), "r/summary.json", Summary(kGoodContributors, "7")), "compare r b.yaml --no-plots", 3,
+       Names("summary.json")},
+      {"C47", "compare: summary.json with variance 1e400", With(B(), "r/summary.json", Summary(kGoodContributors, "[]", "1e400")),
+       "compare r b.yaml --no-plots", 3, Names("summary.json")},
+      {"C48+", "compare --out onto an existing regular file (D02)",
+       With(With(B(), "b2.yaml", Sub(kBase, "name: cat", "name: cat2")), "existing.txt", "keep me\n"),
+       "compare b.yaml b2.yaml --no-plots --out existing.txt", 4, Names("existing.txt"),
+       {"not a report written by deb", "--force"}},
+      {"C49+", "compare --out a directory of user files (D02)", With(kMydata, "b2.yaml", Sub(kBase, "name: cat", "name: cat2")),
+       "compare b.yaml b2.yaml --no-plots --out mydata", 4, Names("mydata"), {"--force"}},
+      {"C50+", "sensitivity --out a directory of user files (D02)", kMydata,
+       "sensitivity b.yaml -p 'sources[0].spectrum.level' --out mydata", 4, Names("mydata"), {"--force"}},
+
+      // ---- X: security-minded -----------------------------------------------
+      {"X08", "reports/cat is a symlink to an earlier report elsewhere (D16)", With(B(), "old.yaml", kOld), kRun, 0, Ok(),
+       {}, {}, EarlierReport("elsewhere") + " && mkdir reports && ln -s ../elsewhere reports/cat", "", 0,
+       CheckSymlinkWrittenThrough},
+      {"X16", "backquotes in a CSV channel name, deb spectrum bands (D01)",
+       {{"spec.csv", "# unit: um/s\nf_hz,a`touch $DEBINJ`,b\n0.5,1e-6,1e-6\n1,1e-6,1e-6\n10,1e-6,1e-6\n100,1e-6,1e-6\n"}},
+       "spectrum bands spec.csv -o bands.csv", 0, Ok(), {}, {}, "", "", 0, CheckInjection},
+      {"X17", "backquotes in the recording's file name, deb spectrum welch (D01)", {{"a`touch $DEBINJ`.csv", RecCsv()}},
+       "spectrum welch 'a`touch $DEBINJ`.csv' -o psd.csv", 0, Ok(), {}, {}, "", "", 0, CheckInjection},
+      {"X17b", "backquotes in the file name, deb spectrum bands (D01)", {{"s`touch $DEBINJ`.csv", "# unit: um/s\n" + kSpec}},
+       "spectrum bands 's`touch $DEBINJ`.csv' -o bands.csv", 0, Ok(), {}, {}, "", "", 0, CheckInjection},
+      {"X17c", "backquotes in the file name, deb spectrum convert (D01)", {{"s`touch $DEBINJ`.csv", kSpec}},
+       "spectrum convert 's`touch $DEBINJ`.csv' --unit N --to N -o c.csv", 0, Ok(), {}, {}, "", "", 0, CheckInjection},
+      {"X18", "backquotes in every description of a budget, deb run with plots", Budget(kInjectionBudget), "run b.yaml", 0,
+       Ok(), {}, {}, "", "", 0, CheckInjection},
+      {"X19", "backquotes in source channel and path input names, deb run with plots", Budget(kInjectionChannels),
+       "run b.yaml", 0, Ok(), {}, {}, "", "", 0, CheckInjection},
+      {"X20", "backquotes in the input channel, deb spectrum frf (D01)", {{"rec.csv", RecFrf("F`touch $DEBINJ`,x")}},
+       "spectrum frf rec.csv --input 'F`touch $DEBINJ`' --outputs x -o frf.csv", 0, Ok(), {}, {}, "", "", 0,
+       CheckInjection},
+      {"X20b", "backquotes in the output channel, deb spectrum frf (D01)", {{"rec.csv", RecFrf("F,x`touch $DEBINJ`")}},
+       "spectrum frf rec.csv --input F --outputs 'x`touch $DEBINJ`' -o frf.csv", 0, Ok(), {}, {}, "", "", 0,
+       CheckInjection},
+      {"X21", "backquotes in a channel name, deb spectrum convert",
+       {{"spec.csv", "f_hz,a`touch $DEBINJ`\n" + kSpecRows}}, "spectrum convert spec.csv --unit N --to N -o c.csv", 0,
+       Ok(), {}, {}, "", "", 0, CheckInjection},
+      {"X22", "backquotes in channel names, deb spectrum selfnoise (D01)",
+       {{"rec.csv", Rec3("a`touch $DEBINJ`,b,c")}}, "spectrum selfnoise rec.csv --sensors 'a`touch $DEBINJ`,b,c' -o noise.csv",
+       0, Ok(), {}, {}, "", "", 0, CheckInjection},
+      {"X22w", "backquotes in channel names, deb spectrum welch --coherence (D01)",
+       {{"rec.csv", Rec3("a`touch $DEBINJ`,b,c")}}, "spectrum welch rec.csv -o psd.csv --coherence coh.csv", 0, Ok(), {},
+       {}, "", "", 0, CheckInjection},
+  };
+  return cases;
+}
+
+// ---------------------------------------------------------------------------
+// Running a case.
+
+std::string ReadAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string ShellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+fs::path Root() {
+  static const fs::path root = [] {
+    const fs::path r = fs::temp_directory_path() / ("deb_catalogue_" + std::to_string(::getpid()));
+    fs::remove_all(r);
+    fs::create_directories(r);
+    return r;
+  }();
+  return root;
+}
+
+std::string SafeName(const std::string& id) {
+  std::string s;
+  for (char c : id) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return s;
+}
+
+// A shell line run in `work` with stdin from /dev/null and stdout/stderr to `io`.
+int Shell(const fs::path& work, const fs::path& io, const std::string& line) {
+  const std::string cmd = "cd " + ShellQuote(work.string()) + " && DEB=" + ShellQuote(DEB_BINARY) +
+                          " DEBINJ=" + ShellQuote((work / "INJECTED").string()) + " && export DEB DEBINJ && " + line +
+                          " < /dev/null > " + ShellQuote((io / "stdout").string()) + " 2> " +
+                          ShellQuote((io / "stderr").string());
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Memory bombs (a 16 GB grid) must not reach the OOM killer of a shared machine
+// while deb still lacks its bounds: deb runs under a 4 GB address-space limit,
+// unless deb cannot start under one (a sanitizer build reserves far more).
+const std::string& MemoryLimit() {
+  static const std::string limit = [] {
+    const fs::path probe = Root() / "probe";
+    fs::create_directories(probe);
+    const std::string ulimit = "ulimit -v 4194304; ";
+    const bool fits = Shell(probe, probe, ulimit + "\"$DEB\" --help") == 0;
+    fs::remove_all(probe);
+    return fits ? ulimit : std::string();
+  }();
+  return limit;
+}
+
+Result RunDeb(const fs::path& work, const fs::path& io, const Case& c) {
+  const std::string line =
+      MemoryLimit() + (c.env.empty() ? "" : c.env + " ") + "timeout -k 5 60 \"$DEB\" " + c.args;
+  const auto t0 = std::chrono::steady_clock::now();
+  Result r;
+  r.exit_code = Shell(work, io, line);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.out = ReadAll(io / "stdout");
+  r.err = ReadAll(io / "stderr");
+  return r;
+}
+
+// Every entry below `dir`: its kind, and for files size, mtime and content; for links the target.
+// FIFOs are never opened; symlinks are not followed.
+std::map<std::string, std::string> Snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> s;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    const fs::path p = it->path();
+    const std::string rel = fs::relative(p, dir).string();
+    const fs::file_status st = fs::symlink_status(p);
+    if (fs::is_symlink(st)) {
+      s[rel] = "link -> " + fs::read_symlink(p).string();
+    } else if (fs::is_directory(st)) {
+      s[rel] = "dir";
+    } else if (fs::is_regular_file(st)) {
+      const auto mtime = fs::last_write_time(p).time_since_epoch().count();
+      s[rel] = "file " + std::to_string(fs::file_size(p)) + " bytes, mtime " + std::to_string(mtime) + ", hash " +
+               std::to_string(std::hash<std::string>()(ReadAll(p)));
+    } else {
+      s[rel] = "special";
+    }
+  }
+  return s;
+}
+
+std::string SnapshotDiff(const std::map<std::string, std::string>& before,
+                         const std::map<std::string, std::string>& after) {
+  std::string d;
+  for (const auto& e : after) {
+    const auto b = before.find(e.first);
+    if (b == before.end()) d += "  new: " + e.first + " (" + e.second + ")\n";
+    else if (b->second != e.second) d += "  changed: " + e.first + " (" + b->second + " -> " + e.second + ")\n";
+  }
+  for (const auto& e : before)
+    if (!after.count(e.first)) d += "  deleted: " + e.first + "\n";
+  return d;
+}
+
+std::string FirstErrorLine(const std::string& err) {
+  std::istringstream in(err);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("deb: error: ", 0) == 0) return line;
+  return "";
+}
+
+// 1-based line and column of `marker` in `text` ('|' in the marker marks the spot).
+bool MarkerPosition(const std::string& text, const std::string& marker, int* line, int* col) {
+  const auto bar = marker.find('|');
+  const std::string needle = bar == std::string::npos ? marker : marker.substr(0, bar) + marker.substr(bar + 1);
+  const auto at = text.find(needle);
+  if (at == std::string::npos) return false;
+  const std::size_t spot = at + (bar == std::string::npos ? 0 : bar);
+  *line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(spot), '\n'));
+  const auto nl = text.rfind('\n', spot == 0 ? 0 : spot - 1);
+  *col = static_cast<int>(nl == std::string::npos || spot == 0 ? spot + 1 : spot - nl);
+  return true;
+}
+
+std::string FileContent(const Case& c, const std::string& name) {
+  for (const auto& f : c.files)
+    if (f.first == name) return f.second;
+  return "";
+}
+
+// "" when the first error line has the expected form, else what is wrong.
+std::string CheckWhere(const Case& c, const std::string& line) {
+  const Where& w = c.where;
+  if (w.kind == Where::kSuccess || w.kind == Where::kUsage) return "";
+  if (line.empty()) return "no 'deb: error:' line";
+  const std::string head = "deb: error: ";
+  if (w.kind == Where::kContains)
+    return line.find(w.text) == std::string::npos ? "the error line does not name '" + w.text + "'" : "";
+  if (line.compare(head.size(), w.file.size(), w.file) != 0 || line.size() <= head.size() + w.file.size() ||
+      line[head.size() + w.file.size()] != ':')
+    return "the error line does not start with '" + w.file + ":'";
+  if (w.kind == Where::kFile) return "";
+  // FILE:LINE:COL: REST
+  std::size_t p = head.size() + w.file.size() + 1;
+  int got_line = 0, got_col = 0;
+  const auto digits = [&](int* v) {
+    const std::size_t s = p;
+    while (p < line.size() && std::isdigit(static_cast<unsigned char>(line[p]))) *v = *v * 10 + (line[p++] - '0');
+    return p > s && p < line.size() && line[p] == ':';
+  };
+  if (!digits(&got_line)) return "no LINE after '" + w.file + ":'";
+  ++p;
+  if (!digits(&got_col)) return "no COL after '" + w.file + ":LINE:'";
+  p += 1;
+  if (p < line.size() && line[p] == ' ') ++p;
+  const std::string rest = line.substr(p);
+  if (!w.marker.empty()) {
+    int want_line = 0, want_col = 0;
+    if (!MarkerPosition(FileContent(c, w.file), w.marker, &want_line, &want_col))
+      return "catalogue bug: marker '" + w.marker + "' not in " + w.file;
+    if (got_line != want_line || got_col != want_col)
+      return "position " + std::to_string(got_line) + ":" + std::to_string(got_col) + ", expected " +
+             std::to_string(want_line) + ":" + std::to_string(want_col) + " ('" + w.marker + "')";
+  }
+  if (!w.key.empty()) {
+    const bool starts = rest.compare(0, w.key.size(), w.key) == 0 && rest.size() > w.key.size() &&
+                        (rest[w.key.size()] == '.' || rest[w.key.size()] == '[' || rest[w.key.size()] == ':');
+    if (!starts) return "the key path does not start with '" + w.key + "'";
+  }
+  return "";
+}
+
+// ---------------------------------------------------------------------------
+// Checks of particular cases.
+
+std::string CheckInjection(const fs::path& work, const Result&) {
+  const auto injected = [&] {
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(work, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec))
+      if (it->path().filename() == "INJECTED") return true;
+    return false;
+  };
+  if (injected()) return "the backquoted command ran (INJECTED exists) during the deb run";
+  // The scripts deb left behind must be as harmless when someone redraws them.
+  std::vector<fs::path> scripts;
+  for (const auto& e : fs::recursive_directory_iterator(work))
+    if (e.path().extension() == ".gp") scripts.push_back(e.path());
+  if (scripts.empty()) return "no .gp script was left to re-run";
+  for (const auto& gp : scripts) {
+    const std::string line = "cd " + ShellQuote(gp.parent_path().string()) + " && timeout -k 5 60 gnuplot -d " +
+                             ShellQuote(gp.filename().string()) + " > /dev/null 2>&1; true";
+    Shell(work, work.parent_path() / "io", line);
+    if (injected()) return "the backquoted command ran when gnuplot re-ran " + fs::relative(gp, work).string();
+  }
+  return "";
+}
+
+std::string CheckNoPasswdLine(const fs::path&, const Result& r) {
+  std::istringstream in(ReadAll("/etc/passwd"));
+  std::string line;
+  while (std::getline(in, line))
+    if (line.size() >= 8 && r.err.find(line) != std::string::npos) return "the message quotes a line of /etc/passwd";
+  return "";
+}
+
+std::string CheckDefaultReport(const fs::path& work, const Result&) {
+  return fs::is_regular_file(work / "reports" / "cat" / "summary.json") ? "" : "no reports/cat/summary.json";
+}
+
+double Variance(const fs::path& summary) {
+  return nlohmann::json::parse(ReadAll(summary))["outputs"][0]["variance"].get<double>();
+}
+
+// `dir` holds the new report (the base level: a quarter of the earlier report's variance).
+std::string CheckNewReportIn(const fs::path& work, const fs::path& dir) {
+  const fs::path old = work.parent_path() / "io" / "old_summary.json";
+  if (!fs::is_regular_file(dir / "summary.json")) return "no summary.json in " + dir.string();
+  if (!fs::is_regular_file(old)) return "setup did not save the earlier summary.json";
+  const double v_new = Variance(dir / "summary.json"), v_old = Variance(old);
+  if (!(std::abs(4.0 * v_new - v_old) <= 1e-9 * v_old)) return dir.string() + " does not hold the new report";
+  return "";
+}
+
+std::string CheckSymlinkWrittenThrough(const fs::path& work, const Result&) {
+  if (!fs::is_symlink(work / "reports" / "cat")) return "reports/cat is no longer a symlink";
+  return CheckNewReportIn(work, work / "elsewhere");
+}
+
+std::string CheckPrevReplaced(const fs::path& work, const Result&) { return CheckNewReportIn(work, work / "prev"); }
+
+std::string CheckMydataReplaced(const fs::path& work, const Result&) {
+  if (!fs::is_regular_file(work / "mydata" / "summary.json")) return "mydata/summary.json missing";
+  if (fs::exists(work / "mydata" / "thesis.tex")) return "mydata still holds thesis.tex: not replaced";
+  return "";
+}
+
+int DataRows(const fs::path& csv) {
+  std::istringstream in(ReadAll(csv));
+  std::string line;
+  int rows = -1;  // the header
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') ++rows;
+  return rows;
+}
+
+std::string CheckBomRowKept(const fs::path& work, const Result&) {
+  const int rows = DataRows(work / "c.csv");
+  return rows == 9 ? "" : "c.csv holds " + std::to_string(rows) + " data rows, expected 9 (the BOM row was lost?)";
+}
+
+std::string CheckCrRowsRead(const fs::path& work, const Result&) {
+  const int rows = DataRows(work / "c.csv");
+  return rows == 9 ? "" : "c.csv holds " + std::to_string(rows) + " data rows, expected 9";
+}
+
+void WriteCaseFiles(const fs::path& work, const Files& files) {
+  for (const auto& f : files) {
+    const fs::path p = work / f.first;
+    fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary).write(f.second.data(), static_cast<std::streamsize>(f.second.size()));
+  }
+}
+
+std::string Excerpt(const std::string& s) { return s.size() > 600 ? s.substr(0, 600) + "..." : s; }
+
+}  // namespace
+
+TEST_CASE("the bad-input catalogue: each case exits as documented, located, and writes nothing when it fails") {
+  // DEB_CATALOGUE=Y41,C03 runs only those cases.
+  const char* only = std::getenv("DEB_CATALOGUE");
+  const std::string selection = only == nullptr ? "" : "," + std::string(only) + ",";
+  int ran = 0;
+  std::vector<std::string> failed_ids;
+  for (const Case& c : Catalogue()) {
+    if (!selection.empty() && selection.find("," + c.id + ",") == std::string::npos) continue;
+    CAPTURE(c.id);
+    CAPTURE(c.what);
+    const fs::path dir = Root() / SafeName(c.id), work = dir / "work", io = dir / "io";
+    fs::create_directories(work);
+    fs::create_directories(io);
+    WriteCaseFiles(work, c.files);
+    bool ok = true;
+    if (!c.setup.empty()) {
+      const int rc = Shell(work, io, "( " + c.setup + " )");
+      CHECK_MESSAGE(rc == 0, "setup failed: " << c.setup << "\n" << ReadAll(io / "stderr"));
+      ok = ok && rc == 0;
+    }
+    const auto before = Snapshot(work);
+    const Result r = RunDeb(work, io, c);
+    ++ran;
+    const std::string line = FirstErrorLine(r.err);
+    const std::string context = "deb " + c.args + "\nexit " + std::to_string(r.exit_code) + " after " +
+                                std::to_string(r.seconds) + " s\nstderr: " + Excerpt(r.err);
+
+    const bool exit_ok = r.exit_code == c.exit_code;
+    CHECK_MESSAGE(exit_ok, "exit code " << r.exit_code << ", expected " << c.exit_code << "\n" << context);
+    ok = ok && exit_ok;
+
+    const std::string where = CheckWhere(c, line);
+    CHECK_MESSAGE(where.empty(), where << "\nfirst error line: " << line << "\n" << context);
+    ok = ok && where.empty();
+
+    if (c.where.kind == Where::kSuccess) {
+      CHECK_MESSAGE(line.empty(), "an error line on success: " << line);
+      ok = ok && line.empty();
+    }
+    for (const auto& s : c.says) {
+      const bool has = r.err.find(s) != std::string::npos;
+      CHECK_MESSAGE(has, "stderr does not say '" << s << "'\n" << context);
+      ok = ok && has;
+    }
+    for (const auto& s : c.never) {
+      const bool has = r.err.find(s) != std::string::npos;
+      CHECK_MESSAGE(!has, "stderr says '" << s << "'\n" << context);
+      ok = ok && !has;
+    }
+    if (c.max_seconds > 0) {
+      CHECK_MESSAGE(r.seconds <= c.max_seconds, "took " << r.seconds << " s, at most " << c.max_seconds << " s allowed");
+      ok = ok && r.seconds <= c.max_seconds;
+    }
+    if (c.exit_code != 0) {
+      const std::string diff = SnapshotDiff(before, Snapshot(work));
+      CHECK_MESSAGE(diff.empty(), "the case directory changed:\n" << diff << context);
+      ok = ok && diff.empty();
+    }
+    if (c.check != nullptr) {
+      const std::string problem = c.check(work, r);
+      CHECK_MESSAGE(problem.empty(), problem << "\n" << context);
+      ok = ok && problem.empty();
+    }
+    if (ok) fs::remove_all(dir);
+    else failed_ids.push_back(c.id);
+  }
+  std::string failed;
+  for (const auto& id : failed_ids) failed += " " + id;
+  const std::string summary = "bad-input catalogue: " + std::to_string(ran) + " cases ran, " +
+                              std::to_string(failed_ids.size()) + " failed" + (failed.empty() ? "" : ":" + failed);
+  MESSAGE(summary);
+  if (selection.empty()) CHECK(ran >= 90);
+  if (failed_ids.empty()) fs::remove_all(Root());
+}
