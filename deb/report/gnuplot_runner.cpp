@@ -178,15 +178,19 @@ void RunGnuplot(const std::string& executable, const std::string& dir, const std
   const fs::path err_file = private_dir / "err", status_file = private_dir / "status";
   // The shell records gnuplot's status in a file: pclose() sees only the
   // shell's. timeout(1) stops a gnuplot that hangs (exit 124), then kills it.
-  const std::string command = "timeout -k 5 " + std::to_string(timeout_s) + " " + ShellQuote(executable) +
-                              " -d 2>" + ShellQuote(err_file.string()) + "; echo $? >" +
-                              ShellQuote(status_file.string());
+  // gnuplot starts in `dir` or not at all: a `cd` inside the script would
+  // leave it drawing into the caller's directory if `dir` were gone (a run
+  // killed while its gnuplots still read their scripts).
+  const std::string err = ShellQuote(err_file.string());
+  const std::string command = "cd " + ShellQuote(dir.empty() ? "." : dir) + " 2>" + err + " && timeout -k 5 " +
+                              std::to_string(timeout_s) + " " + ShellQuote(executable) + " -d 2>" + err +
+                              "; echo $? >" + ShellQuote(status_file.string());
   bool written = false;
   {
     const IgnoreSigpipe guard;
     try {
       Gnuplot gp(command);
-      gp << "cd " << Quote(dir) << "\n" << script << "\n";
+      gp << script << "\n";
       gp.flush();
       written = !gp.fail();
     } catch (const std::exception& e) {

@@ -35,9 +35,10 @@ Eigen::Index AccumulateChunks(Eigen::Index begin, Eigen::Index end, int columns,
   Eigen::Index e = begin;
   for (; e + kChunk <= end; e += kChunk) {
     Chunk hr = Eigen::Map<const Chunk>(d + e), hi = Chunk::Zero();
-    const double* gk = g + e;
-    for (int k = 0; k < columns; ++k, gk += pm) {
-      const Eigen::Map<const Chunk> gc(gk);
+    // g is indexed only inside the loop: with no residue columns (a static
+    // gain) it is the null data() of an empty matrix and takes no offset.
+    for (int k = 0; k < columns; ++k) {
+      const Eigen::Map<const Chunk> gc(g + k * pm + e);
       hr += wr[k] * gc;
       hi += wi[k] * gc;
     }

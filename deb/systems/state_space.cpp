@@ -63,13 +63,10 @@ bool StateSpace::IsStable() const {
 }
 
 StateSpace StateSpace::SelectOutputs(const std::vector<int>& rows) const {
-  Eigen::MatrixXd c(rows.size(), states()), d(rows.size(), inputs());
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    DEB_DEMAND(rows[k] >= 0 && rows[k] < outputs());
-    c.row(k) = c_.row(rows[k]);
-    d.row(k) = d_.row(rows[k]);
-  }
-  return StateSpace(a_, b_, std::move(c), std::move(d));
+  for (const int r : rows) DEB_DEMAND(r >= 0 && r < outputs());
+  // Indexed rows, not row(k) blocks: a row block of a matrix without columns
+  // (no states, or no inputs) would offset its null data pointer.
+  return StateSpace(a_, b_, c_(rows, Eigen::all), d_(rows, Eigen::all));
 }
 
 StateSpace StateSpace::SelectInputs(const std::vector<int>& cols) const {
