@@ -185,16 +185,15 @@ std::string OutputCsv(const BudgetResult& result, const OutputResult& o) {
   return text;
 }
 
+void WriteResultFiles(const Budget& budget, const BudgetResult& result, const RunInfo& info, const std::string& dir) {
+  WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(budget, result, info));
+  for (const OutputResult& o : result.outputs)
+    WriteTextFile((fs::path(dir) / OutputCsvName(o.name)).string(), OutputCsv(result, o));
+}
+
 void WriteResultDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
                           const std::string& out_dir, const ReplaceOptions& options) {
-  ReplaceDirectory(
-      out_dir,
-      [&](const std::string& dir) {
-        WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(budget, result, info));
-        for (const OutputResult& o : result.outputs)
-          WriteTextFile((fs::path(dir) / OutputCsvName(o.name)).string(), OutputCsv(result, o));
-      },
-      options);
+  ReplaceDirectory(out_dir, [&](const std::string& dir) { WriteResultFiles(budget, result, info, dir); }, options);
 }
 
 }  // namespace deb

@@ -314,9 +314,7 @@ ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& re
   ReplaceDirectory(
       out_dir,
       [&](const std::string& dir) {
-        WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(budget, result, info));
-        for (const OutputResult& o : result.outputs)
-          WriteTextFile((fs::path(dir) / OutputCsvName(o.name)).string(), OutputCsv(result, o));
+        WriteResultFiles(budget, result, info, dir);
         manifest = WriteReport(budget, result, info, options, dir);
       },
       replace);
