@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -173,6 +174,9 @@ throw WriteError("cannot draw the report's plots: gnuplot executable '" + name +
 void RunGnuplot(const std::string& executable, const std::string& dir, const std::string& script,
                 const std::string& what) {
   CheckScript(script);
+  if (HasNonFiniteNumber(script))
+    throw WriteError("cannot draw " + what + ": its script holds a number that is not finite (inf or nan); "
+                     "the data it would show has no finite axis range");
   const int timeout_s = TimeoutSeconds();
   const fs::path private_dir = PrivateDirectory();
   const fs::path err_file = private_dir / "err", status_file = private_dir / "status";
@@ -260,8 +264,35 @@ std::string ScriptOffence(const std::string& script) {
   return "";
 }
 
+bool HasNonFiniteNumber(const std::string& script) {
+  std::string word;
+  bool quoted = false;
+  char quote = 0;
+  for (std::size_t i = 0; i <= script.size(); ++i) {
+    const char c = i < script.size() ? script[i] : '\n';
+    if (quoted) {
+      if (c == '\\' && quote == '"') ++i;
+      else if (c == quote) quoted = false;
+      continue;
+    }
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') {
+      word += c;
+      continue;
+    }
+    if (word == "inf" || word == "nan") return true;
+    word.clear();
+    if (c == '\'' || c == '"') {
+      quoted = true;
+      quote = c;
+    }
+  }
+  return false;
+}
+
 void WriteGnuplotScript(const std::string& path, const std::string& script) {
   CheckScript(script);
+  if (HasNonFiniteNumber(script))
+    throw WriteError("cannot write " + path + ": the plot's script holds a number that is not finite (inf or nan)");
   WriteTextFile(path, script);
 }
 

@@ -40,6 +40,9 @@ void RunGnuplot(const std::string& executable, const std::string& dir, const std
 // single-quoted string, no double-quoted string holding either, no 'system'
 // or '!' shell escape. Returns the first offence, or "" if there is none.
 std::string ScriptOffence(const std::string& script);
+// True if `script` holds the word inf or nan outside a string: a number deb
+// computed that is not finite (gnuplot would stop at it, "undefined variable").
+bool HasNonFiniteNumber(const std::string& script);
 // DEB_DEMAND that ScriptOffence(script) is "".
 void CheckScript(const std::string& script);
 // Every .gp file deb leaves for a reader to replot is written by this: the

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include "deb/core/error.h"
+#include "deb/report/plot.h"
 #include "report_test_support.h"
 
 namespace deb::report {
@@ -118,6 +119,37 @@ TEST_CASE("deb run writes no progress to stderr when stderr is not a terminal") 
   const Command r = RunDeb("run " + ExampleBudget() + " --out " + (parent / "rep").string());
   CHECK(r.exit_code == 0);
   CHECK(r.err.find("drawing") == std::string::npos);
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a script may carry user text only in single quotes: backquotes, macros and shell escapes are refused") {
+  CHECK(ScriptOffence("set title 'a`touch x`b @m $HOME'\nplot sin(x) title 'it''s'\n").empty());
+  CHECK(ScriptOffence("set title ('one'.\"\\n\".'two')\n").empty());
+  CHECK(ScriptOffence("set title \"a`touch x`\"\n") == "a backquote inside a double-quoted string");
+  CHECK(ScriptOffence("print `touch x`\n") == "a backquote outside a single-quoted string");
+  CHECK(ScriptOffence("t = 'x'\n@t\n") == "an '@' (macro) outside a single-quoted string");
+  CHECK(ScriptOffence("!touch x\n") == "a '!' shell command");
+  CHECK(ScriptOffence("set xrange [0:1]; !touch x\n") == "a '!' shell command");
+  CHECK(ScriptOffence("x = system('touch x')\n") == "a call of system");
+  CHECK(ScriptOffence("set title 'a\nb'\n") == "a line break inside a single-quoted string");
+  CHECK(ScriptOffence("set title 'a\n") == "a line break inside a single-quoted string");
+  CHECK(ScriptOffence("if (a != b) print 1\n").empty());
+  // What Quote makes of hostile text always passes.
+  CHECK(ScriptOffence("set title " + Quote("`rm -rf ~` @x ' \n!ls system('x')") + "\n").empty());
+  CHECK(ScriptOffence("set title " + QuoteLines("`a`\n@b") + "\n").empty());
+}
+
+TEST_CASE("a non-finite number in a script is a write error, not gnuplot's 'undefined variable'") {
+  CHECK(HasNonFiniteNumber("set xrange [inf:10]\n"));
+  CHECK(HasNonFiniteNumber("set yrange [1:-nan]\n"));
+  CHECK_FALSE(HasNonFiniteNumber("plot 'a.csv' using 1:(column(2) > 0 ? column(2) : NaN) title 'inf nan'\n"));
+  CHECK_FALSE(HasNonFiniteNumber("set format y '%g'; info = 1\n"));
+  const fs::path dir = TempDir("nonfinite");
+  CHECK_THROWS_WITH_AS(RunGnuplot(FindGnuplot(""), dir.string(), "set xrange [inf:1]\n", "plot x"),
+                       doctest::Contains("not finite"), WriteError);
 }
 
 }  // namespace deb::report
