@@ -19,6 +19,9 @@ inline constexpr double kMinGridHz = 1e-12;
 inline constexpr double kMaxGridHz = 1e15;
 // Channels of one source, inputs or outputs of one path.
 inline constexpr int kMaxChannels = 10'000;
+// Modes of one modal path (type: modal): 2 states each. The path is a dense
+// state space of 2 x modes states today (a 10 000-state A is 800 MB).
+inline constexpr int kMaxModes = 5'000;
 // Variants of one sweep, values of one swept parameter.
 inline constexpr std::size_t kMaxSweepVariants = 100'000;
 // YAML nodes a sweep key path with [*] may visit (aliases can make a short

@@ -93,10 +93,12 @@ void Comment(NumericTable& table, const std::set<std::string>& keys, const std::
 }
 
 void Row(NumericTable& table, const std::vector<Cell>& cells, int line_no, const std::string& line,
-         const std::string& first_column) {
+         const NumericTableOptions& options) {
+  const std::string& first_column = options.first_column;
   double probe = 0.0;
   const bool first = table.rows.empty() && table.header_line == 0;
-  if (first && ParseNumber(cells.front().text, &probe) == NumberStatus::kNotANumber) {
+  if (first && (options.names_in_first_column ||
+                ParseNumber(cells.front().text, &probe) == NumberStatus::kNotANumber)) {
     for (const Cell& c : cells) {
       if (c.text.empty()) table.Fail(line_no, c.column, "empty column name");
       table.header.push_back(c.text);
@@ -117,6 +119,13 @@ void Row(NumericTable& table, const std::vector<Cell>& cells, int line_no, const
   row.line = line_no;
   for (std::size_t c = 0; c < cells.size(); ++c) {
     const Cell& cell = cells[c];
+    if (c == 0 && options.names_in_first_column) {
+      if (cell.text.empty()) table.Fail(line_no, cell.column, first_column + ": empty cell; every row starts with a name");
+      row.name = cell.text;
+      row.values.push_back(0.0);
+      row.columns.push_back(cell.column);
+      continue;
+    }
     const std::string what = c == 0 ? first_column : "column '" + table.ColumnName(c) + "'";
     double value = 0.0;
     switch (ParseNumber(cell.text, &value)) {
@@ -170,7 +179,7 @@ NumericTable ParseText(const std::string& text, const std::string& name, const N
       line.erase(hash);  // trailing comment after data
     }
     if (Trim(line).empty()) continue;
-    Row(table, SplitCells(line), line_no, line, options.first_column);
+    Row(table, SplitCells(line), line_no, line, options);
   }
   return table;
 }

@@ -21,6 +21,9 @@ struct NumericTable {
     int line = 0;                // 1-based line number in the file
     std::vector<double> values;  // one per column
     std::vector<int> columns;    // 1-based character position of each cell
+    // With NumericTableOptions::names_in_first_column: the first cell's text
+    // (values[0] is then 0 and means nothing); empty otherwise.
+    std::string name;
   };
   struct Meta {
     std::string value;
@@ -48,11 +51,15 @@ struct NumericTableOptions {
   std::set<std::string> metadata_keys;    // lower case: the "# key: value" lines to collect
   std::string first_column = "frequency";  // how messages name the first column
   std::string unnamed_prefix = "column ";  // column c >= 1 without a header: prefix + c
+  // The first cell of every row is a name (a label such as a DOF), not a
+  // number: it goes to Row::name, must not be empty, and the first
+  // non-comment line is always the header row (required).
+  bool names_in_first_column = false;
 };
 
 // Reads a table. Comments other than the metadata keys are ignored. A data line's trailing "# ..." is a
 // comment. The first non-comment line is a header row if its first cell is
-// not a number.
+// not a number (always, with names_in_first_column).
 // @throws InputError at file:line:column for a cell that is not a finite
 //   number, a row with another number of cells than the first, an empty
 //   column name, a metadata key given twice or without a value.

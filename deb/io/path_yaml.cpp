@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "deb/io/isolation_yaml.h"
+#include "deb/io/modal_yaml.h"
 #include "deb/systems/frf_csv.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/transfer_function.h"
@@ -228,9 +229,24 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
     p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
     p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
     composite = true;  // names come from the file
+  } else if (type == "modal") {
+    std::set<std::string> keys = {"name", "description", "type", "input_unit", "input_units", "output_unit",
+                                  "output_units"};
+    keys.insert(std::begin(kModalKeys), std::end(kModalKeys));
+    node.AllowOnly(keys);  // no inputs/outputs: the DOF names come from the shapes
+    const ModalModel model = ParseModalModel(node, base_dir_);
+    p.system = AtNode(node, [&] { return ModalStateSpace(model); });
+    p.input_names = model.input_names;
+    p.output_names = model.output_names;
+    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+    const YamlNode unit_node = node.Required(node.Has("output_unit") ? "output_unit" : "output_units");
+    for (std::string& u : p.output_units)
+      u = AtNode(unit_node, [&] { return ModalOutputUnit(u, model.quantity); });
+    composite = true;  // names come from the shapes
   } else {
     type_node.Fail("unknown path type '" + type +
-                   "'; allowed: transfer_function, state_space, gain, frf, series, parallel, feedback, "
+                   "'; allowed: transfer_function, state_space, gain, frf, modal, series, parallel, feedback, "
                    "isolation_system");
   }
 

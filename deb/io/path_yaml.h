@@ -1,5 +1,6 @@
 // YAML -> Path: the `paths:` entries of a budget (transfer_function,
-// state_space, gain, frf (a measured frequency response from a file), and
+// state_space, gain, frf (a measured frequency response from a file), modal
+// (finite-element modes, deb/io/modal_yaml.h), and
 // series/parallel/feedback of earlier paths, with units
 // checked and scaled at every connection), and output weightings.
 #pragma once

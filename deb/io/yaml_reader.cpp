@@ -101,6 +101,13 @@ std::vector<YamlNode> YamlNode::Elements() const {
   return out;
 }
 
+std::vector<std::string> YamlNode::Keys() const {
+  if (!node_.IsMap()) Fail("expected a map (key: value pairs)");
+  std::vector<std::string> keys;
+  for (const auto& kv : node_) keys.push_back(kv.first.Scalar());  // plain scalars: DocumentCheck
+  return keys;
+}
+
 void YamlNode::AllowOnly(const std::set<std::string>& allowed) const {
   if (!node_.IsMap()) Fail("expected a map (key: value pairs)");
   for (const auto& kv : node_) {

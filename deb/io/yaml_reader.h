@@ -37,6 +37,8 @@ class YamlNode {
   // Elements of a sequence. @throws InputError if this is not a sequence.
   std::vector<YamlNode> Elements() const;
   std::size_t size() const { return node_.size(); }
+  // Keys of a map, in document order. @throws InputError if this is not a map.
+  std::vector<std::string> Keys() const;
 
   // @throws InputError if this map has a key outside `allowed` (listed in the message).
   void AllowOnly(const std::set<std::string>& allowed) const;

@@ -1,0 +1,153 @@
+#include "deb/systems/modal_model.h"
+
+#include <cmath>
+#include <set>
+
+#include "deb/core/error.h"
+#include "deb/core/limits.h"
+#include "deb/core/number_text.h"
+
+namespace deb {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+void ValidateNames(const std::vector<std::string>& names, Eigen::Index rows, const char* side) {
+  const std::string what = std::string(side) + " DOF";
+  if (static_cast<Eigen::Index>(names.size()) != rows)
+    throw InputError(std::to_string(names.size()) + " " + what + " name(s) for " + std::to_string(rows) +
+                     " row(s) of shapes");
+  if (names.empty()) throw InputError("no " + what + "s: give at least one");
+  if (static_cast<int>(names.size()) > limits::kMaxChannels)
+    throw InputError(std::to_string(names.size()) + " " + what + "s; at most " +
+                     std::to_string(limits::kMaxChannels) + " are allowed");
+  std::set<std::string> seen;
+  for (const std::string& n : names) {
+    if (n.empty()) throw InputError(what + " name is empty");
+    if (!seen.insert(n).second) throw InputError(what + " '" + n + "' is given twice");
+  }
+}
+
+void ValidateShapes(const Eigen::MatrixXd& phi, const std::vector<std::string>& names, const char* side) {
+  for (Eigen::Index k = 0; k < phi.cols(); ++k)
+    for (Eigen::Index i = 0; i < phi.rows(); ++i)
+      if (!std::isfinite(phi(i, k)))
+        throw InputError(std::string(side) + " shape of DOF '" + names[i] + "' in mode " + std::to_string(k + 1) +
+                         " is not finite");
+}
+
+}  // namespace
+
+ModalQuantity ParseModalQuantity(const std::string& word) {
+  if (word == "displacement") return ModalQuantity::kDisplacement;
+  if (word == "velocity") return ModalQuantity::kVelocity;
+  if (word == "acceleration") return ModalQuantity::kAcceleration;
+  throw InputError("unknown output quantity '" + word + "'; allowed: displacement, velocity, acceleration");
+}
+
+std::string ToString(ModalQuantity q) {
+  switch (q) {
+    case ModalQuantity::kDisplacement: return "displacement";
+    case ModalQuantity::kVelocity: return "velocity";
+    case ModalQuantity::kAcceleration: return "acceleration";
+  }
+  return "?";
+}
+
+int DerivativeOrder(ModalQuantity q) {
+  switch (q) {
+    case ModalQuantity::kDisplacement: return 0;
+    case ModalQuantity::kVelocity: return 1;
+    case ModalQuantity::kAcceleration: return 2;
+  }
+  return 0;
+}
+
+std::string ModeFrequencyProblem(double f_hz) {
+  if (!std::isfinite(f_hz)) return "natural frequency " + NumberText(f_hz) + " Hz is not finite";
+  if (f_hz < 0.0) return "natural frequency " + NumberText(f_hz) + " Hz is negative; it must be >= 0 (0: a rigid-body mode)";
+  return "";
+}
+
+std::string ModeDampingProblem(double f_hz, double zeta) {
+  if (!std::isfinite(zeta)) return "damping ratio " + NumberText(zeta) + " is not finite";
+  if (zeta >= 1.0)
+    return "damping ratio " + NumberText(zeta) +
+           " is >= 1: that is no oscillating mode; model overdamped dynamics as real poles (type: state_space)";
+  if (f_hz > 0.0 && !(zeta > 0.0))
+    return "damping ratio " + NumberText(zeta) + " of a mode at " + NumberText(f_hz) +
+           " Hz must be > 0 (an undamped mode has an infinite variance under white forcing)";
+  if (zeta < 0.0) return "damping ratio " + NumberText(zeta) + " is negative";
+  return "";
+}
+
+void ModalModel::Validate() const {
+  const int n = modes();
+  if (n == 0) throw InputError("a modal path needs at least one mode");
+  if (n > limits::kMaxModes)
+    throw InputError(std::to_string(n) + " modes; at most " + std::to_string(limits::kMaxModes) + " are allowed");
+  if (static_cast<int>(zeta.size()) != n)
+    throw InputError(std::to_string(zeta.size()) + " damping ratio(s) for " + std::to_string(n) + " mode(s)");
+  if (phi_in.cols() != n)
+    throw InputError("input shapes have " + std::to_string(phi_in.cols()) + " mode(s), the mode table has " +
+                     std::to_string(n));
+  if (phi_out.cols() != n)
+    throw InputError("output shapes have " + std::to_string(phi_out.cols()) + " mode(s), the mode table has " +
+                     std::to_string(n));
+  for (int k = 0; k < n; ++k) {
+    std::string problem = ModeFrequencyProblem(f_hz[k]);
+    if (problem.empty()) problem = ModeDampingProblem(f_hz[k], zeta[k]);
+    if (!problem.empty()) throw InputError("mode " + std::to_string(k + 1) + ": " + problem);
+  }
+  ValidateNames(input_names, phi_in.rows(), "input");
+  ValidateNames(output_names, phi_out.rows(), "output");
+  ValidateShapes(phi_in, input_names, "input");
+  ValidateShapes(phi_out, output_names, "output");
+}
+
+ModalModel ModalModel::Truncated(double max_hz) const {
+  ModalModel t;
+  t.input_names = input_names;
+  t.output_names = output_names;
+  t.quantity = quantity;
+  std::vector<Eigen::Index> keep;
+  for (int k = 0; k < modes(); ++k)
+    if (f_hz[k] <= max_hz) keep.push_back(k);
+  t.phi_in.resize(phi_in.rows(), static_cast<Eigen::Index>(keep.size()));
+  t.phi_out.resize(phi_out.rows(), static_cast<Eigen::Index>(keep.size()));
+  for (std::size_t j = 0; j < keep.size(); ++j) {
+    t.f_hz.push_back(f_hz[keep[j]]);
+    t.zeta.push_back(zeta[keep[j]]);
+    t.phi_in.col(static_cast<Eigen::Index>(j)) = phi_in.col(keep[j]);
+    t.phi_out.col(static_cast<Eigen::Index>(j)) = phi_out.col(keep[j]);
+  }
+  return t;
+}
+
+StateSpace ModalStateSpace(const ModalModel& model) {
+  model.Validate();
+  const int n = model.modes();
+  const Eigen::Index m = model.phi_in.rows(), p = model.phi_out.rows();
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n), b = Eigen::MatrixXd::Zero(2 * n, m),
+                  c = Eigen::MatrixXd::Zero(p, 2 * n), d = Eigen::MatrixXd::Zero(p, m);
+  for (int k = 0; k < n; ++k) {
+    const double w = kTwoPi * model.f_hz[k];
+    const double w2 = w * w, two_zeta_w = model.f_hz[k] > 0.0 ? 2.0 * model.zeta[k] * w : 0.0;
+    a(2 * k, 2 * k + 1) = 1.0;
+    a(2 * k + 1, 2 * k) = -w2;
+    a(2 * k + 1, 2 * k + 1) = -two_zeta_w;
+    b.row(2 * k + 1) = model.phi_in.col(k).transpose();
+    switch (model.quantity) {
+      case ModalQuantity::kDisplacement: c.col(2 * k) = model.phi_out.col(k); break;
+      case ModalQuantity::kVelocity: c.col(2 * k + 1) = model.phi_out.col(k); break;
+      case ModalQuantity::kAcceleration:
+        c.col(2 * k) = -w2 * model.phi_out.col(k);
+        c.col(2 * k + 1) = -two_zeta_w * model.phi_out.col(k);
+        break;
+    }
+  }
+  if (model.quantity == ModalQuantity::kAcceleration) d = model.phi_out * model.phi_in.transpose();
+  return StateSpace(std::move(a), std::move(b), std::move(c), std::move(d));
+}
+
+}  // namespace deb

@@ -1,0 +1,71 @@
+// A structure described by its modes, as a finite-element analysis gives
+// them: per mode k a natural frequency f_k, a damping ratio zeta_k and the
+// mass-normalised mode shape (Phi^T M Phi = I) at the input and output DOFs.
+// Each modal coordinate obeys
+//   q_k'' + 2 zeta_k w_k q_k' + w_k^2 q_k = sum_i phi_in(i,k) f_i,   w_k = 2 pi f_k,
+// and the outputs are y = Phi_out q (displacement), Phi_out q' (velocity) or
+// Phi_out q'' (acceleration), so that
+//   H(s) = s^n sum_k phi_out(:,k) phi_in(:,k)^T / (s^2 + 2 zeta_k w_k s + w_k^2),  n = 0, 1, 2.
+// With forces in N and shapes in 1/sqrt(kg), phi_out phi_in / w^2 is in m/N.
+// A rigid-body mode (f = 0) is a double integrator: allowed, but the path
+// then has poles at the origin (no exact variance; the grid must start > 0).
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "deb/systems/state_space.h"
+
+namespace deb {
+
+enum class ModalQuantity { kDisplacement, kVelocity, kAcceleration };
+
+// "displacement" | "velocity" | "acceleration".
+// @throws InputError naming the allowed words.
+ModalQuantity ParseModalQuantity(const std::string& word);
+std::string ToString(ModalQuantity q);
+// Time derivatives of the displacement: 0, 1, 2.
+int DerivativeOrder(ModalQuantity q);
+
+// The rules on one mode's numbers; "" when they hold, else what is wrong
+// (for located messages by the readers, and for ModalModel::Validate):
+//   f_hz finite and >= 0;
+//   zeta finite, and 0 < zeta < 1 for f_hz > 0 (zeta = 0 would make the
+//   exact variance infinite; zeta >= 1 is no oscillating mode); a rigid mode
+//   (f_hz = 0) ignores zeta, which must still be finite and in [0, 1).
+std::string ModeFrequencyProblem(double f_hz);
+std::string ModeDampingProblem(double f_hz, double zeta);
+
+struct ModalModel {
+  std::vector<double> f_hz;   // one per mode [Hz]
+  std::vector<double> zeta;   // one per mode, damping ratio [-]
+  Eigen::MatrixXd phi_in;     // inputs x modes: mode shape at each input DOF
+  Eigen::MatrixXd phi_out;    // outputs x modes: mode shape at each output DOF
+  std::vector<std::string> input_names, output_names;  // the DOFs, one per row
+  ModalQuantity quantity = ModalQuantity::kDisplacement;
+
+  int modes() const { return static_cast<int>(f_hz.size()); }
+
+  // @throws InputError (not located: the caller knows where the data came
+  //   from) if there are no modes or more than limits::kMaxModes, sizes
+  //   disagree, a mode breaks ModeFrequencyProblem/ModeDampingProblem, a
+  //   shape value is not finite, there are no (or more than
+  //   limits::kMaxChannels) inputs or outputs, or a DOF name is empty or
+  //   repeated.
+  void Validate() const;
+
+  // The modes with f_hz <= max_hz, in order (the shapes' columns with them).
+  ModalModel Truncated(double max_hz) const;
+};
+
+// The realisation with 2 n states x = [q_1, q_1', q_2, q_2', ...]:
+//   A = blockdiag([[0, 1], [-w_k^2, -2 zeta_k w_k]]),  B rows (2k, 2k+1) = [0; phi_in(:,k)^T],
+//   displacement: C(:,2k) = phi_out(:,k),                 D = 0
+//   velocity:     C(:,2k+1) = phi_out(:,k),               D = 0
+//   acceleration: C(:,2k) = -w_k^2 phi_out(:,k), C(:,2k+1) = -2 zeta_k w_k phi_out(:,k),
+//                 D = Phi_out Phi_in^T   (q'' = -w^2 q - 2 zeta w q' + Phi_in^T f).
+// Calls Validate().
+StateSpace ModalStateSpace(const ModalModel& model);
+
+}  // namespace deb
