@@ -39,11 +39,18 @@ class TransferFunction {
   std::vector<double> num_, den_;
 };
 
-// Realisation in controllable canonical form (that of MATLAB's tf2ss) with the
-// denominator made monic, followed by StateSpace::Balanced(). The companion
-// matrix of a polynomial with widely spread roots has entries over many
-// decades; balancing brings them together without changing H(s).
-// A transfer function of order n gives n states, one input, one output.
+// Realisation with n = order() states, one input, one output.
+// Order <= 2: controllable canonical form (that of MATLAB's tf2ss) with the
+// denominator made monic, followed by StateSpace::Balanced().
+// Order >= 3: a cascade (Series) of sections of order <= 2, one per real
+// quadratic or linear factor of the denominator, each numerator factor paired
+// with the nearest pole; the roots are the eigenvalues of the balanced
+// companion matrix polished by Newton's method in long double on the exact
+// coefficients. A companion form of high order is hopelessly conditioned when
+// the roots cluster (its eigenvector matrix is a Vandermonde matrix): for ten
+// resonators at 3 % spacing, the Lyapunov variance of the companion form came
+// out negative, that of the cascade is right to ~1e-9. If the factorisation
+// fails (no conjugate pairs, non-finite roots) the companion form is used.
 StateSpace ToStateSpace(const TransferFunction& tf);
 
 // MIMO transfer matrix, tf[i][j] = path from input j to output i. Each entry is

@@ -2,7 +2,9 @@
 
 #include <doctest/doctest.h>
 
+#include <complex>
 #include <random>
+#include <vector>
 
 #include "deb/core/error.h"
 #include "deb/systems/frequency_response.h"
@@ -168,6 +170,166 @@ TEST_CASE("a Lyapunov equation with poles summing to zero is singular") {
 TEST_CASE("a path without states has zero covariance") {
   const MatrixXd cov = OutputCovariance(StateSpace::Gain(MatrixXd::Zero(2, 1)), Scalar(1.0));
   CHECK(cov == MatrixXd::Zero(2, 2));
+}
+
+
+// ---------------------------------------------------------------------------
+// Closed-form reference, no matrices. Convention (as OutputCovariance): white
+// input of two-sided intensity W = 1, S_y(w) = |H(jw)|^2, so
+//   sigma^2 = (1/2pi) int_-inf^inf |H(jw)|^2 dw = (1/2pi j) oint H(s) H(-s) ds
+// around the left half plane, = sum over the poles p_i of H (Re < 0, simple)
+// of Res_{s=p_i} H(s) H(-s) = sum_i r_i H(-p_i), r_i = Res_{s=p_i} H. For
+// H(s) = g / prod_j (s - p_j): r_i = g / prod_{j!=i} (p_i - p_j) and
+// H(-p_i) = g / prod_j (-p_i - p_j). Evaluated in long double from the
+// factored form. One section H = w^2/(s^2 + 2 zeta w s + w^2) is the
+// mass-spring-damper 1/(m s^2 + c s + k) times w^2 with m = 1, c = 2 zeta w,
+// k = w^2, whose displacement variance W/(2 c k) gives w^4/(4 zeta w^3) =
+// w/(4 zeta).
+using LD = long double;
+using CLD = std::complex<LD>;
+
+LD ClosedFormVariance(const std::vector<CLD>& poles, LD gain) {
+  CLD sum = 0.0L;
+  for (std::size_t i = 0; i < poles.size(); ++i) {
+    CLD r = gain, h = gain;
+    for (std::size_t j = 0; j < poles.size(); ++j) {
+      if (j != i) r /= poles[i] - poles[j];
+      h /= -poles[i] - poles[j];
+    }
+    sum += r * h;
+  }
+  return sum.real();
+}
+
+// Clustered lightly damped modes of the audit: w_k = 2 pi 10 (1 + 0.03 k).
+double ModeW(int k) { return 2 * M_PI * 10 * (1 + 0.03 * k); }
+
+std::vector<CLD> SectionPoles(int sections, double zeta) {
+  std::vector<CLD> p;
+  for (int k = 0; k < sections; ++k) {
+    const LD w = ModeW(k), z = zeta;  // the doubles the sections are built from
+    p.push_back(CLD(-z * w, w * std::sqrt(1.0L - z * z)));
+    p.push_back(std::conj(p.back()));
+  }
+  return p;
+}
+
+LD SectionGain(int sections) {
+  LD g = 1.0L;
+  for (int k = 0; k < sections; ++k) g *= static_cast<LD>(ModeW(k)) * ModeW(k);
+  return g;
+}
+
+TEST_CASE("the closed form gives w/(4 zeta) for one second-order section") {
+  for (const double zeta : {0.3, 1e-2, 1e-3}) {
+    const double w = ModeW(0);
+    const LD reference = ClosedFormVariance(SectionPoles(1, zeta), SectionGain(1));
+    CHECK(static_cast<double>(reference) == doctest::Approx(w / (4 * zeta)).epsilon(1e-15));
+    const StateSpace sec = ToStateSpace(TransferFunction({w * w}, {1.0, 2 * zeta * w, w * w}));
+    CHECK(OutputCovariance(sec, Scalar(1.0))(0, 0) ==
+          doctest::Approx(w / (4 * zeta)).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("a cascade of 8 or 10 clustered lightly damped sections matches the closed form") {
+  // Series of H_k = w_k^2/(s^2 + 2 zeta w_k s + w_k^2). Before the fix (one
+  // dense complex Schur form of the whole cascade, state variances spanning
+  // 1e-3 ... 1e13) deb was off by up to 4e-5 (8 sections) and 1.5e-1 (10
+  // sections, zeta 1e-3). Tolerance 1e-6 relative (observed ~1e-13).
+  for (const int n : {8, 10})
+    for (const double zeta : {1e-2, 1e-3}) {
+      CAPTURE(n);
+      CAPTURE(zeta);
+      StateSpace cascade = StateSpace::Gain(Scalar(1.0));
+      for (int k = 0; k < n; ++k) {
+        const double w = ModeW(k);
+        cascade = Series(cascade,
+                         ToStateSpace(TransferFunction({w * w}, {1.0, 2 * zeta * w, w * w})));
+      }
+      const double reference =
+          static_cast<double>(ClosedFormVariance(SectionPoles(n, zeta), SectionGain(n)));
+      CHECK(OutputCovariance(cascade, Scalar(1.0))(0, 0) ==
+            doctest::Approx(reference).epsilon(1e-6));
+    }
+}
+
+// The same modes as one expanded polynomial, multiplied out in double.
+std::vector<double> ExpandedDenominator(int sections, double zeta) {
+  std::vector<double> den{1.0};
+  for (int k = 0; k < sections; ++k) {
+    const double w = ModeW(k), sec[3] = {1.0, 2 * zeta * w, w * w};
+    std::vector<double> next(den.size() + 2, 0.0);
+    for (std::size_t i = 0; i < den.size(); ++i)
+      for (int j = 0; j < 3; ++j) next[i + j] += den[i] * sec[j];
+    den = next;
+  }
+  return den;
+}
+
+// The roots of the rounded coefficients: Newton's method in long double on
+// the exact double coefficients, started from the intended poles.
+std::vector<CLD> RootsNear(const std::vector<double>& p, std::vector<CLD> roots) {
+  for (CLD& r : roots)
+    for (int it = 0; it < 30; ++it) {
+      CLD v = 0.0L, d = 0.0L;
+      for (double c : p) {
+        d = d * r + v;
+        v = v * r + static_cast<LD>(c);
+      }
+      const CLD step = v / d;
+      r -= step;
+      if (std::abs(step) <= 1e-18L * std::abs(r)) break;
+    }
+  return roots;
+}
+
+TEST_CASE("clustered modes as one expanded polynomial of order 16 or 20 match the closed form") {
+  // The coefficients of the expanded polynomial, rounded to double, do not
+  // define the intended system exactly: their roots are up to ~1e-6 |Re p|
+  // (order 16) and ~3e-4 |Re p| (order 20) away from the intended poles, and
+  // the variance they define differs by ~1e-7 (16) and ~1e-6 (20) from the
+  // intended one (one ulp in a coefficient moves it by up to 2e-5 at order
+  // 20). So the reference is the closed form of the system the rounded
+  // coefficients define: its own roots, found here in long double.
+  // Before the fix (companion realisation) the exact variance was negative
+  // or off by orders of magnitude. Tolerance 1e-6 relative.
+  for (const int n : {8, 10})
+    for (const double zeta : {1e-2, 1e-3}) {
+      CAPTURE(n);
+      CAPTURE(zeta);
+      const std::vector<double> den = ExpandedDenominator(n, zeta);
+      const double num = static_cast<double>(SectionGain(n));
+      const std::vector<CLD> intended = SectionPoles(n, zeta);
+      const std::vector<CLD> actual = RootsNear(den, intended);
+      LD shift = 0.0L;
+      for (std::size_t i = 0; i < intended.size(); ++i)
+        shift = std::max(shift, std::abs(actual[i] - intended[i]) / std::abs(intended[i].real()));
+      CHECK(shift < 1e-3L);  // the right roots, not neighbours
+      const double reference = static_cast<double>(ClosedFormVariance(actual, num));
+      const StateSpace tf = ToStateSpace(TransferFunction({num}, den));
+      CHECK(tf.states() == 2 * n);
+      CHECK(OutputCovariance(tf, Scalar(1.0))(0, 0) == doctest::Approx(reference).epsilon(1e-6));
+      // The intended system is within the polynomial's own rounding.
+      const double intended_variance =
+          static_cast<double>(ClosedFormVariance(intended, SectionGain(n)));
+      CHECK(reference == doctest::Approx(intended_variance).epsilon(1e-5));
+    }
+}
+
+TEST_CASE("an unreliable exact variance is refused, never returned negative") {
+  // The companion form of the order-16 polynomial, built by hand: its
+  // Lyapunov equation is so ill-conditioned that the computed variance is
+  // meaningless (it came out negative); OutputCovariance must say so.
+  const std::vector<double> den = ExpandedDenominator(8, 1e-2);
+  const int n = 16;
+  MatrixXd a = MatrixXd::Zero(n, n), b = MatrixXd::Zero(n, 1), c = MatrixXd::Zero(1, n);
+  for (int k = 0; k < n; ++k) a(0, k) = -den[k + 1];
+  for (int k = 1; k < n; ++k) a(k, k - 1) = 1.0;
+  b(0, 0) = 1.0;
+  c(0, n - 1) = static_cast<double>(SectionGain(8));
+  const StateSpace companion(a, b, c, MatrixXd::Zero(1, 1));
+  const std::string msg = MessageOf([&] { OutputCovariance(companion, Scalar(1.0)); });
+  CHECK(Contains(msg, "exact variance is not reliable for this realisation"));
 }
 
 }  // namespace
