@@ -33,17 +33,13 @@ bool IsEmptyDirectory(const fs::path& dir) {
   return fs::is_directory(dir, ec) && fs::is_empty(dir, ec);
 }
 
-// True unless the process is known to be gone (a PID we may not signal is alive).
-bool ProcessAlive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH); }
-
 // ".NAME.tmp-PID" or ".NAME.tmp-PID.old" beside the target: the PID, else -1.
 long TemporaryPid(const std::string& entry, const std::string& prefix, bool* old) {
   if (entry.compare(0, prefix.size(), prefix) != 0) return -1;
   std::string rest = entry.substr(prefix.size());
   *old = rest.size() > 4 && rest.compare(rest.size() - 4, 4, ".old") == 0;
   if (*old) rest.resize(rest.size() - 4);
-  if (rest.empty() || rest.size() > 10 || rest.find_first_not_of("0123456789") != std::string::npos) return -1;
-  return std::stol(rest);
+  return PidOf(rest);
 }
 
 // Removes what killed runs left beside `target`; puts back a report that a
@@ -55,7 +51,7 @@ void CleanStaleTemporaries(const fs::path& parent, const fs::path& target) {
   for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
     bool old = false;
     const long pid = TemporaryPid(it->path().filename().string(), prefix, &old);
-    if (pid < 0 || pid == ::getpid() || ProcessAlive(pid)) continue;
+    if (!IsDeadProcess(pid)) continue;
     if (!it->is_directory(ec) || it->is_symlink(ec) || !HasMarker(it->path())) continue;  // only what deb wrote
     (old ? stale_old : stale_new).push_back(it->path());
   }
@@ -108,6 +104,15 @@ fs::path ResolveTarget(const std::string& out_dir) {
 }
 
 }  // namespace
+
+long PidOf(const std::string& text) {
+  if (text.empty() || text.size() > 10 || text.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return std::stol(text);
+}
+
+bool IsDeadProcess(long pid) {
+  return pid > 0 && pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
 
 void WriteTextFile(const std::string& path, const std::string& text) {
   std::FILE* f = std::fopen(path.c_str(), "wb");

@@ -35,6 +35,14 @@ struct ReplaceOptions {
 void ReplaceDirectory(const std::string& out_dir, const std::function<void(const std::string&)>& fill,
                       const ReplaceOptions& options = {});
 
+// Temporaries deb names after its PID ("...-PID-...", ".NAME.tmp-PID") are
+// removed by a later run only once that process is gone.
+// The PID that `text` spells (1 to 10 digits, nothing else), or -1.
+long PidOf(const std::string& text);
+// True if `pid` is no process now (and not this one): what it left may go.
+// A process this user may not signal counts as alive.
+bool IsDeadProcess(long pid);
+
 // Writes `text` to `path`: open, write, close, and check each.
 // @throws WriteError "cannot write PATH: <reason>" (e.g. No space left on device).
 void WriteTextFile(const std::string& path, const std::string& text);

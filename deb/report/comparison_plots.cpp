@@ -16,9 +16,6 @@ constexpr std::size_t kPanelsPerPage = 8;
 
 std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
 
-std::string TwoLines(const std::string& first, const std::string& second) { return QuoteLines({first, second}); }
-
-
 }  // namespace
 
 std::string BandText(double lo_hz, double hi_hz) { return Short(lo_hz) + "–" + Short(hi_hz) + " Hz"; }
@@ -158,7 +155,7 @@ std::vector<Plot> OverviewPlots(const BudgetResult& result) {
       std::string status = "RMS " + SigLabel(out.rms()) + " " + UnitLabel(unit);
       if (out.rms_max)
         status += std::string(out.pass() ? ": PASS" : ": FAIL") + " (requirement " + Short(*out.rms_max) + ")";
-      const std::string title = TwoLines(Enhanced(out.name), status);
+      const std::string title = QuoteLines({Enhanced(out.name), status});
       const double top = std::max(out.rms(), out.rms_max ? *out.rms_max : 0.0);
       s << "set title " << title << " font '," << (panels > 2 ? 12 : 13) << "' textcolor rgb "
         << Quote(out.rms_max && !out.pass() ? kRequirementColour : "#202020") << "\n";

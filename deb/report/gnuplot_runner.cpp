@@ -60,11 +60,8 @@ void CleanStaleTemporaries(const fs::path& tmp) {
       const std::string name = it->path().filename().string();
       if (name.compare(0, prefix.size(), prefix) != 0) continue;
       const std::size_t dash = name.find('-', prefix.size());
-      const std::string pid_text = name.substr(prefix.size(), dash == std::string::npos ? 0 : dash - prefix.size());
-      if (pid_text.empty() || pid_text.size() > 10 || pid_text.find_first_not_of("0123456789") != std::string::npos)
-        continue;
-      const long pid = std::stol(pid_text);
-      if (pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+      const long pid = PidOf(name.substr(prefix.size(), dash == std::string::npos ? 0 : dash - prefix.size()));
+      if (!IsDeadProcess(pid)) continue;
       struct stat st {};
       if (::lstat(it->path().c_str(), &st) != 0 || st.st_uid != ::getuid()) continue;
       std::error_code ignored;

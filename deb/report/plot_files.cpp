@@ -32,8 +32,6 @@ std::vector<std::string> FileNames(const std::string& name, const std::vector<Pl
   return names;
 }
 
-void WriteFile(const fs::path& path, const std::string& text) { WriteTextFile(path.string(), text); }
-
 // A fresh hidden directory inside `parent`, named after the plot.
 fs::path MakeTemporaryDirectory(const fs::path& parent, const std::string& name) {
   static std::atomic<int> counter{0};
@@ -77,7 +75,7 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
         throw WriteError(p.directory + ": no such directory, for the plot " + paths.back());
       const fs::path dir = MakeTemporaryDirectory(Directory(p), p.plot.name);
       temporary_dirs_.push_back(dir.string());
-      WriteFile(dir / StandaloneDataFile(p.plot.name), p.plot.csv);
+      WriteTextFile((dir / StandaloneDataFile(p.plot.name)).string(), p.plot.csv);
       WriteGnuplotScript((dir / (p.plot.name + ".gp")).string(), p.plot.script);
       for (PlotFormat f : formats) {
         const Terminal t = TerminalOf(f);
