@@ -135,6 +135,14 @@ int Check(const std::string& budget_file) {
                   p.measured->HasLoopAroundData() ? ", loop stability not verified" : "");
       continue;
     }
+    if (p.IsModal()) {
+      const deb::ModalModel& m = *p.modal;
+      const auto [lo, hi] = std::minmax_element(m.f_hz.begin(), m.f_hz.end());
+      std::printf("  %-20s %d input(s) -> %d output(s), %d mode(s), %g-%g Hz, %s\n", p.name.c_str(),
+                  p.system.inputs(), p.system.outputs(), m.modes(), *lo, *hi,
+                  *lo > 0.0 ? "stable" : "rigid-body mode(s) at 0 Hz");
+      continue;
+    }
     std::printf("  %-20s %d input(s) -> %d output(s), %d state(s), %s\n", p.name.c_str(), p.system.inputs(),
                 p.system.outputs(), p.system.states(), p.system.IsStable() ? "stable" : "NOT stable");
   }

@@ -158,6 +158,28 @@ struct PathStability {
   std::vector<std::complex<double>> marginal;
 };
 
+std::vector<ModeShare> TopModes(const ModalModel& model, const PathAnalysis::ExactVariance& exact, double scale2) {
+  std::vector<int> order(static_cast<std::size_t>(exact.mode_share.size()));
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  const std::size_t top = std::min(order.size(), ContributorResult::kTopModes);
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(top), order.end(), [&](int a, int b) {
+    return std::abs(exact.mode_share(a)) > std::abs(exact.mode_share(b)) ||
+           (std::abs(exact.mode_share(a)) == std::abs(exact.mode_share(b)) && a < b);
+  });
+  std::vector<ModeShare> shares;
+  for (std::size_t i = 0; i < top; ++i) {
+    const int k = order[i];
+    ModeShare s;
+    s.mode = k + 1;
+    s.f_hz = model.f_hz[k];
+    s.zeta = model.zeta[k];
+    s.variance = exact.mode_share(k) * scale2;
+    s.share = exact.variance > 0.0 ? exact.mode_share(k) / exact.variance : 0.0;
+    shares.push_back(s);
+  }
+  return shares;
+}
+
 PathStability ClassifyPoles(const StateSpace& sys) {
   PathStability s;
   const Eigen::VectorXcd poles = sys.Poles();
@@ -192,13 +214,38 @@ std::vector<double> ReverseCps(const std::vector<double>& cps) {
   return r;
 }
 
+using PathAnalyses = std::map<std::string, std::shared_ptr<const PathAnalysis>>;
+
+PathAnalyses AnalysePaths(const Budget& budget) {
+  PathAnalyses paths;
+  for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
+    const Contributor& c = budget.contributors[ci];
+    if (paths.count(c.path)) continue;
+    const Path& path = budget.FindPath(c.path);
+    std::vector<int> rows;
+    for (const Output& o : budget.outputs) rows.push_back(path.OutputIndex(o.signal));
+    try {
+      paths[c.path] = std::make_shared<const PathAnalysis>(path, rows);
+    } catch (const InputError& e) {
+      if (!e.key_path().empty()) throw;
+      throw InputError(Key("contributors", ci, "path"), "path '" + path.name + "': " + e.what());
+    }
+  }
+  return paths;
+}
+
 namespace {
-FrequencyGrid BuildGridUnlocated(const Budget& budget);
+FrequencyGrid BuildGridUnlocated(const Budget& budget, const PathAnalyses& paths);
 }  // namespace
 
 FrequencyGrid BuildGrid(const Budget& budget) {
+  budget.Validate();
+  return BuildGrid(budget, AnalysePaths(budget));
+}
+
+FrequencyGrid BuildGrid(const Budget& budget, const PathAnalyses& paths) {
   try {
-    return BuildGridUnlocated(budget);
+    return BuildGridUnlocated(budget, paths);
   } catch (const InputError& e) {
     if (!e.key_path().empty()) throw;
     throw InputError("grid", e.what());  // the grid's rules: located at the budget's grid
@@ -206,7 +253,7 @@ FrequencyGrid BuildGrid(const Budget& budget) {
 }
 
 namespace {
-FrequencyGrid BuildGridUnlocated(const Budget& budget) {
+FrequencyGrid BuildGridUnlocated(const Budget& budget, const PathAnalyses& paths) {
   const GridSpec& g = budget.grid;
   switch (g.kind) {
     case GridKind::kExplicit:
@@ -234,20 +281,16 @@ FrequencyGrid BuildGridUnlocated(const Budget& budget) {
   }
   std::vector<Resonance> resonances;
   std::vector<double> breakpoints;
-  std::map<std::string, bool> seen_path;
-  for (const Contributor& c : budget.contributors) {
-    if (!seen_path[c.path]) {
-      const Path& path = budget.FindPath(c.path);
-      AddResonances(path.system, &resonances);
-      if (path.HasMeasuredData()) {
-        // The rational blocks' poles, and every data point: between data
-        // points |H|^2 is a power law, which the grid's rule integrates exactly.
-        for (const StateSpace& part : path.measured->RationalParts()) AddResonances(part, &resonances);
-        const std::vector<double> data = path.measured->DataFrequencies();
-        breakpoints.insert(breakpoints.end(), data.begin(), data.end());
-      }
+  for (const auto& [name, analysis] : paths) {
+    const std::vector<Resonance> r = analysis->Resonances();
+    resonances.insert(resonances.end(), r.begin(), r.end());
+    const Path& path = analysis->path();
+    if (path.HasMeasuredData()) {
+      // Every data point: between data points |H|^2 is a power law, which
+      // the grid's rule integrates exactly.
+      const std::vector<double> data = path.measured->DataFrequencies();
+      breakpoints.insert(breakpoints.end(), data.begin(), data.end());
     }
-    seen_path[c.path] = true;
   }
   for (const Output& o : budget.outputs)
     if (o.weighting) AddResonances(o.weighting->system, &resonances);
@@ -284,7 +327,8 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
   budget.Validate();
   BudgetResult result;
   result.budget_name = budget.name;
-  result.grid = BuildGrid(budget);
+  result.paths = AnalysePaths(budget);
+  result.grid = BuildGrid(budget, result.paths);
   const std::vector<double>& f = result.grid.f_hz();
   const std::size_t n = f.size();
 
@@ -341,22 +385,14 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     const Contributor& c = budget.contributors[ci];
     const Source& source = budget.FindSource(c.source);
     const Path& path = budget.FindPath(c.path);
+    const PathAnalysis& analysis = *result.paths.at(c.path);
     const int m = path.system.inputs();
 
-    PathStability stability = ClassifyPoles(path.system);
-    if (path.HasMeasuredData()) {
-      if (path.measured->HasLoopAroundData()) {
-        result.warnings.push_back("path '" + path.name +
-                                  "' closes a loop around measured data: its stability is not verified "
-                                  "(check the loop's Nyquist plot)");
-      } else {
-        for (const StateSpace& part : path.measured->RationalParts()) {
-          const PathStability s = ClassifyPoles(part);
-          stability.unstable.insert(stability.unstable.end(), s.unstable.begin(), s.unstable.end());
-          stability.marginal.insert(stability.marginal.end(), s.marginal.begin(), s.marginal.end());
-        }
-      }
-    }
+    PathStability stability{analysis.unstable_poles(), analysis.marginal_poles()};
+    if (analysis.loop_around_data())
+      result.warnings.push_back("path '" + path.name +
+                                "' closes a loop around measured data: its stability is not verified "
+                                "(check the loop's Nyquist plot)");
     if (!stability.unstable.empty())
       throw InputError(Key("contributors", ci, "path"),
                        "path '" + path.name + "' is unstable: pole(s) at " + FormatPoles(stability.unstable) +
@@ -370,23 +406,20 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     bool inputs_pure_scale = true;
     for (const UnitConversion& u : in_conv) inputs_pure_scale &= u.IsPureScale();
 
-    std::vector<int> rows;
     std::vector<int> row_of_output(budget.outputs.size());
     std::vector<UnitConversion> out_conv(budget.outputs.size());
     for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
       const Output& out = budget.outputs[o];
       const int row = path.OutputIndex(out.signal);
-      auto it = std::find(rows.begin(), rows.end(), row);
-      row_of_output[o] = static_cast<int>(it - rows.begin());
-      if (it == rows.end()) rows.push_back(row);
+      row_of_output[o] = analysis.Position(row);
       out_conv[o] = OutputConversion(path, row, out);
     }
 
     std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
     const InputSpectrum input(*source.spectrum, in_conv);
     try {
-      path.ForEachResponse(
-          rows, f,
+      analysis.ForEachResponse(
+          f,
           [&](std::size_t k, const Eigen::MatrixXcd& h) {
             // Allocates only where the spectrum must be evaluated per frequency.
             Eigen::VectorXd diag_scratch;
@@ -444,11 +477,12 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
         Eigen::MatrixXd in_scale = Eigen::MatrixXd::Zero(m, m);
         for (int j = 0; j < m; ++j) in_scale(j, j) = in_conv[j].scale;
         const Eigen::MatrixXd w_two_sided = in_scale * (*white) * in_scale / 2.0;
-        StateSpace row_sys = path.system.SelectOutputs({row});
-        if (out.weighting) row_sys = Series(row_sys, out.weighting->system);
         try {
-          const double var = OutputCovariance(row_sys, w_two_sided)(0, 0);
-          cr.exact_variance = var * out_conv[o].scale * out_conv[o].scale;
+          const PathAnalysis::ExactVariance exact =
+              analysis.Exact(row, w_two_sided, out.weighting ? &out.weighting->system : nullptr);
+          const double scale2 = out_conv[o].scale * out_conv[o].scale;
+          cr.exact_variance = exact.variance * scale2;
+          if (exact.mode_share.size() > 0) cr.top_modes = TopModes(*path.modal, exact, scale2);
         } catch (const InputError& e) {
           why_not = e.what();
         }

@@ -10,11 +10,14 @@
 // moving-average/std outputs.
 #pragma once
 
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "deb/budget/budget.h"
+#include "deb/budget/path_analysis.h"
 #include "deb/core/frequency_grid.h"
 
 namespace deb {
@@ -26,6 +29,17 @@ struct EngineOptions {
   double exact_tolerance = 1e-3;
 };
 
+// One mode's part of a contributor's exact variance on an output (modal
+// paths): the symmetric split of the modal covariance (modal_response.h), so
+// that the parts of all modes add up to the exact variance.
+struct ModeShare {
+  int mode = 0;        // 1-based, in the order of the path's mode table
+  double f_hz = 0.0;
+  double zeta = 0.0;
+  double variance = 0.0;  // output unit^2; negative where the mode cancels others
+  double share = 0.0;     // variance / exact variance
+};
+
 struct ContributorResult {
   std::string name;
   std::vector<double> psd;  // one-sided, output unit^2/Hz, per grid point
@@ -34,6 +48,10 @@ struct ContributorResult {
   std::optional<double> exact_variance;  // Lyapunov, over 0..infinity
   std::string exact_note;                // why there is none, if none
   double tail_variance_estimate = 0.0;   // power-law extrapolation beyond the grid
+  // Modal path with an exact variance: the modes with the largest |share|,
+  // largest first (at most kTopModes).
+  std::vector<ModeShare> top_modes;
+  static constexpr std::size_t kTopModes = 10;
 };
 
 struct BandResult {
@@ -73,7 +91,14 @@ struct BudgetResult {
   FrequencyGrid grid{std::vector<double>{1.0, 2.0}};
   std::vector<OutputResult> outputs;
   std::vector<std::string> warnings;
+  // The analysis of every contributor's path by name, built once by
+  // Evaluate and shared with the report (path plots).
+  std::map<std::string, std::shared_ptr<const PathAnalysis>> paths;
 };
+
+// The analysis of every path a contributor uses, for the output rows the
+// budget reads.
+std::map<std::string, std::shared_ptr<const PathAnalysis>> AnalysePaths(const Budget& budget);
 
 // The grid the budget asks for. For the automatic grid: resonances from the
 // poles of every contributor's path and every weighting, breakpoints from
@@ -82,6 +107,8 @@ struct BudgetResult {
 // @throws InputError (key "grid" or "bands[i]") if a band lies outside an
 //         explicit grid range.
 FrequencyGrid BuildGrid(const Budget& budget);
+FrequencyGrid BuildGrid(const Budget& budget,
+                        const std::map<std::string, std::shared_ptr<const PathAnalysis>>& paths);
 
 // Reverse CPS: integral of S from f to f_max, from a forward CPS.
 std::vector<double> ReverseCps(const std::vector<double>& cps);

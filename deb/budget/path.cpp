@@ -4,7 +4,6 @@
 #include <sstream>
 
 #include "deb/core/error.h"
-#include "deb/systems/frequency_response.h"
 
 namespace deb {
 namespace {
@@ -40,20 +39,8 @@ int Path::OutputIndex(const std::string& signal) const {
   return -1;
 }
 
-FrequencyModel Path::Model() const { return measured ? *measured : FrequencyModel(system); }
+StateSpace Path::Rational() const { return modal ? ModalStateSpace(*modal) : system; }
 
-void Path::ForEachResponse(const std::vector<int>& rows, const std::vector<double>& f_hz,
-                           const FrequencyModel::Visitor& fn, int threads) const {
-  if (measured) {
-    const FrequencyModel sub = measured->SelectOutputs(rows);
-    try {
-      sub.ForEach(f_hz, fn, threads);
-    } catch (const InputError& e) {
-      throw InputError("path '" + name + "': " + e.what());
-    }
-    return;
-  }
-  FrequencyResponse(system.SelectOutputs(rows)).ForEach(f_hz, fn, threads);
-}
+FrequencyModel Path::Model() const { return measured ? *measured : FrequencyModel(Rational()); }
 
 }  // namespace deb

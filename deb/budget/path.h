@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "deb/systems/frequency_model.h"
+#include "deb/systems/modal_model.h"
 #include "deb/systems/state_space.h"
 
 namespace deb {
@@ -22,6 +23,9 @@ struct Path {
   // frequency from it, and `system` is only a zero gain of the path's size,
   // carrying its dimensions (no poles, no Lyapunov variance).
   std::shared_ptr<const FrequencyModel> measured;
+  // Set for a path of `type: modal`: it is evaluated in modal form
+  // (path_analysis.h), and `system` is again only a zero gain of its size.
+  std::shared_ptr<const ModalModel> modal;
   std::vector<std::string> input_names;   // one per input column
   std::vector<std::string> output_names;  // one per output row ("signals")
   std::vector<std::string> input_units;   // one per input column
@@ -35,17 +39,13 @@ struct Path {
   int OutputIndex(const std::string& signal) const;
 
   bool HasMeasuredData() const { return measured != nullptr; }
+  bool IsModal() const { return modal != nullptr; }
+  // The rational transfer as a state space: `system`, or the realisation of
+  // the modal model (2 states per mode; for joining it with other paths).
+  StateSpace Rational() const;
   // The path as a block diagram evaluated per frequency (measured, or the
-  // state space wrapped); for interconnecting it with a measured path.
+  // rational transfer wrapped); for interconnecting it with a measured path.
   FrequencyModel Model() const;
-
-  // fn(k, H_rows(j 2 pi f_hz[k])) for the rows `rows` at every frequency: from
-  // the state space reduced once, or from the measured data. fn is called
-  // concurrently (threads <= 0: the default count), with distinct k.
-  // @throws InputError where H is not finite (a pole on the grid) or measured
-  //   data do not reach (Extrapolation::kError).
-  void ForEachResponse(const std::vector<int>& rows, const std::vector<double>& f_hz,
-                       const FrequencyModel::Visitor& fn, int threads = 0) const;
 };
 
 }  // namespace deb

@@ -40,8 +40,8 @@ std::vector<double> WeightingGain2(const Output& output, const std::vector<doubl
   return g;
 }
 
-PathResponse ComputePathResponse(const Budget& budget, std::size_t contributor, std::size_t output,
-                                 const std::vector<double>& f_hz, int threads) {
+PathResponse ComputePathResponse(const Budget& budget, const BudgetResult& result, std::size_t contributor,
+                                 std::size_t output, const std::vector<double>& f_hz, int threads) {
   DEB_DEMAND(contributor < budget.contributors.size() && output < budget.outputs.size());
   const Contributor& c = budget.contributors[contributor];
   const Output& out = budget.outputs[output];
@@ -49,6 +49,10 @@ PathResponse ComputePathResponse(const Budget& budget, std::size_t contributor, 
   const Path& path = budget.FindPath(c.path);
   const int row = path.OutputIndex(out.signal);
   DEB_DEMAND(row >= 0);
+  const auto analysis = result.paths.find(c.path);
+  DEB_DEMAND(analysis != result.paths.end());
+  const int position = analysis->second->Position(row);
+  DEB_DEMAND(position >= 0);
   const int m = path.system.inputs();
 
   const std::vector<UnitConversion> in_conv = InputConversions(source, path);
@@ -61,12 +65,12 @@ PathResponse ComputePathResponse(const Budget& budget, std::size_t contributor, 
   r.channels = source.channel_names;
   r.unit = Grouped(out.unit) + "/" + Grouped(source.unit);
   r.gain2.assign(m, std::vector<double>(f_hz.size(), 0.0));
-  path.ForEachResponse(
-          {row}, f_hz,
+  analysis->second->ForEachResponse(
+          f_hz,
           [&](std::size_t i, const Eigen::MatrixXcd& h) {
             const double common = out_conv.PsdFactor(f_hz[i]) * (w2.empty() ? 1.0 : w2[i]);
             for (int k = 0; k < m; ++k)
-              r.gain2[k][i] = std::norm(h(0, k) * in_conv[k].ResponseFactor(f_hz[i])) * common;
+              r.gain2[k][i] = std::norm(h(position, k) * in_conv[k].ResponseFactor(f_hz[i])) * common;
           },
           threads);
   return r;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "deb/budget/budget.h"
+#include "deb/budget/engine.h"
 #include "deb/units/unit.h"
 
 namespace deb {
@@ -42,10 +43,11 @@ struct PathResponse {
 };
 
 // |h_k(f)|^2 for contributor `contributor` (index into budget.contributors)
-// and output `output` (index into budget.outputs) at every f.
+// and output `output` (index into budget.outputs) at every f, from the path's
+// analysis in `result` (Evaluate of the same budget).
 // DEB_DEMANDs valid indices of a validated budget.
 // @throws InputError as the engine does for units and poles on the grid.
-PathResponse ComputePathResponse(const Budget& budget, std::size_t contributor, std::size_t output,
-                                 const std::vector<double>& f_hz, int threads = 0);
+PathResponse ComputePathResponse(const Budget& budget, const BudgetResult& result, std::size_t contributor,
+                                 std::size_t output, const std::vector<double>& f_hz, int threads = 0);
 
 }  // namespace deb

@@ -19,9 +19,13 @@ inline constexpr double kMinGridHz = 1e-12;
 inline constexpr double kMaxGridHz = 1e15;
 // Channels of one source, inputs or outputs of one path.
 inline constexpr int kMaxChannels = 10'000;
-// Modes of one modal path (type: modal): 2 states each. The path is a dense
-// state space of 2 x modes states today (a 10 000-state A is 800 MB).
+// Modes of one modal path (type: modal), evaluated in modal form (memory
+// and time linear in the modes; the exact covariance is O(modes^2)).
 inline constexpr int kMaxModes = 5'000;
+// States of a dense realisation deb forms from a modal path (joined with
+// other paths, or under an output weighting for its exact variance): the
+// O(n^3) reductions of 2000 states take seconds, beyond that minutes.
+inline constexpr int kMaxDenseStates = 2'000;
 // Variants of one sweep, values of one swept parameter.
 inline constexpr std::size_t kMaxSweepVariants = 100'000;
 // YAML nodes a sweep key path with [*] may visit (aliases can make a short

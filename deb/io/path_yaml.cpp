@@ -72,8 +72,9 @@ Eigen::MatrixXd ScaleBetween(const YamlNode& node, const std::vector<std::string
 // `system`.
 template <typename StateSpaceOp, typename ModelOp>
 void Combine(Path* p, const Path& a, const Path& b, StateSpaceOp rational, ModelOp diagram) {
+  p->modal.reset();  // a combination is realised in state space (path.h)
   if (!a.HasMeasuredData() && !b.HasMeasuredData()) {
-    p->system = rational(a.system, b.system);
+    p->system = rational(a.Rational(), b.Rational());
     p->measured.reset();
     return;
   }
@@ -235,7 +236,9 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
     keys.insert(std::begin(kModalKeys), std::end(kModalKeys));
     node.AllowOnly(keys);  // no inputs/outputs: the DOF names come from the shapes
     const ModalModel model = ParseModalModel(node, base_dir_);
-    p.system = AtNode(node, [&] { return ModalStateSpace(model); });
+    AtNode(node, [&] { model.Validate(); });
+    p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(model.phi_out.rows(), model.phi_in.rows()));
+    p.modal = std::make_shared<const ModalModel>(model);
     p.input_names = model.input_names;
     p.output_names = model.output_names;
     p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());

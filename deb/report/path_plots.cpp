@@ -7,7 +7,6 @@
 #include "deb/report/plot_points.h"
 #include "deb/budget/path_response.h"
 #include "deb/report/plot_style.h"
-#include "deb/systems/modes.h"
 
 namespace deb::report {
 namespace {
@@ -56,7 +55,7 @@ std::vector<std::vector<std::size_t>> CoincidentChannels(const std::vector<std::
 
 Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, std::size_t o, int threads) {
   const std::vector<double>& f = result.grid.f_hz();
-  const PathResponse r = ComputePathResponse(budget, c, o, f, threads);
+  const PathResponse r = ComputePathResponse(budget, result, c, o, f, threads);
   const Contributor& contributor = budget.contributors[c];
   const Output& output = budget.outputs[o];
   const std::size_t m = r.gain2.size();
@@ -66,7 +65,7 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
   p.output = static_cast<int>(o);
   std::pair<double, double> poles_hz{0.0, 0.0};
   const FrequencyRange display = DisplayRange(result.outputs[o], result.grid);
-  const FrequencyRange range = PathRange(budget.FindPath(contributor.path), display, result.grid, &poles_hz);
+  const FrequencyRange range = PathRange(*result.paths.at(contributor.path), display, result.grid, &poles_hz);
   const bool widened = range.lo_hz < display.lo_hz || range.hi_hz > display.hi_hz;
   const std::string poles = (poles_hz.first == poles_hz.second ? Sig(poles_hz.first)
                                                                  : Sig(poles_hz.first) + "–" + Sig(poles_hz.second)) +
@@ -162,11 +161,11 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
 
 }  // namespace
 
-FrequencyRange PathRange(const Path& path, const FrequencyRange& display, const FrequencyGrid& grid,
+FrequencyRange PathRange(const PathAnalysis& path, const FrequencyRange& display, const FrequencyGrid& grid,
                          std::pair<double, double>* poles_hz) {
-  if (path.HasMeasuredData() || path.system.states() == 0) return display;
+  if (path.path().HasMeasuredData() || path.modes().empty()) return display;
   double first = HUGE_VAL, last = 0.0;
-  for (const Mode& m : Modes(path.system)) {
+  for (const Mode& m : path.modes()) {
     if (!(m.f_n_hz >= grid.min_hz() && m.f_n_hz <= grid.max_hz())) continue;  // integrators have f_n = 0
     first = std::min(first, m.f_n_hz);
     last = std::max(last, m.f_n_hz);

@@ -20,9 +20,10 @@ namespace deb::report {
 // it; a magnitude plot shows every pole of its path whose natural frequency
 // lies within the grid: `display` is widened to whole decades reaching at
 // least half a decade beyond each such f_n, within the grid. A measured path
-// (Path::HasMeasuredData) has no poles and keeps `display`. `poles_hz`, if
-// given, receives the lowest and highest such f_n (unchanged without any).
-FrequencyRange PathRange(const Path& path, const FrequencyRange& display, const FrequencyGrid& grid,
+// (Path::HasMeasuredData) keeps `display`. The poles are the analysis's
+// (path_analysis.h). `poles_hz`, if given, receives the lowest and highest
+// such f_n (unchanged without any).
+FrequencyRange PathRange(const PathAnalysis& path, const FrequencyRange& display, const FrequencyGrid& grid,
                          std::pair<double, double>* poles_hz = nullptr);
 
 // One plot per (contributor, output), contributors outer.

@@ -78,6 +78,7 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
   Eigen::MatrixXcd v = eig.eigenvectors();
   v.colwise().normalize();
   const Eigen::VectorXcd lambda = eig.eigenvalues();
+  poles_ = lambda;
   // cond_1(V) = |V|_1 |V^-1|_1 (within a factor n of the 2-norm one); the
   // inverse is needed anyway for the residues. A defective A gives a
   // numerically singular V and an infinite or huge condition number.

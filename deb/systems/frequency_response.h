@@ -72,6 +72,8 @@ class FrequencyResponse {
   // Size of the largest diagonal block of the block Schur form (1 for the
   // modal form): 2 for a double pole, n if no eigenvalue could be split off.
   int largest_block() const { return largest_block_; }
+  // The eigenvalues of A [rad/s], from the reduction (empty without states).
+  const Eigen::VectorXcd& poles() const { return poles_; }
 
   // H(j 2 pi f), outputs x inputs.
   // @throws InputError if f_hz is not finite or j 2 pi f coincides with a pole.
@@ -112,6 +114,7 @@ class FrequencyResponse {
   double eigenvector_condition_ = 1.0;
   double pole_tolerance_ = 0.0;  // |j omega - lambda| below this counts as on a pole
   int largest_block_ = 1;
+  Eigen::VectorXcd poles_;
 
   // Everything is computed as G = H, or as G = H^T when the block Schur form
   // has fewer inputs than outputs (then its substitutions run on the inputs);

@@ -38,7 +38,7 @@ TEST_CASE("one path plot per contributor and output, whose CSV holds |h| of ever
   CHECK(plots[0].name == "path_floor_to_z_velocity");
   CHECK(plots[3].name == "path_sensor_noise_to_z_displacement");
   CHECK(plots[3].script.find("[nm/(µm/s)]") != std::string::npos);
-  const PathResponse r = ComputePathResponse(budget, 1, 1, result.grid.f_hz());
+  const PathResponse r = ComputePathResponse(budget, result, 1, 1, result.grid.f_hz());
   std::istringstream lines(plots[3].csv);
   std::string line;
   std::getline(lines, line);  // comment
@@ -78,7 +78,7 @@ outputs:
   const FrequencyRange display = DisplayRange(result.outputs[0], result.grid);
   REQUIRE(display.hi_hz == doctest::Approx(10.0));
   std::pair<double, double> poles{0.0, 0.0};
-  const FrequencyRange r = PathRange(budget.paths[0], display, result.grid, &poles);
+  const FrequencyRange r = PathRange(*result.paths.at(budget.paths[0].name), display, result.grid, &poles);
   CHECK(poles.first == doctest::Approx(200.0).epsilon(1e-6));
   CHECK(poles.second == doctest::Approx(200.0).epsilon(1e-6));
   CHECK(r.lo_hz == doctest::Approx(display.lo_hz));
@@ -104,11 +104,11 @@ outputs:
 
   // Clamped to the grid: a grid ending at 300 Hz ends the plot there.
   const FrequencyGrid short_grid = FrequencyGrid::Log(0.1, 300.0, 400);
-  const FrequencyRange clamped = PathRange(budget.paths[0], FrequencyRange{1.0, 10.0, true}, short_grid);
+  const FrequencyRange clamped = PathRange(*result.paths.at(budget.paths[0].name), FrequencyRange{1.0, 10.0, true}, short_grid);
   CHECK(clamped.hi_hz == doctest::Approx(300.0));
   // A pole outside the grid does not widen it.
   const FrequencyGrid low_grid = FrequencyGrid::Log(0.1, 100.0, 400);
-  CHECK(PathRange(budget.paths[0], FrequencyRange{1.0, 10.0, true}, low_grid).hi_hz == doctest::Approx(10.0));
+  CHECK(PathRange(*result.paths.at(budget.paths[0].name), FrequencyRange{1.0, 10.0, true}, low_grid).hi_hz == doctest::Approx(10.0));
 }
 
 TEST_CASE("the avis case study's path plots show its closed-loop poles up to 7.4 Hz, to 100 Hz") {

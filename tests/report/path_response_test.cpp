@@ -23,7 +23,7 @@ void CheckAgainstEngine(const Budget& budget) {
     const Source& source = budget.FindSource(budget.contributors[c].source);
     REQUIRE(source.spectrum->IsDiagonal());
     for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
-      const PathResponse r = ComputePathResponse(budget, c, o, f);
+      const PathResponse r = ComputePathResponse(budget, result, c, o, f);
       REQUIRE(r.gain2.size() == static_cast<std::size_t>(source.channels()));
       const std::vector<double>& engine = result.outputs[o].contributors[c].psd;
       double worst = 0.0;
@@ -62,7 +62,7 @@ outputs:
 )",
                                        "weighted.yaml");
   const std::vector<double> f = {0.1, 1.0, 10.0};
-  const PathResponse r = ComputePathResponse(budget, 0, 0, f);
+  const PathResponse r = ComputePathResponse(budget, Evaluate(budget), 0, 0, f);
   CHECK(r.channels == std::vector<std::string>{"a", "b"});
   CHECK(r.unit == "nm/(um/s)");
   for (std::size_t i = 0; i < f.size(); ++i) {
@@ -77,8 +77,9 @@ TEST_CASE("a unit that differs by a time derivative enters the path response as 
   // Example budget: sensor noise (um/s) to z_displacement (nm) integrates once.
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   const std::vector<double> f = {0.5, 5.0};
-  const PathResponse velocity = ComputePathResponse(budget, 1, 0, f);
-  const PathResponse displacement = ComputePathResponse(budget, 1, 1, f);
+  const BudgetResult result = Evaluate(budget);
+  const PathResponse velocity = ComputePathResponse(budget, result, 1, 0, f);
+  const PathResponse displacement = ComputePathResponse(budget, result, 1, 1, f);
   for (std::size_t i = 0; i < f.size(); ++i) {
     const double w = kTwoPi * f[i];
     CHECK(displacement.gain2[0][i] == doctest::Approx(velocity.gain2[0][i] * 1e6 / (w * w)).epsilon(1e-12));

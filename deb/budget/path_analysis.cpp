@@ -1,0 +1,170 @@
+#include "deb/budget/path_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "deb/core/error.h"
+#include "deb/core/limits.h"
+#include "deb/systems/frequency_response.h"
+#include "deb/systems/interconnect.h"
+#include "deb/systems/lyapunov.h"
+#include "deb/systems/modal_response.h"
+
+namespace deb {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+void Classify(const Eigen::VectorXcd& poles, std::vector<std::complex<double>>* unstable,
+              std::vector<std::complex<double>>* marginal) {
+  for (Eigen::Index i = 0; i < poles.size(); ++i) {
+    const std::complex<double> p = poles(i);
+    const double tol = 1e-9 * std::max(1.0, std::abs(p));
+    if (p.real() > tol) unstable->push_back(p);
+    else if (p.real() >= -tol) marginal->push_back(p);
+  }
+}
+
+std::vector<Mode> ModalModes(const ModalModel& model, Eigen::VectorXcd* poles) {
+  std::vector<Mode> modes;
+  std::vector<std::complex<double>> all;
+  for (int k = 0; k < model.modes(); ++k) {
+    Mode m;
+    if (model.f_hz[k] > 0.0) {
+      const double w = kTwoPi * model.f_hz[k], z = model.zeta[k];
+      m.f_n_hz = model.f_hz[k];
+      m.damping_ratio = z;
+      m.pole_rad_s = {-z * w, w * std::sqrt((1.0 - z) * (1.0 + z))};
+      m.pair = true;
+      all.push_back(m.pole_rad_s);
+      all.push_back(std::conj(m.pole_rad_s));
+      modes.push_back(m);
+    } else {  // a double integrator: two real poles at the origin
+      all.insert(all.end(), 2, 0.0);
+      modes.insert(modes.end(), 2, m);
+    }
+  }
+  std::stable_sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) {
+    return a.f_n_hz < b.f_n_hz || (a.f_n_hz == b.f_n_hz && a.damping_ratio < b.damping_ratio);
+  });
+  *poles = Eigen::Map<const Eigen::VectorXcd>(all.data(), static_cast<Eigen::Index>(all.size()));
+  return modes;
+}
+
+}  // namespace
+
+PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : path_(path) {
+  for (int r : rows)
+    if (std::find(rows_.begin(), rows_.end(), r) == rows_.end()) rows_.push_back(r);
+  for (int r : rows_) DEB_DEMAND(r >= 0 && r < path.system.outputs());
+  Eigen::VectorXcd poles;
+  if (path.modal) {
+    modes_ = ModalModes(*path.modal, &poles);
+    modal_ = std::make_unique<ModalResponse>(*path.modal, rows_);
+  } else if (path.measured) {
+    measured_ = path.measured->SelectOutputs(rows_);
+    std::vector<std::complex<double>> all;
+    for (const StateSpace& part : path.measured->RationalParts()) {
+      const Eigen::VectorXcd p = part.Poles();
+      all.insert(all.end(), p.data(), p.data() + p.size());
+    }
+    poles = Eigen::Map<const Eigen::VectorXcd>(all.data(), static_cast<Eigen::Index>(all.size()));
+    modes_ = ModesFromPoles(poles);
+  } else {
+    rational_ = std::make_unique<FrequencyResponse>(path.system.SelectOutputs(rows_));
+    poles = rational_->poles();
+    modes_ = ModesFromPoles(poles);
+  }
+  // The stability of a loop around measured data is not known from its parts.
+  if (!loop_around_data()) Classify(poles, &unstable_, &marginal_);
+}
+
+PathAnalysis::~PathAnalysis() = default;
+
+int PathAnalysis::Position(int row) const {
+  const auto it = std::find(rows_.begin(), rows_.end(), row);
+  return it == rows_.end() ? -1 : static_cast<int>(it - rows_.begin());
+}
+
+std::vector<Resonance> PathAnalysis::Resonances() const {
+  std::vector<Resonance> r;
+  for (const Mode& m : modes_)
+    if (m.f_n_hz > 0.0) r.push_back({m.f_n_hz, m.damping_ratio});
+  return r;
+}
+
+void PathAnalysis::ForEachResponse(const std::vector<double>& f_hz, const FrequencyModel::Visitor& fn,
+                                   int threads) const {
+  if (modal_) return modal_->ForEach(f_hz, fn, threads);
+  if (rational_) return rational_->ForEach(f_hz, fn, threads);
+  try {
+    measured_->ForEach(f_hz, fn, threads);
+  } catch (const InputError& e) {
+    throw InputError("path '" + path_.name + "': " + e.what());
+  }
+}
+
+const PathAnalysis::Cached& PathAnalysis::AllRows(const Eigen::MatrixXd& w_two_sided) const {
+  if (cache_ && cache_->w.rows() == w_two_sided.rows() && cache_->w.cols() == w_two_sided.cols() &&
+      cache_->w == w_two_sided)
+    return *cache_;
+  Cached c;
+  c.w = w_two_sided;
+  c.rows.resize(rows_.size());
+  c.errors.resize(rows_.size());
+  const auto one_by_one = [&](auto&& solve) {
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+      try {
+        c.rows[i] = solve(static_cast<int>(i));
+      } catch (const InputError& e) {
+        c.errors[i] = e.what();
+      }
+    }
+  };
+  if (modal_) {
+    try {
+      const ModalCovariance all = ModalOutputCovariance(*path_.modal, rows_, w_two_sided);
+      for (std::size_t i = 0; i < rows_.size(); ++i)
+        c.rows[i] = ExactVariance{all.variance(i), all.share.row(i).transpose()};
+    } catch (const InputError&) {
+      one_by_one([&](int i) {
+        const ModalCovariance one = ModalOutputCovariance(*path_.modal, {rows_[i]}, w_two_sided);
+        return ExactVariance{one.variance(0), one.share.row(0).transpose()};
+      });
+    }
+  } else if (rational_) {
+    try {
+      const Eigen::MatrixXd cov = OutputCovariance(path_.system.SelectOutputs(rows_), w_two_sided);
+      for (std::size_t i = 0; i < rows_.size(); ++i) c.rows[i] = ExactVariance{cov(i, i), {}};
+    } catch (const InputError&) {
+      one_by_one([&](int i) {
+        return ExactVariance{OutputCovariance(path_.system.SelectOutputs({rows_[i]}), w_two_sided)(0, 0), {}};
+      });
+    }
+  } else {
+    for (auto& e : c.errors) e = "the path holds measured frequency data (no state-space model for a Lyapunov solution)";
+  }
+  cache_ = std::move(c);
+  return *cache_;
+}
+
+PathAnalysis::ExactVariance PathAnalysis::Exact(int row, const Eigen::MatrixXd& w_two_sided,
+                                                const StateSpace* weighting) const {
+  const int i = Position(row);
+  DEB_DEMAND(i >= 0);
+  if (!weighting) {
+    const Cached& c = AllRows(w_two_sided);
+    if (!c.rows[i]) throw InputError(c.errors[i]);
+    return *c.rows[i];
+  }
+  if (measured_) throw InputError("the path holds measured frequency data (no state-space model for a Lyapunov solution)");
+  if (modal_ && 2 * path_.modal->modes() > limits::kMaxDenseStates)
+    throw InputError("a weighted output of a modal path is solved in state space, and " +
+                     std::to_string(path_.modal->modes()) + " modes make " +
+                     std::to_string(2 * path_.modal->modes()) + " states, more than the " +
+                     std::to_string(limits::kMaxDenseStates) + " deb solves densely");
+  const StateSpace rows = path_.Rational().SelectOutputs({row});
+  return ExactVariance{OutputCovariance(Series(rows, *weighting), w_two_sided)(0, 0), {}};
+}
+
+}  // namespace deb

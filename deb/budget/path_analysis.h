@@ -1,0 +1,94 @@
+// The analysis of one path for one evaluation, built once and shared by
+// everything that needs it: the grid builder (resonances, data frequencies),
+// propagation (H at every grid frequency, for the output rows the budget
+// reads only), the stability check, the exact variance and the report's path
+// plots. A path holds one of three models, and each is reduced its own way:
+//   - rational (state space): A is reduced once (frequency_response.h), which
+//     also gives the poles;
+//   - modal: evaluated in modal form (modal_response.h), poles and the exact
+//     covariance in closed form, nothing of size 2n x 2n is formed;
+//   - measured (a block diagram with frequency data): evaluated per frequency
+//     (frequency_model.h); the poles are those of its rational blocks.
+#pragma once
+
+#include <Eigen/Dense>
+#include <complex>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "deb/budget/path.h"
+#include "deb/core/frequency_grid.h"
+#include "deb/systems/frequency_model.h"
+#include "deb/systems/modes.h"
+
+namespace deb {
+
+class FrequencyResponse;
+class ModalResponse;
+
+class PathAnalysis {
+ public:
+  // `rows`: the path's output rows to evaluate (each budget output reads one;
+  // repeats are kept once). Reduces the model.
+  PathAnalysis(const Path& path, const std::vector<int>& rows);
+  ~PathAnalysis();
+  PathAnalysis(const PathAnalysis&) = delete;
+  PathAnalysis& operator=(const PathAnalysis&) = delete;
+
+  const Path& path() const { return path_; }
+  // Position of path row `row` in the evaluated H, or -1 if it is not evaluated.
+  int Position(int row) const;
+  int evaluated_rows() const { return static_cast<int>(rows_.size()); }
+
+  // Every pole of the path as a mode (modes.h), sorted by natural frequency;
+  // for a measured diagram, those of its rational blocks.
+  const std::vector<Mode>& modes() const { return modes_; }
+  // Natural frequency and damping of every pole with Im >= 0 (for the grid).
+  std::vector<Resonance> Resonances() const;
+  // Poles with Re > 1e-9 max(1, |p|) and on the imaginary axis (|Re| within it).
+  const std::vector<std::complex<double>>& unstable_poles() const { return unstable_; }
+  const std::vector<std::complex<double>>& marginal_poles() const { return marginal_; }
+  // A loop closed around measured data: its stability is not known.
+  bool loop_around_data() const { return path_.measured && path_.measured->HasLoopAroundData(); }
+
+  // fn(k, H_rows(j 2 pi f_hz[k])), H_rows the evaluated rows in order; fn is
+  // called concurrently (threads <= 0: the default count) with distinct k.
+  // @throws InputError where H is not finite (a pole on the grid) or measured
+  //   data do not reach (Extrapolation::kError), naming the path.
+  void ForEachResponse(const std::vector<double>& f_hz, const FrequencyModel::Visitor& fn, int threads = 0) const;
+
+  // The exact variance of path row `row` (evaluated) under white input noise
+  // of two-sided intensity `w_two_sided`, with the output's weighting if
+  // given (in series after the row); for a modal path without weighting also
+  // the split over the modes (ModalOutputCovariance). Without weighting all
+  // evaluated rows are solved together and kept for the next call with the
+  // same W (the contributor's other outputs); not thread-safe.
+  // @throws InputError with the reason where none exists (measured data,
+  //   unstable or marginal poles, feedthrough of white noise, unreliable).
+  struct ExactVariance {
+    double variance = 0.0;
+    Eigen::VectorXd mode_share;  // one per mode of a modal path, else empty
+  };
+  ExactVariance Exact(int row, const Eigen::MatrixXd& w_two_sided, const StateSpace* weighting) const;
+
+ private:
+  const Path path_;  // a copy: results may outlive the budget
+  std::vector<int> rows_;
+  std::vector<Mode> modes_;
+  std::vector<std::complex<double>> unstable_, marginal_;
+  std::unique_ptr<FrequencyResponse> rational_;
+  std::unique_ptr<ModalResponse> modal_;
+  std::optional<FrequencyModel> measured_;
+  // All evaluated rows under the last W asked for (no weighting).
+  struct Cached {
+    Eigen::MatrixXd w;
+    std::vector<std::optional<ExactVariance>> rows;
+    std::vector<std::string> errors;
+  };
+  mutable std::optional<Cached> cache_;
+  const Cached& AllRows(const Eigen::MatrixXd& w_two_sided) const;
+};
+
+}  // namespace deb

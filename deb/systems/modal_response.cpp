@@ -1,0 +1,218 @@
+#include "deb/systems/modal_response.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/core/parallel.h"
+
+namespace deb {
+namespace {
+
+using Complex = std::complex<double>;
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+// Entries of the per-block matrix of weighted output shapes (rows x modes x
+// frequencies) a worker holds: 16 MB of doubles per part.
+constexpr double kBlockEntries = 2e6;
+
+}  // namespace
+
+ModalResponse::ModalResponse(const ModalModel& model, const std::vector<int>& rows)
+    : derivative_(DerivativeOrder(model.quantity)) {
+  model.Validate();
+  const int n = model.modes();
+  w_.resize(n);
+  two_zeta_w_.resize(n);
+  for (int k = 0; k < n; ++k) {
+    w_[k] = kTwoPi * model.f_hz[k];
+    two_zeta_w_[k] = model.f_hz[k] > 0.0 ? 2.0 * model.zeta[k] * w_[k] : 0.0;
+  }
+  phi_out_.resize(static_cast<Eigen::Index>(rows.size()), n);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    DEB_DEMAND(rows[i] >= 0 && rows[i] < model.phi_out.rows());
+    phi_out_.row(static_cast<Eigen::Index>(i)) = model.phi_out.row(rows[i]);
+  }
+  phi_in_t_ = model.phi_in.transpose();
+}
+
+void ModalResponse::EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd& xr, Eigen::MatrixXd& xi,
+                                  Eigen::MatrixXd& hr, Eigen::MatrixXd& hi) const {
+  const Eigen::Index p = phi_out_.rows(), n = phi_out_.cols();
+  xr.resize(count * p, n);
+  xi.resize(count * p, n);
+  for (int i = 0; i < count; ++i) {
+    if (!std::isfinite(f_hz[i])) {
+      std::ostringstream os;
+      os << "frequency response: frequency " << f_hz[i] << " Hz is not finite";
+      throw InputError(os.str());
+    }
+  }
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double wk = w_[k], c = two_zeta_w_[k];
+    for (int i = 0; i < count; ++i) {
+      const double w = kTwoPi * f_hz[i];
+      // D = (w_k - w)(w_k + w) + j c w;  g = (j w)^n / D = (j w)^n conj(D) / |D|^2
+      const double dr = (wk - w) * (wk + w), di = c * w, dd = dr * dr + di * di;
+      if (!(dd > 0.0) || std::sqrt(dd) <= 64.0 * kEps * (wk * wk + w * w)) {
+        std::ostringstream os;
+        os << "frequency response: frequency " << f_hz[i] << " Hz coincides with a pole of the path (mode "
+           << k + 1 << " at " << wk / kTwoPi << " Hz); H is unbounded there, leave this frequency out of the grid";
+        throw InputError(os.str());
+      }
+      double gr = dr / dd, gi = -di / dd;
+      if (derivative_ == 1) {
+        const double t = gr;
+        gr = -w * gi;
+        gi = w * t;
+      } else if (derivative_ == 2) {
+        gr *= -w * w;
+        gi *= -w * w;
+      }
+      double* outr = xr.data() + k * xr.rows() + i * p;
+      double* outi = xi.data() + k * xi.rows() + i * p;
+      for (Eigen::Index r = 0; r < p; ++r) {
+        const double a = phi_out_(r, k);
+        outr[r] = a * gr;
+        outi[r] = a * gi;
+      }
+    }
+  }
+  hr.noalias() = xr * phi_in_t_;
+  hi.noalias() = xi * phi_in_t_;
+}
+
+Eigen::MatrixXcd ModalResponse::At(double f_hz) const {
+  Eigen::MatrixXd xr, xi, hr, hi;
+  EvaluateBlock(&f_hz, 1, xr, xi, hr, hi);
+  Eigen::MatrixXcd h(hr.rows(), hr.cols());
+  h.real() = hr;
+  h.imag() = hi;
+  return h;
+}
+
+void ModalResponse::ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads) const {
+  const Eigen::Index p = outputs(), m = inputs();
+  const double per_frequency = std::max<double>(1.0, static_cast<double>(p) * std::max(1, modes()));
+  const int block = static_cast<int>(std::clamp(kBlockEntries / per_frequency, 1.0, 256.0));
+  ParallelFor(
+      f_hz.size(),
+      [&](std::size_t begin, std::size_t end) {
+        Eigen::MatrixXd xr, xi, hr, hi;
+        Eigen::MatrixXcd h(p, m);
+        for (std::size_t k0 = begin; k0 < end; k0 += block) {
+          const int count = static_cast<int>(std::min<std::size_t>(block, end - k0));
+          EvaluateBlock(f_hz.data() + k0, count, xr, xi, hr, hi);
+          for (int i = 0; i < count; ++i) {
+            for (Eigen::Index j = 0; j < m; ++j)
+              for (Eigen::Index r = 0; r < p; ++r) h(r, j) = Complex(hr(i * p + r, j), hi(i * p + r, j));
+            fn(k0 + i, h);
+          }
+        }
+      },
+      threads);
+}
+
+ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector<int>& rows,
+                                      const Eigen::MatrixXd& w_two_sided) {
+  model.Validate();
+  const int n = model.modes();
+  const Eigen::Index m = model.phi_in.rows();
+  if (w_two_sided.rows() != m || w_two_sided.cols() != m) {
+    std::ostringstream os;
+    os << "modal covariance: noise intensity W is " << w_two_sided.rows() << "x" << w_two_sided.cols()
+       << ", the model has " << m << " input(s)";
+    throw InputError(os.str());
+  }
+  for (Eigen::Index i = 0; i < m; ++i) {
+    if (!std::isfinite(w_two_sided(i, i)) || w_two_sided(i, i) < 0.0)
+      throw InputError("modal covariance: W(" + std::to_string(i + 1) + "," + std::to_string(i + 1) +
+                       ") must be finite and >= 0");
+    for (Eigen::Index j = 0; j < i; ++j)
+      if (!(std::abs(w_two_sided(i, j) - w_two_sided(j, i)) <=
+            1e-12 * std::max(1.0, std::abs(w_two_sided(i, j)) + std::abs(w_two_sided(j, i)))))
+        throw InputError("modal covariance: W is not symmetric");
+  }
+  for (int k = 0; k < n; ++k)
+    if (!(model.f_hz[k] > 0.0))
+      throw InputError("exact variance needs a stable path; mode " + std::to_string(k + 1) +
+                       " is a rigid-body mode (f = 0 Hz: poles at the origin)");
+  const int derivative = DerivativeOrder(model.quantity);
+  if (derivative == 2) {
+    // q'' carries the input directly (D = Phi_out Phi_in^T): infinite
+    // variance unless no noise reaches an output through it.
+    const Eigen::MatrixXd d = model.phi_out * model.phi_in.transpose();
+    const Eigen::MatrixXd dwd = d * w_two_sided * d.transpose();
+    for (int r : rows)
+      if (dwd(r, r) > 0.0)
+        throw InputError("infinite variance: direct feedthrough D != 0 under white noise (an acceleration "
+                         "output of a modal path responds to a white force at all frequencies)");
+  }
+  // Partial fractions of each g_k: its poles and residues.
+  std::vector<Complex> pole(n), res_pole(n), res_conj(n);
+  for (int k = 0; k < n; ++k) {
+    const double w = kTwoPi * model.f_hz[k], z = model.zeta[k];
+    const Complex lambda(-z * w, w * std::sqrt((1.0 - z) * (1.0 + z)));
+    const Complex diff = lambda - std::conj(lambda);
+    Complex num = 1.0, num_conj = 1.0;
+    for (int d = 0; d < derivative; ++d) {
+      num *= lambda;
+      num_conj *= std::conj(lambda);
+    }
+    pole[k] = lambda;
+    res_pole[k] = num / diff;
+    res_conj[k] = -num_conj / diff;
+  }
+  // Term (k, l) of row r: a_rk a_rl F_kl I_kl with the modal forces'
+  // intensity F_kl = phi_in,k^T W phi_in,l and I_kl = integral of g_k
+  // conj(g_l) dw / 2 pi. The pair (k, l), (l, k) is split half to each mode.
+  const Eigen::Index p = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd a(n, p);  // a.row(k): mode k at every row
+  for (Eigen::Index i = 0; i < p; ++i) a.col(i) = model.phi_out.row(rows[i]).transpose();
+  const Eigen::MatrixXd w_phi = w_two_sided * model.phi_in;  // m x n
+  Eigen::MatrixXd share = Eigen::MatrixXd::Zero(n, p);
+  Eigen::VectorXd rounding = Eigen::VectorXd::Zero(p);
+  for (int k = 0; k < n; ++k) {
+    const Complex ak[2] = {pole[k], std::conj(pole[k])}, rk[2] = {res_pole[k], res_conj[k]};
+    for (int l = 0; l <= k; ++l) {
+      const double force = model.phi_in.col(k).dot(w_phi.col(l));
+      if (force == 0.0) continue;
+      const Complex bl[2] = {pole[l], std::conj(pole[l])}, rl[2] = {res_pole[l], res_conj[l]};
+      Complex sum = 0.0;
+      double abs_sum = 0.0;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+          const Complex t = -rk[i] * std::conj(rl[j]) / (ak[i] + std::conj(bl[j]));
+          sum += t;
+          abs_sum += std::abs(t);
+        }
+      const double c = force * sum.real(), b = (k == l ? 1.0 : 2.0) * std::abs(force) * abs_sum;
+      for (Eigen::Index r = 0; r < p; ++r) {
+        const double t = a(k, r) * a(l, r) * c;
+        share(k, r) += t;
+        if (k != l) share(l, r) += t;
+        rounding(r) += std::abs(a(k, r) * a(l, r)) * b;
+      }
+    }
+  }
+  ModalCovariance result;
+  result.share = share.transpose();
+  result.variance = result.share.rowwise().sum();
+  for (Eigen::Index i = 0; i < p; ++i) {
+    const double var = result.variance(i), bound = 8.0 * n * kEps * rounding(i);
+    if (var == 0.0 && bound == 0.0) continue;
+    if (!std::isfinite(var) || var < 0.0 || bound > 1e-6 * var) {
+      std::ostringstream os;
+      os << "exact variance is not reliable for this model: output " << model.output_names[rows[i]] << " gives "
+         << var << " with a rounding bound of " << bound
+         << " (its modes cancel each other almost completely)";
+      throw InputError(os.str());
+    }
+  }
+  return result;
+}
+
+}  // namespace deb
