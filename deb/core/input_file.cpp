@@ -30,7 +30,7 @@ std::string Bytes(std::uintmax_t n) {
 
 }  // namespace
 
-std::string ReadInputFile(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
+std::uintmax_t RequireInputFile(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
     throw InputError(path + ": cannot open " + what + " (" + std::strerror(errno) + ")");
@@ -39,9 +39,14 @@ std::string ReadInputFile(const std::string& path, const std::string& what, std:
   if (static_cast<std::uintmax_t>(st.st_size) > max_bytes)
     throw InputError(path + ": " + what + " holds " + std::to_string(st.st_size) + " bytes, more than the " +
                      Bytes(max_bytes) + " deb reads");
+  return static_cast<std::uintmax_t>(st.st_size);
+}
+
+std::string ReadInputFile(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
+  const std::uintmax_t size = RequireInputFile(path, what, max_bytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open " + what + " (" + std::strerror(errno) + ")");
-  std::string text(static_cast<std::size_t>(st.st_size), '\0');
+  std::string text(static_cast<std::size_t>(size), '\0');
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.gcount() != static_cast<std::streamsize>(text.size()))
     throw InputError(path + ": cannot read " + what + " (it changed or shrank while being read)");

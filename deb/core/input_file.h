@@ -18,6 +18,11 @@ namespace deb {
 //         `max_bytes`.
 std::string ReadInputFile(const std::string& path, const std::string& what, std::uintmax_t max_bytes);
 
+// The same checks without reading, for a file a library opens itself (a
+// MAT-file): its size in bytes.
+// @throws InputError as ReadInputFile.
+std::uintmax_t RequireInputFile(const std::string& path, const std::string& what, std::uintmax_t max_bytes);
+
 // The rest of a stream, at most `max_bytes` of it.
 // @throws InputError "<name>: ..." if it holds more.
 std::string ReadBoundedStream(std::istream& in, const std::string& name, std::uintmax_t max_bytes);

@@ -26,6 +26,11 @@ inline constexpr int kMaxModes = 5'000;
 // other paths, or under an output weighting for its exact variance): the
 // O(n^3) reductions of 2000 states take seconds, beyond that minutes.
 inline constexpr int kMaxDenseStates = 2'000;
+// Values of one variable of a MATLAB .mat file (deb/io/mat_file.h), checked
+// from its header before its data is read: a mode-shape matrix of the most
+// modes at the most channels (400 MB of doubles).
+inline constexpr std::size_t kMaxMatElements =
+    static_cast<std::size_t>(kMaxModes) * static_cast<std::size_t>(kMaxChannels);
 // Variants of one sweep, values of one swept parameter.
 inline constexpr std::size_t kMaxSweepVariants = 100'000;
 // YAML nodes a sweep key path with [*] may visit (aliases can make a short
@@ -35,6 +40,8 @@ inline constexpr std::size_t kMaxKeyPathVisits = 1'000'000;
 inline constexpr std::uintmax_t kMaxBudgetFileBytes = 64ull << 20;  // 64 MiB
 inline constexpr std::uintmax_t kMaxTextFileBytes = 1ull << 30;     // 1 GiB: spectra, FRF, CSV recordings, summaries
 inline constexpr std::uintmax_t kMaxRawFileBytes = 8ull << 30;      // 8 GiB: raw binary recordings
+inline constexpr std::uintmax_t kMaxMatFileBytes = 2ull << 30;      // 2 GiB: MATLAB .mat files (models, FE results)
+inline constexpr std::size_t kMaxMatVariables = 100'000;            // variables of one .mat file
 inline constexpr std::size_t kMaxLineBytes = 4u << 20;              // 4 MiB: one line of a text table
 // Seconds one gnuplot run may take before it is stopped (DEB_GNUPLOT_TIMEOUT overrides).
 inline constexpr int kGnuplotTimeoutSeconds = 300;

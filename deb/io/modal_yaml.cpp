@@ -5,13 +5,14 @@
 
 #include "deb/core/limits.h"
 #include "deb/core/number_text.h"
+#include "deb/io/mat_file.h"
 #include "deb/systems/modal_csv.h"
 #include "deb/units/unit.h"
 
 namespace deb::io {
 
-const char* const kModalKeys[7] = {"modes",         "frequencies_hz",  "damping",         "input_shapes",
-                                   "output_shapes", "output_quantity", "max_frequency_hz"};
+const char* const kModalKeys[8] = {"file",          "modes",           "frequencies_hz",  "damping",
+                                   "input_shapes",  "output_shapes",   "output_quantity", "max_frequency_hz"};
 
 namespace {
 
@@ -94,6 +95,76 @@ ShapeTable ParseShapes(const YamlNode& node, const char* key, const Modes& modes
   return s;
 }
 
+std::string SizeText(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
+
+// The DOF names in variable `var`, or u1, u2, ... (`stem` alone for one DOF)
+// when the file has none, as for the channels of other paths.
+std::vector<std::string> DofNames(const MatFile& f, const std::string& var, const std::string& shapes,
+                                  Eigen::Index rows, const std::string& stem) {
+  if (f.Has(var)) {
+    std::vector<std::string> names = f.Names(var);
+    if (static_cast<Eigen::Index>(names.size()) != rows)
+      throw InputError(f.path() + ": " + var + " holds " + std::to_string(names.size()) + " name(s) but " + shapes +
+                       " has " + std::to_string(rows) + " row(s), one per DOF");
+    return names;
+  }
+  if (rows == 1) return {stem};
+  std::vector<std::string> names;
+  for (Eigen::Index i = 1; i <= rows; ++i) names.push_back(stem + std::to_string(i));
+  return names;
+}
+
+// The modes saved in MATLAB (save -v7.3 frame.mat f_hz zeta phi_in phi_out):
+// f_hz (a vector), zeta (a vector or one value for all), phi_in (inputs x
+// modes), phi_out (outputs x modes), optional input_names / output_names.
+// Every rule of ModalModel::Validate is checked here, for all modes, with
+// the variable and index in the message.
+ModalModel ReadModalMat(const std::string& path) {
+  const MatFile f(path);
+  ModalModel model;
+  model.f_hz = f.Vector("f_hz");
+  const std::size_t n = model.f_hz.size();
+  const std::string modes = "f_hz has " + std::to_string(n) + " mode(s)";
+  if (n > static_cast<std::size_t>(limits::kMaxModes))
+    throw InputError(path + ": " + modes + "; at most " + std::to_string(limits::kMaxModes) + " are allowed");
+  const std::vector<double> zeta = f.Vector("zeta");
+  if (zeta.size() != 1 && zeta.size() != n)
+    throw InputError(path + ": zeta has " + std::to_string(zeta.size()) + " value(s) but " + modes +
+                     "; give one damping ratio for all, or one per mode");
+  model.zeta = zeta.size() == 1 ? std::vector<double>(n, zeta[0]) : zeta;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::string index = "(" + std::to_string(k + 1) + ")";
+    if (const std::string p = ModeFrequencyProblem(model.f_hz[k]); !p.empty())
+      throw InputError(path + ": f_hz" + index + " = " + NumberText(model.f_hz[k]) + ": " + p);
+    if (const std::string p = ModeDampingProblem(model.f_hz[k], model.zeta[k]); !p.empty())
+      throw InputError(path + ": zeta" + (zeta.size() == 1 ? "" : index) + " = " + NumberText(model.zeta[k]) +
+                       (zeta.size() == 1 ? " (for mode " + std::to_string(k + 1) + " at " +
+                                               NumberText(model.f_hz[k]) + " Hz)"
+                                         : "") +
+                       ": " + p);
+  }
+  model.phi_in = f.Matrix("phi_in");
+  model.phi_out = f.Matrix("phi_out");
+  for (const auto* phi : {&model.phi_in, &model.phi_out}) {
+    const std::string var = phi == &model.phi_in ? "phi_in" : "phi_out";
+    if (phi->cols() != static_cast<Eigen::Index>(n))
+      throw InputError(path + ": " + var + " is " + SizeText(*phi) + " but " + modes + ": " + var +
+                       " needs one column per mode (" + (var == "phi_in" ? "inputs" : "outputs") + " x modes)");
+    if (phi->rows() == 0) throw InputError(path + ": " + var + " is " + SizeText(*phi) + ": give at least one DOF");
+    if (phi->rows() > limits::kMaxChannels)
+      throw InputError(path + ": " + var + " is " + SizeText(*phi) + ": " + std::to_string(phi->rows()) +
+                       " DOFs; at most " + std::to_string(limits::kMaxChannels) + " are allowed");
+  }
+  model.input_names = DofNames(f, "input_names", "phi_in", model.phi_in.rows(), "u");
+  model.output_names = DofNames(f, "output_names", "phi_out", model.phi_out.rows(), "y");
+  try {
+    model.Validate();
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+  return model;
+}
+
 bool IsPlainUnit(const std::string& u) {
   for (char c : u)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') return false;
@@ -103,24 +174,34 @@ bool IsPlainUnit(const std::string& u) {
 }  // namespace
 
 ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir) {
-  const Modes modes = ParseModes(node, base_dir);
   ModalModel model;
-  model.f_hz = modes.table.f_hz;
-  model.zeta = modes.table.zeta;
-  const ShapeTable in = ParseShapes(node, "input_shapes", modes, base_dir);
-  const ShapeTable out = ParseShapes(node, "output_shapes", modes, base_dir);
-  model.input_names = in.dofs;
-  model.phi_in = in.values;
-  model.output_names = out.dofs;
-  model.phi_out = out.values;
+  if (const auto file = node.Optional("file")) {
+    for (const char* key : {"modes", "frequencies_hz", "damping", "input_shapes", "output_shapes"})
+      if (node.Has(key))
+        node.Required(key).Fail("give 'file' (a MAT-file with f_hz, zeta, phi_in and phi_out) or '" +
+                                std::string(key) + "', not both");
+    const std::string path = Resolve(base_dir, file->AsString());
+    model = AtNode(*file, [&] { return ReadModalMat(path); });
+  } else {
+    const Modes modes = ParseModes(node, base_dir);
+    model.f_hz = modes.table.f_hz;
+    model.zeta = modes.table.zeta;
+    const ShapeTable in = ParseShapes(node, "input_shapes", modes, base_dir);
+    const ShapeTable out = ParseShapes(node, "output_shapes", modes, base_dir);
+    model.input_names = in.dofs;
+    model.phi_in = in.values;
+    model.output_names = out.dofs;
+    model.phi_out = out.values;
+  }
   if (auto q = node.Optional("output_quantity"))
     model.quantity = AtNode(*q, [&] { return ParseModalQuantity(q->AsString()); });
   if (auto m = node.Optional("max_frequency_hz")) {
     const double max_hz = m->AsPositive();
+    const std::vector<double> all_hz = model.f_hz;
     model = model.Truncated(max_hz);
     if (model.modes() == 0) {
-      double lowest = modes.table.f_hz.front();
-      for (double f : modes.table.f_hz) lowest = std::min(lowest, f);
+      double lowest = all_hz.front();
+      for (double f : all_hz) lowest = std::min(lowest, f);
       m->Fail("no mode at or below " + NumberText(max_hz) + " Hz (the lowest is at " + NumberText(lowest) +
               " Hz): raise max_frequency_hz or remove it");
     }

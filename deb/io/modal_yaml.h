@@ -4,6 +4,11 @@
 //   modes: FILE                  | frequencies_hz: [...] and damping: z | [...]
 //   input_shapes: FILE           | input_shapes: {DOF: [value per mode], ...}
 //   output_shapes: FILE          | output_shapes: {DOF: [...], ...}
+// or all of them from one MATLAB file (deb/io/mat_file.h) instead:
+//   file: MAT-FILE               variables f_hz (vector), zeta (vector or one
+//                                value), phi_in (inputs x modes), phi_out
+//                                (outputs x modes), optional input_names and
+//                                output_names (default u1.., y1..)
 //   output_quantity: displacement | velocity | acceleration   (default displacement)
 //   max_frequency_hz: F          (optional: keep the modes at or below F)
 // Units are the caller's (path_yaml.cpp): output_unit names the displacement
@@ -18,12 +23,13 @@
 namespace deb::io {
 
 // The keys above (besides the common ones of every path).
-extern const char* const kModalKeys[7];
+extern const char* const kModalKeys[8];
 
 // @throws InputError located at the key (and, for a file, at its
-//   file:line:col) for every rule of ModalModel::Validate and modal_csv.h, a
-//   shape count other than the mode count, an unknown output_quantity, a
-//   max_frequency_hz that leaves no mode.
+//   file:line:col, or the MAT-file variable and index) for every rule of
+//   ModalModel::Validate and modal_csv.h, a shape count other than the mode
+//   count, `file` together with another source of modes or shapes, an unknown
+//   output_quantity, a max_frequency_hz that leaves no mode.
 ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir);
 
 // The unit of the path's output when `displacement_unit` is differentiated

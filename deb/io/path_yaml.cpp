@@ -3,7 +3,9 @@
 #include <filesystem>
 #include <memory>
 
+#include "deb/core/limits.h"
 #include "deb/io/isolation_yaml.h"
+#include "deb/io/mat_file.h"
 #include "deb/io/modal_yaml.h"
 #include "deb/systems/frf_csv.h"
 #include "deb/systems/interconnect.h"
@@ -45,6 +47,69 @@ std::vector<std::string> Units(const YamlNode& node, const std::string& single, 
     return units;
   }
   node.Fail("missing '" + single + "' (one unit for all) or '" + list + "' (one per channel)");
+}
+
+// `file` relative to the budget's directory, unless absolute.
+std::string Resolve(const std::string& base_dir, const std::string& file) {
+  std::filesystem::path f(file);
+  if (f.is_relative()) f = std::filesystem::path(base_dir) / f;
+  return f.lexically_normal().string();
+}
+
+std::string SizeText(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
+
+// A state-space model saved in MATLAB (save plant.mat A B C D): A, B, C, an
+// optional D (zeros when absent) and optional input_names / output_names.
+struct StateSpaceMat {
+  StateSpace system;
+  std::vector<std::string> input_names, output_names;  // empty when the file has none
+};
+
+// The names in variable `var` of `f`, one per channel, none repeated; {} if
+// the file has no such variable.
+std::vector<std::string> ChannelNames(const MatFile& f, const std::string& var, Eigen::Index count,
+                                      const std::string& count_from) {
+  if (!f.Has(var)) return {};
+  std::vector<std::string> names = f.Names(var);
+  if (static_cast<Eigen::Index>(names.size()) != count)
+    throw InputError(f.path() + ": " + var + " holds " + std::to_string(names.size()) + " name(s) but " + count_from);
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (!seen.insert(names[i]).second)
+      throw InputError(f.path() + ": " + var + "{" + std::to_string(i + 1) + "} '" + names[i] + "' is given twice");
+  return names;
+}
+
+StateSpaceMat ReadStateSpaceMat(const std::string& path) {
+  const MatFile f(path);
+  const Eigen::MatrixXd a = f.Matrix("A");
+  const std::string n = std::to_string(a.rows());
+  if (a.rows() != a.cols()) throw InputError(path + ": A is " + SizeText(a) + "; the state matrix A must be square");
+  const Eigen::MatrixXd b = f.Matrix("B");
+  if (b.rows() != a.rows())
+    throw InputError(path + ": B is " + SizeText(b) + " but A is " + SizeText(a) + ": B needs " + n + " rows");
+  const Eigen::MatrixXd c = f.Matrix("C");
+  if (c.cols() != a.rows())
+    throw InputError(path + ": C is " + SizeText(c) + " but A is " + SizeText(a) + ": C needs " + n + " columns");
+  if (b.cols() == 0) throw InputError(path + ": B is " + SizeText(b) + ": the model needs at least one input");
+  if (c.rows() == 0) throw InputError(path + ": C is " + SizeText(c) + ": the model needs at least one output");
+  const std::string at_most = "; at most " + std::to_string(limits::kMaxChannels) + " are allowed";
+  if (b.cols() > limits::kMaxChannels)
+    throw InputError(path + ": B is " + SizeText(b) + ": " + std::to_string(b.cols()) + " inputs" + at_most);
+  if (c.rows() > limits::kMaxChannels)
+    throw InputError(path + ": C is " + SizeText(c) + ": " + std::to_string(c.rows()) + " outputs" + at_most);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(c.rows(), b.cols());
+  if (f.Has("D")) {
+    d = f.Matrix("D");
+    if (d.rows() != c.rows() || d.cols() != b.cols())
+      throw InputError(path + ": D is " + SizeText(d) + " but B is " + SizeText(b) + " and C is " + SizeText(c) +
+                       ": D needs to be " + std::to_string(c.rows()) + "x" + std::to_string(b.cols()) +
+                       " (outputs x inputs)");
+  }
+  StateSpaceMat m{StateSpace(a, b, c, d), {}, {}};
+  m.input_names = ChannelNames(f, "input_names", b.cols(), "B has " + std::to_string(b.cols()) + " column(s) (inputs)");
+  m.output_names = ChannelNames(f, "output_names", c.rows(), "C has " + std::to_string(c.rows()) + " row(s) (outputs)");
+  return m;
 }
 
 TransferFunction ParseTf(const YamlNode& node) {
@@ -121,6 +186,8 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
   const YamlNode type_node = node.Required("type");
   const std::string type = type_node.AsString();
   bool composite = false;
+  // Channel names from a data file (state_space file:), unless the entry gives inputs/outputs.
+  std::vector<std::string> file_inputs, file_outputs;
 
   if (type == "transfer_function") {
     node.AllowOnly(With(kCommonKeys, {"num", "den", "matrix"}));
@@ -138,11 +205,23 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
       p.system = ToStateSpace(ParseTf(node));
     }
   } else if (type == "state_space") {
-    node.AllowOnly(With(kCommonKeys, {"A", "B", "C", "D"}));
-    const Eigen::MatrixXd a = node.Required("A").AsMatrix(), b = node.Required("B").AsMatrix(),
-                          c = node.Required("C").AsMatrix();
-    const Eigen::MatrixXd d = node.Has("D") ? node.Required("D").AsMatrix() : Eigen::MatrixXd::Zero(c.rows(), b.cols());
-    p.system = AtNode(node, [&] { return StateSpace(a, b, c, d); });
+    node.AllowOnly(With(kCommonKeys, {"A", "B", "C", "D", "file"}));
+    if (const auto file = node.Optional("file")) {
+      for (const char* m : {"A", "B", "C", "D"})
+        if (node.Has(m))
+          node.Required(m).Fail("give 'file' (a MAT-file with A, B, C and D) or the matrices inline, not both");
+      const std::string path = Resolve(base_dir_, file->AsString());
+      StateSpaceMat m = AtNode(*file, [&] { return ReadStateSpaceMat(path); });
+      p.system = std::move(m.system);
+      file_inputs = std::move(m.input_names);
+      file_outputs = std::move(m.output_names);
+    } else {
+      const Eigen::MatrixXd a = node.Required("A").AsMatrix(), b = node.Required("B").AsMatrix(),
+                            c = node.Required("C").AsMatrix();
+      const Eigen::MatrixXd d =
+          node.Has("D") ? node.Required("D").AsMatrix() : Eigen::MatrixXd::Zero(c.rows(), b.cols());
+      p.system = AtNode(node, [&] { return StateSpace(a, b, c, d); });
+    }
   } else if (type == "gain") {
     node.AllowOnly(With(kCommonKeys, {"gain"}));
     p.system = StateSpace::Gain(node.Required("gain").AsMatrix());
@@ -257,8 +336,10 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
     if (node.Has("inputs")) p.input_names = Names(node, "inputs", p.system.inputs(), "u");
     if (node.Has("outputs")) p.output_names = Names(node, "outputs", p.system.outputs(), "y");
   } else {
-    p.input_names = Names(node, "inputs", p.system.inputs(), "u");
-    p.output_names = Names(node, "outputs", p.system.outputs(), "y");
+    p.input_names = file_inputs.empty() || node.Has("inputs") ? Names(node, "inputs", p.system.inputs(), "u")
+                                                              : file_inputs;
+    p.output_names = file_outputs.empty() || node.Has("outputs") ? Names(node, "outputs", p.system.outputs(), "y")
+                                                                 : file_outputs;
     p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
     p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
   }

@@ -1,6 +1,7 @@
 // The bad-input catalogue: every input of the project's reliability audit
 // (its case ids: Y budget, W sweep, N sensitivity, S spectrum CSV, T time
-// series, F FRF table, C command line, X security-minded) run through the deb binary, one fresh directory per case. Each case states the
+// series, F FRF table, M MATLAB .mat file, C command line, X security-minded) run through the deb binary, one fresh
+// directory per case. Each case states the
 // exit code and the form of the first `deb: error:` line (budget errors:
 // `b.yaml:LINE:COL: KEY.PATH: ...`), and for every case that fails, that the
 // directory is exactly as it was: nothing new (not even an empty reports/),
@@ -9,6 +10,7 @@
 // Ids with a suffix (Y00p, C25f, ...) are follow-ups of the audit's case;
 // ids with a trailing '+' are new cases in the same family.
 #include <doctest/doctest.h>
+#include <matio.h>
 
 #include <sys/wait.h>
 
@@ -23,6 +25,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -226,6 +229,31 @@ const std::string kFrfTable =
     "20, 0.01, -20\n50, 0.01, -50\n100, 0.01, -100\n200, 0.01, -150\n";
 Files Fr(const std::string& table) { return {{"b.yaml", kFrf}, {"frf.csv", table}}; }
 Where AtFrfFile() { return At("file: |frf.csv", "paths[0].file"); }
+
+// The base plant 1/(s^2 + 2 s + 100) as a state space read from plant.mat.
+const std::string kMat = Sub(kBase, "type: transfer_function\n    num: [1]\n    den: [1, 2, 100]\n",
+                             "type: state_space\n    file: plant.mat\n");
+// plant.mat: A, B (unless !with_b) and C of that plant, written by matio (compressed version 5).
+std::string PlantMat(bool with_b = true) {
+  const fs::path tmp = fs::temp_directory_path() / ("deb_catalogue_" + std::to_string(::getpid()) + ".mat");
+  mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5);
+  if (mat == nullptr) std::abort();
+  auto put = [&](const char* name, std::vector<double> v, std::size_t rows, std::size_t cols) {
+    std::size_t dims[2] = {rows, cols};
+    matvar_t* var = Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, v.data(), 0);
+    if (var == nullptr || Mat_VarWrite(mat, var, MAT_COMPRESSION_ZLIB) != 0) std::abort();
+    Mat_VarFree(var);
+  };
+  put("A", {0, -100, 1, -2}, 2, 2);  // columns first: [0 1; -100 -2]
+  if (with_b) put("B", {0, 1}, 2, 1);
+  put("C", {1, 0}, 1, 2);
+  if (Mat_Close(mat) != 0) std::abort();
+  std::ifstream in(tmp, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  fs::remove(tmp);
+  return bytes;
+}
+Where AtMatFile() { return At("file: |plant.mat", "paths[0].file"); }
 
 // A sweep section over the base budget.
 std::string Sweep(const std::string& section) { return kBase + "sweep:\n" + section; }
@@ -780,6 +808,21 @@ const std::vector<Case>& Catalogue() {
       {"F20+", "non-scalar key inside an FRF path (D05a)",
        {{"b.yaml", Sub(kFrf, "    file: frf.csv\n", "    file: frf.csv\n    ? [a] : 1\n")}, {"frf.csv", kFrfTable}}, kRun, 3,
        At("", "paths[0]")},
+
+      // ---- M: MATLAB .mat files ---------------------------------------------
+      {"M00+", "state space from a .mat (baseline)", {{"b.yaml", kMat}, {"plant.mat", PlantMat()}}, kRun, 0, Ok()},
+      {"M01+", "a .mat without B", {{"b.yaml", kMat}, {"plant.mat", PlantMat(false)}}, kRun, 3, AtMatFile(),
+       {"no variable 'B' in the MAT-file (it holds A, C)"}},
+      {"M02+", "text saved as plant.mat", {{"b.yaml", kMat}, {"plant.mat", std::string(200, 'A') + "\n"}}, kRun, 3,
+       AtMatFile(), {"not a MAT-file of version 5, 7 or 7.3"}},
+      {"M03+", "a truncated .mat", {{"b.yaml", kMat}, {"plant.mat", PlantMat().substr(0, 150)}}, kRun, 3, AtMatFile(),
+       {"truncated or damaged"}},
+      {"M04+", ".mat is a directory (D12)", Budget(kMat), kRun, 3, AtMatFile(), {kNotRegular}, {}, "mkdir plant.mat", "",
+       20},
+      {"M05+", ".mat is a FIFO (D12)", Budget(kMat), kRun, 3, AtMatFile(), {kNotRegular}, {}, "mkfifo plant.mat", "", 20},
+      {"M06+", "file: and A: in one state_space path",
+       {{"b.yaml", Sub(kMat, "file: plant.mat\n", "file: plant.mat\n    A: [[1]]\n")}, {"plant.mat", PlantMat()}}, kRun,
+       3, At("A: |[[1]]", "paths[0].A"), {"not both"}},
 
       // ---- C: command line --------------------------------------------------
       {"C01", "budget file missing", {}, "run nosuch.yaml", 2, Usage()},

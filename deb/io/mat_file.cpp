@@ -1,0 +1,501 @@
+#include "deb/io/mat_file.h"
+
+#include <matio.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <mutex>
+
+#include "deb/core/error.h"
+#include "deb/core/input_file.h"
+#include "deb/core/limits.h"
+#include "deb/core/number_text.h"
+
+namespace deb::io {
+namespace {
+
+// matio's log function and the HDF5 library under it are process-wide:
+// every matio call holds this lock. Recursive, because a variable or the
+// file may be freed while an error leaves a locked scope.
+std::recursive_mutex g_matio;
+// The first error or warning matio logged since the current MatioCall
+// began. matio reports many problems (a short read, a bad inflate, an HDF5
+// error) only through its log and still returns success, so the log is
+// checked after every call.
+std::string g_problem;
+
+void Log(int level, char* message) {
+  // Warnings too: a short read ("Unexpected end-of-file") is only a warning.
+  if (level != MATIO_LOG_LEVEL_ERROR && level != MATIO_LOG_LEVEL_CRITICAL && level != MATIO_LOG_LEVEL_WARNING) return;
+  if (!g_problem.empty() || message == nullptr) return;
+  const std::string text(message);
+  g_problem = Excerpt(text.substr(0, text.find('\n')), 160);
+}
+
+// The lock for a sequence of matio calls; problem() is what matio reported
+// during them ("" if nothing).
+class MatioCall {
+ public:
+  MatioCall() : lock_(g_matio) {
+    static const int installed = Mat_LogInitFunc("deb", Log);
+    (void)installed;
+    g_problem.clear();
+  }
+  const std::string& problem() const { return g_problem; }
+  // " (matio: ...)" or "".
+  std::string Because() const { return g_problem.empty() ? "" : " (matio: " + g_problem + ")"; }
+
+ private:
+  std::lock_guard<std::recursive_mutex> lock_;
+};
+
+struct VarFree {
+  void operator()(matvar_t* v) const {
+    const std::lock_guard<std::recursive_mutex> lock(g_matio);
+    Mat_VarFree(v);
+  }
+};
+using VarPtr = std::unique_ptr<matvar_t, VarFree>;
+
+[[noreturn]] void Fail(const std::string& path, const std::string& message) { throw InputError(path + ": " + message); }
+
+std::string Quoted(const std::string& name) { return "'" + Excerpt(name) + "'"; }
+
+// ---------------------------------------------------------------------------
+// The file's layout, before matio opens it.
+
+enum class Version { k5, k73 };
+
+std::uint32_t Read32(const unsigned char* p, bool little) {
+  return little ? (std::uint32_t{p[0]} | std::uint32_t{p[1]} << 8 | std::uint32_t{p[2]} << 16 | std::uint32_t{p[3]} << 24)
+                : (std::uint32_t{p[3]} | std::uint32_t{p[2]} << 8 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[0]} << 24);
+}
+
+// The size in bytes of one value of a v5 data type (miINT8 ... miUINT64); 0 for others.
+std::uintmax_t V5ValueBytes(std::uint32_t type) {
+  switch (type) {
+    case 1: case 2: return 1;           // miINT8, miUINT8
+    case 3: case 4: return 2;           // miINT16, miUINT16
+    case 5: case 6: case 7: return 4;   // miINT32, miUINT32, miSINGLE
+    case 9: case 12: case 13: return 8; // miDOUBLE, miINT64, miUINT64
+    default: return 0;
+  }
+}
+
+// Inside an uncompressed numeric variable (`body`: its first bytes after the
+// tag, `size`: all of them): array flags, dimensions, name, then the real
+// part, whose data element must hold every value the dimensions ask for
+// (matio reads that many, past a short element). "" if it does, or if the
+// layout is not the plain one this checks.
+std::string ShortData(const unsigned char* body, std::size_t have, std::uintmax_t size, bool little) {
+  std::size_t at = 0;
+  // Next subelement: its type, bytes and where its data starts; false past `have`.
+  auto next = [&](std::uint32_t& type, std::uint32_t& bytes, std::size_t& data) {
+    if (at + 8 > have) return false;
+    type = Read32(body + at, little);
+    if ((type >> 16) != 0) {  // small element: 4 bytes of data in the tag
+      bytes = type >> 16;
+      type &= 0xFFFF;
+      data = at + 4;
+      at += 8;
+    } else {
+      bytes = Read32(body + at + 4, little);
+      data = at + 8;
+      at += 8 + (bytes + 7) / 8 * 8;
+    }
+    return true;
+  };
+  std::uint32_t type = 0, bytes = 0;
+  std::size_t data = 0;
+  if (!next(type, bytes, data) || type != 6 || bytes < 8 || data + 8 > have) return "";
+  const std::uint32_t class_type = Read32(body + data, little) & 0xFF;
+  if (class_type < 6 || class_type > 15) return "";  // not numeric (mxDOUBLE_CLASS ... mxUINT64_CLASS)
+  if (!next(type, bytes, data) || type != 5 || data + bytes > have) return "";
+  std::uintmax_t count = 1;
+  for (std::uint32_t k = 0; k + 4 <= bytes; k += 4) {
+    const std::uint32_t d = Read32(body + data + k, little);
+    if (d != 0 && count > limits::kMaxMatElements / d) return "";  // refused by its size later
+    count *= d;
+  }
+  if (!next(type, bytes, data)) return "";  // the name
+  const std::size_t part = at;
+  if (!next(type, bytes, data)) return "";  // the real part
+  const std::uintmax_t value = V5ValueBytes(type);
+  if (value == 0) return "";
+  if (bytes / value < count || part + 8 + bytes > size)
+    return "its dimensions ask for " + std::to_string(count) + " values, its data holds " +
+           std::to_string(bytes / value) + (part + 8 + bytes > size ? " and runs past the variable's end" : "");
+  return "";
+}
+
+// The version from the 128-byte header; for version 5 (and 7, the same
+// format with compression) the top-level data elements (one per variable)
+// are walked, each of which must end within the file: matio reads a
+// variable cut short by a truncated file without an error, the missing
+// values as zeros.
+Version CheckLayout(const std::string& path, std::uintmax_t size) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) Fail(path, std::string("cannot open MAT-file (") + std::strerror(errno) + ")");
+  if (size < 128)
+    Fail(path, "the file holds " + std::to_string(size) +
+                   " bytes, too few for a MAT-file (a MAT-file of version 5, 7 or 7.3 starts with a 128-byte header)");
+  unsigned char header[128];
+  in.read(reinterpret_cast<char*>(header), sizeof header);
+  if (in.gcount() != static_cast<std::streamsize>(sizeof header)) Fail(path, "cannot read the MAT-file header");
+  const bool little = header[126] == 'I' && header[127] == 'M', big = header[126] == 'M' && header[127] == 'I';
+  if (!little && !big)
+    Fail(path, "not a MAT-file of version 5, 7 or 7.3 (no MATLAB header); version 4 files are not read: save it "
+               "again in MATLAB with save -v7");
+  const unsigned version = little ? (header[124] | header[125] << 8) : (header[124] << 8 | header[125]);
+  if (version == 0x0200) return Version::k73;
+  if (version != 0x0100) {
+    char text[8];
+    std::snprintf(text, sizeof text, "0x%04x", version);
+    Fail(path, std::string("unknown MAT-file version ") + text + " in the header (5, 7 and 7.3 are read)");
+  }
+  constexpr std::uint32_t kMiMatrix = 14;
+  std::uintmax_t at = 128;
+  std::size_t count = 0;
+  while (at + 8 <= size) {
+    unsigned char tag[8];
+    in.seekg(static_cast<std::streamoff>(at));
+    in.read(reinterpret_cast<char*>(tag), sizeof tag);
+    if (in.gcount() != static_cast<std::streamsize>(sizeof tag))
+      Fail(path, "cannot read the MAT-file (it changed or shrank while being read)");
+    const std::uint32_t type = Read32(tag, little), bytes = Read32(tag + 4, little);
+    // A small data element (type and size in the first 4 bytes) is 8 bytes.
+    std::uintmax_t end = (type >> 16) != 0 ? at + 8 : at + 8 + bytes;
+    if (++count > limits::kMaxMatVariables)
+      Fail(path, "more than " + std::to_string(limits::kMaxMatVariables) + " variables; is this a MAT-file?");
+    if (end > size)
+      Fail(path, "the file is truncated or damaged: its variable " + std::to_string(count) + " (at byte " +
+                     std::to_string(at) + ") runs to byte " + std::to_string(end) + ", but the file ends at byte " +
+                     std::to_string(size));
+    if (type == kMiMatrix) {
+      unsigned char body[4096];
+      const std::size_t have = static_cast<std::size_t>(std::min<std::uintmax_t>(sizeof body, bytes));
+      in.read(reinterpret_cast<char*>(body), static_cast<std::streamsize>(have));
+      if (in.gcount() != static_cast<std::streamsize>(have))
+        Fail(path, "cannot read the MAT-file (it changed or shrank while being read)");
+      if (const std::string problem = ShortData(body, have, bytes, little); !problem.empty())
+        Fail(path, "the file is damaged: its variable " + std::to_string(count) + " (at byte " + std::to_string(at) +
+                       "): " + problem);
+      end = (end + 7) / 8 * 8;  // uncompressed variables are padded to 8 bytes
+    }
+    at = end;
+  }
+  return Version::k5;
+}
+
+// ---------------------------------------------------------------------------
+// What a variable is, for messages.
+
+std::string SizeText(const matvar_t& v) {
+  std::string s;
+  for (int r = 0; r < v.rank; ++r) s += (r ? "x" : "") + std::to_string(v.dims[r]);
+  return v.rank == 1 ? s + "x1" : s;
+}
+
+std::string ClassName(const matvar_t& v) {
+  if (v.isLogical) return "logical";
+  switch (v.class_type) {
+    case MAT_C_DOUBLE: return "double";
+    case MAT_C_SINGLE: return "single";
+    case MAT_C_INT8: return "int8";
+    case MAT_C_UINT8: return "uint8";
+    case MAT_C_INT16: return "int16";
+    case MAT_C_UINT16: return "uint16";
+    case MAT_C_INT32: return "int32";
+    case MAT_C_UINT32: return "uint32";
+    case MAT_C_INT64: return "int64";
+    case MAT_C_UINT64: return "uint64";
+    case MAT_C_CHAR: return "char";
+    case MAT_C_CELL: return "cell";
+    case MAT_C_STRUCT: return "struct";
+    case MAT_C_OBJECT: return "object";
+    case MAT_C_SPARSE: return "sparse";
+    case MAT_C_FUNCTION: return "function handle";
+    case MAT_C_OPAQUE: return "opaque (object)";
+    case MAT_C_EMPTY: return "empty";
+  }
+  return "unknown class";
+}
+
+bool IsNumeric(const matvar_t& v) {
+  switch (v.class_type) {
+    case MAT_C_DOUBLE: case MAT_C_SINGLE: case MAT_C_INT8: case MAT_C_UINT8: case MAT_C_INT16:
+    case MAT_C_UINT16: case MAT_C_INT32: case MAT_C_UINT32: case MAT_C_INT64: case MAT_C_UINT64:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// "variable 'A' is a 3x3 complex double array".
+std::string Describe(const std::string& name, const matvar_t& v) {
+  return "variable " + Quoted(name) + " is a " + SizeText(v) + " " + (v.isComplex ? "complex " : "") + ClassName(v) +
+         (v.class_type == MAT_C_SPARSE ? " matrix" : " array");
+}
+
+// The number of values from the dimensions, or kTooMany past the bound.
+constexpr std::size_t kTooMany = limits::kMaxMatElements + 1;
+std::size_t Count(const matvar_t& v) {
+  for (int r = 0; r < v.rank; ++r)
+    if (v.dims[r] == 0) return 0;
+  std::size_t n = 1;
+  for (int r = 0; r < v.rank; ++r) {
+    if (v.dims[r] > limits::kMaxMatElements / n) return kTooMany;
+    n *= v.dims[r];
+  }
+  return n;
+}
+
+void RequireCount(const std::string& path, const std::string& name, const matvar_t& v, std::size_t max_count,
+                  const std::string& what) {
+  if (Count(v) > max_count)
+    Fail(path, Describe(name, v) + ": more than the " + std::to_string(max_count) + " " + what + " deb reads");
+}
+
+template <typename T>
+void Convert(const void* data, std::size_t n, double* out) {
+  const T* p = static_cast<const T*>(data);
+  for (std::size_t k = 0; k < n; ++k) out[k] = static_cast<double>(p[k]);
+}
+
+// Bytes per character of a char variable's data; 0 for no character type.
+int CharWidth(const matvar_t& v) {
+  switch (v.data_type) {
+    case MAT_T_UTF8: case MAT_T_INT8: case MAT_T_UINT8: return 1;
+    case MAT_T_UTF16: case MAT_T_INT16: case MAT_T_UINT16: return 2;
+    case MAT_T_UTF32: case MAT_T_INT32: case MAT_T_UINT32: return 4;
+    default: return 0;
+  }
+}
+
+void AppendUtf8(std::string& s, std::uint32_t c) {
+  if (c < 0x80) {
+    s += static_cast<char>(c);
+  } else if (c < 0x800) {
+    s += static_cast<char>(0xC0 | (c >> 6));
+    s += static_cast<char>(0x80 | (c & 0x3F));
+  } else if (c < 0x10000) {
+    s += static_cast<char>(0xE0 | (c >> 12));
+    s += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+    s += static_cast<char>(0x80 | (c & 0x3F));
+  } else {
+    s += static_cast<char>(0xF0 | ((c >> 18) & 0x07));
+    s += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
+    s += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+    s += static_cast<char>(0x80 | (c & 0x3F));
+  }
+}
+
+// Row `row` of a char array with `rows` rows and `cols` columns (MATLAB
+// stores columns first), as UTF-8, trailing blanks and NULs trimmed.
+std::string CharRow(const matvar_t& v, std::size_t rows, std::size_t cols, std::size_t row) {
+  const int width = CharWidth(v);
+  std::string s;
+  std::uint32_t high = 0;  // a UTF-16 high surrogate waiting for its pair
+  for (std::size_t c = 0; c < cols; ++c) {
+    const std::size_t k = row + c * rows;
+    if (width == 1) {
+      s += static_cast<const char*>(v.data)[k];
+      continue;
+    }
+    std::uint32_t u = width == 2 ? std::uint32_t{static_cast<const std::uint16_t*>(v.data)[k]}
+                                 : static_cast<const std::uint32_t*>(v.data)[k];
+    if (width == 2 && u >= 0xD800 && u < 0xDC00) {
+      high = u;
+      continue;
+    }
+    if (width == 2 && u >= 0xDC00 && u < 0xE000 && high) u = 0x10000 + ((high - 0xD800) << 10) + (u - 0xDC00);
+    high = 0;
+    AppendUtf8(s, u > 0x10FFFF ? 0xFFFD : u);
+  }
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\0')) s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+
+struct MatFile::Handle {
+  mat_t* mat = nullptr;
+  ~Handle() {
+    if (mat == nullptr) return;
+    const std::lock_guard<std::recursive_mutex> lock(g_matio);
+    Mat_Close(mat);  // read only: nothing to lose if closing fails
+  }
+};
+
+MatFile::MatFile(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
+  const std::uintmax_t size = RequireInputFile(path, "MAT-file", limits::kMaxMatFileBytes);
+  const Version version = CheckLayout(path, size);
+  const MatioCall call;
+  handle_->mat = Mat_Open(path.c_str(), MAT_ACC_RDONLY);
+  if (handle_->mat == nullptr || !call.problem().empty())
+    Fail(path, "cannot be read as a MAT-file" + call.Because() +
+                   (version == Version::k73 ? ": a version 7.3 (HDF5) file that is truncated or damaged" : ""));
+  const mat_ft opened = Mat_GetVersion(handle_->mat);
+  if (opened != (version == Version::k73 ? MAT_FT_MAT73 : MAT_FT_MAT5))
+    Fail(path, "matio reads the file as another MAT-file version than its header gives; is it damaged?");
+  std::size_t n = 0;
+  char** dir = Mat_GetDir(handle_->mat, &n);  // owned by the mat_t
+  if (!call.problem().empty()) Fail(path, "cannot list the variables of the MAT-file" + call.Because());
+  for (std::size_t i = 0; dir != nullptr && i < n; ++i)
+    if (dir[i] != nullptr) variables_.emplace_back(dir[i]);
+}
+
+MatFile::~MatFile() = default;
+
+bool MatFile::Has(const std::string& name) const {
+  for (const std::string& v : variables_)
+    if (v == name) return true;
+  return false;
+}
+
+namespace {
+
+// The header of variable `name` (no data yet).
+VarPtr ReadInfo(const MatFile& file, mat_t* mat, const std::string& name) {
+  if (!file.Has(name)) {
+    std::string held;
+    for (std::size_t i = 0; i < file.variables().size() && i < 20; ++i)
+      held += (i ? ", " : "") + Excerpt(file.variables()[i]);
+    if (file.variables().size() > 20) held += ", ...";
+    Fail(file.path(), "no variable " + Quoted(name) + " in the MAT-file (" +
+                          (held.empty() ? std::string("it holds no variables") : "it holds " + held) + ")");
+  }
+  const MatioCall call;
+  VarPtr v(Mat_VarReadInfo(mat, name.c_str()));
+  if (!v || !call.problem().empty() || v->rank < 1 || v->dims == nullptr)
+    Fail(file.path(), "variable " + Quoted(name) + " cannot be read" + call.Because() + "; is the file damaged?");
+  return v;
+}
+
+void ReadData(const MatFile& file, mat_t* mat, matvar_t& v, const std::string& name) {
+  const MatioCall call;
+  const int err = Mat_VarReadDataAll(mat, &v);
+  if (err != MATIO_E_NO_ERROR || !call.problem().empty())
+    Fail(file.path(), "the values of " + Describe(name, v) + " cannot be read" + call.Because() +
+                          "; is the file damaged?");
+}
+
+// Data present and as long as `count` values of its type.
+void RequireData(const MatFile& file, const matvar_t& v, const std::string& name, std::size_t count) {
+  const std::size_t size = Mat_SizeOf(v.data_type);
+  if (v.data == nullptr || size == 0 || v.nbytes / size < count)
+    Fail(file.path(), Describe(name, v) + " but holds fewer values; is the file damaged?");
+}
+
+}  // namespace
+
+Eigen::MatrixXd MatFile::Matrix(const std::string& name) const {
+  const VarPtr v = ReadInfo(*this, handle_->mat, name);
+  const std::string expected = "; expected a real 2-D matrix";
+  if (v->class_type == MAT_C_EMPTY) return Eigen::MatrixXd(0, 0);
+  if (v->rank > 2)
+    Fail(path_, "variable " + Quoted(name) + " is " + SizeText(*v) + " (a " + std::to_string(v->rank) + "-D array)" +
+                    expected);
+  if (!IsNumeric(*v)) Fail(path_, Describe(name, *v) + expected + " of numbers");
+  if (v->isComplex) Fail(path_, Describe(name, *v) + expected + " (complex values are not read)");
+  RequireCount(path_, name, *v, limits::kMaxMatElements, "values");
+  const std::size_t n = Count(*v);
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(v->dims[0]), static_cast<Eigen::Index>(v->rank == 2 ? v->dims[1] : 1));
+  if (n == 0) return out;
+  ReadData(*this, handle_->mat, *v, name);
+  RequireData(*this, *v, name, n);
+  switch (v->data_type) {
+    case MAT_T_DOUBLE: Convert<double>(v->data, n, out.data()); break;
+    case MAT_T_SINGLE: Convert<float>(v->data, n, out.data()); break;
+    case MAT_T_INT8: Convert<std::int8_t>(v->data, n, out.data()); break;
+    case MAT_T_UINT8: Convert<std::uint8_t>(v->data, n, out.data()); break;
+    case MAT_T_INT16: Convert<std::int16_t>(v->data, n, out.data()); break;
+    case MAT_T_UINT16: Convert<std::uint16_t>(v->data, n, out.data()); break;
+    case MAT_T_INT32: Convert<std::int32_t>(v->data, n, out.data()); break;
+    case MAT_T_UINT32: Convert<std::uint32_t>(v->data, n, out.data()); break;
+    case MAT_T_INT64: Convert<std::int64_t>(v->data, n, out.data()); break;
+    case MAT_T_UINT64: Convert<std::uint64_t>(v->data, n, out.data()); break;
+    default: Fail(path_, Describe(name, *v) + " whose values are of an unknown type; is the file damaged?");
+  }
+  for (Eigen::Index c = 0; c < out.cols(); ++c)
+    for (Eigen::Index r = 0; r < out.rows(); ++r)
+      if (!std::isfinite(out(r, c)))
+        Fail(path_, name + "(" + std::to_string(r + 1) + "," + std::to_string(c + 1) + ") = " +
+                        NumberText(out(r, c)) + " in the " + SizeText(*v) + " " + ClassName(*v) +
+                        " array; expected finite numbers");
+  return out;
+}
+
+std::vector<double> MatFile::Vector(const std::string& name) const {
+  const Eigen::MatrixXd m = Matrix(name);
+  const std::string size = std::to_string(m.rows()) + "x" + std::to_string(m.cols());
+  if (m.size() == 0) Fail(path_, "variable " + Quoted(name) + " is empty (" + size + "); expected at least one value");
+  if (m.rows() != 1 && m.cols() != 1)
+    Fail(path_, "variable " + Quoted(name) + " is " + size + "; expected a vector (1xn or nx1) or a scalar");
+  return std::vector<double>(m.data(), m.data() + m.size());
+}
+
+std::vector<std::string> MatFile::Names(const std::string& name) const {
+  const VarPtr v = ReadInfo(*this, handle_->mat, name);
+  const std::string expected =
+      "; expected names: a cell array of char row vectors ({'Fx', 'Fy'}) or a char matrix (char('Fx', 'Fy'))";
+  std::vector<std::string> names;
+  if (v->class_type == MAT_C_CHAR) {
+    if (v->rank != 2) Fail(path_, Describe(name, *v) + expected);
+    if (v->dims[0] > static_cast<std::size_t>(limits::kMaxChannels))
+      Fail(path_, Describe(name, *v) + ": more than the " + std::to_string(limits::kMaxChannels) + " names deb reads");
+    RequireCount(path_, name, *v, limits::kMaxMatElements, "characters");
+    const std::size_t n = Count(*v);
+    if (n == 0) Fail(path_, Describe(name, *v) + ", which holds no names");
+    ReadData(*this, handle_->mat, *v, name);
+    if (CharWidth(*v) == 0) Fail(path_, Describe(name, *v) + " whose characters are of an unknown type");
+    RequireData(*this, *v, name, n);
+    for (std::size_t r = 0; r < v->dims[0]; ++r) {
+      names.push_back(CharRow(*v, v->dims[0], v->dims[1], r));
+      if (names.back().empty())
+        Fail(path_, Describe(name, *v) + " whose row " + std::to_string(r + 1) + " is blank; every name must be given");
+    }
+    return names;
+  }
+  if (v->class_type != MAT_C_CELL || v->rank != 2 || (v->dims[0] != 1 && v->dims[1] != 1))
+    Fail(path_, Describe(name, *v) + expected);
+  if (Count(*v) > static_cast<std::size_t>(limits::kMaxChannels))
+    Fail(path_, Describe(name, *v) + ": more than the " + std::to_string(limits::kMaxChannels) + " names deb reads");
+  const std::size_t n = Count(*v);
+  if (n == 0) Fail(path_, Describe(name, *v) + ", which holds no names");
+  ReadData(*this, handle_->mat, *v, name);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string element = name + "{" + std::to_string(i + 1) + "}";
+    matvar_t* e = nullptr;
+    {
+      const MatioCall call;
+      e = Mat_VarGetCell(v.get(), static_cast<int>(i));  // owned by the cell array
+      if (e == nullptr || !call.problem().empty())
+        Fail(path_, element + " of the " + SizeText(*v) + " cell array cannot be read" + call.Because() +
+                        "; is the file damaged?");
+    }
+    if (e->rank < 1 || e->dims == nullptr) Fail(path_, element + " cannot be read; is the file damaged?");
+    const std::string what = element + " is a " + SizeText(*e) + " " + ClassName(*e) + " array";
+    if (e->class_type != MAT_C_CHAR || e->rank != 2 || (e->dims[0] != 1 && Count(*e) != 0))
+      Fail(path_, what + "; expected one name (a char row vector) per element of the " + SizeText(*v) + " cell array");
+    const std::size_t chars = Count(*e);
+    if (chars > 0) {
+      if (CharWidth(*e) == 0) Fail(path_, what + " whose characters are of an unknown type");
+      RequireData(*this, *e, element, chars);
+      names.push_back(CharRow(*e, 1, chars, 0));
+    } else {
+      names.emplace_back();
+    }
+    if (names.back().empty()) Fail(path_, what + ": an empty name; every name must be given");
+  }
+  return names;
+}
+
+}  // namespace deb::io
