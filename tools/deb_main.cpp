@@ -63,6 +63,16 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
                     std::sqrt(*c.exact_variance));
       else
         std::printf("  %-24s %14.6g %7.2f%% %14s\n", c.name.c_str(), std::sqrt(c.variance), share, "-");
+      if (!c.top_modes.empty()) {  // a modal path: the modes that carry its exact variance
+        std::string modes;
+        for (std::size_t i = 0; i < c.top_modes.size() && i < 3; ++i) {
+          char one[96];
+          std::snprintf(one, sizeof one, "%smode %d, %.4g Hz: %.0f%%", i ? "; " : "", c.top_modes[i].mode,
+                        c.top_modes[i].f_hz, 100.0 * c.top_modes[i].share);
+          modes += one;
+        }
+        std::printf("  %-24s %s\n", "", modes.c_str());
+      }
     }
     for (const auto& b : o.band_requirements)
       std::printf("  band %g-%g Hz: rms %.6g (requirement %.6g: %s)\n", b.requirement.lo_hz, b.requirement.hi_hz,

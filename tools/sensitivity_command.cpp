@@ -118,6 +118,7 @@ int RunSensitivityCommand(const CLI::App& /*sensitivity*/) {
       b.grid = GridSpec();
       b.grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
       b.grid.f_hz = nominal.grid.f_hz();
+      b.grid.panel_starts = nominal.grid.panel_starts();
       if (b.bands.empty()) b.bands = budget.bands;
       perturbed[side] = Evaluate(b, options);
     }

@@ -29,6 +29,9 @@ struct GridSpec {
   bool range_given = false;
   int points = 1000;            // kLog, kLinear
   std::vector<double> f_hz;     // kExplicit
+  // kExplicit: the panels of a grid built before (FrequencyGrid::panel_starts),
+  // to evaluate a variant on exactly the nominal's rule; empty from YAML.
+  std::vector<std::size_t> panel_starts;
 };
 
 // A SISO filter applied to a signal to form an output, e.g. the thesis'

@@ -40,40 +40,54 @@ std::vector<double> WeightingGain2(const Output& output, const std::vector<doubl
   return g;
 }
 
-PathResponse ComputePathResponse(const Budget& budget, const BudgetResult& result, std::size_t contributor,
-                                 std::size_t output, const std::vector<double>& f_hz, int threads) {
-  DEB_DEMAND(contributor < budget.contributors.size() && output < budget.outputs.size());
+std::vector<PathResponse> ComputePathResponses(const Budget& budget, const BudgetResult& result,
+                                               std::size_t contributor, const std::vector<double>& f_hz,
+                                               int threads) {
+  DEB_DEMAND(contributor < budget.contributors.size());
   const Contributor& c = budget.contributors[contributor];
-  const Output& out = budget.outputs[output];
   const Source& source = budget.FindSource(c.source);
   const Path& path = budget.FindPath(c.path);
-  const int row = path.OutputIndex(out.signal);
-  DEB_DEMAND(row >= 0);
   const auto analysis = result.paths.find(c.path);
   DEB_DEMAND(analysis != result.paths.end());
-  const int position = analysis->second->Position(row);
-  DEB_DEMAND(position >= 0);
   const int m = path.system.inputs();
-
   const std::vector<UnitConversion> in_conv = InputConversions(source, path);
-  const UnitConversion out_conv = OutputConversion(path, row, out);
-  const std::vector<double> w2 = WeightingGain2(out, f_hz, threads);
 
-  PathResponse r;
-  r.contributor = c.name;
-  r.output = out.name;
-  r.channels = source.channel_names;
-  r.unit = Grouped(out.unit) + "/" + Grouped(source.unit);
-  r.gain2.assign(m, std::vector<double>(f_hz.size(), 0.0));
+  const std::size_t outputs = budget.outputs.size();
+  std::vector<PathResponse> r(outputs);
+  std::vector<int> position(outputs);
+  std::vector<UnitConversion> out_conv(outputs);
+  std::vector<std::vector<double>> w2(outputs);
+  for (std::size_t o = 0; o < outputs; ++o) {
+    const Output& out = budget.outputs[o];
+    const int row = path.OutputIndex(out.signal);
+    DEB_DEMAND(row >= 0);
+    position[o] = analysis->second->Position(row);
+    DEB_DEMAND(position[o] >= 0);
+    out_conv[o] = OutputConversion(path, row, out);
+    w2[o] = WeightingGain2(out, f_hz, threads);
+    r[o].contributor = c.name;
+    r[o].output = out.name;
+    r[o].channels = source.channel_names;
+    r[o].unit = Grouped(out.unit) + "/" + Grouped(source.unit);
+    r[o].gain2.assign(m, std::vector<double>(f_hz.size(), 0.0));
+  }
   analysis->second->ForEachResponse(
-          f_hz,
-          [&](std::size_t i, const Eigen::MatrixXcd& h) {
-            const double common = out_conv.PsdFactor(f_hz[i]) * (w2.empty() ? 1.0 : w2[i]);
-            for (int k = 0; k < m; ++k)
-              r.gain2[k][i] = std::norm(h(position, k) * in_conv[k].ResponseFactor(f_hz[i])) * common;
-          },
-          threads);
+      f_hz,
+      [&](std::size_t i, const Eigen::MatrixXcd& h) {
+        for (std::size_t o = 0; o < outputs; ++o) {
+          const double common = out_conv[o].PsdFactor(f_hz[i]) * (w2[o].empty() ? 1.0 : w2[o][i]);
+          for (int k = 0; k < m; ++k)
+            r[o].gain2[k][i] = std::norm(h(position[o], k) * in_conv[k].ResponseFactor(f_hz[i])) * common;
+        }
+      },
+      threads);
   return r;
+}
+
+PathResponse ComputePathResponse(const Budget& budget, const BudgetResult& result, std::size_t contributor,
+                                 std::size_t output, const std::vector<double>& f_hz, int threads) {
+  DEB_DEMAND(output < budget.outputs.size());
+  return std::move(ComputePathResponses(budget, result, contributor, f_hz, threads)[output]);
 }
 
 }  // namespace deb

@@ -49,5 +49,10 @@ struct PathResponse {
 // @throws InputError as the engine does for units and poles on the grid.
 PathResponse ComputePathResponse(const Budget& budget, const BudgetResult& result, std::size_t contributor,
                                  std::size_t output, const std::vector<double>& f_hz, int threads = 0);
+// The same for every output at once, in the order of budget.outputs: one
+// evaluation of the path.
+std::vector<PathResponse> ComputePathResponses(const Budget& budget, const BudgetResult& result,
+                                               std::size_t contributor, const std::vector<double>& f_hz,
+                                               int threads = 0);
 
 }  // namespace deb

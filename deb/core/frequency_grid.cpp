@@ -54,6 +54,77 @@ FrequencyGrid::FrequencyGrid(std::vector<double> f_hz) : f_hz_(std::move(f_hz)) 
   CheckRange(f_hz_.front(), f_hz_.back(), "frequency grid");
 }
 
+FrequencyGrid::FrequencyGrid(std::vector<double> f_hz, std::vector<std::size_t> panel_starts)
+    : FrequencyGrid(std::move(f_hz)) {
+  const std::vector<double>& x = LobattoNodes();
+  std::size_t next_free = 0;
+  for (std::size_t p : panel_starts) {
+    DEB_DEMAND(p >= next_free && p + kPanelNodes <= f_hz_.size());
+    const double a = f_hz_[p], b = f_hz_[p + kPanelNodes - 1];
+    for (int j = 1; j + 1 < kPanelNodes; ++j)
+      DEB_DEMAND(std::abs(f_hz_[p + j] - (a + 0.5 * (b - a) * (x[j] + 1.0))) <= 1e-9 * (b - a));
+    next_free = p + kPanelNodes - 1;
+  }
+  panel_starts_ = std::move(panel_starts);
+}
+
+const std::vector<double>& FrequencyGrid::LobattoNodes() {
+  // +-1 and the roots of P_5', +-sqrt(1/3 +- 2 sqrt(7) / 21).
+  static const std::vector<double> nodes = [] {
+    const double s7 = std::sqrt(7.0);
+    const double outer = std::sqrt(1.0 / 3.0 + 2.0 * s7 / 21.0), inner = std::sqrt(1.0 / 3.0 - 2.0 * s7 / 21.0);
+    return std::vector<double>{-1.0, -outer, -inner, inner, outer, 1.0};
+  }();
+  static_assert(kPanelNodes == 6, "LobattoNodes holds the 6-point rule");
+  return nodes;
+}
+
+const std::vector<std::vector<double>>& FrequencyGrid::LobattoCumulativeWeights() {
+  // Lagrange polynomial i = sum_k c_ik x^k from the Vandermonde system; its
+  // integral from -1 to x_j = sum_k c_ik (x_j^(k+1) - (-1)^(k+1)) / (k+1).
+  static const std::vector<std::vector<double>> weights = [] {
+    const std::vector<double>& x = LobattoNodes();
+    constexpr int n = kPanelNodes;
+    double v[n][n], inv[n][n];
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < n; ++k) {
+        v[i][k] = std::pow(x[i], k);
+        inv[i][k] = i == k ? 1.0 : 0.0;
+      }
+    // Gauss-Jordan with partial pivoting: inv = V^-1 (coefficients by column).
+    for (int c = 0; c < n; ++c) {
+      int piv = c;
+      for (int r = c + 1; r < n; ++r)
+        if (std::abs(v[r][c]) > std::abs(v[piv][c])) piv = r;
+      for (int k = 0; k < n; ++k) {
+        std::swap(v[c][k], v[piv][k]);
+        std::swap(inv[c][k], inv[piv][k]);
+      }
+      for (int r = 0; r < n; ++r) {
+        if (r == c) continue;
+        const double f = v[r][c] / v[c][c];
+        for (int k = 0; k < n; ++k) {
+          v[r][k] -= f * v[c][k];
+          inv[r][k] -= f * inv[c][k];
+        }
+      }
+    }
+    // V c_i = e_i, so c_ik = (V^-1)_ki.
+    std::vector<std::vector<double>> w(n, std::vector<double>(n, 0.0));
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        double sum = 0.0;
+        for (int k = 0; k < n; ++k) {
+          const double c = inv[k][i] / v[k][k];
+          sum += c * (std::pow(x[j], k + 1) - std::pow(-1.0, k + 1)) / (k + 1);
+        }
+        w[j][i] = sum;
+      }
+    return w;
+  }();
+  return weights;
+}
+
 FrequencyGrid FrequencyGrid::Log(double min_hz, double max_hz, int points) {
   CheckRange(min_hz, max_hz, "log grid");
   CheckPoints(points, "log grid");
@@ -81,10 +152,9 @@ void AutoGridOptions::Validate() const {
   if (points_per_decade > limits::kMaxPointsPerDecade) {
     os << "automatic grid: points_per_decade " << points_per_decade << " is more than the limit "
        << limits::kMaxPointsPerDecade;
-  } else if (points_per_resonance > limits::kMaxPointsPerResonance ||
-             resonance_flank_points_per_decade > limits::kMaxPointsPerResonance) {
-    os << "automatic grid: points_per_resonance " << points_per_resonance << " and resonance_flank_points_per_decade "
-       << resonance_flank_points_per_decade << " may be at most " << limits::kMaxPointsPerResonance;
+  } else if (points_per_resonance > limits::kMaxPointsPerResonance) {
+    os << "automatic grid: points_per_resonance " << points_per_resonance << " may be at most "
+       << limits::kMaxPointsPerResonance;
   } else if (base_points > static_cast<double>(limits::kMaxGridPoints)) {
     os << "automatic grid: " << points_per_decade << " points per decade over " << min_hz << "-" << max_hz
        << " Hz make " << base_points << " points, more than the " << limits::kMaxGridPoints << " a grid may have";
@@ -92,63 +162,109 @@ void AutoGridOptions::Validate() const {
     os << "automatic grid: points_per_decade must be >= 2, got " << points_per_decade;
   } else if (points_per_resonance < 4) {
     os << "automatic grid: points_per_resonance must be >= 4, got " << points_per_resonance;
-  } else if (resonance_flank_points_per_decade < 4) {
-    os << "automatic grid: resonance_flank_points_per_decade must be >= 4, got "
-       << resonance_flank_points_per_decade;
   } else if (!(max_refined_zeta > 0.0 && max_refined_zeta < 1.0)) {
     os << "automatic grid: max_refined_zeta must be in (0, 1), got " << max_refined_zeta;
   }
   if (!os.str().empty()) throw InputError(os.str());
 }
 
+namespace {
+
+// The poles of |H|^2 near the real frequency axis: f_n sqrt(1 - zeta^2) +-
+// j zeta f_n, sorted by the real part, for the distance d(f).
+class PoleDistance {
+ public:
+  PoleDistance(const std::vector<Resonance>& resonances, double max_zeta) {
+    for (const Resonance& r : resonances)
+      if (r.f_n_hz > 0.0 && r.zeta > 0.0 && r.zeta < max_zeta && std::isfinite(r.f_n_hz))
+        poles_.push_back({r.f_n_hz * std::sqrt((1.0 - r.zeta) * (1.0 + r.zeta)), r.zeta * r.f_n_hz});
+    std::sort(poles_.begin(), poles_.end());
+  }
+  // Distance from the real f to the nearest pole; infinite without poles.
+  double operator()(double f) const {
+    double best = HUGE_VAL;
+    const auto it = std::lower_bound(poles_.begin(), poles_.end(), std::make_pair(f, 0.0));
+    for (auto up = it; up != poles_.end() && up->first - f < best; ++up) best = std::min(best, std::hypot(up->first - f, up->second));
+    for (auto down = it; down != poles_.begin();) {
+      --down;
+      if (f - down->first >= best) break;
+      best = std::min(best, std::hypot(f - down->first, down->second));
+    }
+    return best;
+  }
+
+ private:
+  std::vector<std::pair<double, double>> poles_;  // (real part, |imaginary part|) in Hz
+};
+
+}  // namespace
+
 FrequencyGrid AutoGrid(const AutoGridOptions& options, const std::vector<Resonance>& resonances,
                        const std::vector<double>& breakpoints_hz) {
   options.Validate();
-  const double decades = std::log10(options.max_hz / options.min_hz);
-  // Validate() bounds decades * points_per_decade by limits::kMaxGridPoints.
-  const int base_points =
-      std::max(2, static_cast<int>(std::ceil(decades * options.points_per_decade)) + 1);
-  std::vector<double> f = FrequencyGrid::Log(options.min_hz, options.max_hz, base_points).f_hz();
-
-  const auto in_range = [&](double x) { return x > options.min_hz && x < options.max_hz; };
-  const double kPi = std::acos(-1.0);
-  for (const Resonance& r : resonances) {
-    if (!(r.f_n_hz > 0.0) || !(r.zeta > 0.0) || r.zeta >= options.max_refined_zeta) continue;
-    // Step outward from f_n in x = (f - f_n)/(zeta f_n) with
-    // dx = min((1 + x^2) dtheta, rho |x|): tan-spaced (equal area per step of
-    // the Lorentzian core) near the peak, geometric in the distance from f_n
-    // in its 1/x^2 flanks, out to f_n/2 and 3 f_n/2.
-    const double dtheta = kPi / options.points_per_resonance;
-    const double rho = std::log(10.0) / options.resonance_flank_points_per_decade;
-    const double x_end = 0.5 / r.zeta;
-    if (in_range(r.f_n_hz)) f.push_back(r.f_n_hz);
-    for (double x = 0.0; x < x_end;) {
-      x += std::min((1.0 + x * x) * dtheta, std::max(rho * x, dtheta));
-      for (double y : {r.f_n_hz * (1.0 - r.zeta * x), r.f_n_hz * (1.0 + r.zeta * x)})
-        if (y > 0.0 && in_range(y)) f.push_back(y);
+  constexpr int q = FrequencyGrid::kPanelNodes;
+  const double log_span = std::pow(10.0, (q - 1.0) / options.points_per_decade) - 1.0;
+  const double pole_span = 2.0 * (q - 1.0) / options.points_per_resonance;
+  const PoleDistance distance(resonances, options.max_refined_zeta);
+  // Panel width at f: pole_span times the distance to the nearest pole over
+  // the whole panel (sampled at its middle and far end). d is 1-Lipschitz, so
+  // pole_span d(f) / (1 + pole_span) always holds: approaching a pole, the
+  // panels halve the distance (for pole_span = 1), not shrink to its width.
+  const auto width = [&](double f) {
+    const double d0 = distance(f), safe = pole_span * d0 / (1.0 + pole_span);
+    double w = std::min(log_span * f, pole_span * d0);
+    for (int i = 0; i < 4 && w > safe; ++i) {
+      const double m = std::min({d0, distance(f + 0.5 * w), distance(f + w)});
+      if (pole_span * m >= w) break;
+      w = std::max(pole_span * m, safe);
     }
-    if (f.size() > limits::kMaxGridPoints)
-      throw InputError("automatic grid: the resonances of the paths need more than the " +
-                       std::to_string(limits::kMaxGridPoints) +
-                       " points a grid may have; lower points_per_resonance, resonance_flank_points_per_decade "
-                       "or max_refined_zeta");
-  }
+    return std::min(w, log_span * f);
+  };
+
+  // Hard ends: the range and both sides of every breakpoint inside it.
   constexpr double kSide = 1e-9;
+  std::vector<double> ends = {options.min_hz, options.max_hz};
   for (double b : breakpoints_hz) {
     if (!std::isfinite(b)) continue;
     for (double x : {b * (1.0 - kSide), b * (1.0 + kSide)})
-      if (in_range(x)) f.push_back(x);
+      if (x > options.min_hz && x < options.max_hz) ends.push_back(x);
   }
-  std::sort(f.begin(), f.end());
-  // Drop points closer than 1e-12 relative to their predecessor (coincidences
-  // between base grid, refinements and breakpoints), keeping min and max.
-  std::vector<double> merged;
-  merged.reserve(f.size());
-  for (double x : f) {
-    if (merged.empty() || x > merged.back() * (1.0 + 1e-12)) merged.push_back(x);
+  std::sort(ends.begin(), ends.end());
+  std::vector<double> merged_ends;
+  for (double x : ends)
+    if (merged_ends.empty() || x > merged_ends.back() * (1.0 + 1e-12)) merged_ends.push_back(x);
+  merged_ends.back() = options.max_hz;
+
+  const std::vector<double>& nodes = FrequencyGrid::LobattoNodes();
+  std::vector<double> f = {merged_ends.front()};
+  std::vector<std::size_t> panels;
+  const auto add_panel = [&](double a, double b) {
+    panels.push_back(f.size() - 1);
+    for (int j = 1; j < q; ++j) f.push_back(j + 1 == q ? b : a + 0.5 * (b - a) * (nodes[j] + 1.0));
+    if (f.size() > limits::kMaxGridPoints)
+      throw InputError("automatic grid: the resonances of the paths need more than the " +
+                       std::to_string(limits::kMaxGridPoints) +
+                       " points a grid may have; lower points_per_resonance, points_per_decade or max_refined_zeta");
+  };
+  for (std::size_t e = 1; e < merged_ends.size(); ++e) {
+    const double lo = merged_ends[e - 1], hi = merged_ends[e];
+    // The interval inside a breakpoint (b(1 - 1e-9), b(1 + 1e-9)): one power-law step.
+    if (hi <= lo * (1.0 + 4.0 * kSide)) {
+      f.push_back(hi);
+      continue;
+    }
+    for (double x = lo; x < hi;) {
+      const double w = width(x), rest = hi - x;
+      double next;
+      if (rest <= w * (1.0 + 1e-12)) next = hi;
+      else if (rest <= 2.0 * w) next = x + 0.5 * rest;  // two equal panels rather than a sliver
+      else next = x + w;
+      add_panel(x, next);
+      x = next;
+    }
   }
-  merged.back() = options.max_hz;
-  return FrequencyGrid(std::move(merged));
+  f.back() = options.max_hz;
+  return FrequencyGrid(std::move(f), std::move(panels));
 }
 
 }  // namespace deb

@@ -3,6 +3,12 @@
 // the budget: a lightly damped resonance needs points across its half-power
 // band, a spectrum's jump needs points on both sides. AutoGrid builds such a
 // grid from the poles of the paths and the breakpoints of the sources.
+//
+// A grid integrates each interval between neighbouring points by the power
+// law through its ends (integrate.h), except on its panels: runs of
+// kPanelNodes points placed at the Gauss-Lobatto nodes of an interval, which
+// integrate a polynomial of degree 2 kPanelNodes - 3 = 9 exactly (panels share
+// their end points). The automatic grid is made of panels.
 #pragma once
 
 #include <cstddef>
@@ -16,6 +22,18 @@ class FrequencyGrid {
   // @throws InputError unless there are >= 2 points, all finite, > 0 and
   // strictly increasing (the message names the first offending index/value).
   explicit FrequencyGrid(std::vector<double> f_hz);
+  // Points 0-based panel_starts[i] .. panel_starts[i] + kPanelNodes - 1 form
+  // a panel (they must lie at the Lobatto nodes of the panel's ends,
+  // LobattoNodes; DEB_DEMANDed to 1e-9 of the width). Panels may touch, not
+  // overlap.
+  FrequencyGrid(std::vector<double> f_hz, std::vector<std::size_t> panel_starts);
+
+  static constexpr int kPanelNodes = 6;
+  // The kPanelNodes Lobatto nodes of [-1, 1], increasing (ends included).
+  static const std::vector<double>& LobattoNodes();
+  // W[j][i]: integral from -1 to node j of the Lagrange polynomial of node i
+  // over the nodes; row kPanelNodes - 1 holds the Lobatto weights.
+  static const std::vector<std::vector<double>>& LobattoCumulativeWeights();
 
   // `points` logarithmically / linearly spaced points from min_hz to max_hz.
   // @throws InputError if 0 < min_hz < max_hz or points >= 2 is violated.
@@ -31,9 +49,11 @@ class FrequencyGrid {
   std::size_t size() const { return f_hz_.size(); }
   double min_hz() const { return f_hz_.front(); }
   double max_hz() const { return f_hz_.back(); }
+  const std::vector<std::size_t>& panel_starts() const { return panel_starts_; }
 
  private:
   std::vector<double> f_hz_;
+  std::vector<std::size_t> panel_starts_;
 };
 
 // A pole pair of a path, as seen by the grid: natural frequency and damping ratio.
@@ -45,22 +65,27 @@ struct Resonance {
 struct AutoGridOptions {
   double min_hz = 0.1;
   double max_hz = 1000.0;
-  int points_per_decade = 200;     // log base grid
-  int points_per_resonance = 100;  // across the half-power core of each resonance
-  int resonance_flank_points_per_decade = 200;  // in distance from f_n, on its flanks
-  double max_refined_zeta = 0.3;   // resonances with zeta below this are refined
+  int points_per_decade = 40;     // away from resonances
+  int points_per_resonance = 10;  // across the half-power band f_n (1 +- zeta) of each resonance
+  double max_refined_zeta = 0.3;  // resonances with zeta below this are refined
 
   // @throws InputError naming the option and the rule.
   void Validate() const;
 };
 
-// Log base grid, plus for every resonance with zeta < max_refined_zeta points
-// f = f_n (1 + zeta x): near the peak tan-spaced in x (theta uniform, x =
-// tan theta), which gives a Lorentzian 1/(1 + x^2) equal area per interval, and
-// on the flanks geometric in |x|, where the peak decays as a power law in the
-// distance from f_n; so a resonance is integrated to the same relative accuracy
-// whatever its zeta. Every breakpoint b in range adds b(1 - 1e-9) and b(1 + 1e-9), so a
-// jump of the PSD falls in an interval of negligible width.
+// Panels between the breakpoints, each as wide as the smallest of
+//   f (10^((kPanelNodes - 1) / points_per_decade) - 1)           (log density)
+//   2 (kPanelNodes - 1) / points_per_resonance x d(f)            (resonances)
+// where d(f) is the distance from f to the nearest pole of |H|^2 in the
+// complex frequency plane, f_n (sqrt(1 - zeta^2) +- j zeta), over every
+// resonance with zeta < max_refined_zeta. A Gauss-Lobatto panel converges
+// geometrically in the ratio of that distance to its width, so the rule
+// integrates a resonance of any zeta, and clusters of them, to the same
+// relative accuracy with points only where the poles are: at the peak
+// points_per_resonance across f_n (1 +- zeta), then panels growing in
+// proportion to the distance from the pole. Every breakpoint b in range adds
+// b(1 - 1e-9) and b(1 + 1e-9) as panel ends, with a power-law interval
+// between them, so a jump of the PSD falls in an interval of negligible width.
 FrequencyGrid AutoGrid(const AutoGridOptions& options, const std::vector<Resonance>& resonances,
                        const std::vector<double>& breakpoints_hz);
 

@@ -61,4 +61,50 @@ double IntegralBetween(const std::vector<double>& f_hz, const std::vector<double
   return total;
 }
 
+std::vector<double> CumulativeIntegral(const FrequencyGrid& grid, const std::vector<double>& s) {
+  const std::vector<double>& f = grid.f_hz();
+  DEB_DEMAND(f.size() == s.size());
+  constexpr int q = FrequencyGrid::kPanelNodes;
+  const std::vector<std::vector<double>>& w = FrequencyGrid::LobattoCumulativeWeights();
+  std::vector<double> c(f.size(), 0.0);
+  const std::vector<std::size_t>& panels = grid.panel_starts();
+  std::size_t next_panel = 0;
+  for (std::size_t i = 0; i + 1 < f.size();) {
+    if (next_panel < panels.size() && panels[next_panel] == i) {
+      const double half = 0.5 * (f[i + q - 1] - f[i]);
+      double end = 0.0;
+      for (int k = 0; k < q; ++k) end += w[q - 1][k] * s[i + k];
+      end = c[i] + half * end;  // Lobatto weights are positive: end >= c[i]
+      double running = c[i];
+      for (int j = 1; j + 1 < q; ++j) {
+        double v = 0.0;
+        for (int k = 0; k < q; ++k) v += w[j][k] * s[i + k];
+        running = std::max(running, std::min(c[i] + half * v, end));
+        c[i + j] = running;
+      }
+      c[i + q - 1] = end;
+      i += q - 1;
+      ++next_panel;
+    } else {
+      c[i + 1] = c[i] + PowerLawIntervalIntegral(f[i], f[i + 1], s[i], s[i + 1]);
+      ++i;
+    }
+  }
+  return c;
+}
+
+double IntegralBetween(const FrequencyGrid& grid, const std::vector<double>& s,
+                       const std::vector<double>& cumulative, double lo_hz, double hi_hz) {
+  const std::vector<double>& f = grid.f_hz();
+  DEB_DEMAND(f.size() == s.size() && cumulative.size() == f.size());
+  DEB_DEMAND(lo_hz >= f.front() && hi_hz <= f.back() && lo_hz <= hi_hz);
+  const auto at = [&](double x) {
+    const std::size_t i = static_cast<std::size_t>(std::upper_bound(f.begin(), f.end(), x) - f.begin()) - 1;
+    if (i + 1 >= f.size() || f[i] == x) return cumulative[i];
+    const double sx = Interpolate(f[i], f[i + 1], s[i], s[i + 1], x);
+    return cumulative[i] + PowerLawIntervalIntegral(f[i], x, s[i], sx);
+  };
+  return hi_hz > lo_hz ? std::max(0.0, at(hi_hz) - at(lo_hz)) : 0.0;
+}
+
 }  // namespace deb

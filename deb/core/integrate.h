@@ -1,13 +1,19 @@
 // Integration of sampled spectra over frequency, used for every CPS, RMS and
-// band figure. Each interval is integrated exactly for a power law through its
-// two end points (a straight line in log-log axes): spectra are close to power
-// laws between breakpoints and resonances (roll-offs, 1/f^n floors), where the
-// linear trapezoid rule over-estimates on log-spaced grids. Where either end is
-// zero the interval falls back to the linear trapezoid.
+// band figure. An interval between two points is integrated exactly for a
+// power law through its two end points (a straight line in log-log axes):
+// spectra are close to power laws between breakpoints and resonances
+// (roll-offs, 1/f^n floors), where the linear trapezoid rule over-estimates on
+// log-spaced grids; where either end is zero it falls back to the linear
+// trapezoid. On a grid's panels (frequency_grid.h) the Gauss-Lobatto rule
+// applies instead: exact for polynomials of degree 9 over the panel, and at
+// the points inside it the integral of the interpolating polynomial (made
+// non-decreasing, as the integral of a PSD is).
 #pragma once
 
 #include <cstddef>
 #include <vector>
+
+#include "deb/core/frequency_grid.h"
 
 namespace deb {
 
@@ -27,5 +33,15 @@ std::vector<double> CumulativeIntegral(const std::vector<double>& f_hz,
 // intervals at both ends evaluated on the same power law.
 double IntegralBetween(const std::vector<double>& f_hz, const std::vector<double>& s, double lo_hz,
                        double hi_hz);
+
+// The same over a grid, with its panels: cumulative[i] = integral from
+// min_hz to f[i]. s.size() == grid.size(); s >= 0.
+std::vector<double> CumulativeIntegral(const FrequencyGrid& grid, const std::vector<double>& s);
+
+// Integral over [lo_hz, hi_hz] within the grid from its cumulative integral:
+// at a grid point the cumulative value, between two points the power law
+// through them from the point below.
+double IntegralBetween(const FrequencyGrid& grid, const std::vector<double>& s,
+                       const std::vector<double>& cumulative, double lo_hz, double hi_hz);
 
 }  // namespace deb

@@ -46,7 +46,9 @@ GridSpec ParseGrid(const YamlNode& node) {
   }
   if (auto v = node.Optional("points_per_decade")) o.points_per_decade = v->AsInt();
   if (auto v = node.Optional("points_per_resonance")) o.points_per_resonance = v->AsInt();
-  if (auto v = node.Optional("resonance_flank_points_per_decade")) o.resonance_flank_points_per_decade = v->AsInt();
+  if (auto v = node.Optional("resonance_flank_points_per_decade"))
+    v->Fail("resonance_flank_points_per_decade is no longer used: the automatic grid widens its panels in "
+            "proportion to the distance from each pole; points_per_resonance sets both");
   if (auto v = node.Optional("max_refined_zeta")) o.max_refined_zeta = v->AsDouble();
   if (g.kind == GridKind::kAuto && g.range_given) io::AtNode(node, [&] { o.Validate(); });
   else if (g.kind == GridKind::kAuto) {

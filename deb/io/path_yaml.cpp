@@ -154,6 +154,15 @@ void SeriesInto(Path* p, const Path& a, const Path& b) {
           [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); });
 }
 
+// A modal path joined with others is realised in state space (path.h):
+// refused, at `where`, beyond limits::kMaxDenseStates states.
+void RequireDenseRealisable(const YamlNode& where, const Path& part) {
+  if (part.IsModal() && 2 * part.modal->modes() > limits::kMaxDenseStates)
+    where.Fail("path '" + part.name + "' has " + std::to_string(part.modal->modes()) +
+               " modes; joined with other paths it is realised in state space, 2 states per mode, and at most " +
+               std::to_string(limits::kMaxDenseStates) + " states are formed (use it directly in a contributor)");
+}
+
 // A path of the gain g (no states) for scaling between parts.
 Path GainPath(const Eigen::MatrixXd& g) {
   Path p;
@@ -231,8 +240,10 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
     const auto parts = node.Required("of").Elements();
     if (parts.size() < 2) node.Required("of").Fail("list at least two paths");
     Path acc = Lookup(parts[0]);
+    RequireDenseRealisable(parts[0], acc);
     for (std::size_t i = 1; i < parts.size(); ++i) {
       const Path& next = Lookup(parts[i]);
+      RequireDenseRealisable(parts[i], next);
       if (type == "series") {
         if (next.system.inputs() != acc.system.outputs())
           parts[i].Fail("path '" + next.name + "' has " + std::to_string(next.system.inputs()) +
@@ -267,6 +278,8 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
     composite = true;
     const Path& plant = Lookup(node.Required("plant"));
     const Path& ctrl = Lookup(node.Required("controller"));
+    RequireDenseRealisable(node.Required("plant"), plant);
+    RequireDenseRealisable(node.Required("controller"), ctrl);
     int sign = -1;
     if (auto s = node.Optional("sign")) {
       sign = s->AsInt();

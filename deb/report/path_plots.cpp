@@ -53,9 +53,8 @@ std::vector<std::vector<std::size_t>> CoincidentChannels(const std::vector<std::
   return groups;
 }
 
-Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, std::size_t o, int threads) {
+Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, std::size_t o, const PathResponse& r) {
   const std::vector<double>& f = result.grid.f_hz();
-  const PathResponse r = ComputePathResponse(budget, result, c, o, f, threads);
   const Contributor& contributor = budget.contributors[c];
   const Output& output = budget.outputs[o];
   const std::size_t m = r.gain2.size();
@@ -184,8 +183,10 @@ FrequencyRange PathRange(const PathAnalysis& path, const FrequencyRange& display
 
 std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, int threads) {
   std::vector<Plot> plots;
-  for (std::size_t c = 0; c < budget.contributors.size(); ++c)
-    for (std::size_t o = 0; o < budget.outputs.size(); ++o) plots.push_back(PathPlot(budget, result, c, o, threads));
+  for (std::size_t c = 0; c < budget.contributors.size(); ++c) {
+    const std::vector<PathResponse> r = ComputePathResponses(budget, result, c, result.grid.f_hz(), threads);
+    for (std::size_t o = 0; o < budget.outputs.size(); ++o) plots.push_back(PathPlot(budget, result, c, o, r[o]));
+  }
   return plots;
 }
 

@@ -1,5 +1,7 @@
 #include "deb/report/plot.h"
 
+#include <charconv>
+
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -163,9 +165,10 @@ std::string CsvField(const std::string& text) {
 }
 
 std::string CsvNumber(double value) {
+  // std::to_chars with a precision is printf's %.10g, several times faster:
+  // plot tables hold 10^5..10^6 numbers.
   char text[32];
-  std::snprintf(text, sizeof(text), "%.10g", value);
-  return text;
+  return std::string(text, std::to_chars(text, text + sizeof(text), value, std::chars_format::general, 10).ptr);
 }
 
 std::string PlotList(const std::vector<std::string>& clauses) {

@@ -113,6 +113,7 @@ std::string IndexHtml(const DocumentInputs& in) {
       << HtmlEscape(UnitText(out.unit)) << "]</h2>\n<p" << (out.pass() ? "" : " class=\"fail\"") << ">"
       << HtmlEscape(OutputLine(out)) << "</p>\n";
     s << ToHtml(ContributorTable(budget, out));
+    if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
     s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out));
@@ -154,6 +155,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
     const int oi = static_cast<int>(o);
     s << "## Output " << out.name << " [" << UnitText(out.unit) << "]\n\n" << OutputLine(out) << "\n\n";
     s << ToMarkdown(ContributorTable(budget, out)) << "\n";
+    if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToMarkdown(modes) << "\n";
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
     s << "### Frequency bands\n\n" << ToMarkdown(BandTable(out)) << "\n";

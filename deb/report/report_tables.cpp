@@ -105,6 +105,17 @@ Table ContributorTable(const Budget& budget, const OutputResult& o) {
   return t;
 }
 
+Table ModeTable(const OutputResult& o) {
+  Table t;
+  t.title = "Modes carrying the exact variance of " + o.name + " (symmetric split of the modal covariance)";
+  t.header = {"contributor", "mode", "f_n [Hz]", "zeta", "share of exact variance"};
+  t.numeric = {false, true, true, true, true};
+  for (const ContributorResult& c : o.contributors)
+    for (const ModeShare& m : c.top_modes)
+      t.rows.push_back({c.name, std::to_string(m.mode), Sig(m.f_hz, 4), Sig(m.zeta, 2), Sig(100.0 * m.share, 3) + " %"});
+  return t;
+}
+
 Table BandTable(const OutputResult& o) {
   Table t;
   t.title = "RMS of " + o.name + " per band [" + UnitText(o.unit) + "]";

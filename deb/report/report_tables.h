@@ -33,6 +33,10 @@ Table ContributorTable(const Budget& budget, const OutputResult& output);
 // whole grid. The largest contributor of each band is emphasised.
 Table BandTable(const OutputResult& output);
 
+// The modes carrying each modal contributor's exact variance (ModeShare):
+// contributor, mode, f_n, zeta, RMS-equivalent share; no rows without any.
+Table ModeTable(const OutputResult& output);
+
 // Facts about the run for the head of every document, as (label, value).
 struct ReportFacts {
   std::vector<std::pair<std::string, std::string>> items;

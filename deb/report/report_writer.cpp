@@ -201,7 +201,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
     for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
     plots.push_back(BandPlot(result, o));
   }
-  for (Plot& p : PathPlots(budget, result)) plots.push_back(std::move(p));
+  for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
   for (const Plot& p : plots) {
     writer.Write("plots/" + p.name + ".csv", p.csv);
     writer.WriteScript("plots/" + p.name + ".gp", p.script);

@@ -31,66 +31,70 @@ ModalResponse::ModalResponse(const ModalModel& model, const std::vector<int>& ro
     w_[k] = kTwoPi * model.f_hz[k];
     two_zeta_w_[k] = model.f_hz[k] > 0.0 ? 2.0 * model.zeta[k] * w_[k] : 0.0;
   }
-  phi_out_.resize(static_cast<Eigen::Index>(rows.size()), n);
+  phi_out_t_.resize(n, static_cast<Eigen::Index>(rows.size()));
   for (std::size_t i = 0; i < rows.size(); ++i) {
     DEB_DEMAND(rows[i] >= 0 && rows[i] < model.phi_out.rows());
-    phi_out_.row(static_cast<Eigen::Index>(i)) = model.phi_out.row(rows[i]);
+    phi_out_t_.col(static_cast<Eigen::Index>(i)) = model.phi_out.row(rows[i]).transpose();
   }
-  phi_in_t_ = model.phi_in.transpose();
+  phi_in_ = model.phi_in;
 }
 
 void ModalResponse::EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd& xr, Eigen::MatrixXd& xi,
                                   Eigen::MatrixXd& hr, Eigen::MatrixXd& hi) const {
-  const Eigen::Index p = phi_out_.rows(), n = phi_out_.cols();
-  xr.resize(count * p, n);
-  xi.resize(count * p, n);
+  const Eigen::Index p = phi_out_t_.cols(), n = phi_out_t_.rows();
+  xr.resize(n, count * p);
+  xi.resize(n, count * p);
+  std::vector<double> gr(n), gi(n);
   for (int i = 0; i < count; ++i) {
     if (!std::isfinite(f_hz[i])) {
       std::ostringstream os;
       os << "frequency response: frequency " << f_hz[i] << " Hz is not finite";
       throw InputError(os.str());
     }
-  }
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const double wk = w_[k], c = two_zeta_w_[k];
-    for (int i = 0; i < count; ++i) {
-      const double w = kTwoPi * f_hz[i];
-      // D = (w_k - w)(w_k + w) + j c w;  g = (j w)^n / D = (j w)^n conj(D) / |D|^2
-      const double dr = (wk - w) * (wk + w), di = c * w, dd = dr * dr + di * di;
+    const double w = kTwoPi * f_hz[i];
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double wk = w_[k];
+      // D = (w_k - w)(w_k + w) + j 2 zeta_k w_k w;  g = (j w)^n / D = (j w)^n conj(D) / |D|^2
+      const double dr = (wk - w) * (wk + w), di = two_zeta_w_[k] * w, dd = dr * dr + di * di;
       if (!(dd > 0.0) || std::sqrt(dd) <= 64.0 * kEps * (wk * wk + w * w)) {
         std::ostringstream os;
         os << "frequency response: frequency " << f_hz[i] << " Hz coincides with a pole of the path (mode "
            << k + 1 << " at " << wk / kTwoPi << " Hz); H is unbounded there, leave this frequency out of the grid";
         throw InputError(os.str());
       }
-      double gr = dr / dd, gi = -di / dd;
+      double re = dr / dd, im = -di / dd;
       if (derivative_ == 1) {
-        const double t = gr;
-        gr = -w * gi;
-        gi = w * t;
+        const double t = re;
+        re = -w * im;
+        im = w * t;
       } else if (derivative_ == 2) {
-        gr *= -w * w;
-        gi *= -w * w;
+        re *= -w * w;
+        im *= -w * w;
       }
-      double* outr = xr.data() + k * xr.rows() + i * p;
-      double* outi = xi.data() + k * xi.rows() + i * p;
-      for (Eigen::Index r = 0; r < p; ++r) {
-        const double a = phi_out_(r, k);
-        outr[r] = a * gr;
-        outi[r] = a * gi;
+      gr[k] = re;
+      gi[k] = im;
+    }
+    for (Eigen::Index r = 0; r < p; ++r) {
+      const Eigen::Index col = i * p + r;
+      const double* a = phi_out_t_.data() + r * n;
+      double* outr = xr.data() + col * n;
+      double* outi = xi.data() + col * n;
+      for (Eigen::Index k = 0; k < n; ++k) {
+        outr[k] = a[k] * gr[k];
+        outi[k] = a[k] * gi[k];
       }
     }
   }
-  hr.noalias() = xr * phi_in_t_;
-  hi.noalias() = xi * phi_in_t_;
+  hr.noalias() = phi_in_ * xr;
+  hi.noalias() = phi_in_ * xi;
 }
 
 Eigen::MatrixXcd ModalResponse::At(double f_hz) const {
   Eigen::MatrixXd xr, xi, hr, hi;
   EvaluateBlock(&f_hz, 1, xr, xi, hr, hi);
-  Eigen::MatrixXcd h(hr.rows(), hr.cols());
-  h.real() = hr;
-  h.imag() = hi;
+  Eigen::MatrixXcd h(hr.cols(), hr.rows());
+  h.real() = hr.transpose();
+  h.imag() = hi.transpose();
   return h;
 }
 
@@ -108,7 +112,7 @@ void ModalResponse::ForEach(const std::vector<double>& f_hz, const Visitor& fn, 
           EvaluateBlock(f_hz.data() + k0, count, xr, xi, hr, hi);
           for (int i = 0; i < count; ++i) {
             for (Eigen::Index j = 0; j < m; ++j)
-              for (Eigen::Index r = 0; r < p; ++r) h(r, j) = Complex(hr(i * p + r, j), hi(i * p + r, j));
+              for (Eigen::Index r = 0; r < p; ++r) h(r, j) = Complex(hr(j, i * p + r), hi(j, i * p + r));
             fn(k0 + i, h);
           }
         }

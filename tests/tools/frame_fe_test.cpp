@@ -171,7 +171,27 @@ TEST_CASE("metrology frame: no rigid-body motion reaches the outputs, the floor 
   CHECK(t.zeta[6] == m.p.zeta_structure);
 }
 
-TEST_CASE("budgets/metrology_frame: the shipped tables are what deb-frame-model writes, byte for byte") {
+// The shipped tables against a fresh run of the generator: comment and header
+// lines equal, every number within 1e-4 of its row's largest magnitude. Not
+// byte for byte: the isolation modes (2.5 Hz) are eigenvalues of a stiffness
+// matrix whose largest ones are ~1e9 times larger, so their last digits move
+// with the instruction set the generator was compiled for (observed 1.8e-5
+// of a row between the baseline and a -march=native build).
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> Cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+TEST_CASE("budgets/metrology_frame: the shipped tables are what deb-frame-model writes (to 1e-4 of a row)") {
   const fs::path dir = fs::temp_directory_path() / ("deb_frame_model_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const std::string cmd = std::string("\"") + DEB_FRAME_MODEL + "\" \"" + dir.string() + "\" > /dev/null";
@@ -179,9 +199,23 @@ TEST_CASE("budgets/metrology_frame: the shipped tables are what deb-frame-model 
   const fs::path shipped = fs::path(DEB_SOURCE_DIR) / "budgets" / "metrology_frame";
   for (const char* name : {"modes.csv", "phi_in_stage.csv", "phi_in_floor.csv", "phi_out.csv"}) {
     INFO(name);
-    const std::string written = ReadAll(dir / name);
-    CHECK(!written.empty());
-    CHECK((written == ReadAll(shipped / name)));
+    const std::vector<std::string> a = Lines(ReadAll(dir / name)), b = Lines(ReadAll(shipped / name));
+    REQUIRE(!a.empty());
+    REQUIRE(a.size() == b.size());
+    bool header = true;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].rfind('#', 0) == 0 || header) {
+        CHECK(a[i] == b[i]);
+        header = a[i].rfind('#', 0) == 0;  // the first non-comment line is the header
+        continue;
+      }
+      const std::vector<std::string> x = Cells(a[i]), y = Cells(b[i]);
+      REQUIRE(x.size() == y.size());
+      CHECK(x[0] == y[0]);  // the DOF or mode number
+      double scale = 0.0;
+      for (std::size_t k = 1; k < y.size(); ++k) scale = std::max(scale, std::abs(std::stod(y[k])));
+      for (std::size_t k = 1; k < y.size(); ++k) CHECK(std::abs(std::stod(x[k]) - std::stod(y[k])) <= 1e-4 * scale);
+    }
   }
   fs::remove_all(dir);
 }
