@@ -16,8 +16,9 @@ using Complex = std::complex<double>;
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Entries of the per-block matrix of weighted output shapes (rows x modes x
-// frequencies) a worker holds: 16 MB of doubles per part.
-constexpr double kBlockEntries = 2e6;
+// frequencies) a worker holds: 3.2 MB of doubles per part, so that it and the
+// product's packed copies stay in cache (16 MB ran 1.6x slower).
+constexpr double kBlockEntries = 4e5;
 
 }  // namespace
 
