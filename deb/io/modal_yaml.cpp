@@ -11,8 +11,9 @@
 
 namespace deb::io {
 
-const char* const kModalKeys[8] = {"file",          "modes",           "frequencies_hz",  "damping",
-                                   "input_shapes",  "output_shapes",   "output_quantity", "max_frequency_hz"};
+const char* const kModalKeys[9] = {"file",          "modes",           "frequencies_hz",  "damping",
+                                   "input_shapes",  "output_shapes",   "output_quantity", "max_frequency_hz",
+                                   "residual"};
 
 namespace {
 
@@ -195,10 +196,20 @@ ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir) {
   }
   if (auto q = node.Optional("output_quantity"))
     model.quantity = AtNode(*q, [&] { return ParseModalQuantity(q->AsString()); });
+  bool static_residual = false;
+  if (auto r = node.Optional("residual")) {
+    const std::string word = r->AsString();
+    if (word != "static" && word != "none") r->Fail("residual must be 'static' or 'none', got '" + word + "'");
+    static_residual = word == "static";
+    if (static_residual && !node.Has("max_frequency_hz"))
+      r->Fail("residual: static adds the static compliance of the modes that max_frequency_hz leaves out; "
+              "give max_frequency_hz");
+  }
   if (auto m = node.Optional("max_frequency_hz")) {
     const double max_hz = m->AsPositive();
     const std::vector<double> all_hz = model.f_hz;
-    model = model.Truncated(max_hz);
+    const YamlNode at = static_residual ? node.Required("residual") : *m;
+    model = AtNode(at, [&] { return model.Truncated(max_hz, static_residual); });
     if (model.modes() == 0) {
       double lowest = all_hz.front();
       for (double f : all_hz) lowest = std::min(lowest, f);

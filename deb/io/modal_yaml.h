@@ -11,6 +11,7 @@
 //                                output_names (default u1.., y1..)
 //   output_quantity: displacement | velocity | acceleration   (default displacement)
 //   max_frequency_hz: F          (optional: keep the modes at or below F)
+//   residual: static | none      (with max_frequency_hz: the dropped modes' static compliance as a feedthrough)
 // Units are the caller's (path_yaml.cpp): output_unit names the displacement
 // unit, and ModalOutputUnit gives the path's output unit from it.
 #pragma once
@@ -23,7 +24,7 @@
 namespace deb::io {
 
 // The keys above (besides the common ones of every path).
-extern const char* const kModalKeys[8];
+extern const char* const kModalKeys[9];
 
 // @throws InputError located at the key (and, for a file, at its
 //   file:line:col, or the MAT-file variable and index) for every rule of

@@ -99,17 +99,33 @@ void ModalModel::Validate() const {
     if (problem.empty()) problem = ModeDampingProblem(f_hz[k], zeta[k]);
     if (!problem.empty()) throw InputError("mode " + std::to_string(k + 1) + ": " + problem);
   }
+  if (residual.size() > 0 && (residual.rows() != phi_out.rows() || residual.cols() != phi_in.rows()))
+    throw InputError("the static residual is " + std::to_string(residual.rows()) + "x" +
+                     std::to_string(residual.cols()) + ", the model has " + std::to_string(phi_out.rows()) +
+                     " output(s) and " + std::to_string(phi_in.rows()) + " input(s)");
   ValidateNames(input_names, phi_in.rows(), "input");
   ValidateNames(output_names, phi_out.rows(), "output");
   ValidateShapes(phi_in, input_names, "input");
   ValidateShapes(phi_out, output_names, "output");
 }
 
-ModalModel ModalModel::Truncated(double max_hz) const {
+ModalModel ModalModel::Truncated(double max_hz, bool static_residual) const {
+  if (static_residual && quantity != ModalQuantity::kDisplacement)
+    throw InputError("residual: static needs output_quantity: displacement (the static correction of a " +
+                     ToString(quantity) + " output is not a constant)");
   ModalModel t;
   t.input_names = input_names;
   t.output_names = output_names;
   t.quantity = quantity;
+  t.residual = residual;
+  if (static_residual) {
+    if (t.residual.size() == 0) t.residual = Eigen::MatrixXd::Zero(phi_out.rows(), phi_in.rows());
+    for (int k = 0; k < modes(); ++k) {
+      if (f_hz[k] <= max_hz) continue;
+      const double w = kTwoPi * f_hz[k];
+      t.residual += phi_out.col(k) * phi_in.col(k).transpose() / (w * w);
+    }
+  }
   std::vector<Eigen::Index> keep;
   for (int k = 0; k < modes(); ++k)
     if (f_hz[k] <= max_hz) keep.push_back(k);
@@ -147,6 +163,7 @@ StateSpace ModalStateSpace(const ModalModel& model) {
     }
   }
   if (model.quantity == ModalQuantity::kAcceleration) d = model.phi_out * model.phi_in.transpose();
+  if (model.residual.size() > 0) d += model.residual;
   return StateSpace(std::move(a), std::move(b), std::move(c), std::move(d));
 }
 

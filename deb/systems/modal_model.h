@@ -44,6 +44,11 @@ struct ModalModel {
   Eigen::MatrixXd phi_out;    // outputs x modes: mode shape at each output DOF
   std::vector<std::string> input_names, output_names;  // the DOFs, one per row
   ModalQuantity quantity = ModalQuantity::kDisplacement;
+  // A feedthrough added to H (outputs x inputs, empty for none): the static
+  // compliance of modes left out by Truncated(max_hz, true), so that the
+  // truncated model keeps the full model's static response (displacement
+  // outputs only).
+  Eigen::MatrixXd residual;
 
   int modes() const { return static_cast<int>(f_hz.size()); }
 
@@ -56,7 +61,14 @@ struct ModalModel {
   void Validate() const;
 
   // The modes with f_hz <= max_hz, in order (the shapes' columns with them).
-  ModalModel Truncated(double max_hz) const;
+  // With static_residual, the dropped modes' static compliance
+  //   sum over dropped k of phi_out(:,k) phi_in(:,k)^T / w_k^2
+  // is added to `residual` (the mode-displacement method's static
+  // correction: exact at 0 Hz, and within (f / f_k)^2 of each dropped mode's
+  // response well below it).
+  // @throws InputError if static_residual is asked for a velocity or
+  //   acceleration output (the correction would not be a constant).
+  ModalModel Truncated(double max_hz, bool static_residual = false) const;
 };
 
 // The realisation with 2 n states x = [q_1, q_1', q_2, q_2', ...]:

@@ -38,6 +38,11 @@ ModalResponse::ModalResponse(const ModalModel& model, const std::vector<int>& ro
     phi_out_t_.col(static_cast<Eigen::Index>(i)) = model.phi_out.row(rows[i]).transpose();
   }
   phi_in_ = model.phi_in;
+  if (model.residual.size() > 0) {
+    residual_t_.resize(model.phi_in.rows(), static_cast<Eigen::Index>(rows.size()));
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      residual_t_.col(static_cast<Eigen::Index>(i)) = model.residual.row(rows[i]).transpose();
+  }
 }
 
 void ModalResponse::EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd& xr, Eigen::MatrixXd& xi,
@@ -88,6 +93,8 @@ void ModalResponse::EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd
   }
   hr.noalias() = phi_in_ * xr;
   hi.noalias() = phi_in_ * xi;
+  if (residual_t_.size() > 0)
+    for (int i = 0; i < count; ++i) hr.middleCols(i * p, p) += residual_t_;
 }
 
 Eigen::MatrixXcd ModalResponse::At(double f_hz) const {
@@ -146,6 +153,13 @@ ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector
       throw InputError("exact variance needs a stable path; mode " + std::to_string(k + 1) +
                        " is a rigid-body mode (f = 0 Hz: poles at the origin)");
   const int derivative = DerivativeOrder(model.quantity);
+  if (model.residual.size() > 0) {
+    const Eigen::MatrixXd dwd = model.residual * w_two_sided * model.residual.transpose();
+    for (int r : rows)
+      if (dwd(r, r) > 0.0)
+        throw InputError("infinite variance: the static residual (residual: static) is a feedthrough D != 0, "
+                         "which passes white noise at all frequencies");
+  }
   if (derivative == 2) {
     // q'' carries the input directly (D = Phi_out Phi_in^T): infinite
     // variance unless no noise reaches an output through it.

@@ -2,7 +2,7 @@
 // realisation and no eigendecomposition: per mode k the scalar
 //   g_k(j w) = (j w)^n / (w_k^2 - w^2 + 2 j zeta_k w_k w),   n = 0, 1, 2
 // (displacement, velocity, acceleration), and
-//   H(j w) = Phi_out diag(g(j w)) Phi_in^T,
+//   H(j w) = Phi_out diag(g(j w)) Phi_in^T  (+ the static residual, if any),
 // which costs p n m complex-by-real multiply-adds per frequency for p output
 // rows, n modes and m inputs. Frequencies are taken in blocks so that the
 // product is one matrix product per block, H^T = Phi_in X^T with X^T holding
@@ -61,6 +61,7 @@ class ModalResponse {
   std::vector<double> w_, two_zeta_w_;  // per mode [rad/s]
   Eigen::MatrixXd phi_out_t_;           // modes x rows (Phi_out^T of the rows)
   Eigen::MatrixXd phi_in_;              // inputs x modes
+  Eigen::MatrixXd residual_t_;          // inputs x rows: the static residual's rows, transposed (or empty)
 };
 
 // The exact variance of each output row of `model` under white input noise
@@ -76,7 +77,7 @@ struct ModalCovariance {
 
 // @throws InputError if W has the wrong size, is not symmetric or has a
 //   negative diagonal; if the model has a rigid-body mode (poles at the
-//   origin); for an acceleration output that the feedthrough Phi_out
+//   origin); if a static residual passes the noise (infinite variance); for an acceleration output that the feedthrough Phi_out
 //   Phi_in^T exposes to the noise (infinite variance); or "exact variance is
 //   not reliable" when a variance is negative or not finite, or its rounding
 //   bound (8 n eps times the sum of the absolute terms) exceeds 1e-6 of it.

@@ -221,6 +221,33 @@ TEST_CASE("bad modal tables are errors at the budget key and at the table's file
   CheckLocated(m, "paths[0].modes", "nowhere.csv");
   m = ErrorOf(dir.Write(Replace(kBudget, "max_frequency_hz: 500", "max_frequency_hz: 10")));
   CheckLocated(m, "paths[0].max_frequency_hz", "no mode at or below 10 Hz (the lowest is at 42 Hz)");
+  m = ErrorOf(dir.Write(Replace(kBudget, "max_frequency_hz: 500", "max_frequency_hz: 500\n    residual: both")));
+  CheckLocated(m, "paths[0].residual", "residual must be 'static' or 'none', got 'both'");
+  m = ErrorOf(dir.Write(Replace(kBudget, "max_frequency_hz: 500", "residual: static")));
+  CheckLocated(m, "paths[0].residual", "give max_frequency_hz");
+}
+
+TEST_CASE("residual: static from YAML: the dropped 2000 Hz mode's compliance as a feedthrough, no exact variance") {
+  const ModalDir dir;
+  std::string text = Replace(kBudget, "max_frequency_hz: 500", "max_frequency_hz: 500\n    residual: static");
+  // The tables' path directly (one input driven, the other not reached by a
+  // one-channel source would not fit): a two-channel force.
+  text = Replace(text, "  - {name: force, unit: N, spectrum: {type: flat, level: 2.5}}",
+                 "  - {name: force, unit: N, spectrum: {type: flat, level: 2.5}}\n"
+                 "  - {name: forces, unit: N, channels: [F, G], spectrum: {type: flat, level: 2.5}}");
+  text = Replace(text, "  - {name: csv, source: force, path: csv, exact: required}",
+                 "  - {name: csv, source: forces, path: tables}");
+  const Budget b = LoadBudgetFile(dir.Write(text));
+  const Path& tables = b.FindPath("tables");
+  REQUIRE(tables.modal->residual.rows() == 1);
+  REQUIRE(tables.modal->residual.cols() == 2);
+  const double w = kTwoPi * 2000.0;
+  CHECK(tables.modal->residual(0, 0) == doctest::Approx(3.0 * 5.0 / (w * w)).epsilon(1e-15));  // z from F
+  CHECK(tables.modal->residual(0, 1) == doctest::Approx(3.0 * 1.0 / (w * w)).epsilon(1e-15));  // z from G
+  const BudgetResult r = Evaluate(b);
+  const ContributorResult& c = Find(r.outputs[0], "csv");
+  CHECK(!c.exact_variance.has_value());
+  CHECK(c.exact_note.find("static residual") != std::string::npos);
 }
 
 TEST_CASE("bad inline modes are errors at their key") {

@@ -167,3 +167,40 @@ TEST_CASE("modes that cancel at an output: a variance below its rounding is refu
 
 }  // namespace
 }  // namespace deb
+
+namespace deb {
+namespace {
+
+TEST_CASE("residual: static keeps the static response of the dropped modes, exactly at 0 Hz") {
+  ModalModel full;
+  full.f_hz = {10.0, 200.0};
+  full.zeta = {0.02, 0.01};
+  full.phi_in = Eigen::RowVector2d(0.5, 0.8);
+  full.phi_out = Eigen::RowVector2d(1.0, -0.6);
+  full.input_names = {"F"};
+  full.output_names = {"z"};
+  const ModalModel plain = full.Truncated(50.0), corrected = full.Truncated(50.0, true);
+  REQUIRE(corrected.modes() == 1);
+  const double w2 = kTwoPi * 200.0, dropped = -0.6 * 0.8 / (w2 * w2);  // the dropped mode's static compliance
+  REQUIRE(corrected.residual.size() == 1);
+  CHECK(corrected.residual(0, 0) == doctest::Approx(dropped).epsilon(1e-15));
+  const ModalResponse h_full(full, {0}), h_plain(plain, {0}), h_corrected(corrected, {0});
+  for (double f : {1e-3, 1.0, 5.0}) {
+    CAPTURE(f);
+    const std::complex<double> a = h_full.At(f)(0, 0), b = h_corrected.At(f)(0, 0), c = h_plain.At(f)(0, 0);
+    // The dropped mode's dynamic part: 2 zeta (f / 200 Hz) + (f / 200 Hz)^2 of its static one.
+    const double r = f / 200.0;
+    CHECK(std::abs(a - b) <= 1.1 * (2 * 0.01 * r + r * r) * std::abs(dropped));
+    CHECK(std::abs(a - c) == doctest::Approx(std::abs(dropped)).epsilon(2 * (2 * 0.01 * r + r * r) + 1e-9));
+  }
+  // The realisation carries it as D, and the exact variance is refused.
+  const FrequencyResponse dense(ModalStateSpace(corrected));
+  CHECK(std::abs(dense.At(3.0)(0, 0) - h_corrected.At(3.0)(0, 0)) <= 1e-12 * std::abs(h_corrected.At(3.0)(0, 0)));
+  CHECK(Contains(MessageOf([&] { ModalOutputCovariance(corrected, {0}, Eigen::MatrixXd::Identity(1, 1)); }),
+                 "static residual"));
+  full.quantity = ModalQuantity::kVelocity;
+  CHECK(Contains(MessageOf([&] { full.Truncated(50.0, true); }), "needs output_quantity: displacement"));
+}
+
+}  // namespace
+}  // namespace deb
