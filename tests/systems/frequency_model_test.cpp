@@ -24,7 +24,7 @@ MeasuredResponse Tabulate(const StateSpace& sys, const std::vector<double>& f_hz
 TEST_CASE("series, parallel and feedback of measured blocks equal interconnect.h at the data points") {
   std::mt19937 rng(11);
   const StateSpace g = testing::RandomSystem({{-3.0}, {{20.0, 0.05}, {60.0, 0.2}}}, 2, 2, rng);
-  const StateSpace k = testing::RandomSystem({{-40.0}, {{90.0, 0.3}}}, 2, 2, rng, 0.3);
+  const StateSpace k = testing::RandomSystem({{-40.0}, {{90.0, 0.3}}}, 2, 2, rng, /*with_d=*/true);
   const std::vector<double> f = testing::LogSpace(0.1, 100.0, 61);
   const FrequencyModel gm(Tabulate(g, f)), km(k);  // one measured block, one rational
 
