@@ -214,6 +214,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
     std::vector<Table> tables = {SummaryTable(result)};
     for (const OutputResult& o : result.outputs) {
       tables.push_back(ContributorTable(budget, o));
+      if (Table modes = ModeTable(o); !modes.rows.empty()) tables.push_back(std::move(modes));
       tables.push_back(BandTable(o));
     }
     const TitlePages title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings,
