@@ -12,6 +12,7 @@
 #include "deb/core/integrate.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/lyapunov.h"
+#include "deb/systems/modes.h"
 #include "deb/units/unit.h"
 
 namespace deb {
@@ -153,10 +154,6 @@ double HermitianForm(const Eigen::MatrixXcd& h, int r, const Eigen::MatrixXcd& s
   return y;
 }
 
-struct PathStability {
-  std::vector<std::complex<double>> unstable;
-  std::vector<std::complex<double>> marginal;
-};
 
 std::vector<ModeShare> TopModes(const ModalModel& model, const PathAnalysis::ExactVariance& exact, double scale2) {
   std::vector<int> order(static_cast<std::size_t>(exact.mode_share.size()));
@@ -180,17 +177,6 @@ std::vector<ModeShare> TopModes(const ModalModel& model, const PathAnalysis::Exa
   return shares;
 }
 
-PathStability ClassifyPoles(const StateSpace& sys) {
-  PathStability s;
-  const Eigen::VectorXcd poles = sys.Poles();
-  for (Eigen::Index i = 0; i < poles.size(); ++i) {
-    const std::complex<double> p = poles(i);
-    const double tol = 1e-9 * std::max(1.0, std::abs(p));
-    if (p.real() > tol) s.unstable.push_back(p);
-    else if (p.real() >= -tol) s.marginal.push_back(p);
-  }
-  return s;
-}
 
 }  // namespace
 
@@ -361,7 +347,7 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
   for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
     const Output& out = budget.outputs[o];
     if (out.weighting) {
-      const PathStability st = ClassifyPoles(out.weighting->system);
+      const PoleStability st = ClassifyPoles(out.weighting->system.Poles());
       if (!st.unstable.empty())
         throw InputError(Key("outputs", o, "weighting"),
                          "the weighting of output '" + out.name + "' is unstable: pole(s) at " +
@@ -388,7 +374,7 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     const PathAnalysis& analysis = *result.paths.at(c.path);
     const int m = path.system.inputs();
 
-    PathStability stability{analysis.unstable_poles(), analysis.marginal_poles()};
+    PoleStability stability{analysis.unstable_poles(), analysis.marginal_poles()};
     if (analysis.loop_around_data())
       result.warnings.push_back("path '" + path.name +
                                 "' closes a loop around measured data: its stability is not verified "

@@ -13,17 +13,7 @@
 namespace deb {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
-void Classify(const Eigen::VectorXcd& poles, std::vector<std::complex<double>>* unstable,
-              std::vector<std::complex<double>>* marginal) {
-  for (Eigen::Index i = 0; i < poles.size(); ++i) {
-    const std::complex<double> p = poles(i);
-    const double tol = 1e-9 * std::max(1.0, std::abs(p));
-    if (p.real() > tol) unstable->push_back(p);
-    else if (p.real() >= -tol) marginal->push_back(p);
-  }
-}
 
 std::vector<Mode> ModalModes(const ModalModel& model, Eigen::VectorXcd* poles) {
   std::vector<Mode> modes;
@@ -31,10 +21,10 @@ std::vector<Mode> ModalModes(const ModalModel& model, Eigen::VectorXcd* poles) {
   for (int k = 0; k < model.modes(); ++k) {
     Mode m;
     if (model.f_hz[k] > 0.0) {
-      const double w = kTwoPi * model.f_hz[k], z = model.zeta[k];
+      const double z = model.zeta[k];
       m.f_n_hz = model.f_hz[k];
       m.damping_ratio = z;
-      m.pole_rad_s = {-z * w, w * std::sqrt((1.0 - z) * (1.0 + z))};
+      m.pole_rad_s = ModalPole(model.f_hz[k], z);
       m.pair = true;
       all.push_back(m.pole_rad_s);
       all.push_back(std::conj(m.pole_rad_s));
@@ -76,7 +66,11 @@ PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : pat
     modes_ = ModesFromPoles(poles);
   }
   // The stability of a loop around measured data is not known from its parts.
-  if (!loop_around_data()) Classify(poles, &unstable_, &marginal_);
+  if (!loop_around_data()) {
+    PoleStability s = ClassifyPoles(poles);
+    unstable_ = std::move(s.unstable);
+    marginal_ = std::move(s.marginal);
+  }
 }
 
 PathAnalysis::~PathAnalysis() = default;

@@ -140,6 +140,11 @@ ModalModel ModalModel::Truncated(double max_hz, bool static_residual) const {
   return t;
 }
 
+std::complex<double> ModalPole(double f_hz, double zeta) {
+  const double w = kTwoPi * f_hz;
+  return {-zeta * w, w * std::sqrt((1.0 - zeta) * (1.0 + zeta))};
+}
+
 StateSpace ModalStateSpace(const ModalModel& model) {
   model.Validate();
   const int n = model.modes();

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <complex>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,8 @@ int DerivativeOrder(ModalQuantity q);
 //   exact variance infinite; zeta >= 1 is no oscillating mode); a rigid mode
 //   (f_hz = 0) ignores zeta, which must still be finite and in [0, 1).
 std::string ModeFrequencyProblem(double f_hz);
+// The pole of a mode with Im >= 0: -zeta w + j w sqrt(1 - zeta^2), w = 2 pi f_hz [rad/s].
+std::complex<double> ModalPole(double f_hz, double zeta);
 std::string ModeDampingProblem(double f_hz, double zeta);
 
 struct ModalModel {

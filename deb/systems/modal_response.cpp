@@ -173,8 +173,7 @@ ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector
   // Partial fractions of each g_k: its poles and residues.
   std::vector<Complex> pole(n), res_pole(n), res_conj(n);
   for (int k = 0; k < n; ++k) {
-    const double w = kTwoPi * model.f_hz[k], z = model.zeta[k];
-    const Complex lambda(-z * w, w * std::sqrt((1.0 - z) * (1.0 + z)));
+    const Complex lambda = ModalPole(model.f_hz[k], model.zeta[k]);
     const Complex diff = lambda - std::conj(lambda);
     Complex num = 1.0, num_conj = 1.0;
     for (int d = 0; d < derivative; ++d) {

@@ -30,6 +30,17 @@ std::vector<Mode> ModesFromPoles(const Eigen::VectorXcd& poles_rad_s) {
   return modes;
 }
 
+PoleStability ClassifyPoles(const Eigen::VectorXcd& poles_rad_s) {
+  PoleStability s;
+  for (Eigen::Index i = 0; i < poles_rad_s.size(); ++i) {
+    const std::complex<double> p = poles_rad_s(i);
+    const double tol = 1e-9 * std::max(1.0, std::abs(p));
+    if (p.real() > tol) s.unstable.push_back(p);
+    else if (p.real() >= -tol) s.marginal.push_back(p);
+  }
+  return s;
+}
+
 std::vector<Mode> Modes(const StateSpace& sys) { return ModesFromPoles(sys.Poles()); }
 
 }  // namespace deb

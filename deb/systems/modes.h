@@ -32,6 +32,14 @@ struct Mode {
 // (the Im < 0 members are dropped), sorted by f_n_hz, then by damping ratio.
 std::vector<Mode> ModesFromPoles(const Eigen::VectorXcd& poles_rad_s);
 
+// Poles with Re > 1e-9 max(1, |p|) (unstable) and with |Re| within that
+// (on the imaginary axis: marginal), for the stability checks.
+struct PoleStability {
+  std::vector<std::complex<double>> unstable;
+  std::vector<std::complex<double>> marginal;
+};
+PoleStability ClassifyPoles(const Eigen::VectorXcd& poles_rad_s);
+
 // ModesFromPoles(sys.Poles()).
 std::vector<Mode> Modes(const StateSpace& sys);
 
