@@ -155,13 +155,14 @@ double HermitianForm(const Eigen::MatrixXcd& h, int r, const Eigen::MatrixXcd& s
 }
 
 
-std::vector<ModeShare> TopModes(const ModalModel& model, const PathAnalysis::ExactVariance& exact, double scale2) {
-  std::vector<int> order(static_cast<std::size_t>(exact.mode_share.size()));
+// The modes with the largest |part|, largest first: share = part / whole,
+// variance = share x `variance` (the figure the parts split).
+std::vector<ModeShare> TopModes(const ModalModel& model, const Eigen::VectorXd& part, double whole, double variance) {
+  std::vector<int> order(static_cast<std::size_t>(part.size()));
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
   const std::size_t top = std::min(order.size(), ContributorResult::kTopModes);
   std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(top), order.end(), [&](int a, int b) {
-    return std::abs(exact.mode_share(a)) > std::abs(exact.mode_share(b)) ||
-           (std::abs(exact.mode_share(a)) == std::abs(exact.mode_share(b)) && a < b);
+    return std::abs(part(a)) > std::abs(part(b)) || (std::abs(part(a)) == std::abs(part(b)) && a < b);
   });
   std::vector<ModeShare> shares;
   for (std::size_t i = 0; i < top; ++i) {
@@ -170,13 +171,12 @@ std::vector<ModeShare> TopModes(const ModalModel& model, const PathAnalysis::Exa
     s.mode = k + 1;
     s.f_hz = model.f_hz[k];
     s.zeta = model.zeta[k];
-    s.variance = exact.mode_share(k) * scale2;
-    s.share = exact.variance > 0.0 ? exact.mode_share(k) / exact.variance : 0.0;
+    s.share = whole > 0.0 ? part(k) / whole : 0.0;
+    s.variance = s.share * variance;
     shares.push_back(s);
   }
   return shares;
 }
-
 
 }  // namespace
 
@@ -468,7 +468,10 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
               analysis.Exact(row, w_two_sided, out.weighting ? &out.weighting->system : nullptr);
           const double scale2 = out_conv[o].scale * out_conv[o].scale;
           cr.exact_variance = exact.variance * scale2;
-          if (exact.mode_share.size() > 0) cr.top_modes = TopModes(*path.modal, exact, scale2);
+          if (exact.mode_share.size() > 0) {
+            cr.top_modes = TopModes(*path.modal, exact.mode_share, exact.variance, *cr.exact_variance);
+            cr.top_modes_of = ModeSplit::kExactVariance;
+          }
         } catch (const InputError& e) {
           why_not = e.what();
         }
@@ -498,6 +501,43 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
       OutputResult& r = result.outputs[o];
       for (std::size_t k = 0; k < n; ++k) r.total_psd[k] += cr.psd[k];
       r.contributors.push_back(std::move(cr));
+    }
+
+    // A modal path without the closed-form split (a source that is not
+    // white, a weighting, a derivative unit): the split of the grid
+    // integral, on the same grid and with the same factors as the PSD.
+    if (analysis.modal()) {
+      std::vector<std::size_t> split;
+      for (std::size_t o = 0; o < budget.outputs.size(); ++o)
+        if (result.outputs[o].contributors.back().top_modes.empty()) split.push_back(o);
+      if (!split.empty()) {
+        const std::vector<double> q = LinearQuadratureWeights(result.grid);
+        std::vector<int> positions;
+        std::vector<std::vector<double>> weight;
+        for (const std::size_t o : split) {
+          positions.push_back(row_of_output[o]);
+          const UnitConversion& u = out_conv[o];
+          std::vector<double> w(n);
+          for (std::size_t k = 0; k < n; ++k) {
+            w[k] = u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f[k]);
+            if (!weighting_gain2[o].empty()) w[k] *= weighting_gain2[o][k];
+          }
+          weight.push_back(std::move(w));
+        }
+        const Eigen::MatrixXd parts = analysis.ModeParts(
+            f, q, positions, weight,
+            [&input](double f_hz, Eigen::MatrixXcd& scratch) -> const Eigen::MatrixXcd& {
+              return input.Full(f_hz, scratch);
+            },
+            options.threads);
+        for (std::size_t i = 0; i < split.size(); ++i) {
+          ContributorResult& cr = result.outputs[split[i]].contributors.back();
+          double whole = 0.0;  // the PSD's integral by the same linear rule
+          for (std::size_t k = 0; k < n; ++k) whole += q[k] * cr.psd[k];
+          cr.top_modes = TopModes(*path.modal, parts.col(static_cast<Eigen::Index>(i)), whole, cr.variance);
+          cr.top_modes_of = ModeSplit::kGridVariance;
+        }
+      }
     }
   }
 

@@ -29,16 +29,24 @@ struct EngineOptions {
   double exact_tolerance = 1e-3;
 };
 
-// One mode's part of a contributor's exact variance on an output (modal
-// paths): the symmetric split of the modal covariance (modal_response.h), so
-// that the parts of all modes add up to the exact variance.
+// One mode's part of a contributor's variance on an output (modal paths).
+// Output r is the sum of the modes' responses y_k, and its PSD splits as
+// S_r = sum_k Re(S_{y_k y_r}): mode k's part is the cross-spectrum of its
+// own response with the whole output, so that the parts of all modes add up
+// to the variance (with a static residual, less the residual's part). Under
+// a white source with an exact variance this is the symmetric split of the
+// modal covariance (modal_response.h), over 0..infinity; otherwise the same
+// split of the grid's integral (PathAnalysis::ModeParts).
 struct ModeShare {
   int mode = 0;        // 1-based, in the order of the path's mode table
   double f_hz = 0.0;
   double zeta = 0.0;
   double variance = 0.0;  // output unit^2; negative where the mode cancels others
-  double share = 0.0;     // variance / exact variance
+  double share = 0.0;     // variance / the variance split (ModeSplit)
 };
+
+// Which variance ContributorResult::top_modes split.
+enum class ModeSplit { kNone, kExactVariance, kGridVariance };
 
 struct ContributorResult {
   std::string name;
@@ -48,9 +56,11 @@ struct ContributorResult {
   std::optional<double> exact_variance;  // Lyapunov, over 0..infinity
   std::string exact_note;                // why there is none, if none
   double tail_variance_estimate = 0.0;   // power-law extrapolation beyond the grid
-  // Modal path with an exact variance: the modes with the largest |share|,
-  // largest first (at most kTopModes).
+  // Modal path: the modes with the largest |share|, largest first (at most
+  // kTopModes), of the exact variance where there is one, else of the grid
+  // variance.
   std::vector<ModeShare> top_modes;
+  ModeSplit top_modes_of = ModeSplit::kNone;
   static constexpr std::size_t kTopModes = 10;
 };
 

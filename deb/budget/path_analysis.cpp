@@ -5,6 +5,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
+#include "deb/core/parallel.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/lyapunov.h"
@@ -96,6 +97,47 @@ void PathAnalysis::ForEachResponse(const std::vector<double>& f_hz, const Freque
   } catch (const InputError& e) {
     throw InputError("path '" + path_.name + "': " + e.what());
   }
+}
+
+Eigen::MatrixXd PathAnalysis::ModeParts(const std::vector<double>& f_hz, const std::vector<double>& q,
+                                        const std::vector<int>& positions,
+                                        const std::vector<std::vector<double>>& weight, const CsdAt& csd,
+                                        int threads) const {
+  DEB_DEMAND(modal_ && q.size() == f_hz.size() && weight.size() == positions.size());
+  for (const std::vector<double>& w : weight) DEB_DEMAND(w.size() == f_hz.size());
+  // Frequencies per block: each block sums into its own matrix, and the
+  // blocks are added in order.
+  constexpr std::size_t kBlock = 1024;
+  const std::size_t blocks = (f_hz.size() + kBlock - 1) / kBlock;
+  const Eigen::Index n = modal_->modes(), m = modal_->inputs(), columns = static_cast<Eigen::Index>(positions.size());
+  std::vector<Eigen::MatrixXd> sums(blocks, Eigen::MatrixXd::Zero(n, columns));
+  ParallelFor(
+      blocks,
+      [&](std::size_t b0, std::size_t b1) {
+        Eigen::MatrixXcd scratch, t(m, columns);
+        std::vector<double> w(static_cast<std::size_t>(columns));
+        for (std::size_t b = b0; b < b1; ++b) {
+          const std::size_t lo = b * kBlock, hi = std::min(f_hz.size(), lo + kBlock);
+          const std::vector<double> block(f_hz.begin() + static_cast<std::ptrdiff_t>(lo),
+                                          f_hz.begin() + static_cast<std::ptrdiff_t>(hi));
+          modal_->ForEach(
+              block,
+              [&](std::size_t i, const Eigen::MatrixXcd& h) {
+                const std::size_t k = lo + i;
+                const Eigen::MatrixXcd& s = csd(f_hz[k], scratch);
+                for (Eigen::Index c = 0; c < columns; ++c) {
+                  t.col(c).noalias() = s * h.row(positions[static_cast<std::size_t>(c)]).adjoint();
+                  w[static_cast<std::size_t>(c)] = q[k] * weight[static_cast<std::size_t>(c)][k];
+                }
+                modal_->AddModeParts(f_hz[k], positions, t, w, sums[b]);
+              },
+              1);
+        }
+      },
+      threads, 1);
+  Eigen::MatrixXd parts = Eigen::MatrixXd::Zero(n, columns);
+  for (const Eigen::MatrixXd& s : sums) parts += s;
+  return parts;
 }
 
 const PathAnalysis::Cached& PathAnalysis::AllRows(const Eigen::MatrixXd& w_two_sided) const {

@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -72,6 +73,24 @@ class PathAnalysis {
     Eigen::VectorXd mode_share;  // one per mode of a modal path, else empty
   };
   ExactVariance Exact(int row, const Eigen::MatrixXd& w_two_sided, const StateSpace* weighting) const;
+
+  // True for a modal path evaluated in modal form (ModeParts applies).
+  bool modal() const { return modal_ != nullptr; }
+
+  // For a modal path and any input spectrum: the split over the modes of the
+  // integrals sum_i q[i] weight[c][i] Re(h_r S h_r^H)(f_hz[i]), one per
+  // column c with r = the evaluated row positions[c]:
+  //   parts(k, c) = sum_i q[i] weight[c][i] Re(phi_out(r,k) g_k phi_in,k^T S h_r^H)(f_hz[i]).
+  // The parts of a column add up to its integral less the static residual's
+  // part (ModalResponse::AddModeParts). csd(f, scratch) is the inputs'
+  // cross-spectral density at f (it may return scratch, filled). The sums
+  // run over fixed blocks of frequencies: the result does not depend on the
+  // thread count. Costs about one more evaluation of H.
+  // @throws InputError as ForEachResponse does.
+  using CsdAt = std::function<const Eigen::MatrixXcd&(double f_hz, Eigen::MatrixXcd& scratch)>;
+  Eigen::MatrixXd ModeParts(const std::vector<double>& f_hz, const std::vector<double>& q,
+                            const std::vector<int>& positions, const std::vector<std::vector<double>>& weight,
+                            const CsdAt& csd, int threads = 0) const;
 
  private:
   const Path path_;  // a copy: results may outlive the budget

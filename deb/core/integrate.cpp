@@ -93,6 +93,29 @@ std::vector<double> CumulativeIntegral(const FrequencyGrid& grid, const std::vec
   return c;
 }
 
+std::vector<double> LinearQuadratureWeights(const FrequencyGrid& grid) {
+  const std::vector<double>& f = grid.f_hz();
+  constexpr int q = FrequencyGrid::kPanelNodes;
+  const std::vector<double>& lobatto = FrequencyGrid::LobattoCumulativeWeights()[q - 1];
+  std::vector<double> weight(f.size(), 0.0);
+  const std::vector<std::size_t>& panels = grid.panel_starts();
+  std::size_t next_panel = 0;
+  for (std::size_t i = 0; i + 1 < f.size();) {
+    if (next_panel < panels.size() && panels[next_panel] == i) {
+      const double half = 0.5 * (f[i + q - 1] - f[i]);
+      for (int k = 0; k < q; ++k) weight[i + k] += half * lobatto[k];
+      i += q - 1;
+      ++next_panel;
+    } else {
+      const double half = 0.5 * (f[i + 1] - f[i]);
+      weight[i] += half;
+      weight[i + 1] += half;
+      ++i;
+    }
+  }
+  return weight;
+}
+
 double IntegralBetween(const FrequencyGrid& grid, const std::vector<double>& s,
                        const std::vector<double>& cumulative, double lo_hz, double hi_hz) {
   const std::vector<double>& f = grid.f_hz();

@@ -38,6 +38,13 @@ double IntegralBetween(const std::vector<double>& f_hz, const std::vector<double
 // min_hz to f[i]. s.size() == grid.size(); s >= 0.
 std::vector<double> CumulativeIntegral(const FrequencyGrid& grid, const std::vector<double>& s);
 
+// q with sum_i q[i] s[i] the grid's integral of s by a rule linear in s: the
+// Lobatto weights on panels (the same integral as CumulativeIntegral there)
+// and the trapezoid rule on the other intervals (where CumulativeIntegral
+// takes the power law, which is not linear). For splitting one integral
+// into parts that add up (the modes of a path, mode_shares.h).
+std::vector<double> LinearQuadratureWeights(const FrequencyGrid& grid);
+
 // Integral over [lo_hz, hi_hz] within the grid from its cumulative integral:
 // at a grid point the cumulative value, between two points the power law
 // through them from the point below.

@@ -23,12 +23,12 @@ int DefaultThreadCount() {
 }
 
 void ParallelFor(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body,
-                 int threads) {
+                 int threads, std::size_t min_block) {
   if (n == 0) return;
   if (threads <= 0) threads = DefaultThreadCount();
-  constexpr std::size_t kMinBlock = 256;
+  min_block = std::max<std::size_t>(min_block, 1);
   const std::size_t blocks =
-      std::min<std::size_t>(static_cast<std::size_t>(threads), (n + kMinBlock - 1) / kMinBlock);
+      std::min<std::size_t>(static_cast<std::size_t>(threads), (n + min_block - 1) / min_block);
   if (blocks <= 1) {
     body(0, n);
     return;

@@ -13,9 +13,11 @@ namespace deb {
 int DefaultThreadCount();
 
 // Calls body(begin, end) on disjoint blocks covering [0, n). threads <= 0 means
-// DefaultThreadCount(). Runs inline when n is small or threads == 1. An
+// DefaultThreadCount(). A block holds at least min_block indices (runs
+// inline when n <= min_block or threads == 1): the default suits cheap work
+// per index, 1 suits indices that are themselves blocks of work. An
 // exception thrown by a block is rethrown in the caller after all blocks end.
 void ParallelFor(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body,
-                 int threads = 0);
+                 int threads = 0, std::size_t min_block = 256);
 
 }  // namespace deb

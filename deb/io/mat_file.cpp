@@ -1,5 +1,6 @@
 #include "deb/io/mat_file.h"
 
+#include <dlfcn.h>
 #include <matio.h>
 
 #include <algorithm>
@@ -18,6 +19,84 @@
 
 namespace deb::io {
 namespace {
+
+// matio is not linked: it is loaded when the first MAT-file is opened. With
+// the HDF5 library under it, it brings 31 shared libraries (curl, TLS,
+// Kerberos, LDAP, ...) that cost 14 ms at every start of deb, .mat or not
+// (a program linked to them starts in 26 ms, 12 ms without). Only the
+// functions below are used; DEB_MATIO_SONAME is the library the build found.
+struct MatioApi {
+  decltype(&::Mat_Close) Close;
+  decltype(&::Mat_GetDir) GetDir;
+  decltype(&::Mat_GetVersion) GetVersion;
+  decltype(&::Mat_LogInitFunc) LogInitFunc;
+  decltype(&::Mat_Open) Open;
+  decltype(&::Mat_SizeOf) SizeOf;
+  decltype(&::Mat_VarFree) VarFree;
+  decltype(&::Mat_VarGetCell) VarGetCell;
+  decltype(&::Mat_VarReadDataAll) VarReadDataAll;
+  decltype(&::Mat_VarReadInfo) VarReadInfo;
+};
+
+struct LoadedMatio {
+  MatioApi api{};
+  std::string failure;  // why matio could not be loaded; "" if it was
+};
+
+// Sets `f` to the function `name` of `library`; false if it has none.
+template <class Function>
+bool Resolve(void* library, const char* name, Function& f, std::string& failure) {
+  void* const symbol = dlsym(library, name);
+  if (symbol == nullptr) {
+    failure = std::string(DEB_MATIO_SONAME " has no function ") + name;
+    return false;
+  }
+  static_assert(sizeof f == sizeof symbol);
+  std::memcpy(&f, &symbol, sizeof f);
+  return true;
+}
+
+LoadedMatio LoadMatio() {
+  LoadedMatio m;
+  // Never closed: HDF5 keeps process-wide state until exit.
+  void* const library = dlopen(DEB_MATIO_SONAME, RTLD_NOW | RTLD_LOCAL);
+  if (library == nullptr) {
+    const char* why = dlerror();
+    m.failure = why != nullptr ? why : "dlopen failed";
+    return m;
+  }
+  MatioApi& a = m.api;
+  const bool all = Resolve(library, "Mat_Close", a.Close, m.failure) &&
+                   Resolve(library, "Mat_GetDir", a.GetDir, m.failure) &&
+                   Resolve(library, "Mat_GetVersion", a.GetVersion, m.failure) &&
+                   Resolve(library, "Mat_LogInitFunc", a.LogInitFunc, m.failure) &&
+                   Resolve(library, "Mat_Open", a.Open, m.failure) &&
+                   Resolve(library, "Mat_SizeOf", a.SizeOf, m.failure) &&
+                   Resolve(library, "Mat_VarFree", a.VarFree, m.failure) &&
+                   Resolve(library, "Mat_VarGetCell", a.VarGetCell, m.failure) &&
+                   Resolve(library, "Mat_VarReadDataAll", a.VarReadDataAll, m.failure) &&
+                   Resolve(library, "Mat_VarReadInfo", a.VarReadInfo, m.failure);
+  if (!all) m.api = MatioApi{};
+  return m;
+}
+
+const LoadedMatio& Loaded() {
+  static const LoadedMatio loaded = LoadMatio();
+  return loaded;
+}
+
+// The functions, once RequireMatio has succeeded.
+const MatioApi& Matio() { return Loaded().api; }
+
+// @throws InputError "<path>: reading a MAT-file needs ..." if matio cannot
+//         be loaded.
+void RequireMatio(const std::string& path) {
+  const LoadedMatio& m = Loaded();
+  if (!m.failure.empty())
+    throw InputError(path + ": reading a MAT-file needs the matio library (" DEB_MATIO_SONAME
+                            "), which cannot be loaded: " + Excerpt(m.failure, 160) +
+                     "; install it (Debian: libmatio11) or save the data as CSV tables");
+}
 
 // matio's log function and the HDF5 library under it are process-wide:
 // every matio call holds this lock. Recursive, because a variable or the
@@ -42,7 +121,7 @@ void Log(int level, char* message) {
 class MatioCall {
  public:
   MatioCall() : lock_(g_matio) {
-    static const int installed = Mat_LogInitFunc("deb", Log);
+    static const int installed = Matio().LogInitFunc("deb", Log);
     (void)installed;
     g_problem.clear();
   }
@@ -57,7 +136,7 @@ class MatioCall {
 struct VarFree {
   void operator()(matvar_t* v) const {
     const std::lock_guard<std::recursive_mutex> lock(g_matio);
-    Mat_VarFree(v);
+    Matio().VarFree(v);
   }
 };
 using VarPtr = std::unique_ptr<matvar_t, VarFree>;
@@ -330,23 +409,24 @@ struct MatFile::Handle {
   ~Handle() {
     if (mat == nullptr) return;
     const std::lock_guard<std::recursive_mutex> lock(g_matio);
-    Mat_Close(mat);  // read only: nothing to lose if closing fails
+    Matio().Close(mat);  // read only: nothing to lose if closing fails
   }
 };
 
 MatFile::MatFile(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
   const std::uintmax_t size = RequireInputFile(path, "MAT-file", limits::kMaxMatFileBytes);
   const Version version = CheckLayout(path, size);
+  RequireMatio(path);
   const MatioCall call;
-  handle_->mat = Mat_Open(path.c_str(), MAT_ACC_RDONLY);
+  handle_->mat = Matio().Open(path.c_str(), MAT_ACC_RDONLY);
   if (handle_->mat == nullptr || !call.problem().empty())
     Fail(path, "cannot be read as a MAT-file" + call.Because() +
                    (version == Version::k73 ? ": a version 7.3 (HDF5) file that is truncated or damaged" : ""));
-  const mat_ft opened = Mat_GetVersion(handle_->mat);
+  const mat_ft opened = Matio().GetVersion(handle_->mat);
   if (opened != (version == Version::k73 ? MAT_FT_MAT73 : MAT_FT_MAT5))
     Fail(path, "matio reads the file as another MAT-file version than its header gives; is it damaged?");
   std::size_t n = 0;
-  char** dir = Mat_GetDir(handle_->mat, &n);  // owned by the mat_t
+  char** dir = Matio().GetDir(handle_->mat, &n);  // owned by the mat_t
   if (!call.problem().empty()) Fail(path, "cannot list the variables of the MAT-file" + call.Because());
   for (std::size_t i = 0; dir != nullptr && i < n; ++i)
     if (dir[i] != nullptr) variables_.emplace_back(dir[i]);
@@ -373,7 +453,7 @@ VarPtr ReadInfo(const MatFile& file, mat_t* mat, const std::string& name) {
                           (held.empty() ? std::string("it holds no variables") : "it holds " + held) + ")");
   }
   const MatioCall call;
-  VarPtr v(Mat_VarReadInfo(mat, name.c_str()));
+  VarPtr v(Matio().VarReadInfo(mat, name.c_str()));
   if (!v || !call.problem().empty() || v->rank < 1 || v->dims == nullptr)
     Fail(file.path(), "variable " + Quoted(name) + " cannot be read" + call.Because() + "; is the file damaged?");
   return v;
@@ -381,7 +461,7 @@ VarPtr ReadInfo(const MatFile& file, mat_t* mat, const std::string& name) {
 
 void ReadData(const MatFile& file, mat_t* mat, matvar_t& v, const std::string& name) {
   const MatioCall call;
-  const int err = Mat_VarReadDataAll(mat, &v);
+  const int err = Matio().VarReadDataAll(mat, &v);
   if (err != MATIO_E_NO_ERROR || !call.problem().empty())
     Fail(file.path(), "the values of " + Describe(name, v) + " cannot be read" + call.Because() +
                           "; is the file damaged?");
@@ -389,7 +469,7 @@ void ReadData(const MatFile& file, mat_t* mat, matvar_t& v, const std::string& n
 
 // Data present and as long as `count` values of its type.
 void RequireData(const MatFile& file, const matvar_t& v, const std::string& name, std::size_t count) {
-  const std::size_t size = Mat_SizeOf(v.data_type);
+  const std::size_t size = Matio().SizeOf(v.data_type);
   if (v.data == nullptr || size == 0 || v.nbytes / size < count)
     Fail(file.path(), Describe(name, v) + " but holds fewer values; is the file damaged?");
 }
@@ -476,7 +556,7 @@ std::vector<std::string> MatFile::Names(const std::string& name) const {
     matvar_t* e = nullptr;
     {
       const MatioCall call;
-      e = Mat_VarGetCell(v.get(), static_cast<int>(i));  // owned by the cell array
+      e = Matio().VarGetCell(v.get(), static_cast<int>(i));  // owned by the cell array
       if (e == nullptr || !call.problem().empty())
         Fail(path_, element + " of the " + SizeText(*v) + " cell array cannot be read" + call.Because() +
                         "; is the file damaged?");

@@ -107,12 +107,14 @@ Table ContributorTable(const Budget& budget, const OutputResult& o) {
 
 Table ModeTable(const OutputResult& o) {
   Table t;
-  t.title = "Modes carrying the exact variance of " + o.name + " (symmetric split of the modal covariance)";
-  t.header = {"contributor", "mode", "f_n [Hz]", "zeta", "share of exact variance"};
-  t.numeric = {false, true, true, true, true};
+  t.title = "Modes carrying the variance of " + o.name +
+            " (each mode's cross-spectrum with the output; the shares of all modes add up to 100 %)";
+  t.header = {"contributor", "mode", "f_n [Hz]", "zeta", "share", "of"};
+  t.numeric = {false, true, true, true, true, false};
   for (const ContributorResult& c : o.contributors)
     for (const ModeShare& m : c.top_modes)
-      t.rows.push_back({c.name, std::to_string(m.mode), Sig(m.f_hz, 4), Sig(m.zeta, 2), Sig(100.0 * m.share, 3) + " %"});
+      t.rows.push_back({c.name, std::to_string(m.mode), Sig(m.f_hz, 4), Sig(m.zeta, 2), Sig(100.0 * m.share, 3) + " %",
+                        c.top_modes_of == ModeSplit::kExactVariance ? "exact variance" : "grid variance"});
   return t;
 }
 

@@ -45,6 +45,37 @@ ModalResponse::ModalResponse(const ModalModel& model, const std::vector<int>& ro
   }
 }
 
+void ModalResponse::Gains(double f_hz, double* gr, double* gi) const {
+  if (!std::isfinite(f_hz)) {
+    std::ostringstream os;
+    os << "frequency response: frequency " << f_hz << " Hz is not finite";
+    throw InputError(os.str());
+  }
+  const double w = kTwoPi * f_hz;
+  for (std::size_t k = 0; k < w_.size(); ++k) {
+    const double wk = w_[k];
+    // D = (w_k - w)(w_k + w) + j 2 zeta_k w_k w;  g = (j w)^n / D = (j w)^n conj(D) / |D|^2
+    const double dr = (wk - w) * (wk + w), di = two_zeta_w_[k] * w, dd = dr * dr + di * di;
+    if (!(dd > 0.0) || std::sqrt(dd) <= 64.0 * kEps * (wk * wk + w * w)) {
+      std::ostringstream os;
+      os << "frequency response: frequency " << f_hz << " Hz coincides with a pole of the path (mode "
+         << k + 1 << " at " << wk / kTwoPi << " Hz); H is unbounded there, leave this frequency out of the grid";
+      throw InputError(os.str());
+    }
+    double re = dr / dd, im = -di / dd;
+    if (derivative_ == 1) {
+      const double t = re;
+      re = -w * im;
+      im = w * t;
+    } else if (derivative_ == 2) {
+      re *= -w * w;
+      im *= -w * w;
+    }
+    gr[k] = re;
+    gi[k] = im;
+  }
+}
+
 void ModalResponse::EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd& xr, Eigen::MatrixXd& xi,
                                   Eigen::MatrixXd& hr, Eigen::MatrixXd& hi) const {
   const Eigen::Index p = phi_out_t_.cols(), n = phi_out_t_.rows();
@@ -52,34 +83,7 @@ void ModalResponse::EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd
   xi.resize(n, count * p);
   std::vector<double> gr(n), gi(n);
   for (int i = 0; i < count; ++i) {
-    if (!std::isfinite(f_hz[i])) {
-      std::ostringstream os;
-      os << "frequency response: frequency " << f_hz[i] << " Hz is not finite";
-      throw InputError(os.str());
-    }
-    const double w = kTwoPi * f_hz[i];
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const double wk = w_[k];
-      // D = (w_k - w)(w_k + w) + j 2 zeta_k w_k w;  g = (j w)^n / D = (j w)^n conj(D) / |D|^2
-      const double dr = (wk - w) * (wk + w), di = two_zeta_w_[k] * w, dd = dr * dr + di * di;
-      if (!(dd > 0.0) || std::sqrt(dd) <= 64.0 * kEps * (wk * wk + w * w)) {
-        std::ostringstream os;
-        os << "frequency response: frequency " << f_hz[i] << " Hz coincides with a pole of the path (mode "
-           << k + 1 << " at " << wk / kTwoPi << " Hz); H is unbounded there, leave this frequency out of the grid";
-        throw InputError(os.str());
-      }
-      double re = dr / dd, im = -di / dd;
-      if (derivative_ == 1) {
-        const double t = re;
-        re = -w * im;
-        im = w * t;
-      } else if (derivative_ == 2) {
-        re *= -w * w;
-        im *= -w * w;
-      }
-      gr[k] = re;
-      gi[k] = im;
-    }
+    Gains(f_hz[i], gr.data(), gi.data());
     for (Eigen::Index r = 0; r < p; ++r) {
       const Eigen::Index col = i * p + r;
       const double* a = phi_out_t_.data() + r * n;
@@ -126,6 +130,24 @@ void ModalResponse::ForEach(const std::vector<double>& f_hz, const Visitor& fn, 
         }
       },
       threads);
+}
+
+void ModalResponse::AddModeParts(double f_hz, const std::vector<int>& columns, const Eigen::MatrixXcd& t,
+                                 const std::vector<double>& weight, Eigen::MatrixXd& parts) const {
+  const Eigen::Index n = modes(), c = t.cols();
+  DEB_DEMAND(t.rows() == inputs() && static_cast<Eigen::Index>(columns.size()) == c &&
+             static_cast<Eigen::Index>(weight.size()) == c && parts.rows() == n && parts.cols() == c);
+  std::vector<double> gr(static_cast<std::size_t>(n)), gi(static_cast<std::size_t>(n));
+  Gains(f_hz, gr.data(), gi.data());
+  // a = Phi_in^T t: the modal loads phi_in,k^T t of every column, in real arithmetic.
+  const Eigen::MatrixXd ar = phi_in_.transpose() * t.real(), ai = phi_in_.transpose() * t.imag();
+  for (Eigen::Index j = 0; j < c; ++j) {
+    const int r = columns[static_cast<std::size_t>(j)];
+    DEB_DEMAND(r >= 0 && r < outputs());
+    const double* shape = phi_out_t_.data() + static_cast<Eigen::Index>(r) * n;
+    for (Eigen::Index k = 0; k < n; ++k)  // Re(g_k a_k) phi_out(r, k)
+      parts(k, j) += weight[static_cast<std::size_t>(j)] * shape[k] * (gr[k] * ar(k, j) - gi[k] * ai(k, j));
+  }
 }
 
 ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector<int>& rows,

@@ -52,7 +52,21 @@ class ModalResponse {
   using Visitor = std::function<void(std::size_t k, const Eigen::MatrixXcd& h)>;
   void ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads = 0) const;
 
+  // The split over the modes of an output PSD Re(h_r S h_r^H) at f_hz, h_r
+  // row r of H: mode k carries Re(phi_out(r,k) g_k phi_in,k^T S h_r^H),
+  // and the parts of all modes add up to the PSD less the static
+  // residual's part Re(d_r S h_r^H). For each column j of t, holding
+  // t_j = S h_r^H for row r = columns[j] (an index into this response's
+  // rows), adds weight[j] times the parts to column j of parts (modes x
+  // columns). Costs about n m + n per column.
+  // @throws InputError as At() does.
+  void AddModeParts(double f_hz, const std::vector<int>& columns, const Eigen::MatrixXcd& t,
+                    const std::vector<double>& weight, Eigen::MatrixXd& parts) const;
+
  private:
+  // g_k(j 2 pi f_hz) of every mode into gr, gi (modes() entries each).
+  // @throws InputError if f_hz is not finite or j 2 pi f is (numerically) a pole.
+  void Gains(double f_hz, double* gr, double* gi) const;
   // hr, hi: H^T of the block, inputs x (count * rows), column i * rows + r.
   void EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd& xr, Eigen::MatrixXd& xi,
                      Eigen::MatrixXd& hr, Eigen::MatrixXd& hi) const;

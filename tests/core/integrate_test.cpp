@@ -51,4 +51,39 @@ TEST_CASE("a flat spectrum's band integral is level times bandwidth") {
   CHECK(IntegralBetween(f, s, 1.0, 5.0) == doctest::Approx(16.0).epsilon(1e-14));
 }
 
+TEST_CASE("the linear quadrature weights: the Lobatto rule on panels, the trapezoid between them") {
+  // Panels on [1, 2] and [2, 5], then plain intervals 5-6-8.
+  const std::vector<double>& x = FrequencyGrid::LobattoNodes();
+  std::vector<double> f;
+  const auto panel = [&](double a, double b) {
+    for (std::size_t j = f.empty() ? 0 : 1; j < x.size(); ++j) f.push_back(a + 0.5 * (b - a) * (x[j] + 1.0));
+  };
+  panel(1.0, 2.0);
+  panel(2.0, 5.0);
+  f.push_back(6.0);
+  f.push_back(8.0);
+  const FrequencyGrid grid(f, {0, 5});
+  const std::vector<double> q = LinearQuadratureWeights(grid);
+  REQUIRE(q.size() == f.size());
+  // On the panels alone, a degree-9 polynomial is integrated exactly, as
+  // their CumulativeIntegral does.
+  const FrequencyGrid panels(std::vector<double>(f.begin(), f.begin() + 11), {0, 5});
+  const std::vector<double> qp = LinearQuadratureWeights(panels);
+  std::vector<double> s(panels.size());
+  for (std::size_t i = 0; i < s.size(); ++i) s[i] = 1.0 + std::pow(panels.f_hz()[i] - 1.0, 9);
+  double integral = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) integral += qp[i] * s[i];
+  CHECK(integral == doctest::Approx(4.0 + std::pow(4.0, 10) / 10.0).epsilon(1e-13));
+  CHECK(integral == doctest::Approx(CumulativeIntegral(panels, s).back()).epsilon(1e-13));
+  for (std::size_t i = 0; i < 10; ++i) CHECK(q[i] == qp[i]);
+  // The intervals 5-6 and 6-8 by the trapezoid: 5 Hz gets the panel's last
+  // Lobatto weight and 0.5, 6 Hz 0.5 + 1, 8 Hz 1.
+  CHECK(q[10] == doctest::Approx(1.5 * FrequencyGrid::LobattoCumulativeWeights()[5][5] + 0.5).epsilon(1e-14));
+  CHECK(q[11] == doctest::Approx(1.5).epsilon(1e-14));
+  CHECK(q[12] == doctest::Approx(1.0).epsilon(1e-14));
+  double total = 0.0;
+  for (const double w : q) total += w;
+  CHECK(total == doctest::Approx(8.0 - 1.0).epsilon(1e-14));  // a constant is integrated exactly
+}
+
 }  // namespace deb
