@@ -216,6 +216,7 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet,-q", quiet, "Print nothing but warnings and errors");
   run->add_flag("--strict", strict, "Exit with code 5 when an output fails its requirement (report still written)");
   deb::ReportOptions report;
+  bool plot_scripts = false;
   run->add_flag("--force", report.force, "Replace --out even if it is not a directory deb wrote");
   run->add_option_function<std::vector<std::string>>(
          "--format",
@@ -231,7 +232,9 @@ int main(int argc, char** argv) {
   run->add_flag("--asd", report.asd, "Plot amplitude spectral densities (unit/sqrt(Hz)) instead of PSDs");
   run->add_flag("--reverse-cps", report.reverse_cps, "Add a stacked reverse-CPS plot (variance above f) per output");
   run->add_flag_callback("--no-plots", [&report] { report.plots = false; },
-                         "Write tables, data and documents only; gnuplot is not needed");
+                         "Write tables, data and documents only, no plots/ directory; gnuplot is not needed");
+  run->add_flag("--plot-scripts", plot_scripts,
+                "With --no-plots: still write each plot's CSV and gnuplot script under plots/, to draw later");
 
   std::string check_file;
   CLI::App* check = app.add_subcommand("check", "Validate a budget and describe it, without computing");
@@ -254,7 +257,10 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kExitUsage;
   }
   try {
-    if (*run) return Run(budget_file, out_dir, threads, quiet, strict, report);
+    if (*run) {
+      report.plot_scripts = report.plots || plot_scripts;
+      return Run(budget_file, out_dir, threads, quiet, strict, report);
+    }
     if (*check) return Check(check_file);
     if (*model) return Model(model_file);
     if (*spectrum) return deb::tools::RunSpectrumCommand(*spectrum);

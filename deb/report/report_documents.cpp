@@ -128,8 +128,9 @@ std::string IndexHtml(const DocumentInputs& in) {
   if (in.pdf) s << "<li><a href=\"report.pdf\">report.pdf</a> — every plot, after a title page</li>\n";
   s << "<li><a href=\"report.md\">report.md</a> — these tables as Markdown</li>\n";
   for (const auto& f : in.data_files) s << "<li><a href=\"" << Href(f) << "\">" << HtmlEscape(f) << "</a></li>\n";
-  s << "<li><a href=\"plots/colours.csv\">plots/colours.csv</a> — the colour and dash pattern of each "
-       "contributor</li>\n";
+  if (!in.plots.empty())  // written with the plots' files
+    s << "<li><a href=\"plots/colours.csv\">plots/colours.csv</a> — the colour and dash pattern of each "
+         "contributor</li>\n";
   s << "</ul>\n<p class=\"lead\">Written by deb " << DEB_VERSION << ".</p>\n</body>\n</html>\n";
   return s.str();
 }
@@ -167,7 +168,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
   if (in.pdf) s << "- [report.pdf](report.pdf): every plot, after a title page\n";
   s << "- [index.html](index.html): this report for a browser\n";
   for (const auto& f : in.data_files) s << "- [" << f << "](" << Href(f) << ")\n";
-  s << "- [plots/colours.csv](plots/colours.csv): the colour and dash pattern of each contributor\n";
+  if (!in.plots.empty()) s << "- [plots/colours.csv](plots/colours.csv): the colour and dash pattern of each contributor\n";
   return s.str();
 }
 

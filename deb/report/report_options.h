@@ -18,6 +18,9 @@ PlotFormat ParsePlotFormat(const std::string& text);
 struct ReportOptions {
   std::vector<PlotFormat> formats = {PlotFormat::kPng, PlotFormat::kPdf};
   bool plots = true;         // false: tables, data and documents only; gnuplot is not needed
+  // Without plots: still write each plot's CSV and gnuplot script under
+  // plots/, to draw later (false: no plots/ directory at all).
+  bool plot_scripts = true;
   bool asd = false;          // spectra as ASD (unit/sqrt(Hz)) instead of PSD
   bool reverse_cps = false;  // add a stacked reverse-CPS plot per output
   bool progress = false;     // report progress on stderr (the caller decides, e.g. isatty)

@@ -188,26 +188,31 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   if (!options.IsValid(&why)) throw InputError("report options: " + why);
   ReportManifest manifest;
   const fs::path root(dir), plots_dir = root / "plots";
+  const bool plot_files = options.plots || options.plot_scripts;
+  const fs::path made = plot_files ? plots_dir : root;
   std::error_code ec;
-  fs::create_directories(plots_dir, ec);
-  if (ec) throw WriteError("cannot create directory " + plots_dir.string() + ": " + ec.message());
+  fs::create_directories(made, ec);
+  if (ec) throw WriteError("cannot create directory " + made.string() + ": " + ec.message());
   Writer writer(root, &manifest);
 
   const std::string sha256 = info.budget_file.empty() ? "" : FileSha256(info.budget_file);
   const ReportFacts facts = MakeFacts(budget, result, info.budget_file, sha256, ReportDate(), info.seconds);
 
-  std::vector<Plot> plots = OverviewPlots(result);
-  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
-    for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
-    plots.push_back(BandPlot(result, o));
+  std::vector<Plot> plots;
+  if (plot_files) {
+    plots = OverviewPlots(result);
+    for (std::size_t o = 0; o < result.outputs.size(); ++o) {
+      for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
+      plots.push_back(BandPlot(result, o));
+    }
+    for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
+    for (const Plot& p : plots) {
+      writer.Write("plots/" + p.name + ".csv", p.csv);
+      writer.WriteScript("plots/" + p.name + ".gp", p.script);
+      manifest.plots.push_back(p.name);
+    }
+    writer.Write("plots/colours.csv", ColoursCsv(budget));
   }
-  for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
-  for (const Plot& p : plots) {
-    writer.Write("plots/" + p.name + ".csv", p.csv);
-    writer.WriteScript("plots/" + p.name + ".gp", p.script);
-    manifest.plots.push_back(p.name);
-  }
-  writer.Write("plots/colours.csv", ColoursCsv(budget));
 
   const bool pdf = options.plots && options.Has(PlotFormat::kPdf);
   if (options.plots) {

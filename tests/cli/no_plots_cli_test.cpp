@@ -1,0 +1,75 @@
+// deb run --no-plots writes the tables, data and documents and no plots/
+// directory; --plot-scripts adds each plot's CSV and gnuplot script back,
+// still without drawing.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("deb_no_plots_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+int RunDeb(const std::string& args) {
+  const std::string cmd = std::string("\"") + DEB_BINARY + "\" " + args + " > /dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string ReadAll(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int CountWithExtension(const fs::path& dir, const std::string& ext) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ext) ++n;
+  return n;
+}
+
+const std::string kBudget = std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml";
+
+}  // namespace
+
+TEST_CASE("run --no-plots leaves no plots/ directory; the documents link no plot") {
+  const fs::path dir = TempDir("plain");
+  REQUIRE(RunDeb("run \"" + kBudget + "\" -q --no-plots --out \"" + (dir / "r").string() + "\"") == 0);
+  CHECK(fs::is_regular_file(dir / "r" / "summary.json"));
+  CHECK(fs::is_regular_file(dir / "r" / "index.html"));
+  CHECK(fs::is_regular_file(dir / "r" / "report.md"));
+  CHECK(CountWithExtension(dir / "r", ".csv") >= 1);  // the per-output data
+  CHECK_FALSE(fs::exists(dir / "r" / "plots"));
+  CHECK_FALSE(fs::exists(dir / "r" / "report.pdf"));
+  CHECK(ReadAll(dir / "r" / "index.html").find("plots/") == std::string::npos);
+  CHECK(ReadAll(dir / "r" / "report.md").find("plots/") == std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("run --no-plots --plot-scripts writes every plot's CSV and script, and draws none") {
+  const fs::path dir = TempDir("scripts");
+  REQUIRE(RunDeb("run \"" + kBudget + "\" -q --no-plots --plot-scripts --out \"" + (dir / "r").string() + "\"") == 0);
+  const fs::path plots = dir / "r" / "plots";
+  REQUIRE(fs::is_directory(plots));
+  const int scripts = CountWithExtension(plots, ".gp");
+  CHECK(scripts >= 3);
+  CHECK(CountWithExtension(plots, ".csv") == scripts + 1);  // and colours.csv
+  CHECK(CountWithExtension(plots, ".png") == 0);
+  CHECK(ReadAll(dir / "r" / "index.html").find("plots/") != std::string::npos);
+  fs::remove_all(dir);
+}
