@@ -1,6 +1,7 @@
 // Shortest decimal text that reads back to the same double, for error
 // messages and Describe(): a message must quote the value the user wrote
-// (0.1, not 0.10000000000000001) and still tell two close values apart.
+// (0.1, not 0.10000000000000001) and still tell two close values apart; and
+// for data files, whose numbers then read back exactly.
 #pragma once
 
 #include <charconv>
@@ -12,6 +13,13 @@ inline std::string NumberText(double value) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
   return std::string(buffer, result.ptr);
+}
+
+// The same appended to `out` (no temporary string: data tables hold 10^5..10^6
+// numbers).
+inline void AppendNumberText(std::string& out, double value) {
+  char buffer[32];
+  out.append(buffer, std::to_chars(buffer, buffer + sizeof(buffer), value).ptr);
 }
 
 }  // namespace deb

@@ -1,7 +1,9 @@
 #include "deb/core/parallel.h"
 
 #include <algorithm>
+#include <condition_variable>
 #include <cstdlib>
+#include <deque>
 #include <exception>
 #include <mutex>
 #include <string>
@@ -9,6 +11,114 @@
 #include <vector>
 
 namespace deb {
+namespace {
+
+// One call's blocks: the first exception, and how many blocks are still to
+// finish.
+struct Batch {
+  const std::function<void(std::size_t, std::size_t)>* body = nullptr;
+  std::size_t n = 0, blocks = 0;
+  std::size_t remaining = 0;  // guarded by the pool's mutex
+  std::exception_ptr failure;
+};
+
+// Worker threads kept for the life of the process: a ParallelFor call hands
+// its blocks to them instead of starting threads of its own (starting and
+// joining a thread per block cost a few milliseconds per run of a small
+// budget, more than its whole evaluation). The caller runs block 0 itself
+// and then any queued block, until its own are done.
+class Pool {
+ public:
+  static Pool& Instance() {
+    static Pool pool;
+    return pool;
+  }
+
+  ~Pool() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (std::thread& t : workers_) t.join();
+  }
+
+  void Run(Batch& batch) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (workers_.size() + 1 < batch.blocks) workers_.emplace_back([this] { Work(); });
+    batch.remaining = batch.blocks;
+    for (std::size_t b = 1; b < batch.blocks; ++b) queue_.push_back({&batch, b});
+    lock.unlock();
+    wake_.notify_all();
+    RunBlock(batch, 0);
+    lock.lock();
+    Finish(batch);
+    // Help with whatever is queued (this call's blocks, or a nested call's)
+    // until this call's blocks are all done.
+    while (batch.remaining > 0) {
+      if (!queue_.empty()) {
+        const Task t = queue_.front();
+        queue_.pop_front();
+        lock.unlock();
+        RunBlock(*t.batch, t.block);
+        lock.lock();
+        Finish(*t.batch);
+      } else {
+        done_.wait(lock);
+      }
+    }
+  }
+
+  // True on a pool thread.
+  static bool& OnWorker() {
+    thread_local bool on_worker = false;
+    return on_worker;
+  }
+
+ private:
+  struct Task {
+    Batch* batch;
+    std::size_t block;
+  };
+
+  static void RunBlock(Batch& batch, std::size_t b) {
+    const std::size_t begin = batch.n * b / batch.blocks, end = batch.n * (b + 1) / batch.blocks;
+    try {
+      (*batch.body)(begin, end);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(Instance().failure_mutex_);
+      if (!batch.failure) batch.failure = std::current_exception();
+    }
+  }
+
+  // Caller holds mutex_.
+  void Finish(Batch& batch) {
+    if (--batch.remaining == 0) done_.notify_all();
+  }
+
+  void Work() {
+    OnWorker() = true;
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
+      if (queue_.empty()) return;  // stop_
+      const Task t = queue_.front();
+      queue_.pop_front();
+      lock.unlock();
+      RunBlock(*t.batch, t.block);
+      lock.lock();
+      Finish(*t.batch);
+    }
+  }
+
+  std::mutex mutex_, failure_mutex_;
+  std::condition_variable wake_, done_;
+  std::deque<Task> queue_;
+  std::vector<std::thread> workers_;
+  bool stop_ = false;
+};
+
+}  // namespace
 
 int DefaultThreadCount() {
   if (const char* env = std::getenv("DEB_THREADS")) {
@@ -29,28 +139,18 @@ void ParallelFor(std::size_t n, const std::function<void(std::size_t, std::size_
   min_block = std::max<std::size_t>(min_block, 1);
   const std::size_t blocks =
       std::min<std::size_t>(static_cast<std::size_t>(threads), (n + min_block - 1) / min_block);
-  if (blocks <= 1) {
+  // Inline for one block, and inside a pool thread: a nested call would
+  // wait for blocks that only busy workers could run.
+  if (blocks <= 1 || Pool::OnWorker()) {
     body(0, n);
     return;
   }
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  std::vector<std::thread> workers;
-  workers.reserve(blocks - 1);
-  const auto run = [&](std::size_t b) {
-    const std::size_t begin = n * b / blocks;
-    const std::size_t end = n * (b + 1) / blocks;
-    try {
-      body(begin, end);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-    }
-  };
-  for (std::size_t b = 1; b < blocks; ++b) workers.emplace_back(run, b);
-  run(0);
-  for (auto& w : workers) w.join();
-  if (failure) std::rethrow_exception(failure);
+  Batch batch;
+  batch.body = &body;
+  batch.n = n;
+  batch.blocks = blocks;
+  Pool::Instance().Run(batch);
+  if (batch.failure) std::rethrow_exception(batch.failure);
 }
 
 }  // namespace deb

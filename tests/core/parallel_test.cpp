@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
+#include <unistd.h>
 #include <utility>
 #include <vector>
 
@@ -55,6 +57,49 @@ TEST_CASE("ParallelFor rethrows a block's exception after all blocks end") {
                            4, 1),
                        "block 2", std::runtime_error);
   CHECK(ended == 4);
+}
+
+TEST_CASE("ParallelFor keeps its worker threads from one call to the next") {
+  // Kernel thread ids: a new thread gets a new one (std::thread::id, the
+  // pthread_t, is reused as soon as a joined thread's memory is).
+  const pid_t caller = ::gettid();
+  const auto other_threads = [caller] {
+    std::mutex m;
+    std::vector<pid_t> ids;
+    ParallelFor(
+        4,
+        [&](std::size_t, std::size_t) {
+          const std::lock_guard<std::mutex> lock(m);
+          if (::gettid() != caller) ids.push_back(::gettid());
+        },
+        4, 1);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+  };
+  // Over many calls of 4 blocks, at most 3 threads other than the caller
+  // ever run one (a thread per block per call would give up to 60).
+  std::vector<pid_t> all;
+  for (int call = 0; call < 20; ++call)
+    for (const pid_t id : other_threads())
+      if (std::find(all.begin(), all.end(), id) == all.end()) all.push_back(id);
+  CHECK(all.size() <= 3);
+}
+
+TEST_CASE("a ParallelFor inside a block of another covers its range once") {
+  std::vector<std::vector<int>> hits(8, std::vector<int>(1000, 0));
+  ParallelFor(
+      8,
+      [&](std::size_t b0, std::size_t b1) {
+        for (std::size_t b = b0; b < b1; ++b)
+          ParallelFor(
+              1000, [&](std::size_t i0, std::size_t i1) {
+                for (std::size_t i = i0; i < i1; ++i) ++hits[b][i];
+              },
+              4, 100);
+      },
+      4, 1);
+  for (const auto& row : hits) CHECK(std::count(row.begin(), row.end(), 1) == 1000);
 }
 
 }  // namespace deb
