@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/systems/lapack.h"
 
 namespace deb {
 namespace {
@@ -125,7 +126,7 @@ bool IsAsymptoticallyStable(const Eigen::VectorXcd& p) {
 }
 
 void RequireStable(const Eigen::MatrixXd& a, const std::string& what) {
-  const Eigen::VectorXcd p = Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();
+  const Eigen::VectorXcd p = Eigenvalues(a);
   std::string bad;
   for (Eigen::Index i = 0; i < p.size(); ++i)
     if (IsUnstablePole(p(i), PoleScale(p)) && p(i).imag() >= 0.0)
@@ -273,7 +274,7 @@ IsolationModelSummary IsolationModel::Summary() const {
   sum.modes_without_gravity = Modes(mass_, stiffness_no_gravity_, damping_);
   sum.has_control = has_control();
   if (has_control()) {
-    const Eigen::VectorXcd poles = Eigen::EigenSolver<Eigen::MatrixXd>(a_closed_, false).eigenvalues();
+    const Eigen::VectorXcd poles = Eigenvalues(a_closed_);
     sum.closed_loop_modes = ModesFromPoles(poles);
     sum.closed_loop_stable = IsAsymptoticallyStable(poles);
   }

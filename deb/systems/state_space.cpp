@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/systems/lapack.h"
 
 namespace deb {
 namespace {
@@ -52,7 +53,7 @@ StateSpace StateSpace::Gain(Eigen::MatrixXd d) {
 
 Eigen::VectorXcd StateSpace::Poles() const {
   if (states() == 0) return Eigen::VectorXcd(0);
-  return Eigen::EigenSolver<Eigen::MatrixXd>(a_, false).eigenvalues();
+  return Eigenvalues(a_);
 }
 
 bool StateSpace::IsStable() const {
