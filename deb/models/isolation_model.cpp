@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "deb/core/error.h"
-#include "deb/systems/lapack.h"
 
 namespace deb {
 namespace {
@@ -126,7 +125,7 @@ bool IsAsymptoticallyStable(const Eigen::VectorXcd& p) {
 }
 
 void RequireStable(const Eigen::MatrixXd& a, const std::string& what) {
-  const Eigen::VectorXcd p = Eigenvalues(a);
+  const Eigen::VectorXcd p = Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();
   std::string bad;
   for (Eigen::Index i = 0; i < p.size(); ++i)
     if (IsUnstablePole(p(i), PoleScale(p)) && p(i).imag() >= 0.0)
@@ -274,7 +273,7 @@ IsolationModelSummary IsolationModel::Summary() const {
   sum.modes_without_gravity = Modes(mass_, stiffness_no_gravity_, damping_);
   sum.has_control = has_control();
   if (has_control()) {
-    const Eigen::VectorXcd poles = Eigenvalues(a_closed_);
+    const Eigen::VectorXcd poles = Eigen::EigenSolver<Eigen::MatrixXd>(a_closed_, false).eigenvalues();
     sum.closed_loop_modes = ModesFromPoles(poles);
     sum.closed_loop_stable = IsAsymptoticallyStable(poles);
   }

@@ -8,7 +8,6 @@
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 #include "deb/systems/block_schur.h"
-#include "deb/systems/lapack.h"
 
 namespace deb {
 namespace {
@@ -74,9 +73,11 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
   pole_tolerance_ = kPoleSlack * kEps * a.norm();
 
   // Modal reduction; kept if the eigenvector matrix is well conditioned.
-  const EigenDecomposition eig = Eigendecompose(a);  // LAPACK dgeev
-  const Eigen::MatrixXcd& v = eig.vectors;            // unit columns
-  const Eigen::VectorXcd& lambda = eig.values;
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(a, true);
+  DEB_DEMAND(eig.info() == Eigen::Success);
+  Eigen::MatrixXcd v = eig.eigenvectors();
+  v.colwise().normalize();
+  const Eigen::VectorXcd lambda = eig.eigenvalues();
   poles_ = lambda;
   // cond_1(V) = |V|_1 |V^-1|_1 (within a factor n of the 2-norm one); the
   // inverse is needed anyway for the residues. A defective A gives a
@@ -104,8 +105,8 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
     const Eigen::MatrixXcd ct = bal.C() * v;  // p x n
     const Eigen::MatrixXcd bt = v_inv * bal.B();  // n x m
     // Real eigenvalues have im == 0 exactly; complex ones come in exact
-    // conjugate pairs (LAPACK's real Schur 2x2 blocks), of which the im > 0
-    // member carries the pair.
+    // conjugate pairs (real Schur 2x2 blocks), of which the im > 0 member
+    // carries the pair.
     for (int k = 0; k < n_; ++k) {
       const double re = lambda(k).real(), im = lambda(k).imag();
       if (im < 0.0) continue;

@@ -47,8 +47,8 @@ void CheckEigenInfo(lapack_int info, const char* routine, lapack_int n) {
 }
 
 // lambda_k = wr_k + j wi_k. A zero part is returned as +0 (x + 0.0 turns -0
-// into +0 and leaves every other value unchanged): a zero diagonal entry -0
-// of A (the damping of a rigid-body mode) must not print as a pole at -0.
+// into +0 and leaves every other value unchanged): a diagonal entry -0 of A
+// (the damping of a rigid-body mode) must not be reported as a pole at -0.
 Eigen::VectorXcd Pack(const Eigen::VectorXd& wr, const Eigen::VectorXd& wi) {
   Eigen::VectorXcd lambda(wr.size());
   for (Eigen::Index k = 0; k < wr.size(); ++k)
@@ -70,43 +70,6 @@ RealSchurForm RealSchur(const Eigen::MatrixXd& a) {
   CheckEigenInfo(info, "real Schur form (dgees)", n);
   form.eigenvalues = Pack(wr, wi);
   return form;
-}
-
-Eigen::VectorXcd Eigenvalues(const Eigen::MatrixXd& a) {
-  const lapack_int n = RequireSquare(a, "eigenvalues (dgeev)");
-  if (n == 0) return Eigen::VectorXcd(0);
-  Eigen::MatrixXd work = a;
-  Eigen::VectorXd wr(n), wi(n);
-  const lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n, work.data(), n, wr.data(),
-                                        wi.data(), nullptr, 1, nullptr, 1);
-  CheckEigenInfo(info, "eigenvalues (dgeev)", n);
-  return Pack(wr, wi);
-}
-
-EigenDecomposition Eigendecompose(const Eigen::MatrixXd& a) {
-  const lapack_int n = RequireSquare(a, "eigenvectors (dgeev)");
-  EigenDecomposition e{Eigen::VectorXcd(n), Eigen::MatrixXcd(n, n)};
-  if (n == 0) return e;
-  Eigen::MatrixXd work = a, vr(n, n);
-  Eigen::VectorXd wr(n), wi(n);
-  const lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', n, work.data(), n, wr.data(),
-                                        wi.data(), nullptr, 1, vr.data(), n);
-  CheckEigenInfo(info, "eigenvectors (dgeev)", n);
-  e.values = Pack(wr, wi);
-  // A pair k, k+1 stores v_k = vr_k + j vr_{k+1} and v_{k+1} = conj(v_k).
-  for (lapack_int k = 0; k < n; ++k) {
-    if (wi(k) == 0.0) {
-      e.vectors.col(k) = vr.col(k).cast<std::complex<double>>();
-      continue;
-    }
-    DEB_DEMAND(k + 1 < n && wi(k) > 0.0 && wi(k + 1) == -wi(k));
-    for (lapack_int i = 0; i < n; ++i) {
-      e.vectors(i, k) = std::complex<double>(vr(i, k), vr(i, k + 1));
-      e.vectors(i, k + 1) = std::conj(e.vectors(i, k));
-    }
-    ++k;
-  }
-  return e;
 }
 
 SylvesterSolution SolveQuasiTriangularSylvester(const Eigen::MatrixXd& t1,

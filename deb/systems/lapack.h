@@ -1,20 +1,18 @@
-// Dense real eigenvalue problems and quasi-triangular Sylvester equations
-// through LAPACK (its C interface LAPACKE). This is the only code in deb that
-// talks to LAPACK: callers see Eigen types only. Every LAPACK status is
-// checked: an illegal argument is a programming error (DEB_DEMAND), a QR
-// iteration that does not converge throws, and no result is returned that
-// LAPACK did not vouch for.
+// The real Schur form and quasi-triangular Sylvester equations through LAPACK
+// (its C interface LAPACKE), for the exact-variance (Lyapunov) solver. This is
+// the only code in deb that talks to LAPACK: callers see Eigen types only.
+// Every LAPACK status is checked: an illegal argument is a programming error
+// (DEB_DEMAND), a QR iteration that does not converge throws, and no result
+// is returned that LAPACK did not vouch for.
 //
-// Why LAPACK and not Eigen's solvers: dgeev and dgees (Francis QR with
-// aggressive early deflation, blocked Hessenberg reduction) are faster than
-// Eigen's EigenSolver for dense A of hundreds of states and more, and the
-// real Schur form with dtrsyl keeps the Lyapunov solver in real arithmetic
-// (Eigen's ComplexSchur runs complex QR iterations; tools/bench/bench_dense).
-//
-// Conjugate pairs: LAPACK takes each complex pair from one standardised 2x2
-// block of the real Schur form, so real eigenvalues have imaginary part 0
-// exactly, and complex ones come as exact conjugates, the one with imaginary
-// part > 0 first; their eigenvectors are exact conjugates too.
+// Why LAPACK here: dgees and dtrsyl keep the Bartels-Stewart solver in real
+// arithmetic, conjugate pairs together in 2x2 blocks, where Eigen has only
+// ComplexSchur (complex QR iterations) and no Sylvester solver; the exact
+// variance of a dense A of 200-2000 states came out 1.3-2x faster
+// (tools/bench/bench_dense). Eigenvalues and eigenvectors stay with Eigen's
+// EigenSolver: against the reference LAPACK and BLAS deb links
+// (CMakeLists.txt, DEB_STATIC_LAPACK), dgeev was no faster for eigenvalues
+// and 1.3-2x slower with eigenvectors than Eigen compiled for AVX2.
 #pragma once
 
 #include <Eigen/Dense>
@@ -27,8 +25,9 @@ namespace deb {
 struct RealSchurForm {
   Eigen::MatrixXd t;
   Eigen::MatrixXd u;
-  // The eigenvalues in the order of T's diagonal: a pair's 2x2 block gives
-  // the +j member first.
+  // The eigenvalues in the order of T's diagonal: real ones with imaginary
+  // part 0 exactly, a pair's 2x2 block as exact conjugates, the +j member
+  // first.
   Eigen::VectorXcd eigenvalues;
 };
 
@@ -36,28 +35,13 @@ struct RealSchurForm {
 //         iteration does not converge.
 RealSchurForm RealSchur(const Eigen::MatrixXd& a);
 
-// The eigenvalues of a square A (dgeev, balanced), in LAPACK's order.
-// @throws InputError as RealSchur.
-Eigen::VectorXcd Eigenvalues(const Eigen::MatrixXd& a);
-
-// Eigenvalues and right eigenvectors A v_k = lambda_k v_k (dgeev, balanced),
-// each v_k of unit 2-norm; column k of `vectors` belongs to values(k). For a
-// defective A the vectors are numerically dependent (the caller checks).
-struct EigenDecomposition {
-  Eigen::VectorXcd values;
-  Eigen::MatrixXcd vectors;
-};
-
-// @throws InputError as RealSchur.
-EigenDecomposition Eigendecompose(const Eigen::MatrixXd& a);
-
 // X with T1 X + X T2^T = C, T1 (n1 x n1) and T2 (n2 x n2) in real Schur form,
 // C n1 x n2 (dtrsyl). dtrsyl returns X scaled by a factor <= 1 chosen to
 // avoid overflow; the scale is divided out, so an X too large for double has
 // infinite entries, and a C with an entry that is not finite gives X = NaN.
-// `near_singular` is set when T1 and -T2 have (nearly)
-// common eigenvalues: LAPACK then perturbed them to get a solution, which is
-// not a solution of the given equation and must not be used.
+// `near_singular` is set when T1 and -T2 have (nearly) common eigenvalues:
+// LAPACK then perturbed them to get a solution, which is not a solution of
+// the given equation and must not be used.
 struct SylvesterSolution {
   Eigen::MatrixXd x;
   bool near_singular = false;

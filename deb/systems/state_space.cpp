@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "deb/core/error.h"
-#include "deb/systems/lapack.h"
 
 namespace deb {
 namespace {
@@ -53,7 +52,7 @@ StateSpace StateSpace::Gain(Eigen::MatrixXd d) {
 
 Eigen::VectorXcd StateSpace::Poles() const {
   if (states() == 0) return Eigen::VectorXcd(0);
-  return Eigenvalues(a_);
+  return Eigen::EigenSolver<Eigen::MatrixXd>(a_, false).eigenvalues();
 }
 
 bool StateSpace::IsStable() const {
