@@ -8,7 +8,7 @@
 // Why LAPACK here: dgees and dtrsyl keep the Bartels-Stewart solver in real
 // arithmetic, conjugate pairs together in 2x2 blocks, where Eigen has only
 // ComplexSchur (complex QR iterations) and no Sylvester solver; the exact
-// variance of a dense A of 200-2000 states came out 1.3-2x faster
+// variance of a dense A of 200-2000 states came out 1.6-2x faster
 // (tools/bench/bench_dense). Eigenvalues and eigenvectors stay with Eigen's
 // EigenSolver: against the reference LAPACK and BLAS deb links
 // (CMakeLists.txt, DEB_STATIC_LAPACK), dgeev was no faster for eigenvalues
