@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/systems/lapack.h"
 
 namespace deb {
 namespace {
@@ -39,36 +40,29 @@ void RequireFinite(const Eigen::MatrixXd& m, const char* where, const char* name
   }
 }
 
-// Y with T1 Y + Y T2^H = R in place (R given in y), T1 and T2 upper
-// triangular. Column j, with T2^H lower triangular:
-//   (T1 + conj(t2_jj) I) y_j = r_j - sum_{k>j} conj(t2_jk) y_k,  j = n2-1 ... 0,
-// each a back substitution, column-oriented.
-void SolveTriangularSylvester(const Eigen::MatrixXcd& t1, const Eigen::MatrixXcd& t2,
-                              Eigen::MatrixXcd& y) {
-  const Eigen::Index n1 = t1.rows(), n2 = t2.rows();
-  for (Eigen::Index j = n2 - 1; j >= 0; --j) {
-    const Eigen::Index rest = n2 - j - 1;
-    if (rest > 0) y.col(j).noalias() -= y.rightCols(rest) * t2.row(j).tail(rest).adjoint();
-    const Complex shift = std::conj(t2(j, j));
-    for (Eigen::Index i = n1 - 1; i >= 0; --i) {
-      y(i, j) /= t1(i, i) + shift;
-      if (i > 0) y.col(j).head(i) -= y(i, j) * t1.col(i).head(i);
-    }
-  }
+// "SolveLyapunov: singular equation, ...", naming poles a and b of A with
+// a + b ~ 0.
+[[noreturn]] void ThrowSingular(Complex a, Complex b) {
+  std::ostringstream os;
+  os << "SolveLyapunov: singular equation, poles " << FormatPole(a) << " and " << FormatPole(b)
+     << " sum to zero (no unique solution; is a pole on the imaginary axis?)";
+  throw InputError(os.str());
 }
 
 // Block Bartels-Stewart for a scaled A, reusable for several right-hand sides.
 // The states are first permuted so that A is block upper triangular with
 // irreducible diagonal blocks (the strongly connected components of the graph
 // "state j drives state i if A(i,j) != 0"; a series connection gives one block
-// per stage). Each diagonal block gets its own complex Schur form A_ii =
-// U_i T_i U_i^H and P is found block by block from the Sylvester equations
-//   A_ii P_ij + P_ij A_jj^T = -Q_ij - sum_{k>i} A_ik P_kj - sum_{k>j} P_ik A_jk^T.
+// per stage). Each diagonal block gets its own real Schur form A_ii =
+// U_i T_i U_i^T (LAPACK dgees) and P is found block by block from the
+// Sylvester equations
+//   A_ii P_ij + P_ij A_jj^T = -Q_ij - sum_{k>i} A_ik P_kj - sum_{k>j} P_ik A_jk^T,
+// i.e. T_i Y + Y T_j^T = U_i^T (right-hand side) U_j with P_ij = U_i Y U_j^T,
+// each solved by LAPACK's quasi-triangular dtrsyl: real arithmetic
+// throughout, conjugate pole pairs kept together in 2x2 blocks.
 // The structural zeros of A stay exactly zero: a dense Schur form would
 // spread rounding of size eps |A| into them, i.e. feedback from the
 // large states of a cascade's last stages into the small states of its first.
-// (Eigen's ComplexSchur reduces a real matrix to real Hessenberg form and then
-// runs complex QR iterations; it does not go through the real Schur form.)
 class BlockLyapunov {
  public:
   // @throws InputError if lambda_i + conj(lambda_j) ~ 0 (when check_singular).
@@ -77,28 +71,20 @@ class BlockLyapunov {
     Components(ab);
     ap_ = ab(perm_, perm_);
     const int blocks = static_cast<int>(start_.size()) - 1;
-    t_.resize(blocks);
-    u_.resize(blocks);
+    schur_.reserve(blocks);
     for (int b = 0; b < blocks; ++b) {
       const Eigen::Index at = start_[b], size = start_[b + 1] - at;
-      const Eigen::ComplexSchur<Eigen::MatrixXd> schur(ap_.block(at, at, size, size));
-      DEB_DEMAND(schur.info() == Eigen::Success);
-      t_[b] = schur.matrixT();
-      u_[b] = schur.matrixU();
+      schur_.push_back(RealSchur(ap_.block(at, at, size, size)));
     }
     if (!check_singular) return;
     Eigen::VectorXcd lambda(n);
-    for (int b = 0; b < blocks; ++b) lambda.segment(start_[b], t_[b].rows()) = t_[b].diagonal();
+    for (int b = 0; b < blocks; ++b)
+      lambda.segment(start_[b], schur_[b].eigenvalues.size()) = schur_[b].eigenvalues;
     const double tol = 1e3 * kEps * std::max(ab.norm(), std::numeric_limits<double>::min());
     for (Eigen::Index i = 0; i < n; ++i)
       for (Eigen::Index j = i; j < n; ++j)
-        if (std::abs(lambda(i) + std::conj(lambda(j))) <= tol) {
-          std::ostringstream os;
-          os << "SolveLyapunov: singular equation, poles " << FormatPole(lambda(i)) << " and "
-             << FormatPole(std::conj(lambda(j)))
-             << " sum to zero (no unique solution; is a pole on the imaginary axis?)";
-          throw InputError(os.str());
-        }
+        if (std::abs(lambda(i) + std::conj(lambda(j))) <= tol)
+          ThrowSingular(lambda(i), std::conj(lambda(j)));
   }
 
   int blocks() const { return static_cast<int>(start_.size()) - 1; }
@@ -119,9 +105,11 @@ class BlockLyapunov {
         if (after_j > 0)
           r.noalias() -=
               xp.block(ri, rj + nj, ni, after_j) * ap_.block(rj, rj + nj, nj, after_j).transpose();
-        Eigen::MatrixXcd y = u_[i].adjoint() * r.cast<Complex>() * u_[j];
-        SolveTriangularSylvester(t_[i], t_[j], y);
-        xp.block(ri, rj, ni, nj) = (u_[i] * y * u_[j].adjoint()).real();
+        const RealSchurForm &si = schur_[i], &sj = schur_[j];
+        const SylvesterSolution y =
+            SolveQuasiTriangularSylvester(si.t, sj.t, si.u.transpose() * r * sj.u);
+        if (y.near_singular) ThrowNearestPair(si.eigenvalues, sj.eigenvalues);
+        xp.block(ri, rj, ni, nj) = si.u * y.x * sj.u.transpose();
       }
     }
     Eigen::MatrixXd x(n, n);
@@ -181,9 +169,20 @@ class BlockLyapunov {
     }
   }
 
+  // dtrsyl found T_i and -T_j (nearly) sharing an eigenvalue: the pair of
+  // poles closest to summing to zero makes the equation singular.
+  [[noreturn]] static void ThrowNearestPair(const Eigen::VectorXcd& li,
+                                            const Eigen::VectorXcd& lj) {
+    Complex a = li(0), b = lj(0);
+    for (Eigen::Index p = 0; p < li.size(); ++p)
+      for (Eigen::Index q = 0; q < lj.size(); ++q)
+        if (std::abs(li(p) + lj(q)) < std::abs(a + b)) a = li(p), b = lj(q);
+    ThrowSingular(a, b);
+  }
+
   std::vector<int> perm_, start_;
   Eigen::MatrixXd ap_;
-  std::vector<Eigen::MatrixXcd> t_, u_;
+  std::vector<RealSchurForm> schur_;  // of each diagonal block
 };
 
 // The solution in the scaled coordinates x = diag(scale) x_b:

@@ -5,10 +5,10 @@
 //   A P + P A^T + B W B^T = 0,
 // and the output covariance is C P C^T (METHOD.md, convention 3). This is the
 // independent check of every grid-integrated budget: no frequency grid, no
-// truncation at f_max, no missed resonance. Eigen has no Lyapunov solver in its
-// supported modules, so it is solved here (Bartels & Stewart, Comm. ACM 15,
-// 1972, on Eigen's ComplexSchur: real Hessenberg reduction, then complex QR
-// iterations; not the real Schur form).
+// truncation at f_max, no missed resonance. It is solved by the real-Schur
+// Bartels-Stewart method (Bartels & Stewart, Comm. ACM 15, 1972): LAPACK's
+// real Schur form (dgees) and quasi-triangular Sylvester solver (dtrsyl),
+// real arithmetic throughout (deb/systems/lapack.h).
 //
 // Accuracy: Bartels-Stewart is backward stable only normwise, so its forward
 // error is about eps times the condition number of the Lyapunov operator in
@@ -36,9 +36,10 @@ namespace deb {
 // 2^round(log2 sqrt(P_ii)) and the equation solved again (up to 3 times) so
 // that diag(P) is equilibrated; non-symmetric Q gets the balancing only.
 // @throws InputError if sizes differ, an entry is not finite,
-//         lambda_i + lambda_j ~ 0 for some pair of eigenvalues (singular
-//         equation; names the pair), or the residual of the computed P is not
-//         small (the solution is not reliable).
+//         lambda_i + lambda_j ~ 0 for some pair of eigenvalues, or LAPACK's
+//         dtrsyl finds the equation nearly singular (singular equation; names
+//         the pair), or the residual of the computed P is not small (the
+//         solution is not reliable).
 Eigen::MatrixXd SolveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q);
 
 // C P C^T with A P + P A^T + B W B^T = 0: the output covariance of `sys`

@@ -1,0 +1,100 @@
+#include "deb/systems/lapack.h"
+
+#include <complex>
+#include <limits>
+#include <new>
+#include <sstream>
+#include <string>
+
+// LAPACKE's own complex types would be C99 _Complex, which is not C++; the
+// real routines used here do not take complex arguments.
+#define lapack_complex_float std::complex<float>
+#define lapack_complex_double std::complex<double>
+#include <lapacke.h>
+
+#include "deb/core/error.h"
+
+namespace deb {
+namespace {
+
+// A square, finite, column-major A that LAPACK's int indices can address.
+lapack_int RequireSquare(const Eigen::MatrixXd& a, const char* routine) {
+  std::ostringstream os;
+  if (a.rows() != a.cols()) {
+    os << routine << ": the matrix is " << a.rows() << "x" << a.cols() << ", not square";
+  } else if (a.rows() > std::numeric_limits<lapack_int>::max() / (a.rows() > 0 ? a.rows() : 1)) {
+    os << routine << ": the matrix is too large for LAPACK (" << a.rows() << " rows)";
+  } else if (!a.allFinite()) {
+    os << routine << ": the matrix has an entry that is not finite";
+  }
+  if (!os.str().empty()) throw InputError(os.str());
+  return static_cast<lapack_int>(a.rows());
+}
+
+// info < 0 names an illegal argument (a bug here); LAPACKE reports a failed
+// workspace allocation as LAPACK_WORK_MEMORY_ERROR; info > 0 from the QR
+// routines means that eigenvalues info+1 ... n did not converge.
+void CheckEigenInfo(lapack_int info, const char* routine, lapack_int n) {
+  if (info == LAPACK_WORK_MEMORY_ERROR || info == LAPACK_TRANSPOSE_MEMORY_ERROR)
+    throw std::bad_alloc();
+  DEB_DEMAND(info >= 0);
+  if (info > 0) {
+    std::ostringstream os;
+    os << routine << ": the QR iteration did not converge for the " << n << "x" << n
+       << " matrix (LAPACK info " << info << "); its eigenvalues could not be computed";
+    throw InputError(os.str());
+  }
+}
+
+// lambda_k = wr_k + j wi_k. A zero part is returned as +0 (x + 0.0 turns -0
+// into +0 and leaves every other value unchanged): a diagonal entry -0 of A
+// (the damping of a rigid-body mode) must not be reported as a pole at -0.
+Eigen::VectorXcd Pack(const Eigen::VectorXd& wr, const Eigen::VectorXd& wi) {
+  Eigen::VectorXcd lambda(wr.size());
+  for (Eigen::Index k = 0; k < wr.size(); ++k)
+    lambda(k) = std::complex<double>(wr(k) + 0.0, wi(k) + 0.0);
+  return lambda;
+}
+
+}  // namespace
+
+RealSchurForm RealSchur(const Eigen::MatrixXd& a) {
+  const lapack_int n = RequireSquare(a, "real Schur form (dgees)");
+  RealSchurForm form{a, Eigen::MatrixXd(n, n), Eigen::VectorXcd(n)};
+  if (n == 0) return form;
+  Eigen::VectorXd wr(n), wi(n);
+  lapack_int sdim = 0;
+  const lapack_int info =
+      LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'N', nullptr, n, form.t.data(), n, &sdim, wr.data(),
+                    wi.data(), form.u.data(), n);
+  CheckEigenInfo(info, "real Schur form (dgees)", n);
+  form.eigenvalues = Pack(wr, wi);
+  return form;
+}
+
+SylvesterSolution SolveQuasiTriangularSylvester(const Eigen::MatrixXd& t1,
+                                                const Eigen::MatrixXd& t2,
+                                                const Eigen::MatrixXd& c) {
+  const lapack_int n1 = RequireSquare(t1, "Sylvester equation (dtrsyl)");
+  const lapack_int n2 = RequireSquare(t2, "Sylvester equation (dtrsyl)");
+  DEB_DEMAND(c.rows() == n1 && c.cols() == n2);
+  SylvesterSolution s{c};
+  if (n1 == 0 || n2 == 0) return s;
+  // LAPACKE refuses a NaN argument; the solution of a non-finite C is not finite.
+  if (!c.allFinite()) {
+    s.x.setConstant(std::numeric_limits<double>::quiet_NaN());
+    return s;
+  }
+  double scale = 1.0;
+  // isgn = +1 and op(T2) = T2^T: T1 X + X T2^T = scale C.
+  const lapack_int info = LAPACKE_dtrsyl(LAPACK_COL_MAJOR, 'N', 'T', 1, n1, n2, t1.data(), n1,
+                                         t2.data(), n2, s.x.data(), n1, &scale);
+  if (info == LAPACK_WORK_MEMORY_ERROR || info == LAPACK_TRANSPOSE_MEMORY_ERROR)
+    throw std::bad_alloc();
+  DEB_DEMAND(info >= 0);
+  s.near_singular = info > 0;
+  if (scale != 1.0) s.x /= scale;
+  return s;
+}
+
+}  // namespace deb

@@ -1,0 +1,54 @@
+// The real Schur form and quasi-triangular Sylvester equations through LAPACK
+// (its C interface LAPACKE), for the exact-variance (Lyapunov) solver. This is
+// the only code in deb that talks to LAPACK: callers see Eigen types only.
+// Every LAPACK status is checked: an illegal argument is a programming error
+// (DEB_DEMAND), a QR iteration that does not converge throws, and no result
+// is returned that LAPACK did not vouch for.
+//
+// Why LAPACK here: dgees and dtrsyl keep the Bartels-Stewart solver in real
+// arithmetic, conjugate pairs together in 2x2 blocks, where Eigen has only
+// ComplexSchur (complex QR iterations) and no Sylvester solver; the exact
+// variance of a dense A of 200-2000 states came out 1.6-2x faster
+// (tools/bench/bench_dense). Eigenvalues and eigenvectors stay with Eigen's
+// EigenSolver: against the reference LAPACK and BLAS deb links
+// (CMakeLists.txt, DEB_STATIC_LAPACK), dgeev was no faster for eigenvalues
+// and 1.3-2x slower with eigenvectors than Eigen compiled for AVX2.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace deb {
+
+// A = U T U^T with U orthogonal and T quasi upper triangular (real Schur
+// form, dgees, no reordering): 1x1 blocks for real eigenvalues, standardised
+// 2x2 blocks [a b; c a] with b c < 0 for the pairs a +- j sqrt(-b c).
+struct RealSchurForm {
+  Eigen::MatrixXd t;
+  Eigen::MatrixXd u;
+  // The eigenvalues in the order of T's diagonal: real ones with imaginary
+  // part 0 exactly, a pair's 2x2 block as exact conjugates, the +j member
+  // first.
+  Eigen::VectorXcd eigenvalues;
+};
+
+// @throws InputError if A is not square or not finite, or if the QR
+//         iteration does not converge.
+RealSchurForm RealSchur(const Eigen::MatrixXd& a);
+
+// X with T1 X + X T2^T = C, T1 (n1 x n1) and T2 (n2 x n2) in real Schur form,
+// C n1 x n2 (dtrsyl). dtrsyl returns X scaled by a factor <= 1 chosen to
+// avoid overflow; the scale is divided out, so an X too large for double has
+// infinite entries, and a C with an entry that is not finite gives X = NaN.
+// `near_singular` is set when T1 and -T2 have (nearly) common eigenvalues:
+// LAPACK then perturbed them to get a solution, which is not a solution of
+// the given equation and must not be used.
+struct SylvesterSolution {
+  Eigen::MatrixXd x;
+  bool near_singular = false;
+};
+
+SylvesterSolution SolveQuasiTriangularSylvester(const Eigen::MatrixXd& t1,
+                                                const Eigen::MatrixXd& t2,
+                                                const Eigen::MatrixXd& c);
+
+}  // namespace deb

@@ -1,0 +1,140 @@
+#include "deb/systems/lapack.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "deb/core/error.h"
+
+namespace {
+
+using deb::InputError;
+using Eigen::MatrixXd;
+using Complex = std::complex<double>;
+
+MatrixXd Gaussian(int rows, int cols, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  MatrixXd x(rows, cols);
+  for (int j = 0; j < cols; ++j)
+    for (int i = 0; i < rows; ++i) x(i, j) = normal(rng);
+  return x;
+}
+
+// Poles -1, -2 +- 3j, -0.5 +- 10j under a random (non-orthogonal) similarity.
+MatrixXd KnownMatrix() {
+  MatrixXd blocks = MatrixXd::Zero(5, 5);
+  blocks(0, 0) = -1.0;
+  blocks.block(1, 1, 2, 2) << -2.0, 3.0, -3.0, -2.0;
+  blocks.block(3, 3, 2, 2) << -0.5, 10.0, -10.0, -0.5;
+  const MatrixXd s = MatrixXd::Identity(5, 5) + 0.3 * Gaussian(5, 5, 3);
+  return s * blocks * s.inverse();
+}
+
+std::vector<Complex> Sorted(const Eigen::VectorXcd& v) {
+  std::vector<Complex> out(v.data(), v.data() + v.size());
+  std::sort(out.begin(), out.end(), [](Complex a, Complex b) {
+    return a.real() != b.real() ? a.real() < b.real() : a.imag() < b.imag();
+  });
+  return out;
+}
+
+// Real eigenvalues with im == 0 exactly; pairs exactly conjugate, +j first.
+void CheckExactPairs(const Eigen::VectorXcd& lambda) {
+  for (Eigen::Index k = 0; k < lambda.size(); ++k) {
+    if (lambda(k).imag() == 0.0) continue;
+    REQUIRE(lambda(k).imag() > 0.0);
+    REQUIRE(k + 1 < lambda.size());
+    CHECK(lambda(k + 1) == std::conj(lambda(k)));
+    ++k;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("RealSchur finds the known poles, real ones exactly real, pairs exactly conjugate") {
+  const Eigen::VectorXcd lambda = deb::RealSchur(KnownMatrix()).eigenvalues;
+  REQUIRE(lambda.size() == 5);
+  CheckExactPairs(lambda);
+  const std::vector<Complex> expected = {{-2.0, -3.0}, {-2.0, 3.0}, {-1.0, 0.0},
+                                         {-0.5, -10.0}, {-0.5, 10.0}};
+  const std::vector<Complex> got = Sorted(lambda);
+  for (int k = 0; k < 5; ++k) CHECK(std::abs(got[k] - expected[k]) < 1e-12 * 10.0);
+  CHECK(got[2].imag() == 0.0);
+}
+
+TEST_CASE("a pole at zero is +0, also from a diagonal entry -0") {
+  MatrixXd a(2, 2);
+  a << 0.0, 1.0, -0.0, -0.0;  // a rigid-body mode without damping
+  const Eigen::VectorXcd lambda = deb::RealSchur(a).eigenvalues;
+  for (Eigen::Index k = 0; k < 2; ++k) {
+    CHECK_FALSE(std::signbit(lambda(k).real()));
+    CHECK_FALSE(std::signbit(lambda(k).imag()));
+  }
+}
+
+TEST_CASE("RealSchur reproduces A = U T U^T with U orthogonal and T quasi triangular") {
+  const MatrixXd a = Gaussian(40, 40, 11);
+  const deb::RealSchurForm f = deb::RealSchur(a);
+  CHECK((f.u * f.t * f.u.transpose() - a).norm() <= 1e-12 * a.norm());
+  CHECK((f.u.transpose() * f.u - MatrixXd::Identity(40, 40)).norm() <= 1e-12);
+  CheckExactPairs(f.eigenvalues);
+  for (int j = 0; j < 40; ++j)
+    for (int i = j + 2; i < 40; ++i) REQUIRE(f.t(i, j) == 0.0);
+  // Each 2x2 block is standardised and holds the pair listed at its rows.
+  for (int k = 0; k < 40; ++k) {
+    if (k + 1 < 40 && f.t(k + 1, k) != 0.0) {
+      CHECK(f.t(k, k) == f.t(k + 1, k + 1));
+      CHECK(f.eigenvalues(k).real() == f.t(k, k));
+      CHECK(f.eigenvalues(k).imag() > 0.0);
+      CHECK(f.eigenvalues(k + 1) == std::conj(f.eigenvalues(k)));
+      if (k + 2 < 40) CHECK(f.t(k + 2, k + 1) == 0.0);
+      ++k;
+    } else {
+      CHECK(f.eigenvalues(k) == Complex(f.t(k, k), 0.0));
+    }
+  }
+}
+
+TEST_CASE("SolveQuasiTriangularSylvester solves T1 X + X T2^T = C") {
+  // Eigenvalues with Re < 0 in both (|lambda| of a Gaussian n x n ~ sqrt n):
+  // T1 and -T2 share none.
+  const deb::RealSchurForm f1 =
+      deb::RealSchur(Gaussian(30, 30, 5) - 12.0 * MatrixXd::Identity(30, 30));
+  const deb::RealSchurForm f2 =
+      deb::RealSchur(Gaussian(20, 20, 6) - 12.0 * MatrixXd::Identity(20, 20));
+  const MatrixXd c = Gaussian(30, 20, 7);
+  const deb::SylvesterSolution s = deb::SolveQuasiTriangularSylvester(f1.t, f2.t, c);
+  CHECK_FALSE(s.near_singular);
+  CHECK((f1.t * s.x + s.x * f2.t.transpose() - c).norm() <= 1e-12 * c.norm());
+}
+
+TEST_CASE("SolveQuasiTriangularSylvester flags T1 and -T2 sharing an eigenvalue") {
+  MatrixXd t1(2, 2), t2(1, 1), c(2, 1);
+  t1 << 1.0, 5.0, 0.0, -3.0;
+  t2 << -1.0;  // 1 + (-1) = 0
+  c << 1.0, 2.0;
+  CHECK(deb::SolveQuasiTriangularSylvester(t1, t2, c).near_singular);
+}
+
+TEST_CASE("the LAPACK functions refuse a matrix that is not square or not finite") {
+  CHECK_THROWS_WITH_AS(deb::RealSchur(MatrixXd::Zero(2, 3)), doctest::Contains("not square"),
+                       InputError);
+  MatrixXd a = MatrixXd::Identity(3, 3);
+  a(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH_AS(deb::RealSchur(a), doctest::Contains("not finite"), InputError);
+  CHECK_THROWS_WITH_AS(deb::SolveQuasiTriangularSylvester(a, MatrixXd::Identity(1, 1),
+                                                          MatrixXd::Ones(3, 1)),
+                       doctest::Contains("not finite"), InputError);
+  CHECK(deb::RealSchur(MatrixXd(0, 0)).t.size() == 0);
+  // A right-hand side that is not finite gives a solution that is not finite.
+  MatrixXd c = MatrixXd::Ones(3, 1);
+  c(0, 0) = std::numeric_limits<double>::infinity();
+  CHECK(deb::SolveQuasiTriangularSylvester(MatrixXd::Identity(3, 3), MatrixXd::Identity(1, 1), c)
+            .x.hasNaN());
+}
