@@ -256,8 +256,6 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : kExitUsage;
   }
-  // Every command reads units; --help and --version have returned above.
-  deb::StartLoadingUnitDatabase();
   try {
     if (*run) {
       report.plot_scripts = report.plots || plot_scripts;

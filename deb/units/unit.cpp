@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <memory>
 #include <mutex>
-#include <thread>
 #include <vector>
 
 #include "deb/core/error.h"
@@ -177,26 +176,6 @@ std::string GramHint(const std::string& from, const std::string& to) {
 }
 
 }  // namespace
-
-void StartLoadingUnitDatabase() {
-  static std::once_flag started;
-  std::call_once(started, [] {
-    // Built before the loader starts, so destroyed only after it is joined.
-    (void)LoadMessages();
-    static std::thread loader([] {
-      try {
-        (void)System();
-      } catch (const InputError&) {
-        // The first caller of System() loads again and reports it.
-      }
-    });
-    static const struct Joiner {
-      ~Joiner() {
-        if (loader.joinable()) loader.join();
-      }
-    } joiner;
-  });
-}
 
 double UnitConversion::PsdFactor(double f_hz) const {
   DEB_DEMAND(std::isfinite(f_hz) && f_hz > 0.0);

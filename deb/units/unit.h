@@ -23,12 +23,6 @@
 
 namespace deb {
 
-// Starts reading the UDUNITS-2 database (about 7 ms of XML) on a background
-// thread, so that it overlaps what the caller does next (reading a budget);
-// the first unit function called waits for it. Optional: without it the
-// first call reads the database itself. A failure is reported by that call.
-void StartLoadingUnitDatabase();
-
 // How to express a signal given in unit `from` as a signal in unit `to`:
 //   y_to(t) = scale * (d/dt)^derivative_order y_from(t).
 // Examples: um/s -> nm: scale 1e3, order -1 (one integration);

@@ -236,17 +236,5 @@ TEST_CASE("conversions from several threads agree with a single-threaded one") {
   for (int t = 0; t < kThreads; ++t) CHECK(mismatches[t] == 0);
 }
 
-TEST_CASE("the unit database loaded in the background serves concurrent callers") {
-  // Whether or not an earlier test loaded it: several threads ask at once.
-  StartLoadingUnitDatabase();
-  StartLoadingUnitDatabase();
-  std::vector<std::thread> callers;
-  std::vector<double> scale(4, 0.0);
-  for (std::size_t i = 0; i < scale.size(); ++i)
-    callers.emplace_back([&scale, i] { scale[i] = ConvertUnit("um/s", "m/s").scale; });
-  for (std::thread& t : callers) t.join();
-  for (const double s : scale) CHECK(s == doctest::Approx(1e-6));
-}
-
 }  // namespace
 }  // namespace deb
