@@ -1,5 +1,6 @@
 #include "deb/budget/sweep.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
@@ -90,14 +91,20 @@ std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector
   std::mutex progress_mutex;
   EngineOptions options;
   options.threads = 1;  // parallel across variants, not within
-  // One variant per block: variants differ in cost (grid refinement).
+  // Variants differ in cost (grid refinement): each worker takes the next
+  // variant not yet started, so no worker idles while another has a queue.
+  // Each result lands at its variant's index, whatever the thread count.
+  std::atomic<std::size_t> next{0};
+  const std::size_t workers =
+      std::min<std::size_t>(variants.size(), static_cast<std::size_t>(threads > 0 ? threads : DefaultThreadCount()));
   ParallelFor(
-      variants.size(),
-      [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
+      workers,
+      [&](std::size_t, std::size_t) {
+        for (std::size_t i = next++; i < variants.size(); i = next++) {
           try {
             results[i] = Evaluate(variants[i], options);
           } catch (const InputError& e) {
+            next = variants.size();  // the other workers start no new variant
             std::ostringstream os;
             os << "sweep variant " << i + 1 << " (";
             for (std::size_t k = 0; k < spec.parameters.size(); ++k)
@@ -112,7 +119,7 @@ std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector
           }
         }
       },
-      threads);
+      static_cast<int>(workers), 1);
   return results;
 }
 

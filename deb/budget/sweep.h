@@ -48,7 +48,8 @@ std::vector<double> LinearRange(double from, double to, int count);
 std::vector<double> LogRange(double from, double to, int count);
 
 // Evaluates every variant budget, `threads` variants at a time (each
-// single-threaded inside). progress(done, total) is called after each
+// single-threaded inside; a worker takes the next variant not yet started),
+// with the same results for any thread count. progress(done, total) is called after each
 // variant from the worker that finished it (may be empty).
 // @throws InputError of the first variant that fails, naming its values.
 std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector<Budget>& variants, int threads,

@@ -76,6 +76,10 @@ TEST_CASE("every sweep variant gives the figures of the budget written out by ha
   }
   const std::string csv = SweepCsv(sweep.spec, results);
   CHECK(csv.rfind("sources[0].spectrum.level,paths[0].den[0],velocity.rms,velocity.sensor.rms\n", 0) == 0);
+  // The variants are taken by whichever worker is free: the same table, bit
+  // for bit, on one thread and on four.
+  CHECK(SweepCsv(sweep.spec, EvaluateSweep(sweep.spec, sweep.variants, 1)) == csv);
+  CHECK(SweepCsv(sweep.spec, EvaluateSweep(sweep.spec, sweep.variants, 4)) == csv);
 }
 
 TEST_CASE("zipped parameters pair their values; a [*] path sets every element") {
