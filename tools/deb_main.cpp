@@ -6,6 +6,7 @@
 // the report is written); 70 internal error.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,8 @@
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
+#include "deb/core/suggest.h"
 #include "deb/core/parallel.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/sweep_yaml.h"
@@ -250,6 +253,23 @@ int main(int argc, char** argv) {
   CLI::App* sweep = deb::tools::AddSweepCommand(app);
   CLI::App* sensitivity = deb::tools::AddSensitivityCommand(app);
 
+  // A first word that is no command: say so, and offer the nearest one
+  // (CLI11 alone answers "A subcommand is required").
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    std::string list;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      names.push_back(sub->get_name());
+      list += (list.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+      const std::string near = deb::NearestName(argv[1], names);
+      std::fprintf(stderr, "deb: unknown command '%s'%s; the commands are %s (deb --help)\n",
+                   deb::Excerpt(argv[1]).c_str(), near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str(),
+                   list.c_str());
+      return kExitUsage;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -154,6 +154,16 @@ TEST_CASE("usage errors exit 2 and --help exits 0") {
   CHECK(RunDeb("--help").out.find("Exit codes") != std::string::npos);
 }
 
+TEST_CASE("an unknown command exits 2, names the commands and offers the nearest") {
+  const Result typo = RunDeb("runn budget.yaml");
+  CHECK(typo.exit_code == 2);
+  CHECK(typo.err.find("deb: unknown command 'runn' (did you mean 'run'?); the commands are run, check,") == 0);
+  const Result far = RunDeb("plot budget.yaml");
+  CHECK(far.exit_code == 2);
+  CHECK(far.err.find("unknown command 'plot'; the commands are") != std::string::npos);
+  CHECK(far.err.find("did you mean") == std::string::npos);
+}
+
 TEST_CASE("deb check validates and describes without writing anything") {
   const Result r = RunDeb("check " + Budget("single_axis_isolator.yaml"));
   CHECK(r.exit_code == 0);
