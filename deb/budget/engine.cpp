@@ -401,6 +401,13 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
       out_conv[o] = OutputConversion(path, row, out);
     }
 
+    // The factor on output o's PSD at f[k]: its unit conversion and weighting.
+    const auto output_factor = [&](std::size_t o, std::size_t k) {
+      const UnitConversion& u = out_conv[o];
+      double factor = u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f[k]);  // no pow() when not needed
+      if (!weighting_gain2[o].empty()) factor *= weighting_gain2[o][k];
+      return factor;
+    };
     std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
     const InputSpectrum input(*source.spectrum, in_conv);
     try {
@@ -415,10 +422,7 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
             for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
               const int row = row_of_output[o];
               double s = s_diag ? DiagonalForm(h, row, *s_diag) : HermitianForm(h, row, *s_full);
-              const UnitConversion& u = out_conv[o];
-              s *= u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f[k]);  // no pow() when not needed
-              if (!weighting_gain2[o].empty()) s *= weighting_gain2[o][k];
-              psd[o][k] = std::max(s, 0.0);  // rounding of a PSD-valued S_u
+              psd[o][k] = std::max(s * output_factor(o, k), 0.0);  // rounding of a PSD-valued S_u
             }
           },
           options.threads);
@@ -516,12 +520,8 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
         std::vector<std::vector<double>> weight;
         for (const std::size_t o : split) {
           positions.push_back(row_of_output[o]);
-          const UnitConversion& u = out_conv[o];
           std::vector<double> w(n);
-          for (std::size_t k = 0; k < n; ++k) {
-            w[k] = u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f[k]);
-            if (!weighting_gain2[o].empty()) w[k] *= weighting_gain2[o][k];
-          }
+          for (std::size_t k = 0; k < n; ++k) w[k] = output_factor(o, k);
           weight.push_back(std::move(w));
         }
         const Eigen::MatrixXd parts = analysis.ModeParts(

@@ -56,16 +56,8 @@ class Pool {
     // Help with whatever is queued (this call's blocks, or a nested call's)
     // until this call's blocks are all done.
     while (batch.remaining > 0) {
-      if (!queue_.empty()) {
-        const Task t = queue_.front();
-        queue_.pop_front();
-        lock.unlock();
-        RunBlock(*t.batch, t.block);
-        lock.lock();
-        Finish(*t.batch);
-      } else {
-        done_.wait(lock);
-      }
+      if (!queue_.empty()) RunQueued(lock);
+      else done_.wait(lock);
     }
   }
 
@@ -102,13 +94,19 @@ class Pool {
     for (;;) {
       wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
       if (queue_.empty()) return;  // stop_
-      const Task t = queue_.front();
-      queue_.pop_front();
-      lock.unlock();
-      RunBlock(*t.batch, t.block);
-      lock.lock();
-      Finish(*t.batch);
+      RunQueued(lock);
     }
+  }
+
+  // Runs the first queued block, unlocked while it runs. The caller holds
+  // `lock` on mutex_ and the queue is not empty.
+  void RunQueued(std::unique_lock<std::mutex>& lock) {
+    const Task t = queue_.front();
+    queue_.pop_front();
+    lock.unlock();
+    RunBlock(*t.batch, t.block);
+    lock.lock();
+    Finish(*t.batch);
   }
 
   std::mutex mutex_, failure_mutex_;
