@@ -23,6 +23,7 @@
 #include "deb/core/error.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/lyapunov.h"
+#include "tools/bench/random_modes.h"
 
 namespace {
 
@@ -45,24 +46,9 @@ Seconds Time(F&& run) {
 }
 
 StateSpace DenseModel(int n, std::mt19937& rng) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Eigen::MatrixXd blocks = Eigen::MatrixXd::Zero(n, n);
-  int at = 0;
-  if (n % 2) blocks(at, at) = -2.0 * M_PI * 3.0, ++at;
-  for (; at < n; at += 2) {
-    const double w = 2.0 * M_PI * 0.5 * std::pow(1000.0, unit(rng));
-    const double z = 1e-3 * std::pow(100.0, unit(rng));
-    blocks(at, at) = blocks(at + 1, at + 1) = -z * w;
-    blocks(at, at + 1) = w * std::sqrt(1.0 - z * z);
-    blocks(at + 1, at) = -blocks(at, at + 1);
-  }
-  const auto random = [&](int r, int c) {
-    Eigen::MatrixXd x(r, c);
-    for (int j = 0; j < c; ++j)
-      for (int i = 0; i < r; ++i) x(i, j) = normal(rng);
-    return x;
-  };
+  deb::bench::RandomModes random_modes(rng);
+  const Eigen::MatrixXd blocks = random_modes.ModalBlocks(n, 1e-3, 100.0);
+  const auto random = [&](int r, int c) { return random_modes.Matrix(r, c); };
   const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(random(n, n)).householderQ();
   return StateSpace(q * blocks * q.transpose(), random(n, 3), random(1, n),
                     Eigen::MatrixXd::Zero(1, 3));

@@ -20,6 +20,7 @@
 
 #include "deb/core/parallel.h"
 #include "deb/systems/frequency_response.h"
+#include "tools/bench/random_modes.h"
 
 namespace {
 
@@ -42,24 +43,9 @@ struct Timing {
 // Stable, lightly damped modes between 0.5 Hz and 500 Hz (zeta 1e-4 .. 0.3)
 // plus one real pole if the state count is odd, mixed by a random similarity.
 StateSpace RandomSystem(int n, int p, int m, std::mt19937& rng) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Eigen::MatrixXd blocks = Eigen::MatrixXd::Zero(n, n);
-  int at = 0;
-  if (n % 2) blocks(at, at) = -2.0 * M_PI * 3.0, ++at;
-  for (; at < n; at += 2) {
-    const double w = 2.0 * M_PI * 0.5 * std::pow(1000.0, unit(rng));
-    const double z = 1e-4 * std::pow(3000.0, unit(rng));
-    blocks(at, at) = blocks(at + 1, at + 1) = -z * w;
-    blocks(at, at + 1) = w * std::sqrt(1.0 - z * z);
-    blocks(at + 1, at) = -blocks(at, at + 1);
-  }
-  const auto random = [&](int r, int c) {
-    Eigen::MatrixXd x(r, c);
-    for (int j = 0; j < c; ++j)
-      for (int i = 0; i < r; ++i) x(i, j) = normal(rng);
-    return x;
-  };
+  deb::bench::RandomModes random_modes(rng);
+  const Eigen::MatrixXd blocks = random_modes.ModalBlocks(n, 1e-4, 3000.0);
+  const auto random = [&](int r, int c) { return random_modes.Matrix(r, c); };
   const Eigen::MatrixXd s = Eigen::MatrixXd::Identity(n, n) + 0.3 * random(n, n);
   return StateSpace(s * blocks * s.inverse(), random(n, m), random(p, n),
                     Eigen::MatrixXd::Zero(p, m));
