@@ -126,7 +126,9 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
 
 int Check(const std::string& budget_file) {
   const deb::Budget budget = deb::LoadBudgetFile(budget_file);
-  const deb::FrequencyGrid grid = LocatedIn(budget_file, [&] { return deb::BuildGrid(budget); });
+  // Everything run checks of its input before computing: what check accepts, run accepts.
+  const deb::EvaluationPlan plan = LocatedIn(budget_file, [&] { return deb::PlanEvaluation(budget); });
+  const deb::FrequencyGrid& grid = plan.grid;
   // Every sweep variant is loaded and validated, as deb sweep would before computing.
   std::optional<deb::SweepBudget> sweep;
   if (budget.has_sweep) sweep = deb::LoadSweepFile(budget_file);
@@ -160,9 +162,17 @@ int Check(const std::string& budget_file) {
                 p.system.outputs(), p.system.states(), p.system.IsStable() ? "stable" : "NOT stable");
   }
   std::printf("contributors:\n");
-  for (const auto& c : budget.contributors)
+  for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
+    const deb::Contributor& c = budget.contributors[ci];
     std::printf("  %-20s source %s, path %s, exact variance: %s\n", c.name.c_str(), c.source.c_str(),
                 c.path.c_str(), deb::ToString(c.exact).c_str());
+    // Why there will be none, once per distinct reason (the outputs usually share it).
+    std::vector<std::string> reasons;
+    for (const std::string& why : plan.exact_refusal[ci])
+      if (!why.empty() && why != "not requested" && std::find(reasons.begin(), reasons.end(), why) == reasons.end())
+        reasons.push_back(why);
+    for (const std::string& why : reasons) std::printf("  %-20s no exact variance: %s\n", "", why.c_str());
+  }
   std::printf("outputs:\n");
   for (const auto& o : budget.outputs) {
     std::printf("  %-20s signal %s in %s", o.name.c_str(), o.signal.c_str(), o.unit.c_str());
@@ -171,6 +181,7 @@ int Check(const std::string& budget_file) {
     if (o.rms_max) std::printf(", rms_max %g", *o.rms_max);
     std::printf("\n");
   }
+  for (const auto& w : plan.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
   if (sweep) {
     std::printf("sweep: %s of %zu parameter(s), %zu variants, each valid:\n", deb::ToString(sweep->spec.mode).c_str(),
                 sweep->spec.parameters.size(), sweep->variants.size());

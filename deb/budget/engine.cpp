@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "deb/budget/path_response.h"
@@ -18,6 +20,8 @@
 namespace deb {
 namespace {
 
+constexpr double kDefaultGridMinHz = 0.1;  // the automatic grid without a range
+constexpr double kDefaultGridMaxHz = 1000.0;
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 std::string Key(const char* list, std::size_t i, const std::string& field = "") {
@@ -221,7 +225,105 @@ PathAnalyses AnalysePaths(const Budget& budget) {
 }
 
 namespace {
+
 FrequencyGrid BuildGridUnlocated(const Budget& budget, const PathAnalyses& paths);
+
+std::size_t IndexOf(const std::vector<Source>& sources, const std::string& name) {
+  for (std::size_t i = 0; i < sources.size(); ++i)
+    if (sources[i].name == name) return i;
+  DEB_DEMAND(false);
+  return 0;
+}
+
+std::size_t IndexOf(const std::vector<Path>& paths, const std::string& name) {
+  for (std::size_t i = 0; i < paths.size(); ++i)
+    if (paths[i].name == name) return i;
+  DEB_DEMAND(false);
+  return 0;
+}
+
+// The range every contributor's tabulated data (measured spectra, measured
+// responses that may not be extrapolated) covers; nullopt when unlimited.
+std::optional<FrequencyInterval> DataRange(const Budget& budget) {
+  std::optional<FrequencyInterval> range;
+  for (const Contributor& c : budget.contributors) {
+    range = Intersect(range, budget.FindSource(c.source).spectrum->DefinedRangeHz());
+    const Path& path = budget.FindPath(c.path);
+    if (path.HasMeasuredData()) range = Intersect(range, path.measured->DefinedRangeHz());
+  }
+  return range;
+}
+
+std::string RangeText(double lo_hz, double hi_hz) {
+  std::ostringstream os;
+  os << "[" << lo_hz << ", " << hi_hz << "] Hz";
+  return os.str();
+}
+
+// A grid that reaches beyond tabulated data that may not be extrapolated
+// would fail during propagation: rejected here, at the data (or at the grid
+// when the budget set its range).
+void CheckDataCoverage(const Budget& budget, const FrequencyGrid& grid) {
+  const bool grid_set = budget.grid.kind != GridKind::kAuto || budget.grid.range_given;
+  const auto message = [&](const std::string& what, const FrequencyInterval& r, const std::string& whose) {
+    return what + " is defined over " + RangeText(r.lo_hz, r.hi_hz) +
+           " only (extrapolation: error), but the frequency grid spans " + RangeText(grid.min_hz(), grid.max_hz()) +
+           (grid_set ? ": keep the grid inside that range"
+                     : ": the automatic grid covers every band and band requirement; keep them inside that range") +
+           ", or set " + whose + " extrapolation (hold or zero)";
+  };
+  for (const Contributor& c : budget.contributors) {
+    const std::size_t si = IndexOf(budget.sources, c.source);
+    const Source& source = budget.sources[si];
+    if (const auto r = source.spectrum->DefinedRangeHz(); r && !r->Contains(grid.min_hz(), grid.max_hz()))
+      throw InputError(grid_set ? std::string("grid") : Key("sources", si, "spectrum"),
+                       message("source '" + source.name + "'", *r, "the source's"));
+    const std::size_t pi = IndexOf(budget.paths, c.path);
+    const Path& path = budget.paths[pi];
+    if (!path.HasMeasuredData()) continue;
+    if (const auto r = path.measured->DefinedRangeHz(); r && !r->Contains(grid.min_hz(), grid.max_hz()))
+      throw InputError(grid_set ? std::string("grid") : Key("paths", pi),
+                       message("path '" + path.name + "' (measured data)", *r, "the measured response's"));
+  }
+}
+
+// The unit conversions and output rows of one contributor.
+struct ContributorSetup {
+  std::vector<UnitConversion> in_conv;  // per path input
+  bool inputs_pure_scale = true;
+  std::vector<int> row_of_output;          // per budget output: its position in the analysis
+  std::vector<UnitConversion> out_conv;  // per budget output
+};
+
+ContributorSetup SetUp(const Budget& budget, const Source& source, const Path& path, const PathAnalysis& analysis) {
+  ContributorSetup s;
+  s.in_conv = InputConversions(source, path);
+  for (const UnitConversion& u : s.in_conv) s.inputs_pure_scale &= u.IsPureScale();
+  for (const Output& out : budget.outputs) {
+    const int row = path.OutputIndex(out.signal);
+    s.row_of_output.push_back(analysis.Position(row));
+    s.out_conv.push_back(OutputConversion(path, row, out));
+  }
+  return s;
+}
+
+// Why contributor c gets no exact variance on output o; "" when one is attempted
+// (white source, pure unit scales, a stable rational path, a rational weighting).
+std::string ExactRefusal(const Contributor& c, const Source& source, const Path& path, const PathAnalysis& analysis,
+                         const Output& out, const ContributorSetup& setup, std::size_t o) {
+  if (c.exact == ExactVariance::kOff) return "not requested";
+  if (path.HasMeasuredData())
+    return "the path holds measured frequency data (no state-space model for a Lyapunov solution)";
+  if (!source.spectrum->WhiteLevel())
+    return "the source is not white (exact variance needs a flat spectrum without band limits)";
+  if (!setup.inputs_pure_scale || !setup.out_conv[o].IsPureScale())
+    return "the units differ by a time derivative (a factor j 2 pi f is not a rational path)";
+  if (!analysis.marginal_poles().empty()) return "the path has poles on the imaginary axis";
+  if (out.metric)
+    return "the " + ToString(out.metric->type) + " weighting |sinc(pi f T)|^2 is not rational in s: no Lyapunov form";
+  return "";
+}
+
 }  // namespace
 
 FrequencyGrid BuildGrid(const Budget& budget) {
@@ -253,8 +355,18 @@ FrequencyGrid BuildGridUnlocated(const Budget& budget, const PathAnalyses& paths
   }
   AutoGridOptions options = g.auto_options;
   if (!g.range_given) {
-    options.min_hz = 0.1;
-    options.max_hz = 1000.0;
+    // 0.1-1000 Hz, inside the data that may not be extrapolated (all of the
+    // data when it lies outside that range), widened to every band.
+    options.min_hz = kDefaultGridMinHz;
+    options.max_hz = kDefaultGridMaxHz;
+    if (const auto data = DataRange(budget); data && data->lo_hz < data->hi_hz) {
+      options.min_hz = std::max(options.min_hz, data->lo_hz);
+      options.max_hz = std::min(options.max_hz, data->hi_hz);
+      if (!(options.min_hz < options.max_hz)) {
+        options.min_hz = data->lo_hz;
+        options.max_hz = data->hi_hz;
+      }
+    }
     for (const Band& b : budget.bands) {
       options.min_hz = std::min(options.min_hz, b.lo_hz);
       options.max_hz = std::max(options.max_hz, b.hi_hz);
@@ -307,27 +419,46 @@ FrequencyGrid BuildGridUnlocated(const Budget& budget, const PathAnalyses& paths
   }
   return AutoGrid(options, resonances, breakpoints);
 }
-}  // namespace
 
-BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
-  budget.Validate();
-  BudgetResult result;
-  result.budget_name = budget.name;
-  result.paths = AnalysePaths(budget);
-  result.grid = BuildGrid(budget, result.paths);
-  const std::vector<double>& f = result.grid.f_hz();
-  const std::size_t n = f.size();
-
-  std::vector<Band> bands = budget.bands.empty() ? DecadeBands(result.grid) : budget.bands;
+void CheckBandsInGrid(const Budget& budget, const FrequencyGrid& grid) {
+  const auto outside = [&grid](double lo, double hi) {
+    return lo < grid.min_hz() * (1 - 1e-12) || hi > grid.max_hz() * (1 + 1e-12);
+  };
+  const std::string grid_text = RangeText(grid.min_hz(), grid.max_hz());
   for (std::size_t i = 0; i < budget.bands.size(); ++i) {
     const Band& b = budget.bands[i];
-    if (b.lo_hz < result.grid.min_hz() * (1 - 1e-12) || b.hi_hz > result.grid.max_hz() * (1 + 1e-12)) {
-      std::ostringstream os;
-      os << "band [" << b.lo_hz << ", " << b.hi_hz << "] Hz extends beyond the frequency grid ["
-         << result.grid.min_hz() << ", " << result.grid.max_hz() << "] Hz";
-      throw InputError(Key("bands", i), os.str());
-    }
+    if (outside(b.lo_hz, b.hi_hz))
+      throw InputError(Key("bands", i), "band " + RangeText(b.lo_hz, b.hi_hz) +
+                                            " extends beyond the frequency grid " + grid_text);
   }
+  for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+    const auto& limits = budget.outputs[o].band_requirements;
+    for (std::size_t b = 0; b < limits.size(); ++b)
+      if (outside(limits[b].lo_hz, limits[b].hi_hz))
+        throw InputError(Key("outputs", o) + ".band_requirements[" + std::to_string(b) + "]",
+                         "band requirement " + RangeText(limits[b].lo_hz, limits[b].hi_hz) +
+                             " extends beyond the frequency grid " + grid_text);
+  }
+}
+
+// Keeps the first of each repeated warning (a path shared by several contributors warns once).
+void Deduplicate(std::vector<std::string>* warnings) {
+  std::vector<std::string> unique;
+  for (std::string& w : *warnings)
+    if (std::find(unique.begin(), unique.end(), w) == unique.end()) unique.push_back(std::move(w));
+  *warnings = std::move(unique);
+}
+
+}  // namespace
+
+EvaluationPlan PlanEvaluation(const Budget& budget) {
+  budget.Validate();
+  EvaluationPlan plan;
+  plan.paths = AnalysePaths(budget);
+  plan.grid = BuildGrid(budget, plan.paths);
+  CheckBandsInGrid(budget, plan.grid);
+  CheckDataCoverage(budget, plan.grid);
+  plan.bands = budget.bands.empty() ? DecadeBands(plan.grid) : budget.bands;
 
   // Contributors add as uncorrelated; one source feeding several of them is
   // one realisation seen through several paths, whose sum is coherent.
@@ -337,24 +468,227 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     for (const Contributor& c : budget.contributors)
       if (c.source == s.name) users += (count++ ? ", " : "") + ("'" + c.name + "'");
     if (count > 1)
-      result.warnings.push_back("source '" + s.name + "' feeds contributors " + users +
-                                ", whose variances are added as uncorrelated; if they are one disturbance seen "
-                                "through several paths, join the paths (type: parallel) in one contributor");
+      plan.warnings.push_back("source '" + s.name + "' feeds contributors " + users +
+                              ", whose variances are added as uncorrelated; if they are one disturbance seen "
+                              "through several paths, join the paths (type: parallel) in one contributor");
   }
 
-  // Weighting responses and metric factors, shared by all contributors of an output.
-  std::vector<std::vector<double>> weighting_gain2(budget.outputs.size());
   for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
     const Output& out = budget.outputs[o];
-    if (out.weighting) {
-      const PoleStability st = ClassifyPoles(out.weighting->system.Poles());
-      if (!st.unstable.empty())
-        throw InputError(Key("outputs", o, "weighting"),
-                         "the weighting of output '" + out.name + "' is unstable: pole(s) at " +
-                             FormatPoles(st.unstable) + " rad/s");
-    }
-    weighting_gain2[o] = WeightingGain2(out, f, options.threads);
+    if (!out.weighting) continue;
+    const PoleStability st = ClassifyPoles(out.weighting->system.Poles());
+    if (!st.unstable.empty())
+      throw InputError(Key("outputs", o, "weighting"), "the weighting of output '" + out.name +
+                                                           "' is unstable: pole(s) at " + FormatPoles(st.unstable) +
+                                                           " rad/s");
   }
+
+  for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
+    const Contributor& c = budget.contributors[ci];
+    const Source& source = budget.FindSource(c.source);
+    const Path& path = budget.FindPath(c.path);
+    const PathAnalysis& analysis = *plan.paths.at(c.path);
+    if (analysis.loop_around_data())
+      plan.warnings.push_back("path '" + path.name +
+                              "' closes a loop around measured data: its stability is not verified "
+                              "(check the loop's Nyquist plot)");
+    if (!analysis.unstable_poles().empty())
+      throw InputError(Key("contributors", ci, "path"),
+                       "path '" + path.name + "' is unstable: pole(s) at " + FormatPoles(analysis.unstable_poles()) +
+                           " rad/s; a stationary output spectrum does not exist");
+    if (!analysis.marginal_poles().empty())
+      plan.warnings.push_back("path '" + path.name + "' has pole(s) on the imaginary axis (" +
+                              FormatPoles(analysis.marginal_poles()) +
+                              " rad/s): its variance depends on the grid's ends");
+    const ContributorSetup setup = SetUp(budget, source, path, analysis);
+    std::vector<std::string> refusals;
+    for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+      refusals.push_back(ExactRefusal(c, source, path, analysis, budget.outputs[o], setup, o));
+      if (c.exact == ExactVariance::kRequired && !refusals.back().empty())
+        throw InputError(Key("contributors", ci, "exact"),
+                         "exact variance of contributor '" + c.name + "' on output '" + budget.outputs[o].name +
+                             "' is required but cannot be computed: " + refusals.back());
+    }
+    plan.exact_refusal.push_back(std::move(refusals));
+  }
+  Deduplicate(&plan.warnings);
+  return plan;
+}
+
+namespace {
+
+// The one-sided PSD of contributor ci on every output (rows: outputs),
+// S_y = h S_u h^H with the output's unit and weighting factors.
+std::vector<std::vector<double>> Propagate(const Budget& budget, std::size_t ci, const PathAnalysis& analysis,
+                                           const InputSpectrum& input, const ContributorSetup& setup,
+                                           const std::vector<double>& f,
+                                           const std::function<double(std::size_t, std::size_t)>& output_factor,
+                                           int threads) {
+  const Contributor& c = budget.contributors[ci];
+  const std::size_t n = f.size();
+  std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
+  try {
+    analysis.ForEachResponse(
+        f,
+        [&](std::size_t k, const Eigen::MatrixXcd& h) {
+          // Allocates only where the spectrum must be evaluated per frequency.
+          Eigen::VectorXd diag_scratch;
+          Eigen::MatrixXcd full_scratch;
+          const Eigen::VectorXd* s_diag = input.diagonal() ? &input.Diagonal(f[k], diag_scratch) : nullptr;
+          const Eigen::MatrixXcd* s_full = input.diagonal() ? nullptr : &input.Full(f[k], full_scratch);
+          for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+            const int row = setup.row_of_output[o];
+            double s = s_diag ? DiagonalForm(h, row, *s_diag) : HermitianForm(h, row, *s_full);
+            psd[o][k] = std::max(s * output_factor(o, k), 0.0);  // rounding of a PSD-valued S_u
+          }
+        },
+        threads);
+  } catch (const InputError& e) {
+    // A pole on the grid, a loop singular at a grid point: point at the contributor.
+    if (!e.key_path().empty()) throw;
+    throw InputError(Key("contributors", ci), "contributor '" + c.name + "': " + e.what());
+  }
+  for (std::size_t o = 0; o < budget.outputs.size(); ++o)
+    for (std::size_t k = 0; k < n; ++k)
+      if (!std::isfinite(psd[o][k])) {
+        std::ostringstream os;
+        os << "contributor '" << c.name << "' gives a non-finite PSD on output '" << budget.outputs[o].name
+           << "' at " << f[k] << " Hz (a pole on the frequency axis, or a source that is not finite there)";
+        throw InputError(Key("contributors", ci), os.str());
+      }
+  return psd;
+}
+
+// The exact variance of contributor ci on output o into cr (or the reason
+// there is none), and a warning where it disagrees with the grid's figure.
+void AddExactVariance(const Budget& budget, std::size_t ci, std::size_t o, const PathAnalysis& analysis,
+                      const ContributorSetup& setup, std::string refusal, const EngineOptions& options,
+                      ContributorResult* cr, std::vector<std::string>* warnings) {
+  const Contributor& c = budget.contributors[ci];
+  const Path& path = budget.FindPath(c.path);
+  const Output& out = budget.outputs[o];
+  if (refusal.empty()) {
+    const Eigen::MatrixXd white = *budget.FindSource(c.source).spectrum->WhiteLevel();
+    const int m = path.system.inputs();
+    Eigen::MatrixXd in_scale = Eigen::MatrixXd::Zero(m, m);
+    for (int j = 0; j < m; ++j) in_scale(j, j) = setup.in_conv[j].scale;
+    const Eigen::MatrixXd w_two_sided = in_scale * white * in_scale / 2.0;
+    try {
+      const PathAnalysis::ExactVariance exact = analysis.Exact(path.OutputIndex(out.signal), w_two_sided,
+                                                               out.weighting ? &out.weighting->system : nullptr);
+      const double scale2 = setup.out_conv[o].scale * setup.out_conv[o].scale;
+      cr->exact_variance = exact.variance * scale2;
+      if (exact.mode_share.size() > 0) {
+        cr->top_modes = TopModes(*path.modal, exact.mode_share, exact.variance, *cr->exact_variance);
+        cr->top_modes_of = ModeSplit::kExactVariance;
+      }
+    } catch (const InputError& e) {
+      refusal = e.what();
+    }
+  }
+  if (!cr->exact_variance) {
+    cr->exact_note = refusal;
+    if (c.exact == ExactVariance::kRequired)
+      throw InputError(Key("contributors", ci, "exact"), "exact variance of contributor '" + c.name +
+                                                             "' on output '" + out.name +
+                                                             "' is required but cannot be computed: " + refusal);
+    return;
+  }
+  if (!(*cr->exact_variance > 0.0)) return;
+  // With tails that do not converge as power laws (no estimate), the grid
+  // figure alone is compared.
+  const bool tails = std::isfinite(cr->tail_variance_estimate);
+  const double beyond = tails ? cr->tail_variance_estimate : 0.0;
+  const double rel = std::abs(*cr->exact_variance - (cr->variance + beyond)) / *cr->exact_variance;
+  if (rel > options.exact_tolerance) {
+    std::ostringstream os;
+    os << "contributor '" << c.name << "' on output '" << out.name << "': exact variance " << *cr->exact_variance
+       << " and grid variance " << cr->variance;
+    if (tails) os << " (+ " << beyond << " estimated beyond the grid)";
+    else os << " (no estimate beyond the grid: its ends are not power-law tails)";
+    os << " differ by " << rel << " relative; refine the grid or widen its range";
+    warnings->push_back(os.str());
+  }
+}
+
+// A modal path without the closed-form split (a source that is not white, a
+// weighting, a derivative unit): the split of the grid integral, on the same
+// grid and with the same factors as the PSD, for the outputs in `split`.
+void SplitGridVarianceByMode(const Path& path, const PathAnalysis& analysis, const InputSpectrum& input,
+                             const ContributorSetup& setup, const FrequencyGrid& grid,
+                             const std::function<double(std::size_t, std::size_t)>& output_factor,
+                             const std::vector<std::size_t>& split, int threads,
+                             std::vector<ContributorResult*> results) {
+  const std::vector<double>& f = grid.f_hz();
+  const std::size_t n = f.size();
+  const std::vector<double> q = LinearQuadratureWeights(grid);
+  std::vector<int> positions;
+  std::vector<std::vector<double>> weight;
+  for (const std::size_t o : split) {
+    positions.push_back(setup.row_of_output[o]);
+    std::vector<double> w(n);
+    for (std::size_t k = 0; k < n; ++k) w[k] = output_factor(o, k);
+    weight.push_back(std::move(w));
+  }
+  const Eigen::MatrixXd parts = analysis.ModeParts(
+      f, q, positions, weight,
+      [&input](double f_hz, Eigen::MatrixXcd& scratch) -> const Eigen::MatrixXcd& { return input.Full(f_hz, scratch); },
+      threads);
+  for (std::size_t i = 0; i < split.size(); ++i) {
+    ContributorResult& cr = *results[i];
+    double whole = 0.0;  // the PSD's integral by the same linear rule
+    for (std::size_t k = 0; k < n; ++k) whole += q[k] * cr.psd[k];
+    cr.top_modes = TopModes(*path.modal, parts.col(static_cast<Eigen::Index>(i)), whole, cr.variance);
+    cr.top_modes_of = ModeSplit::kGridVariance;
+  }
+}
+
+// Totals are sums of the contributors' integrals, not integrals of the total
+// PSD: the power-law rule is not linear in S, and stacked CPS curves must add
+// up to the total exactly. Then the band figures and band requirements.
+void AddTotalsAndBands(const Output& output, const FrequencyGrid& grid, const std::vector<Band>& bands,
+                       OutputResult* r) {
+  const std::size_t n = grid.size();
+  r->total_psd.assign(n, 0.0);
+  r->total_cps.assign(n, 0.0);
+  for (const auto& cr : r->contributors)
+    for (std::size_t k = 0; k < n; ++k) {
+      r->total_psd[k] += cr.psd[k];
+      r->total_cps[k] += cr.cps[k];
+    }
+  r->variance = r->total_cps.back();
+  for (const Band& b : bands) {
+    BandResult br;
+    br.band = b;
+    for (const auto& cr : r->contributors) {
+      br.contributor_variance.push_back(IntegralBetween(grid, cr.psd, cr.cps, b.lo_hz, b.hi_hz));
+      br.variance += br.contributor_variance.back();
+    }
+    r->bands.push_back(std::move(br));
+  }
+  for (const BandRequirement& q : output.band_requirements) {
+    BandRequirementResult br;
+    br.requirement = q;
+    for (const auto& cr : r->contributors) br.variance += IntegralBetween(grid, cr.psd, cr.cps, q.lo_hz, q.hi_hz);
+    r->band_requirements.push_back(br);
+  }
+}
+
+}  // namespace
+
+BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
+  EvaluationPlan plan = PlanEvaluation(budget);
+  BudgetResult result;
+  result.budget_name = budget.name;
+  result.paths = std::move(plan.paths);
+  result.grid = std::move(plan.grid);
+  result.warnings = std::move(plan.warnings);
+  const std::vector<double>& f = result.grid.f_hz();
+
+  // Weighting responses, shared by all contributors of an output.
+  std::vector<std::vector<double>> weighting_gain2(budget.outputs.size());
+  for (std::size_t o = 0; o < budget.outputs.size(); ++o)
+    weighting_gain2[o] = WeightingGain2(budget.outputs[o], f, options.threads);
 
   result.outputs.resize(budget.outputs.size());
   for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
@@ -364,7 +698,6 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     r.unit = budget.outputs[o].unit;
     r.rms_max = budget.outputs[o].rms_max;
     r.metric = budget.outputs[o].metric;
-    r.total_psd.assign(n, 0.0);
   }
 
   for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
@@ -372,214 +705,40 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     const Source& source = budget.FindSource(c.source);
     const Path& path = budget.FindPath(c.path);
     const PathAnalysis& analysis = *result.paths.at(c.path);
-    const int m = path.system.inputs();
-
-    PoleStability stability{analysis.unstable_poles(), analysis.marginal_poles()};
-    if (analysis.loop_around_data())
-      result.warnings.push_back("path '" + path.name +
-                                "' closes a loop around measured data: its stability is not verified "
-                                "(check the loop's Nyquist plot)");
-    if (!stability.unstable.empty())
-      throw InputError(Key("contributors", ci, "path"),
-                       "path '" + path.name + "' is unstable: pole(s) at " + FormatPoles(stability.unstable) +
-                           " rad/s; a stationary output spectrum does not exist");
-    if (!stability.marginal.empty())
-      result.warnings.push_back("path '" + path.name + "' has pole(s) on the imaginary axis (" +
-                                FormatPoles(stability.marginal) +
-                                " rad/s): its variance depends on the grid's ends");
-
-    const std::vector<UnitConversion> in_conv = InputConversions(source, path);
-    bool inputs_pure_scale = true;
-    for (const UnitConversion& u : in_conv) inputs_pure_scale &= u.IsPureScale();
-
-    std::vector<int> row_of_output(budget.outputs.size());
-    std::vector<UnitConversion> out_conv(budget.outputs.size());
-    for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
-      const Output& out = budget.outputs[o];
-      const int row = path.OutputIndex(out.signal);
-      row_of_output[o] = analysis.Position(row);
-      out_conv[o] = OutputConversion(path, row, out);
-    }
+    const ContributorSetup setup = SetUp(budget, source, path, analysis);
 
     // The factor on output o's PSD at f[k]: its unit conversion and weighting.
     const auto output_factor = [&](std::size_t o, std::size_t k) {
-      const UnitConversion& u = out_conv[o];
+      const UnitConversion& u = setup.out_conv[o];
       double factor = u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f[k]);  // no pow() when not needed
       if (!weighting_gain2[o].empty()) factor *= weighting_gain2[o][k];
       return factor;
     };
-    std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
-    const InputSpectrum input(*source.spectrum, in_conv);
-    try {
-      analysis.ForEachResponse(
-          f,
-          [&](std::size_t k, const Eigen::MatrixXcd& h) {
-            // Allocates only where the spectrum must be evaluated per frequency.
-            Eigen::VectorXd diag_scratch;
-            Eigen::MatrixXcd full_scratch;
-            const Eigen::VectorXd* s_diag = input.diagonal() ? &input.Diagonal(f[k], diag_scratch) : nullptr;
-            const Eigen::MatrixXcd* s_full = input.diagonal() ? nullptr : &input.Full(f[k], full_scratch);
-            for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
-              const int row = row_of_output[o];
-              double s = s_diag ? DiagonalForm(h, row, *s_diag) : HermitianForm(h, row, *s_full);
-              psd[o][k] = std::max(s * output_factor(o, k), 0.0);  // rounding of a PSD-valued S_u
-            }
-          },
-          options.threads);
-    } catch (const InputError& e) {
-      // A pole on the grid, data (spectrum or response) that do not reach: point at the contributor.
-      if (!e.key_path().empty()) throw;
-      throw InputError(Key("contributors", ci), "contributor '" + c.name + "': " + e.what());
-    }
+    const InputSpectrum input(*source.spectrum, setup.in_conv);
+    std::vector<std::vector<double>> psd =
+        Propagate(budget, ci, analysis, input, setup, f, output_factor, options.threads);
 
+    std::vector<std::size_t> split;  // outputs whose modes are split on the grid
+    std::vector<ContributorResult*> split_results;
     for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
-      const Output& out = budget.outputs[o];
-      for (std::size_t k = 0; k < n; ++k) {
-        if (!std::isfinite(psd[o][k])) {
-          std::ostringstream os;
-          os << "contributor '" << c.name << "' gives a non-finite PSD on output '" << out.name << "' at "
-             << f[k] << " Hz (a pole on the frequency axis, or a source that is not finite there)";
-          throw InputError(Key("contributors", ci), os.str());
-        }
-      }
       ContributorResult cr;
       cr.name = c.name;
       cr.psd = std::move(psd[o]);
       cr.cps = CumulativeIntegral(result.grid, cr.psd);
       cr.variance = cr.cps.back();
       cr.tail_variance_estimate = TailEstimate(f, cr.psd);
-
-      // Exact variance: white source, pure unit scales, stable strictly proper path.
-      const auto white = source.spectrum->WhiteLevel();
-      std::string why_not;
-      if (c.exact == ExactVariance::kOff) why_not = "not requested";
-      else if (path.HasMeasuredData())
-        why_not = "the path holds measured frequency data (no state-space model for a Lyapunov solution)";
-      else if (!white) why_not = "the source is not white (exact variance needs a flat spectrum without band limits)";
-      else if (!inputs_pure_scale || !out_conv[o].IsPureScale())
-        why_not = "the units differ by a time derivative (a factor j 2 pi f is not a rational path)";
-      else if (!stability.marginal.empty()) why_not = "the path has poles on the imaginary axis";
-      else if (out.metric)
-        why_not = "the " + ToString(out.metric->type) +
-                  " weighting |sinc(pi f T)|^2 is not rational in s: no Lyapunov form";
-      if (why_not.empty()) {
-        const int row = path.OutputIndex(out.signal);
-        Eigen::MatrixXd in_scale = Eigen::MatrixXd::Zero(m, m);
-        for (int j = 0; j < m; ++j) in_scale(j, j) = in_conv[j].scale;
-        const Eigen::MatrixXd w_two_sided = in_scale * (*white) * in_scale / 2.0;
-        try {
-          const PathAnalysis::ExactVariance exact =
-              analysis.Exact(row, w_two_sided, out.weighting ? &out.weighting->system : nullptr);
-          const double scale2 = out_conv[o].scale * out_conv[o].scale;
-          cr.exact_variance = exact.variance * scale2;
-          if (exact.mode_share.size() > 0) {
-            cr.top_modes = TopModes(*path.modal, exact.mode_share, exact.variance, *cr.exact_variance);
-            cr.top_modes_of = ModeSplit::kExactVariance;
-          }
-        } catch (const InputError& e) {
-          why_not = e.what();
-        }
-      }
-      if (!cr.exact_variance) {
-        cr.exact_note = why_not;
-        if (c.exact == ExactVariance::kRequired)
-          throw InputError(Key("contributors", ci, "exact"),
-                           "exact variance of contributor '" + c.name + "' on output '" + out.name +
-                               "' is required but cannot be computed: " + why_not);
-      } else if (*cr.exact_variance > 0.0) {
-        // With tails that do not converge as power laws (no estimate), the
-        // grid figure alone is compared.
-        const bool tails = std::isfinite(cr.tail_variance_estimate);
-        const double beyond = tails ? cr.tail_variance_estimate : 0.0;
-        const double rel = std::abs(*cr.exact_variance - (cr.variance + beyond)) / *cr.exact_variance;
-        if (rel > options.exact_tolerance) {
-          std::ostringstream os;
-          os << "contributor '" << c.name << "' on output '" << out.name << "': exact variance "
-             << *cr.exact_variance << " and grid variance " << cr.variance;
-          if (tails) os << " (+ " << beyond << " estimated beyond the grid)";
-          else os << " (no estimate beyond the grid: its ends are not power-law tails)";
-          os << " differ by " << rel << " relative; refine the grid or widen its range";
-          result.warnings.push_back(os.str());
-        }
-      }
-      OutputResult& r = result.outputs[o];
-      for (std::size_t k = 0; k < n; ++k) r.total_psd[k] += cr.psd[k];
-      r.contributors.push_back(std::move(cr));
+      AddExactVariance(budget, ci, o, analysis, setup, plan.exact_refusal[ci][o], options, &cr, &result.warnings);
+      result.outputs[o].contributors.push_back(std::move(cr));
+      if (analysis.modal() && result.outputs[o].contributors.back().top_modes.empty()) split.push_back(o);
     }
-
-    // A modal path without the closed-form split (a source that is not
-    // white, a weighting, a derivative unit): the split of the grid
-    // integral, on the same grid and with the same factors as the PSD.
-    if (analysis.modal()) {
-      std::vector<std::size_t> split;
-      for (std::size_t o = 0; o < budget.outputs.size(); ++o)
-        if (result.outputs[o].contributors.back().top_modes.empty()) split.push_back(o);
-      if (!split.empty()) {
-        const std::vector<double> q = LinearQuadratureWeights(result.grid);
-        std::vector<int> positions;
-        std::vector<std::vector<double>> weight;
-        for (const std::size_t o : split) {
-          positions.push_back(row_of_output[o]);
-          std::vector<double> w(n);
-          for (std::size_t k = 0; k < n; ++k) w[k] = output_factor(o, k);
-          weight.push_back(std::move(w));
-        }
-        const Eigen::MatrixXd parts = analysis.ModeParts(
-            f, q, positions, weight,
-            [&input](double f_hz, Eigen::MatrixXcd& scratch) -> const Eigen::MatrixXcd& {
-              return input.Full(f_hz, scratch);
-            },
-            options.threads);
-        for (std::size_t i = 0; i < split.size(); ++i) {
-          ContributorResult& cr = result.outputs[split[i]].contributors.back();
-          double whole = 0.0;  // the PSD's integral by the same linear rule
-          for (std::size_t k = 0; k < n; ++k) whole += q[k] * cr.psd[k];
-          cr.top_modes = TopModes(*path.modal, parts.col(static_cast<Eigen::Index>(i)), whole, cr.variance);
-          cr.top_modes_of = ModeSplit::kGridVariance;
-        }
-      }
-    }
+    for (const std::size_t o : split) split_results.push_back(&result.outputs[o].contributors.back());
+    if (!split.empty())
+      SplitGridVarianceByMode(path, analysis, input, setup, result.grid, output_factor, split, options.threads,
+                              split_results);
   }
-
-  // A path shared by several contributors warns once.
-  std::vector<std::string> unique;
-  for (std::string& w : result.warnings)
-    if (std::find(unique.begin(), unique.end(), w) == unique.end()) unique.push_back(std::move(w));
-  result.warnings = std::move(unique);
-
-  // Totals are sums of the contributors' integrals, not integrals of the total
-  // PSD: the power-law rule is not linear in S, and stacked CPS curves must
-  // add up to the total exactly.
-  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
-    OutputResult& r = result.outputs[o];
-    r.total_cps.assign(n, 0.0);
-    for (const auto& cr : r.contributors)
-      for (std::size_t k = 0; k < n; ++k) r.total_cps[k] += cr.cps[k];
-    r.variance = r.total_cps.back();
-    for (const Band& b : bands) {
-      BandResult br;
-      br.band = b;
-      for (const auto& cr : r.contributors) {
-        br.contributor_variance.push_back(IntegralBetween(result.grid, cr.psd, cr.cps, b.lo_hz, b.hi_hz));
-        br.variance += br.contributor_variance.back();
-      }
-      r.bands.push_back(std::move(br));
-    }
-    const auto& limits = budget.outputs[o].band_requirements;
-    for (std::size_t b = 0; b < limits.size(); ++b) {
-      const BandRequirement& q = limits[b];
-      if (q.lo_hz < result.grid.min_hz() * (1 - 1e-12) || q.hi_hz > result.grid.max_hz() * (1 + 1e-12)) {
-        std::ostringstream os;
-        os << "band requirement [" << q.lo_hz << ", " << q.hi_hz << "] Hz extends beyond the frequency grid ["
-           << result.grid.min_hz() << ", " << result.grid.max_hz() << "] Hz";
-        throw InputError(Key("outputs", o) + ".band_requirements[" + std::to_string(b) + "]", os.str());
-      }
-      BandRequirementResult br;
-      br.requirement = q;
-      for (const auto& cr : r.contributors) br.variance += IntegralBetween(result.grid, cr.psd, cr.cps, q.lo_hz, q.hi_hz);
-      r.band_requirements.push_back(br);
-    }
-  }
+  Deduplicate(&result.warnings);
+  for (std::size_t o = 0; o < result.outputs.size(); ++o)
+    AddTotalsAndBands(budget.outputs[o], result.grid, plan.bands, &result.outputs[o]);
   return result;
 }
 

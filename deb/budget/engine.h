@@ -4,7 +4,7 @@
 // share of variance per contributor; RMS per band; and, where the source is
 // white and the path stable, strictly proper and rational (no measured data),
 // the exact variance from the Lyapunov equation beside the CPS figure
-// (METHOD.md conventions 1-3). The automatic grid refines every lightly
+// (docs/method.md, conventions 1-3). The automatic grid refines every lightly
 // damped pole, every source breakpoint (VC band edges, the bins of an
 // estimate), every measured response's data point and the sinc^2 lobes of
 // moving-average/std outputs.
@@ -112,8 +112,9 @@ std::map<std::string, std::shared_ptr<const PathAnalysis>> AnalysePaths(const Bu
 
 // The grid the budget asks for. For the automatic grid: resonances from the
 // poles of every contributor's path and every weighting, breakpoints from
-// every source and band edge; the default range [0.1, 1000] Hz is widened to
-// cover every band.
+// every source and band edge; the default range [0.1, 1000] Hz is narrowed to
+// the data that may not be extrapolated (measured sources and responses with
+// extrapolation: error), then widened to cover every band.
 // @throws InputError (key "grid" or "bands[i]") if a band lies outside an
 //         explicit grid range.
 FrequencyGrid BuildGrid(const Budget& budget);
@@ -123,9 +124,33 @@ FrequencyGrid BuildGrid(const Budget& budget,
 // Reverse CPS: integral of S from f to f_max, from a forward CPS.
 std::vector<double> ReverseCps(const std::vector<double>& cps);
 
+// What Evaluate settles before it computes anything: the analysis of every
+// path, the grid, the bands, the warnings, and for every contributor and
+// output whether an exact variance will be attempted. Building it applies
+// every check Evaluate makes of its input, so `deb check` (which prints it)
+// rejects what `deb run` would, with the same message.
+struct EvaluationPlan {
+  std::map<std::string, std::shared_ptr<const PathAnalysis>> paths;
+  FrequencyGrid grid{std::vector<double>{1.0, 2.0}};
+  std::vector<Band> bands;  // the budget's, or the grid's decades
+  std::vector<std::string> warnings;
+  // exact_refusal[contributor][output]: why no exact variance will be
+  // computed; "" where one is attempted (the solve may still refuse a result
+  // it cannot trust, stated in ContributorResult::exact_note).
+  std::vector<std::vector<std::string>> exact_refusal;
+};
+
 // @throws InputError with a key path for anything the budget asks that cannot
-//         be computed (an unstable path, exact variance required but
-//         impossible, a band outside the grid).
+//         be computed: an unstable path or weighting, exact variance required
+//         but impossible, a band outside the grid, a grid beyond tabulated
+//         data that may not be extrapolated.
+EvaluationPlan PlanEvaluation(const Budget& budget);
+
+// PlanEvaluation, then for every contributor the propagation, the exact
+// variance and the per-mode split, then the totals and bands per output.
+// @throws InputError as PlanEvaluation, and with the contributor's key path
+//         where propagation meets a pole on the grid or a non-finite PSD, or
+//         a required exact variance is refused.
 BudgetResult Evaluate(const Budget& budget, const EngineOptions& options = {});
 
 }  // namespace deb

@@ -25,7 +25,8 @@ GridSpec ParseGrid(const YamlNode& node) {
   if (min) o.min_hz = min->AsPositive();
   if (max) o.max_hz = max->AsPositive();
   if (min.has_value() != max.has_value())
-    node.Fail("give both min_hz and max_hz, or neither (the automatic grid then covers 0.1-1000 Hz and every band)");
+    node.Fail("give both min_hz and max_hz, or neither (the automatic grid then covers 0.1-1000 Hz within the measured "
+               "data and every band)");
   g.range_given = min.has_value();
   if (g.kind == GridKind::kLog || g.kind == GridKind::kLinear) {
     if (!g.range_given) node.Fail("a " + ToString(g.kind) + " grid needs min_hz and max_hz");

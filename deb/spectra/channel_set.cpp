@@ -63,6 +63,12 @@ std::vector<double> IndependentChannels::BreakpointsHz() const {
   return all;
 }
 
+std::optional<FrequencyInterval> IndependentChannels::DefinedRangeHz() const {
+  std::optional<FrequencyInterval> range;
+  for (const auto& part : parts_) range = Intersect(range, part->DefinedRangeHz());
+  return range;
+}
+
 std::optional<Eigen::MatrixXd> IndependentChannels::WhiteLevel() const {
   Eigen::MatrixXd level = Eigen::MatrixXd::Zero(channels_, channels_);
   int offset = 0;

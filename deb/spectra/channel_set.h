@@ -31,6 +31,8 @@ class IndependentChannels final : public Spectrum {
   bool IsDiagonal() const override;
   // Sorted union of the parts' breakpoints.
   std::vector<double> BreakpointsHz() const override;
+  // Where every part is defined.
+  std::optional<FrequencyInterval> DefinedRangeHz() const override;
   // blockdiag of the parts' levels when every part is white.
   std::optional<Eigen::MatrixXd> WhiteLevel() const override;
   std::string Describe() const override;
@@ -66,6 +68,7 @@ class CorrelatedChannels final : public Spectrum {
   // True only when rho has no off-diagonal entry (rho = I).
   bool IsDiagonal() const override;
   std::vector<double> BreakpointsHz() const override { return base_->BreakpointsHz(); }
+  std::optional<FrequencyInterval> DefinedRangeHz() const override { return base_->DefinedRangeHz(); }
   // rho o sqrt(d d^T), d = diagonal of the base's white level, if it has one.
   std::optional<Eigen::MatrixXd> WhiteLevel() const override;
   std::string Describe() const override;

@@ -34,6 +34,7 @@ class ConvertedSpectrum final : public Spectrum {
   bool IsDiagonal() const override { return base_->IsDiagonal(); }
   // The base's: a power of f moves no corner.
   std::vector<double> BreakpointsHz() const override { return base_->BreakpointsHz(); }
+  std::optional<FrequencyInterval> DefinedRangeHz() const override { return base_->DefinedRangeHz(); }
   // The base's level times scale^2 when n = 0; otherwise none (f^(2n) is not white).
   std::optional<Eigen::MatrixXd> WhiteLevel() const override;
   std::string Describe() const override;

@@ -82,6 +82,11 @@ class MeasuredSpectrum final : public Spectrum {
   // a power law, which the grid's integration rule integrates exactly.
   // kBins: every bin edge, where S jumps (constant between: exact too).
   std::vector<double> BreakpointsHz() const override;
+  // [lo_hz(), hi_hz()] with Extrapolation::kError, else unlimited.
+  std::optional<FrequencyInterval> DefinedRangeHz() const override {
+    if (options_.extrapolation != Extrapolation::kError) return std::nullopt;
+    return FrequencyInterval{lo_hz_, hi_hz_};
+  }
   std::string Describe() const override;
 
  private:

@@ -50,6 +50,11 @@ class PetersonSpectrum final : public Spectrum {
   bool IsDiagonal() const override { return true; }
   // 1/P at every segment boundary (the slope changes there).
   std::vector<double> BreakpointsHz() const override;
+  // [kMinHz, kMaxHz] with Extrapolation::kError, else unlimited.
+  std::optional<FrequencyInterval> DefinedRangeHz() const override {
+    if (extrapolation_ != Extrapolation::kError) return std::nullopt;
+    return FrequencyInterval{kMinHz, kMaxHz};
+  }
   std::string Describe() const override;
 
  private:

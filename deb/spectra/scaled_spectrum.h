@@ -25,6 +25,7 @@ class ScaledSpectrum final : public Spectrum {
   Eigen::VectorXd Psd(double f_hz) const override { return factor_ * base_->Psd(f_hz); }
   bool IsDiagonal() const override { return base_->IsDiagonal(); }
   std::vector<double> BreakpointsHz() const override { return base_->BreakpointsHz(); }
+  std::optional<FrequencyInterval> DefinedRangeHz() const override { return base_->DefinedRangeHz(); }
   std::optional<Eigen::MatrixXd> WhiteLevel() const override;
   std::string Describe() const override;
 

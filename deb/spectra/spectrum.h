@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/frequency_interval.h"
+
 namespace deb {
 
 class Spectrum {
@@ -36,6 +38,12 @@ class Spectrum {
   // If S_u(f) is the same real matrix at every frequency (white noise without
   // band limits), that matrix (one-sided). Enables exact Lyapunov variance.
   virtual std::optional<Eigen::MatrixXd> WhiteLevel() const { return std::nullopt; }
+
+  // The frequencies outside which Csd/Psd throw: tabulated data whose
+  // extrapolation is an error. nullopt: defined at every f > 0. The
+  // automatic grid stays inside it, and a grid that leaves it is rejected
+  // before anything is computed.
+  virtual std::optional<FrequencyInterval> DefinedRangeHz() const { return std::nullopt; }
 
   // One line for `deb check` and reports, e.g. "VC-D, 23 third-octave bands 0.5-80 Hz".
   virtual std::string Describe() const = 0;

@@ -76,6 +76,7 @@ class TabulatedCsd final : public Spectrum {
   bool IsDiagonal() const override { return false; }
   // As MeasuredSpectrum: every node (log-log) or every bin edge (bins).
   std::vector<double> BreakpointsHz() const override;
+  std::optional<FrequencyInterval> DefinedRangeHz() const override { return autos_.DefinedRangeHz(); }
   std::string Describe() const override;
 
  private:

@@ -59,6 +59,16 @@ struct FrequencyModel::Node {
     if (b) b->Collect(parts, f_hz, loop_around_data);
   }
 
+  // Where every measured table whose extrapolation is an error is defined.
+  std::optional<FrequencyInterval> DefinedRange() const {
+    std::optional<FrequencyInterval> range;
+    if (measured && measured->extrapolation() == Extrapolation::kError)
+      range = FrequencyInterval{measured->f_hz().front(), measured->f_hz().back()};
+    if (a) range = Intersect(range, a->DefinedRange());
+    if (b) range = Intersect(range, b->DefinedRange());
+    return range;
+  }
+
   bool HasData() const { return measured || (a && a->HasData()) || (b && b->HasData()); }
 };
 
@@ -150,6 +160,8 @@ std::vector<double> FrequencyModel::DataFrequencies() const {
   f.erase(std::unique(f.begin(), f.end()), f.end());
   return f;
 }
+
+std::optional<FrequencyInterval> FrequencyModel::DefinedRangeHz() const { return node_->DefinedRange(); }
 
 bool FrequencyModel::HasLoopAroundData() const {
   bool loop = false;

@@ -18,6 +18,7 @@
 #include <memory>
 #include <vector>
 
+#include "deb/core/frequency_interval.h"
 #include "deb/systems/measured_response.h"
 #include "deb/systems/state_space.h"
 
@@ -42,6 +43,9 @@ class FrequencyModel {
   std::vector<StateSpace> RationalParts() const;
   // The frequencies of every measured table in the diagram, sorted, unique.
   std::vector<double> DataFrequencies() const;
+  // The frequencies outside which At() throws because a measured table may
+  // not be extrapolated (Extrapolation::kError); nullopt: unlimited.
+  std::optional<FrequencyInterval> DefinedRangeHz() const;
   // A feedback loop whose plant or controller holds measured data.
   bool HasLoopAroundData() const;
 

@@ -35,6 +35,18 @@ class FrfDir {
     }
   }
   ~FrfDir() { std::filesystem::remove_all(dir_); }
+  // narrow.csv: the same plant over 0.5-200 Hz only.
+  void WriteNarrow() const {
+    std::ofstream out(dir_ / "narrow.csv");
+    out.precision(17);
+    out << "f_hz, x/F.mag, x/F.phase_deg\n";
+    for (int i = 0; i <= 100; ++i) {
+      const double f = 0.5 * std::pow(400.0, i / 100.0);
+      const std::complex<double> s(0.0, 2.0 * kPi * f);
+      const std::complex<double> h = 1.0 / (s * s + 2.0 * s + 400.0);
+      out << f << ", " << std::abs(h) << ", " << std::arg(h) * 180.0 / kPi << "\n";
+    }
+  }
   std::string Write(const std::string& budget) const {
     std::ofstream((dir_ / "b.yaml").string()) << budget;
     return (dir_ / "b.yaml").string();
@@ -117,8 +129,10 @@ TEST_CASE("a grid beyond the measured range is an error naming the path, the fil
   const FrfDir dir;
   const std::string file = dir.Write(Replace(kBudget, "max_hz: 1000}", "max_hz: 2000}"));
   const std::string m = ErrorOf(file);
-  CHECK(m.find("contributor 'measured': path 'measured': measured response") != std::string::npos);
-  CHECK(m.find("outside the data range 0.01-1000 Hz") != std::string::npos);
+  // Rejected before anything is computed (deb check says the same), at the grid the budget set.
+  CHECK(m.find("path 'measured' (measured data) is defined over [0.01, 1000] Hz only (extrapolation: error), "
+               "but the frequency grid spans [0.01, 2000] Hz: keep the grid inside that range") != std::string::npos);
+  CHECK_THROWS_AS(PlanEvaluation(LoadBudgetFile(file)), InputError);
   const std::string held = dir.Write(Replace(Replace(kBudget, "max_hz: 1000}", "max_hz: 2000}"),
                                              "file: plant.csv,", "file: plant.csv, extrapolation: zero,"));
   CHECK_NOTHROW(Evaluate(LoadBudgetFile(held)));
@@ -145,6 +159,53 @@ TEST_CASE("the shipped measured-stage budget matches the rational model of its l
   const OutputResult& x = r.outputs[0];
   CHECK(std::sqrt(VarianceOf(x, "amplifier")) == doctest::Approx(7.14202).epsilon(1e-5));
   CHECK(std::sqrt(VarianceOf(x, "cable_slab")) == doctest::Approx(7.02927).epsilon(1e-5));
+}
+
+}  // namespace
+}  // namespace deb
+
+namespace deb {
+namespace {
+
+TEST_CASE("the automatic grid without a range stays inside measured data; the plan rejects bands beyond it") {
+  const FrfDir dir;
+  dir.WriteNarrow();
+  const std::string budget = R"(name: narrow
+grid: {type: auto}
+sources:
+  - {name: force, unit: N, spectrum: {type: flat, level: 1}}
+paths:
+  - {name: measured, type: frf, file: narrow.csv, input_unit: N, output_unit: m}
+contributors:
+  - {name: measured, source: force, path: measured}
+outputs:
+  - {name: x, signal: x, unit: um}
+)";
+  const Budget b = LoadBudgetFile(dir.Write(budget));
+  const EvaluationPlan plan = PlanEvaluation(b);
+  CHECK(plan.grid.min_hz() == 0.5);  // the data's first frequency, not the default 0.1 Hz
+  CHECK(plan.grid.max_hz() == doctest::Approx(200.0).epsilon(1e-15));
+  REQUIRE(plan.exact_refusal.size() == 1);
+  CHECK(plan.exact_refusal[0][0].find("measured frequency data") != std::string::npos);
+  const BudgetResult r = Evaluate(b);  // the first run of a new user's budget succeeds
+  CHECK(r.grid.min_hz() == plan.grid.min_hz());
+  CHECK(r.grid.size() == plan.grid.size());
+  CHECK(r.outputs[0].contributors[0].exact_note == plan.exact_refusal[0][0]);
+
+  // Extrapolated data do not limit the default range.
+  const Budget held = LoadBudgetFile(dir.Write(Replace(budget, "file: narrow.csv,", "file: narrow.csv, extrapolation: hold,")));
+  CHECK(PlanEvaluation(held).grid.min_hz() == 0.1);
+  CHECK(PlanEvaluation(held).grid.max_hz() == 1000.0);
+
+  // A band beyond the data widens the automatic grid past it: rejected at the path, before computing.
+  const Budget wide = LoadBudgetFile(dir.Write(Replace(budget, "outputs:", "bands: [[0.1, 10]]\noutputs:")));
+  try {
+    PlanEvaluation(wide);
+    FAIL("no InputError");
+  } catch (const InputError& e) {
+    CHECK(e.key_path() == "paths[0]");
+    CHECK(std::string(e.what()).find("is defined over [0.5, 200] Hz only") != std::string::npos);
+  }
 }
 
 }  // namespace

@@ -93,8 +93,9 @@ TEST_CASE("unit: um/s gives the velocity PSD, the acceleration PSD x 1e12 / (2 p
 TEST_CASE("outside 0.1-100000 s: an error by default, or zero, or the model's end value held; corners feed the grid") {
   const std::string wide = Replace(kBudget, "f_hz: [0.5, 1, 4, 5]", "f_hz: [0.5, 1, 4, 5, 20]");
   const std::string outside = ErrorOf(wide);
-  CHECK(outside.find("20 Hz is outside the model's range, 1e-05-10 Hz (periods 0.1-100000 s") != std::string::npos);
-  CHECK(outside.find("choose extrapolation zero or hold") != std::string::npos);
+  CHECK(outside.find("source 'ground' is defined over [1e-05, 10] Hz only (extrapolation: error), but the frequency "
+                     "grid spans [0.5, 20] Hz: keep the grid inside that range, or set the source's extrapolation "
+                     "(hold or zero)") != std::string::npos);
   const BudgetResult zero =
       Evaluate(LoadBudgetText(Replace(wide, "model: nlnm", "model: nlnm, extrapolation: zero"), "b.yaml", "."));
   CHECK(zero.outputs[0].total_psd[4] == 0.0);
