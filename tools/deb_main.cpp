@@ -166,10 +166,11 @@ int Check(const std::string& budget_file) {
     const deb::Contributor& c = budget.contributors[ci];
     std::printf("  %-20s source %s, path %s, exact variance: %s\n", c.name.c_str(), c.source.c_str(),
                 c.path.c_str(), deb::ToString(c.exact).c_str());
-    // Why there will be none, once per distinct reason (the outputs usually share it).
+    // Why there will be none where it was asked for, once per distinct reason (the outputs usually share it).
     std::vector<std::string> reasons;
     for (const std::string& why : plan.exact_refusal[ci])
-      if (!why.empty() && why != "not requested" && std::find(reasons.begin(), reasons.end(), why) == reasons.end())
+      if (c.exact != deb::ExactVariance::kOff && !why.empty() &&
+          std::find(reasons.begin(), reasons.end(), why) == reasons.end())
         reasons.push_back(why);
     for (const std::string& why : reasons) std::printf("  %-20s no exact variance: %s\n", "", why.c_str());
   }
@@ -181,6 +182,7 @@ int Check(const std::string& budget_file) {
     if (o.rms_max) std::printf(", rms_max %g", *o.rms_max);
     std::printf("\n");
   }
+  std::fflush(stdout);  // the warnings after the description, also when both go to one file
   for (const auto& w : plan.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
   if (sweep) {
     std::printf("sweep: %s of %zu parameter(s), %zu variants, each valid:\n", deb::ToString(sweep->spec.mode).c_str(),

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -228,16 +227,11 @@ namespace {
 
 FrequencyGrid BuildGridUnlocated(const Budget& budget, const PathAnalyses& paths);
 
-std::size_t IndexOf(const std::vector<Source>& sources, const std::string& name) {
-  for (std::size_t i = 0; i < sources.size(); ++i)
-    if (sources[i].name == name) return i;
-  DEB_DEMAND(false);
-  return 0;
-}
-
-std::size_t IndexOf(const std::vector<Path>& paths, const std::string& name) {
-  for (std::size_t i = 0; i < paths.size(); ++i)
-    if (paths[i].name == name) return i;
+// The position of the item named `name` in the budget's sources or paths (Budget::Validate: it exists).
+template <typename Item>
+std::size_t IndexOf(const std::vector<Item>& items, const std::string& name) {
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (items[i].name == name) return i;
   DEB_DEMAND(false);
   return 0;
 }
@@ -305,6 +299,26 @@ ContributorSetup SetUp(const Budget& budget, const Source& source, const Path& p
     s.out_conv.push_back(OutputConversion(path, row, out));
   }
   return s;
+}
+
+// The factor on output o's PSD at f[k]: its unit conversion and weighting
+// (called per frequency and output in the propagation: no type erasure).
+struct OutputFactor {
+  const std::vector<UnitConversion>& out_conv;               // per output
+  const std::vector<std::vector<double>>& weighting_gain2;  // per output: per frequency, or empty
+  const std::vector<double>& f_hz;
+
+  double operator()(std::size_t o, std::size_t k) const {
+    const UnitConversion& u = out_conv[o];
+    double factor = u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f_hz[k]);  // no pow() when not needed
+    if (!weighting_gain2[o].empty()) factor *= weighting_gain2[o][k];
+    return factor;
+  }
+};
+
+InputError RequiredExactError(std::size_t ci, const Contributor& c, const Output& out, const std::string& why) {
+  return InputError(Key("contributors", ci, "exact"), "exact variance of contributor '" + c.name + "' on output '" +
+                                                          out.name + "' is required but cannot be computed: " + why);
 }
 
 // Why contributor c gets no exact variance on output o; "" when one is attempted
@@ -451,9 +465,19 @@ void Deduplicate(std::vector<std::string>* warnings) {
 
 }  // namespace
 
-EvaluationPlan PlanEvaluation(const Budget& budget) {
-  budget.Validate();
+namespace {
+
+// The plan, and the unit conversions and rows of every contributor it
+// worked out, which Evaluate reuses.
+struct FullPlan {
   EvaluationPlan plan;
+  std::vector<ContributorSetup> setups;  // per contributor
+};
+
+FullPlan MakePlan(const Budget& budget) {
+  budget.Validate();
+  FullPlan full;
+  EvaluationPlan& plan = full.plan;
   plan.paths = AnalysePaths(budget);
   plan.grid = BuildGrid(budget, plan.paths);
   CheckBandsInGrid(budget, plan.grid);
@@ -500,20 +524,23 @@ EvaluationPlan PlanEvaluation(const Budget& budget) {
       plan.warnings.push_back("path '" + path.name + "' has pole(s) on the imaginary axis (" +
                               FormatPoles(analysis.marginal_poles()) +
                               " rad/s): its variance depends on the grid's ends");
-    const ContributorSetup setup = SetUp(budget, source, path, analysis);
+    ContributorSetup setup = SetUp(budget, source, path, analysis);
     std::vector<std::string> refusals;
     for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
       refusals.push_back(ExactRefusal(c, source, path, analysis, budget.outputs[o], setup, o));
       if (c.exact == ExactVariance::kRequired && !refusals.back().empty())
-        throw InputError(Key("contributors", ci, "exact"),
-                         "exact variance of contributor '" + c.name + "' on output '" + budget.outputs[o].name +
-                             "' is required but cannot be computed: " + refusals.back());
+        throw RequiredExactError(ci, c, budget.outputs[o], refusals.back());
     }
     plan.exact_refusal.push_back(std::move(refusals));
+    full.setups.push_back(std::move(setup));
   }
   Deduplicate(&plan.warnings);
-  return plan;
+  return full;
 }
+
+}  // namespace
+
+EvaluationPlan PlanEvaluation(const Budget& budget) { return MakePlan(budget).plan; }
 
 namespace {
 
@@ -522,8 +549,7 @@ namespace {
 std::vector<std::vector<double>> Propagate(const Budget& budget, std::size_t ci, const PathAnalysis& analysis,
                                            const InputSpectrum& input, const ContributorSetup& setup,
                                            const std::vector<double>& f,
-                                           const std::function<double(std::size_t, std::size_t)>& output_factor,
-                                           int threads) {
+                                           const OutputFactor& output_factor, int threads) {
   const Contributor& c = budget.contributors[ci];
   const std::size_t n = f.size();
   std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
@@ -588,10 +614,7 @@ void AddExactVariance(const Budget& budget, std::size_t ci, std::size_t o, const
   }
   if (!cr->exact_variance) {
     cr->exact_note = refusal;
-    if (c.exact == ExactVariance::kRequired)
-      throw InputError(Key("contributors", ci, "exact"), "exact variance of contributor '" + c.name +
-                                                             "' on output '" + out.name +
-                                                             "' is required but cannot be computed: " + refusal);
+    if (c.exact == ExactVariance::kRequired) throw RequiredExactError(ci, c, out, refusal);
     return;
   }
   if (!(*cr->exact_variance > 0.0)) return;
@@ -616,9 +639,8 @@ void AddExactVariance(const Budget& budget, std::size_t ci, std::size_t o, const
 // grid and with the same factors as the PSD, for the outputs in `split`.
 void SplitGridVarianceByMode(const Path& path, const PathAnalysis& analysis, const InputSpectrum& input,
                              const ContributorSetup& setup, const FrequencyGrid& grid,
-                             const std::function<double(std::size_t, std::size_t)>& output_factor,
-                             const std::vector<std::size_t>& split, int threads,
-                             std::vector<ContributorResult*> results) {
+                             const OutputFactor& output_factor, const std::vector<std::size_t>& split,
+                             int threads, std::vector<OutputResult>* outputs) {
   const std::vector<double>& f = grid.f_hz();
   const std::size_t n = f.size();
   const std::vector<double> q = LinearQuadratureWeights(grid);
@@ -635,7 +657,7 @@ void SplitGridVarianceByMode(const Path& path, const PathAnalysis& analysis, con
       [&input](double f_hz, Eigen::MatrixXcd& scratch) -> const Eigen::MatrixXcd& { return input.Full(f_hz, scratch); },
       threads);
   for (std::size_t i = 0; i < split.size(); ++i) {
-    ContributorResult& cr = *results[i];
+    ContributorResult& cr = (*outputs)[split[i]].contributors.back();
     double whole = 0.0;  // the PSD's integral by the same linear rule
     for (std::size_t k = 0; k < n; ++k) whole += q[k] * cr.psd[k];
     cr.top_modes = TopModes(*path.modal, parts.col(static_cast<Eigen::Index>(i)), whole, cr.variance);
@@ -677,7 +699,8 @@ void AddTotalsAndBands(const Output& output, const FrequencyGrid& grid, const st
 }  // namespace
 
 BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
-  EvaluationPlan plan = PlanEvaluation(budget);
+  FullPlan full = MakePlan(budget);
+  EvaluationPlan& plan = full.plan;
   BudgetResult result;
   result.budget_name = budget.name;
   result.paths = std::move(plan.paths);
@@ -705,21 +728,13 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     const Source& source = budget.FindSource(c.source);
     const Path& path = budget.FindPath(c.path);
     const PathAnalysis& analysis = *result.paths.at(c.path);
-    const ContributorSetup setup = SetUp(budget, source, path, analysis);
-
-    // The factor on output o's PSD at f[k]: its unit conversion and weighting.
-    const auto output_factor = [&](std::size_t o, std::size_t k) {
-      const UnitConversion& u = setup.out_conv[o];
-      double factor = u.IsPureScale() ? u.scale * u.scale : u.PsdFactor(f[k]);  // no pow() when not needed
-      if (!weighting_gain2[o].empty()) factor *= weighting_gain2[o][k];
-      return factor;
-    };
+    const ContributorSetup& setup = full.setups[ci];
+    const OutputFactor output_factor{setup.out_conv, weighting_gain2, f};
     const InputSpectrum input(*source.spectrum, setup.in_conv);
     std::vector<std::vector<double>> psd =
         Propagate(budget, ci, analysis, input, setup, f, output_factor, options.threads);
 
     std::vector<std::size_t> split;  // outputs whose modes are split on the grid
-    std::vector<ContributorResult*> split_results;
     for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
       ContributorResult cr;
       cr.name = c.name;
@@ -731,10 +746,9 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
       result.outputs[o].contributors.push_back(std::move(cr));
       if (analysis.modal() && result.outputs[o].contributors.back().top_modes.empty()) split.push_back(o);
     }
-    for (const std::size_t o : split) split_results.push_back(&result.outputs[o].contributors.back());
     if (!split.empty())
       SplitGridVarianceByMode(path, analysis, input, setup, result.grid, output_factor, split, options.threads,
-                              split_results);
+                              &result.outputs);
   }
   Deduplicate(&result.warnings);
   for (std::size_t o = 0; o < result.outputs.size(); ++o)
