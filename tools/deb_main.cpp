@@ -22,6 +22,7 @@
 #include "deb/core/input_file.h"
 #include "deb/core/suggest.h"
 #include "deb/core/parallel.h"
+#include "deb/core/process_heap.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/sweep_yaml.h"
 #include "deb/io/result_writer.h"
@@ -98,7 +99,7 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
     report.progress = !quiet && ::isatty(STDERR_FILENO);
     report.threads = threads;
     // A reproducible report (SOURCE_DATE_EPOCH set) records no wall time.
-    deb::RunInfo info{budget_file, {}};
+    deb::RunInfo info{budget_file, {}, threads};
     if (!std::getenv("SOURCE_DATE_EPOCH")) info.seconds = seconds;
     deb::WriteReportDirectory(budget, result, info, report, out_dir);
   } catch (const deb::InputError& e) {
@@ -214,6 +215,7 @@ int Model(const std::string& budget_file) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  deb::UseHugePagesForHeap();
   CLI::App app{"deb: frequency-domain dynamic error budgeting for precision machines"};
   app.set_version_flag("--version", std::string("deb ") + DEB_VERSION);
   app.require_subcommand(1);

@@ -12,6 +12,7 @@
 #include "deb/budget/allocation.h"
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
+#include "deb/core/parallel.h"
 #include "deb/units/unit.h"
 
 namespace deb {
@@ -197,9 +198,21 @@ std::string OutputCsv(const BudgetResult& result, const OutputResult& o) {
 }
 
 void WriteResultFiles(const Budget& budget, const BudgetResult& result, const RunInfo& info, const std::string& dir) {
-  WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(budget, result, info));
-  for (const OutputResult& o : result.outputs)
-    WriteTextFile((fs::path(dir) / OutputCsvName(o.name)).string(), OutputCsv(result, o));
+  // Formatting the numbers is most of the work: one file per job.
+  const std::size_t outputs = result.outputs.size();
+  ParallelFor(
+      outputs + 1,
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+          if (i == outputs) {
+            WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(budget, result, info));
+          } else {
+            const OutputResult& o = result.outputs[i];
+            WriteTextFile((fs::path(dir) / OutputCsvName(o.name)).string(), OutputCsv(result, o));
+          }
+        }
+      },
+      info.threads, 1);
 }
 
 void WriteResultDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,

@@ -19,6 +19,9 @@ struct RunInfo {
   // Wall time of the evaluation; none for a reproducible report
   // (SOURCE_DATE_EPOCH set: two runs give byte-identical files).
   std::optional<double> seconds;
+  // Threads that format the result files (one file each); <= 0:
+  // DefaultThreadCount(). The files are the same for any count.
+  int threads = 0;
 };
 
 // summary.json's text.

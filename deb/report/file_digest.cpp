@@ -1,34 +1,24 @@
 #include "deb/report/file_digest.h"
 
-#include <openssl/evp.h>
+#include <nettle/sha2.h>
 
 #include <array>
-#include <cstdio>
 #include <fstream>
-#include <memory>
 
 #include "deb/core/error.h"
 
 namespace deb::report {
 namespace {
 
-using Context = std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)>;
-
-Context NewContext() {
-  Context ctx(EVP_MD_CTX_new(), &EVP_MD_CTX_free);
-  DEB_DEMAND(ctx && EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) == 1);
-  return ctx;
-}
-
-std::string Finish(EVP_MD_CTX* ctx) {
-  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
-  unsigned int size = 0;
-  DEB_DEMAND(EVP_DigestFinal_ex(ctx, digest.data(), &size) == 1 && size == 32);
+std::string Finish(sha256_ctx* ctx) {
+  std::array<unsigned char, SHA256_DIGEST_SIZE> digest{};
+  sha256_digest(ctx, digest.size(), digest.data());
+  constexpr char kHex[] = "0123456789abcdef";
   std::string hex;
-  char byte[3];
-  for (unsigned int i = 0; i < size; ++i) {
-    std::snprintf(byte, sizeof(byte), "%02x", digest[i]);
-    hex += byte;
+  hex.reserve(2 * digest.size());
+  for (const unsigned char byte : digest) {
+    hex += kHex[byte >> 4];
+    hex += kHex[byte & 0xf];
   }
   return hex;
 }
@@ -36,22 +26,25 @@ std::string Finish(EVP_MD_CTX* ctx) {
 }  // namespace
 
 std::string Sha256(const std::string& bytes) {
-  Context ctx = NewContext();
-  DEB_DEMAND(EVP_DigestUpdate(ctx.get(), bytes.data(), bytes.size()) == 1);
-  return Finish(ctx.get());
+  sha256_ctx ctx;
+  sha256_init(&ctx);
+  sha256_update(&ctx, bytes.size(), reinterpret_cast<const std::uint8_t*>(bytes.data()));
+  return Finish(&ctx);
 }
 
 std::string FileSha256(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot read " + path + " to compute its SHA-256");
-  Context ctx = NewContext();
+  sha256_ctx ctx;
+  sha256_init(&ctx);
   std::array<char, 1 << 16> buffer{};
   while (in) {
     in.read(buffer.data(), buffer.size());
-    if (in.gcount() > 0) DEB_DEMAND(EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<std::size_t>(in.gcount())) == 1);
+    if (in.gcount() > 0)
+      sha256_update(&ctx, static_cast<std::size_t>(in.gcount()), reinterpret_cast<const std::uint8_t*>(buffer.data()));
   }
   if (in.bad()) throw InputError("cannot read " + path + " to compute its SHA-256");
-  return Finish(ctx.get());
+  return Finish(&ctx);
 }
 
 }  // namespace deb::report
