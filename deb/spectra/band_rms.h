@@ -1,5 +1,5 @@
 // One-third-octave band RMS of a sampled PSD, the form in which vibration
-// criteria are stated (METHOD.md convention 5), and the way back: a band-RMS
+// criteria are stated (docs/method.md, convention 5), and the way back: a band-RMS
 // spectrum as a PSD that is constant inside each band.
 //
 // RMS_i = sqrt( integral of S over [f_c G^(-1/6), f_c G^(1/6)] ), integrated

@@ -2,7 +2,7 @@
 // derivative or integral of it: a floor acceleration PSD read as velocity,
 // a reference model tabulated in (m/s^2)^2/Hz used in (um/s)^2/Hz. If
 //   y(t) = scale (d/dt)^n x(t),  then  S_y(f) = scale^2 (2 pi f)^(2n) S_x(f)
-// (METHOD.md convention 4), for the whole matrix alike. deb/units finds scale
+// (docs/method.md, convention 4), for the whole matrix alike. deb/units finds scale
 // and n for two unit strings (UnitConversion); this class only applies them,
 // so deb/spectra stays free of UDUNITS. Use ScaledSpectrum when n = 0 is known.
 #pragma once

@@ -2,7 +2,7 @@
 // simplest disturbance model. Optionally band-limited to [lo_hz, hi_hz], which
 // models noise that is flat only up to a roll-off the budget does not resolve.
 // Without band limits the level is exposed through WhiteLevel(), which lets the
-// budget use the exact Lyapunov variance (METHOD.md, convention 3).
+// budget use the exact Lyapunov variance (docs/method.md, convention 3).
 #pragma once
 
 #include <limits>

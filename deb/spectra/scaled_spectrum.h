@@ -1,6 +1,6 @@
 // A spectrum multiplied by a constant factor >= 0: S(f) = factor S_base(f).
 // Conversions happen once, when a source is built, and this is how: a
-// two-sided PSD becomes one-sided with factor 2 (METHOD.md convention 2), a
+// two-sided PSD becomes one-sided with factor 2 (docs/method.md, convention 2), a
 // unit change (um/s -> m/s) is the squared unit ratio, and a gain g on an
 // amplitude is g^2. Breakpoints and the white level pass through (scaled).
 #pragma once

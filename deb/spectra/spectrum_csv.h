@@ -1,6 +1,6 @@
 // Reads tabulated spectra (measured floor vibration, sensor noise curves) from
 // a small self-describing text format, and converts them once, at load, to
-// deb's convention: one-sided PSD (METHOD.md, conventions 1-2).
+// deb's convention: one-sided PSD (docs/method.md, conventions 1-2).
 //
 //   # unit: um/s          unit of the quantity (optional)
 //   # quantity: asd       psd (default) or asd: ASD columns are squared

@@ -2,7 +2,7 @@
 // one-third-octave band RMS velocity v_VC, not a PSD; a budget needs a PSD,
 // so band i becomes the constant PSD v_VC^2 / B_i over [f_c G^(-1/6),
 // f_c G^(1/6)) with bandwidth B_i = f_c (G^(1/6) - G^(-1/6)); the band
-// integral then returns v_VC^2 exactly (METHOD.md convention 5, Nizamoglu 2015
+// integral then returns v_VC^2 exactly (docs/method.md, convention 5; Nizamoglu 2015
 // eq. 4-2). The PSD is zero outside the covered bands and is in (um/s)^2/Hz.
 //
 // Levels and sources: spectra/vc_curves.csv (Gordon 1991, Amick et al. 2005),

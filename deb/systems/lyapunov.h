@@ -3,7 +3,7 @@
 // (E[w(t) w(t')^T] = W delta(t - t'), i.e. W = S0 / 2 for a one-sided PSD S0),
 // the stationary state covariance P solves the Lyapunov equation
 //   A P + P A^T + B W B^T = 0,
-// and the output covariance is C P C^T (METHOD.md, convention 3). This is the
+// and the output covariance is C P C^T (docs/method.md, convention 3). This is the
 // independent check of every grid-integrated budget: no frequency grid, no
 // truncation at f_max, no missed resonance. It is solved by the real-Schur
 // Bartels-Stewart method (Bartels & Stewart, Comm. ACM 15, 1972): LAPACK's

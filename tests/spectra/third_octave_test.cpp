@@ -27,7 +27,7 @@ TEST_CASE("adjacent bands share an edge bit for bit and each bandwidth is f_c (G
       CHECK(band.BandwidthHz() == doctest::Approx(expected).epsilon(1e-12));
     }
   }
-  // The base-2 bandwidth is about 0.2316 f_c (METHOD.md convention 5).
+  // The base-2 bandwidth is about 0.2316 f_c (docs/method.md, convention 5).
   const ThirdOctaveBand one = ThirdOctaveBandAt(0, ThirdOctaveSeries::kBase2From1Hz);
   CHECK(one.BandwidthHz() == doctest::Approx(0.2316).epsilon(1e-4));
 }
