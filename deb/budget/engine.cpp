@@ -484,6 +484,9 @@ FullPlan MakePlan(const Budget& budget) {
   CheckDataCoverage(budget, plan.grid);
   plan.bands = budget.bands.empty() ? DecadeBands(plan.grid) : budget.bands;
 
+  for (const Source& s : budget.sources)
+    for (const std::string& note : s.notes) plan.warnings.push_back("source '" + s.name + "': " + note);
+
   // Contributors add as uncorrelated; one source feeding several of them is
   // one realisation seen through several paths, whose sum is coherent.
   for (const Source& s : budget.sources) {

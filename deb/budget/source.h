@@ -16,6 +16,10 @@ struct Source {
   std::string unit;  // of the signal, e.g. "um/s"; its PSD is in unit^2/Hz
   std::shared_ptr<const Spectrum> spectrum;
   std::vector<std::string> channel_names;  // one per channel
+  // What the loader had to assume about the input (e.g. a spectrum file
+  // that does not say whether it holds a PSD or an ASD): `deb check` and
+  // `deb run` say it as a warning.
+  std::vector<std::string> notes;
 
   int channels() const { return spectrum ? spectrum->channels() : 0; }
 };

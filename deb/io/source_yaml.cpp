@@ -270,6 +270,12 @@ Source ParseSource(const YamlNode& node, const std::string& base_dir) {
       extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
     if (!unit_node && !csv.unit) node.Fail("missing 'unit': neither the budget nor " + p.string() + " ('# unit:') gives one");
     s.unit = unit_node ? unit_node->AsString() : *csv.unit;
+    if (!csv.quantity_declared) {
+      const std::string u = csv.unit.value_or(s.unit);
+      s.notes.push_back(p.string() + " has no '# quantity:' line, so its values are read as a PSD in " +
+                        PsdUnitLabel(u) + "; if they are an ASD in " + AsdUnitLabel(u) +
+                        ", add the line '# quantity: asd' (or '# quantity: psd' to confirm)");
+    }
     double factor = 1.0;
     if (csv.unit) {
       const UnitConversion conv = AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(*csv.unit, s.unit); });

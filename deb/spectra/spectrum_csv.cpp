@@ -30,7 +30,10 @@ SpectrumCsv FromTable(const NumericTable& table) {
     }
   };
   meta("unit", [&](const std::string& v) { csv.unit = v; });
-  meta("quantity", [&](const std::string& v) { csv.quantity = ParseSpectrumQuantity(Lower(v)); });
+  meta("quantity", [&](const std::string& v) {
+    csv.quantity = ParseSpectrumQuantity(Lower(v));
+    csv.quantity_declared = true;
+  });
   meta("sides", [&](const std::string& v) { csv.sides = ParseSpectrumSides(Lower(v)); });
   meta("interpolation", [&](const std::string& v) { csv.interpolation = ParseSpectrumInterpolation(Lower(v)); });
 

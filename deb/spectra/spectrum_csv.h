@@ -42,6 +42,7 @@ struct SpectrumCsv {
   std::vector<std::string> channel_names;  // from the header row, else "ch1", ...
   std::optional<std::string> unit;         // from "# unit:"
   SpectrumQuantity quantity = SpectrumQuantity::kPsd;  // as declared in the file
+  bool quantity_declared = false;                      // the file has a "# quantity:" line
   SpectrumSides sides = SpectrumSides::kOne;           // as declared in the file
   SpectrumInterpolation interpolation = SpectrumInterpolation::kLogLog;  // as declared in the file
 };

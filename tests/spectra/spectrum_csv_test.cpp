@@ -51,12 +51,14 @@ TEST_CASE("a whitespace-separated file without header gets channels ch1, ch2 and
   const SpectrumCsv csv = Parse("1\t2  3\r\n2 4 +5e-1\r\n");
   CHECK(csv.channel_names == std::vector<std::string>{"ch1", "ch2"});
   CHECK_FALSE(csv.unit.has_value());
+  CHECK_FALSE(csv.quantity_declared);
   CHECK(csv.psd(1, 1) == 0.5);
 }
 
 TEST_CASE("ASD columns are squared and two-sided values doubled at load (exact)") {
   const SpectrumCsv asd = Parse("# quantity: asd\n1, 3\n2, 0.5\n");
   CHECK(asd.quantity == SpectrumQuantity::kAsd);
+  CHECK(asd.quantity_declared);
   CHECK(asd.psd(0, 0) == 9.0);
   CHECK(asd.psd(1, 0) == 0.25);
   const SpectrumCsv two = Parse("# sides: two\n1, 20\n2, 20\n");
