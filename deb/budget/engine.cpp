@@ -741,6 +741,8 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
     for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
       ContributorResult cr;
       cr.name = c.name;
+      cr.source = c.source;
+      cr.path = c.path;
       cr.psd = std::move(psd[o]);
       cr.cps = CumulativeIntegral(result.grid, cr.psd);
       cr.variance = cr.cps.back();

@@ -81,11 +81,10 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
     nlohmann::json contributors = nlohmann::json::array();
     for (std::size_t c = 0; c < o.contributors.size(); ++c) {
       const ContributorResult& cr = o.contributors[c];
-      const Contributor& spec = budget.contributors[c];
       nlohmann::json jc;
       jc["name"] = cr.name;
-      jc["source"] = spec.source;
-      jc["path"] = spec.path;
+      jc["source"] = cr.source;
+      jc["path"] = cr.path;
       jc["rms"] = std::sqrt(cr.variance);
       jc["variance"] = cr.variance;
       jc["share"] = o.variance > 0.0 ? cr.variance / o.variance : 0.0;
@@ -116,13 +115,12 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
         jc["allocation_factor"] = a.factor ? nlohmann::json(*a.factor) : nlohmann::json(nullptr);
         jc["allocation_note"] = a.factor ? nlohmann::json(nullptr) : nlohmann::json(a.note);
         // A source feeding several contributors: its own factor scales them all.
-        const std::string& source = budget.contributors[c].source;
         std::vector<std::size_t> group;
         nlohmann::json shared = nlohmann::json::array();
-        for (std::size_t k = 0; k < budget.contributors.size(); ++k)
-          if (budget.contributors[k].source == source) {
+        for (std::size_t k = 0; k < o.contributors.size(); ++k)
+          if (o.contributors[k].source == cr.source) {
             group.push_back(k);
-            if (k != c) shared.push_back(budget.contributors[k].name);
+            if (k != c) shared.push_back(o.contributors[k].name);
           }
         if (group.size() > 1) {
           const Allocation g = SourceAllocationFactor(o, group);

@@ -112,7 +112,7 @@ std::string IndexHtml(const DocumentInputs& in) {
     s << "<h2 id=\"" << HtmlEscape(OutputAnchor(out.name)) << "\">Output " << HtmlEscape(out.name) << " ["
       << HtmlEscape(UnitText(out.unit)) << "]</h2>\n<p" << (out.pass() ? "" : " class=\"fail\"") << ">"
       << HtmlEscape(OutputLine(out)) << "</p>\n";
-    s << ToHtml(ContributorTable(budget, out));
+    s << ToHtml(ContributorTable(out));
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
@@ -155,7 +155,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
     const OutputResult& out = result.outputs[o];
     const int oi = static_cast<int>(o);
     s << "## Output " << out.name << " [" << UnitText(out.unit) << "]\n\n" << OutputLine(out) << "\n\n";
-    s << ToMarkdown(ContributorTable(budget, out)) << "\n";
+    s << ToMarkdown(ContributorTable(out)) << "\n";
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToMarkdown(modes) << "\n";
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });

@@ -69,7 +69,7 @@ Table SummaryTable(const BudgetResult& result) {
   return t;
 }
 
-Table ContributorTable(const Budget& budget, const OutputResult& o) {
+Table ContributorTable(const OutputResult& o) {
   Table t;
   t.title = "Contributors to " + o.name + " [" + UnitText(o.unit) + "]" +
             (o.metric ? ", " + o.metric->Describe() : std::string());
@@ -83,11 +83,10 @@ Table ContributorTable(const Budget& budget, const OutputResult& o) {
   t.numeric.push_back(false);
   for (std::size_t c : ShareOrder(o)) {
     const ContributorResult& cr = o.contributors[c];
-    const Contributor& spec = budget.contributors[c];
     std::string note = cr.exact_note;
     if (cr.exact_variance && *cr.exact_variance > 0.0)
       note = "grid holds " + Sig(100.0 * cr.variance / *cr.exact_variance, 4) + " % of the exact variance";
-    std::vector<std::string> row = {cr.name, spec.source, spec.path, Sig(std::sqrt(cr.variance), 4),
+    std::vector<std::string> row = {cr.name, cr.source, cr.path, Sig(std::sqrt(cr.variance), 4),
                                     Share(cr.variance, o.variance),
                                     cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), 4) : "–"};
     if (o.rms_max) {

@@ -27,7 +27,7 @@ Table SummaryTable(const BudgetResult& result);
 
 // One row per contributor of an output, by share: source, path, RMS, share,
 // exact (Lyapunov) RMS or why there is none.
-Table ContributorTable(const Budget& budget, const OutputResult& output);
+Table ContributorTable(const OutputResult& output);
 
 // Rows: contributors by share, then the total; columns: the bands and the
 // whole grid. The largest contributor of each band is emphasised.

@@ -218,7 +218,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   if (options.plots) {
     std::vector<Table> tables = {SummaryTable(result)};
     for (const OutputResult& o : result.outputs) {
-      tables.push_back(ContributorTable(budget, o));
+      tables.push_back(ContributorTable(o));
       if (Table modes = ModeTable(o); !modes.rows.empty()) tables.push_back(std::move(modes));
       tables.push_back(BandTable(o));
     }

@@ -145,6 +145,19 @@ TEST_CASE("a first-order low-pass under flat noise has variance S0/(4 tau) and t
   CHECK(r.warnings.empty());
 }
 
+TEST_CASE("a contributor's result names its source and path, so writers need not re-align with the budget") {
+  Budget b = OnePathBudget(WhiteSource(1.0, "V"), MakePath(Tf({1.0}, {0.01, 1.0}), "V", "V"), "V");
+  b.sources[0].name = "amplifier";
+  b.paths[0].name = "filter";
+  b.contributors[0].source = "amplifier";
+  b.contributors[0].path = "filter";
+  UseAutoRange(&b, 1e-2, 1e3);
+  const ContributorResult& c = Evaluate(b).outputs[0].contributors[0];
+  CHECK(c.name == "c");
+  CHECK(c.source == "amplifier");
+  CHECK(c.path == "filter");
+}
+
 TEST_CASE("a mass-spring-damper under flat force noise has sigma^2 = W/(2ck) and sigma_v^2 = W/(2cm)") {
   // W = S0/2 (two-sided); Lyapunov 1e-10 relative, grid CPS over 1e-4..1e5 Hz 1e-4 relative.
   const double m = 2.0, c = 3.0, k = 5000.0, s0 = 0.7, w = s0 / 2;
