@@ -134,7 +134,7 @@ const Path& PathContext::Lookup(const YamlNode& name_node) const {
 
 std::vector<Path> PathContext::Parse(const YamlNode& node) {
   if (node.Has("type") && node.Required("type").AsString() == "isolation_system") {
-    ParsedModel model = ParseIsolationSystem(node);
+    IsolationPaths model = ParseIsolationSystem(node);
     models_.push_back({node.Required("name").AsString(), model.report});
     for (const Path& p : model.paths) {
       if (parsed_.count(p.name)) node.Required("name").Fail("path name '" + p.name + "' is used twice");
