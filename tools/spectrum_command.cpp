@@ -23,7 +23,7 @@
 #include "deb/report/report_options.h"
 #include "deb/signal/frf_estimate.h"
 #include "deb/signal/self_noise.h"
-#include "deb/signal/time_series_file.h"
+#include "deb/signal/recording.h"
 #include "deb/signal/welch.h"
 #include "deb/spectra/band_rms.h"
 #include "deb/spectra/building_criteria.h"
@@ -114,26 +114,17 @@ void AddRecordingOptions(CLI::App* c, RecordingOptions& r) {
 }
 
 TimeSeries ReadRecording(const RecordingOptions& r) {
-  TimeSeries series = [&] {
-    if (r.format == "csv") {
-      TimeSeriesCsvOptions o;
-      if (r.rate_hz > 0.0) o.rate_hz = r.rate_hz;
-      o.unit = r.unit;
-      return ReadTimeSeriesCsv(r.file, o);
-    }
-    RawTimeSeriesOptions o;
-    o.format = ParseRawSampleFormat(r.format);
-    o.rate_hz = r.rate_hz;
-    o.unit = r.unit;
-    if (r.file_channels.size() == 1 && std::isdigit(static_cast<unsigned char>(r.file_channels[0][0]))) {
-      o.channels = std::stoi(r.file_channels[0]);
-    } else if (!r.file_channels.empty()) {
-      o.channel_names = r.file_channels;
-      o.channels = static_cast<int>(r.file_channels.size());
-    }
-    return ReadRawTimeSeries(r.file, o);
-  }();
-  return r.columns.empty() ? series : series.Select(r.columns);
+  RecordingSpec spec;
+  spec.file = r.file;
+  if (r.format != "csv") spec.raw = ParseRawSampleFormat(r.format);
+  if (r.rate_hz > 0.0 || spec.raw) spec.rate_hz = r.rate_hz;
+  spec.unit = r.unit;
+  if (r.file_channels.size() == 1 && std::isdigit(static_cast<unsigned char>(r.file_channels[0][0])))
+    spec.file_channels = std::stoi(r.file_channels[0]);
+  else
+    spec.file_channel_names = r.file_channels;
+  spec.columns = r.columns;
+  return deb::ReadRecording(spec);
 }
 
 WelchOptions Welch(const RecordingOptions& r) {
