@@ -271,29 +271,7 @@ std::string Number(double v) {
   return text;
 }
 
-// A spectrum CSV (spectrum_csv.h): comments, header, rows above 0 Hz.
-std::string SpectrumCsvText(const std::vector<std::string>& comments, const std::string& unit, bool asd,
-                            const std::vector<double>& f_hz, const Eigen::MatrixXd& psd,
-                            const std::vector<std::string>& names, const Eigen::MatrixXd* extra = nullptr,
-                            const std::vector<std::string>& extra_names = {}) {
-  std::ostringstream out;
-  for (const std::string& c : comments) out << "# " << c << "\n";
-  if (!unit.empty()) out << "# unit: " << unit << "\n";
-  out << "# quantity: " << (asd ? "asd" : "psd") << "\n# sides: one\nf_hz";
-  for (const auto& n : names) out << ", " << n;
-  for (const auto& n : extra_names) out << ", " << n;
-  out << "\n";
-  for (std::size_t k = 0; k < f_hz.size(); ++k) {
-    if (!(f_hz[k] > 0.0)) continue;
-    out << NumberText(f_hz[k]);  // every digit: band edges 1e-9 apart must stay apart
-    for (Eigen::Index c = 0; c < psd.cols(); ++c)
-      out << ", " << Number(asd ? std::sqrt(psd(static_cast<Eigen::Index>(k), c)) : psd(static_cast<Eigen::Index>(k), c));
-    if (extra)
-      for (Eigen::Index c = 0; c < extra->cols(); ++c) out << ", " << Number((*extra)(static_cast<Eigen::Index>(k), c));
-    out << "\n";
-  }
-  return out.str();
-}
+SpectrumQuantity Quantity(bool asd) { return asd ? SpectrumQuantity::kAsd : SpectrumQuantity::kPsd; }
 
 std::vector<std::string> Provenance(const std::string& what, const PsdEstimate& e, const std::string& source) {
   std::vector<std::string> lines = {what + " of " + source};
@@ -320,7 +298,7 @@ int RunWelch(const Settings& s) {
     }
   }
   Outputs outputs(s);
-  outputs.Text(s.out, SpectrumCsvText(Provenance("Welch PSD", e, s.rec.file), e.unit, false, e.f_hz, e.psd,
+  outputs.Text(s.out, SpectrumCsvText(Provenance("Welch PSD", e, s.rec.file), e.unit, SpectrumQuantity::kPsd, e.f_hz, e.psd,
                                       e.channel_names, s.bounds ? &bounds : nullptr, bound_names),
                "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true))
@@ -465,7 +443,7 @@ int RunConvert(const Settings& s) {
     Outputs outputs(s);
     outputs.Text(s.out, SpectrumCsvText({"PSD from the one-third-octave band RMS table " + s.spectrum_file +
                                              " (constant in each band, " + ToString(series) + " edges)"},
-                                        table.unit.value_or(""), s.asd, f_out, psd, table.channel_names),
+                                        table.unit.value_or(""), Quantity(s.asd), f_out, psd, table.channel_names),
                  "the output CSV (-o)");
     if (const auto place = PlacePlot(s, s.out, true))
       outputs.Plot(*place, report::SpectrumTablePlot(
@@ -491,7 +469,7 @@ int RunConvert(const Settings& s) {
     comments.push_back(from + " -> " + to + ": " + conv.Describe());
   }
   Outputs outputs(s);
-  outputs.Text(s.out, SpectrumCsvText(comments, to, s.asd, csv.f_hz, psd, csv.channel_names), "the output CSV (-o)");
+  outputs.Text(s.out, SpectrumCsvText(comments, to, Quantity(s.asd), csv.f_hz, psd, csv.channel_names), "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true)) {
     std::string title = std::string(s.asd ? "ASD" : "PSD") + " of " + SourceName(s.spectrum_file);
     if (!s.to_unit.empty()) title += ", converted from " + report::UnitText(from) + " to " + report::UnitText(to);
@@ -518,7 +496,7 @@ int RunSelfNoise(const Settings& s) {
       comments.push_back(n.noise.channel_names[c] + ": " + std::to_string(n.clamped_bins[c]) +
                          " bins estimated below zero, set to 0");
   Outputs outputs(s);
-  outputs.Text(s.out, SpectrumCsvText(comments, n.noise.unit, false, n.noise.f_hz, n.noise.psd, n.noise.channel_names),
+  outputs.Text(s.out, SpectrumCsvText(comments, n.noise.unit, SpectrumQuantity::kPsd, n.noise.f_hz, n.noise.psd, n.noise.channel_names),
                "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true))
     outputs.Plot(*place, report::SelfNoisePlot(csd.AutoSpectra(), n, SourceName(s.rec.file), place->stem));
@@ -577,7 +555,7 @@ int RunReference(const Settings& s) {
   Outputs outputs(s);
   outputs.Text(s.out, SpectrumCsvText({"Peterson (1993), USGS OFR 93-322, " + ToString(model) +
                                            ": vertical ground motion, converted from m/s^2: " + conv.Describe()},
-                                      unit, s.asd, f, psd, {ToString(model)}),
+                                      unit, Quantity(s.asd), f, psd, {ToString(model)}),
                "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true))
     outputs.Plot(*place, report::PetersonPlot(model, f, unit, s.asd, place->stem));
