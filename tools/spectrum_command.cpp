@@ -351,11 +351,14 @@ int RunBands(const Settings& s) {
   }
   const bool classify = s.criteria != "none";
   const ThirdOctaveSeries series = ParseThirdOctaveSeries(s.series);
-  ClassifyOptions options;
+  SpectrumClassOptions options;
+  options.classify_bands = classify;
+  options.classify.series = series;
+  options.classify.low_frequency_extension = s.extend;
+  options.lowest_hz = s.lowest_hz;
+  options.highest_hz = s.highest_hz;
   if (classify) {
-    options.set = ParseCriteriaSet(s.criteria);
-    options.series = series;
-    options.low_frequency_extension = s.extend;
+    options.classify.set = ParseCriteriaSet(s.criteria);
     if (unit.empty())
       throw InputError(s.spectrum_file + ": classification needs the unit of the spectrum: give '# unit:' in the "
                        "file or --unit (any velocity, displacement or acceleration unit)");
@@ -363,22 +366,15 @@ int RunBands(const Settings& s) {
   // Criteria are band RMS velocities in um/s: convert (with (2 pi f)^2n for
   // displacement or acceleration) before integrating.
   const UnitConversion to_velocity = classify ? ConvertUnit(unit, "um/s") : UnitConversion{};
+  if (classify) options.to_velocity_psd = [&to_velocity](double f_hz) { return to_velocity.PsdFactor(f_hz); };
   const std::string band_unit = classify ? "um/s" : unit;
   std::ostringstream out;
   out << "# one-third-octave band RMS (" << ToString(series) << " centres)"
       << (band_unit.empty() ? "" : " in " + band_unit) << " of " << s.spectrum_file << "\n";
   if (classify && !to_velocity.IsPureScale()) out << "# converted from " << unit << ": " << to_velocity.Describe() << "\n";
-  std::vector<std::vector<BandRms>> per_channel;
-  std::vector<Classification> verdicts;
-  for (Eigen::Index c = 0; c < csv.psd.cols(); ++c) {
-    std::vector<double> psd(csv.f_hz.size());
-    for (std::size_t k = 0; k < psd.size(); ++k)
-      psd[k] = csv.psd(static_cast<Eigen::Index>(k), c) * (classify ? to_velocity.PsdFactor(csv.f_hz[k]) : 1.0);
-    per_channel.push_back(s.lowest_hz > 0.0
-                              ? ThirdOctaveBandRms(csv.f_hz, psd, series, s.lowest_hz, s.highest_hz, csv.interpolation)
-                              : ThirdOctaveBandRms(csv.f_hz, psd, series, csv.interpolation));
-    if (classify) verdicts.push_back(Classify(per_channel.back(), options));
-  }
+  const SpectrumClasses classes = ClassifySpectrum(csv.f_hz, csv.psd, csv.interpolation, options);
+  const std::vector<std::vector<BandRms>>& per_channel = classes.bands;
+  const std::vector<Classification>& verdicts = classes.classes;
   out << "centre_hz, lo_hz, hi_hz, points";
   for (const std::string& n : csv.channel_names) out << ", " << n << (classify ? ", " + n + "_class" : "");
   out << "\n";
@@ -397,10 +393,7 @@ int RunBands(const Settings& s) {
   Outputs outputs(s);
   outputs.Text(s.out, out.str(), "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true)) {
-    ClassifyOptions drawn = options;
-    drawn.series = series;
-    drawn.low_frequency_extension = s.extend;
-    outputs.Plot(*place, report::BandClassPlot(csv.channel_names, per_channel, verdicts, drawn, band_unit,
+    outputs.Plot(*place, report::BandClassPlot(csv.channel_names, per_channel, verdicts, options.classify, band_unit,
                                                SourceName(s.spectrum_file), place->stem));
   }
   outputs.Write();
