@@ -1,6 +1,5 @@
 #include "tools/spectrum_command.h"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -19,6 +18,7 @@
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/report/measurement_plots.h"
+#include "deb/report/output_files.h"
 #include "deb/report/plot_files.h"
 #include "deb/report/report_options.h"
 #include "deb/signal/frf_estimate.h"
@@ -165,92 +165,34 @@ std::vector<PlotFormat> PlotFormats(const Settings& s) {
   return s.plot_formats;
 }
 
-// Everything one command writes: text files (or standard output) and plots
-// beside them. Write() draws the plots first, in hidden directories, then
-// writes every file through a temporary name and renames them all, so that
-// a missing gnuplot or an unwritable file leaves nothing half-written.
+// Everything one command writes (report::OutputFiles), with the plot
+// formats and notes of the command line.
 class Outputs {
  public:
-  explicit Outputs(const Settings& s) : settings_(s) {}
+  explicit Outputs(const Settings& s)
+      : settings_(s), files_("; name the plot with --plot, or give --no-plots") {}
 
   // path "" or "-": standard output.
   void Text(const std::string& path, std::string text, const std::string& what) {
-    texts_.push_back({path, std::move(text), what});
+    files_.Text(path, std::move(text), what);
   }
   // plot.name must be place.stem: its script reads the data by that name.
   void Plot(const PlotPlace& place, report::Plot plot) {
     DEB_DEMAND(plot.name == place.stem);
-    plots_.push_back({std::move(plot), place.directory});
+    files_.Plot(place.directory, std::move(plot));
   }
   const std::vector<std::string>& written() const { return written_; }
 
   void Write() {
-    if (plots_.empty() && settings_.plots && !settings_.plot_formats.empty())
+    if (!files_.has_plots() && settings_.plots && !settings_.plot_formats.empty())
       std::fprintf(stderr, "deb: note: no plot: the CSV goes to standard output; name the plot with --plot\n");
-    const std::vector<PlotFormat> formats = plots_.empty() ? std::vector<PlotFormat>{} : PlotFormats(settings_);
-    RefuseCollisions(formats);
-    std::optional<report::StagedPlots> staged;
-    if (!plots_.empty()) staged.emplace(plots_, formats);
-    std::vector<std::pair<std::string, std::string>> renames;  // temporary, final
-    const auto discard = [&] {
-      for (const auto& [tmp, final_path] : renames) std::remove(tmp.c_str());
-    };
-    for (const File& f : texts_) {
-      if (f.path.empty() || f.path == "-") continue;
-      // Beside the output, so that the rename stays in one file system; a
-      // link or file planted at that name is removed, never written through.
-      const std::string tmp = f.path + ".tmp-" + std::to_string(::getpid());
-      std::remove(tmp.c_str());
-      try {
-        WriteTextFile(tmp, f.text);
-      } catch (const WriteError& e) {
-        discard();
-        throw WriteError(f.path + ": cannot write the output file (" + e.what() + ")");
-      }
-      renames.push_back({tmp, f.path});
-    }
-    for (const auto& [tmp, final_path] : renames) {
-      std::error_code ec;
-      fs::rename(tmp, final_path, ec);
-      if (ec) {
-        discard();
-        throw WriteError(final_path + ": cannot write the output file: " + ec.message());
-      }
-      written_.push_back(final_path);
-    }
-    for (const File& f : texts_)
-      if (f.path.empty() || f.path == "-") std::cout << f.text;
-    if (staged)
-      for (std::string& p : staged->Commit()) written_.push_back(std::move(p));
+    const std::vector<PlotFormat> formats = files_.has_plots() ? PlotFormats(settings_) : std::vector<PlotFormat>{};
+    written_ = files_.Write(formats, std::cout);
   }
 
  private:
-  struct File {
-    std::string path, text, what;
-  };
-
-  // Two outputs with one name would overwrite each other (e.g. -o psd.png).
-  void RefuseCollisions(const std::vector<PlotFormat>& formats) const {
-    std::vector<std::pair<std::string, std::string>> named;  // path, what
-    for (const File& f : texts_)
-      if (!f.path.empty() && f.path != "-") named.push_back({f.path, f.what});
-    for (const report::StandalonePlot& p : plots_)
-      for (const std::string& path : report::StandalonePlotPaths(p, formats))
-        named.push_back({path, "a file of the plot " + p.plot.name});
-    std::set<std::string> seen;
-    for (std::size_t i = 0; i < named.size(); ++i) {
-      const std::string key = fs::absolute(named[i].first).lexically_normal().string();
-      if (seen.insert(key).second) continue;
-      for (std::size_t j = 0; j < i; ++j)
-        if (fs::absolute(named[j].first).lexically_normal().string() == key)
-          throw InputError(named[i].first + " would be written twice: as " + named[j].second + " and as " +
-                           named[i].second + "; name the plot with --plot, or give --no-plots");
-    }
-  }
-
   const Settings& settings_;
-  std::vector<File> texts_;
-  std::vector<report::StandalonePlot> plots_;
+  report::OutputFiles files_;
   std::vector<std::string> written_;
 };
 
