@@ -109,22 +109,12 @@ int RunSensitivityCommand(const CLI::App& /*sensitivity*/) {
   const Budget budget = LoadBudgetFile(s.budget_file);
   EngineOptions options;
   options.threads = s.threads;
-  const BudgetResult nominal = Evaluate(budget, options);
-  std::vector<Sensitivity> all;
-  for (const std::string& key : s.parameters) {
-    BudgetResult perturbed[2];
-    for (int side = 0; side < 2; ++side) {
-      Budget b = LoadBudgetWithScaledParameter(s.budget_file, key, side == 0 ? 1.0 + s.step : 1.0 - s.step);
-      b.grid = GridSpec();
-      b.grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
-      b.grid.f_hz = nominal.grid.f_hz();
-      b.grid.panel_starts = nominal.grid.panel_starts();
-      if (b.bands.empty()) b.bands = budget.bands;
-      perturbed[side] = Evaluate(b, options);
-    }
-    const auto part = Sensitivities(key, s.step, nominal, perturbed[0], perturbed[1]);
-    all.insert(all.end(), part.begin(), part.end());
-  }
+  const SensitivityStudy study = ComputeSensitivities(
+      budget, s.parameters, s.step,
+      [&s](const std::string& key, double factor) { return LoadBudgetWithScaledParameter(s.budget_file, key, factor); },
+      options);
+  const BudgetResult& nominal = study.nominal;
+  const std::vector<Sensitivity>& all = study.sensitivities;
   std::vector<std::string> outputs;
   for (const auto& o : nominal.outputs) outputs.push_back(o.name);
   const std::string dir =
