@@ -22,11 +22,8 @@
 #include "deb/report/report_tables.h"
 
 namespace deb::tools {
-namespace {
 
-namespace fs = std::filesystem;
-
-struct CompareSettings {
+struct CompareCommand::Options {
   std::vector<std::string> inputs;
   std::string out_dir;
   int threads = 0;
@@ -35,16 +32,17 @@ struct CompareSettings {
   bool plots = true;
 };
 
+namespace {
+
+namespace fs = std::filesystem;
+
+
 // Figures, and the full result where the input was a budget (for plots).
 struct Loaded {
   ResultFigures figures;
   std::optional<BudgetResult> result;
 };
 
-CompareSettings& Settings() {
-  static CompareSettings settings;
-  return settings;
-}
 
 // A budget file is evaluated; a directory (or a summary.json) is read.
 Loaded Load(const std::string& input, int threads) {
@@ -96,8 +94,11 @@ void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plo
 
 }  // namespace
 
-CLI::App* AddCompareCommand(CLI::App& app) {
-  CompareSettings& s = Settings();
+CompareCommand::CompareCommand() : options_(std::make_unique<Options>()) {}
+CompareCommand::~CompareCommand() = default;
+
+CLI::App* CompareCommand::Register(CLI::App& app) {
+  Options& s = *options_;
   CLI::App* c = app.add_subcommand(
       "compare", "Compare budgets or result directories: RMS per output, contributor and band, B - A and B / A");
   c->add_option("inputs", s.inputs, "Budget YAML files or result directories (summary.json); the first is A")
@@ -113,8 +114,8 @@ CLI::App* AddCompareCommand(CLI::App& app) {
   return c;
 }
 
-int RunCompareCommand(const CLI::App& /*compare*/) {
-  const CompareSettings& s = Settings();
+int CompareCommand::Run() const {
+  const Options& s = *options_;
   if (!s.out_dir.empty() && s.inputs.size() != 2)
     throw InputError("--out names one directory: give exactly two inputs, or leave --out out");
   // All or nothing: every input is loaded (a budget evaluated) and every

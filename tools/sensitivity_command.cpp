@@ -18,11 +18,8 @@
 #include "deb/report/report_tables.h"
 
 namespace deb::tools {
-namespace {
 
-namespace fs = std::filesystem;
-
-struct SensitivitySettings {
+struct SensitivityCommand::Options {
   std::string budget_file;
   std::vector<std::string> parameters;
   double step = 1e-3;
@@ -32,10 +29,11 @@ struct SensitivitySettings {
   bool force = false;  // --force: replace an output directory deb did not write
 };
 
-SensitivitySettings& Settings() {
-  static SensitivitySettings settings;
-  return settings;
-}
+namespace {
+
+namespace fs = std::filesystem;
+
+
 
 std::string Csv(const std::vector<Sensitivity>& all) {
   std::ostringstream os;
@@ -74,8 +72,11 @@ std::string Markdown(const std::string& name, double step, const std::vector<std
 
 }  // namespace
 
-CLI::App* AddSensitivityCommand(CLI::App& app) {
-  SensitivitySettings& s = Settings();
+SensitivityCommand::SensitivityCommand() : options_(std::make_unique<Options>()) {}
+SensitivityCommand::~SensitivityCommand() = default;
+
+CLI::App* SensitivityCommand::Register(CLI::App& app) {
+  Options& s = *options_;
   CLI::App* c = app.add_subcommand(
       "sensitivity", "Derivatives of every output's variance with respect to parameters (by key path), ranked");
   c->add_option("budget", s.budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
@@ -104,8 +105,8 @@ CLI::App* AddSensitivityCommand(CLI::App& app) {
   return c;
 }
 
-int RunSensitivityCommand(const CLI::App& /*sensitivity*/) {
-  const SensitivitySettings& s = Settings();
+int SensitivityCommand::Run() const {
+  const Options& s = *options_;
   const Budget budget = LoadBudgetFile(s.budget_file);
   EngineOptions options;
   options.threads = s.threads;

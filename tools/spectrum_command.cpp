@@ -34,9 +34,6 @@
 #include "deb/units/unit.h"
 
 namespace deb::tools {
-namespace {
-
-namespace fs = std::filesystem;
 
 // Options shared by the commands that read a recording.
 struct RecordingOptions {
@@ -55,7 +52,7 @@ struct RecordingOptions {
   int threads = 0;
 };
 
-struct Settings {
+struct SpectrumCommand::Options {
   RecordingOptions rec;
   std::string out;
   bool bounds = false;
@@ -89,10 +86,12 @@ struct Settings {
            *reference = nullptr;
 };
 
-Settings& S() {
-  static Settings settings;
-  return settings;
-}
+namespace {
+
+namespace fs = std::filesystem;
+
+
+using Settings = SpectrumCommand::Options;
 
 void AddRecordingOptions(CLI::App* c, RecordingOptions& r) {
   c->add_option("recording", r.file, "Time series: CSV (time column or '# rate_hz:') or raw little-endian floats")
@@ -531,8 +530,11 @@ void AddPlotOptions(CLI::App* c, Settings& s) {
 
 }  // namespace
 
-CLI::App* AddSpectrumCommand(CLI::App& app) {
-  Settings& s = S();
+SpectrumCommand::SpectrumCommand() : options_(std::make_unique<Options>()) {}
+SpectrumCommand::~SpectrumCommand() = default;
+
+CLI::App* SpectrumCommand::Register(CLI::App& app) {
+  Options& s = *options_;
   CLI::App* spectrum = app.add_subcommand("spectrum", "Measured data: Welch spectra, band RMS and VC/ISO classes, "
                                                       "conversions, sensor self-noise, reference spectra");
   spectrum->require_subcommand(1);
@@ -600,9 +602,8 @@ CLI::App* AddSpectrumCommand(CLI::App& app) {
   return spectrum;
 }
 
-int RunSpectrumCommand(const CLI::App& spectrum) {
-  (void)spectrum;
-  const Settings& s = S();
+int SpectrumCommand::Run() const {
+  const Options& s = *options_;
   if (*s.welch) return RunWelch(s);
   if (*s.bands) return RunBands(s);
   if (*s.convert) return RunConvert(s);
