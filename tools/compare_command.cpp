@@ -16,16 +16,14 @@
 #include "deb/io/budget_yaml.h"
 #include "deb/io/comparison_files.h"
 #include "deb/io/result_writer.h"
+#include "deb/report/comparison_documents.h"
 #include "deb/report/overlay_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/report_tables.h"
 
 namespace deb::tools {
-namespace {
 
-namespace fs = std::filesystem;
-
-struct CompareSettings {
+struct CompareCommand::Options {
   std::vector<std::string> inputs;
   std::string out_dir;
   int threads = 0;
@@ -34,16 +32,17 @@ struct CompareSettings {
   bool plots = true;
 };
 
+namespace {
+
+namespace fs = std::filesystem;
+
+
 // Figures, and the full result where the input was a budget (for plots).
 struct Loaded {
   ResultFigures figures;
   std::optional<BudgetResult> result;
 };
 
-CompareSettings& Settings() {
-  static CompareSettings settings;
-  return settings;
-}
 
 // A budget file is evaluated; a directory (or a summary.json) is read.
 Loaded Load(const std::string& input, int threads) {
@@ -68,77 +67,6 @@ Loaded Load(const std::string& input, int threads) {
   return {std::move(figures), std::move(result)};
 }
 
-std::string Ratio(const ComparedFigure& f) { return f.ratio ? report::Sig(*f.ratio, 4) : "–"; }
-
-// The tables of a comparison: one per output, then the largest changes.
-std::vector<report::Table> Tables(const Comparison& cmp) {
-  std::vector<report::Table> tables;
-  std::string current;
-  for (const ComparedFigure& f : cmp.figures) {
-    if (tables.empty() || f.output != current) {
-      current = f.output;
-      report::Table t;
-      t.title = f.output + " [" + report::UnitText(f.unit) + "]";
-      t.header = {"contributor", "band", "A: " + cmp.label_a, "B: " + cmp.label_b, "B − A", "B / A"};
-      t.numeric = {false, false, true, true, true, true};
-      tables.push_back(t);
-    }
-    report::Table& t = tables.back();
-    t.rows.push_back({f.contributor, f.band.empty() ? "whole grid" : f.band, report::Sig(f.rms_a, 4),
-                      report::Sig(f.rms_b, 4), report::Sig(f.difference, 4), Ratio(f)});
-    t.emphasis.push_back(std::vector<bool>(6, f.contributor == "total" && f.band.empty()));
-  }
-  report::Table largest;
-  largest.title = "Contributors that changed most";
-  largest.header = {"output", "contributor", "A", "B", "B / A", "variance change / total"};
-  largest.numeric = {false, false, true, true, true, true};
-  for (const ComparedFigure& f : cmp.LargestChanges())
-    largest.rows.push_back({f.output, f.contributor, report::Sig(f.rms_a, 4), report::Sig(f.rms_b, 4), Ratio(f),
-                            report::Sig(100.0 * f.variance_change_of_total, 3) + " %"});
-  tables.push_back(largest);
-  return tables;
-}
-
-std::string Lead() {
-  return "RMS per output, contributor and band; difference B − A in the output's unit; ratio B / A.";
-}
-
-std::string Markdown(const Comparison& cmp, const std::vector<report::Plot>& plots) {
-  std::ostringstream md;
-  md << "# Comparison: " << cmp.label_a << " (A) vs " << cmp.label_b << " (B)\n\n" << Lead() << "\n\n";
-  for (const report::Table& t : Tables(cmp)) md << "## " << t.title << "\n\n" << report::ToMarkdown(t) << "\n";
-  for (const report::Plot& p : plots)
-    md << "![" << p.caption << "](plots/" << p.name << ".png)\n\n" << p.caption << "\n\n";
-  if (!cmp.unmatched.empty()) {
-    md << "## Not compared\n\n";
-    for (const std::string& s : cmp.unmatched) md << "- " << s << "\n";
-  }
-  return md.str();
-}
-
-// One self-contained page (the plots are files beside it).
-std::string Html(const Comparison& cmp, const std::vector<report::Plot>& plots) {
-  using report::HtmlEscape;
-  std::ostringstream h;
-  const std::string title = "Comparison: " + cmp.label_a + " (A) vs " + cmp.label_b + " (B)";
-  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << HtmlEscape(title)
-    << "</title>\n<style>body{font-family:'DejaVu Sans',sans-serif;max-width:1240px;margin:2rem auto;padding:0 1.5rem}"
-       "table{border-collapse:collapse;margin:.6rem 0 1.4rem;font-size:.92rem}th,td{border-bottom:1px solid #ddd;"
-       "padding:.2rem .6rem}td.num{text-align:right;font-variant-numeric:tabular-nums}img{max-width:100%}</style>\n"
-       "</head>\n<body>\n<h1>"
-    << HtmlEscape(title) << "</h1>\n<p>" << HtmlEscape(Lead()) << "</p>\n";
-  for (const report::Table& t : Tables(cmp)) h << report::ToHtml(t);  // the caption titles it
-  for (const report::Plot& p : plots)
-    h << "<figure><img src=\"plots/" << HtmlEscape(p.name) << ".png\" alt=\"" << HtmlEscape(p.caption)
-      << "\"><figcaption>" << HtmlEscape(p.caption) << "</figcaption></figure>\n";
-  if (!cmp.unmatched.empty()) {
-    h << "<h2>Not compared</h2>\n<ul>\n";
-    for (const std::string& s : cmp.unmatched) h << "<li>" << HtmlEscape(s) << "</li>\n";
-    h << "</ul>\n";
-  }
-  h << "</body>\n</html>\n";
-  return h.str();
-}
 
 std::string Safe(const std::string& label) {
   std::string s = label;
@@ -157,8 +85,8 @@ void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plo
       report::WritePlotsAsPng(plots, (fs::path(dir) / "plots").string());
     }
     const std::vector<std::pair<std::string, std::string>> files = {{"compare.json", ComparisonJson(cmp)},
-                                                                    {"compare.md", Markdown(cmp, plots)},
-                                                                    {"compare.html", Html(cmp, plots)},
+                                                                    {"compare.md", report::ComparisonMarkdown(cmp, plots)},
+                                                                    {"compare.html", report::ComparisonHtml(cmp, plots)},
                                                                     {"compare.csv", ComparisonCsv(cmp)}};
     for (const auto& [name, text] : files) WriteTextFile((fs::path(dir) / name).string(), text);
   }, replace);
@@ -166,8 +94,11 @@ void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plo
 
 }  // namespace
 
-CLI::App* AddCompareCommand(CLI::App& app) {
-  CompareSettings& s = Settings();
+CompareCommand::CompareCommand() : options_(std::make_unique<Options>()) {}
+CompareCommand::~CompareCommand() = default;
+
+CLI::App* CompareCommand::Register(CLI::App& app) {
+  Options& s = *options_;
   CLI::App* c = app.add_subcommand(
       "compare", "Compare budgets or result directories: RMS per output, contributor and band, B - A and B / A");
   c->add_option("inputs", s.inputs, "Budget YAML files or result directories (summary.json); the first is A")
@@ -183,8 +114,8 @@ CLI::App* AddCompareCommand(CLI::App& app) {
   return c;
 }
 
-int RunCompareCommand(const CLI::App& /*compare*/) {
-  const CompareSettings& s = Settings();
+int CompareCommand::Run() const {
+  const Options& s = *options_;
   if (!s.out_dir.empty() && s.inputs.size() != 2)
     throw InputError("--out names one directory: give exactly two inputs, or leave --out out");
   // All or nothing: every input is loaded (a budget evaluated) and every
@@ -218,7 +149,7 @@ int RunCompareCommand(const CLI::App& /*compare*/) {
     for (const ComparedFigure& f : r.cmp.figures)
       if (f.contributor == "total" && f.band.empty())
         std::printf("  %-24s rms %12.6g -> %12.6g %s  (B/A %s)\n", f.output.c_str(), f.rms_a, f.rms_b,
-                    f.unit.c_str(), Ratio(f).c_str());
+                    f.unit.c_str(), report::RatioText(f).c_str());
     for (const std::string& u : r.cmp.unmatched) std::printf("  not compared: %s\n", u.c_str());
     std::printf("report: %s\n", r.dir.c_str());
   }

@@ -8,14 +8,29 @@
 
 #include <CLI/CLI.hpp>
 
+#include <memory>
+
 namespace deb::tools {
 
-// Registers `compare` on app.
-CLI::App* AddCompareCommand(CLI::App& app);
+// The command's options are members, bound by Register(); the object must
+// outlive the parse of the app it is registered on.
+class CompareCommand {
+ public:
+  CompareCommand();
+  ~CompareCommand();
+  CompareCommand(const CompareCommand&) = delete;
+  CompareCommand& operator=(const CompareCommand&) = delete;
 
-// Runs `compare` (after parsing).
-// @throws InputError for an unreadable budget or result directory, or a
-//         report directory that cannot be written.
-int RunCompareCommand(const CLI::App& compare);
+  // Registers `compare` on app.
+  CLI::App* Register(CLI::App& app);
+  // Runs it, after parsing; returns the exit code.
+  // @throws InputError for bad input, WriteError for output that cannot be written.
+  int Run() const;
+
+  struct Options;  // the command line's values (compare_command.cpp)
+
+ private:
+  std::unique_ptr<Options> options_;
+};
 
 }  // namespace deb::tools

@@ -263,10 +263,14 @@ int main(int argc, char** argv) {
       "model", "Describe the physical models of a budget: natural frequencies, mode shapes, static pre-stress");
   model->add_option("budget", model_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
 
-  CLI::App* spectrum = deb::tools::AddSpectrumCommand(app);
-  CLI::App* compare = deb::tools::AddCompareCommand(app);
-  CLI::App* sweep = deb::tools::AddSweepCommand(app);
-  CLI::App* sensitivity = deb::tools::AddSensitivityCommand(app);
+  deb::tools::SpectrumCommand spectrum_command;
+  CLI::App* spectrum = spectrum_command.Register(app);
+  deb::tools::CompareCommand compare_command;
+  CLI::App* compare = compare_command.Register(app);
+  deb::tools::SweepCommand sweep_command;
+  CLI::App* sweep = sweep_command.Register(app);
+  deb::tools::SensitivityCommand sensitivity_command;
+  CLI::App* sensitivity = sensitivity_command.Register(app);
 
   // A first word that is no command: say so, and offer the nearest one
   // (CLI11 alone answers "A subcommand is required").
@@ -298,10 +302,10 @@ int main(int argc, char** argv) {
     }
     if (*check) return Check(check_file);
     if (*model) return Model(model_file);
-    if (*spectrum) return deb::tools::RunSpectrumCommand(*spectrum);
-    if (*compare) return deb::tools::RunCompareCommand(*compare);
-    if (*sweep) return deb::tools::RunSweepCommand(*sweep);
-    if (*sensitivity) return deb::tools::RunSensitivityCommand(*sensitivity);
+    if (*spectrum) return spectrum_command.Run();
+    if (*compare) return compare_command.Run();
+    if (*sweep) return sweep_command.Run();
+    if (*sensitivity) return sensitivity_command.Run();
   } catch (const deb::InputError& e) {
     std::fprintf(stderr, "deb: error: %s\n", e.what());
     return kExitInput;

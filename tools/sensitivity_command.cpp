@@ -18,11 +18,8 @@
 #include "deb/report/report_tables.h"
 
 namespace deb::tools {
-namespace {
 
-namespace fs = std::filesystem;
-
-struct SensitivitySettings {
+struct SensitivityCommand::Options {
   std::string budget_file;
   std::vector<std::string> parameters;
   double step = 1e-3;
@@ -32,10 +29,11 @@ struct SensitivitySettings {
   bool force = false;  // --force: replace an output directory deb did not write
 };
 
-SensitivitySettings& Settings() {
-  static SensitivitySettings settings;
-  return settings;
-}
+namespace {
+
+namespace fs = std::filesystem;
+
+
 
 std::string Csv(const std::vector<Sensitivity>& all) {
   std::ostringstream os;
@@ -74,8 +72,11 @@ std::string Markdown(const std::string& name, double step, const std::vector<std
 
 }  // namespace
 
-CLI::App* AddSensitivityCommand(CLI::App& app) {
-  SensitivitySettings& s = Settings();
+SensitivityCommand::SensitivityCommand() : options_(std::make_unique<Options>()) {}
+SensitivityCommand::~SensitivityCommand() = default;
+
+CLI::App* SensitivityCommand::Register(CLI::App& app) {
+  Options& s = *options_;
   CLI::App* c = app.add_subcommand(
       "sensitivity", "Derivatives of every output's variance with respect to parameters (by key path), ranked");
   c->add_option("budget", s.budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
@@ -104,27 +105,17 @@ CLI::App* AddSensitivityCommand(CLI::App& app) {
   return c;
 }
 
-int RunSensitivityCommand(const CLI::App& /*sensitivity*/) {
-  const SensitivitySettings& s = Settings();
+int SensitivityCommand::Run() const {
+  const Options& s = *options_;
   const Budget budget = LoadBudgetFile(s.budget_file);
   EngineOptions options;
   options.threads = s.threads;
-  const BudgetResult nominal = Evaluate(budget, options);
-  std::vector<Sensitivity> all;
-  for (const std::string& key : s.parameters) {
-    BudgetResult perturbed[2];
-    for (int side = 0; side < 2; ++side) {
-      Budget b = LoadBudgetWithScaledParameter(s.budget_file, key, side == 0 ? 1.0 + s.step : 1.0 - s.step);
-      b.grid = GridSpec();
-      b.grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
-      b.grid.f_hz = nominal.grid.f_hz();
-      b.grid.panel_starts = nominal.grid.panel_starts();
-      if (b.bands.empty()) b.bands = budget.bands;
-      perturbed[side] = Evaluate(b, options);
-    }
-    const auto part = Sensitivities(key, s.step, nominal, perturbed[0], perturbed[1]);
-    all.insert(all.end(), part.begin(), part.end());
-  }
+  const SensitivityStudy study = ComputeSensitivities(
+      budget, s.parameters, s.step,
+      [&s](const std::string& key, double factor) { return LoadBudgetWithScaledParameter(s.budget_file, key, factor); },
+      options);
+  const BudgetResult& nominal = study.nominal;
+  const std::vector<Sensitivity>& all = study.sensitivities;
   std::vector<std::string> outputs;
   for (const auto& o : nominal.outputs) outputs.push_back(o.name);
   const std::string dir =

@@ -7,14 +7,29 @@
 
 #include <CLI/CLI.hpp>
 
+#include <memory>
+
 namespace deb::tools {
 
-// Registers `sensitivity` on app.
-CLI::App* AddSensitivityCommand(CLI::App& app);
+// The command's options are members, bound by Register(); the object must
+// outlive the parse of the app it is registered on.
+class SensitivityCommand {
+ public:
+  SensitivityCommand();
+  ~SensitivityCommand();
+  SensitivityCommand(const SensitivityCommand&) = delete;
+  SensitivityCommand& operator=(const SensitivityCommand&) = delete;
 
-// Runs `sensitivity` (after parsing).
-// @throws InputError for a bad budget, a key path that reaches no number, or
-//         a directory that cannot be written.
-int RunSensitivityCommand(const CLI::App& sensitivity);
+  // Registers `sensitivity` on app.
+  CLI::App* Register(CLI::App& app);
+  // Runs it, after parsing; returns the exit code.
+  // @throws InputError for bad input, WriteError for output that cannot be written.
+  int Run() const;
+
+  struct Options;  // the command line's values (sensitivity_command.cpp)
+
+ private:
+  std::unique_ptr<Options> options_;
+};
 
 }  // namespace deb::tools

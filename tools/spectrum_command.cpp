@@ -1,6 +1,5 @@
 #include "tools/spectrum_command.h"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -19,11 +18,12 @@
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/report/measurement_plots.h"
+#include "deb/report/output_files.h"
 #include "deb/report/plot_files.h"
 #include "deb/report/report_options.h"
 #include "deb/signal/frf_estimate.h"
 #include "deb/signal/self_noise.h"
-#include "deb/signal/time_series_file.h"
+#include "deb/signal/recording.h"
 #include "deb/signal/welch.h"
 #include "deb/spectra/band_rms.h"
 #include "deb/spectra/building_criteria.h"
@@ -34,9 +34,6 @@
 #include "deb/units/unit.h"
 
 namespace deb::tools {
-namespace {
-
-namespace fs = std::filesystem;
 
 // Options shared by the commands that read a recording.
 struct RecordingOptions {
@@ -55,7 +52,7 @@ struct RecordingOptions {
   int threads = 0;
 };
 
-struct Settings {
+struct SpectrumCommand::Options {
   RecordingOptions rec;
   std::string out;
   bool bounds = false;
@@ -89,10 +86,12 @@ struct Settings {
            *reference = nullptr;
 };
 
-Settings& S() {
-  static Settings settings;
-  return settings;
-}
+namespace {
+
+namespace fs = std::filesystem;
+
+
+using Settings = SpectrumCommand::Options;
 
 void AddRecordingOptions(CLI::App* c, RecordingOptions& r) {
   c->add_option("recording", r.file, "Time series: CSV (time column or '# rate_hz:') or raw little-endian floats")
@@ -114,26 +113,17 @@ void AddRecordingOptions(CLI::App* c, RecordingOptions& r) {
 }
 
 TimeSeries ReadRecording(const RecordingOptions& r) {
-  TimeSeries series = [&] {
-    if (r.format == "csv") {
-      TimeSeriesCsvOptions o;
-      if (r.rate_hz > 0.0) o.rate_hz = r.rate_hz;
-      o.unit = r.unit;
-      return ReadTimeSeriesCsv(r.file, o);
-    }
-    RawTimeSeriesOptions o;
-    o.format = ParseRawSampleFormat(r.format);
-    o.rate_hz = r.rate_hz;
-    o.unit = r.unit;
-    if (r.file_channels.size() == 1 && std::isdigit(static_cast<unsigned char>(r.file_channels[0][0]))) {
-      o.channels = std::stoi(r.file_channels[0]);
-    } else if (!r.file_channels.empty()) {
-      o.channel_names = r.file_channels;
-      o.channels = static_cast<int>(r.file_channels.size());
-    }
-    return ReadRawTimeSeries(r.file, o);
-  }();
-  return r.columns.empty() ? series : series.Select(r.columns);
+  RecordingSpec spec;
+  spec.file = r.file;
+  if (r.format != "csv") spec.raw = ParseRawSampleFormat(r.format);
+  if (r.rate_hz > 0.0 || spec.raw) spec.rate_hz = r.rate_hz;
+  spec.unit = r.unit;
+  if (r.file_channels.size() == 1 && std::isdigit(static_cast<unsigned char>(r.file_channels[0][0])))
+    spec.file_channels = std::stoi(r.file_channels[0]);
+  else
+    spec.file_channel_names = r.file_channels;
+  spec.columns = r.columns;
+  return deb::ReadRecording(spec);
 }
 
 WelchOptions Welch(const RecordingOptions& r) {
@@ -174,92 +164,34 @@ std::vector<PlotFormat> PlotFormats(const Settings& s) {
   return s.plot_formats;
 }
 
-// Everything one command writes: text files (or standard output) and plots
-// beside them. Write() draws the plots first, in hidden directories, then
-// writes every file through a temporary name and renames them all, so that
-// a missing gnuplot or an unwritable file leaves nothing half-written.
+// Everything one command writes (report::OutputFiles), with the plot
+// formats and notes of the command line.
 class Outputs {
  public:
-  explicit Outputs(const Settings& s) : settings_(s) {}
+  explicit Outputs(const Settings& s)
+      : settings_(s), files_("; name the plot with --plot, or give --no-plots") {}
 
   // path "" or "-": standard output.
   void Text(const std::string& path, std::string text, const std::string& what) {
-    texts_.push_back({path, std::move(text), what});
+    files_.Text(path, std::move(text), what);
   }
   // plot.name must be place.stem: its script reads the data by that name.
   void Plot(const PlotPlace& place, report::Plot plot) {
     DEB_DEMAND(plot.name == place.stem);
-    plots_.push_back({std::move(plot), place.directory});
+    files_.Plot(place.directory, std::move(plot));
   }
   const std::vector<std::string>& written() const { return written_; }
 
   void Write() {
-    if (plots_.empty() && settings_.plots && !settings_.plot_formats.empty())
+    if (!files_.has_plots() && settings_.plots && !settings_.plot_formats.empty())
       std::fprintf(stderr, "deb: note: no plot: the CSV goes to standard output; name the plot with --plot\n");
-    const std::vector<PlotFormat> formats = plots_.empty() ? std::vector<PlotFormat>{} : PlotFormats(settings_);
-    RefuseCollisions(formats);
-    std::optional<report::StagedPlots> staged;
-    if (!plots_.empty()) staged.emplace(plots_, formats);
-    std::vector<std::pair<std::string, std::string>> renames;  // temporary, final
-    const auto discard = [&] {
-      for (const auto& [tmp, final_path] : renames) std::remove(tmp.c_str());
-    };
-    for (const File& f : texts_) {
-      if (f.path.empty() || f.path == "-") continue;
-      // Beside the output, so that the rename stays in one file system; a
-      // link or file planted at that name is removed, never written through.
-      const std::string tmp = f.path + ".tmp-" + std::to_string(::getpid());
-      std::remove(tmp.c_str());
-      try {
-        WriteTextFile(tmp, f.text);
-      } catch (const WriteError& e) {
-        discard();
-        throw WriteError(f.path + ": cannot write the output file (" + e.what() + ")");
-      }
-      renames.push_back({tmp, f.path});
-    }
-    for (const auto& [tmp, final_path] : renames) {
-      std::error_code ec;
-      fs::rename(tmp, final_path, ec);
-      if (ec) {
-        discard();
-        throw WriteError(final_path + ": cannot write the output file: " + ec.message());
-      }
-      written_.push_back(final_path);
-    }
-    for (const File& f : texts_)
-      if (f.path.empty() || f.path == "-") std::cout << f.text;
-    if (staged)
-      for (std::string& p : staged->Commit()) written_.push_back(std::move(p));
+    const std::vector<PlotFormat> formats = files_.has_plots() ? PlotFormats(settings_) : std::vector<PlotFormat>{};
+    written_ = files_.Write(formats, std::cout);
   }
 
  private:
-  struct File {
-    std::string path, text, what;
-  };
-
-  // Two outputs with one name would overwrite each other (e.g. -o psd.png).
-  void RefuseCollisions(const std::vector<PlotFormat>& formats) const {
-    std::vector<std::pair<std::string, std::string>> named;  // path, what
-    for (const File& f : texts_)
-      if (!f.path.empty() && f.path != "-") named.push_back({f.path, f.what});
-    for (const report::StandalonePlot& p : plots_)
-      for (const std::string& path : report::StandalonePlotPaths(p, formats))
-        named.push_back({path, "a file of the plot " + p.plot.name});
-    std::set<std::string> seen;
-    for (std::size_t i = 0; i < named.size(); ++i) {
-      const std::string key = fs::absolute(named[i].first).lexically_normal().string();
-      if (seen.insert(key).second) continue;
-      for (std::size_t j = 0; j < i; ++j)
-        if (fs::absolute(named[j].first).lexically_normal().string() == key)
-          throw InputError(named[i].first + " would be written twice: as " + named[j].second + " and as " +
-                           named[i].second + "; name the plot with --plot, or give --no-plots");
-    }
-  }
-
   const Settings& settings_;
-  std::vector<File> texts_;
-  std::vector<report::StandalonePlot> plots_;
+  report::OutputFiles files_;
   std::vector<std::string> written_;
 };
 
@@ -280,29 +212,7 @@ std::string Number(double v) {
   return text;
 }
 
-// A spectrum CSV (spectrum_csv.h): comments, header, rows above 0 Hz.
-std::string SpectrumCsvText(const std::vector<std::string>& comments, const std::string& unit, bool asd,
-                            const std::vector<double>& f_hz, const Eigen::MatrixXd& psd,
-                            const std::vector<std::string>& names, const Eigen::MatrixXd* extra = nullptr,
-                            const std::vector<std::string>& extra_names = {}) {
-  std::ostringstream out;
-  for (const std::string& c : comments) out << "# " << c << "\n";
-  if (!unit.empty()) out << "# unit: " << unit << "\n";
-  out << "# quantity: " << (asd ? "asd" : "psd") << "\n# sides: one\nf_hz";
-  for (const auto& n : names) out << ", " << n;
-  for (const auto& n : extra_names) out << ", " << n;
-  out << "\n";
-  for (std::size_t k = 0; k < f_hz.size(); ++k) {
-    if (!(f_hz[k] > 0.0)) continue;
-    out << NumberText(f_hz[k]);  // every digit: band edges 1e-9 apart must stay apart
-    for (Eigen::Index c = 0; c < psd.cols(); ++c)
-      out << ", " << Number(asd ? std::sqrt(psd(static_cast<Eigen::Index>(k), c)) : psd(static_cast<Eigen::Index>(k), c));
-    if (extra)
-      for (Eigen::Index c = 0; c < extra->cols(); ++c) out << ", " << Number((*extra)(static_cast<Eigen::Index>(k), c));
-    out << "\n";
-  }
-  return out.str();
-}
+SpectrumQuantity Quantity(bool asd) { return asd ? SpectrumQuantity::kAsd : SpectrumQuantity::kPsd; }
 
 std::vector<std::string> Provenance(const std::string& what, const PsdEstimate& e, const std::string& source) {
   std::vector<std::string> lines = {what + " of " + source};
@@ -329,7 +239,7 @@ int RunWelch(const Settings& s) {
     }
   }
   Outputs outputs(s);
-  outputs.Text(s.out, SpectrumCsvText(Provenance("Welch PSD", e, s.rec.file), e.unit, false, e.f_hz, e.psd,
+  outputs.Text(s.out, SpectrumCsvText(Provenance("Welch PSD", e, s.rec.file), e.unit, SpectrumQuantity::kPsd, e.f_hz, e.psd,
                                       e.channel_names, s.bounds ? &bounds : nullptr, bound_names),
                "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true))
@@ -382,11 +292,14 @@ int RunBands(const Settings& s) {
   }
   const bool classify = s.criteria != "none";
   const ThirdOctaveSeries series = ParseThirdOctaveSeries(s.series);
-  ClassifyOptions options;
+  SpectrumClassOptions options;
+  options.classify_bands = classify;
+  options.classify.series = series;
+  options.classify.low_frequency_extension = s.extend;
+  options.lowest_hz = s.lowest_hz;
+  options.highest_hz = s.highest_hz;
   if (classify) {
-    options.set = ParseCriteriaSet(s.criteria);
-    options.series = series;
-    options.low_frequency_extension = s.extend;
+    options.classify.set = ParseCriteriaSet(s.criteria);
     if (unit.empty())
       throw InputError(s.spectrum_file + ": classification needs the unit of the spectrum: give '# unit:' in the "
                        "file or --unit (any velocity, displacement or acceleration unit)");
@@ -394,22 +307,15 @@ int RunBands(const Settings& s) {
   // Criteria are band RMS velocities in um/s: convert (with (2 pi f)^2n for
   // displacement or acceleration) before integrating.
   const UnitConversion to_velocity = classify ? ConvertUnit(unit, "um/s") : UnitConversion{};
+  if (classify) options.to_velocity_psd = [&to_velocity](double f_hz) { return to_velocity.PsdFactor(f_hz); };
   const std::string band_unit = classify ? "um/s" : unit;
   std::ostringstream out;
   out << "# one-third-octave band RMS (" << ToString(series) << " centres)"
       << (band_unit.empty() ? "" : " in " + band_unit) << " of " << s.spectrum_file << "\n";
   if (classify && !to_velocity.IsPureScale()) out << "# converted from " << unit << ": " << to_velocity.Describe() << "\n";
-  std::vector<std::vector<BandRms>> per_channel;
-  std::vector<Classification> verdicts;
-  for (Eigen::Index c = 0; c < csv.psd.cols(); ++c) {
-    std::vector<double> psd(csv.f_hz.size());
-    for (std::size_t k = 0; k < psd.size(); ++k)
-      psd[k] = csv.psd(static_cast<Eigen::Index>(k), c) * (classify ? to_velocity.PsdFactor(csv.f_hz[k]) : 1.0);
-    per_channel.push_back(s.lowest_hz > 0.0
-                              ? ThirdOctaveBandRms(csv.f_hz, psd, series, s.lowest_hz, s.highest_hz, csv.interpolation)
-                              : ThirdOctaveBandRms(csv.f_hz, psd, series, csv.interpolation));
-    if (classify) verdicts.push_back(Classify(per_channel.back(), options));
-  }
+  const SpectrumClasses classes = ClassifySpectrum(csv.f_hz, csv.psd, csv.interpolation, options);
+  const std::vector<std::vector<BandRms>>& per_channel = classes.bands;
+  const std::vector<Classification>& verdicts = classes.classes;
   out << "centre_hz, lo_hz, hi_hz, points";
   for (const std::string& n : csv.channel_names) out << ", " << n << (classify ? ", " + n + "_class" : "");
   out << "\n";
@@ -428,10 +334,7 @@ int RunBands(const Settings& s) {
   Outputs outputs(s);
   outputs.Text(s.out, out.str(), "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true)) {
-    ClassifyOptions drawn = options;
-    drawn.series = series;
-    drawn.low_frequency_extension = s.extend;
-    outputs.Plot(*place, report::BandClassPlot(csv.channel_names, per_channel, verdicts, drawn, band_unit,
+    outputs.Plot(*place, report::BandClassPlot(csv.channel_names, per_channel, verdicts, options.classify, band_unit,
                                                SourceName(s.spectrum_file), place->stem));
   }
   outputs.Write();
@@ -474,7 +377,7 @@ int RunConvert(const Settings& s) {
     Outputs outputs(s);
     outputs.Text(s.out, SpectrumCsvText({"PSD from the one-third-octave band RMS table " + s.spectrum_file +
                                              " (constant in each band, " + ToString(series) + " edges)"},
-                                        table.unit.value_or(""), s.asd, f_out, psd, table.channel_names),
+                                        table.unit.value_or(""), Quantity(s.asd), f_out, psd, table.channel_names),
                  "the output CSV (-o)");
     if (const auto place = PlacePlot(s, s.out, true))
       outputs.Plot(*place, report::SpectrumTablePlot(
@@ -500,7 +403,7 @@ int RunConvert(const Settings& s) {
     comments.push_back(from + " -> " + to + ": " + conv.Describe());
   }
   Outputs outputs(s);
-  outputs.Text(s.out, SpectrumCsvText(comments, to, s.asd, csv.f_hz, psd, csv.channel_names), "the output CSV (-o)");
+  outputs.Text(s.out, SpectrumCsvText(comments, to, Quantity(s.asd), csv.f_hz, psd, csv.channel_names), "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true)) {
     std::string title = std::string(s.asd ? "ASD" : "PSD") + " of " + SourceName(s.spectrum_file);
     if (!s.to_unit.empty()) title += ", converted from " + report::UnitText(from) + " to " + report::UnitText(to);
@@ -527,7 +430,7 @@ int RunSelfNoise(const Settings& s) {
       comments.push_back(n.noise.channel_names[c] + ": " + std::to_string(n.clamped_bins[c]) +
                          " bins estimated below zero, set to 0");
   Outputs outputs(s);
-  outputs.Text(s.out, SpectrumCsvText(comments, n.noise.unit, false, n.noise.f_hz, n.noise.psd, n.noise.channel_names),
+  outputs.Text(s.out, SpectrumCsvText(comments, n.noise.unit, SpectrumQuantity::kPsd, n.noise.f_hz, n.noise.psd, n.noise.channel_names),
                "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true))
     outputs.Plot(*place, report::SelfNoisePlot(csd.AutoSpectra(), n, SourceName(s.rec.file), place->stem));
@@ -586,7 +489,7 @@ int RunReference(const Settings& s) {
   Outputs outputs(s);
   outputs.Text(s.out, SpectrumCsvText({"Peterson (1993), USGS OFR 93-322, " + ToString(model) +
                                            ": vertical ground motion, converted from m/s^2: " + conv.Describe()},
-                                      unit, s.asd, f, psd, {ToString(model)}),
+                                      unit, Quantity(s.asd), f, psd, {ToString(model)}),
                "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true))
     outputs.Plot(*place, report::PetersonPlot(model, f, unit, s.asd, place->stem));
@@ -627,8 +530,11 @@ void AddPlotOptions(CLI::App* c, Settings& s) {
 
 }  // namespace
 
-CLI::App* AddSpectrumCommand(CLI::App& app) {
-  Settings& s = S();
+SpectrumCommand::SpectrumCommand() : options_(std::make_unique<Options>()) {}
+SpectrumCommand::~SpectrumCommand() = default;
+
+CLI::App* SpectrumCommand::Register(CLI::App& app) {
+  Options& s = *options_;
   CLI::App* spectrum = app.add_subcommand("spectrum", "Measured data: Welch spectra, band RMS and VC/ISO classes, "
                                                       "conversions, sensor self-noise, reference spectra");
   spectrum->require_subcommand(1);
@@ -696,9 +602,8 @@ CLI::App* AddSpectrumCommand(CLI::App& app) {
   return spectrum;
 }
 
-int RunSpectrumCommand(const CLI::App& spectrum) {
-  (void)spectrum;
-  const Settings& s = S();
+int SpectrumCommand::Run() const {
+  const Options& s = *options_;
   if (*s.welch) return RunWelch(s);
   if (*s.bands) return RunBands(s);
   if (*s.convert) return RunConvert(s);

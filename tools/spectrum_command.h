@@ -8,14 +8,29 @@
 
 #include <CLI/CLI.hpp>
 
+#include <memory>
+
 namespace deb::tools {
 
-// Registers `spectrum` and its subcommands on app.
-CLI::App* AddSpectrumCommand(CLI::App& app);
+// The command's options are members, bound by Register(); the object must
+// outlive the parse of the app it is registered on.
+class SpectrumCommand {
+ public:
+  SpectrumCommand();
+  ~SpectrumCommand();
+  SpectrumCommand(const SpectrumCommand&) = delete;
+  SpectrumCommand& operator=(const SpectrumCommand&) = delete;
 
-// Runs the chosen subcommand of `spectrum` (after parsing).
-// @throws InputError for bad input, an output that cannot be written, or a
-//   missing or failing gnuplot; nothing is written then.
-int RunSpectrumCommand(const CLI::App& spectrum);
+  // Registers `spectrum` on app.
+  CLI::App* Register(CLI::App& app);
+  // Runs it, after parsing; returns the exit code.
+  // @throws InputError for bad input, WriteError for output that cannot be written.
+  int Run() const;
+
+  struct Options;  // the command line's values (spectrum_command.cpp)
+
+ private:
+  std::unique_ptr<Options> options_;
+};
 
 }  // namespace deb::tools

@@ -16,11 +16,8 @@
 #include "deb/report/sweep_plots.h"
 
 namespace deb::tools {
-namespace {
 
-namespace fs = std::filesystem;
-
-struct SweepSettings {
+struct SweepCommand::Options {
   std::string budget_file;
   std::string out_dir;
   int threads = 0;
@@ -29,15 +26,19 @@ struct SweepSettings {
   bool plots = true;
 };
 
-SweepSettings& Settings() {
-  static SweepSettings settings;
-  return settings;
-}
+namespace {
+
+namespace fs = std::filesystem;
+
+
 
 }  // namespace
 
-CLI::App* AddSweepCommand(CLI::App& app) {
-  SweepSettings& s = Settings();
+SweepCommand::SweepCommand() : options_(std::make_unique<Options>()) {}
+SweepCommand::~SweepCommand() = default;
+
+CLI::App* SweepCommand::Register(CLI::App& app) {
+  Options& s = *options_;
   CLI::App* c = app.add_subcommand("sweep", "Evaluate every variant of a budget's sweep section; write sweep.csv");
   c->add_option("budget", s.budget_file, "Budget YAML file with a sweep section")->required()->check(CLI::ExistingFile);
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_sweep)");
@@ -49,8 +50,8 @@ CLI::App* AddSweepCommand(CLI::App& app) {
   return c;
 }
 
-int RunSweepCommand(const CLI::App& /*sweep*/) {
-  const SweepSettings& s = Settings();
+int SweepCommand::Run() const {
+  const Options& s = *options_;
   const SweepBudget sweep = LoadSweepFile(s.budget_file);
   const bool progress = !s.quiet && ::isatty(STDERR_FILENO);
   const auto results = EvaluateSweep(sweep.spec, sweep.variants, s.threads, [&](std::size_t done, std::size_t total) {

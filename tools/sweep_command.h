@@ -7,14 +7,29 @@
 
 #include <CLI/CLI.hpp>
 
+#include <memory>
+
 namespace deb::tools {
 
-// Registers `sweep` on app.
-CLI::App* AddSweepCommand(CLI::App& app);
+// The command's options are members, bound by Register(); the object must
+// outlive the parse of the app it is registered on.
+class SweepCommand {
+ public:
+  SweepCommand();
+  ~SweepCommand();
+  SweepCommand(const SweepCommand&) = delete;
+  SweepCommand& operator=(const SweepCommand&) = delete;
 
-// Runs `sweep` (after parsing).
-// @throws InputError for a bad budget or sweep section, a variant that cannot
-//         be evaluated, or a directory that cannot be written.
-int RunSweepCommand(const CLI::App& sweep);
+  // Registers `sweep` on app.
+  CLI::App* Register(CLI::App& app);
+  // Runs it, after parsing; returns the exit code.
+  // @throws InputError for bad input, WriteError for output that cannot be written.
+  int Run() const;
+
+  struct Options;  // the command line's values (sweep_command.cpp)
+
+ private:
+  std::unique_ptr<Options> options_;
+};
 
 }  // namespace deb::tools

@@ -9,6 +9,7 @@
 // divided by p it is the plain derivative d var / dp.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,23 @@ struct Sensitivity {
 // the nominal result. DEB_DEMANDs results of the same budget structure.
 std::vector<Sensitivity> Sensitivities(const std::string& parameter, double relative_step, const BudgetResult& nominal,
                                        const BudgetResult& up, const BudgetResult& down);
+
+// The budget with `parameter` multiplied by `factor` (deb/io's
+// LoadBudgetWithScaledParameter for a key path of the budget file).
+using ScaledBudget = std::function<Budget(const std::string& parameter, double factor)>;
+
+struct SensitivityStudy {
+  BudgetResult nominal;
+  std::vector<Sensitivity> sensitivities;  // parameter after parameter, each as Sensitivities()
+};
+
+// Evaluates `budget`, then for each parameter the budgets scaled(parameter,
+// 1 + h) and scaled(parameter, 1 - h) on the nominal grid (and with the
+// nominal bands when they have none), and differences them.
+// @throws InputError as scaled() and Evaluate().
+SensitivityStudy ComputeSensitivities(const Budget& budget, const std::vector<std::string>& parameters,
+                                      double relative_step, const ScaledBudget& scaled,
+                                      const EngineOptions& options = {});
 
 // Entries of one output ranked by |d variance / d ln p|, largest first.
 std::vector<Sensitivity> RankedForOutput(const std::vector<Sensitivity>& all, const std::string& output);

@@ -2,8 +2,7 @@
 
 #include <cmath>
 
-#include "deb/models/isolation_model.h"
-#include "deb/units/unit.h"
+#include "deb/models/isolation_system.h"
 
 namespace deb::io {
 namespace {
@@ -23,31 +22,22 @@ Eigen::Matrix3d Inertia(const YamlNode& node) {
   return j;
 }
 
-// The model's units must be one consistent set: mass = force s^2 / length.
-void CheckUnitSet(const YamlNode& node, const std::string& length, const std::string& mass, const std::string& force) {
-  const std::string derived = "(" + force + ") s^2/(" + length + ")";
-  const UnitConversion c = AtNode(node, [&] { return ConvertUnit(mass, derived); });
-  if (!c.IsPureScale() || std::abs(c.scale - 1.0) > 1e-9) {
-    node.Fail("units are not one consistent set: 1 " + mass + " must equal 1 " + force + " s^2/" + length +
-              " (e.g. kg with m and N, or t with mm and N)");
-  }
-}
-
 }  // namespace
 
-ParsedModel ParseIsolationSystem(const YamlNode& node) {
+IsolationPaths ParseIsolationSystem(const YamlNode& node) {
   node.AllowOnly({"name", "description", "type", "units", "body", "isolators", "sensors", "actuators", "control"});
   const std::string name = node.Required("name").AsString();
-  std::string length = "m", mass = "kg", force = "N";
+  IsolationPathsSpec spec;
+  spec.name = name;
   if (auto u = node.Optional("units")) {
     u->AllowOnly({"length", "mass", "force"});
-    if (auto v = u->Optional("length")) length = v->AsString();
-    if (auto v = u->Optional("mass")) mass = v->AsString();
-    if (auto v = u->Optional("force")) force = v->AsString();
-    CheckUnitSet(*u, length, mass, force);
+    if (auto v = u->Optional("length")) spec.units.length = v->AsString();
+    if (auto v = u->Optional("mass")) spec.units.mass = v->AsString();
+    if (auto v = u->Optional("force")) spec.units.force = v->AsString();
+    AtNode(*u, [&] { CheckIsolationUnits(spec.units); });
   }
 
-  IsolationSystem sys;
+  IsolationSystem& sys = spec.system;
   const YamlNode body = node.Required("body");
   body.AllowOnly({"mass", "inertia", "gravity"});
   sys.body.mass = body.Required("mass").AsDouble();
@@ -99,46 +89,14 @@ ParsedModel ParseIsolationSystem(const YamlNode& node) {
     else gains.Fail("gains: one number for all six logical axes, or six numbers, got " + std::to_string(g.size()));
   }
 
-  const IsolationModel model = AtNode(node, [&] { return IsolationModel(sys); });
-  const std::string velocity = length + "/s";
-  const std::vector<std::string> out_units = {velocity, velocity, velocity, "rad/s", "rad/s", "rad/s"};
-  const auto out_names = IsolationModel::OutputNames(IsolationModel::Outputs::kVelocity);
-  const auto make = [&](const std::string& suffix, const std::string& what, StateSpace s,
-                        std::vector<std::string> in_names, const std::string& in_unit) {
-    Path p;
-    p.name = name + "." + suffix;
-    p.description = what;
-    p.system = std::move(s);
-    p.input_units.assign(in_names.size(), in_unit);
-    p.input_names = std::move(in_names);
-    p.output_names = out_names;
-    p.output_units = out_units;
-    return p;
-  };
-  std::vector<std::string> sensor_names, actuator_names;
-  for (const auto& s : sys.sensors) sensor_names.push_back(s.name);
-  for (const auto& a : sys.actuators) actuator_names.push_back(a.name);
-
-  ParsedModel out;
-  using Loop = IsolationModel::Loop;
-  out.paths.push_back(make("floor_open", "floor velocity -> CoG velocities, passive (open loop)",
-                           model.FloorToCog(Loop::kOpen), IsolationModel::FloorInputNames(), velocity));
-  if (!actuator_names.empty())
-    out.paths.push_back(make("actuator_open", "actuator force -> CoG velocities, open loop",
-                             model.ActuatorToCog(Loop::kOpen), actuator_names, force));
-  if (model.has_control() && node.Has("control")) {
-    AtNode(node.Required("control"), [&] {
-      out.paths.push_back(make("floor", "floor velocity -> CoG velocities, closed loop (eq. 3-43)",
-                               model.FloorToCog(Loop::kClosed), IsolationModel::FloorInputNames(), velocity));
-      out.paths.push_back(make("sensor_noise", "sensor noise -> CoG velocities, closed loop (eq. 3-44)",
-                               model.SensorNoiseToCog(), sensor_names, velocity));
-      out.paths.push_back(make("actuator", "actuator force -> CoG velocities, closed loop",
-                               model.ActuatorToCog(Loop::kClosed), actuator_names, force));
-    });
+  spec.control = node.Has("control");
+  spec.key_path = node.key();
+  std::vector<YamlNode> located = {node};
+  if (spec.control) {
+    located.push_back(node.Required("control"));
+    spec.control_key_path = located.back().key();
   }
-  out.report = "model " + name + " (units: length " + length + ", mass " + mass + ", force " + force + ")\n" +
-               model.Summary().Report();
-  return out;
+  return AtNodes(node, located, [&] { return MakeIsolationPaths(spec); });
 }
 
 }  // namespace deb::io

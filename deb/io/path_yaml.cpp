@@ -3,12 +3,12 @@
 #include <filesystem>
 #include <memory>
 
+#include "deb/budget/path_composition.h"
 #include "deb/core/limits.h"
 #include "deb/io/isolation_yaml.h"
 #include "deb/io/mat_file.h"
 #include "deb/io/modal_yaml.h"
 #include "deb/systems/frf_csv.h"
-#include "deb/systems/interconnect.h"
 #include "deb/systems/transfer_function.h"
 #include "deb/units/unit.h"
 
@@ -116,58 +116,11 @@ TransferFunction ParseTf(const YamlNode& node) {
   return AtNode(node, [&] { return TransferFunction(node.Required("num").AsDoubles(), node.Required("den").AsDoubles()); });
 }
 
-// Gain matrix diag(scale_k) turning signals in `from` units into `to` units.
-// @throws at `node` if a pair differs by more than a scale.
-Eigen::MatrixXd ScaleBetween(const YamlNode& node, const std::vector<std::string>& from,
-                             const std::vector<std::string>& to, const std::string& what) {
-  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(to.size(), from.size());
-  for (std::size_t k = 0; k < from.size(); ++k) {
-    const UnitConversion c = AtNode(node, [&] { return ConvertUnit(from[k], to[k]); });
-    if (!c.IsPureScale())
-      node.Fail(what + ": channel " + std::to_string(k + 1) + " carries '" + from[k] + "' into '" + to[k] +
-                "', which differ by a time derivative; insert the derivative explicitly");
-    g(k, k) = c.scale;
-  }
-  return g;
-}
-
-// Sets p's transfer to the combination of a and b: in state space when both
-// are rational (poles and Lyapunov variances stay available), else as a
-// diagram evaluated per frequency, with a zero gain of the result's size as
-// `system`.
-template <typename StateSpaceOp, typename ModelOp>
-void Combine(Path* p, const Path& a, const Path& b, StateSpaceOp rational, ModelOp diagram) {
-  p->modal.reset();  // a combination is realised in state space (path.h)
-  if (!a.HasMeasuredData() && !b.HasMeasuredData()) {
-    p->system = rational(a.Rational(), b.Rational());
-    p->measured.reset();
-    return;
-  }
-  auto model = std::make_shared<const FrequencyModel>(diagram(a.Model(), b.Model()));
-  p->system = StateSpace::Gain(Eigen::MatrixXd::Zero(model->outputs(), model->inputs()));
-  p->measured = std::move(model);
-}
-
-// p's transfer = b after a (H = H_b H_a).
-void SeriesInto(Path* p, const Path& a, const Path& b) {
-  Combine(p, a, b, [](const StateSpace& x, const StateSpace& y) { return Series(x, y); },
-          [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); });
-}
-
-// A modal path joined with others is realised in state space (path.h):
-// refused, at `where`, beyond limits::kMaxDenseStates states.
-void RequireDenseRealisable(const YamlNode& where, const Path& part) {
-  if (part.IsModal() && 2 * part.modal->modes() > limits::kMaxDenseStates)
-    where.Fail("path '" + part.name + "' has " + std::to_string(part.modal->modes()) +
-               " modes; joined with other paths it is realised in state space, 2 states per mode, and at most " +
-               std::to_string(limits::kMaxDenseStates) + " states are formed (use it directly in a contributor)");
-}
-
-// A path of the gain g (no states) for scaling between parts.
-Path GainPath(const Eigen::MatrixXd& g) {
-  Path p;
-  p.system = StateSpace::Gain(g);
-  return p;
+// `composed` under the name and description of `entry`.
+Path Named(const Path& entry, Path composed) {
+  composed.name = entry.name;
+  composed.description = entry.description;
+  return composed;
 }
 
 }  // namespace
@@ -181,7 +134,7 @@ const Path& PathContext::Lookup(const YamlNode& name_node) const {
 
 std::vector<Path> PathContext::Parse(const YamlNode& node) {
   if (node.Has("type") && node.Required("type").AsString() == "isolation_system") {
-    ParsedModel model = ParseIsolationSystem(node);
+    IsolationPaths model = ParseIsolationSystem(node);
     models_.push_back({node.Required("name").AsString(), model.report});
     for (const Path& p : model.paths) {
       if (parsed_.count(p.name)) node.Required("name").Fail("path name '" + p.name + "' is used twice");
@@ -237,72 +190,25 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
   } else if (type == "series" || type == "parallel") {
     node.AllowOnly({"name", "description", "type", "inputs", "outputs", "of"});
     composite = true;
-    const auto parts = node.Required("of").Elements();
-    if (parts.size() < 2) node.Required("of").Fail("list at least two paths");
-    Path acc = Lookup(parts[0]);
-    RequireDenseRealisable(parts[0], acc);
-    for (std::size_t i = 1; i < parts.size(); ++i) {
-      const Path& next = Lookup(parts[i]);
-      RequireDenseRealisable(parts[i], next);
-      if (type == "series") {
-        if (next.system.inputs() != acc.system.outputs())
-          parts[i].Fail("path '" + next.name + "' has " + std::to_string(next.system.inputs()) +
-                        " input(s) but follows " + std::to_string(acc.system.outputs()) + " output(s)");
-        const Eigen::MatrixXd g = ScaleBetween(parts[i], acc.output_units, next.input_units, "series");
-        Path scaled = acc;
-        SeriesInto(&scaled, acc, GainPath(g));
-        SeriesInto(&acc, scaled, next);
-        acc.output_names = next.output_names;
-        acc.output_units = next.output_units;
-      } else {
-        if (next.system.inputs() != acc.system.inputs() || next.system.outputs() != acc.system.outputs())
-          parts[i].Fail("parallel paths must have the same numbers of inputs and outputs");
-        const Eigen::MatrixXd gi = ScaleBetween(parts[i], acc.input_units, next.input_units, "parallel inputs");
-        const Eigen::MatrixXd go = ScaleBetween(parts[i], next.output_units, acc.output_units, "parallel outputs");
-        Path other = next;
-        SeriesInto(&other, GainPath(gi), next);
-        SeriesInto(&other, other, GainPath(go));
-        const Path before = acc;
-        Combine(&acc, before, other, [](const StateSpace& x, const StateSpace& y) { return Parallel(x, y); },
-                [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Parallel(x, y); });
-      }
-    }
-    p.system = acc.system;
-    p.measured = acc.measured;
-    p.input_units = acc.input_units;
-    p.output_units = acc.output_units;
-    p.input_names = acc.input_names;
-    p.output_names = acc.output_names;
+    const YamlNode of = node.Required("of");
+    const std::vector<YamlNode> parts = of.Elements();
+    std::vector<PathPart> looked_up;
+    if (parts.size() >= 2)  // else the composition refuses the list before any name is looked up
+      for (const YamlNode& part : parts) looked_up.push_back({&Lookup(part), part.key()});
+    p = Named(p, AtNodes(of, parts, [&] {
+      return type == "series" ? SeriesOfPaths(looked_up) : ParallelOfPaths(looked_up);
+    }));
   } else if (type == "feedback") {
     node.AllowOnly({"name", "description", "type", "inputs", "outputs", "plant", "controller", "sign"});
     composite = true;
-    const Path& plant = Lookup(node.Required("plant"));
-    const Path& ctrl = Lookup(node.Required("controller"));
-    RequireDenseRealisable(node.Required("plant"), plant);
-    RequireDenseRealisable(node.Required("controller"), ctrl);
+    const YamlNode plant = node.Required("plant"), controller = node.Required("controller");
+    const PathPart g{&Lookup(plant), plant.key()}, k{&Lookup(controller), controller.key()};
     int sign = -1;
     if (auto s = node.Optional("sign")) {
       sign = s->AsInt();
-      if (sign != 1 && sign != -1) s->Fail("sign must be -1 (negative feedback) or +1, got " + std::to_string(sign));
+      AtNode(*s, [&] { CheckFeedbackSign(sign); });
     }
-    if (ctrl.system.inputs() != plant.system.outputs() || ctrl.system.outputs() != plant.system.inputs())
-      node.Required("controller").Fail("controller '" + ctrl.name + "' must have " +
-                                       std::to_string(plant.system.outputs()) + " input(s) and " +
-                                       std::to_string(plant.system.inputs()) + " output(s) to close a loop around '" +
-                                       plant.name + "'");
-    const Eigen::MatrixXd gi = ScaleBetween(node.Required("controller"), plant.output_units, ctrl.input_units, "feedback");
-    const Eigen::MatrixXd go = ScaleBetween(node.Required("controller"), ctrl.output_units, plant.input_units, "feedback");
-    Path k = ctrl;
-    SeriesInto(&k, GainPath(gi), ctrl);
-    SeriesInto(&k, k, GainPath(go));
-    AtNode(node, [&] {
-      Combine(&p, plant, k, [&](const StateSpace& g, const StateSpace& c) { return Feedback(g, c, sign); },
-              [&](const FrequencyModel& g, const FrequencyModel& c) { return FrequencyModel::Feedback(g, c, sign); });
-    });
-    p.input_units = plant.input_units;
-    p.output_units = plant.output_units;
-    p.input_names = plant.input_names;
-    p.output_names = plant.output_names;
+    p = Named(p, AtNodes(node, {plant, controller}, [&] { return FeedbackOfPaths(g, k, sign); }));
   } else if (type == "frf") {
     node.AllowOnly(With(kCommonKeys, {"file", "extrapolation"}));
     const YamlNode file = node.Required("file");

@@ -1,8 +1,8 @@
 // YAML -> Path: the `paths:` entries of a budget (transfer_function,
 // state_space (A, B, C, D inline or from a MATLAB file, deb/io/mat_file.h), gain, frf (a measured frequency response from a file), modal
 // (finite-element modes, deb/io/modal_yaml.h), and
-// series/parallel/feedback of earlier paths, with units
-// checked and scaled at every connection), and output weightings.
+// series/parallel/feedback of earlier paths, composed by
+// deb/budget/path_composition.h), and output weightings.
 #pragma once
 
 #include <map>

@@ -3,8 +3,7 @@
 #include <filesystem>
 
 #include "deb/core/limits.h"
-#include "deb/signal/time_series_file.h"
-#include "deb/signal/welch.h"
+#include "deb/signal/recording.h"
 #include "deb/spectra/channel_set.h"
 #include "deb/spectra/converted_spectrum.h"
 #include "deb/spectra/flat_spectrum.h"
@@ -84,39 +83,38 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
   const YamlNode file = spec.Required("file");
   std::filesystem::path p(file.AsString());
   if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  RecordingSpec recording;
+  recording.file = p.string();
   const std::string format = spec.Optional("format") ? spec.Required("format").AsString() : "csv";
   const auto rate = spec.Optional("rate_hz");
   const auto unit_node = node.Optional("unit");
-  TimeSeries series = [&] {
-    if (format == "csv") {
-      if (spec.Has("file_channels"))
-        spec.Required("file_channels").Fail("file_channels is for raw files; a CSV names its columns in its header");
-      TimeSeriesCsvOptions o;
-      if (rate) o.rate_hz = rate->AsPositive();
-      return AtNode(file, [&] { return ReadTimeSeriesCsv(p.string(), o); });
-    }
+  if (format == "csv") {
+    if (spec.Has("file_channels"))
+      spec.Required("file_channels").Fail("file_channels is for raw files; a CSV names its columns in its header");
+    if (rate) recording.rate_hz = rate->AsPositive();
+  } else {
     const YamlNode format_node = spec.Required("format");
     if (format != "float32" && format != "float64")
       format_node.Fail("unknown format '" + format + "'; allowed: csv, float32, float64");
-    RawTimeSeriesOptions o;
-    o.format = ParseRawSampleFormat(format);
+    recording.raw = ParseRawSampleFormat(format);
     if (!rate) spec.Fail("missing 'rate_hz': a raw " + format + " file carries no sample rate");
-    o.rate_hz = rate->AsPositive();
+    recording.rate_hz = rate->AsPositive();
     const YamlNode channels = spec.Required("file_channels");
     if (channels.IsScalar()) {
-      o.channels = channels.AsInt();
-      if (o.channels > limits::kMaxChannels)
-        channels.Fail(std::to_string(o.channels) + " channels is more than the " +
+      recording.file_channels = channels.AsInt();
+      if (recording.file_channels > limits::kMaxChannels)
+        channels.Fail(std::to_string(recording.file_channels) + " channels is more than the " +
                       std::to_string(limits::kMaxChannels) + " a recording may have");
     } else {
-      o.channel_names = channels.AsStrings();
-      o.channels = static_cast<int>(o.channel_names.size());
+      recording.file_channel_names = channels.AsStrings();
     }
-    return AtNode(file, [&] { return ReadRawTimeSeries(p.string(), o); });
-  }();
+  }
+  TimeSeries series = AtNode(file, [&] { return ReadRecording(recording); });
   if (auto cols = spec.Optional("columns")) series = AtNode(*cols, [&] { return series.Select(cols->AsStrings()); });
 
-  WelchOptions welch;
+  RecordingSpectrumOptions options;
+  options.cross_spectra = cross == CrossSpectra::kFull;
+  WelchOptions& welch = options.welch;
   if (auto v = spec.Optional("window")) welch.window = AtNode(*v, [&] { return ParseWindowKind(v->AsString()); });
   if (auto v = spec.Optional("segment_length")) {
     welch.segment_length = v->AsInt();
@@ -127,37 +125,26 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
   if (auto v = spec.Optional("overlap")) welch.overlap = v->AsNonNegative();
   if (auto v = spec.Optional("detrend")) welch.detrend = AtNode(*v, [&] { return ParseDetrend(v->AsString()); });
   if (auto v = spec.Optional("averaging")) welch.averaging = AtNode(*v, [&] { return ParseAveraging(v->AsString()); });
-  Extrapolation extrapolation = Extrapolation::kError;
   if (auto e = spec.Optional("extrapolation"))
-    extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
-  const bool keep_cross = cross == CrossSpectra::kFull && series.channels() > 1;
-  if (keep_cross && welch.averaging == Averaging::kMedian)
-    spec.Required("averaging")
-        .Fail("median averaging does not give a positive semi-definite cross-spectral matrix (real and imaginary "
-              "parts are medianed apart); use averaging: mean, or cross_spectra: none for independent channels");
-  std::shared_ptr<const Spectrum> m;
-  std::vector<std::string> estimate_names;
-  if (keep_cross) {
-    const CsdEstimate estimate = AtNode(spec, [&] { return WelchCsd(series, welch); });
-    m = AtNode(file, [&] { return ToTabulatedCsd(estimate, extrapolation); });
-    estimate_names = estimate.channel_names;
-  } else {
-    const PsdEstimate estimate = AtNode(spec, [&] { return WelchPsd(series, welch); });
-    m = AtNode(file, [&] { return ToMeasuredSpectrum(estimate, extrapolation); });
-    estimate_names = estimate.channel_names;
+    options.extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
+  if (unit_node) options.unit = unit_node->AsString();
+  options.key_path = spec.key();
+  options.file_key_path = file.key();
+  std::vector<YamlNode> located = {spec, file};
+  if (auto v = spec.Optional("averaging")) {
+    located.push_back(*v);
+    options.averaging_key_path = v->key();
   }
-
+  if (unit_node) {
+    located.push_back(*unit_node);
+    options.unit_key_path = unit_node->key();
+  }
+  RecordingSpectrum estimate = AtNodes(node, located, [&] { return SpectrumFromRecording(series, options); });
   if (!unit_node && series.unit().empty())
     node.Fail("missing 'unit': neither the budget nor " + p.string() + " ('# unit:') gives one");
-  s->unit = unit_node ? unit_node->AsString() : series.unit();
-  double factor = 1.0;
-  if (!series.unit().empty()) {
-    const UnitConversion conv = AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(series.unit(), s->unit); });
-    if (!conv.IsPureScale())
-      unit_node->Fail("the file's unit '" + series.unit() + "' and '" + s->unit + "' are not the same quantity");
-    factor = conv.scale * conv.scale;
-  }
-  if (factor != 1.0) m = std::make_shared<ScaledSpectrum>(m, factor);
+  s->unit = estimate.unit;
+  const std::shared_ptr<const Spectrum> m = estimate.spectrum;
+  const std::vector<std::string>& estimate_names = estimate.channel_names;
   s->channel_names = node.Has("channels") ? ChannelNames(node, s->name, m->channels()) : estimate_names;
   if (static_cast<int>(s->channel_names.size()) != m->channels())
     node.Required("channels").Fail("the recording gives " + std::to_string(m->channels()) + " channel(s) but " +

@@ -100,4 +100,19 @@ auto AtNode(const YamlNode& node, F&& f) -> decltype(f()) {
   }
 }
 
+// Runs f, which reports errors by key path (a library function given the
+// nodes' keys): an InputError at the key of one of `nodes` is located at that
+// node, one without a key path at `fallback`.
+template <typename F>
+auto AtNodes(const YamlNode& fallback, const std::vector<YamlNode>& nodes, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    for (const YamlNode& node : nodes)
+      if (e.key_path() == node.key()) node.Fail(e.what());
+    if (!e.key_path().empty()) throw;
+    fallback.Fail(e.what());
+  }
+}
+
 }  // namespace deb::io

@@ -105,4 +105,21 @@ std::string Classification::Summary() const {
   return text;
 }
 
+SpectrumClasses ClassifySpectrum(const std::vector<double>& f_hz, const Eigen::MatrixXd& psd,
+                                 SpectrumInterpolation interpolation, const SpectrumClassOptions& options) {
+  const ThirdOctaveSeries series = options.classify.series;
+  SpectrumClasses out;
+  for (Eigen::Index c = 0; c < psd.cols(); ++c) {
+    std::vector<double> column(f_hz.size());
+    for (std::size_t k = 0; k < column.size(); ++k)
+      column[k] = psd(static_cast<Eigen::Index>(k), c) * (options.to_velocity_psd ? options.to_velocity_psd(f_hz[k]) : 1.0);
+    out.bands.push_back(options.lowest_hz > 0.0
+                            ? ThirdOctaveBandRms(f_hz, column, series, options.lowest_hz, options.highest_hz, interpolation)
+                            : ThirdOctaveBandRms(f_hz, column, series, interpolation));
+    if (options.classify_bands) out.classes.push_back(Classify(out.bands.back(), options.classify));
+  }
+  return out;
+}
+
 }  // namespace deb
+

@@ -9,11 +9,14 @@
 // every band it covers), with the band that limits the overall class.
 #pragma once
 
+#include <Eigen/Dense>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "deb/spectra/band_rms.h"
+#include "deb/spectra/measured_spectrum.h"
 
 namespace deb {
 
@@ -82,5 +85,25 @@ struct Classification {
 // bands_um_s: band RMS velocities in um/s of bands of options.series.
 // @throws InputError if options.tolerance is negative or not finite.
 Classification Classify(const std::vector<BandRms>& bands_um_s, const ClassifyOptions& options = {});
+
+struct SpectrumClassOptions {
+  ClassifyOptions classify;  // classify.series also sets the bands when not classifying
+  bool classify_bands = true;  // false: band RMS only, in the spectrum's unit
+  // Factor taking the PSD at f_hz > 0 to (um/s)^2/Hz (deb/units'
+  // UnitConversion::PsdFactor from the spectrum's unit to um/s); empty: 1.
+  std::function<double(double f_hz)> to_velocity_psd;
+  double lowest_hz = 0.0, highest_hz = 0.0;  // nominal centres of the bands; lowest 0: all bands in the data
+};
+
+struct SpectrumClasses {
+  std::vector<std::vector<BandRms>> bands;  // per channel: um/s, or the spectrum's unit without classification
+  std::vector<Classification> classes;      // per channel; empty without classification
+};
+
+// The one-third-octave band RMS of every channel of psd (one-sided, rows
+// f_hz, read as `interpolation`), converted to velocity, and its class.
+// @throws InputError as ThirdOctaveBandRms and Classify.
+SpectrumClasses ClassifySpectrum(const std::vector<double>& f_hz, const Eigen::MatrixXd& psd,
+                                 SpectrumInterpolation interpolation, const SpectrumClassOptions& options);
 
 }  // namespace deb

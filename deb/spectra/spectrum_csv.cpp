@@ -1,9 +1,13 @@
 #include "deb/spectra/spectrum_csv.h"
 
 #include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
 
 #include "deb/core/error.h"
 #include "deb/core/numeric_table.h"
+#include "deb/core/output_dir.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
@@ -119,6 +123,41 @@ std::shared_ptr<const MeasuredSpectrum> MakeMeasuredSpectrum(const SpectrumCsv& 
   options.unit = csv.unit.value_or("");
   options.origin = csv.path;
   return std::make_shared<MeasuredSpectrum>(csv.f_hz, csv.psd, options);
+}
+
+std::string SpectrumCsvText(const std::vector<std::string>& comments, const std::string& unit,
+                            SpectrumQuantity quantity, const std::vector<double>& f_hz, const Eigen::MatrixXd& psd,
+                            const std::vector<std::string>& names, const Eigen::MatrixXd* extra,
+                            const std::vector<std::string>& extra_names) {
+  const bool asd = quantity == SpectrumQuantity::kAsd;
+  const auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.10g", v);
+    return std::string(text);
+  };
+  std::ostringstream out;
+  for (const std::string& c : comments) out << "# " << c << "\n";
+  if (!unit.empty()) out << "# unit: " << unit << "\n";
+  out << "# quantity: " << ToString(quantity) << "\n# sides: one\nf_hz";
+  for (const auto& n : names) out << ", " << n;
+  for (const auto& n : extra_names) out << ", " << n;
+  out << "\n";
+  for (std::size_t k = 0; k < f_hz.size(); ++k) {
+    if (!(f_hz[k] > 0.0)) continue;
+    const auto row = static_cast<Eigen::Index>(k);
+    out << NumberText(f_hz[k]);
+    for (Eigen::Index c = 0; c < psd.cols(); ++c) out << ", " << number(asd ? std::sqrt(psd(row, c)) : psd(row, c));
+    if (extra)
+      for (Eigen::Index c = 0; c < extra->cols(); ++c) out << ", " << number((*extra)(row, c));
+    out << "\n";
+  }
+  return out.str();
+}
+
+void WriteSpectrumCsv(const std::string& path, const std::vector<std::string>& comments, const std::string& unit,
+                      SpectrumQuantity quantity, const std::vector<double>& f_hz, const Eigen::MatrixXd& psd,
+                      const std::vector<std::string>& names) {
+  WriteTextFile(path, SpectrumCsvText(comments, unit, quantity, f_hz, psd, names));
 }
 
 }  // namespace deb

@@ -13,6 +13,7 @@
 // Cells are separated by commas or by whitespace; '#' starts a comment (a
 // comment line "# key: value" with another key is just a comment). Errors
 // quote file:line:column, the offending text and the rule it breaks.
+// SpectrumCsvText / WriteSpectrumCsv write the same format.
 #pragma once
 
 #include <iosfwd>
@@ -59,5 +60,20 @@ SpectrumCsv ParseSpectrumCsv(std::istream& in, const std::string& name);
 // The table as a spectrum source (independent channels).
 std::shared_ptr<const MeasuredSpectrum> MakeMeasuredSpectrum(
     const SpectrumCsv& csv, Extrapolation extrapolation = Extrapolation::kError);
+
+// The text of a spectrum CSV: "# " + each comment, "# unit:" (if any),
+// "# quantity:", "# sides: one", the header "f_hz, <names>, <extra_names>",
+// then one row per f_hz > 0: the frequency with every digit (band edges 1e-9
+// apart stay apart), the one-sided PSD (or its square root for kAsd) and the
+// extra columns (rows as f_hz, written as they are) with 10 significant digits.
+std::string SpectrumCsvText(const std::vector<std::string>& comments, const std::string& unit,
+                            SpectrumQuantity quantity, const std::vector<double>& f_hz, const Eigen::MatrixXd& psd,
+                            const std::vector<std::string>& names, const Eigen::MatrixXd* extra = nullptr,
+                            const std::vector<std::string>& extra_names = {});
+
+// SpectrumCsvText written to `path`. @throws WriteError if it cannot be written.
+void WriteSpectrumCsv(const std::string& path, const std::vector<std::string>& comments, const std::string& unit,
+                      SpectrumQuantity quantity, const std::vector<double>& f_hz, const Eigen::MatrixXd& psd,
+                      const std::vector<std::string>& names);
 
 }  // namespace deb

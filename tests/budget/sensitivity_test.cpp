@@ -5,6 +5,8 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "deb/spectra/flat_spectrum.h"
 #include "deb/systems/transfer_function.h"
@@ -65,4 +67,40 @@ TEST_CASE("central differences give the elasticities of S0 / (4 tau): +1 in the 
   CHECK(RankedForOutput(time_constant, "none").empty());
 }
 
+TEST_CASE("the sensitivity driver differences budgets scaled about the nominal: d var / d ln S = var for a flat level") {
+  // var = S0 / (4 tau): linear in S0, so d var / d ln S0 = var (to h^2 / 3),
+  // and d var / d ln tau = -var.
+  const double s0 = 2.0, tau = 0.01, h = 1e-3;
+  std::vector<std::pair<std::string, double>> asked;
+  const ScaledBudget scaled = [&](const std::string& key, double factor) {
+    asked.push_back({key, factor});
+    return key == "level" ? LowPass(s0 * factor, tau) : LowPass(s0, tau * factor);
+  };
+  const SensitivityStudy study = ComputeSensitivities(LowPass(s0, tau), {"level", "tau"}, h, scaled);
+  CHECK(asked == std::vector<std::pair<std::string, double>>{{"level", 1 + h}, {"level", 1 - h}, {"tau", 1 + h},
+                                                             {"tau", 1 - h}});
+  REQUIRE(study.sensitivities.size() == 4);  // per parameter: total and the one contributor
+  const double var = study.nominal.outputs[0].variance;
+  CHECK(var == doctest::Approx(s0 / (4.0 * tau)).epsilon(1e-4));
+  for (int i : {0, 1}) {
+    CHECK(study.sensitivities[i].parameter == "level");
+    CHECK(study.sensitivities[i].d_variance_d_log_p == doctest::Approx(var).epsilon(1e-6));
+    CHECK(study.sensitivities[i].elasticity == doctest::Approx(1.0).epsilon(1e-6));
+  }
+  CHECK(study.sensitivities[2].parameter == "tau");
+  CHECK(study.sensitivities[2].elasticity == doctest::Approx(-1.0).epsilon(2e-4));
+  // The perturbed budgets are evaluated on the nominal grid: the same as
+  // differencing results evaluated on it.
+  Budget up = LowPass(s0, tau * (1 + h)), down = LowPass(s0, tau * (1 - h));
+  for (Budget* b : {&up, &down}) {
+    b->grid = GridSpec();
+    b->grid.kind = GridKind::kExplicit;
+    b->grid.f_hz = study.nominal.grid.f_hz();
+    b->grid.panel_starts = study.nominal.grid.panel_starts();
+  }
+  const auto direct = Sensitivities("tau", h, study.nominal, Evaluate(up), Evaluate(down));
+  CHECK(study.sensitivities[3].d_variance_d_log_p == direct[1].d_variance_d_log_p);
+}
+
 }  // namespace deb
+

@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
+
 #include "deb/core/error.h"
 #include "deb/spectra/vc_curve.h"
 #include "tests/spectra/data_file.h"
@@ -117,6 +119,42 @@ TEST_CASE("spectra/iso_building_curves.csv matches the compiled ISO table exactl
     CHECK(std::stod(cells[5]) == row.iso_factor);
     CHECK(row.velocity_um_s == 100.0 * row.iso_factor);  // base curve 100 um/s
   }
+}
+
+TEST_CASE("a displacement spectrum at VC-D, converted to velocity before integrating, classifies as VC-D") {
+  // S_v = 6.25 um/s RMS in every band 1-80 Hz, given as displacement in nm:
+  // S_x = S_v / (1e-6 (2 pi f)^2), taken back by the factor UnitConversion gives for nm -> um/s.
+  const std::vector<ThirdOctaveBand> bands = ThirdOctaveBandsBetween(1.0, 80.0, ThirdOctaveSeries::kBase2From1Hz);
+  const PsdTable v = BandRmsToPsd(bands, std::vector<double>(bands.size(), 6.25));
+  const auto factor = [](double f) { return 1e-6 * std::pow(2.0 * M_PI * f, 2); };
+  Eigen::MatrixXd x(static_cast<Eigen::Index>(v.f_hz.size()), 2);
+  for (std::size_t k = 0; k < v.f_hz.size(); ++k)
+    x.row(static_cast<Eigen::Index>(k)).setConstant(v.psd[k] / factor(v.f_hz[k]));
+  x.col(1) *= 4.0;  // twice the RMS: VC-C is 12.5 um/s
+  SpectrumClassOptions o;
+  o.to_velocity_psd = factor;
+  o.lowest_hz = 1.0;
+  o.highest_hz = 80.0;
+  const SpectrumClasses c = ClassifySpectrum(v.f_hz, x, SpectrumInterpolation::kLogLog, o);
+  REQUIRE(c.bands.size() == 2);
+  REQUIRE(c.classes.size() == 2);
+  REQUIRE(c.bands[0].size() == bands.size());
+  for (const BandRms& b : c.bands[0]) CHECK(b.rms == doctest::Approx(6.25).epsilon(1e-9));
+  for (const BandRms& b : c.bands[1]) CHECK(b.rms == doctest::Approx(12.5).epsilon(1e-9));
+  REQUIRE(c.classes[0].overall.has_value());
+  CHECK(c.classes[0].criteria[*c.classes[0].overall].name == "VC-D");
+  REQUIRE(c.classes[1].overall.has_value());
+  CHECK(c.classes[1].criteria[*c.classes[1].overall].name == "VC-C");
+  // Without classification: band RMS of the table as given (nm), no classes.
+  o.classify_bands = false;
+  o.to_velocity_psd = nullptr;
+  const SpectrumClasses raw = ClassifySpectrum(v.f_hz, x, SpectrumInterpolation::kLogLog, o);
+  CHECK(raw.classes.empty());
+  CHECK(raw.bands[0].front().rms == doctest::Approx(ThirdOctaveBandRms(v.f_hz, std::vector<double>(x.col(0).data(),
+                                                                       x.col(0).data() + x.rows()),
+                                                                       ThirdOctaveSeries::kBase2From1Hz, 1.0, 80.0)
+                                                        .front()
+                                                        .rms));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "deb/spectra/spectrum_csv.h"
 
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,8 @@
 
 namespace deb {
 namespace {
+
+namespace fs = std::filesystem;
 
 SpectrumCsv Parse(const std::string& text, const std::string& name = "floor.csv") {
   std::istringstream in(text);
@@ -157,6 +160,42 @@ TEST_CASE("a file may declare that its rows are the bins of a spectral estimate"
   CHECK(MakeMeasuredSpectrum(bins)->Psd(2.4)(0) == 3.0);
   CHECK(Parse("1, 2\n2, 3\n").interpolation == SpectrumInterpolation::kLogLog);
   CHECK(ErrorOf("# interpolation: cubic\n1, 2\n2, 3\n").find("floor.csv:1:18: unknown spectrum interpolation 'cubic'") == 0);
+}
+
+TEST_CASE("a written spectrum CSV reads back to the same table (PSD to 1e-10, frequencies exactly)") {
+  const std::vector<double> f = {0.0, 0.1, 1.0 + 1e-9, 1.0 + 2e-9, 37.3};
+  Eigen::MatrixXd psd(5, 2);
+  psd << 9.0, 1.0, 1.234567890123e-7, 4.0, 2.5e-12, 3.0, 2.5e-12, 3.5, 1e300, 0.0;
+  const std::string text = SpectrumCsvText({"a comment", "interpolation: bins"}, "um/s", SpectrumQuantity::kPsd, f,
+                                           psd, {"x", "y"});
+  CHECK(text.find("# a comment\n# interpolation: bins\n# unit: um/s\n# quantity: psd\n# sides: one\nf_hz, x, y\n") == 0);
+  const SpectrumCsv back = Parse(text);
+  REQUIRE(back.f_hz.size() == 4);  // the 0 Hz row is not written
+  for (std::size_t k = 0; k < 4; ++k) CHECK(back.f_hz[k] == f[k + 1]);
+  CHECK(back.channel_names == std::vector<std::string>{"x", "y"});
+  CHECK(back.unit == std::optional<std::string>("um/s"));
+  CHECK(back.interpolation == SpectrumInterpolation::kBins);
+  for (Eigen::Index k = 0; k < 4; ++k)
+    for (Eigen::Index c = 0; c < 2; ++c)
+      CHECK(back.psd(k, c) == doctest::Approx(psd(k + 1, c)).epsilon(1e-10));
+}
+
+TEST_CASE("an ASD is written as the square root and read back as the PSD; extra columns follow the channels") {
+  const std::vector<double> f = {1.0, 2.0};
+  Eigen::MatrixXd psd(2, 1), extra(2, 1);
+  psd << 4.0, 0.25;
+  extra << 7.0, 8.0;
+  const std::string text = SpectrumCsvText({}, "", SpectrumQuantity::kAsd, f, psd, {"z"}, &extra, {"z_hi"});
+  CHECK(text == "# quantity: asd\n# sides: one\nf_hz, z, z_hi\n1, 2, 7\n2, 0.5, 8\n");
+  const fs::path file = fs::temp_directory_path() / ("deb_spectrum_write_" + std::to_string(::getpid()) + ".csv");
+  WriteSpectrumCsv(file.string(), {}, "nm", SpectrumQuantity::kAsd, f, psd, {"z"});
+  const SpectrumCsv back = ReadSpectrumCsv(file.string());
+  fs::remove(file);
+  CHECK(back.quantity == SpectrumQuantity::kAsd);
+  CHECK(back.psd(0, 0) == doctest::Approx(4.0).epsilon(1e-12));
+  CHECK(back.psd(1, 0) == doctest::Approx(0.25).epsilon(1e-12));
+  CHECK_THROWS_AS(WriteSpectrumCsv("/nonexistent-dir/x.csv", {}, "nm", SpectrumQuantity::kPsd, f, psd, {"z"}),
+                  WriteError);
 }
 
 }  // namespace

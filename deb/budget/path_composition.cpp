@@ -1,0 +1,165 @@
+#include "deb/budget/path_composition.h"
+
+#include <memory>
+#include <utility>
+
+#include "deb/core/at_key_path.h"
+#include "deb/core/error.h"
+#include "deb/core/limits.h"
+#include "deb/systems/interconnect.h"
+#include "deb/units/unit.h"
+
+namespace deb {
+namespace {
+
+[[noreturn]] void Fail(const std::string& key_path, const std::string& message) {
+  throw InputError(key_path, message);
+}
+
+// Gain matrix diag(scale_k) turning signals in `from` units into `to` units.
+// @throws at `key_path` if a pair differs by more than a scale.
+Eigen::MatrixXd ScaleBetween(const std::string& key_path, const std::vector<std::string>& from,
+                             const std::vector<std::string>& to, const std::string& what) {
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(to.size(), from.size());
+  for (std::size_t k = 0; k < from.size(); ++k) {
+    const UnitConversion c = AtKeyPath(key_path, [&] { return ConvertUnit(from[k], to[k]); });
+    if (!c.IsPureScale())
+      Fail(key_path, what + ": channel " + std::to_string(k + 1) + " carries '" + from[k] + "' into '" + to[k] +
+                         "', which differ by a time derivative; insert the derivative explicitly");
+    g(k, k) = c.scale;
+  }
+  return g;
+}
+
+// Sets p's transfer to the combination of a and b: in state space when both
+// are rational (poles and Lyapunov variances stay available), else as a
+// diagram evaluated per frequency, with a zero gain of the result's size as
+// `system`.
+template <typename StateSpaceOp, typename ModelOp>
+void Combine(Path* p, const Path& a, const Path& b, StateSpaceOp rational, ModelOp diagram) {
+  p->modal.reset();  // a combination is realised in state space (path.h)
+  if (!a.HasMeasuredData() && !b.HasMeasuredData()) {
+    p->system = rational(a.Rational(), b.Rational());
+    p->measured.reset();
+    return;
+  }
+  auto model = std::make_shared<const FrequencyModel>(diagram(a.Model(), b.Model()));
+  p->system = StateSpace::Gain(Eigen::MatrixXd::Zero(model->outputs(), model->inputs()));
+  p->measured = std::move(model);
+}
+
+// p's transfer = b after a (H = H_b H_a).
+void SeriesInto(Path* p, const Path& a, const Path& b) {
+  Combine(p, a, b, [](const StateSpace& x, const StateSpace& y) { return Series(x, y); },
+          [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Series(x, y); });
+}
+
+// A path of the gain g (no states) for scaling between parts.
+Path GainPath(const Eigen::MatrixXd& g) {
+  Path p;
+  p.system = StateSpace::Gain(g);
+  return p;
+}
+
+// g_in, then part, then g_out.
+Path Scaled(const Eigen::MatrixXd& g_in, const Path& part, const Eigen::MatrixXd& g_out) {
+  Path p = part;
+  SeriesInto(&p, GainPath(g_in), part);
+  SeriesInto(&p, p, GainPath(g_out));
+  return p;
+}
+
+// A modal path joined with others is realised in state space (path.h):
+// refused beyond limits::kMaxDenseStates states.
+const Path& DenseRealisable(const PathPart& part) {
+  DEB_DEMAND(part.path != nullptr);
+  const Path& p = *part.path;
+  if (p.IsModal() && 2 * p.modal->modes() > limits::kMaxDenseStates)
+    Fail(part.key_path, "path '" + p.name + "' has " + std::to_string(p.modal->modes()) +
+                            " modes; joined with other paths it is realised in state space, 2 states per mode, and "
+                            "at most " + std::to_string(limits::kMaxDenseStates) +
+                            " states are formed (use it directly in a contributor)");
+  return p;
+}
+
+// The transfer and channels of `acc` under the caller's name.
+Path Composed(const Path& acc) {
+  Path p;
+  p.system = acc.system;
+  p.measured = acc.measured;
+  p.input_units = acc.input_units;
+  p.output_units = acc.output_units;
+  p.input_names = acc.input_names;
+  p.output_names = acc.output_names;
+  return p;
+}
+
+void RequireTwo(const std::vector<PathPart>& parts) {
+  if (parts.size() < 2) throw InputError("list at least two paths");
+}
+
+}  // namespace
+
+Path SeriesOfPaths(const std::vector<PathPart>& parts) {
+  RequireTwo(parts);
+  Path acc = DenseRealisable(parts[0]);
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    const Path& next = DenseRealisable(parts[i]);
+    if (next.system.inputs() != acc.system.outputs())
+      Fail(parts[i].key_path, "path '" + next.name + "' has " + std::to_string(next.system.inputs()) +
+                                  " input(s) but follows " + std::to_string(acc.system.outputs()) + " output(s)");
+    const Eigen::MatrixXd g = ScaleBetween(parts[i].key_path, acc.output_units, next.input_units, "series");
+    Path scaled = acc;
+    SeriesInto(&scaled, acc, GainPath(g));
+    SeriesInto(&acc, scaled, next);
+    acc.output_names = next.output_names;
+    acc.output_units = next.output_units;
+  }
+  return Composed(acc);
+}
+
+Path ParallelOfPaths(const std::vector<PathPart>& parts) {
+  RequireTwo(parts);
+  Path acc = DenseRealisable(parts[0]);
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    const Path& next = DenseRealisable(parts[i]);
+    if (next.system.inputs() != acc.system.inputs() || next.system.outputs() != acc.system.outputs())
+      Fail(parts[i].key_path, "parallel paths must have the same numbers of inputs and outputs");
+    const Eigen::MatrixXd gi = ScaleBetween(parts[i].key_path, acc.input_units, next.input_units, "parallel inputs");
+    const Eigen::MatrixXd go =
+        ScaleBetween(parts[i].key_path, next.output_units, acc.output_units, "parallel outputs");
+    const Path other = Scaled(gi, next, go);
+    const Path before = acc;
+    Combine(&acc, before, other, [](const StateSpace& x, const StateSpace& y) { return Parallel(x, y); },
+            [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Parallel(x, y); });
+  }
+  return Composed(acc);
+}
+
+void CheckFeedbackSign(int sign) {
+  if (sign != 1 && sign != -1)
+    throw InputError("sign must be -1 (negative feedback) or +1, got " + std::to_string(sign));
+}
+
+Path FeedbackOfPaths(const PathPart& plant_part, const PathPart& controller_part, int sign) {
+  CheckFeedbackSign(sign);
+  const Path& plant = DenseRealisable(plant_part);
+  const Path& ctrl = DenseRealisable(controller_part);
+  const std::string& at = controller_part.key_path;
+  if (ctrl.system.inputs() != plant.system.outputs() || ctrl.system.outputs() != plant.system.inputs())
+    Fail(at, "controller '" + ctrl.name + "' must have " + std::to_string(plant.system.outputs()) + " input(s) and " +
+                 std::to_string(plant.system.inputs()) + " output(s) to close a loop around '" + plant.name + "'");
+  const Eigen::MatrixXd gi = ScaleBetween(at, plant.output_units, ctrl.input_units, "feedback");
+  const Eigen::MatrixXd go = ScaleBetween(at, ctrl.output_units, plant.input_units, "feedback");
+  const Path k = Scaled(gi, ctrl, go);
+  Path p;
+  Combine(&p, plant, k, [&](const StateSpace& g, const StateSpace& c) { return Feedback(g, c, sign); },
+          [&](const FrequencyModel& g, const FrequencyModel& c) { return FrequencyModel::Feedback(g, c, sign); });
+  p.input_units = plant.input_units;
+  p.output_units = plant.output_units;
+  p.input_names = plant.input_names;
+  p.output_names = plant.output_names;
+  return p;
+}
+
+}  // namespace deb

@@ -1,0 +1,43 @@
+// Block-diagram algebra on paths: series, parallel and feedback of paths that
+// are already built, with units checked and scaled at every junction (a
+// junction from um to nm is a gain of 1000; from um to um/s it is a time
+// derivative and is refused). Rational parts are joined in state space
+// (interconnect.h); a part with measured data makes the result a diagram
+// evaluated per frequency (frequency_model.h). A modal part is realised in
+// state space, 2 states per mode, up to limits::kMaxDenseStates states.
+//   series    H = H_n ... H_2 H_1
+//   parallel  H = H_1 + ... + H_n
+//   feedback  H = (I - sign G K)^-1 G   (sign = -1: negative feedback)
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/path.h"
+
+namespace deb {
+
+// A part of a composition and where the caller named it: errors about the
+// part are InputErrors with this key path (empty: none).
+struct PathPart {
+  const Path* path = nullptr;
+  std::string key_path;
+};
+
+// The composed path takes the first part's inputs (names and units) and the
+// last part's outputs (series) or the first part's outputs (parallel); the
+// caller sets its name and description.
+// @throws InputError (at a part's key path) for fewer than two parts, sizes
+//   that do not fit, units that differ by more than a scale, or a modal part
+//   too large to realise.
+Path SeriesOfPaths(const std::vector<PathPart>& parts);
+Path ParallelOfPaths(const std::vector<PathPart>& parts);
+// The loop closed by `controller` around `plant`: the plant's inputs and
+// outputs; the controller must map the plant's outputs to its inputs.
+// @throws InputError as above, and if the loop's I - sign G K is singular.
+Path FeedbackOfPaths(const PathPart& plant, const PathPart& controller, int sign = -1);
+
+// @throws InputError unless sign is -1 (negative feedback) or +1.
+void CheckFeedbackSign(int sign);
+
+}  // namespace deb

@@ -1,0 +1,82 @@
+#include "deb/report/comparison_documents.h"
+
+#include <sstream>
+
+namespace deb::report {
+namespace {
+
+std::string Lead() {
+  return "RMS per output, contributor and band; difference B − A in the output's unit; ratio B / A.";
+}
+
+}  // namespace
+
+std::string RatioText(const ComparedFigure& f) { return f.ratio ? Sig(*f.ratio, 4) : "–"; }
+
+// The tables of a comparison: one per output, then the largest changes.
+std::vector<Table> ComparisonTables(const Comparison& cmp) {
+  std::vector<Table> tables;
+  std::string current;
+  for (const ComparedFigure& f : cmp.figures) {
+    if (tables.empty() || f.output != current) {
+      current = f.output;
+      Table t;
+      t.title = f.output + " [" + UnitText(f.unit) + "]";
+      t.header = {"contributor", "band", "A: " + cmp.label_a, "B: " + cmp.label_b, "B − A", "B / A"};
+      t.numeric = {false, false, true, true, true, true};
+      tables.push_back(t);
+    }
+    Table& t = tables.back();
+    t.rows.push_back({f.contributor, f.band.empty() ? "whole grid" : f.band, Sig(f.rms_a, 4),
+                      Sig(f.rms_b, 4), Sig(f.difference, 4), RatioText(f)});
+    t.emphasis.push_back(std::vector<bool>(6, f.contributor == "total" && f.band.empty()));
+  }
+  Table largest;
+  largest.title = "Contributors that changed most";
+  largest.header = {"output", "contributor", "A", "B", "B / A", "variance change / total"};
+  largest.numeric = {false, false, true, true, true, true};
+  for (const ComparedFigure& f : cmp.LargestChanges())
+    largest.rows.push_back({f.output, f.contributor, Sig(f.rms_a, 4), Sig(f.rms_b, 4), RatioText(f),
+                            Sig(100.0 * f.variance_change_of_total, 3) + " %"});
+  tables.push_back(largest);
+  return tables;
+}
+
+
+std::string ComparisonMarkdown(const Comparison& cmp, const std::vector<Plot>& plots) {
+  std::ostringstream md;
+  md << "# Comparison: " << cmp.label_a << " (A) vs " << cmp.label_b << " (B)\n\n" << Lead() << "\n\n";
+  for (const Table& t : ComparisonTables(cmp)) md << "## " << t.title << "\n\n" << ToMarkdown(t) << "\n";
+  for (const Plot& p : plots)
+    md << "![" << p.caption << "](plots/" << p.name << ".png)\n\n" << p.caption << "\n\n";
+  if (!cmp.unmatched.empty()) {
+    md << "## Not compared\n\n";
+    for (const std::string& s : cmp.unmatched) md << "- " << s << "\n";
+  }
+  return md.str();
+}
+
+// One self-contained page (the plots are files beside it).
+std::string ComparisonHtml(const Comparison& cmp, const std::vector<Plot>& plots) {
+  std::ostringstream h;
+  const std::string title = "Comparison: " + cmp.label_a + " (A) vs " + cmp.label_b + " (B)";
+  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << HtmlEscape(title)
+    << "</title>\n<style>body{font-family:'DejaVu Sans',sans-serif;max-width:1240px;margin:2rem auto;padding:0 1.5rem}"
+       "table{border-collapse:collapse;margin:.6rem 0 1.4rem;font-size:.92rem}th,td{border-bottom:1px solid #ddd;"
+       "padding:.2rem .6rem}td.num{text-align:right;font-variant-numeric:tabular-nums}img{max-width:100%}</style>\n"
+       "</head>\n<body>\n<h1>"
+    << HtmlEscape(title) << "</h1>\n<p>" << HtmlEscape(Lead()) << "</p>\n";
+  for (const Table& t : ComparisonTables(cmp)) h << ToHtml(t);  // the caption titles it
+  for (const Plot& p : plots)
+    h << "<figure><img src=\"plots/" << HtmlEscape(p.name) << ".png\" alt=\"" << HtmlEscape(p.caption)
+      << "\"><figcaption>" << HtmlEscape(p.caption) << "</figcaption></figure>\n";
+  if (!cmp.unmatched.empty()) {
+    h << "<h2>Not compared</h2>\n<ul>\n";
+    for (const std::string& s : cmp.unmatched) h << "<li>" << HtmlEscape(s) << "</li>\n";
+    h << "</ul>\n";
+  }
+  h << "</body>\n</html>\n";
+  return h.str();
+}
+
+}  // namespace deb::report
