@@ -11,6 +11,7 @@
 #include "deb/budget/engine.h"
 #include "deb/budget/sensitivity.h"
 #include "deb/core/error.h"
+#include "deb/core/parallel.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/result_writer.h"
 #include "deb/io/sweep_yaml.h"
@@ -110,19 +111,26 @@ int RunSensitivityCommand(const CLI::App& /*sensitivity*/) {
   EngineOptions options;
   options.threads = s.threads;
   const BudgetResult nominal = Evaluate(budget, options);
+  // Each perturbed budget (a parameter x (1 + step) or x (1 - step)) is one
+  // job: loaded and evaluated on the nominal grid, so that refinement adds
+  // no noise to the difference.
+  std::vector<BudgetResult> perturbed(2 * s.parameters.size());
+  ParallelForEach(
+      perturbed.size(),
+      [&](std::size_t job) {
+        const std::string& key = s.parameters[job / 2];
+        Budget b = LoadBudgetWithScaledParameter(s.budget_file, key, job % 2 == 0 ? 1.0 + s.step : 1.0 - s.step);
+        b.grid = GridSpec();
+        b.grid.kind = GridKind::kExplicit;
+        b.grid.f_hz = nominal.grid.f_hz();
+        b.grid.panel_starts = nominal.grid.panel_starts();
+        if (b.bands.empty()) b.bands = budget.bands;
+        perturbed[job] = Evaluate(b, options);
+      },
+      s.threads);
   std::vector<Sensitivity> all;
-  for (const std::string& key : s.parameters) {
-    BudgetResult perturbed[2];
-    for (int side = 0; side < 2; ++side) {
-      Budget b = LoadBudgetWithScaledParameter(s.budget_file, key, side == 0 ? 1.0 + s.step : 1.0 - s.step);
-      b.grid = GridSpec();
-      b.grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
-      b.grid.f_hz = nominal.grid.f_hz();
-      b.grid.panel_starts = nominal.grid.panel_starts();
-      if (b.bands.empty()) b.bands = budget.bands;
-      perturbed[side] = Evaluate(b, options);
-    }
-    const auto part = Sensitivities(key, s.step, nominal, perturbed[0], perturbed[1]);
+  for (std::size_t k = 0; k < s.parameters.size(); ++k) {
+    const auto part = Sensitivities(s.parameters[k], s.step, nominal, perturbed[2 * k], perturbed[2 * k + 1]);
     all.insert(all.end(), part.begin(), part.end());
   }
   std::vector<std::string> outputs;

@@ -199,7 +199,7 @@ class Outputs {
     const std::vector<PlotFormat> formats = plots_.empty() ? std::vector<PlotFormat>{} : PlotFormats(settings_);
     RefuseCollisions(formats);
     std::optional<report::StagedPlots> staged;
-    if (!plots_.empty()) staged.emplace(plots_, formats);
+    if (!plots_.empty()) staged.emplace(plots_, formats, "", settings_.rec.threads);
     std::vector<std::pair<std::string, std::string>> renames;  // temporary, final
     const auto discard = [&] {
       for (const auto& [tmp, final_path] : renames) std::remove(tmp.c_str());
