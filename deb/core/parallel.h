@@ -5,10 +5,12 @@
 // - ParallelForEach: a list of coarse jobs of uneven cost (a sweep variant,
 //   a gnuplot process, a Welch segment's FFT); each thread takes the next job
 //   not yet started.
-// Handing a block or a job to a worker costs a few microseconds (a lock and a
-// wake-up): "small" is work well under that, which ParallelFor groups by its
-// grain, min_block; a job of ParallelForEach should take 0.1 ms or more
-// (e.g. an FFT of 2^14 samples), else group several into one.
+// A call wakes the workers: microseconds, more on a busy machine, before a
+// second thread starts; after that a ParallelForEach job costs an atomic
+// counter step (0.012 us an empty job, measured). So "small" work (well under a
+// microsecond an index) goes to ParallelFor, which groups min_block indices
+// into a block; a ParallelForEach job should be 0.1 ms or more (an FFT of
+// 2^14 samples), else several go into one job.
 #pragma once
 
 #include <cstddef>
