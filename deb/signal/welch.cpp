@@ -6,6 +6,7 @@
 #include <map>
 #include <mutex>
 #include <utility>
+#include <vector>
 
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
@@ -126,22 +127,56 @@ int SegmentsPerJob(const Segmentation& s, int channels_per_segment) {
   return static_cast<int>(std::max<Eigen::Index>(1, kJobSamples / (Eigen::Index{s.length} * channels_per_segment)));
 }
 
+// Objects reused from one job to the next: a fresh FFT buffer or partial
+// sum per job would be fresh memory each time, and first touches of pages
+// (a fault each, tens of microseconds on a virtual machine) cost more than
+// the FFTs of large segments. Holds about as many objects as threads ran.
+template <typename T>
+class Scratch {
+ public:
+  template <typename Make>
+  T Take(Make&& make) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!free_.empty()) {
+        T t = std::move(free_.back());
+        free_.pop_back();
+        return t;
+      }
+    }
+    return make();
+  }
+  void Give(T t) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(t));
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<T> free_;
+};
+
 // Adds per-job partial sums in job order, whichever thread finished first,
 // so that the total is bitwise the same for any thread count. A partial is
 // kept only until the jobs before it have been added.
 template <typename Matrix>
 class OrderedSum {
  public:
-  explicit OrderedSum(std::function<void(std::size_t, const Matrix&)> add) : add_(std::move(add)) {}
+  OrderedSum(std::function<void(std::size_t, const Matrix&)> add, Scratch<Matrix>* spare)
+      : add_(std::move(add)), spare_(spare) {}
+  // Added partials go back to *spare.
   void Add(std::size_t job, Matrix partial) {
     const std::lock_guard<std::mutex> lock(mutex_);
     pending_.emplace(job, std::move(partial));
-    for (auto it = pending_.begin(); it != pending_.end() && it->first == next_; it = pending_.erase(it), ++next_)
+    for (auto it = pending_.begin(); it != pending_.end() && it->first == next_; it = pending_.erase(it), ++next_) {
       add_(it->first, it->second);
+      spare_->Give(std::move(it->second));
+    }
   }
 
  private:
   std::function<void(std::size_t, const Matrix&)> add_;
+  Scratch<Matrix>* spare_;
   std::mutex mutex_;
   std::size_t next_ = 0;
   std::map<std::size_t, Matrix> pending_;
@@ -217,17 +252,22 @@ PsdEstimate WelchPsd(const TimeSeries& series, const WelchOptions& options) {
   const int groups = (s.count + per_job - 1) / per_job;
   Eigen::MatrixXd total;
   if (!median) total = Eigen::MatrixXd::Zero(bins, channels);
-  OrderedSum<Eigen::VectorXd> sums([&](std::size_t job, const Eigen::VectorXd& part) {
-    total.col(static_cast<Eigen::Index>(job) / groups) += part;
-  });
+  Scratch<RealFft::Buffer> buffers;
+  Scratch<Eigen::VectorXd> partials;
+  OrderedSum<Eigen::VectorXd> sums(
+      [&](std::size_t job, const Eigen::VectorXd& part) { total.col(static_cast<Eigen::Index>(job) / groups) += part; },
+      &partials);
   ParallelForEach(
       static_cast<std::size_t>(channels) * static_cast<std::size_t>(groups),
       [&](std::size_t job) {
         const int c = static_cast<int>(job / static_cast<std::size_t>(groups));
         const int first = static_cast<int>(job % static_cast<std::size_t>(groups)) * per_job;
-        RealFft::Buffer buffer = fft.MakeBuffer();
+        RealFft::Buffer buffer = buffers.Take([&] { return fft.MakeBuffer(); });
         Eigen::VectorXd local;
-        if (!median) local = Eigen::VectorXd::Zero(bins);
+        if (!median) {
+          local = partials.Take([&] { return Eigen::VectorXd(bins); });
+          local.setZero();
+        }
         for (int k = first; k < std::min(s.count, first + per_job); ++k) {
           Prepare(series.samples().col(c).data() + static_cast<std::ptrdiff_t>(k) * s.step, s.length,
                   options.detrend, window, buffer.input());
@@ -240,6 +280,7 @@ PsdEstimate WelchPsd(const TimeSeries& series, const WelchOptions& options) {
             for (int b = 0; b < bins; ++b) local[b] += std::norm(x[b]);
           }
         }
+        buffers.Give(std::move(buffer));
         if (!median) sums.Add(job, std::move(local));
       },
       options.threads);
@@ -301,15 +342,20 @@ CsdEstimate WelchCsd(const TimeSeries& series, const WelchOptions& options) {
   const int groups = (s.count + per_job - 1) / per_job;
   Eigen::MatrixXcd total;
   if (!median) total = Eigen::MatrixXcd::Zero(bins, static_cast<Eigen::Index>(pairs.size()));
-  OrderedSum<Eigen::MatrixXcd> sums([&](std::size_t, const Eigen::MatrixXcd& part) { total += part; });
+  Scratch<RealFft::Buffer> buffers;
+  Scratch<Eigen::MatrixXcd> partials, transforms;
+  OrderedSum<Eigen::MatrixXcd> sums([&](std::size_t, const Eigen::MatrixXcd& part) { total += part; }, &partials);
   ParallelForEach(
       static_cast<std::size_t>(groups),
       [&](std::size_t job) {
         const int first = static_cast<int>(job) * per_job;
-        RealFft::Buffer buffer = fft.MakeBuffer();
-        Eigen::MatrixXcd x(bins, c_count);
+        RealFft::Buffer buffer = buffers.Take([&] { return fft.MakeBuffer(); });
+        Eigen::MatrixXcd x = transforms.Take([&] { return Eigen::MatrixXcd(bins, c_count); });
         Eigen::MatrixXcd local;
-        if (!median) local = Eigen::MatrixXcd::Zero(bins, static_cast<Eigen::Index>(pairs.size()));
+        if (!median) {
+          local = partials.Take([&] { return Eigen::MatrixXcd(bins, static_cast<Eigen::Index>(pairs.size())); });
+          local.setZero();
+        }
         for (int k = first; k < std::min(s.count, first + per_job); ++k) {
           for (int c = 0; c < c_count; ++c) {
             Prepare(series.samples().col(c).data() + static_cast<std::ptrdiff_t>(k) * s.step, s.length,
@@ -327,6 +373,8 @@ CsdEstimate WelchCsd(const TimeSeries& series, const WelchOptions& options) {
             }
           }
         }
+        buffers.Give(std::move(buffer));
+        transforms.Give(std::move(x));
         if (!median) sums.Add(job, std::move(local));
       },
       options.threads);
