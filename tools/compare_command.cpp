@@ -13,6 +13,7 @@
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
+#include "deb/core/parallel.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/comparison_files.h"
 #include "deb/io/result_writer.h"
@@ -76,13 +77,13 @@ std::string Safe(const std::string& label) {
 }
 
 void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plots, const std::string& out_dir,
-                     bool force) {
+                     bool force, int threads) {
   ReplaceOptions replace;
   replace.force = force;
   ReplaceDirectory(out_dir, [&](const std::string& dir) {
     if (!plots.empty()) {
       fs::create_directories(fs::path(dir) / "plots");
-      report::WritePlotsAsPng(plots, (fs::path(dir) / "plots").string());
+      report::WritePlotsAsPng(plots, (fs::path(dir) / "plots").string(), threads);
     }
     const std::vector<std::pair<std::string, std::string>> files = {{"compare.json", ComparisonJson(cmp)},
                                                                     {"compare.md", report::ComparisonMarkdown(cmp, plots)},
@@ -120,9 +121,10 @@ int CompareCommand::Run() const {
     throw InputError("--out names one directory: give exactly two inputs, or leave --out out");
   // All or nothing: every input is loaded (a budget evaluated) and every
   // comparison built before the first directory is written.
-  std::vector<Loaded> loaded;
-  loaded.reserve(s.inputs.size());
-  for (const std::string& input : s.inputs) loaded.push_back(Load(input, s.threads));
+  // One job per input (loading and evaluating it); an error is the first
+  // input's that fails, as in a serial loop.
+  std::vector<Loaded> loaded(s.inputs.size());
+  ParallelForEach(loaded.size(), [&](std::size_t i) { loaded[i] = Load(s.inputs[i], s.threads); }, s.threads);
   struct Pending {
     Comparison cmp;
     std::vector<report::Plot> plots;
@@ -143,7 +145,7 @@ int CompareCommand::Run() const {
     reports.push_back(std::move(r));
   }
   for (const Pending& r : reports) {
-    WriteComparison(r.cmp, r.plots, r.dir, s.force);
+    WriteComparison(r.cmp, r.plots, r.dir, s.force, s.threads);
     if (s.quiet) continue;
     std::printf("%s (A) vs %s (B):\n", r.cmp.label_a.c_str(), r.cmp.label_b.c_str());
     for (const ComparedFigure& f : r.cmp.figures)

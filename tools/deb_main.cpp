@@ -132,7 +132,10 @@ int Check(const std::string& budget_file) {
   const deb::FrequencyGrid& grid = plan.grid;
   // Every sweep variant is loaded and validated, as deb sweep would before computing.
   std::optional<deb::SweepBudget> sweep;
-  if (budget.has_sweep) sweep = deb::LoadSweepFile(budget_file);
+  if (budget.has_sweep) {
+    sweep = deb::LoadSweepFile(budget_file);
+    deb::LoadSweepVariants(*sweep);
+  }
   std::printf("budget %s: valid\n", budget.name.c_str());
   if (!budget.description.empty()) std::printf("  %s\n", budget.description.c_str());
   std::printf("grid: %s, %zu frequencies, %g-%g Hz\n", deb::ToString(budget.grid.kind).c_str(), grid.size(),
@@ -187,7 +190,7 @@ int Check(const std::string& budget_file) {
   for (const auto& w : plan.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
   if (sweep) {
     std::printf("sweep: %s of %zu parameter(s), %zu variants, each valid:\n", deb::ToString(sweep->spec.mode).c_str(),
-                sweep->spec.parameters.size(), sweep->variants.size());
+                sweep->spec.parameters.size(), sweep->variant_count);
     for (const deb::SweepParameter& p : sweep->spec.parameters) {
       std::printf("  %-40s %zu value(s): %s", p.key_path.c_str(), p.values.size(), p.Text(p.values.front()).c_str());
       if (p.values.size() > 1) std::printf(" ... %s", p.Text(p.values.back()).c_str());

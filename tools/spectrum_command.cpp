@@ -186,7 +186,7 @@ class Outputs {
     if (!files_.has_plots() && settings_.plots && !settings_.plot_formats.empty())
       std::fprintf(stderr, "deb: note: no plot: the CSV goes to standard output; name the plot with --plot\n");
     const std::vector<PlotFormat> formats = files_.has_plots() ? PlotFormats(settings_) : std::vector<PlotFormat>{};
-    written_ = files_.Write(formats, std::cout);
+    written_ = files_.Write(formats, std::cout, "", settings_.rec.threads);
   }
 
  private:

@@ -42,7 +42,7 @@ CLI::App* SweepCommand::Register(CLI::App& app) {
   CLI::App* c = app.add_subcommand("sweep", "Evaluate every variant of a budget's sweep section; write sweep.csv");
   c->add_option("budget", s.budget_file, "Budget YAML file with a sweep section")->required()->check(CLI::ExistingFile);
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_sweep)");
-  c->add_option("--threads,-j", s.threads, "Variants evaluated at once (default: all cores)")
+  c->add_option("--threads,-j", s.threads, "Variants loaded and evaluated at once, plots drawn at once (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
@@ -54,7 +54,7 @@ int SweepCommand::Run() const {
   const Options& s = *options_;
   const SweepBudget sweep = LoadSweepFile(s.budget_file);
   const bool progress = !s.quiet && ::isatty(STDERR_FILENO);
-  const auto results = EvaluateSweep(sweep.spec, sweep.variants, s.threads, [&](std::size_t done, std::size_t total) {
+  const auto results = EvaluateSweep(sweep.spec, sweep.variant, s.threads, [&](std::size_t done, std::size_t total) {
     if (progress) std::fprintf(stderr, "\rdeb: sweep %zu/%zu variants", done, total);
   });
   if (progress) std::fprintf(stderr, "\n");
@@ -66,7 +66,8 @@ int SweepCommand::Run() const {
     WriteTextFile((fs::path(tmp) / "sweep.csv").string(), csv);
     if (s.plots) {
       fs::create_directories(fs::path(tmp) / "plots");
-      report::WritePlotsAsPng(report::SweepPlots(sweep.spec, results), (fs::path(tmp) / "plots").string());
+      report::WritePlotsAsPng(report::SweepPlots(sweep.spec, results), (fs::path(tmp) / "plots").string(),
+                              s.threads);
     }
   }, replace);
   if (!s.quiet) std::printf("sweep of %s: %zu variants\nreport: %s/sweep.csv\n", sweep.name.c_str(), results.size(),

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "deb/core/error.h"
+#include "deb/core/parallel.h"
 
 namespace deb {
 
@@ -51,18 +52,22 @@ SensitivityStudy ComputeSensitivities(const Budget& budget, const std::vector<st
                                       double relative_step, const ScaledBudget& scaled, const EngineOptions& options) {
   SensitivityStudy study;
   study.nominal = Evaluate(budget, options);
-  for (const std::string& key : parameters) {
-    BudgetResult perturbed[2];
-    for (int side = 0; side < 2; ++side) {
-      Budget b = scaled(key, side == 0 ? 1.0 + relative_step : 1.0 - relative_step);
-      b.grid = GridSpec();
-      b.grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
-      b.grid.f_hz = study.nominal.grid.f_hz();
-      b.grid.panel_starts = study.nominal.grid.panel_starts();
-      if (b.bands.empty()) b.bands = budget.bands;
-      perturbed[side] = Evaluate(b, options);
-    }
-    const auto part = Sensitivities(key, relative_step, study.nominal, perturbed[0], perturbed[1]);
+  // Job 2k is parameter k scaled by 1 + h, job 2k + 1 by 1 - h.
+  std::vector<BudgetResult> perturbed(2 * parameters.size());
+  ParallelForEach(
+      perturbed.size(),
+      [&](std::size_t job) {
+        Budget b = scaled(parameters[job / 2], job % 2 == 0 ? 1.0 + relative_step : 1.0 - relative_step);
+        b.grid = GridSpec();
+        b.grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
+        b.grid.f_hz = study.nominal.grid.f_hz();
+        b.grid.panel_starts = study.nominal.grid.panel_starts();
+        if (b.bands.empty()) b.bands = budget.bands;
+        perturbed[job] = Evaluate(b, options);
+      },
+      options.threads);
+  for (std::size_t k = 0; k < parameters.size(); ++k) {
+    const auto part = Sensitivities(parameters[k], relative_step, study.nominal, perturbed[2 * k], perturbed[2 * k + 1]);
     study.sensitivities.insert(study.sensitivities.end(), part.begin(), part.end());
   }
   return study;

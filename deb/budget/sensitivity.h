@@ -43,8 +43,11 @@ struct SensitivityStudy {
 
 // Evaluates `budget`, then for each parameter the budgets scaled(parameter,
 // 1 + h) and scaled(parameter, 1 - h) on the nominal grid (and with the
-// nominal bands when they have none), and differences them.
-// @throws InputError as scaled() and Evaluate().
+// nominal bands when they have none), and differences them. Each perturbed
+// budget is one job of ParallelForEach on options.threads threads, so
+// `scaled` is called from several threads at once; the result is the same for
+// any thread count.
+// @throws InputError as scaled() and Evaluate() (a serial loop's first).
 SensitivityStudy ComputeSensitivities(const Budget& budget, const std::vector<std::string>& parameters,
                                       double relative_step, const ScaledBudget& scaled,
                                       const EngineOptions& options = {});

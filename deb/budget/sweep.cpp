@@ -1,6 +1,5 @@
 #include "deb/budget/sweep.h"
 
-#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
@@ -82,45 +81,46 @@ std::vector<double> LogRange(double from, double to, int count) {
   return v;
 }
 
-std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector<Budget>& variants, int threads,
+std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
+                                        int threads,
                                         const std::function<void(std::size_t, std::size_t)>& progress) {
   const auto values = spec.Variants();
-  DEB_DEMAND(values.size() == variants.size());
-  std::vector<BudgetResult> results(variants.size());
+  std::vector<BudgetResult> results(values.size());
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
   EngineOptions options;
   options.threads = 1;  // parallel across variants, not within
-  // Variants differ in cost (grid refinement): each worker takes the next
-  // variant not yet started, so no worker idles while another has a queue.
-  // Each result lands at its variant's index, whatever the thread count.
-  std::atomic<std::size_t> next{0};
-  const std::size_t workers =
-      std::min<std::size_t>(variants.size(), static_cast<std::size_t>(threads > 0 ? threads : DefaultThreadCount()));
-  ParallelFor(
-      workers,
-      [&](std::size_t, std::size_t) {
-        for (std::size_t i = next++; i < variants.size(); i = next++) {
-          try {
-            results[i] = Evaluate(variants[i], options);
-          } catch (const InputError& e) {
-            next = variants.size();  // the other workers start no new variant
-            std::ostringstream os;
-            os << "sweep variant " << i + 1 << " (";
-            for (std::size_t k = 0; k < spec.parameters.size(); ++k)
-              os << (k ? ", " : "") << spec.parameters[k].key_path << " = " << spec.parameters[k].Text(values[i][k]);
-            os << "): " << e.what();
-            throw InputError(os.str());
-          }
-          const std::size_t n = ++done;
-          if (progress) {
-            const std::lock_guard<std::mutex> lock(progress_mutex);
-            progress(n, variants.size());
-          }
+  // Variants differ in cost (grid refinement): each thread takes the next
+  // variant not yet started. Each result lands at its variant's index.
+  ParallelForEach(
+      values.size(),
+      [&](std::size_t i) {
+        const Budget budget = variant(i);  // its errors name the variant already
+        try {
+          results[i] = Evaluate(budget, options);
+        } catch (const InputError& e) {
+          std::ostringstream os;
+          os << "sweep variant " << i + 1 << " (";
+          for (std::size_t k = 0; k < spec.parameters.size(); ++k)
+            os << (k ? ", " : "") << spec.parameters[k].key_path << " = " << spec.parameters[k].Text(values[i][k]);
+          os << "): " << e.what();
+          throw InputError(os.str());
+        }
+        const std::size_t n = ++done;
+        if (progress) {
+          const std::lock_guard<std::mutex> lock(progress_mutex);
+          progress(n, values.size());
         }
       },
-      static_cast<int>(workers), 1);
+      threads);
   return results;
+}
+
+std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector<Budget>& variants, int threads,
+                                        const std::function<void(std::size_t, std::size_t)>& progress) {
+  DEB_DEMAND(spec.Variants().size() == variants.size());
+  return EvaluateSweep(
+      spec, [&variants](std::size_t i) { return variants[i]; }, threads, progress);
 }
 
 std::string SweepCsv(const SweepSpec& spec, const std::vector<BudgetResult>& results) {

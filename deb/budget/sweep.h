@@ -47,11 +47,18 @@ struct SweepSpec {
 std::vector<double> LinearRange(double from, double to, int count);
 std::vector<double> LogRange(double from, double to, int count);
 
-// Evaluates every variant budget, `threads` variants at a time (each
-// single-threaded inside; a worker takes the next variant not yet started),
-// with the same results for any thread count. progress(done, total) is called after each
-// variant from the worker that finished it (may be empty).
-// @throws InputError of the first variant that fails, naming its values.
+// Evaluates every variant, `threads` variants at a time (<= 0: the default
+// count): each is one job (ParallelForEach), variant(i) loading variant i
+// (row i of spec.Variants()) and the engine evaluating it single-threaded,
+// so the results are bitwise the same for any thread count.
+// progress(done, total) is called after each variant from the thread that
+// finished it, one call at a time (may be empty).
+// @throws InputError of the first variant that fails (as a serial loop
+//   would): variant(i)'s own, or the engine's naming the variant's values.
+std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
+                                        int threads,
+                                        const std::function<void(std::size_t, std::size_t)>& progress = {});
+// The same for variants already loaded.
 std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector<Budget>& variants, int threads,
                                         const std::function<void(std::size_t, std::size_t)>& progress = {});
 

@@ -1,6 +1,7 @@
 #include "deb/core/parallel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <cstdlib>
 #include <deque>
@@ -149,6 +150,37 @@ void ParallelFor(std::size_t n, const std::function<void(std::size_t, std::size_
   batch.blocks = blocks;
   Pool::Instance().Run(batch);
   if (batch.failure) std::rethrow_exception(batch.failure);
+}
+
+void ParallelForEach(std::size_t n, const std::function<void(std::size_t)>& job, int threads) {
+  if (n == 0) return;
+  if (threads <= 0) threads = DefaultThreadCount();
+  const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(threads), n);
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex failure_mutex;
+  std::size_t failed_at = n;
+  std::exception_ptr failure;
+  // One block per worker, each a loop taking the next job: jobs of uneven
+  // cost leave no worker idle while another has a queue.
+  ParallelFor(
+      workers,
+      [&](std::size_t, std::size_t) {
+        for (std::size_t i; !stop && (i = next++) < n;) {
+          try {
+            job(i);
+          } catch (...) {
+            const std::lock_guard<std::mutex> lock(failure_mutex);
+            if (i < failed_at) {
+              failed_at = i;
+              failure = std::current_exception();
+            }
+            stop = true;
+          }
+        }
+      },
+      static_cast<int>(workers), 1);
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace deb

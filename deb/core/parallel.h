@@ -1,7 +1,16 @@
-// Splits an index range across threads. Frequency-by-frequency work (frequency
-// responses, propagation) is independent per frequency, so it parallelises
-// without locks; each worker gets one contiguous block. The workers are
-// started once and kept for the life of the process.
+// Work on several threads, on workers started once and kept for the life of
+// the process. Two calls:
+// - ParallelFor: an index range of small, even work (one frequency of a
+//   response or a propagation), cut into one contiguous block per thread.
+// - ParallelForEach: a list of coarse jobs of uneven cost (a sweep variant,
+//   a gnuplot process, a Welch segment's FFT); each thread takes the next job
+//   not yet started.
+// A call wakes the workers: microseconds, more on a busy machine, before a
+// second thread starts; after that a ParallelForEach job costs an atomic
+// counter step (0.012 us an empty job, measured). So "small" work (well under a
+// microsecond an index) goes to ParallelFor, which groups min_block indices
+// into a block; a ParallelForEach job should be 0.1 ms or more (an FFT of
+// 2^14 samples), else several go into one job.
 #pragma once
 
 #include <cstddef>
@@ -21,5 +30,13 @@ int DefaultThreadCount();
 // exception thrown by a block is rethrown in the caller after all blocks end.
 void ParallelFor(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body,
                  int threads = 0, std::size_t min_block = 256);
+
+// Calls job(i) once for every i in [0, n) on up to `threads` threads (<= 0:
+// DefaultThreadCount()), the caller's among them; each takes the next job
+// not yet started, in index order. A call from inside a job of another call
+// on a worker thread runs inline. Once a job has thrown, jobs not yet started
+// are skipped, and after the started ones end the exception of the lowest
+// failing index is rethrown: the one a serial loop would have thrown.
+void ParallelForEach(std::size_t n, const std::function<void(std::size_t)>& job, int threads = 0);
 
 }  // namespace deb

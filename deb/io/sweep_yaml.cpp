@@ -8,13 +8,16 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <tuple>
+#include <utility>
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
 #include "deb/core/number_text.h"
+#include "deb/core/parallel.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/yaml_reader.h"
 
@@ -253,7 +256,60 @@ std::vector<double> ParseValues(const YamlNode& p, std::vector<std::string>* tex
   return io::AtNode(r, [&] { return log ? LogRange(from, to, n) : LinearRange(from, to, n); });
 }
 
-SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::string& base_dir) {
+// Loads the variants of one sweep file: its text, the parameters' parsed
+// key paths and values. Reads only its own copies, so variants load on
+// several threads at once.
+class VariantLoader {
+ public:
+  VariantLoader(std::string text, std::string name, std::string base_dir, SweepSpec spec,
+                std::vector<std::vector<Step>> steps)
+      : text_(std::move(text)), name_(std::move(name)), base_dir_(std::move(base_dir)), spec_(std::move(spec)),
+        steps_(std::move(steps)), rows_(spec_.Variants()) {}
+
+  // The budget with nothing assigned and its sweep section removed. Each
+  // variant starts from a fresh parse of the text, not a YAML::Clone: a
+  // clone loses the nodes' positions, which Reached tells aliases apart by.
+  YAML::Node BaseCopy() const {
+    YAML::Node copy = YAML::Load(text_);
+    copy.remove("sweep");
+    return copy;
+  }
+
+  Budget Variant(std::size_t i) const;
+
+ private:
+  std::string text_, name_, base_dir_;
+  SweepSpec spec_;
+  std::vector<std::vector<Step>> steps_;
+  std::vector<std::vector<double>> rows_;
+};
+
+Budget VariantLoader::Variant(std::size_t i) const {
+  DEB_DEMAND(i < rows_.size());
+  YAML::Node v = BaseCopy();
+  for (std::size_t k = 0; k < steps_.size(); ++k) Assign(v, steps_[k], spec_.parameters[k], rows_[i][k]);
+  YAML::Emitter emitter;
+  emitter << v;
+  std::ostringstream label;
+  label << name_ << " (sweep variant " << i + 1 << ":";
+  for (std::size_t k = 0; k < steps_.size(); ++k)
+    label << (k ? ", " : " ") << spec_.parameters[k].key_path << " = " << spec_.parameters[k].Text(rows_[i][k]);
+  label << ")";
+  try {
+    return LoadBudgetText(emitter.c_str(), label.str(), base_dir_);
+  } catch (const InputError& e) {
+    // Re-locate in the user's file: "file:line:col: key: sweep variant i (...): rule".
+    const std::string what = e.what(), key = e.key_path();
+    const auto at = key.empty() ? std::string::npos : what.find(": " + key + ": ");
+    if (at == std::string::npos) throw;
+    const std::string rule = what.substr(at + key.size() + 4);
+    throw InputError(key, PositionInOriginal(YAML::Load(text_), name_, key) + ": " + key + ": " +
+                              label.str().substr(name_.size() + 2, label.str().size() - name_.size() - 3) + ": " +
+                              rule);
+  }
+}
+
+SweepBudget Load(const YamlReader& reader, const std::string& base_dir) {
   const YamlNode root = reader.Root();
   const YamlNode sweep = root.Required("sweep");
   sweep.AllowOnly({"mode", "parameters"});
@@ -286,46 +342,18 @@ SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::str
       params.Fail("the grid of these parameters has " + NumberText(variants) + " variants, more than the " +
                   std::to_string(limits::kMaxSweepVariants) + " a sweep may have; sweep fewer values");
   }
-  // Each variant starts from a fresh parse of the text, not a YAML::Clone:
-  // a clone loses the nodes' positions, which Reached tells aliases apart by.
-  const auto base_copy = [&] {
-    YAML::Node copy = reader.LoadCopy();
-    copy.remove("sweep");
-    return copy;
-  };
-  // Check every path once (with its first value) before building variants.
+  const auto loader = std::make_shared<const VariantLoader>(reader.text(), reader.name(), base_dir, out.spec, steps);
+  // Check every path once (with its first value) before any variant loads.
   for (std::size_t k = 0; k < steps.size(); ++k) {
-    YAML::Node probe = base_copy();
+    YAML::Node probe = loader->BaseCopy();
     const std::string why = Assign(probe, steps[k], out.spec.parameters[k], out.spec.parameters[k].values[0]);
     if (!why.empty())
       path_nodes[k].Fail("key path '" + out.spec.parameters[k].key_path + "' does not reach " +
                          (out.spec.parameters[k].texts.empty() ? "a number: " : "a value: ") + why);
   }
-  const auto rows = out.spec.Variants();
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    YAML::Node v = base_copy();
-    for (std::size_t k = 0; k < steps.size(); ++k) Assign(v, steps[k], out.spec.parameters[k], rows[i][k]);
-    YAML::Emitter emitter;
-    emitter << v;
-    std::ostringstream label;
-    label << reader.name() << " (sweep variant " << i + 1 << ":";
-    for (std::size_t k = 0; k < steps.size(); ++k)
-      label << (k ? ", " : " ") << out.spec.parameters[k].key_path << " = " << out.spec.parameters[k].Text(rows[i][k]);
-    label << ")";
-    try {
-      out.variants.push_back(LoadBudgetText(emitter.c_str(), label.str(), base_dir));
-    } catch (const InputError& e) {
-      // Re-locate in the user's file: "file:line:col: key: sweep variant i (...): rule".
-      const std::string what = e.what(), key = e.key_path();
-      const auto at = key.empty() ? std::string::npos : what.find(": " + key + ": ");
-      if (at == std::string::npos) throw;
-      const std::string rule = what.substr(at + key.size() + 4);
-      throw InputError(key, PositionInOriginal(raw, reader.name(), key) + ": " + key + ": " +
-                                label.str().substr(reader.name().size() + 2, label.str().size() - reader.name().size() - 3) +
-                                ": " + rule);
-    }
-  }
-  out.name = out.variants.front().name;
+  out.variant_count = out.spec.Variants().size();
+  out.variant = [loader](std::size_t i) { return loader->Variant(i); };
+  if (root.Has("name")) out.name = root.Required("name").AsString();  // each variant checks it
   return out;
 }
 
@@ -333,9 +361,8 @@ SweepBudget Load(const YamlReader& reader, const YAML::Node& raw, const std::str
 
 SweepBudget LoadSweepFile(const std::string& path) {
   const YamlReader reader = YamlReader::FromFile(path);
-  const YAML::Node raw = reader.LoadCopy();
   const std::string dir = std::filesystem::path(path).parent_path().string();
-  return Load(reader, raw, dir.empty() ? "." : dir);
+  return Load(reader, dir.empty() ? "." : dir);
 }
 
 Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor) {
@@ -359,8 +386,13 @@ Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string&
 }
 
 SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir) {
-  const YamlReader reader = YamlReader::FromString(text, name);
-  return Load(reader, YAML::Load(text), base_dir);
+  return Load(YamlReader::FromString(text, name), base_dir);
+}
+
+std::vector<Budget> LoadSweepVariants(const SweepBudget& sweep, int threads) {
+  std::vector<Budget> variants(sweep.variant_count);
+  ParallelForEach(variants.size(), [&](std::size_t i) { variants[i] = sweep.variant(i); }, threads);
+  return variants;
 }
 
 }  // namespace deb

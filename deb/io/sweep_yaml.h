@@ -15,6 +15,8 @@
 // [VC-C, VC-D]) make a textual parameter: each word replaces a single value.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,17 +26,26 @@
 namespace deb {
 
 struct SweepBudget {
-  std::string name;               // the budget's name
+  std::string name;  // the budget's name as written
   SweepSpec spec;
-  std::vector<Budget> variants;   // one per spec.Variants() row, in that order
+  std::size_t variant_count = 0;  // spec.Variants().size()
+  // Loads variant i (row i of spec.Variants()); may be called from several
+  // threads at once, so that a sweep loads each variant in the job that
+  // evaluates it. @throws InputError: the variant's own load errors, located
+  // in the user's file, naming the variant.
+  std::function<Budget(std::size_t)> variant;
 };
 
+// Reads the sweep section and checks every key path; loads no variant.
 // @throws InputError "file:line:col: sweep....: ..." for a missing section, a
 //         key path that does not reach a number, an empty range, zipped
-//         lists of different lengths; and a variant's own load errors,
-//         naming the variant.
+//         lists of different lengths.
 SweepBudget LoadSweepFile(const std::string& path);
 SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir = ".");
+
+// Every variant, in order, loaded `threads` at a time (<= 0: the default
+// count). @throws InputError of the first variant that fails to load.
+std::vector<Budget> LoadSweepVariants(const SweepBudget& sweep, int threads = 0);
 
 // The budget in `path` (its sweep section ignored) with every number that
 // key_path reaches multiplied by factor: the perturbed budgets of a

@@ -49,10 +49,10 @@ void OutputFiles::RefuseCollisions(const std::vector<PlotFormat>& formats) const
 }
 
 std::vector<std::string> OutputFiles::Write(const std::vector<PlotFormat>& formats, std::ostream& standard_output,
-                                            const std::string& gnuplot) {
+                                            const std::string& gnuplot, int threads) {
   RefuseCollisions(formats);
   std::optional<StagedPlots> staged;
-  if (!plots_.empty()) staged.emplace(plots_, formats, gnuplot);
+  if (!plots_.empty()) staged.emplace(plots_, formats, gnuplot, threads);
   std::vector<std::pair<std::string, std::string>> renames;  // temporary, final
   const auto discard = [&] {
     for (const auto& rename : renames) std::remove(rename.first.c_str());

@@ -31,13 +31,14 @@ class OutputFiles {
   bool has_plots() const { return !plots_.empty(); }
 
   // Writes everything, the plots in `formats` (unused without plots), the
-  // texts for the standard output to `standard_output`; gnuplot as for
-  // StagedPlots. Returns the paths written, texts first.
+  // texts for the standard output to `standard_output`; gnuplot and
+  // `threads` (gnuplot processes at a time) as for StagedPlots. Returns the
+  // paths written, texts first.
   // @throws InputError if two outputs share a name (nothing is written);
   //   WriteError if a file cannot be written or gnuplot fails (the files of
   //   this call are removed, older ones stay).
   std::vector<std::string> Write(const std::vector<PlotFormat>& formats, std::ostream& standard_output,
-                                 const std::string& gnuplot = "");
+                                 const std::string& gnuplot = "", int threads = 0);
 
  private:
   struct File {

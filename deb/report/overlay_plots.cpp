@@ -6,6 +6,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
+#include "deb/core/parallel.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/plot_style.h"
 
@@ -96,18 +97,25 @@ std::vector<Plot> OverlayPlots(const std::string& label_a, const BudgetResult& a
   return plots;
 }
 
-void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_dir) {
+void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_dir, int threads) {
   if (plots.empty()) return;
   const std::string gnuplot = FindGnuplot("");
   namespace fs = std::filesystem;
   for (const Plot& p : plots) {
     WriteTextFile((fs::path(plots_dir) / (p.name + ".csv")).string(), p.csv);
     WriteGnuplotScript((fs::path(plots_dir) / (p.name + ".gp")).string(), p.script);
-    RunGnuplot(gnuplot, plots_dir,
-               TerminalCommand(Terminal::kPng) + "set output " + Quote(p.name + ".png") + "\nload " +
-                   Quote(p.name + ".gp") + "\nunset output\n",
-               "plot " + p.name);
   }
+  // One gnuplot process per plot, `threads` at a time.
+  ParallelForEach(
+      plots.size(),
+      [&](std::size_t i) {
+        const Plot& p = plots[i];
+        RunGnuplot(gnuplot, plots_dir,
+                   TerminalCommand(Terminal::kPng) + "set output " + Quote(p.name + ".png") + "\nload " +
+                       Quote(p.name + ".gp") + "\nunset output\n",
+                   "plot " + p.name);
+      },
+      threads);
 }
 
 }  // namespace deb::report

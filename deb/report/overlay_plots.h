@@ -17,8 +17,9 @@ std::vector<Plot> OverlayPlots(const std::string& label_a, const BudgetResult& a
                                const BudgetResult& b);
 
 // Writes every plot's CSV, script and PNG into plots_dir (which must exist);
-// also used for the plots of deb sweep.
+// also used for the plots of deb sweep. `threads` gnuplot processes at a
+// time (<= 0: DefaultThreadCount()).
 // @throws InputError if gnuplot is missing or fails (FindGnuplot, RunGnuplot).
-void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_dir);
+void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_dir, int threads = 0);
 
 }  // namespace deb::report

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
+#include <vector>
 
-#include "deb/report/plot_points.h"
 #include "deb/budget/path_response.h"
+#include "deb/core/parallel.h"
+#include "deb/report/plot_points.h"
 #include "deb/report/plot_style.h"
 
 namespace deb::report {
@@ -182,11 +185,20 @@ FrequencyRange PathRange(const PathAnalysis& path, const FrequencyRange& display
 }
 
 std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, int threads) {
+  // One job per contributor (its responses on every output); the plots
+  // keep contributor order whichever thread made them.
+  std::vector<std::vector<Plot>> per_contributor(budget.contributors.size());
+  ParallelForEach(
+      per_contributor.size(),
+      [&](std::size_t c) {
+        const std::vector<PathResponse> r = ComputePathResponses(budget, result, c, result.grid.f_hz(), threads);
+        for (std::size_t o = 0; o < budget.outputs.size(); ++o)
+          per_contributor[c].push_back(PathPlot(budget, result, c, o, r[o]));
+      },
+      threads);
   std::vector<Plot> plots;
-  for (std::size_t c = 0; c < budget.contributors.size(); ++c) {
-    const std::vector<PathResponse> r = ComputePathResponses(budget, result, c, result.grid.f_hz(), threads);
-    for (std::size_t o = 0; o < budget.outputs.size(); ++o) plots.push_back(PathPlot(budget, result, c, o, r[o]));
-  }
+  for (std::vector<Plot>& part : per_contributor)
+    for (Plot& p : part) plots.push_back(std::move(p));
   return plots;
 }
 

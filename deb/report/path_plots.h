@@ -26,7 +26,8 @@ namespace deb::report {
 FrequencyRange PathRange(const PathAnalysis& path, const FrequencyRange& display, const FrequencyGrid& grid,
                          std::pair<double, double>* poles_hz = nullptr);
 
-// One plot per (contributor, output), contributors outer.
+// One plot per (contributor, output), contributors outer; a contributor's
+// responses are one job, on `threads` threads (<= 0: the default count).
 // @throws InputError as ComputePathResponse.
 std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, int threads = 0);
 

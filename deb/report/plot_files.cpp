@@ -8,6 +8,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
+#include "deb/core/parallel.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/plot_style.h"
 
@@ -59,7 +60,7 @@ std::vector<std::string> StandalonePlotPaths(const StandalonePlot& plot, const s
 }
 
 StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::vector<PlotFormat>& formats,
-                         const std::string& gnuplot) {
+                         const std::string& gnuplot, int threads) {
   ReportOptions check;  // the same rules as the formats of a report
   check.formats = formats;
   std::string why;
@@ -67,6 +68,10 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
   if (plots.empty()) return;
   try {
     const std::string executable = FindGnuplot(gnuplot);
+    struct Draw {
+      std::string dir, script, file, what;
+    };
+    std::vector<Draw> draws;
     for (const StandalonePlot& p : plots) {
       const std::vector<std::string> names = FileNames(p.plot.name, formats);
       const std::vector<std::string> paths = StandalonePlotPaths(p, formats);
@@ -80,17 +85,25 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
       for (PlotFormat f : formats) {
         const Terminal t = TerminalOf(f);
         const std::string file = p.plot.name + "." + FileExtension(t);
-        const std::string what = "plot " + (p.directory.empty() ? file : (fs::path(p.directory) / file).string());
         // One gnuplot per file: a PDF of one page, a PNG or an SVG.
-        RunGnuplot(executable, dir.string(),
-                   TerminalCommand(t) + "set output " + Quote(file) + "\nload " + Quote(p.plot.name + ".gp") +
-                       "\nunset output\n",
-                   what);
-        if (!fs::is_regular_file(dir / file, ec) || fs::file_size(dir / file, ec) == 0)
-          throw WriteError("cannot draw " + what + ": gnuplot reported success but wrote no " + file);
+        draws.push_back({dir.string(),
+                         TerminalCommand(t) + "set output " + Quote(file) + "\nload " + Quote(p.plot.name + ".gp") +
+                             "\nunset output\n",
+                         file, "plot " + (p.directory.empty() ? file : (fs::path(p.directory) / file).string())});
       }
       for (std::size_t i = 0; i < names.size(); ++i) moves_.push_back({(dir / names[i]).string(), paths[i]});
     }
+    ParallelForEach(
+        draws.size(),
+        [&](std::size_t i) {
+          const Draw& d = draws[i];
+          RunGnuplot(executable, d.dir, d.script, d.what);
+          std::error_code ec;
+          const fs::path made = fs::path(d.dir) / d.file;
+          if (!fs::is_regular_file(made, ec) || fs::file_size(made, ec) == 0)
+            throw WriteError("cannot draw " + d.what + ": gnuplot reported success but wrote no " + d.file);
+        },
+        threads);
   } catch (...) {
     for (const std::string& d : temporary_dirs_) {
       std::error_code ec;

@@ -34,12 +34,13 @@ class StagedPlots {
  public:
   // Draws every plot in every format with gnuplot (FindGnuplot(gnuplot):
   // "" means $DEB_GNUPLOT, else gnuplot on PATH), each into a hidden
-  // temporary directory inside its directory, which must exist.
+  // temporary directory inside its directory, which must exist; `threads`
+  // gnuplot processes at a time (<= 0: DefaultThreadCount()).
   // @throws InputError if formats is empty or repeats one; WriteError if gnuplot is
   //   missing or fails (naming the plot), or a file cannot be written; the
   //   temporary directories are removed first.
   StagedPlots(const std::vector<StandalonePlot>& plots, const std::vector<PlotFormat>& formats,
-              const std::string& gnuplot = "");
+              const std::string& gnuplot = "", int threads = 0);
   // Removes whatever has not been committed.
   ~StagedPlots();
   StagedPlots(const StagedPlots&) = delete;

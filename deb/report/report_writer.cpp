@@ -1,14 +1,11 @@
 #include "deb/report/report_writer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <functional>
 #include <mutex>
 #include <optional>
-#include <thread>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -74,34 +71,6 @@ class Progress {
   int steps_, done_ = 0;
   std::mutex mutex_;
 };
-
-// Calls job(i) for i in [0, n) on up to `threads` workers (<= 0: the default
-// count), each taking the next index; after the first exception no new job
-// starts, and that exception is rethrown once all workers have stopped.
-void RunJobs(std::size_t n, int threads, const std::function<void(std::size_t)>& job) {
-  const std::size_t workers =
-      std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1, threads > 0 ? threads : DefaultThreadCount())));
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  const auto work = [&] {
-    for (std::size_t i; !failed && (i = next++) < n;) {
-      try {
-        job(i);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-        failed = true;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
-}
 
 // $SOURCE_DATE_EPOCH (seconds since 1970) if set to a number: the date of a
 // reproducible report.
@@ -272,7 +241,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       return i == 0 && pdf ? std::string("report.pdf") : "plot " + fs::path(jobs[i].file).filename().string();
     };
     Progress progress(options.progress, static_cast<int>(jobs.size()));
-    RunJobs(batches.size(), options.threads, [&](std::size_t b) {
+    ParallelForEach(batches.size(), [&](std::size_t b) {
       const std::vector<std::size_t>& batch = batches[b];
       std::string script;
       for (std::size_t i : batch) script += jobs[i].script;
@@ -287,7 +256,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
         throw;
       }
       for (std::size_t i : batch) RequireFile(root / jobs[i].file, what_of(i));
-    });
+    }, options.threads);
     for (const Job& j : jobs) manifest.files.push_back(j.file);
     if (const auto epoch = SourceDateEpoch(); epoch && pdf) StampPdfDate(root / "report.pdf", *epoch);
     if (pdf) {

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <mutex>
+#include <utility>
+#include <vector>
 
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
@@ -113,24 +116,70 @@ WelchProvenance Provenance(const Segmentation& s, const std::vector<double>& win
   return p;
 }
 
-// Sums per-block partial results in block order, so the result does not
-// depend on which thread finished first.
-template <typename Matrix>
-class OrderedSum {
+// Samples of FFT work per job: a job takes this many samples' worth of
+// segments (at least one), which keeps each job well above the cost of
+// handing it to a thread (parallel.h). It depends on the segment length
+// only, so the jobs and the order of the sums are the same for any thread
+// count.
+constexpr Eigen::Index kJobSamples = Eigen::Index{1} << 16;
+
+int SegmentsPerJob(const Segmentation& s, int channels_per_segment) {
+  return static_cast<int>(std::max<Eigen::Index>(1, kJobSamples / (Eigen::Index{s.length} * channels_per_segment)));
+}
+
+// Objects reused from one job to the next: a fresh FFT buffer or partial
+// sum per job would be fresh memory each time, and first touches of pages
+// (a fault each, tens of microseconds on a virtual machine) cost more than
+// the FFTs of large segments. Holds about as many objects as threads ran.
+template <typename T>
+class Scratch {
  public:
-  void Add(std::size_t block_begin, Matrix partial) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    partials_.emplace(block_begin, std::move(partial));
+  template <typename Make>
+  T Take(Make&& make) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!free_.empty()) {
+        T t = std::move(free_.back());
+        free_.pop_back();
+        return t;
+      }
+    }
+    return make();
   }
-  Matrix Total(Eigen::Index rows, Eigen::Index cols) const {
-    Matrix total = Matrix::Zero(rows, cols);
-    for (const auto& entry : partials_) total += entry.second;
-    return total;
+  void Give(T t) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(t));
   }
 
  private:
   std::mutex mutex_;
-  std::map<std::size_t, Matrix> partials_;
+  std::vector<T> free_;
+};
+
+// Adds per-job partial sums in job order, whichever thread finished first,
+// so that the total is bitwise the same for any thread count. A partial is
+// kept only until the jobs before it have been added.
+template <typename Matrix>
+class OrderedSum {
+ public:
+  OrderedSum(std::function<void(std::size_t, const Matrix&)> add, Scratch<Matrix>* spare)
+      : add_(std::move(add)), spare_(spare) {}
+  // Added partials go back to *spare.
+  void Add(std::size_t job, Matrix partial) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    pending_.emplace(job, std::move(partial));
+    for (auto it = pending_.begin(); it != pending_.end() && it->first == next_; it = pending_.erase(it), ++next_) {
+      add_(it->first, it->second);
+      spare_->Give(std::move(it->second));
+    }
+  }
+
+ private:
+  std::function<void(std::size_t, const Matrix&)> add_;
+  Scratch<Matrix>* spare_;
+  std::mutex mutex_;
+  std::size_t next_ = 0;
+  std::map<std::size_t, Matrix> pending_;
 };
 
 }  // namespace
@@ -197,29 +246,42 @@ PsdEstimate WelchPsd(const TimeSeries& series, const WelchOptions& options) {
   const bool median = options.averaging == Averaging::kMedian;
   std::vector<Eigen::MatrixXd> periodograms;  // median: per channel, bins x K
   if (median) periodograms.assign(static_cast<std::size_t>(channels), Eigen::MatrixXd(bins, s.count));
-  OrderedSum<Eigen::MatrixXd> sums;
-  // One work item per (channel, segment), channel-major.
-  ParallelFor(
-      static_cast<std::size_t>(channels) * static_cast<std::size_t>(s.count),
-      [&](std::size_t begin, std::size_t end) {
-        RealFft::Buffer buffer = fft.MakeBuffer();
-        Eigen::MatrixXd local;
-        if (!median) local = Eigen::MatrixXd::Zero(bins, channels);
-        for (std::size_t item = begin; item < end; ++item) {
-          const int c = static_cast<int>(item / static_cast<std::size_t>(s.count));
-          const int k = static_cast<int>(item % static_cast<std::size_t>(s.count));
+  // One job per (channel, group of segments), channel-major; each
+  // segment's FFT is work of its job.
+  const int per_job = SegmentsPerJob(s, 1);
+  const int groups = (s.count + per_job - 1) / per_job;
+  Eigen::MatrixXd total;
+  if (!median) total = Eigen::MatrixXd::Zero(bins, channels);
+  Scratch<RealFft::Buffer> buffers;
+  Scratch<Eigen::VectorXd> partials;
+  OrderedSum<Eigen::VectorXd> sums(
+      [&](std::size_t job, const Eigen::VectorXd& part) { total.col(static_cast<Eigen::Index>(job) / groups) += part; },
+      &partials);
+  ParallelForEach(
+      static_cast<std::size_t>(channels) * static_cast<std::size_t>(groups),
+      [&](std::size_t job) {
+        const int c = static_cast<int>(job / static_cast<std::size_t>(groups));
+        const int first = static_cast<int>(job % static_cast<std::size_t>(groups)) * per_job;
+        RealFft::Buffer buffer = buffers.Take([&] { return fft.MakeBuffer(); });
+        Eigen::VectorXd local;
+        if (!median) {
+          local = partials.Take([&] { return Eigen::VectorXd(bins); });
+          local.setZero();
+        }
+        for (int k = first; k < std::min(s.count, first + per_job); ++k) {
           Prepare(series.samples().col(c).data() + static_cast<std::ptrdiff_t>(k) * s.step, s.length,
                   options.detrend, window, buffer.input());
           fft.Execute(buffer);
           const std::complex<double>* x = buffer.output();
-          double* target = median ? periodograms[static_cast<std::size_t>(c)].col(k).data() : local.col(c).data();
           if (median) {
+            double* target = periodograms[static_cast<std::size_t>(c)].col(k).data();
             for (int b = 0; b < bins; ++b) target[b] = std::norm(x[b]);
           } else {
-            for (int b = 0; b < bins; ++b) target[b] += std::norm(x[b]);
+            for (int b = 0; b < bins; ++b) local[b] += std::norm(x[b]);
           }
         }
-        if (!median) sums.Add(begin, std::move(local));
+        buffers.Give(std::move(buffer));
+        if (!median) sums.Add(job, std::move(local));
       },
       options.threads);
 
@@ -252,7 +314,7 @@ PsdEstimate WelchPsd(const TimeSeries& series, const WelchOptions& options) {
         },
         options.threads);
   } else {
-    e.psd = sums.Total(bins, channels) / static_cast<double>(s.count);
+    e.psd = total / static_cast<double>(s.count);
     for (int b = 0; b < bins; ++b) e.psd.row(b) *= scale[static_cast<std::size_t>(b)];
   }
   e.channel_names = series.channel_names();
@@ -274,15 +336,27 @@ CsdEstimate WelchCsd(const TimeSeries& series, const WelchOptions& options) {
     for (int i = 0; i <= j; ++i) pairs.emplace_back(i, j);
   std::vector<Eigen::MatrixXcd> products;  // median: per pair, bins x K
   if (median) products.assign(pairs.size(), Eigen::MatrixXcd(bins, s.count));
-  OrderedSum<Eigen::MatrixXcd> sums;
-  ParallelFor(
-      static_cast<std::size_t>(s.count),
-      [&](std::size_t begin, std::size_t end) {
-        RealFft::Buffer buffer = fft.MakeBuffer();
-        Eigen::MatrixXcd x(bins, c_count);
+  // One job per group of segments (a segment's FFTs of every channel, then
+  // the products of every pair), partial sums per pair.
+  const int per_job = SegmentsPerJob(s, c_count);
+  const int groups = (s.count + per_job - 1) / per_job;
+  Eigen::MatrixXcd total;
+  if (!median) total = Eigen::MatrixXcd::Zero(bins, static_cast<Eigen::Index>(pairs.size()));
+  Scratch<RealFft::Buffer> buffers;
+  Scratch<Eigen::MatrixXcd> partials, transforms;
+  OrderedSum<Eigen::MatrixXcd> sums([&](std::size_t, const Eigen::MatrixXcd& part) { total += part; }, &partials);
+  ParallelForEach(
+      static_cast<std::size_t>(groups),
+      [&](std::size_t job) {
+        const int first = static_cast<int>(job) * per_job;
+        RealFft::Buffer buffer = buffers.Take([&] { return fft.MakeBuffer(); });
+        Eigen::MatrixXcd x = transforms.Take([&] { return Eigen::MatrixXcd(bins, c_count); });
         Eigen::MatrixXcd local;
-        if (!median) local = Eigen::MatrixXcd::Zero(bins, c_count * c_count);
-        for (std::size_t k = begin; k < end; ++k) {
+        if (!median) {
+          local = partials.Take([&] { return Eigen::MatrixXcd(bins, static_cast<Eigen::Index>(pairs.size())); });
+          local.setZero();
+        }
+        for (int k = first; k < std::min(s.count, first + per_job); ++k) {
           for (int c = 0; c < c_count; ++c) {
             Prepare(series.samples().col(c).data() + static_cast<std::ptrdiff_t>(k) * s.step, s.length,
                     options.detrend, window, buffer.input());
@@ -290,16 +364,18 @@ CsdEstimate WelchCsd(const TimeSeries& series, const WelchOptions& options) {
             x.col(c) = Eigen::Map<const Eigen::VectorXcd>(buffer.output(), bins);
           }
           for (std::size_t p = 0; p < pairs.size(); ++p) {
-            const auto [i, j] = pairs[p];
+            const int i = pairs[p].first, j = pairs[p].second;
             // conj on the first channel: S_ij = conj(X_i) X_j.
             if (median) {
-              products[p].col(static_cast<Eigen::Index>(k)) = x.col(i).conjugate().cwiseProduct(x.col(j));
+              products[p].col(k) = x.col(i).conjugate().cwiseProduct(x.col(j));
             } else {
-              local.col(i + c_count * j) += x.col(i).conjugate().cwiseProduct(x.col(j));
+              local.col(static_cast<Eigen::Index>(p)) += x.col(i).conjugate().cwiseProduct(x.col(j));
             }
           }
         }
-        if (!median) sums.Add(begin, std::move(local));
+        buffers.Give(std::move(buffer));
+        transforms.Give(std::move(x));
+        if (!median) sums.Add(job, std::move(local));
       },
       options.threads);
 
@@ -328,7 +404,10 @@ CsdEstimate WelchCsd(const TimeSeries& series, const WelchOptions& options) {
         },
         options.threads);
   } else {
-    e.csd = sums.Total(bins, c_count * c_count) / static_cast<double>(s.count);
+    e.csd = Eigen::MatrixXcd::Zero(bins, c_count * c_count);
+    for (std::size_t p = 0; p < pairs.size(); ++p)
+      e.csd.col(pairs[p].first + c_count * pairs[p].second) =
+          total.col(static_cast<Eigen::Index>(p)) / static_cast<double>(s.count);
     for (int b = 0; b < bins; ++b) e.csd.row(b) *= scale[static_cast<std::size_t>(b)];
   }
   for (const auto& [i, j] : pairs) {

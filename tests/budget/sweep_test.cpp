@@ -37,4 +37,19 @@ TEST_CASE("linear and log ranges include both ends and reject empty or non-posit
   CHECK_THROWS_WITH_AS(ParseSweepMode("cartesian"), doctest::Contains("allowed: grid, zip"), InputError);
 }
 
+TEST_CASE("a sweep whose variants fail to load reports the first variant's error on any thread count") {
+  SweepSpec spec;
+  spec.parameters.push_back({"sources[0].spectrum.level", {1, 2, 3, 4, 5, 6, 7, 8}, {}});
+  for (int threads : {1, 2, 5}) {
+    CAPTURE(threads);
+    CHECK_THROWS_WITH_AS(EvaluateSweep(
+                             spec,
+                             [](std::size_t i) -> Budget {
+                               throw InputError("variant " + std::to_string(i + 1) + " cannot load");
+                             },
+                             threads),
+                         "variant 1 cannot load", InputError);
+  }
+}
+
 }  // namespace deb

@@ -3,8 +3,11 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <mutex>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <unistd.h>
 #include <utility>
@@ -100,6 +103,83 @@ TEST_CASE("a ParallelFor inside a block of another covers its range once") {
       },
       4, 1);
   for (const auto& row : hits) CHECK(std::count(row.begin(), row.end(), 1) == 1000);
+}
+
+TEST_CASE("ParallelForEach runs every job exactly once, for any thread count") {
+  for (int threads : {1, 2, 5, 0}) {
+    std::vector<std::atomic<int>> runs(97);
+    ParallelForEach(runs.size(), [&](std::size_t i) { ++runs[i]; }, threads);
+    for (std::size_t i = 0; i < runs.size(); ++i) CHECK(runs[i] == 1);
+  }
+  bool called = false;
+  ParallelForEach(0, [&](std::size_t) { called = true; }, 4);
+  CHECK_FALSE(called);
+}
+
+TEST_CASE("ParallelForEach lets a free thread take the next job while another runs a long one") {
+  // Job 0 blocks until every other job has run: with 2 threads the second
+  // takes jobs 1..9 one after the other (fixed blocks would give it half).
+  std::atomic<int> others{0};
+  ParallelForEach(
+      10,
+      [&](std::size_t i) {
+        if (i > 0) {
+          ++others;
+          return;
+        }
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+        while (others < 9 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+      },
+      2);
+  CHECK(others == 9);
+}
+
+TEST_CASE("ParallelForEach rethrows the lowest failing job's exception after the started jobs end") {
+  // Serially, job 3 throws first and no later job starts.
+  std::vector<int> ran;
+  CHECK_THROWS_WITH_AS(ParallelForEach(
+                           8,
+                           [&](std::size_t i) {
+                             ran.push_back(static_cast<int>(i));
+                             if (i == 3 || i == 5) throw std::runtime_error("job " + std::to_string(i));
+                           },
+                           1),
+                       "job 3", std::runtime_error);
+  CHECK(ran == std::vector<int>{0, 1, 2, 3});
+  // On 4 threads, job 5 may fail before job 3 does: job 3's is still the
+  // one rethrown, and jobs 0-3 (started before job 5) all ran to the end.
+  for (int repeat = 0; repeat < 20; ++repeat) {
+    std::vector<std::atomic<int>> ended(8);
+    CHECK_THROWS_WITH_AS(ParallelForEach(
+                             8,
+                             [&](std::size_t i) {
+                               if (i == 3) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                               ++ended[i];
+                               if (i == 3 || i == 5) throw std::runtime_error("job " + std::to_string(i));
+                             },
+                             4),
+                         "job 3", std::runtime_error);
+    for (std::size_t i = 0; i <= 3; ++i) CHECK(ended[i] == 1);
+  }
+}
+
+TEST_CASE("a ParallelForEach inside a job of another runs each inner job once") {
+  std::vector<std::vector<std::atomic<int>>> hits(6);
+  for (auto& row : hits) row = std::vector<std::atomic<int>>(50);
+  ParallelForEach(
+      hits.size(),
+      [&](std::size_t b) {
+        ParallelForEach(hits[b].size(), [&](std::size_t i) { ++hits[b][i]; }, 3);
+        ParallelFor(
+            hits[b].size(),
+            [&](std::size_t i0, std::size_t i1) {
+              for (std::size_t i = i0; i < i1; ++i) ++hits[b][i];
+            },
+            3, 1);
+      },
+      3);
+  for (const auto& row : hits)
+    for (const auto& h : row) CHECK(h == 2);
 }
 
 }  // namespace deb

@@ -9,6 +9,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   const std::string base_dir = deb_fuzz::PrivateDir();
   deb_fuzz::ExpectOnlyInputError("LoadBudgetText", [&] { deb::LoadBudgetText(text, "fuzz.yaml", base_dir); });
-  deb_fuzz::ExpectOnlyInputError("LoadSweepText", [&] { deb::LoadSweepText(text, "fuzz.yaml", base_dir); });
+  deb_fuzz::ExpectOnlyInputError(
+      "LoadSweepText", [&] { deb::LoadSweepVariants(deb::LoadSweepText(text, "fuzz.yaml", base_dir), 1); });
   return 0;
 }

@@ -293,6 +293,34 @@ TEST_CASE("one thread and two threads give the same estimate (rel 1e-12), mean a
   }
 }
 
+TEST_CASE("PSD and CSD are bitwise the same on 1, 2 and 5 threads, default and short segments, mean and median") {
+  const Eigen::Index n = 1 << 17;
+  const TimeSeries x = Series(
+      100.0, {test::WhiteNoise(n, 1.0, 21), test::Ar1(n, 0.9, 2.0, 22), test::WhiteNoise(n, 0.5, 23)});
+  // 0: automatic, 15 segments of 16384 (a few per job); 256: 1023 segments,
+  // hundreds per job.
+  for (int segment : {0, 256}) {
+    for (Averaging averaging : {Averaging::kMean, Averaging::kMedian}) {
+      CAPTURE(segment);
+      WelchOptions o;
+      o.segment_length = segment;
+      o.averaging = averaging;
+      o.threads = 1;
+      const PsdEstimate p1 = WelchPsd(x, o);
+      const CsdEstimate c1 = WelchCsd(x, o);
+      CHECK(p1.provenance.segments == (segment == 0 ? 15 : 1023));
+      for (int threads : {2, 5}) {
+        CAPTURE(threads);
+        o.threads = threads;
+        const PsdEstimate p = WelchPsd(x, o);
+        const CsdEstimate c = WelchCsd(x, o);
+        CHECK((p.psd.array() == p1.psd.array()).all());
+        CHECK((c.csd.array() == c1.csd.array()).all());
+      }
+    }
+  }
+}
+
 TEST_CASE("the automatic segment length is the largest power of two giving at least 8 segments") {
   WelchOptions o;
   CHECK(SegmentLengthFor(9 * 512, o) == 1024);  // 1024 at 50 %: (4608 - 512) / 512 = 8 segments
