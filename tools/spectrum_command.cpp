@@ -102,11 +102,11 @@ void AddRecordingOptions(CLI::App* c, RecordingOptions& r) {
   c->add_option("--file-channels", r.file_channels, "Raw files: channel names, or their count")->delimiter(',');
   c->add_option("--columns", r.columns, "Channels to analyse (default: all)")->delimiter(',');
   c->add_option("--unit", r.unit, "Unit of the samples (if the file has no '# unit:')");
-  c->add_option("--window", r.window, "rectangular, hann, hamming, blackman_harris, flattop");
+  c->add_option("--window", r.window, AllowedNames<WindowKind>());
   c->add_option("--segment", r.segment, "Samples per segment (default: largest power of two giving >= 8 segments)")
       ->check(CLI::Range(2, 1 << 30));
   c->add_option("--overlap", r.overlap, "Fraction of a segment shared with the next, [0, 1)");
-  c->add_option("--detrend", r.detrend, "none, mean or linear (per segment)");
+  c->add_option("--detrend", r.detrend, AllowedNames<Detrend>() + " (per segment)");
   c->add_option("--average", r.averaging, "mean or median (bias-corrected)");
   c->add_option("--confidence", r.confidence, "Level of the chi-square bounds");
   c->add_option("--threads,-j", r.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
@@ -549,7 +549,7 @@ CLI::App* SpectrumCommand::Register(CLI::App& app) {
 
   s.bands = spectrum->add_subcommand("bands", "One-third-octave band RMS of a spectrum CSV and its VC/ISO class");
   s.bands->add_option("spectrum", s.spectrum_file, "Spectrum CSV")->required()->check(CLI::ExistingFile);
-  s.bands->add_option("--series", s.series, "base2_1hz, iec_base2 or iec_base10");
+  s.bands->add_option("--series", s.series, AllowedNames<ThirdOctaveSeries>());
   s.bands->add_option("--lowest", s.lowest_hz, "Nominal centre of the lowest band (default: all bands in the data)");
   s.bands->add_option("--highest", s.highest_hz, "Nominal centre of the highest band")->needs("--lowest");
   s.bands->add_option("--criteria", s.criteria, "vc, iso, all, or none (band RMS only, in the file's unit)")
@@ -569,7 +569,7 @@ CLI::App* SpectrumCommand::Register(CLI::App& app) {
   s.convert->add_flag("--asd", s.asd, "Write an ASD (unit/sqrt(Hz)) instead of a PSD");
   s.convert->add_flag("--from-bands", s.from_bands,
                       "Input rows are band centres and band RMS values: write the PSD constant in each band");
-  s.convert->add_option("--series", s.series, "Band series for --from-bands: base2_1hz, iec_base2, iec_base10");
+  s.convert->add_option("--series", s.series, "Band series for --from-bands: " + AllowedNames<ThirdOctaveSeries>());
   s.convert->add_option("--out,-o", s.out, "Output spectrum CSV (default: standard output)");
   AddPlotOptions(s.convert, s);
 
@@ -593,7 +593,7 @@ CLI::App* SpectrumCommand::Register(CLI::App& app) {
   AddPlotOptions(s.frf, s);
 
   s.reference = spectrum->add_subcommand("reference", "Peterson's New Low/High Noise Model as a spectrum CSV");
-  s.reference->add_option("model", s.model, "nlnm or nhnm")->required();
+  s.reference->add_option("model", s.model, AllowedNames<PetersonModel>())->required();
   s.reference->add_option("--to", s.to_unit, "Unit (default m/s^2; e.g. um/s, nm)");
   s.reference->add_option("--points-per-decade", s.points_per_decade, "Frequencies per decade, 1e-5-10 Hz");
   s.reference->add_flag("--asd", s.asd, "Write an ASD instead of a PSD");

@@ -45,40 +45,6 @@ void AtKey(const std::string& key, F&& f) {
 
 }  // namespace
 
-GridKind ParseGridKind(const std::string& text) {
-  if (text == "auto") return GridKind::kAuto;
-  if (text == "log") return GridKind::kLog;
-  if (text == "linear") return GridKind::kLinear;
-  if (text == "explicit") return GridKind::kExplicit;
-  throw InputError("unknown grid type '" + text + "'; allowed: auto, log, linear, explicit");
-}
-
-std::string ToString(GridKind kind) {
-  switch (kind) {
-    case GridKind::kAuto: return "auto";
-    case GridKind::kLog: return "log";
-    case GridKind::kLinear: return "linear";
-    case GridKind::kExplicit: return "explicit";
-  }
-  return "?";
-}
-
-ExactVariance ParseExactVariance(const std::string& text) {
-  if (text == "auto") return ExactVariance::kAuto;
-  if (text == "required") return ExactVariance::kRequired;
-  if (text == "off") return ExactVariance::kOff;
-  throw InputError("unknown exact-variance mode '" + text + "'; allowed: auto, required, off");
-}
-
-std::string ToString(ExactVariance mode) {
-  switch (mode) {
-    case ExactVariance::kAuto: return "auto";
-    case ExactVariance::kRequired: return "required";
-    case ExactVariance::kOff: return "off";
-  }
-  return "?";
-}
-
 const Source& Budget::FindSource(const std::string& n) const {
   for (const auto& s : sources)
     if (s.name == n) return s;

@@ -12,14 +12,19 @@
 #include "deb/budget/output_metric.h"
 #include "deb/budget/path.h"
 #include "deb/budget/source.h"
+#include "deb/core/enum_names.h"
 #include "deb/core/frequency_grid.h"
 #include "deb/systems/state_space.h"
 
 namespace deb {
 
 enum class GridKind { kAuto, kLog, kLinear, kExplicit };
-GridKind ParseGridKind(const std::string& text);  // @throws InputError listing allowed values
-std::string ToString(GridKind kind);
+inline constexpr EnumName<GridKind> kGridKindNames[] = {
+    {GridKind::kAuto, "auto"}, {GridKind::kLog, "log"}, {GridKind::kLinear, "linear"},
+    {GridKind::kExplicit, "explicit"}};
+constexpr EnumNames<GridKind> NamesOf(GridKind) { return kGridKindNames; }
+// @throws InputError listing allowed values.
+inline GridKind ParseGridKind(const std::string& text) { return ParseEnum<GridKind>(text, "grid type"); }
 
 struct GridSpec {
   GridKind kind = GridKind::kAuto;
@@ -63,8 +68,13 @@ struct Output {
 // kAuto: whenever the source is white and the path stable; kRequired: an
 // error if that is not possible; kOff: never.
 enum class ExactVariance { kAuto, kRequired, kOff };
-ExactVariance ParseExactVariance(const std::string& text);
-std::string ToString(ExactVariance mode);
+inline constexpr EnumName<ExactVariance> kExactVarianceNames[] = {
+    {ExactVariance::kAuto, "auto"}, {ExactVariance::kRequired, "required"}, {ExactVariance::kOff, "off"}};
+constexpr EnumNames<ExactVariance> NamesOf(ExactVariance) { return kExactVarianceNames; }
+// @throws InputError listing allowed values.
+inline ExactVariance ParseExactVariance(const std::string& text) {
+  return ParseEnum<ExactVariance>(text, "exact-variance mode");
+}
 
 struct Contributor {
   std::string name;

@@ -7,16 +7,6 @@
 
 namespace deb {
 
-MetricType ParseMetricType(const std::string& text) {
-  if (text == "moving_average") return MetricType::kMovingAverage;
-  if (text == "moving_std") return MetricType::kMovingStd;
-  throw InputError("metric type '" + text + "' is not known; allowed: moving_average, moving_std");
-}
-
-std::string ToString(MetricType type) {
-  return type == MetricType::kMovingAverage ? "moving_average" : "moving_std";
-}
-
 double OutputMetric::PsdFactor(double f_hz) const {
   constexpr double kPi = 3.141592653589793238462643383279502884;
   const double x = kPi * f_hz * window_s;

@@ -12,11 +12,16 @@
 
 #include <string>
 
+#include "deb/core/enum_names.h"
+
 namespace deb {
 
 enum class MetricType { kMovingAverage, kMovingStd };
-MetricType ParseMetricType(const std::string& text);  // @throws InputError listing allowed values
-std::string ToString(MetricType type);
+inline constexpr EnumName<MetricType> kMetricTypeNames[] = {{MetricType::kMovingAverage, "moving_average"},
+                                                            {MetricType::kMovingStd, "moving_std"}};
+constexpr EnumNames<MetricType> NamesOf(MetricType) { return kMetricTypeNames; }
+// @throws InputError listing allowed values.
+inline MetricType ParseMetricType(const std::string& text) { return ParseEnum<MetricType>(text, "metric type"); }
 
 struct OutputMetric {
   // sinc^2 ripples with zeros at k/T. The first kResolvedLobes lobes are

@@ -10,14 +10,6 @@
 
 namespace deb {
 
-SweepMode ParseSweepMode(const std::string& text) {
-  if (text == "grid") return SweepMode::kGrid;
-  if (text == "zip") return SweepMode::kZip;
-  throw InputError("sweep mode '" + text + "' is not known; allowed: grid, zip");
-}
-
-std::string ToString(SweepMode mode) { return mode == SweepMode::kGrid ? "grid" : "zip"; }
-
 std::string SweepParameter::Text(double value) const {
   if (!texts.empty()) {
     const auto i = static_cast<std::size_t>(value);

@@ -14,12 +14,15 @@
 #include <vector>
 
 #include "deb/budget/engine.h"
+#include "deb/core/enum_names.h"
 
 namespace deb {
 
 enum class SweepMode { kGrid, kZip };
-SweepMode ParseSweepMode(const std::string& text);  // @throws InputError listing allowed values
-std::string ToString(SweepMode mode);
+inline constexpr EnumName<SweepMode> kSweepModeNames[] = {{SweepMode::kGrid, "grid"}, {SweepMode::kZip, "zip"}};
+constexpr EnumNames<SweepMode> NamesOf(SweepMode) { return kSweepModeNames; }
+// @throws InputError listing allowed values.
+inline SweepMode ParseSweepMode(const std::string& text) { return ParseEnum<SweepMode>(text, "sweep mode"); }
 
 struct SweepParameter {
   std::string key_path;        // into the budget file; [*] means every element

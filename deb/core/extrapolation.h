@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "deb/core/enum_names.h"
+
 namespace deb {
 
 enum class Extrapolation {
@@ -13,9 +15,13 @@ enum class Extrapolation {
   kHold,   // the value at the nearest end of the data
 };
 
-// "error", "zero", "hold".
-std::string ToString(Extrapolation extrapolation);
+inline constexpr EnumName<Extrapolation> kExtrapolationNames[] = {
+    {Extrapolation::kError, "error"}, {Extrapolation::kZero, "zero"}, {Extrapolation::kHold, "hold"}};
+constexpr EnumNames<Extrapolation> NamesOf(Extrapolation) { return kExtrapolationNames; }
+
 // @throws InputError naming the text and listing the allowed values.
-Extrapolation ParseExtrapolation(const std::string& text);
+inline Extrapolation ParseExtrapolation(const std::string& text) {
+  return ParseEnum<Extrapolation>(text, "extrapolation");
+}
 
 }  // namespace deb

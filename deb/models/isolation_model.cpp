@@ -280,26 +280,6 @@ IsolationModelSummary IsolationModel::Summary() const {
   return sum;
 }
 
-std::string ToString(IsolationModel::Loop loop) {
-  return loop == IsolationModel::Loop::kOpen ? "open" : "closed";
-}
-
-std::string ToString(IsolationModel::Outputs outputs) {
-  return outputs == IsolationModel::Outputs::kVelocity ? "velocity" : "velocity_and_position";
-}
-
-IsolationModel::Loop ParseLoop(const std::string& text) {
-  if (text == "open") return IsolationModel::Loop::kOpen;
-  if (text == "closed") return IsolationModel::Loop::kClosed;
-  throw InputError("loop '" + text + "' is not one of: open, closed");
-}
-
-IsolationModel::Outputs ParseOutputs(const std::string& text) {
-  if (text == "velocity") return IsolationModel::Outputs::kVelocity;
-  if (text == "velocity_and_position") return IsolationModel::Outputs::kVelocityAndPosition;
-  throw InputError("outputs '" + text + "' is not one of: velocity, velocity_and_position");
-}
-
 std::string IsolationModelSummary::Report() const {
   std::ostringstream os;
   os << std::fixed;

@@ -147,11 +147,18 @@ class IsolationModel {
   Eigen::MatrixXd a_open_, a_closed_;
 };
 
-// "open" / "closed" and "velocity" / "velocity_and_position", for YAML and CLI.
-std::string ToString(IsolationModel::Loop loop);
-std::string ToString(IsolationModel::Outputs outputs);
+// Names for YAML and CLI.
+inline constexpr EnumName<IsolationModel::Loop> kLoopNames[] = {{IsolationModel::Loop::kOpen, "open"},
+                                                                 {IsolationModel::Loop::kClosed, "closed"}};
+constexpr EnumNames<IsolationModel::Loop> NamesOf(IsolationModel::Loop) { return kLoopNames; }
+inline constexpr EnumName<IsolationModel::Outputs> kOutputsNames[] = {
+    {IsolationModel::Outputs::kVelocity, "velocity"},
+    {IsolationModel::Outputs::kVelocityAndPosition, "velocity_and_position"}};
+constexpr EnumNames<IsolationModel::Outputs> NamesOf(IsolationModel::Outputs) { return kOutputsNames; }
 // @throws InputError listing the allowed values.
-IsolationModel::Loop ParseLoop(const std::string& text);
-IsolationModel::Outputs ParseOutputs(const std::string& text);
+inline IsolationModel::Loop ParseLoop(const std::string& text) { return ParseEnum<IsolationModel::Loop>(text, "loop"); }
+inline IsolationModel::Outputs ParseOutputs(const std::string& text) {
+  return ParseEnum<IsolationModel::Outputs>(text, "outputs");
+}
 
 }  // namespace deb

@@ -65,38 +65,6 @@ void CheckNotCollinear(const std::vector<Isolator>& isolators) {
 
 }  // namespace
 
-std::string ToString(BodyAxis axis) {
-  switch (axis) {
-    case BodyAxis::kX: return "x";
-    case BodyAxis::kY: return "y";
-    case BodyAxis::kZ: return "z";
-  }
-  DEB_DEMAND(false);
-}
-
-std::string ToString(LocalAxis axis) {
-  switch (axis) {
-    case LocalAxis::kP: return "p";
-    case LocalAxis::kQ: return "q";
-    case LocalAxis::kR: return "r";
-  }
-  DEB_DEMAND(false);
-}
-
-BodyAxis ParseBodyAxis(const std::string& text) {
-  if (text == "x") return BodyAxis::kX;
-  if (text == "y") return BodyAxis::kY;
-  if (text == "z") return BodyAxis::kZ;
-  throw InputError("body axis '" + text + "' is not one of: x, y, z");
-}
-
-LocalAxis ParseLocalAxis(const std::string& text) {
-  if (text == "p") return LocalAxis::kP;
-  if (text == "q") return LocalAxis::kQ;
-  if (text == "r") return LocalAxis::kR;
-  throw InputError("isolator axis '" + text + "' is not one of: p, q, r");
-}
-
 void RigidBody::Validate() const {
   if (!std::isfinite(mass) || mass <= 0.0)
     Fail("body.mass", Num(mass) + " must be finite and > 0");

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
+
 namespace deb {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
@@ -52,11 +54,14 @@ struct Isolator {
 // Body axes (sensor directions) and isolator-local axes (actuator directions).
 enum class BodyAxis { kX, kY, kZ };
 enum class LocalAxis { kP, kQ, kR };
-std::string ToString(BodyAxis axis);  // "x", "y", "z"
-std::string ToString(LocalAxis axis);  // "p", "q", "r"
+inline constexpr EnumName<BodyAxis> kBodyAxisNames[] = {{BodyAxis::kX, "x"}, {BodyAxis::kY, "y"}, {BodyAxis::kZ, "z"}};
+constexpr EnumNames<BodyAxis> NamesOf(BodyAxis) { return kBodyAxisNames; }
+inline constexpr EnumName<LocalAxis> kLocalAxisNames[] = {
+    {LocalAxis::kP, "p"}, {LocalAxis::kQ, "q"}, {LocalAxis::kR, "r"}};
+constexpr EnumNames<LocalAxis> NamesOf(LocalAxis) { return kLocalAxisNames; }
 // @throws InputError listing the allowed values.
-BodyAxis ParseBodyAxis(const std::string& text);
-LocalAxis ParseLocalAxis(const std::string& text);
+inline BodyAxis ParseBodyAxis(const std::string& text) { return ParseEnum<BodyAxis>(text, "body axis"); }
+inline LocalAxis ParseLocalAxis(const std::string& text) { return ParseEnum<LocalAxis>(text, "isolator axis"); }
 
 // A geophone on an isolator's point of action: measures the absolute velocity
 // of that point along a body axis, v_P = v_CoG + omega x r_i (eq. 3-38..3-41).

@@ -5,15 +5,19 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
+
 namespace deb {
 
 // File formats of the plots: kPng and kSvg write one file per plot under
 // plots/ (index.html shows the PNGs, or the SVGs without PNGs); kPdf writes
 // all plots, after a title page, into report.pdf.
 enum class PlotFormat { kPng, kPdf, kSvg };
-std::string ToString(PlotFormat format);
+inline constexpr EnumName<PlotFormat> kPlotFormatNames[] = {
+    {PlotFormat::kPng, "png"}, {PlotFormat::kPdf, "pdf"}, {PlotFormat::kSvg, "svg"}};
+constexpr EnumNames<PlotFormat> NamesOf(PlotFormat) { return kPlotFormatNames; }
 // @throws InputError quoting the text and listing png, pdf, svg.
-PlotFormat ParsePlotFormat(const std::string& text);
+inline PlotFormat ParsePlotFormat(const std::string& text) { return ParseEnum<PlotFormat>(text, "plot format"); }
 
 struct ReportOptions {
   std::vector<PlotFormat> formats = {PlotFormat::kPng, PlotFormat::kPdf};

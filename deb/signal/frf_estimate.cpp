@@ -19,14 +19,6 @@ int ChannelOf(const CsdEstimate& csd, const std::string& name, const char* role)
 
 }  // namespace
 
-std::string ToString(FrfEstimator estimator) { return estimator == FrfEstimator::kH1 ? "h1" : "h2"; }
-
-FrfEstimator ParseFrfEstimator(const std::string& text) {
-  for (auto e : {FrfEstimator::kH1, FrfEstimator::kH2})
-    if (text == ToString(e)) return e;
-  throw InputError("unknown frequency response estimator '" + text + "'; allowed: h1, h2");
-}
-
 FrfEstimate EstimateFrf(const CsdEstimate& csd, const std::string& input, const std::vector<std::string>& outputs,
                         FrfEstimator estimator) {
   if (outputs.empty()) throw InputError("a frequency response needs at least one output channel");

@@ -13,15 +13,18 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
 #include "deb/signal/spectral_estimate.h"
 
 namespace deb {
 
 enum class FrfEstimator { kH1, kH2 };
-// "h1", "h2".
-std::string ToString(FrfEstimator estimator);
+inline constexpr EnumName<FrfEstimator> kFrfEstimatorNames[] = {{FrfEstimator::kH1, "h1"}, {FrfEstimator::kH2, "h2"}};
+constexpr EnumNames<FrfEstimator> NamesOf(FrfEstimator) { return kFrfEstimatorNames; }
 // @throws InputError naming the text and listing the allowed values.
-FrfEstimator ParseFrfEstimator(const std::string& text);
+inline FrfEstimator ParseFrfEstimator(const std::string& text) {
+  return ParseEnum<FrfEstimator>(text, "frequency response estimator");
+}
 
 struct FrfEstimate {
   FrfEstimator estimator = FrfEstimator::kH1;

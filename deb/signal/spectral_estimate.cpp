@@ -7,40 +7,6 @@
 
 namespace deb {
 
-std::string ToString(Detrend detrend) {
-  switch (detrend) {
-    case Detrend::kNone: return "none";
-    case Detrend::kMean: return "mean";
-    case Detrend::kLinear: return "linear";
-  }
-  DEB_DEMAND(false);
-  return {};
-}
-
-Detrend ParseDetrend(const std::string& text) {
-  if (text == "constant") return Detrend::kMean;
-  for (Detrend d : {Detrend::kNone, Detrend::kMean, Detrend::kLinear}) {
-    if (text == ToString(d)) return d;
-  }
-  throw InputError("unknown detrend '" + text + "'; allowed: none, mean, linear");
-}
-
-std::string ToString(Averaging averaging) {
-  switch (averaging) {
-    case Averaging::kMean: return "mean";
-    case Averaging::kMedian: return "median";
-  }
-  DEB_DEMAND(false);
-  return {};
-}
-
-Averaging ParseAveraging(const std::string& text) {
-  for (Averaging a : {Averaging::kMean, Averaging::kMedian}) {
-    if (text == ToString(a)) return a;
-  }
-  throw InputError("unknown averaging '" + text + "'; allowed: mean, median");
-}
-
 std::vector<std::string> WelchProvenance::Describe() const {
   char line[256];
   std::vector<std::string> lines;

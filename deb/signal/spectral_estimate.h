@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
 #include "deb/signal/window.h"
 #include "deb/spectra/measured_spectrum.h"
 #include "deb/spectra/tabulated_csd.h"
@@ -18,15 +19,17 @@ namespace deb {
 
 // Removed from each segment before windowing.
 enum class Detrend { kNone, kMean, kLinear };
-// "none", "mean", "linear". Parse also accepts "constant" for mean.
-std::string ToString(Detrend detrend);
-Detrend ParseDetrend(const std::string& text);
+inline constexpr EnumName<Detrend> kDetrendNames[] = {
+    {Detrend::kNone, "none"}, {Detrend::kMean, "mean"}, {Detrend::kLinear, "linear"},
+    {Detrend::kMean, "constant", kAlias}};
+constexpr EnumNames<Detrend> NamesOf(Detrend) { return kDetrendNames; }
+inline Detrend ParseDetrend(const std::string& text) { return ParseEnum<Detrend>(text, "detrend"); }
 
 // How the segments' periodograms are combined.
 enum class Averaging { kMean, kMedian };
-// "mean", "median".
-std::string ToString(Averaging averaging);
-Averaging ParseAveraging(const std::string& text);
+inline constexpr EnumName<Averaging> kAveragingNames[] = {{Averaging::kMean, "mean"}, {Averaging::kMedian, "median"}};
+constexpr EnumNames<Averaging> NamesOf(Averaging) { return kAveragingNames; }
+inline Averaging ParseAveraging(const std::string& text) { return ParseEnum<Averaging>(text, "averaging"); }
 
 struct WelchProvenance {
   WindowKind window = WindowKind::kHann;

@@ -262,21 +262,6 @@ TimeSeries ReadTimeSeriesCsv(const std::string& path, const TimeSeriesCsvOptions
   return CsvReader(path, options).Read();
 }
 
-std::string ToString(RawSampleFormat format) {
-  switch (format) {
-    case RawSampleFormat::kFloat32: return "float32";
-    case RawSampleFormat::kFloat64: return "float64";
-  }
-  DEB_DEMAND(false);
-  return {};
-}
-
-RawSampleFormat ParseRawSampleFormat(const std::string& text) {
-  if (text == "float32" || text == "f32") return RawSampleFormat::kFloat32;
-  if (text == "float64" || text == "f64") return RawSampleFormat::kFloat64;
-  throw InputError("unknown raw sample format '" + text + "'; allowed: float32, float64 (or f32, f64)");
-}
-
 TimeSeries ReadRawTimeSeries(const std::string& path, const RawTimeSeriesOptions& options) {
   if (options.rate_hz == 0.0)
     throw InputError(path + ": missing sample rate: a raw file carries none; give it where the file is used");

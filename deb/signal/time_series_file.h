@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
 #include "deb/signal/time_series.h"
 
 namespace deb {
@@ -37,10 +38,14 @@ struct TimeSeriesCsvOptions {
 TimeSeries ReadTimeSeriesCsv(const std::string& path, const TimeSeriesCsvOptions& options = {});
 
 enum class RawSampleFormat { kFloat32, kFloat64 };
-// "float32", "float64".
-std::string ToString(RawSampleFormat format);
-// Also accepts "f32", "f64". @throws InputError listing the allowed values.
-RawSampleFormat ParseRawSampleFormat(const std::string& text);
+inline constexpr EnumName<RawSampleFormat> kRawSampleFormatNames[] = {
+    {RawSampleFormat::kFloat32, "float32"}, {RawSampleFormat::kFloat64, "float64"},
+    {RawSampleFormat::kFloat32, "f32", kAlias}, {RawSampleFormat::kFloat64, "f64", kAlias}};
+constexpr EnumNames<RawSampleFormat> NamesOf(RawSampleFormat) { return kRawSampleFormatNames; }
+// @throws InputError listing the allowed values.
+inline RawSampleFormat ParseRawSampleFormat(const std::string& text) {
+  return ParseEnum<RawSampleFormat>(text, "raw sample format");
+}
 
 struct RawTimeSeriesOptions {
   RawSampleFormat format = RawSampleFormat::kFloat64;

@@ -21,33 +21,7 @@ std::vector<double> Coefficients(WindowKind kind) {
   return {};
 }
 
-constexpr WindowKind kAllKinds[] = {WindowKind::kRectangular, WindowKind::kHann, WindowKind::kHamming,
-                                    WindowKind::kBlackmanHarris, WindowKind::kFlatTop};
-
 }  // namespace
-
-std::string ToString(WindowKind kind) {
-  switch (kind) {
-    case WindowKind::kRectangular: return "rectangular";
-    case WindowKind::kHann: return "hann";
-    case WindowKind::kHamming: return "hamming";
-    case WindowKind::kBlackmanHarris: return "blackman_harris";
-    case WindowKind::kFlatTop: return "flattop";
-  }
-  DEB_DEMAND(false);
-  return {};
-}
-
-WindowKind ParseWindowKind(const std::string& text) {
-  if (text == "boxcar") return WindowKind::kRectangular;
-  if (text == "hanning") return WindowKind::kHann;
-  std::string allowed;
-  for (WindowKind kind : kAllKinds) {
-    if (text == ToString(kind)) return kind;
-    allowed += (allowed.empty() ? "" : ", ") + ToString(kind);
-  }
-  throw InputError("unknown window '" + text + "'; allowed: " + allowed);
-}
 
 std::vector<double> MakeWindow(WindowKind kind, int size) {
   if (size < 1) throw InputError("window length " + std::to_string(size) + " is invalid; it must be >= 1");

@@ -20,15 +20,20 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
+
 namespace deb {
 
 enum class WindowKind { kRectangular, kHann, kHamming, kBlackmanHarris, kFlatTop };
 
-// "rectangular", "hann", "hamming", "blackman_harris", "flattop".
-std::string ToString(WindowKind kind);
-// Also accepts "boxcar" for rectangular and "hanning" for hann.
+inline constexpr EnumName<WindowKind> kWindowKindNames[] = {
+    {WindowKind::kRectangular, "rectangular"}, {WindowKind::kHann, "hann"}, {WindowKind::kHamming, "hamming"},
+    {WindowKind::kBlackmanHarris, "blackman_harris"}, {WindowKind::kFlatTop, "flattop"},
+    {WindowKind::kRectangular, "boxcar", kAlias}, {WindowKind::kHann, "hanning", kAlias}};
+constexpr EnumNames<WindowKind> NamesOf(WindowKind) { return kWindowKindNames; }
+
 // @throws InputError naming the text and listing the allowed values.
-WindowKind ParseWindowKind(const std::string& text);
+inline WindowKind ParseWindowKind(const std::string& text) { return ParseEnum<WindowKind>(text, "window"); }
 
 // The N samples of the window. @throws InputError if size < 1.
 std::vector<double> MakeWindow(WindowKind kind, int size);

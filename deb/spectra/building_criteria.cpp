@@ -23,23 +23,6 @@ bool Meets(double rms, const BuildingCriterion& c, double tolerance) {
 
 }  // namespace
 
-std::string ToString(CriteriaSet set) {
-  switch (set) {
-    case CriteriaSet::kVc: return "vc";
-    case CriteriaSet::kIso: return "iso";
-    case CriteriaSet::kAll: return "all";
-  }
-  DEB_DEMAND(false);
-  return {};
-}
-
-CriteriaSet ParseCriteriaSet(const std::string& text) {
-  for (CriteriaSet s : {CriteriaSet::kVc, CriteriaSet::kIso, CriteriaSet::kAll}) {
-    if (text == ToString(s)) return s;
-  }
-  throw InputError("unknown criteria set '" + text + "'; allowed: vc, iso, all");
-}
-
 std::vector<BuildingCriterion> BuildingCriteria(CriteriaSet set) {
   std::vector<BuildingCriterion> list;
   if (set != CriteriaSet::kVc) {

@@ -34,9 +34,11 @@ struct IsoBuildingCriterion {
 const std::vector<IsoBuildingCriterion>& IsoBuildingCriteria();
 
 enum class CriteriaSet { kVc, kIso, kAll };
-// "vc", "iso", "all". @throws InputError listing the allowed values.
-std::string ToString(CriteriaSet set);
-CriteriaSet ParseCriteriaSet(const std::string& text);
+inline constexpr EnumName<CriteriaSet> kCriteriaSetNames[] = {
+    {CriteriaSet::kVc, "vc"}, {CriteriaSet::kIso, "iso"}, {CriteriaSet::kAll, "all"}};
+constexpr EnumNames<CriteriaSet> NamesOf(CriteriaSet) { return kCriteriaSetNames; }
+// @throws InputError listing the allowed values.
+inline CriteriaSet ParseCriteriaSet(const std::string& text) { return ParseEnum<CriteriaSet>(text, "criteria set"); }
 
 struct BuildingCriterion {
   std::string name;

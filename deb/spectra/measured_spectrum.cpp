@@ -21,16 +21,6 @@ double Interpolate(double f_hz, double log_f, double f0, double log_f0, double s
 
 }  // namespace
 
-std::string ToString(SpectrumInterpolation interpolation) {
-  return interpolation == SpectrumInterpolation::kBins ? "bins" : "log-log";
-}
-
-SpectrumInterpolation ParseSpectrumInterpolation(const std::string& text) {
-  for (auto i : {SpectrumInterpolation::kLogLog, SpectrumInterpolation::kBins})
-    if (text == ToString(i)) return i;
-  throw InputError("unknown spectrum interpolation '" + text + "'; allowed: log-log, bins");
-}
-
 MeasuredSpectrum::MeasuredSpectrum(std::vector<double> f_hz, Eigen::MatrixXd psd,
                                    MeasuredSpectrumOptions options)
     : f_hz_(std::move(f_hz)), psd_(std::move(psd)), options_(std::move(options)) {

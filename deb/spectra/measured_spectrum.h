@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
 #include "deb/core/extrapolation.h"
 #include "deb/spectra/spectrum.h"
 
@@ -24,10 +25,13 @@ enum class SpectrumInterpolation {
   kLogLog,  // log S linear in log f (S linear in f where an end is 0)
   kBins,    // S constant over each point's bin (spectral estimates)
 };
-// "log-log", "bins".
-std::string ToString(SpectrumInterpolation interpolation);
+inline constexpr EnumName<SpectrumInterpolation> kSpectrumInterpolationNames[] = {
+    {SpectrumInterpolation::kLogLog, "log-log"}, {SpectrumInterpolation::kBins, "bins"}};
+constexpr EnumNames<SpectrumInterpolation> NamesOf(SpectrumInterpolation) { return kSpectrumInterpolationNames; }
 // @throws InputError naming the text and listing the allowed values.
-SpectrumInterpolation ParseSpectrumInterpolation(const std::string& text);
+inline SpectrumInterpolation ParseSpectrumInterpolation(const std::string& text) {
+  return ParseEnum<SpectrumInterpolation>(text, "spectrum interpolation");
+}
 
 struct MeasuredSpectrumOptions {
   Extrapolation extrapolation = Extrapolation::kError;

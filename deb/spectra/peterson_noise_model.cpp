@@ -1,22 +1,11 @@
 #include "deb/spectra/peterson_noise_model.h"
 
-#include <cctype>
 #include <cmath>
 
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
-
-std::string ToString(PetersonModel model) { return model == PetersonModel::kLow ? "nlnm" : "nhnm"; }
-
-PetersonModel ParsePetersonModel(const std::string& text) {
-  std::string lower = text;
-  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (lower == "nlnm") return PetersonModel::kLow;
-  if (lower == "nhnm") return PetersonModel::kHigh;
-  throw InputError("unknown Peterson noise model '" + text + "'; allowed: nlnm, nhnm");
-}
 
 double PetersonAccelerationPsd(PetersonModel model, double f_hz) {
   if (!(f_hz >= PetersonSpectrum::kMinHz && f_hz <= PetersonSpectrum::kMaxHz))

@@ -9,15 +9,20 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
 #include "deb/spectra/measured_spectrum.h"
 #include "deb/spectra/spectrum.h"
 
 namespace deb {
 
 enum class PetersonModel { kLow, kHigh };
-// "nlnm", "nhnm". Parse accepts any letter case.
-std::string ToString(PetersonModel model);
-PetersonModel ParsePetersonModel(const std::string& text);
+inline constexpr EnumName<PetersonModel> kPetersonModelNames[] = {{PetersonModel::kLow, "nlnm"},
+                                                                  {PetersonModel::kHigh, "nhnm"}};
+// Parsing accepts any letter case ("NLNM").
+constexpr EnumNames<PetersonModel> NamesOf(PetersonModel) { return {kPetersonModelNames, NameCase::kIgnore}; }
+inline PetersonModel ParsePetersonModel(const std::string& text) {
+  return ParseEnum<PetersonModel>(text, "Peterson noise model");
+}
 
 // One row of the data file: valid for period_from_s <= P < period_to_s.
 struct PetersonSegment {

@@ -91,22 +91,6 @@ NumericTableOptions SpectrumTableOptions() {
 
 }  // namespace
 
-std::string ToString(SpectrumQuantity quantity) { return quantity == SpectrumQuantity::kPsd ? "psd" : "asd"; }
-
-std::string ToString(SpectrumSides sides) { return sides == SpectrumSides::kOne ? "one" : "two"; }
-
-SpectrumQuantity ParseSpectrumQuantity(const std::string& text) {
-  if (text == "psd") return SpectrumQuantity::kPsd;
-  if (text == "asd") return SpectrumQuantity::kAsd;
-  throw InputError("unknown spectrum quantity '" + text + "'; allowed: psd, asd");
-}
-
-SpectrumSides ParseSpectrumSides(const std::string& text) {
-  if (text == "one") return SpectrumSides::kOne;
-  if (text == "two") return SpectrumSides::kTwo;
-  throw InputError("unknown spectrum sides '" + text + "'; allowed: one, two");
-}
-
 SpectrumCsv ParseSpectrumCsv(std::istream& in, const std::string& name) {
   return FromTable(ParseNumericTable(in, name, SpectrumTableOptions()));
 }

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
 #include "deb/spectra/measured_spectrum.h"
 
 namespace deb {
@@ -29,12 +30,20 @@ namespace deb {
 enum class SpectrumQuantity { kPsd, kAsd };
 enum class SpectrumSides { kOne, kTwo };
 
-// "psd", "asd" / "one", "two".
-std::string ToString(SpectrumQuantity quantity);
-std::string ToString(SpectrumSides sides);
+inline constexpr EnumName<SpectrumQuantity> kSpectrumQuantityNames[] = {{SpectrumQuantity::kPsd, "psd"},
+                                                                        {SpectrumQuantity::kAsd, "asd"}};
+constexpr EnumNames<SpectrumQuantity> NamesOf(SpectrumQuantity) { return kSpectrumQuantityNames; }
+inline constexpr EnumName<SpectrumSides> kSpectrumSidesNames[] = {{SpectrumSides::kOne, "one"},
+                                                                  {SpectrumSides::kTwo, "two"}};
+constexpr EnumNames<SpectrumSides> NamesOf(SpectrumSides) { return kSpectrumSidesNames; }
+
 // @throws InputError naming the text and listing the allowed values.
-SpectrumQuantity ParseSpectrumQuantity(const std::string& text);
-SpectrumSides ParseSpectrumSides(const std::string& text);
+inline SpectrumQuantity ParseSpectrumQuantity(const std::string& text) {
+  return ParseEnum<SpectrumQuantity>(text, "spectrum quantity");
+}
+inline SpectrumSides ParseSpectrumSides(const std::string& text) {
+  return ParseEnum<SpectrumSides>(text, "spectrum sides");
+}
 
 struct SpectrumCsv {
   std::string path;                        // as given to the reader

@@ -34,25 +34,6 @@ double LowerEdge(int index, const SeriesConstants& c) {
 
 }  // namespace
 
-std::string ToString(ThirdOctaveSeries series) {
-  switch (series) {
-    case ThirdOctaveSeries::kBase2From1Hz: return "base2_1hz";
-    case ThirdOctaveSeries::kIecBase2: return "iec_base2";
-    case ThirdOctaveSeries::kIecBase10: return "iec_base10";
-  }
-  DEB_DEMAND(false);
-  return {};
-}
-
-ThirdOctaveSeries ParseThirdOctaveSeries(const std::string& text) {
-  for (auto series : {ThirdOctaveSeries::kBase2From1Hz, ThirdOctaveSeries::kIecBase2,
-                      ThirdOctaveSeries::kIecBase10}) {
-    if (text == ToString(series)) return series;
-  }
-  throw InputError("unknown one-third-octave series '" + text +
-                   "'; allowed: base2_1hz, iec_base2, iec_base10");
-}
-
 ThirdOctaveBand ThirdOctaveBandAt(int index, ThirdOctaveSeries series) {
   const SeriesConstants c = ConstantsOf(series);
   ThirdOctaveBand band;

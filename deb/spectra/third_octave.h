@@ -17,14 +17,20 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
+
 namespace deb {
 
 enum class ThirdOctaveSeries { kBase2From1Hz, kIecBase2, kIecBase10 };
 
-// "base2_1hz", "iec_base2", "iec_base10".
-std::string ToString(ThirdOctaveSeries series);
+inline constexpr EnumName<ThirdOctaveSeries> kThirdOctaveSeriesNames[] = {
+    {ThirdOctaveSeries::kBase2From1Hz, "base2_1hz"}, {ThirdOctaveSeries::kIecBase2, "iec_base2"},
+    {ThirdOctaveSeries::kIecBase10, "iec_base10"}};
+constexpr EnumNames<ThirdOctaveSeries> NamesOf(ThirdOctaveSeries) { return kThirdOctaveSeriesNames; }
 // @throws InputError naming the text and listing the allowed values.
-ThirdOctaveSeries ParseThirdOctaveSeries(const std::string& text);
+inline ThirdOctaveSeries ParseThirdOctaveSeries(const std::string& text) {
+  return ParseEnum<ThirdOctaveSeries>(text, "one-third-octave series");
+}
 
 struct ThirdOctaveBand {
   int index = 0;  // k in f_c = f_ref G^(k/3)

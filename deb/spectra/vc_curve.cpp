@@ -1,32 +1,12 @@
 #include "deb/spectra/vc_curve.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
-namespace {
-
-std::string Upper(std::string text) {
-  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return text;
-}
-
-}  // namespace
-
-std::string ToString(VcClass vc_class) { return VcCriterionOf(vc_class).name; }
-
-VcClass ParseVcClass(const std::string& text) {
-  std::string allowed;
-  for (const VcCriterion& row : VcCriteria()) {
-    if (Upper(text) == row.name) return row.vc_class;
-    allowed += (allowed.empty() ? "" : ", ") + std::string(row.name);
-  }
-  throw InputError("unknown vibration criterion '" + text + "'; allowed: " + allowed);
-}
 
 VcOptions VcOptions::ThesisModified() {
   VcOptions options;

@@ -14,6 +14,7 @@
 
 #include <vector>
 
+#include "deb/core/enum_names.h"
 #include "deb/spectra/spectrum.h"
 #include "deb/spectra/third_octave.h"
 
@@ -21,10 +22,14 @@ namespace deb {
 
 enum class VcClass { kA, kB, kC, kD, kE, kF, kG };
 
-// "VC-A" ... "VC-G".
-std::string ToString(VcClass vc_class);
-// Accepts "VC-D" (any letter case). @throws InputError listing allowed values.
-VcClass ParseVcClass(const std::string& text);
+// The names of VcCriteria() (tests/spectra/vc_curve_test.cpp compares them).
+inline constexpr EnumName<VcClass> kVcClassNames[] = {
+    {VcClass::kA, "VC-A"}, {VcClass::kB, "VC-B"}, {VcClass::kC, "VC-C"}, {VcClass::kD, "VC-D"},
+    {VcClass::kE, "VC-E"}, {VcClass::kF, "VC-F"}, {VcClass::kG, "VC-G"}};
+// Parsing accepts any letter case ("vc-d").
+constexpr EnumNames<VcClass> NamesOf(VcClass) { return {kVcClassNames, NameCase::kIgnore}; }
+// @throws InputError listing allowed values.
+inline VcClass ParseVcClass(const std::string& text) { return ParseEnum<VcClass>(text, "vibration criterion"); }
 
 // One row of spectra/vc_curves.csv.
 struct VcCriterion {

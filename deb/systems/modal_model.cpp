@@ -38,22 +38,6 @@ void ValidateShapes(const Eigen::MatrixXd& phi, const std::vector<std::string>& 
 
 }  // namespace
 
-ModalQuantity ParseModalQuantity(const std::string& word) {
-  if (word == "displacement") return ModalQuantity::kDisplacement;
-  if (word == "velocity") return ModalQuantity::kVelocity;
-  if (word == "acceleration") return ModalQuantity::kAcceleration;
-  throw InputError("unknown output quantity '" + word + "'; allowed: displacement, velocity, acceleration");
-}
-
-std::string ToString(ModalQuantity q) {
-  switch (q) {
-    case ModalQuantity::kDisplacement: return "displacement";
-    case ModalQuantity::kVelocity: return "velocity";
-    case ModalQuantity::kAcceleration: return "acceleration";
-  }
-  return "?";
-}
-
 int DerivativeOrder(ModalQuantity q) {
   switch (q) {
     case ModalQuantity::kDisplacement: return 0;

@@ -16,16 +16,21 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/enum_names.h"
 #include "deb/systems/state_space.h"
 
 namespace deb {
 
 enum class ModalQuantity { kDisplacement, kVelocity, kAcceleration };
 
-// "displacement" | "velocity" | "acceleration".
+inline constexpr EnumName<ModalQuantity> kModalQuantityNames[] = {{ModalQuantity::kDisplacement, "displacement"},
+                                                                  {ModalQuantity::kVelocity, "velocity"},
+                                                                  {ModalQuantity::kAcceleration, "acceleration"}};
+constexpr EnumNames<ModalQuantity> NamesOf(ModalQuantity) { return kModalQuantityNames; }
 // @throws InputError naming the allowed words.
-ModalQuantity ParseModalQuantity(const std::string& word);
-std::string ToString(ModalQuantity q);
+inline ModalQuantity ParseModalQuantity(const std::string& word) {
+  return ParseEnum<ModalQuantity>(word, "output quantity");
+}
 // Time derivatives of the displacement: 0, 1, 2.
 int DerivativeOrder(ModalQuantity q);
 

@@ -14,6 +14,7 @@
 #include "deb/spectra/flat_spectrum.h"
 #include "deb/systems/lyapunov.h"
 #include "deb/systems/transfer_function.h"
+#include "tests/support/contains.h"
 
 namespace deb {
 namespace {
@@ -97,9 +98,7 @@ InputError ErrorOf(F&& fn) {
   return InputError("");
 }
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::Contains;
 
 double RelDiff(double a, double b) { return std::abs(a - b) / std::abs(b); }
 

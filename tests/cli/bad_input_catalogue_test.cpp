@@ -35,9 +35,15 @@
 #include <utility>
 #include <vector>
 
+#include "tests/support/cli_harness.h"
+
 namespace fs = std::filesystem;
 
 namespace {
+
+using deb::test::ExitCode;
+using deb::test::ReadAll;
+using deb::test::TempDir;
 
 // ---------------------------------------------------------------------------
 // What a case is.
@@ -236,7 +242,7 @@ const std::string kMat = Sub(kBase, "type: transfer_function\n    num: [1]\n    
                              "type: state_space\n    file: plant.mat\n");
 // plant.mat: A, B (unless !with_b) and C of that plant, written by matio (compressed version 5).
 std::string PlantMat(bool with_b = true) {
-  const fs::path tmp = fs::temp_directory_path() / ("deb_catalogue_" + std::to_string(::getpid()) + ".mat");
+  const fs::path dir = TempDir("catalogue_mat"), tmp = dir / "plant.mat";
   mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5);
   if (mat == nullptr) std::abort();
   auto put = [&](const char* name, std::vector<double> v, std::size_t rows, std::size_t cols) {
@@ -251,7 +257,7 @@ std::string PlantMat(bool with_b = true) {
   if (Mat_Close(mat) != 0) std::abort();
   std::ifstream in(tmp, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  fs::remove(tmp);
+  fs::remove_all(dir);
   return bytes;
 }
 Where AtMatFile() { return At("file: |plant.mat", "paths[0].file"); }
@@ -954,13 +960,6 @@ const std::vector<Case>& Catalogue() {
 // ---------------------------------------------------------------------------
 // Running a case.
 
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string ShellQuote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -968,12 +967,7 @@ std::string ShellQuote(const std::string& s) {
 }
 
 fs::path Root() {
-  static const fs::path root = [] {
-    const fs::path r = fs::temp_directory_path() / ("deb_catalogue_" + std::to_string(::getpid()));
-    fs::remove_all(r);
-    fs::create_directories(r);
-    return r;
-  }();
+  static const fs::path root = TempDir("catalogue");
   return root;
 }
 
@@ -989,8 +983,7 @@ int Shell(const fs::path& work, const fs::path& io, const std::string& line) {
                           " DEBINJ=" + ShellQuote((work / "INJECTED").string()) + " && export DEB DEBINJ && " + line +
                           " < /dev/null > " + ShellQuote((io / "stdout").string()) + " 2> " +
                           ShellQuote((io / "stderr").string());
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return ExitCode(std::system(cmd.c_str()));
 }
 
 // Memory bombs (a 16 GB grid) must not reach the OOM killer of a shared machine

@@ -10,54 +10,14 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/cli_harness.h"
+
 namespace fs = std::filesystem;
-
-namespace {
-
-struct Result {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("deb_cli_test_" + name + "_" + std::to_string(::rand()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-Result RunDeb(const std::string& args) {
-  static const fs::path dir = TempDir("io");
-  const fs::path out = dir / "stdout", err = dir / "stderr";
-  const std::string cmd = std::string("\"") + DEB_BINARY + "\" " + args + " > \"" + out.string() + "\" 2> \"" +
-                          err.string() + "\"";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = ReadAll(out);
-  r.err = ReadAll(err);
-  return r;
-}
-
-std::string Budget(const std::string& file) { return std::string(DEB_SOURCE_DIR) + "/budgets/" + file; }
-
-fs::path WriteFile(const fs::path& dir, const std::string& name, const std::string& text) {
-  std::ofstream(dir / name) << text;
-  return dir / name;
-}
-
-}  // namespace
+using namespace deb::test;
 
 TEST_CASE("deb run writes summary.json with the documented shape and one CSV per output") {
   const fs::path dir = TempDir("run");
-  const Result r = RunDeb("run " + Budget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string());
+  const Command r = RunDeb("run " + ExampleBudget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   const auto j = nlohmann::json::parse(ReadAll(dir / "rep" / "summary.json"));
   CHECK(j["budget"] == "single_axis_isolator");
@@ -93,7 +53,8 @@ TEST_CASE("deb run writes summary.json with the documented shape and one CSV per
 
 TEST_CASE("the CSV has a header row and one row per grid frequency") {
   const fs::path dir = TempDir("csv");
-  REQUIRE(RunDeb("run -q " + Budget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string()).exit_code == 0);
+  REQUIRE(RunDeb("run -q " + ExampleBudget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string())
+              .exit_code == 0);
   const auto j = nlohmann::json::parse(ReadAll(dir / "rep" / "summary.json"));
   std::ifstream in(dir / "rep" / "z_velocity.csv");
   std::string line;
@@ -112,10 +73,10 @@ TEST_CASE("the CSV has a header row and one row per grid frequency") {
 
 TEST_CASE("a bad budget exits 3 with file:line:col and leaves no report behind") {
   const fs::path dir = TempDir("bad");
-  std::string text = ReadAll(Budget("single_axis_isolator.yaml"));
+  std::string text = ReadAll(ExampleBudget("single_axis_isolator.yaml"));
   text.replace(text.find("level: 0.01"), 11, "level: -0.01");
-  const fs::path bad = WriteFile(dir, "bad.yaml", text);
-  const Result r = RunDeb("run " + bad.string() + " --out " + (dir / "rep").string());
+  const fs::path bad = WriteFile(dir / "bad.yaml", text);
+  const Command r = RunDeb("run " + bad.string() + " --out " + (dir / "rep").string());
   CHECK(r.exit_code == 3);
   CHECK(r.err.find(bad.string() + ":") != std::string::npos);
   CHECK(r.err.find("sources[1].spectrum.level: value -0.01 must be >= 0") != std::string::npos);
@@ -125,13 +86,14 @@ TEST_CASE("a bad budget exits 3 with file:line:col and leaves no report behind")
 
 TEST_CASE("a failing run keeps the previous report intact") {
   const fs::path dir = TempDir("keep");
-  REQUIRE(RunDeb("run -q " + Budget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string()).exit_code == 0);
+  REQUIRE(RunDeb("run -q " + ExampleBudget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string())
+              .exit_code == 0);
   const std::string before = ReadAll(dir / "rep" / "summary.json");
   // Unstable path: caught during evaluation, after loading succeeded.
-  std::string text = ReadAll(Budget("single_axis_isolator.yaml"));
+  std::string text = ReadAll(ExampleBudget("single_axis_isolator.yaml"));
   text.replace(text.find("den: [1, 13.82301, 157.9137]"), 28, "den: [1, -13.82301, 157.9137]");
-  const fs::path bad = WriteFile(dir, "unstable.yaml", text);
-  const Result r = RunDeb("run " + bad.string() + " --out " + (dir / "rep").string());
+  const fs::path bad = WriteFile(dir / "unstable.yaml", text);
+  const Command r = RunDeb("run " + bad.string() + " --out " + (dir / "rep").string());
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("is unstable") != std::string::npos);
   // Found during evaluation, located all the same: the contributor whose path it is.
@@ -148,42 +110,42 @@ TEST_CASE("usage errors exit 2 and --help exits 0") {
   CHECK(RunDeb("").exit_code == 2);
   CHECK(RunDeb("run").exit_code == 2);
   CHECK(RunDeb("run /nonexistent/budget.yaml").exit_code == 2);
-  const Result help = RunDeb("run --help");
+  const Command help = RunDeb("run --help");
   CHECK(help.exit_code == 0);
   CHECK(help.out.find("--out") != std::string::npos);
   CHECK(RunDeb("--help").out.find("Exit codes") != std::string::npos);
 }
 
 TEST_CASE("an unknown command exits 2, names the commands and offers the nearest") {
-  const Result typo = RunDeb("runn budget.yaml");
+  const Command typo = RunDeb("runn budget.yaml");
   CHECK(typo.exit_code == 2);
   CHECK(typo.err.find("deb: unknown command 'runn' (did you mean 'run'?); the commands are run, check,") == 0);
-  const Result far = RunDeb("plot budget.yaml");
+  const Command far = RunDeb("plot budget.yaml");
   CHECK(far.exit_code == 2);
   CHECK(far.err.find("unknown command 'plot'; the commands are") != std::string::npos);
   CHECK(far.err.find("did you mean") == std::string::npos);
 }
 
 TEST_CASE("deb check validates and describes without writing anything") {
-  const Result r = RunDeb("check " + Budget("single_axis_isolator.yaml"));
+  const Command r = RunDeb("check " + ExampleBudget("single_axis_isolator.yaml"));
   CHECK(r.exit_code == 0);
   CHECK(r.out.find("budget single_axis_isolator: valid") != std::string::npos);
   CHECK(r.out.find("transmissibility") != std::string::npos);
 }
 
 TEST_CASE("deb check validates a sweep section and every variant it makes") {
-  const Result ok = RunDeb("check " + Budget("nizamoglu2015_sweep.yaml"));
+  const Command ok = RunDeb("check " + ExampleBudget("nizamoglu2015_sweep.yaml"));
   CHECK(ok.exit_code == 0);
   CHECK(ok.out.find("sweep: grid of 2 parameter(s), 32 variants, each valid") != std::string::npos);
   CHECK(ok.out.find("paths[0].control.gains") != std::string::npos);
 
   const fs::path dir = TempDir("check_sweep");
-  std::string text = ReadAll(Budget("nizamoglu2015_sweep.yaml"));
+  std::string text = ReadAll(ExampleBudget("nizamoglu2015_sweep.yaml"));
   const std::string good = "path: \"paths[0].control.gains\"";
   REQUIRE(text.find(good) != std::string::npos);
-  const fs::path bad = WriteFile(dir, "bad_sweep.yaml",
+  const fs::path bad = WriteFile(dir / "bad_sweep.yaml",
                                  text.replace(text.find(good), good.size(), "path: \"paths[0].control.gainz\""));
-  const Result r = RunDeb("check " + bad.string());
+  const Command r = RunDeb("check " + bad.string());
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("sweep.parameters[0].path: key path 'paths[0].control.gainz' does not reach a number") !=
         std::string::npos);

@@ -1,8 +1,6 @@
 // deb compare as a user meets it: a budget against itself and against its
 // own result directory; the three files, written atomically.
 #include <doctest/doctest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -11,32 +9,15 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/cli_harness.h"
+
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-int RunDeb(const std::string& args, const fs::path& dir) {
-  const std::string cmd = std::string("cd \"") + dir.string() + "\" && \"" + DEB_BINARY + "\" " + args +
-                          " > stdout.txt 2> stderr.txt";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-}  // namespace
+using namespace deb::test;
 
 TEST_CASE("deb compare of a budget with itself writes zero differences and ratio 1 into the default directory") {
-  const fs::path dir = fs::temp_directory_path() / ("deb_compare_cli_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const std::string budget = std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml";
-  REQUIRE(RunDeb("compare " + budget + " " + budget + " -q", dir) == 0);
+  const fs::path dir = TempDir("compare_cli");
+  const std::string budget = ExampleBudget("single_axis_isolator.yaml");
+  REQUIRE(RunDebIn(dir, "compare " + budget + " " + budget + " -q").exit_code == 0);
   const fs::path out = dir / "reports" / "compare_single_axis_isolator_vs_single_axis_isolator";
   const auto j = nlohmann::json::parse(ReadAll(out / "compare.json"));
   REQUIRE(j["figures"].size() > 10);
@@ -62,31 +43,31 @@ TEST_CASE("deb compare of a budget with itself writes zero differences and ratio
   }
 
   // Against a result directory of the same budget: the same figures.
-  REQUIRE(RunDeb("run " + budget + " --no-plots -q --out run_a", dir) == 0);
-  REQUIRE(RunDeb("compare run_a " + budget + " -q --out cmp", dir) == 0);
+  REQUIRE(RunDebIn(dir, "run " + budget + " --no-plots -q --out run_a").exit_code == 0);
+  REQUIRE(RunDebIn(dir, "compare run_a " + budget + " -q --out cmp").exit_code == 0);
   const auto k = nlohmann::json::parse(ReadAll(dir / "cmp" / "compare.json"));
   CHECK(k["a"] == "run_a");
   for (const auto& f : k["figures"]) CHECK(f["ratio"].get<double>() == doctest::Approx(1.0).epsilon(1e-15));
 
   // A directory without summary.json is invalid input, and nothing is written.
   fs::create_directories(dir / "empty");
-  CHECK(RunDeb("compare empty " + budget + " -q --out none", dir) == 3);
-  CHECK(ReadAll(dir / "stderr.txt").find("summary.json") != std::string::npos);
+  const Command empty = RunDebIn(dir, "compare empty " + budget + " -q --out none");
+  CHECK(empty.exit_code == 3);
+  CHECK(empty.err.find("summary.json") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "none"));
   fs::remove_all(dir);
 }
 
 TEST_CASE("deb compare A B C with an invalid C exits 3 and writes no comparison, not even A vs B") {
-  const fs::path dir = fs::temp_directory_path() / ("deb_compare_cli_all_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const std::string budget = std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml";
+  const fs::path dir = TempDir("compare_cli_all");
+  const std::string budget = ExampleBudget("single_axis_isolator.yaml");
   std::ofstream(dir / "broken.yaml") << "name: broken\nbogus_key: 1\n";
-  CHECK(RunDeb("compare " + budget + " " + budget + " broken.yaml -q --no-plots", dir) == 3);
-  CHECK(ReadAll(dir / "stderr.txt").find("broken.yaml:2:1: bogus_key: unknown key") != std::string::npos);
+  const Command broken = RunDebIn(dir, "compare " + budget + " " + budget + " broken.yaml -q --no-plots");
+  CHECK(broken.exit_code == 3);
+  CHECK(broken.err.find("broken.yaml:2:1: bogus_key: unknown key") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "reports"));
   // The valid inputs alone still compare.
-  REQUIRE(RunDeb("compare " + budget + " " + budget + " -q --no-plots", dir) == 0);
+  REQUIRE(RunDebIn(dir, "compare " + budget + " " + budget + " -q --no-plots").exit_code == 0);
   CHECK(fs::exists(dir / "reports" / "compare_single_axis_isolator_vs_single_axis_isolator" / "compare.json"));
   fs::remove_all(dir);
 }

@@ -3,38 +3,18 @@
 // still without drawing.
 #include <doctest/doctest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "tests/support/cli_harness.h"
+
 namespace fs = std::filesystem;
+using namespace deb::test;
 
 namespace {
-
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("deb_no_plots_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-int RunDeb(const std::string& args) {
-  const std::string cmd = std::string("\"") + DEB_BINARY + "\" " + args + " > /dev/null 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 int CountWithExtension(const fs::path& dir, const std::string& ext) {
   int n = 0;
@@ -43,13 +23,13 @@ int CountWithExtension(const fs::path& dir, const std::string& ext) {
   return n;
 }
 
-const std::string kBudget = std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml";
+const std::string kBudget = ExampleBudget("single_axis_isolator.yaml");
 
 }  // namespace
 
 TEST_CASE("run --no-plots leaves no plots/ directory; the documents link no plot") {
   const fs::path dir = TempDir("plain");
-  REQUIRE(RunDeb("run \"" + kBudget + "\" -q --no-plots --out \"" + (dir / "r").string() + "\"") == 0);
+  REQUIRE(RunDeb("run \"" + kBudget + "\" -q --no-plots --out \"" + (dir / "r").string() + "\"").exit_code == 0);
   CHECK(fs::is_regular_file(dir / "r" / "summary.json"));
   CHECK(fs::is_regular_file(dir / "r" / "index.html"));
   CHECK(fs::is_regular_file(dir / "r" / "report.md"));
@@ -63,7 +43,8 @@ TEST_CASE("run --no-plots leaves no plots/ directory; the documents link no plot
 
 TEST_CASE("run --no-plots --plot-scripts writes every plot's CSV and script, and draws none") {
   const fs::path dir = TempDir("scripts");
-  REQUIRE(RunDeb("run \"" + kBudget + "\" -q --no-plots --plot-scripts --out \"" + (dir / "r").string() + "\"") == 0);
+  REQUIRE(RunDeb("run \"" + kBudget + "\" -q --no-plots --plot-scripts --out \"" + (dir / "r").string() + "\"")
+              .exit_code == 0);
   const fs::path plots = dir / "r" / "plots";
   REQUIRE(fs::is_directory(plots));
   const int scripts = CountWithExtension(plots, ".gp");

@@ -20,20 +20,16 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/cli_harness.h"
+
 extern char** environ;
 
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path FreshDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("deb_output_safety_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string Budget(const std::string& file) { return std::string(DEB_SOURCE_DIR) + "/budgets/" + file; }
+using deb::test::ExampleBudget;
+using deb::test::TempDir;
 
 // Starts deb with `args` (stdout and stderr to /dev/null); its PID.
 pid_t Spawn(const std::vector<std::string>& args) {
@@ -109,9 +105,9 @@ pid_t DeadPid() {
 }  // namespace
 
 TEST_CASE("SIGKILL at random moments while a report replaces a complete one leaves a complete report") {
-  const fs::path dir = FreshDir("kill");
+  const fs::path dir = TempDir("kill");
   const fs::path target = dir / "rep";
-  const std::vector<std::string> args = {"run", Budget("single_axis_isolator.yaml"), "--out", target.string(),
+  const std::vector<std::string> args = {"run", ExampleBudget("single_axis_isolator.yaml"), "--out", target.string(),
                                          "--format", "png,pdf", "--threads", "2"};
   const auto t0 = std::chrono::steady_clock::now();
   REQUIRE(RunDeb(args) == 0);
@@ -156,9 +152,9 @@ TEST_CASE("SIGKILL at random moments while a report replaces a complete one leav
 }
 
 TEST_CASE("a report that a killed run had set aside comes back; a live run's temporaries are left alone") {
-  const fs::path dir = FreshDir("recover");
+  const fs::path dir = TempDir("recover");
   const fs::path target = dir / "rep";
-  REQUIRE(RunDeb({"run", Budget("single_axis_isolator.yaml"), "--out", target.string(), "--no-plots"}) == 0);
+  REQUIRE(RunDeb({"run", ExampleBudget("single_axis_isolator.yaml"), "--out", target.string(), "--no-plots"}) == 0);
   const std::set<std::string> complete = Files(target);
   // The window of a two-rename replacement: the old report moved aside, the new not yet in place.
   const fs::path aside = dir / (".rep.tmp-" + std::to_string(DeadPid()) + ".old");
@@ -171,7 +167,7 @@ TEST_CASE("a report that a killed run had set aside comes back; a live run's tem
   std::ofstream(live / "keep") << "x";
   // A run that fails while writing (no gnuplot) still cleans up and restores.
   ::setenv("DEB_GNUPLOT", "/nonexistent", 1);
-  CHECK(RunDeb({"run", Budget("single_axis_isolator.yaml"), "--out", target.string()}) == 4);
+  CHECK(RunDeb({"run", ExampleBudget("single_axis_isolator.yaml"), "--out", target.string()}) == 4);
   ::unsetenv("DEB_GNUPLOT");
   CHECK(Files(target) == complete);
   CHECK(!fs::exists(aside));
@@ -181,8 +177,8 @@ TEST_CASE("a report that a killed run had set aside comes back; a live run's tem
 }
 
 TEST_CASE("only what deb wrote is replaced; --force replaces anything; a symbolic link is written through") {
-  const fs::path dir = FreshDir("refuse");
-  const std::string budget = Budget("single_axis_isolator.yaml");
+  const fs::path dir = TempDir("refuse");
+  const std::string budget = ExampleBudget("single_axis_isolator.yaml");
   fs::create_directory(dir / "mydata");
   std::ofstream(dir / "mydata" / "thesis.tex") << "years of work";
   std::ofstream(dir / "existing.txt") << "notes";
@@ -213,10 +209,10 @@ TEST_CASE("only what deb wrote is replaced; --force replaces anything; a symboli
 }
 
 TEST_CASE("with SOURCE_DATE_EPOCH two runs give byte-identical report directories") {
-  const fs::path dir = FreshDir("reproducible");
+  const fs::path dir = TempDir("reproducible");
   ::setenv("SOURCE_DATE_EPOCH", "1700000000", 1);
   for (const char* out : {"a", "b"})
-    REQUIRE(RunDeb({"run", Budget("single_axis_isolator.yaml"), "--out", (dir / out).string(), "--format",
+    REQUIRE(RunDeb({"run", ExampleBudget("single_axis_isolator.yaml"), "--out", (dir / out).string(), "--format",
                     "png,pdf,svg"}) == 0);
   ::unsetenv("SOURCE_DATE_EPOCH");
   const std::set<std::string> files = Files(dir / "a");

@@ -1,7 +1,5 @@
 // deb sensitivity as a user meets it: the CSV and its ranked Markdown.
 #include <doctest/doctest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -11,17 +9,16 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/cli_harness.h"
+
 namespace fs = std::filesystem;
 
 TEST_CASE("deb sensitivity ranks the derivatives: an ASD level has elasticity 2 on its own contributor, 0 elsewhere") {
-  const fs::path dir = fs::temp_directory_path() / ("deb_sensitivity_cli_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  const std::string cmd = std::string("\"") + DEB_BINARY + "\" sensitivity " + DEB_SOURCE_DIR +
-                          "/budgets/single_axis_isolator.yaml -p 'sources[1].spectrum.level' -q --out \"" +
-                          dir.string() + "\"";
-  const int status = std::system(cmd.c_str());
-  REQUIRE((WIFEXITED(status) && WEXITSTATUS(status) == 0));
-  std::ifstream in(dir / "sensitivity.csv");
+  const fs::path dir = deb::test::TempDir("sensitivity_cli");
+  REQUIRE(deb::test::RunDeb("sensitivity " + deb::test::ExampleBudget("single_axis_isolator.yaml") +
+                            " -p 'sources[1].spectrum.level' -q --out \"" + (dir / "out").string() + "\"")
+              .exit_code == 0);
+  std::ifstream in(dir / "out" / "sensitivity.csv");
   std::string line;
   std::getline(in, line);
   CHECK(line == "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity");
@@ -38,7 +35,7 @@ TEST_CASE("deb sensitivity ranks the derivatives: an ASD level has elasticity 2 
     }
   }
   CHECK(checked == 4);  // two outputs x two contributors
-  std::ifstream md(dir / "sensitivity.md");
+  std::ifstream md(dir / "out" / "sensitivity.md");
   CHECK(md.good());
   fs::remove_all(dir);
 }

@@ -17,42 +17,12 @@
 
 #include "deb/spectra/spectrum_csv.h"
 #include "deb/systems/frf_csv.h"
+#include "tests/support/cli_harness.h"
 
 namespace fs = std::filesystem;
+using namespace deb::test;
 
 namespace {
-
-struct Result {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string Slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path Scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("deb_spectrum_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-Result Deb(const std::string& args) {
-  static const fs::path dir = Scratch("io");
-  const fs::path out = dir / "stdout", err = dir / "stderr";
-  const std::string cmd = std::string("\"") + DEB_BINARY + "\" " + args + " > \"" + out.string() + "\" 2> \"" +
-                          err.string() + "\"";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = Slurp(out);
-  r.err = Slurp(err);
-  return r;
-}
 
 // Three co-located sensors: common white ground motion (sigma 1 um/s) plus
 // independent noise of 0.1, 0.1 and 0.2 um/s, at 200 Hz.
@@ -71,8 +41,8 @@ fs::path Recording(const fs::path& dir, const std::string& header = "# rate_hz: 
 }  // namespace
 
 TEST_CASE("deb spectrum welch writes a spectrum CSV that reads back with the white level 2 s^2 / fs (4 sigma)") {
-  const fs::path dir = Scratch("welch");
-  const Result r = Deb("spectrum welch " + Recording(dir).string() + " --segment 512 --columns a -o " +
+  const fs::path dir = TempDir("welch");
+  const Command r = RunDeb("spectrum welch " + Recording(dir).string() + " --segment 512 --columns a -o " +
                        (dir / "psd.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(r.out.find("127 averages") != std::string::npos);
@@ -85,33 +55,34 @@ TEST_CASE("deb spectrum welch writes a spectrum CSV that reads back with the whi
   // nu ~ 1.89 K per bin, Hann neighbours correlated: sigma of the mean of
   // 250 bins ~ sqrt(2 / (1.89 * 127) * 1.944 / 250) = 0.8 %.
   CHECK(std::abs(mean / level - 1.0) < 4.0 * 0.008);
-  CHECK(Slurp(dir / "psd.csv").find("# welch: window hann, segment 512 samples") != std::string::npos);
+  CHECK(ReadAll(dir / "psd.csv").find("# welch: window hann, segment 512 samples") != std::string::npos);
   fs::remove_all(dir);
 }
 
 TEST_CASE("deb spectrum convert --from-bands then bands: a floor built at VC-D is VC-D in every band") {
-  const fs::path dir = Scratch("bands");
+  const fs::path dir = TempDir("bands");
   {
     std::ofstream table(dir / "vcd.csv");
     table << "# unit: um/s\ncentre_hz, floor\n";
     for (double f : {8.0, 10.0, 12.5, 16.0, 20.0, 25.0, 31.5, 40.0, 50.0, 63.0, 80.0}) table << f << ", 6.25\n";
   }
-  Result r = Deb("spectrum convert --from-bands " + (dir / "vcd.csv").string() + " -o " + (dir / "psd.csv").string());
+  Command r =
+      RunDeb("spectrum convert --from-bands " + (dir / "vcd.csv").string() + " -o " + (dir / "psd.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   // All 11 bands come back, the top one too: its edge is written to every digit.
-  r = Deb("spectrum bands " + (dir / "psd.csv").string() + " --lowest 8 --highest 80 --criteria vc -o " +
+  r = RunDeb("spectrum bands " + (dir / "psd.csv").string() + " --lowest 8 --highest 80 --criteria vc -o " +
           (dir / "bands.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(r.out.find("floor: 11 bands, VC-D; limiting band") != std::string::npos);
-  const std::string bands = Slurp(dir / "bands.csv");
+  const std::string bands = ReadAll(dir / "bands.csv");
   CHECK(bands.find("centre_hz, lo_hz, hi_hz, points, floor, floor_class") != std::string::npos);
   std::size_t count = 0;
   for (std::size_t at = bands.find(", VC-D"); at != std::string::npos; at = bands.find(", VC-D", at + 1)) ++count;
   CHECK(count == 11);
   // The same floor in nm (displacement) converts back through (2 pi f)^2.
-  r = Deb("spectrum convert " + (dir / "psd.csv").string() + " --to nm -o " + (dir / "nm.csv").string());
+  r = RunDeb("spectrum convert " + (dir / "psd.csv").string() + " --to nm -o " + (dir / "nm.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
-  r = Deb("spectrum bands " + (dir / "nm.csv").string() + " --lowest 8 --highest 63 --criteria vc");
+  r = RunDeb("spectrum bands " + (dir / "nm.csv").string() + " --lowest 8 --highest 63 --criteria vc");
   count = 0;
   for (std::size_t at = r.out.find(", 6.24999999"); at != std::string::npos; at = r.out.find(", 6.24999999", at + 1)) ++count;
   CHECK(count == 10);  // 6.25 to 1e-9: the table's two points per band carry the (2 pi f)^2 as a power law
@@ -119,8 +90,8 @@ TEST_CASE("deb spectrum convert --from-bands then bands: a floor built at VC-D i
 }
 
 TEST_CASE("deb spectrum selfnoise writes one noise spectrum per sensor, usable as a measured source") {
-  const fs::path dir = Scratch("selfnoise");
-  const Result r = Deb("spectrum selfnoise " + Recording(dir).string() + " --sensors a,b,c --segment 512 -o " +
+  const fs::path dir = TempDir("selfnoise");
+  const Command r = RunDeb("spectrum selfnoise " + Recording(dir).string() + " --sensors a,b,c --segment 512 -o " +
                        (dir / "noise.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(r.out.find("Sleeman") != std::string::npos);
@@ -138,9 +109,9 @@ TEST_CASE("deb spectrum frf writes a response that a frf path reads: sensors a, 
   // phase for both, the coherence 1/(1 + 0.02) and 1/(1 + 0.05) (noise
   // variances 0.01 + 0.01 and 0.01 + 0.04 against 1: H1 ignores the output's
   // share; the input's noise biases |H1| low by 1/(1 + 0.01)).
-  const fs::path dir = Scratch("frf");
-  const Result r = Deb("spectrum frf " + Recording(dir).string() + " --input a --outputs b,c --segment 512 --no-plots -o " +
-                       (dir / "frf.csv").string());
+  const fs::path dir = TempDir("frf");
+  const Command r = RunDeb("spectrum frf " + Recording(dir).string() +
+                           " --input a --outputs b,c --segment 512 --no-plots -o " + (dir / "frf.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   const deb::FrfCsv frf = deb::ReadFrfCsv((dir / "frf.csv").string());
   CHECK(frf.outputs == std::vector<std::string>{"b", "c"});
@@ -149,20 +120,20 @@ TEST_CASE("deb spectrum frf writes a response that a frf path reads: sensors a, 
   const std::vector<double>& f = frf.response.f_hz();
   for (double fk : f) mean_b += frf.response.At(fk)(0, 0) / static_cast<double>(f.size());
   CHECK(std::abs(mean_b - 1.0 / 1.01) < 0.005);
-  const std::string text = Slurp(dir / "frf.csv");
+  const std::string text = ReadAll(dir / "frf.csv");
   CHECK(text.find("f_hz, b/a.mag, b/a.phase_deg, b/a.coherence, c/a.mag, c/a.phase_deg, c/a.coherence") !=
         std::string::npos);
   CHECK(text.find("# frequency response H1 = S_xy / S_xx from a of rec.csv") == 0);
   // The plot beside it: |H1| above, the coherence below.
-  const Result plotted = Deb("spectrum frf " + Recording(dir).string() + " --input a --outputs b,c --segment 512 -o " +
-                             (dir / "frf2.csv").string());
+  const Command plotted = RunDeb("spectrum frf " + Recording(dir).string() +
+                                 " --input a --outputs b,c --segment 512 -o " + (dir / "frf2.csv").string());
   REQUIRE_MESSAGE(plotted.exit_code == 0, plotted.err);
   CHECK(fs::file_size(dir / "frf2.png") > 1000);
-  const std::string script = Slurp(dir / "frf2.gp");
+  const std::string script = ReadAll(dir / "frf2.gp");
   CHECK(script.find("set multiplot") != std::string::npos);
   CHECK(script.find("coherence γ^{2}") != std::string::npos);
-  CHECK(Slurp(dir / "frf2.plot.csv").find("f_hz,mag_b,mag_c,coherence_b,coherence_c") != std::string::npos);
-  const Result bad = Deb("spectrum frf " + Recording(dir).string() + " --input q --outputs b --no-plots -o " +
+  CHECK(ReadAll(dir / "frf2.plot.csv").find("f_hz,mag_b,mag_c,coherence_b,coherence_c") != std::string::npos);
+  const Command bad = RunDeb("spectrum frf " + Recording(dir).string() + " --input q --outputs b --no-plots -o " +
                          (dir / "bad.csv").string());
   CHECK(bad.exit_code == 3);
   CHECK(bad.err.find("no channel 'q'") != std::string::npos);
@@ -171,7 +142,7 @@ TEST_CASE("deb spectrum frf writes a response that a frf path reads: sensors a, 
 }
 
 TEST_CASE("deb spectrum reference writes Peterson's NLNM in the unit asked for") {
-  const Result r = Deb("spectrum reference nlnm --to m/s^2 --points-per-decade 1");
+  const Command r = RunDeb("spectrum reference nlnm --to m/s^2 --points-per-decade 1");
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(r.out.find("f_hz, nlnm") != std::string::npos);
   CHECK(r.out.find("\n1, 2.290867653e-17\n") != std::string::npos);  // -166.4 dB at 1 s
@@ -180,7 +151,7 @@ TEST_CASE("deb spectrum reference writes Peterson's NLNM in the unit asked for")
 TEST_CASE("deb spectrum welch --coherence of two independent channels has a row per bin and a low coherence") {
   // (Its cost, once quadratic in the segment length, is measured by hand, not
   // here: 8 x 1e6 samples at --segment 16384 took 6.7 s, now 0.7 s.)
-  const fs::path dir = Scratch("coherence_rows");
+  const fs::path dir = TempDir("coherence_rows");
   {
     // Two white channels, raw little-endian float64, 2^16 samples each.
     std::ofstream out(dir / "rec.f64", std::ios::binary);
@@ -193,7 +164,7 @@ TEST_CASE("deb spectrum welch --coherence of two independent channels has a row 
       for (int byte = 0; byte < 8; ++byte) out.put(static_cast<char>((bits >> (8 * byte)) & 0xff));
     }
   }
-  const Result r = Deb("spectrum welch " + (dir / "rec.f64").string() +
+  const Command r = RunDeb("spectrum welch " + (dir / "rec.f64").string() +
                        " --format float64 --rate 1000 --file-channels 2 --segment 1024 --no-plots -o " +
                        (dir / "psd.csv").string() + " --coherence " + (dir / "coh.csv").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
@@ -216,25 +187,25 @@ TEST_CASE("deb spectrum welch --coherence of two independent channels has a row 
 }
 
 TEST_CASE("deb spectrum: missing rate, too few samples, non-uniform stamps and unknown options fail cleanly") {
-  const fs::path dir = Scratch("errors");
+  const fs::path dir = TempDir("errors");
   const fs::path norate = Recording(dir, "# unit: um/s\n");
-  Result r = Deb("spectrum welch " + norate.string() + " -o " + (dir / "x.csv").string());
+  Command r = RunDeb("spectrum welch " + norate.string() + " -o " + (dir / "x.csv").string());
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("missing sample rate") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "x.csv"));
-  r = Deb("spectrum welch " + norate.string() + " --rate 200 --segment 100000");
+  r = RunDeb("spectrum welch " + norate.string() + " --rate 200 --segment 100000");
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("too few samples") != std::string::npos);
   std::ofstream(dir / "uneven.csv") << "t, x\n0, 1\n0.1, 2\n0.3, 3\n0.4, 4\n";
-  r = Deb("spectrum welch " + (dir / "uneven.csv").string());
+  r = RunDeb("spectrum welch " + (dir / "uneven.csv").string());
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("uneven.csv:3:1: non-uniform time stamps") != std::string::npos);
-  r = Deb("spectrum selfnoise " + norate.string() + " --rate 200 --sensors a");
+  r = RunDeb("spectrum selfnoise " + norate.string() + " --rate 200 --sensors a");
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("give 2 (Holcomb") != std::string::npos);
-  r = Deb("spectrum welch " + norate.string() + " --window kaiser --rate 200");
+  r = RunDeb("spectrum welch " + norate.string() + " --window kaiser --rate 200");
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("allowed: rectangular, hann") != std::string::npos);
-  CHECK(Deb("spectrum welch").exit_code == 2);
+  CHECK(RunDeb("spectrum welch").exit_code == 2);
   fs::remove_all(dir);
 }

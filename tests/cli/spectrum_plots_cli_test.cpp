@@ -16,44 +16,12 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/cli_harness.h"
+
 namespace fs = std::filesystem;
+using namespace deb::test;
 
 namespace {
-
-struct Run {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path Fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("deb_spectrum_plots_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-// deb in `dir`, with `env` (e.g. "DEB_GNUPLOT=/nonexistent") before it.
-Run Deb(const fs::path& dir, const std::string& args, const std::string& env = "") {
-  const fs::path out = dir.parent_path() / (dir.filename().string() + ".stdout");
-  const fs::path err = dir.parent_path() / (dir.filename().string() + ".stderr");
-  const std::string cmd = "cd \"" + dir.string() + "\" && " + env + (env.empty() ? "" : " ") + "\"" + DEB_BINARY +
-                          "\" " + args + " > \"" + out.string() + "\" 2> \"" + err.string() + "\"";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = ReadAll(out);
-  r.err = ReadAll(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
 
 std::set<std::string> Files(const fs::path& dir) {
   std::set<std::string> names;
@@ -97,9 +65,9 @@ fs::path FailingGnuplot(const fs::path& dir) {
 }  // namespace
 
 TEST_CASE("deb spectrum welch draws the PSD beside -o and the coherence beside --coherence") {
-  const fs::path dir = Fresh("welch");
+  const fs::path dir = TempDir("welch");
   WriteRecording(dir);
-  const Run r = Deb(dir, "spectrum welch rec.csv --segment 256 --bounds -o psd.csv --coherence coh.csv");
+  const Command r = RunDebIn(dir, "spectrum welch rec.csv --segment 256 --bounds -o psd.csv --coherence coh.csv");
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(Files(dir) == std::set<std::string>{"rec.csv", "psd.csv", "psd.png", "psd.gp", "psd.plot.csv", "coh.csv",
                                             "coh.png", "coh.gp", "coh.plot.csv"});
@@ -119,11 +87,11 @@ TEST_CASE("deb spectrum welch draws the PSD beside -o and the coherence beside -
 }
 
 TEST_CASE("deb spectrum bands draws the band RMS against the criteria with the class and limiting band in the title") {
-  const fs::path dir = Fresh("bands");
+  const fs::path dir = TempDir("bands");
   WriteVcdTable(dir);
-  REQUIRE(Deb(dir, "spectrum convert --from-bands vcd.csv -o floor.csv").exit_code == 0);
+  REQUIRE(RunDebIn(dir, "spectrum convert --from-bands vcd.csv -o floor.csv").exit_code == 0);
   CHECK(IsPng(dir / "floor.png"));
-  const Run r = Deb(dir, "spectrum bands floor.csv --lowest 8 --highest 50 --criteria vc -o bands.csv");
+  const Command r = RunDebIn(dir, "spectrum bands floor.csv --lowest 8 --highest 50 --criteria vc -o bands.csv");
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(IsPng(dir / "bands.png"));
   const std::string script = ReadAll(dir / "bands.gp");
@@ -135,17 +103,17 @@ TEST_CASE("deb spectrum bands draws the band RMS against the criteria with the c
 }
 
 TEST_CASE("deb spectrum selfnoise, convert and reference each draw their spectrum") {
-  const fs::path dir = Fresh("others");
+  const fs::path dir = TempDir("others");
   WriteRecording(dir);
-  Run r = Deb(dir, "spectrum selfnoise rec.csv --sensors a,b --segment 256 -o noise.csv");
+  Command r = RunDebIn(dir, "spectrum selfnoise rec.csv --sensors a,b --segment 256 -o noise.csv");
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(IsPng(dir / "noise.png"));
   CHECK(ReadAll(dir / "noise.plot.csv").find("f_hz,a,a_noise,b,b_noise\n") != std::string::npos);
-  r = Deb(dir, "spectrum convert noise.csv --to nm --asd -o asd.csv");
+  r = RunDebIn(dir, "spectrum convert noise.csv --to nm --asd -o asd.csv");
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(IsPng(dir / "asd.png"));
   CHECK(ReadAll(dir / "asd.gp").find("ASD [nm/√Hz]") != std::string::npos);
-  r = Deb(dir, "spectrum reference nlnm --to um/s -o nlnm.csv");
+  r = RunDebIn(dir, "spectrum reference nlnm --to um/s -o nlnm.csv");
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(IsPng(dir / "nlnm.png"));
   CHECK(ReadAll(dir / "nlnm.plot.csv").find("f_hz,nhnm,nlnm\n") != std::string::npos);  // both models
@@ -153,22 +121,22 @@ TEST_CASE("deb spectrum selfnoise, convert and reference each draw their spectru
 }
 
 TEST_CASE("--no-plots writes the CSV only and needs no gnuplot") {
-  const fs::path dir = Fresh("noplots");
+  const fs::path dir = TempDir("noplots");
   WriteRecording(dir);
-  const Run r = Deb(dir, "spectrum welch rec.csv --segment 256 -o psd.csv --coherence coh.csv --no-plots",
+  const Command r = RunDebIn(dir, "spectrum welch rec.csv --segment 256 -o psd.csv --coherence coh.csv --no-plots",
                     "DEB_GNUPLOT=/nonexistent/gnuplot");
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(Files(dir) == std::set<std::string>{"rec.csv", "psd.csv", "coh.csv"});
-  CHECK(Deb(dir, "spectrum reference nlnm -o n.csv --no-plots --plot n.png").exit_code == 2);
+  CHECK(RunDebIn(dir, "spectrum reference nlnm -o n.csv --no-plots --plot n.png").exit_code == 2);
   fs::remove_all(dir);
 }
 
 TEST_CASE("a CSV on standard output has no plot unless --plot names one, in the format of its extension") {
-  const fs::path dir = Fresh("stdout");
-  Run r = Deb(dir, "spectrum reference nhnm");
+  const fs::path dir = TempDir("stdout");
+  Command r = RunDebIn(dir, "spectrum reference nhnm");
   REQUIRE(r.exit_code == 0);
   CHECK(Files(dir).empty());
-  r = Deb(dir, "spectrum reference nhnm --plot models.svg");
+  r = RunDebIn(dir, "spectrum reference nhnm --plot models.svg");
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(r.out.rfind("# Peterson", 0) == 0);  // the CSV alone on standard output
   CHECK(r.out.find("wrote") == std::string::npos);
@@ -179,23 +147,23 @@ TEST_CASE("a CSV on standard output has no plot unless --plot names one, in the 
 }
 
 TEST_CASE("--plot-format writes every format asked for, and --plot must agree with it") {
-  const fs::path dir = Fresh("formats");
-  const Run r = Deb(dir, "spectrum reference nlnm -o n.csv --plot-format png,svg,pdf");
+  const fs::path dir = TempDir("formats");
+  const Command r = RunDebIn(dir, "spectrum reference nlnm -o n.csv --plot-format png,svg,pdf");
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   CHECK(IsPng(dir / "n.png"));
   CHECK(ReadAll(dir / "n.svg").find("<svg") != std::string::npos);
   CHECK(ReadAll(dir / "n.pdf").rfind("%PDF", 0) == 0);
-  CHECK(Deb(dir, "spectrum reference nlnm -o m.csv --plot m.svg --plot-format png").exit_code == 3);
-  CHECK(Deb(dir, "spectrum reference nlnm -o m.csv --plot m.gif").exit_code == 2);
-  CHECK(Deb(dir, "spectrum reference nlnm -o m.csv --plot-format gif").exit_code == 2);
+  CHECK(RunDebIn(dir, "spectrum reference nlnm -o m.csv --plot m.svg --plot-format png").exit_code == 3);
+  CHECK(RunDebIn(dir, "spectrum reference nlnm -o m.csv --plot m.gif").exit_code == 2);
+  CHECK(RunDebIn(dir, "spectrum reference nlnm -o m.csv --plot-format gif").exit_code == 2);
   CHECK_FALSE(fs::exists(dir / "m.csv"));
   fs::remove_all(dir);
 }
 
 TEST_CASE("a missing gnuplot is a clear error with a non-zero exit, and nothing is written") {
-  const fs::path dir = Fresh("missing");
+  const fs::path dir = TempDir("missing");
   WriteRecording(dir);
-  const Run r = Deb(dir, "spectrum welch rec.csv --segment 256 -o psd.csv --coherence coh.csv",
+  const Command r = RunDebIn(dir, "spectrum welch rec.csv --segment 256 -o psd.csv --coherence coh.csv",
                     "DEB_GNUPLOT=/nonexistent/gnuplot");
   CHECK(r.exit_code == 4);
   CHECK(r.err.find("gnuplot executable '/nonexistent/gnuplot' (from DEB_GNUPLOT)") != std::string::npos);
@@ -205,12 +173,12 @@ TEST_CASE("a missing gnuplot is a clear error with a non-zero exit, and nothing 
 }
 
 TEST_CASE("a failing gnuplot quotes gnuplot, keeps the older outputs and leaves no temporary file") {
-  const fs::path dir = Fresh("failing");
+  const fs::path dir = TempDir("failing");
   WriteRecording(dir);
-  REQUIRE(Deb(dir, "spectrum welch rec.csv --segment 256 -o psd.csv").exit_code == 0);
+  REQUIRE(RunDebIn(dir, "spectrum welch rec.csv --segment 256 -o psd.csv").exit_code == 0);
   const std::string csv = ReadAll(dir / "psd.csv"), png = ReadAll(dir / "psd.png");
-  const fs::path fake = Fresh("fake");
-  const Run r = Deb(dir, "spectrum welch rec.csv --segment 128 -o psd.csv",
+  const fs::path fake = TempDir("fake");
+  const Command r = RunDebIn(dir, "spectrum welch rec.csv --segment 128 -o psd.csv",
                     "DEB_GNUPLOT=" + FailingGnuplot(fake).string());
   fs::remove_all(fake);
   CHECK(r.exit_code == 4);
@@ -223,8 +191,8 @@ TEST_CASE("a failing gnuplot quotes gnuplot, keeps the older outputs and leaves 
 }
 
 TEST_CASE("an output and a plot file of the same name are refused before anything is written") {
-  const fs::path dir = Fresh("collide");
-  const Run r = Deb(dir, "spectrum reference nlnm -o n.png");
+  const fs::path dir = TempDir("collide");
+  const Command r = RunDebIn(dir, "spectrum reference nlnm -o n.png");
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("n.png would be written twice") != std::string::npos);
   CHECK(Files(dir).empty());
@@ -232,10 +200,10 @@ TEST_CASE("an output and a plot file of the same name are refused before anythin
 }
 
 TEST_CASE("a segment too short to give a spectrum is refused: exit 3, naming the rule, nothing written") {
-  const fs::path dir = Fresh("onebin");
+  const fs::path dir = TempDir("onebin");
   WriteRecording(dir);
   for (const char* plots : {"", " --no-plots"}) {
-    const Run r = Deb(dir, std::string("spectrum welch rec.csv --segment 2 -o psd.csv") + plots);
+    const Command r = RunDebIn(dir, std::string("spectrum welch rec.csv --segment 2 -o psd.csv") + plots);
     CHECK(r.exit_code == 3);
     CHECK(r.err.find("segment_length 2 is invalid; a segment needs at least 16 samples") != std::string::npos);
     CHECK(Files(dir) == std::set<std::string>{"rec.csv"});

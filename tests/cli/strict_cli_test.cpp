@@ -2,9 +2,6 @@
 // report is still written and names the allocation factor of every contributor.
 #include <doctest/doctest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,39 +9,16 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/cli_harness.h"
+
 namespace fs = std::filesystem;
+using namespace deb::test;
 
 namespace {
 
-struct Result {
-  int exit_code = -1;
-  std::string err;
-};
-
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("deb_strict_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-Result RunDeb(const std::string& args, const fs::path& dir) {
-  const std::string cmd =
-      std::string("\"") + DEB_BINARY + "\" " + args + " > /dev/null 2> \"" + (dir / "stderr").string() + "\"";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadAll(dir / "stderr")};
-}
-
 // The single-axis example with its velocity requirement replaced.
 fs::path BudgetWithVelocityLimit(const fs::path& dir, const std::string& limit) {
-  std::string text = ReadAll(std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml");
+  std::string text = ReadAll(ExampleBudget("single_axis_isolator.yaml"));
   const std::string key = "rms_max: 20";
   REQUIRE(text.find(key) != std::string::npos);
   text.replace(text.find(key), key.size(), "rms_max: " + limit);
@@ -58,10 +32,10 @@ fs::path BudgetWithVelocityLimit(const fs::path& dir, const std::string& limit) 
 TEST_CASE("run --strict exits with code 5 when a requirement fails, and still writes the report") {
   const fs::path dir = TempDir("fail");
   const fs::path budget = BudgetWithVelocityLimit(dir, "0.001");
-  const Result lenient = RunDeb("run " + budget.string() + " --no-plots -q --out " + (dir / "a").string(), dir);
+  const Command lenient = RunDeb("run " + budget.string() + " --no-plots -q --out " + (dir / "a").string());
   CHECK(lenient.exit_code == 0);
-  const Result strict =
-      RunDeb("run " + budget.string() + " --strict --no-plots -q --out " + (dir / "b").string(), dir);
+  const Command strict =
+      RunDeb("run " + budget.string() + " --strict --no-plots -q --out " + (dir / "b").string());
   CHECK(strict.exit_code == 5);
   CHECK(strict.err.find("fail their requirement") != std::string::npos);
   const auto j = nlohmann::json::parse(ReadAll(dir / "b" / "summary.json"));
@@ -81,7 +55,7 @@ TEST_CASE("run --strict exits with code 5 when a requirement fails, and still wr
 TEST_CASE("run --strict exits with 0 when every requirement is met, and reports allocation factors above 1") {
   const fs::path dir = TempDir("pass");
   const fs::path budget = BudgetWithVelocityLimit(dir, "1000");
-  const Result r = RunDeb("run " + budget.string() + " --strict --no-plots -q --out " + (dir / "r").string(), dir);
+  const Command r = RunDeb("run " + budget.string() + " --strict --no-plots -q --out " + (dir / "r").string());
   CHECK(r.exit_code == 0);
   const auto j = nlohmann::json::parse(ReadAll(dir / "r" / "summary.json"));
   const auto& velocity = j["outputs"][0];
@@ -106,7 +80,7 @@ TEST_CASE("run --strict also fails on a band requirement, which summary.json and
                "rms_max: 1000\n    band_requirements: [{lo_hz: 1, hi_hz: 10, rms_max: 0.5}]");
   const fs::path budget = dir / "budget.yaml";
   std::ofstream(budget) << text;
-  const Result r = RunDeb("run " + budget.string() + " --strict --no-plots -q --out " + (dir / "r").string(), dir);
+  const Command r = RunDeb("run " + budget.string() + " --strict --no-plots -q --out " + (dir / "r").string());
   CHECK(r.exit_code == 5);
   const auto j = nlohmann::json::parse(ReadAll(dir / "r" / "summary.json"));
   const auto& velocity = j["outputs"][0];
@@ -118,10 +92,9 @@ TEST_CASE("run --strict also fails on a band requirement, which summary.json and
   CHECK(ReadAll(dir / "r" / "report.md").find("z\\_velocity, 1–10 Hz") != std::string::npos);
   // The console names the failing band, both in the run's table and in the --strict verdict.
   CHECK(r.err.find("fail their requirement (--strict): z_velocity (band 1-10 Hz)") != std::string::npos);
-  const std::string cmd = std::string("\"") + DEB_BINARY + "\" run " + budget.string() + " --no-plots --out " +
-                          (dir / "r2").string() + " > \"" + (dir / "stdout").string() + "\" 2>&1";
-  REQUIRE(std::system(cmd.c_str()) == 0);
-  const std::string out = ReadAll(dir / "stdout");
+  const Command plain = RunDeb("run " + budget.string() + " --no-plots --out " + (dir / "r2").string());
+  REQUIRE(plain.exit_code == 0);
+  const std::string out = plain.out + plain.err;
   CHECK(out.find("band 1-10 Hz: rms") != std::string::npos);
   CHECK(out.find("(requirement 0.5: FAIL)") != std::string::npos);
   fs::remove_all(dir);

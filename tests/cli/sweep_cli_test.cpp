@@ -1,7 +1,5 @@
 // deb sweep on the shipped thesis sweep: h = 0...300 mm x K_v = 0...200.
 #include <doctest/doctest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -11,16 +9,16 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/cli_harness.h"
+
 namespace fs = std::filesystem;
 
 TEST_CASE("deb sweep of the thesis case study writes one row per variant; K_v = 0 has no sensor-noise term") {
-  const fs::path dir = fs::temp_directory_path() / ("deb_sweep_cli_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  const std::string cmd = std::string("\"") + DEB_BINARY + "\" sweep " + DEB_SOURCE_DIR +
-                          "/budgets/nizamoglu2015_sweep.yaml -q --out \"" + dir.string() + "\"";
-  const int status = std::system(cmd.c_str());
-  REQUIRE((WIFEXITED(status) && WEXITSTATUS(status) == 0));
-  std::ifstream in(dir / "sweep.csv");
+  const fs::path dir = deb::test::TempDir("sweep_cli");
+  REQUIRE(deb::test::RunDeb("sweep " + deb::test::ExampleBudget("nizamoglu2015_sweep.yaml") + " -q --out \"" +
+                            (dir / "out").string() + "\"")
+              .exit_code == 0);
+  std::ifstream in(dir / "out" / "sweep.csv");
   std::string line;
   std::vector<std::string> lines;
   while (std::getline(in, line)) lines.push_back(line);
@@ -40,6 +38,6 @@ TEST_CASE("deb sweep of the thesis case study writes one row per variant; K_v = 
     if (v[0] == 50.0 && std::abs(v[1] + 210.0) < 1e-9) CHECK(std::abs(v[4] - 11.1981) < 0.01);
     if (v[0] == 50.0 && v[1] == 0.0) CHECK(std::abs(v[4] - 11.2137) < 0.01);
   }
-  CHECK(fs::file_size(dir / "plots" / "z_velocity_sweep.png") > 1000);  // RMS against K_v
+  CHECK(fs::file_size(dir / "out" / "plots" / "z_velocity_sweep.png") > 1000);  // RMS against K_v
   fs::remove_all(dir);
 }

@@ -11,19 +11,20 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/cli_harness.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
 nlohmann::json RunBudget(const std::string& budget) {
-  const fs::path out = fs::temp_directory_path() / ("deb_thesis_" + budget);
-  fs::remove_all(out);
-  const std::string cmd = std::string("\"") + DEB_BINARY + "\" run -q \"" + DEB_SOURCE_DIR + "/budgets/" + budget +
-                          ".yaml\" --out \"" + out.string() + "\"";
-  REQUIRE(std::system(cmd.c_str()) == 0);
+  const fs::path dir = deb::test::TempDir("thesis_" + budget), out = dir / "out";
+  REQUIRE(deb::test::RunDeb("run -q \"" + deb::test::ExampleBudget(budget + ".yaml") + "\" --out \"" + out.string() +
+                            "\"")
+              .exit_code == 0);
   std::ifstream in(out / "summary.json");
   nlohmann::json j = nlohmann::json::parse(in);
-  fs::remove_all(out);
+  fs::remove_all(dir);
   return j;
 }
 

@@ -25,6 +25,7 @@
 #include "deb/core/number_text.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/mat_file.h"
+#include "tests/support/contains.h"
 
 namespace deb {
 namespace {
@@ -136,7 +137,7 @@ std::string ErrorOf(const std::function<void()>& f) {
   return "(no InputError)";
 }
 
-bool Contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using test::Contains;
 
 #define CHECK_ERROR(expr, ...)                                        \
   do {                                                                \

@@ -397,9 +397,9 @@ TEST_CASE("loop and output choices parse and print both ways") {
   for (M::Loop l : {M::Loop::kOpen, M::Loop::kClosed}) CHECK(ParseLoop(ToString(l)) == l);
   for (M::Outputs o : {M::Outputs::kVelocity, M::Outputs::kVelocityAndPosition})
     CHECK(ParseOutputs(ToString(o)) == o);
-  CHECK_THROWS_WITH_AS(ParseLoop("passive"), "loop 'passive' is not one of: open, closed", InputError);
+  CHECK_THROWS_WITH_AS(ParseLoop("passive"), "unknown loop 'passive'; allowed: open, closed", InputError);
   CHECK_THROWS_WITH_AS(ParseOutputs("position"),
-                       "outputs 'position' is not one of: velocity, velocity_and_position",
+                       "unknown outputs 'position'; allowed: velocity, velocity_and_position",
                        InputError);
 }
 

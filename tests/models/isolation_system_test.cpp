@@ -150,8 +150,8 @@ TEST_CASE("axis names parse and print both ways and unknown ones list the allowe
   for (BodyAxis a : {BodyAxis::kX, BodyAxis::kY, BodyAxis::kZ}) CHECK(ParseBodyAxis(ToString(a)) == a);
   for (LocalAxis a : {LocalAxis::kP, LocalAxis::kQ, LocalAxis::kR})
     CHECK(ParseLocalAxis(ToString(a)) == a);
-  CHECK_THROWS_WITH_AS(ParseBodyAxis("alpha"), "body axis 'alpha' is not one of: x, y, z", InputError);
-  CHECK_THROWS_WITH_AS(ParseLocalAxis("x"), "isolator axis 'x' is not one of: p, q, r", InputError);
+  CHECK_THROWS_WITH_AS(ParseBodyAxis("alpha"), "unknown body axis 'alpha'; allowed: x, y, z", InputError);
+  CHECK_THROWS_WITH_AS(ParseLocalAxis("x"), "unknown isolator axis 'x'; allowed: p, q, r", InputError);
 }
 
 }  // namespace deb

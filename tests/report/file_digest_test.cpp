@@ -3,7 +3,7 @@
 #include <doctest/doctest.h>
 
 #include "deb/core/error.h"
-#include "report_test_support.h"
+#include "tests/support/cli_harness.h"
 
 namespace deb::report {
 

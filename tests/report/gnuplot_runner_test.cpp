@@ -6,7 +6,7 @@
 
 #include "deb/core/error.h"
 #include "deb/report/plot.h"
-#include "report_test_support.h"
+#include "tests/support/cli_harness.h"
 
 namespace deb::report {
 namespace {

@@ -7,7 +7,7 @@
 #include "deb/budget/path_response.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/plot_style.h"
-#include "report_test_support.h"
+#include "tests/support/cli_harness.h"
 
 namespace deb::report {
 

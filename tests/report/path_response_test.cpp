@@ -8,7 +8,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
-#include "report_test_support.h"
+#include "tests/support/cli_harness.h"
 
 namespace deb {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "deb/io/budget_yaml.h"
 #include "deb/report/report_writer.h"
-#include "report_test_support.h"
+#include "tests/support/cli_harness.h"
 
 namespace deb::report {
 namespace {

@@ -4,7 +4,7 @@
 
 #include "deb/io/budget_yaml.h"
 #include "deb/report/spectrum_plots.h"
-#include "report_test_support.h"
+#include "tests/support/cli_harness.h"
 
 namespace deb::report {
 namespace {

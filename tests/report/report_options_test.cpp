@@ -11,7 +11,7 @@ TEST_CASE("plot formats parse from their names and an unknown one lists the allo
   CHECK(ParsePlotFormat("pdf") == PlotFormat::kPdf);
   CHECK(ParsePlotFormat("svg") == PlotFormat::kSvg);
   for (PlotFormat f : {PlotFormat::kPng, PlotFormat::kPdf, PlotFormat::kSvg}) CHECK(ParsePlotFormat(ToString(f)) == f);
-  CHECK_THROWS_WITH_AS(ParsePlotFormat("gif"), "unknown plot format 'gif': allowed are png, pdf, svg", InputError);
+  CHECK_THROWS_WITH_AS(ParsePlotFormat("gif"), "unknown plot format 'gif'; allowed: png, pdf, svg", InputError);
 }
 
 TEST_CASE("report options are valid by default and reject empty or repeated formats") {

@@ -10,7 +10,7 @@
 #include "deb/core/error.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/gnuplot_runner.h"
-#include "report_test_support.h"
+#include "tests/support/cli_harness.h"
 
 namespace deb {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "deb/io/budget_yaml.h"
-#include "report_test_support.h"
+#include "tests/support/cli_harness.h"
 
 namespace deb::report {
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "tests/support/cli_harness.h"
 
 namespace deb {
 namespace {
@@ -122,8 +123,7 @@ TEST_CASE("bad or repeated header keys are rejected listing the allowed values")
 }
 
 TEST_CASE("a spectrum file is read from disk and becomes a measured spectrum that names it") {
-  const auto dir = std::filesystem::temp_directory_path() / "deb_spectrum_csv_test";
-  std::filesystem::create_directories(dir);
+  const auto dir = test::TempDir("spectrum_csv");
   const std::string path = (dir / "noise.csv").string();
   {
     std::ofstream out(path);

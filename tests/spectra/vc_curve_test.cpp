@@ -128,6 +128,8 @@ TEST_CASE("a lowest band below 8 Hz needs the low-frequency extension, and bands
 TEST_CASE("VC class names parse in any case, round-trip, and an unknown name lists the allowed ones") {
   for (VcClass vc_class : kAllClasses) CHECK(ParseVcClass(ToString(vc_class)) == vc_class);
   CHECK(ParseVcClass("vc-d") == VcClass::kD);
+  // The name table and the compiled VC table name every class alike.
+  for (const VcCriterion& row : VcCriteria()) CHECK(ToString(row.vc_class) == row.name);
   CHECK(InputErrorText([] { ParseVcClass("VC-H"); })
             .find("'VC-H'; allowed: VC-A, VC-B, VC-C, VC-D, VC-E, VC-F, VC-G") != std::string::npos);
 }

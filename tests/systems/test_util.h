@@ -11,6 +11,7 @@
 
 #include "deb/core/error.h"
 #include "deb/systems/state_space.h"
+#include "tests/support/contains.h"
 
 namespace deb::testing {
 
@@ -95,8 +96,6 @@ inline std::string MessageOf(const std::function<void()>& f) {
   return "(no InputError)";
 }
 
-inline bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::Contains;
 
 }  // namespace deb::testing

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "deb/core/error.h"
+#include "tests/support/contains.h"
 
 namespace deb {
 namespace {
@@ -31,9 +32,7 @@ std::string InputErrorMessage(F f) {
   return {};
 }
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::Contains;
 
 TEST_CASE("the unit spellings users write are accepted") {
   for (const char* unit : {"um/s", "µm/s", "μm/s", "um", "nm", "mm", "m/s^2", "m s-2", "m.s-2",

@@ -1,5 +1,6 @@
-// Helpers for the report tests: temporary directories, running the deb CLI
-// and external checkers (pdfinfo), reading files.
+// What the CLI and report tests share: running the deb binary (DEB_BINARY)
+// and other commands with stdout and stderr captured, temporary directories
+// unique to this process, reading and writing files.
 #pragma once
 
 #include <sys/wait.h>
@@ -18,7 +19,7 @@ namespace deb::test {
 namespace fs = std::filesystem;
 
 struct Command {
-  int exit_code = -1;
+  int exit_code = -1;  // -1: killed by a signal
   std::string out, err;
 };
 
@@ -29,40 +30,50 @@ inline std::string ReadAll(const fs::path& p) {
   return s.str();
 }
 
+inline fs::path WriteFile(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// A fresh, empty directory: the process id and a counter make it unique to
+// this call, so concurrent test processes never share one.
 inline fs::path TempDir(const std::string& name) {
   static std::atomic<int> counter{0};
   const fs::path d = fs::temp_directory_path() /
-                     ("deb_report_test_" + name + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+                     ("deb_test_" + name + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
 }
+
+// The exit code of a std::system status; -1 if the command did not exit.
+inline int ExitCode(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : -1; }
 
 // Runs a shell command line, capturing stdout and stderr.
 inline Command Shell(const std::string& command_line) {
   static const fs::path dir = TempDir("io");
   const fs::path out = dir / "stdout", err = dir / "stderr";
   const std::string cmd = command_line + " > \"" + out.string() + "\" 2> \"" + err.string() + "\"";
-  const int status = std::system(cmd.c_str());
   Command r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.exit_code = ExitCode(std::system(cmd.c_str()));
   r.out = ReadAll(out);
   r.err = ReadAll(err);
   return r;
 }
 
-// deb with arguments; `env` is prepended (e.g. "DEB_GNUPLOT=/nonexistent").
+// deb with arguments (shell syntax); `env` is prepended (e.g. "DEB_GNUPLOT=/nonexistent").
 inline Command RunDeb(const std::string& args, const std::string& env = "") {
   return Shell((env.empty() ? "" : env + " ") + "\"" + DEB_BINARY + "\" " + args);
 }
 
-inline std::string ExampleBudget(const std::string& file = "single_axis_isolator.yaml") {
-  return std::string(DEB_SOURCE_DIR) + "/budgets/" + file;
+// deb run in `dir` (relative paths in args are relative to it).
+inline Command RunDebIn(const fs::path& dir, const std::string& args, const std::string& env = "") {
+  return Shell("cd \"" + dir.string() + "\" && " + (env.empty() ? "" : env + " ") + "\"" + DEB_BINARY + "\" " + args);
 }
 
-inline fs::path WriteFile(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
+// A budget shipped in budgets/.
+inline std::string ExampleBudget(const std::string& file = "single_axis_isolator.yaml") {
+  return std::string(DEB_SOURCE_DIR) + "/budgets/" + file;
 }
 
 // Page count of a PDF according to pdfinfo (poppler-utils), -1 on failure.
