@@ -14,7 +14,9 @@ namespace deb {
 // with transparent huge pages (Linux, where THP is "madvise" or "always").
 // Costs resident memory in whole 2 MiB pages (a few MiB), saves page faults.
 // Call once, first thing in main(), before threads start. Where the C
-// library or kernel lacks a part, that part is skipped; nothing fails.
-void UseHugePagesForHeap(int step_mib = 8);
+// library or kernel lacks a part, or another allocator replaces the C
+// library's (AddressSanitizer), nothing is done; nothing fails. Returns true
+// when the heap was advised.
+bool UseHugePagesForHeap(int step_mib = 8);
 
 }  // namespace deb
