@@ -13,6 +13,7 @@
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
 #include "deb/units/unit.h"
+#include "deb/version.h"
 
 namespace deb {
 namespace fs = std::filesystem;

@@ -8,6 +8,7 @@
 #include "deb/core/output_dir.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/plot_style.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {

@@ -7,6 +7,7 @@
 #include "deb/report/plot_points.h"
 #include "deb/budget/path_response.h"
 #include "deb/report/plot_style.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {
