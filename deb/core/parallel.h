@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Splits an index range across threads. Frequency-by-frequency work (frequency
 // responses, propagation) is independent per frequency, so it parallelises
 // without locks; each worker gets one contiguous block. The workers are

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // YAML -> the rigid-body active vibration isolation model (deb/models), as a
 // path entry of type `isolation_system`. One entry yields several paths,
 // named "<name>.floor", "<name>.floor_open", "<name>.sensor_noise",
