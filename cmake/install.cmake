@@ -26,8 +26,12 @@ endforeach()
 install(FILES ${PROJECT_BINARY_DIR}/generated/deb/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/deb)
 
 set(deb_config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/deb)
+# The third-party libraries' targets deb_dep_* (deb_dependency in the
+# top-level CMakeLists.txt) go with the layers that link them.
+get_property(deb_top_targets DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY BUILDSYSTEM_TARGETS)
+list(FILTER deb_top_targets INCLUDE REGEX "^deb_dep_")
 install(TARGETS deb_core deb_units deb_spectra deb_signal deb_systems deb_models deb_budget deb_io deb_report
-                deb_lib deb_dep_yaml_cpp deb_dep_fftw deb_dep_udunits
+                deb_lib ${deb_top_targets}
         EXPORT debTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS deb RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
@@ -35,6 +39,10 @@ install(EXPORT debTargets NAMESPACE deb:: DESTINATION ${deb_config_dir})
 
 # What debConfig.cmake must find again: the dependencies linked as shared
 # targets (an archive is linked by its path and needs nothing found).
+set(DEB_FIND_OPENSSL OFF)
+if(TARGET OpenSSL::Crypto)
+  set(DEB_FIND_OPENSSL ON)
+endif()
 set(DEB_SHARED_lapack OFF)
 if(NOT DEB_STATIC_LAPACK)
   set(DEB_SHARED_lapack ON)
