@@ -28,6 +28,7 @@
 #include "deb/io/result_writer.h"
 #include "deb/report/report_writer.h"
 #include "deb/units/unit.h"
+#include "deb/version.h"
 #include "tools/compare_command.h"
 #include "tools/sensitivity_command.h"
 #include "tools/spectrum_command.h"

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The transfer of one contributor to one output as the engine applies it:
 //   h_k(f) = c_out(f) · w(f) · H_row,k(j 2 pi f) · c_in,k(f)
 // with c_in,k the conversion from the source's unit to the path's input unit

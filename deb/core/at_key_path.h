@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Locating errors of library code that the caller described by key path: a
 // function given "paths[2].of[1]" throws InputError(key_path, message) for a
 // rule that part breaks, and the YAML loader turns the key path into

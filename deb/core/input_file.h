@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Files deb reads on the user's behalf (budgets, spectra, FRF tables,
 // recordings, summaries). Every one is treated as possibly hostile: only a
 // regular file is read (a FIFO would block forever, /dev/zero never ends, a

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Shortest decimal text that reads back to the same double, for error
 // messages and Describe(): a message must quote the value the user wrote
 // (0.1, not 0.10000000000000001) and still tell two close values apart; and

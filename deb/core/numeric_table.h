@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The small text table every deb data file shares (measured spectra, measured
 // frequency responses): numbers in rows, cells separated by commas (when a
 // line has one) or by whitespace, '#' starting a comment, an optional header

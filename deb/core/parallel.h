@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Work on several threads, on workers started once and kept for the life of
 // the process. Two calls:
 // - ParallelFor: an index range of small, even work (one frequency of a

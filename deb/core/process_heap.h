@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The heap of a short-lived deb process on transparent huge pages.
 //
 // A run of a small budget touches about 2 MB of fresh heap (the unit

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // "Did you mean ...?" for a misspelt name: the candidate nearest to what the
 // user wrote, by edit distance, when it is near enough to be a likely typo.
 #pragma once

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // YAML -> the parameters of the rigid-body active vibration isolation model
 // (deb/models), a path entry of type `isolation_system`; the paths it yields
 // are made by deb/budget/isolation_paths.h.

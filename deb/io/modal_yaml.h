@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // YAML -> a modal model (deb/systems/modal_model.h): the keys of a path entry
 // of `type: modal` that describe the modes, each part from a file (numeric
 // tables, deb/systems/modal_csv.h) or inline:

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // YAML -> Path: the `paths:` entries of a budget (transfer_function,
 // state_space (A, B, C, D inline or from a MATLAB file, deb/io/mat_file.h), gain, frf (a measured frequency response from a file), modal
 // (finite-element modes, deb/io/modal_yaml.h), and

@@ -14,6 +14,7 @@
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
 #include "deb/units/unit.h"
+#include "deb/version.h"
 
 namespace deb {
 namespace fs = std::filesystem;

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // YAML -> Source: the `sources:` entries of a budget (flat, vc, measured,
 // timeseries, reference), converted at load to deb's internal convention (one-sided PSD, unit^2/Hz).
 #pragma once

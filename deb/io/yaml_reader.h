@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The one place deb reads YAML. A YamlReader walks a document keeping the key
 // path of every node ("sources[1].spectrum.level") and its position in the
 // file, so every error — from the loader or from later validation that only

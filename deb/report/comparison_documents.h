@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The documents of `deb compare`: compare.md and compare.html (one
 // self-contained page; the plots are files beside it under plots/), with one
 // table per output (RMS of A and B per contributor and band, B - A, B / A)

@@ -7,6 +7,7 @@
 #include "deb/report/plot_style.h"
 #include "deb/report/spectrum_plots.h"
 #include "deb/units/unit.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {

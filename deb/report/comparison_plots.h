@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Plots that compare contributors at a glance: per output, the RMS of every
 // contributor in every frequency band (which contributor dominates which
 // band), and an overview of the RMS of every output and contributor against

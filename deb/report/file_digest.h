@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // SHA-256 of a file, so that a report names exactly the budget it was made
 // from. The only code in deb that uses Nettle (Debian: nettle-dev), a
 // maintained implementation rather than a hand-written one. Nettle, not

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Runs gnuplot, headless, on a script: the only code in deb that talks to
 // gnuplot (through gnuplot-iostream). gnuplot is an external program, so
 // its absence, its errors and a run past the time limit are failures to

@@ -11,6 +11,7 @@
 #include "deb/report/plot_points.h"
 #include "deb/report/plot_style.h"
 #include "deb/units/unit.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Plots of measured data, one per `deb spectrum` command, in the style of a
 // budget report: log frequency in Hz, the unit on the y axis, channels in
 // the contributor colours (plot_style.h), the key beside the plot. Each

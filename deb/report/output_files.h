@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Everything one command writes beside its main data: text files (or the
 // standard output) and standalone plots (plot_files.h), written as one
 // transaction. Write() draws the plots first, in hidden directories, then

@@ -9,6 +9,7 @@
 #include "deb/core/parallel.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/plot_style.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {

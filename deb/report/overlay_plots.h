@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Overlay plots of `deb compare`: per output present in both results, the
 // PSD and the CPS of A (solid) and B (dashed) in one figure each, the total
 // in black and every contributor in its report colour, so that a reader

@@ -10,6 +10,7 @@
 #include "deb/core/parallel.h"
 #include "deb/report/plot_points.h"
 #include "deb/report/plot_style.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {

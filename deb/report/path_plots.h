@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Magnitude plots of each contributor's transfer to each output (the thesis'
 // transmissibility and sensor-sensitivity plots), one line per source
 // channel, in output unit per source unit, with exactly the unit factors and

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // One plot of a report, as data: the CSV behind it and a gnuplot script that
 // draws it from that CSV. The script holds no terminal or output file, so the
 // same text draws the PNG, the SVG and the page of report.pdf; it is saved

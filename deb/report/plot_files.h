@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // A plot that stands on its own beside the data file it shows, as the
 // commands that write one CSV (`deb spectrum ...`) draw them: for the stem
 // "psd" in a directory, psd.png (and/or .svg, .pdf), the script psd.gp and

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Which grid points a plot draws. A budget's grid can hold 10^4..10^5 points
 // (resonance refinement, wide ranges), far more than a plot can show; drawing
 // them all makes gnuplot slow and the files large. PlotPoints keeps, within the

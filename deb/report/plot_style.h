@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The one visual style of a deb report. Contributors keep one colour and one
 // dash pattern in every plot of a report, keyed by their index in the budget
 // (not by their share, which differs per output). Colours are built in CIE

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "deb/report/title_page.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The two readable documents of a report directory: index.html, one
 // self-contained page (inline CSS, no scripts, nothing fetched from the
 // network; images by relative path) for a browser, and report.md with the

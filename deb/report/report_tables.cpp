@@ -8,6 +8,7 @@
 #include "deb/report/plot.h"
 #include "deb/report/spectrum_plots.h"
 #include "deb/units/unit.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {

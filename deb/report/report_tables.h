@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The tables of a report, built once and rendered three ways: HTML for
 // index.html, Markdown for report.md and aligned monospace text for the
 // title pages of report.pdf, so that all three say the same thing.

@@ -22,6 +22,7 @@
 #include "deb/report/report_documents.h"
 #include "deb/report/spectrum_plots.h"
 #include "deb/report/title_page.h"
+#include "deb/version.h"
 
 namespace deb {
 namespace fs = std::filesystem;

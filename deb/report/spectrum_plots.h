@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Plots of one output over frequency: the stacked cumulative power spectrum
 // (the budget's central figure: which contributor adds how much variance
 // where), optionally the stacked reverse CPS, and the PSD (or ASD) of every

@@ -7,6 +7,7 @@
 
 #include "deb/core/error.h"
 #include "deb/report/plot_style.h"
+#include "deb/version.h"
 
 namespace deb::report {
 

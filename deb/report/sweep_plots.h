@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Plots of `deb sweep`: per output, RMS against the first swept parameter,
 // one colour per contributor (the total in black) and one dash pattern per
 // combination of the other parameters' values.

@@ -4,6 +4,7 @@
 
 #include "deb/report/plot.h"
 #include "deb/report/plot_style.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {

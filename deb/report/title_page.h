@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The first page(s) of report.pdf: what was computed from which file, when
 // and by which deb, the conventions, and the tables, set as text by gnuplot
 // (the PDF is drawn by gnuplot alone). Text that does not fit on one A4

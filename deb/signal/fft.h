@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Real-to-complex discrete Fourier transforms for spectral estimation. This is
 // the only code in deb that talks to FFTW (STYLE rule 3): callers see std and
 // Eigen types only.

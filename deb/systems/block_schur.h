@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // Block-diagonal Schur form A = S T S^-1: T block diagonal with upper
 // triangular blocks, each block a cluster of eigenvalues that cannot be
 // separated from the others without an ill-conditioned S. It sits between the

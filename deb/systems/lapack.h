@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // The real Schur form and quasi-triangular Sylvester equations through LAPACK
 // (its C interface LAPACKE), for the exact-variance (Lyapunov) solver. This is
 // the only code in deb that talks to LAPACK: callers see Eigen types only.

@@ -1,3 +1,4 @@
+// Internal: not part of the public API.
 // A modal model (modal_model.h) evaluated in modal form, with no state-space
 // realisation and no eigendecomposition: per mode k the scalar
 //   g_k(j w) = (j w)^n / (w_k^2 - w^2 + 2 j zeta_k w_k w),   n = 0, 1, 2

@@ -1,4 +1,5 @@
 #include "deb/report/title_page.h"
+#include "deb/version.h"
 
 #include <doctest/doctest.h>
 
