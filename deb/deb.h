@@ -22,6 +22,7 @@
 #include "deb/core/frequency_grid.h"
 #include "deb/core/frequency_interval.h"
 #include "deb/core/integrate.h"
+#include "deb/core/key_positions.h"
 #include "deb/core/limits.h"
 #include "deb/core/output_dir.h"
 

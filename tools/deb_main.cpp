@@ -1,9 +1,18 @@
 // deb: the command-line front end. Thin: parses arguments, calls the library,
-// maps failures to documented exit codes.
+// maps failures to documented exit codes, for every subcommand in one place
+// (RunMapped below):
 //
-// Exit codes: 0 success; 2 usage error; 3 invalid input (budget, data file,
-// model); 4 cannot write the report; 5 a requirement failed (`run --strict`;
-// the report is written); 70 internal error.
+//   code  meaning                                   raised as
+//   0     success
+//   2     usage: unknown command or option, a      CLI11's ParseError, an
+//         missing or malformed argument            unknown subcommand
+//   3     invalid input: budget, data file, model,  deb::InputError, printed
+//         parameters                                 "file:line:col: key.path: rule"
+//   4     cannot write the output (report, CSV,     deb::WriteError
+//         plots), gnuplot missing or failing
+//   5     a requirement failed (run --strict; the   a subcommand's return value
+//         report is written)
+//   70    internal error (a bug)                    any other exception
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -42,15 +51,35 @@ constexpr int kExitWrite = 4;
 constexpr int kExitRequirement = 5;
 constexpr int kExitInternal = 70;
 
-// Runs f; an InputError that knows its key path (found after loading, by
-// the engine) is located in the budget file.
+// A command line that names no command deb has (CLI11 reports the rest).
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Parses the command line and runs the subcommand: its return value, or the
+// exit code of what was thrown (the table above), the error printed as
+// "deb: error: ..." (CLI11 prints its own usage errors, and --help).
 template <typename F>
-auto LocatedIn(const std::string& budget_file, F&& f) -> decltype(f()) {
+int RunMapped(CLI::App& app, F&& parse_and_run) {
   try {
-    return f();
+    return parse_and_run();
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kExitUsage;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "deb: %s\n", e.what());
+    return kExitUsage;
   } catch (const deb::InputError& e) {
-    if (e.key_path().empty()) throw;
-    throw deb::InputError(e.key_path(), deb::LocateInBudgetFile(budget_file, e.key_path(), e.what()));
+    std::fprintf(stderr, "deb: error: %s\n", e.what());
+    return kExitInput;
+  } catch (const deb::WriteError& e) {
+    std::fprintf(stderr, "deb: error: %s\n", e.what());
+    return kExitWrite;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "deb: internal error: %s\n", e.what());
+    return kExitInternal;
+  } catch (...) {
+    std::fprintf(stderr, "deb: internal error: an unknown exception\n");
+    return kExitInternal;
   }
 }
 
@@ -93,7 +122,7 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
   deb::EngineOptions options;
   options.threads = threads;
   const auto t0 = std::chrono::steady_clock::now();
-  const deb::BudgetResult result = LocatedIn(budget_file, [&] { return deb::Evaluate(budget, options); });
+  const deb::BudgetResult result = deb::Evaluate(budget, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
   try {
@@ -129,7 +158,7 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
 int Check(const std::string& budget_file) {
   const deb::Budget budget = deb::LoadBudgetFile(budget_file);
   // Everything run checks of its input before computing: what check accepts, run accepts.
-  const deb::EvaluationPlan plan = LocatedIn(budget_file, [&] { return deb::PlanEvaluation(budget); });
+  const deb::EvaluationPlan plan = deb::PlanEvaluation(budget);
   const deb::FrequencyGrid& grid = plan.grid;
   // Every sweep variant is loaded and validated, as deb sweep would before computing.
   std::optional<deb::SweepBudget> sweep;
@@ -276,30 +305,24 @@ int main(int argc, char** argv) {
   deb::tools::SensitivityCommand sensitivity_command;
   CLI::App* sensitivity = sensitivity_command.Register(app);
 
-  // A first word that is no command: say so, and offer the nearest one
-  // (CLI11 alone answers "A subcommand is required").
-  if (argc > 1 && argv[1][0] != '-') {
-    std::vector<std::string> names;
-    std::string list;
-    for (const CLI::App* sub : app.get_subcommands({})) {
-      names.push_back(sub->get_name());
-      list += (list.empty() ? "" : ", ") + sub->get_name();
+  return RunMapped(app, [&] {
+    // A first word that is no command: say so, and offer the nearest one
+    // (CLI11 alone answers "A subcommand is required").
+    if (argc > 1 && argv[1][0] != '-') {
+      std::vector<std::string> names;
+      std::string list;
+      for (const CLI::App* sub : app.get_subcommands({})) {
+        names.push_back(sub->get_name());
+        list += (list.empty() ? "" : ", ") + sub->get_name();
+      }
+      if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+        const std::string near = deb::NearestName(argv[1], names);
+        throw UsageError("unknown command '" + deb::Excerpt(argv[1]) + "'" +
+                         (near.empty() ? "" : " (did you mean '" + near + "'?)") + "; the commands are " + list +
+                         " (deb --help)");
+      }
     }
-    if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
-      const std::string near = deb::NearestName(argv[1], names);
-      std::fprintf(stderr, "deb: unknown command '%s'%s; the commands are %s (deb --help)\n",
-                   deb::Excerpt(argv[1]).c_str(), near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str(),
-                   list.c_str());
-      return kExitUsage;
-    }
-  }
-  try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitUsage;
-  }
-  try {
     if (*run) {
       report.plot_scripts = report.plots || plot_scripts;
       return Run(budget_file, out_dir, threads, quiet, strict, report);
@@ -310,15 +333,6 @@ int main(int argc, char** argv) {
     if (*compare) return compare_command.Run();
     if (*sweep) return sweep_command.Run();
     if (*sensitivity) return sensitivity_command.Run();
-  } catch (const deb::InputError& e) {
-    std::fprintf(stderr, "deb: error: %s\n", e.what());
-    return kExitInput;
-  } catch (const deb::WriteError& e) {
-    std::fprintf(stderr, "deb: error: %s\n", e.what());
-    return kExitWrite;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "deb: internal error: %s\n", e.what());
-    return kExitInternal;
-  }
-  return kExitUsage;
+    return kExitUsage;
+  });
 }

@@ -1,11 +1,13 @@
 #include "deb/budget/budget.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <set>
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/suggest.h"
 #include "deb/units/unit.h"
 
 namespace deb {
@@ -44,6 +46,8 @@ void AtKey(const std::string& key, F&& f) {
 }
 
 }  // namespace
+
+InputError Budget::Locate(const InputError& e) const { return positions ? positions->Located(e) : e; }
 
 const Source& Budget::FindSource(const std::string& n) const {
   for (const auto& s : sources)
@@ -114,11 +118,13 @@ void Budget::Validate() const {
     // "total" names the sum of all contributors in every table, CSV column and plot.
     if (c.name == "total")
       throw InputError(key + ".name", "contributor name 'total' is reserved for the sum of all contributors");
-    bool source_found = false, path_found = false;
-    for (const auto& s : sources) source_found |= s.name == c.source;
-    for (const auto& p : paths) path_found |= p.name == c.path;
-    if (!source_found) throw InputError(key + ".source", "no source named '" + c.source + "'");
-    if (!path_found) throw InputError(key + ".path", "no path named '" + c.path + "'");
+    std::vector<std::string> source_names, path_names;
+    for (const auto& s : sources) source_names.push_back(s.name);
+    for (const auto& p : paths) path_names.push_back(p.name);
+    if (std::find(source_names.begin(), source_names.end(), c.source) == source_names.end())
+      throw InputError(key + ".source", "no source named '" + c.source + "'" + DidYouMean(c.source, source_names));
+    if (std::find(path_names.begin(), path_names.end(), c.path) == path_names.end())
+      throw InputError(key + ".path", "no path named '" + c.path + "'" + DidYouMean(c.path, path_names));
     const Source& s = FindSource(c.source);
     const Path& p = FindPath(c.path);
     if (s.channels() != p.system.inputs()) {
@@ -143,8 +149,9 @@ void Budget::Validate() const {
       const int row = p.OutputIndex(out.signal);
       if (row < 0)
         throw InputError(Indexed("outputs", o) + ".signal",
-                         "output '" + out.name + "' reads signal '" + out.signal + "', which path '" +
-                             p.name + "' (contributor '" + c.name + "') does not have");
+                         "output '" + out.name + "' reads signal '" + out.signal + "'" +
+                             DidYouMean(out.signal, p.output_names) + ", which path '" + p.name +
+                             "' (contributor '" + c.name + "') does not have");
       const std::string from = out.weighting ? UnitProduct(p.output_units[row], out.weighting->unit)
                                              : p.output_units[row];
       AtKey(Indexed("outputs", o) + ".unit", [&] {

@@ -5,6 +5,7 @@
 // reference and unit, naming the key path of the offending entry.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "deb/budget/source.h"
 #include "deb/core/enum_names.h"
 #include "deb/core/frequency_grid.h"
+#include "deb/core/key_positions.h"
 #include "deb/systems/state_space.h"
 
 namespace deb {
@@ -98,6 +100,9 @@ struct Budget {
   std::string name;
   std::string description;
   std::string source_file;  // where it was loaded from, if anywhere
+  // Where each key path stands in source_file, recorded when it was loaded
+  // (null for a budget built in code): see Locate.
+  std::shared_ptr<const KeyPositions> positions;
   GridSpec grid;
   std::vector<Source> sources;
   std::vector<Path> paths;
@@ -110,6 +115,10 @@ struct Budget {
   // Checks names, references, channel counts and units.
   // @throws InputError with the key path (e.g. "contributors[2].path").
   void Validate() const;
+
+  // e at file:line:col of its key path in the file loaded (e itself if it
+  // has no key path or a file already, or the budget was not loaded).
+  InputError Locate(const InputError& e) const;
 
   const Source& FindSource(const std::string& name) const;  // DEB_DEMAND it exists
   const Path& FindPath(const std::string& name) const;

@@ -543,7 +543,13 @@ FullPlan MakePlan(const Budget& budget) {
 
 }  // namespace
 
-EvaluationPlan PlanEvaluation(const Budget& budget) { return MakePlan(budget).plan; }
+EvaluationPlan PlanEvaluation(const Budget& budget) {
+  try {
+    return MakePlan(budget).plan;
+  } catch (const InputError& e) {
+    throw budget.Locate(e);  // at file:line:col, from the positions recorded at load
+  }
+}
 
 namespace {
 
@@ -699,9 +705,7 @@ void AddTotalsAndBands(const Output& output, const FrequencyGrid& grid, const st
   }
 }
 
-}  // namespace
-
-BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
+BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& options) {
   FullPlan full = MakePlan(budget);
   EvaluationPlan& plan = full.plan;
   BudgetResult result;
@@ -759,6 +763,16 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
   for (std::size_t o = 0; o < result.outputs.size(); ++o)
     AddTotalsAndBands(budget.outputs[o], result.grid, plan.bands, &result.outputs[o]);
   return result;
+}
+
+}  // namespace
+
+BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
+  try {
+    return EvaluateUnlocated(budget, options);
+  } catch (const InputError& e) {
+    throw budget.Locate(e);  // at file:line:col, from the positions recorded at load
+  }
 }
 
 }  // namespace deb

@@ -95,8 +95,8 @@ std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::functi
           os << "sweep variant " << i + 1 << " (";
           for (std::size_t k = 0; k < spec.parameters.size(); ++k)
             os << (k ? ", " : "") << spec.parameters[k].key_path << " = " << spec.parameters[k].Text(values[i][k]);
-          os << "): " << e.what();
-          throw InputError(os.str());
+          os << "): " << e.message();
+          throw InputError(e.location(), os.str());
         }
         const std::size_t n = ++done;
         if (progress) {

@@ -36,4 +36,9 @@ std::string NearestName(const std::string& word, const std::vector<std::string>&
   return best;
 }
 
+std::string DidYouMean(const std::string& word, const std::vector<std::string>& candidates) {
+  const std::string near = NearestName(word, candidates);
+  return near.empty() ? "" : " (did you mean '" + near + "'?)";
+}
+
 }  // namespace deb

@@ -16,4 +16,8 @@ std::size_t EditDistance(const std::string& a, const std::string& b);
 // ties go to the first. "" if none is near, or `word` is a candidate.
 std::string NearestName(const std::string& word, const std::vector<std::string>& candidates);
 
+// " (did you mean 'NEAREST'?)" to follow the quoted word in a message, or ""
+// when no candidate is near.
+std::string DidYouMean(const std::string& word, const std::vector<std::string>& candidates);
+
 }  // namespace deb

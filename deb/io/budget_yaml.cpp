@@ -126,6 +126,7 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
   root.AllowOnly({"name", "description", "grid", "sources", "paths", "contributors", "outputs", "bands", "sweep"});
   Budget b;
   b.source_file = reader.name();
+  b.positions = reader.positions();
   b.name = root.Required("name").AsString();
   for (char ch : b.name)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
@@ -148,8 +149,8 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
   try {
     b.Validate();
   } catch (const InputError& e) {
-    if (e.key_path().empty()) throw InputError(reader.name() + ": " + e.what());
-    throw InputError(e.key_path(), reader.Locate(e.key_path(), e.what()));
+    if (!e.located()) throw InputError(InputLocation{reader.name(), 0, 0, ""}, e.message());
+    throw b.Locate(e);
   }
   return b;
 }
@@ -162,18 +163,17 @@ Budget LoadBudgetFile(const std::string& path) {
   return Load(reader, dir.empty() ? "." : dir);
 }
 
-std::string LocateInBudgetFile(const std::string& path, const std::string& key_path, const std::string& message) {
+Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const KeyPositions>& original,
+                         const std::string& note, const std::string& base_dir) {
+  const YamlReader reader = YamlReader::FromString(text, original->file() + " (" + note + ")");
   try {
-    const YamlReader reader = YamlReader::FromFile(path);
-    const std::string dir = std::filesystem::path(path).parent_path().string();
-    try {
-      Load(reader, dir.empty() ? "." : dir);  // records the position of every key
-    } catch (const InputError&) {
-      // The file changed since it was loaded: locate what was recorded.
-    }
-    return reader.Locate(key_path, message);
-  } catch (const InputError&) {
-    return path + ": " + key_path + ": " + message;
+    Budget b = Load(reader, base_dir);
+    b.positions = original;
+    return b;
+  } catch (const InputError& e) {
+    // Located in the written-out copy, whose positions mean nothing to the user.
+    if (e.key_path().empty()) throw;
+    throw original->Located(InputError(e.key_path(), e.message()), note);
   }
 }
 

@@ -4,6 +4,7 @@
 // "file:line:col: key.path:" and names the value and the rule.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "deb/budget/budget.h"
@@ -17,9 +18,14 @@ Budget LoadBudgetFile(const std::string& path);
 // relative data-file paths.
 Budget LoadBudgetText(const std::string& text, const std::string& name, const std::string& base_dir = ".");
 
-// "file:line:col: key_path: message" for an error found after loading (the
-// engine knows key paths, not positions): the budget at `path` is read again
-// to find where key_path, or its closest parent, stands.
-std::string LocateInBudgetFile(const std::string& path, const std::string& key_path, const std::string& message);
+// An error found after loading (by the engine, which knows key paths, not
+// positions) is located by the loaded budget itself: Budget::Locate.
+
+// A changed copy of a loaded budget file (a sweep variant, a scaled
+// parameter), whose key paths are those of the original: `text` is loaded,
+// and its errors and Budget::positions are the original's positions, each
+// message starting with `note` (e.g. "sweep variant 2: ...").
+Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const KeyPositions>& original,
+                         const std::string& note, const std::string& base_dir);
 
 }  // namespace deb

@@ -5,6 +5,7 @@
 
 #include "deb/budget/path_composition.h"
 #include "deb/core/limits.h"
+#include "deb/core/suggest.h"
 #include "deb/io/isolation_yaml.h"
 #include "deb/io/mat_file.h"
 #include "deb/io/modal_yaml.h"
@@ -128,7 +129,11 @@ Path Named(const Path& entry, Path composed) {
 const Path& PathContext::Lookup(const YamlNode& name_node) const {
   const std::string name = name_node.AsString();
   const auto it = parsed_.find(name);
-  if (it == parsed_.end()) name_node.Fail("no path named '" + name + "' is defined before this one");
+  if (it == parsed_.end()) {
+    std::vector<std::string> before;
+    for (const auto& [n, p] : parsed_) before.push_back(n);
+    name_node.Fail("no path named '" + name + "'" + DidYouMean(name, before) + " is defined before this one");
+  }
   return it->second;
 }
 

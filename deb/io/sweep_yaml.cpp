@@ -18,6 +18,7 @@
 #include "deb/core/limits.h"
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
+#include "deb/core/suggest.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/yaml_reader.h"
 
@@ -112,6 +113,18 @@ bool IsNumber(const YAML::Node& n) {
   return YAML::convert<double>::decode(n, d);
 }
 
+// Why map n at `where` has no `key`: the keys it has, the nearest first.
+std::string NoKey(const YAML::Node& n, const std::string& key, const std::string& where) {
+  std::vector<std::string> keys;
+  std::string list;
+  for (const auto& kv : n) {
+    keys.push_back(kv.first.Scalar());  // plain scalars: the reader's document check
+    list += (list.empty() ? "" : ", ") + keys.back();
+  }
+  return (where.empty() ? std::string("the budget") : where) + " has no key '" + key + "'" + DidYouMean(key, keys) +
+         " (it has: " + list + ")";
+}
+
 // Replaces every number x the steps reach from n by t(x); `where` is the
 // path so far. Returns an empty string or why the path does not reach a number.
 std::string Apply(YAML::Node n, const std::vector<Step>& steps, std::size_t s, const Transform& t,
@@ -135,12 +148,7 @@ std::string Apply(YAML::Node n, const std::vector<Step>& steps, std::size_t s, c
   if (step.is_key) {
     if (!n.IsMap()) return where + " is not a map, so it has no key '" + step.key + "'";
     const YAML::Node& cn = n;
-    if (!cn[step.key]) {
-      std::string keys;
-      for (const auto& kv : n) keys += (keys.empty() ? "" : ", ") + kv.first.Scalar();
-      return (where.empty() ? std::string("the budget") : where) + " has no key '" + step.key + "' (it has: " + keys +
-             ")";
-    }
+    if (!cn[step.key]) return NoKey(n, step.key, where);
     return Apply(n[step.key], steps, s + 1, t, where.empty() ? step.key : where + "." + step.key, reached);
   }
   if (!n.IsSequence()) return where + " is not a list, so it has no element [" + (step.index < 0 ? std::string("*") : std::to_string(step.index)) + "]";
@@ -158,36 +166,6 @@ std::string Apply(YAML::Node n, const std::vector<Step>& steps, std::size_t s, c
   return "";
 }
 
-// Walks the steps through const nodes (operator[] on a const node does not
-// insert), recording the position of each node reached.
-void Deepest(const YAML::Node& n, const std::vector<Step>& steps, std::size_t i, const std::string& name,
-             std::string* position) {
-  if (i == steps.size()) return;
-  const Step& s = steps[i];
-  const bool key_ok = s.is_key && n.IsMap() && n[s.key];
-  const bool index_ok = !s.is_key && s.index >= 0 && n.IsSequence() && static_cast<std::size_t>(s.index) < n.size();
-  if (!key_ok && !index_ok) return;
-  const YAML::Node next = key_ok ? n[s.key] : n[static_cast<std::size_t>(s.index)];
-  const YAML::Mark m = next.Mark();
-  if (!m.is_null()) *position = name + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1);
-  Deepest(next, steps, i + 1, name, position);
-}
-
-// "file:line:col" of the deepest node of the original document along
-// key_path (a variant's error names a key of the written-out variant, whose
-// positions mean nothing to the user); the file name alone if none is found.
-std::string PositionInOriginal(const YAML::Node& raw, const std::string& name, const std::string& key_path) {
-  std::vector<Step> steps;
-  try {
-    steps = ParseKeyPath(key_path, [](const std::string& why) -> void { throw InputError(why); });
-  } catch (const InputError&) {
-    return name;
-  }
-  std::string position = name;
-  Deepest(raw, steps, 0, name, &position);
-  return position;
-}
-
 // Writes a text at every scalar the steps reach (a textual parameter).
 std::string ApplyText(YAML::Node n, const std::vector<Step>& steps, std::size_t s, const std::string& text,
                       const std::string& where, Reached& reached) {
@@ -200,7 +178,8 @@ std::string ApplyText(YAML::Node n, const std::vector<Step>& steps, std::size_t 
   const Step& step = steps[s];
   if (step.is_key) {
     const YAML::Node& cn = n;
-    if (!n.IsMap() || !cn[step.key]) return (where.empty() ? std::string("the budget") : where) + " has no key '" + step.key + "'";
+    if (!n.IsMap()) return where + " is not a map, so it has no key '" + step.key + "'";
+    if (!cn[step.key]) return NoKey(n, step.key, where);
     return ApplyText(n[step.key], steps, s + 1, text, where.empty() ? step.key : where + "." + step.key, reached);
   }
   if (!n.IsSequence()) return where + " is not a list";
@@ -258,13 +237,13 @@ std::vector<double> ParseValues(const YamlNode& p, std::vector<std::string>* tex
 
 // Loads the variants of one sweep file: its text, the parameters' parsed
 // key paths and values. Reads only its own copies, so variants load on
-// several threads at once.
+// several threads at once; their errors are located in the user's file.
 class VariantLoader {
  public:
-  VariantLoader(std::string text, std::string name, std::string base_dir, SweepSpec spec,
-                std::vector<std::vector<Step>> steps)
-      : text_(std::move(text)), name_(std::move(name)), base_dir_(std::move(base_dir)), spec_(std::move(spec)),
-        steps_(std::move(steps)), rows_(spec_.Variants()) {}
+  VariantLoader(std::string text, std::shared_ptr<const KeyPositions> positions, std::string base_dir,
+                SweepSpec spec, std::vector<std::vector<Step>> steps)
+      : text_(std::move(text)), positions_(std::move(positions)), base_dir_(std::move(base_dir)),
+        spec_(std::move(spec)), steps_(std::move(steps)), rows_(spec_.Variants()) {}
 
   // The budget with nothing assigned and its sweep section removed. Each
   // variant starts from a fresh parse of the text, not a YAML::Clone: a
@@ -278,7 +257,9 @@ class VariantLoader {
   Budget Variant(std::size_t i) const;
 
  private:
-  std::string text_, name_, base_dir_;
+  std::string text_;
+  std::shared_ptr<const KeyPositions> positions_;
+  std::string base_dir_;
   SweepSpec spec_;
   std::vector<std::vector<Step>> steps_;
   std::vector<std::vector<double>> rows_;
@@ -290,23 +271,11 @@ Budget VariantLoader::Variant(std::size_t i) const {
   for (std::size_t k = 0; k < steps_.size(); ++k) Assign(v, steps_[k], spec_.parameters[k], rows_[i][k]);
   YAML::Emitter emitter;
   emitter << v;
-  std::ostringstream label;
-  label << name_ << " (sweep variant " << i + 1 << ":";
+  std::ostringstream note;
+  note << "sweep variant " << i + 1 << ":";
   for (std::size_t k = 0; k < steps_.size(); ++k)
-    label << (k ? ", " : " ") << spec_.parameters[k].key_path << " = " << spec_.parameters[k].Text(rows_[i][k]);
-  label << ")";
-  try {
-    return LoadBudgetText(emitter.c_str(), label.str(), base_dir_);
-  } catch (const InputError& e) {
-    // Re-locate in the user's file: "file:line:col: key: sweep variant i (...): rule".
-    const std::string what = e.what(), key = e.key_path();
-    const auto at = key.empty() ? std::string::npos : what.find(": " + key + ": ");
-    if (at == std::string::npos) throw;
-    const std::string rule = what.substr(at + key.size() + 4);
-    throw InputError(key, PositionInOriginal(YAML::Load(text_), name_, key) + ": " + key + ": " +
-                              label.str().substr(name_.size() + 2, label.str().size() - name_.size() - 3) + ": " +
-                              rule);
-  }
+    note << (k ? ", " : " ") << spec_.parameters[k].key_path << " = " << spec_.parameters[k].Text(rows_[i][k]);
+  return LoadBudgetVariant(emitter.c_str(), positions_, note.str(), base_dir_);
 }
 
 SweepBudget Load(const YamlReader& reader, const std::string& base_dir) {
@@ -342,7 +311,7 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir) {
       params.Fail("the grid of these parameters has " + NumberText(variants) + " variants, more than the " +
                   std::to_string(limits::kMaxSweepVariants) + " a sweep may have; sweep fewer values");
   }
-  const auto loader = std::make_shared<const VariantLoader>(reader.text(), reader.name(), base_dir, out.spec, steps);
+  const auto loader = std::make_shared<const VariantLoader>(reader.text(), reader.positions(), base_dir, out.spec, steps);
   // Check every path once (with its first value) before any variant loads.
   for (std::size_t k = 0; k < steps.size(); ++k) {
     YAML::Node probe = loader->BaseCopy();
@@ -366,7 +335,8 @@ SweepBudget LoadSweepFile(const std::string& path) {
 }
 
 Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor) {
-  YAML::Node raw = YamlReader::FromFile(path).LoadCopy();
+  const YamlReader reader = YamlReader::FromFile(path);
+  YAML::Node raw = reader.LoadCopy();
   const auto steps = ParseKeyPath(key_path, [](const std::string& why) -> void { throw InputError(why); });
   if (raw.IsMap()) raw.remove("sweep");
   Reached reached;
@@ -379,10 +349,10 @@ Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string&
   if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
   YAML::Emitter emitter;
   emitter << raw;
-  std::ostringstream label;
-  label << path << " (" << key_path << " x " << factor << ")";
+  std::ostringstream note;
+  note << key_path << " x " << factor;
   const std::string dir = std::filesystem::path(path).parent_path().string();
-  return LoadBudgetText(emitter.c_str(), label.str(), dir.empty() ? "." : dir);
+  return LoadBudgetVariant(emitter.c_str(), reader.positions(), note.str(), dir.empty() ? "." : dir);
 }
 
 SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir) {

@@ -8,15 +8,14 @@
 
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
+#include "deb/core/suggest.h"
 
 namespace deb::io {
 namespace {
 
-std::string Position(const std::string& name, const YAML::Mark& mark) {
-  std::ostringstream os;
-  os << name;
-  if (!mark.is_null()) os << ":" << mark.line + 1 << ":" << mark.column + 1;
-  return os.str();
+InputLocation Where(const std::string& name, const YAML::Mark& mark, const std::string& key) {
+  if (mark.is_null()) return {name, 0, 0, key};
+  return {name, mark.line + 1, mark.column + 1, key};
 }
 
 std::string Join(const std::set<std::string>& items) {
@@ -28,16 +27,18 @@ std::string Join(const std::set<std::string>& items) {
 // What every deb document must be, checked once over the whole tree before
 // anything reads it: map keys are plain scalars (a "? {}" key is no name) and
 // no key appears twice in one map (yaml-cpp keeps both and lookups see only
-// the first, so an edited duplicate would be ignored without a word). A node
-// reached again through an alias (same position in the text) is not walked
+// the first, so an edited duplicate would be ignored without a word). The
+// same walk records every node's position by key path. A node reached again
+// through an alias (same position in the text) is recorded but not walked
 // again, so a few lines of nested aliases cannot make the walk explode.
 class DocumentCheck {
  public:
-  explicit DocumentCheck(const std::string& name) : name_(name) {}
+  DocumentCheck(const std::string& name, KeyPositions* positions) : name_(name), positions_(positions) {}
 
   void Walk(const YAML::Node& node, const std::string& key) {
-    if (!node.IsMap() && !node.IsSequence()) return;
     const YAML::Mark m = node.Mark();
+    if (!m.is_null()) positions_->Record(key, m.line + 1, m.column + 1);
+    if (!node.IsMap() && !node.IsSequence()) return;
     if (!seen_.insert({m.pos, m.line, m.column}).second) return;
     if (node.IsSequence()) {
       for (std::size_t i = 0; i < node.size(); ++i) Walk(node[i], key + "[" + std::to_string(i) + "]");
@@ -59,23 +60,24 @@ class DocumentCheck {
 
  private:
   [[noreturn]] void Fail(const YAML::Mark& mark, const std::string& key, const std::string& message) const {
-    throw InputError(key.empty() ? "(document)" : key,
-                     Position(name_, mark) + ": " + (key.empty() ? "" : key + ": ") + message);
+    throw InputError(Where(name_, mark, key), message);
   }
 
   const std::string& name_;
+  KeyPositions* positions_;
   std::set<std::tuple<int, int, int>> seen_;
 };
 
 }  // namespace
 
 YamlNode::YamlNode(const YamlReader* reader, YAML::Node node, std::string key)
-    : reader_(reader), node_(std::move(node)), key_(std::move(key)) {
-  if (node_.IsDefined()) reader_->Record(key_, node_.Mark());
-}
+    : reader_(reader), node_(std::move(node)), key_(std::move(key)) {}
 
-void YamlNode::Fail(const std::string& message) const {
-  throw InputError(key_.empty() ? "(document)" : key_, reader_->Locate(key_, message));
+void YamlNode::Fail(const std::string& message) const { FailAt(node_, key_, message); }
+
+void YamlNode::FailAt(const YAML::Node& at, const std::string& key, const std::string& message) const {
+  if (at.IsDefined() && !at.Mark().is_null()) throw InputError(Where(reader_->name(), at.Mark(), key), message);
+  throw InputError(reader_->positions()->Locate(key), message);
 }
 
 bool YamlNode::Has(const std::string& field) const {
@@ -113,8 +115,8 @@ void YamlNode::AllowOnly(const std::set<std::string>& allowed) const {
   for (const auto& kv : node_) {
     const std::string k = kv.first.Scalar();  // a plain scalar: DocumentCheck
     if (!allowed.count(k)) {
-      YamlNode(reader_, kv.first, key_.empty() ? k : key_ + "." + k)
-          .Fail("unknown key '" + k + "'; allowed here: " + Join(allowed));
+      FailAt(kv.first, key_.empty() ? k : key_ + "." + k, "unknown key '" + k + "'" + DidYouMean(k, std::vector<std::string>(allowed.begin(), allowed.end())) +
+                                                         "; allowed here: " + Join(allowed));
     }
   }
 }
@@ -200,8 +202,9 @@ Eigen::MatrixXd YamlNode::AsMatrix() const {
   return m;
 }
 
-YamlReader::YamlReader(YAML::Node root, std::string name, std::string text)
-    : root_(std::move(root)), text_(std::move(text)), name_(std::move(name)) {}
+YamlReader::YamlReader(YAML::Node root, std::string name, std::string text,
+                       std::shared_ptr<const KeyPositions> positions)
+    : root_(std::move(root)), text_(std::move(text)), name_(std::move(name)), positions_(std::move(positions)) {}
 
 YamlReader YamlReader::FromFile(const std::string& path) {
   return FromString(ReadInputFile(path, "the budget file", limits::kMaxBudgetFileBytes), path);
@@ -212,31 +215,16 @@ YamlReader YamlReader::FromString(const std::string& text, const std::string& na
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw InputError(Position(name, e.mark) + ": invalid YAML: " + e.msg);
+    throw InputError(Where(name, e.mark, ""), "invalid YAML: " + e.msg);
   }
-  DocumentCheck(name).Walk(root, "");
-  return YamlReader(std::move(root), name, text);
+  auto positions = std::make_shared<KeyPositions>(name);
+  DocumentCheck(name, positions.get()).Walk(root, "");
+  return YamlReader(std::move(root), name, text, std::move(positions));
 }
 
 YamlNode YamlReader::Root() const {
-  if (!root_.IsMap()) throw InputError(name_ + ": the budget must be a YAML map (key: value pairs)");
+  if (!root_.IsMap()) throw InputError(InputLocation{name_, 0, 0, ""}, "the budget must be a YAML map (key: value pairs)");
   return YamlNode(this, root_, "");
-}
-
-void YamlReader::Record(const std::string& key, const YAML::Mark& mark) const {
-  marks_.emplace(key, mark);
-}
-
-std::string YamlReader::Locate(const std::string& key, const std::string& message) const {
-  std::string k = key;
-  while (true) {
-    const auto it = marks_.find(k);
-    if (it != marks_.end()) return Position(name_, it->second) + ": " + (key.empty() ? "" : key + ": ") + message;
-    const auto cut = k.find_last_of(".[");
-    if (cut == std::string::npos) break;
-    k = k.substr(0, cut);
-  }
-  return name_ + ": " + (key.empty() ? "" : key + ": ") + message;
 }
 
 }  // namespace deb::io

@@ -1,21 +1,22 @@
 // Internal: not part of the public API.
-// The one place deb reads YAML. A YamlReader walks a document keeping the key
-// path of every node ("sources[1].spectrum.level") and its position in the
-// file, so every error — from the loader or from later validation that only
-// knows the key path — reads "file:line:col: key.path: what is wrong".
+// The one place deb reads YAML. A YamlReader records the position of every
+// node by its key path ("sources[1].spectrum.level") as it parses the
+// document, so every error — from the loader or from later validation that
+// only knows the key path — reads "file:line:col: key.path: what is wrong".
 // Unknown keys are rejected. Internal to deb/io: not a public header.
 #pragma once
 
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Dense>
-#include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/core/key_positions.h"
 
 namespace deb::io {
 
@@ -56,6 +57,8 @@ class YamlNode {
 
   // An InputError located at this node.
   [[noreturn]] void Fail(const std::string& message) const;
+  // The same, at the node `at` (e.g. a map's key) under key path `key`.
+  [[noreturn]] void FailAt(const YAML::Node& at, const std::string& key, const std::string& message) const;
 
  private:
   const YamlReader* reader_;
@@ -76,28 +79,27 @@ class YamlReader {
   // A fresh, changeable copy of the document (already checked when loaded).
   YAML::Node LoadCopy() const { return YAML::Load(text_); }
 
-  // "file:line:col: key: message" using the position of the deepest node
-  // recorded for `key` or its closest recorded parent.
-  std::string Locate(const std::string& key, const std::string& message) const;
-  void Record(const std::string& key, const YAML::Mark& mark) const;
+  // The position of every node of the document by key path, recorded as it
+  // was parsed; shared with what is loaded from it (Budget::positions).
+  const std::shared_ptr<const KeyPositions>& positions() const { return positions_; }
 
  private:
-  YamlReader(YAML::Node root, std::string name, std::string text);
+  YamlReader(YAML::Node root, std::string name, std::string text, std::shared_ptr<const KeyPositions> positions);
   YAML::Node root_;
   std::string text_;
   std::string name_;
-  mutable std::map<std::string, YAML::Mark> marks_;
+  std::shared_ptr<const KeyPositions> positions_;
 };
 
-// Runs f; an InputError it throws is re-thrown located at `node`'s key (or at
-// the error's own key path, if it has one).
+// Runs f; an InputError it throws is re-thrown located at `node` (unless it
+// has a place of its own: a key path or a file).
 template <typename F>
 auto AtNode(const YamlNode& node, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const InputError& e) {
-    if (!e.key_path().empty()) throw;
-    node.Fail(e.what());
+    if (e.located()) throw;
+    node.Fail(e.message());
   }
 }
 

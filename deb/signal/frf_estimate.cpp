@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "deb/core/error.h"
+#include "deb/core/suggest.h"
 
 namespace deb {
 namespace {
@@ -12,7 +13,8 @@ int ChannelOf(const CsdEstimate& csd, const std::string& name, const char* role)
   if (it == csd.channel_names.end()) {
     std::string names;
     for (const auto& n : csd.channel_names) names += (names.empty() ? "" : ", ") + n;
-    throw InputError(std::string(role) + " '" + name + "' is not a channel of the recording (" + names + ")");
+    throw InputError(std::string(role) + " '" + name + "'" + DidYouMean(name, csd.channel_names) +
+                     " is not a channel of the recording (" + names + ")");
   }
   return static_cast<int>(it - csd.channel_names.begin());
 }

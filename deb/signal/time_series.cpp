@@ -5,6 +5,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
+#include "deb/core/suggest.h"
 
 namespace deb {
 
@@ -50,7 +51,7 @@ int TimeSeries::ChannelIndex(const std::string& name) const {
   std::string have;
   for (const auto& n : channel_names_) have += (have.empty() ? "" : ", ") + n;
   throw InputError("time series" + (origin_.empty() ? std::string() : " '" + origin_ + "'") + ": no channel '" +
-                   name + "' (channels: " + have + ")");
+                   name + "'" + DidYouMean(name, channel_names_) + " (channels: " + have + ")");
 }
 
 TimeSeries TimeSeries::Select(const std::vector<std::string>& names) const {

@@ -7,6 +7,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
+#include "deb/core/suggest.h"
 #include "deb/core/numeric_table.h"
 
 namespace deb {
@@ -59,8 +60,12 @@ FrfCsv FromTable(const NumericTable& t, std::vector<std::string> outputs, std::v
     if (part->second == Part::kCoherence) continue;
     const std::string out = name.substr(0, slash), in = name.substr(slash + 1, dot - slash - 1);
     const int o = IndexIn(outputs, out, fixed_out), i = IndexIn(inputs, in, fixed_in);
-    if (o < 0) t.Fail(line, col, "column '" + name + "': output '" + out + "' is not one of the path's outputs (" + Join(outputs) + ")");
-    if (i < 0) t.Fail(line, col, "column '" + name + "': input '" + in + "' is not one of the path's inputs (" + Join(inputs) + ")");
+    if (o < 0)
+      t.Fail(line, col, "column '" + name + "': output '" + out + "'" + DidYouMean(out, outputs) +
+                            " is not one of the path's outputs (" + Join(outputs) + ")");
+    if (i < 0)
+      t.Fail(line, col, "column '" + name + "': input '" + in + "'" + DidYouMean(in, inputs) +
+                            " is not one of the path's inputs (" + Join(inputs) + ")");
     Entry& e = entries[{o, i}];
     if (e.count(part->second)) t.Fail(line, col, "column '" + name + "' is given twice");
     e[part->second] = c;

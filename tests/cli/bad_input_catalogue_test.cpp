@@ -269,6 +269,11 @@ std::string SweepPath(const std::string& path) {
   return Sweep("  parameters:\n    - {path: \"" + path + "\", values: [1.0e-6, 2.0e-6]}\n");
 }
 
+// The base plant made unstable, its exact variance required: an error only
+// the engine finds (PlanEvaluation), at contributors[0].path.
+const std::string kUnstableRequired =
+    Sub(Sub(kBase, "den: [1, 2, 100]", "den: [1, -2, 100]"), "path: plant}", "path: plant, exact: required}");
+
 // Nested aliases: 9 levels of 10, 10^9 leaves if anything expanded them.
 std::string AliasBomb(const std::string& leaf) {
   std::string s = "[&l0 [" + leaf;
@@ -546,6 +551,21 @@ const std::vector<Case>& Catalogue() {
        B("    unit: N\n", "    unit: N\n    extra: " + AliasBomb("lol") + "\n"), kRun, 3, At("extra", "sources[0].extra")},
       {"X23", "output name ../../z", B("{name: z,", "{name: ../../z,"), kRun, 3, At("../../z", "outputs[0].name")},
 
+      // "Did you mean": a misspelt key or name is answered with the nearest one.
+      {"Y09+", "misspelt contributor key sorce", B("{name: c1, source: noise", "{name: c1, sorce: noise"), kRun, 3,
+       At("sorce", "contributors[0].sorce"), {"unknown key 'sorce' (did you mean 'source'?); allowed here:"}},
+      {"Y26+", "misspelt contributor source nois", B("source: noise", "source: nois"), kRun, 3,
+       At("source: |nois", "contributors[0].source"), {"no source named 'nois' (did you mean 'noise'?)"}},
+      {"Y27+", "misspelt contributor path plnt", B("path: plant}", "path: plnt}"), kRun, 3,
+       At("path: |plnt", "contributors[0].path"), {"no path named 'plnt' (did you mean 'plant'?)"}},
+      {"Y28+", "misspelt output signal yy", B("signal: y", "signal: yy"), kRun, 3, At("signal: |yy", "outputs[0].signal"),
+       {"reads signal 'yy' (did you mean 'y'?)"}},
+      {"Y29+", "series of a misspelt path",
+       B("contributors:\n", "  - {name: s, type: series, of: [plant, plnt]}\ncontributors:\n"), kRun, 3,
+       At("plant, |plnt]", "paths[1].of[1]"), {"no path named 'plnt' (did you mean 'plant'?)"}},
+      {"Y38+", "a misspelt key far from every allowed one gets no suggestion", B("    unit: N\n", "    unit: N\n    zzz: 1\n"),
+       kRun, 3, At("zzz", "sources[0].zzz"), {"unknown key 'zzz'; allowed here:"}, {"did you mean"}},
+
       // ---- W: sweeps --------------------------------------------------------
       {"W00", "valid sweep (baseline)", Budget(kSweep), "sweep b.yaml --no-plots", 0, Ok()},
       {"W00c", "deb check of a valid sweep", Budget(kSweep), "check b.yaml", 0, Ok()},
@@ -557,6 +577,9 @@ const std::vector<Case>& Catalogue() {
        At("path: |\"paths[0].name\"", "sweep.parameters[0].path")},
       {"W03", "sweep key path missing key", Budget(SweepPath("paths[0].nosuch")), "sweep b.yaml --no-plots", 3,
        At("path: |\"paths[0].nosuch\"", "sweep.parameters[0].path")},
+      {"W03+", "sweep key path with a misspelt key", Budget(SweepPath("sources[0].spectrum.levle")),
+       "sweep b.yaml --no-plots", 3, At("path: |\"sources[0].spectrum.levle\"", "sweep.parameters[0].path"),
+       {"has no key 'levle' (did you mean 'level'?)"}},
       {"W04", "sweep linear count 2e9 (D05d)",
        Budget(Sweep("  parameters:\n    - {path: \"sources[0].spectrum.level\", linear: {from: 1.0e-6, to: 2.0e-6, count: "
                     "2000000000}}\n")),
@@ -581,6 +604,9 @@ const std::vector<Case>& Catalogue() {
       {"W07", "a sweep value making a variant invalid",
        Budget(Sweep("  parameters:\n    - {path: \"sources[0].spectrum.level\", values: [1.0e-6, -1]}\n")),
        "sweep b.yaml --no-plots", 3, At("level: |1.0e-6", "sources[0].spectrum.level"), {"sweep variant 2"}},
+      {"W07e", "an error only the engine finds, located in the budget (deb sweep)",
+       Budget(kUnstableRequired + "sweep:\n  parameters:\n    - {path: \"sources[0].spectrum.level\", values: [1.0e-6]}\n"),
+       "sweep b.yaml --no-plots", 3, At("path: |plant, exact", "contributors[0].path"), {"sweep variant 1", "unstable"}},
       {"W08", "no sweep section, deb sweep", B(), "sweep b.yaml --no-plots", 3, At("", ""), {"'sweep'"}},
       {"W09", "sweep key path through a map with a non-scalar key (D05a)",
        Budget(SweepPath("nosuch.x") + "? [a, b] : 1\n"), "sweep b.yaml --no-plots", 3, At("", "")},
@@ -605,6 +631,11 @@ const std::vector<Case>& Catalogue() {
       {"N00", "valid sensitivity (baseline)", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level'", 0, Ok()},
       {"N01", "-p a key path that is not a number", B(), "sensitivity b.yaml -p 'paths[0].name'", 3,
        Names("paths[0].name")},
+      {"N01+", "-p a key path with a misspelt key", B(), "sensitivity b.yaml -p 'sources[0].spectrum.levle'", 3,
+       Names("sources[0].spectrum.levle"), {"has no key 'levle' (did you mean 'level'?)"}},
+      {"N01e", "an error only the engine finds, located in the budget (deb sensitivity)", Budget(kUnstableRequired),
+       "sensitivity b.yaml -p 'sources[0].spectrum.level'", 3, At("path: |plant, exact", "contributors[0].path"),
+       {"unstable"}},
       {"N02", "--step 0", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level' --step 0", 2, Usage()},
       {"N03", "--step 1", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level' --step 1", 2, Usage()},
       {"N04", "--step nan (D19)", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level' --step nan", 2, Usage()},
@@ -799,6 +830,10 @@ const std::vector<Case>& Catalogue() {
       {"F03", "phase column missing", Fr("f_hz, y/u.mag\n0.5, 0.01\n1, 0.01\n200, 0.01\n"), kRun, 3, AtFrfFile(),
        {"frf.csv:1:"}},
       {"F04", "negative magnitude", Fr(Sub(kFrfTable, "5, 0.01, -5", "5, -0.01, -5")), kRun, 3, AtFrfFile(), {"frf.csv:5:"}},
+      {"F04+", "a column naming a misspelt input of the path",
+       {{"b.yaml", Sub(kFrf, "file: frf.csv\n", "file: frf.csv\n    outputs: [y]\n    inputs: [force]\n")},
+        {"frf.csv", Sub(Sub(kFrfTable, "y/u.mag", "y/forc.mag"), "y/u.phase_deg", "y/forc.phase_deg")}},
+       kRun, 3, AtFrfFile(), {"frf.csv:1:", "input 'forc' (did you mean 'force'?)"}},
       {"F05", "db 1e6", Fr("f_hz, y/u.db, y/u.phase_deg\n0.5, -40, 0\n8, 1e6, 0\n200, -40, 0\n"), kRun, 3, AtFrfFile()},
       {"F06", "non-increasing frequency", Fr(Sub(kFrfTable, "10, 0.01, -10", "5, 0.01, -10")), kRun, 3, AtFrfFile(),
        {"frf.csv:6:1:"}},
@@ -860,6 +895,9 @@ const std::vector<Case>& Catalogue() {
       {"C16", "compare with an invalid second budget",
        With(B(), "bad.yaml", Sub(Sub(kBase, "name: cat", "name: bad"), "level: 1.0e-6", "level: -3")),
        "compare b.yaml bad.yaml --no-plots", 3, AtIn("bad.yaml", "level: |-3", "sources[0].spectrum.level")},
+      {"C16e", "compare: an error only the engine finds, located in the second budget",
+       With(B(), "bad.yaml", Sub(kUnstableRequired, "name: cat", "name: bad")), "compare b.yaml bad.yaml --no-plots", 3,
+       AtIn("bad.yaml", "path: |plant, exact", "contributors[0].path"), {"unstable"}},
       {"C16+", "compare two budgets (valid)", With(B(), "b2.yaml", Sub(kBase, "name: cat", "name: cat2")),
        "compare b.yaml b2.yaml --no-plots", 0, Ok()},
       {"C17", "compare a directory without summary.json", B(), "compare emptydir b.yaml --no-plots", 3, Names("emptydir"),
@@ -890,6 +928,11 @@ const std::vector<Case>& Catalogue() {
        "DEB_GNUPLOT=/nonexistent"},
       {"C36n", "gnuplot missing, deb run --no-plots (valid)", B(), "run b.yaml --no-plots", 0, Ok(), {}, {}, "",
        "DEB_GNUPLOT=/nonexistent", 0, CheckDefaultReport},
+      {"C36c", "gnuplot missing, deb compare of two budgets (exit 4)",
+       With(B(), "b2.yaml", Sub(kBase, "name: cat", "name: cat2")), "compare b.yaml b2.yaml", 4, Names("gnuplot"), {}, {},
+       "", "DEB_GNUPLOT=/nonexistent"},
+      {"C36w", "gnuplot missing, deb sweep (exit 4)", Budget(kSweep), "sweep b.yaml", 4, Names("gnuplot"), {}, {}, "",
+       "DEB_GNUPLOT=/nonexistent"},
       {"C37", "gnuplot missing, deb spectrum convert (exit 4)", {{"spec.csv", kSpec}},
        "spectrum convert spec.csv --unit N --to N -o c.csv", 4, Names("gnuplot"), {}, {}, "", "DEB_GNUPLOT=/nonexistent"},
       {"C37b", "gnuplot missing, deb spectrum bands (exit 4)", {{"spec.csv", "# unit: um/s\n" + kSpec}},

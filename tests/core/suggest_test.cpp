@@ -28,3 +28,14 @@ TEST_CASE("the nearest name is offered for a likely typo only") {
 }
 
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("did-you-mean text names the nearest candidate, or is empty") {
+  const std::vector<std::string> keys = {"name", "source", "path", "exact", "description"};
+  CHECK(DidYouMean("sorce", keys) == " (did you mean 'source'?)");
+  CHECK(DidYouMean("colour", keys) == "");
+  CHECK(DidYouMean("source", keys) == "");
+}
+
+}  // namespace deb

@@ -2,8 +2,14 @@
 
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
 #include <string>
 
+#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 
 namespace deb {
@@ -96,7 +102,7 @@ TEST_CASE("non-increasing explicit grid frequencies are rejected") {
 
 TEST_CASE("a contributor naming an unknown source points at its key") {
   CHECK(ErrorOf(Replace(kBudget, "source: noise", "source: nois")) ==
-        "b.yaml:16:28: contributors[0].source: no source named 'nois'");
+        "b.yaml:16:28: contributors[0].source: no source named 'nois' (did you mean 'noise'?)");
 }
 
 TEST_CASE("a contributor may not be called total: that name is the sum in every table") {
@@ -179,6 +185,74 @@ TEST_CASE("an output metric loads its type and window, and a bad one names its p
   const std::string bad_window = ErrorOf(Replace(ma, "window_s: 0.02", "window_s: 0"));
   CHECK(bad_window.find("outputs[0].metric.window_s") != std::string::npos);
   CHECK(ErrorOf(Replace(ma, "window_s: 0.02", "window_s: 0.02, step: 1")).find("step") != std::string::npos);
+}
+
+TEST_CASE("the loader records the position of every node of the budget, once, with the budget") {
+  const Budget b = LoadBudgetText(kBudget, "b.yaml");
+  REQUIRE(b.positions != nullptr);
+  CHECK(b.positions->file() == "b.yaml");
+  // Also the nodes no rule looked at during the load: every element of den.
+  const InputLocation den1 = b.positions->Locate("paths[0].den[1]");
+  CHECK(den1.line == 11);
+  CHECK(den1.column == 17);
+  CHECK(b.positions->Locate("bands[0]").line == 20);
+}
+
+TEST_CASE("an error the engine finds after loading is located from the positions kept with the budget") {
+  // The file is gone before the engine runs: nothing is read a second time.
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("deb_budget_yaml_" + std::to_string(::getpid()) + ".yaml");
+  const std::string text = Replace(Replace(kBudget, "den: [0.01, 1]", "den: [0.01, -1]"), "path: lowpass}",
+                                   "path: lowpass, exact: required}");
+  std::ofstream(file) << text;
+  const Budget b = LoadBudgetFile(file.string());
+  std::filesystem::remove(file);
+  std::string what = "(no error)";
+  InputLocation where;
+  try {
+    Evaluate(b);
+  } catch (const InputError& e) {
+    what = e.what();
+    where = e.location();
+  }
+  const auto line_start = text.find("  - {name: sensor");
+  const int column = static_cast<int>(text.find("lowpass, exact", line_start) - line_start) + 1;
+  CHECK(where.file == file.string());
+  CHECK(where.line == 16);
+  CHECK(where.column == column);
+  CHECK(where.key_path == "contributors[0].path");
+  CHECK(what.rfind(file.string() + ":16:" + std::to_string(column) + ": contributors[0].path: ", 0) == 0);
+  CHECK(what.find("unstable") != std::string::npos);
+}
+
+TEST_CASE("a changed copy of a budget is located in the original, its message saying which copy") {
+  const Budget original = LoadBudgetText(kBudget, "b.yaml");
+  // The copy as a sweep writes it: another layout, the same key paths.
+  const std::string copy = Replace(Replace(kBudget, "level: 2}", "level: -2}"), "name: unit_test\n",
+                                   "name: unit_test\ndescription: a copy\n");
+  std::string what = "(no error)";
+  try {
+    LoadBudgetVariant(copy, original.positions, "sweep variant 2: sources[0].spectrum.level = -2", ".");
+  } catch (const InputError& e) {
+    what = e.what();
+  }
+  CHECK(what.rfind("b.yaml:6:35: sources[0].spectrum.level: sweep variant 2: sources[0].spectrum.level = -2: ", 0) ==
+        0);
+  const Budget ok = LoadBudgetVariant(Replace(kBudget, "level: 2}", "level: 3}"), original.positions, "x", ".");
+  CHECK(ok.positions == original.positions);
+}
+
+TEST_CASE("an unknown key is answered with the nearest allowed one, if any is near") {
+  const std::string e = ErrorOf(Replace(kBudget, "source: noise", "sorce: noise"));
+  CHECK(e.rfind("b.yaml:16:20: contributors[0].sorce: unknown key 'sorce' (did you mean 'source'?); allowed here: ",
+                0) == 0);
+  CHECK(ErrorOf(Replace(kBudget, "source: noise", "source: nosie"))
+            .find("no source named 'nosie' (did you mean 'noise'?)") != std::string::npos);
+  CHECK(ErrorOf(Replace(kBudget, "path: lowpass}", "path: lowpas}"))
+            .find("no path named 'lowpas' (did you mean 'lowpass'?)") != std::string::npos);
+  CHECK(ErrorOf(Replace(kBudget, "signal: v,", "signal: vv,")).find("reads signal 'vv' (did you mean 'v'?)") !=
+        std::string::npos);
+  CHECK(ErrorOf(Replace(kBudget, "source: noise", "zzzzzz: noise")).find("did you mean") == std::string::npos);
 }
 
 }  // namespace deb

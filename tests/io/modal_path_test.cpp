@@ -98,7 +98,7 @@ std::string ErrorOf(const std::string& file) {
   try {
     Evaluate(b);
   } catch (const InputError& e) {
-    return e.key_path().empty() ? e.what() : LocateInBudgetFile(file, e.key_path(), e.what());
+    return e.what();  // located by the budget loaded
   }
   return "(no InputError)";
 }

@@ -102,6 +102,11 @@ TEST_CASE("bad key paths, empty ranges and unequal zipped lists are errors at th
             .rfind("s.yaml:22:14: sweep.parameters[0].path: key path 'sources[0].spectrum.lvl' does not reach a "
                    "number: sources[0].spectrum has no key 'lvl'",
                    0) == 0);
+  CHECK(ErrorOf(Replace(kSweep, "sources[0].spectrum.level", "sources[0].spectrum.levle"))
+            .find("sources[0].spectrum has no key 'levle' (did you mean 'level'?) (it has: type, level)") !=
+        std::string::npos);
+  CHECK(ErrorOf(Replace(kSweep, "sources[0].spectrum.level", "sourcs[0].spectrum.level"))
+            .find("the budget has no key 'sourcs' (did you mean 'sources'?)") != std::string::npos);
   CHECK(ErrorOf(Replace(kSweep, "sources[0].spectrum.level", "sources[3].spectrum.level"))
             .find("sources has 1 element(s), so no [3]") != std::string::npos);
   CHECK(ErrorOf(Replace(kSweep, "sources[0].spectrum.level", "sources[0].spectrum"))
@@ -133,6 +138,8 @@ TEST_CASE("a scaled parameter multiplies every number its key path reaches; a ba
   CHECK(louder.sources[1].spectrum->Psd(1.0)(0) == doctest::Approx(9.0 * nominal.sources[1].spectrum->Psd(1.0)(0)));
   CHECK_THROWS_WITH_AS(LoadBudgetWithScaledParameter(file, "paths[9].den", 2.0),
                        doctest::Contains(("does not reach a number in " + file + ": paths has 2 element(s), so no [9]").c_str()), InputError);
+  CHECK_THROWS_WITH_AS(LoadBudgetWithScaledParameter(file, "sources[1].spectrum.levle", 2.0),
+                       doctest::Contains("has no key 'levle' (did you mean 'level'?)"), InputError);
 }
 
 TEST_CASE("a variant that breaks a rule is reported at the swept value's position in the user's file") {
@@ -158,6 +165,20 @@ TEST_CASE("a list of words sweeps a textual parameter such as a VC class") {
   CHECK(csv.find("\nVC-C,0.01,") != std::string::npos);
   CHECK(ErrorOf(Replace(text, "sources[0].spectrum.class", "sources[0].spectrum")).find("does not reach a value") !=
         std::string::npos);
+}
+
+TEST_CASE("an error the engine finds in a sweep variant is located in the user's file, naming the variant") {
+  const SweepBudget sweep = LoadSweepText(
+      Replace(Replace(kSweep, "den: [0.01, 1]", "den: [0.01, -1]"), "path: lowpass}", "path: lowpass, exact: required}"),
+      "s.yaml");
+  std::string what = "(no error)";
+  try {
+    EvaluateSweep(sweep.spec, sweep.variants, 1);
+  } catch (const InputError& e) {
+    what = e.what();
+  }
+  CHECK(what.rfind("s.yaml:16:41: contributors[0].path: sweep variant 1 (sources[0].spectrum.level = 1, ", 0) == 0);
+  CHECK(what.find("unstable") != std::string::npos);
 }
 
 }  // namespace deb
