@@ -151,7 +151,8 @@ TEST_CASE("a contributor's result names its source and path, so writers need not
   b.contributors[0].source = "amplifier";
   b.contributors[0].path = "filter";
   UseAutoRange(&b, 1e-2, 1e3);
-  const ContributorResult& c = Evaluate(b).outputs[0].contributors[0];
+  const BudgetResult r = Evaluate(b);
+  const ContributorResult& c = r.outputs[0].contributors[0];
   CHECK(c.name == "c");
   CHECK(c.source == "amplifier");
   CHECK(c.path == "filter");

@@ -115,7 +115,8 @@ TEST_CASE("a key path given to the parser is carried by the error") {
     FAIL("no InputError");
   } catch (const InputError& e) {
     CHECK(e.key_path() == "sources[2].colour");
-    CHECK(std::string(e.what()) == "unknown colour 'mauve'; allowed: red, green, blue (or verde)");
+    CHECK(e.message() == "unknown colour 'mauve'; allowed: red, green, blue (or verde)");
+    CHECK(std::string(e.what()) == "sources[2].colour: unknown colour 'mauve'; allowed: red, green, blue (or verde)");
   }
 }
 

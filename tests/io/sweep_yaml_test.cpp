@@ -173,7 +173,7 @@ TEST_CASE("an error the engine finds in a sweep variant is located in the user's
       "s.yaml");
   std::string what = "(no error)";
   try {
-    EvaluateSweep(sweep.spec, sweep.variants, 1);
+    EvaluateSweep(sweep.spec, sweep.variant, 1);
   } catch (const InputError& e) {
     what = e.what();
   }

@@ -66,7 +66,7 @@ TEST_CASE("median averaging of cross-spectra and units of another quantity are r
     FAIL("median cross-spectra must be refused");
   } catch (const InputError& e) {
     CHECK(e.key_path() == "sources[0].spectrum.averaging");
-    CHECK(std::string(e.what()).find("median averaging does not give a positive semi-definite") == 0);
+    CHECK(e.message().find("median averaging does not give a positive semi-definite") == 0);
   }
   o = Options();
   o.unit = "m/s";
@@ -76,7 +76,7 @@ TEST_CASE("median averaging of cross-spectra and units of another quantity are r
     FAIL("m to m/s must be refused");
   } catch (const InputError& e) {
     CHECK(e.key_path() == "sources[0].unit");
-    CHECK(std::string(e.what()) == "the file's unit 'm' and 'm/s' are not the same quantity");
+    CHECK(e.message() == "the file's unit 'm' and 'm/s' are not the same quantity");
   }
   o = Options();
   o.welch.segment_length = 1 << 14;
