@@ -112,9 +112,9 @@ auto AtNodes(const YamlNode& fallback, const std::vector<YamlNode>& nodes, F&& f
     return f();
   } catch (const InputError& e) {
     for (const YamlNode& node : nodes)
-      if (e.key_path() == node.key()) node.Fail(e.what());
+      if (e.key_path() == node.key()) node.Fail(e.message());
     if (!e.key_path().empty()) throw;
-    fallback.Fail(e.what());
+    fallback.Fail(e.message());
   }
 }
 

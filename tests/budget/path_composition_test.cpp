@@ -89,7 +89,7 @@ TEST_CASE("composition errors name the part's key path, the values and the rule"
     FAIL("a junction from um to um/s must be refused");
   } catch (const InputError& e) {
     CHECK(e.key_path() == "paths[2].of[1]");
-    CHECK(std::string(e.what()) ==
+    CHECK(e.message() ==
           "series: channel 1 carries 'um' into 'um/s', which differ by a time derivative; insert the derivative "
           "explicitly");
   }
@@ -98,13 +98,14 @@ TEST_CASE("composition errors name the part's key path, the values and the rule"
     FAIL("a size mismatch must be refused");
   } catch (const InputError& e) {
     CHECK(e.key_path() == "of[1]");
-    CHECK(std::string(e.what()) == "path 'two' has 2 input(s) but follows 1 output(s)");
+    CHECK(e.message() == "path 'two' has 2 input(s) but follows 1 output(s)");
   }
   CHECK_THROWS_WITH_AS(ParallelOfPaths({{&g, "of[0]"}}), "list at least two paths", InputError);
   CHECK_THROWS_WITH_AS(ParallelOfPaths({{&g, "of[0]"}, {&wide, "of[1]"}}),
-                       "parallel paths must have the same numbers of inputs and outputs", InputError);
+                       "of[1]: parallel paths must have the same numbers of inputs and outputs", InputError);
   CHECK_THROWS_WITH_AS(FeedbackOfPaths({&g, "plant"}, {&wide, "controller"}),
-                       "controller 'two' must have 1 input(s) and 1 output(s) to close a loop around 'g'", InputError);
+                       "controller: controller 'two' must have 1 input(s) and 1 output(s) to close a loop around 'g'",
+                       InputError);
   CHECK_THROWS_WITH_AS(FeedbackOfPaths({&g, "plant"}, {&two, "controller"}, 0),
                        "sign must be -1 (negative feedback) or +1, got 0", InputError);
 }
