@@ -193,7 +193,15 @@ int Check(const std::string& budget_file) {
       continue;
     }
     std::printf("  %-20s %d input(s) -> %d output(s), %d state(s), %s\n", p.name.c_str(), p.system.inputs(),
-                p.system.outputs(), p.system.states(), p.system.IsStable() ? "stable" : "NOT stable");
+                p.system.outputs(), p.system.states(),
+                p.system.IsStable() ? "stable" : "unstable: no contributor may use it");
+  }
+  if (!plan.loops.empty()) std::printf("feedback loops:\n");
+  for (const deb::LoopResult& loop : plan.loops) {
+    std::string paths;
+    for (const std::string& p : loop.paths) paths += (paths.empty() ? "" : ", ") + p;
+    std::printf("  %s closed by %s (%s feedback), in %s\n    %s\n", loop.plant.c_str(), loop.controller.c_str(),
+                loop.sign < 0 ? "negative" : "positive", paths.c_str(), deb::MarginsText(loop).c_str());
   }
   std::printf("contributors:\n");
   for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {

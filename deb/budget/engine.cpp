@@ -10,6 +10,7 @@
 
 #include "deb/budget/path_response.h"
 #include "deb/core/error.h"
+#include "deb/core/number_text.h"
 #include "deb/core/integrate.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/lyapunov.h"
@@ -483,6 +484,18 @@ FullPlan MakePlan(const Budget& budget) {
   CheckBandsInGrid(budget, plan.grid);
   CheckDataCoverage(budget, plan.grid);
   plan.bands = budget.bands.empty() ? DecadeBands(plan.grid) : budget.bands;
+  plan.loops = AnalyseLoops(budget, plan.grid.f_hz());
+  for (const LoopResult& loop : plan.loops) {
+    const std::string name = "the loop of '" + loop.plant + "' closed by '" + loop.controller + "'";
+    if (!loop.evaluated)
+      plan.warnings.push_back(name + ": no margins computed: " + loop.note);
+    else if (loop.margins.modulus_margin < kLowModulusMargin)
+      plan.warnings.push_back(name + " comes within " + SignificantText(loop.margins.modulus_margin) + " of -1 at " +
+                              SignificantText(loop.margins.modulus_margin_f_hz) +
+                              " Hz (modulus margin; |S| peaks at " +
+                              SignificantText(ToDecibel(1.0 / loop.margins.modulus_margin)) + " dB; " +
+                              SignificantText(kLowModulusMargin) + " or more is usual)");
+  }
 
   for (const Source& s : budget.sources)
     for (const std::string& note : s.notes) plan.warnings.push_back("source '" + s.name + "': " + note);
@@ -517,8 +530,8 @@ FullPlan MakePlan(const Budget& budget) {
     const PathAnalysis& analysis = *plan.paths.at(c.path);
     if (analysis.loop_around_data())
       plan.warnings.push_back("path '" + path.name +
-                              "' closes a loop around measured data: its stability is not verified "
-                              "(check the loop's Nyquist plot)");
+                              "' closes a loop around measured data: its stability is not verified by poles "
+                              "(read the loop's margins: deb check, or summary.json's loops)");
     if (!analysis.unstable_poles().empty())
       throw InputError(Key("contributors", ci, "path"),
                        "path '" + path.name + "' is unstable: pole(s) at " + FormatPoles(analysis.unstable_poles()) +
@@ -713,6 +726,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
   result.paths = std::move(plan.paths);
   result.grid = std::move(plan.grid);
   result.warnings = std::move(plan.warnings);
+  result.loops = std::move(plan.loops);
   const std::vector<double>& f = result.grid.f_hz();
 
   // Weighting responses, shared by all contributors of an output.

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "deb/budget/budget.h"
+#include "deb/budget/loop_analysis.h"
 #include "deb/budget/path_analysis.h"
 #include "deb/core/frequency_grid.h"
 
@@ -106,6 +107,8 @@ struct BudgetResult {
   // The analysis of every contributor's path by name, built once by
   // Evaluate and shared with the report (path plots).
   std::map<std::string, std::shared_ptr<const PathAnalysis>> paths;
+  // Every distinct feedback loop of the contributors' paths, with its margins.
+  std::vector<LoopResult> loops;
 };
 
 // The analysis of every path a contributor uses, for the output rows the
@@ -136,6 +139,9 @@ struct EvaluationPlan {
   FrequencyGrid grid{std::vector<double>{1.0, 2.0}};
   std::vector<Band> bands;  // the budget's, or the grid's decades
   std::vector<std::string> warnings;
+  // Every distinct feedback loop of the contributors' paths, with its margins
+  // over the grid (a modulus margin below kLowModulusMargin is a warning).
+  std::vector<LoopResult> loops;
   // exact_refusal[contributor][output]: why no exact variance will be
   // computed; "" where one is attempted (the solve may still refuse a result
   // it cannot trust, stated in ContributorResult::exact_note).

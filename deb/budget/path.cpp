@@ -39,6 +39,10 @@ int Path::OutputIndex(const std::string& signal) const {
   return -1;
 }
 
+Eigen::MatrixXcd FeedbackLoop::LoopGainAt(double f_hz) const {
+  return -static_cast<double>(sign) * (plant_model->At(f_hz) * controller_model->At(f_hz));
+}
+
 StateSpace Path::Rational() const { return modal ? ModalStateSpace(*modal) : system; }
 
 FrequencyModel Path::Model() const { return measured ? *measured : FrequencyModel(Rational()); }

@@ -14,6 +14,23 @@
 
 namespace deb {
 
+// A feedback loop closed inside a path (a `feedback` composition): the
+// plant G and the controller K, scaled into each other's units, closed as
+// H = (I - sign G K)^-1 G. Kept so that the loop itself can be analysed
+// (loop gain, margins: deb/systems/loop_margins.h), which the closed
+// path's H no longer shows.
+struct FeedbackLoop {
+  std::string plant, controller;  // the names of the paths it closes
+  int sign = -1;
+  std::shared_ptr<const FrequencyModel> plant_model, controller_model;
+
+  int channels() const { return plant_model->outputs(); }
+  // The loop gain broken at the plant's outputs, L = -sign G K (j 2 pi f_hz):
+  // channels() x channels().
+  // @throws InputError as FrequencyModel::At.
+  Eigen::MatrixXcd LoopGainAt(double f_hz) const;
+};
+
 struct Path {
   std::string name;
   std::string description;
@@ -30,6 +47,9 @@ struct Path {
   std::vector<std::string> output_names;  // one per output row ("signals")
   std::vector<std::string> input_units;   // one per input column
   std::vector<std::string> output_units;  // one per output row
+  // Every feedback loop closed inside the path, innermost first (a series
+  // or parallel path keeps those of its parts).
+  std::vector<FeedbackLoop> loops;
 
   // @throws InputError (key path "paths[...]" is the caller's) if the name
   // lists do not match the system's size or names repeat.

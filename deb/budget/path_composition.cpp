@@ -91,8 +91,12 @@ Path Composed(const Path& acc) {
   p.output_units = acc.output_units;
   p.input_names = acc.input_names;
   p.output_names = acc.output_names;
+  p.loops = acc.loops;
   return p;
 }
+
+// `to` keeps its loops and gains those of `from`.
+void AddLoops(Path* to, const Path& from) { to->loops.insert(to->loops.end(), from.loops.begin(), from.loops.end()); }
 
 void RequireTwo(const std::vector<PathPart>& parts) {
   if (parts.size() < 2) throw InputError("list at least two paths");
@@ -112,6 +116,7 @@ Path SeriesOfPaths(const std::vector<PathPart>& parts) {
     Path scaled = acc;
     SeriesInto(&scaled, acc, GainPath(g));
     SeriesInto(&acc, scaled, next);
+    AddLoops(&acc, next);
     acc.output_names = next.output_names;
     acc.output_units = next.output_units;
   }
@@ -132,6 +137,7 @@ Path ParallelOfPaths(const std::vector<PathPart>& parts) {
     const Path before = acc;
     Combine(&acc, before, other, [](const StateSpace& x, const StateSpace& y) { return Parallel(x, y); },
             [](const FrequencyModel& x, const FrequencyModel& y) { return FrequencyModel::Parallel(x, y); });
+    AddLoops(&acc, next);
   }
   return Composed(acc);
 }
@@ -159,6 +165,15 @@ Path FeedbackOfPaths(const PathPart& plant_part, const PathPart& controller_part
   p.output_units = plant.output_units;
   p.input_names = plant.input_names;
   p.output_names = plant.output_names;
+  p.loops = plant.loops;
+  AddLoops(&p, ctrl);
+  FeedbackLoop loop;
+  loop.plant = plant.name;
+  loop.controller = ctrl.name;
+  loop.sign = sign;
+  loop.plant_model = std::make_shared<const FrequencyModel>(plant.Model());
+  loop.controller_model = std::make_shared<const FrequencyModel>(k.Model());
+  p.loops.push_back(std::move(loop));
   return p;
 }
 

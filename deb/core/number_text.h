@@ -6,6 +6,7 @@
 #pragma once
 
 #include <charconv>
+#include <cstdio>
 #include <string>
 
 namespace deb {
@@ -21,6 +22,14 @@ inline std::string NumberText(double value) {
 inline void AppendNumberText(std::string& out, double value) {
   char buffer[32];
   out.append(buffer, std::to_chars(buffer, buffer + sizeof(buffer), value).ptr);
+}
+
+// `value` to `digits` significant digits (printf's %g: "0.3127", "1.234e-05"),
+// for figures a reader compares rather than reads back.
+inline std::string SignificantText(double value, int digits = 4) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof(buffer), "%.*g", digits, value);
+  return buffer;
 }
 
 }  // namespace deb

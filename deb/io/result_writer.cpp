@@ -37,6 +37,37 @@ nlohmann::json Conventions() {
   };
 }
 
+// Every feedback loop and its margins (deb/systems/loop_margins.h): gain
+// margins as factors, phase margins in degrees, frequencies in Hz; a margin
+// the loop does not have is null.
+nlohmann::json LoopsJson(const std::vector<LoopResult>& loops) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const LoopResult& l : loops) {
+    nlohmann::json jl = {{"plant", l.plant}, {"controller", l.controller}, {"sign", l.sign}, {"paths", l.paths},
+                         {"evaluated", l.evaluated}};
+    if (!l.evaluated) {
+      jl["note"] = l.note;
+      out.push_back(jl);
+      continue;
+    }
+    const LoopMargins& m = l.margins;
+    const auto crossing = [](const auto& c, const char* key, double value) {
+      return c ? nlohmann::json{{"f_hz", c->f_hz}, {key, value}} : nlohmann::json(nullptr);
+    };
+    jl["channels"] = m.channels;
+    jl["modulus_margin"] = {{"f_hz", m.modulus_margin_f_hz}, {"value", m.modulus_margin}};
+    if (m.channels == 1) {
+      jl["phase_margin"] = crossing(m.phase_margin, "deg", m.phase_margin ? m.phase_margin->phase_margin_deg : 0.0);
+      jl["gain_margin"] =
+          crossing(m.upper_gain_margin, "factor", m.upper_gain_margin ? m.upper_gain_margin->gain_margin : 0.0);
+      jl["lower_gain_margin"] =
+          crossing(m.lower_gain_margin, "factor", m.lower_gain_margin ? m.lower_gain_margin->gain_margin : 0.0);
+    }
+    out.push_back(jl);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string SummaryJson(const Budget& budget, const BudgetResult& result, const RunInfo& info) {
@@ -151,6 +182,7 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
   j["outputs"] = outputs;
   j["pass"] = all_pass;
   j["warnings"] = result.warnings;
+  if (!result.loops.empty()) j["loops"] = LoopsJson(result.loops);
   return j.dump(2) + "\n";
 }
 

@@ -133,6 +133,28 @@ TEST_CASE("deb check validates and describes without writing anything") {
   CHECK(r.out.find("transmissibility") != std::string::npos);
 }
 
+TEST_CASE("deb check and summary.json state the margins of every feedback loop") {
+  // budgets/measured_stage.yaml: PM 53.01 deg at 30.06 Hz (tests/io/frf_path_test.cpp checks the figures).
+  const Command r = RunDeb("check " + ExampleBudget("measured_stage.yaml"));
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("feedback loops:\n  stage closed by controller (negative feedback), in closed_loop\n"
+                   "    phase margin 53.0") != std::string::npos);
+  const fs::path dir = TempDir("loops_summary");
+  const Command run = RunDeb("run " + ExampleBudget("measured_stage.yaml") + " --no-plots --out " + (dir / "r").string());
+  REQUIRE(run.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(ReadAll(dir / "r" / "summary.json"));
+  REQUIRE(j["loops"].size() == 1);
+  CHECK(j["loops"][0]["plant"] == "stage");
+  CHECK(std::abs(j["loops"][0]["phase_margin"]["deg"].get<double>() - 53.01) < 0.05);
+  CHECK(j["loops"][0]["gain_margin"]["factor"].get<double>() == doctest::Approx(24.33).epsilon(5e-3));
+  CHECK(j["loops"][0]["lower_gain_margin"].is_null());
+  // A budget without feedback paths has no "loops" key.
+  const Command plain = RunDeb("run " + ExampleBudget("single_axis_isolator.yaml") + " --no-plots --out " +
+                               (dir / "p").string());
+  REQUIRE(plain.exit_code == 0);
+  CHECK_FALSE(nlohmann::json::parse(ReadAll(dir / "p" / "summary.json")).contains("loops"));
+}
+
 TEST_CASE("deb check validates a sweep section and every variant it makes") {
   const Command ok = RunDeb("check " + ExampleBudget("nizamoglu2015_sweep.yaml"));
   CHECK(ok.exit_code == 0);

@@ -161,6 +161,32 @@ TEST_CASE("the shipped measured-stage budget matches the rational model of its l
   CHECK(std::sqrt(VarianceOf(x, "cable_slab")) == doctest::Approx(7.02927).epsilon(1e-5));
 }
 
+TEST_CASE("the loop around the measured stage has the margins of its rational model") {
+  // Independent computation from P(s) above and the lead K(s) of the budget
+  // (bisection on the closed forms, 2e5-point scan for the modulus margin):
+  // |L| = 1 at 30.0629 Hz with PM 53.0149 deg (asin 0.8 = 53.130 of the
+  // lead less 0.115 of the 600 Hz mode), L = -0.041110 at 526.04 Hz (gain
+  // margin 24.325), min |1 + L| = 0.76731 at 52.317 Hz. The FRF table is
+  // interpolated between its points: tolerances 1e-3 relative (frequencies,
+  // modulus margin), 0.05 deg, and 0.5 % on the gain margin, read where the
+  // mode's phase turns fastest.
+  const BudgetResult r = Evaluate(LoadBudgetFile(std::string(DEB_SOURCE_DIR) + "/budgets/measured_stage.yaml"));
+  REQUIRE(r.loops.size() == 1);
+  const LoopResult& loop = r.loops[0];
+  CHECK(loop.plant == "stage");
+  CHECK(loop.controller == "controller");
+  CHECK(loop.paths == std::vector<std::string>{"closed_loop"});
+  REQUIRE(loop.evaluated);
+  REQUIRE(loop.margins.phase_margin);
+  CHECK(loop.margins.phase_margin->f_hz == doctest::Approx(30.0629).epsilon(1e-3));
+  CHECK(std::abs(loop.margins.phase_margin->phase_margin_deg - 53.0149) < 0.05);
+  REQUIRE(loop.margins.upper_gain_margin);
+  CHECK(loop.margins.upper_gain_margin->gain_margin == doctest::Approx(24.325).epsilon(5e-3));
+  CHECK(loop.margins.upper_gain_margin->f_hz == doctest::Approx(526.04).epsilon(1e-3));
+  CHECK(loop.margins.modulus_margin == doctest::Approx(0.76731).epsilon(1e-3));
+  CHECK(loop.margins.modulus_margin_f_hz == doctest::Approx(52.317).epsilon(1e-3));
+}
+
 }  // namespace
 }  // namespace deb
 

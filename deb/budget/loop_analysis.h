@@ -1,0 +1,41 @@
+// The feedback loops of a budget's paths, analysed as a control engineer
+// reads them: the stability margins of every distinct loop (a plant closed
+// by a controller with a sign), over the budget's frequency grid. A loop
+// that several paths share (the same plant, controller and sign) is
+// analysed once and lists every path that holds it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/systems/loop_margins.h"
+
+namespace deb {
+
+// The modulus margin below which a loop is reported as poorly damped: the
+// usual rule |S| <= 2 (6 dB), i.e. the Nyquist curve keeps 0.5 from -1.
+inline constexpr double kLowModulusMargin = 0.5;
+
+struct LoopResult {
+  std::string plant, controller;
+  int sign = -1;
+  std::vector<std::string> paths;  // the contributors' paths that close it, in budget order
+  bool evaluated = false;          // false: `note` says why no margins were computed
+  std::string note;
+  LoopMargins margins;
+};
+
+// Every distinct loop of the paths that contributors use, with its margins
+// over the frequencies f_hz (ascending) that lie where the loop's measured
+// data may be evaluated. A loop that cannot be evaluated there (a pole on
+// the grid, fewer than 2 frequencies in range) is kept with a note.
+std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<double>& f_hz);
+
+// The loop's margins in one line, 4 significant digits, e.g. "phase margin
+// 45.2 deg at 80.1 Hz, gain margin 3.21 (10.13 dB) at 240 Hz, modulus margin
+// 0.62 at 150 Hz"; a lower gain margin and missing crossovers are said as
+// such; the note if it was not evaluated.
+std::string MarginsText(const LoopResult& loop);
+
+}  // namespace deb
