@@ -76,6 +76,7 @@
 #include "deb/budget/budget.h"
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
+#include "deb/budget/failure_guidance.h"
 #include "deb/budget/isolation_paths.h"
 #include "deb/budget/output_metric.h"
 #include "deb/budget/path.h"
