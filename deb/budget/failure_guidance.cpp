@@ -59,15 +59,9 @@ BandGuidance GuideBand(const OutputResult& o, const FrequencyGrid& grid, const B
   g.requirement = b.requirement;
   g.rms = b.rms();
   g.fail_factor = b.rms() / b.requirement.rms_max;
-  double largest = -1.0;
-  for (std::size_t c = 0; c < o.contributors.size(); ++c) {
-    const ContributorResult& cr = o.contributors[c];
-    const double v = IntegralBetween(grid, cr.psd, cr.cps, b.requirement.lo_hz, b.requirement.hi_hz);
-    if (v > largest) {
-      largest = v;
-      g.largest = c;
-    }
-  }
+  const std::vector<double> within = VarianceWithin(o, grid, b.requirement.lo_hz, b.requirement.hi_hz);
+  g.largest = static_cast<std::size_t>(std::max_element(within.begin(), within.end()) - within.begin());
+  const double largest = within[g.largest];
   g.largest_share = b.variance > 0.0 ? largest / b.variance : 0.0;
   const double others = b.variance - largest;
   const double limit2 = b.requirement.rms_max * b.requirement.rms_max;
@@ -96,6 +90,13 @@ std::string Join(const std::vector<std::string>& names) {
 }
 
 }  // namespace
+
+std::vector<double> VarianceWithin(const OutputResult& output, const FrequencyGrid& grid, double lo_hz,
+                                   double hi_hz) {
+  std::vector<double> v;
+  for (const ContributorResult& c : output.contributors) v.push_back(IntegralBetween(grid, c.psd, c.cps, lo_hz, hi_hz));
+  return v;
+}
 
 ContributorReduction SmallestReduction(const OutputResult& output) {
   DEB_DEMAND(!output.pass());

@@ -98,6 +98,11 @@ struct FailureGuidance {
 // DEB_DEMANDs an output with a requirement that fails.
 ContributorReduction SmallestReduction(const OutputResult& output);
 
+// Each contributor's variance within [lo_hz, hi_hz] (inside the grid), by the
+// engine's band integral: what a band requirement holds of each.
+std::vector<double> VarianceWithin(const OutputResult& output, const FrequencyGrid& grid, double lo_hz,
+                                   double hi_hz);
+
 // Guidance for an output that fails a requirement (whole-grid or band); none
 // when it meets all of them. `grid` is the result's grid (psd and cps of the
 // output hold one value per grid point).

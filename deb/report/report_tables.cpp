@@ -62,9 +62,15 @@ Table SummaryTable(const BudgetResult& result) {
                       largest});
     t.emphasis.push_back({false, false, false, false, false, o.rms_max && !o.pass(), false});
     for (const BandRequirementResult& b : o.band_requirements) {
+      std::string in_band = "–";
+      if (!o.contributors.empty() && b.variance > 0.0) {
+        const std::vector<double> v = VarianceWithin(o, result.grid, b.requirement.lo_hz, b.requirement.hi_hz);
+        const std::size_t c = static_cast<std::size_t>(std::max_element(v.begin(), v.end()) - v.begin());
+        in_band = o.contributors[c].name + " (" + Share(v[c], b.variance) + ")";
+      }
       t.rows.push_back({o.name + ", " + BandText(b.requirement.lo_hz, b.requirement.hi_hz), UnitText(o.unit),
                         Sig(b.rms(), 4), Short(b.requirement.rms_max), Sig(b.requirement.rms_max - b.rms(), 4),
-                        b.pass() ? "pass" : "FAIL", "–"});
+                        b.pass() ? "pass" : "FAIL", in_band});
       t.emphasis.push_back({false, false, false, false, false, !b.pass(), false});
     }
   }

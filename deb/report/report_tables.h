@@ -23,7 +23,9 @@ struct Table {
   std::vector<std::vector<bool>> emphasis;  // per cell (may be empty): bold
 };
 
-// One row per output: unit, RMS, requirement, margin, status, largest contributor.
+// One row per output: unit, RMS, requirement, margin, status, largest
+// contributor (share of the variance); then one per band requirement, its
+// largest contributor within the band (share of the band's variance).
 Table SummaryTable(const BudgetResult& result);
 
 // One row per contributor of an output, by share: source, path, RMS, share,

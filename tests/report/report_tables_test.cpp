@@ -67,6 +67,22 @@ TEST_CASE("a failing output's contributor table gives the reduction of each RMS 
         "6 µm at 1.36 Hz.");
 }
 
+TEST_CASE("the summary table names each band requirement's largest contributor within the band") {
+  BudgetResult result;
+  result.grid = FrequencyGrid(std::vector<double>{1.0, 2.0});
+  OutputResult o = FlatOutput({20.0, 60.0}, 10.0);
+  BandRequirementResult b;
+  b.requirement = {1.0, 1.25, 4.0};
+  b.variance = 20.0;  // a quarter of each flat PSD: 5 + 15
+  o.band_requirements = {b};
+  result.outputs = {o};
+  const Table t = SummaryTable(result);
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.rows[1][0] == "position, 1–1.25 Hz");
+  CHECK(t.rows[1][5] == "FAIL");
+  CHECK(t.rows[1][6] == "b (75.0 %)");
+}
+
 TEST_CASE("text tables align columns by characters, numbers to the right, and shorten long cells") {
   const std::vector<std::string> lines = ToText(Small(), 30, 24);
   REQUIRE(lines.size() == 4);
