@@ -114,7 +114,7 @@ std::string IndexHtml(const DocumentInputs& in) {
       << HtmlEscape(UnitText(out.unit)) << "]</h2>\n<p" << (out.pass() ? "" : " class=\"fail\"") << ">"
       << HtmlEscape(OutputLine(out)) << "</p>\n";
     if (const std::string fix = GuidanceText(out, result.grid); !fix.empty())
-      s << "<p class=\"fail guidance\">" << HtmlEscape(fix) << "</p>\n";
+      s << "<p class=\"guidance\"><strong>" << HtmlEscape(fix) << "</strong></p>\n";
     s << ToHtml(ContributorTable(out));
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
