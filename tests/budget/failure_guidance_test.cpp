@@ -168,6 +168,19 @@ TEST_CASE("a failing band requirement: fail factor, largest contributor in the b
   CHECK(g->sentence == "position fails in band 1–1.5 Hz by 1.25× (largest: a, 80 % of the band, must drop 1.348×)");
 }
 
+TEST_CASE("a shared source: the factor per contributor, applied to the source, is sufficient (not exact)") {
+  OutputResult o = FlatOutput({80.0, 10.0, 10.0}, 6.0);
+  o.contributors[1].source = o.contributors[0].source;  // a and b draw on one source
+  const auto g = GuideFailure(o, kGrid);
+  REQUIRE(g);
+  const double r = *g->overall->reduce[0].rms_factor;
+  CHECK(r == doctest::Approx(std::sqrt(5.0)).epsilon(1e-12));  // as if a's source were its own
+  // Dividing the shared source by r lowers b too: 80/5 + 10/5 + 10 = 28 <= 36.
+  const double variance = (80.0 + 10.0) / (r * r) + 10.0;
+  CHECK(variance == doctest::Approx(28.0).epsilon(1e-12));
+  CHECK(variance <= 36.0);
+}
+
 TEST_CASE("an output that meets its requirements, or has none, gets no guidance") {
   CHECK(!GuideFailure(FlatOutput({20.0, 16.0}, 6.0), kGrid));  // rms exactly at the limit
   CHECK(!GuideFailure(FlatOutput({20.0, 10.0}, 6.0), kGrid));
