@@ -27,6 +27,7 @@
 #include <unistd.h>
 
 #include "deb/budget/engine.h"
+#include "deb/budget/failure_guidance.h"
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 #include "deb/core/suggest.h"
@@ -83,7 +84,9 @@ int RunMapped(CLI::App& app, F&& parse_and_run) {
   }
 }
 
-void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds, const std::string& out_dir) {
+// The figures, and for each output that fails what would fix it; printed
+// before the report is drawn (gnuplot takes most of a run).
+void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds) {
   std::printf("budget %s: %zu frequencies, %g-%g Hz, evaluated in %.3f s\n", budget.name.c_str(), r.grid.size(),
               r.grid.min_hz(), r.grid.max_hz(), seconds);
   for (const auto& o : r.outputs) {
@@ -111,8 +114,9 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
     for (const auto& b : o.band_requirements)
       std::printf("  band %g-%g Hz: rms %.6g (requirement %.6g: %s)\n", b.requirement.lo_hz, b.requirement.hi_hz,
                   b.rms(), b.requirement.rms_max, b.pass() ? "PASS" : "FAIL");
+    if (const auto g = deb::GuideFailure(o, r.grid)) std::printf("  to fix: %s\n", g->sentence.c_str());
   }
-  std::printf("\nreport: %s\n", out_dir.c_str());
+  std::fflush(stdout);  // before the report's progress and gnuplot's time
 }
 
 int Run(const std::string& budget_file, std::string out_dir, int threads, bool quiet, bool strict,
@@ -125,6 +129,7 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
   const deb::BudgetResult result = deb::Evaluate(budget, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
+  if (!quiet) PrintBrief(budget, result, seconds);
   try {
     report.progress = !quiet && ::isatty(STDERR_FILENO);
     report.threads = threads;
@@ -135,7 +140,7 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
   } catch (const deb::InputError& e) {
     throw deb::WriteError(e.what());  // found while writing: the report cannot be written
   }
-  if (!quiet) PrintBrief(budget, result, seconds, out_dir);
+  if (!quiet) std::printf("\nreport: %s\n", out_dir.c_str());
   int failed = 0;
   for (const auto& o : result.outputs) failed += o.AllPass() ? 0 : 1;
   if (strict && failed > 0) {

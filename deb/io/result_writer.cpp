@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "deb/budget/allocation.h"
+#include "deb/budget/failure_guidance.h"
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
@@ -66,6 +67,53 @@ nlohmann::json LoopsJson(const std::vector<LoopResult>& loops) {
     out.push_back(jl);
   }
   return out;
+
+nlohmann::json Names(const OutputResult& o, const std::vector<std::size_t>& contributors) {
+  nlohmann::json names = nlohmann::json::array();
+  for (std::size_t c : contributors) names.push_back(o.contributors[c].name);
+  return names;
+}
+
+nlohmann::json OptionalNumber(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+
+// What to fix (failure_guidance.h), or null when every requirement is met.
+// Every factor divides an RMS amplitude; a PSD's is its square.
+nlohmann::json GuidanceJson(const OutputResult& o, const FrequencyGrid& grid) {
+  const std::optional<FailureGuidance> g = GuideFailure(o, grid);
+  if (!g) return nullptr;
+  nlohmann::json j;
+  if (const auto& r = g->overall) {
+    j["fail_factor"] = r->fail_factor;
+    j["uniform_factor"] = r->fail_factor;
+    j["cps_crossing_hz"] = OptionalNumber(r->cps_crossing_hz);
+    j["dominant"] = {{"name", o.contributors[r->dominant].name},
+                     {"share", r->dominant_share},
+                     {"band", r->dominant_band ? nlohmann::json({{"lo_hz", r->dominant_band->lo_hz},
+                                                                 {"hi_hz", r->dominant_band->hi_hz}})
+                                               : nlohmann::json(nullptr)}};
+    j["remove"] = Names(o, r->remove);
+    nlohmann::json reduce = nlohmann::json::array();
+    for (const ContributorReduction& c : r->reduce)
+      reduce.push_back({{"contributors", Names(o, c.contributors)}, {"rms_factor", OptionalNumber(c.rms_factor)}});
+    j["reduce_each"] = reduce;
+  } else {
+    for (const char* key : {"fail_factor", "uniform_factor", "cps_crossing_hz", "dominant"}) j[key] = nullptr;
+    j["remove"] = nlohmann::json::array();
+    j["reduce_each"] = nlohmann::json::array();
+  }
+  nlohmann::json bands = nlohmann::json::array();
+  for (const BandGuidance& b : g->bands)
+    bands.push_back({{"lo_hz", b.requirement.lo_hz},
+                     {"hi_hz", b.requirement.hi_hz},
+                     {"rms_max", b.requirement.rms_max},
+                     {"rms", b.rms},
+                     {"fail_factor", b.fail_factor},
+                     {"largest", o.contributors[b.largest].name},
+                     {"largest_share", b.largest_share},
+                     {"largest_rms_factor", OptionalNumber(b.largest_rms_factor)}});
+  j["bands"] = bands;
+  j["sentence"] = g->sentence;
+  return j;
 }
 
 }  // namespace
@@ -109,6 +157,7 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
                                    {"pass", b.pass()},
                                    {"margin", b.requirement.rms_max - b.rms()}});
     jo["band_requirements"] = band_requirements;
+    jo["guidance"] = GuidanceJson(o, result.grid);
     all_pass &= o.AllPass();
     nlohmann::json contributors = nlohmann::json::array();
     for (std::size_t c = 0; c < o.contributors.size(); ++c) {

@@ -113,6 +113,8 @@ std::string IndexHtml(const DocumentInputs& in) {
     s << "<h2 id=\"" << HtmlEscape(OutputAnchor(out.name)) << "\">Output " << HtmlEscape(out.name) << " ["
       << HtmlEscape(UnitText(out.unit)) << "]</h2>\n<p" << (out.pass() ? "" : " class=\"fail\"") << ">"
       << HtmlEscape(OutputLine(out)) << "</p>\n";
+    if (const std::string fix = GuidanceText(out, result.grid); !fix.empty())
+      s << "<p class=\"guidance\"><strong>" << HtmlEscape(fix) << "</strong></p>\n";
     s << ToHtml(ContributorTable(out));
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
@@ -156,6 +158,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
     const OutputResult& out = result.outputs[o];
     const int oi = static_cast<int>(o);
     s << "## Output " << out.name << " [" << UnitText(out.unit) << "]\n\n" << OutputLine(out) << "\n\n";
+    if (const std::string fix = GuidanceText(out, result.grid); !fix.empty()) s << "**" << fix << "**\n\n";
     s << ToMarkdown(ContributorTable(out)) << "\n";
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToMarkdown(modes) << "\n";
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "deb/budget/allocation.h"
+#include "deb/budget/failure_guidance.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/spectrum_plots.h"
@@ -61,9 +62,15 @@ Table SummaryTable(const BudgetResult& result) {
                       largest});
     t.emphasis.push_back({false, false, false, false, false, o.rms_max && !o.pass(), false});
     for (const BandRequirementResult& b : o.band_requirements) {
+      std::string in_band = "–";
+      if (!o.contributors.empty() && b.variance > 0.0) {
+        const std::vector<double> v = VarianceWithin(o, result.grid, b.requirement.lo_hz, b.requirement.hi_hz);
+        const std::size_t c = static_cast<std::size_t>(std::max_element(v.begin(), v.end()) - v.begin());
+        in_band = o.contributors[c].name + " (" + Share(v[c], b.variance) + ")";
+      }
       t.rows.push_back({o.name + ", " + BandText(b.requirement.lo_hz, b.requirement.hi_hz), UnitText(o.unit),
                         Sig(b.rms(), 4), Short(b.requirement.rms_max), Sig(b.requirement.rms_max - b.rms(), 4),
-                        b.pass() ? "pass" : "FAIL", "–"});
+                        b.pass() ? "pass" : "FAIL", in_band});
       t.emphasis.push_back({false, false, false, false, false, !b.pass(), false});
     }
   }
@@ -76,8 +83,19 @@ Table ContributorTable(const OutputResult& o) {
             (o.metric ? ", " + o.metric->Describe() : std::string());
   t.header = {"contributor", "source", "path", "RMS", "share", "exact RMS"};
   t.numeric = {false, false, false, true, true, true};
-  if (o.rms_max) {  // the factor on the source's PSD that puts the output at its limit
-    t.header.push_back("allocation k");
+  // A failing output: the reduction of each contributor's RMS that meets the
+  // limit, alone, or together with the rest of the smallest set of largest
+  // contributors that can (failure_guidance.h); else the factor k on the
+  // source's PSD that puts the output at its limit.
+  const bool fails = o.rms_max && !o.pass();
+  std::optional<ContributorReduction> least;
+  if (fails) {
+    least = SmallestReduction(o);
+    t.title += "; must drop: the factor on the contributor's RMS that meets the limit alone, or \"each of "
+               "top n\" with the n largest";
+  }
+  if (o.rms_max) {
+    t.header.push_back(fails ? "must drop" : "allocation k");
     t.numeric.push_back(true);
   }
   t.header.push_back("note");
@@ -90,7 +108,18 @@ Table ContributorTable(const OutputResult& o) {
     std::vector<std::string> row = {cr.name, cr.source, cr.path, Sig(std::sqrt(cr.variance), 4),
                                     Share(cr.variance, o.variance),
                                     cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), 4) : "–"};
-    if (o.rms_max) {
+    if (fails) {
+      const Allocation a = AllocationFactor(o, c);
+      const auto in_least = std::find(least->contributors.begin(), least->contributors.end(), c);
+      if (a.factor && *a.factor > 0.0)
+        row.push_back(Sig(1.0 / std::sqrt(*a.factor), 4) + "×");
+      else if (in_least != least->contributors.end() && least->rms_factor)
+        row.push_back(Sig(*least->rms_factor, 4) + "×, each of top " + std::to_string(least->contributors.size()));
+      else if (in_least != least->contributors.end())
+        row.push_back("remove, with top " + std::to_string(least->contributors.size()));
+      else
+        row.push_back("–");
+    } else if (o.rms_max) {
       const Allocation a = AllocationFactor(o, c);
       row.push_back(a.factor ? Sig(*a.factor, 4) : "–");
       if (!a.factor) note += std::string(note.empty() ? "" : "; ") + "no allocation: " + a.note;
@@ -103,6 +132,11 @@ Table ContributorTable(const OutputResult& o) {
   total.push_back("");
   t.rows.push_back(total);
   return t;
+}
+
+std::string GuidanceText(const OutputResult& o, const FrequencyGrid& grid) {
+  const std::optional<FailureGuidance> g = GuideFailure(o, grid);
+  return g ? GuidanceSentence(o, *g, UnitText(o.unit)) + "." : std::string();
 }
 
 Table ModeTable(const OutputResult& o) {

@@ -23,12 +23,20 @@ struct Table {
   std::vector<std::vector<bool>> emphasis;  // per cell (may be empty): bold
 };
 
-// One row per output: unit, RMS, requirement, margin, status, largest contributor.
+// One row per output: unit, RMS, requirement, margin, status, largest
+// contributor (share of the variance); then one per band requirement, its
+// largest contributor within the band (share of the band's variance).
 Table SummaryTable(const BudgetResult& result);
 
 // One row per contributor of an output, by share: source, path, RMS, share,
-// exact (Lyapunov) RMS or why there is none.
+// exact (Lyapunov) RMS or why there is none; with a requirement, the
+// allocation factor k, or for a failing output the reduction of each
+// contributor's RMS that meets the limit (failure_guidance.h).
 Table ContributorTable(const OutputResult& output);
+
+// What would fix a failing output, one sentence (GuidanceSentence, units as
+// the documents print them); "" when it meets every requirement.
+std::string GuidanceText(const OutputResult& output, const FrequencyGrid& grid);
 
 // Rows: contributors by share, then the total; columns: the bands and the
 // whole grid. The largest contributor of each band is emphasised.
