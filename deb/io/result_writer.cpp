@@ -67,6 +67,7 @@ nlohmann::json LoopsJson(const std::vector<LoopResult>& loops) {
     out.push_back(jl);
   }
   return out;
+}
 
 nlohmann::json Names(const OutputResult& o, const std::vector<std::size_t>& contributors) {
   nlohmann::json names = nlohmann::json::array();
