@@ -16,11 +16,13 @@
 #include "deb/io/sweep_yaml.h"
 #include "deb/report/plot.h"
 #include "deb/report/report_tables.h"
+#include "tools/budget_overrides_option.h"
 
 namespace deb::tools {
 
 struct SensitivityCommand::Options {
   std::string budget_file;
+  std::vector<BudgetOverride> overrides;  // --set
   std::vector<std::string> parameters;
   double step = 1e-3;
   std::string out_dir;
@@ -98,6 +100,7 @@ CLI::App* SensitivityCommand::Register(CLI::App& app) {
             return "";
           },
           "H in [1e-8, 0.5]"));
+  AddOverridesOption(c, &s.overrides);
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_sensitivity)");
   c->add_option("--threads,-j", s.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
@@ -107,12 +110,14 @@ CLI::App* SensitivityCommand::Register(CLI::App& app) {
 
 int SensitivityCommand::Run() const {
   const Options& s = *options_;
-  const Budget budget = LoadBudgetFile(s.budget_file);
+  const Budget budget = LoadBudgetFile(s.budget_file, s.overrides);
   EngineOptions options;
   options.threads = s.threads;
   const SensitivityStudy study = ComputeSensitivities(
       budget, s.parameters, s.step,
-      [&s](const std::string& key, double factor) { return LoadBudgetWithScaledParameter(s.budget_file, key, factor); },
+      [&s](const std::string& key, double factor) {
+        return LoadBudgetWithScaledParameter(s.budget_file, key, factor, s.overrides);
+      },
       options);
   const BudgetResult& nominal = study.nominal;
   const std::vector<Sensitivity>& all = study.sensitivities;

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "deb/core/input_file.h"
+#include "deb/io/budget_overrides.h"
 #include "deb/io/path_yaml.h"
 #include "deb/io/source_yaml.h"
 #include "deb/io/yaml_reader.h"
@@ -161,6 +162,14 @@ Budget LoadBudgetFile(const std::string& path) {
   const YamlReader reader = YamlReader::FromFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return Load(reader, dir.empty() ? "." : dir);
+}
+
+Budget LoadBudgetFile(const std::string& path, const std::vector<BudgetOverride>& overrides) {
+  if (overrides.empty()) return LoadBudgetFile(path);
+  const YamlReader reader = YamlReader::FromFile(path);
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return LoadBudgetVariant(io::OverriddenText(reader.text(), overrides, reader.name()), reader.positions(),
+                           io::OverridesNote(overrides), dir.empty() ? "." : dir);
 }
 
 Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const KeyPositions>& original,
