@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "deb/core/input_file.h"
+#include "deb/io/budget_extends.h"
 #include "deb/io/budget_overrides.h"
 #include "deb/io/path_yaml.h"
 #include "deb/io/source_yaml.h"
@@ -159,14 +160,14 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
 }  // namespace
 
 Budget LoadBudgetFile(const std::string& path) {
-  const YamlReader reader = YamlReader::FromFile(path);
+  const YamlReader reader = io::ReadBudgetFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return Load(reader, dir.empty() ? "." : dir);
 }
 
 Budget LoadBudgetFile(const std::string& path, const std::vector<BudgetOverride>& overrides) {
   if (overrides.empty()) return LoadBudgetFile(path);
-  const YamlReader reader = YamlReader::FromFile(path);
+  const YamlReader reader = io::ReadBudgetFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return LoadBudgetVariant(io::OverriddenText(reader.text(), overrides, reader.name()), reader.positions(),
                            io::OverridesNote(overrides), dir.empty() ? "." : dir);

@@ -17,6 +17,7 @@
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
 #include "deb/core/suggest.h"
+#include "deb/io/budget_extends.h"
 #include "deb/io/budget_overrides.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/key_path.h"
@@ -176,14 +177,14 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir, const st
 }  // namespace
 
 SweepBudget LoadSweepFile(const std::string& path, const std::vector<BudgetOverride>& overrides) {
-  const YamlReader reader = YamlReader::FromFile(path);
+  const YamlReader reader = io::ReadBudgetFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return Load(reader, dir.empty() ? "." : dir, overrides);
 }
 
 Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor,
                                      const std::vector<BudgetOverride>& overrides) {
-  const YamlReader reader = YamlReader::FromFile(path);
+  const YamlReader reader = io::ReadBudgetFile(path);
   YAML::Node raw = reader.LoadCopy();
   io::ApplyOverrides(raw, overrides, reader.name());
   const KeyPath steps = io::ParseKeyPath(key_path);
