@@ -213,7 +213,7 @@ int Check(const std::string& budget_file, const std::vector<deb::BudgetOverride>
   for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
     const deb::Contributor& c = budget.contributors[ci];
     std::printf("  %-20s source %s, path %s, exact variance: %s\n", c.name.c_str(), c.source.c_str(),
-                c.path.c_str(), deb::ToString(c.exact).c_str());
+                deb::ContributorPathKey(c).c_str(), deb::ToString(c.exact).c_str());
     // Why there will be none where it was asked for, once per distinct reason (the outputs usually share it).
     std::vector<std::string> reasons;
     for (const std::string& why : plan.exact_refusal[ci])
