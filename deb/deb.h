@@ -41,6 +41,7 @@
 #include "deb/spectra/spectrum_csv.h"
 #include "deb/spectra/tabulated_csd.h"
 #include "deb/spectra/third_octave.h"
+#include "deb/spectra/tone_spectrum.h"
 #include "deb/spectra/vc_curve.h"
 
 // Recordings and spectral estimates from them.

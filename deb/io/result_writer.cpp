@@ -168,6 +168,12 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
       jc["source"] = cr.source;
       jc["path"] = cr.path;
       if (!cr.inputs.empty()) jc["inputs"] = cr.inputs;
+      if (!cr.tones.empty()) {
+        nlohmann::json tones = nlohmann::json::array();
+        for (const ContributorResult::Tone& t : cr.tones)
+          tones.push_back({{"f_hz", t.f_hz}, {"rms", std::sqrt(t.variance)}, {"variance", t.variance}});
+        jc["tones"] = tones;
+      }
       jc["rms"] = std::sqrt(cr.variance);
       jc["variance"] = cr.variance;
       jc["share"] = o.variance > 0.0 ? cr.variance / o.variance : 0.0;
