@@ -2,7 +2,6 @@
 
 #include <sstream>
 
-#include "deb/report/title_page.h"
 #include "deb/version.h"
 
 namespace deb::report {
