@@ -541,35 +541,38 @@ void SetMetadata(cairo_surface_t* surface, const PdfDocumentSpec& spec) {
 }  // namespace
 
 PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path) {
+  struct SurfaceDeleter {
+    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+  };
+  using Surface = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
+  const auto scratch = [] {
+    return Surface(cairo_pdf_surface_create_for_stream(Discard, nullptr, kPageWidthPt, kPageHeightPt));
+  };
   SvgCache svgs;
   // First pass: where every heading lands and how many pages there are.
-  cairo_surface_t* scratch = cairo_pdf_surface_create_for_stream(Discard, nullptr, kPageWidthPt, kPageHeightPt);
   std::vector<Target> targets;
   PdfLayout first;
   {
-    Composer measure(spec, scratch, false, &svgs, {}, 0);
+    const Surface measured = scratch();
+    Composer measure(spec, measured.get(), false, &svgs, {}, 0);
     first = measure.Run();
     targets = measure.HeadingTargets();
   }
-  cairo_surface_destroy(scratch);
   if (path.empty()) {
     // The layout alone: the second pass's numbers without drawing.
-    cairo_surface_t* again = cairo_pdf_surface_create_for_stream(Discard, nullptr, kPageWidthPt, kPageHeightPt);
-    Composer lay(spec, again, false, &svgs, targets, first.pages);
-    PdfLayout layout = lay.Run();
-    cairo_surface_destroy(again);
-    return layout;
+    const Surface again = scratch();
+    Composer lay(spec, again.get(), false, &svgs, targets, first.pages);
+    return lay.Run();
   }
-  cairo_surface_t* surface = cairo_pdf_surface_create(path.c_str(), kPageWidthPt, kPageHeightPt);
-  SetMetadata(surface, spec);
+  const Surface surface(cairo_pdf_surface_create(path.c_str(), kPageWidthPt, kPageHeightPt));
+  SetMetadata(surface.get(), spec);
   PdfLayout layout;
   {
-    Composer compose(spec, surface, true, &svgs, targets, first.pages);
+    Composer compose(spec, surface.get(), true, &svgs, targets, first.pages);
     layout = compose.Run();
   }
-  cairo_surface_finish(surface);
-  const cairo_status_t status = cairo_surface_status(surface);
-  cairo_surface_destroy(surface);
+  cairo_surface_finish(surface.get());
+  const cairo_status_t status = cairo_surface_status(surface.get());
   if (status != CAIRO_STATUS_SUCCESS)
     throw WriteError("cannot write " + path + ": " + cairo_status_to_string(status));
   DEB_DEMAND(layout.pages == first.pages);
