@@ -93,6 +93,11 @@ PdfTable TypesetTable(const Table& table, std::size_t min_note_chars) {
     for (std::size_t c = 0; c < table.rows[r].size(); ++c) {
       const std::string& text = table.rows[r][c];
       PdfCell cell{text, r < table.emphasis.size() && c < table.emphasis[r].size() && table.emphasis[r][c], false};
+      // A number with words after it ("1.83×, each of top 3"): the words on
+      // a line of their own, so that they do not widen the column.
+      if (c < table.numeric.size() && table.numeric[c])
+        if (const std::size_t comma = text.find(", "); comma != std::string::npos)
+          cell.text = text.substr(0, comma) + "\n" + text.substr(comma + 2);
       cell.alert = text == "FAIL";
       cell.bold = cell.bold || cell.alert;
       const auto n = count.find(text);
