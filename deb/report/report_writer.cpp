@@ -180,17 +180,23 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       }
     }
     // gnuplot starts fast but each process pays again for fonts and cairo:
-    // the files are drawn in a few batches, one process each (the
-    // files split evenly over the workers), which halves the
+    // the files are drawn in a few batches, one process each (the figures
+    // of report.pdf, which is then typeset by the same worker while the
+    // others draw the plots split evenly over them), which halves the
     // drawing time of a report with dozens of plots.
     const std::size_t workers = static_cast<std::size_t>(
         std::max(1, options.threads > 0 ? options.threads : DefaultThreadCount()));
     std::vector<std::vector<std::size_t>> batches;
-    const std::size_t plot_jobs = jobs.size();
+    if (pdf) {
+      batches.emplace_back();
+      for (std::size_t i = 0; i < pdf_jobs; ++i) batches.back().push_back(i);
+    }
+    const std::size_t plot_jobs = jobs.size() - pdf_jobs;
     const std::size_t plot_batches = std::min(workers, plot_jobs);
     for (std::size_t b = 0; b < plot_batches; ++b) {
       std::vector<std::size_t> batch;
-      for (std::size_t i = b * plot_jobs / plot_batches; i < (b + 1) * plot_jobs / plot_batches; ++i)
+      for (std::size_t i = pdf_jobs + b * plot_jobs / plot_batches; i < pdf_jobs + (b + 1) * plot_jobs / plot_batches;
+           ++i)
         batch.push_back(i);
       batches.push_back(std::move(batch));
     }
@@ -198,6 +204,19 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       return (i < pdf_jobs ? "the figure of report.pdf " : "plot ") + fs::path(jobs[i].file).filename().string();
     };
     Progress progress(options.progress, static_cast<int>(jobs.size()) + (pdf ? 1 : 0));
+    PdfLayout layout;
+    const auto typeset = [&] {
+      progress.Step("report.pdf");
+      ReportPdfInputs in;
+      in.budget = &budget;
+      in.result = &result;
+      in.facts = facts;
+      in.sha256 = sha256;
+      in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
+      in.plots = &plots;
+      in.figure_dir = (plots_dir / pdf_figures).string();
+      layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
+    };
     ParallelForEach(batches.size(), [&](std::size_t b) {
       const std::vector<std::size_t>& batch = batches[b];
       std::string script;
@@ -213,19 +232,10 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
         throw;
       }
       for (std::size_t i : batch) RequireFile(root / jobs[i].file, what_of(i));
+      if (pdf && b == 0) typeset();
     }, options.threads);
     for (std::size_t i = pdf_jobs; i < jobs.size(); ++i) manifest.files.push_back(jobs[i].file);
     if (pdf) {
-      progress.Step("report.pdf");
-      ReportPdfInputs in;
-      in.budget = &budget;
-      in.result = &result;
-      in.facts = facts;
-      in.sha256 = sha256;
-      in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
-      in.plots = &plots;
-      in.figure_dir = (plots_dir / pdf_figures).string();
-      const PdfLayout layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
       fs::remove_all(plots_dir / pdf_figures, ec);
       manifest.files.push_back("report.pdf");
       manifest.title_pages = 1;
