@@ -266,6 +266,16 @@ class Composer {
       y_ += 5.0;
     }
   }
+  // The first pass's target of the first heading (level >= 1) reading `text`.
+  const Target* HeadingTarget(const std::string& text) const {
+    std::size_t k = 0;
+    for (const PdfBlock& b : spec_.blocks) {
+      if (b.kind != PdfBlockKind::kHeading || b.level < 1) continue;
+      if (b.text == text) return k < targets_.size() ? &targets_[k] : nullptr;
+      ++k;
+    }
+    return nullptr;
+  }
   static std::string Link(const Target& t) {
     char text[80];
     std::snprintf(text, sizeof(text), "page=%d pos=[%.1f %.1f]", t.page, kMarginPt, std::max(0.0, t.y_pt - 6.0));
@@ -473,6 +483,14 @@ class Composer {
           Show(ls[c].get(), x + widths[c] - kCellPadPt - Size(ls[c].get()).first, y_ + kRowPadPt, colour);
         } else {
           Show(ls[c].get(), x + kCellPadPt, y_ + kRowPadPt, colour);
+        }
+        if (!cell.link.empty() && draw_) {
+          if (const Target* t = HeadingTarget(cell.link)) {
+            char rect[120];
+            std::snprintf(rect, sizeof(rect), " rect=[%.2f %.2f %.2f %.2f]", x, y_, widths[c], h);
+            cairo_tag_begin(cr_, CAIRO_TAG_LINK, (Link(*t) + rect).c_str());
+            cairo_tag_end(cr_, CAIRO_TAG_LINK);
+          }
         }
         layout_.boxes.push_back({page_, header ? "table header" : "table cell", cell.text, x, y_, widths[c], h, colour});
         joined += (c ? " | " : "") + cell.text;

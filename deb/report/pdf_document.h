@@ -23,6 +23,7 @@ struct PdfCell {
   std::string text;  // may hold line breaks; long text wraps in its column
   bool bold = false;
   bool alert = false;  // drawn in red (a failed requirement)
+  std::string link;    // the text of a heading the cell links to; "" for none
 };
 
 struct PdfTable {

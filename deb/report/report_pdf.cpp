@@ -29,6 +29,9 @@ bool Fails(const OutputResult& o) {
   return fails;
 }
 
+// The heading of an output's section, which its row of the verdict links to.
+std::string SectionTitle(const OutputResult& o) { return "Output " + o.name; }
+
 bool HasRequirement(const OutputResult& o) { return o.rms_max || !o.band_requirements.empty(); }
 
 // "FAIL: RMS 12.3 nm, limit 5 nm; 1–10 Hz: RMS 2.1 nm, limit 3 nm (pass)".
@@ -138,7 +141,8 @@ PdfTable VerdictTable(const BudgetResult& result) {
     const bool fails = Fails(o);
     PdfCell verdict{HasRequirement(o) ? (fails ? "FAIL" : "PASS") : "–", true, fails};
     const std::string guidance = fails ? GuidanceText(o, result.grid) : "";
-    t.rows.push_back({{o.name, true, false}, {requirement}, {value}, verdict, {guidance.empty() ? "–" : guidance}});
+    t.rows.push_back({{o.name, true, false, SectionTitle(o)}, {requirement}, {value}, verdict,
+                      {guidance.empty() ? "–" : guidance}});
   }
   return t;
 }
@@ -179,7 +183,7 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   for (std::size_t i = 0; i < result.outputs.size(); ++i) {
     const OutputResult& o = result.outputs[i];
     b.push_back(PageBreak());
-    b.push_back(Heading(1, "Output " + o.name));
+    b.push_back(Heading(1, SectionTitle(o)));
     b.push_back(Paragraph(VerdictLine(o), 10.0, true, Fails(o)));
     if (Fails(o))
       if (const std::string g = GuidanceText(o, result.grid); !g.empty()) b.push_back(Paragraph(g, 9.5));

@@ -50,6 +50,8 @@ PdfDocumentSpec Sample(const fs::path& svg) {
   for (int r = 0; r < 80; ++r)
     t.rows.push_back({{"row " + std::to_string(r)}, {std::to_string(r) + ".25"}, {r == 3 ? "FAIL" : "ok"}});
   t.rows[3][2].alert = true;
+  t.rows[0][0].link = "Figures";
+  t.rows[1][0].link = "no such heading";  // no link
   t.rows[5][2].text = std::string(60, 'x') + " a long note that must wrap inside its column and not be cut off at all";
   t.footnotes = {"¹ a note"};
   s.blocks.push_back(TableBlock("A long table", t));
@@ -138,7 +140,14 @@ TEST_CASE("the PDF has the pages of its layout, an outline, its text, and the sa
   CHECK(PdfPages(dir / "a.pdf") == layout.pages);
   const std::string a = Bytes(dir / "a.pdf");
   CHECK(a == Bytes(dir / "b.pdf"));
+  // Bookmarks: one per heading of level >= 1; links: one per line of the contents, one per linked cell.
   CHECK(a.find("/Outlines") != std::string::npos);
+  for (const char* title : {"/Title (Contents)", "/Title (Table)", "/Title (Figures)", "/Title (Three of them)"})
+    CHECK_MESSAGE(a.find(title) != std::string::npos, title);
+  std::size_t links = 0;
+  for (std::size_t at = a.find("/Subtype /Link"); at != std::string::npos; at = a.find("/Subtype /Link", at + 1))
+    ++links;
+  CHECK(links == 4 + 1);
   CHECK(a.find("20231114221320Z") != std::string::npos);
   const Command text = Shell("pdftotext -layout \"" + (dir / "a.pdf").string() + "\" -");
   if (text.exit_code == 0) {  // poppler-utils present

@@ -62,6 +62,7 @@ TEST_CASE("the verdict has a row per output: requirements, values, FAIL in red w
     const OutputResult& o = e.result.outputs[i];
     CAPTURE(o.name);
     CHECK(v.rows[i][0].text == o.name);
+    CHECK(v.rows[i][0].link == "Output " + o.name);  // the heading of its section
     bool fails = o.rms_max && !o.pass();
     for (const auto& b : o.band_requirements) fails = fails || !b.pass();
     CHECK(v.rows[i][3].text == (fails ? "FAIL" : "PASS"));
