@@ -121,6 +121,8 @@ PdfTable VerdictTable(const BudgetResult& result) {
   t.boxed = true;
   t.header = {"output", "requirement", "value", "verdict", "what would meet it"};
   t.numeric = {false, false, false, false, false};
+  bool any_fails = false;
+  for (const OutputResult& o : result.outputs) any_fails = any_fails || Fails(o);
   for (const OutputResult& o : result.outputs) {
     const std::string unit = UnitText(o.unit);
     std::string requirement, value;
@@ -143,6 +145,11 @@ PdfTable VerdictTable(const BudgetResult& result) {
     const std::string guidance = fails ? GuidanceText(o, result.grid) : "";
     t.rows.push_back({{o.name, true, false, SectionTitle(o)}, {requirement}, {value}, verdict,
                       {guidance.empty() ? "–" : guidance}});
+    if (!any_fails) t.rows.back().pop_back();  // nothing to meet: no column for it
+  }
+  if (!any_fails) {
+    t.header.pop_back();
+    t.numeric.pop_back();
   }
   return t;
 }

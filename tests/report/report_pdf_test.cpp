@@ -82,6 +82,18 @@ TEST_CASE("the verdict has a row per output: requirements, values, FAIL in red w
   CHECK(failing == 2);  // position and image_shift
 }
 
+TEST_CASE("a verdict without a failing output has no column for what would meet it") {
+  const Evaluated e = Evaluate("nizamoglu2015_h210.yaml");
+  const PdfTable v = VerdictTable(e.result);
+  CHECK(v.header == std::vector<std::string>{"output", "requirement", "value", "verdict"});
+  REQUIRE(v.rows.size() == e.result.outputs.size());
+  for (const auto& row : v.rows) {
+    CHECK(row.size() == 4);
+    CHECK(row[1].text == "none");
+    CHECK(row[3].text == "–");
+  }
+}
+
 TEST_CASE("the document: title page, contents, overview, a section per output with its own plots in order, notes") {
   const Evaluated e = Evaluate("wafer_stage.yaml");
   std::vector<Plot> plots;
