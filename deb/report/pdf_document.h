@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace deb::report {
@@ -20,6 +21,8 @@ constexpr double kPageWidthPt = 595.2756, kPageHeightPt = 841.8898;
 constexpr double kMarginPt = 18.0 / 25.4 * 72.0;
 
 struct PdfCell {
+  PdfCell(std::string text_ = "", bool bold_ = false, bool alert_ = false, std::string link_ = "")
+      : text(std::move(text_)), bold(bold_), alert(alert_), link(std::move(link_)) {}
   std::string text;  // may hold line breaks; long text wraps in its column
   bool bold = false;
   bool alert = false;  // drawn in red (a failed requirement)
