@@ -536,10 +536,11 @@ class Composer {
       for (std::size_t c = 0; c < columns; ++c) {
         const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
         const std::string colour = cell.alert ? kAlert : kInk;
+        double point_x = 0.0;
         if (numeric(c) && !header) {
           // The decimal point of every row at the same x; the text right of it may stick out.
           const Split s = AtDecimalPoint(cell.text);
-          const double point_x = x + widths[c] - kCellPadPt - right[c];
+          point_x = x + widths[c] - kCellPadPt - right[c];
           Layout l = MakeLayout(s.left, kTableFontPt, cell.bold, 0);
           Layout r = MakeLayout(s.right, kTableFontPt, cell.bold, 0);
           Show(l.get(), point_x - Size(l.get()).first, y_ + kRowPadPt, colour);
@@ -557,7 +558,8 @@ class Composer {
             cairo_tag_end(cr_, CAIRO_TAG_LINK);
           }
         }
-        layout_.boxes.push_back({page_, header ? "table header" : "table cell", cell.text, x, y_, widths[c], h, colour});
+        layout_.boxes.push_back(
+            {page_, header ? "table header" : "table cell", cell.text, x, y_, widths[c], h, colour, point_x});
         joined += (c ? " | " : "") + cell.text;
         x += widths[c];
       }

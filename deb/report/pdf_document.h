@@ -72,6 +72,7 @@ struct PlacedBox {
   std::string text;  // its text (a table row: the cells joined by " | ")
   double x_pt = 0, y_pt = 0, width_pt = 0, height_pt = 0;
   std::string colour;  // "#rrggbb" of the text, for cells and paragraphs
+  double point_x_pt = 0;  // a cell of a numeric column: x of its decimal point (or where it would be)
 };
 
 struct OutlineEntry {

@@ -48,13 +48,20 @@ PdfDocumentSpec Sample(const fs::path& svg) {
   t.header = {"name", "value", "note"};
   t.numeric = {false, true, false};
   for (int r = 0; r < 80; ++r)
-    t.rows.push_back({{"row " + std::to_string(r)}, {std::to_string(r) + ".25"}, {r == 3 ? "FAIL" : "ok"}});
+    t.rows.push_back({{"row " + std::to_string(r)}, {std::to_string(r * r) + ".25"}, {r == 3 ? "FAIL" : "ok"}});
+  t.rows[7][1].text = "1.5e-05";
+  t.rows[8][1].text = "12 %";
   t.rows[3][2].alert = true;
   t.rows[0][0].link = "Figures";
   t.rows[1][0].link = "no such heading";  // no link
   t.rows[5][2].text = std::string(60, 'x') + " a long note that must wrap inside its column and not be cut off at all";
   t.footnotes = {"¹ a note"};
   s.blocks.push_back(TableBlock("A long table", t));
+  PdfTable box;
+  box.boxed = true;
+  box.header = {"verdict"};
+  box.rows = {{{"FAIL", true, true}}};
+  s.blocks.push_back(TableBlock("A box", box));
   s.blocks.push_back(Heading(1, "Figures"));
   s.blocks.push_back(Heading(2, "Three of them"));
   for (int k = 0; k < 3; ++k) s.blocks.push_back(Figure(svg.string(), "A line, number " + std::to_string(k) + "."));
@@ -92,7 +99,7 @@ TEST_CASE("a long table continues on the next page with its header repeated; lon
   for (const PlacedBox& b : layout.boxes) {
     if (b.what == "table row") table_pages.insert(b.page);
     if (b.what == "table header row") header_pages.insert(b.page);
-    if (b.what == "table row" && b.text == "row 4 | 4.25 | ok") plain_row = b.height_pt;
+    if (b.what == "table row" && b.text == "row 4 | 16.25 | ok") plain_row = b.height_pt;
     if (b.what == "table row" && b.text.rfind("row 5 |", 0) == 0) long_row = b.height_pt;
     if (b.what == "table cell" && b.text == "FAIL") CHECK(b.colour == "#c00000");
     if (b.what == "table cell" && b.text == "ok") CHECK(b.colour != "#c00000");
@@ -100,6 +107,24 @@ TEST_CASE("a long table continues on the next page with its header repeated; lon
   CHECK(table_pages.size() >= 2);
   CHECK(header_pages == table_pages);
   CHECK(long_row > 1.5 * plain_row);  // two lines at least: wrapped, not cut
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the numbers of a column share the x of their decimal point, inside the column") {
+  const fs::path dir = TempDir("pdf_point");
+  const PdfLayout layout = WritePdfDocument(Sample(SmallSvg(dir)), "");
+  std::set<double> points;
+  int cells = 0;
+  for (const PlacedBox& b : layout.boxes) {
+    if (b.what != "table cell" || b.text.find_first_of("0123456789") != 0) continue;  // the value column
+    if (b.text.rfind("row", 0) == 0) continue;
+    ++cells;
+    points.insert(b.point_x_pt);
+    CHECK(b.point_x_pt > b.x_pt);
+    CHECK(b.point_x_pt < b.x_pt + b.width_pt);
+  }
+  CHECK(cells == 80);
+  CHECK(points.size() == 1);  // 0.25, 6241.25, 1.5e-05 and "12 %" alike
   fs::remove_all(dir);
 }
 
