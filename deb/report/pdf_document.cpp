@@ -34,6 +34,12 @@ PdfBlock Paragraph(std::string text, double size_pt, bool bold, bool alert) {
   return b;
 }
 
+PdfBlock Bullet(std::string text) {
+  PdfBlock b = Paragraph(std::move(text));
+  b.bullet = true;
+  return b;
+}
+
 PdfBlock TableBlock(std::string title, PdfTable table) {
   PdfBlock b;
   b.kind = PdfBlockKind::kTable;
@@ -79,7 +85,8 @@ namespace {
   X(pango_font_description_from_string) X(pango_font_description_set_absolute_size)                          \
   X(pango_font_description_set_style) X(pango_font_description_set_weight) X(pango_layout_get_size)          \
   X(pango_layout_set_font_description) X(pango_layout_set_text) X(pango_layout_set_width)                    \
-  X(pango_layout_set_wrap) X(rsvg_handle_get_intrinsic_size_in_pixels) X(rsvg_handle_new_from_file)          \
+  X(pango_layout_set_wrap) X(pango_layout_set_indent) X(pango_layout_set_tabs) X(pango_tab_array_new_with_positions) \
+  X(pango_tab_array_free) X(rsvg_handle_get_intrinsic_size_in_pixels) X(rsvg_handle_new_from_file)          \
   X(rsvg_handle_render_document)
 #define DEB_PDF_POINTER(f) decltype(&::f) f = nullptr;
 DEB_PDF_FUNCTIONS(DEB_PDF_POINTER)
@@ -348,12 +355,22 @@ class Composer {
   }
 
   void DoParagraph(const PdfBlock& b) {
-    Layout l = MakeLayout(b.text, b.size_pt, b.bold, kTextWidthPt);
+    // A bullet hangs left of its item's lines.
+    const double indent = b.bullet ? 1.2 * b.size_pt : 0.0;
+    const std::string text = b.bullet ? "•\t" + b.text : b.text;
+    Layout l = MakeLayout(text, b.size_pt, b.bold, kTextWidthPt - indent);
+    if (b.bullet) {
+      pango_layout_set_indent(l.get(), static_cast<int>(-indent * PANGO_SCALE));
+      PangoTabArray* tabs = pango_tab_array_new_with_positions(1, FALSE, PANGO_TAB_LEFT,
+                                                               static_cast<int>(indent * PANGO_SCALE));
+      pango_layout_set_tabs(l.get(), tabs);
+      pango_tab_array_free(tabs);
+    }
     const double h = Size(l.get()).second;
     Need(h);
     const std::string colour = b.alert ? kAlert : kInk;
-    Show(l.get(), kMarginPt, y_, colour);
-    Place("paragraph", b.text, kMarginPt, y_, kTextWidthPt, h, colour);
+    Show(l.get(), kMarginPt + indent, y_, colour);
+    Place("paragraph", text, kMarginPt, y_, kTextWidthPt, h, colour);
     y_ += h + 0.45 * b.size_pt;
   }
 

@@ -45,6 +45,7 @@ struct PdfBlock {
   int level = 1;      // heading: 0 title (not in the outline), 1 section, 2 subsection
   double size_pt = 9.5;  // paragraph
   bool bold = false, alert = false;  // paragraph
+  bool bullet = false;               // paragraph: an item of a list, "• " and a hanging indent
   PdfTable table;
   std::string svg_file;  // figure: drawn as vectors across the text width
 };
@@ -52,6 +53,7 @@ struct PdfBlock {
 // Starts `kind` blocks: Heading(1, "Overview"), Paragraph("..."), ...
 PdfBlock Heading(int level, std::string text);
 PdfBlock Paragraph(std::string text, double size_pt = 9.5, bool bold = false, bool alert = false);
+PdfBlock Bullet(std::string text);
 PdfBlock TableBlock(std::string title, PdfTable table);
 PdfBlock Figure(std::string svg_file, std::string caption);
 PdfBlock Contents();

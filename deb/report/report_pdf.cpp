@@ -229,9 +229,9 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   b.push_back(PageBreak());
   b.push_back(Heading(1, "Warnings and notes"));
   if (result.warnings.empty()) b.push_back(Paragraph("The evaluation raised no warning."));
-  for (const std::string& w : result.warnings) b.push_back(Paragraph("• " + w));
+  for (const std::string& w : result.warnings) b.push_back(Bullet(w));
   b.push_back(Heading(1, "Conventions"));
-  for (const std::string& c : in.facts.conventions) b.push_back(Paragraph("• " + c));
+  for (const std::string& c : in.facts.conventions) b.push_back(Bullet(c));
   return s;
 }
 
