@@ -138,7 +138,7 @@ constexpr double kTextWidthPt = kPageWidthPt - 2.0 * kMarginPt;
 constexpr double kFooterPt = 9.0;                                       // footer text height
 constexpr double kBodyBottomPt = kPageHeightPt - kMarginPt - kFooterPt - 8.0;  // body stays above the footer
 constexpr double kCellPadPt = 3.5, kRowPadPt = 2.0;
-constexpr double kTableFontPt = 8.0, kBoxInsetPt = 6.0;
+constexpr double kTableFontPt = 8.0, kSmallestTableFontPt = 5.5, kBoxInsetPt = 6.0;
 constexpr double kLongestWordPt = 75.0;  // a longer word may break inside a narrow column
 const char* const kInk = "#1a1a1a";
 const char* const kAlert = "#c00000";
@@ -455,7 +455,7 @@ class Composer {
   }
   double Width(const std::string& text, bool bold) {
     if (text.empty()) return 0.0;
-    Layout l = MakeLayout(text, kTableFontPt, bold, 0);
+    Layout l = MakeLayout(text, table_font_, bold, 0);
     return Size(l.get()).first;
   }
 
@@ -468,26 +468,38 @@ class Composer {
     const double inset = t.boxed ? kBoxInsetPt : 0.0, width = kTextWidthPt - 2.0 * inset;
     // Natural widths; numeric columns as the widest integer part plus the widest fraction.
     std::vector<double> natural(columns, 0.0), shortest(columns, 0.0), left(columns, 0.0), right(columns, 0.0);
-    for (std::size_t c = 0; c < columns; ++c) {
-      if (c < t.header.size()) {
-        natural[c] = Width(t.header[c], true);
-        shortest[c] = std::min(kLongestWordPt, LongestWord(t.header[c], true));
-      }
-      for (const auto& row : t.rows) {
-        if (c >= row.size()) continue;
-        if (numeric(c)) {
-          const Split s = AtDecimalPoint(row[c].text);
-          left[c] = std::max(left[c], Width(s.left, row[c].bold));
-          right[c] = std::max(right[c], Width(s.right, row[c].bold));
-        } else {
-          Layout l = MakeLayout(row[c].text, kTableFontPt, row[c].bold, 0);
-          natural[c] = std::max(natural[c], Size(l.get()).first);
-          shortest[c] = std::max(shortest[c], std::min(kLongestWordPt, LongestWord(row[c].text, row[c].bold)));
+    table_font_ = kTableFontPt;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      std::fill(natural.begin(), natural.end(), 0.0);
+      std::fill(shortest.begin(), shortest.end(), 0.0);
+      std::fill(left.begin(), left.end(), 0.0);
+      std::fill(right.begin(), right.end(), 0.0);
+      for (std::size_t c = 0; c < columns; ++c) {
+        if (c < t.header.size()) {
+          natural[c] = Width(t.header[c], true);
+          shortest[c] = std::min(kLongestWordPt, LongestWord(t.header[c], true));
         }
+        for (const auto& row : t.rows) {
+          if (c >= row.size()) continue;
+          if (numeric(c)) {
+            const Split s = AtDecimalPoint(row[c].text);
+            left[c] = std::max(left[c], Width(s.left, row[c].bold));
+            right[c] = std::max(right[c], Width(s.right, row[c].bold));
+          } else {
+            Layout l = MakeLayout(row[c].text, table_font_, row[c].bold, 0);
+            natural[c] = std::max(natural[c], Size(l.get()).first);
+            shortest[c] = std::max(shortest[c], std::min(kLongestWordPt, LongestWord(row[c].text, row[c].bold)));
+          }
+        }
+        if (numeric(c)) natural[c] = std::max(natural[c], left[c] + right[c]);
+        natural[c] += 2.0 * kCellPadPt;
+        shortest[c] = numeric(c) ? natural[c] : shortest[c] + 2.0 * kCellPadPt;
       }
-      if (numeric(c)) natural[c] = std::max(natural[c], left[c] + right[c]);
-      natural[c] += 2.0 * kCellPadPt;
-      shortest[c] = numeric(c) ? natural[c] : shortest[c] + 2.0 * kCellPadPt;
+      // Columns that cannot fit even wrapped: a smaller font, once.
+      double least = 0.0;
+      for (double w : shortest) least += w;
+      if (least <= width || attempt == 1) break;
+      table_font_ = std::max(kSmallestTableFontPt, 0.97 * kTableFontPt * width / least);
     }
     // Too wide: every column keeps its longest word (numbers whole) and the
     // rest of the width goes to the columns in proportion to what they
@@ -504,6 +516,10 @@ class Composer {
       for (std::size_t c = 0; c < columns; ++c)
         widths[c] = shortest[c] + spare * (natural[c] - shortest[c]) / missing;
     }
+    // Still too wide at the smallest font: every column narrower alike (text
+    // wraps inside them; a long number may reach into its neighbour).
+    if (least > width)
+      for (double& w : widths) w *= width / least;
     double table_width = 0.0;
     for (double w : widths) table_width += w;
     const double x0 = kMarginPt + inset;
@@ -516,7 +532,7 @@ class Composer {
       for (std::size_t c = 0; c < columns; ++c) {
         const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
         const bool split = numeric(c) && !header;
-        ls.push_back(MakeLayout(cell.text, kTableFontPt, cell.bold || header, split ? 0 : widths[c] - 2 * kCellPadPt));
+        ls.push_back(MakeLayout(cell.text, table_font_, cell.bold || header, split ? 0 : widths[c] - 2 * kCellPadPt));
         h = std::max(h, Size(ls.back().get()).second);
       }
       return std::make_pair(std::move(ls), h + 2.0 * kRowPadPt);
@@ -558,8 +574,8 @@ class Composer {
           // The decimal point of every row at the same x; the text right of it may stick out.
           const Split s = AtDecimalPoint(cell.text);
           point_x = x + widths[c] - kCellPadPt - right[c];
-          Layout l = MakeLayout(s.left, kTableFontPt, cell.bold, 0);
-          Layout r = MakeLayout(s.right, kTableFontPt, cell.bold, 0);
+          Layout l = MakeLayout(s.left, table_font_, cell.bold, 0);
+          Layout r = MakeLayout(s.right, table_font_, cell.bold, 0);
           Show(l.get(), point_x - Size(l.get()).first, y_ + kRowPadPt, colour);
           Show(r.get(), point_x, y_ + kRowPadPt, colour);
         } else if (numeric(c)) {
@@ -627,6 +643,7 @@ class Composer {
   std::vector<Target> targets_, found_;
   int total_pages_;
   int page_ = 1, figures_ = 0, last_section_id_ = 0;
+  double table_font_ = kTableFontPt;  // of the table being set
   double y_ = kMarginPt;
   PdfLayout layout_;
 };
