@@ -520,6 +520,11 @@ class Composer {
     // wraps inside them; a long number may reach into its neighbour).
     if (least > width)
       for (double& w : widths) w *= width / least;
+    if (t.boxed) {  // a box spans the text width: its last column takes what is left
+      double used = 0.0;
+      for (double w : widths) used += w;
+      if (used < width) widths.back() += width - used;
+    }
     double table_width = 0.0;
     for (double w : widths) table_width += w;
     const double x0 = kMarginPt + inset;

@@ -173,6 +173,10 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   for (const auto& [label, value] : in.facts.items) facts.rows.push_back({{label, true, false}, {value}});
   b.push_back(TableBlock("", facts));
   b.push_back(TableBlock("Verdict", VerdictTable(result)));
+  if (const std::size_t n = result.warnings.size(); n > 0)
+    b.push_back(Paragraph("The evaluation raised " + std::to_string(n) + (n == 1 ? " warning" : " warnings") +
+                              ": see Warnings and notes.",
+                          9.5, true));
   b.push_back(PageBreak());
   b.push_back(Heading(1, "Contents"));
   b.push_back(Contents());

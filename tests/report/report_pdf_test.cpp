@@ -171,3 +171,26 @@ TEST_CASE("report.pdf of a failing budget: verdict and guidance on page 1, a sec
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("page 1 says how many warnings the evaluation raised; the last section lists them") {
+  Evaluated e{LoadBudgetFile(ExampleBudget("measured_stage.yaml")), {}};
+  e.result = deb::Evaluate(e.budget);
+  REQUIRE(e.result.warnings.size() == 1);
+  ReportPdfInputs in;
+  in.budget = &e.budget;
+  in.result = &e.result;
+  const PdfDocumentSpec s = ReportPdfSpec(in);
+  bool on_page_1 = false, listed = false, first_page = true;
+  for (const PdfBlock& b : s.blocks) {
+    if (b.kind == PdfBlockKind::kPageBreak) first_page = false;
+    if (b.kind != PdfBlockKind::kParagraph) continue;
+    on_page_1 = on_page_1 || (first_page && b.text == "The evaluation raised 1 warning: see Warnings and notes.");
+    listed = listed || (b.bullet && b.text == e.result.warnings[0]);
+  }
+  CHECK(on_page_1);
+  CHECK(listed);
+}
+
+}  // namespace deb::report
