@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include <fstream>
+
 #include "deb/io/budget_yaml.h"
 #include "deb/report/report_writer.h"
 #include "tests/support/cli_harness.h"
@@ -191,6 +193,63 @@ TEST_CASE("page 1 says how many warnings the evaluation raised; the last section
   }
   CHECK(on_page_1);
   CHECK(listed);
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("the failing example's document keeps every box inside the margin; its verdict and FAIL cells are red") {
+  Evaluated e{LoadBudgetFile(ExampleBudget("wafer_stage.yaml")), {}};
+  e.result = deb::Evaluate(e.budget);
+  const fs::path dir = TempDir("report_pdf_layout");
+  std::vector<Plot> plots;
+  for (int o = -1; o < static_cast<int>(e.result.outputs.size()); ++o)
+    for (PlotKind kind : {PlotKind::kCps, PlotKind::kSpectrum, PlotKind::kBands, PlotKind::kPath}) {
+      Plot p;
+      p.name = "plot_" + std::to_string(plots.size());
+      p.kind = o < 0 ? PlotKind::kOverview : kind;
+      p.output = o;
+      p.caption = "A plot.";
+      std::ofstream(dir / (p.name + ".svg"))
+          << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"662\" height=\"420\"><rect width=\"662\" "
+             "height=\"420\" fill=\"none\" stroke=\"black\"/></svg>\n";
+      plots.push_back(p);
+      if (o < 0) break;
+    }
+  ReportPdfInputs in;
+  in.budget = &e.budget;
+  in.result = &e.result;
+  in.plots = &plots;
+  in.figure_dir = dir.string();
+  const PdfLayout layout = WritePdfDocument(ReportPdfSpec(in), "");
+  int fail_cells = 0, figures = 0;
+  for (const PlacedBox& b : layout.boxes) {
+    CAPTURE(b.what);
+    CAPTURE(b.text);
+    CHECK(b.x_pt >= kMarginPt - 1e-6);
+    CHECK(b.y_pt >= kMarginPt - 1e-6);
+    CHECK(b.x_pt + b.width_pt <= kPageWidthPt - kMarginPt + 1e-6);
+    CHECK(b.y_pt + b.height_pt <= kPageHeightPt - kMarginPt + 1e-6);
+    if (b.what == "table cell" && b.text == "FAIL") {
+      ++fail_cells;
+      CHECK(b.colour == "#c00000");
+    }
+    figures += b.what == "figure";
+  }
+  CHECK(fail_cells == 2 + 3);  // the verdict: two outputs; the summary: position, its 0.1–10 Hz band, image_shift
+  CHECK(figures == static_cast<int>(plots.size()));
+  // The verdict box on page 1; each output's section starts on a page of its own.
+  for (const PlacedBox& b : layout.boxes)
+    if (b.what == "box") CHECK(b.page == 1);
+  for (const OutlineEntry& o : layout.outline)
+    if (o.text.rfind("Output ", 0) == 0) {
+      int first_on_page = 0;
+      for (const PlacedBox& b : layout.boxes)
+        if (b.page == o.page && first_on_page == 0) first_on_page = 1 + (b.text == o.text ? 1 : 0);
+      CHECK_MESSAGE(first_on_page == 2, o.text);
+    }
+  fs::remove_all(dir);
 }
 
 }  // namespace deb::report
