@@ -86,7 +86,8 @@ namespace {
   X(pango_font_description_set_style) X(pango_font_description_set_weight) X(pango_layout_get_size)          \
   X(pango_layout_set_font_description) X(pango_layout_set_text) X(pango_layout_set_width)                    \
   X(pango_layout_set_wrap) X(pango_layout_set_indent) X(pango_layout_set_tabs) X(pango_tab_array_new_with_positions) \
-  X(pango_tab_array_free) X(rsvg_handle_get_intrinsic_size_in_pixels) X(rsvg_handle_new_from_file)          \
+  X(pango_tab_array_free) X(pango_layout_get_pixel_extents) X(cairo_set_dash) X(cairo_set_line_cap)             \
+  X(rsvg_handle_get_intrinsic_size_in_pixels) X(rsvg_handle_new_from_file)          \
   X(rsvg_handle_render_document)
 #define DEB_PDF_POINTER(f) decltype(&::f) f = nullptr;
 DEB_PDF_FUNCTIONS(DEB_PDF_POINTER)
@@ -421,6 +422,20 @@ class Composer {
       if (draw_) cairo_tag_begin(cr_, CAIRO_TAG_LINK, Link(t).c_str());
       Show(text.get(), kMarginPt + indent, y_, kInk);
       Show(number.get(), kPageWidthPt - kMarginPt - number_w, y_, kInk);
+      if (draw_) {  // dotted leader from the title's last line to its page number
+        PangoRectangle last{};
+        pango_layout_get_pixel_extents(text.get(), nullptr, &last);
+        const double from = kMarginPt + indent + last.x + last.width + 4.0, to = kPageWidthPt - kMarginPt - number_w - 4.0;
+        const double baseline = y_ + Size(text.get()).second - 0.3 * size;
+        if (to > from) {
+          const double dots[] = {0.6, 2.4};
+          cairo_save(cr_);
+          cairo_set_dash(cr_, dots, 2, 0.0);
+          cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
+          Rule(from, to, baseline, 0.8, "#909090");
+          cairo_restore(cr_);
+        }
+      }
       if (draw_) cairo_tag_end(cr_, CAIRO_TAG_LINK);
       Place("contents", b.text + " ... " + std::to_string(t.page), kMarginPt + indent, y_, kTextWidthPt - indent, h,
             kInk);
