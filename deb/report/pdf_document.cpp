@@ -425,7 +425,8 @@ class Composer {
       if (draw_) {  // dotted leader from the title's last line to its page number
         PangoRectangle last{};
         pango_layout_get_pixel_extents(text.get(), nullptr, &last);
-        const double from = kMarginPt + indent + last.x + last.width + 4.0, to = kPageWidthPt - kMarginPt - number_w - 4.0;
+        const double from = kMarginPt + indent + last.x + last.width + 4.0;
+        const double to = kPageWidthPt - kMarginPt - number_w - 4.0;
         const double baseline = y_ + Size(text.get()).second - 0.3 * size;
         if (to > from) {
           const double dots[] = {0.6, 2.4};
@@ -462,7 +463,8 @@ class Composer {
     std::size_t start = 0;
     while (start <= text.size()) {
       const std::size_t end = std::min(text.find(' ', start), text.find('\n', start));
-      widest = std::max(widest, Width(text.substr(start, end == std::string::npos ? std::string::npos : end - start), bold));
+      const std::size_t length = end == std::string::npos ? std::string::npos : end - start;
+      widest = std::max(widest, Width(text.substr(start, length), bold));
       if (end == std::string::npos) break;
       start = end + 1;
     }
