@@ -1,19 +1,13 @@
 #include "deb/report/pdf_document.h"
 
-#include <cairo-pdf.h>
-#include <cairo.h>
-#include <dlfcn.h>
-#include <librsvg/rsvg.h>
-#include <pango/pangocairo.h>
-
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <map>
 #include <memory>
 #include <utility>
 
 #include "deb/core/error.h"
+#include "deb/report/pdf_libraries.h"
 
 namespace deb::report {
 
@@ -69,71 +63,6 @@ PdfBlock PageBreak() {
 }
 
 namespace {
-
-// cairo, pango and librsvg are not linked: they are loaded when the first
-// document is written. Linked, they and what they need (46 shared libraries,
-// GIO and gdk-pixbuf among them) cost 4 ms of every start of deb, a report
-// or not. Only the functions below are used; each is a pointer named as the
-// function, which it hides in the code below.
-#define DEB_PDF_FUNCTIONS(X)                                                                                \
-  X(cairo_create) X(cairo_destroy) X(cairo_fill) X(cairo_line_to) X(cairo_move_to) X(cairo_pdf_surface_add_outline) \
-  X(cairo_pdf_surface_create) X(cairo_pdf_surface_create_for_stream) X(cairo_pdf_surface_set_metadata)         \
-  X(cairo_rectangle) X(cairo_restore) X(cairo_save) X(cairo_set_line_width) X(cairo_set_source_rgb)           \
-  X(cairo_show_page) X(cairo_status_to_string) X(cairo_stroke) X(cairo_surface_destroy) X(cairo_surface_finish) \
-  X(cairo_surface_status) X(cairo_tag_begin) X(cairo_tag_end) X(g_error_free) X(g_object_unref)              \
-  X(pango_cairo_create_layout) X(pango_cairo_show_layout) X(pango_font_description_free)                      \
-  X(pango_font_description_from_string) X(pango_font_description_set_absolute_size)                          \
-  X(pango_font_description_set_style) X(pango_font_description_set_weight) X(pango_layout_get_size)          \
-  X(pango_layout_set_font_description) X(pango_layout_set_text) X(pango_layout_set_width)                    \
-  X(pango_layout_set_wrap) X(pango_layout_set_indent) X(pango_layout_set_tabs) X(pango_tab_array_new_with_positions) \
-  X(pango_tab_array_free) X(pango_layout_get_pixel_extents) X(cairo_set_dash) X(cairo_set_line_cap)             \
-  X(rsvg_handle_get_intrinsic_size_in_pixels) X(rsvg_handle_new_from_file)          \
-  X(rsvg_handle_render_document)
-#define DEB_PDF_POINTER(f) decltype(&::f) f = nullptr;
-DEB_PDF_FUNCTIONS(DEB_PDF_POINTER)
-#undef DEB_PDF_POINTER
-
-// The libraries by soname (stable for over a decade), each with what it needs.
-constexpr const char* kPdfLibraries[] = {"libglib-2.0.so.0", "libgobject-2.0.so.0", "libcairo.so.2",
-                                         "libpango-1.0.so.0", "libpangocairo-1.0.so.0", "librsvg-2.so.2"};
-
-// Why the libraries cannot be used; "" once every function is found.
-std::string LoadPdfLibraries() {
-  std::vector<void*> handles;
-  for (const char* soname : kPdfLibraries) {
-    // Never closed: GLib keeps process-wide state until exit.
-    void* const h = dlopen(soname, RTLD_NOW | RTLD_LOCAL);
-    if (h == nullptr) {
-      const char* why = dlerror();
-      return why != nullptr ? why : std::string(soname) + ": dlopen failed";
-    }
-    handles.push_back(h);
-  }
-  const auto resolve = [&](const char* name, auto& f) {
-    for (void* h : handles)
-      if (void* const symbol = dlsym(h, name)) {
-        static_assert(sizeof f == sizeof symbol);
-        std::memcpy(&f, &symbol, sizeof f);
-        return true;
-      }
-    return false;
-  };
-  std::string missing;
-#define DEB_PDF_RESOLVE(f) \
-  if (!resolve(#f, f)) missing += std::string(missing.empty() ? "" : ", ") + #f;
-  DEB_PDF_FUNCTIONS(DEB_PDF_RESOLVE)
-#undef DEB_PDF_RESOLVE
-  return missing.empty() ? "" : "the libraries have no function " + missing;
-}
-
-// @throws WriteError naming the library that cannot be loaded.
-void RequirePdfLibraries() {
-  static const std::string failure = LoadPdfLibraries();
-  if (!failure.empty())
-    throw WriteError("cannot typeset report.pdf: cairo, pango and librsvg cannot be loaded (" + failure +
-                     "); install them (Debian: libcairo2 libpango-1.0-0 libpangocairo-1.0-0 librsvg2-2) or "
-                     "leave pdf out of --format");
-}
 
 constexpr double kTextWidthPt = kPageWidthPt - 2.0 * kMarginPt;
 constexpr double kFooterPt = 9.0;                                       // footer text height
