@@ -447,20 +447,37 @@ class Composer {
       if (least <= width || attempt == 1) break;
       table_font_ = std::max(kSmallestTableFontPt, 0.97 * kTableFontPt * width / least);
     }
-    // Too wide: every column keeps its longest word (numbers whole) and the
-    // rest of the width goes to the columns in proportion to what they
-    // would need unwrapped (long text wraps, never cut).
+    // Too wide: every column keeps its longest word (numbers whole); the
+    // rest of the width is shared out evenly, a column that needs less than
+    // its share unwrapped taking only that (long text wraps, never cut).
     std::vector<double> widths = natural;
-    double total = 0.0, least = 0.0, missing = 0.0;
+    double total = 0.0, least = 0.0;
     for (std::size_t c = 0; c < columns; ++c) {
       total += natural[c];
       least += shortest[c];
-      missing += natural[c] - shortest[c];
     }
-    if (total > width && missing > 0.0) {
-      const double spare = std::max(0.0, width - least);
+    if (total > width) {
+      widths = shortest;
+      double spare = std::max(0.0, width - least);
+      std::vector<std::size_t> open;
       for (std::size_t c = 0; c < columns; ++c)
-        widths[c] = shortest[c] + spare * (natural[c] - shortest[c]) / missing;
+        if (natural[c] > shortest[c]) open.push_back(c);
+      while (!open.empty() && spare > 1e-9) {
+        const double share = spare / static_cast<double>(open.size());
+        std::vector<std::size_t> still;
+        for (std::size_t c : open)
+          if (natural[c] - widths[c] <= share) {
+            spare -= natural[c] - widths[c];
+            widths[c] = natural[c];
+          } else {
+            still.push_back(c);
+          }
+        if (still.size() == open.size()) {  // none satisfied: an even share each
+          for (std::size_t c : still) widths[c] += share;
+          break;
+        }
+        open = std::move(still);
+      }
     }
     // Still too wide at the smallest font: every column narrower alike (text
     // wraps inside them; a long number may reach into its neighbour).
