@@ -190,6 +190,26 @@ TEST_CASE("the PDF has the pages of its layout, an outline, its text, and the sa
   fs::remove_all(dir);
 }
 
+TEST_CASE("in a table too wide, short columns stay on one line and the long text wraps") {
+  PdfTable t;
+  t.header = {"requirement", "value", "what would meet it"};
+  t.numeric = {false, false, false};
+  std::string guidance;
+  for (int k = 0; k < 40; ++k) guidance += "reduce the floor vibration ";
+  t.rows = {{{"0.1–10 Hz: RMS ≤ 0.8 nm"}, {"1.333 nm"}, {guidance}}, {{"RMS ≤ 1.5 nm"}, {"2.114 nm"}, {"–"}}};
+  PdfDocumentSpec spec;
+  spec.blocks.push_back(TableBlock("", t));
+  const PdfLayout layout = WritePdfDocument(spec, "");
+  double one_line = 0.0, wrapped = 0.0;
+  for (const PlacedBox& b : layout.boxes) {
+    if (b.what == "table header row") one_line = b.height_pt;
+    if (b.what == "table row" && b.text.rfind("0.1–10 Hz", 0) == 0) wrapped = b.height_pt;
+    if (b.what == "table row" && b.text.rfind("RMS ≤ 1.5", 0) == 0) CHECK(b.height_pt == doctest::Approx(one_line));
+  }
+  CHECK(one_line > 0.0);
+  CHECK(wrapped > 3.0 * one_line);  // the guidance, several lines
+}
+
 TEST_CASE("a figure that is not an SVG file is an error naming it") {
   const fs::path dir = TempDir("pdf_bad");
   PdfDocumentSpec spec;
