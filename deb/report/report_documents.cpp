@@ -2,7 +2,6 @@
 
 #include <sstream>
 
-#include "deb/report/title_page.h"
 #include "deb/version.h"
 
 namespace deb::report {
@@ -128,7 +127,7 @@ std::string IndexHtml(const DocumentInputs& in) {
   ForPlots(in.plots, PlotKind::kPath, -1, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
 
   s << "<h2 id=\"files\">Files</h2>\n<ul class=\"files\">\n";
-  if (in.pdf) s << "<li><a href=\"report.pdf\">report.pdf</a> — every plot, after a title page</li>\n";
+  if (in.pdf) s << "<li><a href=\"report.pdf\">report.pdf</a> — the typeset report: verdict, contents, tables and every plot</li>\n";
   s << "<li><a href=\"report.md\">report.md</a> — these tables as Markdown</li>\n";
   for (const auto& f : in.data_files) s << "<li><a href=\"" << Href(f) << "\">" << HtmlEscape(f) << "</a></li>\n";
   if (!in.plots.empty())  // written with the plots' files
@@ -169,7 +168,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
   s << "## Paths\n\n";
   ForPlots(in.plots, PlotKind::kPath, -1, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
   s << "## Files\n\n";
-  if (in.pdf) s << "- [report.pdf](report.pdf): every plot, after a title page\n";
+  if (in.pdf) s << "- [report.pdf](report.pdf): the typeset report: verdict, contents, tables and every plot\n";
   s << "- [index.html](index.html): this report for a browser\n";
   for (const auto& f : in.data_files) s << "- [" << f << "](" << Href(f) << ")\n";
   if (!in.plots.empty()) s << "- [plots/colours.csv](plots/colours.csv): the colour and dash pattern of each contributor\n";

@@ -11,7 +11,7 @@ namespace deb {
 
 // File formats of the plots: kPng and kSvg write one file per plot under
 // plots/ (index.html shows the PNGs, or the SVGs without PNGs); kPdf writes
-// all plots, after a title page, into report.pdf.
+// report.pdf, a typeset document holding the tables and every plot.
 enum class PlotFormat { kPng, kPdf, kSvg };
 inline constexpr EnumName<PlotFormat> kPlotFormatNames[] = {
     {PlotFormat::kPng, "png"}, {PlotFormat::kPdf, "pdf"}, {PlotFormat::kSvg, "svg"}};
