@@ -79,6 +79,7 @@
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
+#include "deb/budget/groups.h"
 #include "deb/budget/isolation_paths.h"
 #include "deb/budget/loop_analysis.h"
 #include "deb/budget/output_metric.h"

@@ -28,6 +28,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
+#include "deb/budget/groups.h"
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 #include "deb/core/suggest.h"
@@ -85,6 +86,27 @@ int RunMapped(CLI::App& app, F&& parse_and_run) {
   }
 }
 
+// A group path as part of a directory name: "stage/amplifier" -> "stage_amplifier".
+std::string DirectoryWord(const std::string& text) {
+  std::string word = text;
+  for (char& c : word)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+          c == '.'))
+      c = '_';
+  return word;
+}
+
+// Each group's RMS and share, indented by depth, after the contributors.
+void PrintGroups(const deb::OutputResult& o) {
+  const std::vector<deb::GroupResult> groups = deb::ComputeGroups(o);
+  if (groups.empty()) return;
+  std::printf("  %-24s %14s %8s\n", "group", "rms", "share");
+  for (const deb::GroupResult& g : groups) {
+    const std::string label = std::string(2 * static_cast<std::size_t>(g.depth), ' ') + g.name;
+    std::printf("  %-24s %14.6g %7.2f%%\n", label.c_str(), std::sqrt(g.variance), 100.0 * g.share);
+  }
+}
+
 // The figures, and for each output that fails what would fix it; printed
 // before the report is drawn (gnuplot takes most of a run).
 void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds) {
@@ -112,6 +134,7 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
         std::printf("  %-24s %s\n", "", modes.c_str());
       }
     }
+    PrintGroups(o);
     for (const auto& b : o.band_requirements)
       std::printf("  band %g-%g Hz: rms %.6g (requirement %.6g: %s)\n", b.requirement.lo_hz, b.requirement.hi_hz,
                   b.rms(), b.requirement.rms_max, b.pass() ? "PASS" : "FAIL");
@@ -120,10 +143,14 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
   std::fflush(stdout);  // before the report's progress and gnuplot's time
 }
 
-int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides, std::string out_dir,
-        int threads, bool quiet, bool strict, deb::ReportOptions report) {
-  const deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
-  if (out_dir.empty()) out_dir = (std::filesystem::path("reports") / budget.name).string();
+int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides, const std::string& group,
+        std::string out_dir, int threads, bool quiet, bool strict, deb::ReportOptions report) {
+  deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
+  if (!group.empty()) budget = deb::SelectGroup(budget, group);
+  if (out_dir.empty())
+    out_dir = (std::filesystem::path("reports") /
+               (group.empty() ? budget.name : budget.name + "_" + DirectoryWord(group)))
+                  .string();
   deb::EngineOptions options;
   options.threads = threads;
   const auto t0 = std::chrono::steady_clock::now();
@@ -278,6 +305,10 @@ int main(int argc, char** argv) {
   run->add_option("budget", budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
   std::vector<deb::BudgetOverride> run_overrides, check_overrides, model_overrides;
   deb::tools::AddOverridesOption(run, &run_overrides);
+  std::string run_group;
+  run->add_option("--group", run_group,
+                  "Report one sub-tree: only the contributors in this group or below it (e.g. stage/amplifier); "
+                  "default directory reports/<budget-name>_<group>");
   run->add_option("--out,-o", out_dir, "Report directory (default: reports/<budget-name>)");
   run->add_option("--threads,-j", threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet,-q", quiet, "Print nothing but warnings and errors");
@@ -343,7 +374,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     if (*run) {
       report.plot_scripts = report.plots || plot_scripts;
-      return Run(budget_file, run_overrides, out_dir, threads, quiet, strict, report);
+      return Run(budget_file, run_overrides, run_group, out_dir, threads, quiet, strict, report);
     }
     if (*check) return Check(check_file, check_overrides);
     if (*model) return Model(model_file, model_overrides);

@@ -850,6 +850,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
       cr.source = c.source;
       cr.path = c.path;
       cr.inputs = c.inputs;
+      cr.group = c.group;
       cr.psd = std::move(psd[o]);
       cr.cps = CumulativeIntegral(result.grid, cr.psd);
       cr.tail_variance_estimate = TailEstimate(f, cr.psd);

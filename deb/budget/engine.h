@@ -54,6 +54,7 @@ struct ContributorResult {
   std::string source;  // the budget's source and path names: a result
   std::string path;    // describes itself without the Budget beside it
   std::vector<std::string> inputs;  // the path inputs it drives (Contributor::inputs); empty: all
+  std::string group;                // Contributor::group ("stage/amplifier"), or empty
   // The source's tones (tone_spectrum.h) at this output, each propagated
   // exactly: variance |H(f0) a|^2 (output unit^2). Included in `cps` (a step
   // at the first grid point >= f_hz) and `variance`, not in `psd`.
