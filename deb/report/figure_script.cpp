@@ -19,7 +19,7 @@ namespace {
 
 // Left and right margins of every panel of a multiplot, in characters, so
 // that their x axes line up whatever their tic labels are.
-constexpr double kLeftMargin = 12.0, kRightMargin = 42.0;
+constexpr double kLeftMargin = 12.0, kRightMargin = 34.0;
 
 std::string Label(const std::string& text) {
   return text.find('\n') == std::string::npos ? Quote(text) : QuoteLines(text);
@@ -204,7 +204,7 @@ std::string EmitFigure(const PlotFigure& figure) {
   for (std::size_t i = 0; i < n; ++i) {
     const double h = (1.0 - kTitle) * figure.panels[i].height / total;
     s << "set size 1," << CsvNumber(h) << "\nset origin 0," << CsvNumber(top - h) << "\n";
-    s << "set tmargin " << (i == 0 ? "1" : "0.5") << "\nset bmargin " << (i + 1 == n ? "4" : "0.5") << "\n";
+    s << "set tmargin " << (i == 0 ? "1" : "0.5") << "\nset bmargin " << (i + 1 == n ? "5" : "0.5") << "\n";
     Panel(s, figure.panels[i], true, i + 1 == n);
     top -= h;
   }
