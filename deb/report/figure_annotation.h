@@ -14,6 +14,7 @@ enum class AnnotationKind {
   kVerticalLine,    // x = x0 across the plot
   kSegment,         // (x0, y0) to (x1, y1)
   kMarker,          // a point at (x0, y0), `label` beside it
+  kLabel,           // `label` starting at (x0, y0), offset by (label_dx, label_dy)
   kText,            // `label` at graph coordinates (x0, y0) in 0..1
 };
 

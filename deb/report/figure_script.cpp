@@ -48,7 +48,7 @@ void Axis(std::ostringstream& s, const FigureAxis& a, const std::string& name) {
   if (!a.tics.empty()) {
     s << "set " << name << "tics nomirror (";
     for (std::size_t i = 0; i < a.tics.size(); ++i)
-      s << (i ? ", " : "") << Quote(a.tics[i].second) << " " << CsvNumber(a.tics[i].first);
+      s << (i ? ", " : "") << Label(a.tics[i].second) << " " << CsvNumber(a.tics[i].first);
     s << ")\n";
   } else {
     s << "set " << name << "tics nomirror\n";
@@ -110,8 +110,11 @@ void Clauses(const FigureSeries& s, bool log_y, std::vector<std::string>& out) {
       // on the key's white) the colour of the layer.
       out.push_back(solid + " notitle");
       out.push_back(source + " with " + with + " fillstyle transparent pattern " + std::to_string(s.fill_pattern) +
-                    " border linecolor rgb " + Quote(s.edge_colour.empty() ? s.colour : s.edge_colour) +
-                    " fillcolor rgb " + Quote(s.hatch_colour) + " " + KeyOf(s.key));
+                    " border linecolor rgb " + Quote(s.colour) + " fillcolor rgb " + Quote(s.hatch_colour) + " " +
+                    KeyOf(s.key));
+      if (bars && !s.edge_colour.empty())  // the bar keeps its edge
+        out.push_back(source + " with " + with + " fillstyle empty border linecolor rgb " + Quote(s.edge_colour) +
+                      " linecolor rgb " + Quote(s.edge_colour) + " notitle");
       return;
     }
   }
@@ -166,12 +169,18 @@ void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool las
           << Quote(a.colour) << " offset " << CsvNumber(a.label_dx) << "," << CsvNumber(a.label_dy)
           << " textcolor rgb " << Quote(a.colour) << " boxed front\n";
         break;
+      case AnnotationKind::kLabel:
+        s << "set label " << tag++ << " " << Quote(a.label) << " at first " << CsvNumber(a.x0) << ", " << y
+          << CsvNumber(a.y0) << " left offset " << CsvNumber(a.label_dx) << "," << CsvNumber(a.label_dy)
+          << " textcolor rgb " << Quote(a.colour) << " front\n";
+        break;
       case AnnotationKind::kText:
         s << "set label " << tag++ << " " << Quote(a.label) << " at graph " << CsvNumber(a.x0) << ", graph "
           << CsvNumber(a.y0) << " textcolor rgb " << Quote(a.colour) << " front\n";
         break;
     }
-    if (!a.key.empty() && a.kind != AnnotationKind::kMarker && a.kind != AnnotationKind::kText)
+    if (!a.key.empty() && a.kind != AnnotationKind::kMarker && a.kind != AnnotationKind::kText &&
+        a.kind != AnnotationKind::kLabel)
       clauses.push_back("keyentry with lines " + line + " title " + Quote(a.key));
   }
   std::vector<std::string> series;

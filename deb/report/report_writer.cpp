@@ -14,6 +14,7 @@
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
+#include "deb/report/band_plots.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/file_digest.h"
 #include "deb/report/gnuplot_runner.h"
@@ -173,7 +174,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
     plots = OverviewPlots(result);
     for (std::size_t o = 0; o < result.outputs.size(); ++o) {
       for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
-      plots.push_back(BandPlot(result, o));
+      plots.push_back(BandsPlot(result, o, options.digits));
     }
     for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
     for (const Plot& p : plots) {
