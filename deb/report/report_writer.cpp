@@ -187,11 +187,11 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
 
   const bool pdf = options.plots && options.Has(PlotFormat::kPdf);
   if (options.plots) {
-    std::vector<Table> tables = {SummaryTable(result)};
+    std::vector<Table> tables = {SummaryTable(result, options.digits)};
     for (const OutputResult& o : result.outputs) {
-      tables.push_back(ContributorTable(o));
+      tables.push_back(ContributorTable(o, options.digits));
       if (Table modes = ModeTable(o); !modes.rows.empty()) tables.push_back(std::move(modes));
-      tables.push_back(BandTable(o));
+      tables.push_back(BandTable(o, options.digits));
     }
     const TitlePages title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings,
                                             static_cast<int>(plots.size()), sha256);
@@ -273,6 +273,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   doc.facts = facts;
   doc.plots = plots;
   doc.pdf = pdf;
+  doc.digits = options.digits;
   if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
   std::vector<std::string> data = {"summary.json"};
   for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));
