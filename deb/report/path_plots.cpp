@@ -107,7 +107,7 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vecto
                             " Hz";
   p.caption = "Bode magnitude and phase (unwrapped) of the transfer through path " + contributor.path + " to " +
               output.name + (output.weighting ? ", weighting included" : "") + ", per source channel, from source unit " +
-              DisplayUnit(budget.FindSource(contributor.source).unit) + "; used by " +
+              UnitText(budget.FindSource(contributor.source).unit) + "; used by " +
               (users.size() == 1 ? "contributor " : std::to_string(users.size()) + " contributors: ") + names + "." +
               RangeCaption(range) +
               (widened ? " The range reaches half a decade beyond the natural frequency of every pole of the path (f_n " +
@@ -218,11 +218,11 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vecto
         phase_hi = std::max(phase_hi, phase_deg[k][i]);
       }
   }
-  if (phase_hi >= phase_lo) {  // whole multiples of 45°, at least 90° tall
-    phase.y.min = 45.0 * std::floor(phase_lo / 45.0 - 1e-9);
-    phase.y.max = std::max(45.0 * std::ceil(phase_hi / 45.0 + 1e-9), *phase.y.min + 90.0);
-    for (double t = *phase.y.min; t <= *phase.y.max + 1e-9; t += (*phase.y.max - *phase.y.min > 360.0 ? 90.0 : 45.0))
-      phase.y.tics.push_back({t, Short(t)});
+  if (phase_hi >= phase_lo) {  // whole steps of 45° (90° beyond a turn), at least 90° tall
+    const double step = phase_hi - phase_lo > 360.0 ? 90.0 : 45.0;
+    phase.y.min = step * std::floor(phase_lo / step - 1e-9);
+    phase.y.max = std::max(step * std::ceil(phase_hi / step + 1e-9), *phase.y.min + 90.0);
+    for (double t = *phase.y.min; t <= *phase.y.max + 1e-9; t += step) phase.y.tics.push_back({t, Short(t)});
   }
   p.figure.title = "path " + Enhanced(contributor.path) + " → " + Enhanced(output.name) +
                    (output.weighting ? " (weighted)" : "") + ", used by " +

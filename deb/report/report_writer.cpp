@@ -173,7 +173,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   if (plot_files) {
     plots = OverviewPlots(result);
     for (std::size_t o = 0; o < result.outputs.size(); ++o) {
-      for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
+      for (Plot& p : SpectrumPlots(result, o, options, &budget.outputs[o])) plots.push_back(std::move(p));
       plots.push_back(BandsPlot(result, o, options.digits));
     }
     for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));

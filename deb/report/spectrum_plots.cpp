@@ -25,6 +25,18 @@ std::string Entry(const std::string& name, double variance, double total_varianc
   return s;
 }
 
+// " Weighted by <description>; metric: <metric>." from the output's
+// definition: what the plotted quantity is, stated in the caption.
+std::string WeightingCaption(const OutputResult& out, const Output* spec) {
+  std::string s;
+  if (spec && spec->weighting)
+    s += " The output is weighted by " +
+         (spec->weighting->description.empty() ? std::string("a weighting filter") : spec->weighting->description) +
+         " (filter unit " + UnitText(spec->weighting->unit) + ").";
+  if (out.metric) s += " Metric: " + out.metric->Describe() + " (the PSD is that of the metric).";
+  return s;
+}
+
 // Smallest "nice" step (1, 2, 2.5, 5 x 10^n) not below x.
 double NiceStep(double x) {
   const double p = std::pow(10.0, std::floor(std::log10(x)));
@@ -34,7 +46,7 @@ double NiceStep(double x) {
 }
 
 // Stacked CPS (reverse = false) or reverse CPS of one output.
-Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int digits) {
+Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int digits, const Output* spec) {
   const OutputResult& out = result.outputs[o];
   const std::size_t n = out.contributors.size();
   const std::vector<double>& f = result.grid.f_hz();
@@ -49,7 +61,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int di
               " of " + out.name +
               ", contributors stacked by share, the largest on top and first in the key; left axis variance, "
               "right axis RMS." +
-              RangeCaption(range);
+              WeightingCaption(out, spec) + RangeCaption(range);
 
   std::vector<std::vector<double>> series(n);
   for (std::size_t c = 0; c < n; ++c)
@@ -178,7 +190,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int di
   return p;
 }
 
-Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digits) {
+Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digits, const Output* spec) {
   const OutputResult& out = result.outputs[o];
   const std::size_t n = out.contributors.size();
   const std::vector<double>& f = result.grid.f_hz();
@@ -192,7 +204,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
   const FrequencyRange range = DisplayRange(out, result.grid);
   p.caption = (asd ? "Amplitude spectral density" : "Power spectral density (one-sided)") + std::string(" of ") +
               out.name + " per contributor, largest first in the key, and in total (drawn last)." +
-              RangeCaption(range);
+              WeightingCaption(out, spec) + RangeCaption(range);
   if (!out.band_requirements.empty())
     p.caption += std::string(" Each red segment is a band requirement drawn as the flat ") + quantity +
                  " that would use the band's whole allowance (rms_max^2 spread evenly over the band" +
@@ -411,12 +423,12 @@ std::string RmsTics(double variance_max, double scale, const std::vector<std::pa
   return os.str();
 }
 
-std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output,
-                                const ReportOptions& options) {
+std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
+                                const Output* spec) {
   std::vector<Plot> plots;
-  plots.push_back(StackedPlot(result, output, false, options.digits));
-  if (options.reverse_cps) plots.push_back(StackedPlot(result, output, true, options.digits));
-  plots.push_back(SpectrumPlot(result, output, options.asd, options.digits));
+  plots.push_back(StackedPlot(result, output, false, options.digits, spec));
+  if (options.reverse_cps) plots.push_back(StackedPlot(result, output, true, options.digits, spec));
+  plots.push_back(SpectrumPlot(result, output, options.asd, options.digits, spec));
   return plots;
 }
 

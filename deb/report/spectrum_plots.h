@@ -47,8 +47,10 @@ std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid
 // Contributor indices of an output by decreasing variance (ties: budget order).
 std::vector<std::size_t> ShareOrder(const OutputResult& output);
 
-// CPS, [reverse CPS,] PSD or ASD of output `output`, in that order.
-std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options);
+// CPS, [reverse CPS,] PSD or ASD of output `output`, in that order. With
+// the output's definition `spec`, the captions state its weighting.
+std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
+                                const Output* spec = nullptr);
 
 // Tics for an RMS axis drawn beside a linear variance axis [0, variance_max]
 // plotted in units of `scale`: "set y2tics (...)" with labels r at positions

@@ -197,3 +197,26 @@ TEST_CASE("a contributor that is zero on an output stays in the key as 0") {
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("the captions state an output's weighting and metric") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  REQUIRE(result.outputs[1].metric);
+  const std::vector<Plot> plots = SpectrumPlots(result, 1, {}, &budget.outputs[1]);
+  CHECK(plots[0].caption.find(" Metric: " + result.outputs[1].metric->Describe()) != std::string::npos);
+  CHECK(plots[1].caption.find(" Metric: ") != std::string::npos);
+  // Without a weighting or metric, nothing is added.
+  CHECK(SpectrumPlots(result, 0, {}, &budget.outputs[0])[0].caption.find("Metric") == std::string::npos);
+  const Budget thesis = LoadBudgetFile(test::ExampleBudget("nizamoglu2015_h210.yaml"));
+  const BudgetResult thesis_result = Evaluate(thesis);
+  for (std::size_t o = 0; o < thesis.outputs.size(); ++o) {
+    if (!thesis.outputs[o].weighting) continue;
+    CHECK(SpectrumPlots(thesis_result, o, {}, &thesis.outputs[o])[0].caption.find("The output is weighted by") !=
+          std::string::npos);
+    break;
+  }
+}
+
+}  // namespace deb::report
