@@ -16,6 +16,7 @@ enum class AnnotationKind {
   kMarker,          // a point at (x0, y0), `label` beside it
   kLabel,           // `label` starting at (x0, y0), offset by (label_dx, label_dy)
   kText,            // `label` at graph coordinates (x0, y0) in 0..1
+  kCircle,          // centre (x0, y0), radius x1 in x units (equal axes)
 };
 
 struct FigureAnnotation {

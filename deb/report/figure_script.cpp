@@ -129,6 +129,7 @@ void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool las
   Axis(s, p.y, "y");
   if (p.y2.shown) Axis(s, p.y2, "y2");
   else s << "unset y2tics\nunset y2label\n";
+  if (p.equal_axes) s << "set size ratio -1\n";
   if (p.bar_width > 0.0) s << "set boxwidth " << CsvNumber(p.bar_width) << " absolute\n";
   if (multiplot) {
     s << "set lmargin " << kLeftMargin << "\nset rmargin " << kRightMargin << "\n";
@@ -174,6 +175,11 @@ void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool las
           << CsvNumber(a.y0) << " left offset " << CsvNumber(a.label_dx) << "," << CsvNumber(a.label_dy)
           << " textcolor rgb " << Quote(a.colour) << " front\n";
         break;
+      case AnnotationKind::kCircle:
+        s << "set object " << tag++ << " circle at first " << CsvNumber(a.x0) << "," << CsvNumber(a.y0)
+          << " size first " << CsvNumber(a.x1) << " fillstyle empty border linecolor rgb " << Quote(a.colour)
+          << " linewidth " << CsvNumber(a.width) << " dashtype " << a.dash << " front\n";
+        break;
       case AnnotationKind::kText:
         s << "set label " << tag++ << " " << Quote(a.label) << " at graph " << CsvNumber(a.x0) << ", graph "
           << CsvNumber(a.y0) << " textcolor rgb " << Quote(a.colour) << " front\n";
@@ -188,7 +194,7 @@ void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool las
   series.insert(series.end(), clauses.begin(), clauses.end());
   if (series.empty()) series.push_back("NaN notitle");
   s << PlotList(series);
-  if (multiplot && !last) s << "unset label\nunset arrow\n";
+  if (multiplot && !last) s << "unset label\nunset arrow\nunset object\n";
 }
 
 }  // namespace

@@ -35,6 +35,7 @@ struct FigurePanel {
   std::string note;         // centred text when there is nothing to draw
   double height = 1.0;      // share of the page, relative to the other panels
   double bar_width = 0.0;   // kBars, in x units; 0: gnuplot's
+  bool equal_axes = false;  // one unit as long on x as on y (a Nyquist plot)
 };
 
 struct PlotFigure {

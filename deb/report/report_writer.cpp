@@ -16,6 +16,7 @@
 #include "deb/core/parallel.h"
 #include "deb/report/band_plots.h"
 #include "deb/report/comparison_plots.h"
+#include "deb/report/loop_plots.h"
 #include "deb/report/file_digest.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/path_plots.h"
@@ -177,6 +178,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       plots.push_back(BandsPlot(result, o, options.digits));
     }
     for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
+    for (Plot& p : LoopPlots(budget, result, options.digits)) plots.push_back(std::move(p));
     for (const Plot& p : plots) {
       writer.Write("plots/" + p.name + ".csv", p.csv);
       writer.WriteScript("plots/" + p.name + ".gp", p.script);
