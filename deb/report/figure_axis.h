@@ -22,6 +22,8 @@ struct FigureAxis {
   std::vector<std::pair<double, std::string>> tics;
   bool shown = true;        // false: no tics, no label (the y2 axis of most plots)
   bool minor_grid = true;   // grid lines at the minor tics (off on very long log axes)
+  bool grid = true;         // grid lines at the major tics (off for bar categories)
+  int tic_rotation_deg = 0; // tic labels turned by this angle, anchored at their right end
 };
 
 }  // namespace deb::report

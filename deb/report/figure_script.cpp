@@ -45,14 +45,17 @@ void Axis(std::ostringstream& s, const FigureAxis& a, const std::string& name) {
     s << "set " << name << "range [" << (a.min ? CsvNumber(*a.min) : "*") << ":" << (a.max ? CsvNumber(*a.max) : "*")
       << "]\n";
   s << "set " << name << "label " << Label(a.label) << "\n";
+  const std::string rotate =
+      a.tic_rotation_deg ? " rotate by " + std::to_string(a.tic_rotation_deg) + " right" : std::string(" norotate");
   if (!a.tics.empty()) {
-    s << "set " << name << "tics nomirror (";
+    s << "set " << name << "tics nomirror" << rotate << " (";
     for (std::size_t i = 0; i < a.tics.size(); ++i)
       s << (i ? ", " : "") << Label(a.tics[i].second) << " " << CsvNumber(a.tics[i].first);
     s << ")\n";
   } else {
-    s << "set " << name << "tics nomirror\n";
+    s << "set " << name << "tics nomirror" << rotate << "\n";
   }
+  if (name == "x" || name == "y") s << "set grid " << (a.grid ? "" : "no") << name << "tics\n";
 }
 
 std::string LineStyle(const std::string& colour, const std::string& dash, double width) {
@@ -68,6 +71,8 @@ void Clauses(const FigureSeries& s, bool log_y, std::vector<std::string>& out) {
                                            : "(column(" + std::to_string(s.x_column) + ")+" + CsvNumber(s.x_offset) + ")";
   std::string y = "((" + Sum(s.y_columns) + ")" + div + ")";
   if (log_y) y = "(" + y + " > 0 ? " + y + " : NaN)";
+  if (s.where_column)
+    y = "(column(" + std::to_string(s.where_column) + ") == " + CsvNumber(s.where_value) + " ? " + y + " : NaN)";
   const std::string data = Quote(s.data) + " using " + xs + ":";
   switch (s.kind) {
     case SeriesKind::kLine:
@@ -88,6 +93,11 @@ void Clauses(const FigureSeries& s, bool log_y, std::vector<std::string>& out) {
       if (!s.key.empty()) out.push_back("keyentry with linespoints " + marker + " " + line + " " + KeyOf(s.key));
       return;
     }
+    case SeriesKind::kLabels:
+      out.push_back(data + y + ":" + std::to_string(s.label_column) +
+                    " with labels " + (s.labels_upright ? "rotate by 90 left offset 0,0.5" : "offset 0,0.8") +
+                    " boxed font ',9' textcolor rgb " + Quote(s.colour) + " notitle");
+      return;
     case SeriesKind::kPoints:
       out.push_back(data + y + " with points pointtype " + std::to_string(s.point_type ? s.point_type : 7) +
                     " pointsize 1.2 linecolor rgb " + Quote(s.colour) + " " + KeyOf(s.key));
@@ -123,7 +133,9 @@ void Clauses(const FigureSeries& s, bool log_y, std::vector<std::string>& out) {
 std::string Coord(bool y2) { return y2 ? "second " : "first "; }
 
 void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool last) {
-  s << "set title " << Quote(p.title) << "\n";
+  s << "set title " << Label(p.title);
+  if (!p.title_colour.empty()) s << " textcolor rgb " << Quote(p.title_colour);
+  s << "\n";
   Axis(s, p.x, "x");
   if (!p.x.minor_grid) s << "set grid nomxtics\n";
   Axis(s, p.y, "y");
@@ -208,6 +220,17 @@ std::string EmitFigure(const PlotFigure& figure) {
   const std::size_t n = figure.panels.size();
   if (n == 1) {
     Panel(s, figure.panels[0], false, true);
+    return s.str();
+  }
+  if (figure.columns > 1) {  // a grid of independent panels
+    const std::size_t rows = (n + figure.columns - 1) / figure.columns;
+    s << "set multiplot layout " << rows << "," << figure.columns << " title " << Quote(figure.title)
+      << " font ',15'\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      Panel(s, figure.panels[i], false, true);
+      s << "unset label\nunset arrow\nunset object\n";
+    }
+    s << "unset multiplot\n";
     return s.str();
   }
   double total = 0.0;

@@ -17,6 +17,7 @@ enum class SeriesKind {
   kBars,    // a bar at each x, `bar_width` wide
   kPoints,  // markers only
   kSteps,   // a staircase
+  kLabels,  // the text of `label_column` at each point (values over bars)
 };
 
 struct FigureSeries {
@@ -29,6 +30,12 @@ struct FigureSeries {
   std::vector<std::size_t> y_columns;    // summed
   std::vector<std::size_t> low_columns;  // kFilled: lower edge (summed); empty: 0
   double y_divisor = 1.0;                // y shown as value / y_divisor (an axis in units of 10^n)
+  // Only the rows whose column `where_column` equals `where_value` (one
+  // CSV behind several panels); 0: every row.
+  std::size_t where_column = 0;
+  double where_value = 0.0;
+  std::size_t label_column = 0;          // kLabels
+  bool labels_upright = false;           // kLabels: turned by 90°, reading upwards from the point
 
   std::string colour = "#000000";  // "#rrggbb"
   std::string dash = "solid";      // "solid" or gnuplot's "(a,b,...)"

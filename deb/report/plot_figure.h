@@ -27,7 +27,8 @@ struct FigureKey {
 };
 
 struct FigurePanel {
-  std::string title;  // enhanced text
+  std::string title;  // enhanced text; a line break starts a second line
+  std::string title_colour;  // empty: the style's
   FigureAxis x, y, y2;
   std::vector<FigureSeries> series;  // drawn in this order: the last on top
   std::vector<FigureAnnotation> annotations;
@@ -41,6 +42,9 @@ struct FigurePanel {
 struct PlotFigure {
   std::string title;                // enhanced text above all panels (multiplot); one panel uses its own
   std::vector<FigurePanel> panels;  // top to bottom, sharing the x axis
+  // Panels per row: 1 stacks them over a shared x axis; more lays them out
+  // in a grid, row by row, each with its own axes.
+  std::size_t columns = 1;
 };
 
 // The series named `name` on panel `panel`, or nullptr.

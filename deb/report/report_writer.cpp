@@ -17,6 +17,7 @@
 #include "deb/report/band_plots.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/loop_plots.h"
+#include "deb/report/overview_plots.h"
 #include "deb/report/file_digest.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/path_plots.h"
@@ -172,7 +173,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
 
   std::vector<Plot> plots;
   if (plot_files) {
-    plots = OverviewPlots(result);
+    plots = OverviewFigures(result, options.digits);
     for (std::size_t o = 0; o < result.outputs.size(); ++o) {
       for (Plot& p : SpectrumPlots(result, o, options, &budget.outputs[o])) plots.push_back(std::move(p));
       plots.push_back(BandsPlot(result, o, options.digits));
