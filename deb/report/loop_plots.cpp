@@ -53,7 +53,7 @@ FigureAnnotation Level(double y, const std::string& key, const std::string& dash
   a.y0 = y;
   a.colour = "#505050";
   a.dash = dash;
-  a.width = 1.2;
+  a.width = 2.0;  // 1.5 pt in a PDF, as every line
   a.key = key;
   return a;
 }
@@ -220,13 +220,13 @@ std::vector<Plot> LoopPlots(const Budget& budget, const BudgetResult& result, in
     negative.key = "f < 0";
     negative.y_divisor = -1.0;  // the mirror image: Im L(-j w) = -Im L(j w)
     negative.dash = "(6,4)";
-    negative.width = 1.2;
+    negative.width = 2.0;
     np.series = {positive, negative};
     FigureAnnotation unit;
     unit.kind = AnnotationKind::kCircle;
     unit.x1 = 1.0;
     unit.colour = "#808080";
-    unit.width = 1.2;
+    unit.width = 2.0;
     unit.key = "unit circle";
     FigureAnnotation mm = unit;
     mm.x0 = -1.0;

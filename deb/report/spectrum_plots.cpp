@@ -163,7 +163,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int di
       v.x0 = *cross;
       v.colour = kRequirementColour;
       v.dash = "(4,4)";
-      v.width = 1.2;
+      v.width = 2.0;
       panel.annotations.push_back(v);
       FigureAnnotation m;
       m.kind = AnnotationKind::kMarker;
