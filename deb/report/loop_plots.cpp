@@ -177,18 +177,20 @@ std::vector<Plot> LoopPlots(const Budget& budget, const BudgetResult& result, in
     t.dash = "(10,5)";
     sp.series.push_back(t);
     sp.annotations.push_back(Level(1.0, "1"));
-    sp.annotations.push_back(Marker(m.modulus_margin_f_hz, 1.0 / m.modulus_margin,
+    if (m.modulus_margin > 0.0)  // 0: L passes through -1, |S| has no finite peak
+      sp.annotations.push_back(Marker(m.modulus_margin_f_hz, 1.0 / m.modulus_margin,
                                     "max |S| " + SigLabel(1.0 / m.modulus_margin, digits) + " (modulus margin " +
                                         SigLabel(m.modulus_margin, digits) + ") at " +
                                         SigLabel(m.modulus_margin_f_hz, digits) + " Hz"));
     double top_st = 1.0, bottom_st = HUGE_VAL;
     for (std::size_t i = 0; i < f.size(); ++i) {
-      top_st = std::max({top_st, s_mag[i], t_mag[i]});
       for (double v : {s_mag[i], t_mag[i]})
-        if (v > 0.0) bottom_st = std::min(bottom_st, v);
+        if (std::isfinite(v)) top_st = std::max(top_st, v);
+      for (double v : {s_mag[i], t_mag[i]})
+        if (v > 0.0 && std::isfinite(v)) bottom_st = std::min(bottom_st, v);
     }
     sp.y.max = std::pow(10.0, std::ceil(std::log10(top_st * 2.0)));
-    sp.y.min = std::max(std::pow(10.0, std::floor(std::log10(bottom_st))), *sp.y.max * 1e-8);
+    sp.y.min = std::min(std::max(std::pow(10.0, std::floor(std::log10(bottom_st))), *sp.y.max * 1e-8), 0.1);
     sp.key.title = "";
     st.figure.panels.push_back(std::move(sp));
     st.script = EmitFigure(st.figure);
