@@ -207,7 +207,9 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vecto
       s.marker_first = static_cast<int>((g * interval) / groups.size());
     }
     mag.series.push_back(s);
-    if (channel_top[k] == 0.0) continue;  // a zero transfer has no phase
+    // A zero transfer has no phase, and one below the magnitude axis
+    // (numerically zero, or negligible) only a meaningless one.
+    if (channel_top[k] == 0.0 || channel_top[k] < floor) continue;
     FigureSeries ph = s;
     ph.key.clear();
     ph.y_columns = {2 + m + k};
@@ -218,8 +220,9 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vecto
         phase_hi = std::max(phase_hi, phase_deg[k][i]);
       }
   }
-  if (phase_hi >= phase_lo) {  // whole steps of 45° (90° beyond a turn), at least 90° tall
-    const double step = phase_hi - phase_lo > 360.0 ? 90.0 : 45.0;
+  if (phase_hi >= phase_lo) {  // whole steps of 45° (90°, 180° over more turns), at least 90° tall
+    const double span = phase_hi - phase_lo;
+    const double step = span > 540.0 ? 180.0 : span > 360.0 ? 90.0 : 45.0;
     phase.y.min = step * std::floor(phase_lo / step - 1e-9);
     phase.y.max = std::max(step * std::ceil(phase_hi / step + 1e-9), *phase.y.min + 90.0);
     for (double t = *phase.y.min; t <= *phase.y.max + 1e-9; t += step) phase.y.tics.push_back({t, Short(t)});
