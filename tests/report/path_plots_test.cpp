@@ -157,6 +157,14 @@ TEST_CASE("a single-channel path plot keeps its contributor's colour") {
   CHECK(s.point_type == 0);
 }
 
+TEST_CASE("a channel below the magnitude axis is keyed so and gets no phase curve") {
+  const std::vector<Plot> plots = GainPathPlots("[x, z]", "[[1e-12, 2]]");
+  REQUIRE(plots.size() == 1);
+  CHECK(FindSeries(plots[0].figure, "x")->key == "x (below the axis)");
+  REQUIRE(plots[0].figure.panels.at(1).series.size() == 1);
+  CHECK(plots[0].figure.panels[1].series[0].name == "z");
+}
+
 TEST_CASE("a path several contributors share is plotted once per output, with magnitude and unwrapped phase") {
   // A first-order low pass at 10 Hz shared by a and b: the phase of
   // 1/(1 + s/w) is -atan(f / 10 Hz).
