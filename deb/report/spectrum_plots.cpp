@@ -286,6 +286,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
     s.y_columns = {2 + c};
     s.colour = st.colour;
     s.dash = st.dash;
+    s.width = 3.0;  // wider than the total, so that a dominant contributor shows on both sides of it
     panel.series.push_back(std::move(s));
   }
   FigureSeries t;  // drawn last: on top of every contributor
@@ -294,7 +295,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
   t.data = data;
   t.y_columns = {2 + n};
   t.colour = kTotalColour;
-  t.width = 2.5;
+  t.width = 2.0;
   panel.series.push_back(t);
   p.figure.panels.push_back(std::move(panel));
   p.script = EmitFigure(p.figure);

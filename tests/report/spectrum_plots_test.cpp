@@ -161,6 +161,8 @@ TEST_CASE("a failing output's CPS figure names its fail factor, stacks the large
   const FigurePanel& psd = plots[1].figure.panels.at(0);
   for (std::size_t i = 0; i < order.size(); ++i) CHECK(psd.series[i].name == out.contributors[order[i]].name);
   CHECK(psd.series.back().name == "total");
+  // The total, on top, is narrower than the contributors: one that dominates shows on both sides of it.
+  CHECK(psd.series.back().width < psd.series.front().width);
   REQUIRE(psd.annotations.size() == 3);
   CHECK(psd.annotations[0].kind == AnnotationKind::kSegment);
   CHECK(psd.annotations[0].y0 == doctest::Approx(0.8 * 0.8 / (10 - 0.1)));
