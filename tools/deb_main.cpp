@@ -38,6 +38,7 @@
 #include "deb/io/sweep_yaml.h"
 #include "deb/io/result_writer.h"
 #include "deb/report/report_writer.h"
+#include "deb/report/spectrum_plots.h"
 #include "deb/units/unit.h"
 #include "deb/version.h"
 #include "tools/budget_overrides_option.h"
@@ -109,25 +110,27 @@ void PrintGroups(const deb::OutputResult& o) {
 
 // The figures, and for each output that fails what would fix it; printed
 // before the report is drawn (gnuplot takes most of a run).
-void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds) {
+void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds, int digits) {
   std::printf("budget %s: %zu frequencies, %g-%g Hz, evaluated in %.3f s\n", budget.name.c_str(), r.grid.size(),
               r.grid.min_hz(), r.grid.max_hz(), seconds);
   for (const auto& o : r.outputs) {
-    std::printf("\noutput %s [%s]: rms %.6g", o.name.c_str(), o.unit.c_str(), o.rms());
-    if (o.rms_max) std::printf("  (requirement %.6g: %s)", *o.rms_max, o.pass() ? "PASS" : "FAIL");
+    using deb::report::Sig;  // the report's number text: "0.3000", "1.234e-05"
+    std::printf("\noutput %s [%s]: rms %s", o.name.c_str(), o.unit.c_str(), Sig(o.rms(), digits).c_str());
+    if (o.rms_max) std::printf("  (requirement %g: %s)", *o.rms_max, o.pass() ? "PASS" : "FAIL");
     std::printf("\n  %-24s %14s %8s %14s\n", "contributor", "rms", "share", "exact rms");
-    for (const auto& c : o.contributors) {
+    for (std::size_t index : deb::report::ShareOrder(o)) {  // largest first, as in the report
+      const auto& c = o.contributors[index];
       const double share = o.variance > 0 ? 100.0 * c.variance / o.variance : 0.0;
       if (c.exact_variance)
-        std::printf("  %-24s %14.6g %7.2f%% %14.6g\n", c.name.c_str(), std::sqrt(c.variance), share,
-                    std::sqrt(*c.exact_variance));
+        std::printf("  %-24s %14s %7.2f%% %14s\n", c.name.c_str(), Sig(std::sqrt(c.variance), digits).c_str(), share,
+                    Sig(std::sqrt(*c.exact_variance), digits).c_str());
       else
-        std::printf("  %-24s %14.6g %7.2f%% %14s\n", c.name.c_str(), std::sqrt(c.variance), share, "-");
+        std::printf("  %-24s %14s %7.2f%% %14s\n", c.name.c_str(), Sig(std::sqrt(c.variance), digits).c_str(), share, "-");
       if (!c.top_modes.empty()) {  // a modal path: the modes that carry its exact variance
         std::string modes;
         for (std::size_t i = 0; i < c.top_modes.size() && i < 3; ++i) {
           char one[96];
-          std::snprintf(one, sizeof one, "%smode %d, %.4g Hz: %.0f%%", i ? "; " : "", c.top_modes[i].mode,
+          std::snprintf(one, sizeof one, "%smode %d, %.*g Hz: %.0f%%", i ? "; " : "", c.top_modes[i].mode, digits,
                         c.top_modes[i].f_hz, 100.0 * c.top_modes[i].share);
           modes += one;
         }
@@ -136,8 +139,8 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
     }
     PrintGroups(o);
     for (const auto& b : o.band_requirements)
-      std::printf("  band %g-%g Hz: rms %.6g (requirement %.6g: %s)\n", b.requirement.lo_hz, b.requirement.hi_hz,
-                  b.rms(), b.requirement.rms_max, b.pass() ? "PASS" : "FAIL");
+      std::printf("  band %g-%g Hz: rms %s (requirement %g: %s)\n", b.requirement.lo_hz, b.requirement.hi_hz,
+                  Sig(b.rms(), digits).c_str(), b.requirement.rms_max, b.pass() ? "PASS" : "FAIL");
     if (const auto g = deb::GuideFailure(o, r.grid)) std::printf("  to fix: %s\n", g->sentence.c_str());
   }
   std::fflush(stdout);  // before the report's progress and gnuplot's time
@@ -157,7 +160,7 @@ int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& 
   const deb::BudgetResult result = deb::Evaluate(budget, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
-  if (!quiet) PrintBrief(budget, result, seconds);
+  if (!quiet) PrintBrief(budget, result, seconds, report.digits);
   try {
     report.progress = !quiet && ::isatty(STDERR_FILENO);
     report.threads = threads;
@@ -327,6 +330,10 @@ int main(int argc, char** argv) {
          "Plot formats, comma-separated: png (index.html), pdf (report.pdf), svg; default png,pdf")
       ->delimiter(',')
       ->check(CLI::IsMember({"png", "pdf", "svg"}));
+  run->add_option("--digits", report.digits,
+                  "Significant digits of the numbers in the console table, the report's tables and plot labels "
+                  "(default 4)")
+      ->check(CLI::Range(1, 15));
   run->add_flag("--asd", report.asd, "Plot amplitude spectral densities (unit/sqrt(Hz)) instead of PSDs");
   run->add_flag("--reverse-cps", report.reverse_cps, "Add a stacked reverse-CPS plot (variance above f) per output");
   run->add_flag_callback("--no-plots", [&report] { report.plots = false; },

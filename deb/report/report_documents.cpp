@@ -93,7 +93,7 @@ std::string IndexHtml(const DocumentInputs& in) {
   s << "<h2 id=\"summary\">Summary</h2>\n<table class=\"facts\">\n";
   for (const auto& [key, value] : in.facts.items)
     s << "<tr><td>" << HtmlEscape(key) << "</td><td>" << HtmlEscape(value) << "</td></tr>\n";
-  s << "</table>\n" << ToHtml(SummaryTable(result));
+  s << "</table>\n" << ToHtml(SummaryTable(result, in.digits));
   s << "<h3>Conventions</h3>\n<ul>\n";
   for (const auto& c : in.facts.conventions) s << "<li>" << HtmlEscape(c) << "</li>\n";
   s << "</ul>\n";
@@ -114,11 +114,11 @@ std::string IndexHtml(const DocumentInputs& in) {
       << HtmlEscape(OutputLine(out)) << "</p>\n";
     if (const std::string fix = GuidanceText(out, result.grid); !fix.empty())
       s << "<p class=\"guidance\"><strong>" << HtmlEscape(fix) << "</strong></p>\n";
-    s << ToHtml(ContributorTable(out));
+    s << ToHtml(ContributorTable(out, in.digits));
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
-    s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out));
+    s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out, in.digits));
     ForPlots(in.plots, PlotKind::kBands, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
   }
 
@@ -145,7 +145,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
   if (!budget.description.empty()) s << budget.description << "\n\n";
   s << "## Summary\n\n| | |\n| --- | --- |\n";
   for (const auto& [key, value] : in.facts.items) s << "| " << key << " | `" << value << "` |\n";
-  s << "\n" << ToMarkdown(SummaryTable(result)) << "\n### Conventions\n\n";
+  s << "\n" << ToMarkdown(SummaryTable(result, in.digits)) << "\n### Conventions\n\n";
   for (const auto& c : in.facts.conventions) s << "- " << c << "\n";
   if (!result.warnings.empty()) {
     s << "\n### Warnings\n\n";
@@ -158,11 +158,11 @@ std::string ReportMarkdown(const DocumentInputs& in) {
     const int oi = static_cast<int>(o);
     s << "## Output " << out.name << " [" << UnitText(out.unit) << "]\n\n" << OutputLine(out) << "\n\n";
     if (const std::string fix = GuidanceText(out, result.grid); !fix.empty()) s << "**" << fix << "**\n\n";
-    s << ToMarkdown(ContributorTable(out)) << "\n";
+    s << ToMarkdown(ContributorTable(out, in.digits)) << "\n";
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToMarkdown(modes) << "\n";
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
-    s << "### Frequency bands\n\n" << ToMarkdown(BandTable(out)) << "\n";
+    s << "### Frequency bands\n\n" << ToMarkdown(BandTable(out, in.digits)) << "\n";
     ForPlots(in.plots, PlotKind::kBands, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
   }
   s << "## Paths\n\n";

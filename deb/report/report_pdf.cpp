@@ -187,9 +187,9 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   const std::vector<Plot>& plots = in.plots ? *in.plots : none;
 
   b.push_back(Heading(1, "Overview"));
-  b.push_back(TableBlock("Summary", TypesetTable(SummaryTable(result))));
+  b.push_back(TableBlock("Summary", TypesetTable(SummaryTable(result, in.digits))));
   for (const Plot& p : plots)
-    if (p.output < 0) figure(p);
+    if (p.output < 0 && p.kind != PlotKind::kPath) figure(p);
 
   for (std::size_t i = 0; i < result.outputs.size(); ++i) {
     const OutputResult& o = result.outputs[i];
@@ -198,7 +198,7 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
     b.push_back(Paragraph(VerdictLine(o), 10.0, true, Fails(o)));
     if (Fails(o))
       if (const std::string g = GuidanceText(o, result.grid); !g.empty()) b.push_back(Paragraph(g, 9.5));
-    const Table contributors = ContributorTable(o);
+    const Table contributors = ContributorTable(o, in.digits);
     b.push_back(TableBlock(contributors.title, TypesetTable(contributors)));
     if (const Table modes = ModeTable(o); !modes.rows.empty())
       b.push_back(TableBlock(modes.title, TypesetTable(modes)));
@@ -215,7 +215,7 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
       }
       if (p->kind == PlotKind::kBands && !bands) {
         b.push_back(Heading(2, "Bands of " + o.name));
-        const Table band = BandTable(o);
+        const Table band = BandTable(o, in.digits);
         b.push_back(TableBlock(band.title, TypesetTable(band)));
         bands = true;
       }
@@ -226,9 +226,21 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
       figure(*p);
     }
     if (!bands) {
-      const Table band = BandTable(o);
+      const Table band = BandTable(o, in.digits);
       b.push_back(TableBlock(band.title, TypesetTable(band)));
     }
+  }
+
+  // Loop plots belong to no output: a section of their own.
+  bool loops = false;
+  for (const Plot& p : plots) {
+    if (p.output >= 0 || p.kind != PlotKind::kPath) continue;
+    if (!loops) {
+      b.push_back(PageBreak());
+      b.push_back(Heading(1, "Feedback loops"));
+      loops = true;
+    }
+    figure(p);
   }
 
   b.push_back(PageBreak());

@@ -27,6 +27,7 @@ struct ReportPdfInputs {
   std::string create_date;             // ISO 8601, the report's date
   const std::vector<Plot>* plots = nullptr;
   std::string figure_dir;              // holds <plot name>.svg drawn with PdfFigureTerminal
+  int digits = 4;                      // significant digits of the tables (deb run --digits)
 };
 
 // The document: its blocks, metadata and page footer.

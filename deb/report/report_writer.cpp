@@ -14,7 +14,10 @@
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
+#include "deb/report/band_plots.h"
 #include "deb/report/comparison_plots.h"
+#include "deb/report/loop_plots.h"
+#include "deb/report/overview_plots.h"
 #include "deb/report/file_digest.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/path_plots.h"
@@ -135,12 +138,13 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
 
   std::vector<Plot> plots;
   if (plot_files) {
-    plots = OverviewPlots(result);
+    plots = OverviewFigures(result, options.digits);
     for (std::size_t o = 0; o < result.outputs.size(); ++o) {
-      for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
-      plots.push_back(BandPlot(result, o));
+      for (Plot& p : SpectrumPlots(result, o, options, &budget.outputs[o])) plots.push_back(std::move(p));
+      plots.push_back(BandsPlot(result, o, options.digits));
     }
     for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
+    for (Plot& p : LoopPlots(budget, result, options.digits)) plots.push_back(std::move(p));
     for (const Plot& p : plots) {
       writer.Write("plots/" + p.name + ".csv", p.csv);
       writer.WriteScript("plots/" + p.name + ".gp", p.script);
@@ -215,6 +219,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
       in.plots = &plots;
       in.figure_dir = (plots_dir / pdf_figures).string();
+      in.digits = options.digits;
       layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
     };
     ParallelForEach(batches.size(), [&](std::size_t b) {
@@ -249,6 +254,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   doc.facts = facts;
   doc.plots = plots;
   doc.pdf = pdf;
+  doc.digits = options.digits;
   if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
   std::vector<std::string> data = {"summary.json"};
   for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));
