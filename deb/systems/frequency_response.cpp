@@ -1,9 +1,11 @@
 #include "deb/systems/frequency_response.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
@@ -52,6 +54,10 @@ Eigen::Index AccumulateChunks(Eigen::Index begin, Eigen::Index end, int columns,
 struct FrequencyResponse::Workspace {
   explicit Workspace(const FrequencyResponse& r)
       : wr(r.columns_), wi(r.columns_), g(r.transposed_ ? r.rows_ : 0, r.transposed_ ? r.cols_ : 0) {
+    if (r.method_ == Method::kHessenberg) {
+      m.resize(r.n_, r.n_);
+      x.resize(r.n_, r.m_);
+    }
     if (r.largest_block_ > kMaxExpandedBlock) {
       yr.resize(r.rows_, r.largest_block_);
       yi.resize(r.rows_, r.largest_block_);
@@ -60,6 +66,7 @@ struct FrequencyResponse::Workspace {
   Eigen::VectorXd wr, wi;  // complex weight of each residue column
   Eigen::MatrixXcd g;      // G = H^T when transposed
   Eigen::MatrixXd yr, yi;  // large block: Y = L_c (sI - T_c)^-1
+  Eigen::MatrixXcd m, x;   // Hessenberg: j omega I - H, and the solution
 };
 
 FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
@@ -71,6 +78,17 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
   const StateSpace bal = sys.Balanced();
   const Eigen::MatrixXd& a = bal.A();
   pole_tolerance_ = kPoleSlack * kEps * a.norm();
+  if (method == Method::kHessenberg) {
+    method_ = Method::kHessenberg;
+    const Eigen::HessenbergDecomposition<Eigen::MatrixXd> hd(a);
+    hess_ = hd.matrixH();
+    const Eigen::MatrixXd q = hd.matrixQ();
+    cq_ = bal.C() * q;
+    qb_ = q.transpose() * bal.B();
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(a, false);
+    poles_ = eig.eigenvalues();
+    return;
+  }
 
   // Modal reduction; kept if the eigenvector matrix is well conditioned.
   const Eigen::EigenSolver<Eigen::MatrixXd> eig(a, true);
@@ -174,6 +192,98 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
   columns_ = static_cast<int>(cols.size());
   residues_.resize(static_cast<Eigen::Index>(rows_) * cols_, columns_);
   for (std::size_t c = 0; c < cols.size(); ++c) residues_.col(c) = cols[c];
+
+  // cond(V) does not bound the modal form's error near a repeated pole: a
+  // nearly defective pair (a double pole of a cascade, (s + a)^k) splits
+  // into eigenvalues eps^(1/k) apart whose large residues cancel, and the
+  // merged terms can lose every digit while V still looks well conditioned
+  // (1/(0.01 s + 1)^4: cond 6e4, |H(0)| = 1.74). Where poles cluster, the
+  // modal form is checked against the block Schur form at frequencies
+  // around them and replaced by it if they disagree beyond 1e-9.
+  // The block Schur form can fail the same way where it splits a cluster
+  // of a high multiplicity. Both are checked against the Hessenberg solve,
+  // which is backward stable for any A, and replaced by it if they disagree.
+  if (method == Method::kAuto && (eigenvector_condition_ > kVerifyCondition || HasClusteredPoles(lambda))) {
+    FrequencyResponse reference(sys, Method::kHessenberg);
+    if (!AgreesNear(reference, lambda)) {
+      reference.eigenvector_condition_ = eigenvector_condition_;
+      *this = std::move(reference);
+    }
+  }
+}
+
+void FrequencyResponse::SolveHessenberg(double omega, Workspace& w, Eigen::MatrixXcd& h) const {
+  // Gaussian elimination with partial pivoting on the upper Hessenberg
+  // j omega I - H: one subdiagonal entry per column, so rows k and k + 1 are
+  // the only candidates; O(n^2 (1 + m)).
+  Eigen::MatrixXcd& a = w.m;
+  Eigen::MatrixXcd& x = w.x;
+  a = -hess_.cast<Complex>();
+  a.diagonal().array() += Complex(0.0, omega);
+  x = qb_.cast<Complex>();
+  for (int k = 0; k + 1 < n_; ++k) {
+    if (std::abs(a(k + 1, k)) > std::abs(a(k, k))) {
+      a.row(k).segment(k, n_ - k).swap(a.row(k + 1).segment(k, n_ - k));
+      x.row(k).swap(x.row(k + 1));
+    }
+    if (a(k + 1, k) == Complex(0.0)) continue;
+    const Complex l = a(k + 1, k) / a(k, k);
+    a.row(k + 1).segment(k + 1, n_ - k - 1) -= l * a.row(k).segment(k + 1, n_ - k - 1);
+    a(k + 1, k) = 0.0;
+    x.row(k + 1) -= l * x.row(k);
+  }
+  const double tol = pole_tolerance_ + kPoleSlack * kEps * std::abs(omega);
+  for (int k = n_ - 1; k >= 0; --k) {
+    if (!(std::abs(a(k, k)) > tol)) {
+      // Singular: j omega is (numerically) a pole; name the nearest one.
+      Complex nearest = poles_.size() ? poles_(0) : Complex(0.0, omega);
+      for (Eigen::Index i = 0; i < poles_.size(); ++i)
+        if (std::abs(poles_(i) - Complex(0.0, omega)) < std::abs(nearest - Complex(0.0, omega))) nearest = poles_(i);
+      ThrowOnPole(omega / kTwoPi, nearest);
+    }
+    if (k + 1 < n_) x.row(k) -= a.row(k).segment(k + 1, n_ - k - 1) * x.bottomRows(n_ - k - 1);
+    x.row(k) /= a(k, k);
+  }
+  h = cq_.cast<Complex>() * x;
+  h += d_.cast<Complex>();
+}
+
+bool FrequencyResponse::HasClusteredPoles(const Eigen::VectorXcd& lambda) {
+  for (Eigen::Index i = 0; i < lambda.size(); ++i)
+    for (Eigen::Index j = i + 1; j < lambda.size(); ++j)
+      if (std::abs(lambda(i) - lambda(j)) <= kClusterGap * std::max({std::abs(lambda(i)), std::abs(lambda(j)), 1e-300}))
+        return true;
+  return false;
+}
+
+bool FrequencyResponse::AgreesNear(const FrequencyResponse& other, const Eigen::VectorXcd& lambda) const {
+  std::vector<double> w;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i)
+    if (std::abs(lambda(i)) > 0.0) w.push_back(std::abs(lambda(i)));
+  if (w.empty()) return true;
+  std::sort(w.begin(), w.end());
+  // At most kMaxChecks / 3 pole magnitudes, spread over the sorted list.
+  std::vector<double> f_hz;
+  const std::size_t picks = std::min<std::size_t>(w.size(), kMaxChecks / 3);
+  for (std::size_t i = 0; i < picks; ++i) {
+    const double x = w[picks == 1 ? 0 : i * (w.size() - 1) / (picks - 1)];
+    for (const double r : {0.5, 1.0, 2.0}) f_hz.push_back(r * x / (2.0 * M_PI));
+  }
+  f_hz.push_back(0.01 * w.front() / (2.0 * M_PI));
+  f_hz.push_back(100.0 * w.back() / (2.0 * M_PI));
+  std::vector<std::pair<Eigen::MatrixXcd, Eigen::MatrixXcd>> values;
+  double largest = 0.0;
+  for (double f : f_hz) {
+    try {
+      values.emplace_back(At(f), other.At(f));
+      largest = std::max(largest, values.back().second.norm());
+    } catch (const InputError&) {
+      // A check frequency on a pole (an undamped one): not a place to compare.
+    }
+  }
+  for (const auto& [a, b] : values)
+    if (!((a - b).norm() <= kAgreement * std::max(b.norm(), 1e-8 * largest))) return false;
+  return true;
 }
 
 Eigen::MatrixXcd FrequencyResponse::At(double f_hz) const {
@@ -221,6 +331,10 @@ void FrequencyResponse::EvaluateInto(double f_hz, Workspace& w, Eigen::MatrixXcd
     throw InputError(os.str());
   }
   const double omega = kTwoPi * f_hz;
+  if (method_ == Method::kHessenberg) {
+    SolveHessenberg(omega, w, h);
+    return;
+  }
   ComputeWeights(omega, w);
   // G = D + sum_c weight_c residues_.col(c), then the large blocks.
   Complex* g = transposed_ ? w.g.data() : h.data();

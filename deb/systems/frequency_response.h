@@ -48,7 +48,7 @@ namespace deb {
 
 class FrequencyResponse {
  public:
-  enum class Method { kAuto, kModal, kSchur };
+  enum class Method { kAuto, kModal, kSchur, kHessenberg };
 
   // Largest 1-norm condition number of the (unit-column) eigenvector matrix
   // for which Method::kAuto picks the modal form; relative errors scale like
@@ -56,7 +56,10 @@ class FrequencyResponse {
   static constexpr double kMaxModalCondition = 1e6;
 
   // Reduces A once. kModal forces the modal form even when cond(V) is large
-  // (for benchmarks and tests); kSchur forces the block Schur form.
+  // (for benchmarks and tests); kSchur forces the block Schur form;
+  // kHessenberg the Hessenberg form, solved at every frequency (O(n^2 m)
+  // each, backward stable whatever the poles: the reference kAuto checks the
+  // fast forms against and falls back to).
   // @throws InputError if kModal is forced on a numerically defective A
   //         (cond(V) > 1e-3 / eps).
   explicit FrequencyResponse(const StateSpace& sys, Method method = Method::kAuto);
@@ -108,6 +111,18 @@ class FrequencyResponse {
   void AddLargeBlock(const Term& term, double omega, Workspace& w,
                      std::complex<double>* g) const;
   [[noreturn]] void ThrowOnPole(double f_hz, std::complex<double> pole) const;
+  // Two eigenvalues within kClusterGap of each other (relative).
+  static bool HasClusteredPoles(const Eigen::VectorXcd& lambda);
+  // This form and `other` agree to kAgreement at 0.5, 1 and 2 times |lambda|
+  // (at most kMaxChecks frequencies) and beyond the poles' range, relative
+  // to the larger of |H| there and 1e-8 of the largest |H| seen.
+  bool AgreesNear(const FrequencyResponse& other, const Eigen::VectorXcd& lambda) const;
+  // H by a Hessenberg solve at omega (Method::kHessenberg).
+  void SolveHessenberg(double omega, Workspace& w, Eigen::MatrixXcd& h) const;
+  static constexpr double kClusterGap = 1e-3;
+  static constexpr double kAgreement = 1e-8;
+  static constexpr double kVerifyCondition = 1e2;
+  static constexpr int kMaxChecks = 24;
 
   int n_ = 0, m_ = 0, p_ = 0;
   Method method_ = Method::kModal;
@@ -134,6 +149,9 @@ class FrequencyResponse {
   // T (n x n, block diagonal with upper triangular blocks), and for large
   // blocks L = C S (rows_ x n) and R = S^-1 B (n x cols_).
   Eigen::MatrixXd tr_, ti_, lr_, li_, rr_, ri_;
+
+  // Hessenberg form: A = Q H Q^T; C Q and Q^T B.
+  Eigen::MatrixXd hess_, cq_, qb_;
 };
 
 }  // namespace deb
