@@ -41,9 +41,16 @@ struct ResultFigures {
 
 ResultFigures FiguresOf(const std::string& label, const BudgetResult& result);
 
+// A figure whose variance is below this fraction of its output's total
+// variance (in the same result) is negligible: below what the CPS plot of
+// `deb run` can show (its display floor, kDisplayTail of the report). Its
+// ratio says nothing about the design: a 1e-13 term that becomes 1e-1 reads
+// "from ≈0", not B / A = 1e12.
+inline constexpr double kNegligibleShare = 1e-3;
+
 // One compared figure. band is empty for the whole grid; contributor is
 // "total" for the output's total. rms_b - rms_a and rms_b / rms_a (none when
-// rms_a is 0 and rms_b is not).
+// rms_a is 0, or when either side is negligible).
 struct ComparedFigure {
   std::string output;
   std::string unit;
@@ -55,6 +62,12 @@ struct ComparedFigure {
   // Change of variance as a fraction of the larger total variance of the
   // output: ranks the contributors that changed most.
   double variance_change_of_total = 0.0;
+  // Below kNegligibleShare of the output's total variance in A, in B.
+  bool negligible_a = false, negligible_b = false;
+
+  // |B - A| / A > rel, for a figure that is not negligible on both sides;
+  // one that is negligible on one side only has moved by any rel.
+  bool MovedBy(double rel) const;
 };
 
 struct Comparison {
@@ -65,6 +78,8 @@ struct Comparison {
   // Contributor figures (whole grid) by |variance_change_of_total|, largest
   // first, at most `count` per output.
   std::vector<ComparedFigure> LargestChanges(std::size_t count = 3) const;
+  // The figures that moved by more than rel (MovedBy), in table order.
+  std::vector<ComparedFigure> Moved(double rel) const;
 };
 
 Comparison Compare(const ResultFigures& a, const ResultFigures& b);

@@ -56,7 +56,9 @@ json FigureJson(const ComparedFigure& f) {
           {"rms_b", f.rms_b},
           {"difference", f.difference},
           {"ratio", f.ratio ? json(*f.ratio) : json(nullptr)},
-          {"variance_change_of_total", f.variance_change_of_total}};
+          {"variance_change_of_total", f.variance_change_of_total},
+          {"negligible_a", f.negligible_a},
+          {"negligible_b", f.negligible_b}};
 }
 
 std::string CsvField(const std::string& s) {
