@@ -150,7 +150,7 @@ int CompareCommand::Run() const {
     Pending r;
     r.cmp = Compare(a, b);
     if (s.plots && la.result && lb.result)
-      r.plots = report::OverlayPlots(a.label + " (A)", *la.result, b.label + " (B)", *lb.result);
+      r.plots = report::OverlayPlots(a.label, *la.result, b.label, *lb.result);
     r.dir = s.out_dir.empty() ? (fs::path("reports") / ("compare_" + Safe(a.label) + "_vs_" + Safe(b.label))).string()
                               : s.out_dir;
     reports.push_back(std::move(r));
