@@ -243,6 +243,7 @@ int Check(const std::string& budget_file) {
     for (const deb::SweepParameter& p : sweep->spec.parameters) {
       std::printf("  %-40s %zu value(s): %s", p.key_path.c_str(), p.values.size(), p.Text(p.values.front()).c_str());
       if (p.values.size() > 1) std::printf(" ... %s", p.Text(p.values.back()).c_str());
+      if (!p.label.empty() || !p.unit.empty()) std::printf(" (%s)", p.AxisTitle().c_str());
       std::printf("\n");
     }
   }

@@ -21,6 +21,7 @@
 #include "deb/core/suggest.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/yaml_reader.h"
+#include "deb/units/unit.h"
 
 namespace deb {
 namespace {
@@ -203,6 +204,20 @@ std::string Assign(YAML::Node n, const std::vector<Step>& steps, const SweepPara
   }
 }
 
+// A parameter's name on axes and in tables: one line of printable text.
+std::string ParseLabel(const YamlNode& node) {
+  const std::string label = node.AsString();
+  if (label.find_first_not_of(" \t") == std::string::npos)
+    node.Fail("the label is empty; name the parameter, e.g. 'isolator height h'");
+  if (label.size() > kMaxSweepLabelChars)
+    node.Fail("the label has " + std::to_string(label.size()) + " characters, more than the " +
+              std::to_string(kMaxSweepLabelChars) + " an axis can show");
+  for (const char ch : label)
+    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
+      node.Fail("the label holds a control character (a line break?); write it on one line");
+  return label;
+}
+
 std::vector<double> ParseValues(const YamlNode& p, std::vector<std::string>* texts) {
   int given = 0;
   for (const char* k : {"values", "linear", "log"}) given += p.Has(k) ? 1 : 0;
@@ -288,12 +303,17 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir) {
   std::vector<std::vector<Step>> steps;
   std::vector<YamlNode> path_nodes;
   for (const YamlNode& p : params.Elements()) {
-    p.AllowOnly({"path", "values", "linear", "log"});
+    p.AllowOnly({"path", "label", "unit", "values", "linear", "log"});
     const YamlNode path = p.Required("path");
     steps.push_back(ParseKeyPath(path));
     path_nodes.push_back(path);
     SweepParameter param;
     param.key_path = path.AsString();
+    if (auto label = p.Optional("label")) param.label = ParseLabel(*label);
+    if (auto unit = p.Optional("unit")) {
+      param.unit = unit->AsString();
+      io::AtNode(*unit, [&] { ValidateUnit(param.unit); });
+    }
     param.values = ParseValues(p, &param.texts);
     out.spec.parameters.push_back(param);
   }
