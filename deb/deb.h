@@ -87,6 +87,7 @@
 #include "deb/budget/sensitivity.h"
 #include "deb/budget/source.h"
 #include "deb/budget/sweep.h"
+#include "deb/budget/sweep_ranking.h"
 
 // Budget files in (LoadBudgetFile), result directories out
 // (WriteResultDirectory: summary.json and a CSV per output).
