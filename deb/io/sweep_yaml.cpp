@@ -354,6 +354,23 @@ SweepBudget LoadSweepFile(const std::string& path) {
   return Load(reader, dir.empty() ? "." : dir);
 }
 
+std::vector<double> ParameterValues(const std::string& path, const std::string& key_path) {
+  const YamlReader reader = YamlReader::FromFile(path);
+  YAML::Node raw = reader.LoadCopy();
+  const auto steps = ParseKeyPath(key_path, [](const std::string& why) -> void { throw InputError(why); });
+  if (raw.IsMap()) raw.remove("sweep");
+  Reached reached;
+  std::vector<double> values;
+  std::string why;
+  try {
+    why = Apply(raw, steps, 0, [&values](double x) { values.push_back(x); return x; }, "", reached);
+  } catch (const Reached::Overflow&) {
+    why = Reached::Why();
+  }
+  if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
+  return values;
+}
+
 Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor) {
   const YamlReader reader = YamlReader::FromFile(path);
   YAML::Node raw = reader.LoadCopy();

@@ -54,4 +54,9 @@ std::vector<Budget> LoadSweepVariants(const SweepBudget& sweep, int threads = 0)
 //         and for the budget's own load errors.
 Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor);
 
+// The numbers key_path reaches in the budget in `path`, in document order
+// (the nominal values of a sensitivity's parameter).
+// @throws InputError as LoadBudgetWithScaledParameter.
+std::vector<double> ParameterValues(const std::string& path, const std::string& key_path);
+
 }  // namespace deb
