@@ -168,7 +168,7 @@ TEST_CASE("deb spectrum frf writes a response that a frf path reads: sensors a, 
   CHECK(text.find("f_hz, b/a.mag, b/a.phase_deg, b/a.coherence, c/a.mag, c/a.phase_deg, c/a.coherence") !=
         std::string::npos);
   CHECK(text.find("# frequency response H1 = S_xy / S_xx from a of rec.csv") == 0);
-  // The plot beside it: |H1| above, the coherence below.
+  // The plot beside it: |H1| above, the phase, the coherence below.
   const Command plotted = RunDeb("spectrum frf " + Recording(dir).string() +
                                  " --input a --outputs b,c --segment 512 -o " + (dir / "frf2.csv").string());
   REQUIRE_MESSAGE(plotted.exit_code == 0, plotted.err);
@@ -176,7 +176,24 @@ TEST_CASE("deb spectrum frf writes a response that a frf path reads: sensors a, 
   const std::string script = ReadAll(dir / "frf2.gp");
   CHECK(script.find("set multiplot") != std::string::npos);
   CHECK(script.find("coherence γ^{2}") != std::string::npos);
-  CHECK(ReadAll(dir / "frf2.plot.csv").find("f_hz,mag_b,mag_c,coherence_b,coherence_c") != std::string::npos);
+  CHECK(script.find("set ylabel 'phase [°]'") != std::string::npos);
+  const std::string plot_csv = ReadAll(dir / "frf2.plot.csv");
+  CHECK(plot_csv.find("f_hz,mag_b,mag_c,coherence_b,coherence_c,phase_deg_b,phase_deg_c\n") != std::string::npos);
+  // b and c see the ground motion a sees, in phase: H1 real and positive, the phase near 0 at every bin.
+  std::istringstream rows(plot_csv);
+  std::string row;
+  int phases = 0;
+  double worst = 0.0;
+  while (std::getline(rows, row)) {
+    if (row.empty() || !std::isdigit(static_cast<unsigned char>(row[0]))) continue;
+    std::istringstream cells(row);
+    std::string cell;
+    for (int k = 0; k < 6; ++k) std::getline(cells, cell, ',');
+    worst = std::max(worst, std::abs(std::stod(cell)));  // phase_deg_b
+    ++phases;
+  }
+  CHECK(phases > 50);
+  CHECK(worst < 15.0);  // coherence ~0.98: the phase scatters by a few degrees
   const Command bad = RunDeb("spectrum frf " + Recording(dir).string() + " --input q --outputs b --no-plots -o " +
                          (dir / "bad.csv").string());
   CHECK(bad.exit_code == 3);
