@@ -161,8 +161,8 @@ int CompareCommand::Run() const {
     std::printf("%s (A) vs %s (B):\n", r.cmp.label_a.c_str(), r.cmp.label_b.c_str());
     for (const ComparedFigure& f : r.cmp.figures)
       if (f.contributor == "total" && f.band.empty())
-        std::printf("  %-24s rms %12.6g -> %12.6g %s  (B/A %s)\n", f.output.c_str(), f.rms_a, f.rms_b,
-                    f.unit.c_str(), report::RatioText(f).c_str());
+        std::printf("  %-24s rms %12.6g -> %12.6g %s  (B/A %s, %s)\n", f.output.c_str(), f.rms_a, f.rms_b,
+                    f.unit.c_str(), report::RatioText(f).c_str(), report::Verdict(f).c_str());
     for (const std::string& u : r.cmp.unmatched) std::printf("  not compared: %s\n", u.c_str());
     std::printf("report: %s\n", r.dir.c_str());
   }

@@ -41,12 +41,14 @@ struct ResultFigures {
 
 ResultFigures FiguresOf(const std::string& label, const BudgetResult& result);
 
-// A figure whose variance is below this fraction of its output's total
-// variance (in the same result) is negligible: below what the CPS plot of
-// `deb run` can show (its display floor, kDisplayTail of the report). Its
-// ratio says nothing about the design: a 1e-13 term that becomes 1e-1 reads
-// "from ≈0", not B / A = 1e12.
-inline constexpr double kNegligibleShare = 1e-3;
+// A figure whose variance is below this fraction of its total (in the same
+// result) is negligible: its RMS is below 1e-3 of the total's, so it moves
+// the total's RMS by less than 5e-7 (root sum of squares), below the 4
+// digits the tables print, and its layer of the run's CPS plot is below a
+// pixel. Its ratio says nothing about the design: a 1e-13 term that becomes
+// 1e-1 reads "from ≈0", not B / A = 1e12. The total of a whole-grid contributor is its output's; of a band's
+// contributor, the band's; a band's total is negligible only at 0.
+inline constexpr double kNegligibleShare = 1e-6;
 
 // One compared figure. band is empty for the whole grid; contributor is
 // "total" for the output's total. rms_b - rms_a and rms_b / rms_a (none when
@@ -62,7 +64,7 @@ struct ComparedFigure {
   // Change of variance as a fraction of the larger total variance of the
   // output: ranks the contributors that changed most.
   double variance_change_of_total = 0.0;
-  // Below kNegligibleShare of the output's total variance in A, in B.
+  // Below kNegligibleShare of its total's variance in A, in B.
   bool negligible_a = false, negligible_b = false;
 
   // |B - A| / A > rel, for a figure that is not negligible on both sides;

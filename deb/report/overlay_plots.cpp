@@ -73,7 +73,7 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
   p.kind = cps ? PlotKind::kCps : PlotKind::kSpectrum;
   p.caption = std::string(cps ? "Cumulative power spectrum" : "Power spectral density") + " of " + oa.name + ": A (" +
               label_a + ") solid, B (" + label_b + ") dashed; total in black; contributors below " +
-              Sig(kNegligibleShare, 1) + " of the variance in both are left out." + RangeCaption(range);
+              "10^-6 of the variance in both are left out." + RangeCaption(range);
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", compare, output " << oa.name << ": " << (cps ? "CPS in " : "PSD in ")
       << (cps ? VarianceUnit(unit) : VarianceUnit(unit) + "/Hz") << "; block 0 " << label_a << ", block 1 "

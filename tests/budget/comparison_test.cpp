@@ -71,9 +71,31 @@ TEST_CASE("a negligible term has no ratio: 0/0, from about zero, and not a regre
       CHECK_FALSE(f.ratio.has_value());
       CHECK_FALSE(f.MovedBy(0.0));
     }
+  // A band's total is judged against itself, its contributors against it:
+  // the sensor's 0.5 in a band of 0.5 + 3e-9 is the band.
+  for (const ComparedFigure& f : tiny.figures)
+    if (!f.band.empty() && f.contributor != "floor") {
+      CHECK_FALSE(f.negligible_a);
+      CHECK(f.ratio.has_value());
+    }
   const Comparison zero = Compare(Example(0.0), Example(0.0));
   CHECK_FALSE(zero.figures[1].ratio.has_value());  // floor: 0 / 0
   CHECK(zero.Moved(0.0).empty());
+}
+
+TEST_CASE("a band's total is judged against itself, its contributors against the band, not the whole grid") {
+  // A quiet band: 1e-4 of the output's variance, +27 % RMS in B.
+  ResultFigures a = Example(1.0), b = Example(1.0);
+  a.outputs[0].bands[1] = {10.0, 100.0, 5e-4, {4e-4, 1e-4}};
+  b.outputs[0].bands[1] = {10.0, 100.0, 8e-4, {7e-4, 1e-4}};
+  const Comparison cmp = Compare(a, b);
+  for (const ComparedFigure& f : cmp.figures)
+    if (f.band == "10-100 Hz") {
+      CAPTURE(f.contributor);
+      CHECK_FALSE(f.negligible_a);
+      CHECK(f.ratio.has_value());
+    }
+  CHECK(cmp.Moved(0.2).size() == 2);  // the band's total (+26 %) and floor in it (+32 %)
 }
 
 TEST_CASE("the figures that moved by more than a relative tolerance are listed in table order") {
