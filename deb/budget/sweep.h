@@ -35,11 +35,13 @@ struct SweepParameter {
 
   // The value as the budget file receives it: a number, or texts[index].
   std::string Text(double value) const;
+  // For tables and axes: a number to 4 significant digits, or texts[index].
+  std::string ShortText(double value) const;
   // label, or the key path.
   std::string Name() const;
   // "label [unit]", "label", or the key path.
   std::string AxisTitle() const;
-  // "label = value unit", e.g. "isolator height h = -210 mm".
+  // "label = value unit" (ShortText), e.g. "isolator height h = -210 mm".
   std::string Setting(double value) const;
 };
 

@@ -12,8 +12,8 @@ std::string Lead(const SweepSpec& spec, std::size_t variants) {
   std::string parameters;
   for (const SweepParameter& p : spec.parameters) parameters += (parameters.empty() ? "" : ", ") + p.AxisTitle();
   return std::to_string(variants) + " variants (" + ToString(spec.mode) + " of " + parameters +
-         "). Best first: fewest failing outputs, then the lowest worst RMS / requirement, then the lowest RMS "
-         "relative to each output's best.";
+         "). Best first: fewest failing outputs, then the lowest worst RMS / requirement, then the lowest sum of "
+         "RMS relative to each output's highest in the sweep.";
 }
 
 }  // namespace
@@ -71,7 +71,8 @@ std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetRe
   for (const VariantScore& s : RankVariants(results)) {
     std::vector<std::string> row = {std::to_string(++rank)};
     std::vector<bool> bold(1 + spec.parameters.size(), false);
-    for (std::size_t k = 0; k < spec.parameters.size(); ++k) row.push_back(spec.parameters[k].Text(rows[s.variant][k]));
+    for (std::size_t k = 0; k < spec.parameters.size(); ++k)
+      row.push_back(spec.parameters[k].ShortText(rows[s.variant][k]));
     for (std::size_t o = 0; o < outputs.size(); ++o) {
       row.push_back(VariantCell(results[s.variant].outputs[o]));
       bold.push_back(best_of[o] == s.variant);  // the output's best variant

@@ -35,14 +35,23 @@ Groups GroupByRest(const std::vector<std::vector<double>>& rows) {
   return g;
 }
 
-// Tics naming a textual parameter's values at their indices, on `axis`.
-std::string TextTics(const SweepParameter& p, const std::string& axis) {
+// Tics naming a textual parameter's values at their indices, on `axis`,
+// the range padded by `pad` at either end.
+std::string TextTics(const SweepParameter& p, const std::string& axis, double pad = 0.5) {
   if (p.texts.empty()) return "";
   std::ostringstream s;
-  s << "set " << axis << "range [-0.5:" << p.texts.size() - 0.5 << "]\nset " << axis << "tics (";
+  s << "set " << axis << "range [" << CsvNumber(-pad) << ":" << CsvNumber(static_cast<double>(p.texts.size()) - 1.0 + pad)
+    << "]\nset " << axis << "tics (";
   for (std::size_t i = 0; i < p.texts.size(); ++i) s << (i ? ", " : "") << Quote(Enhanced(p.texts[i])) << " " << i;
   s << ")\n";
   return s.str();
+}
+
+// Positive numeric values over two decades or more (a log: range) go on a log axis.
+bool LogAxis(const SweepParameter& p) {
+  if (!p.texts.empty() || p.values.empty()) return false;
+  const auto [lo, hi] = std::minmax_element(p.values.begin(), p.values.end());
+  return *lo > 0.0 && *hi >= 100.0 * *lo;
 }
 
 std::string RestLabel(const SweepSpec& spec, const std::vector<double>& rest) {
@@ -100,13 +109,16 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
   s << "reset\n" << StylePreamble();
   s << "set ylabel " << Quote("RMS [" + UnitLabel(out0.unit) + "]") << "\n";
   s << "set yrange [0:" << CsvNumber(top * 1.08) << "]\n" << TextTics(first, "x");
+  if (LogAxis(first)) s << "set logscale x 10\n";
   if (out0.rms_max)
     s << "set arrow 1 from graph 0, first " << CsvNumber(*out0.rms_max) << " to graph 1, first "
       << CsvNumber(*out0.rms_max) << " nohead linewidth 1.5 linecolor rgb " << Quote(kRequirementColour)
       << " dashtype " << kRequirementDash << " front\n";
   if (panels > 1) {
+    // The panels leave the right sixth of the page to the key they share.
     s << "set multiplot layout " << rows_of_panels << "," << cols << " title "
-      << Quote(Enhanced(out0.name + ": RMS against " + first.Name())) << " font ',14'\n";
+      << Quote(Enhanced(out0.name + ": RMS against " + first.Name()))
+      << " font ',14' margins 0.07,0.83,0.09,0.9 spacing 0.07,0.13\n";
     s << "set title font ',11'\nset xlabel font ',10'\nset ylabel font ',10'\n";
   } else {
     s << "set title " << Quote(Enhanced(out0.name + ": RMS against " + first.Name())) << "\n";
@@ -115,8 +127,8 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
   for (std::size_t b = 0; b < panels; ++b) {
     if (panels > 1) {
       s << "set title " << Quote(Enhanced(RestLabel(spec, groups.order[b]))) << "\n";
-      // The key once, in the first panel, over its curves; the others share it.
-      s << (b == 0 ? "set key top right Left reverse\n" : "unset key\n");
+      // The key once, with the first panel, beside the panels.
+      s << (b == 0 ? "set key at screen 0.85,0.9 left top Left reverse\n" : "unset key\n");
       if (b % cols != 0) s << "unset ylabel\n";
       else s << "set ylabel " << Quote("RMS [" + UnitLabel(out0.unit) + "]") << "\n";
     } else {
@@ -205,7 +217,9 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
   s << "reset\n" << StylePreamble();
   s << "set title " << Quote(Enhanced(out0.name + ": total RMS over " + px.Name() + " and " + py.Name())) << "\n";
   s << "set xlabel " << Quote(Enhanced(px.AxisTitle())) << "\nset ylabel " << Quote(Enhanced(py.AxisTitle())) << "\n";
-  s << TextTics(px, "x") << TextTics(py, "y");
+  s << TextTics(px, "x", 0.0) << TextTics(py, "y", 0.0);
+  if (LogAxis(px)) s << "set logscale x 10\n";
+  if (LogAxis(py)) s << "set logscale y 10\n";
   if (px.texts.empty()) s << "set xrange [" << CsvNumber(x.front()) << ":" << CsvNumber(x.back()) << "]\n";
   if (py.texts.empty()) s << "set yrange [" << CsvNumber(y.front()) << ":" << CsvNumber(y.back()) << "]\n";
   s << "set view map\nset pm3d at b interpolate 6,6\nunset grid\n";

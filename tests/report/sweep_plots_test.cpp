@@ -80,7 +80,7 @@ TEST_CASE("small multiples: one panel per value of the other parameters, one RMS
   CHECK(Count(script, "set title 'noise = 30'") == 1);
   CHECK(Count(script, "set xlabel 'stiffness [N/m]'") == 1);  // no key path on the axis
   CHECK(script.find("paths[0]") == std::string::npos);
-  CHECK(Count(script, "set key top right") == 1);
+  CHECK(Count(script, "set key at screen") == 1);
   CHECK(Count(script, "unset key") == 2);
   CHECK(Count(script, "set yrange [0:") == 1);  // shared by every panel
   // With one parameter: one plot, no multiplot.
