@@ -155,7 +155,8 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
   if (cps && req)
     clauses.push_back(CsvNumber(*req * *req) + per + " with lines linecolor rgb " + Quote(kRequirementColour) +
                       " dashtype " + kRequirementDash + " linewidth 2 title " +
-                      Quote("requirement: " + Short(*req)));
+                      Quote("requirement: " + Short(*req) + " (A " + (oa.pass() ? "pass" : "FAIL") + ", B " +
+                            (ob.pass() ? "pass" : "FAIL") + ")"));
   s << "plot ";
   for (std::size_t i = 0; i < clauses.size(); ++i) s << (i ? ", \\\n     " : "") << clauses[i];
   s << "\n";

@@ -58,6 +58,9 @@ TEST_CASE("overlay plots give PSD and CPS per shared output, A and B as two data
   const double shown = std::stod(plots[1].script.substr(at));
   CHECK(shown > 0.0);
   CHECK(std::fmod(std::log10(y_max / shown) + 100.0, 1.0) == doctest::Approx(0.0).epsilon(1e-6));  // y_max / 10^e
+  // The requirement, and whether each side meets it.
+  CHECK(plots[1].script.find("title 'requirement: " + Short(*a.outputs[0].rms_max) + " (A pass, B pass)'") !=
+        std::string::npos);
   // PSD at most kOverlayPsdDecades deep.
   const std::string& psd = plots[0].script;
   const std::size_t r = psd.find("set yrange [");
