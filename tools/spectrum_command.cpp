@@ -398,17 +398,25 @@ int RunConvert(const Settings& s) {
   const std::string from = csv.unit.value_or(s.unit);
   std::string to = s.to_unit.empty() ? from : s.to_unit;
   Eigen::MatrixXd psd = csv.psd;
+  Eigen::MatrixXd bounds = csv.bounds;  // confidence bounds convert with their channels
   std::vector<std::string> comments = {"converted from " + s.spectrum_file};
   if (csv.interpolation == SpectrumInterpolation::kBins) comments.push_back("interpolation: bins");
   if (!s.to_unit.empty()) {
     if (from.empty())
       throw InputError(s.spectrum_file + ": --to needs the spectrum's unit: give '# unit:' in the file or --unit");
     const UnitConversion conv = ConvertUnit(from, to);
-    for (std::size_t k = 0; k < csv.f_hz.size(); ++k) psd.row(static_cast<Eigen::Index>(k)) *= conv.PsdFactor(csv.f_hz[k]);
+    for (std::size_t k = 0; k < csv.f_hz.size(); ++k) {
+      psd.row(static_cast<Eigen::Index>(k)) *= conv.PsdFactor(csv.f_hz[k]);
+      if (bounds.cols() > 0) bounds.row(static_cast<Eigen::Index>(k)) *= conv.PsdFactor(csv.f_hz[k]);
+    }
     comments.push_back(from + " -> " + to + ": " + conv.Describe());
   }
   Outputs outputs(s);
-  outputs.Text(s.out, SpectrumCsvText(comments, to, Quantity(s.asd), csv.f_hz, psd, csv.channel_names), "the output CSV (-o)");
+  if (s.asd) bounds = bounds.cwiseSqrt();  // extra columns are written as they are
+  outputs.Text(s.out,
+               SpectrumCsvText(comments, to, Quantity(s.asd), csv.f_hz, psd, csv.channel_names,
+                               bounds.cols() > 0 ? &bounds : nullptr, csv.bound_names),
+               "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true)) {
     std::string title = std::string(s.asd ? "ASD" : "PSD") + " of " + SourceName(s.spectrum_file);
     if (!s.to_unit.empty()) title += ", converted from " + report::UnitText(from) + " to " + report::UnitText(to);

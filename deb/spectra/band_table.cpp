@@ -1,5 +1,7 @@
 #include "deb/spectra/band_table.h"
 
+#include <cctype>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 

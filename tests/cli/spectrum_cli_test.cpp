@@ -109,6 +109,13 @@ TEST_CASE("welch --bounds, bands, convert --from-bands chain: bounds are no chan
   for (std::size_t at = r.out.find("warning:"); at != std::string::npos; at = r.out.find("warning:", at + 1)) ++warnings;
   CHECK(warnings == 1);
   CHECK(ReadAll(dir / "bands.csv").find("# unit: um/s\n") != std::string::npos);
+  // convert keeps the bounds beside their channels, converted alike: um/s -> mm/s is 1e-6 on a PSD.
+  r = RunDeb("spectrum convert " + (dir / "psd.csv").string() + " --to mm/s --no-plots -o " +
+             (dir / "mm.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const deb::SpectrumCsv mm = deb::ReadSpectrumCsv((dir / "mm.csv").string());
+  REQUIRE(mm.bound_names == psd.bound_names);
+  CHECK(mm.bounds(10, 1) == doctest::Approx(1e-6 * psd.bounds(10, 1)).epsilon(1e-9));
   // The bands output, class columns and all, reads back as a band table: the PSD is constant per band at
   // the band's mean square / bandwidth, so the bands of the result are those of the table.
   r = RunDeb("spectrum convert --from-bands " + (dir / "bands.csv").string() + " --no-plots -o " +
