@@ -149,6 +149,7 @@ int CompareCommand::Run() const {
     const ResultFigures& b = lb.figures;
     Pending r;
     r.cmp = Compare(a, b);
+    r.cmp.tolerance = s.tolerance;
     if (s.plots && la.result && lb.result)
       r.plots = report::OverlayPlots(a.label, *la.result, b.label, *lb.result);
     r.dir = s.out_dir.empty() ? (fs::path("reports") / ("compare_" + Safe(a.label) + "_vs_" + Safe(b.label))).string()

@@ -76,6 +76,9 @@ struct Comparison {
   std::string label_a, label_b;
   std::vector<ComparedFigure> figures;  // per output: total, contributors, then bands
   std::vector<std::string> unmatched;   // sentences: what only one side has, unit mismatches
+  // `deb compare --tolerance`: the relative change beyond which a figure has
+  // moved (documents list Moved(*tolerance)); none when not asked.
+  std::optional<double> tolerance;
 
   // Contributor figures (whole grid) by |variance_change_of_total|, largest
   // first, at most `count` per output.

@@ -72,6 +72,17 @@ std::vector<Table> ComparisonTables(const Comparison& cmp) {
     largest.rows.push_back({f.output, f.contributor, Sig(f.rms_a, 4), Sig(f.rms_b, 4), RatioText(f),
                             Sig(100.0 * f.variance_change_of_total, 3) + " %"});
   tables.push_back(largest);
+  if (cmp.tolerance) {
+    Table moved;
+    moved.title = "Moved by more than " + Sig(100.0 * *cmp.tolerance, 3) + " % (--tolerance)";
+    moved.header = {"output", "contributor", "band", "A", "B", "B / A"};
+    moved.numeric = {false, false, false, true, true, true};
+    for (const ComparedFigure& f : cmp.Moved(*cmp.tolerance))
+      moved.rows.push_back({f.output, f.contributor, f.band.empty() ? "whole grid" : f.band, Sig(f.rms_a, 4),
+                            Sig(f.rms_b, 4), RatioText(f)});
+    if (moved.rows.empty()) moved.rows.push_back({"none", "", "", "", "", ""});
+    tables.push_back(moved);
+  }
   return tables;
 }
 

@@ -27,7 +27,8 @@ std::string Verdict(const ComparedFigure& total);
 // whose variance changed most.
 Table HeadlineTable(const Comparison& cmp);
 
-// The headline, one table per output, then the largest changes.
+// The headline, one table per output, the largest changes, and with a
+// tolerance the figures that moved beyond it.
 std::vector<Table> ComparisonTables(const Comparison& cmp);
 
 // The plots are referenced as plots/<name>.png.

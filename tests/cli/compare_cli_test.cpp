@@ -95,7 +95,12 @@ TEST_CASE("deb compare --tolerance is a regression gate: exit 6 and the figures 
   CHECK(gate.err.find("moved by more than 0.029 relative (--tolerance)") != std::string::npos);
   CHECK(gate.err.find("z_velocity, sensor_noise: ") != std::string::npos);
   CHECK(gate.err.find(", floor") == std::string::npos);  // the floor did not move
-  CHECK(fs::exists(dir / "cmp" / "compare.json"));
+  // compare.json records the gate: the tolerance and the figures that moved.
+  const auto j = nlohmann::json::parse(ReadAll(dir / "cmp" / "compare.json"));
+  CHECK(j["tolerance"].get<double>() == 0.029);
+  REQUIRE(j["moved"].size() >= 1);
+  for (const auto& f : j["moved"]) CHECK(f["contributor"] != "floor");
+  CHECK(ReadAll(dir / "cmp" / "compare.md").find("## Moved by more than 2.90 % (--tolerance)") != std::string::npos);
   // The headline table leads compare.md, naming the contributor that changed.
   const std::string md = ReadAll(dir / "cmp" / "compare.md");
   const std::size_t headline = md.find("## Headline"), first_output = md.find("## z_velocity [");
