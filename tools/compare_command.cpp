@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -21,11 +22,14 @@
 #include "deb/report/overlay_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/report_tables.h"
+#include "tools/budget_overrides_option.h"
 
 namespace deb::tools {
 
 struct CompareCommand::Options {
   std::vector<std::string> inputs;
+  std::vector<BudgetOverride> overrides;    // --set: every budget input
+  std::vector<BudgetOverride> overrides_b;  // --set-b: the second input (B) only
   std::string out_dir;
   int threads = 0;
   bool quiet = false;
@@ -47,7 +51,7 @@ struct Loaded {
 
 
 // A budget file is evaluated; a directory (or a summary.json) is read.
-Loaded Load(const std::string& input, int threads) {
+Loaded Load(const std::string& input, const std::vector<BudgetOverride>& overrides, int threads) {
   const fs::path p(input);
   if (fs::is_directory(p)) {
     const fs::path summary = p / "summary.json";
@@ -61,7 +65,7 @@ Loaded Load(const std::string& input, int threads) {
     const std::string dir = fs::absolute(p).parent_path().filename().string();
     return {ReadSummaryFigures(input, dir.empty() ? p.stem().string() : dir), std::nullopt};
   }
-  const Budget budget = LoadBudgetFile(input);
+  const Budget budget = LoadBudgetFile(input, overrides);
   EngineOptions options;
   options.threads = threads;
   BudgetResult result = Evaluate(budget, options);
@@ -107,6 +111,9 @@ CLI::App* CompareCommand::Register(CLI::App& app) {
       ->required()
       ->expected(2, 1000)
       ->check(CLI::ExistingPath);
+  AddOverridesOption(c, &s.overrides, "--set", "every budget input");
+  AddOverridesOption(c, &s.overrides_b, "--set-b",
+                     "the second input (B) only, after --set: compare a budget with a variant of itself");
   c->add_option("--out,-o", s.out_dir, "Report directory, for two inputs (default: reports/compare_<A>_vs_<B>)");
   c->add_option("--threads,-j", s.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
@@ -135,7 +142,20 @@ int CompareCommand::Run() const {
   // One job per input (loading and evaluating it); an error is the first
   // input's that fails, as in a serial loop.
   std::vector<Loaded> loaded(s.inputs.size());
-  ParallelForEach(loaded.size(), [&](std::size_t i) { loaded[i] = Load(s.inputs[i], s.threads); }, s.threads);
+  const auto is_budget = [](const std::string& input) {
+    const fs::path p(input);
+    return !fs::is_directory(p) && p.extension() != ".json";
+  };
+  if ((!s.overrides.empty() || !s.overrides_b.empty()) &&
+      std::none_of(s.inputs.begin(), s.inputs.end(), is_budget))
+    throw InputError("--set and --set-b change budget files, and every input is a result directory");
+  if (!s.overrides_b.empty() && (s.inputs.size() < 2 || !is_budget(s.inputs[1])))
+    throw InputError("--set-b changes the second input (B), which must be a budget file");
+  std::vector<std::vector<BudgetOverride>> overrides(s.inputs.size(), s.overrides);
+  if (!s.overrides_b.empty())
+    overrides[1].insert(overrides[1].end(), s.overrides_b.begin(), s.overrides_b.end());
+  ParallelForEach(loaded.size(), [&](std::size_t i) { loaded[i] = Load(s.inputs[i], overrides[i], s.threads); },
+                  s.threads);
   struct Pending {
     Comparison cmp;
     std::vector<report::Plot> plots;

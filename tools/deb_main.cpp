@@ -41,6 +41,7 @@
 #include "deb/report/report_writer.h"
 #include "deb/units/unit.h"
 #include "deb/version.h"
+#include "tools/budget_overrides_option.h"
 #include "tools/compare_command.h"
 #include "tools/sensitivity_command.h"
 #include "tools/spectrum_command.h"
@@ -125,9 +126,9 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
   std::fflush(stdout);  // before the report's progress and gnuplot's time
 }
 
-int Run(const std::string& budget_file, std::string out_dir, int threads, bool quiet, bool strict,
-        deb::ReportOptions report) {
-  const deb::Budget budget = deb::LoadBudgetFile(budget_file);
+int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides, std::string out_dir,
+        int threads, bool quiet, bool strict, deb::ReportOptions report) {
+  const deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
   if (out_dir.empty()) out_dir = (std::filesystem::path("reports") / budget.name).string();
   deb::EngineOptions options;
   options.threads = threads;
@@ -166,15 +167,15 @@ int Run(const std::string& budget_file, std::string out_dir, int threads, bool q
   return 0;
 }
 
-int Check(const std::string& budget_file) {
-  const deb::Budget budget = deb::LoadBudgetFile(budget_file);
+int Check(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides) {
+  const deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
   // Everything run checks of its input before computing: what check accepts, run accepts.
   const deb::EvaluationPlan plan = deb::PlanEvaluation(budget);
   const deb::FrequencyGrid& grid = plan.grid;
   // Every sweep variant is loaded and validated, as deb sweep would before computing.
   std::optional<deb::SweepBudget> sweep;
   if (budget.has_sweep) {
-    sweep = deb::LoadSweepFile(budget_file);
+    sweep = deb::LoadSweepFile(budget_file, overrides);
     deb::LoadSweepVariants(*sweep);
   }
   std::printf("budget %s: valid\n", budget.name.c_str());
@@ -218,7 +219,7 @@ int Check(const std::string& budget_file) {
   for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
     const deb::Contributor& c = budget.contributors[ci];
     std::printf("  %-20s source %s, path %s, exact variance: %s\n", c.name.c_str(), c.source.c_str(),
-                c.path.c_str(), deb::ToString(c.exact).c_str());
+                deb::ContributorPathKey(c).c_str(), deb::ToString(c.exact).c_str());
     // Why there will be none where it was asked for, once per distinct reason (the outputs usually share it).
     std::vector<std::string> reasons;
     for (const std::string& why : plan.exact_refusal[ci])
@@ -250,8 +251,8 @@ int Check(const std::string& budget_file) {
   return 0;
 }
 
-int Model(const std::string& budget_file) {
-  const deb::Budget budget = deb::LoadBudgetFile(budget_file);
+int Model(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides) {
+  const deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
   if (budget.models.empty()) {
     std::printf("budget %s has no physical model (no path of type isolation_system)\n", budget.name.c_str());
     return 0;
@@ -283,6 +284,8 @@ int main(int argc, char** argv) {
   bool strict = false;
   CLI::App* run = app.add_subcommand("run", "Evaluate a budget and write its report directory");
   run->add_option("budget", budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
+  std::vector<deb::BudgetOverride> run_overrides, check_overrides, model_overrides;
+  deb::tools::AddOverridesOption(run, &run_overrides);
   run->add_option("--out,-o", out_dir, "Report directory (default: reports/<budget-name>)");
   run->add_option("--threads,-j", threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet,-q", quiet, "Print nothing but warnings and errors");
@@ -311,11 +314,13 @@ int main(int argc, char** argv) {
   std::string check_file;
   CLI::App* check = app.add_subcommand("check", "Validate a budget and describe it, without computing");
   check->add_option("budget", check_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
+  deb::tools::AddOverridesOption(check, &check_overrides);
 
   std::string model_file;
   CLI::App* model = app.add_subcommand(
       "model", "Describe the physical models of a budget: natural frequencies, mode shapes, static pre-stress");
   model->add_option("budget", model_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
+  deb::tools::AddOverridesOption(model, &model_overrides);
 
   deb::tools::SpectrumCommand spectrum_command;
   CLI::App* spectrum = spectrum_command.Register(app);
@@ -346,10 +351,10 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     if (*run) {
       report.plot_scripts = report.plots || plot_scripts;
-      return Run(budget_file, out_dir, threads, quiet, strict, report);
+      return Run(budget_file, run_overrides, out_dir, threads, quiet, strict, report);
     }
-    if (*check) return Check(check_file);
-    if (*model) return Model(model_file);
+    if (*check) return Check(check_file, check_overrides);
+    if (*model) return Model(model_file, model_overrides);
     if (*spectrum) return spectrum_command.Run();
     if (*compare) return compare_command.Run();
     if (*sweep) return sweep_command.Run();

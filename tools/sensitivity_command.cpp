@@ -19,11 +19,13 @@
 #include "deb/report/plot.h"
 #include "deb/report/sensitivity_plots.h"
 #include "deb/report/report_tables.h"
+#include "tools/budget_overrides_option.h"
 
 namespace deb::tools {
 
 struct SensitivityCommand::Options {
   std::string budget_file;
+  std::vector<BudgetOverride> overrides;  // --set
   std::vector<std::string> parameters;
   double step = 1e-3;
   std::string out_dir;
@@ -131,6 +133,7 @@ CLI::App* SensitivityCommand::Register(CLI::App& app) {
             return "";
           },
           "H in [1e-8, 0.5]"));
+  AddOverridesOption(c, &s.overrides);
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_sensitivity)");
   c->add_option("--threads,-j", s.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
@@ -142,17 +145,19 @@ CLI::App* SensitivityCommand::Register(CLI::App& app) {
 
 int SensitivityCommand::Run() const {
   const Options& s = *options_;
-  const Budget budget = LoadBudgetFile(s.budget_file);
+  const Budget budget = LoadBudgetFile(s.budget_file, s.overrides);
   EngineOptions options;
   options.threads = s.threads;
   const SensitivityStudy study = ComputeSensitivities(
       budget, s.parameters, s.step,
-      [&s](const std::string& key, double factor) { return LoadBudgetWithScaledParameter(s.budget_file, key, factor); },
+      [&s](const std::string& key, double factor) {
+        return LoadBudgetWithScaledParameter(s.budget_file, key, factor, s.overrides);
+      },
       options);
   const BudgetResult& nominal = study.nominal;
   const std::vector<Sensitivity>& all = study.sensitivities;
   std::vector<std::pair<std::string, std::vector<double>>> parameters;
-  for (const std::string& key : s.parameters) parameters.emplace_back(key, ParameterValues(s.budget_file, key));
+  for (const std::string& key : s.parameters) parameters.emplace_back(key, ParameterValues(s.budget_file, key, s.overrides));
   const std::vector<report::Plot> plots = s.plots ? report::TornadoPlots(all, nominal) : std::vector<report::Plot>{};
   const std::string dir =
       s.out_dir.empty() ? (fs::path("reports") / (budget.name + "_sensitivity")).string() : s.out_dir;

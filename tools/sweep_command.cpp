@@ -17,11 +17,13 @@
 #include "deb/report/plot.h"
 #include "deb/report/sweep_documents.h"
 #include "deb/report/sweep_plots.h"
+#include "tools/budget_overrides_option.h"
 
 namespace deb::tools {
 
 struct SweepCommand::Options {
   std::string budget_file;
+  std::vector<BudgetOverride> overrides;  // --set
   std::string out_dir;
   int threads = 0;
   bool quiet = false;
@@ -60,6 +62,7 @@ CLI::App* SweepCommand::Register(CLI::App& app) {
   Options& s = *options_;
   CLI::App* c = app.add_subcommand("sweep", "Evaluate every variant of a budget's sweep section; write sweep.csv");
   c->add_option("budget", s.budget_file, "Budget YAML file with a sweep section")->required()->check(CLI::ExistingFile);
+  AddOverridesOption(c, &s.overrides, "--set", "the budget (not its sweep section)");
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_sweep)");
   c->add_option("--threads,-j", s.threads, "Variants loaded and evaluated at once, plots drawn at once (default: all cores)")
       ->check(CLI::NonNegativeNumber);
@@ -71,7 +74,7 @@ CLI::App* SweepCommand::Register(CLI::App& app) {
 
 int SweepCommand::Run() const {
   const Options& s = *options_;
-  const SweepBudget sweep = LoadSweepFile(s.budget_file);
+  const SweepBudget sweep = LoadSweepFile(s.budget_file, s.overrides);
   const bool progress = !s.quiet && ::isatty(STDERR_FILENO);
   const auto results = EvaluateSweep(sweep.spec, sweep.variant, s.threads, [&](std::size_t done, std::size_t total) {
     if (progress) std::fprintf(stderr, "\rdeb: sweep %zu/%zu variants", done, total);

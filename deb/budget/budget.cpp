@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <sstream>
 
+#include "deb/budget/path_composition.h"
+#include "deb/core/at_key_path.h"
 #include "deb/core/error.h"
 #include "deb/core/suggest.h"
 #include "deb/units/unit.h"
@@ -126,12 +129,20 @@ void Budget::Validate() const {
     if (std::find(path_names.begin(), path_names.end(), c.path) == path_names.end())
       throw InputError(key + ".path", "no path named '" + c.path + "'" + DidYouMean(c.path, path_names));
     const Source& s = FindSource(c.source);
-    const Path& p = FindPath(c.path);
+    const Path& full = FindPath(c.path);
+    std::optional<Path> selected;  // the inputs the contributor drives (`inputs:`)
+    if (!c.inputs.empty())
+      AtKeyPath(key + ".inputs", [&] { selected = SelectPathInputs(full, c.inputs); });
+    const Path& p = selected ? *selected : full;
     if (s.channels() != p.system.inputs()) {
       std::ostringstream os;
-      os << "source '" << s.name << "' has " << s.channels() << " channel(s) but path '" << p.name
-         << "' has " << p.system.inputs() << " input(s)";
-      throw InputError(key, os.str());
+      os << "source '" << s.name << "' has " << s.channels() << " channel(s) but ";
+      if (selected)
+        os << "'inputs' names " << p.system.inputs() << " input(s) of path '" << p.name << "'";
+      else
+        os << "path '" << p.name << "' has " << p.system.inputs() << " input(s)"
+           << (s.channels() < p.system.inputs() ? " (name the inputs it drives: inputs: [...])" : "");
+      throw InputError(selected ? key + ".inputs" : key, os.str());
     }
     for (std::size_t k = 0; k < p.input_units.size(); ++k) {
       AtKey(key, [&] {
@@ -172,6 +183,13 @@ void Budget::Validate() const {
       throw InputError(Indexed("bands", i), os.str());
     }
   }
+}
+
+std::string ContributorPathKey(const Contributor& c) {
+  if (c.inputs.empty()) return c.path;
+  std::string key = c.path + "(";
+  for (std::size_t i = 0; i < c.inputs.size(); ++i) key += (i ? ", " : "") + c.inputs[i];
+  return key + ")";
 }
 
 }  // namespace deb

@@ -83,7 +83,15 @@ struct Contributor {
   std::string source;
   std::string path;
   ExactVariance exact = ExactVariance::kAuto;
+  // The path inputs the source drives, by name, one per source channel in
+  // order (SelectPathInputs); empty: all of them, in the path's order.
+  std::vector<std::string> inputs;
 };
+
+// The key of the path a contributor drives: the path's name, with the
+// inputs it selects, e.g. "plant(u2)"; the key of BudgetResult::paths and
+// EvaluationPlan::paths.
+std::string ContributorPathKey(const Contributor& c);
 
 struct Band {
   double lo_hz = 0.0;

@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "deb/budget/path_composition.h"
 #include "deb/budget/path_response.h"
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
@@ -210,12 +211,14 @@ PathAnalyses AnalysePaths(const Budget& budget) {
   PathAnalyses paths;
   for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
     const Contributor& c = budget.contributors[ci];
-    if (paths.count(c.path)) continue;
-    const Path& path = budget.FindPath(c.path);
+    const std::string key = ContributorPathKey(c);
+    if (paths.count(key)) continue;
+    const Path& full = budget.FindPath(c.path);
+    const Path path = c.inputs.empty() ? full : SelectPathInputs(full, c.inputs);  // Validate checked the names
     std::vector<int> rows;
     for (const Output& o : budget.outputs) rows.push_back(path.OutputIndex(o.signal));
     try {
-      paths[c.path] = std::make_shared<const PathAnalysis>(path, rows);
+      paths[key] = std::make_shared<const PathAnalysis>(path, rows);
     } catch (const InputError& e) {
       if (!e.key_path().empty()) throw;
       throw InputError(Key("contributors", ci, "path"), "path '" + path.name + "': " + e.what());
@@ -526,8 +529,8 @@ FullPlan MakePlan(const Budget& budget) {
   for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
     const Contributor& c = budget.contributors[ci];
     const Source& source = budget.FindSource(c.source);
-    const Path& path = budget.FindPath(c.path);
-    const PathAnalysis& analysis = *plan.paths.at(c.path);
+    const PathAnalysis& analysis = *plan.paths.at(ContributorPathKey(c));
+    const Path& path = analysis.path();
     if (analysis.loop_around_data())
       plan.warnings.push_back("path '" + path.name +
                               "' closes a loop around measured data: its stability is not verified by poles "
@@ -613,7 +616,7 @@ void AddExactVariance(const Budget& budget, std::size_t ci, std::size_t o, const
                       const ContributorSetup& setup, std::string refusal, const EngineOptions& options,
                       ContributorResult* cr, std::vector<std::string>* warnings) {
   const Contributor& c = budget.contributors[ci];
-  const Path& path = budget.FindPath(c.path);
+  const Path& path = analysis.path();
   const Output& out = budget.outputs[o];
   if (refusal.empty()) {
     const Eigen::MatrixXd white = *budget.FindSource(c.source).spectrum->WhiteLevel();
@@ -747,8 +750,8 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
   for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
     const Contributor& c = budget.contributors[ci];
     const Source& source = budget.FindSource(c.source);
-    const Path& path = budget.FindPath(c.path);
-    const PathAnalysis& analysis = *result.paths.at(c.path);
+    const PathAnalysis& analysis = *result.paths.at(ContributorPathKey(c));
+    const Path& path = analysis.path();
     const ContributorSetup& setup = full.setups[ci];
     const OutputFactor output_factor{setup.out_conv, weighting_gain2, f};
     const InputSpectrum input(*source.spectrum, setup.in_conv);
@@ -761,6 +764,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
       cr.name = c.name;
       cr.source = c.source;
       cr.path = c.path;
+      cr.inputs = c.inputs;
       cr.psd = std::move(psd[o]);
       cr.cps = CumulativeIntegral(result.grid, cr.psd);
       cr.variance = cr.cps.back();

@@ -53,6 +53,7 @@ struct ContributorResult {
   std::string name;
   std::string source;  // the budget's source and path names: a result
   std::string path;    // describes itself without the Budget beside it
+  std::vector<std::string> inputs;  // the path inputs it drives (Contributor::inputs); empty: all
   std::vector<double> psd;  // one-sided, output unit^2/Hz, per grid point
   std::vector<double> cps;  // forward CPS, output unit^2
   double variance = 0.0;    // cps.back()

@@ -1,11 +1,13 @@
 #include "deb/budget/path_composition.h"
 
+#include <algorithm>
 #include <memory>
 #include <utility>
 
 #include "deb/core/at_key_path.h"
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
+#include "deb/core/suggest.h"
 #include "deb/systems/interconnect.h"
 #include "deb/units/unit.h"
 
@@ -140,6 +142,53 @@ Path ParallelOfPaths(const std::vector<PathPart>& parts) {
     AddLoops(&acc, next);
   }
   return Composed(acc);
+}
+
+Path SelectPathInputs(const Path& path, const std::vector<std::string>& inputs) {
+  if (inputs.empty()) throw InputError("inputs: name at least one input of path '" + path.name + "'");
+  std::vector<int> columns;
+  for (const std::string& name : inputs) {
+    const auto at = std::find(path.input_names.begin(), path.input_names.end(), name);
+    if (at == path.input_names.end()) {
+      std::string all;
+      for (const std::string& n : path.input_names) all += (all.empty() ? "" : ", ") + n;
+      throw InputError("path '" + path.name + "' has no input '" + name + "'" + DidYouMean(name, path.input_names) +
+                       " (its inputs: " + all + ")");
+    }
+    const int column = static_cast<int>(at - path.input_names.begin());
+    if (std::find(columns.begin(), columns.end(), column) != columns.end())
+      throw InputError("input '" + name + "' is named twice; each input takes one channel");
+    columns.push_back(column);
+  }
+  Path p = path;
+  p.input_names.clear();
+  p.input_units.clear();
+  for (int j : columns) {
+    p.input_names.push_back(path.input_names[j]);
+    p.input_units.push_back(path.input_units[j]);
+  }
+  const int k = static_cast<int>(columns.size());
+  if (path.IsModal()) {
+    auto modal = std::make_shared<ModalModel>(*path.modal);
+    modal->phi_in = path.modal->phi_in(columns, Eigen::all);
+    std::vector<std::string> dofs;
+    for (int j : columns) dofs.push_back(path.modal->input_names[j]);
+    modal->input_names = dofs;
+    if (modal->residual.size() > 0) modal->residual = path.modal->residual(Eigen::all, columns);
+    p.modal = std::move(modal);
+    p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(path.system.outputs(), k));
+    return p;
+  }
+  if (path.HasMeasuredData()) {
+    Eigen::MatrixXd selector = Eigen::MatrixXd::Zero(path.system.inputs(), k);
+    for (int i = 0; i < k; ++i) selector(columns[i], i) = 1.0;
+    p.measured = std::make_shared<const FrequencyModel>(
+        FrequencyModel::Series(FrequencyModel(StateSpace::Gain(selector)), *path.measured));
+    p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(path.system.outputs(), k));
+    return p;
+  }
+  p.system = path.system.SelectInputs(columns);
+  return p;
 }
 
 void CheckFeedbackSign(int sign) {

@@ -37,6 +37,14 @@ Path ParallelOfPaths(const std::vector<PathPart>& parts);
 // @throws InputError as above, and if the loop's I - sign G K is singular.
 Path FeedbackOfPaths(const PathPart& plant, const PathPart& controller, int sign = -1);
 
+// The path driven through the named inputs only (a contributor's `inputs:`):
+// H restricted to those columns, in the order given, with their names and
+// units; a modal path stays modal, a measured one is a column selection of
+// its data, its loops are kept. `name` and `description` are the path's.
+// @throws InputError "path 'plant' has no input 'u9' (did you mean 'u2'?)"
+//   for an unknown name, and for an empty list or a name given twice.
+Path SelectPathInputs(const Path& path, const std::vector<std::string>& inputs);
+
 // @throws InputError unless sign is -1 (negative feedback) or +1.
 void CheckFeedbackSign(int sign);
 

@@ -46,9 +46,9 @@ std::vector<PathResponse> ComputePathResponses(const Budget& budget, const Budge
   DEB_DEMAND(contributor < budget.contributors.size());
   const Contributor& c = budget.contributors[contributor];
   const Source& source = budget.FindSource(c.source);
-  const Path& path = budget.FindPath(c.path);
-  const auto analysis = result.paths.find(c.path);
+  const auto analysis = result.paths.find(ContributorPathKey(c));
   DEB_DEMAND(analysis != result.paths.end());
+  const Path& path = analysis->second->path();
   const int m = path.system.inputs();
   const std::vector<UnitConversion> in_conv = InputConversions(source, path);
 

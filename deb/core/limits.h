@@ -36,6 +36,8 @@ inline constexpr std::size_t kMaxSweepVariants = 100'000;
 // YAML nodes a sweep key path with [*] may visit (aliases can make a short
 // file name a huge tree).
 inline constexpr std::size_t kMaxKeyPathVisits = 1'000'000;
+// `--set KEY.PATH=VALUE` options on one command line.
+inline constexpr std::size_t kMaxOverrides = 1000;
 // Files read on the user's behalf.
 inline constexpr std::uintmax_t kMaxBudgetFileBytes = 64ull << 20;  // 64 MiB
 inline constexpr std::uintmax_t kMaxTextFileBytes = 1ull << 30;     // 1 GiB: spectra, FRF, CSV recordings, summaries

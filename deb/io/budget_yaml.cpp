@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "deb/core/input_file.h"
+#include "deb/io/budget_extends.h"
+#include "deb/io/budget_overrides.h"
 #include "deb/io/path_yaml.h"
 #include "deb/io/source_yaml.h"
 #include "deb/io/yaml_reader.h"
@@ -93,11 +95,15 @@ Output ParseOutput(const YamlNode& node) {
 }
 
 Contributor ParseContributor(const YamlNode& node) {
-  node.AllowOnly({"name", "source", "path", "exact", "description"});
+  node.AllowOnly({"name", "source", "path", "inputs", "exact", "description"});
   Contributor c;
   c.name = node.Required("name").AsString();
   c.source = node.Required("source").AsString();
   c.path = node.Required("path").AsString();
+  if (auto inputs = node.Optional("inputs")) {
+    c.inputs = inputs->AsStrings();
+    if (c.inputs.empty()) inputs->Fail("name at least one input of the path, or leave 'inputs' out to drive them all");
+  }
   if (auto e = node.Optional("exact")) c.exact = io::AtNode(*e, [&] { return ParseExactVariance(e->AsString()); });
   return c;
 }
@@ -158,9 +164,17 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
 }  // namespace
 
 Budget LoadBudgetFile(const std::string& path) {
-  const YamlReader reader = YamlReader::FromFile(path);
+  const YamlReader reader = io::ReadBudgetFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return Load(reader, dir.empty() ? "." : dir);
+}
+
+Budget LoadBudgetFile(const std::string& path, const std::vector<BudgetOverride>& overrides) {
+  if (overrides.empty()) return LoadBudgetFile(path);
+  const YamlReader reader = io::ReadBudgetFile(path);
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return LoadBudgetVariant(io::OverriddenText(reader.text(), overrides, reader.name()), reader.positions(),
+                           io::OverridesNote(overrides), dir.empty() ? "." : dir);
 }
 
 Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const KeyPositions>& original,

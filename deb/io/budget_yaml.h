@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "deb/budget/budget.h"
 
@@ -13,6 +14,26 @@ namespace deb {
 
 // @throws InputError as described above.
 Budget LoadBudgetFile(const std::string& path);
+
+// A change made to a budget file before it is loaded (`--set KEY.PATH=VALUE`
+// on the command line): whatever the key path reaches, which must exist, is
+// replaced by the value read as YAML (a number, a word, a list [1, 2], a map
+// {type: flat, level: 1}). Key paths are those of deb's error messages.
+struct BudgetOverride {
+  std::string key_path;
+  std::string value;
+};
+
+// "KEY.PATH=VALUE", split at the first '='.
+// @throws InputError for text without '=', or with an empty key path or value.
+BudgetOverride ParseBudgetOverride(const std::string& text);
+
+// LoadBudgetFile of the file with the overrides applied in order. An error in
+// an overridden value is located at that key in the file, its message naming
+// the overrides. @throws InputError also for a key path that reaches nothing
+// ("--set sources[0].spectrum.levle=2: sources[0].spectrum has no key 'levle',
+// did you mean 'level'? ...") and for a value that is not YAML.
+Budget LoadBudgetFile(const std::string& path, const std::vector<BudgetOverride>& overrides);
 
 // Same from text; `name` stands for the file in messages, `base_dir` resolves
 // relative data-file paths.

@@ -167,6 +167,7 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
       jc["name"] = cr.name;
       jc["source"] = cr.source;
       jc["path"] = cr.path;
+      if (!cr.inputs.empty()) jc["inputs"] = cr.inputs;
       jc["rms"] = std::sqrt(cr.variance);
       jc["variance"] = cr.variance;
       jc["share"] = o.variance > 0.0 ? cr.variance / o.variance : 0.0;

@@ -22,6 +22,7 @@
 
 #include "deb/budget/budget.h"
 #include "deb/budget/sweep.h"
+#include "deb/io/budget_yaml.h"
 
 namespace deb {
 
@@ -40,7 +41,9 @@ struct SweepBudget {
 // @throws InputError "file:line:col: sweep....: ..." for a missing section, a
 //         key path that does not reach a number, an empty range, zipped
 //         lists of different lengths.
-SweepBudget LoadSweepFile(const std::string& path);
+// With overrides (--set), every variant starts from the overridden budget;
+// an override may not change the sweep section itself.
+SweepBudget LoadSweepFile(const std::string& path, const std::vector<BudgetOverride>& overrides = {});
 SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir = ".");
 
 // Every variant, in order, loaded `threads` at a time (<= 0: the default
@@ -52,11 +55,13 @@ std::vector<Budget> LoadSweepVariants(const SweepBudget& sweep, int threads = 0)
 // finite-difference sensitivity.
 // @throws InputError for a malformed key path or one that reaches no number,
 //         and for the budget's own load errors.
-Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor);
+Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor,
+                                     const std::vector<BudgetOverride>& overrides = {});
 
-// The numbers key_path reaches in the budget in `path`, in document order
-// (the nominal values of a sensitivity's parameter).
+// The numbers key_path reaches in the budget in `path` (with `overrides`
+// applied), in document order: the nominal values of a sensitivity's parameter.
 // @throws InputError as LoadBudgetWithScaledParameter.
-std::vector<double> ParameterValues(const std::string& path, const std::string& key_path);
+std::vector<double> ParameterValues(const std::string& path, const std::string& key_path,
+                                    const std::vector<BudgetOverride>& overrides = {});
 
 }  // namespace deb

@@ -76,7 +76,8 @@ YamlNode::YamlNode(const YamlReader* reader, YAML::Node node, std::string key)
 void YamlNode::Fail(const std::string& message) const { FailAt(node_, key_, message); }
 
 void YamlNode::FailAt(const YAML::Node& at, const std::string& key, const std::string& message) const {
-  if (at.IsDefined() && !at.Mark().is_null()) throw InputError(Where(reader_->name(), at.Mark(), key), message);
+  if (!reader_->assembled() && at.IsDefined() && !at.Mark().is_null())
+    throw InputError(Where(reader_->name(), at.Mark(), key), message);
   throw InputError(reader_->positions()->Locate(key), message);
 }
 
@@ -220,6 +221,13 @@ YamlReader YamlReader::FromString(const std::string& text, const std::string& na
   auto positions = std::make_shared<KeyPositions>(name);
   DocumentCheck(name, positions.get()).Walk(root, "");
   return YamlReader(std::move(root), name, text, std::move(positions));
+}
+
+YamlReader YamlReader::FromAssembled(const std::string& text, const std::string& name,
+                                     std::shared_ptr<const KeyPositions> positions) {
+  YamlReader reader(YAML::Load(text), name, text, std::move(positions));
+  reader.assembled_ = true;
+  return reader;
 }
 
 YamlNode YamlReader::Root() const {

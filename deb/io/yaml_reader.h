@@ -71,6 +71,11 @@ class YamlReader {
   // @throws InputError "file:line:col: ..." if the file cannot be read or parsed.
   static YamlReader FromFile(const std::string& path);
   static YamlReader FromString(const std::string& text, const std::string& name);
+  // A document assembled from files each already read by FromFile (a budget
+  // with `extends:`, budget_extends.h): its text, and the position of every
+  // key path in the file that gave it.
+  static YamlReader FromAssembled(const std::string& text, const std::string& name,
+                                  std::shared_ptr<const KeyPositions> positions);
 
   YamlNode Root() const;
   const std::string& name() const { return name_; }
@@ -82,6 +87,9 @@ class YamlReader {
   // The position of every node of the document by key path, recorded as it
   // was parsed; shared with what is loaded from it (Budget::positions).
   const std::shared_ptr<const KeyPositions>& positions() const { return positions_; }
+  // True for FromAssembled: the nodes' marks point into the assembled text,
+  // which nobody wrote, so errors are located by key path only.
+  bool assembled() const { return assembled_; }
 
  private:
   YamlReader(YAML::Node root, std::string name, std::string text, std::shared_ptr<const KeyPositions> positions);
@@ -89,6 +97,7 @@ class YamlReader {
   std::string text_;
   std::string name_;
   std::shared_ptr<const KeyPositions> positions_;
+  bool assembled_ = false;
 };
 
 // Runs f; an InputError it throws is re-thrown located at `node` (unless it

@@ -68,7 +68,7 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, std::size_t c, s
   p.output = static_cast<int>(o);
   std::pair<double, double> poles_hz{0.0, 0.0};
   const FrequencyRange display = DisplayRange(result.outputs[o], result.grid);
-  const FrequencyRange range = PathRange(*result.paths.at(contributor.path), display, result.grid, &poles_hz);
+  const FrequencyRange range = PathRange(*result.paths.at(ContributorPathKey(contributor)), display, result.grid, &poles_hz);
   const bool widened = range.lo_hz < display.lo_hz || range.hi_hz > display.hi_hz;
   const std::string poles = (poles_hz.first == poles_hz.second ? Sig(poles_hz.first)
                                                                  : Sig(poles_hz.first) + "–" + Sig(poles_hz.second)) +

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "deb/core/error.h"
@@ -110,6 +112,34 @@ std::mutex& LibraryMutex() {
   return mutex;
 }
 
+// Results of the functions below, by their arguments (as DisplayUnit writes
+// them): a budget asks the same few questions many times (every variant of a
+// sweep converts the same units), and every call into UDUNITS-2 holds the
+// one library lock, so threads evaluating variants queued on it. Only
+// successes are kept (a failure ends the run with its message); at most
+// kMaxEntries per function, so hostile input cannot grow it without bound.
+template <class Value>
+class Memo {
+ public:
+  std::optional<Value> Find(const std::string& key) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = values_.find(key);
+    if (it == values_.end()) return std::nullopt;
+    return it->second;
+  }
+  void Store(const std::string& key, const Value& value) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (values_.size() < kMaxEntries) values_.emplace(key, value);
+  }
+
+ private:
+  static constexpr std::size_t kMaxEntries = 4096;
+  std::mutex mutex_;
+  std::unordered_map<std::string, Value> values_;
+};
+
+std::string MemoKey(const std::string& a, const std::string& b = {}) { return DisplayUnit(a) + '\n' + DisplayUnit(b); }
+
 // Caller holds LibraryMutex().
 UnitPtr Parse(ut_system* system, const std::string& unit) {
   const std::string text = DisplayUnit(unit);
@@ -204,12 +234,20 @@ std::string UnitConversion::Describe() const {
 }
 
 void ValidateUnit(const std::string& unit) {
+  static Memo<bool> valid;
+  const std::string key = MemoKey(unit);
+  if (valid.Find(key)) return;
   ut_system* system = System();
-  const std::lock_guard<std::mutex> lock(LibraryMutex());
-  Parse(system, unit);
+  {
+    const std::lock_guard<std::mutex> lock(LibraryMutex());
+    Parse(system, unit);
+  }
+  valid.Store(key, true);
 }
 
-UnitConversion ConvertUnit(const std::string& from, const std::string& to) {
+namespace {
+
+UnitConversion ConvertUnitUncached(const std::string& from, const std::string& to) {
   ut_system* system = System();
   const std::lock_guard<std::mutex> lock(LibraryMutex());
   const UnitPtr from_unit = Parse(system, from);
@@ -246,13 +284,32 @@ UnitConversion ConvertUnit(const std::string& from, const std::string& to) {
                    GramHint(from_text, to_text));
 }
 
+}  // namespace
+
+UnitConversion ConvertUnit(const std::string& from, const std::string& to) {
+  static Memo<UnitConversion> conversions;
+  const std::string key = MemoKey(from, to);
+  if (const auto known = conversions.Find(key)) return *known;
+  const UnitConversion conversion = ConvertUnitUncached(from, to);
+  conversions.Store(key, conversion);
+  return conversion;
+}
+
 bool UnitsCommensurate(const std::string& a, const std::string& b) {
+  static Memo<bool> answers;
+  const std::string key = MemoKey(a, b);
+  if (const auto known = answers.Find(key)) return *known;
   ut_system* system = System();
-  const std::lock_guard<std::mutex> lock(LibraryMutex());
-  const UnitPtr a_unit = Parse(system, a);
-  const UnitPtr b_unit = Parse(system, b);
-  double scale = 1.0;
-  return ScaleBetween(a_unit.get(), b_unit.get(), &scale) == Relation::kScale;
+  bool commensurate = false;
+  {
+    const std::lock_guard<std::mutex> lock(LibraryMutex());
+    const UnitPtr a_unit = Parse(system, a);
+    const UnitPtr b_unit = Parse(system, b);
+    double scale = 1.0;
+    commensurate = ScaleBetween(a_unit.get(), b_unit.get(), &scale) == Relation::kScale;
+  }
+  answers.Store(key, commensurate);
+  return commensurate;
 }
 
 std::string DisplayUnit(const std::string& unit) {
@@ -272,13 +329,20 @@ std::string DisplayUnit(const std::string& unit) {
 }
 
 std::string UnitDefinition(const std::string& unit) {
+  static Memo<std::string> definitions;
+  const std::string key = MemoKey(unit);
+  if (auto known = definitions.Find(key)) return *known;
   ut_system* system = System();
-  const std::lock_guard<std::mutex> lock(LibraryMutex());
-  const UnitPtr parsed = Parse(system, unit);
-  const std::string definition = Format(parsed.get());
+  std::string definition;
+  {
+    const std::lock_guard<std::mutex> lock(LibraryMutex());
+    const UnitPtr parsed = Parse(system, unit);
+    definition = Format(parsed.get());
+  }
   if (definition.empty()) {
     throw InputError("unit '" + unit + "': UDUNITS-2 cannot write its definition in ASCII");
   }
+  definitions.Store(key, definition);
   return definition;
 }
 
@@ -294,7 +358,9 @@ std::string AsdUnitLabel(const std::string& unit) {
   return Factor(display) + "/sqrt(Hz)";
 }
 
-std::string UnitProduct(const std::string& a, const std::string& b) {
+namespace {
+
+std::string UnitProductUncached(const std::string& a, const std::string& b) {
   ut_system* system = System();
   const std::lock_guard<std::mutex> lock(LibraryMutex());
   Parse(system, a);
@@ -310,6 +376,18 @@ std::string UnitProduct(const std::string& a, const std::string& b) {
     throw InputError("cannot multiply units '" + a_text + "' and '" + b_text +
                      "': UDUNITS-2 does not accept the product '" + product + "'");
   }
+  return product;
+}
+
+
+}  // namespace
+
+std::string UnitProduct(const std::string& a, const std::string& b) {
+  static Memo<std::string> products;
+  const std::string key = MemoKey(a, b);
+  if (auto known = products.Find(key)) return *known;
+  const std::string product = UnitProductUncached(a, b);
+  products.Store(key, product);
   return product;
 }
 

@@ -111,4 +111,70 @@ TEST_CASE("composition errors name the part's key path, the values and the rule"
 }
 
 }  // namespace
+TEST_CASE("selecting inputs keeps those columns of H, in the order named, for rational, modal and measured paths") {
+  // A 2-output, 3-input state space; the selection [u3, u1] is H(:, [2, 0]) at every frequency.
+  Eigen::MatrixXd a(2, 2), b(2, 3), c(2, 2), d(2, 3);
+  a << -1, 2, -3, -4;
+  b << 1, 0, 2, 0, 1, -1;
+  c << 1, 1, 0, 2;
+  d << 0, 0.5, 0, 0, 0, 0.25;
+  Path p;
+  p.name = "plant";
+  p.system = StateSpace(a, b, c, d);
+  p.input_names = {"u1", "u2", "u3"};
+  p.input_units = {"N", "V", "nm"};
+  p.output_names = {"y1", "y2"};
+  p.output_units = {"um", "um"};
+  const Path sel = SelectPathInputs(p, {"u3", "u1"});
+  CHECK(sel.input_names == std::vector<std::string>{"u3", "u1"});
+  CHECK(sel.input_units == std::vector<std::string>{"nm", "N"});
+  CHECK(sel.system.states() == 2);
+  for (double f : kF) {
+    const Eigen::MatrixXcd h = p.Model().At(f), hs = sel.Model().At(f);
+    REQUIRE(hs.cols() == 2);
+    CHECK((hs.col(0) - h.col(2)).norm() <= 1e-15 * (1 + h.norm()));
+    CHECK((hs.col(1) - h.col(0)).norm() <= 1e-15 * (1 + h.norm()));
+  }
+  // Measured: the same columns of the data.
+  Path m = p;
+  Eigen::MatrixXcd h0(2, 3), h1(2, 3);
+  h0 << 1, 2, 3, 4, 5, 6;
+  h1 << Complex(1, 1), 2, Complex(0, 3), 4, Complex(5, -1), 6;
+  m.measured = std::make_shared<const FrequencyModel>(MeasuredResponse({0.5, 2.0}, {h0, h1}));
+  m.system = StateSpace::Gain(Eigen::MatrixXd::Zero(2, 3));
+  const Path ms = SelectPathInputs(m, {"u2"});
+  REQUIRE(ms.measured != nullptr);
+  CHECK((ms.measured->At(2.0).col(0) - h1.col(1)).norm() == 0.0);
+  CHECK(ms.system.inputs() == 1);
+  // Modal: the rows of the input shapes, and H is the modal sum over those inputs only.
+  auto modal = std::make_shared<ModalModel>();
+  modal->f_hz = {3.0, 11.0};
+  modal->zeta = {0.02, 0.01};
+  modal->phi_in = (Eigen::MatrixXd(3, 2) << 1, 0.5, -0.2, 2, 0.7, -1).finished();
+  modal->phi_out = (Eigen::MatrixXd(2, 2) << 1, 1, 0.3, -0.4).finished();
+  modal->input_names = {"u1", "u2", "u3"};
+  modal->output_names = {"y1", "y2"};
+  Path q = p;
+  q.modal = modal;
+  q.system = StateSpace::Gain(Eigen::MatrixXd::Zero(2, 3));
+  const Path qs = SelectPathInputs(q, {"u2"});
+  REQUIRE(qs.modal != nullptr);
+  CHECK(qs.modal->phi_in.rows() == 1);
+  CHECK(qs.modal->phi_in(0, 1) == 2.0);
+  for (double f : {0.5, 3.0, 20.0}) {
+    const Eigen::MatrixXcd h = q.Model().At(f), hs = qs.Model().At(f);
+    CHECK((hs.col(0) - h.col(1)).norm() <= 1e-13 * h.norm());
+  }
+  // Unknown, repeated or no names are refused with the path's inputs.
+  try {
+    SelectPathInputs(p, {"u4"});
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("path 'plant' has no input 'u4' (did you mean 'u1'?") != std::string::npos);
+    CHECK(std::string(e.what()).find("(its inputs: u1, u2, u3)") != std::string::npos);
+  }
+  CHECK_THROWS_AS(SelectPathInputs(p, {"u1", "u1"}), InputError);
+  CHECK_THROWS_AS(SelectPathInputs(p, {}), InputError);
+}
+
 }  // namespace deb

@@ -235,5 +235,24 @@ TEST_CASE("conversions from several threads agree with a single-threaded one") {
   for (int t = 0; t < kThreads; ++t) CHECK(mismatches[t] == 0);
 }
 
+TEST_CASE("answers are remembered by their arguments, failures are not") {
+  // The same question, spelt with different whitespace, gets the same answer
+  // as the first time; an invalid unit fails every time, also after a valid
+  // spelling of its neighbour was remembered.
+  const UnitConversion first = ConvertUnit("um/s", "nm");
+  const UnitConversion again = ConvertUnit("  um/s ", "nm ");
+  CHECK(again.scale == first.scale);
+  CHECK(again.derivative_order == first.derivative_order);
+  CHECK(UnitDefinition("um/s") == UnitDefinition(" um/s"));
+  CHECK(UnitProduct("N", "m") == UnitProduct(" N", "m "));
+  for (int i = 0; i < 2; ++i) {
+    CHECK_THROWS_AS(ValidateUnit("umm/s"), InputError);
+    CHECK_THROWS_AS(ConvertUnit("um/s", "rad"), InputError);
+    CHECK_THROWS_AS(UnitsCommensurate("umm/s", "m/s"), InputError);
+  }
+  CHECK_FALSE(UnitsCommensurate("um/s", "nm"));
+  CHECK_FALSE(UnitsCommensurate("um/s", "nm"));
+}
+
 }  // namespace
 }  // namespace deb
