@@ -42,6 +42,7 @@
 #include "deb/spectra/spectrum_csv.h"
 #include "deb/spectra/tabulated_csd.h"
 #include "deb/spectra/third_octave.h"
+#include "deb/spectra/tone_spectrum.h"
 #include "deb/spectra/vc_curve.h"
 
 // Recordings and spectral estimates from them.
@@ -79,6 +80,7 @@
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
+#include "deb/budget/groups.h"
 #include "deb/budget/isolation_paths.h"
 #include "deb/budget/loop_analysis.h"
 #include "deb/budget/output_metric.h"

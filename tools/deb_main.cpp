@@ -30,6 +30,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
+#include "deb/budget/groups.h"
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 #include "deb/core/suggest.h"
@@ -39,6 +40,7 @@
 #include "deb/io/sweep_yaml.h"
 #include "deb/io/result_writer.h"
 #include "deb/report/report_writer.h"
+#include "deb/report/spectrum_plots.h"
 #include "deb/units/unit.h"
 #include "deb/version.h"
 #include "tools/budget_overrides_option.h"
@@ -91,52 +93,80 @@ int RunMapped(CLI::App& app, F&& parse_and_run) {
   }
 }
 
+// A group path as part of a directory name: "stage/amplifier" -> "stage_amplifier".
+std::string DirectoryWord(const std::string& text) {
+  std::string word = text;
+  for (char& c : word)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+          c == '.'))
+      c = '_';
+  return word;
+}
+
+// Each group's RMS and share, indented by depth, after the contributors.
+void PrintGroups(const deb::OutputResult& o) {
+  const std::vector<deb::GroupResult> groups = deb::ComputeGroups(o);
+  if (groups.empty()) return;
+  std::printf("  %-24s %14s %8s\n", "group", "rms", "share");
+  for (const deb::GroupResult& g : groups) {
+    const std::string label = std::string(2 * static_cast<std::size_t>(g.depth), ' ') + g.name;
+    std::printf("  %-24s %14.6g %7.2f%%\n", label.c_str(), std::sqrt(g.variance), 100.0 * g.share);
+  }
+}
+
 // The figures, and for each output that fails what would fix it; printed
 // before the report is drawn (gnuplot takes most of a run).
-void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds) {
+void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds, int digits) {
   std::printf("budget %s: %zu frequencies, %g-%g Hz, evaluated in %.3f s\n", budget.name.c_str(), r.grid.size(),
               r.grid.min_hz(), r.grid.max_hz(), seconds);
   for (const auto& o : r.outputs) {
-    std::printf("\noutput %s [%s]: rms %.6g", o.name.c_str(), o.unit.c_str(), o.rms());
-    if (o.rms_max) std::printf("  (requirement %.6g: %s)", *o.rms_max, o.pass() ? "PASS" : "FAIL");
+    using deb::report::Sig;  // the report's number text: "0.3000", "1.234e-05"
+    std::printf("\noutput %s [%s]: rms %s", o.name.c_str(), o.unit.c_str(), Sig(o.rms(), digits).c_str());
+    if (o.rms_max) std::printf("  (requirement %g: %s)", *o.rms_max, o.pass() ? "PASS" : "FAIL");
     std::printf("\n  %-24s %14s %8s %14s\n", "contributor", "rms", "share", "exact rms");
-    for (const auto& c : o.contributors) {
+    for (std::size_t index : deb::report::ShareOrder(o)) {  // largest first, as in the report
+      const auto& c = o.contributors[index];
       const double share = o.variance > 0 ? 100.0 * c.variance / o.variance : 0.0;
       if (c.exact_variance)
-        std::printf("  %-24s %14.6g %7.2f%% %14.6g\n", c.name.c_str(), std::sqrt(c.variance), share,
-                    std::sqrt(*c.exact_variance));
+        std::printf("  %-24s %14s %7.2f%% %14s\n", c.name.c_str(), Sig(std::sqrt(c.variance), digits).c_str(), share,
+                    Sig(std::sqrt(*c.exact_variance), digits).c_str());
       else
-        std::printf("  %-24s %14.6g %7.2f%% %14s\n", c.name.c_str(), std::sqrt(c.variance), share, "-");
+        std::printf("  %-24s %14s %7.2f%% %14s\n", c.name.c_str(), Sig(std::sqrt(c.variance), digits).c_str(), share, "-");
       if (!c.top_modes.empty()) {  // a modal path: the modes that carry its exact variance
         std::string modes;
         for (std::size_t i = 0; i < c.top_modes.size() && i < 3; ++i) {
           char one[96];
-          std::snprintf(one, sizeof one, "%smode %d, %.4g Hz: %.0f%%", i ? "; " : "", c.top_modes[i].mode,
+          std::snprintf(one, sizeof one, "%smode %d, %.*g Hz: %.0f%%", i ? "; " : "", c.top_modes[i].mode, digits,
                         c.top_modes[i].f_hz, 100.0 * c.top_modes[i].share);
           modes += one;
         }
         std::printf("  %-24s %s\n", "", modes.c_str());
       }
     }
+    PrintGroups(o);
     for (const auto& b : o.band_requirements)
-      std::printf("  band %g-%g Hz: rms %.6g (requirement %.6g: %s)\n", b.requirement.lo_hz, b.requirement.hi_hz,
-                  b.rms(), b.requirement.rms_max, b.pass() ? "PASS" : "FAIL");
+      std::printf("  band %g-%g Hz: rms %s (requirement %g: %s)\n", b.requirement.lo_hz, b.requirement.hi_hz,
+                  Sig(b.rms(), digits).c_str(), b.requirement.rms_max, b.pass() ? "PASS" : "FAIL");
     if (const auto g = deb::GuideFailure(o, r.grid)) std::printf("  to fix: %s\n", g->sentence.c_str());
   }
   std::fflush(stdout);  // before the report's progress and gnuplot's time
 }
 
-int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides, std::string out_dir,
-        int threads, bool quiet, bool strict, deb::ReportOptions report) {
-  const deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
-  if (out_dir.empty()) out_dir = (std::filesystem::path("reports") / budget.name).string();
+int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides, const std::string& group,
+        std::string out_dir, int threads, bool quiet, bool strict, deb::ReportOptions report) {
+  deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
+  if (!group.empty()) budget = deb::SelectGroup(budget, group);
+  if (out_dir.empty())
+    out_dir = (std::filesystem::path("reports") /
+               (group.empty() ? budget.name : budget.name + "_" + DirectoryWord(group)))
+                  .string();
   deb::EngineOptions options;
   options.threads = threads;
   const auto t0 = std::chrono::steady_clock::now();
   const deb::BudgetResult result = deb::Evaluate(budget, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
-  if (!quiet) PrintBrief(budget, result, seconds);
+  if (!quiet) PrintBrief(budget, result, seconds, report.digits);
   try {
     report.progress = !quiet && ::isatty(STDERR_FILENO);
     report.threads = threads;
@@ -286,6 +316,10 @@ int main(int argc, char** argv) {
   run->add_option("budget", budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
   std::vector<deb::BudgetOverride> run_overrides, check_overrides, model_overrides;
   deb::tools::AddOverridesOption(run, &run_overrides);
+  std::string run_group;
+  run->add_option("--group", run_group,
+                  "Report one sub-tree: only the contributors in this group or below it (e.g. stage/amplifier); "
+                  "default directory reports/<budget-name>_<group>");
   run->add_option("--out,-o", out_dir, "Report directory (default: reports/<budget-name>)");
   run->add_option("--threads,-j", threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet,-q", quiet, "Print nothing but warnings and errors");
@@ -304,6 +338,10 @@ int main(int argc, char** argv) {
          "Plot formats, comma-separated: png (index.html), pdf (report.pdf), svg; default png,pdf")
       ->delimiter(',')
       ->check(CLI::IsMember({"png", "pdf", "svg"}));
+  run->add_option("--digits", report.digits,
+                  "Significant digits of the numbers in the console table, the report's tables and plot labels "
+                  "(default 4)")
+      ->check(CLI::Range(1, 15));
   run->add_flag("--asd", report.asd, "Plot amplitude spectral densities (unit/sqrt(Hz)) instead of PSDs");
   run->add_flag("--reverse-cps", report.reverse_cps, "Add a stacked reverse-CPS plot (variance above f) per output");
   run->add_flag_callback("--no-plots", [&report] { report.plots = false; },
@@ -351,7 +389,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     if (*run) {
       report.plot_scripts = report.plots || plot_scripts;
-      return Run(budget_file, run_overrides, out_dir, threads, quiet, strict, report);
+      return Run(budget_file, run_overrides, run_group, out_dir, threads, quiet, strict, report);
     }
     if (*check) return Check(check_file, check_overrides);
     if (*model) return Model(model_file, model_overrides);

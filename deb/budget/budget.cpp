@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "deb/budget/groups.h"
 #include "deb/budget/path_composition.h"
 #include "deb/core/at_key_path.h"
 #include "deb/core/error.h"
@@ -121,6 +122,7 @@ void Budget::Validate() const {
     // "total" names the sum of all contributors in every table, CSV column and plot.
     if (c.name == "total")
       throw InputError(key + ".name", "contributor name 'total' is reserved for the sum of all contributors");
+    if (!c.group.empty()) AtKeyPath(key + ".group", [&] { GroupSegments(c.group); });
     std::vector<std::string> source_names, path_names;
     for (const auto& s : sources) source_names.push_back(s.name);
     for (const auto& p : paths) path_names.push_back(p.name);

@@ -86,6 +86,9 @@ struct Contributor {
   // The path inputs the source drives, by name, one per source channel in
   // order (SelectPathInputs); empty: all of them, in the path's order.
   std::vector<std::string> inputs;
+  // The group it belongs to, a path of names from the top ("stage/amplifier",
+  // groups.h); empty: none (a top-level term).
+  std::string group;
 };
 
 // The key of the path a contributor drives: the path's name, with the

@@ -12,6 +12,7 @@
 #include "deb/budget/path_response.h"
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
+#include "deb/spectra/tone_spectrum.h"
 #include "deb/core/integrate.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/lyapunov.h"
@@ -285,6 +286,21 @@ void CheckDataCoverage(const Budget& budget, const FrequencyGrid& grid) {
   }
 }
 
+// Every tone of a contributor's source lies on the grid's range (a tone has
+// no density for the grid to find: it is evaluated at f0 itself).
+void CheckToneCoverage(const Budget& budget, const FrequencyGrid& grid) {
+  for (const Contributor& c : budget.contributors) {
+    const std::size_t si = IndexOf(budget.sources, c.source);
+    for (const SpectralLine& l : budget.sources[si].spectrum->Lines())
+      if (l.f_hz < grid.min_hz() || l.f_hz > grid.max_hz()) {
+        std::ostringstream os;
+        os << "the tone at " << l.f_hz << " Hz of source '" << c.source << "' lies outside the frequency grid ["
+           << grid.min_hz() << ", " << grid.max_hz() << "] Hz: widen the grid (min_hz, max_hz) to reach it";
+        throw InputError(Key("sources", si, "spectrum.tones"), os.str());
+      }
+  }
+}
+
 // The unit conversions and output rows of one contributor.
 struct ContributorSetup {
   std::vector<UnitConversion> in_conv;  // per path input
@@ -325,6 +341,11 @@ InputError RequiredExactError(std::size_t ci, const Contributor& c, const Output
                                                           out.name + "' is required but cannot be computed: " + why);
 }
 
+// A source of tones only (no density): its contributors' variance is exact.
+bool IsPurelyTonal(const Source& source) {
+  return dynamic_cast<const ToneSpectrum*>(source.spectrum.get()) != nullptr;
+}
+
 // Why contributor c gets no exact variance on output o; "" when one is attempted
 // (white source, pure unit scales, a stable rational path, a rational weighting).
 std::string ExactRefusal(const Contributor& c, const Source& source, const Path& path, const PathAnalysis& analysis,
@@ -332,6 +353,7 @@ std::string ExactRefusal(const Contributor& c, const Source& source, const Path&
   if (c.exact == ExactVariance::kOff) return "not requested";
   if (path.HasMeasuredData())
     return "the path holds measured frequency data (no state-space model for a Lyapunov solution)";
+  if (IsPurelyTonal(source)) return "";  // exact by construction: |H(f0) a|^2
   if (!source.spectrum->WhiteLevel())
     return "the source is not white (exact variance needs a flat spectrum without band limits)";
   if (!setup.inputs_pure_scale || !setup.out_conv[o].IsPureScale())
@@ -486,6 +508,7 @@ FullPlan MakePlan(const Budget& budget) {
   plan.grid = BuildGrid(budget, plan.paths);
   CheckBandsInGrid(budget, plan.grid);
   CheckDataCoverage(budget, plan.grid);
+  CheckToneCoverage(budget, plan.grid);
   plan.bands = budget.bands.empty() ? DecadeBands(plan.grid) : budget.bands;
   plan.loops = AnalyseLoops(budget, plan.grid.f_hz());
   for (const LoopResult& loop : plan.loops) {
@@ -610,6 +633,65 @@ std::vector<std::vector<double>> Propagate(const Budget& budget, std::size_t ci,
   return psd;
 }
 
+// Per output, the variance of each of the source's tones through the
+// contributor's path: y = W(f0) u_out(f0) H_row(f0) (u_in(f0) .* a), with
+// the unit conversions at f0 (a time derivative is j 2 pi f0).
+// @throws InputError at the source's tones for a tone outside the grid or
+//   on a pole of the path (H not finite at f0).
+std::vector<std::vector<ContributorResult::Tone>> PropagateTones(const Budget& budget, std::size_t ci,
+                                                                 const PathAnalysis& analysis,
+                                                                 const std::vector<SpectralLine>& lines,
+                                                                 const ContributorSetup& setup,
+                                                                 const FrequencyGrid& grid) {
+  if (lines.empty()) return {};
+  const Contributor& c = budget.contributors[ci];
+  const std::string at = Key("sources", IndexOf(budget.sources, c.source), "spectrum.tones");
+  std::vector<double> f0;
+  for (const SpectralLine& l : lines) {
+    if (l.f_hz < grid.min_hz() || l.f_hz > grid.max_hz()) {
+      std::ostringstream os;
+      os << "the tone at " << l.f_hz << " Hz of source '" << c.source << "' lies outside the frequency grid ["
+         << grid.min_hz() << ", " << grid.max_hz() << "] Hz: widen the grid (min_hz, max_hz) to reach it";
+      throw InputError(at, os.str());
+    }
+    f0.push_back(l.f_hz);
+  }
+  const std::size_t outputs = budget.outputs.size();
+  std::vector<std::vector<ContributorResult::Tone>> tones(outputs, std::vector<ContributorResult::Tone>(lines.size()));
+  try {
+    analysis.ForEachResponse(
+        f0,
+        [&](std::size_t k, const Eigen::MatrixXcd& h) {
+          Eigen::VectorXcd u = lines[k].rms;
+          for (Eigen::Index j = 0; j < u.size(); ++j) u(j) *= setup.in_conv[j].ResponseFactor(f0[k]);
+          for (std::size_t o = 0; o < outputs; ++o) {
+            const std::complex<double> y = (h.row(setup.row_of_output[o]) * u)(0) *
+                                           setup.out_conv[o].ResponseFactor(f0[k]);
+            tones[o][k] = {f0[k], std::norm(y)};
+          }
+        },
+        1);
+  } catch (const InputError& e) {
+    std::ostringstream os;
+    os << "a tone of source '" << c.source << "' sits on a pole of path '" << c.path << "' (contributor '" << c.name
+       << "'): " << e.message();
+    throw InputError(at, os.str());
+  }
+  for (std::size_t o = 0; o < outputs; ++o) {
+    const std::vector<double> w2 = WeightingGain2(budget.outputs[o], f0, 1);
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      if (!w2.empty()) tones[o][k].variance *= w2[k];
+      if (!std::isfinite(tones[o][k].variance)) {
+        std::ostringstream os;
+        os << "the tone at " << f0[k] << " Hz of source '" << c.source << "' gives a non-finite variance on output '"
+           << budget.outputs[o].name << "' (a pole of the path or the weighting at the tone)";
+        throw InputError(at, os.str());
+      }
+    }
+  }
+  return tones;
+}
+
 // The exact variance of contributor ci on output o into cr (or the reason
 // there is none), and a warning where it disagrees with the grid's figure.
 void AddExactVariance(const Budget& budget, std::size_t ci, std::size_t o, const PathAnalysis& analysis,
@@ -708,7 +790,7 @@ void AddTotalsAndBands(const Output& output, const FrequencyGrid& grid, const st
     BandResult br;
     br.band = b;
     for (const auto& cr : r->contributors) {
-      br.contributor_variance.push_back(IntegralBetween(grid, cr.psd, cr.cps, b.lo_hz, b.hi_hz));
+      br.contributor_variance.push_back(ContributorVarianceBetween(grid, cr, b.lo_hz, b.hi_hz));
       br.variance += br.contributor_variance.back();
     }
     r->bands.push_back(std::move(br));
@@ -716,7 +798,7 @@ void AddTotalsAndBands(const Output& output, const FrequencyGrid& grid, const st
   for (const BandRequirement& q : output.band_requirements) {
     BandRequirementResult br;
     br.requirement = q;
-    for (const auto& cr : r->contributors) br.variance += IntegralBetween(grid, cr.psd, cr.cps, q.lo_hz, q.hi_hz);
+    for (const auto& cr : r->contributors) br.variance += ContributorVarianceBetween(grid, cr, q.lo_hz, q.hi_hz);
     r->band_requirements.push_back(br);
   }
 }
@@ -757,6 +839,9 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
     const InputSpectrum input(*source.spectrum, setup.in_conv);
     std::vector<std::vector<double>> psd =
         Propagate(budget, ci, analysis, input, setup, f, output_factor, options.threads);
+    const std::vector<std::vector<ContributorResult::Tone>> tones =
+        PropagateTones(budget, ci, analysis, source.spectrum->Lines(), setup, result.grid);
+    const bool purely_tonal = IsPurelyTonal(source);
 
     std::vector<std::size_t> split;  // outputs whose modes are split on the grid
     for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
@@ -765,11 +850,23 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
       cr.source = c.source;
       cr.path = c.path;
       cr.inputs = c.inputs;
+      cr.group = c.group;
       cr.psd = std::move(psd[o]);
       cr.cps = CumulativeIntegral(result.grid, cr.psd);
-      cr.variance = cr.cps.back();
       cr.tail_variance_estimate = TailEstimate(f, cr.psd);
-      AddExactVariance(budget, ci, o, analysis, setup, plan.exact_refusal[ci][o], options, &cr, &result.warnings);
+      if (!tones.empty()) {
+        cr.tones = tones[o];
+        double tonal = 0.0;
+        for (const ContributorResult::Tone& t : cr.tones) {
+          tonal += t.variance;
+          const std::size_t first = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), t.f_hz) - f.begin());
+          for (std::size_t k = first; k < f.size(); ++k) cr.cps[k] += t.variance;
+        }
+        if (purely_tonal) cr.exact_variance = tonal;  // |H(f0) a|^2 is the exact variance of a sinusoid
+      }
+      cr.variance = cr.cps.back();
+      if (!purely_tonal)
+        AddExactVariance(budget, ci, o, analysis, setup, plan.exact_refusal[ci][o], options, &cr, &result.warnings);
       result.outputs[o].contributors.push_back(std::move(cr));
       if (analysis.modal() && result.outputs[o].contributors.back().top_modes.empty()) split.push_back(o);
     }
@@ -791,6 +888,20 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
   } catch (const InputError& e) {
     throw budget.Locate(e);  // at file:line:col, from the positions recorded at load
   }
+}
+
+double ContributorVarianceBetween(const FrequencyGrid& grid, const ContributorResult& c, double lo_hz, double hi_hz) {
+  if (c.tones.empty()) return IntegralBetween(grid, c.psd, c.cps, lo_hz, hi_hz);
+  // The density's CPS: the tones' steps taken out again.
+  const std::vector<double>& f = grid.f_hz();
+  std::vector<double> density_cps = c.cps;
+  double tonal = 0.0;
+  for (const ContributorResult::Tone& t : c.tones) {
+    const std::size_t first = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), t.f_hz) - f.begin());
+    for (std::size_t k = first; k < f.size(); ++k) density_cps[k] -= t.variance;
+    if (lo_hz < t.f_hz && t.f_hz <= hi_hz) tonal += t.variance;
+  }
+  return IntegralBetween(grid, c.psd, density_cps, lo_hz, hi_hz) + tonal;
 }
 
 }  // namespace deb

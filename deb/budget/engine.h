@@ -54,6 +54,15 @@ struct ContributorResult {
   std::string source;  // the budget's source and path names: a result
   std::string path;    // describes itself without the Budget beside it
   std::vector<std::string> inputs;  // the path inputs it drives (Contributor::inputs); empty: all
+  std::string group;                // Contributor::group ("stage/amplifier"), or empty
+  // The source's tones (tone_spectrum.h) at this output, each propagated
+  // exactly: variance |H(f0) a|^2 (output unit^2). Included in `cps` (a step
+  // at the first grid point >= f_hz) and `variance`, not in `psd`.
+  struct Tone {
+    double f_hz = 0.0;
+    double variance = 0.0;
+  };
+  std::vector<Tone> tones;
   std::vector<double> psd;  // one-sided, output unit^2/Hz, per grid point
   std::vector<double> cps;  // forward CPS, output unit^2
   double variance = 0.0;    // cps.back()
@@ -161,5 +170,10 @@ EvaluationPlan PlanEvaluation(const Budget& budget);
 //         where propagation meets a pole on the grid or a non-finite PSD, or
 //         a required exact variance is refused.
 BudgetResult Evaluate(const Budget& budget, const EngineOptions& options = {});
+
+// The variance of a contributor between lo_hz and hi_hz (within the grid):
+// the integral of its density (IntegralBetween on its CPS) plus each of its
+// tones with lo_hz < f0 <= hi_hz, exactly.
+double ContributorVarianceBetween(const FrequencyGrid& grid, const ContributorResult& c, double lo_hz, double hi_hz);
 
 }  // namespace deb

@@ -94,7 +94,7 @@ std::string Join(const std::vector<std::string>& names) {
 std::vector<double> VarianceWithin(const OutputResult& output, const FrequencyGrid& grid, double lo_hz,
                                    double hi_hz) {
   std::vector<double> v;
-  for (const ContributorResult& c : output.contributors) v.push_back(IntegralBetween(grid, c.psd, c.cps, lo_hz, hi_hz));
+  for (const ContributorResult& c : output.contributors) v.push_back(ContributorVarianceBetween(grid, c, lo_hz, hi_hz));
   return v;
 }
 

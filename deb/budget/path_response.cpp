@@ -57,6 +57,7 @@ std::vector<PathResponse> ComputePathResponses(const Budget& budget, const Budge
   std::vector<int> position(outputs);
   std::vector<UnitConversion> out_conv(outputs);
   std::vector<std::vector<double>> w2(outputs);
+  std::vector<std::vector<std::complex<double>>> w(outputs);  // the weighting's response, for the phase
   for (std::size_t o = 0; o < outputs; ++o) {
     const Output& out = budget.outputs[o];
     const int row = path.OutputIndex(out.signal);
@@ -65,19 +66,30 @@ std::vector<PathResponse> ComputePathResponses(const Budget& budget, const Budge
     DEB_DEMAND(position[o] >= 0);
     out_conv[o] = OutputConversion(path, row, out);
     w2[o] = WeightingGain2(out, f_hz, threads);
+    if (out.weighting) {
+      w[o].resize(f_hz.size());
+      FrequencyResponse(out.weighting->system)
+          .ForEach(f_hz, [&](std::size_t i, const Eigen::MatrixXcd& h) { w[o][i] = h(0, 0); }, threads);
+    }
     r[o].contributor = c.name;
     r[o].output = out.name;
     r[o].channels = source.channel_names;
     r[o].unit = Grouped(out.unit) + "/" + Grouped(source.unit);
     r[o].gain2.assign(m, std::vector<double>(f_hz.size(), 0.0));
+    r[o].phase_rad.assign(m, std::vector<double>(f_hz.size(), 0.0));
   }
   analysis->second->ForEachResponse(
       f_hz,
       [&](std::size_t i, const Eigen::MatrixXcd& h) {
         for (std::size_t o = 0; o < outputs; ++o) {
           const double common = out_conv[o].PsdFactor(f_hz[i]) * (w2[o].empty() ? 1.0 : w2[o][i]);
-          for (int k = 0; k < m; ++k)
-            r[o].gain2[k][i] = std::norm(h(position[o], k) * in_conv[k].ResponseFactor(f_hz[i])) * common;
+          const std::complex<double> outer =
+              out_conv[o].ResponseFactor(f_hz[i]) * (w[o].empty() ? std::complex<double>(1.0) : w[o][i]);
+          for (int k = 0; k < m; ++k) {
+            const std::complex<double> hk = h(position[o], k) * in_conv[k].ResponseFactor(f_hz[i]);
+            r[o].gain2[k][i] = std::norm(hk) * common;
+            r[o].phase_rad[k][i] = std::arg(hk * outer);
+          }
         }
       },
       threads);

@@ -41,6 +41,9 @@ struct PathResponse {
   std::string unit;                   // "output unit / source unit", for labels
   // gain2[k][i] = |h_k(f_i)|^2, output unit^2 per source unit^2.
   std::vector<std::vector<double>> gain2;
+  // phase_rad[k][i] = arg h_k(f_i) in (-pi, pi], the weighting's phase
+  // included (a moving-average metric only scales the PSD).
+  std::vector<std::vector<double>> phase_rad;
 };
 
 // |h_k(f)|^2 for contributor `contributor` (index into budget.contributors)

@@ -31,6 +31,8 @@ inline constexpr int kMaxDenseStates = 2'000;
 // modes at the most channels (400 MB of doubles).
 inline constexpr std::size_t kMaxMatElements =
     static_cast<std::size_t>(kMaxModes) * static_cast<std::size_t>(kMaxChannels);
+// Lines of one tonal source.
+inline constexpr std::size_t kMaxTones = 10'000;
 // Variants of one sweep, values of one swept parameter.
 inline constexpr std::size_t kMaxSweepVariants = 100'000;
 // YAML nodes a sweep key path with [*] may visit (aliases can make a short

@@ -11,6 +11,7 @@
 
 #include "deb/budget/allocation.h"
 #include "deb/budget/failure_guidance.h"
+#include "deb/budget/groups.h"
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
@@ -168,6 +169,13 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
       jc["source"] = cr.source;
       jc["path"] = cr.path;
       if (!cr.inputs.empty()) jc["inputs"] = cr.inputs;
+      if (!cr.group.empty()) jc["group"] = cr.group;
+      if (!cr.tones.empty()) {
+        nlohmann::json tones = nlohmann::json::array();
+        for (const ContributorResult::Tone& t : cr.tones)
+          tones.push_back({{"f_hz", t.f_hz}, {"rms", std::sqrt(t.variance)}, {"variance", t.variance}});
+        jc["tones"] = tones;
+      }
       jc["rms"] = std::sqrt(cr.variance);
       jc["variance"] = cr.variance;
       jc["share"] = o.variance > 0.0 ? cr.variance / o.variance : 0.0;
@@ -228,6 +236,22 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
       bands.push_back(jb);
     }
     jo["bands"] = bands;
+    if (const std::vector<GroupResult> groups = ComputeGroups(o); !groups.empty()) {
+      nlohmann::json jg = nlohmann::json::array();
+      for (const GroupResult& g : groups) {
+        nlohmann::json members = nlohmann::json::array();
+        for (std::size_t c : g.contributors) members.push_back(o.contributors[c].name);
+        nlohmann::json subgroups = g.subgroups;
+        nlohmann::json gb = nlohmann::json::array();
+        for (std::size_t b = 0; b < o.bands.size(); ++b)
+          gb.push_back({{"lo_hz", o.bands[b].band.lo_hz}, {"hi_hz", o.bands[b].band.hi_hz},
+                        {"rms", std::sqrt(g.band_variance[b])}, {"variance", g.band_variance[b]}});
+        jg.push_back({{"name", g.name}, {"path", g.path}, {"depth", g.depth}, {"variance", g.variance},
+                      {"rms", std::sqrt(g.variance)}, {"share", g.share}, {"members", members},
+                      {"subgroups", subgroups}, {"bands", gb}});
+      }
+      jo["groups"] = jg;
+    }
     outputs.push_back(jo);
   }
   j["outputs"] = outputs;

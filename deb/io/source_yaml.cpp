@@ -1,5 +1,7 @@
 #include "deb/io/source_yaml.h"
 
+#include <cmath>
+#include <complex>
 #include <filesystem>
 
 #include "deb/core/limits.h"
@@ -11,6 +13,7 @@
 #include "deb/spectra/peterson_noise_model.h"
 #include "deb/spectra/scaled_spectrum.h"
 #include "deb/spectra/spectrum_csv.h"
+#include "deb/spectra/tone_spectrum.h"
 #include "deb/spectra/vc_curve.h"
 #include "deb/units/unit.h"
 
@@ -178,6 +181,46 @@ std::shared_ptr<const Spectrum> ReferenceSpectrum(const YamlNode& node, const Ya
 
 }  // namespace
 
+// `type: tones`: sinusoids, each an RMS (or peak) amplitude per channel (one
+// number: the same on every channel) and optional phases in degrees.
+static std::shared_ptr<const Spectrum> ToneSource(const YamlNode& node, const YamlNode& spec, Source* s) {
+  spec.AllowOnly({"type", "tones"});
+  const auto unit_node = node.Optional("unit");
+  if (!unit_node) node.Fail("missing required key 'unit' (the unit of the tones' amplitudes)");
+  s->unit = unit_node->AsString();
+  if (node.Has("convention"))
+    node.Required("convention").Fail("tones are amplitudes (rms or peak), not densities: remove 'convention'");
+  s->channel_names = ChannelNames(node, s->name, 1);
+  const std::size_t n = s->channel_names.size();
+  const YamlNode list = spec.Required("tones");
+  std::vector<SpectralLine> lines;
+  for (const YamlNode& t : list.Elements()) {
+    t.AllowOnly({"f_hz", "rms", "peak", "phase_deg"});
+    if (t.Has("rms") == t.Has("peak")) t.Fail("give the tone's amplitude as rms or as peak (one of them)");
+    const YamlNode a = t.Required(t.Has("rms") ? "rms" : "peak");
+    const auto per_channel = [&](const YamlNode& v, const char* what) {
+      std::vector<double> x = v.IsSequence() ? v.AsDoubles() : std::vector<double>(n, v.AsDouble());
+      if (x.size() != n)
+        v.Fail(std::string(what) + " has " + std::to_string(x.size()) + " value(s) for " + std::to_string(n) +
+               " channel(s): give one number (every channel) or one per channel");
+      return x;
+    };
+    const std::vector<double> amplitude = per_channel(a, "the amplitude");
+    for (double x : amplitude)
+      if (!(std::isfinite(x) && x >= 0.0)) a.Fail("an amplitude must be finite and >= 0");
+    const std::vector<double> phase =
+        t.Has("phase_deg") ? per_channel(t.Required("phase_deg"), "phase_deg") : std::vector<double>(n, 0.0);
+    SpectralLine line;
+    line.f_hz = t.Required("f_hz").AsPositive();
+    line.rms.resize(static_cast<Eigen::Index>(n));
+    const double to_rms = t.Has("peak") ? 1.0 / std::sqrt(2.0) : 1.0;
+    for (std::size_t j = 0; j < n; ++j)
+      line.rms(static_cast<Eigen::Index>(j)) = std::polar(amplitude[j] * to_rms, phase[j] * M_PI / 180.0);
+    lines.push_back(std::move(line));
+  }
+  return AtNode(list, [&] { return std::make_shared<ToneSpectrum>(std::move(lines), static_cast<int>(n)); });
+}
+
 Source ParseSource(const YamlNode& node, const std::string& base_dir) {
   node.AllowOnly({"name", "description", "unit", "channels", "convention", "spectrum", "correlation"});
   Source s;
@@ -282,16 +325,20 @@ Source ParseSource(const YamlNode& node, const std::string& base_dir) {
       node.Required("channels").Fail("the file gives " + std::to_string(m->channels()) + " column(s) but " +
                                      std::to_string(s.channel_names.size()) + " channel names are listed");
     spectrum = m;
+  } else if (type == "tones") {
+    spectrum = ToneSource(node, spec, &s);
   } else if (type == "timeseries") {
     spectrum = TimeSeriesSpectrum(node, spec, base_dir, &s);
   } else if (type == "reference") {
     spectrum = ReferenceSpectrum(node, spec, &s);
   } else {
     spec.Required("type").Fail("unknown spectrum type '" + type +
-                               "'; allowed: flat, vc, measured, timeseries, reference");
+                               "'; allowed: flat, vc, measured, timeseries, reference, tones");
   }
 
   if (auto c = node.Optional("correlation")) {
+    if (type == "tones")
+      c->Fail("tones on several channels are coherent: their phases (phase_deg) relate them; remove 'correlation'");
     if (type == "timeseries" && !spectrum->IsDiagonal())
       c->Fail("the recording's cross-spectra already give the channels' correlation; remove 'correlation', or "
               "set cross_spectra: none to impose one on independent channels");

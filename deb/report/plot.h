@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "deb/report/plot_figure.h"
+
 namespace deb::report {
 
 enum class PlotKind { kCps, kReverseCps, kSpectrum, kBands, kPath, kOverview };
@@ -21,6 +23,9 @@ struct Plot {
   int output = -1;      // index of the output it belongs to, -1 for none
   std::string csv;      // the data, written as plots/<name>.csv
   std::string script;   // gnuplot commands; the working directory is plots/
+  // What the script draws, as data (figure_script.h emits the script from it);
+  // empty for plots still written as text.
+  PlotFigure figure;
 };
 
 // The one way user text reaches gnuplot: a string literal in single quotes

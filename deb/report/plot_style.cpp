@@ -27,7 +27,14 @@ constexpr std::array<const char*, 6> kDashes = {"solid", "(10,5)", "(12,4,2,4)",
 constexpr std::array<int, 6> kPatterns = {4, 5, 1, 6, 7, 2};
 constexpr double kGreyTolerance = 3.0;  // L*, between the level and the colour's two greys
 constexpr double kGoldenAngleDeg = 137.50776405;
-constexpr double kFirstHueDeg = 255.0;  // a blue
+// Hues (CIE LCh) of the first 8 contributors, a qualitative palette matched
+// to their lightness (kLightness): dark blue, orange, light yellow, purple,
+// sky blue, crimson, light green, dark olive. Hues closer than 45° differ by
+// >= 25 in lightness. Contributors 8.. take the same hues turned by 22.5°,
+// then by -22.5°, 11.25°.
+constexpr std::array<double, 8> kFirstHues = {255, 40, 95, 300, 210, 345, 140, 75};
+constexpr std::array<double, 4> kHueTurns = {0.0, 22.5, -22.5, 11.25};
+constexpr double kFirstHueDeg = kFirstHues[0];
 constexpr double kChroma = 58.0;
 
 // Linear sRGB of CIE L*a*b* (D65 white).
@@ -93,7 +100,7 @@ std::string PrintableColour(double l, double c, double h_deg) {
 
 SeriesStyle MakeContributorStyle(std::size_t index) {
   SeriesStyle s;
-  const double hue = std::fmod(kFirstHueDeg + kGoldenAngleDeg * static_cast<double>(index), 360.0);
+  const double hue = std::fmod(kFirstHues[index % 8] + kHueTurns[(index / 8) % 4] + 360.0, 360.0);
   s.lightness = kLightness[index % kLightness.size()];
   s.colour = PrintableColour(s.lightness, kChroma, hue);
   s.edge_colour = LchColour(std::max(s.lightness - 28.0, 12.0), kChroma, hue);
@@ -176,7 +183,7 @@ SeriesStyle ChannelStyle(std::size_t index) {
   double hue = kFirstChannelHueDeg;
   for (std::size_t accepted = 0, j = 0;; ++j) {
     hue = std::fmod(kFirstChannelHueDeg + kGoldenAngleDeg * static_cast<double>(j), 360.0);
-    if (hue_distance(hue, kFirstHueDeg) < kAvoidDeg || hue_distance(hue, kFirstHueDeg + kGoldenAngleDeg) < kAvoidDeg)
+    if (hue_distance(hue, kFirstHueDeg) < kAvoidDeg || hue_distance(hue, kFirstHues[1]) < kAvoidDeg)
       continue;  // the hues of contributors 0 and 1
     if (accepted++ == index) break;
   }
@@ -197,7 +204,7 @@ std::string TerminalCommand(Terminal terminal) {
     case Terminal::kSvg:
       return "set terminal svg enhanced size 1200,720 background '#ffffff'" + font + "13' linewidth 1.2\n";
     case Terminal::kPdf:
-      return "set terminal pdfcairo enhanced size 29.7cm,21cm background '#ffffff'" + font + "11' linewidth 1.0\n";
+      return "set terminal pdfcairo enhanced size 29.7cm,21cm background '#ffffff'" + font + "11' linewidth 1.5\n";
   }
   return "";
 }

@@ -2,8 +2,9 @@
 // The one visual style of a deb report. Contributors keep one colour and one
 // dash pattern in every plot of a report, keyed by their index in the budget
 // (not by their share, which differs per output). Colours are built in CIE
-// L*C*h: hues step by the golden angle, so any run of neighbours differs in
-// hue, and lightness runs through a ladder of 12 levels (25..80, alternating
+// L*C*h: the first 8 form a qualitative palette (hues
+// chosen per lightness level, so that no two read alike in colour or in
+// grey), the next 8 the same hues turned by 22.5°, and lightness runs through a ladder of 12 levels (25..80, alternating
 // dark and light), so that a greyscale print still tells layers and lines
 // apart. The level is met both by the colour's L* and by the grey a printer
 // makes of it (Rec. 601 luma), within 3; greens and cyans lose chroma for it.
@@ -68,7 +69,8 @@ inline constexpr const char* kFont = "DejaVu Sans";
 inline constexpr const char* kMonoFont = "DejaVu Sans Mono";
 
 // Terminal settings for one output file. PNG and SVG pages are 1200 x 720
-// pixels; PDF pages are A4 landscape.
+// pixels; PDF pages are A4 landscape. Data lines are drawn at linewidth >= 2,
+// which is >= 1.5 pt in PDF (0.75 pt per unit) and SVG (1.2 px per unit).
 enum class Terminal { kPng, kSvg, kPdf };
 std::string TerminalCommand(Terminal terminal);
 std::string FileExtension(Terminal terminal);  // "png", "svg", "pdf"

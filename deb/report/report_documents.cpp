@@ -2,7 +2,6 @@
 
 #include <sstream>
 
-#include "deb/report/title_page.h"
 #include "deb/version.h"
 
 namespace deb::report {
@@ -94,7 +93,7 @@ std::string IndexHtml(const DocumentInputs& in) {
   s << "<h2 id=\"summary\">Summary</h2>\n<table class=\"facts\">\n";
   for (const auto& [key, value] : in.facts.items)
     s << "<tr><td>" << HtmlEscape(key) << "</td><td>" << HtmlEscape(value) << "</td></tr>\n";
-  s << "</table>\n" << ToHtml(SummaryTable(result));
+  s << "</table>\n" << ToHtml(SummaryTable(result, in.digits));
   s << "<h3>Conventions</h3>\n<ul>\n";
   for (const auto& c : in.facts.conventions) s << "<li>" << HtmlEscape(c) << "</li>\n";
   s << "</ul>\n";
@@ -115,11 +114,11 @@ std::string IndexHtml(const DocumentInputs& in) {
       << HtmlEscape(OutputLine(out)) << "</p>\n";
     if (const std::string fix = GuidanceText(out, result.grid); !fix.empty())
       s << "<p class=\"guidance\"><strong>" << HtmlEscape(fix) << "</strong></p>\n";
-    s << ToHtml(ContributorTable(out));
+    s << ToHtml(ContributorTable(out, in.digits));
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
-    s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out));
+    s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out, in.digits));
     ForPlots(in.plots, PlotKind::kBands, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
   }
 
@@ -128,7 +127,7 @@ std::string IndexHtml(const DocumentInputs& in) {
   ForPlots(in.plots, PlotKind::kPath, -1, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
 
   s << "<h2 id=\"files\">Files</h2>\n<ul class=\"files\">\n";
-  if (in.pdf) s << "<li><a href=\"report.pdf\">report.pdf</a> — every plot, after a title page</li>\n";
+  if (in.pdf) s << "<li><a href=\"report.pdf\">report.pdf</a> — the typeset report: verdict, contents, tables and every plot</li>\n";
   s << "<li><a href=\"report.md\">report.md</a> — these tables as Markdown</li>\n";
   for (const auto& f : in.data_files) s << "<li><a href=\"" << Href(f) << "\">" << HtmlEscape(f) << "</a></li>\n";
   if (!in.plots.empty())  // written with the plots' files
@@ -146,7 +145,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
   if (!budget.description.empty()) s << budget.description << "\n\n";
   s << "## Summary\n\n| | |\n| --- | --- |\n";
   for (const auto& [key, value] : in.facts.items) s << "| " << key << " | `" << value << "` |\n";
-  s << "\n" << ToMarkdown(SummaryTable(result)) << "\n### Conventions\n\n";
+  s << "\n" << ToMarkdown(SummaryTable(result, in.digits)) << "\n### Conventions\n\n";
   for (const auto& c : in.facts.conventions) s << "- " << c << "\n";
   if (!result.warnings.empty()) {
     s << "\n### Warnings\n\n";
@@ -159,17 +158,17 @@ std::string ReportMarkdown(const DocumentInputs& in) {
     const int oi = static_cast<int>(o);
     s << "## Output " << out.name << " [" << UnitText(out.unit) << "]\n\n" << OutputLine(out) << "\n\n";
     if (const std::string fix = GuidanceText(out, result.grid); !fix.empty()) s << "**" << fix << "**\n\n";
-    s << ToMarkdown(ContributorTable(out)) << "\n";
+    s << ToMarkdown(ContributorTable(out, in.digits)) << "\n";
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToMarkdown(modes) << "\n";
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
-    s << "### Frequency bands\n\n" << ToMarkdown(BandTable(out)) << "\n";
+    s << "### Frequency bands\n\n" << ToMarkdown(BandTable(out, in.digits)) << "\n";
     ForPlots(in.plots, PlotKind::kBands, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
   }
   s << "## Paths\n\n";
   ForPlots(in.plots, PlotKind::kPath, -1, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
   s << "## Files\n\n";
-  if (in.pdf) s << "- [report.pdf](report.pdf): every plot, after a title page\n";
+  if (in.pdf) s << "- [report.pdf](report.pdf): the typeset report: verdict, contents, tables and every plot\n";
   s << "- [index.html](index.html): this report for a browser\n";
   for (const auto& f : in.data_files) s << "- [" << f << "](" << Href(f) << ")\n";
   if (!in.plots.empty()) s << "- [plots/colours.csv](plots/colours.csv): the colour and dash pattern of each contributor\n";

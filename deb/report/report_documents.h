@@ -23,6 +23,7 @@ struct DocumentInputs {
   std::string image_extension;        // "png", "svg", or "" for no images
   bool pdf = false;                   // report.pdf exists
   std::vector<std::string> data_files;  // summary.json, output CSVs: relative paths that exist
+  int digits = 4;                       // significant digits of the tables (ReportOptions::digits)
 };
 
 std::string IndexHtml(const DocumentInputs& in);

@@ -11,6 +11,10 @@ bool ReportOptions::Has(PlotFormat format) const {
 }
 
 bool ReportOptions::IsValid(std::string* error) const {
+  if (digits < 1 || digits > 15) {
+    *error = "digits must be 1..15, not " + std::to_string(digits);
+    return false;
+  }
   if (plots && formats.empty()) {
     *error = "no plot format given: choose one or more of " + AllowedNames<PlotFormat>();
     return false;

@@ -11,7 +11,7 @@ namespace deb {
 
 // File formats of the plots: kPng and kSvg write one file per plot under
 // plots/ (index.html shows the PNGs, or the SVGs without PNGs); kPdf writes
-// all plots, after a title page, into report.pdf.
+// report.pdf, a typeset document holding the tables and every plot.
 enum class PlotFormat { kPng, kPdf, kSvg };
 inline constexpr EnumName<PlotFormat> kPlotFormatNames[] = {
     {PlotFormat::kPng, "png"}, {PlotFormat::kPdf, "pdf"}, {PlotFormat::kSvg, "svg"}};
@@ -29,6 +29,7 @@ struct ReportOptions {
   bool reverse_cps = false;  // add a stacked reverse-CPS plot per output
   bool progress = false;     // report progress on stderr (the caller decides, e.g. isatty)
   int threads = 0;           // gnuplot processes at a time; <= 0: DefaultThreadCount()
+  int digits = 4;            // significant digits of every number in tables, the console and plot labels (1..15)
   bool force = false;        // replace an output directory deb did not write (deb/core/output_dir.h)
   // gnuplot executable; empty: $DEB_GNUPLOT if set, else "gnuplot" on PATH.
   std::string gnuplot;

@@ -46,7 +46,7 @@ bool Emphasised(const Table& t, std::size_t r, std::size_t c) {
 
 }  // namespace
 
-Table SummaryTable(const BudgetResult& result) {
+Table SummaryTable(const BudgetResult& result, int digits) {
   Table t;
   t.title = "Summary";
   t.header = {"output", "unit", "RMS", "requirement", "margin", "status", "largest contributor"};
@@ -57,8 +57,8 @@ Table SummaryTable(const BudgetResult& result) {
       const std::size_t c = ShareOrder(o).front();
       largest = o.contributors[c].name + " (" + Share(o.contributors[c].variance, o.variance) + ")";
     }
-    t.rows.push_back({o.name, UnitText(o.unit), Sig(o.rms(), 4), o.rms_max ? Short(*o.rms_max) : "–",
-                      o.rms_max ? Sig(*o.rms_max - o.rms(), 4) : "–", o.rms_max ? (o.pass() ? "pass" : "FAIL") : "–",
+    t.rows.push_back({o.name, UnitText(o.unit), Sig(o.rms(), digits), o.rms_max ? Short(*o.rms_max) : "–",
+                      o.rms_max ? Sig(*o.rms_max - o.rms(), digits) : "–", o.rms_max ? (o.pass() ? "pass" : "FAIL") : "–",
                       largest});
     t.emphasis.push_back({false, false, false, false, false, o.rms_max && !o.pass(), false});
     for (const BandRequirementResult& b : o.band_requirements) {
@@ -69,7 +69,7 @@ Table SummaryTable(const BudgetResult& result) {
         in_band = o.contributors[c].name + " (" + Share(v[c], b.variance) + ")";
       }
       t.rows.push_back({o.name + ", " + BandText(b.requirement.lo_hz, b.requirement.hi_hz), UnitText(o.unit),
-                        Sig(b.rms(), 4), Short(b.requirement.rms_max), Sig(b.requirement.rms_max - b.rms(), 4),
+                        Sig(b.rms(), digits), Short(b.requirement.rms_max), Sig(b.requirement.rms_max - b.rms(), digits),
                         b.pass() ? "pass" : "FAIL", in_band});
       t.emphasis.push_back({false, false, false, false, false, !b.pass(), false});
     }
@@ -77,7 +77,7 @@ Table SummaryTable(const BudgetResult& result) {
   return t;
 }
 
-Table ContributorTable(const OutputResult& o) {
+Table ContributorTable(const OutputResult& o, int digits) {
   Table t;
   t.title = "Contributors to " + o.name + " [" + UnitText(o.unit) + "]" +
             (o.metric ? ", " + o.metric->Describe() : std::string());
@@ -104,30 +104,30 @@ Table ContributorTable(const OutputResult& o) {
     const ContributorResult& cr = o.contributors[c];
     std::string note = cr.exact_note;
     if (cr.exact_variance && *cr.exact_variance > 0.0)
-      note = "grid holds " + Sig(100.0 * cr.variance / *cr.exact_variance, 4) + " % of the exact variance";
-    std::vector<std::string> row = {cr.name, cr.source, cr.path, Sig(std::sqrt(cr.variance), 4),
+      note = "grid holds " + Sig(100.0 * cr.variance / *cr.exact_variance, digits) + " % of the exact variance";
+    std::vector<std::string> row = {cr.name, cr.source, cr.path, Sig(std::sqrt(cr.variance), digits),
                                     Share(cr.variance, o.variance),
-                                    cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), 4) : "–"};
+                                    cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), digits) : "–"};
     if (fails) {
       const Allocation a = AllocationFactor(o, c);
       const auto in_least = std::find(least->contributors.begin(), least->contributors.end(), c);
       if (a.factor && *a.factor > 0.0)
-        row.push_back(Sig(1.0 / std::sqrt(*a.factor), 4) + "×");
+        row.push_back(Sig(1.0 / std::sqrt(*a.factor), digits) + "×");
       else if (in_least != least->contributors.end() && least->rms_factor)
-        row.push_back(Sig(*least->rms_factor, 4) + "×, each of top " + std::to_string(least->contributors.size()));
+        row.push_back(Sig(*least->rms_factor, digits) + "×, each of top " + std::to_string(least->contributors.size()));
       else if (in_least != least->contributors.end())
         row.push_back("remove, with top " + std::to_string(least->contributors.size()));
       else
         row.push_back("–");
     } else if (o.rms_max) {
       const Allocation a = AllocationFactor(o, c);
-      row.push_back(a.factor ? Sig(*a.factor, 4) : "–");
+      row.push_back(a.factor ? Sig(*a.factor, digits) : "–");
       if (!a.factor) note += std::string(note.empty() ? "" : "; ") + "no allocation: " + a.note;
     }
     row.push_back(note);
     t.rows.push_back(row);
   }
-  std::vector<std::string> total = {"total", "", "", Sig(o.rms(), 4), o.variance > 0 ? "100 %" : "–", ""};
+  std::vector<std::string> total = {"total", "", "", Sig(o.rms(), digits), o.variance > 0 ? "100 %" : "–", ""};
   if (o.rms_max) total.push_back("");
   total.push_back("");
   t.rows.push_back(total);
@@ -152,7 +152,7 @@ Table ModeTable(const OutputResult& o) {
   return t;
 }
 
-Table BandTable(const OutputResult& o) {
+Table BandTable(const OutputResult& o, int digits) {
   Table t;
   t.title = "RMS of " + o.name + " per band [" + UnitText(o.unit) + "]";
   t.header = {"contributor"};
@@ -171,17 +171,17 @@ Table BandTable(const OutputResult& o) {
     std::vector<std::string> row = {o.contributors[c].name};
     std::vector<bool> bold = {false};
     for (std::size_t b = 0; b < o.bands.size(); ++b) {
-      row.push_back(Sig(std::sqrt(o.bands[b].contributor_variance[c]), 3));
+      row.push_back(Sig(std::sqrt(o.bands[b].contributor_variance[c]), digits));
       bold.push_back(largest[b] == c && o.bands[b].variance > 0.0);
     }
-    row.push_back(Sig(std::sqrt(o.contributors[c].variance), 3));
+    row.push_back(Sig(std::sqrt(o.contributors[c].variance), digits));
     bold.push_back(false);
     t.rows.push_back(row);
     t.emphasis.push_back(bold);
   }
   std::vector<std::string> total = {"total"};
-  for (const BandResult& b : o.bands) total.push_back(Sig(std::sqrt(b.variance), 3));
-  total.push_back(Sig(o.rms(), 3));
+  for (const BandResult& b : o.bands) total.push_back(Sig(std::sqrt(b.variance), digits));
+  total.push_back(Sig(o.rms(), digits));
   t.rows.push_back(total);
   return t;
 }

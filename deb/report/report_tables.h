@@ -26,13 +26,14 @@ struct Table {
 // One row per output: unit, RMS, requirement, margin, status, largest
 // contributor (share of the variance); then one per band requirement, its
 // largest contributor within the band (share of the band's variance).
-Table SummaryTable(const BudgetResult& result);
+// Numbers to `digits` significant digits (ReportOptions::digits).
+Table SummaryTable(const BudgetResult& result, int digits = 4);
 
 // One row per contributor of an output, by share: source, path, RMS, share,
 // exact (Lyapunov) RMS or why there is none; with a requirement, the
 // allocation factor k, or for a failing output the reduction of each
 // contributor's RMS that meets the limit (failure_guidance.h).
-Table ContributorTable(const OutputResult& output);
+Table ContributorTable(const OutputResult& output, int digits = 4);
 
 // What would fix a failing output, one sentence (GuidanceSentence, units as
 // the documents print them); "" when it meets every requirement.
@@ -40,7 +41,7 @@ std::string GuidanceText(const OutputResult& output, const FrequencyGrid& grid);
 
 // Rows: contributors by share, then the total; columns: the bands and the
 // whole grid. The largest contributor of each band is emphasised.
-Table BandTable(const OutputResult& output);
+Table BandTable(const OutputResult& output, int digits = 4);
 
 // The modes carrying each modal contributor's exact variance (ModeShare):
 // contributor, mode, f_n, zeta, RMS-equivalent share; no rows without any.

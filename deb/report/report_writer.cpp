@@ -14,14 +14,17 @@
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
+#include "deb/report/band_plots.h"
 #include "deb/report/comparison_plots.h"
+#include "deb/report/loop_plots.h"
+#include "deb/report/overview_plots.h"
 #include "deb/report/file_digest.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/path_plots.h"
 #include "deb/report/plot_style.h"
 #include "deb/report/report_documents.h"
 #include "deb/report/spectrum_plots.h"
-#include "deb/report/title_page.h"
+#include "deb/report/report_pdf.h"
 #include "deb/version.h"
 
 namespace deb {
@@ -93,29 +96,7 @@ std::string UtcText(std::time_t t, const char* format) {
 }
 
 // The report's date: now, or $SOURCE_DATE_EPOCH for reproducible reports.
-std::string ReportDate() { return UtcText(SourceDateEpoch().value_or(std::time(nullptr)), "%Y-%m-%d %H:%M:%S UTC"); }
-
-// cairo stamps a PDF with the wall clock (/CreationDate (D:YYYYMMDDHHMMSSZ))
-// and ignores SOURCE_DATE_EPOCH: the date is overwritten in place, the same
-// number of bytes, so the file's cross-reference offsets stay valid.
-void StampPdfDate(const fs::path& pdf, std::time_t t) {
-  std::string bytes;
-  {
-    std::ifstream in(pdf, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  const std::string key = "/CreationDate (D:";
-  const std::string date = UtcText(t, "%Y%m%d%H%M%S");
-  bool changed = false;
-  for (std::size_t at = bytes.find(key); at != std::string::npos; at = bytes.find(key, at + 1)) {
-    const std::size_t digits = at + key.size();
-    if (digits + date.size() > bytes.size()) break;
-    if (bytes.find_first_not_of("0123456789", digits) < digits + date.size()) continue;  // not cairo's 14 digits
-    bytes.replace(digits, date.size(), date);
-    changed = true;
-  }
-  if (changed) WriteTextFile(pdf.string(), bytes);
-}
+std::time_t ReportTime() { return SourceDateEpoch().value_or(std::time(nullptr)); }
 
 std::string ColoursCsv(const Budget& budget) {
   std::ostringstream s;
@@ -127,21 +108,6 @@ std::string ColoursCsv(const Budget& budget) {
       << CsvField(st.dash) << ',' << st.lightness << ',' << st.fill_pattern << ',' << st.hatch_colour << '\n';
   }
   return s.str();
-}
-
-// A plot's script as a page of report.pdf: inside a margin a printer
-// keeps (single plots; a multiplot places its own panels), with the footer
-// set before the last `plot` so that a multiplot draws it once.
-std::string PdfPage(std::string script, const std::string& footer) {
-  const bool multiplot = script.find("set multiplot") != std::string::npos;
-  // A multiplot's panels reach the page's bottom: its footer goes to the top right corner.
-  const std::string label = "set label 9000 " + Quote(footer) +
-                            (multiplot ? " at screen 0.99,0.985 right" : " at screen 0.5,0.015 center") +
-                            " font ',8' textcolor rgb '#707070' noenhanced\n";
-  const std::size_t last_plot = script.rfind("\nplot ");
-  DEB_DEMAND(last_plot != std::string::npos);
-  script.insert(last_plot + 1, label + (multiplot ? "" : "set size 0.95,0.92\nset origin 0.025,0.045\n"));
-  return script + "unset label 9000\n";
 }
 
 void RequireFile(const fs::path& path, const std::string& what) {
@@ -166,16 +132,19 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   Writer writer(root, &manifest);
 
   const std::string sha256 = info.budget_file.empty() ? "" : FileSha256(info.budget_file);
-  const ReportFacts facts = MakeFacts(budget, result, info.budget_file, sha256, ReportDate(), info.seconds);
+  const std::time_t when = ReportTime();
+  const ReportFacts facts =
+      MakeFacts(budget, result, info.budget_file, sha256, UtcText(when, "%Y-%m-%d %H:%M:%S UTC"), info.seconds);
 
   std::vector<Plot> plots;
   if (plot_files) {
-    plots = OverviewPlots(result);
+    plots = OverviewFigures(result, options.digits);
     for (std::size_t o = 0; o < result.outputs.size(); ++o) {
-      for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
-      plots.push_back(BandPlot(result, o));
+      for (Plot& p : SpectrumPlots(result, o, options, &budget.outputs[o])) plots.push_back(std::move(p));
+      plots.push_back(BandsPlot(result, o, options.digits));
     }
     for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
+    for (Plot& p : LoopPlots(budget, result, options.digits)) plots.push_back(std::move(p));
     for (const Plot& p : plots) {
       writer.Write("plots/" + p.name + ".csv", p.csv);
       writer.WriteScript("plots/" + p.name + ".gp", p.script);
@@ -185,20 +154,12 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   }
 
   const bool pdf = options.plots && options.Has(PlotFormat::kPdf);
+  // report.pdf places each plot as an SVG drawn for it (PdfFigureTerminal)
+  // in a folder removed once the document is written.
+  const std::string pdf_figures = ".pdf_figures";
   if (options.plots) {
-    std::vector<Table> tables = {SummaryTable(result)};
-    for (const OutputResult& o : result.outputs) {
-      tables.push_back(ContributorTable(o));
-      if (Table modes = ModeTable(o); !modes.rows.empty()) tables.push_back(std::move(modes));
-      tables.push_back(BandTable(o));
-    }
-    const TitlePages title = MakeTitlePages(budget.name, budget.description, facts, tables, result.warnings,
-                                            static_cast<int>(plots.size()), sha256);
-    const int total_pages = title.pages + static_cast<int>(plots.size());
-    if (pdf) writer.WriteScript("plots/title_page.gp", title.script);
-
-    // One gnuplot process per file, report.pdf (the longest) first, several
-    // at a time (options.threads).
+    // The figures of report.pdf (SVG, typeset afterwards), then the PNG and
+    // SVG plots, drawn by gnuplot several at a time (options.threads).
     const std::string gnuplot = FindGnuplot(options.gnuplot);
     struct Job {
       std::string file;    // relative to the report directory
@@ -206,12 +167,14 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
     };
     std::vector<Job> jobs;
     if (pdf) {
-      std::string script = TerminalCommand(Terminal::kPdf) + "set output '../report.pdf'\nload 'title_page.gp'\n";
-      for (std::size_t i = 0; i < plots.size(); ++i)
-        script += PdfPage(plots[i].script, PageFooter(budget.name, sha256, title.pages + static_cast<int>(i) + 1,
-                                                      total_pages));
-      jobs.push_back({"report.pdf", script + "unset output\n"});
+      fs::create_directories(plots_dir / pdf_figures, ec);
+      if (ec) throw WriteError("cannot create directory " + (plots_dir / pdf_figures).string() + ": " + ec.message());
+      for (const Plot& p : plots)
+        jobs.push_back({"plots/" + pdf_figures + "/" + p.name + ".svg",
+                        PdfFigureTerminal(p.kind) + "set output " + Quote(pdf_figures + "/" + p.name + ".svg") +
+                            "\nload " + Quote(p.name + ".gp") + "\nunset output\n"});
     }
+    const std::size_t pdf_jobs = jobs.size();
     for (Terminal t : {Terminal::kPng, Terminal::kSvg}) {
       if (!options.Has(t == Terminal::kPng ? PlotFormat::kPng : PlotFormat::kSvg)) continue;
       for (const Plot& p : plots) {
@@ -221,27 +184,44 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       }
     }
     // gnuplot starts fast but each process pays again for fonts and cairo:
-    // the files are drawn in a few batches, one process each (report.pdf
-    // alone, the plots split evenly over the workers), which halves the
+    // the files are drawn in a few batches, one process each (the figures
+    // of report.pdf, which is then typeset by the same worker while the
+    // others draw the plots split evenly over them), which halves the
     // drawing time of a report with dozens of plots.
     const std::size_t workers = static_cast<std::size_t>(
         std::max(1, options.threads > 0 ? options.threads : DefaultThreadCount()));
     std::vector<std::vector<std::size_t>> batches;
-    const std::size_t first_plot = pdf ? 1 : 0;
-    if (pdf) batches.push_back({0});
-    const std::size_t plot_jobs = jobs.size() - first_plot;
+    if (pdf) {
+      batches.emplace_back();
+      for (std::size_t i = 0; i < pdf_jobs; ++i) batches.back().push_back(i);
+    }
+    const std::size_t plot_jobs = jobs.size() - pdf_jobs;
     const std::size_t plot_batches = std::min(workers, plot_jobs);
     for (std::size_t b = 0; b < plot_batches; ++b) {
       std::vector<std::size_t> batch;
-      for (std::size_t i = first_plot + b * plot_jobs / plot_batches;
-           i < first_plot + (b + 1) * plot_jobs / plot_batches; ++i)
+      for (std::size_t i = pdf_jobs + b * plot_jobs / plot_batches; i < pdf_jobs + (b + 1) * plot_jobs / plot_batches;
+           ++i)
         batch.push_back(i);
       batches.push_back(std::move(batch));
     }
     const auto what_of = [&](std::size_t i) {
-      return i == 0 && pdf ? std::string("report.pdf") : "plot " + fs::path(jobs[i].file).filename().string();
+      return (i < pdf_jobs ? "the figure of report.pdf " : "plot ") + fs::path(jobs[i].file).filename().string();
     };
-    Progress progress(options.progress, static_cast<int>(jobs.size()));
+    Progress progress(options.progress, static_cast<int>(jobs.size()) + (pdf ? 1 : 0));
+    PdfLayout layout;
+    const auto typeset = [&] {
+      progress.Step("report.pdf");
+      ReportPdfInputs in;
+      in.budget = &budget;
+      in.result = &result;
+      in.facts = facts;
+      in.sha256 = sha256;
+      in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
+      in.plots = &plots;
+      in.figure_dir = (plots_dir / pdf_figures).string();
+      in.digits = options.digits;
+      layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
+    };
     ParallelForEach(batches.size(), [&](std::size_t b) {
       const std::vector<std::size_t>& batch = batches[b];
       std::string script;
@@ -257,12 +237,14 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
         throw;
       }
       for (std::size_t i : batch) RequireFile(root / jobs[i].file, what_of(i));
+      if (pdf && b == 0) typeset();
     }, options.threads);
-    for (const Job& j : jobs) manifest.files.push_back(j.file);
-    if (const auto epoch = SourceDateEpoch(); epoch && pdf) StampPdfDate(root / "report.pdf", *epoch);
+    for (std::size_t i = pdf_jobs; i < jobs.size(); ++i) manifest.files.push_back(jobs[i].file);
     if (pdf) {
-      manifest.title_pages = title.pages;
-      manifest.pdf_pages = title.pages + static_cast<int>(plots.size());
+      fs::remove_all(plots_dir / pdf_figures, ec);
+      manifest.files.push_back("report.pdf");
+      manifest.title_pages = 1;
+      manifest.pdf_pages = layout.pages;
     }
   }
 
@@ -272,6 +254,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   doc.facts = facts;
   doc.plots = plots;
   doc.pdf = pdf;
+  doc.digits = options.digits;
   if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
   std::vector<std::string> data = {"summary.json"};
   for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));

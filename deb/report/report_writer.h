@@ -1,7 +1,8 @@
 // Writes the report of an evaluated budget: plots (stacked CPS, PSD or ASD,
 // optional reverse CPS, frequency bands, path magnitudes, an overview), the
-// CSV and gnuplot script behind every plot, report.pdf (title page + every
-// plot), index.html and report.md. This is what `deb run` leaves in its
+// CSV and gnuplot script behind every plot, report.pdf (a typeset document:
+// verdict, contents, tables and every plot; report_pdf.h), index.html and
+// report.md. This is what `deb run` leaves in its
 // report directory beside summary.json and the per-output CSVs.
 //
 // Layout of a report directory:
@@ -24,8 +25,8 @@ namespace deb {
 struct ReportManifest {
   std::vector<std::string> plots;  // plot names (file stems under plots/), in report order
   std::vector<std::string> files;  // every file written, relative to the report directory
-  int title_pages = 0;             // text pages at the start of report.pdf
-  int pdf_pages = 0;               // title_pages + plots.size(), or 0 without report.pdf
+  int title_pages = 0;             // report.pdf's title page (with the verdict): 1, or 0 without report.pdf
+  int pdf_pages = 0;               // pages of report.pdf, or 0 without it
 };
 
 // Writes the report into `dir`, an existing directory (normally the

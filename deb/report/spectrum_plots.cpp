@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
+#include "deb/budget/failure_guidance.h"
+#include "deb/report/figure_script.h"
 #include "deb/report/plot_points.h"
 #include "deb/report/plot_style.h"
 #include "deb/units/unit.h"
@@ -13,12 +16,24 @@
 namespace deb::report {
 namespace {
 
-std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
 
-// "floor: 12.3 (78.1 %)" for a key whose title names the unit.
-std::string Entry(const std::string& name, double variance, double total_variance) {
-  std::string s = Enhanced(name) + ": " + SigLabel(std::sqrt(variance));
-  if (total_variance > 0.0) s += " (" + Share(variance, total_variance) + ")";
+// "floor: 12.3 (78.1 %)" for a key whose title names the unit; a
+// contributor that is zero on this output (by symmetry) reads "floor: 0 (0 %)".
+std::string Entry(const std::string& name, double variance, double total_variance, int digits) {
+  std::string s = Enhanced(name) + ": " + (variance > 0.0 ? SigLabel(std::sqrt(variance), digits) : "0");
+  if (total_variance > 0.0) s += " (" + (variance > 0.0 ? Share(variance, total_variance) : std::string("0 %")) + ")";
+  return s;
+}
+
+// " Weighted by <description>; metric: <metric>." from the output's
+// definition: what the plotted quantity is, stated in the caption.
+std::string WeightingCaption(const OutputResult& out, const Output* spec) {
+  std::string s;
+  if (spec && spec->weighting)
+    s += " The output is weighted by " +
+         (spec->weighting->description.empty() ? std::string("a weighting filter") : spec->weighting->description) +
+         " (filter unit " + UnitText(spec->weighting->unit) + ").";
+  if (out.metric) s += " Metric: " + out.metric->Describe() + " (the PSD is that of the metric).";
   return s;
 }
 
@@ -31,7 +46,7 @@ double NiceStep(double x) {
 }
 
 // Stacked CPS (reverse = false) or reverse CPS of one output.
-Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
+Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int digits, const Output* spec) {
   const OutputResult& out = result.outputs[o];
   const std::size_t n = out.contributors.size();
   const std::vector<double>& f = result.grid.f_hz();
@@ -40,16 +55,18 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
   p.kind = reverse ? PlotKind::kReverseCps : PlotKind::kCps;
   p.output = static_cast<int>(o);
   const FrequencyRange range = DisplayRange(out, result.grid);
+  const std::string unit = DisplayUnit(out.unit);
   p.caption = std::string(reverse ? "Reverse cumulative power spectrum (variance above f)" :
                                     "Cumulative power spectrum (variance below f)") +
-              " of " + out.name + ", contributors stacked by share; left axis variance, right axis RMS." +
-              RangeCaption(range);
+              " of " + out.name +
+              ", contributors stacked by share, the largest on top and first in the key; left axis variance, "
+              "right axis RMS." +
+              WeightingCaption(out, spec) + RangeCaption(range);
 
   std::vector<std::vector<double>> series(n);
   for (std::size_t c = 0; c < n; ++c)
     series[c] = reverse ? ReverseCps(out.contributors[c].cps) : out.contributors[c].cps;
   const std::vector<double> total = reverse ? ReverseCps(out.total_cps) : out.total_cps;
-  const std::string unit = DisplayUnit(out.unit);
 
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ", output " << out.name << ": "
@@ -68,64 +85,112 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse) {
   }
   p.csv = csv.str();
 
-  const double y_max = std::max({out.variance, out.rms_max ? *out.rms_max * *out.rms_max : 0.0, 1e-300}) * 1.06;
+  const double limit2 = out.rms_max ? *out.rms_max * *out.rms_max : 0.0;
+  // Headroom above the larger of total and limit for the key-free top edge and the marker's label.
+  const double y_max = std::max({out.variance, limit2, 1e-300}) * 1.12;
   // Variance axis in units of 10^e where the numbers would be long.
   const int e = static_cast<int>(std::floor(std::log10(y_max)));
   const double scale = (e >= 4 || e <= -3) ? std::pow(10.0, e) : 1.0;
-  const std::string per = scale == 1.0 ? "" : "/" + CsvNumber(scale);
   const std::string scale_label = scale == 1.0 ? "" : "10^{" + std::to_string(e) + "} ";
-  std::ostringstream s;
-  s << "reset\n" << StylePreamble() << FrequencyAxis(range, result.grid);
-  s << "set title " << Quote(Enhanced(out.name) + (reverse ? ": reverse cumulative power spectrum, stacked by share"
-                                                            : ": cumulative power spectrum, stacked by share"))
-    << "\n";
-  s << "set ylabel " << Quote(std::string(reverse ? "variance above f" : "cumulative variance") + " [" +
-                              scale_label + UnitLabel(VarianceUnit(unit)) + "]")
-    << "\n";
-  s << "set y2label " << Quote(std::string(reverse ? "RMS above f" : "cumulative RMS") + " [" + UnitLabel(unit) + "]")
-    << "\n";
-  s << "set yrange [0:" << CsvNumber(y_max / scale) << "]\nset y2range [0:" << CsvNumber(y_max / scale) << "]\n";
-  s << "set format y '%g'\nset ytics nomirror\n" << RmsTics(y_max, scale, {{out.rms(), Sig(out.rms())}, {out.rms_max.value_or(0.0), Short(out.rms_max.value_or(0.0))}})
-    << "\n";
-  s << "set key outside right top Left reverse invert title " << Quote("RMS [" + UnitLabel(unit) + "] (share)")
-    << "\n";
-  const std::string data = Quote(p.name + ".csv");
+
+  FigurePanel panel;
+  panel.title = CpsTitle(out, digits) + (reverse ? " (reverse CPS)" : "");
+  panel.x = FrequencyFigureAxis(range, result.grid);
+  panel.y.label = std::string(reverse ? "variance above f" : "cumulative variance") + " [" + scale_label +
+                  UnitLabel(VarianceUnit(unit)) + "]";
+  panel.y.min = 0.0;
+  panel.y.max = y_max / scale;
+  panel.y.format = "%g";
+  panel.y2 = panel.y;
+  panel.y2.label = std::string(reverse ? "RMS above f" : "cumulative RMS") + " [" + UnitLabel(unit) + "]";
+  panel.y2.format.clear();
+  panel.y2.tics = RmsTicList(y_max, scale,
+                             {{out.rms(), SigLabel(out.rms(), digits)},
+                              {out.rms_max.value_or(0.0), Short(out.rms_max.value_or(0.0))}});
+  panel.key.title = "RMS [" + UnitLabel(unit) + "] (share)";
+  const std::string data = p.name + ".csv";
+  // The largest layer on top of the stack and first in the key: the key
+  // reads top to bottom like the stack. Layer order[i] lies on the layers
+  // order[i+1..n-1].
   const std::vector<std::size_t> order = ShareOrder(out);
-  std::vector<std::string> plots, edges;
-  std::string below = "0";
+  std::vector<FigureSeries> edges;
   for (std::size_t i = 0; i < order.size(); ++i) {
     const std::size_t c = order[i];
     const SeriesStyle st = ContributorStyle(c);
-    const std::string top = i == 0 ? Col(2 + c) : below + "+" + Col(2 + c);
-    for (std::string& clause :
-         FillClauses(st, data + " using 1:((" + below + ")" + per + "):((" + top + ")" + per + ")", "filledcurves",
-                     "title " + Quote(Entry(out.contributors[c].name, out.contributors[c].variance, out.variance))))
-      plots.push_back(std::move(clause));
-    // Boundary to the next layer: white between dark layers, near-black
+    FigureSeries layer;
+    layer.name = out.contributors[c].name;
+    layer.key = Entry(out.contributors[c].name, out.contributors[c].variance, out.variance, digits);
+    layer.kind = SeriesKind::kFilled;
+    layer.data = data;
+    for (std::size_t j = i + 1; j < order.size(); ++j) layer.low_columns.push_back(2 + order[j]);
+    layer.y_columns = layer.low_columns;
+    layer.y_columns.push_back(2 + c);
+    layer.y_divisor = scale;
+    layer.colour = st.colour;
+    layer.fill_pattern = st.fill_pattern;
+    layer.hatch_colour = st.hatch_colour;
+    // Boundary to the layer below: white between dark layers, near-black
     // between light ones, so that neighbours stay apart in greyscale too.
     if (i + 1 < order.size()) {
+      FigureSeries edge;
+      edge.name = "edge below " + layer.name;
+      edge.data = data;
+      edge.y_columns = layer.low_columns;
+      edge.y_divisor = scale;
       const double l = 0.5 * (st.lightness + ContributorStyle(order[i + 1]).lightness);
-      edges.push_back(data + " using 1:((" + top + ")" + per + ") with lines linecolor rgb " +
-                      Quote(l < 58.0 ? "#ffffff" : "#262626") + " linewidth 1.1 notitle");
+      edge.colour = l < 58.0 ? "#ffffff" : "#262626";
+      edge.width = 1.1;
+      edges.push_back(edge);
     }
-    below = top;
+    panel.series.push_back(std::move(layer));
   }
-  plots.insert(plots.end(), edges.begin(), edges.end());
-  plots.push_back(data + " using 1:(" + Col(2 + n) + per + ") with lines linecolor rgb " + Quote(kTotalColour) +
-                  " linewidth 2.5 title " + Quote("total: " + SigLabel(out.rms())));
+  panel.series.insert(panel.series.end(), edges.begin(), edges.end());
   if (out.rms_max) {
-    plots.push_back(CsvNumber(*out.rms_max * *out.rms_max / scale) + " with lines linecolor rgb " +
-                    Quote(kRequirementColour) + " dashtype " + kRequirementDash + " linewidth 2 title " +
-                    Quote("requirement: " + Short(*out.rms_max) + (out.pass() ? " (pass)" : " (FAIL)")));
+    FigureAnnotation limit;
+    limit.kind = AnnotationKind::kHorizontalLine;
+    limit.y0 = limit2 / scale;
+    limit.colour = kRequirementColour;
+    limit.dash = kRequirementDash;
+    limit.key = "requirement: " + Short(*out.rms_max) + (out.pass() ? " (pass)" : " (FAIL)");
+    panel.annotations.push_back(limit);
+    // Where the cumulative RMS reaches the limit: a marker and a vertical
+    // line keep it visible when the limit is a sliver at the axis' foot.
+    const std::optional<double> cross =
+        reverse ? std::nullopt : CpsCrossingHz(f, out.total_psd, out.total_cps, limit2);
+    if (cross && *cross >= range.lo_hz && *cross <= range.hi_hz) {
+      FigureAnnotation v;
+      v.kind = AnnotationKind::kVerticalLine;
+      v.x0 = *cross;
+      v.colour = kRequirementColour;
+      v.dash = "(4,4)";
+      v.width = 2.0;
+      panel.annotations.push_back(v);
+      FigureAnnotation m;
+      m.kind = AnnotationKind::kMarker;
+      m.x0 = *cross;
+      m.y0 = limit2 / scale;
+      m.colour = kRequirementColour;
+      m.label = "RMS reaches " + Short(*out.rms_max) + " " + UnitLabel(unit) + " at " + SigLabel(*cross, digits) + " Hz";
+      m.label_dx = 1.0;
+      m.label_dy = 1.2;
+      panel.annotations.push_back(m);
+    }
   }
-  s << "plot ";
-  for (std::size_t i = 0; i < plots.size(); ++i) s << (i ? ", \\\n     " : "") << plots[i];
-  s << "\n";
-  p.script = s.str();
+  FigureSeries t;  // drawn last: never under a layer
+  t.name = "total";
+  t.key = "total: " + SigLabel(out.rms(), digits);
+  t.data = data;
+  t.y_columns = {2 + n};
+  t.y_divisor = scale;
+  t.colour = kTotalColour;
+  t.width = 2.5;
+  panel.series.push_back(t);
+  p.figure.panels.push_back(std::move(panel));
+  p.script = EmitFigure(p.figure);
   return p;
 }
 
-Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd) {
+Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digits, const Output* spec) {
   const OutputResult& out = result.outputs[o];
   const std::size_t n = out.contributors.size();
   const std::vector<double>& f = result.grid.f_hz();
@@ -138,7 +203,12 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd) {
   p.output = static_cast<int>(o);
   const FrequencyRange range = DisplayRange(out, result.grid);
   p.caption = (asd ? "Amplitude spectral density" : "Power spectral density (one-sided)") + std::string(" of ") +
-              out.name + " per contributor and in total." + RangeCaption(range);
+              out.name + " per contributor, largest first in the key, and in total (drawn last)." +
+              WeightingCaption(out, spec) + RangeCaption(range);
+  if (!out.band_requirements.empty())
+    p.caption += std::string(" Each red segment is a band requirement drawn as the flat ") + quantity +
+                 " that would use the band's whole allowance (rms_max^2 spread evenly over the band" +
+                 (asd ? ", square-rooted" : "") + "): a curve above it over the whole band fails that band.";
 
   const auto value = [&](double psd) { return asd ? std::sqrt(psd) : psd; };
   std::ostringstream csv;
@@ -164,33 +234,71 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd) {
   }
   p.csv = csv.str();
 
-  std::ostringstream s;
-  s << "reset\n" << StylePreamble() << FrequencyAxis(range, result.grid);
-  s << "set title " << Quote(Enhanced(out.name) + ": " + (asd ? "amplitude" : "power") + " spectral density") << "\n";
-  s << "set ylabel " << Quote(quantity + " [" + UnitLabel(unit_text) + "]") << "\n";
-  s << "set logscale y 10\nset format y '10^{%L}'\n";
+  FigurePanel panel;
+  panel.title = Enhanced(out.name) + ": " + (asd ? "amplitude" : "power") + " spectral density, " +
+                SigLabel(out.rms(), digits) + " " + UnitLabel(unit) + " RMS";
+  panel.x = FrequencyFigureAxis(range, result.grid);
+  panel.y.label = quantity + " [" + UnitLabel(unit_text) + "]";
+  panel.y.scale = AxisScale::kLog;
+  panel.y.format = "10^{%L}";
+  panel.y2.shown = false;
+  // Band limits as flat levels: a PSD of rms_max^2 / (hi - lo) over the band.
+  for (const BandRequirementResult& b : out.band_requirements) {
+    const BandRequirement& r = b.requirement;
+    const double level = value(r.rms_max * r.rms_max / (r.hi_hz - r.lo_hz));
+    FigureAnnotation a;
+    a.kind = AnnotationKind::kSegment;
+    a.x0 = std::max(r.lo_hz, range.lo_hz);
+    a.x1 = std::min(r.hi_hz, range.hi_hz);
+    a.y0 = a.y1 = level;
+    a.colour = kRequirementColour;
+    a.dash = kRequirementDash;
+    a.width = 2.5;
+    a.key = "band limit " + HzLabel(r.lo_hz) + "–" + HzLabel(r.hi_hz) + " Hz: " + Short(r.rms_max) +
+            (b.pass() ? " (pass)" : " (FAIL)");
+    if (a.x1 > a.x0) {
+      panel.annotations.push_back(a);
+      if (top > 0.0) {
+        top = std::max(top, level);
+        bottom = std::min(bottom, level);
+      }
+    }
+  }
   // At most 10 decades (PSD) below the peak: deeper roll-offs only squeeze the figure.
   const double decades = asd ? 5.0 : 10.0;
   if (top > 0.0) {
     const double lo = std::max(bottom, top * std::pow(10.0, -decades));
-    s << "set yrange [" << CsvNumber(std::pow(10.0, std::floor(std::log10(lo)))) << ":"
-      << CsvNumber(std::pow(10.0, std::ceil(std::log10(top)))) << "]\n";
+    panel.y.min = std::pow(10.0, std::floor(std::log10(lo)));
+    panel.y.max = std::pow(10.0, std::ceil(std::log10(top * 1.5)));
   } else {
-    s << "set yrange [0.1:10]\nset label 1 'every contributor is zero on this output' at graph 0.5,0.5 center\n";
+    panel.y.min = 0.1;
+    panel.y.max = 10.0;
+    panel.note = "every contributor is zero on this output";
   }
-  s << "set key outside right top Left reverse title " << Quote("RMS [" + UnitLabel(unit) + "] (share)") << "\n";
-  const std::string data = Quote(p.name + ".csv");
-  const auto positive = [](std::size_t col) { return "(" + Col(col) + " > 0 ? " + Col(col) + " : NaN)"; };
-  s << "plot " << data << " using 1:" << positive(2 + n) << " with lines linecolor rgb " << Quote(kTotalColour)
-    << " linewidth 2.5 title " << Quote("total: " + SigLabel(out.rms()));
+  panel.key.title = "RMS [" + UnitLabel(unit) + "] (share)";
+  const std::string data = p.name + ".csv";
   for (std::size_t c : ShareOrder(out)) {
     const SeriesStyle st = ContributorStyle(c);
-    s << ", \\\n     " << data << " using 1:" << positive(2 + c) << " with lines linecolor rgb " << Quote(st.colour)
-      << " dashtype " << st.dash << " linewidth 2 title "
-      << Quote(Entry(out.contributors[c].name, out.contributors[c].variance, out.variance));
+    FigureSeries s;
+    s.name = out.contributors[c].name;
+    s.key = Entry(out.contributors[c].name, out.contributors[c].variance, out.variance, digits);
+    s.data = data;
+    s.y_columns = {2 + c};
+    s.colour = st.colour;
+    s.dash = st.dash;
+    s.width = 3.0;  // wider than the total, so that a dominant contributor shows on both sides of it
+    panel.series.push_back(std::move(s));
   }
-  s << "\n";
-  p.script = s.str();
+  FigureSeries t;  // drawn last: on top of every contributor
+  t.name = "total";
+  t.key = "total: " + SigLabel(out.rms(), digits);
+  t.data = data;
+  t.y_columns = {2 + n};
+  t.colour = kTotalColour;
+  t.width = 2.0;
+  panel.series.push_back(t);
+  p.figure.panels.push_back(std::move(panel));
+  p.script = EmitFigure(p.figure);
   return p;
 }
 
@@ -231,19 +339,40 @@ std::string RangeCaption(const FrequencyRange& range) {
                        : "";
 }
 
-std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid, const std::string& shown) {
+
+std::string CpsTitle(const OutputResult& output, int digits) {
+  const std::string unit = UnitLabel(DisplayUnit(output.unit));
+  std::string s = Enhanced(output.name) + ": " + SigLabel(output.rms(), digits) + " " + unit + " RMS";
+  if (!output.rms_max) return s;
+  const double limit = *output.rms_max;
+  if (output.pass()) return s + ", pass (limit " + Short(limit) + " " + unit + ")";
+  return s + ", FAIL " + SigLabel(output.rms() / limit, digits) + "× over " + Short(limit) + " " + unit;
+}
+
+FigureAxis FrequencyFigureAxis(const FrequencyRange& range, const FrequencyGrid& grid, const std::string& shown) {
   const double decades = std::log10(range.hi_hz / range.lo_hz);
   const bool powers = decades > 6.0 || range.lo_hz < 1e-3 || range.hi_hz > 1e5;
-  std::ostringstream os;
-  os << "set logscale x 10\nset format x " << (powers ? "'10^{%L}'" : "'%g'") << "\nset xrange ["
-     << CsvNumber(range.lo_hz) << ":" << CsvNumber(range.hi_hz) << "]\n";
+  FigureAxis a;
+  a.scale = AxisScale::kLog;
+  a.format = powers ? "10^{%L}" : "%g";
+  a.min = range.lo_hz;
+  a.max = range.hi_hz;
   // The note is a second, smaller line of the x label: gnuplot reserves room
   // for it, so it never meets the frame, the tic labels or the key.
-  std::string label = "frequency [Hz]";
+  a.label = "frequency [Hz]";
   if (range.trimmed)
-    label += "\n{/*0.8 grid: " + HzLabel(grid.min_hz()) + " to " + HzLabel(grid.max_hz()) + " Hz; shown: " + shown + "}";
-  os << "set xlabel " << (range.trimmed ? QuoteLines(label) : Quote(label)) << "\n";
-  if (decades > 6.0) os << "set grid nomxtics\n";
+    a.label += "\n{/*0.8 grid: " + HzLabel(grid.min_hz()) + " to " + HzLabel(grid.max_hz()) + " Hz; shown: " + shown + "}";
+  a.minor_grid = decades <= 6.0;
+  return a;
+}
+
+std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid, const std::string& shown) {
+  const FigureAxis a = FrequencyFigureAxis(range, grid, shown);
+  std::ostringstream os;
+  os << "set logscale x 10\nset format x " << Quote(a.format) << "\nset xrange [" << CsvNumber(*a.min) << ":"
+     << CsvNumber(*a.max) << "]\n";
+  os << "set xlabel " << (range.trimmed ? QuoteLines(a.label) : Quote(a.label)) << "\n";
+  if (!a.minor_grid) os << "set grid nomxtics\n";
   return os.str();
 }
 
@@ -256,7 +385,8 @@ std::vector<std::size_t> ShareOrder(const OutputResult& output) {
   return order;
 }
 
-std::string RmsTics(double variance_max, double scale, const std::vector<std::pair<double, std::string>>& marked_rms) {
+std::vector<std::pair<double, std::string>> RmsTicList(double variance_max, double scale,
+                                                       const std::vector<std::pair<double, std::string>>& marked_rms) {
   const double rms_max = std::sqrt(variance_max);
   const double step = NiceStep(rms_max / 6.0);
   const double gap = 0.04 * variance_max;  // closest two labels may sit, in variance
@@ -281,20 +411,25 @@ std::string RmsTics(double variance_max, double scale, const std::vector<std::pa
     tics.push_back({m, label});
   }
   std::sort(tics.begin(), tics.end());
+  for (auto& t : tics) t.first = t.first * t.first / scale;  // to the variance axis
+  return tics;
+}
+
+std::string RmsTics(double variance_max, double scale, const std::vector<std::pair<double, std::string>>& marked_rms) {
+  const auto tics = RmsTicList(variance_max, scale, marked_rms);
   std::ostringstream os;
   os << "set y2tics nomirror (";
-  for (std::size_t i = 0; i < tics.size(); ++i)
-    os << (i ? ", " : "") << Quote(tics[i].second) << " " << CsvNumber(tics[i].first * tics[i].first / scale);
+  for (std::size_t i = 0; i < tics.size(); ++i) os << (i ? ", " : "") << Quote(tics[i].second) << " " << CsvNumber(tics[i].first);
   os << ")";
   return os.str();
 }
 
-std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output,
-                                const ReportOptions& options) {
+std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
+                                const Output* spec) {
   std::vector<Plot> plots;
-  plots.push_back(StackedPlot(result, output, false));
-  if (options.reverse_cps) plots.push_back(StackedPlot(result, output, true));
-  plots.push_back(SpectrumPlot(result, output, options.asd));
+  plots.push_back(StackedPlot(result, output, false, options.digits, spec));
+  if (options.reverse_cps) plots.push_back(StackedPlot(result, output, true, options.digits, spec));
+  plots.push_back(SpectrumPlot(result, output, options.asd, options.digits, spec));
   return plots;
 }
 

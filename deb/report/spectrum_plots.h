@@ -3,7 +3,8 @@
 // (the budget's central figure: which contributor adds how much variance
 // where), optionally the stacked reverse CPS, and the PSD (or ASD) of every
 // contributor beside the total. Layers are stacked by share, largest at the
-// bottom; the key lists them top to bottom as they are drawn, with each RMS.
+// top (the total is its upper edge); the key lists them top to bottom as
+// they are stacked, with each RMS, then the total and the requirement.
 #pragma once
 
 #include <cstddef>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "deb/budget/engine.h"
+#include "deb/report/figure_axis.h"
 #include "deb/report/plot.h"
 #include "deb/report/report_options.h"
 
@@ -36,14 +38,19 @@ std::string RangeCaption(const FrequencyRange& range);
 // Logarithmic frequency axis over `range`. When trimmed, the x label gets a
 // second line naming the grid and what the range shows (`shown`, enhanced text).
 inline constexpr const char* kDisplayTailNote = "the decades holding all but 10^{-3} of every contributor's variance";
+// The same axis as data, for a Figure.
+FigureAxis FrequencyFigureAxis(const FrequencyRange& range, const FrequencyGrid& grid,
+                               const std::string& shown = kDisplayTailNote);
 std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid,
                           const std::string& shown = kDisplayTailNote);
 
 // Contributor indices of an output by decreasing variance (ties: budget order).
 std::vector<std::size_t> ShareOrder(const OutputResult& output);
 
-// CPS, [reverse CPS,] PSD or ASD of output `output`, in that order.
-std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options);
+// CPS, [reverse CPS,] PSD or ASD of output `output`, in that order. With
+// the output's definition `spec`, the captions state its weighting.
+std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
+                                const Output* spec = nullptr);
 
 // Tics for an RMS axis drawn beside a linear variance axis [0, variance_max]
 // plotted in units of `scale`: "set y2tics (...)" with labels r at positions
@@ -52,5 +59,12 @@ std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, 
 // requirement) that is > 0, the earlier winning where two crowd.
 std::string RmsTics(double variance_max, double scale = 1.0,
                     const std::vector<std::pair<double, std::string>>& marked_rms = {});
+// The same tics as (position on the variance axis, label).
+std::vector<std::pair<double, std::string>> RmsTicList(double variance_max, double scale = 1.0,
+                                                       const std::vector<std::pair<double, std::string>>& marked_rms = {});
+
+// Title of an output's CPS plot: "position: 7.121 nm RMS, FAIL 7.121× over
+// 1 nm", "…, pass (limit 20 µm/s)", or the RMS alone without a requirement.
+std::string CpsTitle(const OutputResult& output, int digits = 4);
 
 }  // namespace deb::report

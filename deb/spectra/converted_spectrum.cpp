@@ -29,6 +29,18 @@ double ConvertedSpectrum::Factor(double f_hz) const {
   return factor;
 }
 
+std::vector<SpectralLine> ConvertedSpectrum::Lines() const {
+  std::vector<SpectralLine> lines = base_->Lines();
+  for (SpectralLine& l : lines) {
+    std::complex<double> factor = scale_;
+    const std::complex<double> j_omega(0.0, 2.0 * M_PI * l.f_hz);
+    for (int k = 0; k < derivative_order_; ++k) factor *= j_omega;
+    for (int k = 0; k > derivative_order_; --k) factor /= j_omega;
+    l.rms *= factor;
+  }
+  return lines;
+}
+
 std::optional<Eigen::MatrixXd> ConvertedSpectrum::WhiteLevel() const {
   if (derivative_order_ != 0) return std::nullopt;
   auto level = base_->WhiteLevel();

@@ -37,6 +37,8 @@ class ConvertedSpectrum final : public Spectrum {
   std::optional<FrequencyInterval> DefinedRangeHz() const override { return base_->DefinedRangeHz(); }
   // The base's level times scale^2 when n = 0; otherwise none (f^(2n) is not white).
   std::optional<Eigen::MatrixXd> WhiteLevel() const override;
+  // Amplitudes times scale (j 2 pi f)^n at each line's frequency.
+  std::vector<SpectralLine> Lines() const override;
   std::string Describe() const override;
 
  private:

@@ -22,6 +22,12 @@ std::optional<Eigen::MatrixXd> ScaledSpectrum::WhiteLevel() const {
   return Eigen::MatrixXd(factor_ * *level);
 }
 
+std::vector<SpectralLine> ScaledSpectrum::Lines() const {
+  std::vector<SpectralLine> lines = base_->Lines();
+  for (SpectralLine& l : lines) l.rms *= std::sqrt(factor_);
+  return lines;
+}
+
 std::string ScaledSpectrum::Describe() const { return NumberText(factor_) + " x [" + base_->Describe() + "]"; }
 
 }  // namespace deb

@@ -27,6 +27,8 @@ class ScaledSpectrum final : public Spectrum {
   std::vector<double> BreakpointsHz() const override { return base_->BreakpointsHz(); }
   std::optional<FrequencyInterval> DefinedRangeHz() const override { return base_->DefinedRangeHz(); }
   std::optional<Eigen::MatrixXd> WhiteLevel() const override;
+  // Amplitudes times sqrt(factor).
+  std::vector<SpectralLine> Lines() const override;
   std::string Describe() const override;
 
  private:

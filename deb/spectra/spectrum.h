@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <complex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,15 @@
 #include "deb/core/frequency_interval.h"
 
 namespace deb {
+
+// A sinusoid at f_hz on the source's channels: the complex RMS amplitude on
+// each (|rms| the RMS, arg the phase; the variance of channel j is |rms_j|^2).
+// Tones at one frequency on several channels are coherent (their phases
+// matter); tones at different frequencies are uncorrelated.
+struct SpectralLine {
+  double f_hz = 0.0;
+  Eigen::VectorXcd rms;
+};
 
 class Spectrum {
  public:
@@ -45,6 +55,9 @@ class Spectrum {
   // before anything is computed.
   virtual std::optional<FrequencyInterval> DefinedRangeHz() const { return std::nullopt; }
 
+  // Sinusoids in addition to the density (tonal sources, tone_spectrum.h):
+  // no PSD on any grid, propagated exactly at their frequencies.
+  virtual std::vector<SpectralLine> Lines() const { return {}; }
   // One line for `deb check` and reports, e.g. "VC-D, 23 third-octave bands 0.5-80 Hz".
   virtual std::string Describe() const = 0;
 };

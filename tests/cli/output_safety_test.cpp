@@ -227,6 +227,9 @@ TEST_CASE("with SOURCE_DATE_EPOCH two runs give byte-identical report directorie
     CAPTURE(f);
     CHECK(bytes(dir / "a" / f) == bytes(dir / "b" / f));
   }
-  CHECK(bytes(dir / "a" / "report.pdf").find("/CreationDate (D:20231114221320Z)") != std::string::npos);
+  // The date of SOURCE_DATE_EPOCH (the PDF date's prefix "D:" is optional; cairo 1.16 omits it).
+  const std::string pdf = bytes(dir / "a" / "report.pdf");
+  CHECK((pdf.find("/CreationDate (D:20231114221320Z)") != std::string::npos ||
+         pdf.find("/CreationDate (20231114221320Z)") != std::string::npos));
   fs::remove_all(dir);
 }

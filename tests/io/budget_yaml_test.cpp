@@ -146,7 +146,7 @@ TEST_CASE("invalid YAML syntax is reported with its position") {
 TEST_CASE("an unknown enum value lists the allowed values") {
   CHECK(ErrorOf(Replace(kBudget, "type: flat", "type: pink")) ==
         "b.yaml:6:22: sources[0].spectrum.type: unknown spectrum type 'pink'; allowed: flat, vc, measured, "
-        "timeseries, reference");
+        "timeseries, reference, tones");
   CHECK(ErrorOf(Replace(kBudget, "path: lowpass}", "path: lowpass, exact: always}")).find(
             "allowed: auto, required, off") != std::string::npos);
 }

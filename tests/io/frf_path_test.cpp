@@ -159,6 +159,10 @@ TEST_CASE("the shipped measured-stage budget matches the rational model of its l
   const OutputResult& x = r.outputs[0];
   CHECK(std::sqrt(VarianceOf(x, "amplifier")) == doctest::Approx(7.14202).epsilon(1e-5));
   CHECK(std::sqrt(VarianceOf(x, "cable_slab")) == doctest::Approx(7.02927).epsilon(1e-5));
+  // The mains hum: tones of 0.2 mN at 50 Hz and 0.05 mN at 150 Hz through H = P / (1 + P K), evaluated
+  // from P and K themselves: |H(50)|^2 (2e-4)^2 + |H(150)|^2 (5e-5)^2 = (0.5316305 nm)^2; the measured FRF
+  // is interpolated between its points, hence 1e-5.
+  CHECK(std::sqrt(VarianceOf(x, "mains_hum")) == doctest::Approx(0.5316305).epsilon(1e-5));
 }
 
 TEST_CASE("the loop around the measured stage has the margins of its rational model") {

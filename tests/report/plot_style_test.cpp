@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <regex>
 #include <set>
@@ -10,6 +11,7 @@
 
 #include "deb/io/budget_yaml.h"
 #include "deb/report/report_writer.h"
+#include "deb/report/spectrum_plots.h"
 #include "tests/support/cli_harness.h"
 
 namespace deb::report {
@@ -140,6 +142,35 @@ TEST_CASE("the stacked CPS and the band bars of a budget with 8 contributors hat
   CHECK(ReadAll(dir / "plots" / "colours.csv").find("6,c6," + ContributorStyle(6).colour + ",") != std::string::npos);
 }
 
+// CIE L*a*b* of an sRGB colour "#rrggbb" (D65), for colour differences.
+std::array<double, 3> Lab(const std::string& colour) {
+  double rgb[3];
+  for (int i = 0; i < 3; ++i) {
+    const double v = std::stoi(colour.substr(1 + 2 * i, 2), nullptr, 16) / 255.0;
+    rgb[i] = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  }
+  const double x = (0.4124 * rgb[0] + 0.3576 * rgb[1] + 0.1805 * rgb[2]) / 0.95047;
+  const double y = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+  const double z = (0.0193 * rgb[0] + 0.1192 * rgb[1] + 0.9505 * rgb[2]) / 1.08883;
+  const auto f = [](double t) { return t > 216.0 / 24389.0 ? std::cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0; };
+  return {116.0 * f(y) - 16.0, 500.0 * (f(x) - f(y)), 200.0 * (f(y) - f(z))};
+}
+
+TEST_CASE("the first 8 contributor colours are a qualitative palette: distinct hues that also separate in grey") {
+  constexpr double kPi = 3.14159265358979;
+  for (std::size_t i = 0; i < 8; ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      const auto a = Lab(ContributorStyle(i).colour), b = Lab(ContributorStyle(j).colour);
+      const double delta_e = std::sqrt(std::pow(a[0] - b[0], 2) + std::pow(a[1] - b[1], 2) + std::pow(a[2] - b[2], 2));
+      CHECK_MESSAGE(delta_e > 35.0, i, " ", j, " ", ContributorStyle(i).colour, " ", ContributorStyle(j).colour);
+      // Hues at least 40 deg apart unless the greys differ by >= 15.
+      double dh = std::fabs(std::atan2(a[2], a[1]) - std::atan2(b[2], b[1])) * 180.0 / kPi;
+      dh = std::min(dh, 360.0 - dh);
+      const double grey = std::fabs(GreyLightness(ContributorStyle(i).colour) - GreyLightness(ContributorStyle(j).colour));
+      CHECK_MESSAGE((dh > 40.0 || grey >= 15.0), i, " ", j);
+    }
+}
+
 TEST_CASE("source channels have a style family of their own: distinct markers, none of the contributor colours") {
   std::set<std::string> colours, contributor_colours;
   std::set<int> markers;
@@ -193,13 +224,14 @@ TEST_CASE("a contributor's colour follows its index in the budget, not its share
   const std::string colours = ReadAll(dir / "plots" / "colours.csv");
   CHECK(colours.find("0,minor," + ContributorStyle(0).colour) != std::string::npos);
   CHECK(colours.find("1,major," + ContributorStyle(1).colour) != std::string::npos);
-  // In the stacked CPS, 'major' is the bottom layer (drawn first) but keeps colour 1.
-  const std::string cps = ReadAll(dir / "plots" / "z_cps.gp");
-  const auto first_fill = cps.find("filledcurves fillcolor rgb '");
-  REQUIRE(first_fill != std::string::npos);
-  CHECK(cps.compare(first_fill + 28, 7, ContributorStyle(1).colour) == 0);
-  CHECK(cps.find("'" + ContributorStyle(0).colour + "' title 'minor") != std::string::npos);
-  CHECK(cps.find("'" + ContributorStyle(1).colour + "' title 'major") != std::string::npos);
+  // In the stacked CPS, 'major' is the top layer (drawn and keyed first) but keeps colour 1.
+  const PlotFigure cps = SpectrumPlots(result, 0, {})[0].figure;
+  REQUIRE(cps.panels[0].series.size() >= 2);
+  CHECK(cps.panels[0].series[0].name == "major");
+  CHECK(cps.panels[0].series[0].colour == ContributorStyle(1).colour);
+  CHECK(FindSeries(cps, "minor")->colour == ContributorStyle(0).colour);
+  // The script draws it in that colour.
+  CHECK(ReadAll(dir / "plots" / "z_cps.gp").find("'" + ContributorStyle(1).colour + "' title 'major") != std::string::npos);
 }
 
 TEST_CASE("every terminal is headless cairo or SVG") {

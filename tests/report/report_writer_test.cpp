@@ -56,8 +56,8 @@ std::set<std::string> MarkdownReferences(const std::string& md) {
 
 }  // namespace
 
-TEST_CASE("a report holds every plot as a valid PNG with its CSV and script, and report.pdf has one page per plot "
-          "after the title page") {
+TEST_CASE("a report holds every plot as a valid PNG with its CSV and script, and report.pdf with the pages it "
+          "reports") {
   const Evaluated e = EvaluateExample();
   const fs::path dir = TempDir("writer") / "report";
   ReportOptions options;
@@ -67,14 +67,11 @@ TEST_CASE("a report holds every plot as a valid PNG with its CSV and script, and
   // Overview, then per output CPS, reverse CPS, PSD and bands, then one path per contributor and output.
   const std::size_t outputs = e.result.outputs.size(), contributors = e.budget.contributors.size();
   CHECK(m.plots.size() == 1 + 4 * outputs + contributors * outputs);
-  CHECK(m.title_pages >= 1);
-  CHECK(m.pdf_pages == m.title_pages + static_cast<int>(m.plots.size()));
+  // report.pdf: a title page, the contents, then sections; its figures' SVGs are not left behind.
+  CHECK(m.title_pages == 1);
+  CHECK(m.pdf_pages > 3);
   CHECK(PdfPages(dir / "report.pdf") == m.pdf_pages);
-  // The title pages hold every output's band table; every page names its place among all.
-  const std::string title = ReadAll(dir / "plots" / "title_page.gp");
-  for (const auto& o : e.result.outputs)
-    CHECK_MESSAGE(title.find("'RMS of " + o.name + " per band") != std::string::npos, o.name);
-  CHECK(title.find("page 1/" + std::to_string(m.pdf_pages) + "'") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "plots" / ".pdf_figures"));
 
   for (const auto& f : m.files) CHECK_MESSAGE(fs::is_regular_file(dir / f), f);
   for (const auto& name : m.plots) {

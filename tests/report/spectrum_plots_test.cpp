@@ -2,9 +2,12 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <regex>
 
+#include "deb/budget/failure_guidance.h"
 #include "deb/io/budget_yaml.h"
+#include "deb/report/plot_style.h"
 #include "tests/support/cli_harness.h"
 
 namespace deb::report {
@@ -90,9 +93,13 @@ TEST_CASE("the stacked CPS plot reads its own CSV, whose top layer sums to the t
   REQUIRE(std::sscanf(last.c_str(), "%lf,%lf,%lf,%lf", &f, &a, &b, &total) == 4);
   CHECK(a + b == doctest::Approx(total).epsilon(1e-9));
   CHECK(total == doctest::Approx(result.outputs[0].variance).epsilon(1e-9));
-  // The requirement is drawn at rms_max^2 = 400 and the key says it passes.
-  CHECK(plots[0].script.find("400 with lines") != std::string::npos);
-  CHECK(plots[0].script.find("requirement: 20 (pass)") != std::string::npos);
+  // The requirement is a limit line at rms_max^2 = 400 whose key says it passes.
+  const PlotFigure& cps = plots[0].figure;
+  REQUIRE(cps.panels.size() == 1);
+  REQUIRE(cps.panels[0].annotations.size() == 1);  // a pass: no crossing to mark
+  CHECK(cps.panels[0].annotations[0].kind == AnnotationKind::kHorizontalLine);
+  CHECK(cps.panels[0].annotations[0].y0 == doctest::Approx(400.0));
+  CHECK(cps.panels[0].annotations[0].key == "requirement: 20 (pass)");
   // The reverse CPS starts at the total variance.
   const std::string& rev = plots[1].csv;
   const std::size_t first_row = rev.find('\n', rev.find('\n') + 1) + 1;
@@ -106,6 +113,112 @@ TEST_CASE("the variance axis of a large output is scaled by a power of ten named
   const std::vector<Plot> plots = SpectrumPlots(result, 1, {});  // z_displacement, variance ~ 2.6e6 nm^2
   CHECK(plots[0].script.find("[10^{6} nm^{2}]") != std::string::npos);
   CHECK(plots[0].script.find("/1000000)") != std::string::npos);
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a failing output's CPS figure names its fail factor, stacks the largest on top and marks the crossing") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const OutputResult& out = result.outputs[0];  // position: 2.114 nm against 1.5 nm
+  REQUIRE_FALSE(out.pass());
+  const std::vector<Plot> plots = SpectrumPlots(result, 0, {});
+  const FigurePanel& cps = plots[0].figure.panels.at(0);
+  CHECK(cps.title == "position: " + SigLabel(out.rms(), 4) + " nm RMS, FAIL " + SigLabel(out.rms() / 1.5, 4) +
+                         "× over 1.5 nm");
+  // Layers in key order: decreasing variance; each lies on all smaller ones.
+  const std::vector<std::size_t> order = ShareOrder(out);
+  std::vector<const FigureSeries*> layers;
+  for (const FigureSeries& s : cps.series)
+    if (s.kind == SeriesKind::kFilled) layers.push_back(&s);
+  REQUIRE(layers.size() == out.contributors.size());
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    CHECK(layers[i]->name == out.contributors[order[i]].name);
+    CHECK(layers[i]->low_columns.size() == layers.size() - 1 - i);
+    CHECK(layers[i]->y_columns.back() == 2 + order[i]);
+    CHECK(layers[i]->colour == ContributorStyle(order[i]).colour);
+  }
+  // The total is drawn last, reading the total column.
+  CHECK(cps.series.back().name == "total");
+  CHECK(cps.series.back().y_columns == std::vector<std::size_t>{2 + out.contributors.size()});
+  // Headroom above the total.
+  CHECK(*cps.y.max >= 1.1 * out.variance);
+  // The limit line and a marker where the cumulative RMS reaches it, at the guidance's frequency.
+  const std::optional<FailureGuidance> guide = GuideFailure(out, result.grid);
+  REQUIRE(guide);
+  REQUIRE(guide->overall->cps_crossing_hz);
+  const auto marker = std::find_if(cps.annotations.begin(), cps.annotations.end(),
+                                   [](const FigureAnnotation& a) { return a.kind == AnnotationKind::kMarker; });
+  REQUIRE(marker != cps.annotations.end());
+  CHECK(marker->x0 == doctest::Approx(*guide->overall->cps_crossing_hz));
+  CHECK(marker->y0 == doctest::Approx(1.5 * 1.5));
+  CHECK(cps.annotations[0].key == "requirement: 1.5 (FAIL)");
+
+  // The PSD: contributors largest first, the total last, each band requirement
+  // a segment at the flat PSD that uses its whole allowance.
+  const FigurePanel& psd = plots[1].figure.panels.at(0);
+  for (std::size_t i = 0; i < order.size(); ++i) CHECK(psd.series[i].name == out.contributors[order[i]].name);
+  CHECK(psd.series.back().name == "total");
+  // The total, on top, is narrower than the contributors: one that dominates shows on both sides of it.
+  CHECK(psd.series.back().width < psd.series.front().width);
+  REQUIRE(psd.annotations.size() == 3);
+  CHECK(psd.annotations[0].kind == AnnotationKind::kSegment);
+  CHECK(psd.annotations[0].y0 == doctest::Approx(0.8 * 0.8 / (10 - 0.1)));
+  CHECK(psd.annotations[1].y0 == doctest::Approx(2.0 * 2.0 / (100 - 10)));
+  CHECK(psd.annotations[0].key.find("(FAIL)") != std::string::npos);
+  CHECK(plots[1].caption.find("whole allowance") != std::string::npos);
+}
+
+TEST_CASE("a contributor that is zero on an output stays in the key as 0") {
+  BudgetResult result;
+  result.grid = FrequencyGrid::Log(1.0, 100.0, 21);
+  OutputResult out;
+  out.name = "x";
+  out.unit = "nm";
+  for (const char* name : {"a", "zero"}) {
+    ContributorResult c;
+    c.name = name;
+    c.psd.assign(21, std::string(name) == "a" ? 1.0 : 0.0);
+    c.cps.assign(21, 0.0);
+    for (std::size_t k = 1; k < 21; ++k)
+      c.cps[k] = c.cps[k - 1] + 0.5 * (c.psd[k] + c.psd[k - 1]) * (result.grid.f_hz()[k] - result.grid.f_hz()[k - 1]);
+    c.variance = c.cps.back();
+    out.contributors.push_back(c);
+  }
+  out.total_psd = out.contributors[0].psd;
+  out.total_cps = out.contributors[0].cps;
+  out.variance = out.contributors[0].variance;
+  result.outputs.push_back(out);
+  const std::vector<Plot> plots = SpectrumPlots(result, 0, {});
+  const FigureSeries* zero = FindSeries(plots[0].figure, "zero");
+  REQUIRE(zero != nullptr);
+  CHECK(zero->key == "zero: 0 (0 %)");
+  REQUIRE(FindSeries(plots[1].figure, "zero") != nullptr);
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("the captions state an output's weighting and metric") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  REQUIRE(result.outputs[1].metric);
+  const std::vector<Plot> plots = SpectrumPlots(result, 1, {}, &budget.outputs[1]);
+  CHECK(plots[0].caption.find(" Metric: " + result.outputs[1].metric->Describe()) != std::string::npos);
+  CHECK(plots[1].caption.find(" Metric: ") != std::string::npos);
+  // Without a weighting or metric, nothing is added.
+  CHECK(SpectrumPlots(result, 0, {}, &budget.outputs[0])[0].caption.find("Metric") == std::string::npos);
+  const Budget thesis = LoadBudgetFile(test::ExampleBudget("nizamoglu2015_h210.yaml"));
+  const BudgetResult thesis_result = Evaluate(thesis);
+  for (std::size_t o = 0; o < thesis.outputs.size(); ++o) {
+    if (!thesis.outputs[o].weighting) continue;
+    CHECK(SpectrumPlots(thesis_result, o, {}, &thesis.outputs[o])[0].caption.find("The output is weighted by") !=
+          std::string::npos);
+    break;
+  }
 }
 
 }  // namespace deb::report
