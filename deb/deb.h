@@ -38,6 +38,7 @@
 #include "deb/spectra/peterson_noise_model.h"
 #include "deb/spectra/scaled_spectrum.h"
 #include "deb/spectra/spectrum.h"
+#include "deb/spectra/band_table.h"
 #include "deb/spectra/spectrum_csv.h"
 #include "deb/spectra/tabulated_csd.h"
 #include "deb/spectra/third_octave.h"
@@ -89,6 +90,7 @@
 #include "deb/budget/sensitivity.h"
 #include "deb/budget/source.h"
 #include "deb/budget/sweep.h"
+#include "deb/budget/sweep_ranking.h"
 
 // Budget files in (LoadBudgetFile), result directories out
 // (WriteResultDirectory: summary.json and a CSV per output).

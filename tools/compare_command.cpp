@@ -35,6 +35,7 @@ struct CompareCommand::Options {
   bool quiet = false;
   bool force = false;  // --force: replace an output directory deb did not write
   bool plots = true;
+  std::optional<double> tolerance;  // --tolerance: relative change that fails the command
 };
 
 namespace {
@@ -119,6 +120,16 @@ CLI::App* CompareCommand::Register(CLI::App& app) {
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; },
                        "No overlay plots (drawn only when both inputs are budgets; need gnuplot)");
+  c->add_option_function<double>(
+       "--tolerance",
+       [&s](double rel) {
+         if (!(rel >= 0.0) || !std::isfinite(rel))
+           throw CLI::ValidationError("--tolerance", "must be a finite relative change >= 0, e.g. 0.01 for 1 %");
+         s.tolerance = rel;
+       },
+       "Regression gate: exit with code 6 when any compared RMS (total, contributor, band) changed by more than "
+       "REL relative, e.g. 0.01; the figures that moved are printed, the reports written")
+      ->type_name("REL");
   return c;
 }
 
@@ -158,8 +169,9 @@ int CompareCommand::Run() const {
     const ResultFigures& b = lb.figures;
     Pending r;
     r.cmp = Compare(a, b);
+    r.cmp.tolerance = s.tolerance;
     if (s.plots && la.result && lb.result)
-      r.plots = report::OverlayPlots(a.label + " (A)", *la.result, b.label + " (B)", *lb.result);
+      r.plots = report::OverlayPlots(a.label, *la.result, b.label, *lb.result);
     r.dir = s.out_dir.empty() ? (fs::path("reports") / ("compare_" + Safe(a.label) + "_vs_" + Safe(b.label))).string()
                               : s.out_dir;
     reports.push_back(std::move(r));
@@ -170,10 +182,27 @@ int CompareCommand::Run() const {
     std::printf("%s (A) vs %s (B):\n", r.cmp.label_a.c_str(), r.cmp.label_b.c_str());
     for (const ComparedFigure& f : r.cmp.figures)
       if (f.contributor == "total" && f.band.empty())
-        std::printf("  %-24s rms %12.6g -> %12.6g %s  (B/A %s)\n", f.output.c_str(), f.rms_a, f.rms_b,
-                    f.unit.c_str(), report::RatioText(f).c_str());
+        std::printf("  %-24s rms %12.6g -> %12.6g %s  (B/A %s, %s)\n", f.output.c_str(), f.rms_a, f.rms_b,
+                    f.unit.c_str(), report::RatioText(f).c_str(), report::Verdict(f).c_str());
     for (const std::string& u : r.cmp.unmatched) std::printf("  not compared: %s\n", u.c_str());
     std::printf("report: %s\n", r.dir.c_str());
+  }
+  if (!s.tolerance) return 0;
+  std::size_t moved = 0;
+  for (const Pending& r : reports) {
+    for (const ComparedFigure& f : r.cmp.Moved(*s.tolerance)) {
+      if (moved++ == 0) std::fflush(stdout);
+      std::fprintf(stderr, "deb: moved: %s vs %s: %s, %s%s: %.6g -> %.6g %s (B/A %s)\n", r.cmp.label_a.c_str(),
+                   r.cmp.label_b.c_str(), f.output.c_str(), f.contributor.c_str(),
+                   f.band.empty() ? "" : (", band " + f.band).c_str(), f.rms_a, f.rms_b, f.unit.c_str(),
+                   report::RatioText(f).c_str());
+    }
+  }
+  if (moved > 0) {
+    char what[160];
+    std::snprintf(what, sizeof what, "%zu figure(s) moved by more than %g relative (--tolerance)", moved,
+                  *s.tolerance);
+    throw FiguresMoved(what);
   }
   return 0;
 }

@@ -12,6 +12,8 @@
 //         plots), gnuplot missing or failing
 //   5     a requirement failed (run --strict; the   a subcommand's return value
 //         report is written)
+//   6     compared figures moved beyond            deb::tools::FiguresMoved
+//         compare --tolerance (reports written)
 //   70    internal error (a bug)                    any other exception
 #include <CLI/CLI.hpp>
 
@@ -53,6 +55,7 @@ constexpr int kExitUsage = 2;
 constexpr int kExitInput = 3;
 constexpr int kExitWrite = 4;
 constexpr int kExitRequirement = 5;
+constexpr int kExitMoved = 6;
 constexpr int kExitInternal = 70;
 
 // A command line that names no command deb has (CLI11 reports the rest).
@@ -78,6 +81,9 @@ int RunMapped(CLI::App& app, F&& parse_and_run) {
   } catch (const deb::WriteError& e) {
     std::fprintf(stderr, "deb: error: %s\n", e.what());
     return kExitWrite;
+  } catch (const deb::tools::FiguresMoved& e) {
+    std::fprintf(stderr, "deb: %s\n", e.what());
+    return kExitMoved;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "deb: internal error: %s\n", e.what());
     return kExitInternal;
@@ -268,6 +274,7 @@ int Check(const std::string& budget_file, const std::vector<deb::BudgetOverride>
     for (const deb::SweepParameter& p : sweep->spec.parameters) {
       std::printf("  %-40s %zu value(s): %s", p.key_path.c_str(), p.values.size(), p.Text(p.values.front()).c_str());
       if (p.values.size() > 1) std::printf(" ... %s", p.Text(p.values.back()).c_str());
+      if (!p.label.empty() || !p.unit.empty()) std::printf(" (%s)", p.AxisTitle().c_str());
       std::printf("\n");
     }
   }
@@ -298,7 +305,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 2 usage error, 3 invalid input (budget, data file, model), "
-      "4 cannot write the report, 5 a requirement failed (run --strict), 70 internal error.");
+      "4 cannot write the report, 5 a requirement failed (run --strict), 6 compared figures moved "
+      "(compare --tolerance), 70 internal error.");
 
   std::string budget_file, out_dir;
   int threads = 0;

@@ -29,6 +29,7 @@
 #include "deb/spectra/building_criteria.h"
 #include "deb/spectra/peterson_noise_model.h"
 #include "deb/core/number_text.h"
+#include "deb/spectra/band_table.h"
 #include "deb/spectra/spectrum_csv.h"
 #include "deb/systems/frf_csv.h"
 #include "deb/units/unit.h"
@@ -313,6 +314,7 @@ int RunBands(const Settings& s) {
   out << "# one-third-octave band RMS (" << ToString(series) << " centres)"
       << (band_unit.empty() ? "" : " in " + band_unit) << " of " << s.spectrum_file << "\n";
   if (classify && !to_velocity.IsPureScale()) out << "# converted from " << unit << ": " << to_velocity.Describe() << "\n";
+  if (!band_unit.empty()) out << "# unit: " << band_unit << "\n";  // for convert --from-bands
   const SpectrumClasses classes = ClassifySpectrum(csv.f_hz, csv.psd, csv.interpolation, options);
   const std::vector<std::vector<BandRms>>& per_channel = classes.bands;
   const std::vector<Classification>& verdicts = classes.classes;
@@ -340,15 +342,19 @@ int RunBands(const Settings& s) {
   outputs.Write();
   if (!s.out.empty() && s.out != "-") {
     for (std::size_t c = 0; c < per_channel.size(); ++c) {
-      int coarse = 0;
-      for (const BandRms& b : per_channel[c]) coarse += b.points < 5;
       std::printf("%s: %zu bands", csv.channel_names[c].c_str(), per_channel[c].size());
       if (classify) std::printf(", %s", verdicts[c].Summary().c_str());
       std::printf("\n");
-      if (coarse > 0)
-        std::printf("  warning: %d band(s) hold fewer than 5 spectral lines; use a longer segment to resolve them\n",
-                    coarse);
     }
+    // The channels share one frequency grid, so one count holds for all: said once.
+    int coarse = 0;
+    for (const BandRms& b : per_channel.front()) coarse += b.points < 5;
+    if (coarse > 0)
+      std::printf("warning: %d band(s) hold fewer than 5 spectral lines; use a longer segment to resolve them\n",
+                  coarse);
+    if (!csv.bound_names.empty())
+      std::printf("(%zu confidence-bound column(s) of %s, not channels, are not classified)\n", csv.bound_names.size(),
+                  s.spectrum_file.c_str());
   }
   PrintWritten(outputs, s.out);
   return 0;
@@ -357,20 +363,19 @@ int RunBands(const Settings& s) {
 int RunConvert(const Settings& s) {
   if (s.from_bands) {
     // A band table: centre_hz and one band-RMS column per channel.
-    const SpectrumCsv table = ReadSpectrumCsv(s.spectrum_file);  // same cell rules
-    if (table.quantity != SpectrumQuantity::kPsd || table.sides != SpectrumSides::kOne)
-      throw InputError(s.spectrum_file + ": a band table holds band RMS values; remove '# quantity:'/'# sides:'");
+    // The output of `deb spectrum bands` as it is, or a table by hand (band_table.h).
+    const BandTable table = ReadBandTable(s.spectrum_file);
     const ThirdOctaveSeries series = ParseThirdOctaveSeries(s.series);
     std::vector<ThirdOctaveBand> bands;
-    for (double f : table.f_hz) bands.push_back(ThirdOctaveBandNear(f, series));
+    for (double f : table.centre_hz) bands.push_back(ThirdOctaveBandNear(f, series));
     std::vector<double> f_out;
     Eigen::MatrixXd psd;
-    for (Eigen::Index c = 0; c < table.psd.cols(); ++c) {
-      const Eigen::VectorXd col = table.psd.col(c);
+    for (Eigen::Index c = 0; c < table.rms.cols(); ++c) {
+      const Eigen::VectorXd col = table.rms.col(c);
       const PsdTable t = BandRmsToPsd(bands, std::vector<double>(col.data(), col.data() + col.size()));
       if (c == 0) {
         f_out = t.f_hz;
-        psd.resize(static_cast<Eigen::Index>(t.f_hz.size()), table.psd.cols());
+        psd.resize(static_cast<Eigen::Index>(t.f_hz.size()), table.rms.cols());
       }
       psd.col(c) = Eigen::Map<const Eigen::VectorXd>(t.psd.data(), static_cast<Eigen::Index>(t.psd.size()));
     }
@@ -393,17 +398,25 @@ int RunConvert(const Settings& s) {
   const std::string from = csv.unit.value_or(s.unit);
   std::string to = s.to_unit.empty() ? from : s.to_unit;
   Eigen::MatrixXd psd = csv.psd;
+  Eigen::MatrixXd bounds = csv.bounds;  // confidence bounds convert with their channels
   std::vector<std::string> comments = {"converted from " + s.spectrum_file};
   if (csv.interpolation == SpectrumInterpolation::kBins) comments.push_back("interpolation: bins");
   if (!s.to_unit.empty()) {
     if (from.empty())
       throw InputError(s.spectrum_file + ": --to needs the spectrum's unit: give '# unit:' in the file or --unit");
     const UnitConversion conv = ConvertUnit(from, to);
-    for (std::size_t k = 0; k < csv.f_hz.size(); ++k) psd.row(static_cast<Eigen::Index>(k)) *= conv.PsdFactor(csv.f_hz[k]);
+    for (std::size_t k = 0; k < csv.f_hz.size(); ++k) {
+      psd.row(static_cast<Eigen::Index>(k)) *= conv.PsdFactor(csv.f_hz[k]);
+      if (bounds.cols() > 0) bounds.row(static_cast<Eigen::Index>(k)) *= conv.PsdFactor(csv.f_hz[k]);
+    }
     comments.push_back(from + " -> " + to + ": " + conv.Describe());
   }
   Outputs outputs(s);
-  outputs.Text(s.out, SpectrumCsvText(comments, to, Quantity(s.asd), csv.f_hz, psd, csv.channel_names), "the output CSV (-o)");
+  if (s.asd) bounds = bounds.cwiseSqrt();  // extra columns are written as they are
+  outputs.Text(s.out,
+               SpectrumCsvText(comments, to, Quantity(s.asd), csv.f_hz, psd, csv.channel_names,
+                               bounds.cols() > 0 ? &bounds : nullptr, csv.bound_names),
+               "the output CSV (-o)");
   if (const auto place = PlacePlot(s, s.out, true)) {
     std::string title = std::string(s.asd ? "ASD" : "PSD") + " of " + SourceName(s.spectrum_file);
     if (!s.to_unit.empty()) title += ", converted from " + report::UnitText(from) + " to " + report::UnitText(to);

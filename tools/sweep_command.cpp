@@ -13,6 +13,9 @@
 #include "deb/io/result_writer.h"
 #include "deb/io/sweep_yaml.h"
 #include "deb/report/overlay_plots.h"
+#include "deb/budget/sweep_ranking.h"
+#include "deb/report/plot.h"
+#include "deb/report/sweep_documents.h"
 #include "deb/report/sweep_plots.h"
 #include "tools/budget_overrides_option.h"
 
@@ -32,7 +35,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
+// The best three variants (RankVariants), each with its settings and every
+// output's RMS and status.
+void PrintTopThree(const SweepSpec& spec, const std::vector<BudgetResult>& results) {
+  const auto rows = spec.Variants();
+  const auto ranked = RankVariants(results);
+  std::printf("best variants (fewest failing outputs, then lowest worst RMS / requirement):\n");
+  for (std::size_t i = 0; i < ranked.size() && i < 3; ++i) {
+    const VariantScore& s = ranked[i];
+    std::printf("  %zu. %s: %d output(s) fail", i + 1, report::VariantSettings(spec, rows[s.variant]).c_str(),
+                s.failing);
+    if (s.worst_utilisation > 0.0) std::printf(", worst RMS / requirement %.3g", s.worst_utilisation);
+    std::printf("\n    ");
+    for (const OutputResult& o : results[s.variant].outputs)
+      std::printf("%s %s; ", o.name.c_str(), report::VariantCell(o).c_str());
+    std::printf("\n");
+  }
+}
 
 }  // namespace
 
@@ -65,16 +84,21 @@ int SweepCommand::Run() const {
   const std::string dir = s.out_dir.empty() ? (fs::path("reports") / (sweep.name + "_sweep")).string() : s.out_dir;
   ReplaceOptions replace;
   replace.force = s.force;
+  const std::vector<report::Plot> plots = s.plots ? report::SweepPlots(sweep.spec, results) : std::vector<report::Plot>{};
   ReplaceDirectory(dir, [&](const std::string& tmp) {
     WriteTextFile((fs::path(tmp) / "sweep.csv").string(), csv);
-    if (s.plots) {
+    WriteTextFile((fs::path(tmp) / "sweep.md").string(), report::SweepMarkdown(sweep.name, sweep.spec, results, plots));
+    WriteTextFile((fs::path(tmp) / "sweep.html").string(), report::SweepHtml(sweep.name, sweep.spec, results, plots));
+    if (!plots.empty()) {
       fs::create_directories(fs::path(tmp) / "plots");
-      report::WritePlotsAsPng(report::SweepPlots(sweep.spec, results), (fs::path(tmp) / "plots").string(),
-                              s.threads);
+      report::WritePlotsAsPng(plots, (fs::path(tmp) / "plots").string(), s.threads);
     }
   }, replace);
-  if (!s.quiet) std::printf("sweep of %s: %zu variants\nreport: %s/sweep.csv\n", sweep.name.c_str(), results.size(),
-                            dir.c_str());
+  if (!s.quiet) {
+    std::printf("sweep of %s: %zu variants\n", sweep.name.c_str(), results.size());
+    PrintTopThree(sweep.spec, results);
+    std::printf("report: %s/sweep.html\n", dir.c_str());
+  }
   return 0;
 }
 

@@ -19,8 +19,11 @@ bool SameBand(const ResultFigures::Band& x, const ResultFigures::Band& y) {
   return SameEdge(x.lo_hz, y.lo_hz) && SameEdge(x.hi_hz, y.hi_hz);
 }
 
-ComparedFigure Figure(const ResultFigures::Output& oa, const std::string& contributor, const std::string& band,
-                      double var_a, double var_b, double total) {
+// ref_a, ref_b: the variance the figure is negligible against (its output's
+// total; a band's total for the band's contributors; itself for a band's total).
+ComparedFigure Figure(const ResultFigures::Output& oa, const ResultFigures::Output& ob, const std::string& contributor,
+                      const std::string& band, double var_a, double var_b, double ref_a, double ref_b) {
+  const double total = std::max(oa.variance, ob.variance);
   ComparedFigure f;
   f.output = oa.name;
   f.unit = oa.unit;
@@ -29,8 +32,9 @@ ComparedFigure Figure(const ResultFigures::Output& oa, const std::string& contri
   f.rms_a = std::sqrt(var_a);
   f.rms_b = std::sqrt(var_b);
   f.difference = f.rms_b - f.rms_a;
-  if (f.rms_a > 0.0) f.ratio = f.rms_b / f.rms_a;
-  else if (f.rms_b == 0.0) f.ratio = 1.0;
+  f.negligible_a = var_a < kNegligibleShare * ref_a || var_a <= 0.0;
+  f.negligible_b = var_b < kNegligibleShare * ref_b || var_b <= 0.0;
+  if (f.rms_a > 0.0 && !f.negligible_a && !f.negligible_b) f.ratio = f.rms_b / f.rms_a;
   f.variance_change_of_total = total > 0.0 ? (var_b - var_a) / total : 0.0;
   return f;
 }
@@ -75,15 +79,14 @@ Comparison Compare(const ResultFigures& a, const ResultFigures& b) {
                               " in " + b.label + ": not compared");
       continue;
     }
-    const double total = std::max(oa.variance, ob->variance);
-    cmp.figures.push_back(Figure(oa, "total", "", oa.variance, ob->variance, total));
+    cmp.figures.push_back(Figure(oa, *ob, "total", "", oa.variance, ob->variance, oa.variance, ob->variance));
     for (const auto& ca : oa.contributors) {
       const auto* cb = Find(ob->contributors, [&](const ResultFigures::Contributor& c) { return c.name == ca.name; });
       if (!cb) {
         cmp.unmatched.push_back("contributor '" + ca.name + "' on output '" + oa.name + "' is only in " + a.label);
         continue;
       }
-      cmp.figures.push_back(Figure(oa, ca.name, "", ca.variance, cb->variance, total));
+      cmp.figures.push_back(Figure(oa, *ob, ca.name, "", ca.variance, cb->variance, oa.variance, ob->variance));
     }
     for (const auto& cb : ob->contributors)
       if (!Find(oa.contributors, [&](const ResultFigures::Contributor& c) { return c.name == cb.name; }))
@@ -95,13 +98,14 @@ Comparison Compare(const ResultFigures& a, const ResultFigures& b) {
         cmp.unmatched.push_back("band " + label + " of output '" + oa.name + "' is only in " + a.label);
         continue;
       }
-      cmp.figures.push_back(Figure(oa, "total", label, ba.variance, bb->variance, total));
+      cmp.figures.push_back(Figure(oa, *ob, "total", label, ba.variance, bb->variance, ba.variance, bb->variance));
       for (std::size_t c = 0; c < oa.contributors.size() && c < ba.contributor_variance.size(); ++c) {
         const std::string& name = oa.contributors[c].name;
         for (std::size_t d = 0; d < ob->contributors.size() && d < bb->contributor_variance.size(); ++d)
           if (ob->contributors[d].name == name)
             cmp.figures.push_back(
-                Figure(oa, name, label, ba.contributor_variance[c], bb->contributor_variance[d], total));
+                Figure(oa, *ob, name, label, ba.contributor_variance[c], bb->contributor_variance[d], ba.variance,
+                       bb->variance));
       }
     }
     for (const auto& bb : ob->bands)
@@ -113,6 +117,19 @@ Comparison Compare(const ResultFigures& a, const ResultFigures& b) {
     if (!Find(a.outputs, [&](const ResultFigures::Output& o) { return o.name == ob.name; }))
       cmp.unmatched.push_back("output '" + ob.name + "' is only in " + b.label);
   return cmp;
+}
+
+bool ComparedFigure::MovedBy(double rel) const {
+  if (negligible_a && negligible_b) return false;
+  if (negligible_a != negligible_b) return true;
+  return std::abs(rms_b - rms_a) > rel * rms_a;
+}
+
+std::vector<ComparedFigure> Comparison::Moved(double rel) const {
+  std::vector<ComparedFigure> out;
+  for (const ComparedFigure& f : figures)
+    if (f.MovedBy(rel)) out.push_back(f);
+  return out;
 }
 
 std::vector<ComparedFigure> Comparison::LargestChanges(std::size_t count) const {

@@ -41,9 +41,18 @@ struct ResultFigures {
 
 ResultFigures FiguresOf(const std::string& label, const BudgetResult& result);
 
+// A figure whose variance is below this fraction of its total (in the same
+// result) is negligible: its RMS is below 1e-3 of the total's, so it moves
+// the total's RMS by less than 5e-7 (root sum of squares), below the 4
+// digits the tables print, and its layer of the run's CPS plot is below a
+// pixel. Its ratio says nothing about the design: a 1e-13 term that becomes
+// 1e-1 reads "from ≈0", not B / A = 1e12. The total of a whole-grid contributor is its output's; of a band's
+// contributor, the band's; a band's total is negligible only at 0.
+inline constexpr double kNegligibleShare = 1e-6;
+
 // One compared figure. band is empty for the whole grid; contributor is
 // "total" for the output's total. rms_b - rms_a and rms_b / rms_a (none when
-// rms_a is 0 and rms_b is not).
+// rms_a is 0, or when either side is negligible).
 struct ComparedFigure {
   std::string output;
   std::string unit;
@@ -55,16 +64,27 @@ struct ComparedFigure {
   // Change of variance as a fraction of the larger total variance of the
   // output: ranks the contributors that changed most.
   double variance_change_of_total = 0.0;
+  // Below kNegligibleShare of its total's variance in A, in B.
+  bool negligible_a = false, negligible_b = false;
+
+  // |B - A| / A > rel, for a figure that is not negligible on both sides;
+  // one that is negligible on one side only has moved by any rel.
+  bool MovedBy(double rel) const;
 };
 
 struct Comparison {
   std::string label_a, label_b;
   std::vector<ComparedFigure> figures;  // per output: total, contributors, then bands
   std::vector<std::string> unmatched;   // sentences: what only one side has, unit mismatches
+  // `deb compare --tolerance`: the relative change beyond which a figure has
+  // moved (documents list Moved(*tolerance)); none when not asked.
+  std::optional<double> tolerance;
 
   // Contributor figures (whole grid) by |variance_change_of_total|, largest
   // first, at most `count` per output.
   std::vector<ComparedFigure> LargestChanges(std::size_t count = 3) const;
+  // The figures that moved by more than rel (MovedBy), in table order.
+  std::vector<ComparedFigure> Moved(double rel) const;
 };
 
 Comparison Compare(const ResultFigures& a, const ResultFigures& b);

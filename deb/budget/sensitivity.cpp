@@ -43,6 +43,8 @@ std::vector<Sensitivity> RankedForOutput(const std::vector<Sensitivity>& all, co
   for (const auto& s : all)
     if (s.output == output) r.push_back(s);
   std::stable_sort(r.begin(), r.end(), [](const Sensitivity& a, const Sensitivity& b) {
+    const bool ta = a.contributor == "total", tb = b.contributor == "total";
+    if (ta != tb) return ta;
     return std::abs(a.d_variance_d_log_p) > std::abs(b.d_variance_d_log_p);
   });
   return r;

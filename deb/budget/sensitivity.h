@@ -52,7 +52,8 @@ SensitivityStudy ComputeSensitivities(const Budget& budget, const std::vector<st
                                       double relative_step, const ScaledBudget& scaled,
                                       const EngineOptions& options = {});
 
-// Entries of one output ranked by |d variance / d ln p|, largest first.
+// Entries of one output: the total's (one per parameter) first, then the
+// contributors'; each part ranked by |d variance / d ln p|, largest first.
 std::vector<Sensitivity> RankedForOutput(const std::vector<Sensitivity>& all, const std::string& output);
 
 }  // namespace deb

@@ -22,6 +22,22 @@ std::string SweepParameter::Text(double value) const {
   return os.str();
 }
 
+std::string SweepParameter::ShortText(double value) const {
+  if (!texts.empty()) return Text(value);
+  std::ostringstream os;
+  os.precision(4);
+  os << value;
+  return os.str();
+}
+
+std::string SweepParameter::Name() const { return label.empty() ? key_path : label; }
+
+std::string SweepParameter::AxisTitle() const { return unit.empty() ? Name() : Name() + " [" + unit + "]"; }
+
+std::string SweepParameter::Setting(double value) const {
+  return Name() + " = " + ShortText(value) + (unit.empty() || !texts.empty() ? "" : " " + unit);
+}
+
 std::vector<std::vector<double>> SweepSpec::Variants() const {
   std::vector<std::vector<double>> rows;
   if (parameters.empty()) return rows;

@@ -30,10 +30,23 @@ struct SweepParameter {
   // A textual parameter (e.g. a VC class): the values are the indices
   // 0, 1, ... into texts, which the budget receives.
   std::vector<std::string> texts;
+  std::string label;  // how axes and tables name it (`label:`); empty: the key path
+  std::string unit;   // of its values (`unit:`, UDUNITS-2), for axes and tables; may be empty
 
   // The value as the budget file receives it: a number, or texts[index].
   std::string Text(double value) const;
+  // For tables and axes: a number to 4 significant digits, or texts[index].
+  std::string ShortText(double value) const;
+  // label, or the key path.
+  std::string Name() const;
+  // "label [unit]", "label", or the key path.
+  std::string AxisTitle() const;
+  // "label = value unit" (ShortText), e.g. "isolator height h = -210 mm".
+  std::string Setting(double value) const;
 };
+
+// The longest `label:` of a sweep parameter (it must fit an axis).
+inline constexpr std::size_t kMaxSweepLabelChars = 60;
 
 struct SweepSpec {
   SweepMode mode = SweepMode::kGrid;

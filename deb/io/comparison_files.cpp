@@ -56,7 +56,9 @@ json FigureJson(const ComparedFigure& f) {
           {"rms_b", f.rms_b},
           {"difference", f.difference},
           {"ratio", f.ratio ? json(*f.ratio) : json(nullptr)},
-          {"variance_change_of_total", f.variance_change_of_total}};
+          {"variance_change_of_total", f.variance_change_of_total},
+          {"negligible_a", f.negligible_a},
+          {"negligible_b", f.negligible_b}};
 }
 
 std::string CsvField(const std::string& s) {
@@ -121,7 +123,8 @@ std::string ComparisonJson(const Comparison& cmp) {
   j["a"] = cmp.label_a;
   j["b"] = cmp.label_b;
   j["conventions"] = {{"difference", "rms_b - rms_a, in the output's unit"},
-                      {"ratio", "rms_b / rms_a (null when rms_a = 0 < rms_b)"},
+                      {"ratio", "rms_b / rms_a (null when either side is negligible, or both are 0)"},
+                      {"negligible", "variance below 1e-6 of its total's (the output's, or the band's)"},
                       {"variance_change_of_total",
                        "(variance_b - variance_a) / the larger total variance of the output"}};
   json figures = json::array();
@@ -131,6 +134,12 @@ std::string ComparisonJson(const Comparison& cmp) {
   for (const auto& f : cmp.LargestChanges()) largest.push_back(FigureJson(f));
   j["largest_changes"] = largest;
   j["unmatched"] = cmp.unmatched;
+  if (cmp.tolerance) {  // the regression gate's verdict
+    j["tolerance"] = *cmp.tolerance;
+    json moved = json::array();
+    for (const auto& f : cmp.Moved(*cmp.tolerance)) moved.push_back(FigureJson(f));
+    j["moved"] = moved;
+  }
   return j.dump(2) + "\n";
 }
 

@@ -285,12 +285,17 @@ Source ParseSource(const YamlNode& node, const std::string& base_dir) {
       Eigen::MatrixXd picked(csv.psd.rows(), static_cast<Eigen::Index>(wanted.size()));
       for (std::size_t j = 0; j < wanted.size(); ++j) {
         const auto it = std::find(csv.channel_names.begin(), csv.channel_names.end(), wanted[j]);
-        if (it == csv.channel_names.end()) {
+        // A confidence bound (x_hi: a conservative source) may be picked by name too.
+        const auto bound = std::find(csv.bound_names.begin(), csv.bound_names.end(), wanted[j]);
+        if (it == csv.channel_names.end() && bound == csv.bound_names.end()) {
           std::string have;
           for (const auto& n : csv.channel_names) have += (have.empty() ? "" : ", ") + n;
+          for (const auto& n : csv.bound_names) have += (have.empty() ? "" : ", ") + n;
           cols->Fail("column '" + wanted[j] + "' is not in " + p.string() + " (columns: " + have + ")");
         }
-        picked.col(static_cast<Eigen::Index>(j)) = csv.psd.col(it - csv.channel_names.begin());
+        picked.col(static_cast<Eigen::Index>(j)) = it != csv.channel_names.end()
+                                                       ? Eigen::VectorXd(csv.psd.col(it - csv.channel_names.begin()))
+                                                       : Eigen::VectorXd(csv.bounds.col(bound - csv.bound_names.begin()));
       }
       csv.psd = picked;
       csv.channel_names = wanted;

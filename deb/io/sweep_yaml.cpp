@@ -22,6 +22,7 @@
 #include "deb/io/budget_yaml.h"
 #include "deb/io/key_path.h"
 #include "deb/io/yaml_reader.h"
+#include "deb/units/unit.h"
 
 namespace deb {
 namespace {
@@ -40,6 +41,20 @@ KeyPath ParseKeyPath(const YamlNode& node) {
 std::string Assign(YAML::Node n, const KeyPath& steps, const SweepParameter& p, double v) {
   if (!p.texts.empty()) return SetTextAt(n, steps, p.Text(v));
   return ScaleNumbersAt(n, steps, [v](double) { return v; });
+}
+
+// A parameter's name on axes and in tables: one line of printable text.
+std::string ParseLabel(const YamlNode& node) {
+  const std::string label = node.AsString();
+  if (label.find_first_not_of(" \t") == std::string::npos)
+    node.Fail("the label is empty; name the parameter, e.g. 'isolator height h'");
+  if (label.size() > kMaxSweepLabelChars)
+    node.Fail("the label has " + std::to_string(label.size()) + " characters, more than the " +
+              std::to_string(kMaxSweepLabelChars) + " an axis can show");
+  for (const char ch : label)
+    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
+      node.Fail("the label holds a control character (a line break?); write it on one line");
+  return label;
 }
 
 std::vector<double> ParseValues(const YamlNode& p, std::vector<std::string>* texts) {
@@ -134,12 +149,17 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir, const st
   std::vector<KeyPath> steps;
   std::vector<YamlNode> path_nodes;
   for (const YamlNode& p : params.Elements()) {
-    p.AllowOnly({"path", "values", "linear", "log"});
+    p.AllowOnly({"path", "label", "unit", "values", "linear", "log"});
     const YamlNode path = p.Required("path");
     steps.push_back(ParseKeyPath(path));
     path_nodes.push_back(path);
     SweepParameter param;
     param.key_path = path.AsString();
+    if (auto label = p.Optional("label")) param.label = ParseLabel(*label);
+    if (auto unit = p.Optional("unit")) {
+      param.unit = unit->AsString();
+      io::AtNode(*unit, [&] { ValidateUnit(param.unit); });
+    }
     param.values = ParseValues(p, &param.texts);
     out.spec.parameters.push_back(param);
   }
@@ -180,6 +200,22 @@ SweepBudget LoadSweepFile(const std::string& path, const std::vector<BudgetOverr
   const YamlReader reader = io::ReadBudgetFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return Load(reader, dir.empty() ? "." : dir, overrides);
+}
+
+std::vector<double> ParameterValues(const std::string& path, const std::string& key_path,
+                                    const std::vector<BudgetOverride>& overrides) {
+  const YamlReader reader = io::ReadBudgetFile(path);
+  YAML::Node raw = reader.LoadCopy();
+  io::ApplyOverrides(raw, overrides, reader.name());
+  const KeyPath steps = io::ParseKeyPath(key_path);
+  if (raw.IsMap()) raw.remove("sweep");
+  std::vector<double> values;
+  const std::string why = ScaleNumbersAt(raw, steps, [&values](double x) {
+    values.push_back(x);
+    return x;
+  });
+  if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
+  return values;
 }
 
 Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor,

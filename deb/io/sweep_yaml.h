@@ -58,4 +58,10 @@ std::vector<Budget> LoadSweepVariants(const SweepBudget& sweep, int threads = 0)
 Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor,
                                      const std::vector<BudgetOverride>& overrides = {});
 
+// The numbers key_path reaches in the budget in `path` (with `overrides`
+// applied), in document order: the nominal values of a sensitivity's parameter.
+// @throws InputError as LoadBudgetWithScaledParameter.
+std::vector<double> ParameterValues(const std::string& path, const std::string& key_path,
+                                    const std::vector<BudgetOverride>& overrides = {});
+
 }  // namespace deb

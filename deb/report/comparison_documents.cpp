@@ -1,5 +1,6 @@
 #include "deb/report/comparison_documents.h"
 
+#include <cmath>
 #include <sstream>
 
 namespace deb::report {
@@ -11,14 +12,46 @@ std::string Lead() {
 
 }  // namespace
 
-std::string RatioText(const ComparedFigure& f) { return f.ratio ? Sig(*f.ratio, 4) : "–"; }
+std::string RatioText(const ComparedFigure& f) {
+  if (f.ratio) return Sig(*f.ratio, 4);
+  if (f.negligible_a && !f.negligible_b) return "from ≈0";
+  if (f.negligible_b && !f.negligible_a) return "to ≈0";
+  return "–";
+}
 
-// The tables of a comparison: one per output, then the largest changes.
+std::string Verdict(const ComparedFigure& total) {
+  if (!total.ratio) return total.negligible_a && !total.negligible_b ? "worse" : "–";
+  if (std::abs(*total.ratio - 1.0) < kUnchangedRel) return "unchanged";
+  return *total.ratio < 1.0 ? "better" : "worse";
+}
+
+Table HeadlineTable(const Comparison& cmp) {
+  Table t;
+  t.title = "Headline: total RMS per output, A: " + cmp.label_a + ", B: " + cmp.label_b;
+  t.header = {"output", "A", "B", "B / A", "B is", "largest changes (variance change / total)"};
+  t.numeric = {false, true, true, true, false, false};
+  const std::vector<ComparedFigure> largest = cmp.LargestChanges();
+  for (const ComparedFigure& f : cmp.figures) {
+    if (f.contributor != "total" || !f.band.empty()) continue;
+    std::string changes;
+    for (const ComparedFigure& c : largest) {
+      if (c.output != f.output || c.variance_change_of_total == 0.0) continue;
+      const double pct = 100.0 * c.variance_change_of_total;
+      changes += (changes.empty() ? "" : ", ") + c.contributor + " " + (pct > 0 ? "+" : "−") + Sig(std::abs(pct), 2) +
+                 " %";
+    }
+    t.rows.push_back({f.output + " [" + UnitText(f.unit) + "]", Sig(f.rms_a, 4), Sig(f.rms_b, 4), RatioText(f),
+                      Verdict(f), changes.empty() ? "none" : changes});
+  }
+  return t;
+}
+
+// The tables of a comparison: the headline, one per output, then the largest changes.
 std::vector<Table> ComparisonTables(const Comparison& cmp) {
-  std::vector<Table> tables;
+  std::vector<Table> tables = {HeadlineTable(cmp)};
   std::string current;
   for (const ComparedFigure& f : cmp.figures) {
-    if (tables.empty() || f.output != current) {
+    if (tables.size() == 1 || f.output != current) {
       current = f.output;
       Table t;
       t.title = f.output + " [" + UnitText(f.unit) + "]";
@@ -39,6 +72,17 @@ std::vector<Table> ComparisonTables(const Comparison& cmp) {
     largest.rows.push_back({f.output, f.contributor, Sig(f.rms_a, 4), Sig(f.rms_b, 4), RatioText(f),
                             Sig(100.0 * f.variance_change_of_total, 3) + " %"});
   tables.push_back(largest);
+  if (cmp.tolerance) {
+    Table moved;
+    moved.title = "Moved by more than " + Sig(100.0 * *cmp.tolerance, 3) + " % (--tolerance)";
+    moved.header = {"output", "contributor", "band", "A", "B", "B / A"};
+    moved.numeric = {false, false, false, true, true, true};
+    for (const ComparedFigure& f : cmp.Moved(*cmp.tolerance))
+      moved.rows.push_back({f.output, f.contributor, f.band.empty() ? "whole grid" : f.band, Sig(f.rms_a, 4),
+                            Sig(f.rms_b, 4), RatioText(f)});
+    if (moved.rows.empty()) moved.rows.push_back({"none", "", "", "", "", ""});
+    tables.push_back(moved);
+  }
   return tables;
 }
 

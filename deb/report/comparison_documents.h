@@ -14,10 +14,21 @@
 
 namespace deb::report {
 
-// B / A with 4 significant digits, "–" where there is none (A is 0, B is not).
+// B / A with 4 significant digits; where there is none "from ≈0" (A is
+// negligible, B is not), "to ≈0" (the reverse) or "–" (both negligible, 0 / 0).
 std::string RatioText(const ComparedFigure& f);
 
-// One table per output, then the largest changes.
+// A total whose B / A is within this of 1 is "unchanged" (4 digits show it as 1).
+inline constexpr double kUnchangedRel = 5e-4;
+// "better" (B's RMS is lower), "worse", "unchanged" or "–" (no ratio).
+std::string Verdict(const ComparedFigure& total);
+
+// Per output: total RMS of A and B, B / A, the verdict and the contributors
+// whose variance changed most.
+Table HeadlineTable(const Comparison& cmp);
+
+// The headline, one table per output, the largest changes, and with a
+// tolerance the figures that moved beyond it.
 std::vector<Table> ComparisonTables(const Comparison& cmp);
 
 // The plots are referenced as plots/<name>.png.

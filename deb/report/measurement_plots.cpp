@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -241,10 +242,12 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
   const std::vector<std::size_t> bins = PositiveBins(e.f_hz, name);
   const std::vector<double> f = Pick(e.f_hz, bins);
   const std::size_t n = e.outputs.size();
-  std::vector<std::vector<double>> mag(n), coh(n);
+  std::vector<std::vector<double>> mag(n), phase(n), coh(n);
   for (std::size_t o = 0; o < n; ++o)
     for (std::size_t k : bins) {
-      mag[o].push_back(std::abs(e.h(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(o))));
+      const std::complex<double> h = e.h(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(o));
+      mag[o].push_back(std::abs(h));
+      phase[o].push_back(std::arg(h) * 180.0 / M_PI);  // wrapped to (-180, 180]
       coh[o].push_back(e.coherence(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(o)));
     }
   // The points either panel needs: |H1| on its log axis, gamma^2 on its linear one.
@@ -253,9 +256,13 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
     mags.push_back(&mag[o]);
     cohs.push_back(&coh[o]);
   }
+  std::vector<const std::vector<double>*> phases;
+  for (std::size_t o = 0; o < n; ++o) phases.push_back(&phase[o]);
   std::vector<std::size_t> rows = PlotPoints(f, mags, f.front(), f.back());
-  const std::vector<std::size_t> more = PlotPoints(f, cohs, f.front(), f.back(), PlotScale::kLinear);
-  rows.insert(rows.end(), more.begin(), more.end());
+  for (const auto* series : {&cohs, &phases}) {
+    const std::vector<std::size_t> more = PlotPoints(f, *series, f.front(), f.back(), PlotScale::kLinear);
+    rows.insert(rows.end(), more.begin(), more.end());
+  }
   std::sort(rows.begin(), rows.end());
   rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
 
@@ -263,12 +270,13 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
   p.name = name;
   p.kind = PlotKind::kSpectrum;
   p.caption = std::string(e.estimator == FrfEstimator::kH1 ? "H1" : "H2") + " frequency response from " + e.input + " to each output of " + source +
-              ": magnitude (top) and coherence (bottom).";
+              ": magnitude (top), phase (middle) and coherence (bottom).";
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ": |H1| from " << e.input << " to each output of " << source
-      << (unit.empty() ? "" : ", in " + unit) << ", and the coherence gamma^2\nf_hz";
+      << (unit.empty() ? "" : ", in " + unit) << ", the coherence gamma^2 and the phase in degrees\nf_hz";
   for (const auto& o : e.outputs) csv << ',' << CsvField("mag_" + o);
   for (const auto& o : e.outputs) csv << ',' << CsvField("coherence_" + o);
+  for (const auto& o : e.outputs) csv << ',' << CsvField("phase_deg_" + o);
   csv << '\n';
   double top = 0.0, bottom = HUGE_VAL;
   for (std::size_t k : rows) {
@@ -278,6 +286,7 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
       if (m[k] > 0.0) top = std::max(top, m[k]), bottom = std::min(bottom, m[k]);
     }
     for (const auto& c : coh) csv << ',' << CsvNumber(c[k]);
+    for (const auto& ph : phase) csv << ',' << CsvNumber(ph[k]);
     csv << '\n';
   }
   p.csv = csv.str();
@@ -291,21 +300,28 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
     << "\n";
   s << "set key outside right top Left reverse title 'output'\nset lmargin 12\nset rmargin 16\n";
   // Top panel: |H1|, log-log; the x labels belong to the bottom panel.
-  s << "set origin 0,0.36\nset size 1,0.56\nset format x ''\nunset xlabel\n"
+  s << "set origin 0,0.52\nset size 1,0.40\nset format x ''\nunset xlabel\n"
     << LogYRange(bottom, top, 10.0)
     << "set ylabel " << Quote(unit.empty() ? "magnitude |" + est + "|" : "magnitude |" + est + "| [" + UnitLabel(unit) + "]")
     << "\n";
-  std::vector<std::string> top_clauses, bottom_clauses;
+  std::vector<std::string> top_clauses, middle_clauses, bottom_clauses;
   for (std::size_t o = 0; o < n; ++o) {
     const std::string colour = Quote(ContributorStyle(o).colour);
+    // Wrapped phase as dots: lines would draw a false vertical at every wrap.
+    middle_clauses.push_back(data + " using 1:" + std::to_string(2 * n + o + 2) +
+                             " with points pointtype 7 pointsize 0.35 linecolor rgb " + colour + " notitle");
     top_clauses.push_back(data + " using 1:" + Positive(o + 2) + " with lines linecolor rgb " + colour +
                           " linewidth 1.5 title " + Quote(Enhanced(e.outputs[o])));
     bottom_clauses.push_back(data + " using 1:" + std::to_string(n + o + 2) + " with lines linecolor rgb " + colour +
                              " linewidth 1.5 notitle");
   }
   s << PlotList(top_clauses);
+  // Middle panel: phase in degrees, -180..180.
+  s << "set origin 0,0.31\nset size 1,0.23\nunset logscale y\nset format y '%g'\n"
+    << "set ylabel 'phase [°]'\nset yrange [-180:180]\nset ytics -180,90,180\nunset key\n";
+  s << PlotList(middle_clauses);
   // Bottom panel: gamma^2, linear 0..1.
-  s << "set origin 0,0\nset size 1,0.38\nunset logscale y\nset format y '%g'\n"
+  s << "set origin 0,0\nset size 1,0.33\n"
     << FrequencyAxis(f.front(), f.back())  // the x format and label the top panel cleared
     << "set ylabel 'coherence γ^{2}'\nset yrange [0:1.05]\nset ytics 0,0.25,1\nunset key\n";
   s << PlotList(bottom_clauses);

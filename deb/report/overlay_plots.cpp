@@ -1,82 +1,162 @@
 #include "deb/report/overlay_plots.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <sstream>
 
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
+#include "deb/budget/comparison.h"
 #include "deb/report/gnuplot_runner.h"
+#include "deb/report/plot_points.h"
 #include "deb/report/plot_style.h"
+#include "deb/report/spectrum_plots.h"
+#include "deb/units/unit.h"
 #include "deb/version.h"
 
 namespace deb::report {
 namespace {
 
+std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
+
+bool Shown(const OutputResult& o, std::size_t c) { return o.contributors[c].variance >= kNegligibleShare * o.variance; }
+
 // One data block per result (gnuplot `index`): frequency, then per
-// contributor and the total, PSD or CPS.
-void Block(std::ostringstream& csv, const std::string& label, const BudgetResult& r, const OutputResult& o,
-           bool cps) {
+// contributor and the total, PSD or CPS, at the points a reader can see in
+// `range` (PlotPoints; the run's CSVs hold the whole grid).
+void Block(std::ostringstream& csv, const std::string& label, const BudgetResult& r, const OutputResult& o, bool cps,
+           const FrequencyRange& range) {
   csv << "# " << label << "\nfrequency_hz";
   for (const auto& c : o.contributors) csv << ',' << CsvField(c.name);
   csv << ",total\n";
   const auto& f = r.grid.f_hz();
-  for (std::size_t k = 0; k < f.size(); ++k) {
+  std::vector<const std::vector<double>*> drawn = {cps ? &o.total_cps : &o.total_psd};
+  for (const auto& c : o.contributors) drawn.push_back(cps ? &c.cps : &c.psd);
+  for (std::size_t k : PlotPoints(f, drawn, range.lo_hz, range.hi_hz, cps ? PlotScale::kLinear : PlotScale::kLog)) {
     csv << CsvNumber(f[k]);
     for (const auto& c : o.contributors) csv << ',' << CsvNumber(cps ? c.cps[k] : c.psd[k]);
     csv << ',' << CsvNumber(cps ? o.total_cps[k] : o.total_psd[k]) << '\n';
   }
 }
 
+// Largest and smallest positive total PSD of o within range.
+void PsdExtent(const BudgetResult& r, const OutputResult& o, const FrequencyRange& range, double& top,
+               double& bottom) {
+  const auto& f = r.grid.f_hz();
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    if (f[k] < range.lo_hz || f[k] > range.hi_hz) continue;
+    top = std::max(top, o.total_psd[k]);
+    for (const auto& c : o.contributors)
+      if (c.psd[k] > 0.0) bottom = std::min(bottom, c.psd[k]);
+  }
+}
+
 Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResult& oa, const std::string& label_b,
              const BudgetResult& b, const OutputResult& ob, bool cps) {
+  // The run's display rules: the frequencies holding all but kDisplayTail of
+  // every contributor's variance (of A or B), a PSD axis at most
+  // kOverlayPsdDecades deep, a linear CPS axis from 0 with RMS on the right.
+  const FrequencyRange ra = DisplayRange(oa, a.grid), rb = DisplayRange(ob, b.grid);
+  FrequencyRange range;
+  range.lo_hz = std::min(ra.lo_hz, rb.lo_hz);
+  range.hi_hz = std::max(ra.hi_hz, rb.hi_hz);
+  range.trimmed = range.lo_hz > std::min(a.grid.min_hz(), b.grid.min_hz()) * (1 + 1e-9) ||
+                  range.hi_hz < std::max(a.grid.max_hz(), b.grid.max_hz()) * (1 - 1e-9);
+  const std::string unit = DisplayUnit(oa.unit);
+
   Plot p;
   p.name = FileStem(oa.name) + (cps ? "_cps_overlay" : "_psd_overlay");
   p.kind = cps ? PlotKind::kCps : PlotKind::kSpectrum;
-  p.caption = std::string(cps ? "Cumulative power spectrum" : "Power spectral density") + " of " + oa.name + ": " +
-              label_a + " solid, " + label_b + " dashed; total in black.";
+  p.caption = std::string(cps ? "Cumulative power spectrum" : "Power spectral density") + " of " + oa.name + ": A (" +
+              label_a + ") solid, B (" + label_b + ") dashed; total in black; contributors below " +
+              "10^-6 of the variance in both are left out." + RangeCaption(range);
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", compare, output " << oa.name << ": " << (cps ? "CPS in " : "PSD in ")
-      << (cps ? VarianceUnit(oa.unit) : VarianceUnit(oa.unit) + "/Hz") << "; block 0 " << label_a << ", block 1 "
+      << (cps ? VarianceUnit(unit) : VarianceUnit(unit) + "/Hz") << "; block 0 " << label_a << ", block 1 "
       << label_b << "\n";
-  Block(csv, label_a, a, oa, cps);
+  Block(csv, label_a, a, oa, cps, range);
   csv << "\n\n";
-  Block(csv, label_b, b, ob, cps);
+  Block(csv, label_b, b, ob, cps, range);
   p.csv = csv.str();
 
   std::ostringstream s;
-  s << "reset\n" << StylePreamble();
-  s << "set title " << Quote(Enhanced(oa.name + ": " + label_a + " (solid) vs " + label_b + " (dashed)")) << "\n";
-  s << "set logscale x 10\nset format x '10^{%L}'\nset xlabel 'frequency [Hz]'\n";
-  s << "set logscale y 10\nset format y '10^{%L}'\n";
-  s << "set ylabel " << Quote(cps ? "CPS [" + UnitLabel(VarianceUnit(oa.unit)) + "]"
-                                  : "PSD [" + UnitLabel(VarianceUnit(oa.unit) + "/Hz") + "]")
+  s << "reset\n" << StylePreamble() << FrequencyAxis(range, a.grid);
+  s << "set title " << Quote(Enhanced(oa.name + (cps ? ": cumulative power spectrum" : ": power spectral density"))) << "\n";
+  std::string per;  // CPS: variance in units of `scale`
+  if (cps) {
+    const std::optional<double> req = oa.rms_max ? oa.rms_max : ob.rms_max;
+    const double y_max = std::max({oa.variance, ob.variance, req ? *req * *req : 0.0, 1e-300}) * 1.06;
+    const int e = static_cast<int>(std::floor(std::log10(y_max)));
+    const double scale = (e >= 4 || e <= -3) ? std::pow(10.0, e) : 1.0;
+    per = scale == 1.0 ? "" : "/" + CsvNumber(scale);
+    const std::string scale_label = scale == 1.0 ? "" : "10^{" + std::to_string(e) + "} ";
+    s << "set ylabel " << Quote("cumulative variance [" + scale_label + UnitLabel(VarianceUnit(unit)) + "]") << "\n";
+    s << "set y2label " << Quote("cumulative RMS [" + UnitLabel(unit) + "]") << "\n";
+    s << "set yrange [0:" << CsvNumber(y_max / scale) << "]\nset y2range [0:" << CsvNumber(y_max / scale) << "]\n";
+    s << "set format y '%g'\nset ytics nomirror\n"
+      << RmsTics(y_max, scale, {{std::sqrt(oa.variance), Sig(std::sqrt(oa.variance))},
+                                {std::sqrt(ob.variance), Sig(std::sqrt(ob.variance))},
+                                {req.value_or(0.0), Short(req.value_or(0.0))}})
+      << "\n";
+  } else {
+    double top = 0.0, bottom = HUGE_VAL;
+    PsdExtent(a, oa, range, top, bottom);
+    PsdExtent(b, ob, range, top, bottom);
+    s << "set ylabel " << Quote("PSD [" + UnitLabel(VarianceUnit(unit) + "/Hz") + "]") << "\n";
+    s << "set logscale y 10\nset format y '10^{%L}'\n";
+    if (top > 0.0) {
+      const double lo = std::max(bottom, top * std::pow(10.0, -kOverlayPsdDecades));
+      s << "set yrange [" << CsvNumber(std::pow(10.0, std::floor(std::log10(lo)))) << ":"
+        << CsvNumber(std::pow(10.0, std::ceil(std::log10(top)))) << "]\n";
+    }
+  }
+  // Who A and B are heads the key (labels are user text).
+  s << "set key outside right top Left reverse title "
+    << QuoteLines(std::vector<std::string>{Enhanced("A: " + label_a) + " (solid)", Enhanced("B: " + label_b) + " (dashed)",
+                                           "RMS [" + UnitLabel(unit) + "]"})
     << "\n";
-  s << "set key outside right top\n";
   std::vector<std::string> clauses;
   const std::string file = Quote(p.name + ".csv");
   const std::size_t na = oa.contributors.size();
+  const auto y = [&](std::size_t column) {
+    return cps ? "(" + Col(column) + per + ")" : "(" + Col(column) + " > 0 ? " + Col(column) + " : NaN)";
+  };
   for (int block = 0; block < 2; ++block) {
     const OutputResult& o = block == 0 ? oa : ob;
-    const std::string label = block == 0 ? label_a : label_b;
+    const OutputResult& other = block == 0 ? ob : oa;
+    const std::string side = block == 0 ? "A" : "B";
     const std::string dash = block == 0 ? "solid" : "(8,5)";
     for (std::size_t c = 0; c < o.contributors.size(); ++c) {
+      // Left out where negligible on both sides (a namesake on the other side counts).
+      bool shown = Shown(o, c);
+      for (std::size_t d = 0; d < other.contributors.size(); ++d)
+        if (other.contributors[d].name == o.contributors[c].name && Shown(other, d)) shown = true;
+      if (!shown) continue;
       // B's contributors take the colour of A's namesake, else one of their own.
       std::size_t style = na + c;
       for (std::size_t d = 0; d < na; ++d)
         if (oa.contributors[d].name == o.contributors[c].name) style = d;
       if (block == 0) style = c;
-      clauses.push_back(file + " index " + std::to_string(block) + " using 1:(column(" + std::to_string(c + 2) +
-                        ") > 0 ? column(" + std::to_string(c + 2) + ") : NaN) with lines linewidth 1.5 linecolor rgb " +
-                        Quote(ContributorStyle(style).colour) + " dashtype " + dash + " title " +
-                        Quote(Enhanced(label + ": " + o.contributors[c].name)));
+      clauses.push_back(file + " index " + std::to_string(block) + " using 1:" + y(c + 2) +
+                        " with lines linewidth 1.5 linecolor rgb " + Quote(ContributorStyle(style).colour) +
+                        " dashtype " + dash + " title " +
+                        Quote(side + ": " + Enhanced(o.contributors[c].name) + " " +
+                              SigLabel(std::sqrt(o.contributors[c].variance))));
     }
-    const std::string total = std::to_string(o.contributors.size() + 2);
-    clauses.push_back(file + " index " + std::to_string(block) + " using 1:(column(" + total + ") > 0 ? column(" +
-                      total + ") : NaN) with lines linewidth 2.5 linecolor rgb " + Quote(kTotalColour) +
-                      " dashtype " + dash + " title " + Quote(Enhanced(label + ": total")));
+    clauses.push_back(file + " index " + std::to_string(block) + " using 1:" + y(o.contributors.size() + 2) +
+                      " with lines linewidth 2.5 linecolor rgb " + Quote(kTotalColour) + " dashtype " + dash +
+                      " title " + Quote(side + ": total " + SigLabel(std::sqrt(o.variance))));
   }
+  const std::optional<double> req = oa.rms_max ? oa.rms_max : ob.rms_max;
+  if (cps && req)
+    clauses.push_back(CsvNumber(*req * *req) + per + " with lines linecolor rgb " + Quote(kRequirementColour) +
+                      " dashtype " + kRequirementDash + " linewidth 2 title " +
+                      Quote("requirement: " + Short(*req) + " (A " + (oa.pass() ? "pass" : "FAIL") + ", B " +
+                            (ob.pass() ? "pass" : "FAIL") + ")"));
   s << "plot ";
   for (std::size_t i = 0; i < clauses.size(); ++i) s << (i ? ", \\\n     " : "") << clauses[i];
   s << "\n";

@@ -13,7 +13,14 @@
 
 namespace deb::report {
 
-// Two plots (PSD, CPS) per output name found in both a and b with the same unit.
+// Depth of the PSD overlay's axis below its peak, as in the run's PSD plot.
+inline constexpr double kOverlayPsdDecades = 10.0;
+
+// Two plots (PSD, CPS) per output name found in both a and b with the same
+// unit, drawn on the axis rules of `deb run`: the frequencies of either
+// result's DisplayRange, a PSD axis at most kOverlayPsdDecades deep, a linear
+// CPS axis from 0 (variance left, RMS right) with the requirement; a
+// contributor below kNegligibleShare of the variance in both is left out.
 std::vector<Plot> OverlayPlots(const std::string& label_a, const BudgetResult& a, const std::string& label_b,
                                const BudgetResult& b);
 

@@ -3,113 +3,297 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <sstream>
+#include <string>
 
+#include "deb/budget/sweep_ranking.h"
 #include "deb/core/error.h"
 #include "deb/report/plot_style.h"
 #include "deb/version.h"
 
 namespace deb::report {
+namespace {
+
+// Variants grouped by the values of parameters 2..n (first seen first),
+// each group ordered by parameter 1.
+struct Groups {
+  std::vector<std::vector<double>> order;
+  std::map<std::vector<double>, std::vector<std::size_t>> members;
+};
+
+Groups GroupByRest(const std::vector<std::vector<double>>& rows) {
+  Groups g;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const std::vector<double> rest(rows[i].begin() + 1, rows[i].end());
+    if (!g.members.count(rest)) g.order.push_back(rest);
+    g.members[rest].push_back(i);
+  }
+  for (auto& [rest, members] : g.members)
+    std::stable_sort(members.begin(), members.end(),
+                     [&](std::size_t a, std::size_t b) { return rows[a][0] < rows[b][0]; });
+  return g;
+}
+
+// Tics naming a textual parameter's values at their indices, on `axis`,
+// the range padded by `pad` at either end.
+std::string TextTics(const SweepParameter& p, const std::string& axis, double pad = 0.5) {
+  if (p.texts.empty()) return "";
+  std::ostringstream s;
+  s << "set " << axis << "range [" << CsvNumber(-pad) << ":" << CsvNumber(static_cast<double>(p.texts.size()) - 1.0 + pad)
+    << "]\nset " << axis << "tics (";
+  for (std::size_t i = 0; i < p.texts.size(); ++i) s << (i ? ", " : "") << Quote(Enhanced(p.texts[i])) << " " << i;
+  s << ")\n";
+  return s.str();
+}
+
+// Positive numeric values over two decades or more (a log: range) go on a log axis.
+bool LogAxis(const SweepParameter& p) {
+  if (!p.texts.empty() || p.values.empty()) return false;
+  const auto [lo, hi] = std::minmax_element(p.values.begin(), p.values.end());
+  return *lo > 0.0 && *hi >= 100.0 * *lo;
+}
+
+std::string RestLabel(const SweepSpec& spec, const std::vector<double>& rest) {
+  std::string label;
+  for (std::size_t k = 1; k < spec.parameters.size(); ++k)
+    label += (k > 1 ? ", " : "") + spec.parameters[k].Setting(rest[k - 1]);
+  return label;
+}
+
+Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>>& rows,
+                    const std::vector<BudgetResult>& results, std::size_t o, const Groups& groups) {
+  const OutputResult& out0 = results[0].outputs[o];
+  const SweepParameter& first = spec.parameters[0];
+  const std::size_t panels = std::min(groups.order.size(), kMaxSweepPanels);
+  Plot p;
+  p.name = FileStem(out0.name) + "_sweep";
+  p.kind = PlotKind::kOverview;
+  p.output = static_cast<int>(o);
+  p.caption = "RMS of " + out0.name + " against " + first.Name() +
+              (groups.order.size() > 1 ? ", one panel per value of the other parameters" : "") +
+              "; colour: contributor, total in black" + (out0.rms_max ? ", requirement dashed red" : "") + ".";
+  if (groups.order.size() > panels)
+    p.caption += " The first " + std::to_string(panels) + " of " + std::to_string(groups.order.size()) +
+                 " combinations are drawn; sweep.csv holds all.";
+
+  // One RMS axis for every panel: from 0 to the largest total or the requirement.
+  double top = out0.rms_max.value_or(0.0);
+  for (const BudgetResult& r : results) top = std::max(top, r.outputs[o].rms());
+  if (!(top > 0.0)) top = 1.0;
+
+  std::ostringstream csv;
+  csv << "# deb " << DEB_VERSION << ", sweep, output " << out0.name << " RMS in " << out0.unit
+      << "; one block per combination of the other parameters\n";
+  for (std::size_t b = 0; b < groups.order.size(); ++b) {
+    const auto& rest = groups.order[b];
+    const std::string label = RestLabel(spec, rest);
+    if (b) csv << "\n\n";
+    csv << "# " << (label.empty() ? "all variants" : label) << "\n" << CsvField(first.key_path);
+    for (const auto& c : out0.contributors) csv << ',' << CsvField(c.name);
+    csv << ",total\n";
+    for (std::size_t i : groups.members.at(rest)) {
+      const OutputResult& r = results[i].outputs[o];
+      csv << CsvNumber(rows[i][0]);
+      for (const auto& c : r.contributors) csv << ',' << CsvNumber(std::sqrt(c.variance));
+      csv << ',' << CsvNumber(r.rms()) << '\n';
+    }
+  }
+  p.csv = csv.str();
+
+  const std::size_t cols = panels <= 3 ? panels : panels <= 4 ? 2 : panels <= 9 ? 3 : 4;
+  const std::size_t rows_of_panels = (panels + cols - 1) / cols;
+  const std::string file = Quote(p.name + ".csv");
+  const std::string points = " with linespoints pointtype 7 pointsize 0.6 ";
+  std::ostringstream s;
+  s << "reset\n" << StylePreamble();
+  s << "set ylabel " << Quote("RMS [" + UnitLabel(out0.unit) + "]") << "\n";
+  s << "set yrange [0:" << CsvNumber(top * 1.08) << "]\n" << TextTics(first, "x");
+  if (LogAxis(first)) s << "set logscale x 10\n";
+  if (out0.rms_max)
+    s << "set arrow 1 from graph 0, first " << CsvNumber(*out0.rms_max) << " to graph 1, first "
+      << CsvNumber(*out0.rms_max) << " nohead linewidth 1.5 linecolor rgb " << Quote(kRequirementColour)
+      << " dashtype " << kRequirementDash << " front\n";
+  if (panels > 1) {
+    // The panels leave the right sixth of the page to the key they share.
+    s << "set multiplot layout " << rows_of_panels << "," << cols << " title "
+      << Quote(Enhanced(out0.name + ": RMS against " + first.Name()))
+      << " font ',14' margins 0.07,0.83,0.09,0.9 spacing 0.07,0.13\n";
+    s << "set title font ',11'\nset xlabel font ',10'\nset ylabel font ',10'\n";
+  } else {
+    s << "set title " << Quote(Enhanced(out0.name + ": RMS against " + first.Name())) << "\n";
+  }
+  s << "set xlabel " << Quote(Enhanced(first.AxisTitle())) << "\n";
+  for (std::size_t b = 0; b < panels; ++b) {
+    if (panels > 1) {
+      s << "set title " << Quote(Enhanced(RestLabel(spec, groups.order[b]))) << "\n";
+      // The key once, with the first panel, beside the panels.
+      s << (b == 0 ? "set key at screen 0.85,0.9 left top Left reverse\n" : "unset key\n");
+      if (b % cols != 0) s << "unset ylabel\n";
+      else s << "set ylabel " << Quote("RMS [" + UnitLabel(out0.unit) + "]") << "\n";
+    } else {
+      s << "set key outside right top Left reverse\n";
+    }
+    std::vector<std::string> clauses;
+    const std::string index = file + " index " + std::to_string(b) + " using 1:";
+    for (std::size_t c = 0; c < out0.contributors.size(); ++c)
+      clauses.push_back(index + std::to_string(c + 2) + points + "linewidth 1.5 linecolor rgb " +
+                        Quote(ContributorStyle(c).colour) + " title " + Quote(Enhanced(out0.contributors[c].name)));
+    clauses.push_back(index + std::to_string(out0.contributors.size() + 2) + points + "linewidth 2.5 linecolor rgb " +
+                      Quote(kTotalColour) + " title 'total'");
+    if (out0.rms_max && b == 0)
+      clauses.push_back("NaN with lines linewidth 1.5 linecolor rgb " + Quote(kRequirementColour) + " dashtype " +
+                        kRequirementDash + " title " + Quote("requirement: " + Short(*out0.rms_max)));
+    s << "plot ";
+    for (std::size_t i = 0; i < clauses.size(); ++i) s << (i ? ", \\\n     " : "") << clauses[i];
+    s << "\n";
+  }
+  if (panels > 1) s << "unset multiplot\n";
+  p.script = s.str();
+  return p;
+}
+
+// Indices of values sorted ascending.
+std::vector<std::size_t> Ascending(const std::vector<double>& v) {
+  std::vector<std::size_t> idx(v.size());
+  std::iota(idx.begin(), idx.end(), 0);
+  std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
+  return idx;
+}
+
+Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>>& rows,
+                    const std::vector<BudgetResult>& results, std::size_t o) {
+  const OutputResult& out0 = results[0].outputs[o];
+  const SweepParameter &px = spec.parameters[0], &py = spec.parameters[1];
+  const std::size_t nx = px.values.size(), ny = py.values.size();
+  DEB_DEMAND(rows.size() == nx * ny);  // a grid, the last parameter fastest
+  const std::vector<std::size_t> ix = Ascending(px.values), iy = Ascending(py.values);
+  std::vector<double> x(nx), y(ny);
+  std::vector<std::vector<double>> z(nx, std::vector<double>(ny));
+  for (std::size_t i = 0; i < nx; ++i) x[i] = px.values[ix[i]];
+  for (std::size_t j = 0; j < ny; ++j) y[j] = py.values[iy[j]];
+  double lo = HUGE_VAL, hi = 0.0;
+  for (std::size_t i = 0; i < nx; ++i)
+    for (std::size_t j = 0; j < ny; ++j) {
+      z[i][j] = results[ix[i] * ny + iy[j]].outputs[o].rms();
+      lo = std::min(lo, z[i][j]);
+      hi = std::max(hi, z[i][j]);
+    }
+  const std::size_t best = BestVariant(results, o);
+
+  Plot p;
+  p.name = FileStem(out0.name) + "_map";
+  p.kind = PlotKind::kOverview;
+  p.output = static_cast<int>(o);
+  p.caption = "Total RMS of " + out0.name + " over " + px.Name() + " and " + py.Name() +
+              ", interpolated between the variants (dots); the best variant (lowest RMS) ringed" +
+              (out0.rms_max ? ", the requirement's contour in red" : "") + ".";
+  std::ostringstream csv;
+  csv << "# deb " << DEB_VERSION << ", sweep, output " << out0.name << ": total RMS in " << out0.unit
+      << "; block 0 the grid, block 1 the best variant, block 2 the requirement's contour (x, y, z, dx, dy, dz per "
+         "segment)\n";
+  csv << CsvField(px.key_path) << ',' << CsvField(py.key_path) << ",total\n";
+  for (std::size_t i = 0; i < nx; ++i) {
+    if (i) csv << '\n';  // one scan line per value of the first parameter
+    for (std::size_t j = 0; j < ny; ++j) csv << CsvNumber(x[i]) << ',' << CsvNumber(y[j]) << ',' << CsvNumber(z[i][j]) << '\n';
+  }
+  csv << "\n\n# best\n"
+      << CsvNumber(rows[best][0]) << ',' << CsvNumber(rows[best][1]) << ',' << CsvNumber(results[best].outputs[o].rms())
+      << '\n';
+  // One row per segment (x, y, z, dx, dy, dz), drawn as headless vectors:
+  // splot would join the rows of a block into a mesh.
+  std::size_t segments = 0;
+  csv << "\n\n# requirement\n";
+  if (out0.rms_max)
+    for (const ContourSegment& c : LevelSegments(x, y, z, *out0.rms_max)) {
+      csv << CsvNumber(c.x0) << ',' << CsvNumber(c.y0) << ',' << CsvNumber(*out0.rms_max) << ','
+          << CsvNumber(c.x1 - c.x0) << ',' << CsvNumber(c.y1 - c.y0) << ",0\n";
+      ++segments;
+    }
+  if (segments == 0) csv << "NaN,NaN,NaN,NaN,NaN,NaN\n";  // keeps the block, so the indices stay
+  p.csv = csv.str();
+
+  std::ostringstream s;
+  s << "reset\n" << StylePreamble();
+  s << "set title " << Quote(Enhanced(out0.name + ": total RMS over " + px.Name() + " and " + py.Name())) << "\n";
+  s << "set xlabel " << Quote(Enhanced(px.AxisTitle())) << "\nset ylabel " << Quote(Enhanced(py.AxisTitle())) << "\n";
+  s << TextTics(px, "x", 0.0) << TextTics(py, "y", 0.0);
+  if (LogAxis(px)) s << "set logscale x 10\n";
+  if (LogAxis(py)) s << "set logscale y 10\n";
+  if (px.texts.empty()) s << "set xrange [" << CsvNumber(x.front()) << ":" << CsvNumber(x.back()) << "]\n";
+  if (py.texts.empty()) s << "set yrange [" << CsvNumber(y.front()) << ":" << CsvNumber(y.back()) << "]\n";
+  s << "set view map\nset pm3d at b interpolate 6,6\nunset grid\n";
+  // Perceptually ordered, light where the RMS is low (viridis reversed).
+  s << "set palette defined (0 '#fde725', 1 '#5ec962', 2 '#21918c', 3 '#3b528b', 4 '#440154')\n";
+  s << "set cblabel " << Quote("total RMS [" + UnitLabel(out0.unit) + "]") << "\n";
+  if (lo > 0.0 && hi / lo > 5.0) {  // a bad corner would wash out the rest
+    s << "set logscale cb 10\nset format cb '%g'\nset cbtics (";
+    int n = 0;
+    for (int d = static_cast<int>(std::floor(std::log10(lo))); d <= static_cast<int>(std::ceil(std::log10(hi))); ++d)
+      for (const double m : {1.0, 2.0, 5.0}) {
+        const double v = m * std::pow(10.0, d);
+        if (v >= lo * 0.999 && v <= hi * 1.001) s << (n++ ? ", " : "") << CsvNumber(v);
+      }
+    s << ")\n";
+  }
+  s << "set key outside top center horizontal Left reverse\n";
+  const std::string file = Quote(p.name + ".csv");
+  std::vector<std::string> clauses = {
+      file + " index 0 using 1:2:3 with pm3d notitle",
+      file + " index 0 using 1:2:3 with points pointtype 7 pointsize 0.5 linecolor rgb '#404040' title 'variants'"};
+  if (out0.rms_max)
+    clauses.push_back(file + " index 2 using 1:2:3:4:5:6 with vectors nohead linewidth 3 linecolor rgb " +
+                      Quote(kRequirementColour) +
+                      " title " +
+                      Quote("requirement: " + Short(*out0.rms_max) +
+                            (segments ? "" : lo > *out0.rms_max ? " (every variant fails)" : " (every variant passes)")));
+  clauses.push_back(file + " index 1 using 1:2:3 with points pointtype 6 pointsize 3 linewidth 2.5 linecolor rgb " +
+                    Quote(kTotalColour) + " title " + Quote("best: " + SigLabel(results[best].outputs[o].rms())));
+  s << "splot ";
+  for (std::size_t i = 0; i < clauses.size(); ++i) s << (i ? ", \\\n      " : "") << clauses[i];
+  s << "\n";
+  p.script = s.str();
+  return p;
+}
+
+}  // namespace
+
+std::vector<ContourSegment> LevelSegments(const std::vector<double>& x, const std::vector<double>& y,
+                                          const std::vector<std::vector<double>>& z, double level) {
+  DEB_DEMAND(z.size() == x.size());
+  std::vector<ContourSegment> out;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    DEB_DEMAND(z[i].size() == y.size() && z[i + 1].size() == y.size());
+    for (std::size_t j = 0; j + 1 < y.size(); ++j) {
+      // Corners counter-clockwise; an edge is crossed where its ends lie on either side of level.
+      const double cx[4] = {x[i], x[i + 1], x[i + 1], x[i]}, cy[4] = {y[j], y[j], y[j + 1], y[j + 1]};
+      const double cz[4] = {z[i][j], z[i + 1][j], z[i + 1][j + 1], z[i][j + 1]};
+      std::vector<std::pair<double, double>> crossings;
+      for (int e = 0; e < 4; ++e) {
+        const int f = (e + 1) % 4;
+        const bool below_e = cz[e] < level, below_f = cz[f] < level;
+        if (below_e == below_f) continue;
+        const double t = (level - cz[e]) / (cz[f] - cz[e]);
+        crossings.emplace_back(cx[e] + t * (cx[f] - cx[e]), cy[e] + t * (cy[f] - cy[e]));
+      }
+      for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
+        out.push_back({crossings[k].first, crossings[k].second, crossings[k + 1].first, crossings[k + 1].second});
+    }
+  }
+  return out;
+}
 
 std::vector<Plot> SweepPlots(const SweepSpec& spec, const std::vector<BudgetResult>& results) {
   const auto rows = spec.Variants();
   DEB_DEMAND(rows.size() == results.size());
   std::vector<Plot> plots;
   if (results.empty() || spec.parameters.empty()) return plots;
-  // Variants grouped by the values of parameters 2..n, each group ordered by parameter 1.
-  std::map<std::vector<double>, std::vector<std::size_t>> groups;
-  std::vector<std::vector<double>> order;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const std::vector<double> rest(rows[i].begin() + 1, rows[i].end());
-    if (!groups.count(rest)) order.push_back(rest);
-    groups[rest].push_back(i);
-  }
-  for (auto& [rest, members] : groups)
-    std::stable_sort(members.begin(), members.end(),
-                     [&](std::size_t a, std::size_t b) { return rows[a][0] < rows[b][0]; });
-  const char* dashes[] = {"solid", "(10,5)", "(3,4)", "(12,4,3,4)", "(20,6)", "(2,2)"};
-
+  const Groups groups = GroupByRest(rows);
+  const bool map = spec.mode == SweepMode::kGrid && spec.parameters.size() == 2 &&
+                   spec.parameters[0].values.size() >= 2 && spec.parameters[1].values.size() >= 2;
   for (std::size_t o = 0; o < results[0].outputs.size(); ++o) {
-    const OutputResult& out0 = results[0].outputs[o];
-    Plot p;
-    p.name = FileStem(out0.name) + "_sweep";
-    p.kind = PlotKind::kOverview;
-    p.output = static_cast<int>(o);
-    p.caption = "RMS of " + out0.name + " against " + spec.parameters[0].key_path +
-                "; colour: contributor (total black), dash: values of the other parameters.";
-    std::ostringstream csv;
-    csv << "# deb " << DEB_VERSION << ", sweep, output " << out0.name << " RMS in " << out0.unit
-        << "; one block per combination of the other parameters\n";
-    std::size_t block = 0;
-    std::vector<std::string> clauses, legend_dashes;
-    const std::string file = Quote(p.name + ".csv");
-    for (const auto& rest : order) {
-      std::string label;
-      for (std::size_t k = 1; k < spec.parameters.size(); ++k)
-        label += (k > 1 ? ", " : "") + spec.parameters[k].key_path + " = " + spec.parameters[k].Text(rest[k - 1]);
-      if (block) csv << "\n\n";
-      csv << "# " << (label.empty() ? "all variants" : label) << "\n" << CsvField(spec.parameters[0].key_path);
-      for (const auto& c : out0.contributors) csv << ',' << CsvField(c.name);
-      csv << ",total\n";
-      for (std::size_t i : groups[rest]) {
-        const OutputResult& r = results[i].outputs[o];
-        csv << CsvNumber(rows[i][0]);
-        for (const auto& c : r.contributors) csv << ',' << CsvNumber(std::sqrt(c.variance));
-        csv << ',' << CsvNumber(r.rms()) << '\n';
-      }
-      const std::string dash = dashes[block % 6];
-      // One block: each curve names itself. Several: the key names the
-      // colours (contributors) and the dashes (the other parameters) apart,
-      // so it has contributors + blocks entries, not their product.
-      const bool own_titles = order.size() == 1;
-      const auto title = [&](const std::string& name) {
-        return own_titles ? " title " + Quote(Enhanced(name)) : std::string(" notitle");
-      };
-      for (std::size_t c = 0; c < out0.contributors.size(); ++c)
-        clauses.push_back(file + " index " + std::to_string(block) + " using 1:" + std::to_string(c + 2) +
-                          " with linespoints pointtype 7 pointsize 0.6 linewidth 1.5 linecolor rgb " +
-                          Quote(ContributorStyle(c).colour) + " dashtype " + dash + title(out0.contributors[c].name));
-      clauses.push_back(file + " index " + std::to_string(block) + " using 1:" +
-                        std::to_string(out0.contributors.size() + 2) +
-                        " with linespoints pointtype 7 pointsize 0.6 linewidth 2.5 linecolor rgb " +
-                        Quote(kTotalColour) + " dashtype " + dash + title("total"));
-      if (!own_titles)
-        legend_dashes.push_back("keyentry with lines linewidth 1.5 linecolor rgb '#606060' dashtype " + dash +
-                                " title " + Quote(Enhanced(label)));
-      ++block;
-    }
-    if (order.size() > 1) {
-      std::vector<std::string> keys;
-      for (std::size_t c = 0; c < out0.contributors.size(); ++c)
-        keys.push_back("keyentry with linespoints pointtype 7 pointsize 0.6 linewidth 1.5 linecolor rgb " +
-                       Quote(ContributorStyle(c).colour) + " title " + Quote(Enhanced(out0.contributors[c].name)));
-      keys.push_back("keyentry with linespoints pointtype 7 pointsize 0.6 linewidth 2.5 linecolor rgb " +
-                     Quote(kTotalColour) + " title 'total'");
-      keys.insert(keys.end(), legend_dashes.begin(), legend_dashes.end());
-      clauses.insert(clauses.end(), keys.begin(), keys.end());
-    }
-    p.csv = csv.str();
-    std::ostringstream s;
-    s << "reset\n" << StylePreamble();
-    s << "set title " << Quote(Enhanced(out0.name)) << "\n";
-    s << "set xlabel " << Quote(Enhanced(spec.parameters[0].key_path)) << "\n";
-    s << "set ylabel " << Quote("RMS [" + UnitLabel(out0.unit) + "]") << "\n";
-    s << "set key outside right top\nset yrange [0:*]\n";
-    if (!spec.parameters[0].texts.empty()) {  // a textual parameter: its index on the axis, named
-      const auto& texts = spec.parameters[0].texts;
-      s << "set xrange [-0.5:" << texts.size() - 0.5 << "]\nset xtics (";
-      for (std::size_t i = 0; i < texts.size(); ++i) s << (i ? ", " : "") << Quote(Enhanced(texts[i])) << " " << i;
-      s << ")\n";
-    }
-    if (out0.rms_max)
-      s << "set arrow from graph 0, first " << CsvNumber(*out0.rms_max) << " to graph 1, first "
-        << CsvNumber(*out0.rms_max) << " nohead linewidth 1.5 linecolor rgb " << Quote(kRequirementColour)
-        << " dashtype " << kRequirementDash << "\n";
-    s << "plot ";
-    for (std::size_t i = 0; i < clauses.size(); ++i) s << (i ? ", \\\n     " : "") << clauses[i];
-    s << "\n";
-    p.script = s.str();
-    plots.push_back(std::move(p));
+    plots.push_back(SmallMultiples(spec, rows, results, o, groups));
+    if (map) plots.push_back(RequirementMap(spec, rows, results, o));
   }
   return plots;
 }

@@ -18,6 +18,18 @@ std::string Lower(std::string text) {
   return text;
 }
 
+// The index in names of the channel whose bound `name` is (<channel>_lo or
+// <channel>_hi, the channel itself no bound), or -1.
+int BoundOf(const std::string& name, const std::vector<std::string>& names) {
+  for (const char* suffix : {"_lo", "_hi"}) {
+    if (name.size() <= 3 || name.compare(name.size() - 3, 3, suffix) != 0) continue;
+    const std::string channel = name.substr(0, name.size() - 3);
+    for (std::size_t c = 0; c < names.size(); ++c)
+      if (names[c] == channel && !(channel.size() > 3 && BoundOf(channel, names) >= 0)) return static_cast<int>(c);
+  }
+  return -1;
+}
+
 // The spectrum's rules on a table read by ParseNumericTable: at least a
 // frequency and one channel, frequencies > 0 and strictly increasing, values
 // >= 0, at least two rows; metadata unit, quantity and sides.
@@ -47,7 +59,17 @@ SpectrumCsv FromTable(const NumericTable& table) {
     const int column = table.header_line ? table.header_columns.front() : table.rows.front().columns.front();
     table.Fail(line, column, "row has 1 cell; a spectrum row needs a frequency and at least one channel");
   }
-  for (std::size_t c = 1; c < columns; ++c) csv.channel_names.push_back(table.ColumnName(c));
+  // Columns <channel>_lo / <channel>_hi beside a column <channel> are its
+  // confidence bounds (deb spectrum welch --bounds), not channels.
+  std::vector<std::string> names;
+  for (std::size_t c = 1; c < columns; ++c) names.push_back(table.ColumnName(c));
+  std::vector<bool> is_bound(names.size(), false);
+  for (std::size_t c = 0; c < names.size(); ++c) is_bound[c] = BoundOf(names[c], names) >= 0;
+  std::vector<std::size_t> channel_columns, bound_columns;
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    (is_bound[c] ? bound_columns : channel_columns).push_back(c + 1);
+    (is_bound[c] ? csv.bound_names : csv.channel_names).push_back(names[c]);
+  }
 
   int last_line = 0;
   for (const NumericTable::Row& row : table.rows) {
@@ -61,7 +83,7 @@ SpectrumCsv FromTable(const NumericTable& table) {
       if (row.values[c] < 0.0)
         table.Fail(row.line, row.columns[c],
                    ToString(csv.quantity) + " '" + NumberText(row.values[c]) + "' in column '" +
-                       csv.channel_names[c - 1] + "' is negative; values must be >= 0");
+                       names[c - 1] + "' is negative; values must be >= 0");
     csv.f_hz.push_back(f);
     last_line = row.line;
   }
@@ -71,13 +93,17 @@ SpectrumCsv FromTable(const NumericTable& table) {
 
   // Convert once: ASD -> PSD by squaring, two-sided -> one-sided by x2.
   const double sides_factor = csv.sides == SpectrumSides::kTwo ? 2.0 : 1.0;
-  csv.psd.resize(static_cast<Eigen::Index>(table.rows.size()), static_cast<Eigen::Index>(columns - 1));
-  for (std::size_t i = 0; i < table.rows.size(); ++i)
-    for (std::size_t c = 1; c < columns; ++c) {
-      const double v = table.rows[i].values[c];
-      csv.psd(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c - 1)) =
-          sides_factor * (csv.quantity == SpectrumQuantity::kAsd ? v * v : v);
-    }
+  const auto fill = [&](Eigen::MatrixXd& m, const std::vector<std::size_t>& cols) {
+    m.resize(static_cast<Eigen::Index>(table.rows.size()), static_cast<Eigen::Index>(cols.size()));
+    for (std::size_t i = 0; i < table.rows.size(); ++i)
+      for (std::size_t k = 0; k < cols.size(); ++k) {
+        const double v = table.rows[i].values[cols[k]];
+        m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) =
+            sides_factor * (csv.quantity == SpectrumQuantity::kAsd ? v * v : v);
+      }
+  };
+  fill(csv.psd, channel_columns);
+  fill(csv.bounds, bound_columns);
   return csv;
 }
 

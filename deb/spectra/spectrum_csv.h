@@ -8,6 +8,7 @@
 //   # interpolation: bins log-log (default) or bins: constant over each bin
 //                         (the bins of a spectral estimate, measured_spectrum.h)
 //   f_hz, x, y, z         optional header row: frequency name, channel names
+//                         (x_lo, x_hi beside x: x's confidence bounds, not channels)
 //   0.5, 1.2e-3, ...      frequency [Hz] first, then one column per channel
 //
 // Cells are separated by commas or by whitespace; '#' starts a comment (a
@@ -50,6 +51,11 @@ struct SpectrumCsv {
   std::vector<double> f_hz;                // strictly increasing, > 0
   Eigen::MatrixXd psd;                     // one-sided PSD, rows = f_hz, cols = channels
   std::vector<std::string> channel_names;  // from the header row, else "ch1", ...
+  // Columns named <channel>_lo / <channel>_hi beside a column <channel>: its
+  // confidence bounds (as `deb spectrum welch --bounds` writes them), kept
+  // apart from the channels, converted like them; rows = f_hz.
+  Eigen::MatrixXd bounds;
+  std::vector<std::string> bound_names;
   std::optional<std::string> unit;         // from "# unit:"
   SpectrumQuantity quantity = SpectrumQuantity::kPsd;  // as declared in the file
   bool quantity_declared = false;                      // the file has a "# quantity:" line

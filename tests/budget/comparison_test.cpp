@@ -51,6 +51,65 @@ TEST_CASE("a changed contributor shows its RMS ratio and leads the largest chang
   CHECK(*total.ratio == doctest::Approx(std::sqrt(2.0 / 5.0)).epsilon(1e-15));
 }
 
+TEST_CASE("a negligible term has no ratio: 0/0, from about zero, and not a regression") {
+  // floor at 5.9e-13 of the total in A, a real term in B: no B / A = 1e12.
+  const Comparison cmp = Compare(Example(5.9e-13 / 4.0), Example(1.0));
+  const ComparedFigure* floor = nullptr;
+  for (const ComparedFigure& f : cmp.figures)
+    if (f.contributor == "floor" && f.band.empty()) floor = &f;
+  REQUIRE(floor != nullptr);
+  CHECK(floor->negligible_a);
+  CHECK_FALSE(floor->negligible_b);
+  CHECK_FALSE(floor->ratio.has_value());
+  CHECK(floor->MovedBy(1e6));  // appeared: moved by any tolerance
+  // Both sides below 1e-3 of their totals (and 0/0): no ratio, not moved.
+  const Comparison tiny = Compare(Example(1e-9), Example(4e-9));
+  for (const ComparedFigure& f : tiny.figures)
+    if (f.contributor == "floor") {
+      CHECK(f.negligible_a);
+      CHECK(f.negligible_b);
+      CHECK_FALSE(f.ratio.has_value());
+      CHECK_FALSE(f.MovedBy(0.0));
+    }
+  // A band's total is judged against itself, its contributors against it:
+  // the sensor's 0.5 in a band of 0.5 + 3e-9 is the band.
+  for (const ComparedFigure& f : tiny.figures)
+    if (!f.band.empty() && f.contributor != "floor") {
+      CHECK_FALSE(f.negligible_a);
+      CHECK(f.ratio.has_value());
+    }
+  const Comparison zero = Compare(Example(0.0), Example(0.0));
+  CHECK_FALSE(zero.figures[1].ratio.has_value());  // floor: 0 / 0
+  CHECK(zero.Moved(0.0).empty());
+}
+
+TEST_CASE("a band's total is judged against itself, its contributors against the band, not the whole grid") {
+  // A quiet band: 1e-4 of the output's variance, +27 % RMS in B.
+  ResultFigures a = Example(1.0), b = Example(1.0);
+  a.outputs[0].bands[1] = {10.0, 100.0, 5e-4, {4e-4, 1e-4}};
+  b.outputs[0].bands[1] = {10.0, 100.0, 8e-4, {7e-4, 1e-4}};
+  const Comparison cmp = Compare(a, b);
+  for (const ComparedFigure& f : cmp.figures)
+    if (f.band == "10-100 Hz") {
+      CAPTURE(f.contributor);
+      CHECK_FALSE(f.negligible_a);
+      CHECK(f.ratio.has_value());
+    }
+  CHECK(cmp.Moved(0.2).size() == 2);  // the band's total (+26 %) and floor in it (+32 %)
+}
+
+TEST_CASE("the figures that moved by more than a relative tolerance are listed in table order") {
+  const Comparison cmp = Compare(Example(1.0), Example(1.1));  // floor RMS x sqrt(1.1) = +4.9 %
+  // The floor moves by 4.9 %, the total by sqrt(5.4/5) - 1 = 3.9 %, the sensor not at all.
+  const auto moved = cmp.Moved(0.045);
+  REQUIRE(moved.size() == 3);  // floor over the grid, in band 1-10 Hz and 10-100 Hz
+  for (const ComparedFigure& f : moved) CHECK(f.contributor == "floor");
+  // Totals: whole grid sqrt(5.4 / 5) - 1 = 3.9 %, band 1-10 Hz 4.2 %, band 10-100 Hz 3.3 %.
+  CHECK(cmp.Moved(0.035).size() == 3 + 2);
+  CHECK(cmp.Moved(0.03).size() == 3 + 3);
+  CHECK(cmp.Moved(0.05).empty());
+}
+
 TEST_CASE("outputs, contributors and units present on one side only are listed, not compared") {
   ResultFigures b = Example(1.0);
   b.label = "y";

@@ -64,6 +64,7 @@ TEST_CASE("central differences give the elasticities of S0 / (4 tau): +1 in the 
   CHECK(time_constant[1].d_variance_d_log_p == doctest::Approx(-s0 / (4.0 * tau)).epsilon(3e-4));
   const auto ranked = RankedForOutput(time_constant, "y");
   CHECK(ranked.size() == 2);
+  CHECK(ranked[0].contributor == "total");  // the total leads, whatever the contributors' magnitudes
   CHECK(RankedForOutput(time_constant, "none").empty());
 }
 
@@ -104,3 +105,24 @@ TEST_CASE("the sensitivity driver differences budgets scaled about the nominal: 
 
 }  // namespace deb
 
+
+namespace deb {
+
+TEST_CASE("an output's sensitivities list the totals first, then the contributors, each by magnitude") {
+  // Two contributors cancel in the total: they move more than it does.
+  const std::vector<Sensitivity> all = {{"k", "y", "nm", "total", 1.0, 0.1, 0.1},
+                                        {"k", "y", "nm", "a", 0.5, 3.0, 6.0},
+                                        {"k", "y", "nm", "b", 0.5, -2.9, -5.8},
+                                        {"m", "y", "nm", "total", 1.0, -0.5, -0.5},
+                                        {"m", "z", "nm", "total", 1.0, 9.0, 9.0}};
+  const auto ranked = RankedForOutput(all, "y");
+  REQUIRE(ranked.size() == 4);
+  CHECK(ranked[0].parameter == "m");
+  CHECK(ranked[0].contributor == "total");
+  CHECK(ranked[1].parameter == "k");
+  CHECK(ranked[1].contributor == "total");
+  CHECK(ranked[2].contributor == "a");
+  CHECK(ranked[3].contributor == "b");
+}
+
+}  // namespace deb

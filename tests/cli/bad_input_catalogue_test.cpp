@@ -626,6 +626,12 @@ const std::vector<Case>& Catalogue() {
        "sweep b.yaml --no-plots --out existing.txt", 4, Names("existing.txt"), {"not a report written by deb", "--force"}},
       {"W15", "deb sweep --out onto a directory of user files (D02)", With(kMydata, "b.yaml", kSweep),
        "sweep b.yaml --no-plots --out mydata", 4, Names("mydata"), {"--force"}},
+      {"W16", "sweep label empty",
+       Budget(Sweep("  parameters:\n    - {path: \"sources[0].spectrum.level\", label: \"\", values: [1.0e-6]}\n")),
+       "sweep b.yaml --no-plots", 3, At("label: |\"\"", "sweep.parameters[0].label"), {"the label is empty"}},
+      {"W17", "sweep unit unknown to UDUNITS-2",
+       Budget(Sweep("  parameters:\n    - {path: \"sources[0].spectrum.level\", unit: umm, values: [1.0e-6]}\n")),
+       "sweep b.yaml --no-plots", 3, At("unit: |umm", "sweep.parameters[0].unit"), {"umm"}},
 
       // ---- N: sensitivity ---------------------------------------------------
       {"N00", "valid sensitivity (baseline)", B(), "sensitivity b.yaml -p 'sources[0].spectrum.level'", 0, Ok()},
@@ -891,6 +897,7 @@ const std::vector<Case>& Catalogue() {
       {"C12", "--format gif", B(), "run b.yaml --format gif", 2, Usage()},
       {"C13", "--format png,png", B(), "run b.yaml --format png,png", 2, Usage()},
       {"C14", "compare with one input", B(), "compare b.yaml", 2, Usage()},
+      {"C14t", "compare --tolerance negative", B(), "compare b.yaml b.yaml --no-plots --tolerance -0.1", 2, Usage()},
       {"C15", "compare with a missing second input", B(), "compare b.yaml nosuch.yaml", 2, Usage()},
       {"C16", "compare with an invalid second budget",
        With(B(), "bad.yaml", Sub(Sub(kBase, "name: cat", "name: bad"), "level: 1.0e-6", "level: -3")),

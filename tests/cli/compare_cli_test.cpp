@@ -23,7 +23,9 @@ TEST_CASE("deb compare of a budget with itself writes zero differences and ratio
   REQUIRE(j["figures"].size() > 10);
   for (const auto& f : j["figures"]) {
     CHECK(f["difference"].get<double>() == 0.0);
-    CHECK(f["ratio"].get<double>() == 1.0);
+    // A term below 1e-3 of its output's variance has no ratio (0 / 0 at worst).
+    if (f["negligible_a"].get<bool>()) CHECK(f["ratio"].is_null());
+    else CHECK(f["ratio"].get<double>() == 1.0);
   }
   {
     const std::string md = ReadAll(out / "compare.md");
@@ -47,7 +49,8 @@ TEST_CASE("deb compare of a budget with itself writes zero differences and ratio
   REQUIRE(RunDebIn(dir, "compare run_a " + budget + " -q --out cmp").exit_code == 0);
   const auto k = nlohmann::json::parse(ReadAll(dir / "cmp" / "compare.json"));
   CHECK(k["a"] == "run_a");
-  for (const auto& f : k["figures"]) CHECK(f["ratio"].get<double>() == doctest::Approx(1.0).epsilon(1e-15));
+  for (const auto& f : k["figures"])
+    if (!f["ratio"].is_null()) CHECK(f["ratio"].get<double>() == doctest::Approx(1.0).epsilon(1e-15));
 
   // A directory without summary.json is invalid input, and nothing is written.
   fs::create_directories(dir / "empty");
@@ -69,5 +72,41 @@ TEST_CASE("deb compare A B C with an invalid C exits 3 and writes no comparison,
   // The valid inputs alone still compare.
   REQUIRE(RunDebIn(dir, "compare " + budget + " " + budget + " -q --no-plots").exit_code == 0);
   CHECK(fs::exists(dir / "reports" / "compare_single_axis_isolator_vs_single_axis_isolator" / "compare.json"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("deb compare --tolerance is a regression gate: exit 6 and the figures that moved, reports written") {
+  const fs::path dir = TempDir("compare_cli_tolerance");
+  const std::string budget = ExampleBudget("single_axis_isolator.yaml");
+  // A noisier geophone (1.4 % of the velocity variance), then +3 % more: the
+  // sensor_noise RMS moves by exactly 3 %, the totals by less.
+  const std::string text = ReadAll(budget), level = "level: 0.01\n";
+  REQUIRE(text.find(level) != std::string::npos);
+  for (const auto& [file, to] : {std::pair<std::string, std::string>{"noisy.yaml", "level: 1.0\n"},
+                                 std::pair<std::string, std::string>{"noisier.yaml", "level: 1.03\n"}}) {
+    std::string t = text;
+    t.replace(t.find(level), level.size(), to);
+    std::ofstream(dir / file) << t;
+  }
+  const std::string args = "compare noisy.yaml noisier.yaml --no-plots -q --out cmp --force";
+  CHECK(RunDebIn(dir, args + " --tolerance 0.031").exit_code == 0);
+  const Command gate = RunDebIn(dir, args + " --tolerance 0.029");
+  CHECK(gate.exit_code == 6);
+  CHECK(gate.err.find("moved by more than 0.029 relative (--tolerance)") != std::string::npos);
+  CHECK(gate.err.find("z_velocity, sensor_noise: ") != std::string::npos);
+  CHECK(gate.err.find(", floor") == std::string::npos);  // the floor did not move
+  // compare.json records the gate: the tolerance and the figures that moved.
+  const auto j = nlohmann::json::parse(ReadAll(dir / "cmp" / "compare.json"));
+  CHECK(j["tolerance"].get<double>() == 0.029);
+  REQUIRE(j["moved"].size() >= 1);
+  for (const auto& f : j["moved"]) CHECK(f["contributor"] != "floor");
+  CHECK(ReadAll(dir / "cmp" / "compare.md").find("## Moved by more than 2.90 % (--tolerance)") != std::string::npos);
+  // The headline table leads compare.md, naming the contributor that changed.
+  const std::string md = ReadAll(dir / "cmp" / "compare.md");
+  const std::size_t headline = md.find("## Headline"), first_output = md.find("## z_velocity [");
+  REQUIRE(headline != std::string::npos);
+  CHECK(headline < first_output);
+  CHECK(md.find("| sensor\\_noise +", headline) < first_output);
+  CHECK(RunDebIn(dir, args + " --tolerance -1").exit_code == 2);
   fs::remove_all(dir);
 }

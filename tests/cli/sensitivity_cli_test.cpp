@@ -39,3 +39,25 @@ TEST_CASE("deb sensitivity ranks the derivatives: an ASD level has elasticity 2 
   CHECK(md.good());
   fs::remove_all(dir);
 }
+
+TEST_CASE("deb sensitivity states the nominal values, puts the total first and draws a tornado per output") {
+  const fs::path dir = deb::test::TempDir("sensitivity_cli_tornado");
+  const deb::test::Command c = deb::test::RunDeb("sensitivity " + deb::test::ExampleBudget("single_axis_isolator.yaml") +
+                                                 " -p 'sources[1].spectrum.level' -p 'paths[0].num[1]' --out \"" +
+                                                 (dir / "out").string() + "\"");
+  REQUIRE(c.exit_code == 0);
+  CHECK(c.out.find("nominal sources[1].spectrum.level = 0.01\n") != std::string::npos);
+  CHECK(c.out.find("nominal paths[0].num[1] = 157.914\n") != std::string::npos);
+  // Under each output's header line, the totals come first.
+  const std::size_t header = c.out.find("output z_velocity: nominal rms ");
+  REQUIRE(header != std::string::npos);
+  const std::size_t first = c.out.find('\n', header) + 1, second = c.out.find('\n', first) + 1;
+  CHECK(c.out.substr(first, c.out.find('\n', first) - first).find(" total ") != std::string::npos);
+  CHECK(c.out.substr(second, c.out.find('\n', second) - second).find(" total ") != std::string::npos);
+  const std::string md = deb::test::ReadAll(dir / "out" / "sensitivity.md");
+  CHECK(md.find("## Nominal parameters") < md.find("## z_velocity"));
+  CHECK(md.find("| sources\\[1\\].spectrum.level | 0.01 |") != std::string::npos);
+  CHECK(md.find("(plots/z_velocity_tornado.png)") != std::string::npos);
+  CHECK(fs::file_size(dir / "out" / "plots" / "z_velocity_tornado.png") > 1000);
+  fs::remove_all(dir);
+}

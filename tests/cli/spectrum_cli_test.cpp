@@ -89,6 +89,57 @@ TEST_CASE("deb spectrum convert --from-bands then bands: a floor built at VC-D i
   fs::remove_all(dir);
 }
 
+TEST_CASE("welch --bounds, bands, convert --from-bands chain: bounds are no channels, a warning is said once") {
+  const fs::path dir = TempDir("chain");
+  Command r = RunDeb("spectrum welch " + Recording(dir).string() + " --segment 512 --bounds -o " +
+                     (dir / "psd.csv").string() + " --no-plots");
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const deb::SpectrumCsv psd = deb::ReadSpectrumCsv((dir / "psd.csv").string());
+  CHECK(psd.channel_names == std::vector<std::string>{"a", "b", "c"});
+  CHECK(psd.bound_names == std::vector<std::string>{"a_lo", "a_hi", "b_lo", "b_hi", "c_lo", "c_hi"});
+  REQUIRE(psd.bounds.cols() == 6);
+  CHECK(psd.bounds(10, 0) < psd.psd(10, 0));  // a_lo below a
+  CHECK(psd.bounds(10, 1) > psd.psd(10, 0));  // a_hi above it
+  r = RunDeb("spectrum bands " + (dir / "psd.csv").string() + " --criteria vc --no-plots -o " +
+             (dir / "bands.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  CHECK(r.out.find("a: ") != std::string::npos);
+  CHECK(r.out.find("a_lo") == std::string::npos);  // classified: the three channels only
+  std::size_t warnings = 0;
+  for (std::size_t at = r.out.find("warning:"); at != std::string::npos; at = r.out.find("warning:", at + 1)) ++warnings;
+  CHECK(warnings == 1);
+  CHECK(ReadAll(dir / "bands.csv").find("# unit: um/s\n") != std::string::npos);
+  // convert keeps the bounds beside their channels, converted alike: um/s -> mm/s is 1e-6 on a PSD.
+  r = RunDeb("spectrum convert " + (dir / "psd.csv").string() + " --to mm/s --no-plots -o " +
+             (dir / "mm.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const deb::SpectrumCsv mm = deb::ReadSpectrumCsv((dir / "mm.csv").string());
+  REQUIRE(mm.bound_names == psd.bound_names);
+  CHECK(mm.bounds(10, 1) == doctest::Approx(1e-6 * psd.bounds(10, 1)).epsilon(1e-9));
+  // The bands output, class columns and all, reads back as a band table: the PSD is constant per band at
+  // the band's mean square / bandwidth, so the bands of the result are those of the table.
+  r = RunDeb("spectrum convert --from-bands " + (dir / "bands.csv").string() + " --no-plots -o " +
+             (dir / "back.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const deb::SpectrumCsv back = deb::ReadSpectrumCsv((dir / "back.csv").string());
+  CHECK(back.channel_names == std::vector<std::string>{"a", "b", "c"});
+  CHECK(back.unit == std::string("um/s"));
+  r = RunDeb("spectrum bands " + (dir / "back.csv").string() + " --criteria none --no-plots -o " +
+             (dir / "bands2.csv").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const auto first_rms = [](const std::string& text, const std::string& centre) {
+    const std::size_t at = text.find("\n" + centre + ", ");
+    REQUIRE(at != std::string::npos);
+    std::istringstream row(text.substr(at + 1, text.find('\n', at + 1) - at - 1));
+    std::string cell;
+    for (int k = 0; k < 5; ++k) std::getline(row, cell, ',');
+    return std::stod(cell);
+  };
+  CHECK(first_rms(ReadAll(dir / "bands2.csv"), "16") ==
+        doctest::Approx(first_rms(ReadAll(dir / "bands.csv"), "16")).epsilon(1e-6));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("deb spectrum selfnoise writes one noise spectrum per sensor, usable as a measured source") {
   const fs::path dir = TempDir("selfnoise");
   const Command r = RunDeb("spectrum selfnoise " + Recording(dir).string() + " --sensors a,b,c --segment 512 -o " +
@@ -124,7 +175,7 @@ TEST_CASE("deb spectrum frf writes a response that a frf path reads: sensors a, 
   CHECK(text.find("f_hz, b/a.mag, b/a.phase_deg, b/a.coherence, c/a.mag, c/a.phase_deg, c/a.coherence") !=
         std::string::npos);
   CHECK(text.find("# frequency response H1 = S_xy / S_xx from a of rec.csv") == 0);
-  // The plot beside it: |H1| above, the coherence below.
+  // The plot beside it: |H1| above, the phase, the coherence below.
   const Command plotted = RunDeb("spectrum frf " + Recording(dir).string() +
                                  " --input a --outputs b,c --segment 512 -o " + (dir / "frf2.csv").string());
   REQUIRE_MESSAGE(plotted.exit_code == 0, plotted.err);
@@ -132,7 +183,24 @@ TEST_CASE("deb spectrum frf writes a response that a frf path reads: sensors a, 
   const std::string script = ReadAll(dir / "frf2.gp");
   CHECK(script.find("set multiplot") != std::string::npos);
   CHECK(script.find("coherence γ^{2}") != std::string::npos);
-  CHECK(ReadAll(dir / "frf2.plot.csv").find("f_hz,mag_b,mag_c,coherence_b,coherence_c") != std::string::npos);
+  CHECK(script.find("set ylabel 'phase [°]'") != std::string::npos);
+  const std::string plot_csv = ReadAll(dir / "frf2.plot.csv");
+  CHECK(plot_csv.find("f_hz,mag_b,mag_c,coherence_b,coherence_c,phase_deg_b,phase_deg_c\n") != std::string::npos);
+  // b and c see the ground motion a sees, in phase: H1 real and positive, the phase near 0 at every bin.
+  std::istringstream rows(plot_csv);
+  std::string row;
+  int phases = 0;
+  double worst = 0.0;
+  while (std::getline(rows, row)) {
+    if (row.empty() || !std::isdigit(static_cast<unsigned char>(row[0]))) continue;
+    std::istringstream cells(row);
+    std::string cell;
+    for (int k = 0; k < 6; ++k) std::getline(cells, cell, ',');
+    worst = std::max(worst, std::abs(std::stod(cell)));  // phase_deg_b
+    ++phases;
+  }
+  CHECK(phases > 50);
+  CHECK(worst < 15.0);  // coherence ~0.98: the phase scatters by a few degrees
   const Command bad = RunDeb("spectrum frf " + Recording(dir).string() + " --input q --outputs b --no-plots -o " +
                          (dir / "bad.csv").string());
   CHECK(bad.exit_code == 3);

@@ -41,3 +41,29 @@ TEST_CASE("deb sweep of the thesis case study writes one row per variant; K_v = 
   CHECK(fs::file_size(dir / "out" / "plots" / "z_velocity_sweep.png") > 1000);  // RMS against K_v
   fs::remove_all(dir);
 }
+
+TEST_CASE("deb sweep prints the three best variants by label and unit and writes sweep.md and sweep.html") {
+  const fs::path dir = deb::test::TempDir("sweep_cli_docs");
+  const deb::test::Command c = deb::test::RunDeb("sweep " + deb::test::ExampleBudget("nizamoglu2015_sweep.yaml") +
+                                                 " --no-plots --out \"" + (dir / "out").string() + "\"");
+  INFO(c.err);
+  REQUIRE(c.exit_code == 0);
+  // No requirement in the thesis budget: ranked by RMS relative to each output's worst.
+  const std::size_t head = c.out.find("best variants");
+  REQUIRE(head != std::string::npos);
+  CHECK(c.out.find("  1. skyhook gain K_v = ", head) != std::string::npos);
+  CHECK(c.out.find("  3. ", head) != std::string::npos);
+  CHECK(c.out.find("  4. ", head) == std::string::npos);
+  CHECK(c.out.find(" mm: 0 output(s) fail") != std::string::npos);
+  const std::string md = deb::test::ReadAll(dir / "out" / "sweep.md");
+  CHECK(md.find("## Best variant per output") != std::string::npos);
+  // 32 variants ranked, one row each.
+  std::size_t rows = 0;
+  for (std::size_t at = md.find("\n| ", md.find("## Variants, best first")); at != std::string::npos;
+       at = md.find("\n| ", at + 1))
+    ++rows;
+  CHECK(rows == 2 + 32);  // header, rule, variants
+  CHECK(deb::test::ReadAll(dir / "out" / "sweep.html").find("<caption>Variants, best first</caption>") !=
+        std::string::npos);
+  fs::remove_all(dir);
+}

@@ -77,3 +77,27 @@ TEST_CASE("a declared ASD is squared and gets no note") {
 
 }  // namespace
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("a measured source reads a spectrum with confidence bounds as one channel, and may pick a bound") {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("deb_measured_bounds_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "spec.csv") << "# unit: um/s\n# quantity: psd\nf_hz, z, z_lo, z_hi\n0.1, 4e-2, 3e-2, 6e-2\n"
+                                     "1000, 4e-2, 3e-2, 6e-2\n";
+  std::ofstream(dir / "b.yaml") << kBudget;
+  const Budget b = LoadBudgetFile((dir / "b.yaml").string());
+  CHECK(b.sources[0].channels() == 1);  // z_lo, z_hi are bounds, not channels
+  CHECK(b.sources[0].spectrum->Psd(10.0)(0) == doctest::Approx(4e-2));
+  // The upper bound as a conservative source.
+  std::string text = kBudget;
+  const std::string file = "file: spec.csv}";
+  text.replace(text.find(file), file.size(), "file: spec.csv, columns: [z_hi]}");
+  std::ofstream(dir / "hi.yaml") << text;
+  const Budget hi = LoadBudgetFile((dir / "hi.yaml").string());
+  CHECK(hi.sources[0].spectrum->Psd(10.0)(0) == doctest::Approx(6e-2));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace deb

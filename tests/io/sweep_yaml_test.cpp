@@ -182,3 +182,33 @@ TEST_CASE("an error the engine finds in a sweep variant is located in the user's
 }
 
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("a sweep parameter's label and unit name it on axes; without them the key path does") {
+  const SweepBudget sweep = LoadSweepText(
+      Replace(kSweep, R"({path: "paths[0].den[0]", log:)", R"({path: "paths[0].den[0]", label: "time constant", unit: s, log:)"),
+      "s.yaml");
+  const SweepParameter& level = sweep.spec.parameters[0];
+  const SweepParameter& tau = sweep.spec.parameters[1];
+  CHECK(level.AxisTitle() == "sources[0].spectrum.level");
+  CHECK(tau.label == "time constant");
+  CHECK(tau.unit == "s");
+  CHECK(tau.AxisTitle() == "time constant [s]");
+  CHECK(tau.Setting(0.01) == "time constant = 0.01 s");
+}
+
+TEST_CASE("a sweep label that is empty or multi-line, and a unit UDUNITS-2 does not know, are located errors") {
+  const std::string at = R"({path: "sources[0].spectrum.level", )";
+  CHECK(ErrorOf(Replace(kSweep, at, at + R"(label: "  ", )")) ==
+        std::string("s.yaml:22:50: sweep.parameters[0].label: the label is empty; name the parameter, e.g. 'isolator height h'"));
+  CHECK(ErrorOf(Replace(kSweep, at, at + R"(label: "a\nb", )"))
+            .find("sweep.parameters[0].label: the label holds a control character") != std::string::npos);
+  const std::string unit = ErrorOf(Replace(kSweep, at, at + R"(unit: umm, )"));
+  CHECK(unit.find("s.yaml:22:") == 0);
+  CHECK(unit.find("sweep.parameters[0].unit: ") != std::string::npos);
+  CHECK(unit.find("umm") != std::string::npos);
+  CHECK(ErrorOf(Replace(kSweep, at, at + R"(lable: x, )")).find("lable") != std::string::npos);
+}
+
+}  // namespace deb

@@ -13,7 +13,7 @@ Comparison Example() {
   c.label_a = "old<1>";
   c.label_b = "new";
   ComparedFigure total{"z", "nm", "total", "", 2.0, 3.0, 1.0, 1.5, 1.25};
-  ComparedFigure floor{"z", "nm", "floor", "", 0.0, 1.0, 1.0, std::nullopt, 0.25};
+  ComparedFigure floor{"z", "nm", "floor", "", 0.0, 1.0, 1.0, std::nullopt, 0.25, true, false};
   c.figures = {total, floor};
   c.unmatched = {"output y only in B"};
   return c;
@@ -25,15 +25,40 @@ std::size_t Count(const std::string& text, const std::string& what) {
   return n;
 }
 
+TEST_CASE("the headline comes first: per output A, B, B / A, the verdict and the largest changes") {
+  const std::vector<Table> all = ComparisonTables(Example());
+  REQUIRE(all.size() == 3);
+  const Table& h = all.front();
+  CHECK(h.title.find("Headline") == 0);
+  REQUIRE(h.rows.size() == 1);
+  CHECK(h.rows[0] == std::vector<std::string>{"z [nm]", Sig(2.0, 4), Sig(3.0, 4), Sig(1.5, 4), "worse",
+                                              "floor +25 %"});
+  ComparedFigure better{"z", "nm", "total", "", 3.0, 2.0, -1.0, 2.0 / 3.0, -0.2};
+  CHECK(Verdict(better) == "better");
+  better.ratio = 1.0001;
+  CHECK(Verdict(better) == "unchanged");
+}
+
+TEST_CASE("a negligible term reads from about zero, to about zero, or a dash for 0 / 0") {
+  ComparedFigure f{"z", "nm", "floor", "", 1e-13, 1.0, 1.0, std::nullopt, 0.25, true, false};
+  CHECK(RatioText(f) == "from ≈0");
+  f.negligible_a = false;
+  f.negligible_b = true;
+  CHECK(RatioText(f) == "to ≈0");
+  f.negligible_a = true;
+  CHECK(RatioText(f) == "–");
+}
+
 TEST_CASE("the comparison tables have one per output with the total emphasised, then the largest changes") {
-  const std::vector<Table> tables = ComparisonTables(Example());
+  std::vector<Table> tables = ComparisonTables(Example());
+  tables.erase(tables.begin());  // the headline
   REQUIRE(tables.size() == 2);
   CHECK(tables[0].title == "z [nm]");
   CHECK(tables[0].header[2] == "A: old<1>");
   REQUIRE(tables[0].rows.size() == 2);
   CHECK(tables[0].rows[0] ==
         std::vector<std::string>{"total", "whole grid", Sig(2.0, 4), Sig(3.0, 4), Sig(1.0, 4), Sig(1.5, 4)});
-  CHECK(tables[0].rows[1][5] == "–");
+  CHECK(tables[0].rows[1][5] == "from ≈0");
   CHECK(tables[0].emphasis[0][0]);
   CHECK_FALSE(tables[0].emphasis[1][0]);
   CHECK(tables[1].title == "Contributors that changed most");

@@ -2,31 +2,15 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <sstream>
 #include <string>
 
 #include "deb/io/budget_yaml.h"
 #include "tests/support/cli_harness.h"
 
 namespace deb::report {
-
-TEST_CASE("sweep plots hold one data block per combination of the other parameters, ordered by the first") {
-  const Budget budget = LoadBudgetFile(test::ExampleBudget());
-  SweepSpec spec;
-  spec.parameters = {{"a", {3, 1, 2}, {}}, {"b", {10, 20}, {}}};  // 6 variants, a unsorted
-  std::vector<BudgetResult> results(6, Evaluate(budget));
-  const auto plots = SweepPlots(spec, results);
-  REQUIRE(plots.size() == budget.outputs.size());
-  const std::string& csv = plots[0].csv;
-  CHECK(csv.find("# b = 10\n") != std::string::npos);
-  CHECK(csv.find("\n\n\n# b = 20\n") != std::string::npos);
-  // Rows of a block ascend in a.
-  const auto block = csv.substr(csv.find("# b = 10\n"));
-  const auto first = block.find("\n1,"), second = block.find("\n2,"), third = block.find("\n3,");
-  CHECK(first < second);
-  CHECK(second < third);
-  CHECK(plots[0].script.find("index 1") != std::string::npos);
-  CHECK(plots[0].script.find("b = 20") != std::string::npos);
-}
+namespace {
 
 std::size_t Count(const std::string& text, const std::string& part) {
   std::size_t n = 0;
@@ -34,22 +18,125 @@ std::size_t Count(const std::string& text, const std::string& part) {
   return n;
 }
 
-TEST_CASE("the key of a sweep plot names colours and dashes apart: contributors + total + blocks entries") {
+// The rows of CSV block `index` (after its comment and header lines where present), as numbers.
+std::vector<std::vector<double>> Block(const std::string& csv, int index) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(csv);
+  std::string line;
+  int block = 0, blank = 0;
+  while (std::getline(in, line)) {
+    if (line.empty()) {
+      if (++blank == 2) ++block;
+      continue;
+    }
+    blank = 0;
+    if (block != index || line[0] == '#' || !(std::isdigit(static_cast<unsigned char>(line[0])) || line[0] == '-' ||
+                                              line[0] == 'N'))
+      continue;
+    std::vector<double> row;
+    std::istringstream fields(line);
+    std::string f;
+    while (std::getline(fields, f, ',')) row.push_back(std::stod(f));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("sweep plots hold one data block per combination of the other parameters, ordered by the first") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   SweepSpec spec;
-  spec.parameters = {{"a", {1, 2}, {}}, {"b", {10, 20, 30}, {}}};
+  spec.parameters = {{"a", {3, 1, 2}, {}}, {"b", {10, 20}, {}}};  // 6 variants, a unsorted
+  std::vector<BudgetResult> results(6, Evaluate(budget));
+  const auto plots = SweepPlots(spec, results);
+  REQUIRE(plots.size() == 2 * budget.outputs.size());  // small multiples and a map per output
+  CHECK(plots[0].name == FileStem(budget.outputs[0].name) + "_sweep");
+  CHECK(plots[1].name == FileStem(budget.outputs[0].name) + "_map");
+  const std::string& csv = plots[0].csv;
+  CHECK(csv.find("# b = 10\n") != std::string::npos);
+  CHECK(csv.find("\n\n\n# b = 20\n") != std::string::npos);
+  // Rows of a block ascend in a.
+  const auto first_block = Block(csv, 0);
+  REQUIRE(first_block.size() == 3);
+  CHECK(first_block[0][0] == 1.0);
+  CHECK(first_block[1][0] == 2.0);
+  CHECK(first_block[2][0] == 3.0);
+  CHECK(plots[0].script.find("index 1") != std::string::npos);
+}
+
+TEST_CASE("small multiples: one panel per value of the other parameters, one RMS axis, the key once") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  SweepSpec spec;
+  SweepParameter a{"paths[0].num[1]", {1, 2}, {}}, b{"sources[1].spectrum.level", {10, 20, 30}, {}};
+  a.label = "stiffness";
+  a.unit = "N/m";
+  b.label = "noise";
+  spec.parameters = {a, b};
   const auto plots = SweepPlots(spec, std::vector<BudgetResult>(6, Evaluate(budget)));
   const std::string& script = plots[0].script;
-  const std::size_t contributors = budget.contributors.size();
-  CHECK(Count(script, "keyentry") == contributors + 1 + 3);
-  CHECK(Count(script, " notitle") == 3 * (contributors + 1));  // every curve
-  CHECK(Count(script, "title 'b = 30'") == 1);
-  // With one parameter every curve names itself and there is no keyentry.
+  CHECK(Count(script, "set multiplot layout 1,3") == 1);
+  CHECK(Count(script, "\nplot ") == 3);
+  CHECK(Count(script, "set title 'noise = 30'") == 1);
+  CHECK(Count(script, "set xlabel 'stiffness [N/m]'") == 1);  // no key path on the axis
+  CHECK(script.find("paths[0]") == std::string::npos);
+  CHECK(Count(script, "set key at screen") == 1);
+  CHECK(Count(script, "unset key") == 2);
+  CHECK(Count(script, "set yrange [0:") == 1);  // shared by every panel
+  // With one parameter: one plot, no multiplot.
   SweepSpec one;
-  one.parameters = {{"a", {1, 2}, {}}};
+  one.parameters = {a};
   const std::string single = SweepPlots(one, std::vector<BudgetResult>(2, Evaluate(budget)))[0].script;
-  CHECK(Count(single, "keyentry") == 0);
-  CHECK(Count(single, " notitle") == 0);
+  CHECK(Count(single, "multiplot") == 0);
+  CHECK(Count(single, "\nplot ") == 1);
+}
+
+TEST_CASE("the contour of a plane z = x + y at level 1 runs through the cells it crosses, on x + y = 1") {
+  const std::vector<double> x = {0.0, 0.5, 2.0}, y = {0.0, 1.0};
+  std::vector<std::vector<double>> z(3, std::vector<double>(2));
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 2; ++j) z[i][j] = x[i] + y[j];
+  const auto segments = LevelSegments(x, y, z, 1.0);
+  REQUIRE(segments.size() == 2);  // through cells [0, 0.5] and [0.5, 2]
+  for (const ContourSegment& s : segments) {
+    CHECK(s.x0 + s.y0 == doctest::Approx(1.0));
+    CHECK(s.x1 + s.y1 == doctest::Approx(1.0));
+  }
+  CHECK(LevelSegments(x, y, z, 10.0).empty());  // every value below: no contour
+}
+
+TEST_CASE("the map of a two-parameter grid holds the grid by scan lines, the best variant and the requirement") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  const BudgetResult base = Evaluate(budget);
+  SweepSpec spec;
+  spec.parameters = {{"a", {2, 1}, {}}, {"b", {10, 20, 30}, {}}};  // a unsorted
+  std::vector<BudgetResult> results(6, base);
+  // Total RMS of output 0 = a * b / 10 (variance scaled), requirement 3.5.
+  const auto rows = spec.Variants();
+  for (std::size_t i = 0; i < 6; ++i) {
+    OutputResult& o = results[i].outputs[0];
+    const double rms = rows[i][0] * rows[i][1] / 10.0;
+    o.variance = rms * rms;
+    o.rms_max = 3.5;
+  }
+  const auto plots = SweepPlots(spec, results);
+  const Plot& map = plots[1];
+  const auto grid = Block(map.csv, 0);
+  REQUIRE(grid.size() == 6);
+  CHECK(grid[0] == std::vector<double>{1, 10, 1});  // a ascending, b fastest
+  CHECK(grid[5] == std::vector<double>{2, 30, 6});
+  const auto best = Block(map.csv, 1);
+  REQUIRE(best.size() == 1);
+  CHECK(best[0] == std::vector<double>{1, 10, 1});
+  const auto contour = Block(map.csv, 2);
+  REQUIRE(contour.size() >= 1);
+  for (const auto& s : contour) CHECK(s[2] == 3.5);
+  CHECK(map.script.find("with vectors nohead") != std::string::npos);
+  CHECK(map.script.find("title 'requirement: 3.5'") != std::string::npos);
+  // Zipped, or one parameter: no map.
+  spec.mode = SweepMode::kZip;
+  spec.parameters[1].values = {10, 20};
+  CHECK(SweepPlots(spec, std::vector<BudgetResult>(2, base)).size() == base.outputs.size());
 }
 
 }  // namespace deb::report

@@ -1,0 +1,42 @@
+// A table of one-third-octave band RMS values: what `deb spectrum bands`
+// writes and `deb spectrum convert --from-bands` reads, so that the two
+// chain. One row per band:
+//
+//   # unit: um/s                       unit of the RMS values (optional)
+//   centre_hz, lo_hz, hi_hz, points, x, x_class, y, y_class
+//   1, 0.89, 1.12, 3, 0.52, VC-D, 0.48, VC-D
+//
+// The first column is the band's centre frequency; columns named lo_hz,
+// hi_hz, points or ending in _class (the verdicts of bands) are read past;
+// every other column is one channel's band RMS. A table written by hand may
+// be just centre_hz and RMS columns, with or without the header row. Errors
+// quote file:line:column.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace deb {
+
+struct BandTable {
+  std::string path;
+  std::vector<double> centre_hz;           // > 0, strictly increasing
+  std::vector<std::string> channel_names;  // from the header row, else "ch1", ...
+  Eigen::MatrixXd rms;                     // rows = bands, cols = channels; >= 0
+  std::optional<std::string> unit;         // from "# unit:"
+};
+
+// True for a column a band table carries beside the channels (lo_hz, hi_hz,
+// points, <channel>_class).
+bool IsBandTableExtraColumn(const std::string& name);
+
+// @throws InputError at file:line:column for a cell that is not a number in a
+//   channel column, a centre <= 0 or not increasing, a negative RMS, fewer than
+//   one channel or one row, a '# quantity:' or '# sides:' line (band RMS has neither).
+BandTable ReadBandTable(const std::string& path);
+BandTable ParseBandTable(const std::string& text, const std::string& name);
+
+}  // namespace deb
