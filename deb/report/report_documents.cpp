@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "deb/report/interactive_figures.h"
 #include "deb/report/title_page.h"
 #include "deb/version.h"
 
@@ -40,15 +41,14 @@ std::string Href(const std::string& path) {
   return out;
 }
 
-std::string HtmlFigure(const Plot& p, const std::string& ext) {
-  std::ostringstream s;
-  s << "<figure id=\"plot-" << HtmlEscape(p.name) << "\">\n";
-  if (!ext.empty())
-    s << "<img src=\"" << Href("plots/" + p.name + "." + ext) << "\" alt=\"" << HtmlEscape(p.caption) << "\">\n";
-  s << "<figcaption>" << HtmlEscape(p.caption) << " Data: <a href=\"" << Href("plots/" + p.name + ".csv")
-    << "\">" << HtmlEscape(p.name) << ".csv</a>, script: <a href=\"" << Href("plots/" + p.name + ".gp") << "\">"
-    << HtmlEscape(p.name) << ".gp</a>.</figcaption>\n</figure>\n";
-  return s.str();
+// " Data: <a>NAME.csv</a>." for the plot files of the same figure, if written.
+std::string DataLinks(const std::vector<Plot>& plots, PlotKind kind, int output) {
+  std::string s;
+  for (const Plot& p : plots)
+    if (p.kind == kind && p.output == output)
+      s += std::string(s.empty() ? " Data: " : ", ") + "<a href=\"" + Href("plots/" + p.name + ".csv") + "\">" +
+           HtmlEscape(p.name) + ".csv</a>";
+  return s.empty() ? s : s + ".";
 }
 
 std::string MarkdownFigure(const Plot& p, const std::string& ext) {
@@ -67,6 +67,25 @@ std::string OutputLine(const OutputResult& o) {
   return s + ". Signal " + o.signal + ".";
 }
 
+// The verdict at the head of index.html: one line per output, green when
+// every output meets its requirements, red with the guidance when one fails.
+std::string VerdictBanner(const BudgetResult& result) {
+  bool all_pass = true;
+  std::string lines;
+  for (const OutputResult& o : result.outputs) {
+    const bool required = o.rms_max || !o.band_requirements.empty();
+    all_pass = all_pass && o.AllPass();
+    lines += "<p><strong>" + std::string(!required ? "no requirement" : o.AllPass() ? "PASS" : "FAIL") + "</strong> " +
+             HtmlEscape(o.name) + ": RMS " + HtmlEscape(Sig(o.rms(), 4) + " " + UnitText(o.unit));
+    if (o.rms_max) lines += HtmlEscape(" (requirement " + Short(*o.rms_max) + " " + UnitText(o.unit) + ")");
+    lines += ".";
+    if (const std::string fix = GuidanceText(o, result.grid); !fix.empty()) lines += " " + HtmlEscape(fix);
+    lines += "</p>\n";
+  }
+  return std::string("<div class=\"verdict ") + (all_pass ? "pass" : "fail") + "\" id=\"verdict\">\n" + lines +
+         "</div>\n";
+}
+
 template <typename Fn>
 void ForPlots(const std::vector<Plot>& plots, PlotKind kind, int output, Fn fn) {
   for (const Plot& p : plots)
@@ -83,10 +102,16 @@ std::string IndexHtml(const DocumentInputs& in) {
   std::ostringstream s;
   s << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-    << "<title>deb report: " << HtmlEscape(budget.name) << "</title>\n<style>" << kCss << "</style>\n</head>\n<body>\n";
+    << "<title>deb report: " << HtmlEscape(budget.name) << "</title>\n<style>" << kCss << FigureCss()
+    << "</style>\n</head>\n<body>\n";
   s << "<h1>Dynamic error budget: " << HtmlEscape(budget.name) << "</h1>\n";
   if (!budget.description.empty()) s << "<p class=\"lead\">" << HtmlEscape(budget.description) << "</p>\n";
-  s << "<nav><a href=\"#summary\">Summary</a><a href=\"#overview\">Overview</a>";
+  s << VerdictBanner(result);
+  s << "<noscript><p class=\"noscript\">The figures of this page are drawn by the JavaScript it carries, which "
+       "is disabled: the tables below hold the figures' numbers";
+  if (in.pdf) s << ", and <a href=\"report.pdf\">report.pdf</a> every plot";
+  s << ".</p></noscript>\n";
+  s << "<nav><a href=\"#summary\">Summary</a>";
   for (const OutputResult& o : result.outputs)
     s << "<a href=\"#" << HtmlEscape(OutputAnchor(o.name)) << "\">" << HtmlEscape(o.name) << "</a>";
   s << "<a href=\"#paths\">Paths</a><a href=\"#files\">Files</a></nav>\n";
@@ -104,12 +129,8 @@ std::string IndexHtml(const DocumentInputs& in) {
     s << "</ul>\n";
   }
 
-  s << "<h2 id=\"overview\">Overview</h2>\n";
-  ForPlots(in.plots, PlotKind::kOverview, -1, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
-
   for (std::size_t o = 0; o < result.outputs.size(); ++o) {
     const OutputResult& out = result.outputs[o];
-    const int oi = static_cast<int>(o);
     s << "<h2 id=\"" << HtmlEscape(OutputAnchor(out.name)) << "\">Output " << HtmlEscape(out.name) << " ["
       << HtmlEscape(UnitText(out.unit)) << "]</h2>\n<p" << (out.pass() ? "" : " class=\"fail\"") << ">"
       << HtmlEscape(OutputLine(out)) << "</p>\n";
@@ -117,15 +138,33 @@ std::string IndexHtml(const DocumentInputs& in) {
       s << "<p class=\"guidance\"><strong>" << HtmlEscape(fix) << "</strong></p>\n";
     s << ToHtml(ContributorTable(out));
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
-    for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
-      ForPlots(in.plots, k, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+    const std::string req =
+        out.rms_max ? " The dashed red line is the requirement, " + Short(*out.rms_max) + " " + UnitText(out.unit) +
+                          " RMS, as a variance." : "";
+    const int oi = static_cast<int>(o);
+    s << FigureElement("cps", o,
+                       HtmlEscape("Cumulative power spectrum of " + out.name + ", contributors stacked: the height at f "
+                                  "is the variance from the lowest frequency to f." + req) +
+                           DataLinks(in.plots, PlotKind::kCps, oi))
+      << FigureElement("psd", o,
+                       HtmlEscape("Power spectral density of " + out.name + " per contributor and in total (black); "
+                                  "zooming here zooms the CPS above.") +
+                           DataLinks(in.plots, PlotKind::kSpectrum, oi));
     s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out));
-    ForPlots(in.plots, PlotKind::kBands, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+    s << FigureElement("bands", o,
+                       HtmlEscape("Variance of " + out.name + " per frequency band, contributors stacked.") +
+                           DataLinks(in.plots, PlotKind::kBands, oi));
   }
 
   s << "<h2 id=\"paths\">Paths</h2>\n<p>Magnitude of each contributor's transfer to each output, per source channel, "
        "with the unit conversions and weightings the budget applies.</p>\n";
-  ForPlots(in.plots, PlotKind::kPath, -1, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+  for (std::size_t c = 0, i = 0; c < budget.contributors.size(); ++c)
+    for (std::size_t o = 0; o < result.outputs.size(); ++o, ++i) {
+      const Contributor& con = budget.contributors[c];
+      s << FigureElement("path", i,
+                         HtmlEscape("Magnitude of the transfer from " + con.name + " (source " + con.source + ", path " +
+                                    con.path + ") to " + result.outputs[o].name + ", per source channel."));
+    }
 
   s << "<h2 id=\"files\">Files</h2>\n<ul class=\"files\">\n";
   if (in.pdf) s << "<li><a href=\"report.pdf\">report.pdf</a> — every plot, after a title page</li>\n";
@@ -134,7 +173,9 @@ std::string IndexHtml(const DocumentInputs& in) {
   if (!in.plots.empty())  // written with the plots' files
     s << "<li><a href=\"plots/colours.csv\">plots/colours.csv</a> — the colour and dash pattern of each "
          "contributor</li>\n";
-  s << "</ul>\n<p class=\"lead\">Written by deb " << DEB_VERSION << ".</p>\n</body>\n</html>\n";
+  s << "</ul>\n<p class=\"lead\">Written by deb " << DEB_VERSION << ". Figures drawn with dygraphs "
+       "(MIT licence, inlined below with its notice).</p>\n"
+    << FigureScripts(FigureDataJson(budget, result)) << "</body>\n</html>\n";
   return s.str();
 }
 

@@ -1,0 +1,341 @@
+#include "deb/report/interactive_figures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include <nlohmann/json.hpp>
+
+#include "deb/budget/path_response.h"
+#include "deb/core/error.h"
+#include "deb/report/dygraphs_source.h"
+#include "deb/report/plot.h"
+#include "deb/report/plot_points.h"
+#include "deb/report/plot_style.h"
+#include "deb/report/report_tables.h"
+#include "deb/report/spectrum_plots.h"
+
+namespace deb::report {
+namespace {
+
+using nlohmann::json;
+
+// `value` rounded to `digits` significant digits, so that the JSON holds
+// the short text ("1.234e-18"), not 17 digits.
+double Rounded(double value, int digits) {
+  if (!std::isfinite(value) || value == 0.0) return value;
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*g", digits, value);
+  return std::strtod(text, nullptr);
+}
+
+// Values at the kept points; a log axis cannot show v <= 0: null there.
+json Series(const std::vector<double>& v, const std::vector<std::size_t>& keep, bool log_axis) {
+  json out = json::array();
+  for (std::size_t i : keep) {
+    if (log_axis && !(v[i] > 0.0))
+      out.push_back(nullptr);
+    else
+      out.push_back(Rounded(v[i], 4));
+  }
+  return out;
+}
+
+json Frequencies(const std::vector<double>& f, const std::vector<std::size_t>& keep) {
+  json out = json::array();
+  for (std::size_t i : keep) out.push_back(Rounded(f[i], 6));
+  return out;
+}
+
+std::size_t BudgetIndex(const Budget& budget, const std::string& contributor) {
+  for (std::size_t c = 0; c < budget.contributors.size(); ++c)
+    if (budget.contributors[c].name == contributor) return c;
+  return 0;
+}
+
+json OutputData(const Budget& budget, const BudgetResult& result, const OutputResult& out) {
+  const std::vector<double>& f = result.grid.f_hz();
+  std::vector<const std::vector<double>*> psd = {&out.total_psd}, cps = {&out.total_cps};
+  for (const ContributorResult& c : out.contributors) {
+    psd.push_back(&c.psd);
+    cps.push_back(&c.cps);
+  }
+  const std::vector<std::size_t> keep = FigurePoints(f, psd, cps);
+  const FrequencyRange shown = DisplayRange(out, result.grid);
+  json o = {{"name", out.name},
+            {"unit", UnitText(out.unit)},
+            {"variance_unit", UnitText(VarianceUnit(out.unit))},
+            {"rms", out.rms()},
+            {"rms_max", out.rms_max ? json(*out.rms_max) : json(nullptr)},
+            {"pass", out.AllPass()},
+            {"display_hz", {shown.lo_hz, shown.hi_hz}},
+            {"f", Frequencies(f, keep)},
+            {"total_psd", Series(out.total_psd, keep, true)},
+            {"total_cps", Series(out.total_cps, keep, false)}};
+  json names = json::array(), colours = json::array(), psds = json::array(), cpss = json::array();
+  for (const ContributorResult& c : out.contributors) {
+    names.push_back(c.name);
+    colours.push_back(ContributorStyle(BudgetIndex(budget, c.name)).colour);
+    psds.push_back(Series(c.psd, keep, true));
+    cpss.push_back(Series(c.cps, keep, false));
+  }
+  o["contributors"] = names;
+  o["colours"] = colours;
+  o["psd"] = psds;
+  o["cps"] = cpss;
+  json bands = json::array(), band_variance = json::array();
+  for (const BandResult& b : out.bands) {
+    bands.push_back(Short(b.band.lo_hz) + "–" + Short(b.band.hi_hz) + " Hz");
+    json per = json::array();
+    for (double v : b.contributor_variance) per.push_back(Rounded(v, 4));
+    band_variance.push_back(per);
+  }
+  o["bands"] = bands;
+  o["band_variance"] = band_variance;  // [band][contributor]
+  return o;
+}
+
+json PathData(const BudgetResult& result, std::size_t c, const PathResponse& r) {
+  const std::vector<double>& f = result.grid.f_hz();
+  std::vector<std::vector<double>> magnitude;
+  for (const auto& g2 : r.gain2) {
+    magnitude.emplace_back(g2.size());
+    std::transform(g2.begin(), g2.end(), magnitude.back().begin(), [](double g) { return std::sqrt(g); });
+  }
+  std::vector<const std::vector<double>*> series;
+  for (const auto& m : magnitude) series.push_back(&m);
+  const std::vector<std::size_t> keep = FigurePoints(f, series, {});
+  json p = {{"contributor", r.contributor}, {"output", r.output}, {"unit", UnitText(r.unit)}, {"f", Frequencies(f, keep)}};
+  json channels = json::array(), colours = json::array(), mags = json::array();
+  for (std::size_t k = 0; k < magnitude.size(); ++k) {
+    channels.push_back(k < r.channels.size() ? r.channels[k] : std::to_string(k + 1));
+    colours.push_back(magnitude.size() == 1 ? ContributorStyle(c).colour : ChannelStyle(k).colour);
+    mags.push_back(Series(magnitude[k], keep, true));
+  }
+  p["channels"] = channels;
+  p["colours"] = colours;
+  p["magnitude"] = mags;
+  return p;
+}
+
+constexpr const char* kCss = R"(
+.verdict { border-radius: 4px; padding: 0.6rem 1rem; margin: 1rem 0; color: #fff; }
+.verdict.pass { background: #1b7837; }
+.verdict.fail { background: var(--fail); }
+.verdict p { margin: 0.2rem 0; }
+td.fail { background: #fbe3e6; }
+figure.chart { border: 1px solid var(--line); padding: 0.6rem; }
+figure.chart .plot { width: 100%; height: 380px; }
+figure.chart .legend { font-size: 0.85rem; min-height: 3.2em; margin: 0.4rem 0; font-variant-numeric: tabular-nums; }
+figure.chart .toggles { font-size: 0.85rem; }
+figure.chart .toggles label { margin-right: 0.9rem; white-space: nowrap; cursor: pointer; }
+figure.chart .swatch { display: inline-block; width: 0.8em; height: 0.8em; margin-right: 0.25em; vertical-align: -0.05em; }
+p.noscript { border: 1px solid var(--fail); padding: 0.5rem 1rem; }
+)";
+
+// Draws every figure.chart from the data; user text reaches the page only
+// through textContent or esc().
+constexpr const char* kScript = R"deb_js(
+(function () {
+  'use strict';
+  var data = JSON.parse(document.getElementById('deb-figure-data').textContent);
+  function esc(s) {
+    return String(s).replace(/[&<>"']/g, function (c) {
+      return { '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;', "'": '&#39;' }[c];
+    });
+  }
+  function num(v) { return v === null || v === undefined || isNaN(v) ? '–' : Number(v).toPrecision(4); }
+  function hz(v) { return Number(v).toPrecision(4) + ' Hz'; }
+  function rows(f, series) {
+    return f.map(function (x, i) { return [x].concat(series.map(function (s) { return s[i]; })); });
+  }
+  // Legend on hover: the frequency, each visible series' value (raw[k][row],
+  // not the stacked height) and the total.
+  function legendFormatter(fig) {
+    return function (d) {
+      if (d.x === null || d.x === undefined)
+        return '<span class="hint">Hover for values; drag to zoom the frequency axis, double-click to show the whole grid.</span>';
+      var row = d.dygraph.getSelection();
+      var html = '<b>' + esc(fig.xText(d.x)) + '</b>';
+      d.series.forEach(function (s, k) {
+        if (!s.isVisible) return;
+        html += ' &nbsp; <span class="swatch" style="background:' + esc(s.color) + '"></span>' + esc(fig.names[k]) +
+                ': ' + esc(fig.valueText(fig.raw[k][row]));
+      });
+      if (fig.total) html += ' &nbsp; <b>total: ' + esc(fig.valueText(fig.total[row])) + '</b>';
+      return html;
+    };
+  }
+  function toggles(el, g, names, colours) {
+    names.forEach(function (name, k) {
+      var label = document.createElement('label');
+      var box = document.createElement('input');
+      box.type = 'checkbox';
+      box.checked = true;
+      box.addEventListener('change', function () { g.setVisibility(k, box.checked); });
+      var swatch = document.createElement('span');
+      swatch.className = 'swatch';
+      swatch.style.background = colours[k];
+      label.appendChild(box);
+      label.appendChild(swatch);
+      label.appendChild(document.createTextNode(name));
+      el.appendChild(label);
+    });
+  }
+  function draw(fig, el, extra) {
+    var opts = {
+      labels: ['f'].concat(fig.names.map(function (n, k) { return 's' + k; })),
+      colors: fig.colours, xlabel: esc(fig.xlabel || 'frequency [Hz]'), ylabel: esc(fig.ylabel),
+      labelsDiv: el.querySelector('.legend'), legend: 'always', legendFormatter: legendFormatter(fig),
+      axes: { x: { logscale: fig.logX !== false }, y: { logscale: !!fig.logY, axisLabelWidth: 70 } },
+      strokeWidth: 1.4, animatedZooms: false, connectSeparatedPoints: false
+    };
+    Object.keys(extra || {}).forEach(function (k) { opts[k] = extra[k]; });
+    var g = new Dygraph(el.querySelector('.plot'), fig.rows, opts);
+    toggles(el.querySelector('.toggles'), g, fig.names, fig.colours);
+    return g;
+  }
+  function requirementLine(variance) {
+    return function (ctx, area, g) {
+      if (variance === null) return;
+      var y = g.toDomYCoord(variance);
+      ctx.save();
+      ctx.strokeStyle = '#b2182b';
+      ctx.lineWidth = 2;
+      ctx.setLineDash([8, 4]);
+      ctx.beginPath();
+      ctx.moveTo(area.x, y);
+      ctx.lineTo(area.x + area.w, y);
+      ctx.stroke();
+      ctx.restore();
+    };
+  }
+  function barPlotter(e) {
+    var ctx = e.drawingContext, g = e.dygraph, pts = e.points;
+    var w = 0.6 * (g.toDomXCoord(1) - g.toDomXCoord(0));
+    ctx.fillStyle = e.color;
+    pts.forEach(function (p) {
+      if (p.yval === null || isNaN(p.canvasy)) return;
+      var bottom = g.toDomYCoord(p.yval_stacked - p.yval);
+      ctx.fillRect(p.canvasx - w / 2, p.canvasy, w, bottom - p.canvasy);
+    });
+  }
+  var graphs = {};
+  document.querySelectorAll('figure.chart').forEach(function (el) {
+    var kind = el.getAttribute('data-kind'), i = Number(el.getAttribute('data-index'));
+    if (kind === 'path') {
+      var p = data.paths[i];
+      draw({ names: p.channels, colours: p.colours, raw: p.magnitude, rows: rows(p.f, p.magnitude), logY: true,
+             ylabel: '|h| [' + p.unit + ']', xText: hz, valueText: function (v) { return num(v) + ' ' + p.unit; } }, el);
+      return;
+    }
+    var o = data.outputs[i];
+    var varianceText = function (v) {
+      return v === null || v === undefined ? '–' : num(v) + ' ' + o.variance_unit + ' (RMS ' + num(Math.sqrt(Math.max(v, 0))) + ' ' + o.unit + ')';
+    };
+    var window_hz = [o.display_hz[0], o.display_hz[1]];
+    if (kind === 'cps') {
+      var req = o.rms_max === null ? null : o.rms_max * o.rms_max;
+      var top = Math.max(o.total_cps[o.total_cps.length - 1] || 0, req || 0) * 1.06 || 1;
+      graphs['cps' + i] = draw({ names: o.contributors, colours: o.colours, raw: o.cps, total: o.total_cps,
+                                 rows: rows(o.f, o.cps), ylabel: 'CPS [' + o.variance_unit + ']', xText: hz,
+                                 valueText: varianceText },
+                               el, { stackedGraph: true, fillGraph: true, fillAlpha: 0.7, valueRange: [0, top],
+                                     dateWindow: window_hz, underlayCallback: requirementLine(req) });
+    } else if (kind === 'psd') {
+      var psdUnit = o.variance_unit + '/Hz';
+      graphs['psd' + i] = draw({ names: o.contributors.concat(['total']), colours: o.colours.concat(['#000000']),
+                                 raw: o.psd.concat([o.total_psd]), rows: rows(o.f, o.psd.concat([o.total_psd])),
+                                 logY: true, ylabel: 'PSD [' + psdUnit + ']', xText: hz,
+                                 valueText: function (v) { return num(v) + ' ' + psdUnit; } },
+                               el, { dateWindow: window_hz });
+    } else if (kind === 'bands') {
+      var names = o.contributors, raw = names.map(function (n, k) {
+        return o.band_variance.map(function (b) { return b[k]; });
+      });
+      var totals = o.band_variance.map(function (b) { return b.reduce(function (a, v) { return a + v; }, 0); });
+      var bandRows = o.bands.map(function (b, j) { return [j].concat(raw.map(function (r) { return r[j]; })); });
+      var bandText = function (x) { return o.bands[Math.round(x)] || ''; };
+      draw({ names: names, colours: o.colours, raw: raw, total: totals, rows: bandRows, logX: false,
+             xlabel: 'frequency band', ylabel: 'variance [' + o.variance_unit + ']', xText: bandText,
+             valueText: varianceText },
+           el, { stackedGraph: true, plotter: barPlotter, dateWindow: [-0.5, o.bands.length - 0.5],
+                 axes: { x: { logscale: false, ticker: function () {
+                   return o.bands.map(function (b, j) { return { v: j, label: esc(b) }; });
+                 } }, y: { axisLabelWidth: 70 } } });
+    }
+  });
+  // An output's CPS and PSD zoom together and show the same frequency on hover.
+  data.outputs.forEach(function (o, i) {
+    if (graphs['cps' + i] && graphs['psd' + i])
+      Dygraph.synchronize([graphs['cps' + i], graphs['psd' + i]], { zoom: true, selection: true, range: false });
+  });
+  document.documentElement.setAttribute('data-figures', 'drawn');
+})();
+)deb_js";
+
+// JSON inside <script> must not end the element ("</script>") or open a
+// comment ("<!--"): '<' only occurs within JSON strings, where \u003c means the same.
+std::string ScriptSafe(const std::string& json_text) {
+  std::string out;
+  out.reserve(json_text.size());
+  for (char c : json_text) {
+    if (c == '<')
+      out += "\\u003c";
+    else
+      out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::size_t> FigurePoints(const std::vector<double>& f_hz,
+                                      const std::vector<const std::vector<double>*>& log_series,
+                                      const std::vector<const std::vector<double>*>& linear_series,
+                                      std::size_t max_points) {
+  std::vector<std::size_t> keep;
+  if (f_hz.empty()) return keep;
+  for (double tolerance = 2e-3;; tolerance *= 2.0) {
+    keep.clear();
+    if (!log_series.empty())
+      keep = PlotPoints(f_hz, log_series, f_hz.front(), f_hz.back(), PlotScale::kLog, tolerance);
+    if (!linear_series.empty()) {
+      const std::vector<std::size_t> linear =
+          PlotPoints(f_hz, linear_series, f_hz.front(), f_hz.back(), PlotScale::kLinear, tolerance);
+      std::vector<std::size_t> both;
+      std::set_union(keep.begin(), keep.end(), linear.begin(), linear.end(), std::back_inserter(both));
+      keep = std::move(both);
+    }
+    // PlotPoints keeps at least one point per 0.05 decade: a tolerance of a
+    // whole decade leaves only those.
+    if (keep.size() <= max_points || tolerance > 1.0) break;
+  }
+  return keep;
+}
+
+std::string FigureDataJson(const Budget& budget, const BudgetResult& result, int threads) {
+  json data = {{"outputs", json::array()}, {"paths", json::array()}};
+  for (const OutputResult& out : result.outputs) data["outputs"].push_back(OutputData(budget, result, out));
+  for (std::size_t c = 0; c < budget.contributors.size(); ++c)
+    for (const PathResponse& r : ComputePathResponses(budget, result, c, result.grid.f_hz(), threads))
+      data["paths"].push_back(PathData(result, c, r));
+  return ScriptSafe(data.dump());
+}
+
+std::string FigureElement(const std::string& kind, std::size_t index, const std::string& caption_html) {
+  return "<figure class=\"chart\" data-kind=\"" + HtmlEscape(kind) + "\" data-index=\"" + std::to_string(index) +
+         "\">\n<div class=\"plot\"></div>\n<div class=\"legend\"></div>\n<div class=\"toggles\"></div>\n<figcaption>" +
+         caption_html + "</figcaption>\n</figure>\n";
+}
+
+std::string FigureScripts(const std::string& data_json) {
+  DEB_DEMAND(std::string(DygraphsJs()).find("</script") == std::string::npos);
+  return std::string("<script>\n") + DygraphsJs() + "\n</script>\n<script type=\"application/json\" id=\"deb-figure-data\">" +
+         data_json + "</script>\n<script>" + kScript + "</script>\n";
+}
+
+std::string FigureCss() { return std::string(DygraphsCss()) + kCss; }
+
+}  // namespace deb::report
