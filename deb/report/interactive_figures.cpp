@@ -42,6 +42,12 @@ json Series(const std::vector<double>& v, const std::vector<std::size_t>& keep, 
   return out;
 }
 
+// "nm^2" -> "nm²": the page can show the superscript.
+std::string Squared(std::string unit) {
+  for (std::size_t at = unit.find("^2"); at != std::string::npos; at = unit.find("^2", at)) unit.replace(at, 2, "²");
+  return unit;
+}
+
 json Frequencies(const std::vector<double>& f, const std::vector<std::size_t>& keep) {
   json out = json::array();
   for (std::size_t i : keep) out.push_back(Rounded(f[i], 6));
@@ -65,7 +71,7 @@ json OutputData(const Budget& budget, const BudgetResult& result, const OutputRe
   const FrequencyRange shown = DisplayRange(out, result.grid);
   json o = {{"name", out.name},
             {"unit", UnitText(out.unit)},
-            {"variance_unit", UnitText(VarianceUnit(out.unit))},
+            {"variance_unit", Squared(UnitText(VarianceUnit(out.unit)))},
             {"rms", out.rms()},
             {"rms_max", out.rms_max ? json(*out.rms_max) : json(nullptr)},
             {"pass", out.AllPass()},
@@ -73,8 +79,15 @@ json OutputData(const Budget& budget, const BudgetResult& result, const OutputRe
             {"f", Frequencies(f, keep)},
             {"total_psd", Series(out.total_psd, keep, true)},
             {"total_cps", Series(out.total_cps, keep, false)}};
+  // Largest first: the bottom of the stack, the head of the legend (as the tables).
+  std::vector<std::size_t> order(out.contributors.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return out.contributors[a].variance > out.contributors[b].variance;
+  });
   json names = json::array(), colours = json::array(), psds = json::array(), cpss = json::array();
-  for (const ContributorResult& c : out.contributors) {
+  for (std::size_t k : order) {
+    const ContributorResult& c = out.contributors[k];
     names.push_back(c.name);
     colours.push_back(ContributorStyle(BudgetIndex(budget, c.name)).colour);
     psds.push_back(Series(c.psd, keep, true));
@@ -86,9 +99,9 @@ json OutputData(const Budget& budget, const BudgetResult& result, const OutputRe
   o["cps"] = cpss;
   json bands = json::array(), band_variance = json::array();
   for (const BandResult& b : out.bands) {
-    bands.push_back(Short(b.band.lo_hz) + "–" + Short(b.band.hi_hz) + " Hz");
+    bands.push_back(Short(b.band.lo_hz) + "–" + Short(b.band.hi_hz));
     json per = json::array();
-    for (double v : b.contributor_variance) per.push_back(Rounded(v, 4));
+    for (std::size_t k : order) per.push_back(Rounded(b.contributor_variance[k], 4));
     band_variance.push_back(per);
   }
   o["bands"] = bands;
@@ -183,12 +196,27 @@ constexpr const char* kScript = R"deb_js(
       el.appendChild(label);
     });
   }
+  // Log axes: a label per decade (every k-th decade when they would crowd:
+  // one per 40 px), grid lines at 2..9; within about a decade dygraphs' own ticks.
+  function decadeLabel(n) { return n >= -3 && n <= 4 ? String(Number(Math.pow(10, n).toPrecision(1))) : '10<sup>' + n + '</sup>'; }
+  function logTicker(min, max, pixels, opts, g, vals) {
+    if (!(min > 0) || Math.log10(max / min) < 1.3) return Dygraph.numericTicks(min, max, pixels, opts, g, vals);
+    var lo = Math.floor(Math.log10(min)), hi = Math.ceil(Math.log10(max));
+    var step = Math.max(1, Math.ceil((hi - lo) / Math.max(2, pixels / 40)));
+    var ticks = [];
+    for (var n = lo; n <= hi; n++) {
+      ticks.push({ v: Math.pow(10, n), label: n % step === 0 ? decadeLabel(n) : '' });
+      if (step === 1) for (var m = 2; m <= 9; m++) ticks.push({ v: m * Math.pow(10, n) });
+    }
+    return ticks;
+  }
   function draw(fig, el, extra) {
     var opts = {
       labels: ['f'].concat(fig.names.map(function (n, k) { return 's' + k; })),
       colors: fig.colours, xlabel: esc(fig.xlabel || 'frequency [Hz]'), ylabel: esc(fig.ylabel),
       labelsDiv: el.querySelector('.legend'), legend: 'always', legendFormatter: legendFormatter(fig),
-      axes: { x: { logscale: fig.logX !== false }, y: { logscale: !!fig.logY, axisLabelWidth: 70 } },
+      axes: { x: fig.logX === false ? {} : { logscale: true, ticker: logTicker },
+              y: fig.logY ? { logscale: true, ticker: logTicker, axisLabelWidth: 60 } : { axisLabelWidth: 60 } },
       strokeWidth: 1.4, animatedZooms: false, connectSeparatedPoints: false
     };
     Object.keys(extra || {}).forEach(function (k) { opts[k] = extra[k]; });
@@ -226,8 +254,12 @@ constexpr const char* kScript = R"deb_js(
     var kind = el.getAttribute('data-kind'), i = Number(el.getAttribute('data-index'));
     if (kind === 'path') {
       var p = data.paths[i];
+      // As the report's plots: 8 decades below the peak, not the depth of every notch.
+      var peak = Math.max.apply(null, p.magnitude.map(function (m) { return Math.max.apply(null, m); }));
+      var extra = peak > 0 ? { valueRange: [Math.pow(10, Math.floor(Math.log10(peak)) - 8), Math.pow(10, Math.ceil(Math.log10(peak * 1.2)))] } : {};
       draw({ names: p.channels, colours: p.colours, raw: p.magnitude, rows: rows(p.f, p.magnitude), logY: true,
-             ylabel: '|h| [' + p.unit + ']', xText: hz, valueText: function (v) { return num(v) + ' ' + p.unit; } }, el);
+             ylabel: '|h| [' + p.unit + ']', xText: hz, valueText: function (v) { return num(v) + ' ' + p.unit; } },
+           el, extra);
       return;
     }
     var o = data.outputs[i];
@@ -244,26 +276,41 @@ constexpr const char* kScript = R"deb_js(
                                el, { stackedGraph: true, fillGraph: true, fillAlpha: 0.7, valueRange: [0, top],
                                      dateWindow: window_hz, underlayCallback: requirementLine(req) });
     } else if (kind === 'psd') {
-      var psdUnit = o.variance_unit + '/Hz';
-      graphs['psd' + i] = draw({ names: o.contributors.concat(['total']), colours: o.colours.concat(['#000000']),
-                                 raw: o.psd.concat([o.total_psd]), rows: rows(o.f, o.psd.concat([o.total_psd])),
-                                 logY: true, ylabel: 'PSD [' + psdUnit + ']', xText: hz,
-                                 valueText: function (v) { return num(v) + ' ' + psdUnit; } },
-                               el, { dateWindow: window_hz });
+      // PSD, or ASD = sqrt(PSD) by the box under the figure.
+      var psd = o.psd.concat([o.total_psd]);
+      var asd = psd.map(function (s) { return s.map(function (v) { return v === null ? null : Math.sqrt(v); }); });
+      var units = { psd: o.variance_unit + '/Hz', asd: o.unit + '/√Hz' };
+      var fig = { names: o.contributors.concat(['total']), colours: o.colours.concat(['#000000']), raw: psd,
+                  rows: rows(o.f, psd), logY: true, ylabel: 'PSD [' + units.psd + ']', xText: hz,
+                  valueText: function (v) { return num(v) + ' ' + units[fig.raw === psd ? 'psd' : 'asd']; } };
+      var g = draw(fig, el, { dateWindow: window_hz });
+      graphs['psd' + i] = g;
+      var label = document.createElement('label'), box = document.createElement('input');
+      box.type = 'checkbox';
+      box.className = 'asd';
+      box.addEventListener('change', function () {
+        fig.raw = box.checked ? asd : psd;
+        g.updateOptions({ file: rows(o.f, fig.raw),
+                          ylabel: esc(box.checked ? 'ASD [' + units.asd + ']' : 'PSD [' + units.psd + ']') });
+      });
+      label.appendChild(box);
+      label.appendChild(document.createTextNode('amplitude (ASD = √PSD)'));
+      label.style.marginLeft = '1.5rem';
+      el.querySelector('.toggles').appendChild(label);
     } else if (kind === 'bands') {
       var names = o.contributors, raw = names.map(function (n, k) {
         return o.band_variance.map(function (b) { return b[k]; });
       });
       var totals = o.band_variance.map(function (b) { return b.reduce(function (a, v) { return a + v; }, 0); });
       var bandRows = o.bands.map(function (b, j) { return [j].concat(raw.map(function (r) { return r[j]; })); });
-      var bandText = function (x) { return o.bands[Math.round(x)] || ''; };
+      var bandText = function (x) { return o.bands[Math.round(x)] ? o.bands[Math.round(x)] + ' Hz' : ''; };
       draw({ names: names, colours: o.colours, raw: raw, total: totals, rows: bandRows, logX: false,
-             xlabel: 'frequency band', ylabel: 'variance [' + o.variance_unit + ']', xText: bandText,
+             xlabel: 'frequency band [Hz]', ylabel: 'variance [' + o.variance_unit + ']', xText: bandText,
              valueText: varianceText },
            el, { stackedGraph: true, plotter: barPlotter, dateWindow: [-0.5, o.bands.length - 0.5],
                  axes: { x: { logscale: false, ticker: function () {
                    return o.bands.map(function (b, j) { return { v: j, label: esc(b) }; });
-                 } }, y: { axisLabelWidth: 70 } } });
+                 } }, y: { axisLabelWidth: 60 } } });
     }
   });
   // An output's CPS and PSD zoom together and show the same frequency on hover.
