@@ -50,7 +50,7 @@ std::string Squared(std::string unit) {
 
 json Frequencies(const std::vector<double>& f, const std::vector<std::size_t>& keep) {
   json out = json::array();
-  for (std::size_t i : keep) out.push_back(Rounded(f[i], 6));
+  for (std::size_t i : keep) out.push_back(Rounded(f[i], 7));
   return out;
 }
 

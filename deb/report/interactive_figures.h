@@ -10,7 +10,8 @@
 // show: each figure's frequencies are thinned by PlotPoints (peaks, notches
 // and jumps are kept) over the whole grid, its tolerance doubled from 2e-3
 // decade until at most kMaxFigurePoints remain; values keep 4 significant
-// digits, frequencies 6.
+// digits, frequencies 7 (a grid holds a jump, e.g. at a band edge, as two
+// points 1e-12 apart: they may print alike).
 #pragma once
 
 #include <cstddef>
