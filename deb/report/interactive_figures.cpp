@@ -136,6 +136,7 @@ constexpr const char* kCss = R"(
 .verdict { border-radius: 4px; padding: 0.6rem 1rem; margin: 1rem 0; color: #fff; }
 .verdict.pass { background: #1b7837; }
 .verdict.fail { background: var(--fail); }
+.verdict.none { background: #4d4d4d; }
 .verdict p { margin: 0.2rem 0; }
 td.fail { background: #fbe3e6; }
 figure.chart { border: 1px solid var(--line); padding: 0.6rem; }
@@ -308,7 +309,7 @@ constexpr const char* kScript = R"deb_js(
              xlabel: 'frequency band [Hz]', ylabel: 'variance [' + o.variance_unit + ']', xText: bandText,
              valueText: varianceText },
            el, { stackedGraph: true, plotter: barPlotter, dateWindow: [-0.5, o.bands.length - 0.5],
-                 axes: { x: { logscale: false, ticker: function () {
+                 axes: { x: { logscale: false, axisLabelWidth: 110, ticker: function () {
                    return o.bands.map(function (b, j) { return { v: j, label: esc(b) }; });
                  } }, y: { axisLabelWidth: 60 } } });
     }

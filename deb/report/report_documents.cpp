@@ -68,13 +68,15 @@ std::string OutputLine(const OutputResult& o) {
 }
 
 // The verdict at the head of index.html: one line per output, green when
-// every output meets its requirements, red with the guidance when one fails.
+// every output meets its requirements, red with the guidance when one fails,
+// grey without any requirement.
 std::string VerdictBanner(const BudgetResult& result) {
-  bool all_pass = true;
+  bool all_pass = true, any_required = false;
   std::string lines;
   for (const OutputResult& o : result.outputs) {
     const bool required = o.rms_max || !o.band_requirements.empty();
     all_pass = all_pass && o.AllPass();
+    any_required = any_required || required;
     lines += "<p><strong>" + std::string(!required ? "no requirement" : o.AllPass() ? "PASS" : "FAIL") + "</strong> " +
              HtmlEscape(o.name) + ": RMS " + HtmlEscape(Sig(o.rms(), 4) + " " + UnitText(o.unit));
     if (o.rms_max) lines += HtmlEscape(" (requirement " + Short(*o.rms_max) + " " + UnitText(o.unit) + ")");
@@ -82,7 +84,8 @@ std::string VerdictBanner(const BudgetResult& result) {
     if (const std::string fix = GuidanceText(o, result.grid); !fix.empty()) lines += " " + HtmlEscape(fix);
     lines += "</p>\n";
   }
-  return std::string("<div class=\"verdict ") + (all_pass ? "pass" : "fail") + "\" id=\"verdict\">\n" + lines +
+  const char* verdict = !all_pass ? "fail" : any_required ? "pass" : "none";
+  return std::string("<div class=\"verdict ") + verdict + "\" id=\"verdict\">\n" + lines +
          "</div>\n";
 }
 
@@ -152,7 +155,8 @@ std::string IndexHtml(const DocumentInputs& in) {
                            DataLinks(in.plots, PlotKind::kSpectrum, oi));
     s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out));
     s << FigureElement("bands", o,
-                       HtmlEscape("Variance of " + out.name + " per frequency band, contributors stacked.") +
+                       HtmlEscape("Variance of " + out.name + " per frequency band, contributors stacked (variances add up; "
+                                  "the table above gives their RMS).") +
                            DataLinks(in.plots, PlotKind::kBands, oi));
   }
 
