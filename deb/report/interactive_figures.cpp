@@ -9,6 +9,7 @@
 
 #include "deb/budget/path_response.h"
 #include "deb/core/error.h"
+#include "deb/core/parallel.h"
 #include "deb/report/dygraphs_source.h"
 #include "deb/report/plot.h"
 #include "deb/report/plot_points.h"
@@ -343,32 +344,54 @@ std::vector<std::size_t> FigurePoints(const std::vector<double>& f_hz,
                                       const std::vector<const std::vector<double>*>& log_series,
                                       const std::vector<const std::vector<double>*>& linear_series,
                                       std::size_t max_points) {
-  std::vector<std::size_t> keep;
-  if (f_hz.empty()) return keep;
-  for (double tolerance = 2e-3;; tolerance *= 2.0) {
-    keep.clear();
-    if (!log_series.empty())
-      keep = PlotPoints(f_hz, log_series, f_hz.front(), f_hz.back(), PlotScale::kLog, tolerance);
-    if (!linear_series.empty()) {
-      const std::vector<std::size_t> linear =
-          PlotPoints(f_hz, linear_series, f_hz.front(), f_hz.back(), PlotScale::kLinear, tolerance);
-      std::vector<std::size_t> both;
-      std::set_union(keep.begin(), keep.end(), linear.begin(), linear.end(), std::back_inserter(both));
-      keep = std::move(both);
-    }
-    // PlotPoints keeps at least one point per 0.05 decade: a tolerance of a
-    // whole decade leaves only those.
-    if (keep.size() <= max_points || tolerance > 1.0) break;
-  }
+  // `keep` (indices into f_hz) thinned at `tolerance`: PlotPoints over the
+  // points kept so far, for log and linear series, united.
+  const auto thin = [&](const std::vector<std::size_t>& keep, double tolerance) {
+    std::vector<double> f(keep.size());
+    for (std::size_t k = 0; k < keep.size(); ++k) f[k] = f_hz[keep[k]];
+    const auto pass = [&](const std::vector<const std::vector<double>*>& series, PlotScale scale) {
+      std::vector<std::vector<double>> values(series.size(), std::vector<double>(keep.size()));
+      std::vector<const std::vector<double>*> view;
+      for (std::size_t c = 0; c < series.size(); ++c) {
+        for (std::size_t k = 0; k < keep.size(); ++k) values[c][k] = (*series[c])[keep[k]];
+        view.push_back(&values[c]);
+      }
+      return series.empty() ? std::vector<std::size_t>{} : PlotPoints(f, view, f.front(), f.back(), scale, tolerance);
+    };
+    const std::vector<std::size_t> a = pass(log_series, PlotScale::kLog), b = pass(linear_series, PlotScale::kLinear);
+    std::vector<std::size_t> both, out;
+    std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(both));
+    for (std::size_t k : both) out.push_back(keep[k]);
+    return out;
+  };
+  std::vector<std::size_t> keep(f_hz.size());
+  for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = i;
+  if (keep.empty()) return keep;
+  keep = thin(keep, 2e-3);
+  // Each doubling thins what the last kept: the points a doubled tolerance
+  // drops lie within it of the chords through the points it keeps, so the
+  // deviation from the whole grid stays below twice the final tolerance.
+  // PlotPoints keeps one point per 0.05 decade at any tolerance: stop at a
+  // whole decade.
+  for (double tolerance = 4e-3; keep.size() > max_points && tolerance <= 1.0; tolerance *= 2.0)
+    keep = thin(keep, tolerance);
   return keep;
 }
 
 std::string FigureDataJson(const Budget& budget, const BudgetResult& result, int threads) {
-  json data = {{"outputs", json::array()}, {"paths", json::array()}};
-  for (const OutputResult& out : result.outputs) data["outputs"].push_back(OutputData(budget, result, out));
-  for (std::size_t c = 0; c < budget.contributors.size(); ++c)
-    for (const PathResponse& r : ComputePathResponses(budget, result, c, result.grid.f_hz(), threads))
-      data["paths"].push_back(PathData(result, c, r));
+  // Thinning a dense grid takes tens of ms per figure: one job per output
+  // and per contributor's paths.
+  std::vector<json> outputs(result.outputs.size());
+  ParallelForEach(outputs.size(), [&](std::size_t o) { outputs[o] = OutputData(budget, result, result.outputs[o]); },
+                  threads);
+  std::vector<json> paths(budget.contributors.size(), json::array());
+  ParallelForEach(paths.size(), [&](std::size_t c) {
+    for (const PathResponse& r : ComputePathResponses(budget, result, c, result.grid.f_hz(), 1))
+      paths[c].push_back(PathData(result, c, r));
+  }, threads);
+  json data = {{"outputs", outputs}, {"paths", json::array()}};
+  for (json& per_contributor : paths)
+    for (json& p : per_contributor) data["paths"].push_back(std::move(p));
   return ScriptSafe(data.dump());
 }
 

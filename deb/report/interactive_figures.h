@@ -8,8 +8,9 @@
 //
 // A budget's grid can hold 10^4 points and more, far more than a screen can
 // show: each figure's frequencies are thinned by PlotPoints (peaks, notches
-// and jumps are kept) over the whole grid, its tolerance doubled from 2e-3
-// decade until at most kMaxFigurePoints remain; values keep 4 significant
+// and jumps are kept) over the whole grid at 2e-3 decade, then what remains
+// again at twice the tolerance until at most kMaxFigurePoints remain (their
+// chords stay within twice the last tolerance of the grid); values keep 4 significant
 // digits, frequencies 7 (a grid holds a jump, e.g. at a band edge, as two
 // points 1e-12 apart: they may print alike).
 #pragma once
