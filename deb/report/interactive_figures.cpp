@@ -272,11 +272,28 @@ constexpr const char* kScript = R"deb_js(
     if (kind === 'cps') {
       var req = o.rms_max === null ? null : o.rms_max * o.rms_max;
       var top = Math.max(o.total_cps[o.total_cps.length - 1] || 0, req || 0) * 1.06 || 1;
-      graphs['cps' + i] = draw({ names: o.contributors, colours: o.colours, raw: o.cps, total: o.total_cps,
-                                 rows: rows(o.f, o.cps), ylabel: 'CPS [' + o.variance_unit + ']', xText: hz,
-                                 valueText: varianceText },
-                               el, { stackedGraph: true, fillGraph: true, fillAlpha: 0.7, valueRange: [0, top],
-                                     dateWindow: window_hz, underlayCallback: requirementLine(req) });
+      // Forward CPS, or by the box the reverse CPS: the variance from f to the top of the grid.
+      var above = function (s) { var end = s[s.length - 1]; return s.map(function (v) { return end - v; }); };
+      var forward = { raw: o.cps, total: o.total_cps, ylabel: 'CPS [' + o.variance_unit + ']' };
+      var reverse = { raw: o.cps.map(above), total: above(o.total_cps), ylabel: 'reverse CPS [' + o.variance_unit + ']' };
+      var cpsFig = { names: o.contributors, colours: o.colours, raw: forward.raw, total: forward.total,
+                     rows: rows(o.f, forward.raw), ylabel: forward.ylabel, xText: hz, valueText: varianceText };
+      var gc = draw(cpsFig, el, { stackedGraph: true, fillGraph: true, fillAlpha: 0.7, valueRange: [0, top],
+                                  dateWindow: window_hz, underlayCallback: requirementLine(req) });
+      graphs['cps' + i] = gc;
+      var rlabel = document.createElement('label'), rbox = document.createElement('input');
+      rbox.type = 'checkbox';
+      rbox.className = 'reverse';
+      rbox.addEventListener('change', function () {
+        var v = rbox.checked ? reverse : forward;
+        cpsFig.raw = v.raw;
+        cpsFig.total = v.total;
+        gc.updateOptions({ file: rows(o.f, v.raw), ylabel: esc(v.ylabel) });
+      });
+      rlabel.appendChild(rbox);
+      rlabel.appendChild(document.createTextNode('reverse (variance above f)'));
+      rlabel.style.marginLeft = '1.5rem';
+      el.querySelector('.toggles').appendChild(rlabel);
     } else if (kind === 'psd') {
       // PSD, or ASD = sqrt(PSD) by the box under the figure.
       var psd = o.psd.concat([o.total_psd]);
@@ -323,6 +340,36 @@ constexpr const char* kScript = R"deb_js(
   document.documentElement.setAttribute('data-figures', 'drawn');
 })();
 )deb_js";
+
+// dygraphs' licence, in full in every page that carries it (the library's
+// own comment only names it); holders as Debian's libjs-dygraphs lists them,
+// with the browserify loader bundled into dygraph.min.js.
+constexpr const char* kDygraphsLicence = R"(/*
+dygraphs 2.2.1 (Debian libjs-dygraphs), with its synchronizer extension.
+Copyright (c) 2006, 2009, 2011, 2012, 2013, 2017 Dan Vanderkam <danvdk@gmail.com>
+Copyright (c) 2011 Paul Felix, 2011, 2013 Robert Konigsberg, 2013 David Eberlein,
+2013 Google, Inc., 2014, 2022, 2023 mirabilos, 2015 Petr Shevtsov, and contributors.
+Browser-pack loader: Copyright (c) 2013, 2014 James Halliday, 2013 Roman Shtylman,
+2013 Esa-Matti Suuronen, 2018 Philipp Simon Schmidt.
+
+Permission is hereby granted, free of charge, to any person obtaining a copy of
+this software and associated documentation files (the "Software"), to deal in
+the Software without restriction, including without limitation the rights to
+use, copy, modify, merge, publish, distribute, sublicense, and/or sell copies of
+the Software, and to permit persons to whom the Software is furnished to do so,
+subject to the following conditions:
+
+The above copyright notice and this permission notice shall be included in all
+copies or substantial portions of the Software.
+
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY, FITNESS
+FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE AUTHORS OR
+COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER LIABILITY, WHETHER IN
+AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM, OUT OF OR IN CONNECTION
+WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE SOFTWARE.
+*/
+)";
 
 // JSON inside <script> must not end the element ("</script>") or open a
 // comment ("<!--"): '<' only occurs within JSON strings, where \u003c means the same.
@@ -403,7 +450,7 @@ std::string FigureElement(const std::string& kind, std::size_t index, const std:
 
 std::string FigureScripts(const std::string& data_json) {
   DEB_DEMAND(std::string(DygraphsJs()).find("</script") == std::string::npos);
-  return std::string("<script>\n") + DygraphsJs() + "\n</script>\n<script type=\"application/json\" id=\"deb-figure-data\">" +
+  return std::string("<script>\n") + kDygraphsLicence + DygraphsJs() + "\n</script>\n<script type=\"application/json\" id=\"deb-figure-data\">" +
          data_json + "</script>\n<script>" + kScript + "</script>\n";
 }
 

@@ -165,6 +165,7 @@ std::string IndexHtml(const DocumentInputs& in) {
   for (std::size_t c = 0, i = 0; c < budget.contributors.size(); ++c)
     for (std::size_t o = 0; o < result.outputs.size(); ++o, ++i) {
       const Contributor& con = budget.contributors[c];
+      s << "<h3>" << HtmlEscape(con.name + " → " + result.outputs[o].name) << "</h3>\n";
       s << FigureElement("path", i,
                          HtmlEscape("Magnitude of the transfer from " + con.name + " (source " + con.source + ", path " +
                                     con.path + ") to " + result.outputs[o].name + ", per source channel."));

@@ -6,6 +6,7 @@
 #   - every figure is drawn: each figure.chart holds a canvas with at least
 #     500 pixels that are neither blank nor white,
 #   - hovering each figure shows a value with its frequency in its legend,
+#   - a legend box hides its contributor, the ASD box relabels the PSD,
 #   - a drag on an output's CPS zooms its PSD too (their x-axis labels change).
 # Exit 77 (CTest: skipped) when chromium or chromedriver is missing.
 # Usage: index_html_browser_test.sh DEB_BINARY BUDGET.yaml
@@ -120,6 +121,27 @@ check "hovering every figure shows values in its legend (without: ${no_value[*]:
   "$([ ${#no_value[@]} -eq 0 ] && echo 1 || echo 0)"
 post /actions '{"actions": [{"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
   "actions": [{"type": "pointerMove", "duration": 0, "x": 1, "y": 1}]}]}' >/dev/null
+
+# A legend box hides its contributor: unticking the first of the first CPS
+# takes that contributor out of the hover legend; the ASD box relabels the PSD.
+name=$(js "return document.querySelector('figure.chart[data-kind=cps] .toggles label').textContent;")
+box=$(post /element '{"using": "css selector", "value": "figure.chart[data-kind=cps] .toggles input"}' |
+  jq -r ".value[\"$element_key\"]")
+post "/element/$box/click" '{}' >/dev/null
+el=$(post /element '{"using": "css selector", "value": "figure.chart[data-kind=cps] .plot"}' | jq -r ".value[\"$element_key\"]")
+post /actions "$(jq -n --arg el "$el" --arg key "$element_key" '{actions: [{type: "pointer", id: "mouse",
+    parameters: {pointerType: "mouse"}, actions: [{type: "pointerMove", duration: 0, origin: {($key): $el}, x: 20, y: 0},
+    {type: "pointerMove", duration: 50, origin: {($key): $el}, x: 25, y: 0}]}]}')" >/dev/null
+legend=$(js "return document.querySelector('figure.chart[data-kind=cps] .legend').textContent;")
+check "unticking $name hides it from the legend ($legend)" \
+  "$([[ "$legend" =~ total ]] && ! [[ "$legend" == *"${name//\"/}: "* ]] && echo 1 || echo 0)"
+post "/element/$box/click" '{}' >/dev/null
+box=$(post /element '{"using": "css selector", "value": "figure.chart[data-kind=psd] .toggles input.asd"}' |
+  jq -r ".value[\"$element_key\"]")
+post "/element/$box/click" '{}' >/dev/null
+ylabel=$(js "return document.querySelector('figure.chart[data-kind=psd] .dygraph-ylabel').textContent;")
+check "the ASD box shows amplitudes ($ylabel)" "$([[ "$ylabel" == *ASD*√Hz* ]] && echo 1 || echo 0)"
+post "/element/$box/click" '{}' >/dev/null
 
 # Linked zoom: drag across the middle of the first output's CPS.
 ticks='function ticks(kind) {
