@@ -42,6 +42,9 @@ TEST_CASE("index.html is one page with inline style and script, the facts, and a
                                                                      e.result.outputs.size() - 1) + "\"") !=
         std::string::npos);
   CHECK(html.find("id=\"deb-figure-data\"") != std::string::npos);
+  // dygraphs is inlined with its licence.
+  CHECK(html.find("Dygraph") != std::string::npos);
+  CHECK(html.find("Permission is hereby granted, free of charge") < html.find("Dygraph"));
   CHECK(html.find("<noscript>") != std::string::npos);
   CHECK(html.find("id=\"" + OutputAnchor("z_velocity") + "\"") != std::string::npos);
   CHECK(html.find("report.pdf") == std::string::npos);  // not written here
