@@ -13,6 +13,7 @@
 #include "deb/report/dygraphs_source.h"
 #include "deb/report/plot.h"
 #include "deb/report/plot_points.h"
+#include "deb/report/path_plots.h"
 #include "deb/report/plot_style.h"
 #include "deb/report/report_tables.h"
 #include "deb/report/spectrum_plots.h"
@@ -110,7 +111,7 @@ json OutputData(const Budget& budget, const BudgetResult& result, const OutputRe
   return o;
 }
 
-json PathData(const BudgetResult& result, std::size_t c, const PathResponse& r) {
+json PathData(const Budget& budget, const BudgetResult& result, std::size_t c, std::size_t o, const PathResponse& r) {
   const std::vector<double>& f = result.grid.f_hz();
   std::vector<std::vector<double>> magnitude;
   for (const auto& g2 : r.gain2) {
@@ -120,7 +121,11 @@ json PathData(const BudgetResult& result, std::size_t c, const PathResponse& r) 
   std::vector<const std::vector<double>*> series;
   for (const auto& m : magnitude) series.push_back(&m);
   const std::vector<std::size_t> keep = FigurePoints(f, series, {});
-  json p = {{"contributor", r.contributor}, {"output", r.output}, {"unit", UnitText(r.unit)}, {"f", Frequencies(f, keep)}};
+  // Shown first as in the report's path plots (PathRange).
+  const FrequencyRange shown = PathRange(*result.paths.at(budget.contributors[c].path),
+                                         DisplayRange(result.outputs[o], result.grid), result.grid);
+  json p = {{"contributor", r.contributor}, {"output", r.output}, {"unit", UnitText(r.unit)},
+            {"display_hz", {shown.lo_hz, shown.hi_hz}}, {"f", Frequencies(f, keep)}};
   json channels = json::array(), colours = json::array(), mags = json::array();
   for (std::size_t k = 0; k < magnitude.size(); ++k) {
     channels.push_back(k < r.channels.size() ? r.channels[k] : std::to_string(k + 1));
@@ -199,7 +204,8 @@ constexpr const char* kScript = R"deb_js(
     });
   }
   // Log axes: a label per decade (every k-th decade when they would crowd:
-  // one per 40 px), grid lines at 2..9; within about a decade dygraphs' own ticks.
+  // one per 40 px), grid lines at 2..9 over at most 8 decades; within about a
+  // decade dygraphs' own ticks.
   function decadeLabel(n) { return n >= -3 && n <= 4 ? String(Number(Math.pow(10, n).toPrecision(1))) : '10<sup>' + n + '</sup>'; }
   function logTicker(min, max, pixels, opts, g, vals) {
     if (!(min > 0) || Math.log10(max / min) < 1.3) return Dygraph.numericTicks(min, max, pixels, opts, g, vals);
@@ -208,9 +214,15 @@ constexpr const char* kScript = R"deb_js(
     var ticks = [];
     for (var n = lo; n <= hi; n++) {
       ticks.push({ v: Math.pow(10, n), label: n % step === 0 ? decadeLabel(n) : '' });
-      if (step === 1) for (var m = 2; m <= 9; m++) ticks.push({ v: m * Math.pow(10, n) });
+      if (step === 1 && hi - lo <= 8) for (var m = 2; m <= 9; m++) ticks.push({ v: m * Math.pow(10, n) });
     }
     return ticks;
+  }
+  // The y axis's lowest label would sit on the x axis's first one.
+  function yLogTicker(min, max, pixels, opts, g, vals) {
+    return logTicker(min, max, pixels, opts, g, vals).map(function (t) {
+      return t.v <= min * 1.05 ? { v: t.v, label: '' } : t;
+    });
   }
   function draw(fig, el, extra) {
     var opts = {
@@ -218,7 +230,7 @@ constexpr const char* kScript = R"deb_js(
       colors: fig.colours, xlabel: esc(fig.xlabel || 'frequency [Hz]'), ylabel: esc(fig.ylabel),
       labelsDiv: el.querySelector('.legend'), legend: 'always', legendFormatter: legendFormatter(fig),
       axes: { x: fig.logX === false ? {} : { logscale: true, ticker: logTicker },
-              y: fig.logY ? { logscale: true, ticker: logTicker, axisLabelWidth: 60 } : { axisLabelWidth: 60 } },
+              y: fig.logY ? { logscale: true, ticker: yLogTicker, axisLabelWidth: 60 } : { axisLabelWidth: 60 } },
       strokeWidth: 1.4, animatedZooms: false, connectSeparatedPoints: false
     };
     Object.keys(extra || {}).forEach(function (k) { opts[k] = extra[k]; });
@@ -261,7 +273,7 @@ constexpr const char* kScript = R"deb_js(
       var extra = peak > 0 ? { valueRange: [Math.pow(10, Math.floor(Math.log10(peak)) - 8), Math.pow(10, Math.ceil(Math.log10(peak * 1.2)))] } : {};
       draw({ names: p.channels, colours: p.colours, raw: p.magnitude, rows: rows(p.f, p.magnitude), logY: true,
              ylabel: '|h| [' + p.unit + ']', xText: hz, valueText: function (v) { return num(v) + ' ' + p.unit; } },
-           el, extra);
+           el, Object.assign({ dateWindow: p.display_hz }, extra));
       return;
     }
     var o = data.outputs[i];
@@ -298,7 +310,7 @@ constexpr const char* kScript = R"deb_js(
       // PSD, or ASD = sqrt(PSD) by the box under the figure.
       var psd = o.psd.concat([o.total_psd]);
       var asd = psd.map(function (s) { return s.map(function (v) { return v === null ? null : Math.sqrt(v); }); });
-      var units = { psd: o.variance_unit + '/Hz', asd: o.unit + '/√Hz' };
+      var units = { psd: o.variance_unit + '/Hz', asd: (/[/ ]/.test(o.unit) ? '(' + o.unit + ')' : o.unit) + '/√Hz' };
       var fig = { names: o.contributors.concat(['total']), colours: o.colours.concat(['#000000']), raw: psd,
                   rows: rows(o.f, psd), logY: true, ylabel: 'PSD [' + units.psd + ']', xText: hz,
                   valueText: function (v) { return num(v) + ' ' + units[fig.raw === psd ? 'psd' : 'asd']; } };
@@ -433,8 +445,8 @@ std::string FigureDataJson(const Budget& budget, const BudgetResult& result, int
                   threads);
   std::vector<json> paths(budget.contributors.size(), json::array());
   ParallelForEach(paths.size(), [&](std::size_t c) {
-    for (const PathResponse& r : ComputePathResponses(budget, result, c, result.grid.f_hz(), 1))
-      paths[c].push_back(PathData(result, c, r));
+    const std::vector<PathResponse> responses = ComputePathResponses(budget, result, c, result.grid.f_hz(), 1);
+    for (std::size_t o = 0; o < responses.size(); ++o) paths[c].push_back(PathData(budget, result, c, o, responses[o]));
   }, threads);
   json data = {{"outputs", outputs}, {"paths", json::array()}};
   for (json& per_contributor : paths)
