@@ -306,7 +306,7 @@ constexpr const char* kScript = R"deb_js(
       rlabel.appendChild(document.createTextNode('reverse (variance above f)'));
       rlabel.style.marginLeft = '1.5rem';
       el.querySelector('.toggles').appendChild(rlabel);
-    } else if (kind === 'psd') {
+    } else if (kind === 'psd' || kind === 'asd') {
       // PSD, or ASD = sqrt(PSD) by the box under the figure.
       var psd = o.psd.concat([o.total_psd]);
       var asd = psd.map(function (s) { return s.map(function (v) { return v === null ? null : Math.sqrt(v); }); });
@@ -328,6 +328,7 @@ constexpr const char* kScript = R"deb_js(
       label.appendChild(document.createTextNode('amplitude (ASD = √PSD)'));
       label.style.marginLeft = '1.5rem';
       el.querySelector('.toggles').appendChild(label);
+      if (kind === 'asd') box.click();  // the report was asked for amplitudes (--asd)
     } else if (kind === 'bands') {
       var names = o.contributors, raw = names.map(function (n, k) {
         return o.band_variance.map(function (b) { return b[k]; });

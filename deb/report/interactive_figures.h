@@ -38,9 +38,10 @@ std::vector<std::size_t> FigurePoints(const std::vector<double>& f_hz,
 // @throws InputError as ComputePathResponses.
 std::string FigureDataJson(const Budget& budget, const BudgetResult& result, int threads = 0);
 
-// The <figure> elements the script fills: for output `output`, kind "cps",
-// "psd" or "bands"; for paths, kind "path" and the index into the data's
-// paths (contributors outer, outputs inner). The caption is HTML.
+// The <figure> elements the script fills: for output `index`, kind "cps",
+// "psd" (or "asd": the same, opened as amplitudes) or "bands"; for paths,
+// kind "path" and the index into the data's paths (contributors outer,
+// outputs inner). The caption is HTML.
 std::string FigureElement(const std::string& kind, std::size_t index, const std::string& caption_html);
 
 // The page's <script> elements: dygraphs, the data, the drawing code.

@@ -149,7 +149,7 @@ std::string IndexHtml(const DocumentInputs& in) {
                        HtmlEscape("Cumulative power spectrum of " + out.name + ", contributors stacked: the height at f "
                                   "is the variance from the lowest frequency to f." + req) +
                            DataLinks(in.plots, PlotKind::kCps, oi))
-      << FigureElement("psd", o,
+      << FigureElement(in.asd ? "asd" : "psd", o,
                        HtmlEscape("Power spectral density of " + out.name + " per contributor and in total (black); "
                                   "zooming here zooms the CPS above.") +
                            DataLinks(in.plots, PlotKind::kSpectrum, oi));

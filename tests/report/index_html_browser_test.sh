@@ -76,6 +76,7 @@ for _ in $(seq 100); do
   sleep 0.1
 done
 check "the page's script ran to its end" "$drawn"
+echo "info: page drawn after $(js "return Math.round(performance.now());") ms, $(stat -c %s "$work/report/index.html") bytes"
 [ -n "${DEB_SCREENSHOTS:-}" ] && mkdir -p "$DEB_SCREENSHOTS" && shot "$DEB_SCREENSHOTS/top.png"
 
 figures=$(js "return document.querySelectorAll('figure.chart').length;")

@@ -50,6 +50,16 @@ TEST_CASE("index.html is one page with inline style and script, the facts, and a
   CHECK(html.find("report.pdf") == std::string::npos);  // not written here
 }
 
+TEST_CASE("with --asd the page's spectra open as amplitudes") {
+  const Example e;
+  DocumentInputs in = e.Inputs("png");
+  CHECK(IndexHtml(in).find("data-kind=\"asd\"") == std::string::npos);
+  in.asd = true;
+  const std::string html = IndexHtml(in);
+  CHECK(html.find("<figure class=\"chart\" data-kind=\"asd\" data-index=\"0\">") != std::string::npos);
+  CHECK(html.find("data-kind=\"psd\"") == std::string::npos);
+}
+
 TEST_CASE("without images the documents still give every table and link the data") {
   const Example e;
   const std::string html = IndexHtml(e.Inputs(""));
