@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -11,9 +14,9 @@
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 #include "deb/report/dygraphs_source.h"
+#include "deb/report/path_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/plot_points.h"
-#include "deb/report/path_plots.h"
 #include "deb/report/plot_style.h"
 #include "deb/report/report_tables.h"
 #include "deb/report/spectrum_plots.h"
