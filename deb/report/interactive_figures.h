@@ -44,7 +44,8 @@ std::string FigureDataJson(const Budget& budget, const BudgetResult& result, int
 // outputs inner). The caption is HTML.
 std::string FigureElement(const std::string& kind, std::size_t index, const std::string& caption_html);
 
-// The page's <script> elements: dygraphs, the data, the drawing code.
+// The page's <script> elements: dygraphs, the data, the drawing code
+// (index_figures.js).
 std::string FigureScripts(const std::string& data_json);
 std::string FigureCss();
 
