@@ -1,5 +1,6 @@
 #include "deb/report/report_documents.h"
 
+#include <functional>
 #include <sstream>
 
 #include "deb/report/interactive_figures.h"
@@ -41,14 +42,26 @@ std::string Href(const std::string& path) {
   return out;
 }
 
-// " Data: <a>NAME.csv</a>." for the plot files of the same figure, if written.
-std::string DataLinks(const std::vector<Plot>& plots, PlotKind kind, int output) {
+// " Files: <a>NAME.png</a>, <a>NAME.csv</a>." for the plot files of the same
+// figure, if written (an image for slides, the data to plot elsewhere).
+std::string FileLinks(const std::vector<Plot>& plots, const std::string& ext,
+                      const std::function<bool(const Plot&)>& same) {
   std::string s;
+  const auto link = [&](const std::string& file) {
+    s += std::string(s.empty() ? " Files: " : ", ") + "<a href=\"" + Href("plots/" + file) + "\">" +
+         HtmlEscape(file) + "</a>";
+  };
   for (const Plot& p : plots)
-    if (p.kind == kind && p.output == output)
-      s += std::string(s.empty() ? " Data: " : ", ") + "<a href=\"" + Href("plots/" + p.name + ".csv") + "\">" +
-           HtmlEscape(p.name) + ".csv</a>";
+    if (same(p)) {
+      if (!ext.empty()) link(p.name + "." + ext);
+      link(p.name + ".csv");
+    }
   return s.empty() ? s : s + ".";
+}
+
+std::string DataLinks(const DocumentInputs& in, PlotKind kind, int output) {
+  return FileLinks(in.plots, in.image_extension,
+                   [&](const Plot& p) { return p.kind == kind && p.output == output; });
 }
 
 std::string MarkdownFigure(const Plot& p, const std::string& ext) {
@@ -148,16 +161,16 @@ std::string IndexHtml(const DocumentInputs& in) {
     s << FigureElement("cps", o,
                        HtmlEscape("Cumulative power spectrum of " + out.name + ", contributors stacked: the height at f "
                                   "is the variance from the lowest frequency to f." + req) +
-                           DataLinks(in.plots, PlotKind::kCps, oi))
+                           DataLinks(in, PlotKind::kCps, oi))
       << FigureElement(in.asd ? "asd" : "psd", o,
                        HtmlEscape("Power spectral density of " + out.name + " per contributor and in total (black); "
                                   "zooming here zooms the CPS above.") +
-                           DataLinks(in.plots, PlotKind::kSpectrum, oi));
+                           DataLinks(in, PlotKind::kSpectrum, oi));
     s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out));
     s << FigureElement("bands", o,
                        HtmlEscape("Variance of " + out.name + " per frequency band, contributors stacked (variances add up; "
                                   "the table above gives their RMS).") +
-                           DataLinks(in.plots, PlotKind::kBands, oi));
+                           DataLinks(in, PlotKind::kBands, oi));
   }
 
   s << "<h2 id=\"paths\">Paths</h2>\n<p>Magnitude of each contributor's transfer to each output, per source channel, "
@@ -168,13 +181,21 @@ std::string IndexHtml(const DocumentInputs& in) {
       s << "<h3>" << HtmlEscape(con.name + " → " + result.outputs[o].name) << "</h3>\n";
       s << FigureElement("path", i,
                          HtmlEscape("Magnitude of the transfer from " + con.name + " (source " + con.source + ", path " +
-                                    con.path + ") to " + result.outputs[o].name + ", per source channel."));
+                                    con.path + ") to " + result.outputs[o].name + ", per source channel.") +
+                             FileLinks(in.plots, in.image_extension, [&](const Plot& p) {
+                               return p.kind == PlotKind::kPath &&
+                                      p.name == "path_" + FileStem(con.name) + "_to_" + FileStem(result.outputs[o].name);
+                             }));
     }
 
   s << "<h2 id=\"files\">Files</h2>\n<ul class=\"files\">\n";
   if (in.pdf) s << "<li><a href=\"report.pdf\">report.pdf</a> — every plot, after a title page</li>\n";
   s << "<li><a href=\"report.md\">report.md</a> — these tables as Markdown</li>\n";
   for (const auto& f : in.data_files) s << "<li><a href=\"" << Href(f) << "\">" << HtmlEscape(f) << "</a></li>\n";
+  if (const std::string overview = FileLinks(in.plots, in.image_extension,
+                                             [](const Plot& p) { return p.kind == PlotKind::kOverview; });
+      !overview.empty())
+    s << "<li>RMS per output and contributor against the requirements." << overview << "</li>\n";
   if (!in.plots.empty())  // written with the plots' files
     s << "<li><a href=\"plots/colours.csv\">plots/colours.csv</a> — the colour and dash pattern of each "
          "contributor</li>\n";

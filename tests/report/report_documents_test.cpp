@@ -46,6 +46,9 @@ TEST_CASE("index.html is one page with inline style and script, the facts, and a
   CHECK(html.find("Dygraph") != std::string::npos);
   CHECK(html.find("Permission is hereby granted, free of charge") < html.find("Dygraph"));
   CHECK(html.find("<noscript>") != std::string::npos);
+  // Each figure links its plot's image and data, for slides and other tools.
+  CHECK(html.find("<a href=\"plots/z_velocity_cps.png\">") != std::string::npos);
+  CHECK(html.find("<a href=\"plots/z_velocity_cps.csv\">") != std::string::npos);
   CHECK(html.find("id=\"" + OutputAnchor("z_velocity") + "\"") != std::string::npos);
   CHECK(html.find("report.pdf") == std::string::npos);  // not written here
 }
