@@ -335,7 +335,7 @@ int main(int argc, char** argv) {
            report.formats.clear();
            for (const auto& n : names) report.formats.push_back(deb::ParsePlotFormat(n));
          },
-         "Plot formats, comma-separated: png (index.html), pdf (report.pdf), svg; default png,pdf")
+         "Plot formats, comma-separated: png (plots/*.png), pdf (report.pdf), svg; default png,pdf")
       ->delimiter(',')
       ->check(CLI::IsMember({"png", "pdf", "svg"}));
   run->add_option("--digits", report.digits,

@@ -1,7 +1,9 @@
 #include "deb/report/report_documents.h"
 
+#include <functional>
 #include <sstream>
 
+#include "deb/report/interactive_figures.h"
 #include "deb/version.h"
 
 namespace deb::report {
@@ -39,15 +41,26 @@ std::string Href(const std::string& path) {
   return out;
 }
 
-std::string HtmlFigure(const Plot& p, const std::string& ext) {
-  std::ostringstream s;
-  s << "<figure id=\"plot-" << HtmlEscape(p.name) << "\">\n";
-  if (!ext.empty())
-    s << "<img src=\"" << Href("plots/" + p.name + "." + ext) << "\" alt=\"" << HtmlEscape(p.caption) << "\">\n";
-  s << "<figcaption>" << HtmlEscape(p.caption) << " Data: <a href=\"" << Href("plots/" + p.name + ".csv")
-    << "\">" << HtmlEscape(p.name) << ".csv</a>, script: <a href=\"" << Href("plots/" + p.name + ".gp") << "\">"
-    << HtmlEscape(p.name) << ".gp</a>.</figcaption>\n</figure>\n";
-  return s.str();
+// " Files: <a>NAME.png</a>, <a>NAME.csv</a>." for the plot files of the same
+// figure, if written (an image for slides, the data to plot elsewhere).
+std::string FileLinks(const std::vector<Plot>& plots, const std::string& ext,
+                      const std::function<bool(const Plot&)>& same) {
+  std::string s;
+  const auto link = [&](const std::string& file) {
+    s += std::string(s.empty() ? " Files: " : ", ") + "<a href=\"" + Href("plots/" + file) + "\">" +
+         HtmlEscape(file) + "</a>";
+  };
+  for (const Plot& p : plots)
+    if (same(p)) {
+      if (!ext.empty()) link(p.name + "." + ext);
+      link(p.name + ".csv");
+    }
+  return s.empty() ? s : s + ".";
+}
+
+std::string DataLinks(const DocumentInputs& in, PlotKind kind, int output) {
+  return FileLinks(in.plots, in.image_extension,
+                   [&](const Plot& p) { return p.kind == kind && p.output == output; });
 }
 
 std::string MarkdownFigure(const Plot& p, const std::string& ext) {
@@ -66,6 +79,28 @@ std::string OutputLine(const OutputResult& o) {
   return s + ". Signal " + o.signal + ".";
 }
 
+// The verdict at the head of index.html: one line per output, green when
+// every output meets its requirements, red with the guidance when one fails,
+// grey without any requirement.
+std::string VerdictBanner(const BudgetResult& result) {
+  bool all_pass = true, any_required = false;
+  std::string lines;
+  for (const OutputResult& o : result.outputs) {
+    const bool required = o.rms_max || !o.band_requirements.empty();
+    all_pass = all_pass && o.AllPass();
+    any_required = any_required || required;
+    lines += "<p><strong>" + std::string(!required ? "no requirement" : o.AllPass() ? "PASS" : "FAIL") + "</strong> " +
+             HtmlEscape(o.name) + ": RMS " + HtmlEscape(Sig(o.rms(), 4) + " " + UnitText(o.unit));
+    if (o.rms_max) lines += HtmlEscape(" (requirement " + Short(*o.rms_max) + " " + UnitText(o.unit) + ")");
+    lines += ".";
+    if (const std::string fix = GuidanceText(o, result.grid); !fix.empty()) lines += " " + HtmlEscape(fix);
+    lines += "</p>\n";
+  }
+  const char* verdict = !all_pass ? "fail" : any_required ? "pass" : "none";
+  return std::string("<div class=\"verdict ") + verdict + "\" id=\"verdict\">\n" + lines +
+         "</div>\n";
+}
+
 template <typename Fn>
 void ForPlots(const std::vector<Plot>& plots, PlotKind kind, int output, Fn fn) {
   for (const Plot& p : plots)
@@ -82,10 +117,16 @@ std::string IndexHtml(const DocumentInputs& in) {
   std::ostringstream s;
   s << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-    << "<title>deb report: " << HtmlEscape(budget.name) << "</title>\n<style>" << kCss << "</style>\n</head>\n<body>\n";
+    << "<title>deb report: " << HtmlEscape(budget.name) << "</title>\n<style>" << kCss << FigureCss()
+    << "</style>\n</head>\n<body>\n";
   s << "<h1>Dynamic error budget: " << HtmlEscape(budget.name) << "</h1>\n";
   if (!budget.description.empty()) s << "<p class=\"lead\">" << HtmlEscape(budget.description) << "</p>\n";
-  s << "<nav><a href=\"#summary\">Summary</a><a href=\"#overview\">Overview</a>";
+  s << VerdictBanner(result);
+  s << "<noscript><p class=\"noscript\">The figures of this page are drawn by the JavaScript it carries, which "
+       "is disabled: the tables below hold the figures' numbers";
+  if (in.pdf) s << ", and <a href=\"report.pdf\">report.pdf</a> every plot";
+  s << ".</p></noscript>\n";
+  s << "<nav><a href=\"#summary\">Summary</a>";
   for (const OutputResult& o : result.outputs)
     s << "<a href=\"#" << HtmlEscape(OutputAnchor(o.name)) << "\">" << HtmlEscape(o.name) << "</a>";
   s << "<a href=\"#paths\">Paths</a><a href=\"#files\">Files</a></nav>\n";
@@ -103,12 +144,8 @@ std::string IndexHtml(const DocumentInputs& in) {
     s << "</ul>\n";
   }
 
-  s << "<h2 id=\"overview\">Overview</h2>\n";
-  ForPlots(in.plots, PlotKind::kOverview, -1, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
-
   for (std::size_t o = 0; o < result.outputs.size(); ++o) {
     const OutputResult& out = result.outputs[o];
-    const int oi = static_cast<int>(o);
     s << "<h2 id=\"" << HtmlEscape(OutputAnchor(out.name)) << "\">Output " << HtmlEscape(out.name) << " ["
       << HtmlEscape(UnitText(out.unit)) << "]</h2>\n<p" << (out.pass() ? "" : " class=\"fail\"") << ">"
       << HtmlEscape(OutputLine(out)) << "</p>\n";
@@ -116,24 +153,54 @@ std::string IndexHtml(const DocumentInputs& in) {
       s << "<p class=\"guidance\"><strong>" << HtmlEscape(fix) << "</strong></p>\n";
     s << ToHtml(ContributorTable(out, in.digits));
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
-    for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
-      ForPlots(in.plots, k, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+    const std::string req =
+        out.rms_max ? " The dashed red line is the requirement, " + Short(*out.rms_max) + " " + UnitText(out.unit) +
+                          " RMS, as a variance." : "";
+    const int oi = static_cast<int>(o);
+    s << FigureElement("cps", o,
+                       HtmlEscape("Cumulative power spectrum of " + out.name + ", contributors stacked: the height at f "
+                                  "is the variance from the lowest frequency to f." + req) +
+                           DataLinks(in, PlotKind::kCps, oi))
+      << FigureElement(in.asd ? "asd" : "psd", o,
+                       HtmlEscape("Power spectral density of " + out.name + " per contributor and in total (black); "
+                                  "zooming here zooms the CPS above.") +
+                           DataLinks(in, PlotKind::kSpectrum, oi));
     s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out, in.digits));
-    ForPlots(in.plots, PlotKind::kBands, oi, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+    s << FigureElement("bands", o,
+                       HtmlEscape("Variance of " + out.name + " per frequency band, contributors stacked (variances add up; "
+                                  "the table above gives their RMS).") +
+                           DataLinks(in, PlotKind::kBands, oi));
   }
 
   s << "<h2 id=\"paths\">Paths</h2>\n<p>Magnitude of each contributor's transfer to each output, per source channel, "
        "with the unit conversions and weightings the budget applies.</p>\n";
-  ForPlots(in.plots, PlotKind::kPath, -1, [&](const Plot& p) { s << HtmlFigure(p, in.image_extension); });
+  for (std::size_t c = 0, i = 0; c < budget.contributors.size(); ++c)
+    for (std::size_t o = 0; o < result.outputs.size(); ++o, ++i) {
+      const Contributor& con = budget.contributors[c];
+      s << "<h3>" << HtmlEscape(con.name + " → " + result.outputs[o].name) << "</h3>\n";
+      s << FigureElement("path", i,
+                         HtmlEscape("Magnitude of the transfer from " + con.name + " (source " + con.source + ", path " +
+                                    con.path + ") to " + result.outputs[o].name + ", per source channel.") +
+                             FileLinks(in.plots, in.image_extension, [&](const Plot& p) {
+                               return p.kind == PlotKind::kPath &&
+                                      p.name == "path_" + FileStem(con.name) + "_to_" + FileStem(result.outputs[o].name);
+                             }));
+    }
 
   s << "<h2 id=\"files\">Files</h2>\n<ul class=\"files\">\n";
   if (in.pdf) s << "<li><a href=\"report.pdf\">report.pdf</a> — the typeset report: verdict, contents, tables and every plot</li>\n";
   s << "<li><a href=\"report.md\">report.md</a> — these tables as Markdown</li>\n";
   for (const auto& f : in.data_files) s << "<li><a href=\"" << Href(f) << "\">" << HtmlEscape(f) << "</a></li>\n";
+  if (const std::string overview = FileLinks(in.plots, in.image_extension,
+                                             [](const Plot& p) { return p.kind == PlotKind::kOverview; });
+      !overview.empty())
+    s << "<li>RMS per output and contributor against the requirements." << overview << "</li>\n";
   if (!in.plots.empty())  // written with the plots' files
     s << "<li><a href=\"plots/colours.csv\">plots/colours.csv</a> — the colour and dash pattern of each "
          "contributor</li>\n";
-  s << "</ul>\n<p class=\"lead\">Written by deb " << DEB_VERSION << ".</p>\n</body>\n</html>\n";
+  s << "</ul>\n<p class=\"lead\">Written by deb " << DEB_VERSION << ". Figures drawn with dygraphs "
+       "(MIT licence, inlined below with its notice).</p>\n"
+    << FigureScripts(FigureDataJson(budget, result)) << "</body>\n</html>\n";
   return s.str();
 }
 

@@ -1,8 +1,9 @@
 // Internal: not part of the public API.
 // The two readable documents of a report directory: index.html, one
-// self-contained page (inline CSS, no scripts, nothing fetched from the
-// network; images by relative path) for a browser, and report.md with the
-// same sections and tables for terminals and repositories.
+// self-contained page (inline CSS, its figures drawn by inline scripts from
+// inline data, nothing fetched from the network; interactive_figures.h) for
+// a browser, and report.md with the same sections and tables (images by
+// relative path) for terminals and repositories.
 #pragma once
 
 #include <string>
@@ -22,6 +23,7 @@ struct DocumentInputs {
   std::vector<Plot> plots;            // in report order
   std::string image_extension;        // "png", "svg", or "" for no images
   bool pdf = false;                   // report.pdf exists
+  bool asd = false;                   // index.html's spectra open as ASD
   std::vector<std::string> data_files;  // summary.json, output CSVs: relative paths that exist
   int digits = 4;                       // significant digits of the tables (ReportOptions::digits)
 };

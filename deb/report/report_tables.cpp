@@ -247,7 +247,9 @@ std::string ToHtml(const Table& t) {
     for (std::size_t c = 0; c < t.rows[r].size(); ++c) {
       std::string cell = HtmlEscape(t.rows[r][c]);
       if (Emphasised(t, r, c)) cell = "<strong>" + cell + "</strong>";
-      s += std::string(t.numeric[c] ? "<td class=\"num\">" : "<td>") + cell + "</td>";
+      const bool fail = t.rows[r][c] == "FAIL";  // a status column: red in the page
+      s += std::string("<td") + (t.numeric[c] ? (fail ? " class=\"num fail\"" : " class=\"num\"") : fail ? " class=\"fail\"" : "") +
+           ">" + cell + "</td>";
     }
     s += "</tr>\n";
   }

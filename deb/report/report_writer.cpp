@@ -255,6 +255,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   doc.plots = plots;
   doc.pdf = pdf;
   doc.digits = options.digits;
+  doc.asd = options.asd;
   if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
   std::vector<std::string> data = {"summary.json"};
   for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));

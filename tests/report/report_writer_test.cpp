@@ -41,7 +41,7 @@ std::set<std::string> HtmlReferences(const std::string& html) {
   const std::regex attr(R"((?:src|href)="([^"]*)\")");
   for (auto it = std::sregex_iterator(html.begin(), html.end(), attr); it != std::sregex_iterator(); ++it) {
     const std::string ref = (*it)[1];
-    if (!ref.empty() && ref[0] != '#') refs.insert(ref);
+    if (!ref.empty() && ref[0] != '#' && ref.rfind("data:", 0) != 0) refs.insert(ref);
   }
   return refs;
 }
@@ -94,18 +94,13 @@ TEST_CASE("index.html and report.md reference only files that exist and nothing 
   const fs::path dir = TempDir("links") / "report";
   WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, {}, dir.string());
   const std::string html = ReadAll(dir / "index.html");
-  CHECK(html.find("http://") == std::string::npos);
-  CHECK(html.find("https://") == std::string::npos);
-  CHECK(html.find("<script") == std::string::npos);
+  // One file: no image, style sheet or script is loaded (dygraphs' licence
+  // comment names its web page, which is not a reference).
+  CHECK(html.find("<img") == std::string::npos);
+  CHECK(html.find("<link") == std::string::npos);
+  CHECK(html.find("<script src") == std::string::npos);
   const auto refs = HtmlReferences(html);
-  int images = 0;
-  for (const auto& r : refs) {
-    CHECK_MESSAGE(fs::is_regular_file(dir / r), r);
-    images += r.size() > 4 && r.substr(r.size() - 4) == ".png";
-  }
-  int pngs = 0;
-  for (const auto& f : fs::directory_iterator(dir / "plots")) pngs += f.path().extension() == ".png";
-  CHECK(images == pngs);  // every PNG is shown
+  for (const auto& r : refs) CHECK_MESSAGE(fs::is_regular_file(dir / r), r);
   CHECK(refs.count("report.pdf") == 1);
   CHECK(refs.count("summary.json") == 1);
   for (const auto& r : MarkdownReferences(ReadAll(dir / "report.md"))) CHECK_MESSAGE(fs::is_regular_file(dir / r), r);
