@@ -387,6 +387,8 @@ int main(int argc, char** argv) {
       }
     }
     app.parse(argc, argv);
+    // Every command reads units: the database loads while the budget is read.
+    const deb::UnitDatabasePreload units;
     if (*run) {
       report.plot_scripts = report.plots || plot_scripts;
       return Run(budget_file, run_overrides, run_group, out_dir, threads, quiet, strict, report);

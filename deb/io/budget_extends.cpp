@@ -115,7 +115,7 @@ Assembled Resolve(const std::string& path, std::vector<std::string>& chain) {
 
 YamlReader ReadBudgetFile(const std::string& path) {
   YamlReader reader = YamlReader::FromFile(path);
-  if (const YAML::Node root = reader.LoadCopy(); !root.IsMap() || !root["extends"]) return reader;
+  if (!reader.RootHas("extends")) return reader;
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(path, ec);
   std::vector<std::string> chain = {ec ? path : canonical.string()};

@@ -180,9 +180,10 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir, const st
   const auto loader = std::make_shared<const VariantLoader>(io::OverriddenText(reader.text(), overrides, reader.name()),
                                                             reader.positions(), base_dir, out.spec, steps,
                                                             io::OverridesNote(overrides));
-  // Check every path once (with its first value) before any variant loads.
+  // Check every path once (with its first value) before any variant loads,
+  // on one copy: the assignments change values, never what a path reaches.
+  YAML::Node probe = loader->BaseCopy();
   for (std::size_t k = 0; k < steps.size(); ++k) {
-    YAML::Node probe = loader->BaseCopy();
     const std::string why = Assign(probe, steps[k], out.spec.parameters[k], out.spec.parameters[k].values[0]);
     if (!why.empty())
       path_nodes[k].Fail("key path '" + out.spec.parameters[k].key_path + "' does not reach " +

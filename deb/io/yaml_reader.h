@@ -78,6 +78,8 @@ class YamlReader {
                                   std::shared_ptr<const KeyPositions> positions);
 
   YamlNode Root() const;
+  // True when the document is a map with key `field` (no error otherwise).
+  bool RootHas(const std::string& field) const { return root_.IsMap() && root_[field].IsDefined(); }
   const std::string& name() const { return name_; }
   // The document's text, e.g. to load a copy to change (a sweep variant).
   const std::string& text() const { return text_; }
