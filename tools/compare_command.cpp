@@ -19,6 +19,7 @@
 #include "deb/io/comparison_files.h"
 #include "deb/io/result_writer.h"
 #include "deb/report/comparison_documents.h"
+#include "deb/report/comparison_pdf.h"
 #include "deb/report/overlay_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/report_tables.h"
@@ -90,6 +91,8 @@ void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plo
       fs::create_directories(fs::path(dir) / "plots");
       report::WritePlotsAsPng(plots, (fs::path(dir) / "plots").string(), threads);
     }
+    report::WriteComparisonPdf(cmp, plots, (fs::path(dir) / "plots").string(), (fs::path(dir) / "compare.pdf").string(),
+                               threads);
     const std::vector<std::pair<std::string, std::string>> files = {{"compare.json", ComparisonJson(cmp)},
                                                                     {"compare.md", report::ComparisonMarkdown(cmp, plots)},
                                                                     {"compare.html", report::ComparisonHtml(cmp, plots)},

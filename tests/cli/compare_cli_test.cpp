@@ -36,6 +36,14 @@ TEST_CASE("deb compare of a budget with itself writes zero differences and ratio
   }
   CHECK(ReadAll(out / "compare.csv").rfind("output,unit,contributor,band,", 0) == 0);
   CHECK(ReadAll(out / "compare.html").find("<caption>Contributors that changed most</caption>") != std::string::npos);
+  // compare.pdf: the headline and per-output tables, then one figure per overlay plot; no SVG left behind.
+  CHECK(deb::test::PdfPages(out / "compare.pdf") >= 2);
+  if (deb::test::Shell("command -v pdftotext >/dev/null").exit_code == 0) {
+    const auto text = deb::test::Shell("pdftotext \"" + (out / "compare.pdf").string() + "\" -");
+    CHECK(text.out.find("Headline: total RMS per output") != std::string::npos);
+    CHECK(text.out.find("A and B overlaid") != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(out / "plots" / ".pdf_figures"));
   // Two budgets: PSD and CPS overlays per output, as PNG with their data and script.
   for (const char* stem : {"z_velocity_psd_overlay", "z_displacement_cps_overlay"}) {
     CAPTURE(stem);
