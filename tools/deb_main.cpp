@@ -142,6 +142,19 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
         }
         std::printf("  %-24s %s\n", "", modes.c_str());
       }
+      if (!c.channels.empty()) {  // breakdown: channels, largest first
+        std::vector<const deb::ContributorResult::ChannelPart*> parts;
+        for (const auto& p : c.channels) parts.push_back(&p);
+        std::stable_sort(parts.begin(), parts.end(), [](const auto* a, const auto* b) { return a->variance > b->variance; });
+        for (const auto* p : parts) {
+          const std::string label = "  channel " + p->channel;
+          std::printf("  %-24s %14s %7.2f%%\n", label.c_str(), Sig(std::sqrt(std::max(p->variance, 0.0)), digits).c_str(),
+                      o.variance > 0 ? 100.0 * p->variance / o.variance : 0.0);
+        }
+        if (c.cross_variance != 0.0)
+          std::printf("  %-24s %14s %7.2f%%  (variance; correlation between channels)\n", "  cross terms",
+                      Sig(c.cross_variance, digits).c_str(), o.variance > 0 ? 100.0 * c.cross_variance / o.variance : 0.0);
+      }
     }
     PrintGroups(o);
     for (const auto& b : o.band_requirements)

@@ -89,6 +89,9 @@ struct Contributor {
   // The group it belongs to, a path of names from the top ("stage/amplifier",
   // groups.h); empty: none (a top-level term).
   std::string group;
+  // `breakdown: channels`: also the part of each source channel
+  // (ContributorResult::channels).
+  bool breakdown_channels = false;
 };
 
 // The key of the path a contributor drives: the path's name, with the

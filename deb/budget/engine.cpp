@@ -594,13 +594,20 @@ namespace {
 
 // The one-sided PSD of contributor ci on every output (rows: outputs),
 // S_y = h S_u h^H with the output's unit and weighting factors.
+// With `channel_psd`, also each source channel's part |H_rj|^2 S_jj,
+// (*channel_psd)[output][channel][frequency].
 std::vector<std::vector<double>> Propagate(const Budget& budget, std::size_t ci, const PathAnalysis& analysis,
                                            const InputSpectrum& input, const ContributorSetup& setup,
                                            const std::vector<double>& f,
-                                           const OutputFactor& output_factor, int threads) {
+                                           const OutputFactor& output_factor, int threads,
+                                           std::vector<std::vector<std::vector<double>>>* channel_psd = nullptr) {
   const Contributor& c = budget.contributors[ci];
   const std::size_t n = f.size();
   std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
+  const Eigen::Index channels = budget.FindSource(c.source).spectrum->channels();
+  if (channel_psd)
+    channel_psd->assign(budget.outputs.size(),
+                        std::vector<std::vector<double>>(static_cast<std::size_t>(channels), std::vector<double>(n, 0.0)));
   try {
     analysis.ForEachResponse(
         f,
@@ -614,6 +621,12 @@ std::vector<std::vector<double>> Propagate(const Budget& budget, std::size_t ci,
             const int row = setup.row_of_output[o];
             double s = s_diag ? DiagonalForm(h, row, *s_diag) : HermitianForm(h, row, *s_full);
             psd[o][k] = std::max(s * output_factor(o, k), 0.0);  // rounding of a PSD-valued S_u
+            if (channel_psd)
+              for (Eigen::Index j = 0; j < channels; ++j) {
+                const double sjj = s_diag ? (*s_diag)(j) : (*s_full)(j, j).real();
+                (*channel_psd)[o][static_cast<std::size_t>(j)][k] =
+                    std::max(std::norm(h(row, j)) * sjj * output_factor(o, k), 0.0);
+              }
           }
         },
         threads);
@@ -690,6 +703,67 @@ std::vector<std::vector<ContributorResult::Tone>> PropagateTones(const Budget& b
     }
   }
   return tones;
+}
+
+// Per tone, the variance each source channel alone gives at output o:
+// |H_rj(f0) u_j|^2 with the unit conversions and the weighting at f0.
+std::vector<std::vector<double>> ChannelTones(const PathAnalysis& analysis, const std::vector<SpectralLine>& lines,
+                                              const ContributorSetup& setup, std::size_t o) {
+  std::vector<std::vector<double>> v(lines.size());
+  if (lines.empty()) return v;
+  std::vector<double> f0;
+  for (const SpectralLine& l : lines) f0.push_back(l.f_hz);
+  analysis.ForEachResponse(
+      f0,
+      [&](std::size_t k, const Eigen::MatrixXcd& h) {
+        const Eigen::VectorXcd& a = lines[k].rms;
+        for (Eigen::Index j = 0; j < a.size(); ++j) {
+          const std::complex<double> y = h(setup.row_of_output[o], j) * a(j) *
+                                         setup.in_conv[static_cast<std::size_t>(j)].ResponseFactor(f0[k]) *
+                                         setup.out_conv[o].ResponseFactor(f0[k]);
+          v[k].push_back(std::norm(y));
+        }
+      },
+      1);
+  return v;
+}
+
+// cr.channels and cr.cross_variance from each channel's PSD: the CPS of the
+// contributor is split interval by interval in proportion to the channels'
+// mean PSD over the interval (the cross terms taking the rest), so that the
+// parts add up to the contributor's CPS exactly, on the same integration
+// rule; each channel's tones step its CPS as they step the contributor's.
+void BreakDownChannels(const Source& source, const FrequencyGrid& grid,
+                       const std::vector<std::vector<double>>& channel_psd,
+                       const std::vector<std::vector<double>>& channel_tones, ContributorResult* cr) {
+  const std::vector<double>& f = grid.f_hz();
+  // The density's CPS alone (tones taken out again).
+  std::vector<double> density = cr->cps;
+  for (const ContributorResult::Tone& t : cr->tones) {
+    const std::size_t first = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), t.f_hz) - f.begin());
+    for (std::size_t k = first; k < f.size(); ++k) density[k] -= t.variance;
+  }
+  double parts = 0.0;
+  for (std::size_t j = 0; j < channel_psd.size(); ++j) {
+    ContributorResult::ChannelPart p;
+    p.channel = j < source.channel_names.size() ? source.channel_names[j] : std::to_string(j + 1);
+    p.psd = channel_psd[j];
+    p.cps.assign(f.size(), 0.0);
+    for (std::size_t k = 1; k < f.size(); ++k) {
+      const double mean_total = cr->psd[k - 1] + cr->psd[k];
+      const double step = density[k] - density[k - 1];
+      p.cps[k] = p.cps[k - 1] + (mean_total > 0.0 ? step * (p.psd[k - 1] + p.psd[k]) / mean_total : 0.0);
+    }
+    for (std::size_t t = 0; t < cr->tones.size(); ++t) {
+      const std::size_t first =
+          static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), cr->tones[t].f_hz) - f.begin());
+      for (std::size_t k = first; k < f.size(); ++k) p.cps[k] += channel_tones[t][j];
+    }
+    p.variance = p.cps.back();
+    parts += p.variance;
+    cr->channels.push_back(std::move(p));
+  }
+  cr->cross_variance = source.spectrum->IsDiagonal() && cr->tones.empty() ? 0.0 : cr->variance - parts;
 }
 
 // The exact variance of contributor ci on output o into cr (or the reason
@@ -837,8 +911,9 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
     const ContributorSetup& setup = full.setups[ci];
     const OutputFactor output_factor{setup.out_conv, weighting_gain2, f};
     const InputSpectrum input(*source.spectrum, setup.in_conv);
-    std::vector<std::vector<double>> psd =
-        Propagate(budget, ci, analysis, input, setup, f, output_factor, options.threads);
+    std::vector<std::vector<std::vector<double>>> channel_psd;
+    std::vector<std::vector<double>> psd = Propagate(budget, ci, analysis, input, setup, f, output_factor,
+                                                     options.threads, c.breakdown_channels ? &channel_psd : nullptr);
     const std::vector<std::vector<ContributorResult::Tone>> tones =
         PropagateTones(budget, ci, analysis, source.spectrum->Lines(), setup, result.grid);
     const bool purely_tonal = IsPurelyTonal(source);
@@ -865,6 +940,9 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
         if (purely_tonal) cr.exact_variance = tonal;  // |H(f0) a|^2 is the exact variance of a sinusoid
       }
       cr.variance = cr.cps.back();
+      if (c.breakdown_channels)
+        BreakDownChannels(source, result.grid, channel_psd[o], ChannelTones(analysis, source.spectrum->Lines(), setup, o),
+                          &cr);
       if (!purely_tonal)
         AddExactVariance(budget, ci, o, analysis, setup, plan.exact_refusal[ci][o], options, &cr, &result.warnings);
       result.outputs[o].contributors.push_back(std::move(cr));

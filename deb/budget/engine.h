@@ -63,6 +63,18 @@ struct ContributorResult {
     double variance = 0.0;
   };
   std::vector<Tone> tones;
+  // `breakdown: channels`: the part of each source channel j, |H_rj|^2 S_jj
+  // (its PSD, CPS and variance; with the channel's tones). With independent
+  // channels they add up to the contributor exactly; with correlated ones
+  // the rest, 2 Re sum_{i<j} conj(H_ri) S_ij H_rj, is `cross_variance` (it
+  // may be negative: correlation can cancel).
+  struct ChannelPart {
+    std::string channel;
+    std::vector<double> psd, cps;
+    double variance = 0.0;
+  };
+  std::vector<ChannelPart> channels;
+  double cross_variance = 0.0;
   std::vector<double> psd;  // one-sided, output unit^2/Hz, per grid point
   std::vector<double> cps;  // forward CPS, output unit^2
   double variance = 0.0;    // cps.back()

@@ -95,12 +95,18 @@ Output ParseOutput(const YamlNode& node) {
 }
 
 Contributor ParseContributor(const YamlNode& node) {
-  node.AllowOnly({"name", "source", "path", "inputs", "group", "exact", "description"});
+  node.AllowOnly({"name", "source", "path", "inputs", "group", "breakdown", "exact", "description"});
   Contributor c;
   c.name = node.Required("name").AsString();
   c.source = node.Required("source").AsString();
   c.path = node.Required("path").AsString();
   if (auto group = node.Optional("group")) c.group = group->AsString();
+  if (auto breakdown = node.Optional("breakdown")) {
+    if (breakdown->AsString() != "channels")
+      breakdown->Fail("breakdown '" + breakdown->AsString() + "': the one breakdown is 'channels' (the part of each "
+                      "source channel)");
+    c.breakdown_channels = true;
+  }
   if (auto inputs = node.Optional("inputs")) {
     c.inputs = inputs->AsStrings();
     if (c.inputs.empty()) inputs->Fail("name at least one input of the path, or leave 'inputs' out to drive them all");

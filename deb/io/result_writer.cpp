@@ -170,6 +170,15 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
       jc["path"] = cr.path;
       if (!cr.inputs.empty()) jc["inputs"] = cr.inputs;
       if (!cr.group.empty()) jc["group"] = cr.group;
+      if (!cr.channels.empty()) {
+        nlohmann::json parts = nlohmann::json::array();
+        for (const ContributorResult::ChannelPart& p : cr.channels)
+          parts.push_back({{"channel", p.channel},
+                           {"rms", std::sqrt(std::max(p.variance, 0.0))},
+                           {"variance", p.variance},
+                           {"share_of_contributor", cr.variance > 0.0 ? p.variance / cr.variance : 0.0}});
+        jc["breakdown"] = {{"channels", parts}, {"cross_variance", cr.cross_variance}};
+      }
       if (!cr.tones.empty()) {
         nlohmann::json tones = nlohmann::json::array();
         for (const ContributorResult::Tone& t : cr.tones)

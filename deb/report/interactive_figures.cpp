@@ -125,7 +125,7 @@ json PathData(const Budget& budget, const BudgetResult& result, std::size_t c, s
   for (const auto& m : magnitude) series.push_back(&m);
   const std::vector<std::size_t> keep = FigurePoints(f, series, {});
   // Shown first as in the report's path plots (PathRange).
-  const FrequencyRange shown = PathRange(*result.paths.at(budget.contributors[c].path),
+  const FrequencyRange shown = PathRange(*result.paths.at(ContributorPathKey(budget.contributors[c])),
                                          DisplayRange(result.outputs[o], result.grid), result.grid);
   json p = {{"contributor", r.contributor}, {"output", r.output}, {"unit", UnitText(r.unit)},
             {"display_hz", {shown.lo_hz, shown.hi_hz}}, {"f", Frequencies(f, keep)}};
