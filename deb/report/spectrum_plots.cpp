@@ -275,6 +275,38 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
     panel.y.max = 10.0;
     panel.note = "every contributor is zero on this output";
   }
+  // Tones have no density: a marker each, on the total at its frequency,
+  // labelled with its RMS (the largest kMaxToneLabels labelled).
+  struct ToneMark {
+    double f_hz, variance;
+    std::size_t contributor;
+  };
+  std::vector<ToneMark> tones;
+  for (std::size_t c = 0; c < n; ++c)
+    for (const ContributorResult::Tone& t : out.contributors[c].tones)
+      if (t.f_hz >= range.lo_hz && t.f_hz <= range.hi_hz) tones.push_back({t.f_hz, t.variance, c});
+  std::stable_sort(tones.begin(), tones.end(), [](const ToneMark& a, const ToneMark& b) { return a.variance > b.variance; });
+  constexpr std::size_t kMaxToneLabels = 8;
+  for (std::size_t i = 0; i < tones.size() && i < 4 * kMaxToneLabels; ++i) {
+    const ToneMark& t = tones[i];
+    const std::size_t k = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), t.f_hz) - f.begin());
+    const double on_total = value(out.total_psd[std::min(k, f.size() - 1)]);
+    FigureAnnotation m;
+    m.kind = AnnotationKind::kMarker;
+    m.x0 = t.f_hz;
+    m.y0 = top > 0.0 ? std::max(on_total, *panel.y.min) : 1.0;
+    m.colour = ContributorStyle(t.contributor).colour;
+    m.point_type = 9;  // a triangle
+    if (i < kMaxToneLabels)
+      m.label = Enhanced(out.contributors[t.contributor].name) + " " + Short(t.f_hz) + " Hz: " +
+                SigLabel(std::sqrt(t.variance), digits) + " " + UnitLabel(unit) + " RMS";
+    m.label_dx = 0.8;
+    m.label_dy = 0.8 + 1.2 * static_cast<double>(i % 3);
+    panel.annotations.push_back(m);
+  }
+  if (!tones.empty())
+    p.caption += " Triangles mark tones (sinusoids, no density): each at its frequency on the total, labelled with "
+                 "its RMS; the CPS steps there by its variance.";
   panel.key.title = "RMS [" + UnitLabel(unit) + "] (share)";
   const std::string data = p.name + ".csv";
   for (std::size_t c : ShareOrder(out)) {
