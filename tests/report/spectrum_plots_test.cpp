@@ -222,3 +222,28 @@ TEST_CASE("the captions state an output's weighting and metric") {
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("tones are triangles on the total at their frequencies, labelled with their RMS") {
+  // measured_stage.yaml: mains hum at 50 Hz (0.2 mN) and 150 Hz (0.05 mN) through the loop.
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("measured_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const std::vector<Plot> plots = SpectrumPlots(result, 0, {});
+  const auto psd = std::find_if(plots.begin(), plots.end(), [](const Plot& p) { return p.kind == PlotKind::kSpectrum; });
+  REQUIRE(psd != plots.end());
+  std::vector<FigureAnnotation> marks;
+  for (const FigureAnnotation& a : psd->figure.panels.at(0).annotations)
+    if (a.kind == AnnotationKind::kMarker && a.point_type == 9) marks.push_back(a);
+  REQUIRE(marks.size() == 2);
+  CHECK(marks[0].x0 == 50.0);  // the larger first
+  CHECK(marks[1].x0 == 150.0);
+  const OutputResult& out = result.outputs[0];
+  std::size_t hum = 0;
+  while (out.contributors[hum].name != "mains_hum") ++hum;
+  CHECK(marks[0].label.find(SigLabel(std::sqrt(out.contributors[hum].tones[0].variance), 4)) != std::string::npos);
+  CHECK(marks[0].colour == ContributorStyle(hum).colour);
+  CHECK(psd->caption.find("Triangles mark tones") != std::string::npos);
+}
+
+}  // namespace deb::report
