@@ -153,6 +153,7 @@ std::string IndexHtml(const DocumentInputs& in) {
       s << "<p class=\"guidance\"><strong>" << HtmlEscape(fix) << "</strong></p>\n";
     s << ToHtml(ContributorTable(out, in.digits));
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
+    if (const Table groups = GroupTable(out, in.digits); !groups.rows.empty()) s << ToHtml(groups);
     const std::string req =
         out.rms_max ? " The dashed red line is the requirement, " + Short(*out.rms_max) + " " + UnitText(out.unit) +
                           " RMS, as a variance." : "";
@@ -227,6 +228,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
     if (const std::string fix = GuidanceText(out, result.grid); !fix.empty()) s << "**" << fix << "**\n\n";
     s << ToMarkdown(ContributorTable(out, in.digits)) << "\n";
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToMarkdown(modes) << "\n";
+    if (const Table groups = GroupTable(out, in.digits); !groups.rows.empty()) s << ToMarkdown(groups) << "\n";
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });
     s << "### Frequency bands\n\n" << ToMarkdown(BandTable(out, in.digits)) << "\n";

@@ -200,6 +200,8 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
       if (const std::string g = GuidanceText(o, result.grid); !g.empty()) b.push_back(Paragraph(g, 9.5));
     const Table contributors = ContributorTable(o, in.digits);
     b.push_back(TableBlock(contributors.title, TypesetTable(contributors)));
+    if (const Table groups = GroupTable(o, in.digits); !groups.rows.empty())
+      b.push_back(TableBlock(groups.title, TypesetTable(groups)));
     if (const Table modes = ModeTable(o); !modes.rows.empty())
       b.push_back(TableBlock(modes.title, TypesetTable(modes)));
     std::vector<const Plot*> mine;

@@ -5,6 +5,7 @@
 
 #include "deb/budget/allocation.h"
 #include "deb/budget/failure_guidance.h"
+#include "deb/budget/groups.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/spectrum_plots.h"
@@ -149,6 +150,27 @@ Table ModeTable(const OutputResult& o) {
     for (const ModeShare& m : c.top_modes)
       t.rows.push_back({c.name, std::to_string(m.mode), Sig(m.f_hz, 4), Sig(m.zeta, 2), Sig(100.0 * m.share, 3) + " %",
                         c.top_modes_of == ModeSplit::kExactVariance ? "exact variance" : "grid variance"});
+  return t;
+}
+
+Table GroupTable(const OutputResult& o, int digits) {
+  Table t;
+  t.title = "Groups of " + o.name + " [" + UnitText(o.unit) + "]: each the sum of its members at any depth";
+  t.header = {"group", "members", "RMS", "share"};
+  t.numeric = {false, false, true, true};
+  for (const BandResult& b : o.bands) {
+    t.header.push_back(BandText(b.band.lo_hz, b.band.hi_hz));
+    t.numeric.push_back(true);
+  }
+  for (const GroupResult& g : ComputeGroups(o)) {
+    std::string members;
+    for (std::size_t c : g.contributors) members += (members.empty() ? "" : ", ") + o.contributors[c].name;
+    for (const std::string& sub : g.subgroups) members += (members.empty() ? "" : ", ") + sub.substr(sub.rfind('/') + 1) + "/";
+    std::vector<std::string> row = {std::string(2 * static_cast<std::size_t>(g.depth), ' ') + g.name, members,
+                                    Sig(std::sqrt(g.variance), digits), Share(g.variance, o.variance)};
+    for (double v : g.band_variance) row.push_back(Sig(std::sqrt(std::max(v, 0.0)), digits));
+    t.rows.push_back(std::move(row));
+  }
   return t;
 }
 

@@ -47,6 +47,10 @@ Table BandTable(const OutputResult& output, int digits = 4);
 // contributor, mode, f_n, zeta, RMS-equivalent share; no rows without any.
 Table ModeTable(const OutputResult& output);
 
+// The output's groups (groups.h), depth first, each indented by its depth:
+// RMS, share, and RMS per band; no rows when no contributor names a group.
+Table GroupTable(const OutputResult& output, int digits = 4);
+
 // Facts about the run for the head of every document, as (label, value).
 struct ReportFacts {
   std::vector<std::pair<std::string, std::string>> items;

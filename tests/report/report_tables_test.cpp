@@ -3,6 +3,9 @@
 #include <doctest/doctest.h>
 
 #include "deb/io/budget_yaml.h"
+#include "deb/report/plot.h"
+
+#include <cmath>
 #include "tests/support/cli_harness.h"
 
 namespace deb::report {
@@ -128,6 +131,24 @@ TEST_CASE("the summary table gives status and the largest contributor of every o
   const ReportFacts f = MakeFacts(budget, result, "b.yaml", "abc", "today", 0.5);
   CHECK(f.items[0] == std::make_pair(std::string("budget"), std::string("single_axis_isolator")));
   CHECK(f.items.back().second == "all 2 met");
+}
+
+TEST_CASE("the group table lists every group depth first, indented, with its members and the sums") {
+  const BudgetResult r = Evaluate(LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml")));
+  const OutputResult& o = r.outputs[0];
+  const Table t = GroupTable(o, 4);
+  REQUIRE(t.rows.size() == 5);
+  CHECK(t.rows[0][0] == "environment");
+  CHECK(t.rows[2][0] == "stage");
+  CHECK(t.rows[3][0] == "  drive");  // stage/drive, one level down
+  CHECK(t.rows[2][1] == "cable_slab, y_crosstalk, drive/");
+  double environment = 0.0;
+  for (const ContributorResult& c : o.contributors)
+    if (c.group == "environment") environment += c.variance;
+  CHECK(t.rows[0][2] == Sig(std::sqrt(environment), 4));
+  CHECK(t.header.size() == 4 + o.bands.size());
+  // No groups, no rows.
+  CHECK(GroupTable(Evaluate(LoadBudgetFile(test::ExampleBudget())).outputs[0]).rows.empty());
 }
 
 }  // namespace deb::report
