@@ -31,6 +31,7 @@
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
+#include "deb/core/integrate.h"
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 #include "deb/core/suggest.h"
@@ -157,6 +158,15 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
       }
     }
     PrintGroups(o);
+    for (const deb::ReferenceResult& ref : o.references) {
+      const double budget =
+          deb::IntegralBetween(r.grid, o.total_psd, o.total_cps, ref.covered_lo_hz, ref.covered_hi_hz);
+      std::printf("  reference %s (%g-%g Hz): measured rms %s, budget %s, measured/budget %s, unexplained %s\n",
+                  ref.name.c_str(), ref.covered_lo_hz, ref.covered_hi_hz,
+                  Sig(std::sqrt(ref.variance), digits).c_str(), Sig(std::sqrt(budget), digits).c_str(),
+                  budget > 0 ? Sig(std::sqrt(ref.variance / budget), digits).c_str() : "-",
+                  Sig(std::sqrt(std::max(ref.variance - budget, 0.0)), digits).c_str());
+    }
     for (const auto& b : o.band_requirements)
       std::printf("  band %g-%g Hz: rms %s (requirement %g: %s)\n", b.requirement.lo_hz, b.requirement.hi_hz,
                   Sig(b.rms(), digits).c_str(), b.requirement.rms_max, b.pass() ? "PASS" : "FAIL");

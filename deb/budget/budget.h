@@ -64,6 +64,9 @@ struct Output {
   std::optional<OutputMetric> metric;  // moving average / std over a window, after the weighting
   std::optional<double> rms_max;  // requirement, in `unit`
   std::vector<BandRequirement> band_requirements;
+  // Measured spectra of this output (one channel each): drawn and compared
+  // with the budget, never summed (OutputResult::references).
+  std::vector<Source> references;
 };
 
 // Whether a contributor gets an exact (Lyapunov) variance beside its CPS.

@@ -436,6 +436,11 @@ FrequencyGrid BuildGridUnlocated(const Budget& budget, const PathAnalyses& paths
     const auto b = s.spectrum->BreakpointsHz();
     breakpoints.insert(breakpoints.end(), b.begin(), b.end());
   }
+  for (const Output& o : budget.outputs)  // a reference's band edges too: it is integrated on the same grid
+    for (const Source& r : o.references) {
+      const auto b = r.spectrum->BreakpointsHz();
+      breakpoints.insert(breakpoints.end(), b.begin(), b.end());
+    }
   for (const Band& b : budget.bands) {
     breakpoints.push_back(b.lo_hz);
     breakpoints.push_back(b.hi_hz);
@@ -877,6 +882,36 @@ void AddTotalsAndBands(const Output& output, const FrequencyGrid& grid, const st
   }
 }
 
+// The output's references on the grid, converted to its unit (a time
+// derivative is (2 pi f)^2n on a PSD) and weighted as the output is.
+void AddReferences(const Output& output, const FrequencyGrid& grid, const std::vector<double>& weighting_gain2,
+                   OutputResult* r) {
+  const std::vector<double>& f = grid.f_hz();
+  for (const Source& ref : output.references) {
+    ReferenceResult rr;
+    rr.name = ref.name;
+    const UnitConversion conv = ConvertUnit(ref.unit, output.unit);
+    const std::optional<FrequencyInterval> defined = ref.spectrum->DefinedRangeHz();
+    rr.covered_lo_hz = defined ? std::max(defined->lo_hz, grid.min_hz()) : grid.min_hz();
+    rr.covered_hi_hz = defined ? std::min(defined->hi_hz, grid.max_hz()) : grid.max_hz();
+    rr.psd.assign(f.size(), 0.0);
+    for (std::size_t k = 0; k < f.size(); ++k) {
+      if (f[k] < rr.covered_lo_hz || f[k] > rr.covered_hi_hz) continue;
+      double s = ref.spectrum->Psd(f[k])(0) * conv.PsdFactor(f[k]);
+      if (!weighting_gain2.empty()) s *= weighting_gain2[k];
+      rr.psd[k] = std::max(s, 0.0);
+    }
+    rr.cps = CumulativeIntegral(grid, rr.psd);
+    rr.variance = rr.cps.back();
+    for (const BandResult& b : r->bands)
+      rr.band_variance.push_back(b.band.lo_hz >= rr.covered_lo_hz && b.band.hi_hz <= rr.covered_hi_hz
+                                     ? std::optional<double>(IntegralBetween(grid, rr.psd, rr.cps, b.band.lo_hz,
+                                                                             b.band.hi_hz))
+                                     : std::nullopt);
+    r->references.push_back(std::move(rr));
+  }
+}
+
 BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& options) {
   FullPlan full = MakePlan(budget);
   EvaluationPlan& plan = full.plan;
@@ -953,8 +988,15 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
                               &result.outputs);
   }
   Deduplicate(&result.warnings);
-  for (std::size_t o = 0; o < result.outputs.size(); ++o)
+  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
     AddTotalsAndBands(budget.outputs[o], result.grid, plan.bands, &result.outputs[o]);
+    try {
+      AddReferences(budget.outputs[o], result.grid, weighting_gain2[o], &result.outputs[o]);
+    } catch (const InputError& e) {
+      if (!e.key_path().empty()) throw;
+      throw InputError(Key("outputs", o, "references"), e.message());
+    }
+  }
   return result;
 }
 

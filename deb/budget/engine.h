@@ -103,6 +103,19 @@ struct BandRequirementResult {
   bool pass() const;
 };
 
+// A measured spectrum of an output (Output::references), in the output's
+// unit and weighting, on the grid: compared with the budget, not summed.
+struct ReferenceResult {
+  std::string name;
+  std::vector<double> psd, cps;  // one-sided, output unit^2/Hz; 0 outside `covered`
+  double variance = 0.0;         // over the covered part of the grid
+  // The part of the grid where the measurement is defined.
+  double covered_lo_hz = 0.0, covered_hi_hz = 0.0;
+  // Per OutputResult::bands: its variance, or none where the band is not
+  // covered by the measurement.
+  std::vector<std::optional<double>> band_variance;
+};
+
 struct OutputResult {
   std::string name;
   std::string signal;
@@ -115,6 +128,7 @@ struct OutputResult {
   std::optional<OutputMetric> metric;  // variance is then E[MA^2] or E[MSD^2]
   std::vector<BandResult> bands;
   std::vector<BandRequirementResult> band_requirements;
+  std::vector<ReferenceResult> references;
 
   double rms() const;
   bool pass() const;      // the whole-grid requirement; true when there is none

@@ -10,6 +10,7 @@
 #include "deb/io/path_yaml.h"
 #include "deb/io/source_yaml.h"
 #include "deb/io/yaml_reader.h"
+#include "deb/units/unit.h"
 
 namespace deb {
 namespace {
@@ -63,8 +64,9 @@ GridSpec ParseGrid(const YamlNode& node) {
   return g;
 }
 
-Output ParseOutput(const YamlNode& node) {
-  node.AllowOnly({"name", "signal", "unit", "weighting", "metric", "rms_max", "band_requirements", "description"});
+Output ParseOutput(const YamlNode& node, const std::string& base_dir) {
+  node.AllowOnly({"name", "signal", "unit", "weighting", "metric", "rms_max", "band_requirements", "references",
+                  "description"});
   Output o;
   o.name = node.Required("name").AsString();
   o.signal = node.Has("signal") ? node.Required("signal").AsString() : o.name;
@@ -90,6 +92,16 @@ Output ParseOutput(const YamlNode& node) {
         b.Fail(os.str());
       }
       o.band_requirements.push_back(q);
+    }
+  if (auto refs = node.Optional("references"))
+    for (const auto& r : refs->Elements()) {
+      Source ref = io::ParseSource(r, base_dir);
+      if (ref.channels() != 1)
+        r.Fail("a reference is one measured signal of the output: it has " + std::to_string(ref.channels()) +
+               " channels (select one with columns: [...])");
+      const YamlNode unit = r.Has("unit") ? r.Required("unit") : r;
+      io::AtNode(unit, [&] { ConvertUnit(ref.unit, o.unit); });
+      o.references.push_back(std::move(ref));
     }
   return o;
 }
@@ -156,7 +168,7 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
     for (Path& p : paths.Parse(n)) b.paths.push_back(std::move(p));
   b.models = paths.models();
   for (const auto& n : root.Required("contributors").Elements()) b.contributors.push_back(ParseContributor(n));
-  for (const auto& n : root.Required("outputs").Elements()) b.outputs.push_back(ParseOutput(n));
+  for (const auto& n : root.Required("outputs").Elements()) b.outputs.push_back(ParseOutput(n, base_dir));
   if (auto bands = root.Optional("bands"))
     for (const auto& n : bands->Elements()) b.bands.push_back(ParseBand(n));
   try {

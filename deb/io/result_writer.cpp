@@ -13,6 +13,7 @@
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
 #include "deb/core/error.h"
+#include "deb/core/integrate.h"
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
 #include "deb/units/unit.h"
@@ -245,6 +246,38 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
       bands.push_back(jb);
     }
     jo["bands"] = bands;
+    if (!o.references.empty()) {
+      nlohmann::json refs = nlohmann::json::array();
+      for (const ReferenceResult& ref : o.references) {
+        const double budget_covered =
+            IntegralBetween(result.grid, o.total_psd, o.total_cps, ref.covered_lo_hz, ref.covered_hi_hz);
+        nlohmann::json rb = nlohmann::json::array();
+        for (std::size_t b = 0; b < o.bands.size(); ++b) {
+          nlohmann::json jb = {{"lo_hz", o.bands[b].band.lo_hz}, {"hi_hz", o.bands[b].band.hi_hz},
+                               {"budget_rms", std::sqrt(o.bands[b].variance)}};
+          if (const auto& v = ref.band_variance[b]) {
+            jb["measured_rms"] = std::sqrt(*v);
+            jb["ratio"] = o.bands[b].variance > 0.0 ? nlohmann::json(std::sqrt(*v / o.bands[b].variance))
+                                                    : nlohmann::json(nullptr);
+            jb["unexplained_rms"] = std::sqrt(std::max(*v - o.bands[b].variance, 0.0));
+          } else {
+            jb["measured_rms"] = nullptr;  // the band reaches beyond the measurement
+            jb["ratio"] = nullptr;
+            jb["unexplained_rms"] = nullptr;
+          }
+          rb.push_back(jb);
+        }
+        refs.push_back({{"name", ref.name},
+                        {"covered_hz", {ref.covered_lo_hz, ref.covered_hi_hz}},
+                        {"measured_rms", std::sqrt(ref.variance)},
+                        {"budget_rms", std::sqrt(budget_covered)},
+                        {"ratio", budget_covered > 0.0 ? nlohmann::json(std::sqrt(ref.variance / budget_covered))
+                                                       : nlohmann::json(nullptr)},
+                        {"unexplained_rms", std::sqrt(std::max(ref.variance - budget_covered, 0.0))},
+                        {"bands", rb}});
+      }
+      jo["references"] = refs;
+    }
     if (const std::vector<GroupResult> groups = ComputeGroups(o); !groups.empty()) {
       nlohmann::json jg = nlohmann::json::array();
       for (const GroupResult& g : groups) {

@@ -6,6 +6,7 @@
 #include "deb/budget/allocation.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
+#include "deb/core/integrate.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/spectrum_plots.h"
@@ -170,6 +171,27 @@ Table GroupTable(const OutputResult& o, int digits) {
                                     Sig(std::sqrt(g.variance), digits), Share(g.variance, o.variance)};
     for (double v : g.band_variance) row.push_back(Sig(std::sqrt(std::max(v, 0.0)), digits));
     t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+Table ReferenceTable(const OutputResult& o, const FrequencyGrid& grid, int digits) {
+  Table t;
+  t.title = "Does the budget explain the measurement? " + o.name + " [" + UnitText(o.unit) +
+            "]: measured against budget RMS; unexplained = sqrt(max(measured^2 - budget^2, 0))";
+  t.header = {"reference", "band", "budget RMS", "measured RMS", "measured / budget", "unexplained RMS"};
+  t.numeric = {false, false, true, true, true, true};
+  const auto row = [&](const std::string& ref, const std::string& band, double budget, double measured) {
+    t.rows.push_back({ref, band, Sig(std::sqrt(budget), digits), Sig(std::sqrt(measured), digits),
+                      budget > 0.0 ? Sig(std::sqrt(measured / budget), digits) : "–",
+                      Sig(std::sqrt(std::max(measured - budget, 0.0)), digits)});
+  };
+  for (const ReferenceResult& r : o.references) {
+    for (std::size_t b = 0; b < o.bands.size(); ++b)
+      if (r.band_variance[b]) row(r.name, BandText(o.bands[b].band.lo_hz, o.bands[b].band.hi_hz), o.bands[b].variance,
+                                  *r.band_variance[b]);
+    row(r.name, "covered " + BandText(r.covered_lo_hz, r.covered_hi_hz),
+        IntegralBetween(grid, o.total_psd, o.total_cps, r.covered_lo_hz, r.covered_hi_hz), r.variance);
   }
   return t;
 }

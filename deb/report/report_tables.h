@@ -51,6 +51,12 @@ Table ModeTable(const OutputResult& output);
 // RMS, share, and RMS per band; no rows when no contributor names a group.
 Table GroupTable(const OutputResult& output, int digits = 4);
 
+// Per reference (a measured spectrum of the output) and band it covers, and
+// over all it covers: the budget's RMS, the measured RMS, measured / budget
+// and the unexplained RMS, sqrt(max(measured^2 - budget^2, 0)); no rows
+// without references.
+Table ReferenceTable(const OutputResult& output, const FrequencyGrid& grid, int digits = 4);
+
 // Facts about the run for the head of every document, as (label, value).
 struct ReportFacts {
   std::vector<std::pair<std::string, std::string>> items;
