@@ -216,10 +216,13 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
       << ": one-sided " << quantity << " in " << unit_text << ", per contributor and total\n";
   csv << "frequency_hz";
   for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
-  csv << ",total\n";
+  csv << ",total";
+  for (const ReferenceResult& r : out.references) csv << ',' << CsvField("measured: " + r.name);
+  csv << '\n';
   double top = 0.0, bottom = HUGE_VAL;
   std::vector<const std::vector<double>*> drawn = {&out.total_psd};
   for (const auto& c : out.contributors) drawn.push_back(&c.psd);
+  for (const ReferenceResult& r : out.references) drawn.push_back(&r.psd);
   for (std::size_t k : PlotPoints(f, drawn, range.lo_hz, range.hi_hz)) {
     csv << CsvNumber(f[k]);
     const bool shown = f[k] >= range.lo_hz && f[k] <= range.hi_hz;
@@ -229,9 +232,19 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
       if (v > 0.0 && shown) bottom = std::min(bottom, v);
     }
     const double v = value(out.total_psd[k]);
-    csv << ',' << CsvNumber(v) << '\n';
+    csv << ',' << CsvNumber(v);
     if (shown) top = std::max(top, v);
+    // A reference outside the part of the grid it covers: no point (NaN).
+    for (const ReferenceResult& r : out.references) {
+      const bool covered = f[k] >= r.covered_lo_hz && f[k] <= r.covered_hi_hz;
+      csv << ',' << (covered ? CsvNumber(value(r.psd[k])) : std::string("NaN"));
+      if (covered && shown) top = std::max(top, value(r.psd[k]));
+    }
+    csv << '\n';
   }
+  if (!out.references.empty())
+    p.caption += " Grey dashed: the measured reference(s), never summed (the report's table compares them band by "
+                 "band).";
   p.csv = csv.str();
 
   FigurePanel panel;
@@ -320,6 +333,19 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
     s.dash = st.dash;
     s.width = 3.0;  // wider than the total, so that a dominant contributor shows on both sides of it
     panel.series.push_back(std::move(s));
+  }
+  for (std::size_t i = 0; i < out.references.size(); ++i) {
+    const ReferenceResult& r = out.references[i];
+    FigureSeries m;
+    m.name = "measured: " + r.name;
+    m.key = Enhanced(r.name) + " (reference): " + SigLabel(std::sqrt(r.variance), digits) + ", " +
+            SigLabel(r.covered_lo_hz, 3) + "–" + SigLabel(r.covered_hi_hz, 3) + " Hz";
+    m.data = data;
+    m.y_columns = {3 + n + i};
+    m.colour = "#707070";
+    m.dash = "(8,5)";
+    m.width = 2.5;
+    panel.series.push_back(m);
   }
   FigureSeries t;  // drawn last: on top of every contributor
   t.name = "total";

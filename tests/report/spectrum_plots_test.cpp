@@ -247,3 +247,28 @@ TEST_CASE("tones are triangles on the total at their frequencies, labelled with 
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a measured reference is a grey dashed series on the PSD plot, NaN outside what it covers") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const std::vector<Plot> plots = SpectrumPlots(result, 0, {});
+  const auto psd = std::find_if(plots.begin(), plots.end(), [](const Plot& p) { return p.kind == PlotKind::kSpectrum; });
+  REQUIRE(psd != plots.end());
+  const auto& series = psd->figure.panels.at(0).series;
+  const auto ref = std::find_if(series.begin(), series.end(), [](const FigureSeries& s) { return s.name == "measured: measured"; });
+  REQUIRE(ref != series.end());
+  CHECK(ref->dash != "solid");
+  CHECK(ref->y_columns == std::vector<std::size_t>{3 + result.outputs[0].contributors.size()});
+  CHECK(series.back().name == "total");  // still drawn last
+  // The first data row (0.1 Hz) lies below the measurement's 0.216 Hz: no point there.
+  const std::string& csv = psd->csv;
+  const std::size_t first = csv.find("\n0.1,");
+  REQUIRE(first != std::string::npos);
+  const std::string row = csv.substr(first + 1, csv.find('\n', first + 1) - first - 1);
+  CHECK(row.substr(row.rfind(',') + 1) == "NaN");
+  CHECK(psd->caption.find("measured reference") != std::string::npos);
+}
+
+}  // namespace deb::report
