@@ -135,7 +135,10 @@ void Budget::Validate() const {
     std::optional<Path> selected;  // the inputs the contributor drives (`inputs:`)
     if (!c.inputs.empty())
       AtKeyPath(key + ".inputs", [&] { selected = SelectPathInputs(full, c.inputs); });
-    const Path& p = selected ? *selected : full;
+    std::optional<Path> combined;  // with a row per output that combines signals
+    if (std::any_of(outputs.begin(), outputs.end(), [](const Output& o) { return !o.combination.empty(); }))
+      combined = WithOutputCombinations(selected ? *selected : full, outputs);
+    const Path& p = combined ? *combined : selected ? *selected : full;
     if (s.channels() != p.system.inputs()) {
       std::ostringstream os;
       os << "source '" << s.name << "' has " << s.channels() << " channel(s) but ";
@@ -185,6 +188,20 @@ void Budget::Validate() const {
       throw InputError(Indexed("bands", i), os.str());
     }
   }
+}
+
+Path WithOutputCombinations(const Path& path, const std::vector<Output>& outputs) {
+  Path p = path;
+  for (std::size_t o = 0; o < outputs.size(); ++o) {
+    if (outputs[o].combination.empty()) continue;
+    try {
+      p = AddCombinedOutput(p, outputs[o].name, outputs[o].combination);
+    } catch (const InputError& e) {
+      const std::string key = Indexed("outputs", o) + ".combination" + e.key_path();
+      throw InputError(key, "output '" + outputs[o].name + "' (path '" + path.name + "'): " + e.message());
+    }
+  }
+  return p;
 }
 
 std::string ContributorPathKey(const Contributor& c) {

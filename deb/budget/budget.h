@@ -12,6 +12,7 @@
 
 #include "deb/budget/output_metric.h"
 #include "deb/budget/path.h"
+#include "deb/budget/path_composition.h"
 #include "deb/budget/source.h"
 #include "deb/core/enum_names.h"
 #include "deb/core/frequency_grid.h"
@@ -67,7 +68,14 @@ struct Output {
   // Measured spectra of this output (one channel each): drawn and compared
   // with the budget, never summed (OutputResult::references).
   std::vector<Source> references;
+  // A weighted sum of signals (AddCombinedOutput); then `signal` is the
+  // output's name, the row that every contributor's path gains.
+  std::vector<SignalTerm> combination;
 };
+
+// The path with a row for every output that combines signals, named after
+// the output. @throws InputError at "outputs[o].combination[.signal]".
+Path WithOutputCombinations(const Path& path, const std::vector<Output>& outputs);
 
 // Whether a contributor gets an exact (Lyapunov) variance beside its CPS.
 // kAuto: whenever the source is white and the path stable; kRequired: an

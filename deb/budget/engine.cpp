@@ -215,7 +215,8 @@ PathAnalyses AnalysePaths(const Budget& budget) {
     const std::string key = ContributorPathKey(c);
     if (paths.count(key)) continue;
     const Path& full = budget.FindPath(c.path);
-    const Path path = c.inputs.empty() ? full : SelectPathInputs(full, c.inputs);  // Validate checked the names
+    // Validate checked the names and the combinations.
+    const Path path = WithOutputCombinations(c.inputs.empty() ? full : SelectPathInputs(full, c.inputs), budget.outputs);
     std::vector<int> rows;
     for (const Output& o : budget.outputs) rows.push_back(path.OutputIndex(o.signal));
     try {

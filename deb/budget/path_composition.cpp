@@ -1,6 +1,7 @@
 #include "deb/budget/path_composition.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <utility>
 
@@ -189,6 +190,63 @@ Path SelectPathInputs(const Path& path, const std::vector<std::string>& inputs) 
   }
   p.system = path.system.SelectInputs(columns);
   return p;
+}
+
+Path AddCombinedOutput(const Path& path, const std::string& name, const std::vector<SignalTerm>& terms) {
+  if (terms.empty()) throw InputError("a combination needs at least one term (signal: weight)");
+  if (path.OutputIndex(name) >= 0)
+    throw InputError("path '" + path.name + "' already has a signal '" + name + "': name the combined output otherwise");
+  const int p = path.system.outputs();
+  Eigen::RowVectorXd weights = Eigen::RowVectorXd::Zero(p);
+  std::string unit;
+  for (const SignalTerm& t : terms) {
+    const int row = path.OutputIndex(t.signal);
+    if (row < 0)
+      throw InputError("." + t.signal, "path '" + path.name + "' has no signal '" + t.signal + "'" +
+                                           DidYouMean(t.signal, path.output_names));
+    if (!std::isfinite(t.weight)) throw InputError("." + t.signal, "the weight is not finite");
+    const std::string term_unit = UnitProduct(t.unit, path.output_units[row]);
+    if (unit.empty()) unit = term_unit;
+    const UnitConversion c = AtKeyPath("." + t.signal, [&] { return ConvertUnit(term_unit, unit); });
+    if (!c.IsPureScale())
+      throw InputError("." + t.signal, "the term " + t.signal + " is in " + term_unit + ", the combination in " + unit +
+                                           " (its first term's unit): they differ by a time derivative; every term "
+                                           "must be the same quantity");
+    weights(row) += t.weight * c.scale;
+  }
+  Path q = path;
+  q.output_names.push_back(name);
+  q.output_units.push_back(unit);
+  const int m = path.system.inputs();
+  if (path.IsModal()) {
+    auto modal = std::make_shared<ModalModel>(*path.modal);
+    modal->phi_out.conservativeResize(p + 1, Eigen::NoChange);
+    modal->phi_out.row(p) = weights * path.modal->phi_out;
+    modal->output_names.push_back(name);
+    if (modal->residual.size() > 0) {
+      modal->residual.conservativeResize(p + 1, Eigen::NoChange);
+      modal->residual.row(p) = weights * path.modal->residual;
+    }
+    q.modal = std::move(modal);
+    q.system = StateSpace::Gain(Eigen::MatrixXd::Zero(p + 1, m));
+    return q;
+  }
+  if (path.HasMeasuredData()) {
+    Eigen::MatrixXd stack(p + 1, p);
+    stack.topRows(p).setIdentity();
+    stack.row(p) = weights;
+    q.measured = std::make_shared<const FrequencyModel>(
+        FrequencyModel::Series(*path.measured, FrequencyModel(StateSpace::Gain(stack))));
+    q.system = StateSpace::Gain(Eigen::MatrixXd::Zero(p + 1, m));
+    return q;
+  }
+  Eigen::MatrixXd c(p + 1, path.system.states()), d(p + 1, m);
+  c.topRows(p) = path.system.C();
+  c.row(p) = weights * path.system.C();
+  d.topRows(p) = path.system.D();
+  d.row(p) = weights * path.system.D();
+  q.system = StateSpace(path.system.A(), path.system.B(), c, d);
+  return q;
 }
 
 void CheckFeedbackSign(int sign) {

@@ -45,6 +45,24 @@ Path FeedbackOfPaths(const PathPart& plant, const PathPart& controller, int sign
 //   for an unknown name, and for an empty list or a name given twice.
 Path SelectPathInputs(const Path& path, const std::vector<std::string>& inputs);
 
+// One term of a combined output: weight [unit] times a path output signal.
+struct SignalTerm {
+  std::string signal;
+  double weight = 1.0;
+  std::string unit = "1";  // of the weight
+};
+
+// The path with one more output row, `name` = sum_i weight_i signal_i (a
+// line of sight or an image shift as a weighted sum of node motions), in
+// the unit of the first term (its weight's unit times its signal's); every
+// term must convert to it by a pure scale. The row is formed from H's rows
+// (state space: C and D rows; modal: mode-shape rows; measured: a gain after
+// the data), so that cross terms are exact: its PSD is not a sum of PSDs.
+// @throws InputError (the key path ".<signal>" of the offending term, for the
+//   caller to prefix) for a signal the path lacks, a unit that does not fit,
+//   no terms, or a name the path already has.
+Path AddCombinedOutput(const Path& path, const std::string& name, const std::vector<SignalTerm>& terms);
+
 // @throws InputError unless sign is -1 (negative feedback) or +1.
 void CheckFeedbackSign(int sign);
 

@@ -1,5 +1,7 @@
 #include "deb/io/budget_yaml.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <sstream>
@@ -66,7 +68,7 @@ GridSpec ParseGrid(const YamlNode& node) {
 
 Output ParseOutput(const YamlNode& node, const std::string& base_dir) {
   node.AllowOnly({"name", "signal", "unit", "weighting", "metric", "rms_max", "band_requirements", "references",
-                  "description"});
+                  "combination", "description"});
   Output o;
   o.name = node.Required("name").AsString();
   o.signal = node.Has("signal") ? node.Required("signal").AsString() : o.name;
@@ -93,6 +95,28 @@ Output ParseOutput(const YamlNode& node, const std::string& base_dir) {
       }
       o.band_requirements.push_back(q);
     }
+  if (auto comb = node.Optional("combination")) {
+    if (node.Has("signal"))
+      node.Required("signal").Fail("give 'signal' or 'combination', not both: a combination is its own signal");
+    if (!comb->IsMap()) comb->Fail("a combination is a map signal: weight, e.g. {x_dot: 1, beta_dot: -210 mm}");
+    for (const std::string& signal : comb->Keys()) {
+      const YamlNode w = comb->Required(signal);
+      SignalTerm t;
+      t.signal = signal;
+      // "-210 mm": a number, then its unit; a plain number is dimensionless.
+      const std::string text = w.AsString();
+      const std::size_t space = text.find_first_of(" \t");
+      const std::string number = text.substr(0, space);
+      char* end = nullptr;
+      t.weight = std::strtod(number.c_str(), &end);
+      if (number.empty() || !end || *end != '\0' || !std::isfinite(t.weight))
+        w.Fail("weight '" + text + "' is not a number with an optional unit, e.g. -210 mm");
+      if (space != std::string::npos) t.unit = text.substr(text.find_first_not_of(" \t", space));
+      io::AtNode(w, [&] { ValidateUnit(t.unit); });
+      o.combination.push_back(t);
+    }
+    o.signal = o.name;
+  }
   if (auto refs = node.Optional("references"))
     for (const auto& r : refs->Elements()) {
       Source ref = io::ParseSource(r, base_dir);
