@@ -45,7 +45,8 @@ Budget TwoContributors(double rms_max) {
   b.sources = {White("a", 2.0), White("b", 0.5)};
   const double w = 2.0 * 3.141592653589793 * 5.0;
   b.paths = {Plant("resonance", {w * w}, {1.0, 0.04 * w, w * w}), Plant("lowpass", {20.0}, {1.0, 20.0})};
-  b.contributors = {{"ca", "a", "resonance", ExactVariance::kAuto}, {"cb", "b", "lowpass", ExactVariance::kAuto}};
+  b.contributors = {{"ca", "a", "resonance", ExactVariance::kAuto, {}, {}, false},
+                    {"cb", "b", "lowpass", ExactVariance::kAuto, {}, {}, false}};
   Output o;
   o.name = "y";
   o.signal = "y";

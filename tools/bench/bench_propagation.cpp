@@ -80,9 +80,9 @@ deb::Budget MakeBudget(std::shared_ptr<const deb::Spectrum> spectrum, std::mt199
   p.output_units.assign(kOutputs, "um/s");
   b.paths.push_back(p);
 
-  b.contributors.push_back({"noise_plant", "noise", "plant", deb::ExactVariance::kAuto});
+  b.contributors.push_back({"noise_plant", "noise", "plant", deb::ExactVariance::kAuto, {}, {}, false});
   for (int o = 0; o < kOutputs; ++o)
-    b.outputs.push_back({"out" + std::to_string(o), p.output_names[o], "um/s", {}, {}, {}, {}});
+    b.outputs.push_back({"out" + std::to_string(o), p.output_names[o], "um/s", {}, {}, {}, {}, {}, {}});
   return b;
 }
 
