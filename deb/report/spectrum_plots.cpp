@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "deb/budget/failure_guidance.h"
+#include "deb/budget/groups.h"
 #include "deb/report/figure_script.h"
 #include "deb/report/plot_points.h"
 #include "deb/report/plot_style.h"
@@ -482,12 +483,96 @@ std::string RmsTics(double variance_max, double scale, const std::vector<std::pa
   return os.str();
 }
 
+namespace {
+
+// The output seen at one level of its group tree: for `group` "" the
+// top-level groups and the contributors in no group, with the output's
+// total and requirement; else the direct members of that group (its
+// contributors, and each subgroup summed into one layer named "sub/"), with
+// the group's total and no requirement.
+OutputResult GroupLevel(const OutputResult& out, const std::vector<GroupResult>& groups, const std::string& group) {
+  OutputResult level = out;
+  level.contributors.clear();
+  level.bands.clear();
+  level.band_requirements.clear();
+  level.references.clear();
+  const auto summed = [&](const GroupResult& g) {
+    ContributorResult c;
+    c.name = g.name + "/";
+    c.psd.assign(out.total_psd.size(), 0.0);
+    c.cps.assign(out.total_cps.size(), 0.0);
+    for (std::size_t i : g.all_contributors) {
+      for (std::size_t k = 0; k < c.psd.size(); ++k) {
+        c.psd[k] += out.contributors[i].psd[k];
+        c.cps[k] += out.contributors[i].cps[k];
+      }
+      c.variance += out.contributors[i].variance;
+    }
+    return c;
+  };
+  for (const ContributorResult& c : out.contributors)
+    if (c.group == group) level.contributors.push_back(c);
+  for (const GroupResult& g : groups) {
+    const std::size_t cut = g.path.rfind('/');
+    const std::string parent = cut == std::string::npos ? "" : g.path.substr(0, cut);
+    if (parent == group) level.contributors.push_back(summed(g));
+  }
+  if (!group.empty()) {
+    for (const GroupResult& g : groups)
+      if (g.path == group) {
+        const ContributorResult all = summed(g);
+        level.total_psd = all.psd;
+        level.total_cps = all.cps;
+        level.variance = all.variance;
+      }
+    level.name = out.name + " · " + group;
+    level.rms_max.reset();
+  }
+  return level;
+}
+
+}  // namespace
+
+std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec) {
+  const OutputResult& out = result.outputs[output];
+  const std::vector<GroupResult> groups = ComputeGroups(out);
+  std::vector<Plot> plots;
+  if (groups.empty()) return plots;
+  // A result holding only this output's level, at its index (StackedPlot reads result.outputs[output]).
+  BudgetResult level;
+  level.budget_name = result.budget_name;
+  level.grid = result.grid;
+  level.outputs.resize(output + 1);
+  const auto add = [&](const std::string& group, const std::string& stem, const std::string& lead) {
+    level.outputs[output] = GroupLevel(out, groups, group);
+    Plot p = StackedPlot(level, output, false, digits, spec);
+    // Its files under the plot's own name: the script and the figure read the data by file name.
+    const std::string old_data = p.name + ".csv";
+    p.name = FileStem(out.name) + stem;
+    const std::string new_data = p.name + ".csv";
+    for (std::size_t at = p.script.find(old_data); at != std::string::npos; at = p.script.find(old_data, at + new_data.size()))
+      p.script.replace(at, old_data.size(), new_data);
+    for (FigurePanel& panel : p.figure.panels)
+      for (FigureSeries& series : panel.series)
+        if (series.data == old_data) series.data = new_data;
+    p.caption = lead + p.caption;
+    plots.push_back(std::move(p));
+  };
+  add("", "_cps_groups", "By group (each layer a top-level group, summed, or a contributor in none): ");
+  for (const GroupResult& g : groups)
+    if (g.contributors.size() + g.subgroups.size() >= 2)
+      add(g.path, "_cps_group_" + FileStem(g.path),
+          "Group " + g.path + " (its members; a subgroup summed into one layer \"name/\"): ");
+  return plots;
+}
+
 std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
                                 const Output* spec) {
   std::vector<Plot> plots;
   plots.push_back(StackedPlot(result, output, false, options.digits, spec));
   if (options.reverse_cps) plots.push_back(StackedPlot(result, output, true, options.digits, spec));
   plots.push_back(SpectrumPlot(result, output, options.asd, options.digits, spec));
+  for (Plot& p : GroupCpsPlots(result, output, options.digits, spec)) plots.push_back(std::move(p));
   return plots;
 }
 

@@ -47,8 +47,15 @@ std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid
 // Contributor indices of an output by decreasing variance (ties: budget order).
 std::vector<std::size_t> ShareOrder(const OutputResult& output);
 
-// CPS, [reverse CPS,] PSD or ASD of output `output`, in that order. With
-// the output's definition `spec`, the captions state its weighting.
+// With groups (groups.h): a stacked CPS of the top level (each top-level
+// group summed into one layer) and one drill-down per group with two or more
+// direct members (its contributors, its subgroups summed), named
+// <output>_cps_groups and <output>_cps_group_<path>; none without groups.
+std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec);
+
+// CPS, [reverse CPS,] PSD or ASD of output `output`, then the group CPS
+// plots, in that order. With the output's definition `spec`, the captions
+// state its weighting.
 std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
                                 const Output* spec = nullptr);
 

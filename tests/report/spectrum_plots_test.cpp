@@ -272,3 +272,37 @@ TEST_CASE("a measured reference is a grey dashed series on the PSD plot, NaN out
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("group CPS plots: the top level sums each group into one layer, a drill-down stacks its members") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const std::vector<Plot> plots = GroupCpsPlots(result, 0, 4, &budget.outputs[0]);
+  // Top level, then environment, stage, stage/drive and metrology (facility has one member: no drill-down).
+  std::vector<std::string> names;
+  for (const Plot& p : plots) names.push_back(p.name);
+  CHECK(names == std::vector<std::string>{"position_cps_groups", "position_cps_group_environment",
+                                          "position_cps_group_stage", "position_cps_group_stage_drive",
+                                          "position_cps_group_metrology"});
+  // The top level's layers end at the groups' variances; the data file is the plot's own.
+  const Plot& top = plots[0];
+  CHECK(top.script.find("position_cps_groups.csv") != std::string::npos);
+  for (const FigureSeries& s : top.figure.panels.at(0).series)
+    if (!s.data.empty()) CHECK(s.data == "position_cps_groups.csv");
+  CHECK(top.caption.rfind("By group", 0) == 0);
+  // The stage drill-down: cable_slab, y_crosstalk and drive/ (the subgroup summed), its total the stage's.
+  const Plot& stage = plots[2];
+  CHECK(stage.csv.find("cable_slab") != std::string::npos);
+  CHECK(stage.csv.find("drive/") != std::string::npos);
+  CHECK(stage.csv.find("amplifier") == std::string::npos);
+  double v = 0.0;
+  for (const ContributorResult& c : result.outputs[0].contributors)
+    if (c.group.rfind("stage", 0) == 0) v += c.variance;
+  CHECK(stage.figure.panels.at(0).title.find(SigLabel(std::sqrt(v), 4)) != std::string::npos);
+  // Without groups: none.
+  const BudgetResult plain = Evaluate(LoadBudgetFile(test::ExampleBudget()));
+  CHECK(GroupCpsPlots(plain, 0, 4, nullptr).empty());
+}
+
+}  // namespace deb::report
