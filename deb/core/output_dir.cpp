@@ -52,7 +52,10 @@ void CleanStaleTemporaries(const fs::path& parent, const fs::path& target) {
     bool old = false;
     const long pid = TemporaryPid(it->path().filename().string(), prefix, &old);
     if (!IsDeadProcess(pid)) continue;
-    if (!it->is_directory(ec) || it->is_symlink(ec) || !HasMarker(it->path())) continue;  // only what deb wrote
+    if (!it->is_directory(ec) || it->is_symlink(ec)) continue;
+    // Only what deb wrote: a marked directory, or an empty one (a run killed
+    // between creating its directory and writing the marker into it).
+    if (!HasMarker(it->path()) && (old || !IsEmptyDirectory(it->path()))) continue;
     (old ? stale_old : stale_new).push_back(it->path());
   }
   for (const fs::path& p : stale_old) {

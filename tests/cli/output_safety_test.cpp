@@ -165,6 +165,9 @@ TEST_CASE("a report that a killed run had set aside comes back; a live run's tem
   const fs::path live = dir / (".rep.tmp-" + std::to_string(DeadPid()));  // looks stale, but holds no marker
   fs::create_directory(live);
   std::ofstream(live / "keep") << "x";
+  // A run killed between creating its directory and writing the marker: an empty directory, removed.
+  const fs::path empty = dir / (".rep.tmp-" + std::to_string(DeadPid()));
+  fs::create_directory(empty);
   // A run that fails while writing (no gnuplot) still cleans up and restores.
   ::setenv("DEB_GNUPLOT", "/nonexistent", 1);
   CHECK(RunDeb({"run", ExampleBudget("single_axis_isolator.yaml"), "--out", target.string()}) == 4);
@@ -173,6 +176,7 @@ TEST_CASE("a report that a killed run had set aside comes back; a live run's tem
   CHECK(!fs::exists(aside));
   CHECK(!fs::exists(partial));
   CHECK(fs::exists(live / "keep"));  // no marker: not deb's to remove
+  CHECK(!fs::exists(empty));
   fs::remove_all(dir);
 }
 
