@@ -30,6 +30,14 @@ using nlohmann::json;
 // the short text ("1.234e-18"), not 17 digits.
 double Rounded(double value, int digits) {
   if (!std::isfinite(value) || value == 0.0) return value;
+  // value to `digits` significant digits, as the nearest double: an integer
+  // times or over an exact power of ten (10^0..10^22) is correctly rounded,
+  // as strtod of the printed digits would be, without the text.
+  constexpr double kExact[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                               1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const int shift = digits - 1 - static_cast<int>(std::floor(std::log10(std::abs(value))));
+  if (shift >= 0 && shift <= 22) return std::round(value * kExact[shift]) / kExact[shift];
+  if (shift < 0 && -shift <= 22) return std::round(value / kExact[-shift]) * kExact[-shift];
   char text[32];
   std::snprintf(text, sizeof(text), "%.*g", digits, value);
   return std::strtod(text, nullptr);
