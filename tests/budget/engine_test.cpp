@@ -64,7 +64,7 @@ Budget OnePathBudget(const Source& source, const Path& path, const std::string& 
   b.name = "test budget";
   b.sources = {source};
   b.paths = {path};
-  b.contributors = {{"c", source.name, path.name, exact}};
+  b.contributors = {{"c", source.name, path.name, exact, {}, {}, false}};
   for (int i = 0; i < path.system.outputs(); ++i) {
     Output o;
     o.name = "out" + std::to_string(i);
@@ -402,7 +402,7 @@ TEST_CASE("contributors add up: total CPS, shares of variance and band variances
                            MakePath(StateSpace::Gain(MatrixXd::Identity(1, 1)), "um", "um", "pa"), "um");
   b.sources.push_back(WhiteSource(s_b, "um", "b"));
   b.paths.push_back(MakePath(Tf({1.0}, {0.01, 1.0}), "um", "um", "pb"));
-  b.contributors.push_back({"d", "b", "pb", ExactVariance::kAuto});
+  b.contributors.push_back({"d", "b", "pb", ExactVariance::kAuto, {}, {}, false});
   b.bands = {{1.0, 10.0}, {10.0, 100.0}};
   const BudgetResult r = Evaluate(b);
   const OutputResult& out = r.outputs[0];

@@ -46,7 +46,7 @@ Budget LoopBudget(const std::vector<Path>& paths) {
   s.channel_names = {"f"};
   b.sources = {s};
   b.paths = paths;
-  for (const Path& p : paths) b.contributors.push_back({"c_" + p.name, "force", p.name, ExactVariance::kOff});
+  for (const Path& p : paths) b.contributors.push_back({"c_" + p.name, "force", p.name, ExactVariance::kOff, {}, {}, false});
   Output o;
   o.name = "x";
   o.signal = paths.front().output_names.front();

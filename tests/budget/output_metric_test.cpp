@@ -40,7 +40,7 @@ Budget FirstOrderNoise(double s0, double a, const std::vector<OutputMetric>& met
   p.input_units = {"N"};
   p.output_units = {"um"};
   b.paths = {p};
-  b.contributors = {{"c", "w", "lag", ExactVariance::kAuto}};
+  b.contributors = {{"c", "w", "lag", ExactVariance::kAuto, {}, {}, false}};
   for (std::size_t i = 0; i < metrics.size(); ++i) {
     Output o;
     o.name = "y" + std::to_string(i);

@@ -37,7 +37,7 @@ Budget LowPass(double s0, double tau) {
   p.output_units = {"um"};
   b.sources = {s};
   b.paths = {p};
-  b.contributors = {{"c", "w", "lag", ExactVariance::kAuto}};
+  b.contributors = {{"c", "w", "lag", ExactVariance::kAuto, {}, {}, false}};
   Output o;
   o.name = "y";
   o.signal = "y";
