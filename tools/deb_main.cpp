@@ -31,7 +31,6 @@
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
-#include "deb/core/integrate.h"
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 #include "deb/core/suggest.h"
@@ -159,8 +158,7 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
     }
     PrintGroups(o);
     for (const deb::ReferenceResult& ref : o.references) {
-      const double budget =
-          deb::IntegralBetween(r.grid, o.total_psd, o.total_cps, ref.covered_lo_hz, ref.covered_hi_hz);
+      const double budget = ref.budget_variance;
       std::printf("  reference %s (%g-%g Hz): measured rms %s, budget %s, measured/budget %s, unexplained %s\n",
                   ref.name.c_str(), ref.covered_lo_hz, ref.covered_hi_hz,
                   Sig(std::sqrt(ref.variance), digits).c_str(), Sig(std::sqrt(budget), digits).c_str(),

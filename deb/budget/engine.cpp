@@ -655,26 +655,17 @@ std::vector<std::vector<double>> Propagate(const Budget& budget, std::size_t ci,
 // Per output, the variance of each of the source's tones through the
 // contributor's path: y = W(f0) u_out(f0) H_row(f0) (u_in(f0) .* a), with
 // the unit conversions at f0 (a time derivative is j 2 pi f0).
-// @throws InputError at the source's tones for a tone outside the grid or
-//   on a pole of the path (H not finite at f0).
+// @throws InputError at the source's tones for a tone on a pole of the path
+//   (H not finite at f0).
 std::vector<std::vector<ContributorResult::Tone>> PropagateTones(const Budget& budget, std::size_t ci,
                                                                  const PathAnalysis& analysis,
                                                                  const std::vector<SpectralLine>& lines,
-                                                                 const ContributorSetup& setup,
-                                                                 const FrequencyGrid& grid) {
+                                                                 const ContributorSetup& setup) {
   if (lines.empty()) return {};
   const Contributor& c = budget.contributors[ci];
   const std::string at = Key("sources", IndexOf(budget.sources, c.source), "spectrum.tones");
-  std::vector<double> f0;
-  for (const SpectralLine& l : lines) {
-    if (l.f_hz < grid.min_hz() || l.f_hz > grid.max_hz()) {
-      std::ostringstream os;
-      os << "the tone at " << l.f_hz << " Hz of source '" << c.source << "' lies outside the frequency grid ["
-         << grid.min_hz() << ", " << grid.max_hz() << "] Hz: widen the grid (min_hz, max_hz) to reach it";
-      throw InputError(at, os.str());
-    }
-    f0.push_back(l.f_hz);
-  }
+  std::vector<double> f0;  // on the grid's range: CheckToneCoverage
+  for (const SpectralLine& l : lines) f0.push_back(l.f_hz);
   const std::size_t outputs = budget.outputs.size();
   std::vector<std::vector<ContributorResult::Tone>> tones(outputs, std::vector<ContributorResult::Tone>(lines.size()));
   try {
@@ -734,6 +725,13 @@ std::vector<std::vector<double>> ChannelTones(const PathAnalysis& analysis, cons
   return v;
 }
 
+// A tone's step in a CPS: `variance` added from the first grid point at or
+// above f_hz on (a negative variance takes the step out again).
+void AddStep(const std::vector<double>& f, double f_hz, double variance, std::vector<double>* cps) {
+  const std::size_t first = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), f_hz) - f.begin());
+  for (std::size_t k = first; k < f.size(); ++k) (*cps)[k] += variance;
+}
+
 // cr.channels and cr.cross_variance from each channel's PSD: the CPS of the
 // contributor is split interval by interval in proportion to the channels'
 // mean PSD over the interval (the cross terms taking the rest), so that the
@@ -746,8 +744,7 @@ void BreakDownChannels(const Source& source, const FrequencyGrid& grid,
   // The density's CPS alone (tones taken out again).
   std::vector<double> density = cr->cps;
   for (const ContributorResult::Tone& t : cr->tones) {
-    const std::size_t first = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), t.f_hz) - f.begin());
-    for (std::size_t k = first; k < f.size(); ++k) density[k] -= t.variance;
+    AddStep(f, t.f_hz, -t.variance, &density);
   }
   double parts = 0.0;
   for (std::size_t j = 0; j < channel_psd.size(); ++j) {
@@ -760,11 +757,7 @@ void BreakDownChannels(const Source& source, const FrequencyGrid& grid,
       const double step = density[k] - density[k - 1];
       p.cps[k] = p.cps[k - 1] + (mean_total > 0.0 ? step * (p.psd[k - 1] + p.psd[k]) / mean_total : 0.0);
     }
-    for (std::size_t t = 0; t < cr->tones.size(); ++t) {
-      const std::size_t first =
-          static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), cr->tones[t].f_hz) - f.begin());
-      for (std::size_t k = first; k < f.size(); ++k) p.cps[k] += channel_tones[t][j];
-    }
+    for (std::size_t t = 0; t < cr->tones.size(); ++t) AddStep(f, cr->tones[t].f_hz, channel_tones[t][j], &p.cps);
     p.variance = p.cps.back();
     parts += p.variance;
     cr->channels.push_back(std::move(p));
@@ -904,6 +897,7 @@ void AddReferences(const Output& output, const FrequencyGrid& grid, const std::v
     }
     rr.cps = CumulativeIntegral(grid, rr.psd);
     rr.variance = rr.cps.back();
+    rr.budget_variance = IntegralBetween(grid, r->total_psd, r->total_cps, rr.covered_lo_hz, rr.covered_hi_hz);
     for (const BandResult& b : r->bands)
       rr.band_variance.push_back(b.band.lo_hz >= rr.covered_lo_hz && b.band.hi_hz <= rr.covered_hi_hz
                                      ? std::optional<double>(IntegralBetween(grid, rr.psd, rr.cps, b.band.lo_hz,
@@ -951,7 +945,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
     std::vector<std::vector<double>> psd = Propagate(budget, ci, analysis, input, setup, f, output_factor,
                                                      options.threads, c.breakdown_channels ? &channel_psd : nullptr);
     const std::vector<std::vector<ContributorResult::Tone>> tones =
-        PropagateTones(budget, ci, analysis, source.spectrum->Lines(), setup, result.grid);
+        PropagateTones(budget, ci, analysis, source.spectrum->Lines(), setup);
     const bool purely_tonal = IsPurelyTonal(source);
 
     std::vector<std::size_t> split;  // outputs whose modes are split on the grid
@@ -970,8 +964,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
         double tonal = 0.0;
         for (const ContributorResult::Tone& t : cr.tones) {
           tonal += t.variance;
-          const std::size_t first = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), t.f_hz) - f.begin());
-          for (std::size_t k = first; k < f.size(); ++k) cr.cps[k] += t.variance;
+          AddStep(f, t.f_hz, t.variance, &cr.cps);
         }
         if (purely_tonal) cr.exact_variance = tonal;  // |H(f0) a|^2 is the exact variance of a sinusoid
       }
@@ -1018,8 +1011,7 @@ double ContributorVarianceBetween(const FrequencyGrid& grid, const ContributorRe
   std::vector<double> density_cps = c.cps;
   double tonal = 0.0;
   for (const ContributorResult::Tone& t : c.tones) {
-    const std::size_t first = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), t.f_hz) - f.begin());
-    for (std::size_t k = first; k < f.size(); ++k) density_cps[k] -= t.variance;
+    AddStep(f, t.f_hz, -t.variance, &density_cps);
     if (lo_hz < t.f_hz && t.f_hz <= hi_hz) tonal += t.variance;
   }
   return IntegralBetween(grid, c.psd, density_cps, lo_hz, hi_hz) + tonal;

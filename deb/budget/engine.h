@@ -109,6 +109,7 @@ struct ReferenceResult {
   std::string name;
   std::vector<double> psd, cps;  // one-sided, output unit^2/Hz; 0 outside `covered`
   double variance = 0.0;         // over the covered part of the grid
+  double budget_variance = 0.0;  // the output's (the budget's) over the same part
   // The part of the grid where the measurement is defined.
   double covered_lo_hz = 0.0, covered_hi_hz = 0.0;
   // Per OutputResult::bands: its variance, or none where the band is not

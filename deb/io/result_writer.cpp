@@ -13,7 +13,6 @@
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
 #include "deb/core/error.h"
-#include "deb/core/integrate.h"
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
 #include "deb/units/unit.h"
@@ -249,8 +248,7 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
     if (!o.references.empty()) {
       nlohmann::json refs = nlohmann::json::array();
       for (const ReferenceResult& ref : o.references) {
-        const double budget_covered =
-            IntegralBetween(result.grid, o.total_psd, o.total_cps, ref.covered_lo_hz, ref.covered_hi_hz);
+        const double budget_covered = ref.budget_variance;
         nlohmann::json rb = nlohmann::json::array();
         for (std::size_t b = 0; b < o.bands.size(); ++b) {
           nlohmann::json jb = {{"lo_hz", o.bands[b].band.lo_hz}, {"hi_hz", o.bands[b].band.hi_hz},

@@ -154,7 +154,7 @@ std::string IndexHtml(const DocumentInputs& in) {
     s << ToHtml(ContributorTable(out, in.digits));
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
     if (const Table groups = GroupTable(out, in.digits); !groups.rows.empty()) s << ToHtml(groups);
-    if (const Table refs = ReferenceTable(out, result.grid, in.digits); !refs.rows.empty()) s << ToHtml(refs);
+    if (const Table refs = ReferenceTable(out, in.digits); !refs.rows.empty()) s << ToHtml(refs);
     const std::string req =
         out.rms_max ? " The dashed red line is the requirement, " + Short(*out.rms_max) + " " + UnitText(out.unit) +
                           " RMS, as a variance." : "";
@@ -230,7 +230,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
     s << ToMarkdown(ContributorTable(out, in.digits)) << "\n";
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToMarkdown(modes) << "\n";
     if (const Table groups = GroupTable(out, in.digits); !groups.rows.empty()) s << ToMarkdown(groups) << "\n";
-    if (const Table refs = ReferenceTable(out, result.grid, in.digits); !refs.rows.empty())
+    if (const Table refs = ReferenceTable(out, in.digits); !refs.rows.empty())
       s << ToMarkdown(refs) << "\n";
     for (PlotKind k : {PlotKind::kCps, PlotKind::kReverseCps, PlotKind::kSpectrum})
       ForPlots(in.plots, k, oi, [&](const Plot& p) { s << MarkdownFigure(p, in.image_extension); });

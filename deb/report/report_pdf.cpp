@@ -202,7 +202,7 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
     b.push_back(TableBlock(contributors.title, TypesetTable(contributors)));
     if (const Table groups = GroupTable(o, in.digits); !groups.rows.empty())
       b.push_back(TableBlock(groups.title, TypesetTable(groups)));
-    if (const Table refs = ReferenceTable(o, result.grid, in.digits); !refs.rows.empty())
+    if (const Table refs = ReferenceTable(o, in.digits); !refs.rows.empty())
       b.push_back(TableBlock(refs.title, TypesetTable(refs)));
     if (const Table modes = ModeTable(o); !modes.rows.empty())
       b.push_back(TableBlock(modes.title, TypesetTable(modes)));

@@ -6,7 +6,6 @@
 #include "deb/budget/allocation.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
-#include "deb/core/integrate.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/plot.h"
 #include "deb/report/spectrum_plots.h"
@@ -175,7 +174,7 @@ Table GroupTable(const OutputResult& o, int digits) {
   return t;
 }
 
-Table ReferenceTable(const OutputResult& o, const FrequencyGrid& grid, int digits) {
+Table ReferenceTable(const OutputResult& o, int digits) {
   Table t;
   t.title = "Does the budget explain the measurement? " + o.name + " [" + UnitText(o.unit) +
             "]: measured against budget RMS; unexplained = sqrt(max(measured^2 - budget^2, 0))";
@@ -190,8 +189,7 @@ Table ReferenceTable(const OutputResult& o, const FrequencyGrid& grid, int digit
     for (std::size_t b = 0; b < o.bands.size(); ++b)
       if (r.band_variance[b]) row(r.name, BandText(o.bands[b].band.lo_hz, o.bands[b].band.hi_hz), o.bands[b].variance,
                                   *r.band_variance[b]);
-    row(r.name, "covered " + BandText(r.covered_lo_hz, r.covered_hi_hz),
-        IntegralBetween(grid, o.total_psd, o.total_cps, r.covered_lo_hz, r.covered_hi_hz), r.variance);
+    row(r.name, "covered " + BandText(r.covered_lo_hz, r.covered_hi_hz), r.budget_variance, r.variance);
   }
   return t;
 }

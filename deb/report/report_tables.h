@@ -55,7 +55,7 @@ Table GroupTable(const OutputResult& output, int digits = 4);
 // over all it covers: the budget's RMS, the measured RMS, measured / budget
 // and the unexplained RMS, sqrt(max(measured^2 - budget^2, 0)); no rows
 // without references.
-Table ReferenceTable(const OutputResult& output, const FrequencyGrid& grid, int digits = 4);
+Table ReferenceTable(const OutputResult& output, int digits = 4);
 
 // Facts about the run for the head of every document, as (label, value).
 struct ReportFacts {
