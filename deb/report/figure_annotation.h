@@ -17,6 +17,7 @@ enum class AnnotationKind {
   kLabel,           // `label` starting at (x0, y0), offset by (label_dx, label_dy)
   kText,            // `label` at graph coordinates (x0, y0) in 0..1
   kCircle,          // centre (x0, y0), radius x1 in x units (equal axes)
+  kKeyEntry,        // only an entry in the key: a line, or with point_type > 0 a marker, or a fill
 };
 
 struct FigureAnnotation {
@@ -30,6 +31,9 @@ struct FigureAnnotation {
   int point_type = 7;  // markers
   double label_dx = 1.0, label_dy = 1.0;  // label offset from a marker, in characters
   bool on_y2 = false;  // y in the y2 axis' coordinates
+  bool behind = false;  // drawn under the data (lines and segments); else over it
+  double point_size = 1.6;  // markers and key entries of a marker
+  bool fill_sample = false;  // kKeyEntry: a fill of `colour` (semi-transparent), not a line
 };
 
 }  // namespace deb::report

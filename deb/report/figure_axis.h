@@ -20,6 +20,7 @@ struct FigureAxis {
   std::string format;              // tic format, e.g. "%g", "10^{%L}"; empty: gnuplot's
   // Explicit tics (value, enhanced label); empty: gnuplot's.
   std::vector<std::pair<double, std::string>> tics;
+  bool tics_added = false;  // the explicit tics come on top of gnuplot's, not instead
   bool shown = true;        // false: no tics, no label (the y2 axis of most plots)
   bool minor_grid = true;   // grid lines at the minor tics (off on very long log axes)
   bool grid = true;         // grid lines at the major tics (off for bar categories)

@@ -16,7 +16,9 @@
 
 namespace deb::report {
 
-enum class KeyPlacement { kNone, kOutsideRight, kInsideTopRight, kInsideTopLeft, kBelow };
+// kBesideGrid: right of a grid of panels, once for all of them (the
+// panels leave it room); the other panels have none.
+enum class KeyPlacement { kNone, kOutsideRight, kInsideTopRight, kInsideTopLeft, kBelow, kAbove, kBesideGrid };
 
 struct FigureKey {
   KeyPlacement placement = KeyPlacement::kOutsideRight;
@@ -37,14 +39,21 @@ struct FigurePanel {
   double height = 1.0;      // share of the page, relative to the other panels
   double bar_width = 0.0;   // kBars, in x units; 0: gnuplot's
   bool equal_axes = false;  // one unit as long on x as on y (a Nyquist plot)
+  // A panel with a kHeatMap series: its colour axis and palette (colours
+  // from the low end to the high end).
+  FigureAxis colour_axis;
+  std::vector<std::string> palette;
 };
 
 struct PlotFigure {
-  std::string title;                // enhanced text above all panels (multiplot); one panel uses its own
+  std::string title;                // enhanced text above all panels (multiplot; a line break starts a smaller line); one panel uses its own
   std::vector<FigurePanel> panels;  // top to bottom, sharing the x axis
   // Panels per row: 1 stacks them over a shared x axis; more lays them out
   // in a grid, row by row, each with its own axes.
   std::size_t columns = 1;
+  // Stacked panels: the right margin, in characters, that holds the key
+  // beside them; 0: the default, room for long entries.
+  double key_margin = 0.0;
 };
 
 // The series named `name` on panel `panel`, or nullptr.
