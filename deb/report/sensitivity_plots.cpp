@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "deb/report/figure_script.h"
 #include "deb/report/plot_style.h"
 #include "deb/version.h"
 
@@ -66,37 +67,60 @@ std::vector<Plot> TornadoPlots(const std::vector<Sensitivity>& all, const Budget
     p.csv = csv.str();
     if (!(m > 0.0)) m = 1.0;
 
-    std::ostringstream s;
-    s << "reset\n" << StylePreamble();
-    s << "set title " << Quote(Enhanced(out.name + ": elasticity of the variance, by parameter")) << "\n";
-    s << "set xlabel " << Quote("elasticity (d var / var) / (dp / p)") << "\n";
-    s << "set xrange [" << CsvNumber(-1.3 * m) << ":" << CsvNumber(1.3 * m) << "]\n";
-    s << "set yrange [-0.7:" << n - 0.3 << "]\nunset grid\nset grid xtics linestyle 101\nset ytics scale 0 (";
+    // Bars top to bottom at y = n-1 .. 0, named on the y axis; the total's
+    // bars black, each contributor's share in its colour, narrower.
+    FigurePanel panel;
+    panel.title = Enhanced(out.name + ": elasticity of the variance, by parameter");
+    panel.key.placement = KeyPlacement::kNone;
+    panel.x.label = "elasticity (d var / var) / (dp / p)";
+    panel.x.min = -1.3 * m;  // symmetric about 0, the largest bar + 30 %: room for its value
+    panel.x.max = 1.3 * m;
+    panel.x.minor_grid = false;
+    panel.y.min = -0.7;
+    panel.y.max = static_cast<double>(n) - 0.3;
+    panel.y.grid = panel.y.minor_grid = false;
     for (std::size_t i = 0; i < n; ++i) {
       const TornadoBar& b = bars[i];
-      const std::string label = b.contributor == "total" ? b.parameter + ": total" : "of which " + b.contributor;
-      s << (i ? ", " : "") << Quote(Enhanced(label)) << " " << n - 1 - i;
+      panel.y.tics.push_back({static_cast<double>(n - 1 - i),
+                              Enhanced(b.contributor == "total" ? b.parameter + ": total" : "of which " + b.contributor)});
     }
-    s << ")\nset arrow 1 from 0, graph 0 to 0, graph 1 nohead linecolor rgb '#404040' linewidth 1\n";
-    s << "set key off\n";
-    const std::string file = Quote(p.name + ".csv");
-    std::vector<std::string> clauses;
-    // The total's bars, then each contributor's in its colour.
-    clauses.push_back(file + " using (column(5) < 0 ? column(2) / 2 : NaN):1:(abs(column(2)) / 2):(0.36) "
-                             "with boxxyerror fillstyle solid 1.0 linecolor rgb " + Quote(kTotalColour));
+    panel.y2.shown = false;
+    const std::string data = p.name + ".csv";
+    const auto bars_of = [&](const std::string& name, double colour_index, const std::string& colour, double height) {
+      FigureSeries s;
+      s.name = name;
+      s.kind = SeriesKind::kHorizontalBars;
+      s.data = data;
+      s.x_column = 2;
+      s.y_columns = {1};
+      s.where_column = 5;
+      s.where_value = colour_index;
+      s.colour = colour;
+      s.bar_height = height;
+      return s;
+    };
+    panel.series.push_back(bars_of("total", -1.0, kTotalColour, 0.72));
     for (std::size_t c = 0; c < out.contributors.size(); ++c)
-      clauses.push_back(file + " using (column(5) == " + std::to_string(c) +
-                        " ? column(2) / 2 : NaN):1:(abs(column(2)) / 2):(0.26) with boxxyerror fillstyle solid 1.0 "
-                        "linecolor rgb " + Quote(ContributorStyle(c).colour));
-    // Values at the bar ends, outside them.
-    clauses.push_back(file + " using (column(2) >= 0 ? column(2) : NaN):1:(sprintf('%.3g', column(2))) "
-                             "with labels left offset 0.6,0 font ',10'");
-    clauses.push_back(file + " using (column(2) < 0 ? column(2) : NaN):1:(sprintf('%.3g', column(2))) "
-                             "with labels right offset -0.6,0 font ',10'");
-    s << "plot ";
-    for (std::size_t i = 0; i < clauses.size(); ++i) s << (i ? ", \\\n     " : "") << clauses[i];
-    s << "\n";
-    p.script = s.str();
+      panel.series.push_back(
+          bars_of(out.contributors[c].name, static_cast<double>(c), ContributorStyle(c).colour, 0.52));
+    FigureSeries values;  // at the bar ends, outside them
+    values.name = "values";
+    values.kind = SeriesKind::kLabels;
+    values.data = data;
+    values.x_column = 2;
+    values.y_columns = {1};
+    values.label_column = 2;
+    values.label_format = "%.3g";
+    values.labels_beside_end = true;
+    panel.series.push_back(values);
+    FigureAnnotation zero;
+    zero.kind = AnnotationKind::kVerticalLine;
+    zero.x0 = 0.0;
+    zero.colour = "#404040";
+    zero.width = 1.0;
+    panel.annotations.push_back(zero);
+    p.figure.panels.push_back(std::move(panel));
+    p.script = EmitFigure(p.figure);
     plots.push_back(std::move(p));
   }
   return plots;

@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "deb/report/figure_script.h"
+#include "deb/report/plot_style.h"
+
 namespace deb::report {
 namespace {
 
@@ -55,13 +58,43 @@ TEST_CASE("the tornado chart names every bar on the y axis, largest on top, and 
   nominal.outputs = {Output()};
   const auto plots = TornadoPlots(All(), nominal);
   REQUIRE(plots.size() == 1);
-  CHECK(plots[0].name == "y_tornado");
-  const std::string& s = plots[0].script;
-  CHECK(s.find("'m: total' 4") != std::string::npos);
-  CHECK(s.find("'of which b' 3") != std::string::npos);
-  CHECK(s.find("'k: total' 2") != std::string::npos);
-  CHECK(s.find("set xrange [-1.3:1.3]") != std::string::npos);  // symmetric about 0, the largest bar + 30 %
-  CHECK(plots[0].csv.find("\n4,-1,m,total,-1\n") != std::string::npos);
+  const Plot& p = plots[0];
+  CHECK(p.name == "y_tornado");
+  CHECK(p.script == EmitFigure(p.figure));
+  REQUIRE(p.figure.panels.size() == 1);
+  const FigurePanel& panel = p.figure.panels[0];
+  // The y axis names the bars top to bottom at n-1 .. 0: ordered by |elasticity| (m: -1 before k: 0.25).
+  using Tic = std::pair<double, std::string>;
+  CHECK(panel.y.tics == std::vector<Tic>{{4, "m: total"}, {3, "of which b"}, {2, "k: total"}, {1, "of which a"},
+                                         {0, "of which b"}});
+  REQUIRE(panel.y.min);
+  CHECK(*panel.y.min < 0.0);
+  CHECK(*panel.y.max > 4.0);
+  // x symmetric about 0, the largest bar + 30 %.
+  CHECK(*panel.x.min == doctest::Approx(-1.3));
+  CHECK(*panel.x.max == doctest::Approx(1.3));
+  // The total's bars black, then each contributor's in its report colour, each reading the rows of its colour index.
+  REQUIRE(panel.series.size() == 4);
+  CHECK(panel.series[0].kind == SeriesKind::kHorizontalBars);
+  CHECK(panel.series[0].colour == kTotalColour);
+  CHECK(panel.series[0].where_value == -1.0);
+  const FigureSeries* b = FindSeries(p.figure, "b");
+  REQUIRE(b);
+  CHECK(b->colour == ContributorStyle(1).colour);
+  CHECK(b->where_column == 5);
+  CHECK(b->where_value == 1.0);
+  CHECK(b->bar_height < panel.series[0].bar_height);
+  CHECK(b->x_column == 2);  // the value
+  CHECK(b->y_columns == std::vector<std::size_t>{1});  // the position
+  CHECK(panel.series[3].kind == SeriesKind::kLabels);
+  CHECK(panel.series[3].labels_beside_end);
+  // The zero line.
+  REQUIRE(panel.annotations.size() == 1);
+  CHECK(panel.annotations[0].kind == AnnotationKind::kVerticalLine);
+  CHECK(panel.annotations[0].x0 == 0.0);
+  // The CSV row of a bar sits at its tic's position.
+  CHECK(p.csv.find("\n4,-1,m,total,-1\n") != std::string::npos);
+  CHECK(p.csv.find("\n0,-0.25,k,b,1\n") != std::string::npos);
 }
 
 }  // namespace deb::report
