@@ -11,6 +11,7 @@
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
 #include "deb/budget/comparison.h"
+#include "deb/report/figure_script.h"
 #include "deb/report/gnuplot_runner.h"
 #include "deb/report/plot_points.h"
 #include "deb/report/plot_style.h"
@@ -20,8 +21,6 @@
 
 namespace deb::report {
 namespace {
-
-std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
 
 bool Shown(const OutputResult& o, std::size_t c) { return o.contributors[c].variance >= kNegligibleShare * o.variance; }
 
@@ -83,53 +82,60 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
   Block(csv, label_b, b, ob, cps, range);
   p.csv = csv.str();
 
-  std::ostringstream s;
-  s << "reset\n" << StylePreamble() << FrequencyAxis(range, a.grid);
-  s << "set title " << Quote(Enhanced(oa.name + (cps ? ": cumulative power spectrum" : ": power spectral density"))) << "\n";
-  std::string per;  // CPS: variance in units of `scale`
+  FigurePanel panel;
+  panel.title = Enhanced(oa.name + (cps ? ": cumulative power spectrum" : ": power spectral density"));
+  panel.x = FrequencyFigureAxis(range, a.grid);
+  double scale = 1.0;  // CPS: variance in units of `scale`
+  const std::optional<double> req = oa.rms_max ? oa.rms_max : ob.rms_max;
   if (cps) {
-    const std::optional<double> req = oa.rms_max ? oa.rms_max : ob.rms_max;
     const double y_max = std::max({oa.variance, ob.variance, req ? *req * *req : 0.0, 1e-300}) * 1.06;
     const int e = static_cast<int>(std::floor(std::log10(y_max)));
-    const double scale = (e >= 4 || e <= -3) ? std::pow(10.0, e) : 1.0;
-    per = scale == 1.0 ? "" : "/" + CsvNumber(scale);
+    scale = (e >= 4 || e <= -3) ? std::pow(10.0, e) : 1.0;
     const std::string scale_label = scale == 1.0 ? "" : "10^{" + std::to_string(e) + "} ";
-    s << "set ylabel " << Quote("cumulative variance [" + scale_label + UnitLabel(VarianceUnit(unit)) + "]") << "\n";
-    s << "set y2label " << Quote("cumulative RMS [" + UnitLabel(unit) + "]") << "\n";
-    s << "set yrange [0:" << CsvNumber(y_max / scale) << "]\nset y2range [0:" << CsvNumber(y_max / scale) << "]\n";
-    s << "set format y '%g'\nset ytics nomirror\n"
-      << RmsTics(y_max, scale, {{std::sqrt(oa.variance), Sig(std::sqrt(oa.variance))},
+    panel.y.label = "cumulative variance [" + scale_label + UnitLabel(VarianceUnit(unit)) + "]";
+    panel.y.min = 0.0;
+    panel.y.max = y_max / scale;
+    panel.y.format = "%g";
+    panel.y2 = panel.y;
+    panel.y2.label = "cumulative RMS [" + UnitLabel(unit) + "]";
+    panel.y2.format.clear();
+    panel.y2.tics = RmsTicList(y_max, scale,
+                               {{std::sqrt(oa.variance), Sig(std::sqrt(oa.variance))},
                                 {std::sqrt(ob.variance), Sig(std::sqrt(ob.variance))},
-                                {req.value_or(0.0), Short(req.value_or(0.0))}})
-      << "\n";
+                                {req.value_or(0.0), Short(req.value_or(0.0))}});
   } else {
     double top = 0.0, bottom = HUGE_VAL;
     PsdExtent(a, oa, range, top, bottom);
     PsdExtent(b, ob, range, top, bottom);
-    s << "set ylabel " << Quote("PSD [" + UnitLabel(VarianceUnit(unit) + "/Hz") + "]") << "\n";
-    s << "set logscale y 10\nset format y '10^{%L}'\n";
+    panel.y.label = "PSD [" + UnitLabel(VarianceUnit(unit) + "/Hz") + "]";
+    panel.y.scale = AxisScale::kLog;
+    panel.y.format = "10^{%L}";
     if (top > 0.0) {
       const double lo = std::max(bottom, top * std::pow(10.0, -kOverlayPsdDecades));
-      s << "set yrange [" << CsvNumber(std::pow(10.0, std::floor(std::log10(lo)))) << ":"
-        << CsvNumber(std::pow(10.0, std::ceil(std::log10(top)))) << "]\n";
+      panel.y.min = std::pow(10.0, std::floor(std::log10(lo)));
+      panel.y.max = std::pow(10.0, std::ceil(std::log10(top)));
     }
+    panel.y2.shown = false;
   }
   // Who A and B are heads the key (labels are user text).
-  s << "set key outside right top Left reverse title "
-    << QuoteLines(std::vector<std::string>{Enhanced("A: " + label_a) + " (solid)", Enhanced("B: " + label_b) + " (dashed)",
-                                           "RMS [" + UnitLabel(unit) + "]"})
-    << "\n";
-  std::vector<std::string> clauses;
-  const std::string file = Quote(p.name + ".csv");
+  panel.key.title = Enhanced("A: " + label_a) + " (solid)\n" + Enhanced("B: " + label_b) + " (dashed)\nRMS [" +
+                    UnitLabel(unit) + "]";
+  const std::string file = p.name + ".csv";
   const std::size_t na = oa.contributors.size();
-  const auto y = [&](std::size_t column) {
-    return cps ? "(" + Col(column) + per + ")" : "(" + Col(column) + " > 0 ? " + Col(column) + " : NaN)";
-  };
   for (int block = 0; block < 2; ++block) {
     const OutputResult& o = block == 0 ? oa : ob;
     const OutputResult& other = block == 0 ? ob : oa;
     const std::string side = block == 0 ? "A" : "B";
-    const std::string dash = block == 0 ? "solid" : "(8,5)";
+    const auto curve = [&](const std::string& name, std::size_t column) {
+      FigureSeries s;
+      s.name = side + ": " + name;
+      s.data = file;
+      s.block = block;
+      s.y_columns = {column};
+      s.y_divisor = scale;
+      s.dash = block == 0 ? "solid" : "(8,5)";
+      return s;
+    };
     for (std::size_t c = 0; c < o.contributors.size(); ++c) {
       // Left out where negligible on both sides (a namesake on the other side counts).
       bool shown = Shown(o, c);
@@ -141,26 +147,30 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
       for (std::size_t d = 0; d < na; ++d)
         if (oa.contributors[d].name == o.contributors[c].name) style = d;
       if (block == 0) style = c;
-      clauses.push_back(file + " index " + std::to_string(block) + " using 1:" + y(c + 2) +
-                        " with lines linewidth 1.5 linecolor rgb " + Quote(ContributorStyle(style).colour) +
-                        " dashtype " + dash + " title " +
-                        Quote(side + ": " + Enhanced(o.contributors[c].name) + " " +
-                              SigLabel(std::sqrt(o.contributors[c].variance))));
+      FigureSeries s = curve(o.contributors[c].name, c + 2);
+      s.key = side + ": " + Enhanced(o.contributors[c].name) + " " + SigLabel(std::sqrt(o.contributors[c].variance));
+      s.colour = ContributorStyle(style).colour;
+      s.width = 1.5;
+      panel.series.push_back(std::move(s));
     }
-    clauses.push_back(file + " index " + std::to_string(block) + " using 1:" + y(o.contributors.size() + 2) +
-                      " with lines linewidth 2.5 linecolor rgb " + Quote(kTotalColour) + " dashtype " + dash +
-                      " title " + Quote(side + ": total " + SigLabel(std::sqrt(o.variance))));
+    FigureSeries t = curve("total", o.contributors.size() + 2);
+    t.key = side + ": total " + SigLabel(std::sqrt(o.variance));
+    t.colour = kTotalColour;
+    t.width = 2.5;
+    panel.series.push_back(std::move(t));
   }
-  const std::optional<double> req = oa.rms_max ? oa.rms_max : ob.rms_max;
-  if (cps && req)
-    clauses.push_back(CsvNumber(*req * *req) + per + " with lines linecolor rgb " + Quote(kRequirementColour) +
-                      " dashtype " + kRequirementDash + " linewidth 2 title " +
-                      Quote("requirement: " + Short(*req) + " (A " + (oa.pass() ? "pass" : "FAIL") + ", B " +
-                            (ob.pass() ? "pass" : "FAIL") + ")"));
-  s << "plot ";
-  for (std::size_t i = 0; i < clauses.size(); ++i) s << (i ? ", \\\n     " : "") << clauses[i];
-  s << "\n";
-  p.script = s.str();
+  if (cps && req) {
+    FigureAnnotation limit;
+    limit.kind = AnnotationKind::kHorizontalLine;
+    limit.y0 = *req * *req / scale;
+    limit.colour = kRequirementColour;
+    limit.dash = kRequirementDash;
+    limit.key = "requirement: " + Short(*req) + " (A " + (oa.pass() ? "pass" : "FAIL") + ", B " +
+                (ob.pass() ? "pass" : "FAIL") + ")";
+    panel.annotations.push_back(limit);
+  }
+  p.figure.panels.push_back(std::move(panel));
+  p.script = EmitFigure(p.figure);
   return p;
 }
 

@@ -8,6 +8,8 @@
 #include <string>
 
 #include "deb/budget/comparison.h"
+#include "deb/report/figure_script.h"
+#include "deb/report/plot_style.h"
 #include "deb/report/spectrum_plots.h"
 
 #include "deb/io/budget_yaml.h"
@@ -46,27 +48,55 @@ TEST_CASE("overlay plots give PSD and CPS per shared output, A and B as two data
   CHECK(rows_a > 10);
   CHECK(first >= lo);
   CHECK(last <= hi);
-  CHECK(plots[1].script.find("index 0") != std::string::npos);
-  CHECK(plots[1].script.find("index 1") != std::string::npos);
-  CHECK(plots[1].script.find("dashtype (8,5)") != std::string::npos);
-  // CPS on a linear axis from 0 to just above the larger total (or requirement), as in deb run.
+  // A solid from block 0, B dashed from block 1, in the same colour per contributor; the totals black.
+  const PlotFigure& cps = plots[1].figure;
+  CHECK(plots[1].script == EmitFigure(cps));
+  REQUIRE(cps.panels.size() == 1);
+  const FigurePanel& panel = cps.panels[0];
+  const FigureSeries* total_a = FindSeries(cps, "A: total");
+  const FigureSeries* total_b = FindSeries(cps, "B: total");
+  REQUIRE(total_a);
+  REQUIRE(total_b);
+  CHECK(total_a->block == 0);
+  CHECK(total_b->block == 1);
+  CHECK(total_a->dash == "solid");
+  CHECK(total_b->dash == "(8,5)");
+  CHECK(total_a->colour == kTotalColour);
+  CHECK(total_a->y_columns == std::vector<std::size_t>{a.outputs[0].contributors.size() + 2});
+  const FigureSeries* floor_b = FindSeries(cps, "B: " + a.outputs[0].contributors[0].name);
+  REQUIRE(floor_b);
+  CHECK(floor_b->colour == ContributorStyle(0).colour);
+  CHECK(&panel.series.back() == total_b);  // B drawn after A
+  // The frequency axis clipped to the run's display range.
+  REQUIRE(panel.x.min);
+  CHECK(panel.x.scale == AxisScale::kLog);
+  CHECK(*panel.x.min == doctest::Approx(range.lo_hz));
+  CHECK(*panel.x.max == doctest::Approx(range.hi_hz));
+  // CPS on a linear axis from 0 to just above the larger total (or requirement), as in deb run, in units of 10^e.
   const double y_max = std::max({a.outputs[0].variance, a.outputs[0].rms_max.value_or(0.0) *
                                                              a.outputs[0].rms_max.value_or(0.0)}) * 1.06;
-  CHECK(plots[1].script.find("set yrange [0:") != std::string::npos);
-  CHECK(plots[1].script.find("logscale y") == std::string::npos);
-  const std::size_t at = plots[1].script.find("set yrange [0:") + 14;
-  const double shown = std::stod(plots[1].script.substr(at));
+  CHECK(panel.y.scale == AxisScale::kLinear);
+  REQUIRE(panel.y.min);
+  CHECK(*panel.y.min == 0.0);
+  const double shown = *panel.y.max;
   CHECK(shown > 0.0);
   CHECK(std::fmod(std::log10(y_max / shown) + 100.0, 1.0) == doctest::Approx(0.0).epsilon(1e-6));  // y_max / 10^e
-  // The requirement, and whether each side meets it.
-  CHECK(plots[1].script.find("title 'requirement: " + Short(*a.outputs[0].rms_max) + " (A pass, B pass)'") !=
-        std::string::npos);
-  // PSD at most kOverlayPsdDecades deep.
-  const std::string& psd = plots[0].script;
-  const std::size_t r = psd.find("set yrange [");
-  REQUIRE(r != std::string::npos);
-  const double y0 = std::stod(psd.substr(r + 12)), y1 = std::stod(psd.substr(psd.find(':', r) + 1));
-  CHECK(std::log10(y1 / y0) <= kOverlayPsdDecades + 1.0 + 1e-9);
+  CHECK(total_a->y_divisor == doctest::Approx(y_max / shown));
+  CHECK(panel.y2.shown);
+  // The requirement at its variance, and whether each side meets it.
+  const double req = *a.outputs[0].rms_max;
+  REQUIRE(panel.annotations.size() == 1);
+  CHECK(panel.annotations[0].kind == AnnotationKind::kHorizontalLine);
+  CHECK(panel.annotations[0].y0 * total_a->y_divisor == doctest::Approx(req * req));
+  CHECK(panel.annotations[0].key == "requirement: " + Short(req) + " (A pass, B pass)");
+  // PSD at most kOverlayPsdDecades deep, clipped to the same frequencies.
+  const FigurePanel& psd = plots[0].figure.panels.at(0);
+  CHECK(psd.y.scale == AxisScale::kLog);
+  REQUIRE(psd.y.min);
+  CHECK(std::log10(*psd.y.max / *psd.y.min) <= kOverlayPsdDecades + 1.0 + 1e-9);
+  CHECK(*psd.x.min == *panel.x.min);
+  CHECK(*psd.x.max == *panel.x.max);
+  CHECK(psd.annotations.empty());
 }
 
 TEST_CASE("an overlay leaves out a contributor negligible in both results, and keeps one that appears") {
@@ -74,12 +104,15 @@ TEST_CASE("an overlay leaves out a contributor negligible in both results, and k
   BudgetResult a = Evaluate(budget);
   a.outputs[0].contributors[1].variance = 1e-9 * a.outputs[0].variance;  // sensor_noise negligible
   REQUIRE(a.outputs[0].contributors[1].variance < kNegligibleShare * a.outputs[0].variance);
-  CHECK(OverlayPlots("A", a, "B", a)[0].script.find("sensor\\_noise") == std::string::npos);
+  CHECK(FindSeries(OverlayPlots("A", a, "B", a)[0].figure, "A: sensor_noise") == nullptr);
+  CHECK(FindSeries(OverlayPlots("A", a, "B", a)[0].figure, "B: sensor_noise") == nullptr);
   BudgetResult b = a;
   b.outputs[0].contributors[1].variance = 0.5 * b.outputs[0].variance;  // appears in B: both sides drawn
-  const std::string script = OverlayPlots("A", a, "B", b)[0].script;
-  CHECK(script.find("A: sensor\\_noise") != std::string::npos);
-  CHECK(script.find("B: sensor\\_noise") != std::string::npos);
+  const PlotFigure figure = OverlayPlots("A", a, "B", b)[0].figure;
+  const FigureSeries* sensor_a = FindSeries(figure, "A: sensor_noise");
+  REQUIRE(sensor_a);
+  CHECK(sensor_a->key.find("A: sensor\\_noise") == 0);  // the name as enhanced text
+  CHECK(FindSeries(figure, "B: sensor_noise"));
 }
 
 }  // namespace deb::report
