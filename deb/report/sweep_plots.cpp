@@ -9,6 +9,7 @@
 
 #include "deb/budget/sweep_ranking.h"
 #include "deb/core/error.h"
+#include "deb/report/figure_script.h"
 #include "deb/report/plot_style.h"
 #include "deb/version.h"
 
@@ -35,16 +36,16 @@ Groups GroupByRest(const std::vector<std::vector<double>>& rows) {
   return g;
 }
 
-// Tics naming a textual parameter's values at their indices, on `axis`,
-// the range padded by `pad` at either end.
-std::string TextTics(const SweepParameter& p, const std::string& axis, double pad = 0.5) {
-  if (p.texts.empty()) return "";
-  std::ostringstream s;
-  s << "set " << axis << "range [" << CsvNumber(-pad) << ":" << CsvNumber(static_cast<double>(p.texts.size()) - 1.0 + pad)
-    << "]\nset " << axis << "tics (";
-  for (std::size_t i = 0; i < p.texts.size(); ++i) s << (i ? ", " : "") << Quote(Enhanced(p.texts[i])) << " " << i;
-  s << ")\n";
-  return s.str();
+// The axis of parameter p: labelled by its title; a textual parameter's
+// values named at their indices, the range padded by `pad` at either end.
+FigureAxis ParameterAxis(const SweepParameter& p, double pad) {
+  FigureAxis a;
+  a.label = Enhanced(p.AxisTitle());
+  if (p.texts.empty()) return a;
+  a.min = -pad;
+  a.max = static_cast<double>(p.texts.size()) - 1.0 + pad;
+  for (std::size_t i = 0; i < p.texts.size(); ++i) a.tics.push_back({static_cast<double>(i), Enhanced(p.texts[i])});
+  return a;
 }
 
 // Positive numeric values over two decades or more (a log: range) go on a log axis.
@@ -102,54 +103,56 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
   p.csv = csv.str();
 
   const std::size_t cols = panels <= 3 ? panels : panels <= 4 ? 2 : panels <= 9 ? 3 : 4;
-  const std::size_t rows_of_panels = (panels + cols - 1) / cols;
-  const std::string file = Quote(p.name + ".csv");
-  const std::string points = " with linespoints pointtype 7 pointsize 0.6 ";
-  std::ostringstream s;
-  s << "reset\n" << StylePreamble();
-  s << "set ylabel " << Quote("RMS [" + UnitLabel(out0.unit) + "]") << "\n";
-  s << "set yrange [0:" << CsvNumber(top * 1.08) << "]\n" << TextTics(first, "x");
-  if (LogAxis(first)) s << "set logscale x 10\n";
-  if (out0.rms_max)
-    s << "set arrow 1 from graph 0, first " << CsvNumber(*out0.rms_max) << " to graph 1, first "
-      << CsvNumber(*out0.rms_max) << " nohead linewidth 1.5 linecolor rgb " << Quote(kRequirementColour)
-      << " dashtype " << kRequirementDash << " front\n";
-  if (panels > 1) {
-    // The panels leave the right sixth of the page to the key they share.
-    s << "set multiplot layout " << rows_of_panels << "," << cols << " title "
-      << Quote(Enhanced(out0.name + ": RMS against " + first.Name()))
-      << " font ',14' margins 0.07,0.83,0.09,0.9 spacing 0.07,0.13\n";
-    s << "set title font ',11'\nset xlabel font ',10'\nset ylabel font ',10'\n";
-  } else {
-    s << "set title " << Quote(Enhanced(out0.name + ": RMS against " + first.Name())) << "\n";
-  }
-  s << "set xlabel " << Quote(Enhanced(first.AxisTitle())) << "\n";
+  const std::string title = Enhanced(out0.name + ": RMS against " + first.Name());
+  p.figure.title = title;
+  p.figure.columns = cols;
+  const std::string file = p.name + ".csv";
   for (std::size_t b = 0; b < panels; ++b) {
-    if (panels > 1) {
-      s << "set title " << Quote(Enhanced(RestLabel(spec, groups.order[b]))) << "\n";
-      // The key once, with the first panel, beside the panels.
-      s << (b == 0 ? "set key at screen 0.85,0.9 left top Left reverse\n" : "unset key\n");
-      if (b % cols != 0) s << "unset ylabel\n";
-      else s << "set ylabel " << Quote("RMS [" + UnitLabel(out0.unit) + "]") << "\n";
-    } else {
-      s << "set key outside right top Left reverse\n";
+    FigurePanel panel;
+    panel.title = panels > 1 ? Enhanced(RestLabel(spec, groups.order[b])) : title;
+    panel.x = ParameterAxis(first, 0.5);
+    if (LogAxis(first)) panel.x.scale = AxisScale::kLog;
+    panel.y.label = panels == 1 || b % cols == 0 ? "RMS [" + UnitLabel(out0.unit) + "]" : "";  // the left column's
+    panel.y.min = 0.0;  // one RMS axis for every panel
+    panel.y.max = top * 1.08;
+    panel.y2.shown = false;
+    // The key once, with the first panel, beside the panels.
+    panel.key.placement =
+        panels == 1 ? KeyPlacement::kOutsideRight : b == 0 ? KeyPlacement::kBesideGrid : KeyPlacement::kNone;
+    const auto curve = [&](const std::string& name, std::size_t column) {
+      FigureSeries s;
+      s.name = name;
+      s.key = b == 0 ? Enhanced(name) : "";
+      s.data = file;
+      s.block = static_cast<int>(b);
+      s.y_columns = {column};
+      s.point_type = 7;  // a dot at each variant
+      s.point_size = 0.6;
+      return s;
+    };
+    for (std::size_t c = 0; c < out0.contributors.size(); ++c) {
+      FigureSeries s = curve(out0.contributors[c].name, c + 2);
+      s.colour = ContributorStyle(c).colour;
+      s.width = 1.5;
+      panel.series.push_back(std::move(s));
     }
-    std::vector<std::string> clauses;
-    const std::string index = file + " index " + std::to_string(b) + " using 1:";
-    for (std::size_t c = 0; c < out0.contributors.size(); ++c)
-      clauses.push_back(index + std::to_string(c + 2) + points + "linewidth 1.5 linecolor rgb " +
-                        Quote(ContributorStyle(c).colour) + " title " + Quote(Enhanced(out0.contributors[c].name)));
-    clauses.push_back(index + std::to_string(out0.contributors.size() + 2) + points + "linewidth 2.5 linecolor rgb " +
-                      Quote(kTotalColour) + " title 'total'");
-    if (out0.rms_max && b == 0)
-      clauses.push_back("NaN with lines linewidth 1.5 linecolor rgb " + Quote(kRequirementColour) + " dashtype " +
-                        kRequirementDash + " title " + Quote("requirement: " + Short(*out0.rms_max)));
-    s << "plot ";
-    for (std::size_t i = 0; i < clauses.size(); ++i) s << (i ? ", \\\n     " : "") << clauses[i];
-    s << "\n";
+    FigureSeries t = curve("total", out0.contributors.size() + 2);
+    t.colour = kTotalColour;
+    t.width = 2.5;
+    panel.series.push_back(std::move(t));
+    if (out0.rms_max) {
+      FigureAnnotation limit;
+      limit.kind = AnnotationKind::kHorizontalLine;
+      limit.y0 = *out0.rms_max;
+      limit.colour = kRequirementColour;
+      limit.dash = kRequirementDash;
+      limit.width = 1.5;
+      if (b == 0) limit.key = "requirement: " + Short(*out0.rms_max);
+      panel.annotations.push_back(limit);
+    }
+    p.figure.panels.push_back(std::move(panel));
   }
-  if (panels > 1) s << "unset multiplot\n";
-  p.script = s.str();
+  p.script = EmitFigure(p.figure);
   return p;
 }
 
@@ -213,46 +216,76 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
   if (segments == 0) csv << "NaN,NaN,NaN,NaN,NaN,NaN\n";  // keeps the block, so the indices stay
   p.csv = csv.str();
 
-  std::ostringstream s;
-  s << "reset\n" << StylePreamble();
-  s << "set title " << Quote(Enhanced(out0.name + ": total RMS over " + px.Name() + " and " + py.Name())) << "\n";
-  s << "set xlabel " << Quote(Enhanced(px.AxisTitle())) << "\nset ylabel " << Quote(Enhanced(py.AxisTitle())) << "\n";
-  s << TextTics(px, "x", 0.0) << TextTics(py, "y", 0.0);
-  if (LogAxis(px)) s << "set logscale x 10\n";
-  if (LogAxis(py)) s << "set logscale y 10\n";
-  if (px.texts.empty()) s << "set xrange [" << CsvNumber(x.front()) << ":" << CsvNumber(x.back()) << "]\n";
-  if (py.texts.empty()) s << "set yrange [" << CsvNumber(y.front()) << ":" << CsvNumber(y.back()) << "]\n";
-  s << "set view map\nset pm3d at b interpolate 6,6\nunset grid\n";
+  FigurePanel panel;
+  panel.title = Enhanced(out0.name + ": total RMS over " + px.Name() + " and " + py.Name());
+  panel.x = ParameterAxis(px, 0.0);
+  panel.y = ParameterAxis(py, 0.0);
+  if (LogAxis(px)) panel.x.scale = AxisScale::kLog;
+  if (LogAxis(py)) panel.y.scale = AxisScale::kLog;
+  if (px.texts.empty()) panel.x.min = x.front(), panel.x.max = x.back();
+  if (py.texts.empty()) panel.y.min = y.front(), panel.y.max = y.back();
+  panel.x.grid = panel.y.grid = panel.x.minor_grid = panel.y.minor_grid = false;
+  panel.y2.shown = false;
   // Perceptually ordered, light where the RMS is low (viridis reversed).
-  s << "set palette defined (0 '#fde725', 1 '#5ec962', 2 '#21918c', 3 '#3b528b', 4 '#440154')\n";
-  s << "set cblabel " << Quote("total RMS [" + UnitLabel(out0.unit) + "]") << "\n";
+  panel.palette = {"#fde725", "#5ec962", "#21918c", "#3b528b", "#440154"};
+  panel.colour_axis.label = "total RMS [" + UnitLabel(out0.unit) + "]";
   if (lo > 0.0 && hi / lo > 5.0) {  // a bad corner would wash out the rest
-    s << "set logscale cb 10\nset format cb '%g'\nset cbtics (";
-    int n = 0;
+    panel.colour_axis.scale = AxisScale::kLog;
+    panel.colour_axis.format = "%g";
     for (int d = static_cast<int>(std::floor(std::log10(lo))); d <= static_cast<int>(std::ceil(std::log10(hi))); ++d)
       for (const double m : {1.0, 2.0, 5.0}) {
         const double v = m * std::pow(10.0, d);
-        if (v >= lo * 0.999 && v <= hi * 1.001) s << (n++ ? ", " : "") << CsvNumber(v);
+        if (v >= lo * 0.999 && v <= hi * 1.001) panel.colour_axis.tics.push_back({v, Short(v)});
       }
-    s << ")\n";
   }
-  s << "set key outside top center horizontal Left reverse\n";
-  const std::string file = Quote(p.name + ".csv");
-  std::vector<std::string> clauses = {
-      file + " index 0 using 1:2:3 with pm3d notitle",
-      file + " index 0 using 1:2:3 with points pointtype 7 pointsize 0.5 linecolor rgb '#404040' title 'variants'"};
-  if (out0.rms_max)
-    clauses.push_back(file + " index 2 using 1:2:3:4:5:6 with vectors nohead linewidth 3 linecolor rgb " +
-                      Quote(kRequirementColour) +
-                      " title " +
-                      Quote("requirement: " + Short(*out0.rms_max) +
-                            (segments ? "" : lo > *out0.rms_max ? " (every variant fails)" : " (every variant passes)")));
-  clauses.push_back(file + " index 1 using 1:2:3 with points pointtype 6 pointsize 3 linewidth 2.5 linecolor rgb " +
-                    Quote(kTotalColour) + " title " + Quote("best: " + SigLabel(results[best].outputs[o].rms())));
-  s << "splot ";
-  for (std::size_t i = 0; i < clauses.size(); ++i) s << (i ? ", \\\n      " : "") << clauses[i];
-  s << "\n";
-  p.script = s.str();
+  panel.key.placement = KeyPlacement::kAbove;
+  const std::string file = p.name + ".csv";
+  const auto layer = [&](const std::string& name, SeriesKind kind, int block) {
+    FigureSeries s;
+    s.name = name;
+    s.kind = kind;
+    s.data = file;
+    s.block = block;
+    s.y_columns = {2};
+    s.z_column = 3;
+    return s;
+  };
+  panel.series.push_back(layer("total RMS", SeriesKind::kHeatMap, 0));
+  FigureSeries variants = layer("variants", SeriesKind::kPoints, 0);
+  variants.key = "variants";
+  variants.point_type = 7;
+  variants.point_size = 0.5;
+  variants.colour = "#404040";
+  panel.series.push_back(variants);
+  if (out0.rms_max) {
+    FigureSeries contour = layer("requirement", SeriesKind::kSegments, 2);
+    contour.dx_column = 4;
+    contour.dy_column = 5;
+    contour.key = "requirement: " + Short(*out0.rms_max) +
+                  (segments ? "" : lo > *out0.rms_max ? " (every variant fails)" : " (every variant passes)");
+    contour.colour = kRequirementColour;
+    contour.width = 3.0;
+    if (segments == 0) {  // no piece to draw: the key names the requirement by a sample of its own
+      FigureAnnotation entry;
+      entry.kind = AnnotationKind::kKeyEntry;
+      entry.key = contour.key;
+      entry.colour = contour.colour;
+      entry.width = contour.width;
+      entry.point_type = 0;  // a line
+      panel.annotations.push_back(entry);
+      contour.key.clear();
+    }
+    panel.series.push_back(contour);
+  }
+  FigureSeries ring = layer("best", SeriesKind::kPoints, 1);
+  ring.key = "best: " + SigLabel(results[best].outputs[o].rms());
+  ring.point_type = 6;
+  ring.point_size = 3.0;
+  ring.width = 2.5;
+  ring.colour = kTotalColour;
+  panel.series.push_back(ring);
+  p.figure.panels.push_back(std::move(panel));
+  p.script = EmitFigure(p.figure);
   return p;
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 
 #include "deb/io/budget_yaml.h"
+#include "deb/report/figure_script.h"
+#include "deb/report/plot_style.h"
 #include "tests/support/cli_harness.h"
 
 namespace deb::report {
@@ -62,7 +64,9 @@ TEST_CASE("sweep plots hold one data block per combination of the other paramete
   CHECK(first_block[0][0] == 1.0);
   CHECK(first_block[1][0] == 2.0);
   CHECK(first_block[2][0] == 3.0);
-  CHECK(plots[0].script.find("index 1") != std::string::npos);
+  // Panel b draws block b.
+  REQUIRE(plots[0].figure.panels.size() == 2);
+  CHECK(FindSeries(plots[0].figure, "total", 1)->block == 1);
 }
 
 TEST_CASE("small multiples: one panel per value of the other parameters, one RMS axis, the key once") {
@@ -74,21 +78,57 @@ TEST_CASE("small multiples: one panel per value of the other parameters, one RMS
   b.label = "noise";
   spec.parameters = {a, b};
   const auto plots = SweepPlots(spec, std::vector<BudgetResult>(6, Evaluate(budget)));
-  const std::string& script = plots[0].script;
-  CHECK(Count(script, "set multiplot layout 1,3") == 1);
-  CHECK(Count(script, "\nplot ") == 3);
-  CHECK(Count(script, "set title 'noise = 30'") == 1);
-  CHECK(Count(script, "set xlabel 'stiffness [N/m]'") == 1);  // no key path on the axis
-  CHECK(script.find("paths[0]") == std::string::npos);
-  CHECK(Count(script, "set key at screen") == 1);
-  CHECK(Count(script, "unset key") == 2);
-  CHECK(Count(script, "set yrange [0:") == 1);  // shared by every panel
-  // With one parameter: one plot, no multiplot.
+  const PlotFigure& figure = plots[0].figure;
+  CHECK(plots[0].script == EmitFigure(figure));
+  REQUIRE(figure.panels.size() == 3);
+  CHECK(figure.columns == 3);
+  CHECK(figure.panels[2].title == "noise = 30");
+  CHECK(figure.panels[0].x.label == "stiffness [N/m]");  // no key path on the axis
+  CHECK(plots[0].script.find("paths[0]") == std::string::npos);
+  // The key once, beside the panels; one RMS axis shared by every panel, labelled on the left.
+  CHECK(figure.panels[0].key.placement == KeyPlacement::kBesideGrid);
+  CHECK(figure.panels[1].key.placement == KeyPlacement::kNone);
+  CHECK(figure.panels[2].key.placement == KeyPlacement::kNone);
+  for (const FigurePanel& panel : figure.panels) {
+    CHECK(panel.y.min == 0.0);
+    CHECK(panel.y.max == figure.panels[0].y.max);
+  }
+  CHECK(!figure.panels[0].y.label.empty());
+  CHECK(figure.panels[1].y.label.empty());
+  // Contributors in their report colours, the total black and last; keys only in the first panel.
+  const FigureSeries* total = FindSeries(figure, "total", 1);
+  REQUIRE(total);
+  CHECK(total->colour == kTotalColour);
+  CHECK(total->key.empty());
+  CHECK(FindSeries(figure, "total", 0)->key == "total");
+  CHECK(figure.panels[1].series.back().name == "total");
+  CHECK(figure.panels[1].series[0].colour == ContributorStyle(0).colour);
+  // With one parameter: one panel, its key beside it.
   SweepSpec one;
   one.parameters = {a};
-  const std::string single = SweepPlots(one, std::vector<BudgetResult>(2, Evaluate(budget)))[0].script;
-  CHECK(Count(single, "multiplot") == 0);
-  CHECK(Count(single, "\nplot ") == 1);
+  const Plot single = SweepPlots(one, std::vector<BudgetResult>(2, Evaluate(budget)))[0];
+  REQUIRE(single.figure.panels.size() == 1);
+  CHECK(single.figure.panels[0].key.placement == KeyPlacement::kOutsideRight);
+  CHECK(Count(single.script, "multiplot") == 0);
+}
+
+TEST_CASE("small multiples draw the requirement in every panel, in the key once") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  BudgetResult result = Evaluate(budget);
+  result.outputs[0].rms_max = 2.5;
+  SweepSpec spec;
+  spec.parameters = {{"a", {1, 2}, {}, {}, {}}, {"b", {10, 20}, {}, {}, {}}};
+  const PlotFigure figure = SweepPlots(spec, std::vector<BudgetResult>(4, result))[0].figure;
+  REQUIRE(figure.panels.size() == 2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    REQUIRE(figure.panels[i].annotations.size() == 1);
+    CHECK(figure.panels[i].annotations[0].kind == AnnotationKind::kHorizontalLine);
+    CHECK(figure.panels[i].annotations[0].y0 == 2.5);
+    CHECK(figure.panels[i].annotations[0].colour == kRequirementColour);
+  }
+  CHECK(figure.panels[0].annotations[0].key == "requirement: 2.5");
+  CHECK(figure.panels[1].annotations[0].key.empty());
+  CHECK(*figure.panels[0].y.max >= 2.5);
 }
 
 TEST_CASE("the contour of a plane z = x + y at level 1 runs through the cells it crosses, on x + y = 1") {
@@ -131,8 +171,36 @@ TEST_CASE("the map of a two-parameter grid holds the grid by scan lines, the bes
   const auto contour = Block(map.csv, 2);
   REQUIRE(contour.size() >= 1);
   for (const auto& s : contour) CHECK(s[2] == 3.5);
-  CHECK(map.script.find("with vectors nohead") != std::string::npos);
-  CHECK(map.script.find("title 'requirement: 3.5'") != std::string::npos);
+  // As a figure: the heat map of block 0, the requirement's contour from block 2, the best variant ringed
+  // at its (a, b) from block 1, drawn last.
+  CHECK(map.script == EmitFigure(map.figure));
+  REQUIRE(map.figure.panels.size() == 1);
+  const FigurePanel& panel = map.figure.panels[0];
+  REQUIRE(panel.series.size() == 4);
+  CHECK(panel.series[0].kind == SeriesKind::kHeatMap);
+  CHECK(panel.series[0].block == 0);
+  CHECK(panel.series[0].z_column == 3);
+  CHECK(!panel.palette.empty());
+  const FigureSeries* line = FindSeries(map.figure, "requirement");
+  REQUIRE(line);
+  CHECK(line->kind == SeriesKind::kSegments);
+  CHECK(line->block == 2);
+  CHECK(line->key == "requirement: 3.5");
+  CHECK(line->colour == kRequirementColour);
+  const FigureSeries& ring = panel.series.back();
+  CHECK(ring.name == "best");
+  CHECK(ring.block == 1);
+  CHECK(ring.key == "best: 1.00");
+  CHECK(ring.x_column == 1);
+  CHECK(ring.y_columns == std::vector<std::size_t>{2});
+  // The axes span the grid (ascending), the colours the RMS: log, as it spans a factor 6.
+  CHECK(*panel.x.min == 1.0);
+  CHECK(*panel.x.max == 2.0);
+  CHECK(*panel.y.min == 10.0);
+  CHECK(*panel.y.max == 30.0);
+  CHECK(panel.colour_axis.scale == AxisScale::kLog);
+  CHECK(panel.colour_axis.tics.front().first == 1.0);
+  CHECK(panel.colour_axis.tics.back().first == 5.0);
   // Zipped, or one parameter: no map.
   spec.mode = SweepMode::kZip;
   spec.parameters[1].values = {10, 20};
