@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "deb/core/error.h"
+#include "deb/report/figure_script.h"
 #include "deb/report/plot_files.h"
 #include "deb/report/plot_points.h"
 #include "deb/report/plot_style.h"
@@ -21,13 +22,11 @@ constexpr const char* kContextColour = "#8c8c8c";  // reference curves and crite
 constexpr const char* kContextDash = "(6,4)";
 constexpr int kFewLines = 5;                         // band_rms.h: fewer spectral lines than this resolve a band poorly
 
-std::string Col(std::size_t column) { return "column(" + std::to_string(column) + ")"; }
-std::string Positive(std::size_t column) { return "(" + Col(column) + " > 0 ? " + Col(column) + " : NaN)"; }
-
 // A title of several lines; lines after the first are details, a size smaller.
-std::string Lines(std::vector<std::string> lines) {
-  for (std::size_t i = 1; i < lines.size(); ++i) lines[i] = "{/=11 " + lines[i] + "}";
-  return QuoteLines(lines);
+std::string Lines(const std::vector<std::string>& lines) {
+  std::string title;
+  for (std::size_t i = 0; i < lines.size(); ++i) title += i ? "\n{/=11 " + lines[i] + "}" : lines[i];
+  return title;
 }
 
 // 0.95 -> "95"
@@ -36,19 +35,22 @@ std::string Percent(double fraction) { return Short(std::round(fraction * 1e4) /
 
 // Logarithmic frequency axis over [lo_hz, hi_hz]: plain numbers where they
 // stay short, powers of ten over wide or extreme ranges.
-std::string FrequencyAxis(double lo_hz, double hi_hz) {
+FigureAxis FrequencyAxis(double lo_hz, double hi_hz) {
   const bool powers = std::log10(hi_hz / lo_hz) > 6.0 || lo_hz < 1e-3 || hi_hz > 1e5;
-  std::string s = "set logscale x 10\nset format x " + std::string(powers ? "'10^{%L}'" : "'%g'") +
-                  "\nset xrange [" + CsvNumber(lo_hz) + ":" + CsvNumber(hi_hz) + "]\nset xlabel 'frequency [Hz]'\n";
+  FigureAxis a;
+  a.scale = AxisScale::kLog;
+  a.format = powers ? "10^{%L}" : "%g";
+  a.min = lo_hz;
+  a.max = hi_hz;
+  a.label = "frequency [Hz]";
   // Under two decades the powers of ten alone leave the axis nearly bare: label 2 and 5 too.
   if (!powers && std::log10(hi_hz / lo_hz) < 2.0) {
-    std::string tics;
     for (double decade = std::pow(10.0, std::floor(std::log10(lo_hz))); decade <= hi_hz; decade *= 10.0)
       for (double m : {2.0, 5.0})
-        if (m * decade >= lo_hz && m * decade <= hi_hz) tics += (tics.empty() ? "" : ", ") + CsvNumber(m * decade);
-    if (!tics.empty()) s += "set xtics add (" + tics + ")\n";
+        if (m * decade >= lo_hz && m * decade <= hi_hz) a.tics.push_back({m * decade, Short(m * decade)});
+    a.tics_added = true;
   }
-  return s;
+  return a;
 }
 
 // Whole decades around the values in [bottom, top], at most `decades` below
@@ -59,10 +61,20 @@ std::pair<double, double> DecadeRange(double bottom, double top, double decades)
   return {y0, y1 > y0 ? y1 : 10.0 * y0};
 }
 
-std::string LogYRange(double bottom, double top, double decades) {
-  if (!(top > 0.0)) return "set yrange [0.1:10]\nset label 1 'every value is zero' at graph 0.5,0.5 center\n";
+// A log y axis of whole decades over [bottom, top] (DecadeRange); nothing
+// above 0: a linear axis and a note saying so.
+void LogY(FigurePanel& panel, double bottom, double top, double decades) {
+  if (!(top > 0.0)) {
+    panel.y.min = 0.1;
+    panel.y.max = 10.0;
+    panel.note = "every value is zero";
+    return;
+  }
   const auto [y0, y1] = DecadeRange(bottom, top, decades);
-  return "set logscale y 10\nset format y '10^{%L}'\nset yrange [" + CsvNumber(y0) + ":" + CsvNumber(y1) + "]\n";
+  panel.y.scale = AxisScale::kLog;
+  panel.y.format = "10^{%L}";
+  panel.y.min = y0;
+  panel.y.max = y1;
 }
 
 std::string SpectrumLabel(const std::string& unit, bool asd) {
@@ -125,33 +137,51 @@ Plot LogLogPlot(const Figure& fig) {
   }
   p.csv = csv.str();
 
-  std::ostringstream s;
-  s << "reset\n" << StylePreamble() << FrequencyAxis(lo_hz, hi_hz) << LogYRange(bottom, top, fig.decades);
-  s << "set title " << Lines(fig.title) << "\n";
-  s << "set ylabel " << Quote(fig.ylabel) << "\n";
-  s << "set key outside right top Left reverse" << (fig.key_title.empty() ? "" : " title " + Quote(fig.key_title))
-    << "\n";
-  const std::string data = Quote(StandaloneDataFile(p.name));
-  std::vector<std::string> intervals, lines;
+  FigurePanel panel;
+  panel.title = Lines(fig.title);
+  panel.x = FrequencyAxis(lo_hz, hi_hz);
+  LogY(panel, bottom, top, fig.decades);
+  panel.y.label = fig.ylabel;
+  panel.y2.shown = false;
+  panel.key.title = fig.key_title;
+  const std::string data = StandaloneDataFile(p.name);
+  std::vector<FigureSeries> lines;
   std::size_t column = 2;
   for (const Curve& c : fig.curves) {
-    lines.push_back(data + " using 1:" + Positive(column) + " with lines linecolor rgb " + Quote(c.colour) +
-                    " dashtype " + c.dash + " linewidth " + CsvNumber(c.width) + " title " + Quote(c.title));
-    ++column;
+    FigureSeries line;
+    line.name = c.column;
+    line.key = c.title;
+    line.data = data;
+    line.y_columns = {column++};
+    line.colour = c.colour;
+    line.dash = c.dash;
+    line.width = c.width;
+    lines.push_back(line);
     if (!c.lo.empty()) {
       // Shaded under the lines, light enough that crossing intervals stay apart.
-      intervals.push_back(data + " using 1:" + Positive(column) + ":" + Positive(column + 1) +
-                          " with filledcurves fillcolor rgb " + Quote(c.colour) +
-                          " fillstyle transparent solid 0.22 noborder notitle");
+      FigureSeries interval;
+      interval.name = c.column + " interval";
+      interval.kind = SeriesKind::kFilled;
+      interval.data = data;
+      interval.low_columns = {column};
+      interval.y_columns = {column + 1};
+      interval.colour = c.colour;
+      interval.fill_opacity = 0.22;
+      panel.series.push_back(interval);
       column += 2;
     }
   }
-  if (!intervals.empty() && !fig.interval_title.empty())
-    intervals.push_back("keyentry with filledcurves fillcolor rgb '#a0a0a0' fillstyle solid 0.6 noborder title " +
-                        Quote(fig.interval_title));
-  intervals.insert(intervals.end(), lines.begin(), lines.end());
-  s << PlotList(intervals);
-  p.script = s.str();
+  if (!panel.series.empty() && !fig.interval_title.empty()) {
+    FigureAnnotation entry;
+    entry.kind = AnnotationKind::kKeyEntry;
+    entry.fill_sample = true;
+    entry.colour = "#a0a0a0";
+    entry.key = fig.interval_title;
+    panel.annotations.push_back(entry);
+  }
+  panel.series.insert(panel.series.end(), lines.begin(), lines.end());
+  p.figure.panels.push_back(std::move(panel));
+  p.script = EmitFigure(p.figure);
   return p;
 }
 
@@ -291,42 +321,55 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
   }
   p.csv = csv.str();
 
-  const std::string data = Quote(StandaloneDataFile(name));
-  std::ostringstream s;
-  s << "reset\n" << StylePreamble() << FrequencyAxis(f.front(), f.back());
+  const std::string data = StandaloneDataFile(name);
   const std::string est = e.estimator == FrfEstimator::kH1 ? "H_1" : "H_2";
-  s << "set multiplot title " << Lines({"Frequency response (" + est + ") of " + Enhanced(source) + " from " + Enhanced(e.input),
-                                        WelchSettings(e.provenance)})
-    << "\n";
-  s << "set key outside right top Left reverse title 'output'\nset lmargin 12\nset rmargin 16\n";
-  // Top panel: |H1|, log-log; the x labels belong to the bottom panel.
-  s << "set origin 0,0.52\nset size 1,0.40\nset format x ''\nunset xlabel\n"
-    << LogYRange(bottom, top, 10.0)
-    << "set ylabel " << Quote(unit.empty() ? "magnitude |" + est + "|" : "magnitude |" + est + "| [" + UnitLabel(unit) + "]")
-    << "\n";
-  std::vector<std::string> top_clauses, middle_clauses, bottom_clauses;
-  for (std::size_t o = 0; o < n; ++o) {
-    const std::string colour = Quote(ContributorStyle(o).colour);
-    // Wrapped phase as dots: lines would draw a false vertical at every wrap.
-    middle_clauses.push_back(data + " using 1:" + std::to_string(2 * n + o + 2) +
-                             " with points pointtype 7 pointsize 0.35 linecolor rgb " + colour + " notitle");
-    top_clauses.push_back(data + " using 1:" + Positive(o + 2) + " with lines linecolor rgb " + colour +
-                          " linewidth 1.5 title " + Quote(Enhanced(e.outputs[o])));
-    bottom_clauses.push_back(data + " using 1:" + std::to_string(n + o + 2) + " with lines linecolor rgb " + colour +
-                             " linewidth 1.5 notitle");
+  p.figure.title = Lines({"Frequency response (" + est + ") of " + Enhanced(source) + " from " + Enhanced(e.input),
+                          WelchSettings(e.provenance)});
+  // Magnitude over phase over coherence, sharing the frequency axis.
+  FigurePanel magnitude, angle, coherence;
+  for (FigurePanel* panel : {&magnitude, &angle, &coherence}) {
+    panel->x = FrequencyAxis(f.front(), f.back());
+    panel->y2.shown = false;
+    panel->key.placement = KeyPlacement::kNone;
   }
-  s << PlotList(top_clauses);
-  // Middle panel: phase in degrees, -180..180.
-  s << "set origin 0,0.31\nset size 1,0.23\nunset logscale y\nset format y '%g'\n"
-    << "set ylabel 'phase [°]'\nset yrange [-180:180]\nset ytics -180,90,180\nunset key\n";
-  s << PlotList(middle_clauses);
-  // Bottom panel: gamma^2, linear 0..1.
-  s << "set origin 0,0\nset size 1,0.33\n"
-    << FrequencyAxis(f.front(), f.back())  // the x format and label the top panel cleared
-    << "set ylabel 'coherence γ^{2}'\nset yrange [0:1.05]\nset ytics 0,0.25,1\nunset key\n";
-  s << PlotList(bottom_clauses);
-  s << "unset multiplot\n";
-  p.script = s.str();
+  magnitude.height = 0.40;
+  angle.height = 0.23;
+  coherence.height = 0.33;
+  LogY(magnitude, bottom, top, 10.0);
+  magnitude.y.label = unit.empty() ? "magnitude |" + est + "|" : "magnitude |" + est + "| [" + UnitLabel(unit) + "]";
+  magnitude.key.placement = KeyPlacement::kOutsideRight;
+  magnitude.key.title = "output";
+  angle.y.label = "phase [°]";
+  angle.y.min = -180.0;
+  angle.y.max = 180.0;
+  for (int deg = -180; deg <= 180; deg += 90) angle.y.tics.push_back({static_cast<double>(deg), std::to_string(deg)});
+  coherence.y.label = "coherence γ^{2}";
+  coherence.y.min = 0.0;
+  coherence.y.max = 1.05;
+  for (const char* tic : {"0", "0.25", "0.5", "0.75", "1"}) coherence.y.tics.push_back({std::stod(tic), tic});
+  for (std::size_t o = 0; o < n; ++o) {
+    FigureSeries s;
+    s.name = e.outputs[o];
+    s.data = data;
+    s.colour = ContributorStyle(o).colour;
+    s.width = 1.5;
+    s.y_columns = {o + 2};
+    s.key = Enhanced(e.outputs[o]);
+    magnitude.series.push_back(s);
+    s.key.clear();
+    s.y_columns = {n + o + 2};
+    coherence.series.push_back(s);
+    // Wrapped phase as dots: lines would draw a false vertical at every wrap.
+    s.y_columns = {2 * n + o + 2};
+    s.kind = SeriesKind::kPoints;
+    s.point_type = 7;
+    s.point_size = 0.35;
+    s.width = 1.0;
+    angle.series.push_back(s);
+  }
+  p.figure.panels = {magnitude, angle, coherence};
+  p.figure.key_margin = 16.0;  // output names are short
+  p.script = EmitFigure(p.figure);
   return p;
 }
 
@@ -366,27 +409,40 @@ Plot CoherencePlot(const CsdEstimate& csd, const std::string& source, const std:
   }
   p.csv = csv.str();
 
-  std::ostringstream s;
-  s << "reset\n" << StylePreamble() << FrequencyAxis(f.front(), f.back());
-  s << "set title " << Lines({"Coherence of " + Enhanced(source), WelchSettings(w)}) << "\n";
-  s << "set ylabel 'coherence γ^{2}'\nset yrange [0:1.02]\nset ytics 0,0.2,1\nset mytics 2\n";
-  s << "set key outside right top Left reverse title 'channel pair'\n";
-  const std::string data = Quote(StandaloneDataFile(name));
-  std::vector<std::string> clauses;
-  for (std::size_t i = 0; i < columns.size(); ++i)
-    clauses.push_back(data + " using 1:" + std::to_string(i + 2) + " with lines linecolor rgb " +
-                      Quote(ContributorStyle(i).colour) + " linewidth 1.5 title " +
-                      Quote(labels[i]));
+  FigurePanel panel;
+  panel.title = Lines({"Coherence of " + Enhanced(source), WelchSettings(w)});
+  panel.x = FrequencyAxis(f.front(), f.back());
+  panel.y.label = "coherence γ^{2}";
+  panel.y.min = 0.0;
+  panel.y.max = 1.02;
+  for (const char* tic : {"0", "0.2", "0.4", "0.6", "0.8", "1"}) panel.y.tics.push_back({std::stod(tic), tic});
+  panel.y2.shown = false;
+  panel.key.title = "channel pair";
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    FigureSeries s;
+    s.name = columns[i];
+    s.key = labels[i];
+    s.data = StandaloneDataFile(name);
+    s.y_columns = {i + 2};
+    s.colour = ContributorStyle(i).colour;
+    s.width = 1.5;
+    panel.series.push_back(s);
+  }
   // Zero true coherence: P(estimate > x) = (1 - x)^(n - 1) for n independent averages.
   const double n = 0.5 * w.degrees_of_freedom;
   if (n > 1.0 && w.confidence > 0.0 && w.confidence < 1.0) {
     const double level = 1.0 - std::pow(1.0 - w.confidence, 1.0 / (n - 1.0));
-    clauses.push_back(CsvNumber(level) + " with lines linecolor rgb " + Quote(kContextColour) + " dashtype " +
-                      kContextDash + " linewidth 1.5 title " +
-                      Quote("zero coherence, " + Percent(w.confidence) + " % bound: " + Sig(level, 2)));
+    FigureAnnotation bound;
+    bound.kind = AnnotationKind::kHorizontalLine;
+    bound.y0 = level;
+    bound.colour = kContextColour;
+    bound.dash = kContextDash;
+    bound.width = 1.5;
+    bound.key = "zero coherence, " + Percent(w.confidence) + " % bound: " + Sig(level, 2);
+    panel.annotations.push_back(bound);
   }
-  s << PlotList(clauses);
-  p.script = s.str();
+  p.figure.panels.push_back(std::move(panel));
+  p.script = EmitFigure(p.figure);
   return p;
 }
 
@@ -595,64 +651,108 @@ Plot BandClassPlot(const std::vector<std::string>& channel_names, const std::vec
     if (options.low_frequency_extension) title.back() += " (VC continued below 8 Hz)";
   }
 
-  std::ostringstream s;
-  s << "reset\n" << StylePreamble() << FrequencyAxis(lo_hz, hi_hz);
-  s << LogYRange(bottom / 1.2, top * 1.2, 8.0);
-  s << "set title " << Lines(title) << "\n";
-  s << "set ylabel " << Quote("band RMS [" + unit_label + "]") << "\n";
+  FigurePanel panel;
+  panel.title = Lines(title);
+  panel.x = FrequencyAxis(lo_hz, hi_hz);
+  LogY(panel, bottom / 1.2, top * 1.2, 8.0);
+  panel.y.label = "band RMS [" + unit_label + "]";
+  panel.y2.shown = false;
+  panel.key.title = "channel";
   if (!criteria.empty()) {
     // Criteria named on the right axis at their level: they sit a factor 2
     // apart, so the names never crowd.
-    const auto [y0, y1] = DecadeRange(bottom / 1.2, top * 1.2, 8.0);
-    s << "set logscale y2 10\nset y2range [" << CsvNumber(y0) << ":" << CsvNumber(y1)
-      << "]\nset y2tics nomirror out scale 0.6 (";
-    for (std::size_t i = 0; i < criteria.size(); ++i)
-      s << (i ? ", " : "") << Quote(Enhanced(criteria[i].name)) << " " << CsvNumber(criteria[i].level);
-    s << ")\n";
-    for (std::size_t i = 0; i < criteria.size(); ++i) {
-      const Drawn& d = criteria[i];
-      s << "set arrow " << i + 1 << " from first " << CsvNumber(d.from_hz) << ", first " << CsvNumber(d.level)
-        << " to first " << CsvNumber(d.to_hz) << ", first " << CsvNumber(d.level) << " nohead back linecolor rgb "
-        << Quote(d.met ? kRequirementColour : kContextColour) << " dashtype "
-        << (d.met ? std::string("solid") : kContextDash) << " linewidth " << (d.met ? "2" : "1.3") << "\n";
+    panel.y2 = panel.y;
+    panel.y2.label.clear();
+    panel.y2.format.clear();
+    for (const Drawn& d : criteria) panel.y2.tics.push_back({d.level, Enhanced(d.name)});
+    for (const Drawn& d : criteria) {
+      FigureAnnotation line;  // behind the bands' steps
+      line.kind = AnnotationKind::kSegment;
+      line.x0 = d.from_hz;
+      line.x1 = d.to_hz;
+      line.y0 = line.y1 = d.level;
+      line.colour = d.met ? kRequirementColour : kContextColour;
+      line.dash = d.met ? "solid" : kContextDash;
+      line.width = d.met ? 2.0 : 1.3;
+      line.behind = true;
+      panel.annotations.push_back(line);
     }
   }
-  s << "set key outside right top Left reverse title 'channel'\n";
-  const std::string data = Quote(StandaloneDataFile(name));
-  std::vector<std::string> clauses;
+  const std::string data = StandaloneDataFile(name);
   for (std::size_t c = 0; c < channels; ++c) {
     const SeriesStyle st = ContributorStyle(c);
-    clauses.push_back(data + " index 0 using 1:" + Positive(2 + c) + " with steps linecolor rgb " +
-                      Quote(st.colour) + " linewidth 2 title " +
-                      Quote(Enhanced(channel_names[c]) +
-                            (channels == 1 ? "" : key_text[c])));
-    // Filled where the band holds enough spectral lines, open where not.
-    clauses.push_back(data + " index 1 using 1:(column(4) >= " + std::to_string(kFewLines) + " ? " + Positive(5 + 2 * c) +
-                      " : NaN) with points pointtype 7 pointsize 0.8 linecolor rgb " + Quote(st.edge_colour) +
-                      " notitle");
-    clauses.push_back(data + " index 1 using 1:(column(4) < " + std::to_string(kFewLines) + " ? " + Positive(5 + 2 * c) +
-                      " : NaN) with points pointtype 6 pointsize 0.9 linecolor rgb " + Quote(st.edge_colour) +
-                      " notitle");
-    if (!verdicts.empty())
-      clauses.push_back(data + " index 1 using 1:(column(" + std::to_string(6 + 2 * c) + ") == 1 ? " +
-                        Positive(5 + 2 * c) + " : NaN) with points pointtype 6 pointsize 2.6 linewidth 1.5 linecolor rgb " +
-                        Quote(kRequirementColour) + " notitle");
+    FigureSeries steps;
+    steps.name = channel_names[c];
+    steps.key = Enhanced(channel_names[c]) + (channels == 1 ? "" : key_text[c]);
+    steps.kind = SeriesKind::kSteps;
+    steps.data = data;
+    steps.block = 0;
+    steps.y_columns = {2 + c};
+    steps.colour = st.colour;
+    panel.series.push_back(steps);
+    // A point at each centre: filled where the band holds enough spectral lines, open where not.
+    FigureSeries centres;
+    centres.name = channel_names[c] + " centres";
+    centres.kind = SeriesKind::kPoints;
+    centres.data = data;
+    centres.block = 1;
+    centres.y_columns = {5 + 2 * c};
+    centres.where_column = 4;
+    centres.where_value = kFewLines;
+    centres.where_test = WhereTest::kAtLeast;
+    centres.colour = st.edge_colour;
+    centres.point_type = 7;
+    centres.point_size = 0.8;
+    centres.width = 1.0;
+    panel.series.push_back(centres);
+    centres.name = channel_names[c] + " coarse centres";
+    centres.where_test = WhereTest::kLess;
+    centres.point_type = 6;
+    centres.point_size = 0.9;
+    panel.series.push_back(centres);
+    if (!verdicts.empty()) {
+      FigureSeries ring = centres;
+      ring.name = channel_names[c] + " limiting band";
+      ring.where_column = 6 + 2 * c;
+      ring.where_value = 1.0;
+      ring.where_test = WhereTest::kEqual;
+      ring.point_size = 2.6;
+      ring.width = 1.5;
+      ring.colour = kRequirementColour;
+      panel.series.push_back(ring);
+    }
   }
   bool coarse = false;
   for (const BandRms& b : bands.front()) coarse = coarse || b.points < kFewLines;
+  const auto marker_entry = [&](const std::string& key, const std::string& colour, double size, double width) {
+    FigureAnnotation entry;
+    entry.kind = AnnotationKind::kKeyEntry;
+    entry.key = key;
+    entry.colour = colour;
+    entry.point_type = 6;
+    entry.point_size = size;
+    entry.width = width;
+    return entry;
+  };
+  // The key's entries for the markers and the criteria's lines, after the channels.
+  std::vector<FigureAnnotation> entries;
   if (coarse)
-    clauses.push_back("keyentry with points pointtype 6 pointsize 0.9 linecolor rgb '#404040' title " +
-                      Quote("band with < " + std::to_string(kFewLines) + " spectral lines"));
+    entries.push_back(marker_entry("band with < " + std::to_string(kFewLines) + " spectral lines", "#404040", 0.9, 1.0));
   if (!verdicts.empty()) {
-    clauses.push_back("keyentry with points pointtype 6 pointsize 2.0 linewidth 1.5 linecolor rgb " +
-                      Quote(kRequirementColour) + " title 'limiting band'");
-    clauses.push_back("keyentry with lines linecolor rgb " + Quote(kRequirementColour) +
-                      " linewidth 2 title 'class met'");
-    clauses.push_back("keyentry with lines linecolor rgb " + Quote(kContextColour) + " dashtype " + kContextDash +
-                      " linewidth 1.3 title 'other criteria'");
+    entries.push_back(marker_entry("limiting band", kRequirementColour, 2.0, 1.5));
+    FigureAnnotation met = marker_entry("class met", kRequirementColour, 1.0, 2.0);
+    met.point_type = 0;  // a line
+    FigureAnnotation other = met;
+    other.key = "other criteria";
+    other.colour = kContextColour;
+    other.dash = kContextDash;
+    other.width = 1.3;
+    entries.push_back(met);
+    entries.push_back(other);
   }
-  s << PlotList(clauses);
-  p.script = s.str();
+  panel.annotations.insert(panel.annotations.end(), entries.begin(), entries.end());
+  p.figure.panels.push_back(std::move(panel));
+  p.script = EmitFigure(p.figure);
   return p;
 }
 
