@@ -194,6 +194,36 @@ Table ReferenceTable(const OutputResult& o, int digits) {
   return t;
 }
 
+Table CovarianceTable(const OutputCovariance& cov, int digits) {
+  Table t;
+  t.title = "Covariance of outputs (each pair; the matrices are in summary.json)";
+  t.header = {"output a", "output b", "correlation", "covariance", "exact correlation", "largest part"};
+  t.numeric = {false, false, true, true, true, false};
+  const auto correlation = [](const Eigen::MatrixXd& m, Eigen::Index a, Eigen::Index b) {
+    const double d = std::sqrt(m(a, a) * m(b, b));
+    return d > 0.0 ? Sig(m(a, b) / d, 3) : std::string("–");
+  };
+  const Eigen::Index n = cov.matrix.rows();
+  for (Eigen::Index a = 0; a < n; ++a)
+    for (Eigen::Index b = a + 1; b < n; ++b) {
+      const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+      std::string largest = "–";
+      double part = 0.0;
+      for (const ContributorCovariance& c : cov.contributors)
+        if (std::abs(c.matrix(a, b)) > std::abs(part)) {
+          part = c.matrix(a, b);
+          largest = c.name;
+        }
+      if (part != 0.0 && cov.matrix(a, b) != 0.0) largest += " (" + Sig(100.0 * part / cov.matrix(a, b), 3) + " %)";
+      t.rows.push_back({cov.outputs[ia], cov.outputs[ib], correlation(cov.matrix, a, b),
+                        Sig(cov.matrix(a, b), digits) + " " +
+                            (cov.units[ia] == cov.units[ib] ? UnitText(VarianceUnit(cov.units[ia]))
+                                                            : UnitText(cov.units[ia]) + "·" + UnitText(cov.units[ib])),
+                        cov.exact_matrix ? correlation(*cov.exact_matrix, a, b) : "–", largest});
+    }
+  return t;
+}
+
 Table BandTable(const OutputResult& o, int digits) {
   Table t;
   t.title = "RMS of " + o.name + " per band [" + UnitText(o.unit) + "]";
