@@ -116,7 +116,7 @@ void PrintGroups(const deb::OutputResult& o) {
 
 // The correlation matrix of the budget's `covariance:` outputs (the
 // covariance itself is in summary.json).
-void PrintCorrelation(const deb::OutputCovariance& cov) {
+void PrintCorrelation(const deb::CovarianceResult& cov) {
   std::printf("\ncorrelation of outputs (covariance matrices in summary.json)\n  %-16s", "");
   for (const std::string& name : cov.outputs) std::printf(" %12.12s", name.c_str());
   for (std::size_t a = 0; a < cov.outputs.size(); ++a) {

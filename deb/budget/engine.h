@@ -149,7 +149,7 @@ struct BudgetResult {
   std::vector<LoopResult> loops;
   // The covariance of the outputs the budget's `covariance:` lists
   // (output_covariance.h); none when it lists none.
-  std::optional<OutputCovariance> covariance;
+  std::optional<CovarianceResult> covariance;
 };
 
 // The analysis of every path a contributor uses, for the output rows the

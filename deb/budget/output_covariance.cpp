@@ -110,8 +110,8 @@ void ValidateCovarianceRequest(const Budget& budget) {
                                        " (one output's variance is its RMS squared)");
 }
 
-OutputCovariance ComputeOutputCovariance(const Budget& budget, const BudgetResult& result, int threads) {
-  OutputCovariance cov;
+CovarianceResult ComputeOutputCovariance(const Budget& budget, const BudgetResult& result, int threads) {
+  CovarianceResult cov;
   for (const std::string& name : budget.covariance) {
     std::size_t o = 0;
     while (o < budget.outputs.size() && budget.outputs[o].name != name) ++o;

@@ -40,7 +40,7 @@ struct ContributorCovariance {
   Eigen::MatrixXd matrix;  // unit_a x unit_b; its diagonal is the contributor's variances
 };
 
-struct OutputCovariance {
+struct CovarianceResult {
   std::vector<std::string> outputs;   // names, in the order requested
   std::vector<std::string> units;     // each output's unit
   std::vector<std::size_t> index;     // each output's position in BudgetResult::outputs
@@ -64,6 +64,6 @@ void ValidateCovarianceRequest(const Budget& budget);
 // Evaluate(budget) (its grid, paths and contributors' variances).
 // DEB_DEMANDs a validated request.
 // @throws InputError as the engine's propagation (poles on the grid).
-OutputCovariance ComputeOutputCovariance(const Budget& budget, const BudgetResult& result, int threads = 0);
+CovarianceResult ComputeOutputCovariance(const Budget& budget, const BudgetResult& result, int threads = 0);
 
 }  // namespace deb

@@ -36,7 +36,7 @@ nlohmann::json MatrixJson(const Eigen::MatrixXd& m) {
 }
 
 // The budget's `covariance:` (deb/budget/output_covariance.h).
-nlohmann::json CovarianceJson(const OutputCovariance& cov) {
+nlohmann::json CovarianceJson(const CovarianceResult& cov) {
   nlohmann::json j;
   j["outputs"] = cov.outputs;
   j["units"] = cov.units;

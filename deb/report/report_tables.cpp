@@ -194,7 +194,7 @@ Table ReferenceTable(const OutputResult& o, int digits) {
   return t;
 }
 
-Table CovarianceTable(const OutputCovariance& cov, int digits) {
+Table CovarianceTable(const CovarianceResult& cov, int digits) {
   Table t;
   t.title = "Covariance of outputs (each pair; the matrices are in summary.json)";
   t.header = {"output a", "output b", "correlation", "covariance", "exact correlation", "largest part"};

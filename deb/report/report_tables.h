@@ -61,7 +61,7 @@ Table ReferenceTable(const OutputResult& output, int digits = 4);
 // outputs: correlation, covariance, exact correlation (or "–"), and the
 // contributor with the largest |part| of the covariance, with its part in
 // percent (parts may be negative: a contributor may anti-correlate the pair).
-Table CovarianceTable(const OutputCovariance& covariance, int digits = 4);
+Table CovarianceTable(const CovarianceResult& covariance, int digits = 4);
 
 // Facts about the run for the head of every document, as (label, value).
 struct ReportFacts {

@@ -80,7 +80,7 @@ TEST_CASE("mass-spring-damper: var x = W/(2ck), var v = W/(2cm), cov(x, v) = 0, 
   const BudgetResult r =
       Evaluate(LoadBudgetText(Oscillator(kOscillatorOutputs, "covariance: [x, v, p]\n"), "c.yaml"));
   REQUIRE(r.covariance.has_value());
-  const OutputCovariance& cov = *r.covariance;
+  const CovarianceResult& cov = *r.covariance;
   CHECK(cov.outputs == std::vector<std::string>{"x", "v", "p"});
   CHECK(cov.units == std::vector<std::string>{"um", "um/s", "um"});
   // Closed form (two-sided W = S0 / 2), in um and um/s; p = x + 0.01 s v.
@@ -112,7 +112,7 @@ TEST_CASE("var(a + k b) of a combined output equals Pa + 2k Pab + k^2 Pb, per co
   const BudgetResult r =
       Evaluate(LoadBudgetText(TwoMasses("{type: auto, min_hz: 0.1, max_hz: 1000}"), "c.yaml"));
   REQUIRE(r.covariance.has_value());
-  const OutputCovariance& cov = *r.covariance;
+  const CovarianceResult& cov = *r.covariance;
   // a in um, b in nm: d = a - 0.4 x2 = a - 0.4e-3 b, in um.
   const double k = -0.4e-3;
   const auto combined = [k](const Eigen::MatrixXd& m) { return m(0, 0) + 2 * k * m(0, 1) + k * k * m(1, 1); };
@@ -140,7 +140,7 @@ TEST_CASE("var(a + k b) of a combined output equals Pa + 2k Pab + k^2 Pb, per co
 TEST_CASE("on a grid without panels the diagonal is still each output's variance, and the matrix a covariance") {
   const BudgetResult r = Evaluate(LoadBudgetText(TwoMasses("{type: log, min_hz: 0.1, max_hz: 1000, points: 400}"),
                                                  "c.yaml"));
-  const OutputCovariance& cov = *r.covariance;
+  const CovarianceResult& cov = *r.covariance;
   for (int i = 0; i < 2; ++i) CHECK(cov.matrix(i, i) == r.outputs[i].variance);
   // The coarse log grid misses a few % of the resonances' variance on the diagonal and off it
   // alike: the correlation is the exact one's to the quadrature's error.
@@ -167,7 +167,7 @@ TEST_CASE("a tone through two low-passes and a weighting: Re(H1 a conj(H2 W a)) 
   const std::complex<double> s(0.0, 2 * kPi * f0);
   const std::complex<double> y1 = w1 / (s + w1) * amplitude, y2 = 1e3 * w2 / (s + w2) * w3 / (s + w3) * amplitude;
   const double expected = std::real(y1 * std::conj(y2));
-  const OutputCovariance& cov = *r.covariance;
+  const CovarianceResult& cov = *r.covariance;
   CHECK(Rel(cov.matrix(0, 1), expected) <= 1e-12);
   CHECK(Rel(cov.matrix(0, 0), std::norm(y1)) <= 1e-12);
   CHECK(Rel(cov.matrix(1, 1), std::norm(y2)) <= 1e-12);
