@@ -7,11 +7,13 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/io/budget_yaml.h"
+#include "deb/io/result_writer.h"
 
 namespace deb {
 namespace {
@@ -187,6 +189,30 @@ TEST_CASE("a coloured source has no exact matrix, and says why") {
   CHECK_FALSE(r.covariance->exact_matrix.has_value());
   CHECK(Has(r.covariance->exact_note, "contributor 'force' has no exact variance on output 'x'"));
   CHECK(Has(r.covariance->exact_note, "not white"));
+}
+
+TEST_CASE("summary.json carries the matrices as the result holds them, and no covariance without a request") {
+  const Budget budget = LoadBudgetText(TwoMasses("{type: auto, min_hz: 0.1, max_hz: 1000}"), "c.yaml");
+  const BudgetResult r = Evaluate(budget);
+  const CovarianceResult& cov = *r.covariance;
+  const auto j = nlohmann::json::parse(SummaryJson(budget, r, {}))["covariance"];
+  CHECK(j["outputs"] == nlohmann::json({"a", "b"}));
+  CHECK(j["units"] == nlohmann::json({"um", "nm"}));
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) {
+      CHECK(j["matrix"][a][b].get<double>() == cov.matrix(a, b));
+      CHECK(j["correlation"][a][b].get<double>() == cov.correlation(a, b));
+      CHECK(j["exact_matrix"][a][b].get<double>() == (*cov.exact_matrix)(a, b));
+      CHECK(j["contributors"][1]["matrix"][a][b].get<double>() == cov.contributors[1].matrix(a, b));
+    }
+  CHECK(j["contributors"][0]["name"] == "force");
+  CHECK(j["contributors"][1]["name"] == "hum");
+  CHECK_FALSE(j.contains("exact_note"));
+
+  const Budget plain = LoadBudgetText(Oscillator(kOscillatorOutputs, ""), "c.yaml");
+  const BudgetResult none = Evaluate(plain);
+  CHECK_FALSE(none.covariance.has_value());
+  CHECK_FALSE(nlohmann::json::parse(SummaryJson(plain, none, {})).contains("covariance"));
 }
 
 TEST_CASE("covariance requests that cannot be met are located errors") {
