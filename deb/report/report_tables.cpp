@@ -197,8 +197,16 @@ Table ReferenceTable(const OutputResult& o, int digits) {
 Table CovarianceTable(const CovarianceResult& cov, int digits) {
   Table t;
   t.title = "Covariance of outputs (each pair; the matrices are in summary.json)";
-  t.header = {"output a", "output b", "correlation", "covariance", "exact correlation", "largest part"};
-  t.numeric = {false, false, true, true, true, false};
+  // The exact column only where there is an exact matrix (summary.json's exact_note says why not).
+  const bool exact = cov.exact_matrix.has_value();
+  t.header = {"output a", "output b", "correlation", "covariance"};
+  t.numeric = {false, false, true, true};
+  if (exact) {
+    t.header.push_back("exact correlation");
+    t.numeric.push_back(true);
+  }
+  t.header.push_back("largest contributor (its part)");
+  t.numeric.push_back(false);
   const auto correlation = [](const Eigen::MatrixXd& m, Eigen::Index a, Eigen::Index b) {
     const double d = std::sqrt(m(a, a) * m(b, b));
     return d > 0.0 ? Sig(m(a, b) / d, 3) : std::string("–");
@@ -215,11 +223,14 @@ Table CovarianceTable(const CovarianceResult& cov, int digits) {
           largest = c.name;
         }
       if (part != 0.0 && cov.matrix(a, b) != 0.0) largest += " (" + Sig(100.0 * part / cov.matrix(a, b), 3) + " %)";
-      t.rows.push_back({cov.outputs[ia], cov.outputs[ib], correlation(cov.matrix, a, b),
-                        Sig(cov.matrix(a, b), digits) + " " +
-                            (cov.units[ia] == cov.units[ib] ? UnitText(VarianceUnit(cov.units[ia]))
-                                                            : UnitText(cov.units[ia]) + "·" + UnitText(cov.units[ib])),
-                        cov.exact_matrix ? correlation(*cov.exact_matrix, a, b) : "–", largest});
+      std::vector<std::string> row = {
+          cov.outputs[ia], cov.outputs[ib], correlation(cov.matrix, a, b),
+          Sig(cov.matrix(a, b), digits) + " " +
+              (cov.units[ia] == cov.units[ib] ? UnitText(VarianceUnit(cov.units[ia]))
+                                              : UnitText(cov.units[ia]) + "·" + UnitText(cov.units[ib]))};
+      if (exact) row.push_back(correlation(*cov.exact_matrix, a, b));
+      row.push_back(largest);
+      t.rows.push_back(std::move(row));
     }
   return t;
 }

@@ -58,7 +58,8 @@ Table GroupTable(const OutputResult& output, int digits = 4);
 Table ReferenceTable(const OutputResult& output, int digits = 4);
 
 // The budget's `covariance:` (output_covariance.h), one row per pair of
-// outputs: correlation, covariance, exact correlation (or "–"), and the
+// outputs: correlation, covariance, exact correlation (where there is an
+// exact matrix), and the
 // contributor with the largest |part| of the covariance, with its part in
 // percent (parts may be negative: a contributor may anti-correlate the pair).
 Table CovarianceTable(const CovarianceResult& covariance, int digits = 4);
