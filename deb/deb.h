@@ -83,6 +83,7 @@
 #include "deb/budget/groups.h"
 #include "deb/budget/isolation_paths.h"
 #include "deb/budget/loop_analysis.h"
+#include "deb/budget/output_covariance.h"
 #include "deb/budget/output_metric.h"
 #include "deb/budget/path.h"
 #include "deb/budget/path_analysis.h"

@@ -114,6 +114,22 @@ void PrintGroups(const deb::OutputResult& o) {
   }
 }
 
+// The correlation matrix of the budget's `covariance:` outputs (the
+// covariance itself is in summary.json).
+void PrintCorrelation(const deb::CovarianceResult& cov) {
+  std::printf("\ncorrelation of outputs (covariance matrices in summary.json)\n  %-16s", "");
+  for (const std::string& name : cov.outputs) std::printf(" %12.12s", name.c_str());
+  for (std::size_t a = 0; a < cov.outputs.size(); ++a) {
+    std::printf("\n  %-16.16s", cov.outputs[a].c_str());
+    for (std::size_t b = 0; b < cov.outputs.size(); ++b) {
+      const double r = cov.correlation(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+      if (std::isfinite(r)) std::printf(" %12.3f", r);
+      else std::printf(" %12s", "-");
+    }
+  }
+  std::printf("\n");
+}
+
 // The figures, and for each output that fails what would fix it; printed
 // before the report is drawn (gnuplot takes most of a run).
 void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double seconds, int digits) {
@@ -170,6 +186,7 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
                   Sig(b.rms(), digits).c_str(), b.requirement.rms_max, b.pass() ? "PASS" : "FAIL");
     if (const auto g = deb::GuideFailure(o, r.grid)) std::printf("  to fix: %s\n", g->sentence.c_str());
   }
+  if (r.covariance) PrintCorrelation(*r.covariance);
   std::fflush(stdout);  // before the report's progress and gnuplot's time
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "deb/budget/groups.h"
+#include "deb/budget/output_covariance.h"
 #include "deb/budget/path_composition.h"
 #include "deb/core/at_key_path.h"
 #include "deb/core/error.h"
@@ -180,6 +181,7 @@ void Budget::Validate() const {
       });
     }
   }
+  ValidateCovarianceRequest(*this);
   for (std::size_t i = 0; i < bands.size(); ++i) {
     const Band& b = bands[i];
     if (!(std::isfinite(b.lo_hz) && std::isfinite(b.hi_hz) && b.lo_hz > 0.0 && b.hi_hz > b.lo_hz)) {

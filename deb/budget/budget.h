@@ -135,6 +135,9 @@ struct Budget {
   std::vector<Output> outputs;
   std::vector<Band> bands;
   std::vector<ModelReport> models;
+  // `covariance:`: outputs whose covariance matrix is reported
+  // (output_covariance.h); empty: none. Validate checks the rules.
+  std::vector<std::string> covariance;
   bool has_sweep = false;  // the file has a `sweep` section (read by deb sweep, checked by deb check)
 
   // Checks names, references, channel counts and units.

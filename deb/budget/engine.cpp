@@ -774,11 +774,7 @@ void AddExactVariance(const Budget& budget, std::size_t ci, std::size_t o, const
   const Path& path = analysis.path();
   const Output& out = budget.outputs[o];
   if (refusal.empty()) {
-    const Eigen::MatrixXd white = *budget.FindSource(c.source).spectrum->WhiteLevel();
-    const int m = path.system.inputs();
-    Eigen::MatrixXd in_scale = Eigen::MatrixXd::Zero(m, m);
-    for (int j = 0; j < m; ++j) in_scale(j, j) = setup.in_conv[j].scale;
-    const Eigen::MatrixXd w_two_sided = in_scale * white * in_scale / 2.0;
+    const Eigen::MatrixXd w_two_sided = WhiteInputIntensity(budget.FindSource(c.source), setup.in_conv);
     try {
       const PathAnalysis::ExactVariance exact = analysis.Exact(path.OutputIndex(out.signal), w_two_sided,
                                                                out.weighting ? &out.weighting->system : nullptr);
@@ -991,6 +987,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
       throw InputError(Key("outputs", o, "references"), e.message());
     }
   }
+  if (!budget.covariance.empty()) result.covariance = ComputeOutputCovariance(budget, result, options.threads);
   return result;
 }
 

@@ -18,6 +18,7 @@
 
 #include "deb/budget/budget.h"
 #include "deb/budget/loop_analysis.h"
+#include "deb/budget/output_covariance.h"
 #include "deb/budget/path_analysis.h"
 #include "deb/core/frequency_grid.h"
 
@@ -146,6 +147,9 @@ struct BudgetResult {
   std::map<std::string, std::shared_ptr<const PathAnalysis>> paths;
   // Every distinct feedback loop of the contributors' paths, with its margins.
   std::vector<LoopResult> loops;
+  // The covariance of the outputs the budget's `covariance:` lists
+  // (output_covariance.h); none when it lists none.
+  std::optional<CovarianceResult> covariance;
 };
 
 // The analysis of every path a contributor uses, for the output rows the

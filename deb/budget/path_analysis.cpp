@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
@@ -193,14 +194,27 @@ PathAnalysis::ExactVariance PathAnalysis::Exact(int row, const Eigen::MatrixXd& 
     if (!c.rows[i]) throw InputError(c.errors[i]);
     return *c.rows[i];
   }
+  return ExactVariance{ExactCovariance({row}, {weighting}, w_two_sided)(0, 0), {}};
+}
+
+Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
+                                              const std::vector<const StateSpace*>& weightings,
+                                              const Eigen::MatrixXd& w_two_sided) const {
+  DEB_DEMAND(!rows.empty() && rows.size() == weightings.size());
   if (measured_) throw InputError("the path holds measured frequency data (no state-space model for a Lyapunov solution)");
   if (modal_ && 2 * path_.modal->modes() > limits::kMaxDenseStates)
-    throw InputError("a weighted output of a modal path is solved in state space, and " +
+    throw InputError("a weighted output or a covariance of a modal path is solved in state space, and " +
                      std::to_string(path_.modal->modes()) + " modes make " +
                      std::to_string(2 * path_.modal->modes()) + " states, more than the " +
                      std::to_string(limits::kMaxDenseStates) + " deb solves densely");
-  const StateSpace rows = path_.Rational().SelectOutputs({row});
-  return ExactVariance{OutputCovariance(Series(rows, *weighting), w_two_sided)(0, 0), {}};
+  const StateSpace rational = path_.Rational();
+  std::optional<StateSpace> stacked;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const StateSpace row = rational.SelectOutputs({rows[i]});
+    const StateSpace one = weightings[i] ? Series(row, *weightings[i]) : row;
+    stacked = stacked ? StackOutputs(*stacked, one) : one;
+  }
+  return OutputCovariance(*stacked, w_two_sided);
 }
 
 }  // namespace deb

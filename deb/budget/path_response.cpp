@@ -21,6 +21,16 @@ std::vector<UnitConversion> InputConversions(const Source& source, const Path& p
   return conv;
 }
 
+Eigen::MatrixXd WhiteInputIntensity(const Source& source, const std::vector<UnitConversion>& in_conv) {
+  const auto white = source.spectrum->WhiteLevel();
+  DEB_DEMAND(white.has_value());
+  const Eigen::Index m = white->rows();
+  DEB_DEMAND(static_cast<std::size_t>(m) == in_conv.size());
+  Eigen::MatrixXd in_scale = Eigen::MatrixXd::Zero(m, m);
+  for (Eigen::Index j = 0; j < m; ++j) in_scale(j, j) = in_conv[static_cast<std::size_t>(j)].scale;
+  return in_scale * *white * in_scale / 2.0;
+}
+
 std::string WeightedSignalUnit(const Path& path, int row, const Output& output) {
   return output.weighting ? UnitProduct(path.output_units[row], output.weighting->unit) : path.output_units[row];
 }

@@ -24,6 +24,12 @@ namespace deb {
 // @throws InputError (from ConvertUnit) if a pair does not convert.
 std::vector<UnitConversion> InputConversions(const Source& source, const Path& path);
 
+// The two-sided intensity W = F S0 F / 2 that the path's inputs see from a
+// white source of one-sided level S0 (Spectrum::WhiteLevel), F = diag of the
+// input conversions' scales: the W of the Lyapunov equation (docs/method.md,
+// conventions 2-3). DEB_DEMANDs a white source.
+Eigen::MatrixXd WhiteInputIntensity(const Source& source, const std::vector<UnitConversion>& in_conv);
+
 // Unit of path row `row` after the output's weighting (the product with the
 // weighting's unit), and its conversion to the output's unit.
 std::string WeightedSignalUnit(const Path& path, int row, const Output& output);

@@ -172,7 +172,8 @@ Band ParseBand(const YamlNode& node) {
 Budget Load(const YamlReader& reader, const std::string& base_dir) {
   const YamlNode root = reader.Root();
   // sweep: read by deb sweep (deb/io/sweep_yaml.h); a run evaluates the budget as written.
-  root.AllowOnly({"name", "description", "grid", "sources", "paths", "contributors", "outputs", "bands", "sweep"});
+  root.AllowOnly(
+      {"name", "description", "grid", "sources", "paths", "contributors", "outputs", "bands", "covariance", "sweep"});
   Budget b;
   b.source_file = reader.name();
   b.positions = reader.positions();
@@ -195,6 +196,11 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
   for (const auto& n : root.Required("outputs").Elements()) b.outputs.push_back(ParseOutput(n, base_dir));
   if (auto bands = root.Optional("bands"))
     for (const auto& n : bands->Elements()) b.bands.push_back(ParseBand(n));
+  if (auto covariance = root.Optional("covariance")) {
+    if (!covariance->IsSequence())
+      covariance->Fail("covariance lists the names of 2 or more outputs, e.g. covariance: [x, y]");
+    for (const auto& n : covariance->Elements()) b.covariance.push_back(n.AsString());
+  }
   try {
     b.Validate();
   } catch (const InputError& e) {

@@ -24,6 +24,33 @@ namespace {
 
 nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
+// Rows of a matrix; a non-finite entry (a correlation with a zero variance) is null.
+nlohmann::json MatrixJson(const Eigen::MatrixXd& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index k = 0; k < m.cols(); ++k) row.push_back(NumberOrNull(m(i, k)));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The budget's `covariance:` (deb/budget/output_covariance.h).
+nlohmann::json CovarianceJson(const CovarianceResult& cov) {
+  nlohmann::json j;
+  j["outputs"] = cov.outputs;
+  j["units"] = cov.units;
+  j["matrix"] = MatrixJson(cov.matrix);
+  j["correlation"] = MatrixJson(cov.correlation);
+  j["exact_matrix"] = cov.exact_matrix ? MatrixJson(*cov.exact_matrix) : nlohmann::json(nullptr);
+  if (!cov.exact_matrix) j["exact_note"] = cov.exact_note;
+  nlohmann::json contributors = nlohmann::json::array();
+  for (const ContributorCovariance& c : cov.contributors)
+    contributors.push_back({{"name", c.name}, {"matrix", MatrixJson(c.matrix)}});
+  j["contributors"] = contributors;
+  return j;
+}
+
 nlohmann::json Conventions() {
   return {
       {"frequency", "Hz"},
@@ -298,6 +325,7 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
   j["pass"] = all_pass;
   j["warnings"] = result.warnings;
   if (!result.loops.empty()) j["loops"] = LoopsJson(result.loops);
+  if (result.covariance) j["covariance"] = CovarianceJson(*result.covariance);
   return j.dump(2) + "\n";
 }
 

@@ -135,6 +135,7 @@ std::string IndexHtml(const DocumentInputs& in) {
   for (const auto& [key, value] : in.facts.items)
     s << "<tr><td>" << HtmlEscape(key) << "</td><td>" << HtmlEscape(value) << "</td></tr>\n";
   s << "</table>\n" << ToHtml(SummaryTable(result, in.digits));
+  if (result.covariance) s << ToHtml(CovarianceTable(*result.covariance, in.digits));
   s << "<h3>Conventions</h3>\n<ul>\n";
   for (const auto& c : in.facts.conventions) s << "<li>" << HtmlEscape(c) << "</li>\n";
   s << "</ul>\n";
@@ -214,7 +215,12 @@ std::string ReportMarkdown(const DocumentInputs& in) {
   if (!budget.description.empty()) s << budget.description << "\n\n";
   s << "## Summary\n\n| | |\n| --- | --- |\n";
   for (const auto& [key, value] : in.facts.items) s << "| " << key << " | `" << value << "` |\n";
-  s << "\n" << ToMarkdown(SummaryTable(result, in.digits)) << "\n### Conventions\n\n";
+  s << "\n" << ToMarkdown(SummaryTable(result, in.digits)) << "\n";
+  if (result.covariance) {
+    const Table covariance = CovarianceTable(*result.covariance, in.digits);
+    s << "### " << covariance.title << "\n\n" << ToMarkdown(covariance) << "\n";
+  }
+  s << "### Conventions\n\n";
   for (const auto& c : in.facts.conventions) s << "- " << c << "\n";
   if (!result.warnings.empty()) {
     s << "\n### Warnings\n\n";

@@ -194,6 +194,47 @@ Table ReferenceTable(const OutputResult& o, int digits) {
   return t;
 }
 
+Table CovarianceTable(const CovarianceResult& cov, int digits) {
+  Table t;
+  t.title = "Covariance of outputs (each pair; the matrices are in summary.json)";
+  // The exact column only where there is an exact matrix (summary.json's exact_note says why not).
+  const bool exact = cov.exact_matrix.has_value();
+  t.header = {"output a", "output b", "correlation", "covariance"};
+  t.numeric = {false, false, true, true};
+  if (exact) {
+    t.header.push_back("exact correlation");
+    t.numeric.push_back(true);
+  }
+  t.header.push_back("largest contributor (its part)");
+  t.numeric.push_back(false);
+  const auto correlation = [](const Eigen::MatrixXd& m, Eigen::Index a, Eigen::Index b) {
+    const double d = std::sqrt(m(a, a) * m(b, b));
+    return d > 0.0 ? Sig(m(a, b) / d, 3) : std::string("–");
+  };
+  const Eigen::Index n = cov.matrix.rows();
+  for (Eigen::Index a = 0; a < n; ++a)
+    for (Eigen::Index b = a + 1; b < n; ++b) {
+      const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+      std::string largest = "–";
+      double part = 0.0;
+      for (const ContributorCovariance& c : cov.contributors)
+        if (std::abs(c.matrix(a, b)) > std::abs(part)) {
+          part = c.matrix(a, b);
+          largest = c.name;
+        }
+      if (part != 0.0 && cov.matrix(a, b) != 0.0) largest += " (" + Sig(100.0 * part / cov.matrix(a, b), 3) + " %)";
+      std::vector<std::string> row = {
+          cov.outputs[ia], cov.outputs[ib], correlation(cov.matrix, a, b),
+          Sig(cov.matrix(a, b), digits) + " " +
+              (cov.units[ia] == cov.units[ib] ? UnitText(VarianceUnit(cov.units[ia]))
+                                              : UnitText(cov.units[ia]) + "·" + UnitText(cov.units[ib]))};
+      if (exact) row.push_back(correlation(*cov.exact_matrix, a, b));
+      row.push_back(largest);
+      t.rows.push_back(std::move(row));
+    }
+  return t;
+}
+
 Table BandTable(const OutputResult& o, int digits) {
   Table t;
   t.title = "RMS of " + o.name + " per band [" + UnitText(o.unit) + "]";

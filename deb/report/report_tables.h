@@ -57,6 +57,13 @@ Table GroupTable(const OutputResult& output, int digits = 4);
 // without references.
 Table ReferenceTable(const OutputResult& output, int digits = 4);
 
+// The budget's `covariance:` (output_covariance.h), one row per pair of
+// outputs: correlation, covariance, exact correlation (where there is an
+// exact matrix), and the
+// contributor with the largest |part| of the covariance, with its part in
+// percent (parts may be negative: a contributor may anti-correlate the pair).
+Table CovarianceTable(const CovarianceResult& covariance, int digits = 4);
+
 // Facts about the run for the head of every document, as (label, value).
 struct ReportFacts {
   std::vector<std::pair<std::string, std::string>> items;

@@ -152,3 +152,30 @@ TEST_CASE("the group table lists every group depth first, indented, with its mem
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("the covariance table: one row per pair, correlations from the matrices, the largest part per pair") {
+  CovarianceResult cov;
+  cov.outputs = {"x", "y", "rz"};
+  cov.units = {"nm", "nm", "nrad"};
+  const auto matrix = [](double xy, double xr, double yr, double d) {
+    Eigen::MatrixXd m(3, 3);
+    m << d, xy, xr, xy, d, yr, xr, yr, d;
+    return m;
+  };
+  cov.contributors = {{"floor", matrix(1.0, -2.0, 0.0, 4.0)}, {"stage", matrix(3.0, 1.0, 0.0, 4.0)}};
+  cov.matrix = cov.contributors[0].matrix + cov.contributors[1].matrix;  // variances 8, covariances 4, -1, 0
+  Table t = CovarianceTable(cov, 4);
+  REQUIRE(t.rows.size() == 3);
+  CHECK(t.header.size() == 5);  // no exact matrix: no exact column
+  CHECK(t.rows[0] == std::vector<std::string>{"x", "y", "0.500", "4.000 nm^2", "stage (75.0 %)"});
+  CHECK(t.rows[1] == std::vector<std::string>{"x", "rz", "-0.125", "-1.000 nm·nrad", "floor (200 %)"});
+  CHECK(t.rows[2] == std::vector<std::string>{"y", "rz", "0", "0 nm·nrad", "–"});  // no contributor correlates them
+  cov.exact_matrix = 2.0 * cov.matrix;
+  t = CovarianceTable(cov, 4);
+  CHECK(t.header[4] == "exact correlation");
+  CHECK(t.rows[0][4] == "0.500");
+}
+
+}  // namespace deb::report
