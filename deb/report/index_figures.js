@@ -111,7 +111,7 @@
         var drawing = false;
         r.cps.forEach(function (v, i) {
           if (v === null) { drawing = false; return; }
-          var x = g.toDomXCoord(r.f[i]), y = g.toDomYCoord(v);
+          var x = area.x + g.toPercentXCoord(r.f[i]) * area.w, y = g.toDomYCoord(v);  // toDomXCoord is linear
           if (drawing) ctx.lineTo(x, y); else ctx.moveTo(x, y);
           drawing = true;
         });
@@ -185,7 +185,7 @@
         var key = document.createElement('span');
         key.className = 'reference';
         key.style.marginLeft = '1.5rem';
-        key.textContent = '- - ' + r.name + ' (measured reference, not summed): RMS ' + num(r.rms) + ' ' + o.unit;
+        key.textContent = '- - ' + r.name + ' (reference, not summed): RMS ' + num(r.rms) + ' ' + o.unit;
         el.querySelector('.toggles').appendChild(key);
       });
     } else if (kind === 'psd' || kind === 'asd') {

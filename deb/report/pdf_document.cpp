@@ -56,9 +56,10 @@ PdfBlock Contents() {
   return b;
 }
 
-PdfBlock PageBreak() {
+PdfBlock PageBreak(double unless_room_pt) {
   PdfBlock b;
   b.kind = PdfBlockKind::kPageBreak;
+  b.unless_room_pt = unless_room_pt;
   return b;
 }
 
@@ -159,7 +160,7 @@ class Composer {
         case PdfBlockKind::kFigure: DoFigure(b); break;
         case PdfBlockKind::kContents: DoContents(); break;
         case PdfBlockKind::kPageBreak:
-          if (y_ > kMarginPt) NewPage();
+          if (y_ > kMarginPt && (b.unless_room_pt <= 0.0 || kBodyBottomPt - y_ < b.unless_room_pt)) NewPage();
           break;
       }
     }
