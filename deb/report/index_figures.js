@@ -98,6 +98,28 @@
       ctx.restore();
     };
   }
+  // Measured references over the stack: grey dashed, never summed (null where one covers nothing).
+  function referenceLines(references, shown) {
+    return function (ctx, area, g) {
+      if (!shown()) return;
+      references.forEach(function (r) {
+        ctx.save();
+        ctx.strokeStyle = '#707070';
+        ctx.lineWidth = 2;
+        ctx.setLineDash([8, 5]);
+        ctx.beginPath();
+        var drawing = false;
+        r.cps.forEach(function (v, i) {
+          if (v === null) { drawing = false; return; }
+          var x = area.x + g.toPercentXCoord(r.f[i]) * area.w, y = g.toDomYCoord(v);  // toDomXCoord is linear
+          if (drawing) ctx.lineTo(x, y); else ctx.moveTo(x, y);
+          drawing = true;
+        });
+        ctx.stroke();
+        ctx.restore();
+      });
+    };
+  }
   function barPlotter(e) {
     var ctx = e.drawingContext, g = e.dygraph, pts = e.points;
     var w = 0.6 * (g.toDomXCoord(1) - g.toDomXCoord(0));
@@ -135,8 +157,16 @@
       var reverse = { raw: o.cps.map(above), total: above(o.total_cps), ylabel: 'reverse CPS [' + o.variance_unit + ']' };
       var cpsFig = { names: o.contributors, colours: o.colours, raw: forward.raw, total: forward.total,
                      rows: rows(o.f, forward.raw), ylabel: forward.ylabel, xText: hz, valueText: varianceText };
+      var refs = (o.references || []).map(function (r) { return { name: r.name, rms: r.rms, cps: r.cps, f: o.f }; });
+      refs.forEach(function (r) {
+        top = Math.max(top, r.cps.reduce(function (a, v) { return v === null ? a : Math.max(a, v * 1.06); }, 0));
+      });
+      var forwardShown = function () { return cpsFig.raw === forward.raw; };
       var gc = draw(cpsFig, el, { stackedGraph: true, fillGraph: true, fillAlpha: 0.7, valueRange: [0, top],
-                                  dateWindow: window_hz, underlayCallback: requirementLine(req) });
+                                  dateWindow: window_hz, underlayCallback: function (ctx, area, g) {
+                                    requirementLine(req)(ctx, area, g);
+                                    referenceLines(refs, forwardShown)(ctx, area, g);
+                                  } });
       graphs['cps' + i] = gc;
       var rlabel = document.createElement('label'), rbox = document.createElement('input');
       rbox.type = 'checkbox';
@@ -151,6 +181,13 @@
       rlabel.appendChild(document.createTextNode('reverse (variance above f)'));
       rlabel.style.marginLeft = '1.5rem';
       el.querySelector('.toggles').appendChild(rlabel);
+      refs.forEach(function (r) {  // the reference's key: its RMS over what it covers
+        var key = document.createElement('span');
+        key.className = 'reference';
+        key.style.marginLeft = '1.5rem';
+        key.textContent = '- - ' + r.name + ' (reference, not summed): RMS ' + num(r.rms) + ' ' + o.unit;
+        el.querySelector('.toggles').appendChild(key);
+      });
     } else if (kind === 'psd' || kind === 'asd') {
       // PSD, or ASD = sqrt(PSD) by the box under the figure.
       var psd = o.psd.concat([o.total_psd]);

@@ -119,6 +119,15 @@ json OutputData(const Budget& budget, const BudgetResult& result, const OutputRe
   }
   o["bands"] = bands;
   o["band_variance"] = band_variance;  // [band][contributor]
+  // Measured references: drawn on the CPS (from the lowest frequency each covers), never stacked.
+  json references = json::array();
+  for (const ReferenceResult& r : out.references) {
+    json cps = json::array();
+    for (std::size_t i : keep)
+      cps.push_back(f[i] >= r.covered_lo_hz && f[i] <= r.covered_hi_hz ? json(Rounded(r.cps[i], 4)) : json(nullptr));
+    references.push_back({{"name", r.name}, {"rms", Rounded(std::sqrt(r.variance), 4)}, {"cps", cps}});
+  }
+  o["references"] = references;
   return o;
 }
 

@@ -56,9 +56,10 @@ PdfBlock Contents() {
   return b;
 }
 
-PdfBlock PageBreak() {
+PdfBlock PageBreak(double unless_room_pt) {
   PdfBlock b;
   b.kind = PdfBlockKind::kPageBreak;
+  b.unless_room_pt = unless_room_pt;
   return b;
 }
 
@@ -70,6 +71,10 @@ constexpr double kBodyBottomPt = kPageHeightPt - kMarginPt - kFooterPt - 8.0;  /
 constexpr double kCellPadPt = 3.5, kRowPadPt = 2.0;
 constexpr double kTableFontPt = 8.0, kSmallestTableFontPt = 5.5, kBoxInsetPt = 6.0;
 constexpr double kLongestWordPt = 75.0;  // a longer word may break inside a narrow column
+// A figure that does not fit below the cursor at the text width but would
+// at this fraction of it or more is set that much smaller (centred) rather
+// than moved to the next page, leaving the rest of this one empty.
+constexpr double kMinFigureScale = 0.85;
 const char* const kInk = "#1a1a1a";
 const char* const kAlert = "#c00000";
 const char* const kGrey = "#707070";
@@ -155,7 +160,7 @@ class Composer {
         case PdfBlockKind::kFigure: DoFigure(b); break;
         case PdfBlockKind::kContents: DoContents(); break;
         case PdfBlockKind::kPageBreak:
-          if (y_ > kMarginPt) NewPage();
+          if (y_ > kMarginPt && (b.unless_room_pt <= 0.0 || kBodyBottomPt - y_ < b.unless_room_pt)) NewPage();
           break;
       }
     }
@@ -233,7 +238,7 @@ class Composer {
     switch (b.kind) {
       case PdfBlockKind::kFigure: {
         const Svg& svg = svgs_->Get(b.svg_file);
-        return 6.0 + kTextWidthPt * svg.height / svg.width + 30.0;
+        return 6.0 + kMinFigureScale * kTextWidthPt * svg.height / svg.width + 30.0;
       }
       case PdfBlockKind::kParagraph: {
         Layout l = MakeLayout(b.text, b.size_pt, b.bold, kTextWidthPt);
@@ -306,16 +311,21 @@ class Composer {
 
   void DoFigure(const PdfBlock& b) {
     const Svg& svg = svgs_->Get(b.svg_file);
-    const double w = kTextWidthPt, h = w * svg.height / svg.width;
+    double w = kTextWidthPt, h = w * svg.height / svg.width;
     ++figures_;
     const std::string caption = "Figure " + std::to_string(figures_) + ". " + b.text;
     Layout cap = MakeLayout(caption, 8.5, false, kTextWidthPt, true);
     const double cap_h = Size(cap.get()).second;
     if (y_ > kMarginPt) y_ += 6.0;
+    if (const double room = kBodyBottomPt - y_ - 4.0 - cap_h; y_ > kMarginPt && h > room && room >= kMinFigureScale * h) {
+      w *= room / h;
+      h = room;
+    }
     Need(h + 4.0 + cap_h);
+    const double x = kMarginPt + 0.5 * (kTextWidthPt - w);
     if (draw_) {
       cairo_save(cr_);
-      RsvgRectangle viewport{kMarginPt, y_, w, h};
+      RsvgRectangle viewport{x, y_, w, h};
       GError* error = nullptr;
       const gboolean ok = rsvg_handle_render_document(svg.handle, cr_, &viewport, &error);
       cairo_restore(cr_);
@@ -325,7 +335,7 @@ class Composer {
         throw WriteError("cannot draw figure " + b.svg_file + ": " + why);
       }
     }
-    Place("figure", b.svg_file, kMarginPt, y_, w, h);
+    Place("figure", b.svg_file, x, y_, w, h);
     y_ += h + 4.0;
     Show(cap.get(), kMarginPt, y_, kInk);
     Place("caption", caption, kMarginPt, y_, kTextWidthPt, cap_h, kInk);
@@ -447,9 +457,12 @@ class Composer {
       if (least <= width || attempt == 1) break;
       table_font_ = std::max(kSmallestTableFontPt, 0.97 * kTableFontPt * width / least);
     }
-    // Too wide: every column keeps its longest word (numbers whole); the
-    // rest of the width is shared out evenly, a column that needs less than
-    // its share unwrapped taking only that (long text wraps, never cut).
+    // Too wide: every column keeps its longest word (numbers whole); of the
+    // rest of the width, a column that lacks less than an even share takes
+    // what it lacks, and the columns that must wrap share what is left in
+    // proportion to what each lacks (as browsers share a table's width), so
+    // that a column of long notes is not squeezed to the width of a column
+    // of names (long text wraps, never cut).
     std::vector<double> widths = natural;
     double total = 0.0, least = 0.0;
     for (std::size_t c = 0; c < columns; ++c) {
@@ -462,6 +475,7 @@ class Composer {
       std::vector<std::size_t> open;
       for (std::size_t c = 0; c < columns; ++c)
         if (natural[c] > shortest[c]) open.push_back(c);
+      // A column that lacks less than an even share takes only that and stays on one line.
       while (!open.empty() && spare > 1e-9) {
         const double share = spare / static_cast<double>(open.size());
         std::vector<std::size_t> still;
@@ -472,8 +486,10 @@ class Composer {
           } else {
             still.push_back(c);
           }
-        if (still.size() == open.size()) {  // none satisfied: an even share each
-          for (std::size_t c : still) widths[c] += share;
+        if (still.size() == open.size()) {  // the rest wrap: shared in proportion to what each lacks
+          double lacking = 0.0;
+          for (std::size_t c : still) lacking += natural[c] - widths[c];
+          for (std::size_t c : still) widths[c] += spare * (natural[c] - widths[c]) / lacking;
           break;
         }
         open = std::move(still);

@@ -48,6 +48,7 @@ struct PdfBlock {
   bool bullet = false;               // paragraph: an item of a list, "• " and a hanging indent
   PdfTable table;
   std::string svg_file;  // figure: drawn as vectors across the text width
+  double unless_room_pt = 0.0;  // page break: none when at least this much of the page is left (0: always)
 };
 
 // Starts `kind` blocks: Heading(1, "Overview"), Paragraph("..."), ...
@@ -57,7 +58,10 @@ PdfBlock Bullet(std::string text);
 PdfBlock TableBlock(std::string title, PdfTable table);
 PdfBlock Figure(std::string svg_file, std::string caption);
 PdfBlock Contents();
-PdfBlock PageBreak();
+// A new page; with `unless_room_pt` > 0, only when less than that is left
+// below the cursor (a section that may start low on a page rather than
+// leave it half empty).
+PdfBlock PageBreak(double unless_room_pt = 0.0);
 
 struct PdfDocumentSpec {
   std::string title, subject;  // the PDF's metadata

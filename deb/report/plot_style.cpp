@@ -155,6 +155,8 @@ SeriesStyle ContributorStyle(std::size_t index) {
   return table[index];
 }
 
+SeriesStyle GroupStyle(std::size_t contributors, std::size_t group) { return ContributorStyle(contributors + group); }
+
 std::vector<std::string> FillClauses(const SeriesStyle& style, const std::string& source, const std::string& with,
                                      const std::string& key, const std::string& outline_colour) {
   const std::string solid = source + " with " + with + " fillcolor rgb " + Quote(style.colour);

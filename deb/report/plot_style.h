@@ -35,6 +35,12 @@ struct SeriesStyle {
 // report and every run.
 SeriesStyle ContributorStyle(std::size_t index);
 
+// Style of group `group` (its place in ComputeGroups' depth-first order) of
+// an output of `contributors` contributors: the contributor styles that follow
+// the last contributor's, so that a group never looks like a contributor of
+// the same report, and looks alike in every plot it appears in.
+SeriesStyle GroupStyle(std::size_t contributors, std::size_t group);
+
 // Style of source channel `index` in a path plot with several channels: a
 // family of its own, so that a channel is never taken for a contributor of
 // the same report. Channels are solid lines with open markers (circle,
@@ -64,6 +70,9 @@ double GreyLightness(const std::string& colour);
 inline constexpr const char* kTotalColour = "#000000";
 inline constexpr const char* kRequirementColour = "#b2182b";
 inline constexpr const char* kRequirementDash = "(14,6)";
+// A measured reference (drawn, never summed).
+inline constexpr const char* kReferenceColour = "#707070";
+inline constexpr const char* kReferenceDash = "(8,5)";
 
 inline constexpr const char* kFont = "DejaVu Sans";
 inline constexpr const char* kMonoFont = "DejaVu Sans Mono";

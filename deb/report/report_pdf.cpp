@@ -53,6 +53,9 @@ std::string VerdictLine(const OutputResult& o) {
   return line + ".";
 }
 
+// Room an output's section needs to start below the previous one rather than on a new page.
+constexpr double kOutputSectionRoomPt = 250.0;
+
 // Plots of an output in reading order: CPS, reverse CPS, spectrum, bands.
 int KindOrder(PlotKind k) {
   switch (k) {
@@ -193,7 +196,8 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
 
   for (std::size_t i = 0; i < result.outputs.size(); ++i) {
     const OutputResult& o = result.outputs[i];
-    b.push_back(PageBreak());
+    // A new page unless a third of one is left: the heading, the verdict and the table's first rows fit there.
+    b.push_back(PageBreak(kOutputSectionRoomPt));
     b.push_back(Heading(1, SectionTitle(o)));
     b.push_back(Paragraph(VerdictLine(o), 10.0, true, Fails(o)));
     if (Fails(o))

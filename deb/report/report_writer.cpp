@@ -14,6 +14,7 @@
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
+#include "deb/budget/groups.h"
 #include "deb/report/band_plots.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/loop_plots.h"
@@ -100,13 +101,24 @@ std::time_t ReportTime() { return SourceDateEpoch().value_or(std::time(nullptr))
 
 std::string ColoursCsv(const Budget& budget) {
   std::ostringstream s;
-  s << "# deb " << DEB_VERSION << ": style of each contributor in every plot, keyed by its index in the budget\n";
+  s << "# deb " << DEB_VERSION << ": style of each contributor in every plot, keyed by its index in the budget;"
+    << " then of each group (its path and '/', as the plots name it \"name/\"), after the contributors\n";
   s << "index,contributor,colour,edge_colour,dash,lightness,fill_pattern,hatch_colour\n";
-  for (std::size_t c = 0; c < budget.contributors.size(); ++c) {
-    const SeriesStyle st = ContributorStyle(c);
-    s << c << ',' << CsvField(budget.contributors[c].name) << ',' << st.colour << ',' << st.edge_colour << ','
-      << CsvField(st.dash) << ',' << st.lightness << ',' << st.fill_pattern << ',' << st.hatch_colour << '\n';
+  const auto row = [&](std::size_t index, const std::string& name, const SeriesStyle& st) {
+    s << index << ',' << CsvField(name) << ',' << st.colour << ',' << st.edge_colour << ',' << CsvField(st.dash) << ','
+      << st.lightness << ',' << st.fill_pattern << ',' << st.hatch_colour << '\n';
+  };
+  const std::size_t n = budget.contributors.size();
+  for (std::size_t c = 0; c < n; ++c) row(c, budget.contributors[c].name, ContributorStyle(c));
+  // The groups in the order the plots number them (every output has every contributor, in budget order).
+  OutputResult names;
+  for (const Contributor& c : budget.contributors) {
+    names.contributors.emplace_back();
+    names.contributors.back().name = c.name;
+    names.contributors.back().group = c.group;
   }
+  const std::vector<GroupResult> groups = ComputeGroups(names);
+  for (std::size_t g = 0; g < groups.size(); ++g) row(n + g, groups[g].path + "/", GroupStyle(n, g));
   return s.str();
 }
 

@@ -26,6 +26,12 @@ std::string Entry(const std::string& name, double variance, double total_varianc
   return s;
 }
 
+// "measured (reference): 1.23, 0.216–1.94e+03 Hz": a reference's key entry, its RMS over what it covers.
+std::string ReferenceKey(const ReferenceResult& r, int digits) {
+  return Enhanced(r.name) + " (reference): " + SigLabel(std::sqrt(r.variance), digits) + ", " +
+         SigLabel(r.covered_lo_hz, 3) + "–" + SigLabel(r.covered_hi_hz, 3) + " Hz";
+}
+
 // " Weighted by <description>; metric: <metric>." from the output's
 // definition: what the plotted quantity is, stated in the caption.
 std::string WeightingCaption(const OutputResult& out, const Output* spec) {
@@ -46,23 +52,31 @@ double NiceStep(double x) {
   return 10.0 * p;
 }
 
-// Stacked CPS (reverse = false) or reverse CPS of one output.
-Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int digits, const Output* spec) {
-  const OutputResult& out = result.outputs[o];
+// Stacked CPS (reverse = false) or reverse CPS of one output at one level
+// (its items in `level.out.contributors`).
+Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& level, bool reverse, int digits,
+                 const Output* spec) {
+  const OutputResult& out = level.out;
   const std::size_t n = out.contributors.size();
   const std::vector<double>& f = result.grid.f_hz();
   Plot p;
   p.name = FileStem(out.name) + (reverse ? "_reverse_cps" : "_cps");
   p.kind = reverse ? PlotKind::kReverseCps : PlotKind::kCps;
   p.output = static_cast<int>(o);
-  const FrequencyRange range = DisplayRange(out, result.grid);
+  const FrequencyRange range = level.range;
   const std::string unit = DisplayUnit(out.unit);
+  // The references' cumulative variance, over what each covers (forward CPS only).
+  const std::vector<ReferenceResult> none;
+  const std::vector<ReferenceResult>& refs = reverse ? none : out.references;
   p.caption = std::string(reverse ? "Reverse cumulative power spectrum (variance above f)" :
                                     "Cumulative power spectrum (variance below f)") +
-              " of " + out.name +
-              ", contributors stacked by share, the largest on top and first in the key; left axis variance, "
+              " of " + out.name + ", " + level.items +
+              " stacked by share, the largest on top and first in the key; left axis variance, "
               "right axis RMS." +
               WeightingCaption(out, spec) + RangeCaption(range);
+  if (!refs.empty())
+    p.caption += " Grey dashed: the measured reference(s), never summed: the variance from the lowest frequency "
+                 "each covers to f (the table compares it with the budget's over the same range).";
 
   std::vector<std::vector<double>> series(n);
   for (std::size_t c = 0; c < n; ++c)
@@ -76,19 +90,27 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int di
       << " in (" << unit << ")^2, per contributor and total\n";
   csv << "frequency_hz";
   for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
-  csv << ",total\n";
+  csv << ",total";
+  for (const ReferenceResult& r : refs) csv << ',' << CsvField("measured: " + r.name);
+  csv << '\n';
   std::vector<const std::vector<double>*> drawn = {&total};
   for (const auto& s : series) drawn.push_back(&s);
+  for (const ReferenceResult& r : refs) drawn.push_back(&r.cps);
   for (std::size_t k : PlotPoints(f, drawn, range.lo_hz, range.hi_hz, PlotScale::kLinear)) {
     csv << CsvNumber(f[k]);
     for (std::size_t c = 0; c < n; ++c) csv << ',' << CsvNumber(series[c][k]);
-    csv << ',' << CsvNumber(total[k]) << '\n';
+    csv << ',' << CsvNumber(total[k]);
+    for (const ReferenceResult& r : refs)
+      csv << ',' << (f[k] >= r.covered_lo_hz && f[k] <= r.covered_hi_hz ? CsvNumber(r.cps[k]) : std::string("NaN"));
+    csv << '\n';
   }
   p.csv = csv.str();
 
   const double limit2 = out.rms_max ? *out.rms_max * *out.rms_max : 0.0;
-  // Headroom above the larger of total and limit for the key-free top edge and the marker's label.
-  const double y_max = std::max({out.variance, limit2, 1e-300}) * 1.12;
+  // Headroom above the larger of total, limit and references for the key-free top edge and the marker's label.
+  double top = std::max({out.variance, limit2, 1e-300});
+  for (const ReferenceResult& r : refs) top = std::max(top, r.variance);
+  const double y_max = top * 1.12;
   // Variance axis in units of 10^e where the numbers would be long.
   const int e = static_cast<int>(std::floor(std::log10(y_max)));
   const double scale = (e >= 4 || e <= -3) ? std::pow(10.0, e) : 1.0;
@@ -117,7 +139,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int di
   std::vector<FigureSeries> edges;
   for (std::size_t i = 0; i < order.size(); ++i) {
     const std::size_t c = order[i];
-    const SeriesStyle st = ContributorStyle(c);
+    const SeriesStyle& st = level.styles[c];
     FigureSeries layer;
     layer.name = out.contributors[c].name;
     layer.key = Entry(out.contributors[c].name, out.contributors[c].variance, out.variance, digits);
@@ -138,7 +160,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int di
       edge.data = data;
       edge.y_columns = layer.low_columns;
       edge.y_divisor = scale;
-      const double l = 0.5 * (st.lightness + ContributorStyle(order[i + 1]).lightness);
+      const double l = 0.5 * (st.lightness + level.styles[order[i + 1]].lightness);
       edge.colour = l < 58.0 ? "#ffffff" : "#262626";
       edge.width = 1.1;
       edges.push_back(edge);
@@ -177,6 +199,19 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int di
       panel.annotations.push_back(m);
     }
   }
+  for (std::size_t i = 0; i < refs.size(); ++i) {  // over the layers, under the total
+    const ReferenceResult& r = refs[i];
+    FigureSeries m;
+    m.name = "measured: " + r.name;
+    m.key = ReferenceKey(r, digits);
+    m.data = data;
+    m.y_columns = {3 + n + i};
+    m.y_divisor = scale;
+    m.colour = kReferenceColour;
+    m.dash = kReferenceDash;
+    m.width = 2.5;
+    panel.series.push_back(m);
+  }
   FigureSeries t;  // drawn last: never under a layer
   t.name = "total";
   t.key = "total: " + SigLabel(out.rms(), digits);
@@ -191,8 +226,9 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, bool reverse, int di
   return p;
 }
 
-Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digits, const Output* spec) {
-  const OutputResult& out = result.outputs[o];
+Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& level, bool asd, int digits,
+                  const Output* spec) {
+  const OutputResult& out = level.out;
   const std::size_t n = out.contributors.size();
   const std::vector<double>& f = result.grid.f_hz();
   const std::string unit = DisplayUnit(out.unit);
@@ -202,9 +238,9 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
   p.name = FileStem(out.name) + (asd ? "_asd" : "_psd");
   p.kind = PlotKind::kSpectrum;
   p.output = static_cast<int>(o);
-  const FrequencyRange range = DisplayRange(out, result.grid);
+  const FrequencyRange range = level.range;
   p.caption = (asd ? "Amplitude spectral density" : "Power spectral density (one-sided)") + std::string(" of ") +
-              out.name + " per contributor, largest first in the key, and in total (drawn last)." +
+              out.name + " per " + level.item + ", largest first in the key, and in total (drawn last)." +
               WeightingCaption(out, spec) + RangeCaption(range);
   if (!out.band_requirements.empty())
     p.caption += std::string(" Each red segment is a band requirement drawn as the flat ") + quantity +
@@ -309,7 +345,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
     m.kind = AnnotationKind::kMarker;
     m.x0 = t.f_hz;
     m.y0 = top > 0.0 ? std::max(on_total, *panel.y.min) : 1.0;
-    m.colour = ContributorStyle(t.contributor).colour;
+    m.colour = level.styles[t.contributor].colour;
     m.point_type = 9;  // a triangle
     if (i < kMaxToneLabels)
       m.label = Enhanced(out.contributors[t.contributor].name) + " " + Short(t.f_hz) + " Hz: " +
@@ -324,7 +360,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
   panel.key.title = "RMS [" + UnitLabel(unit) + "] (share)";
   const std::string data = p.name + ".csv";
   for (std::size_t c : ShareOrder(out)) {
-    const SeriesStyle st = ContributorStyle(c);
+    const SeriesStyle& st = level.styles[c];
     FigureSeries s;
     s.name = out.contributors[c].name;
     s.key = Entry(out.contributors[c].name, out.contributors[c].variance, out.variance, digits);
@@ -339,12 +375,11 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, bool asd, int digit
     const ReferenceResult& r = out.references[i];
     FigureSeries m;
     m.name = "measured: " + r.name;
-    m.key = Enhanced(r.name) + " (reference): " + SigLabel(std::sqrt(r.variance), digits) + ", " +
-            SigLabel(r.covered_lo_hz, 3) + "–" + SigLabel(r.covered_hi_hz, 3) + " Hz";
+    m.key = ReferenceKey(r, digits);
     m.data = data;
     m.y_columns = {3 + n + i};
-    m.colour = "#707070";
-    m.dash = "(8,5)";
+    m.colour = kReferenceColour;
+    m.dash = kReferenceDash;
     m.width = 2.5;
     panel.series.push_back(m);
   }
@@ -483,95 +518,102 @@ std::string RmsTics(double variance_max, double scale, const std::vector<std::pa
   return os.str();
 }
 
-namespace {
-
-// The output seen at one level of its group tree: for `group` "" the
-// top-level groups and the contributors in no group, with the output's
-// total and requirement; else the direct members of that group (its
-// contributors, and each subgroup summed into one layer named "sub/"), with
-// the group's total and no requirement.
-OutputResult GroupLevel(const OutputResult& out, const std::vector<GroupResult>& groups, const std::string& group) {
-  OutputResult level = out;
-  level.contributors.clear();
-  level.bands.clear();
-  level.band_requirements.clear();
-  level.references.clear();
+PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, const std::string& group) {
+  PlotLevel level;
+  const std::vector<GroupResult> groups = ComputeGroups(output);
+  const std::size_t n = output.contributors.size();
+  level.range = DisplayRange(output, grid);
+  if (groups.empty()) {
+    level.out = output;
+    for (std::size_t c = 0; c < n; ++c) level.styles.push_back(ContributorStyle(c));
+    return level;
+  }
+  OutputResult& out = level.out;
+  out = output;
+  out.contributors.clear();
+  // A group summed into one item "name/": PSD, CPS, variance and tones of its members at any depth.
   const auto summed = [&](const GroupResult& g) {
     ContributorResult c;
     c.name = g.name + "/";
-    c.psd.assign(out.total_psd.size(), 0.0);
-    c.cps.assign(out.total_cps.size(), 0.0);
+    c.group = g.path;
+    c.psd.assign(output.total_psd.size(), 0.0);
+    c.cps.assign(output.total_cps.size(), 0.0);
     for (std::size_t i : g.all_contributors) {
+      const ContributorResult& member = output.contributors[i];
       for (std::size_t k = 0; k < c.psd.size(); ++k) {
-        c.psd[k] += out.contributors[i].psd[k];
-        c.cps[k] += out.contributors[i].cps[k];
+        c.psd[k] += member.psd[k];
+        c.cps[k] += member.cps[k];
       }
-      c.variance += out.contributors[i].variance;
+      c.variance += member.variance;
+      c.tones.insert(c.tones.end(), member.tones.begin(), member.tones.end());
     }
     return c;
   };
-  for (const ContributorResult& c : out.contributors)
-    if (c.group == group) level.contributors.push_back(c);
-  for (const GroupResult& g : groups) {
-    const std::size_t cut = g.path.rfind('/');
-    const std::string parent = cut == std::string::npos ? "" : g.path.substr(0, cut);
-    if (parent == group) level.contributors.push_back(summed(g));
+  for (std::size_t c = 0; c < n; ++c)
+    if (output.contributors[c].group == group) {
+      out.contributors.push_back(output.contributors[c]);
+      level.styles.push_back(ContributorStyle(c));
+    }
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const std::size_t cut = groups[g].path.rfind('/');
+    const std::string parent = cut == std::string::npos ? "" : groups[g].path.substr(0, cut);
+    if (parent != group) continue;
+    out.contributors.push_back(summed(groups[g]));
+    level.styles.push_back(GroupStyle(n, g));
   }
-  if (!group.empty()) {
-    for (const GroupResult& g : groups)
-      if (g.path == group) {
-        const ContributorResult all = summed(g);
-        level.total_psd = all.psd;
-        level.total_cps = all.cps;
-        level.variance = all.variance;
-      }
-    level.name = out.name + " · " + group;
-    level.rms_max.reset();
+  if (group.empty()) {  // the whole output: its total, requirements and references stay
+    level.items = "top-level groups (each the sum of its members, a layer \"name/\") and contributors in no group";
+    level.item = "top-level group (the sum of its members, \"name/\") and contributor in no group";
+    return level;
   }
+  out.bands.clear();
+  out.band_requirements.clear();
+  out.references.clear();
+  for (const GroupResult& g : groups)
+    if (g.path == group) {
+      const ContributorResult all = summed(g);
+      out.total_psd = all.psd;
+      out.total_cps = all.cps;
+      out.variance = all.variance;
+    }
+  out.name = output.name + " · " + group;
+  out.rms_max.reset();
+  level.range = DisplayRange(out, grid);
+  level.items = "members (a subgroup summed into one layer \"name/\")";
+  level.item = "member";
   return level;
 }
-
-}  // namespace
 
 std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec) {
   const OutputResult& out = result.outputs[output];
   const std::vector<GroupResult> groups = ComputeGroups(out);
   std::vector<Plot> plots;
-  if (groups.empty()) return plots;
-  // A result holding only this output's level, at its index (StackedPlot reads result.outputs[output]).
-  BudgetResult level;
-  level.budget_name = result.budget_name;
-  level.grid = result.grid;
-  level.outputs.resize(output + 1);
-  const auto add = [&](const std::string& group, const std::string& stem, const std::string& lead) {
-    level.outputs[output] = GroupLevel(out, groups, group);
-    Plot p = StackedPlot(level, output, false, digits, spec);
+  for (const GroupResult& g : groups) {
+    if (g.contributors.size() + g.subgroups.size() < 2) continue;
+    Plot p = StackedPlot(result, output, GroupLevel(out, result.grid, g.path), false, digits, spec);
     // Its files under the plot's own name: the script and the figure read the data by file name.
     const std::string old_data = p.name + ".csv";
-    p.name = FileStem(out.name) + stem;
+    p.name = FileStem(out.name) + "_cps_group_" + FileStem(g.path);
     const std::string new_data = p.name + ".csv";
-    for (std::size_t at = p.script.find(old_data); at != std::string::npos; at = p.script.find(old_data, at + new_data.size()))
+    for (std::size_t at = p.script.find(old_data); at != std::string::npos;
+         at = p.script.find(old_data, at + new_data.size()))
       p.script.replace(at, old_data.size(), new_data);
     for (FigurePanel& panel : p.figure.panels)
       for (FigureSeries& series : panel.series)
         if (series.data == old_data) series.data = new_data;
-    p.caption = lead + p.caption;
+    p.caption = "Group " + g.path + ": " + p.caption;
     plots.push_back(std::move(p));
-  };
-  add("", "_cps_groups", "By group (each layer a top-level group, summed, or a contributor in none): ");
-  for (const GroupResult& g : groups)
-    if (g.contributors.size() + g.subgroups.size() >= 2)
-      add(g.path, "_cps_group_" + FileStem(g.path),
-          "Group " + g.path + " (its members; a subgroup summed into one layer \"name/\"): ");
+  }
   return plots;
 }
 
 std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
                                 const Output* spec) {
+  const PlotLevel top = GroupLevel(result.outputs[output], result.grid, "");
   std::vector<Plot> plots;
-  plots.push_back(StackedPlot(result, output, false, options.digits, spec));
-  if (options.reverse_cps) plots.push_back(StackedPlot(result, output, true, options.digits, spec));
-  plots.push_back(SpectrumPlot(result, output, options.asd, options.digits, spec));
+  plots.push_back(StackedPlot(result, output, top, false, options.digits, spec));
+  if (options.reverse_cps) plots.push_back(StackedPlot(result, output, top, true, options.digits, spec));
+  plots.push_back(SpectrumPlot(result, output, top, options.asd, options.digits, spec));
   for (Plot& p : GroupCpsPlots(result, output, options.digits, spec)) plots.push_back(std::move(p));
   return plots;
 }

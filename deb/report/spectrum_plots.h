@@ -15,6 +15,7 @@
 #include "deb/budget/engine.h"
 #include "deb/report/figure_axis.h"
 #include "deb/report/plot.h"
+#include "deb/report/plot_style.h"
 #include "deb/report/report_options.h"
 
 namespace deb::report {
@@ -47,15 +48,35 @@ std::string FrequencyAxis(const FrequencyRange& range, const FrequencyGrid& grid
 // Contributor indices of an output by decreasing variance (ties: budget order).
 std::vector<std::size_t> ShareOrder(const OutputResult& output);
 
-// With groups (groups.h): a stacked CPS of the top level (each top-level
-// group summed into one layer) and one drill-down per group with two or more
-// direct members (its contributors, its subgroups summed), named
-// <output>_cps_groups and <output>_cps_group_<path>; none without groups.
+// An output seen at one level of its group tree (groups.h), as its stacked
+// plots show it: `out` is the output with the level's items as its
+// contributors, `styles` their styles (a contributor's ContributorStyle by
+// its index in the output, a group's GroupStyle by its place in
+// ComputeGroups), so that an item looks alike on every level it appears.
+// Group "" is the top level: each top-level group summed exactly from its
+// members into one item "name/" (PSD, CPS, variance, tones), the
+// contributors in no group as themselves, with the output's total,
+// requirements and references; without groups the output itself. A group's
+// path: its direct contributors and its subgroups summed, with the group's
+// total as the total and no requirement, bands or references.
+struct PlotLevel {
+  OutputResult out;
+  std::vector<SeriesStyle> styles;  // per item of out.contributors
+  FrequencyRange range;             // shown: the output's DisplayRange at the top level, else the level's
+  std::string items = "contributors", item = "contributor";  // what the captions call them
+};
+PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, const std::string& group);
+
+// With groups: one drill-down CPS per group with two or more direct members
+// (GroupLevel of its path), named <output>_cps_group_<path>; none without
+// groups.
 std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec);
 
-// CPS, [reverse CPS,] PSD or ASD of output `output`, then the group CPS
-// plots, in that order. With the output's definition `spec`, the captions
-// state its weighting.
+// CPS, [reverse CPS,] PSD or ASD of output `output` at its top level
+// (GroupLevel ""), then the group CPS plots, in that order. The CPS draws
+// each measured reference's cumulative variance over the range it covers,
+// the PSD its spectrum (grey dashed, never summed). With the output's
+// definition `spec`, the captions state its weighting.
 std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
                                 const Output* spec = nullptr);
 

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -216,6 +217,82 @@ TEST_CASE("a figure that is not an SVG file is an error naming it") {
   spec.blocks.push_back(Figure((dir / "missing.svg").string(), "gone"));
   CHECK_THROWS_WITH_AS(WritePdfDocument(spec, (dir / "x.pdf").string()), doctest::Contains("missing.svg"), WriteError);
   fs::remove_all(dir);
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a figure that fits at 85 % of the text width or more is set smaller rather than moved to the next page") {
+  const fs::path dir = TempDir("pdf_fit");
+  const fs::path svg = dir / "tall.svg";  // 400 x 290 px: 358 pt high across the text width
+  std::ofstream(svg) << "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"400\" "
+                        "height=\"290\" viewBox=\"0 0 400 290\"><rect x=\"1\" y=\"1\" width=\"398\" height=\"288\" "
+                        "fill=\"none\" stroke=\"black\"/></svg>\n";
+  PdfDocumentSpec spec;
+  for (int k = 0; k < 3; ++k) spec.blocks.push_back(Figure(svg.string(), "Figure " + std::to_string(k) + "."));
+  const PdfLayout layout = WritePdfDocument(spec, "");
+  std::vector<PlacedBox> figures;
+  for (const PlacedBox& b : layout.boxes)
+    if (b.what == "figure") figures.push_back(b);
+  REQUIRE(figures.size() == 3);
+  const double text_width = kPageWidthPt - 2.0 * kMarginPt;
+  // The first at the text width; the second below it on the same page, at 85-100 % of it, centred.
+  CHECK(figures[0].width_pt == doctest::Approx(text_width));
+  CHECK(figures[1].page == 1);
+  CHECK(figures[1].width_pt < text_width);
+  CHECK(figures[1].width_pt >= 0.85 * text_width);
+  CHECK(figures[1].height_pt == doctest::Approx(figures[1].width_pt * 0.725));
+  CHECK(figures[1].x_pt + 0.5 * figures[1].width_pt == doctest::Approx(0.5 * kPageWidthPt));
+  // Its caption stays above the footer.
+  for (const PlacedBox& b : layout.boxes)
+    if (b.what == "caption" && b.page == 1) CHECK(b.y_pt + b.height_pt <= kPageHeightPt - kMarginPt - 9.0);
+  // The third would need far less than 85 %: the next page, at the text width.
+  CHECK(figures[2].page == 2);
+  CHECK(figures[2].width_pt == doctest::Approx(text_width));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a page break with room to spare starts a new page only when less than that is left") {
+  PdfDocumentSpec spec;
+  spec.blocks.push_back(Paragraph("one"));
+  spec.blocks.push_back(PageBreak(300.0));  // most of the page is left: no break
+  spec.blocks.push_back(Paragraph("two"));
+  spec.blocks.push_back(PageBreak(kPageHeightPt));  // never that much: a break
+  spec.blocks.push_back(Paragraph("three"));
+  spec.blocks.push_back(PageBreak());
+  spec.blocks.push_back(Paragraph("four"));
+  const PdfLayout layout = WritePdfDocument(spec, "");
+  std::map<std::string, int> page;
+  for (const PlacedBox& b : layout.boxes)
+    if (b.what == "paragraph") page[b.text] = b.page;
+  CHECK(page["one"] == 1);
+  CHECK(page["two"] == 1);
+  CHECK(page["three"] == 2);
+  CHECK(page["four"] == 3);
+}
+
+TEST_CASE("in a table too wide, the columns that must wrap share the width by what each lacks") {
+  PdfTable t;
+  t.header = {"name", "note", "a", "b"};
+  t.numeric = {false, false, true, true};
+  std::string names, notes;
+  for (int k = 0; k < 20; ++k) names += "word ";
+  for (int k = 0; k < 60; ++k) notes += "word ";
+  t.rows = {{{names}, {notes}, {"123456.789012"}, {"123456.789012"}}};
+  PdfDocumentSpec spec;
+  spec.blocks.push_back(TableBlock("", t));
+  const PdfLayout layout = WritePdfDocument(spec, "");
+  double name_w = 0.0, note_w = 0.0;
+  for (const PlacedBox& b : layout.boxes) {
+    if (b.what != "table cell") continue;
+    if (b.text == names) name_w = b.width_pt;
+    if (b.text == notes) note_w = b.width_pt;
+  }
+  REQUIRE(name_w > 0.0);
+  // Both lack more than an even share; the note lacks three times what the name does and gets about three times
+  // the width (an even share gave both the same).
+  CHECK(note_w > 2.0 * name_w);
 }
 
 }  // namespace deb::report

@@ -3,11 +3,16 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <map>
 #include <regex>
+#include <set>
+#include <sstream>
 
 #include "deb/budget/failure_guidance.h"
+#include "deb/budget/groups.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/plot_style.h"
+#include "deb/report/report_writer.h"
 #include "tests/support/cli_harness.h"
 
 namespace deb::report {
@@ -128,21 +133,24 @@ TEST_CASE("a failing output's CPS figure names its fail factor, stacks the large
   const FigurePanel& cps = plots[0].figure.panels.at(0);
   CHECK(cps.title == "position: " + SigLabel(out.rms(), 4) + " nm RMS, FAIL " + SigLabel(out.rms() / 1.5, 4) +
                          "× over 1.5 nm");
-  // Layers in key order: decreasing variance; each lies on all smaller ones.
-  const std::vector<std::size_t> order = ShareOrder(out);
+  // Layers in key order: decreasing variance; each lies on all smaller ones. The budget is grouped: the
+  // layers are its top level.
+  const PlotLevel top = GroupLevel(out, result.grid, "");
+  const OutputResult& items = top.out;
+  const std::vector<std::size_t> order = ShareOrder(items);
   std::vector<const FigureSeries*> layers;
   for (const FigureSeries& s : cps.series)
     if (s.kind == SeriesKind::kFilled) layers.push_back(&s);
-  REQUIRE(layers.size() == out.contributors.size());
+  REQUIRE(layers.size() == items.contributors.size());
   for (std::size_t i = 0; i < layers.size(); ++i) {
-    CHECK(layers[i]->name == out.contributors[order[i]].name);
+    CHECK(layers[i]->name == items.contributors[order[i]].name);
     CHECK(layers[i]->low_columns.size() == layers.size() - 1 - i);
     CHECK(layers[i]->y_columns.back() == 2 + order[i]);
-    CHECK(layers[i]->colour == ContributorStyle(order[i]).colour);
+    CHECK(layers[i]->colour == top.styles[order[i]].colour);
   }
   // The total is drawn last, reading the total column.
   CHECK(cps.series.back().name == "total");
-  CHECK(cps.series.back().y_columns == std::vector<std::size_t>{2 + out.contributors.size()});
+  CHECK(cps.series.back().y_columns == std::vector<std::size_t>{2 + items.contributors.size()});
   // Headroom above the total.
   CHECK(*cps.y.max >= 1.1 * out.variance);
   // The limit line and a marker where the cumulative RMS reaches it, at the guidance's frequency.
@@ -156,10 +164,10 @@ TEST_CASE("a failing output's CPS figure names its fail factor, stacks the large
   CHECK(marker->y0 == doctest::Approx(1.5 * 1.5));
   CHECK(cps.annotations[0].key == "requirement: 1.5 (FAIL)");
 
-  // The PSD: contributors largest first, the total last, each band requirement
+  // The PSD: the top-level items largest first, the total last, each band requirement
   // a segment at the flat PSD that uses its whole allowance.
   const FigurePanel& psd = plots[1].figure.panels.at(0);
-  for (std::size_t i = 0; i < order.size(); ++i) CHECK(psd.series[i].name == out.contributors[order[i]].name);
+  for (std::size_t i = 0; i < order.size(); ++i) CHECK(psd.series[i].name == items.contributors[order[i]].name);
   CHECK(psd.series.back().name == "total");
   // The total, on top, is narrower than the contributors: one that dominates shows on both sides of it.
   CHECK(psd.series.back().width < psd.series.front().width);
@@ -260,7 +268,7 @@ TEST_CASE("a measured reference is a grey dashed series on the PSD plot, NaN out
   const auto ref = std::find_if(series.begin(), series.end(), [](const FigureSeries& s) { return s.name == "measured: measured"; });
   REQUIRE(ref != series.end());
   CHECK(ref->dash != "solid");
-  CHECK(ref->y_columns == std::vector<std::size_t>{3 + result.outputs[0].contributors.size()});
+  CHECK(ref->y_columns == std::vector<std::size_t>{3 + GroupLevel(result.outputs[0], result.grid, "").out.contributors.size()});
   CHECK(series.back().name == "total");  // still drawn last
   // The first data row (0.1 Hz) lies below the measurement's 0.216 Hz: no point there.
   const std::string& csv = psd->csv;
@@ -275,24 +283,23 @@ TEST_CASE("a measured reference is a grey dashed series on the PSD plot, NaN out
 
 namespace deb::report {
 
-TEST_CASE("group CPS plots: the top level sums each group into one layer, a drill-down stacks its members") {
+TEST_CASE("group CPS plots: one drill-down per group of two or more members, stacking its members") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
   const BudgetResult result = Evaluate(budget);
   const std::vector<Plot> plots = GroupCpsPlots(result, 0, 4, &budget.outputs[0]);
-  // Top level, then environment, stage, stage/drive and metrology (facility has one member: no drill-down).
+  // environment, stage, stage/drive and metrology (facility has one member: no drill-down); the top level is the
+  // output's main CPS plot.
   std::vector<std::string> names;
   for (const Plot& p : plots) names.push_back(p.name);
-  CHECK(names == std::vector<std::string>{"position_cps_groups", "position_cps_group_environment",
-                                          "position_cps_group_stage", "position_cps_group_stage_drive",
-                                          "position_cps_group_metrology"});
-  // The top level's layers end at the groups' variances; the data file is the plot's own.
-  const Plot& top = plots[0];
-  CHECK(top.script.find("position_cps_groups.csv") != std::string::npos);
-  for (const FigureSeries& s : top.figure.panels.at(0).series)
-    if (!s.data.empty()) CHECK(s.data == "position_cps_groups.csv");
-  CHECK(top.caption.rfind("By group", 0) == 0);
+  CHECK(names == std::vector<std::string>{"position_cps_group_environment", "position_cps_group_stage",
+                                          "position_cps_group_stage_drive", "position_cps_group_metrology"});
+  // The data file is the plot's own.
+  const Plot& stage = plots[1];
+  CHECK(stage.script.find("position_cps_group_stage.csv") != std::string::npos);
+  for (const FigureSeries& s : stage.figure.panels.at(0).series)
+    if (!s.data.empty()) CHECK(s.data == "position_cps_group_stage.csv");
+  CHECK(stage.caption.rfind("Group stage: ", 0) == 0);
   // The stage drill-down: cable_slab, y_crosstalk and drive/ (the subgroup summed), its total the stage's.
-  const Plot& stage = plots[2];
   CHECK(stage.csv.find("cable_slab") != std::string::npos);
   CHECK(stage.csv.find("drive/") != std::string::npos);
   CHECK(stage.csv.find("amplifier") == std::string::npos);
@@ -303,6 +310,159 @@ TEST_CASE("group CPS plots: the top level sums each group into one layer, a dril
   // Without groups: none.
   const BudgetResult plain = Evaluate(LoadBudgetFile(test::ExampleBudget()));
   CHECK(GroupCpsPlots(plain, 0, 4, nullptr).empty());
+}
+
+// The names of the stacked layers (CPS) or of the curves (PSD) of a figure, in the key's order.
+std::vector<std::string> ItemNames(const Plot& p) {
+  std::vector<std::string> names;
+  for (const FigureSeries& s : p.figure.panels.at(0).series)
+    if (s.name != "total" && s.name.rfind("edge below ", 0) != 0 && s.name.rfind("measured: ", 0) != 0)
+      names.push_back(s.name);
+  return names;
+}
+
+TEST_CASE("with groups the main CPS and PSD plots show the top level: each group summed exactly from its members") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  BudgetResult result = Evaluate(budget);
+  // cooling_water out of its group (facility then has none): a contributor in no group stacks as itself.
+  for (OutputResult& o : result.outputs)
+    for (ContributorResult& c : o.contributors)
+      if (c.name == "cooling_water") c.group.clear();
+  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
+    const OutputResult& out = result.outputs[o];
+    const PlotLevel top = GroupLevel(out, result.grid, "");
+    std::vector<std::string> names;
+    for (const ContributorResult& c : top.out.contributors) names.push_back(c.name);
+    CHECK(names == std::vector<std::string>{"cooling_water", "environment/", "stage/", "metrology/"});
+    // The layers add up to the output's total CPS, at every frequency.
+    for (std::size_t k = 0; k < out.total_cps.size(); ++k) {
+      double sum = 0.0;
+      for (const ContributorResult& c : top.out.contributors) sum += c.cps[k];
+      REQUIRE(std::fabs(sum - out.total_cps[k]) <= 1e-12 * out.total_cps[k]);
+    }
+    double variance = 0.0;
+    for (const ContributorResult& c : top.out.contributors) variance += c.variance;
+    CHECK(std::fabs(variance - out.variance) <= 1e-12 * out.variance);
+    // The figures stack (CPS) and draw (PSD) these items, largest first, and nothing else.
+    const std::vector<Plot> plots = SpectrumPlots(result, o, {}, &budget.outputs[o]);
+    REQUIRE(plots.size() >= 2);
+    CHECK(plots[0].kind == PlotKind::kCps);
+    CHECK(plots[1].kind == PlotKind::kSpectrum);
+    std::vector<std::string> by_share;
+    for (std::size_t i : ShareOrder(top.out)) by_share.push_back(top.out.contributors[i].name);
+    CHECK(ItemNames(plots[0]) == by_share);
+    CHECK(ItemNames(plots[1]) == by_share);
+    CHECK(plots[0].caption.find("top-level groups") != std::string::npos);
+    CHECK(plots[0].csv.find("floor") == std::string::npos);  // no contributor of a group on its own
+    // The top level shows the output's range and keeps its requirement.
+    CHECK(top.range.lo_hz == DisplayRange(out, result.grid).lo_hz);
+    CHECK(top.range.hi_hz == DisplayRange(out, result.grid).hi_hz);
+    CHECK(top.out.rms_max == out.rms_max);
+  }
+  // Without groups nothing changes: the contributors themselves.
+  const BudgetResult plain = Evaluate(LoadBudgetFile(test::ExampleBudget()));
+  const PlotLevel level = GroupLevel(plain.outputs[0], plain.grid, "");
+  REQUIRE(level.out.contributors.size() == plain.outputs[0].contributors.size());
+  for (std::size_t c = 0; c < level.out.contributors.size(); ++c) {
+    CHECK(level.out.contributors[c].name == plain.outputs[0].contributors[c].name);
+    CHECK(level.styles[c].colour == ContributorStyle(c).colour);
+  }
+  CHECK(SpectrumPlots(plain, 0, {})[0].caption.find(", contributors stacked by share") != std::string::npos);
+}
+
+TEST_CASE("a contributor and a group keep one colour in the main plots, every drill-down and colours.csv") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const std::size_t n = budget.contributors.size();
+  const std::vector<GroupResult> groups = ComputeGroups(result.outputs[0]);
+  // The colour each item must have: a contributor's by its budget index, a group's after the contributors.
+  std::map<std::string, std::string> expected;
+  for (std::size_t c = 0; c < n; ++c) expected[budget.contributors[c].name] = ContributorStyle(c).colour;
+  for (std::size_t g = 0; g < groups.size(); ++g) expected[groups[g].name + "/"] = GroupStyle(n, g).colour;
+  std::map<std::string, std::set<std::string>> seen;  // item -> its colours in every figure
+  std::size_t drill_downs = 0;
+  for (std::size_t o = 0; o < result.outputs.size(); ++o)
+    for (const Plot& p : SpectrumPlots(result, o, {}, &budget.outputs[o])) {
+      drill_downs += p.name.find("_cps_group_") != std::string::npos;
+      for (const FigureSeries& s : p.figure.panels.at(0).series)
+        if (expected.count(s.name)) seen[s.name].insert(s.colour);
+    }
+  CHECK(drill_downs == 4 * result.outputs.size());
+  for (const auto& [name, colours] : seen) {
+    INFO(name);
+    CHECK(colours == std::set<std::string>{expected.at(name)});
+  }
+  // Every group somewhere, every contributor in a drill-down but cooling_water, facility's only member (shown as
+  // facility/).
+  CHECK(seen.size() + 1 == expected.size());
+  CHECK(seen.count("cooling_water") == 0);
+  // No two items share a colour.
+  std::set<std::string> distinct;
+  for (const auto& [name, colour] : expected) distinct.insert(colour);
+  CHECK(distinct.size() == expected.size());
+  // colours.csv lists the groups after the contributors, in these colours.
+  const test::fs::path dir = test::TempDir("group_colours") / "report";
+  ReportOptions options;
+  options.plots = false;
+  WriteReportDirectory(budget, result, {}, options, dir.string());
+  const std::string csv = test::ReadAll(dir / "plots" / "colours.csv");
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    CHECK(csv.find("\n" + std::to_string(n + g) + "," + groups[g].path + "/," + GroupStyle(n, g).colour + ",") !=
+          std::string::npos);
+}
+
+TEST_CASE("a measured reference is drawn on the CPS plot: its cumulative variance over the range it covers") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const OutputResult& out = result.outputs[0];
+  REQUIRE(out.references.size() == 1);
+  const ReferenceResult& r = out.references[0];
+  ReportOptions options;
+  options.reverse_cps = true;
+  const std::vector<Plot> plots = SpectrumPlots(result, 0, options, &budget.outputs[0]);
+  const Plot& cps = plots.at(0);
+  REQUIRE(cps.kind == PlotKind::kCps);
+  const auto& series = cps.figure.panels.at(0).series;
+  const auto ref = std::find_if(series.begin(), series.end(), [](const FigureSeries& s) { return s.name == "measured: measured"; });
+  REQUIRE(ref != series.end());
+  CHECK(ref->dash == kReferenceDash);
+  CHECK(ref->colour == kReferenceColour);
+  CHECK(ref->kind == SeriesKind::kLine);
+  CHECK(ref->key.find(SigLabel(std::sqrt(r.variance), 4)) != std::string::npos);  // its RMS in the key
+  const std::size_t items = GroupLevel(out, result.grid, "").out.contributors.size();
+  CHECK(ref->y_columns == std::vector<std::size_t>{3 + items});
+  CHECK(series.back().name == "total");
+  CHECK(cps.caption.find("measured reference") != std::string::npos);
+  // Its column: NaN outside what it covers; inside, the reference's CPS, reaching its variance at the top.
+  std::istringstream rows(cps.csv);
+  std::string line;
+  std::size_t inside = 0, outside = 0;
+  double last = 0.0;
+  while (std::getline(rows, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("frequency_hz", 0) == 0) continue;
+    const double f_hz = std::stod(line.substr(0, line.find(',')));
+    const std::string cell = line.substr(line.rfind(',') + 1);
+    if (f_hz < r.covered_lo_hz || f_hz > r.covered_hi_hz) {
+      CHECK(cell == "NaN");
+      ++outside;
+      continue;
+    }
+    ++inside;
+    const std::size_t k = static_cast<std::size_t>(
+        std::lower_bound(result.grid.f_hz().begin(), result.grid.f_hz().end(), f_hz * (1 - 1e-9)) -
+        result.grid.f_hz().begin());
+    CHECK(std::stod(cell) == doctest::Approx(r.cps[k]).epsilon(1e-9));
+    last = std::stod(cell);
+  }
+  CHECK(inside > 10);
+  CHECK(outside > 0);
+  CHECK(last == doctest::Approx(r.variance).epsilon(1e-6));
+  // The axis holds it (the measurement exceeds the budget here).
+  CHECK(cps.figure.panels.at(0).y.max.value() * cps.figure.panels.at(0).series.back().y_divisor >= r.variance);
+  // The reverse CPS does not draw it.
+  const auto reverse = std::find_if(plots.begin(), plots.end(), [](const Plot& p) { return p.kind == PlotKind::kReverseCps; });
+  REQUIRE(reverse != plots.end());
+  CHECK(reverse->csv.find("measured") == std::string::npos);
 }
 
 }  // namespace deb::report
