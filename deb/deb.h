@@ -98,7 +98,10 @@
 #include "deb/io/budget_yaml.h"
 #include "deb/io/comparison_files.h"
 #include "deb/io/mat_file.h"
+#include "deb/io/result_exports.h"
+#include "deb/io/result_mat.h"
 #include "deb/io/result_writer.h"
+#include "deb/io/result_xlsx.h"
 #include "deb/io/sweep_yaml.h"
 
 // The report of `deb run` (WriteReportDirectory; gnuplot draws the plots).

@@ -37,6 +37,7 @@
 #include "deb/core/parallel.h"
 #include "deb/core/process_heap.h"
 #include "deb/io/budget_yaml.h"
+#include "deb/io/result_exports.h"
 #include "deb/io/sweep_yaml.h"
 #include "deb/io/result_writer.h"
 #include "deb/report/report_writer.h"
@@ -191,7 +192,8 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
 }
 
 int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides, const std::string& group,
-        std::string out_dir, int threads, bool quiet, bool strict, deb::ReportOptions report) {
+        std::string out_dir, int threads, bool quiet, bool strict, deb::ReportOptions report,
+        const std::vector<deb::ExportFormat>& exports) {
   deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
   if (!group.empty()) budget = deb::SelectGroup(budget, group);
   if (out_dir.empty())
@@ -211,7 +213,7 @@ int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& 
     // A reproducible report (SOURCE_DATE_EPOCH set) records no wall time.
     deb::RunInfo info{budget_file, {}, threads};
     if (!std::getenv("SOURCE_DATE_EPOCH")) info.seconds = seconds;
-    deb::WriteReportDirectory(budget, result, info, report, out_dir);
+    deb::WriteReportDirectory(budget, result, info, report, out_dir, exports);
   } catch (const deb::InputError& e) {
     throw deb::WriteError(e.what());  // found while writing: the report cannot be written
   }
@@ -386,6 +388,21 @@ int main(int argc, char** argv) {
                          "Write tables, data and documents only, no plots/ directory; gnuplot is not needed");
   run->add_flag("--plot-scripts", plot_scripts,
                 "With --no-plots: still write each plot's CSV and gnuplot script under plots/, to draw later");
+  std::vector<deb::ExportFormat> exports;
+  run->add_option_function<std::vector<std::string>>(
+         "--export",
+         [&exports](const std::vector<std::string>& names) {
+           for (const auto& n : names) {
+             try {
+               exports.push_back(deb::ParseExportFormat(n));
+             } catch (const deb::InputError& e) {
+               throw CLI::ValidationError("--export", e.what());
+             }
+           }
+         },
+         "Also write the result for MATLAB (mat: result.mat) or Excel (xlsx: result.xlsx) into the report "
+         "directory; repeatable or comma-separated")
+      ->delimiter(',');
 
   std::string check_file;
   CLI::App* check = app.add_subcommand("check", "Validate a budget and describe it, without computing");
@@ -429,7 +446,7 @@ int main(int argc, char** argv) {
     const deb::UnitDatabasePreload units;
     if (*run) {
       report.plot_scripts = report.plots || plot_scripts;
-      return Run(budget_file, run_overrides, run_group, out_dir, threads, quiet, strict, report);
+      return Run(budget_file, run_overrides, run_group, out_dir, threads, quiet, strict, report, exports);
     }
     if (*check) return Check(check_file, check_overrides);
     if (*model) return Model(model_file, model_overrides);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 
@@ -27,6 +28,7 @@ namespace {
 // functions below are used; DEB_MATIO_SONAME is the library the build found.
 struct MatioApi {
   decltype(&::Mat_Close) Close;
+  decltype(&::Mat_CreateVer) CreateVer;
   decltype(&::Mat_GetDir) GetDir;
   decltype(&::Mat_GetVersion) GetVersion;
   decltype(&::Mat_LogInitFunc) LogInitFunc;
@@ -34,8 +36,17 @@ struct MatioApi {
   decltype(&::Mat_SizeOf) SizeOf;
   decltype(&::Mat_VarFree) VarFree;
   decltype(&::Mat_VarGetCell) VarGetCell;
+  decltype(&::Mat_VarGetNumberOfFields) VarGetNumberOfFields;
+  decltype(&::Mat_VarGetStructFieldByName) VarGetStructFieldByName;
+  decltype(&::Mat_VarGetStructFieldnames) VarGetStructFieldnames;
   decltype(&::Mat_VarReadDataAll) VarReadDataAll;
   decltype(&::Mat_VarReadInfo) VarReadInfo;
+  // Writing (WriteMatFile).
+  decltype(&::Mat_VarCreate) VarCreate;
+  decltype(&::Mat_VarCreateStruct2) VarCreateStruct2;
+  decltype(&::Mat_VarSetCell) VarSetCell;
+  decltype(&::Mat_VarSetStructFieldByName) VarSetStructFieldByName;
+  decltype(&::Mat_VarWrite) VarWrite;
 };
 
 struct LoadedMatio {
@@ -74,8 +85,17 @@ LoadedMatio LoadMatio() {
                    Resolve(library, "Mat_SizeOf", a.SizeOf, m.failure) &&
                    Resolve(library, "Mat_VarFree", a.VarFree, m.failure) &&
                    Resolve(library, "Mat_VarGetCell", a.VarGetCell, m.failure) &&
+                   Resolve(library, "Mat_VarGetNumberOfFields", a.VarGetNumberOfFields, m.failure) &&
+                   Resolve(library, "Mat_VarGetStructFieldByName", a.VarGetStructFieldByName, m.failure) &&
+                   Resolve(library, "Mat_VarGetStructFieldnames", a.VarGetStructFieldnames, m.failure) &&
                    Resolve(library, "Mat_VarReadDataAll", a.VarReadDataAll, m.failure) &&
-                   Resolve(library, "Mat_VarReadInfo", a.VarReadInfo, m.failure);
+                   Resolve(library, "Mat_VarReadInfo", a.VarReadInfo, m.failure) &&
+                   Resolve(library, "Mat_CreateVer", a.CreateVer, m.failure) &&
+                   Resolve(library, "Mat_VarCreate", a.VarCreate, m.failure) &&
+                   Resolve(library, "Mat_VarCreateStruct2", a.VarCreateStruct2, m.failure) &&
+                   Resolve(library, "Mat_VarSetCell", a.VarSetCell, m.failure) &&
+                   Resolve(library, "Mat_VarSetStructFieldByName", a.VarSetStructFieldByName, m.failure) &&
+                   Resolve(library, "Mat_VarWrite", a.VarWrite, m.failure);
   if (!all) m.api = MatioApi{};
   return m;
 }
@@ -88,14 +108,20 @@ const LoadedMatio& Loaded() {
 // The functions, once RequireMatio has succeeded.
 const MatioApi& Matio() { return Loaded().api; }
 
+// "<path>: <doing> a MAT-file needs ..." if matio cannot be loaded; "" if it can.
+std::string MatioMissing(const std::string& path, const std::string& doing) {
+  const LoadedMatio& m = Loaded();
+  if (m.failure.empty()) return "";
+  return path + ": " + doing + " a MAT-file needs the matio library (" DEB_MATIO_SONAME
+                               "), which cannot be loaded: " + Excerpt(m.failure, 160) +
+         "; install it (Debian: libmatio11)";
+}
+
 // @throws InputError "<path>: reading a MAT-file needs ..." if matio cannot
 //         be loaded.
 void RequireMatio(const std::string& path) {
-  const LoadedMatio& m = Loaded();
-  if (!m.failure.empty())
-    throw InputError(path + ": reading a MAT-file needs the matio library (" DEB_MATIO_SONAME
-                            "), which cannot be loaded: " + Excerpt(m.failure, 160) +
-                     "; install it (Debian: libmatio11) or save the data as CSV tables");
+  const std::string missing = MatioMissing(path, "reading");
+  if (!missing.empty()) throw InputError(missing + " or save the data as CSV tables");
 }
 
 // matio's log function and the HDF5 library under it are process-wide:
@@ -442,21 +468,63 @@ bool MatFile::Has(const std::string& name) const {
 
 namespace {
 
-// The header of variable `name` (no data yet).
-VarPtr ReadInfo(const MatFile& file, mat_t* mat, const std::string& name) {
-  if (!file.Has(name)) {
+// A variable read from the file: a top-level variable, or a field inside
+// one (owned by it).
+struct Var {
+  VarPtr root;
+  matvar_t* v = nullptr;
+  matvar_t* operator->() const { return v; }
+  matvar_t& operator*() const { return *v; }
+  matvar_t* get() const { return v; }
+};
+
+// The header of variable `name` (no data yet); "a.b.c" is field c of the
+// 1x1 struct field b of the 1x1 struct variable a.
+Var ReadInfo(const MatFile& file, mat_t* mat, const std::string& name) {
+  std::vector<std::string> parts;
+  for (std::size_t at = 0;;) {
+    const std::size_t dot = name.find('.', at);
+    parts.push_back(name.substr(at, dot == std::string::npos ? std::string::npos : dot - at));
+    if (dot == std::string::npos) break;
+    at = dot + 1;
+  }
+  const std::string& top = parts.front();
+  if (!file.Has(top)) {
     std::string held;
     for (std::size_t i = 0; i < file.variables().size() && i < 20; ++i)
       held += (i ? ", " : "") + Excerpt(file.variables()[i]);
     if (file.variables().size() > 20) held += ", ...";
-    Fail(file.path(), "no variable " + Quoted(name) + " in the MAT-file (" +
+    Fail(file.path(), "no variable " + Quoted(top) + " in the MAT-file (" +
                           (held.empty() ? std::string("it holds no variables") : "it holds " + held) + ")");
   }
   const MatioCall call;
-  VarPtr v(Matio().VarReadInfo(mat, name.c_str()));
-  if (!v || !call.problem().empty() || v->rank < 1 || v->dims == nullptr)
-    Fail(file.path(), "variable " + Quoted(name) + " cannot be read" + call.Because() + "; is the file damaged?");
-  return v;
+  Var var;
+  var.root.reset(Matio().VarReadInfo(mat, top.c_str()));
+  var.v = var.root.get();
+  if (!var.v || !call.problem().empty() || var.v->rank < 1 || var.v->dims == nullptr)
+    Fail(file.path(), "variable " + Quoted(top) + " cannot be read" + call.Because() + "; is the file damaged?");
+  std::string at = top;
+  for (std::size_t p = 1; p < parts.size(); ++p) {
+    if (var.v->class_type != MAT_C_STRUCT || Count(*var.v) != 1)
+      Fail(file.path(), Describe(at, *var.v) + ", not a 1x1 struct; " + Quoted(name) + " asks for its field " +
+                            Quoted(parts[p]));
+    matvar_t* const field = Matio().VarGetStructFieldByName(var.v, parts[p].c_str(), 0);
+    if (field == nullptr) {
+      std::string fields;
+      const unsigned n = Matio().VarGetNumberOfFields(var.v);
+      char* const* names = Matio().VarGetStructFieldnames(var.v);
+      for (unsigned i = 0; names != nullptr && i < n && i < 20; ++i)
+        fields += (i ? ", " : "") + Excerpt(names[i] != nullptr ? names[i] : "");
+      if (n > 20) fields += ", ...";
+      Fail(file.path(), "the struct " + Quoted(at) + " has no field " + Quoted(parts[p]) + " (its fields: " +
+                            (fields.empty() ? std::string("none") : fields) + ")");
+    }
+    at += "." + parts[p];
+    var.v = field;
+    if (!call.problem().empty() || var.v->rank < 1 || var.v->dims == nullptr)
+      Fail(file.path(), "variable " + Quoted(at) + " cannot be read" + call.Because() + "; is the file damaged?");
+  }
+  return var;
 }
 
 void ReadData(const MatFile& file, mat_t* mat, matvar_t& v, const std::string& name) {
@@ -477,7 +545,7 @@ void RequireData(const MatFile& file, const matvar_t& v, const std::string& name
 }  // namespace
 
 Eigen::MatrixXd MatFile::Matrix(const std::string& name) const {
-  const VarPtr v = ReadInfo(*this, handle_->mat, name);
+  const Var v = ReadInfo(*this, handle_->mat, name);
   const std::string expected = "; expected a real 2-D matrix";
   if (v->class_type == MAT_C_EMPTY) return Eigen::MatrixXd(0, 0);
   if (v->rank > 2)
@@ -523,7 +591,7 @@ std::vector<double> MatFile::Vector(const std::string& name) const {
 }
 
 std::vector<std::string> MatFile::Names(const std::string& name) const {
-  const VarPtr v = ReadInfo(*this, handle_->mat, name);
+  const Var v = ReadInfo(*this, handle_->mat, name);
   const std::string expected =
       "; expected names: a cell array of char row vectors ({'Fx', 'Fy'}) or a char matrix (char('Fx', 'Fy'))";
   std::vector<std::string> names;
@@ -576,6 +644,172 @@ std::vector<std::string> MatFile::Names(const std::string& name) const {
     if (names.back().empty()) Fail(path_, what + ": an empty name; every name must be given");
   }
   return names;
+}
+
+
+// ---------------------------------------------------------------------------
+// Writing.
+
+MatValue MatValue::Matrix(Eigen::MatrixXd m) {
+  MatValue v;
+  v.matrix = std::move(m);
+  return v;
+}
+
+MatValue MatValue::Scalar(double value) { return Matrix(Eigen::MatrixXd::Constant(1, 1, value)); }
+
+MatValue MatValue::Column(const std::vector<double>& values) {
+  return Matrix(Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())));
+}
+
+MatValue MatValue::Text(std::string text) {
+  MatValue v;
+  v.kind = Kind::kText;
+  v.text = std::move(text);
+  return v;
+}
+
+MatValue MatValue::Names(std::vector<std::string> names) {
+  MatValue v;
+  v.kind = Kind::kNames;
+  v.names = std::move(names);
+  return v;
+}
+
+MatValue MatValue::Struct() {
+  MatValue v;
+  v.kind = Kind::kStruct;
+  return v;
+}
+
+MatValue& MatValue::Add(const std::string& field, MatValue value) {
+  DEB_DEMAND(kind == Kind::kStruct);
+  field_names.push_back(field);
+  fields.push_back(std::move(value));
+  return *this;
+}
+
+namespace {
+
+// UTF-8 as UTF-16 code units (MATLAB's characters); a byte that does not
+// start a valid sequence becomes U+FFFD.
+std::vector<std::uint16_t> Utf16(const std::string& s) {
+  std::vector<std::uint16_t> out;
+  for (std::size_t i = 0; i < s.size();) {
+    const unsigned char b = static_cast<unsigned char>(s[i]);
+    const int extra = b < 0x80 ? 0 : (b >> 5) == 0x6 ? 1 : (b >> 4) == 0xE ? 2 : (b >> 3) == 0x1E ? 3 : -1;
+    std::uint32_t c = extra == 0 ? b : extra == 1 ? (b & 0x1F) : extra == 2 ? (b & 0x0F) : (b & 0x07);
+    bool valid = extra >= 0 && i + static_cast<std::size_t>(extra) < s.size();
+    for (int k = 1; valid && k <= extra; ++k) {
+      const unsigned char t = static_cast<unsigned char>(s[i + static_cast<std::size_t>(k)]);
+      valid = (t >> 6) == 0x2;
+      c = c << 6 | (t & 0x3F);
+    }
+    if (!valid || c > 0x10FFFF || (c >= 0xD800 && c < 0xE000)) {
+      out.push_back(0xFFFD);
+      ++i;
+      continue;
+    }
+    i += 1 + static_cast<std::size_t>(extra);
+    if (c >= 0x10000) {
+      out.push_back(static_cast<std::uint16_t>(0xD800 + ((c - 0x10000) >> 10)));
+      out.push_back(static_cast<std::uint16_t>(0xDC00 + ((c - 0x10000) & 0x3FF)));
+    } else {
+      out.push_back(static_cast<std::uint16_t>(c));
+    }
+  }
+  return out;
+}
+
+// A matvar being built (freed unless released into a parent or written).
+using NewVar = std::unique_ptr<matvar_t, VarFree>;
+
+// The matio variable of `value`, named `name` (nullptr inside a struct or
+// cell). `where` names it in messages ("outputs.position.psd").
+NewVar MakeVar(const char* name, const MatValue& value, const std::string& path, const std::string& where) {
+  const MatioApi& m = Matio();
+  const auto made = [&](matvar_t* v) {
+    if (v == nullptr) throw WriteError(path + ": cannot make the MAT-file variable " + where + " (matio refused it)");
+    return NewVar(v);
+  };
+  switch (value.kind) {
+    case MatValue::Kind::kMatrix: {
+      size_t dims[2] = {static_cast<size_t>(value.matrix.rows()), static_cast<size_t>(value.matrix.cols())};
+      // Copied by matio (opt 0); Eigen stores columns first, as MATLAB does.
+      void* data = value.matrix.size() ? const_cast<double*>(value.matrix.data()) : nullptr;
+      return made(m.VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, data, 0));
+    }
+    case MatValue::Kind::kText: {
+      std::vector<std::uint16_t> chars = Utf16(value.text);
+      size_t dims[2] = {chars.empty() ? size_t{0} : size_t{1}, chars.size()};
+      return made(m.VarCreate(name, MAT_C_CHAR, MAT_T_UINT16, 2, dims, chars.empty() ? nullptr : chars.data(), 0));
+    }
+    case MatValue::Kind::kNames: {
+      std::vector<NewVar> cells;
+      for (std::size_t i = 0; i < value.names.size(); ++i)
+        cells.push_back(MakeVar(nullptr, MatValue::Text(value.names[i]), path, where + "{" + std::to_string(i + 1) + "}"));
+      size_t dims[2] = {cells.size(), 1};
+      // matio copies the array of pointers and owns the elements from here.
+      std::vector<matvar_t*> pointers;
+      for (const NewVar& c : cells) pointers.push_back(c.get());
+      NewVar cell = made(m.VarCreate(name, MAT_C_CELL, MAT_T_CELL, 2, dims, pointers.empty() ? nullptr : pointers.data(), 0));
+      for (NewVar& c : cells) c.release();
+      return cell;
+    }
+    case MatValue::Kind::kStruct: {
+      std::vector<const char*> fields;
+      for (const std::string& f : value.field_names) fields.push_back(f.c_str());
+      fields.push_back(nullptr);
+      const size_t dims[2] = {1, 1};
+      NewVar s = made(m.VarCreateStruct2(name, 2, dims, fields.data()));
+      for (std::size_t i = 0; i < value.fields.size(); ++i) {
+        const std::string field_where = where + "." + value.field_names[i];
+        NewVar f = MakeVar(nullptr, value.fields[i], path, field_where);
+        if (m.VarSetStructFieldByName(s.get(), value.field_names[i].c_str(), 0, f.get()) != nullptr)
+          throw WriteError(path + ": cannot set the MAT-file field " + field_where + " (it was set twice)");
+        f.release();  // owned by the struct (SetStructFieldByName returned no previous field)
+      }
+      return s;
+    }
+  }
+  throw WriteError(path + ": cannot make the MAT-file variable " + where);
+}
+
+}  // namespace
+
+void WriteMatFile(const std::string& path, const std::vector<std::pair<std::string, MatValue>>& variables,
+                  const std::string& description) {
+  const std::string missing = MatioMissing(path, "writing");
+  if (!missing.empty()) throw WriteError(missing);
+  std::error_code ec;
+  std::filesystem::remove(path, ec);  // matio would refuse an existing file of another version
+  bool written = false;
+  const auto cleanup = [&] {
+    if (!written) std::filesystem::remove(path, ec);
+  };
+  try {
+    const MatioCall call;
+    const std::string header = ("MATLAB 5.0 MAT-file, " + description).substr(0, 116);
+    mat_t* mat = Matio().CreateVer(path.c_str(), header.c_str(), MAT_FT_MAT5);
+    if (mat == nullptr)
+      throw WriteError(path + ": cannot create the MAT-file" + call.Because() + " (" + std::strerror(errno) + ")");
+    try {
+      for (const auto& [name, value] : variables) {
+        NewVar v = MakeVar(name.c_str(), value, path, name);
+        if (Matio().VarWrite(mat, v.get(), MAT_COMPRESSION_ZLIB) != 0 || !call.problem().empty())
+          throw WriteError(path + ": cannot write the MAT-file variable " + name + call.Because());
+      }
+    } catch (...) {
+      Matio().Close(mat);
+      throw;
+    }
+    if (Matio().Close(mat) != 0 || !call.problem().empty())
+      throw WriteError(path + ": cannot finish the MAT-file" + call.Because());
+    written = true;
+  } catch (...) {
+    cleanup();
+    throw;
+  }
 }
 
 }  // namespace deb::io

@@ -271,6 +271,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
   std::vector<std::string> data = {"summary.json"};
   for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));
+  for (const ExportFormat f : {ExportFormat::kMat, ExportFormat::kXlsx}) data.push_back(ExportFileName(f));
   for (const auto& f : data)
     if (fs::is_regular_file(root / f, ec)) doc.data_files.push_back(f);
   writer.Write("index.html", IndexHtml(doc));
@@ -279,7 +280,8 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
 }
 
 ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                                    const ReportOptions& options, const std::string& out_dir) {
+                                    const ReportOptions& options, const std::string& out_dir,
+                                    const std::vector<ExportFormat>& exports) {
   ReportManifest manifest;
   ReplaceOptions replace;
   replace.force = options.force;
@@ -287,7 +289,9 @@ ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& re
       out_dir,
       [&](const std::string& dir) {
         WriteResultFiles(budget, result, info, dir);
+        const std::vector<std::string> exported = WriteResultExports(result, exports, dir);
         manifest = WriteReport(budget, result, info, options, dir);
+        manifest.files.insert(manifest.files.end(), exported.begin(), exported.end());
       },
       replace);
   return manifest;

@@ -7,6 +7,7 @@
 //
 // Layout of a report directory:
 //   summary.json, <output>.csv           (WriteReportDirectory, deb/io)
+//   result.mat, result.xlsx              (with exports; deb/io/result_exports.h)
 //   index.html, report.md, report.pdf
 //   plots/<name>.png|.svg, plots/<name>.csv, plots/<name>.gp, plots/colours.csv
 #pragma once
@@ -16,6 +17,7 @@
 
 #include "deb/budget/budget.h"
 #include "deb/budget/engine.h"
+#include "deb/io/result_exports.h"
 #include "deb/io/result_writer.h"
 #include "deb/report/report_options.h"
 
@@ -30,17 +32,21 @@ struct ReportManifest {
 };
 
 // Writes the report into `dir`, an existing directory (normally the
-// temporary directory of WriteDirectoryAtomically). Links summary.json and
-// the output CSVs from index.html if they are already in `dir`.
+// temporary directory of WriteDirectoryAtomically). Links summary.json, the
+// output CSVs, result.mat and result.xlsx from index.html if they are
+// already in `dir`.
 // @throws InputError if the options are invalid, gnuplot is missing or fails
 //         (naming the plot and quoting gnuplot), or a file cannot be written.
 ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, const RunInfo& info,
                            const ReportOptions& options, const std::string& dir);
 
-// summary.json, the output CSVs and WriteReport, atomically into out_dir: on
-// any failure out_dir is left as it was.
-// @throws InputError as WriteReport and WriteDirectoryAtomically.
+// summary.json, the output CSVs, the files of `exports` (result.mat,
+// result.xlsx; listed in the manifest) and WriteReport, atomically into
+// out_dir: on any failure out_dir is left as it was.
+// @throws InputError as WriteReport and WriteDirectoryAtomically; WriteError
+//         if an export cannot be written.
 ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                                    const ReportOptions& options, const std::string& out_dir);
+                                    const ReportOptions& options, const std::string& out_dir,
+                                    const std::vector<ExportFormat>& exports = {});
 
 }  // namespace deb
