@@ -1,0 +1,428 @@
+#include "deb/io/hdf5_file.h"
+
+#include <dlfcn.h>
+#include <hdf5.h>
+
+#include <cmath>
+#include <cstring>
+#include <mutex>
+
+#include "deb/core/error.h"
+#include "deb/core/input_file.h"
+
+namespace deb::io {
+namespace {
+
+// The HDF5 C library is not linked: it is loaded when the first file is
+// opened. With its dependencies (curl, TLS, Kerberos, ...) it costs about
+// 6 ms at every start of deb, store or not. DEB_HDF5_SONAME is the library
+// the build found. Only the functions and predefined types below are used.
+#define DEB_HDF5_FUNCTIONS(X)                                                                                     \
+  X(H5open) X(H5Eset_auto2) X(H5Fcreate) X(H5Fopen) X(H5Fclose) X(H5Gcreate2) X(H5Gopen2) X(H5Gclose) X(H5Lexists) \
+      X(H5Screate) X(H5Screate_simple) X(H5Sclose) X(H5Sget_simple_extent_ndims) X(H5Sget_simple_extent_dims)      \
+          X(H5Dcreate2) X(H5Dopen2) X(H5Dclose) X(H5Dwrite) X(H5Dread) X(H5Dget_space) X(H5Dget_type)              \
+              X(H5Dvlen_reclaim) X(H5Tcopy) X(H5Tset_size) X(H5Tset_cset) X(H5Tclose) X(H5Tget_class)            \
+                  X(H5Tis_variable_str)
+
+struct Hdf5Api {
+#define DEB_HDF5_POINTER(f) decltype(&::f) f = nullptr;
+  DEB_HDF5_FUNCTIONS(DEB_HDF5_POINTER)
+#undef DEB_HDF5_POINTER
+  // The predefined types, valid after H5open.
+  const hid_t* native_double = nullptr;
+  const hid_t* native_int64 = nullptr;
+  const hid_t* file_double = nullptr;
+  const hid_t* file_int64 = nullptr;
+  const hid_t* c_string = nullptr;
+};
+
+struct LoadedHdf5 {
+  Hdf5Api api;
+  std::string failure;  // why HDF5 could not be loaded; "" if it was
+};
+
+LoadedHdf5 LoadHdf5() {
+  LoadedHdf5 l;
+  // Never closed: HDF5 keeps process-wide state until exit.
+  void* const library = dlopen(DEB_HDF5_SONAME, RTLD_NOW | RTLD_LOCAL);
+  if (library == nullptr) {
+    const char* why = dlerror();
+    l.failure = why != nullptr ? why : "dlopen failed";
+    return l;
+  }
+  const auto resolve = [&](const char* name, auto& f) {
+    void* const symbol = dlsym(library, name);
+    if (symbol == nullptr) {
+      if (l.failure.empty()) l.failure = std::string(DEB_HDF5_SONAME " has no symbol ") + name;
+      return;
+    }
+    static_assert(sizeof f == sizeof symbol);
+    std::memcpy(&f, &symbol, sizeof f);
+  };
+  Hdf5Api& a = l.api;
+#define DEB_HDF5_RESOLVE(f) resolve(#f, a.f);
+  DEB_HDF5_FUNCTIONS(DEB_HDF5_RESOLVE)
+#undef DEB_HDF5_RESOLVE
+  resolve("H5T_NATIVE_DOUBLE_g", a.native_double);
+  resolve("H5T_NATIVE_LLONG_g", a.native_int64);
+  resolve("H5T_IEEE_F64LE_g", a.file_double);
+  resolve("H5T_STD_I64LE_g", a.file_int64);
+  resolve("H5T_C_S1_g", a.c_string);
+  if (l.failure.empty() && a.H5open() < 0) l.failure = "H5open failed";
+  // HDF5 prints its error stack on stderr by default: deb reports errors itself.
+  if (l.failure.empty()) a.H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  if (!l.failure.empty()) l.api = Hdf5Api{};
+  return l;
+}
+
+const LoadedHdf5& Loaded() {
+  static const LoadedHdf5 loaded = LoadHdf5();
+  return loaded;
+}
+
+const Hdf5Api& Api() { return Loaded().api; }
+
+// H5F_ACC_TRUNC and H5F_ACC_RDONLY are macros that call H5check and H5open,
+// which would link the library: their values (H5Fpublic.h) instead.
+constexpr unsigned kCreateTruncate = 0x0002u;
+constexpr unsigned kReadOnly = 0x0000u;
+
+// The HDF5 library deb loads is built without thread safety: every call
+// holds this lock.
+std::mutex g_hdf5;
+
+// The failure text if HDF5 cannot be loaded, for messages; "" if it can.
+std::string LoadFailure() {
+  const LoadedHdf5& l = Loaded();
+  return l.failure.empty() ? ""
+                           : "HDF5 (" DEB_HDF5_SONAME ") cannot be loaded: " + Excerpt(l.failure, 160) +
+                                 "; install it (Debian: libhdf5-103-1)";
+}
+
+// Closes an HDF5 identifier when it goes out of scope.
+class Id {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Id(hid_t id, Closer close) : id_(id), close_(close) {}
+  ~Id() {
+    if (id_ >= 0) close_(id_);
+  }
+  Id(Id&& other) noexcept : id_(other.id_), close_(other.close_) { other.id_ = -1; }
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  Id& operator=(Id&&) = delete;
+  hid_t get() const { return id_; }
+  bool ok() const { return id_ >= 0; }
+
+ private:
+  hid_t id_;
+  Closer close_;
+};
+
+std::vector<std::string> Split(const std::string& object) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (start <= object.size()) {
+    const std::size_t end = std::min(object.find('/', start), object.size());
+    if (end > start) parts.push_back(object.substr(start, end - start));
+    start = end + 1;
+  }
+  return parts;
+}
+
+Id VariableString() {
+  const Hdf5Api& a = Api();
+  Id type(a.H5Tcopy(*a.c_string), a.H5Tclose);
+  if (type.ok()) {
+    a.H5Tset_size(type.get(), H5T_VARIABLE);
+    a.H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  }
+  return type;
+}
+
+}  // namespace
+
+void PreloadHdf5() { Loaded(); }
+
+// ---------------------------------------------------------------- writing
+
+struct Hdf5Writer::Handle {
+  hid_t file = -1;
+};
+
+Hdf5Writer::Hdf5Writer(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  if (const std::string why = LoadFailure(); !why.empty()) throw WriteError("cannot write " + path + ": " + why);
+  handle_->file = Api().H5Fcreate(path.c_str(), kCreateTruncate, H5P_DEFAULT, H5P_DEFAULT);
+  if (handle_->file < 0) throw WriteError("cannot create the HDF5 file " + path);
+}
+
+Hdf5Writer::~Hdf5Writer() {
+  if (handle_ && handle_->file >= 0) {
+    const std::lock_guard<std::mutex> lock(g_hdf5);
+    Api().H5Fclose(handle_->file);
+  }
+}
+
+void Hdf5Writer::Close() {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  const hid_t file = handle_->file;
+  handle_->file = -1;
+  if (file >= 0 && Api().H5Fclose(file) < 0) throw WriteError("cannot complete the HDF5 file " + path_);
+}
+
+namespace {
+
+// Writes one dataset of `type_in_file` and `dims` (empty: a scalar) from
+// `data` in `type_in_memory` under `file`, creating the groups above it.
+void WriteDataset(hid_t file, const std::string& path, const std::string& object, hid_t type_in_file,
+                  hid_t type_in_memory, const std::vector<hsize_t>& dims, const void* data) {
+  const Hdf5Api& a = Api();
+  const std::vector<std::string> parts = Split(object);
+  DEB_DEMAND(!parts.empty());
+  const auto fail = [&](const std::string& what) {
+    throw WriteError("cannot write '" + object + "' to the HDF5 file " + path + ": " + what);
+  };
+  // The groups above, opened or created one by one.
+  std::vector<std::unique_ptr<Id>> groups;
+  hid_t at = file;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const htri_t exists = a.H5Lexists(at, parts[i].c_str(), H5P_DEFAULT);
+    const hid_t g = exists > 0 ? a.H5Gopen2(at, parts[i].c_str(), H5P_DEFAULT)
+                               : a.H5Gcreate2(at, parts[i].c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    groups.push_back(std::make_unique<Id>(g, a.H5Gclose));
+    if (g < 0) fail("cannot create or open the group '" + parts[i] + "'");
+    at = g;
+  }
+  if (a.H5Lexists(at, parts.back().c_str(), H5P_DEFAULT) > 0) fail("it exists already");
+  Id space(dims.empty() ? a.H5Screate(H5S_SCALAR)
+                        : a.H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+           a.H5Sclose);
+  if (!space.ok()) fail("cannot make its dataspace");
+  Id set(a.H5Dcreate2(at, parts.back().c_str(), type_in_file, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+         a.H5Dclose);
+  if (!set.ok()) fail("cannot create the dataset");
+  bool empty = false;
+  for (hsize_t d : dims) empty |= d == 0;
+  if (!empty && a.H5Dwrite(set.get(), type_in_memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    fail("cannot write its data");
+}
+
+}  // namespace
+
+void Hdf5Writer::Number(const std::string& object, double value) {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  WriteDataset(handle_->file, path_, object, *Api().file_double, *Api().native_double, {}, &value);
+}
+
+void Hdf5Writer::Integer(const std::string& object, std::int64_t value) {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  const long long v = value;
+  WriteDataset(handle_->file, path_, object, *Api().file_int64, *Api().native_int64, {}, &v);
+}
+
+void Hdf5Writer::Text(const std::string& object, const std::string& value) {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  const Id type = VariableString();
+  const char* text = value.c_str();
+  WriteDataset(handle_->file, path_, object, type.get(), type.get(), {}, &text);
+}
+
+void Hdf5Writer::Numbers(const std::string& object, const std::vector<double>& values) {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  WriteDataset(handle_->file, path_, object, *Api().file_double, *Api().native_double, {values.size()},
+               values.data());
+}
+
+void Hdf5Writer::Texts(const std::string& object, const std::vector<std::string>& values) {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  const Id type = VariableString();
+  std::vector<const char*> texts;
+  for (const std::string& v : values) texts.push_back(v.c_str());
+  WriteDataset(handle_->file, path_, object, type.get(), type.get(), {values.size()}, texts.data());
+}
+
+void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<double>>& rows) {
+  const std::size_t columns = rows.empty() ? 0 : rows.front().size();
+  std::vector<double> data;
+  data.reserve(rows.size() * columns);
+  for (const std::vector<double>& r : rows) {
+    DEB_DEMAND(r.size() == columns);
+    data.insert(data.end(), r.begin(), r.end());
+  }
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  WriteDataset(handle_->file, path_, object, *Api().file_double, *Api().native_double,
+               {rows.size(), rows.empty() ? 0 : columns}, data.data());
+}
+
+// ---------------------------------------------------------------- reading
+
+struct Hdf5Reader::Handle {
+  hid_t file = -1;
+};
+
+Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
+  RequireInputFile(path, "HDF5 file", kMaxHdf5FileBytes);
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  if (const std::string why = LoadFailure(); !why.empty()) throw InputError(path + ": reading it needs " + why);
+  handle_->file = Api().H5Fopen(path.c_str(), kReadOnly, H5P_DEFAULT);
+  if (handle_->file < 0) throw InputError(path + ": not an HDF5 file, or a damaged one");
+}
+
+Hdf5Reader::~Hdf5Reader() {
+  if (handle_ && handle_->file >= 0) {
+    const std::lock_guard<std::mutex> lock(g_hdf5);
+    Api().H5Fclose(handle_->file);
+  }
+}
+
+namespace {
+
+enum class Kind { kDouble, kInteger, kText };
+
+const char* KindName(Kind k) {
+  switch (k) {
+    case Kind::kDouble: return "numbers";
+    case Kind::kInteger: return "an integer";
+    case Kind::kText: return "text";
+  }
+  return "";
+}
+
+// An open dataset with its checked shape.
+struct OpenSet {
+  std::unique_ptr<Id> set;
+  std::vector<hsize_t> dims;
+  std::size_t elements = 1;
+};
+
+bool Exists(hid_t file, const std::string& object) {
+  const Hdf5Api& a = Api();
+  std::string prefix;
+  for (const std::string& part : Split(object)) {
+    prefix += (prefix.empty() ? "" : "/") + part;
+    if (a.H5Lexists(file, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+  }
+  return !prefix.empty();
+}
+
+OpenSet Open(hid_t file, const std::string& path, const std::string& object, Kind kind, int rank) {
+  const Hdf5Api& a = Api();
+  const auto fail = [&](const std::string& what) { throw InputError(path + ": object '" + object + "' " + what); };
+  if (!Exists(file, object)) fail("is missing");
+  OpenSet s;
+  s.set = std::make_unique<Id>(a.H5Dopen2(file, object.c_str(), H5P_DEFAULT), a.H5Dclose);
+  if (!s.set->ok()) fail("is not a dataset");
+  const Id type(a.H5Dget_type(s.set->get()), a.H5Tclose);
+  const H5T_class_t cls = type.ok() ? a.H5Tget_class(type.get()) : H5T_NO_CLASS;
+  const bool right = kind == Kind::kDouble    ? cls == H5T_FLOAT || cls == H5T_INTEGER
+                     : kind == Kind::kInteger ? cls == H5T_INTEGER
+                                              : cls == H5T_STRING && a.H5Tis_variable_str(type.get()) > 0;
+  if (!right)
+    fail(std::string("holds ") + (cls == H5T_STRING ? "text" : cls == H5T_FLOAT ? "numbers" : "another class") +
+         ", not " + KindName(kind) + (kind == Kind::kText ? " (variable-length strings)" : ""));
+  const Id space(a.H5Dget_space(s.set->get()), a.H5Sclose);
+  const int ndims = space.ok() ? a.H5Sget_simple_extent_ndims(space.get()) : -1;
+  if (ndims != rank)
+    fail("has " + std::to_string(ndims) + " dimensions, not " + std::to_string(rank));
+  s.dims.assign(static_cast<std::size_t>(rank), 0);
+  if (rank > 0 && a.H5Sget_simple_extent_dims(space.get(), s.dims.data(), nullptr) != rank)
+    fail("has an unreadable shape");
+  for (hsize_t d : s.dims) {
+    if (d > kMaxHdf5Elements || (d > 0 && s.elements > kMaxHdf5Elements / d))
+      fail("has more than " + std::to_string(kMaxHdf5Elements) + " elements");
+    s.elements *= static_cast<std::size_t>(d);
+  }
+  return s;
+}
+
+void Read(const std::string& path, const std::string& object, const OpenSet& s, hid_t memory_type, void* data) {
+  if (s.elements == 0) return;
+  if (Api().H5Dread(s.set->get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw InputError(path + ": object '" + object + "' cannot be read (a damaged file?)");
+}
+
+void CheckFinite(const std::string& path, const std::string& object, const std::vector<double>& v, bool allow_nan) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]) && !(allow_nan && std::isnan(v[i])))
+      throw InputError(path + ": object '" + object + "' holds a value that is not finite at element " +
+                       std::to_string(i));
+}
+
+std::vector<std::string> ReadTexts(hid_t file, const std::string& path, const std::string& object, int rank) {
+  const OpenSet s = Open(file, path, object, Kind::kText, rank);
+  const Id type = VariableString();
+  std::vector<char*> raw(s.elements, nullptr);
+  Read(path, object, s, type.get(), raw.data());
+  std::vector<std::string> texts;
+  bool null = false;
+  for (char* t : raw) {
+    null |= t == nullptr;
+    texts.emplace_back(t ? t : "");
+  }
+  if (s.elements > 0) {
+    const Id space(Api().H5Dget_space(s.set->get()), Api().H5Sclose);
+    Api().H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, raw.data());
+  }
+  if (null) throw InputError(path + ": object '" + object + "' holds a null string");
+  return texts;
+}
+
+}  // namespace
+
+bool Hdf5Reader::Has(const std::string& object) const {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  return Exists(handle_->file, object);
+}
+
+double Hdf5Reader::Number(const std::string& object, bool allow_nan) const {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  const OpenSet s = Open(handle_->file, path_, object, Kind::kDouble, 0);
+  std::vector<double> v(1);
+  Read(path_, object, s, *Api().native_double, v.data());
+  CheckFinite(path_, object, v, allow_nan);
+  return v[0];
+}
+
+std::int64_t Hdf5Reader::Integer(const std::string& object) const {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  const OpenSet s = Open(handle_->file, path_, object, Kind::kInteger, 0);
+  long long v = 0;
+  Read(path_, object, s, *Api().native_int64, &v);
+  return v;
+}
+
+std::string Hdf5Reader::Text(const std::string& object) const {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  return ReadTexts(handle_->file, path_, object, 0).front();
+}
+
+std::vector<double> Hdf5Reader::Numbers(const std::string& object, bool allow_nan) const {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  const OpenSet s = Open(handle_->file, path_, object, Kind::kDouble, 1);
+  std::vector<double> v(s.elements);
+  Read(path_, object, s, *Api().native_double, v.data());
+  CheckFinite(path_, object, v, allow_nan);
+  return v;
+}
+
+std::vector<std::string> Hdf5Reader::Texts(const std::string& object) const {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  return ReadTexts(handle_->file, path_, object, 1);
+}
+
+std::vector<std::vector<double>> Hdf5Reader::Rows(const std::string& object, bool allow_nan) const {
+  const std::lock_guard<std::mutex> lock(g_hdf5);
+  const OpenSet s = Open(handle_->file, path_, object, Kind::kDouble, 2);
+  std::vector<double> v(s.elements);
+  Read(path_, object, s, *Api().native_double, v.data());
+  CheckFinite(path_, object, v, allow_nan);
+  std::vector<std::vector<double>> rows(static_cast<std::size_t>(s.dims[0]));
+  const std::size_t columns = static_cast<std::size_t>(s.dims[1]);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    rows[r].assign(v.begin() + static_cast<std::ptrdiff_t>(r * columns),
+                   v.begin() + static_cast<std::ptrdiff_t>((r + 1) * columns));
+  return rows;
+}
+
+}  // namespace deb::io

@@ -1,0 +1,100 @@
+// Internal: not part of the public API.
+// HDF5 files of numbers and text, written and read through the HDF5 C
+// library, which is loaded when the first file is opened (like matio,
+// mat_file.h: linked, it and its 30 dependencies would load at every start
+// of deb). This is the one module that uses HDF5.
+//
+// Objects are named by paths of '/'-separated names ("outputs/0/psd");
+// writing a dataset creates the groups above it. What is written:
+//   - a number (double, 0-dimensional), an integer (int64, 0-dimensional),
+//   - a text (variable-length UTF-8 string, 0-dimensional),
+//   - a vector of doubles or of texts (1-dimensional),
+//   - a matrix of doubles given as rows of equal length (2-dimensional,
+//     rows x columns, row-major as h5py and HDF5 show it).
+// Every file read is treated as possibly hostile (deb/core/input_file.h):
+// only a regular file of at most kMaxHdf5FileBytes is opened, a dataset's
+// size is checked against kMaxHdf5Elements from its header before its data
+// is read, its class and rank must be the ones asked
+// for, and every number read must be finite unless the caller allows NaN
+// (an absent value).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace deb::io {
+
+// Bounds of what a reader opens: a file of 16 GiB, and a dataset of the
+// densest grid (limits::kMaxGridPoints) times 50 channels (2 GB of doubles).
+inline constexpr std::uintmax_t kMaxHdf5FileBytes = 16ull << 30;
+inline constexpr std::size_t kMaxHdf5Elements = std::size_t{5'000'000} * 50;
+
+// Loads the HDF5 library now (a no-op after the first call; thread-safe): a
+// caller that will write a file later may start this early, in a thread of
+// its own, to overlap the loading with other work.
+void PreloadHdf5();
+
+class Hdf5Writer {
+ public:
+  // Creates (or truncates) `path`.
+  // @throws WriteError if HDF5 cannot be loaded or the file cannot be created.
+  explicit Hdf5Writer(const std::string& path);
+  ~Hdf5Writer();
+  Hdf5Writer(const Hdf5Writer&) = delete;
+  Hdf5Writer& operator=(const Hdf5Writer&) = delete;
+
+  // Each @throws WriteError naming the file and the object, if HDF5 fails or
+  // the object exists already.
+  void Number(const std::string& object, double value);
+  void Integer(const std::string& object, std::int64_t value);
+  void Text(const std::string& object, const std::string& value);
+  void Numbers(const std::string& object, const std::vector<double>& values);
+  void Texts(const std::string& object, const std::vector<std::string>& values);
+  // @pre every row has the same length (DEB_DEMAND); no rows: a 0 x 0 matrix.
+  void Rows(const std::string& object, const std::vector<std::vector<double>>& rows);
+
+  // Flushes and closes the file.
+  // @throws WriteError if it cannot be completed.
+  void Close();
+
+ private:
+  struct Handle;
+  std::string path_;
+  std::unique_ptr<Handle> handle_;
+};
+
+class Hdf5Reader {
+ public:
+  // @throws InputError "<path>: ..." if HDF5 cannot be loaded, the file does
+  //         not exist, is not a regular file, is larger than the bound or is
+  //         not an HDF5 file.
+  explicit Hdf5Reader(const std::string& path);
+  ~Hdf5Reader();
+  Hdf5Reader(const Hdf5Reader&) = delete;
+  Hdf5Reader& operator=(const Hdf5Reader&) = delete;
+
+  const std::string& path() const { return path_; }
+  // Whether the object (group or dataset) exists.
+  bool Has(const std::string& object) const;
+
+  // Each @throws InputError "<path>: object 'NAME' ..." for a missing object,
+  // one of another class or rank than asked for, more elements than the
+  // bound, a value that is not finite (NaN allowed where `allow_nan`), or
+  // anything HDF5 reports while reading.
+  double Number(const std::string& object, bool allow_nan = false) const;
+  std::int64_t Integer(const std::string& object) const;
+  std::string Text(const std::string& object) const;
+  std::vector<double> Numbers(const std::string& object, bool allow_nan = false) const;
+  std::vector<std::string> Texts(const std::string& object) const;
+  std::vector<std::vector<double>> Rows(const std::string& object, bool allow_nan = false) const;
+
+ private:
+  struct Handle;
+  std::string path_;
+  std::unique_ptr<Handle> handle_;
+};
+
+}  // namespace deb::io
