@@ -388,9 +388,9 @@ TEST_CASE("a contributor and a group keep one colour in the main plots, every dr
         if (expected.count(s.name)) seen[s.name].insert(s.colour);
     }
   CHECK(drill_downs == 4 * result.outputs.size());
-  for (const auto& [name, colours] : seen) {
-    INFO(name);
-    CHECK(colours == std::set<std::string>{expected.at(name)});
+  for (const auto& item : seen) {
+    INFO(item.first);  // not a structured binding: clang cannot capture one in INFO's lambda
+    CHECK(item.second == std::set<std::string>{expected.at(item.first)});
   }
   // Every group somewhere, every contributor in a drill-down but cooling_water, facility's only member (shown as
   // facility/).
