@@ -69,6 +69,7 @@ Loaded Load(const std::string& input, const std::vector<BudgetOverride>& overrid
   const Budget budget = LoadBudgetFile(input, overrides);
   EngineOptions options;
   options.threads = threads;
+  options.response_traces = false;  // compared, not drawn
   BudgetResult result = Evaluate(budget, options);
   ResultFigures figures = FiguresOf(budget.name, result);
   return {std::move(figures), std::move(result)};

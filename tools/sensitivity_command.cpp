@@ -148,6 +148,7 @@ int SensitivityCommand::Run() const {
   const Budget budget = LoadBudgetFile(s.budget_file, s.overrides);
   EngineOptions options;
   options.threads = s.threads;
+  options.response_traces = false;  // differenced, not drawn
   const SensitivityStudy study = ComputeSensitivities(
       budget, s.parameters, s.step,
       [&s](const std::string& key, double factor) {

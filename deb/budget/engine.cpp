@@ -1,4 +1,5 @@
 #include "deb/budget/engine.h"
+#include "deb/budget/response_traces.h"
 
 #include <algorithm>
 #include <cmath>
@@ -988,6 +989,8 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
     }
   }
   if (!budget.covariance.empty()) result.covariance = ComputeOutputCovariance(budget, result, options.threads);
+  if (options.response_traces)
+    result.traces = std::make_shared<const ResponseTraces>(ComputeResponseTraces(budget, result, options.threads));
   return result;
 }
 

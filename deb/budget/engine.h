@@ -24,11 +24,16 @@
 
 namespace deb {
 
+struct ResponseTraces;  // response_traces.h
+
 struct EngineOptions {
   int threads = 0;  // <= 0: DefaultThreadCount()
   // Relative difference between the exact variance and (CPS + estimated
   // tails beyond the grid) above which a warning is issued.
   double exact_tolerance = 1e-3;
+  // Also evaluate the transfers a report draws (BudgetResult::traces): off
+  // for results that are only compared or summed (sweeps, sensitivities).
+  bool response_traces = true;
 };
 
 // One mode's part of a contributor's variance on an output (modal paths).
@@ -150,6 +155,10 @@ struct BudgetResult {
   // The covariance of the outputs the budget's `covariance:` lists
   // (output_covariance.h); none when it lists none.
   std::optional<CovarianceResult> covariance;
+  // What the report draws of the paths and loops (response_traces.h), or
+  // null (EngineOptions::response_traces). The report needs nothing else of
+  // the models: a result read back from its store has traces, no paths.
+  std::shared_ptr<const ResponseTraces> traces;
 };
 
 // The analysis of every path a contributor uses, for the output rows the

@@ -98,6 +98,7 @@ std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::functi
   std::mutex progress_mutex;
   EngineOptions options;
   options.threads = 1;  // parallel across variants, not within
+  options.response_traces = false;
   // Variants differ in cost (grid refinement): each thread takes the next
   // variant not yet started. Each result lands at its variant's index.
   ParallelForEach(

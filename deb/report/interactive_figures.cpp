@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "deb/budget/path_response.h"
+#include "deb/budget/response_traces.h"
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 #include "deb/report/embedded_scripts.h"
@@ -142,8 +143,8 @@ json PathData(const Budget& budget, const BudgetResult& result, std::size_t c, s
   for (const auto& m : magnitude) series.push_back(&m);
   const std::vector<std::size_t> keep = FigurePoints(f, series, {});
   // Shown first as in the report's path plots (PathRange).
-  const FrequencyRange shown = PathRange(*result.paths.at(ContributorPathKey(budget.contributors[c])),
-                                         DisplayRange(result.outputs[o], result.grid), result.grid);
+  const FrequencyRange shown =
+      PathRange(result.traces->poles_hz[c], DisplayRange(result.outputs[o], result.grid), result.grid);
   json p = {{"contributor", r.contributor}, {"output", r.output}, {"unit", UnitText(r.unit)},
             {"display_hz", {shown.lo_hz, shown.hi_hz}}, {"f", Frequencies(f, keep)}};
   json channels = json::array(), colours = json::array(), mags = json::array();
@@ -265,9 +266,10 @@ std::string FigureDataJson(const Budget& budget, const BudgetResult& result, int
   std::vector<json> outputs(result.outputs.size());
   ParallelForEach(outputs.size(), [&](std::size_t o) { outputs[o] = OutputData(budget, result, result.outputs[o]); },
                   threads);
+  DEB_DEMAND(result.traces && result.traces->paths.size() == budget.contributors.size());
   std::vector<json> paths(budget.contributors.size(), json::array());
   ParallelForEach(paths.size(), [&](std::size_t c) {
-    const std::vector<PathResponse> responses = ComputePathResponses(budget, result, c, result.grid.f_hz(), 1);
+    const std::vector<PathResponse>& responses = result.traces->paths[c];
     for (std::size_t o = 0; o < responses.size(); ++o) paths[c].push_back(PathData(budget, result, c, o, responses[o]));
   }, threads);
   json data = {{"outputs", outputs}, {"paths", json::array()}};

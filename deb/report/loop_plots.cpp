@@ -5,6 +5,8 @@
 #include <complex>
 #include <sstream>
 
+#include "deb/budget/response_traces.h"
+#include "deb/core/error.h"
 #include "deb/report/figure_script.h"
 #include "deb/report/plot_style.h"
 #include "deb/report/spectrum_plots.h"
@@ -18,13 +20,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr const char* kLoopColour = "#0e5274";  // L and S: a dark blue
 constexpr const char* kComplementColour = "#e66e53";  // T: orange
 constexpr const char* kMarginColour = "#b2182b";
-
-const FeedbackLoop* FindLoop(const Budget& budget, const LoopResult& r) {
-  for (const Path& p : budget.paths)
-    for (const FeedbackLoop& l : p.loops)
-      if (l.plant == r.plant && l.controller == r.controller && l.sign == r.sign) return &l;
-  return nullptr;
-}
 
 // Linear interpolation of y over log f at f_hz.
 double At(const std::vector<double>& f, const std::vector<double>& y, double f_hz) {
@@ -70,22 +65,19 @@ FigureAnnotation Marker(double x, double y, const std::string& label) {
 
 }  // namespace
 
-std::vector<Plot> LoopPlots(const Budget& budget, const BudgetResult& result, int digits) {
+std::vector<Plot> LoopPlots(const BudgetResult& result, int digits) {
   std::vector<Plot> plots;
-  for (const LoopResult& r : result.loops) {
-    const FeedbackLoop* loop = FindLoop(budget, r);
-    if (!loop || !r.evaluated || r.margins.channels != 1) continue;
-    // The grid frequencies where the loop's data are defined, as its margins used.
-    std::vector<double> f;
-    const auto g = loop->plant_model->DefinedRangeHz(), k = loop->controller_model->DefinedRangeHz();
-    for (double x : result.grid.f_hz())
-      if ((!g || g->Contains(x, x)) && (!k || k->Contains(x, x))) f.push_back(x);
-    if (f.size() < 2) continue;
+  DEB_DEMAND(result.traces && result.traces->loops.size() == result.loops.size());
+  for (std::size_t loop = 0; loop < result.loops.size(); ++loop) {
+    const LoopResult& r = result.loops[loop];
+    const LoopTrace& trace = result.traces->loops[loop];
+    if (trace.f_hz.size() < 2) continue;
+    const std::vector<double>& f = trace.f_hz;
     std::vector<std::complex<double>> l(f.size());
     std::vector<double> mag(f.size()), phase(f.size()), s_mag(f.size()), t_mag(f.size());
     double turns = 0.0;
     for (std::size_t i = 0; i < f.size(); ++i) {
-      l[i] = loop->LoopGainAt(f[i])(0, 0);
+      l[i] = trace.loop_gain[i];
       mag[i] = std::abs(l[i]);
       const double arg = std::arg(l[i]);
       if (i) {

@@ -17,6 +17,6 @@ namespace deb::report {
 
 // Three plots per loop, loops in the order of result.loops.
 // @throws InputError as FeedbackLoop::LoopGainAt.
-std::vector<Plot> LoopPlots(const Budget& budget, const BudgetResult& result, int digits = 4);
+std::vector<Plot> LoopPlots(const BudgetResult& result, int digits = 4);
 
 }  // namespace deb::report

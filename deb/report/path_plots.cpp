@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "deb/budget/path_response.h"
+#include "deb/budget/response_traces.h"
+#include "deb/core/error.h"
 #include "deb/core/parallel.h"
 #include "deb/report/figure_script.h"
 #include "deb/report/plot_points.h"
@@ -98,9 +100,10 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vecto
   p.name = "path_" + FileStem(contributor.path) + "_to_" + FileStem(output.name) + suffix;
   p.kind = PlotKind::kPath;
   p.output = static_cast<int>(o);
-  std::pair<double, double> poles_hz{0.0, 0.0};
+  const std::optional<std::pair<double, double>>& path_poles = result.traces->poles_hz[users.front()];
+  const std::pair<double, double> poles_hz = path_poles.value_or(std::make_pair(0.0, 0.0));
   const FrequencyRange display = DisplayRange(result.outputs[o], result.grid);
-  const FrequencyRange range = PathRange(*result.paths.at(ContributorPathKey(contributor)), display, result.grid, &poles_hz);
+  const FrequencyRange range = PathRange(path_poles, display, result.grid);
   const bool widened = range.lo_hz < display.lo_hz || range.hi_hz > display.hi_hz;
   const std::string poles = (poles_hz.first == poles_hz.second ? Sig(poles_hz.first)
                                                                  : Sig(poles_hz.first) + "–" + Sig(poles_hz.second)) +
@@ -239,17 +242,10 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vecto
 
 }  // namespace
 
-FrequencyRange PathRange(const PathAnalysis& path, const FrequencyRange& display, const FrequencyGrid& grid,
-                         std::pair<double, double>* poles_hz) {
-  if (path.path().HasMeasuredData() || path.modes().empty()) return display;
-  double first = HUGE_VAL, last = 0.0;
-  for (const Mode& m : path.modes()) {
-    if (!(m.f_n_hz >= grid.min_hz() && m.f_n_hz <= grid.max_hz())) continue;  // integrators have f_n = 0
-    first = std::min(first, m.f_n_hz);
-    last = std::max(last, m.f_n_hz);
-  }
-  if (!(last > 0.0)) return display;
-  if (poles_hz) *poles_hz = {first, last};
+FrequencyRange PathRange(const std::optional<std::pair<double, double>>& poles, const FrequencyRange& display,
+                         const FrequencyGrid& grid) {
+  if (!poles) return display;
+  const auto [first, last] = *poles;
   const double margin = std::sqrt(10.0);  // half a decade
   FrequencyRange r = display;
   if (first / margin < r.lo_hz)
@@ -285,12 +281,12 @@ std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, in
                       [&](const auto& other) { return budget.contributors[other.front()].path == path; }) > 1)
       suffix[g] = "_from_" + FileStem(budget.contributors[groups[g].front()].name);
   }
+  DEB_DEMAND(result.traces && result.traces->paths.size() == budget.contributors.size());
   std::vector<std::vector<Plot>> per_group(groups.size());
   ParallelForEach(
       groups.size(),
       [&](std::size_t g) {
-        const std::vector<PathResponse> r =
-            ComputePathResponses(budget, result, groups[g].front(), result.grid.f_hz(), threads);
+        const std::vector<PathResponse>& r = result.traces->paths[groups[g].front()];
         for (std::size_t o = 0; o < budget.outputs.size(); ++o)
           per_group[g].push_back(PathPlot(budget, result, groups[g], o, r[o], suffix[g]));
       },

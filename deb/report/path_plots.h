@@ -7,6 +7,8 @@
 // channels whose curves coincide are drawn once, titled "z1 = z4".
 #pragma once
 
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "deb/budget/budget.h"
@@ -21,15 +23,14 @@ namespace deb::report {
 // it; a magnitude plot shows every pole of its path whose natural frequency
 // lies within the grid: `display` is widened to whole decades reaching at
 // least half a decade beyond each such f_n, within the grid. A measured path
-// (Path::HasMeasuredData) keeps `display`. The poles are the analysis's
-// (path_analysis.h). `poles_hz`, if given, receives the lowest and highest
-// such f_n (unchanged without any).
-FrequencyRange PathRange(const PathAnalysis& path, const FrequencyRange& display, const FrequencyGrid& grid,
-                         std::pair<double, double>* poles_hz = nullptr);
+// (Path::HasMeasuredData) keeps `display`. `poles` are the lowest and
+// highest such f_n (ResponseTraces::poles_hz: none for a measured path).
+FrequencyRange PathRange(const std::optional<std::pair<double, double>>& poles, const FrequencyRange& display,
+                         const FrequencyGrid& grid);
 
-// One plot per (contributor, output), contributors outer; a contributor's
-// responses are one job, on `threads` threads (<= 0: the default count).
-// @throws InputError as ComputePathResponse.
+// One plot per (contributor, output), contributors outer, from the result's
+// traces (BudgetResult::traces, DEB_DEMANDed); contributors that see the same
+// transfer share a plot. Built on `threads` threads (<= 0: the default count).
 std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, int threads = 0);
 
 }  // namespace deb::report

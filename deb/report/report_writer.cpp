@@ -156,7 +156,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       plots.push_back(BandsPlot(result, o, options.digits));
     }
     for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
-    for (Plot& p : LoopPlots(budget, result, options.digits)) plots.push_back(std::move(p));
+    for (Plot& p : LoopPlots(result, options.digits)) plots.push_back(std::move(p));
     for (const Plot& p : plots) {
       writer.Write("plots/" + p.name + ".csv", p.csv);
       writer.WriteScript("plots/" + p.name + ".gp", p.script);

@@ -15,7 +15,7 @@ namespace deb::report {
 TEST_CASE("every evaluated loop gets a Bode, an S/T and a Nyquist figure whose marks are the loop's margins") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
   const BudgetResult result = Evaluate(budget);
-  const std::vector<Plot> plots = LoopPlots(budget, result);
+  const std::vector<Plot> plots = LoopPlots(result);
   std::size_t evaluated = 0;
   for (const LoopResult& r : result.loops) evaluated += r.evaluated && r.margins.channels == 1;
   REQUIRE(evaluated > 0);

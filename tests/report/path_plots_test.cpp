@@ -1,3 +1,4 @@
+#include "deb/budget/response_traces.h"
 #include "deb/report/path_plots.h"
 
 #include <doctest/doctest.h>
@@ -81,8 +82,9 @@ outputs:
   const BudgetResult result = Evaluate(budget);
   const FrequencyRange display = DisplayRange(result.outputs[0], result.grid);
   REQUIRE(display.hi_hz == doctest::Approx(10.0));
-  std::pair<double, double> poles{0.0, 0.0};
-  const FrequencyRange r = PathRange(*result.paths.at(budget.paths[0].name), display, result.grid, &poles);
+  REQUIRE(result.traces->poles_hz[0].has_value());
+  const std::pair<double, double> poles = *result.traces->poles_hz[0];
+  const FrequencyRange r = PathRange(poles, display, result.grid);
   CHECK(poles.first == doctest::Approx(200.0).epsilon(1e-6));
   CHECK(poles.second == doctest::Approx(200.0).epsilon(1e-6));
   CHECK(r.lo_hz == doctest::Approx(display.lo_hz));
@@ -109,11 +111,20 @@ outputs:
 
   // Clamped to the grid: a grid ending at 300 Hz ends the plot there.
   const FrequencyGrid short_grid = FrequencyGrid::Log(0.1, 300.0, 400);
-  const FrequencyRange clamped = PathRange(*result.paths.at(budget.paths[0].name), FrequencyRange{1.0, 10.0, true}, short_grid);
+  const FrequencyRange clamped = PathRange(poles, FrequencyRange{1.0, 10.0, true}, short_grid);
   CHECK(clamped.hi_hz == doctest::Approx(300.0));
-  // A pole outside the grid does not widen it.
-  const FrequencyGrid low_grid = FrequencyGrid::Log(0.1, 100.0, 400);
-  CHECK(PathRange(*result.paths.at(budget.paths[0].name), FrequencyRange{1.0, 10.0, true}, low_grid).hi_hz == doctest::Approx(10.0));
+  // A pole outside the grid does not widen it: the traces know no pole there.
+  Budget low = budget;
+  low.grid = GridSpec();
+  low.grid.kind = GridKind::kLog;
+  low.grid.auto_options.min_hz = 0.1;
+  low.grid.auto_options.max_hz = 100.0;
+  low.grid.points = 400;
+  const BudgetResult low_result = Evaluate(low);
+  REQUIRE(low_result.grid.max_hz() == doctest::Approx(100.0));
+  CHECK_FALSE(low_result.traces->poles_hz[0].has_value());
+  CHECK(PathRange(low_result.traces->poles_hz[0], FrequencyRange{1.0, 10.0, true}, low_result.grid).hi_hz ==
+        doctest::Approx(10.0));
 }
 
 TEST_CASE("the avis case study's path plots show its closed-loop poles up to 7.4 Hz, to 100 Hz") {
