@@ -32,6 +32,22 @@ std::string ReferenceKey(const ReferenceResult& r, int digits) {
          SigLabel(r.covered_lo_hz, 3) + "–" + SigLabel(r.covered_hi_hz, 3) + " Hz";
 }
 
+// A reference's curve: grey dashed, column `column` of `data` shown as
+// value / y_divisor, keyed with ReferenceKey (the CPS and the PSD plot alike).
+FigureSeries ReferenceSeries(const ReferenceResult& r, int digits, const std::string& data, std::size_t column,
+                             double y_divisor) {
+  FigureSeries m;
+  m.name = "measured: " + r.name;
+  m.key = ReferenceKey(r, digits);
+  m.data = data;
+  m.y_columns = {column};
+  m.y_divisor = y_divisor;
+  m.colour = kReferenceColour;
+  m.dash = kReferenceDash;
+  m.width = 2.5;
+  return m;
+}
+
 // " Weighted by <description>; metric: <metric>." from the output's
 // definition: what the plotted quantity is, stated in the caption.
 std::string WeightingCaption(const OutputResult& out, const Output* spec) {
@@ -199,19 +215,8 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
       panel.annotations.push_back(m);
     }
   }
-  for (std::size_t i = 0; i < refs.size(); ++i) {  // over the layers, under the total
-    const ReferenceResult& r = refs[i];
-    FigureSeries m;
-    m.name = "measured: " + r.name;
-    m.key = ReferenceKey(r, digits);
-    m.data = data;
-    m.y_columns = {3 + n + i};
-    m.y_divisor = scale;
-    m.colour = kReferenceColour;
-    m.dash = kReferenceDash;
-    m.width = 2.5;
-    panel.series.push_back(m);
-  }
+  for (std::size_t i = 0; i < refs.size(); ++i)  // over the layers, under the total
+    panel.series.push_back(ReferenceSeries(refs[i], digits, data, 3 + n + i, scale));
   FigureSeries t;  // drawn last: never under a layer
   t.name = "total";
   t.key = "total: " + SigLabel(out.rms(), digits);
@@ -371,18 +376,8 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
     s.width = 3.0;  // wider than the total, so that a dominant contributor shows on both sides of it
     panel.series.push_back(std::move(s));
   }
-  for (std::size_t i = 0; i < out.references.size(); ++i) {
-    const ReferenceResult& r = out.references[i];
-    FigureSeries m;
-    m.name = "measured: " + r.name;
-    m.key = ReferenceKey(r, digits);
-    m.data = data;
-    m.y_columns = {3 + n + i};
-    m.colour = kReferenceColour;
-    m.dash = kReferenceDash;
-    m.width = 2.5;
-    panel.series.push_back(m);
-  }
+  for (std::size_t i = 0; i < out.references.size(); ++i)
+    panel.series.push_back(ReferenceSeries(out.references[i], digits, data, 3 + n + i, 1.0));
   FigureSeries t;  // drawn last: on top of every contributor
   t.name = "total";
   t.key = "total: " + SigLabel(out.rms(), digits);
