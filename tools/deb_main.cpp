@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <optional>
 #include <set>
@@ -37,6 +38,7 @@
 #include "deb/core/parallel.h"
 #include "deb/core/process_heap.h"
 #include "deb/io/budget_yaml.h"
+#include "deb/io/hdf5_file.h"
 #include "deb/io/result_exports.h"
 #include "deb/io/sweep_yaml.h"
 #include "deb/io/result_writer.h"
@@ -46,6 +48,8 @@
 #include "deb/version.h"
 #include "tools/budget_overrides_option.h"
 #include "tools/compare_command.h"
+#include "tools/report_command.h"
+#include "tools/report_flags.h"
 #include "tools/sensitivity_command.h"
 #include "tools/spectrum_command.h"
 #include "tools/sweep_command.h"
@@ -194,6 +198,10 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, double se
 int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides, const std::string& group,
         std::string out_dir, int threads, bool quiet, bool strict, deb::ReportOptions report,
         const std::vector<deb::ExportFormat>& exports) {
+  // The result store's HDF5 library (about 6 ms to load) loads while the
+  // budget is read and evaluated; the report waits for it only if it is not
+  // done by then.
+  const std::future<void> hdf5 = std::async(std::launch::async, [] { deb::io::PreloadHdf5(); });
   deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
   if (!group.empty()) budget = deb::SelectGroup(budget, group);
   if (out_dir.empty())
@@ -211,7 +219,9 @@ int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& 
     report.progress = !quiet && ::isatty(STDERR_FILENO);
     report.threads = threads;
     // A reproducible report (SOURCE_DATE_EPOCH set) records no wall time.
-    deb::RunInfo info{budget_file, {}, threads};
+    deb::RunInfo info;
+    info.budget_file = budget_file;
+    info.threads = threads;
     if (!std::getenv("SOURCE_DATE_EPOCH")) info.seconds = seconds;
     deb::WriteReportDirectory(budget, result, info, report, out_dir, exports);
   } catch (const deb::InputError& e) {
@@ -364,45 +374,8 @@ int main(int argc, char** argv) {
   run->add_option("--threads,-j", threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet,-q", quiet, "Print nothing but warnings and errors");
   run->add_flag("--strict", strict, "Exit with code 5 when an output fails its requirement (report still written)");
-  deb::ReportOptions report;
-  bool plot_scripts = false;
-  run->add_flag("--force", report.force, "Replace --out even if it is not a directory deb wrote");
-  run->add_option_function<std::vector<std::string>>(
-         "--format",
-         [&report](const std::vector<std::string>& names) {
-           if (std::set<std::string>(names.begin(), names.end()).size() != names.size())
-             throw CLI::ValidationError("--format", "a format is given twice");
-           report.formats.clear();
-           for (const auto& n : names) report.formats.push_back(deb::ParsePlotFormat(n));
-         },
-         "Plot formats, comma-separated: png (plots/*.png), pdf (report.pdf), svg; default png,pdf")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"png", "pdf", "svg"}));
-  run->add_option("--digits", report.digits,
-                  "Significant digits of the numbers in the console table, the report's tables and plot labels "
-                  "(default 4)")
-      ->check(CLI::Range(1, 15));
-  run->add_flag("--asd", report.asd, "Plot amplitude spectral densities (unit/sqrt(Hz)) instead of PSDs");
-  run->add_flag("--reverse-cps", report.reverse_cps, "Add a stacked reverse-CPS plot (variance above f) per output");
-  run->add_flag_callback("--no-plots", [&report] { report.plots = false; },
-                         "Write tables, data and documents only, no plots/ directory; gnuplot is not needed");
-  run->add_flag("--plot-scripts", plot_scripts,
-                "With --no-plots: still write each plot's CSV and gnuplot script under plots/, to draw later");
-  std::vector<deb::ExportFormat> exports;
-  run->add_option_function<std::vector<std::string>>(
-         "--export",
-         [&exports](const std::vector<std::string>& names) {
-           for (const auto& n : names) {
-             try {
-               exports.push_back(deb::ParseExportFormat(n));
-             } catch (const deb::InputError& e) {
-               throw CLI::ValidationError("--export", e.what());
-             }
-           }
-         },
-         "Also write the result for MATLAB (mat: result.mat) or Excel (xlsx: result.xlsx) into the report "
-         "directory; repeatable or comma-separated")
-      ->delimiter(',');
+  deb::tools::ReportFlags run_flags;
+  deb::tools::AddReportFlags(run, &run_flags);
 
   std::string check_file;
   CLI::App* check = app.add_subcommand("check", "Validate a budget and describe it, without computing");
@@ -419,6 +392,8 @@ int main(int argc, char** argv) {
   CLI::App* spectrum = spectrum_command.Register(app);
   deb::tools::CompareCommand compare_command;
   CLI::App* compare = compare_command.Register(app);
+  deb::tools::ReportCommand report_command;
+  CLI::App* redraw = report_command.Register(app);
   deb::tools::SweepCommand sweep_command;
   CLI::App* sweep = sweep_command.Register(app);
   deb::tools::SensitivityCommand sensitivity_command;
@@ -444,13 +419,13 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     // Every command reads units: the database loads while the budget is read.
     const deb::UnitDatabasePreload units;
-    if (*run) {
-      report.plot_scripts = report.plots || plot_scripts;
-      return Run(budget_file, run_overrides, run_group, out_dir, threads, quiet, strict, report, exports);
-    }
+    if (*run)
+      return Run(budget_file, run_overrides, run_group, out_dir, threads, quiet, strict, run_flags.Options(),
+                 run_flags.exports);
     if (*check) return Check(check_file, check_overrides);
     if (*model) return Model(model_file, model_overrides);
     if (*spectrum) return spectrum_command.Run();
+    if (*redraw) return report_command.Run();
     if (*compare) return compare_command.Run();
     if (*sweep) return sweep_command.Run();
     if (*sensitivity) return sensitivity_command.Run();

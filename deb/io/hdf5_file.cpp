@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <mutex>
 
 #include "deb/core/error.h"
@@ -22,7 +23,7 @@ namespace {
       X(H5Screate) X(H5Screate_simple) X(H5Sclose) X(H5Sget_simple_extent_ndims) X(H5Sget_simple_extent_dims)      \
           X(H5Dcreate2) X(H5Dopen2) X(H5Dclose) X(H5Dwrite) X(H5Dread) X(H5Dget_space) X(H5Dget_type)              \
               X(H5Dvlen_reclaim) X(H5Tcopy) X(H5Tset_size) X(H5Tset_cset) X(H5Tclose) X(H5Tget_class)            \
-                  X(H5Tis_variable_str)
+                  X(H5Tis_variable_str) X(H5Pcreate) X(H5Pclose) X(H5Pset_obj_track_times) X(H5Pset_buffer) X(H5Pset_libver_bounds) X(H5Dget_create_plist) X(H5Pget_nfilters)
 
 struct Hdf5Api {
 #define DEB_HDF5_POINTER(f) decltype(&::f) f = nullptr;
@@ -34,6 +35,12 @@ struct Hdf5Api {
   const hid_t* file_double = nullptr;
   const hid_t* file_int64 = nullptr;
   const hid_t* c_string = nullptr;
+  // The property-list classes of dataset and group creation.
+  const hid_t* dataset_create = nullptr;
+  const hid_t* group_create = nullptr;
+  const hid_t* dataset_transfer_class = nullptr;
+  const hid_t* file_access_class = nullptr;
+  const hid_t* file_create_class = nullptr;
 };
 
 struct LoadedHdf5 {
@@ -63,11 +70,32 @@ LoadedHdf5 LoadHdf5() {
 #define DEB_HDF5_RESOLVE(f) resolve(#f, a.f);
   DEB_HDF5_FUNCTIONS(DEB_HDF5_RESOLVE)
 #undef DEB_HDF5_RESOLVE
-  resolve("H5T_NATIVE_DOUBLE_g", a.native_double);
-  resolve("H5T_NATIVE_LLONG_g", a.native_int64);
-  resolve("H5T_IEEE_F64LE_g", a.file_double);
-  resolve("H5T_STD_I64LE_g", a.file_int64);
-  resolve("H5T_C_S1_g", a.c_string);
+  // The predefined types and classes are variables the library sets in
+  // H5open. Where the process already holds the library in its global scope
+  // and the program itself refers to one of them (a program linked with
+  // HDF5 that uses H5T_NATIVE_DOUBLE), the program has its own copy of the
+  // variable (a copy relocation), which the library sets, and the library's
+  // own stays unset: the library's code, like any, uses the first definition
+  // in the global scope. So does deb, and the library's only where there is
+  // none (the usual case: HDF5 loaded here alone, locally).
+  const auto resolve_variable = [&](const char* name, auto& p) {
+    if (void* const global = dlsym(RTLD_DEFAULT, name)) {
+      static_assert(sizeof p == sizeof global);
+      std::memcpy(&p, &global, sizeof p);
+      return;
+    }
+    resolve(name, p);
+  };
+  resolve_variable("H5T_NATIVE_DOUBLE_g", a.native_double);
+  resolve_variable("H5T_NATIVE_LLONG_g", a.native_int64);
+  resolve_variable("H5T_IEEE_F64LE_g", a.file_double);
+  resolve_variable("H5T_STD_I64LE_g", a.file_int64);
+  resolve_variable("H5T_C_S1_g", a.c_string);
+  resolve_variable("H5P_CLS_DATASET_CREATE_ID_g", a.dataset_create);
+  resolve_variable("H5P_CLS_GROUP_CREATE_ID_g", a.group_create);
+  resolve_variable("H5P_CLS_DATASET_XFER_ID_g", a.dataset_transfer_class);
+  resolve_variable("H5P_CLS_FILE_ACCESS_ID_g", a.file_access_class);
+  resolve_variable("H5P_CLS_FILE_CREATE_ID_g", a.file_create_class);
   if (l.failure.empty() && a.H5open() < 0) l.failure = "H5open failed";
   // HDF5 prints its error stack on stderr by default: deb reports errors itself.
   if (l.failure.empty()) a.H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -119,6 +147,22 @@ class Id {
   Closer close_;
 };
 
+// The transfer properties of every read and write of one file: a
+// type-conversion buffer of 64 KiB instead of HDF5's 1 MiB, which it
+// allocates and zeroes for every dataset of text (converted on the way):
+// with the default, writing a store of a few thousand small datasets took
+// twice as long. Made per file, not once: another user of the library in
+// the process (matio) may close and reopen it. -1 if it cannot be made.
+hid_t NewTransfer() {
+  const Hdf5Api& a = Api();
+  const hid_t t = a.H5Pcreate(*a.dataset_transfer_class);
+  if (t >= 0 && a.H5Pset_buffer(t, std::size_t{64} << 10, nullptr, nullptr) < 0) {
+    a.H5Pclose(t);
+    return -1;
+  }
+  return t;
+}
+
 std::vector<std::string> Split(const std::string& object) {
   std::vector<std::string> parts;
   std::size_t start = 0;
@@ -148,24 +192,59 @@ void PreloadHdf5() { Loaded(); }
 
 struct Hdf5Writer::Handle {
   hid_t file = -1;
+  // Creation properties of every dataset and group: without modification
+  // times, which HDF5 records by default, so that a file written twice from
+  // the same values is the same file (a reproducible report).
+  hid_t dataset_create = -1;
+  hid_t group_create = -1;
+  hid_t transfer = -1;  // NewTransfer
+  // The groups created or opened so far, by '/'-path, open until Close.
+  std::map<std::string, hid_t> groups;
+
+  void CloseAll() {
+    const Hdf5Api& a = Api();
+    for (const auto& g : groups) a.H5Gclose(g.second);
+    groups.clear();
+    for (hid_t* p : {&dataset_create, &group_create, &transfer})
+      if (*p >= 0) a.H5Pclose(*p), *p = -1;
+  }
 };
 
 Hdf5Writer::Hdf5Writer(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
   const std::lock_guard<std::mutex> lock(g_hdf5);
   if (const std::string why = LoadFailure(); !why.empty()) throw WriteError("cannot write " + path + ": " + why);
-  handle_->file = Api().H5Fcreate(path.c_str(), kCreateTruncate, H5P_DEFAULT, H5P_DEFAULT);
+  const Hdf5Api& a = Api();
+  // The file format of HDF5 1.8 (2008) and later, which any current reader
+  // (h5py, MATLAB, HDFView) reads: its groups keep their few links in the
+  // group's header instead of a B-tree and a heap, which makes a store of
+  // thousands of small objects faster to write and read, and smaller.
+  // The root group, like every object below, without modification times.
+  const Id access(a.H5Pcreate(*a.file_access_class), a.H5Pclose), create(a.H5Pcreate(*a.file_create_class), a.H5Pclose);
+  if (!access.ok() || !create.ok() || a.H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_V18) < 0 ||
+      a.H5Pset_obj_track_times(create.get(), 0) < 0)
+    throw WriteError("cannot set up the HDF5 file " + path);
+  handle_->file = a.H5Fcreate(path.c_str(), kCreateTruncate, create.get(), access.get());
   if (handle_->file < 0) throw WriteError("cannot create the HDF5 file " + path);
+  handle_->transfer = NewTransfer();
+  handle_->dataset_create = a.H5Pcreate(*a.dataset_create);
+  handle_->group_create = a.H5Pcreate(*a.group_create);
+  if (handle_->dataset_create < 0 || handle_->group_create < 0 || handle_->transfer < 0 ||
+      a.H5Pset_obj_track_times(handle_->dataset_create, 0) < 0 ||
+      a.H5Pset_obj_track_times(handle_->group_create, 0) < 0)
+    throw WriteError("cannot set up the HDF5 file " + path);
 }
 
 Hdf5Writer::~Hdf5Writer() {
-  if (handle_ && handle_->file >= 0) {
+  if (handle_ && (handle_->file >= 0 || handle_->dataset_create >= 0)) {
     const std::lock_guard<std::mutex> lock(g_hdf5);
-    Api().H5Fclose(handle_->file);
+    handle_->CloseAll();
+    if (handle_->file >= 0) Api().H5Fclose(handle_->file);
   }
 }
 
 void Hdf5Writer::Close() {
   const std::lock_guard<std::mutex> lock(g_hdf5);
+  handle_->CloseAll();
   const hid_t file = handle_->file;
   handle_->file = -1;
   if (file >= 0 && Api().H5Fclose(file) < 0) throw WriteError("cannot complete the HDF5 file " + path_);
@@ -175,7 +254,7 @@ namespace {
 
 // Writes one dataset of `type_in_file` and `dims` (empty: a scalar) from
 // `data` in `type_in_memory` under `file`, creating the groups above it.
-void WriteDataset(hid_t file, const std::string& path, const std::string& object, hid_t type_in_file,
+void WriteDataset(Hdf5Writer::Handle& h, const std::string& path, const std::string& object, hid_t type_in_file,
                   hid_t type_in_memory, const std::vector<hsize_t>& dims, const void* data) {
   const Hdf5Api& a = Api();
   const std::vector<std::string> parts = Split(object);
@@ -183,28 +262,35 @@ void WriteDataset(hid_t file, const std::string& path, const std::string& object
   const auto fail = [&](const std::string& what) {
     throw WriteError("cannot write '" + object + "' to the HDF5 file " + path + ": " + what);
   };
-  // The groups above, opened or created one by one.
-  std::vector<std::unique_ptr<Id>> groups;
-  hid_t at = file;
+  // The groups above, opened or created once and kept open.
+  hid_t at = h.file;
+  std::string group_path;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    group_path += "/" + parts[i];
+    const auto known = h.groups.find(group_path);
+    if (known != h.groups.end()) {
+      at = known->second;
+      continue;
+    }
     const htri_t exists = a.H5Lexists(at, parts[i].c_str(), H5P_DEFAULT);
     const hid_t g = exists > 0 ? a.H5Gopen2(at, parts[i].c_str(), H5P_DEFAULT)
-                               : a.H5Gcreate2(at, parts[i].c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    groups.push_back(std::make_unique<Id>(g, a.H5Gclose));
+                               : a.H5Gcreate2(at, parts[i].c_str(), H5P_DEFAULT, h.group_create, H5P_DEFAULT);
     if (g < 0) fail("cannot create or open the group '" + parts[i] + "'");
+    h.groups.emplace(group_path, g);
     at = g;
   }
-  if (a.H5Lexists(at, parts.back().c_str(), H5P_DEFAULT) > 0) fail("it exists already");
+
   Id space(dims.empty() ? a.H5Screate(H5S_SCALAR)
                         : a.H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
            a.H5Sclose);
   if (!space.ok()) fail("cannot make its dataspace");
-  Id set(a.H5Dcreate2(at, parts.back().c_str(), type_in_file, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+  Id set(a.H5Dcreate2(at, parts.back().c_str(), type_in_file, space.get(), H5P_DEFAULT, h.dataset_create, H5P_DEFAULT),
          a.H5Dclose);
-  if (!set.ok()) fail("cannot create the dataset");
+  if (!set.ok())
+    fail(a.H5Lexists(at, parts.back().c_str(), H5P_DEFAULT) > 0 ? "it exists already" : "cannot create the dataset");
   bool empty = false;
   for (hsize_t d : dims) empty |= d == 0;
-  if (!empty && a.H5Dwrite(set.get(), type_in_memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+  if (!empty && a.H5Dwrite(set.get(), type_in_memory, H5S_ALL, H5S_ALL, h.transfer, data) < 0)
     fail("cannot write its data");
 }
 
@@ -212,25 +298,25 @@ void WriteDataset(hid_t file, const std::string& path, const std::string& object
 
 void Hdf5Writer::Number(const std::string& object, double value) {
   const std::lock_guard<std::mutex> lock(g_hdf5);
-  WriteDataset(handle_->file, path_, object, *Api().file_double, *Api().native_double, {}, &value);
+  WriteDataset(*handle_, path_, object, *Api().file_double, *Api().native_double, {}, &value);
 }
 
 void Hdf5Writer::Integer(const std::string& object, std::int64_t value) {
   const std::lock_guard<std::mutex> lock(g_hdf5);
   const long long v = value;
-  WriteDataset(handle_->file, path_, object, *Api().file_int64, *Api().native_int64, {}, &v);
+  WriteDataset(*handle_, path_, object, *Api().file_int64, *Api().native_int64, {}, &v);
 }
 
 void Hdf5Writer::Text(const std::string& object, const std::string& value) {
   const std::lock_guard<std::mutex> lock(g_hdf5);
   const Id type = VariableString();
   const char* text = value.c_str();
-  WriteDataset(handle_->file, path_, object, type.get(), type.get(), {}, &text);
+  WriteDataset(*handle_, path_, object, type.get(), type.get(), {}, &text);
 }
 
 void Hdf5Writer::Numbers(const std::string& object, const std::vector<double>& values) {
   const std::lock_guard<std::mutex> lock(g_hdf5);
-  WriteDataset(handle_->file, path_, object, *Api().file_double, *Api().native_double, {values.size()},
+  WriteDataset(*handle_, path_, object, *Api().file_double, *Api().native_double, {values.size()},
                values.data());
 }
 
@@ -239,7 +325,7 @@ void Hdf5Writer::Texts(const std::string& object, const std::vector<std::string>
   const Id type = VariableString();
   std::vector<const char*> texts;
   for (const std::string& v : values) texts.push_back(v.c_str());
-  WriteDataset(handle_->file, path_, object, type.get(), type.get(), {values.size()}, texts.data());
+  WriteDataset(*handle_, path_, object, type.get(), type.get(), {values.size()}, texts.data());
 }
 
 void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<double>>& rows) {
@@ -251,7 +337,7 @@ void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<d
     data.insert(data.end(), r.begin(), r.end());
   }
   const std::lock_guard<std::mutex> lock(g_hdf5);
-  WriteDataset(handle_->file, path_, object, *Api().file_double, *Api().native_double,
+  WriteDataset(*handle_, path_, object, *Api().file_double, *Api().native_double,
                {rows.size(), rows.empty() ? 0 : columns}, data.data());
 }
 
@@ -259,6 +345,7 @@ void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<d
 
 struct Hdf5Reader::Handle {
   hid_t file = -1;
+  hid_t transfer = -1;  // NewTransfer
 };
 
 Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
@@ -267,11 +354,14 @@ Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path), handle_(std::make
   if (const std::string why = LoadFailure(); !why.empty()) throw InputError(path + ": reading it needs " + why);
   handle_->file = Api().H5Fopen(path.c_str(), kReadOnly, H5P_DEFAULT);
   if (handle_->file < 0) throw InputError(path + ": not an HDF5 file, or a damaged one");
+  handle_->transfer = NewTransfer();
+  if (handle_->transfer < 0) throw InputError(path + ": cannot set up reading it (HDF5)");
 }
 
 Hdf5Reader::~Hdf5Reader() {
   if (handle_ && handle_->file >= 0) {
     const std::lock_guard<std::mutex> lock(g_hdf5);
+    if (handle_->transfer >= 0) Api().H5Pclose(handle_->transfer);
     Api().H5Fclose(handle_->file);
   }
 }
@@ -294,6 +384,7 @@ struct OpenSet {
   std::unique_ptr<Id> set;
   std::vector<hsize_t> dims;
   std::size_t elements = 1;
+  hid_t transfer = H5P_DEFAULT;  // the reader's (NewTransfer)
 };
 
 bool Exists(hid_t file, const std::string& object) {
@@ -306,13 +397,15 @@ bool Exists(hid_t file, const std::string& object) {
   return !prefix.empty();
 }
 
-OpenSet Open(hid_t file, const std::string& path, const std::string& object, Kind kind, int rank) {
+OpenSet Open(hid_t file, hid_t transfer, const std::string& path, const std::string& object, Kind kind, int rank) {
   const Hdf5Api& a = Api();
   const auto fail = [&](const std::string& what) { throw InputError(path + ": object '" + object + "' " + what); };
-  if (!Exists(file, object)) fail("is missing");
   OpenSet s;
+  s.transfer = transfer;
+  // Opened straight away (a store reads thousands of objects); only a
+  // failure asks why.
   s.set = std::make_unique<Id>(a.H5Dopen2(file, object.c_str(), H5P_DEFAULT), a.H5Dclose);
-  if (!s.set->ok()) fail("is not a dataset");
+  if (!s.set->ok()) fail(Exists(file, object) ? "is not a dataset" : "is missing");
   const Id type(a.H5Dget_type(s.set->get()), a.H5Tclose);
   const H5T_class_t cls = type.ok() ? a.H5Tget_class(type.get()) : H5T_NO_CLASS;
   const bool right = kind == Kind::kDouble    ? cls == H5T_FLOAT || cls == H5T_INTEGER
@@ -333,12 +426,18 @@ OpenSet Open(hid_t file, const std::string& path, const std::string& object, Kin
       fail("has more than " + std::to_string(kMaxHdf5Elements) + " elements");
     s.elements *= static_cast<std::size_t>(d);
   }
+  // A compressed dataset could expand a small file into any size: what is
+  // read is bounded by the file's size only if nothing is compressed (deb
+  // compresses nothing).
+  const Id create(a.H5Dget_create_plist(s.set->get()), a.H5Pclose);
+  if (!create.ok() || a.H5Pget_nfilters(create.get()) != 0)
+    fail("is compressed or filtered; a reader of deb's files reads plain datasets only");
   return s;
 }
 
 void Read(const std::string& path, const std::string& object, const OpenSet& s, hid_t memory_type, void* data) {
   if (s.elements == 0) return;
-  if (Api().H5Dread(s.set->get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+  if (Api().H5Dread(s.set->get(), memory_type, H5S_ALL, H5S_ALL, s.transfer, data) < 0)
     throw InputError(path + ": object '" + object + "' cannot be read (a damaged file?)");
 }
 
@@ -349,8 +448,9 @@ void CheckFinite(const std::string& path, const std::string& object, const std::
                        std::to_string(i));
 }
 
-std::vector<std::string> ReadTexts(hid_t file, const std::string& path, const std::string& object, int rank) {
-  const OpenSet s = Open(file, path, object, Kind::kText, rank);
+std::vector<std::string> ReadTexts(hid_t file, hid_t transfer, const std::string& path, const std::string& object,
+                                   int rank) {
+  const OpenSet s = Open(file, transfer, path, object, Kind::kText, rank);
   const Id type = VariableString();
   std::vector<char*> raw(s.elements, nullptr);
   Read(path, object, s, type.get(), raw.data());
@@ -362,7 +462,7 @@ std::vector<std::string> ReadTexts(hid_t file, const std::string& path, const st
   }
   if (s.elements > 0) {
     const Id space(Api().H5Dget_space(s.set->get()), Api().H5Sclose);
-    Api().H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, raw.data());
+    Api().H5Dvlen_reclaim(type.get(), space.get(), s.transfer, raw.data());
   }
   if (null) throw InputError(path + ": object '" + object + "' holds a null string");
   return texts;
@@ -377,7 +477,7 @@ bool Hdf5Reader::Has(const std::string& object) const {
 
 double Hdf5Reader::Number(const std::string& object, bool allow_nan) const {
   const std::lock_guard<std::mutex> lock(g_hdf5);
-  const OpenSet s = Open(handle_->file, path_, object, Kind::kDouble, 0);
+  const OpenSet s = Open(handle_->file, handle_->transfer, path_, object, Kind::kDouble, 0);
   std::vector<double> v(1);
   Read(path_, object, s, *Api().native_double, v.data());
   CheckFinite(path_, object, v, allow_nan);
@@ -386,7 +486,7 @@ double Hdf5Reader::Number(const std::string& object, bool allow_nan) const {
 
 std::int64_t Hdf5Reader::Integer(const std::string& object) const {
   const std::lock_guard<std::mutex> lock(g_hdf5);
-  const OpenSet s = Open(handle_->file, path_, object, Kind::kInteger, 0);
+  const OpenSet s = Open(handle_->file, handle_->transfer, path_, object, Kind::kInteger, 0);
   long long v = 0;
   Read(path_, object, s, *Api().native_int64, &v);
   return v;
@@ -394,12 +494,12 @@ std::int64_t Hdf5Reader::Integer(const std::string& object) const {
 
 std::string Hdf5Reader::Text(const std::string& object) const {
   const std::lock_guard<std::mutex> lock(g_hdf5);
-  return ReadTexts(handle_->file, path_, object, 0).front();
+  return ReadTexts(handle_->file, handle_->transfer, path_, object, 0).front();
 }
 
 std::vector<double> Hdf5Reader::Numbers(const std::string& object, bool allow_nan) const {
   const std::lock_guard<std::mutex> lock(g_hdf5);
-  const OpenSet s = Open(handle_->file, path_, object, Kind::kDouble, 1);
+  const OpenSet s = Open(handle_->file, handle_->transfer, path_, object, Kind::kDouble, 1);
   std::vector<double> v(s.elements);
   Read(path_, object, s, *Api().native_double, v.data());
   CheckFinite(path_, object, v, allow_nan);
@@ -408,12 +508,12 @@ std::vector<double> Hdf5Reader::Numbers(const std::string& object, bool allow_na
 
 std::vector<std::string> Hdf5Reader::Texts(const std::string& object) const {
   const std::lock_guard<std::mutex> lock(g_hdf5);
-  return ReadTexts(handle_->file, path_, object, 1);
+  return ReadTexts(handle_->file, handle_->transfer, path_, object, 1);
 }
 
 std::vector<std::vector<double>> Hdf5Reader::Rows(const std::string& object, bool allow_nan) const {
   const std::lock_guard<std::mutex> lock(g_hdf5);
-  const OpenSet s = Open(handle_->file, path_, object, Kind::kDouble, 2);
+  const OpenSet s = Open(handle_->file, handle_->transfer, path_, object, Kind::kDouble, 2);
   std::vector<double> v(s.elements);
   Read(path_, object, s, *Api().native_double, v.data());
   CheckFinite(path_, object, v, allow_nan);

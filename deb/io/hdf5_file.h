@@ -60,8 +60,9 @@ class Hdf5Writer {
   // @throws WriteError if it cannot be completed.
   void Close();
 
+  struct Handle;  // the open file and its groups (hdf5_file.cpp)
+
  private:
-  struct Handle;
   std::string path_;
   std::unique_ptr<Handle> handle_;
 };

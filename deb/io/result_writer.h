@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "deb/budget/budget.h"
 #include "deb/budget/engine.h"
@@ -15,6 +16,10 @@
 namespace deb {
 
 struct RunInfo {
+  RunInfo() = default;
+  RunInfo(std::string budget_file_, std::optional<double> seconds_ = std::nullopt, int threads_ = 0)
+      : budget_file(std::move(budget_file_)), seconds(seconds_), threads(threads_) {}
+
   std::string budget_file;
   // Wall time of the evaluation; none for a reproducible report
   // (SOURCE_DATE_EPOCH set: two runs give byte-identical files).
@@ -22,6 +27,12 @@ struct RunInfo {
   // Threads that format the result files (one file each); <= 0:
   // DefaultThreadCount(). The files are the same for any count.
   int threads = 0;
+  // The budget file's text and its SHA-256 (lower-case hex) as the result
+  // was made from it, e.g. read back from a result store (result_store.h);
+  // none / empty: read and computed from budget_file when the report is
+  // written.
+  std::optional<std::string> budget_text;
+  std::string budget_sha256;
 };
 
 // summary.json's text.

@@ -12,9 +12,12 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
+#include "deb/core/limits.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
 #include "deb/budget/groups.h"
+#include "deb/io/result_store.h"
 #include "deb/report/band_plots.h"
 #include "deb/report/comparison_plots.h"
 #include "deb/report/loop_plots.h"
@@ -143,7 +146,9 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   if (ec) throw WriteError("cannot create directory " + made.string() + ": " + ec.message());
   Writer writer(root, &manifest);
 
-  const std::string sha256 = info.budget_file.empty() ? "" : FileSha256(info.budget_file);
+  const std::string sha256 = !info.budget_sha256.empty() ? info.budget_sha256
+                             : info.budget_file.empty()  ? ""
+                                                         : FileSha256(info.budget_file);
   const std::time_t when = ReportTime();
   const ReportFacts facts =
       MakeFacts(budget, result, info.budget_file, sha256, UtcText(when, "%Y-%m-%d %H:%M:%S UTC"), info.seconds);
@@ -269,7 +274,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   doc.digits = options.digits;
   doc.asd = options.asd;
   if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
-  std::vector<std::string> data = {"summary.json"};
+  std::vector<std::string> data = {"summary.json", io::kResultStoreFile};
   for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));
   for (const ExportFormat f : {ExportFormat::kMat, ExportFormat::kXlsx}) data.push_back(ExportFileName(f));
   for (const auto& f : data)
@@ -283,14 +288,22 @@ ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& re
                                     const ReportOptions& options, const std::string& out_dir,
                                     const std::vector<ExportFormat>& exports) {
   ReportManifest manifest;
+  // The budget file as it is now, read once: its text goes into the store
+  // and its digest onto every page of the report.
+  RunInfo run = info;
+  if (!run.budget_text && !run.budget_file.empty())
+    run.budget_text = ReadInputFile(run.budget_file, "budget file", limits::kMaxBudgetFileBytes);
+  if (run.budget_sha256.empty() && run.budget_text && !run.budget_file.empty()) run.budget_sha256 = Sha256(*run.budget_text);
   ReplaceOptions replace;
   replace.force = options.force;
   ReplaceDirectory(
       out_dir,
       [&](const std::string& dir) {
-        WriteResultFiles(budget, result, info, dir);
+        WriteResultFiles(budget, result, run, dir);
+        io::WriteResultStore(budget, result, run, (fs::path(dir) / io::kResultStoreFile).string());
         const std::vector<std::string> exported = WriteResultExports(result, exports, dir);
-        manifest = WriteReport(budget, result, info, options, dir);
+        manifest = WriteReport(budget, result, run, options, dir);
+        manifest.files.push_back(io::kResultStoreFile);
         manifest.files.insert(manifest.files.end(), exported.begin(), exported.end());
       },
       replace);

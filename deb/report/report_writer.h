@@ -7,6 +7,8 @@
 //
 // Layout of a report directory:
 //   summary.json, <output>.csv           (WriteReportDirectory, deb/io)
+//   result.h5                            (the result store: deb/io/result_store.h;
+//                                         `deb report` redraws the report from it)
 //   result.mat, result.xlsx              (with exports; deb/io/result_exports.h)
 //   index.html, report.md, report.pdf
 //   plots/<name>.png|.svg, plots/<name>.csv, plots/<name>.gp, plots/colours.csv

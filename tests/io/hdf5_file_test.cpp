@@ -5,7 +5,10 @@
 // finite, a file that is not HDF5.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <cmath>
+#include <iterator>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -16,6 +19,7 @@
 
 #include "deb/core/error.h"
 #include "deb/io/hdf5_file.h"
+#include <hdf5.h>
 #include "tests/support/contains.h"
 
 namespace deb {
@@ -110,6 +114,51 @@ TEST_CASE("an HDF5 reader refuses what it was not asked for, naming the file and
   std::ofstream(text) << "frequency_hz,psd\n1,2\n";
   CHECK(Contains(ErrorOf([&] { io::Hdf5Reader bad(text); }), "not an HDF5 file"));
   CHECK(Contains(ErrorOf([&] { io::Hdf5Reader none(dir.File("absent.h5")); }), "absent.h5"));
+}
+
+TEST_CASE("a compressed dataset is refused: a small file could expand beyond any bound") {
+  const TempDir dir;
+  const std::string file = dir.File("compressed.h5");
+  {
+    const hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    REQUIRE(f >= 0);
+    const hsize_t n = 100000;
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t create = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(create, 1, &n);
+    H5Pset_deflate(create, 9);
+    const hid_t set = H5Dcreate2(f, "zeros", H5T_IEEE_F64LE, space, H5P_DEFAULT, create, H5P_DEFAULT);
+    REQUIRE(set >= 0);
+    const std::vector<double> zeros(n, 0.0);
+    REQUIRE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, zeros.data()) >= 0);
+    H5Dclose(set);
+    H5Pclose(create);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+  CHECK(fs::file_size(file) < 100000);  // 800 kB of zeros in a few kB
+  const std::string e = ErrorOf([&] { io::Hdf5Reader(file).Numbers("zeros"); });
+  CHECK(Contains(e, "object 'zeros' is compressed or filtered"));
+}
+
+TEST_CASE("the same values written a second later give the same file (no times in the objects)") {
+  const TempDir dir;
+  const auto write = [&](const std::string& name) {
+    io::Hdf5Writer w(dir.File(name));
+    w.Text("schema", "x");
+    w.Numbers("a/b/c", {1.0, 2.0});
+    w.Rows("a/m", {{1.0, 2.0}, {3.0, 4.0}});
+    w.Close();
+    std::ifstream in(dir.File(name), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const std::string first = write("first.h5");
+  // HDF5 stores times in whole seconds.
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+  const std::string second = write("second.h5");
+  CHECK(first.size() > 100);
+  const bool same = first == second;
+  CHECK(same);
 }
 
 }  // namespace

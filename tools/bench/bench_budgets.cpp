@@ -1,6 +1,8 @@
 // Times the whole `deb run` pipeline minus plotting — load and validate the
 // YAML budget (building any physical model), evaluate on one thread and on
-// all threads, write summary.json and the CSVs — for the shipped budgets.
+// all threads, write summary.json and the CSVs — for the shipped budgets;
+// and the result store (result.h5) each run writes, and reading it back as
+// `deb report` does.
 // Usage: bench_budgets [BUDGET.yaml ...]   (default: every budget the issue
 // tracks for speed: the thesis case study at h = 210 and 0 mm, and the
 // quickstart default).
@@ -12,6 +14,8 @@
 
 #include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
+#include "deb/io/hdf5_file.h"
+#include "deb/io/result_store.h"
 #include "deb/io/result_writer.h"
 
 namespace {
@@ -30,11 +34,13 @@ int main(int argc, char** argv) {
       budgets.push_back(std::string(DEB_SOURCE_DIR) + "/budgets/" + b + ".yaml");
   }
   const auto out = std::filesystem::temp_directory_path() / "deb_bench_budgets";
-  std::printf("%-24s %8s %9s %11s %11s %9s %9s\n", "budget", "points", "load ms", "eval 1t ms", "eval all ms",
-              "write ms", "total 1t");
+  std::printf("%-24s %8s %9s %11s %11s %9s %9s %9s %9s %9s\n", "budget", "points", "load ms", "eval 1t ms",
+              "eval all ms", "write ms", "total 1t", "store ms", "read ms", "store MB");
+  deb::io::PreloadHdf5();  // once per process, as deb run does in the background
   for (const auto& file : budgets) {
     constexpr int kRepeats = 5;
-    double best_load = 1e9, best_eval1 = 1e9, best_evaln = 1e9, best_write = 1e9;
+    double best_load = 1e9, best_eval1 = 1e9, best_evaln = 1e9, best_write = 1e9, best_store = 1e9, best_read = 1e9;
+    double store_mb = 0.0;
     std::size_t points = 0;
     std::string name;
     for (int r = 0; r < kRepeats; ++r) {
@@ -50,15 +56,28 @@ int main(int argc, char** argv) {
       deb::Evaluate(budget, {});
       best_evaln = std::min(best_evaln, Seconds(t0));
       t0 = std::chrono::steady_clock::now();
-      deb::WriteResultDirectory(budget, result, {file, 0.0}, out.string());
+      deb::RunInfo info;
+      info.budget_file = file;
+      info.seconds = 0.0;
+      deb::WriteResultDirectory(budget, result, info, out.string());
       best_write = std::min(best_write, Seconds(t0));
+      const std::string store = (out / deb::io::kResultStoreFile).string();
+      t0 = std::chrono::steady_clock::now();
+      deb::io::WriteResultStore(budget, result, info, store);
+      best_store = std::min(best_store, Seconds(t0));
+      t0 = std::chrono::steady_clock::now();
+      deb::io::ReadResultStore(store);
+      best_read = std::min(best_read, Seconds(t0));
+      store_mb = static_cast<double>(std::filesystem::file_size(store)) / 1e6;
       points = result.grid.size();
       name = budget.name;
     }
-    std::printf("%-24s %8zu %9.2f %11.2f %11.2f %9.2f %9.2f\n", name.c_str(), points, 1e3 * best_load,
-                1e3 * best_eval1, 1e3 * best_evaln, 1e3 * best_write, 1e3 * (best_load + best_eval1 + best_write));
+    std::printf("%-24s %8zu %9.2f %11.2f %11.2f %9.2f %9.2f %9.2f %9.2f %9.2f\n", name.c_str(), points,
+                1e3 * best_load, 1e3 * best_eval1, 1e3 * best_evaln, 1e3 * best_write,
+                1e3 * (best_load + best_eval1 + best_write), 1e3 * best_store, 1e3 * best_read, store_mb);
   }
   std::filesystem::remove_all(out);
-  std::printf("(best of 5; 'total 1t' = load + one-thread evaluation + summary/CSV writing, without plots)\n");
+  std::printf("(best of 5; 'total 1t' = load + one-thread evaluation + summary/CSV writing, without plots; "
+              "'store' writes result.h5, 'read' reads it back)\n");
   return 0;
 }

@@ -1,0 +1,606 @@
+#include "deb/io/result_store.h"
+
+#include <cmath>
+#include <Eigen/Dense>
+#include <limits>
+
+#include "deb/budget/groups.h"
+#include "deb/budget/response_traces.h"
+#include "deb/core/error.h"
+#include "deb/core/input_file.h"
+#include "deb/core/limits.h"
+#include "deb/io/hdf5_file.h"
+#include "deb/version.h"
+
+namespace deb::io {
+namespace {
+
+constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+// Entries of one list of a store (sources, contributors, outputs, loops,
+// references): a read bound, far above any budget.
+constexpr std::size_t kMaxEntries = 100'000;
+
+std::string At(const std::string& prefix, std::size_t index) { return prefix + "/" + std::to_string(index); }
+
+double OrNone(const std::optional<double>& v) { return v ? *v : kNone; }
+std::optional<double> FromNone(double v) { return std::isnan(v) ? std::nullopt : std::optional<double>(v); }
+
+std::vector<double> Indices(const std::vector<std::size_t>& v) { return {v.begin(), v.end()}; }
+
+const char* SplitName(ModeSplit s) {
+  switch (s) {
+    case ModeSplit::kNone: return "none";
+    case ModeSplit::kExactVariance: return "exact";
+    case ModeSplit::kGridVariance: return "grid";
+  }
+  return "none";
+}
+
+// ---------------------------------------------------------------- writing
+
+std::vector<std::vector<double>> RowsOf(const Eigen::MatrixXd& m) {
+  std::vector<std::vector<double>> rows(static_cast<std::size_t>(m.rows()));
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) rows[static_cast<std::size_t>(i)].push_back(m(i, j));
+  return rows;
+}
+
+void WriteCovariance(Hdf5Writer& w, const std::string& at, const CovarianceResult& c) {
+  w.Texts(at + "/outputs", c.outputs);
+  w.Texts(at + "/units", c.units);
+  w.Numbers(at + "/index", Indices(c.index));
+  w.Rows(at + "/matrix", RowsOf(c.matrix));
+  w.Rows(at + "/correlation", RowsOf(c.correlation));
+  w.Rows(at + "/exact_matrix", c.exact_matrix ? RowsOf(*c.exact_matrix) : std::vector<std::vector<double>>{});
+  w.Text(at + "/exact_note", c.exact_note);
+  std::vector<std::string> names;
+  for (const ContributorCovariance& k : c.contributors) names.push_back(k.name);
+  w.Texts(at + "/contributors/names", names);
+  for (std::size_t i = 0; i < c.contributors.size(); ++i)
+    w.Rows(At(at + "/contributors", i) + "/matrix", RowsOf(c.contributors[i].matrix));
+}
+
+void WriteContributor(Hdf5Writer& w, const std::string& at, const ContributorResult& c) {
+  w.Text(at + "/name", c.name);
+  w.Text(at + "/source", c.source);
+  w.Text(at + "/path", c.path);
+  w.Texts(at + "/inputs", c.inputs);
+  w.Text(at + "/group", c.group);
+  w.Numbers(at + "/psd", c.psd);
+  w.Numbers(at + "/cps", c.cps);
+  w.Number(at + "/variance", c.variance);
+  w.Number(at + "/exact_variance", OrNone(c.exact_variance));
+  w.Text(at + "/exact_note", c.exact_note);
+  w.Number(at + "/tail_variance_estimate", c.tail_variance_estimate);
+  std::vector<std::vector<double>> tones;
+  for (const ContributorResult::Tone& t : c.tones) tones.push_back({t.f_hz, t.variance});
+  w.Rows(at + "/tones", tones);
+  std::vector<std::string> channels;
+  std::vector<std::vector<double>> psd, cps;
+  std::vector<double> variance;
+  for (const ContributorResult::ChannelPart& p : c.channels) {
+    channels.push_back(p.channel);
+    psd.push_back(p.psd);
+    cps.push_back(p.cps);
+    variance.push_back(p.variance);
+  }
+  w.Texts(at + "/channels/names", channels);
+  w.Rows(at + "/channels/psd", psd);
+  w.Rows(at + "/channels/cps", cps);
+  w.Numbers(at + "/channels/variance", variance);
+  w.Number(at + "/channels/cross_variance", c.cross_variance);
+  std::vector<std::vector<double>> modes;
+  for (const ModeShare& m : c.top_modes) modes.push_back({double(m.mode), m.f_hz, m.zeta, m.variance, m.share});
+  w.Rows(at + "/top_modes", modes);
+  w.Text(at + "/top_modes_of", SplitName(c.top_modes_of));
+}
+
+void WriteOutput(Hdf5Writer& w, const std::string& at, const Output& spec, const OutputResult& o) {
+  w.Text(at + "/name", o.name);
+  w.Text(at + "/signal", o.signal);
+  w.Text(at + "/unit", o.unit);
+  w.Number(at + "/variance", o.variance);
+  w.Number(at + "/rms", o.rms());
+  w.Number(at + "/rms_max", OrNone(o.rms_max));
+  w.Text(at + "/metric/type", o.metric ? ToString(o.metric->type) : "");
+  w.Number(at + "/metric/window_s", o.metric ? o.metric->window_s : kNone);
+  w.Text(at + "/weighting/unit", spec.weighting ? spec.weighting->unit : "");
+  w.Text(at + "/weighting/description", spec.weighting ? spec.weighting->description : "");
+  w.Integer(at + "/weighting/present", spec.weighting ? 1 : 0);
+  std::vector<std::string> term_signals, term_units;
+  std::vector<double> term_weights;
+  for (const SignalTerm& t : spec.combination) {
+    term_signals.push_back(t.signal);
+    term_weights.push_back(t.weight);
+    term_units.push_back(t.unit);
+  }
+  w.Texts(at + "/combination/signals", term_signals);
+  w.Numbers(at + "/combination/weights", term_weights);
+  w.Texts(at + "/combination/units", term_units);
+  w.Numbers(at + "/total_psd", o.total_psd);
+  w.Numbers(at + "/total_cps", o.total_cps);
+  std::vector<std::vector<double>> requirements;
+  std::vector<double> requirement_variance;
+  for (const BandRequirementResult& b : o.band_requirements) {
+    requirements.push_back({b.requirement.lo_hz, b.requirement.hi_hz, b.requirement.rms_max});
+    requirement_variance.push_back(b.variance);
+  }
+  w.Rows(at + "/band_requirements/limits", requirements);
+  w.Numbers(at + "/band_requirements/variance", requirement_variance);
+  std::vector<std::vector<double>> bands, band_contributors;
+  std::vector<double> band_variance;
+  for (const BandResult& b : o.bands) {
+    bands.push_back({b.band.lo_hz, b.band.hi_hz});
+    band_variance.push_back(b.variance);
+    band_contributors.push_back(b.contributor_variance);
+  }
+  w.Rows(at + "/bands/edges_hz", bands);
+  w.Numbers(at + "/bands/variance", band_variance);
+  w.Rows(at + "/bands/contributor_variance", band_contributors);
+  std::vector<std::string> names;
+  for (const ContributorResult& c : o.contributors) names.push_back(c.name);
+  w.Texts(at + "/contributors/names", names);
+  for (std::size_t c = 0; c < o.contributors.size(); ++c) WriteContributor(w, At(at + "/contributors", c), o.contributors[c]);
+  names.clear();
+  for (const ReferenceResult& r : o.references) names.push_back(r.name);
+  w.Texts(at + "/references/names", names);
+  for (std::size_t i = 0; i < o.references.size(); ++i) {
+    const ReferenceResult& r = o.references[i];
+    const std::string ra = At(at + "/references", i);
+    w.Text(ra + "/name", r.name);
+    w.Numbers(ra + "/psd", r.psd);
+    w.Numbers(ra + "/cps", r.cps);
+    w.Number(ra + "/variance", r.variance);
+    w.Number(ra + "/budget_variance", r.budget_variance);
+    w.Numbers(ra + "/covered_hz", {r.covered_lo_hz, r.covered_hi_hz});
+    std::vector<double> per_band;
+    for (const std::optional<double>& v : r.band_variance) per_band.push_back(OrNone(v));
+    w.Numbers(ra + "/band_variance", per_band);
+  }
+  // Groups are derived from the contributors (ComputeGroups): stored for
+  // readers, not read back.
+  const std::vector<GroupResult> groups = ComputeGroups(o);
+  names.clear();
+  for (const GroupResult& g : groups) names.push_back(g.path);
+  w.Texts(at + "/groups/paths", names);
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    const GroupResult& g = groups[i];
+    const std::string ga = At(at + "/groups", i);
+    w.Text(ga + "/path", g.path);
+    w.Number(ga + "/variance", g.variance);
+    w.Number(ga + "/rms", std::sqrt(std::max(g.variance, 0.0)));
+    w.Number(ga + "/share", g.share);
+    w.Numbers(ga + "/members", Indices(g.all_contributors));
+    w.Numbers(ga + "/band_variance", g.band_variance);
+  }
+}
+
+void WriteLoop(Hdf5Writer& w, const std::string& at, const LoopResult& r, const LoopTrace& trace) {
+  w.Text(at + "/plant", r.plant);
+  w.Text(at + "/controller", r.controller);
+  w.Integer(at + "/sign", r.sign);
+  w.Texts(at + "/paths", r.paths);
+  w.Integer(at + "/evaluated", r.evaluated ? 1 : 0);
+  w.Text(at + "/note", r.note);
+  const LoopMargins& m = r.margins;
+  w.Integer(at + "/margins/channels", m.channels);
+  std::vector<std::vector<double>> gain, phase;
+  for (const GainCrossover& c : m.gain_crossovers) gain.push_back({c.f_hz, c.phase_margin_deg});
+  for (const PhaseCrossover& c : m.phase_crossovers) phase.push_back({c.f_hz, c.gain_margin});
+  w.Rows(at + "/margins/gain_crossovers", gain);
+  w.Rows(at + "/margins/phase_crossovers", phase);
+  w.Numbers(at + "/margins/phase_margin",
+            m.phase_margin ? std::vector<double>{m.phase_margin->f_hz, m.phase_margin->phase_margin_deg}
+                           : std::vector<double>{});
+  for (const auto& [name, margin] : {std::make_pair("upper_gain_margin", &m.upper_gain_margin),
+                                     std::make_pair("lower_gain_margin", &m.lower_gain_margin)})
+    w.Numbers(at + "/margins/" + name,
+              *margin ? std::vector<double>{(*margin)->f_hz, (*margin)->gain_margin} : std::vector<double>{});
+  w.Numbers(at + "/margins/modulus_margin", {m.modulus_margin, m.modulus_margin_f_hz});
+  std::vector<double> re, im;
+  for (const std::complex<double>& l : trace.loop_gain) {
+    re.push_back(l.real());
+    im.push_back(l.imag());
+  }
+  w.Numbers(at + "/trace/f_hz", trace.f_hz);
+  w.Numbers(at + "/trace/loop_gain_re", re);
+  w.Numbers(at + "/trace/loop_gain_im", im);
+}
+
+// ---------------------------------------------------------------- reading
+
+class Reading {
+ public:
+  explicit Reading(const std::string& file) : r_(file), file_(file) {}
+  const Hdf5Reader& r() const { return r_; }
+  [[noreturn]] void Fail(const std::string& object, const std::string& what) const {
+    throw InputError(file_ + ": object '" + object + "' " + what);
+  }
+  // A vector of `n` numbers.
+  std::vector<double> Numbers(const std::string& object, std::size_t n, bool allow_nan = false) const {
+    std::vector<double> v = r_.Numbers(object, allow_nan);
+    if (v.size() != n)
+      Fail(object, "has " + std::to_string(v.size()) + " values, not " + std::to_string(n));
+    return v;
+  }
+  // Rows of `columns` numbers each (any count of rows; a 0 x 0 matrix is no rows).
+  std::vector<std::vector<double>> Rows(const std::string& object, std::size_t columns, bool allow_nan = false) const {
+    std::vector<std::vector<double>> rows = r_.Rows(object, allow_nan);
+    for (const auto& row : rows)
+      if (row.size() != columns)
+        Fail(object, "has rows of " + std::to_string(row.size()) + " values, not " + std::to_string(columns));
+    return rows;
+  }
+  std::vector<std::vector<double>> Rows(const std::string& object, std::size_t rows, std::size_t columns,
+                                        bool allow_nan) const {
+    std::vector<std::vector<double>> v = Rows(object, columns, allow_nan);
+    if (v.size() != rows) Fail(object, "has " + std::to_string(v.size()) + " rows, not " + std::to_string(rows));
+    return v;
+  }
+  std::size_t Count(const std::string& names_object, std::size_t bound) const {
+    const std::size_t n = r_.Texts(names_object).size();
+    if (n > bound) Fail(names_object, "lists " + std::to_string(n) + " entries, more than " + std::to_string(bound));
+    return n;
+  }
+  std::size_t Index(const std::string& object, double value, std::size_t bound) const {
+    if (!(value >= 0.0 && value < double(bound) && value == std::floor(value)))
+      Fail(object, "holds the index " + std::to_string(value) + ", not one of 0.." + std::to_string(bound) + "-1");
+    return static_cast<std::size_t>(value);
+  }
+
+ private:
+  Hdf5Reader r_;
+  std::string file_;
+};
+
+ContributorResult ReadContributor(const Reading& in, const std::string& at, std::size_t n) {
+  const Hdf5Reader& r = in.r();
+  ContributorResult c;
+  c.name = r.Text(at + "/name");
+  c.source = r.Text(at + "/source");
+  c.path = r.Text(at + "/path");
+  c.inputs = r.Texts(at + "/inputs");
+  c.group = r.Text(at + "/group");
+  c.psd = in.Numbers(at + "/psd", n);
+  c.cps = in.Numbers(at + "/cps", n);
+  c.variance = r.Number(at + "/variance");
+  c.exact_variance = FromNone(r.Number(at + "/exact_variance", true));
+  c.exact_note = r.Text(at + "/exact_note");
+  c.tail_variance_estimate = r.Number(at + "/tail_variance_estimate");
+  for (const auto& t : in.Rows(at + "/tones", 2)) c.tones.push_back({t[0], t[1]});
+  const std::vector<std::string> channels = r.Texts(at + "/channels/names");
+  const auto psd = in.Rows(at + "/channels/psd", channels.size(), channels.empty() ? 0 : n, false);
+  const auto cps = in.Rows(at + "/channels/cps", channels.size(), channels.empty() ? 0 : n, false);
+  const auto variance = in.Numbers(at + "/channels/variance", channels.size());
+  for (std::size_t k = 0; k < channels.size(); ++k) c.channels.push_back({channels[k], psd[k], cps[k], variance[k]});
+  c.cross_variance = r.Number(at + "/channels/cross_variance");
+  for (const auto& m : in.Rows(at + "/top_modes", 5))
+    c.top_modes.push_back({static_cast<int>(m[0]), m[1], m[2], m[3], m[4]});
+  const std::string split = r.Text(at + "/top_modes_of");
+  c.top_modes_of = split == "exact" ? ModeSplit::kExactVariance : split == "grid" ? ModeSplit::kGridVariance : ModeSplit::kNone;
+  if (split != "exact" && split != "grid" && split != "none") in.Fail(at + "/top_modes_of", "is '" + Excerpt(split) + "', not none, exact or grid");
+  return c;
+}
+
+void ReadOutput(const Reading& in, const std::string& at, std::size_t n, Output* spec, OutputResult* o) {
+  const Hdf5Reader& r = in.r();
+  o->name = spec->name = r.Text(at + "/name");
+  o->signal = spec->signal = r.Text(at + "/signal");
+  o->unit = spec->unit = r.Text(at + "/unit");
+  o->variance = r.Number(at + "/variance");
+  o->rms_max = spec->rms_max = FromNone(r.Number(at + "/rms_max", true));
+  const std::string metric = r.Text(at + "/metric/type");
+  if (!metric.empty()) {
+    OutputMetric m;
+    try {
+      m.type = ParseMetricType(metric);
+    } catch (const InputError& e) {
+      in.Fail(at + "/metric/type", e.message());
+    }
+    m.window_s = r.Number(at + "/metric/window_s");
+    o->metric = spec->metric = m;
+  }
+  if (r.Integer(at + "/weighting/present") != 0) {
+    Weighting wt;  // the filter itself is not stored: only what a report says of it
+    wt.unit = r.Text(at + "/weighting/unit");
+    wt.description = r.Text(at + "/weighting/description");
+    spec->weighting = wt;
+  }
+  const std::vector<std::string> term_signals = r.Texts(at + "/combination/signals");
+  const std::vector<double> term_weights = in.Numbers(at + "/combination/weights", term_signals.size());
+  const std::vector<std::string> term_units = r.Texts(at + "/combination/units");
+  if (term_units.size() != term_signals.size()) in.Fail(at + "/combination/units", "does not match the signals");
+  for (std::size_t i = 0; i < term_signals.size(); ++i)
+    spec->combination.push_back({term_signals[i], term_weights[i], term_units[i]});
+  o->total_psd = in.Numbers(at + "/total_psd", n);
+  o->total_cps = in.Numbers(at + "/total_cps", n);
+  const auto limits = in.Rows(at + "/band_requirements/limits", 3);
+  const auto requirement_variance = in.Numbers(at + "/band_requirements/variance", limits.size());
+  for (std::size_t i = 0; i < limits.size(); ++i) {
+    const BandRequirement b{limits[i][0], limits[i][1], limits[i][2]};
+    spec->band_requirements.push_back(b);
+    o->band_requirements.push_back({b, requirement_variance[i]});
+  }
+  const std::size_t contributors = in.Count(at + "/contributors/names", kMaxEntries);
+  for (std::size_t c = 0; c < contributors; ++c)
+    o->contributors.push_back(ReadContributor(in, At(at + "/contributors", c), n));
+  const auto edges = in.Rows(at + "/bands/edges_hz", 2);
+  const auto band_variance = in.Numbers(at + "/bands/variance", edges.size());
+  const auto band_contributors = in.Rows(at + "/bands/contributor_variance", edges.size(), edges.empty() ? 0 : contributors, false);
+  for (std::size_t b = 0; b < edges.size(); ++b)
+    o->bands.push_back({Band{edges[b][0], edges[b][1]}, band_variance[b], band_contributors[b]});
+  const std::size_t references = in.Count(at + "/references/names", kMaxEntries);
+  for (std::size_t i = 0; i < references; ++i) {
+    const std::string ra = At(at + "/references", i);
+    ReferenceResult ref;
+    ref.name = r.Text(ra + "/name");
+    ref.psd = in.Numbers(ra + "/psd", n);
+    ref.cps = in.Numbers(ra + "/cps", n);
+    ref.variance = r.Number(ra + "/variance");
+    ref.budget_variance = r.Number(ra + "/budget_variance");
+    const std::vector<double> covered = in.Numbers(ra + "/covered_hz", 2);
+    ref.covered_lo_hz = covered[0];
+    ref.covered_hi_hz = covered[1];
+    for (double v : in.Numbers(ra + "/band_variance", edges.size(), true)) ref.band_variance.push_back(FromNone(v));
+    o->references.push_back(std::move(ref));
+    Source named;  // Output::references: the names, for the outline
+    named.name = o->references.back().name;
+    named.unit = o->unit;
+    spec->references.push_back(std::move(named));
+  }
+}
+
+std::optional<PhaseCrossover> PhaseCrossoverOf(const Reading& in, const std::string& object) {
+  const std::vector<double> v = in.r().Numbers(object);
+  if (v.empty()) return std::nullopt;
+  if (v.size() != 2) in.Fail(object, "holds " + std::to_string(v.size()) + " values, not 0 or 2");
+  return PhaseCrossover{v[0], v[1]};
+}
+
+void ReadLoop(const Reading& in, const std::string& at, LoopResult* r, LoopTrace* trace) {
+  const Hdf5Reader& h = in.r();
+  r->plant = h.Text(at + "/plant");
+  r->controller = h.Text(at + "/controller");
+  r->sign = static_cast<int>(h.Integer(at + "/sign"));
+  r->paths = h.Texts(at + "/paths");
+  r->evaluated = h.Integer(at + "/evaluated") != 0;
+  r->note = h.Text(at + "/note");
+  LoopMargins& m = r->margins;
+  m.channels = static_cast<int>(h.Integer(at + "/margins/channels"));
+  for (const auto& c : in.Rows(at + "/margins/gain_crossovers", 2)) m.gain_crossovers.push_back({c[0], c[1]});
+  for (const auto& c : in.Rows(at + "/margins/phase_crossovers", 2)) m.phase_crossovers.push_back({c[0], c[1]});
+  if (const auto pm = PhaseCrossoverOf(in, at + "/margins/phase_margin")) m.phase_margin = GainCrossover{pm->f_hz, pm->gain_margin};
+  m.upper_gain_margin = PhaseCrossoverOf(in, at + "/margins/upper_gain_margin");
+  m.lower_gain_margin = PhaseCrossoverOf(in, at + "/margins/lower_gain_margin");
+  const std::vector<double> modulus = in.Numbers(at + "/margins/modulus_margin", 2);
+  m.modulus_margin = modulus[0];
+  m.modulus_margin_f_hz = modulus[1];
+  trace->f_hz = h.Numbers(at + "/trace/f_hz");
+  const std::vector<double> re = in.Numbers(at + "/trace/loop_gain_re", trace->f_hz.size());
+  const std::vector<double> im = in.Numbers(at + "/trace/loop_gain_im", trace->f_hz.size());
+  for (std::size_t i = 0; i < re.size(); ++i) trace->loop_gain.emplace_back(re[i], im[i]);
+}
+
+Eigen::MatrixXd MatrixOf(const std::vector<std::vector<double>>& rows, std::size_t n) {
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
+  return m;
+}
+
+CovarianceResult ReadCovariance(const Reading& in, const std::string& at, std::size_t outputs,
+                                std::size_t contributors) {
+  const Hdf5Reader& r = in.r();
+  CovarianceResult c;
+  c.outputs = r.Texts(at + "/outputs");
+  const std::size_t n = c.outputs.size();
+  if (n > outputs) in.Fail(at + "/outputs", "lists " + std::to_string(n) + " outputs, the result " + std::to_string(outputs));
+  c.units = r.Texts(at + "/units");
+  if (c.units.size() != n) in.Fail(at + "/units", "does not match the outputs");
+  for (double i : in.Numbers(at + "/index", n)) c.index.push_back(in.Index(at + "/index", i, outputs));
+  c.matrix = MatrixOf(in.Rows(at + "/matrix", n, n, false), n);
+  c.correlation = MatrixOf(in.Rows(at + "/correlation", n, n, true), n);
+  const auto exact = in.Rows(at + "/exact_matrix", n);
+  if (!exact.empty()) {
+    if (exact.size() != n) in.Fail(at + "/exact_matrix", "has " + std::to_string(exact.size()) + " rows, not " + std::to_string(n));
+    c.exact_matrix = MatrixOf(exact, n);
+  }
+  c.exact_note = r.Text(at + "/exact_note");
+  const std::vector<std::string> names = r.Texts(at + "/contributors/names");
+  if (names.size() != contributors)
+    in.Fail(at + "/contributors/names", "lists " + std::to_string(names.size()) + " contributors, the budget " +
+                                            std::to_string(contributors));
+  for (std::size_t i = 0; i < names.size(); ++i)
+    c.contributors.push_back({names[i], MatrixOf(in.Rows(At(at + "/contributors", i) + "/matrix", n, n, false), n)});
+  return c;
+}
+
+}  // namespace
+
+void WriteResultStore(const Budget& budget, const BudgetResult& result, const RunInfo& info,
+                      const std::string& file) {
+  DEB_DEMAND(result.traces && result.traces->paths.size() == budget.contributors.size());
+  DEB_DEMAND(result.outputs.size() == budget.outputs.size());
+  Hdf5Writer w(file);
+  w.Text("schema", kResultStoreSchema);
+  w.Integer("schema_version", kResultStoreVersion);
+  w.Text("deb_version", DEB_VERSION);
+  w.Text("budget/name", budget.name);
+  w.Text("budget/description", budget.description);
+  w.Text("budget/file", info.budget_file);
+  w.Text("budget/sha256", info.budget_sha256);
+  w.Text("budget/text", info.budget_text ? *info.budget_text : "");
+  w.Text("budget/grid_type", ToString(budget.grid.kind));
+  std::vector<std::vector<double>> bands;
+  for (const Band& b : budget.bands) bands.push_back({b.lo_hz, b.hi_hz});
+  w.Rows("budget/bands", bands);
+  w.Number("run/seconds", info.seconds ? *info.seconds : kNone);
+  std::vector<std::string> names;
+  for (const Source& s : budget.sources) names.push_back(s.name);
+  w.Texts("budget/sources/names", names);
+  for (std::size_t i = 0; i < budget.sources.size(); ++i) {
+    const Source& s = budget.sources[i];
+    const std::string at = At("budget/sources", i);
+    w.Text(at + "/name", s.name);
+    w.Text(at + "/description", s.description);
+    w.Text(at + "/unit", s.unit);
+    w.Texts(at + "/channels", s.channel_names);
+  }
+  names.clear();
+  for (const Contributor& c : budget.contributors) names.push_back(c.name);
+  w.Texts("budget/contributors/names", names);
+  for (std::size_t i = 0; i < budget.contributors.size(); ++i) {
+    const Contributor& c = budget.contributors[i];
+    const std::string at = At("budget/contributors", i);
+    w.Text(at + "/name", c.name);
+    w.Text(at + "/source", c.source);
+    w.Text(at + "/path", c.path);
+    w.Texts(at + "/inputs", c.inputs);
+    w.Text(at + "/group", c.group);
+    w.Text(at + "/exact", ToString(c.exact));
+    w.Integer(at + "/breakdown_channels", c.breakdown_channels ? 1 : 0);
+  }
+
+  w.Text("result/budget_name", result.budget_name);
+  w.Numbers("result/grid/f_hz", result.grid.f_hz());
+  w.Numbers("result/grid/panel_starts", Indices(result.grid.panel_starts()));
+  w.Texts("result/warnings", result.warnings);
+  names.clear();
+  for (const OutputResult& o : result.outputs) names.push_back(o.name);
+  w.Texts("result/outputs/names", names);
+  for (std::size_t o = 0; o < result.outputs.size(); ++o)
+    WriteOutput(w, At("result/outputs", o), budget.outputs[o], result.outputs[o]);
+  w.Texts("budget/covariance", budget.covariance);
+  w.Integer("result/covariance/present", result.covariance ? 1 : 0);
+  if (result.covariance) WriteCovariance(w, "result/covariance", *result.covariance);
+  const ResponseTraces& traces = *result.traces;
+  names.clear();
+  for (const LoopResult& l : result.loops) names.push_back(l.plant + " " + l.controller);
+  w.Texts("result/loops/names", names);
+  for (std::size_t i = 0; i < result.loops.size(); ++i)
+    WriteLoop(w, At("result/loops", i), result.loops[i], traces.loops[i]);
+  std::vector<std::vector<double>> poles;
+  for (const auto& p : traces.poles_hz) poles.push_back(p ? std::vector<double>{p->first, p->second} : std::vector<double>{kNone, kNone});
+  w.Rows("result/traces/poles_hz", poles);
+  for (std::size_t c = 0; c < traces.paths.size(); ++c)
+    for (std::size_t o = 0; o < traces.paths[c].size(); ++o) {
+      const PathResponse& p = traces.paths[c][o];
+      const std::string at = At(At("result/traces/paths", c), o);
+      w.Texts(at + "/channels", p.channels);
+      w.Text(at + "/unit", p.unit);
+      w.Rows(at + "/gain2", p.gain2);
+      w.Rows(at + "/phase_rad", p.phase_rad);
+    }
+  w.Close();
+}
+
+StoredResult ReadResultStore(const std::string& file) {
+  const Reading in(file);
+  const Hdf5Reader& r = in.r();
+  if (!r.Has("schema") || r.Text("schema") != kResultStoreSchema)
+    throw InputError(file + ": not a result store of deb (no /schema '" + std::string(kResultStoreSchema) + "')");
+  const std::int64_t version = r.Integer("schema_version");
+  if (version < 1 || version > kResultStoreVersion)
+    throw InputError(file + ": result store schema version " + std::to_string(version) + "; this deb (" DEB_VERSION
+                            ") reads versions 1 to " + std::to_string(kResultStoreVersion));
+  StoredResult s;
+  Budget& b = s.budget;
+  b.name = r.Text("budget/name");
+  b.description = r.Text("budget/description");
+  s.info.budget_file = r.Text("budget/file");
+  s.info.budget_sha256 = r.Text("budget/sha256");
+  s.info.budget_text = r.Text("budget/text");
+  b.source_file = s.info.budget_file;
+  try {
+    b.grid.kind = ParseGridKind(r.Text("budget/grid_type"));
+  } catch (const InputError& e) {
+    in.Fail("budget/grid_type", e.message());
+  }
+  for (const auto& band : in.Rows("budget/bands", 2)) b.bands.push_back({band[0], band[1]});
+  s.info.seconds = FromNone(r.Number("run/seconds", true));
+  const std::size_t sources = in.Count("budget/sources/names", kMaxEntries);
+  for (std::size_t i = 0; i < sources; ++i) {
+    const std::string at = At("budget/sources", i);
+    Source src;
+    src.name = r.Text(at + "/name");
+    src.description = r.Text(at + "/description");
+    src.unit = r.Text(at + "/unit");
+    src.channel_names = r.Texts(at + "/channels");
+    b.sources.push_back(std::move(src));
+  }
+  const std::size_t contributors = in.Count("budget/contributors/names", kMaxEntries);
+  for (std::size_t i = 0; i < contributors; ++i) {
+    const std::string at = At("budget/contributors", i);
+    Contributor c;
+    c.name = r.Text(at + "/name");
+    c.source = r.Text(at + "/source");
+    c.path = r.Text(at + "/path");
+    c.inputs = r.Texts(at + "/inputs");
+    c.group = r.Text(at + "/group");
+    try {
+      c.exact = ParseExactVariance(r.Text(at + "/exact"));
+    } catch (const InputError& e) {
+      in.Fail(at + "/exact", e.message());
+    }
+    c.breakdown_channels = r.Integer(at + "/breakdown_channels") != 0;
+    bool known = false;
+    for (const Source& src : b.sources) known |= src.name == c.source;
+    if (!known) in.Fail(at + "/source", "names the source '" + Excerpt(c.source) + "', which the store does not hold");
+    b.contributors.push_back(std::move(c));
+  }
+
+  BudgetResult& res = s.result;
+  res.budget_name = r.Text("result/budget_name");
+  std::vector<double> f_hz = r.Numbers("result/grid/f_hz");
+  if (f_hz.size() > limits::kMaxGridPoints)
+    in.Fail("result/grid/f_hz", "has more than " + std::to_string(limits::kMaxGridPoints) + " points");
+  std::vector<std::size_t> panels;
+  const std::vector<double> panel_starts = r.Numbers("result/grid/panel_starts");
+  for (double p : panel_starts) panels.push_back(in.Index("result/grid/panel_starts", p, f_hz.size()));
+  try {
+    res.grid = FrequencyGrid(std::move(f_hz), std::move(panels));
+  } catch (const InputError& e) {
+    in.Fail("result/grid", e.message());
+  }
+  const std::size_t n = res.grid.size();
+  res.warnings = r.Texts("result/warnings");
+  const std::size_t outputs = in.Count("result/outputs/names", kMaxEntries);
+  b.outputs.resize(outputs);
+  res.outputs.resize(outputs);
+  for (std::size_t o = 0; o < outputs; ++o) {
+    const std::string at = At("result/outputs", o);
+    ReadOutput(in, at, n, &b.outputs[o], &res.outputs[o]);
+    if (res.outputs[o].contributors.size() != contributors)
+      in.Fail(at + "/contributors/names", "lists " + std::to_string(res.outputs[o].contributors.size()) +
+                                              " contributors, the budget " + std::to_string(contributors));
+  }
+  b.covariance = r.Texts("budget/covariance");
+  if (r.Integer("result/covariance/present") != 0)
+    res.covariance = ReadCovariance(in, "result/covariance", outputs, contributors);
+  auto traces = std::make_shared<ResponseTraces>();
+  const std::size_t loops = in.Count("result/loops/names", kMaxEntries);
+  res.loops.resize(loops);
+  traces->loops.resize(loops);
+  for (std::size_t i = 0; i < loops; ++i) ReadLoop(in, At("result/loops", i), &res.loops[i], &traces->loops[i]);
+  for (const auto& p : in.Rows("result/traces/poles_hz", contributors, contributors == 0 ? 0 : 2, true)) {
+    const bool none = std::isnan(p[0]) || std::isnan(p[1]);
+    traces->poles_hz.push_back(none ? std::nullopt : std::optional<std::pair<double, double>>({p[0], p[1]}));
+  }
+  traces->paths.resize(contributors);
+  for (std::size_t c = 0; c < contributors; ++c)
+    for (std::size_t o = 0; o < outputs; ++o) {
+      const std::string at = At(At("result/traces/paths", c), o);
+      PathResponse p;
+      p.contributor = b.contributors[c].name;
+      p.output = b.outputs[o].name;
+      p.channels = r.Texts(at + "/channels");
+      p.unit = r.Text(at + "/unit");
+      p.gain2 = in.Rows(at + "/gain2", n);
+      p.phase_rad = in.Rows(at + "/phase_rad", p.gain2.size(), p.gain2.empty() ? 0 : n, false);
+      traces->paths[c].push_back(std::move(p));
+    }
+  res.traces = std::move(traces);
+  return s;
+}
+
+}  // namespace deb::io

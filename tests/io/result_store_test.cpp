@@ -1,0 +1,244 @@
+// deb/io/result_store.h: a result written to result.h5 and read back is the
+// same result. Four shipped budgets together use every part of the schema
+// (groups, a measured reference, band requirements and metrics: the wafer
+// stage; channel breakdown, a weighting and the output covariance: the
+// thesis; tones: the measured stage; modal paths and their top modes: the
+// metrology frame). The strongest check is that the result read back,
+// written again, gives the same file byte for byte: a field the reader
+// dropped or changed would change the file. The figures a report shows are
+// also compared one by one, exactly (HDF5 keeps the doubles as written).
+// A store a reader must refuse (not HDF5, another schema, a newer version,
+// a PSD of the wrong length, an index out of range) gives an InputError
+// naming the file and the object.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "deb/budget/engine.h"
+#include "deb/budget/response_traces.h"
+#include "deb/core/error.h"
+#include "deb/io/budget_yaml.h"
+#include "deb/io/hdf5_file.h"
+#include "deb/io/result_store.h"
+#include "tests/support/contains.h"
+
+namespace deb {
+namespace {
+
+namespace fs = std::filesystem;
+using test::Contains;
+
+class StoreDir {
+ public:
+  StoreDir() : dir_(fs::temp_directory_path() / ("deb_store_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  ~StoreDir() { fs::remove_all(dir_); }
+  std::string File(const std::string& name) const { return (dir_ / name).string(); }
+
+ private:
+  fs::path dir_;
+};
+
+std::string Bytes(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::string Budget(const std::string& name) { return std::string(DEB_SOURCE_DIR) + "/budgets/" + name; }
+
+struct Written {
+  deb::Budget budget;
+  BudgetResult result;
+  RunInfo info;
+};
+
+Written WriteStore(const std::string& budget_file, const std::string& store) {
+  Written w{LoadBudgetFile(budget_file), {}, {}};
+  w.result = Evaluate(w.budget);
+  w.info.budget_file = budget_file;
+  w.info.budget_text = "name: the text of the budget file, kept as it was read\n";
+  w.info.budget_sha256 = std::string(64, 'a');
+  w.info.seconds = 0.25;
+  io::WriteResultStore(w.budget, w.result, w.info, store);
+  return w;
+}
+
+std::string ErrorOf(const std::string& store) {
+  try {
+    io::ReadResultStore(store);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST_CASE("a result store read back and written again is the same file, for every shipped feature") {
+  const StoreDir dir;
+  for (const char* name : {"wafer_stage.yaml", "nizamoglu2015_h210.yaml", "measured_stage.yaml",
+                           "metrology_frame.yaml"}) {
+    CAPTURE(name);
+    const std::string first = dir.File("first.h5"), second = dir.File("second.h5");
+    const Written w = WriteStore(Budget(name), first);
+    const io::StoredResult s = io::ReadResultStore(first);
+    io::WriteResultStore(s.budget, s.result, s.info, second);
+    const std::string a = Bytes(first), b = Bytes(second);
+    CHECK(a.size() > 1000);
+    const bool same_bytes = a == b;
+    CHECK(same_bytes);
+
+    // What the report reads, exactly.
+    CHECK(s.info.budget_file == w.info.budget_file);
+    CHECK(*s.info.budget_text == *w.info.budget_text);
+    CHECK(s.info.budget_sha256 == w.info.budget_sha256);
+    CHECK(*s.info.seconds == 0.25);
+    CHECK(s.budget.name == w.budget.name);
+    CHECK(s.result.grid.f_hz() == w.result.grid.f_hz());
+    CHECK(s.result.grid.panel_starts() == w.result.grid.panel_starts());
+    CHECK(s.result.warnings == w.result.warnings);
+    REQUIRE(s.result.outputs.size() == w.result.outputs.size());
+    for (std::size_t o = 0; o < w.result.outputs.size(); ++o) {
+      const OutputResult &x = w.result.outputs[o], &y = s.result.outputs[o];
+      CHECK(y.name == x.name);
+      CHECK(y.unit == x.unit);
+      CHECK(y.total_psd == x.total_psd);
+      CHECK(y.total_cps == x.total_cps);
+      CHECK(y.variance == x.variance);
+      CHECK(y.rms_max == x.rms_max);
+      CHECK(y.metric.has_value() == x.metric.has_value());
+      CHECK(y.band_requirements.size() == x.band_requirements.size());
+      CHECK(y.references.size() == x.references.size());
+      CHECK(s.budget.outputs[o].weighting.has_value() == w.budget.outputs[o].weighting.has_value());
+      REQUIRE(y.contributors.size() == x.contributors.size());
+      for (std::size_t c = 0; c < x.contributors.size(); ++c) {
+        const ContributorResult &cx = x.contributors[c], &cy = y.contributors[c];
+        CHECK(cy.psd == cx.psd);
+        CHECK(cy.cps == cx.cps);
+        CHECK(cy.exact_variance == cx.exact_variance);
+        CHECK(cy.tones.size() == cx.tones.size());
+        CHECK(cy.channels.size() == cx.channels.size());
+        CHECK(cy.top_modes.size() == cx.top_modes.size());
+        CHECK(cy.group == cx.group);
+        const PathResponse &px = w.result.traces->paths[c][o], &py = s.result.traces->paths[c][o];
+        CHECK(py.gain2 == px.gain2);
+        CHECK(py.phase_rad == px.phase_rad);
+      }
+    }
+    CHECK(s.result.loops.size() == w.result.loops.size());
+    CHECK(s.result.traces->poles_hz == w.result.traces->poles_hz);
+    REQUIRE(s.result.covariance.has_value() == w.result.covariance.has_value());
+    if (w.result.covariance) {
+      CHECK(s.result.covariance->matrix == w.result.covariance->matrix);
+      CHECK(s.result.covariance->exact_matrix.has_value() == w.result.covariance->exact_matrix.has_value());
+    }
+  }
+}
+
+TEST_CASE("the features each example stands for are in its store") {
+  const StoreDir dir;
+  const auto read = [&](const char* name) {
+    WriteStore(Budget(name), dir.File("s.h5"));
+    return io::ReadResultStore(dir.File("s.h5"));
+  };
+  const io::StoredResult wafer = read("wafer_stage.yaml");
+  bool grouped = false, referenced = false, metric = false, band_requirement = false;
+  for (const OutputResult& o : wafer.result.outputs) {
+    for (const ContributorResult& c : o.contributors) grouped |= !c.group.empty();
+    referenced |= !o.references.empty();
+    metric |= o.metric.has_value();
+    band_requirement |= !o.band_requirements.empty();
+  }
+  CHECK(grouped);
+  CHECK(referenced);
+  CHECK(metric);
+  CHECK(band_requirement);
+  const io::StoredResult thesis = read("nizamoglu2015_h210.yaml");
+  CHECK(thesis.result.covariance.has_value());
+  bool broken_down = false, weighted = false;
+  for (const OutputResult& o : thesis.result.outputs)
+    for (const ContributorResult& c : o.contributors) broken_down |= !c.channels.empty();
+  for (const Output& o : thesis.budget.outputs) weighted |= o.weighting.has_value();
+  CHECK(broken_down);
+  CHECK(weighted);
+  const io::StoredResult measured = read("measured_stage.yaml");
+  bool tones = false;
+  for (const OutputResult& o : measured.result.outputs)
+    for (const ContributorResult& c : o.contributors) tones |= !c.tones.empty();
+  CHECK(tones);
+  const io::StoredResult frame = read("metrology_frame.yaml");
+  bool modes = false;
+  for (const OutputResult& o : frame.result.outputs)
+    for (const ContributorResult& c : o.contributors) modes |= !c.top_modes.empty();
+  CHECK(modes);
+}
+
+TEST_CASE("a store the reader must refuse gives an error naming the file and the object") {
+  const StoreDir dir;
+  SUBCASE("not an HDF5 file") {
+    const std::string file = dir.File("text.h5");
+    std::ofstream(file) << "schema: deb-result\n";
+    CHECK(Contains(ErrorOf(file), file));
+  }
+  SUBCASE("another schema, or a newer version of this one") {
+    const std::string other = dir.File("other.h5"), newer = dir.File("newer.h5");
+    {
+      io::Hdf5Writer w(other);
+      w.Text("schema", "someone-else");
+      w.Integer("schema_version", 1);
+      w.Close();
+      io::Hdf5Writer v(newer);
+      v.Text("schema", io::kResultStoreSchema);
+      v.Integer("schema_version", io::kResultStoreVersion + 1);
+      v.Close();
+    }
+    CHECK(Contains(ErrorOf(other), "not a result store of deb"));
+    const std::string e = ErrorOf(newer);
+    CHECK(Contains(e, newer));
+    CHECK(Contains(e, "schema version " + std::to_string(io::kResultStoreVersion + 1)));
+  }
+  SUBCASE("a PSD one value short of the grid") {
+    Written w{LoadBudgetFile(Budget("single_axis_isolator.yaml")), {}, {}};
+    w.result = Evaluate(w.budget);
+    w.result.outputs[1].contributors[0].psd.pop_back();
+    const std::string file = dir.File("short.h5");
+    io::WriteResultStore(w.budget, w.result, w.info, file);
+    const std::string e = ErrorOf(file);
+    CHECK(Contains(e, file));
+    CHECK(Contains(e, "'result/outputs/1/contributors/0/psd' has " + std::to_string(w.result.grid.size() - 1) +
+                          " values, not " + std::to_string(w.result.grid.size())));
+  }
+  SUBCASE("a contributor of a source the store does not hold, an output index out of range") {
+    Written w{LoadBudgetFile(Budget("nizamoglu2015_h210.yaml")), {}, {}};
+    w.result = Evaluate(w.budget);
+    REQUIRE(w.result.covariance);
+    const std::string renamed = dir.File("renamed.h5"), index = dir.File("index.h5");
+    deb::Budget changed = w.budget;
+    changed.sources[0].name = "renamed";
+    io::WriteResultStore(changed, w.result, w.info, renamed);
+    CHECK(Contains(ErrorOf(renamed), "'budget/contributors/0/source' names the source"));
+    w.result.covariance->index[1] = 99;
+    io::WriteResultStore(w.budget, w.result, w.info, index);
+    const std::string e = ErrorOf(index);
+    CHECK(Contains(e, "'result/covariance/index' holds the index 99"));
+  }
+  SUBCASE("a NaN where a figure must be finite") {
+    Written w{LoadBudgetFile(Budget("single_axis_isolator.yaml")), {}, {}};
+    w.result = Evaluate(w.budget);
+    w.result.outputs[0].variance = std::numeric_limits<double>::quiet_NaN();
+    const std::string file = dir.File("nan.h5");
+    io::WriteResultStore(w.budget, w.result, w.info, file);
+    const std::string e = ErrorOf(file);
+    CHECK(Contains(e, "result/outputs/0/variance"));
+  }
+}
+
+}  // namespace
+}  // namespace deb

@@ -1,0 +1,81 @@
+#include "tools/report_command.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "deb/core/error.h"
+#include "deb/io/result_store.h"
+#include "deb/report/report_writer.h"
+#include "tools/report_flags.h"
+
+namespace deb::tools {
+
+struct ReportCommand::Options {
+  std::string input;  // a result directory, or its result.h5
+  std::string out_dir;
+  int threads = 0;
+  bool quiet = false;
+  ReportFlags flags;
+};
+
+ReportCommand::ReportCommand() : options_(std::make_unique<Options>()) {}
+ReportCommand::~ReportCommand() = default;
+
+CLI::App* ReportCommand::Register(CLI::App& app) {
+  Options& o = *options_;
+  CLI::App* cmd = app.add_subcommand(
+      "report", "Redraw a report directory from its result store (result.h5), without evaluating anything");
+  cmd->add_option("result", o.input, "Result directory written by deb run (or its result.h5)")
+      ->required()
+      ->check(CLI::ExistingPath);
+  cmd->add_option("--out,-o", o.out_dir, "Report directory (default: the result directory itself)");
+  cmd->add_option("--threads,-j", o.threads, "gnuplot processes at a time (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quiet,-q", o.quiet, "Print nothing but warnings and errors");
+  AddReportFlags(cmd, &o.flags);
+  return cmd;
+}
+
+int ReportCommand::Run() const {
+  namespace fs = std::filesystem;
+  const Options& o = *options_;
+  const fs::path input(o.input);
+  const bool is_dir = fs::is_directory(input);
+  const fs::path store = is_dir ? input / io::kResultStoreFile : input;
+  if (!fs::is_regular_file(store))
+    throw InputError(o.input + ": holds no result store (" + io::kResultStoreFile +
+                     "); deb run writes one into every report directory");
+  const fs::path result_dir = is_dir ? input : store.parent_path().empty() ? fs::path(".") : store.parent_path();
+  const io::StoredResult stored = io::ReadResultStore(store.string());
+
+  ReportOptions report = o.flags.Options();
+  report.threads = o.threads;
+  report.progress = !o.quiet && ::isatty(STDERR_FILENO);
+  std::vector<ExportFormat> exports = o.flags.exports;
+  const std::string out = o.out_dir.empty() ? result_dir.string() : o.out_dir;
+  // Redrawn in place, the directory keeps the exports it had.
+  std::error_code ec;
+  if (fs::equivalent(out, result_dir, ec))
+    for (const ExportFormat f : {ExportFormat::kMat, ExportFormat::kXlsx})
+      if (fs::is_regular_file(result_dir / ExportFileName(f), ec) &&
+          std::find(exports.begin(), exports.end(), f) == exports.end())
+        exports.push_back(f);
+  RunInfo info = stored.info;
+  info.threads = o.threads;
+  try {
+    WriteReportDirectory(stored.budget, stored.result, info, report, out, exports);
+  } catch (const InputError& e) {
+    throw WriteError(e.what());  // found while writing: the report cannot be written
+  }
+  if (!o.quiet)
+    std::printf("report: %s (redrawn from %s: budget %s%s)\n", out.c_str(), store.string().c_str(),
+                stored.budget.name.c_str(),
+                info.budget_sha256.empty() ? "" : (", SHA-256 " + info.budget_sha256.substr(0, 12) + "...").c_str());
+  return 0;
+}
+
+}  // namespace deb::tools
