@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <future>
 #include <mutex>
 #include <optional>
 #include <ctime>
@@ -299,10 +300,23 @@ ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& re
   ReplaceDirectory(
       out_dir,
       [&](const std::string& dir) {
-        WriteResultFiles(budget, result, run, dir);
-        io::WriteResultStore(budget, result, run, (fs::path(dir) / io::kResultStoreFile).string());
-        const std::vector<std::string> exported = WriteResultExports(result, exports, dir);
-        manifest = WriteReport(budget, result, run, options, dir);
+        // The store is written beside the rest (HDF5 is used by nothing
+        // else meanwhile: the exports do not use it). Its file is made
+        // here first, so that index.html links it whatever the timing.
+        const std::string store = (fs::path(dir) / io::kResultStoreFile).string();
+        if (!std::ofstream(store)) throw WriteError("cannot write " + store);
+        std::future<void> stored =
+            std::async(std::launch::async, [&] { io::WriteResultStore(budget, result, run, store); });
+        std::vector<std::string> exported;
+        try {
+          WriteResultFiles(budget, result, run, dir);
+          exported = WriteResultExports(result, exports, dir);
+          manifest = WriteReport(budget, result, run, options, dir);
+        } catch (...) {
+          stored.wait();
+          throw;
+        }
+        stored.get();
         manifest.files.push_back(io::kResultStoreFile);
         manifest.files.insert(manifest.files.end(), exported.begin(), exported.end());
       },
