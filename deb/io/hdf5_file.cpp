@@ -1,6 +1,5 @@
 #include "deb/io/hdf5_file.h"
 
-#include <dlfcn.h>
 #include <hdf5.h>
 
 #include <cmath>
@@ -9,6 +8,7 @@
 #include <mutex>
 
 #include "deb/core/error.h"
+#include "deb/core/shared_library.h"
 #include "deb/core/input_file.h"
 
 namespace deb::io {
@@ -50,52 +50,25 @@ struct LoadedHdf5 {
 
 LoadedHdf5 LoadHdf5() {
   LoadedHdf5 l;
-  // Never closed: HDF5 keeps process-wide state until exit.
-  void* const library = dlopen(DEB_HDF5_SONAME, RTLD_NOW | RTLD_LOCAL);
-  if (library == nullptr) {
-    const char* why = dlerror();
-    l.failure = why != nullptr ? why : "dlopen failed";
-    return l;
-  }
-  const auto resolve = [&](const char* name, auto& f) {
-    void* const symbol = dlsym(library, name);
-    if (symbol == nullptr) {
-      if (l.failure.empty()) l.failure = std::string(DEB_HDF5_SONAME " has no symbol ") + name;
-      return;
-    }
-    static_assert(sizeof f == sizeof symbol);
-    std::memcpy(&f, &symbol, sizeof f);
-  };
+  SharedLibrary library(DEB_HDF5_SONAME);
   Hdf5Api& a = l.api;
-#define DEB_HDF5_RESOLVE(f) resolve(#f, a.f);
+#define DEB_HDF5_RESOLVE(f) library.Resolve(#f, a.f);
   DEB_HDF5_FUNCTIONS(DEB_HDF5_RESOLVE)
 #undef DEB_HDF5_RESOLVE
   // The predefined types and classes are variables the library sets in
-  // H5open. Where the process already holds the library in its global scope
-  // and the program itself refers to one of them (a program linked with
-  // HDF5 that uses H5T_NATIVE_DOUBLE), the program has its own copy of the
-  // variable (a copy relocation), which the library sets, and the library's
-  // own stays unset: the library's code, like any, uses the first definition
-  // in the global scope. So does deb, and the library's only where there is
-  // none (the usual case: HDF5 loaded here alone, locally).
-  const auto resolve_variable = [&](const char* name, auto& p) {
-    if (void* const global = dlsym(RTLD_DEFAULT, name)) {
-      static_assert(sizeof p == sizeof global);
-      std::memcpy(&p, &global, sizeof p);
-      return;
-    }
-    resolve(name, p);
-  };
-  resolve_variable("H5T_NATIVE_DOUBLE_g", a.native_double);
-  resolve_variable("H5T_NATIVE_LLONG_g", a.native_int64);
-  resolve_variable("H5T_IEEE_F64LE_g", a.file_double);
-  resolve_variable("H5T_STD_I64LE_g", a.file_int64);
-  resolve_variable("H5T_C_S1_g", a.c_string);
-  resolve_variable("H5P_CLS_DATASET_CREATE_ID_g", a.dataset_create);
-  resolve_variable("H5P_CLS_GROUP_CREATE_ID_g", a.group_create);
-  resolve_variable("H5P_CLS_DATASET_XFER_ID_g", a.dataset_transfer_class);
-  resolve_variable("H5P_CLS_FILE_ACCESS_ID_g", a.file_access_class);
-  resolve_variable("H5P_CLS_FILE_CREATE_ID_g", a.file_create_class);
+  // H5open (SharedLibrary::ResolveVariable: a program linked with HDF5 that
+  // refers to H5T_NATIVE_DOUBLE holds the copy the library sets).
+  library.ResolveVariable("H5T_NATIVE_DOUBLE_g", a.native_double);
+  library.ResolveVariable("H5T_NATIVE_LLONG_g", a.native_int64);
+  library.ResolveVariable("H5T_IEEE_F64LE_g", a.file_double);
+  library.ResolveVariable("H5T_STD_I64LE_g", a.file_int64);
+  library.ResolveVariable("H5T_C_S1_g", a.c_string);
+  library.ResolveVariable("H5P_CLS_DATASET_CREATE_ID_g", a.dataset_create);
+  library.ResolveVariable("H5P_CLS_GROUP_CREATE_ID_g", a.group_create);
+  library.ResolveVariable("H5P_CLS_DATASET_XFER_ID_g", a.dataset_transfer_class);
+  library.ResolveVariable("H5P_CLS_FILE_ACCESS_ID_g", a.file_access_class);
+  library.ResolveVariable("H5P_CLS_FILE_CREATE_ID_g", a.file_create_class);
+  l.failure = library.failure();
   if (l.failure.empty() && a.H5open() < 0) l.failure = "H5open failed";
   // HDF5 prints its error stack on stderr by default: deb reports errors itself.
   if (l.failure.empty()) a.H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);

@@ -1,6 +1,5 @@
 #include "deb/io/mat_file.h"
 
-#include <dlfcn.h>
 #include <matio.h>
 
 #include <algorithm>
@@ -14,6 +13,7 @@
 #include <mutex>
 
 #include "deb/core/error.h"
+#include "deb/core/shared_library.h"
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
 #include "deb/core/number_text.h"
@@ -54,49 +54,31 @@ struct LoadedMatio {
   std::string failure;  // why matio could not be loaded; "" if it was
 };
 
-// Sets `f` to the function `name` of `library`; false if it has none.
-template <class Function>
-bool Resolve(void* library, const char* name, Function& f, std::string& failure) {
-  void* const symbol = dlsym(library, name);
-  if (symbol == nullptr) {
-    failure = std::string(DEB_MATIO_SONAME " has no function ") + name;
-    return false;
-  }
-  static_assert(sizeof f == sizeof symbol);
-  std::memcpy(&f, &symbol, sizeof f);
-  return true;
-}
-
 LoadedMatio LoadMatio() {
   LoadedMatio m;
-  // Never closed: HDF5 keeps process-wide state until exit.
-  void* const library = dlopen(DEB_MATIO_SONAME, RTLD_NOW | RTLD_LOCAL);
-  if (library == nullptr) {
-    const char* why = dlerror();
-    m.failure = why != nullptr ? why : "dlopen failed";
-    return m;
-  }
+  SharedLibrary library(DEB_MATIO_SONAME);
   MatioApi& a = m.api;
-  const bool all = Resolve(library, "Mat_Close", a.Close, m.failure) &&
-                   Resolve(library, "Mat_GetDir", a.GetDir, m.failure) &&
-                   Resolve(library, "Mat_GetVersion", a.GetVersion, m.failure) &&
-                   Resolve(library, "Mat_LogInitFunc", a.LogInitFunc, m.failure) &&
-                   Resolve(library, "Mat_Open", a.Open, m.failure) &&
-                   Resolve(library, "Mat_SizeOf", a.SizeOf, m.failure) &&
-                   Resolve(library, "Mat_VarFree", a.VarFree, m.failure) &&
-                   Resolve(library, "Mat_VarGetCell", a.VarGetCell, m.failure) &&
-                   Resolve(library, "Mat_VarGetNumberOfFields", a.VarGetNumberOfFields, m.failure) &&
-                   Resolve(library, "Mat_VarGetStructFieldByName", a.VarGetStructFieldByName, m.failure) &&
-                   Resolve(library, "Mat_VarGetStructFieldnames", a.VarGetStructFieldnames, m.failure) &&
-                   Resolve(library, "Mat_VarReadDataAll", a.VarReadDataAll, m.failure) &&
-                   Resolve(library, "Mat_VarReadInfo", a.VarReadInfo, m.failure) &&
-                   Resolve(library, "Mat_CreateVer", a.CreateVer, m.failure) &&
-                   Resolve(library, "Mat_VarCreate", a.VarCreate, m.failure) &&
-                   Resolve(library, "Mat_VarCreateStruct2", a.VarCreateStruct2, m.failure) &&
-                   Resolve(library, "Mat_VarSetCell", a.VarSetCell, m.failure) &&
-                   Resolve(library, "Mat_VarSetStructFieldByName", a.VarSetStructFieldByName, m.failure) &&
-                   Resolve(library, "Mat_VarWrite", a.VarWrite, m.failure);
+  const bool all = library.Resolve("Mat_Close", a.Close) &&
+                   library.Resolve("Mat_GetDir", a.GetDir) &&
+                   library.Resolve("Mat_GetVersion", a.GetVersion) &&
+                   library.Resolve("Mat_LogInitFunc", a.LogInitFunc) &&
+                   library.Resolve("Mat_Open", a.Open) &&
+                   library.Resolve("Mat_SizeOf", a.SizeOf) &&
+                   library.Resolve("Mat_VarFree", a.VarFree) &&
+                   library.Resolve("Mat_VarGetCell", a.VarGetCell) &&
+                   library.Resolve("Mat_VarGetNumberOfFields", a.VarGetNumberOfFields) &&
+                   library.Resolve("Mat_VarGetStructFieldByName", a.VarGetStructFieldByName) &&
+                   library.Resolve("Mat_VarGetStructFieldnames", a.VarGetStructFieldnames) &&
+                   library.Resolve("Mat_VarReadDataAll", a.VarReadDataAll) &&
+                   library.Resolve("Mat_VarReadInfo", a.VarReadInfo) &&
+                   library.Resolve("Mat_CreateVer", a.CreateVer) &&
+                   library.Resolve("Mat_VarCreate", a.VarCreate) &&
+                   library.Resolve("Mat_VarCreateStruct2", a.VarCreateStruct2) &&
+                   library.Resolve("Mat_VarSetCell", a.VarSetCell) &&
+                   library.Resolve("Mat_VarSetStructFieldByName", a.VarSetStructFieldByName) &&
+                   library.Resolve("Mat_VarWrite", a.VarWrite);
   if (!all) m.api = MatioApi{};
+  m.failure = library.failure();
   return m;
 }
 

@@ -1,6 +1,5 @@
 #include "deb/io/xlsx_file.h"
 
-#include <dlfcn.h>
 #include <xlsxwriter.h>
 
 #include <cmath>
@@ -11,6 +10,7 @@
 #include <mutex>
 
 #include "deb/core/error.h"
+#include "deb/core/shared_library.h"
 #include "deb/core/input_file.h"
 
 namespace deb::io {
@@ -43,42 +43,26 @@ struct LoadedXlsx {
   std::string failure;  // why libxlsxwriter could not be loaded; "" if it was
 };
 
-template <class Function>
-bool Resolve(void* library, const char* name, Function& f, std::string& failure) {
-  void* const symbol = dlsym(library, name);
-  if (symbol == nullptr) {
-    failure = std::string(DEB_XLSXWRITER_SONAME " has no function ") + name;
-    return false;
-  }
-  static_assert(sizeof f == sizeof symbol);
-  std::memcpy(&f, &symbol, sizeof f);
-  return true;
-}
-
 LoadedXlsx LoadXlsx() {
   LoadedXlsx x;
-  void* const library = dlopen(DEB_XLSXWRITER_SONAME, RTLD_NOW | RTLD_LOCAL);  // never closed
-  if (library == nullptr) {
-    const char* why = dlerror();
-    x.failure = why != nullptr ? why : "dlopen failed";
-    return x;
-  }
+  SharedLibrary library(DEB_XLSXWRITER_SONAME);
   XlsxApi& a = x.api;
-  const bool all = Resolve(library, "workbook_new_opt", a.WorkbookNewOpt, x.failure) &&
-                   Resolve(library, "workbook_add_worksheet", a.AddWorksheet, x.failure) &&
-                   Resolve(library, "workbook_add_format", a.AddFormat, x.failure) &&
-                   Resolve(library, "workbook_set_properties", a.SetProperties, x.failure) &&
-                   Resolve(library, "workbook_close", a.Close, x.failure) &&
-                   Resolve(library, "lxw_workbook_free", a.Free, x.failure) &&
-                   Resolve(library, "format_set_bold", a.SetBold, x.failure) &&
-                   Resolve(library, "format_set_bottom", a.SetBottom, x.failure) &&
-                   Resolve(library, "format_set_font_color", a.SetFontColor, x.failure) &&
-                   Resolve(library, "worksheet_write_number", a.WriteNumber, x.failure) &&
-                   Resolve(library, "worksheet_write_string", a.WriteString, x.failure) &&
-                   Resolve(library, "worksheet_freeze_panes", a.FreezePanes, x.failure) &&
-                   Resolve(library, "worksheet_set_column", a.SetColumn, x.failure) &&
-                   Resolve(library, "lxw_strerror", a.StrError, x.failure);
+  const bool all = library.Resolve("workbook_new_opt", a.WorkbookNewOpt) &&
+                   library.Resolve("workbook_add_worksheet", a.AddWorksheet) &&
+                   library.Resolve("workbook_add_format", a.AddFormat) &&
+                   library.Resolve("workbook_set_properties", a.SetProperties) &&
+                   library.Resolve("workbook_close", a.Close) &&
+                   library.Resolve("lxw_workbook_free", a.Free) &&
+                   library.Resolve("format_set_bold", a.SetBold) &&
+                   library.Resolve("format_set_bottom", a.SetBottom) &&
+                   library.Resolve("format_set_font_color", a.SetFontColor) &&
+                   library.Resolve("worksheet_write_number", a.WriteNumber) &&
+                   library.Resolve("worksheet_write_string", a.WriteString) &&
+                   library.Resolve("worksheet_freeze_panes", a.FreezePanes) &&
+                   library.Resolve("worksheet_set_column", a.SetColumn) &&
+                   library.Resolve("lxw_strerror", a.StrError);
   if (!all) x.api = XlsxApi{};
+  x.failure = library.failure();
   return x;
 }
 
