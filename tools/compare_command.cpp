@@ -17,6 +17,7 @@
 #include "deb/core/parallel.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/comparison_files.h"
+#include "deb/io/result_store.h"
 #include "deb/io/result_writer.h"
 #include "deb/report/comparison_documents.h"
 #include "deb/report/comparison_pdf.h"
@@ -58,9 +59,13 @@ Loaded Load(const std::string& input, const std::vector<BudgetOverride>& overrid
     const fs::path summary = p / "summary.json";
     if (!fs::exists(summary))
       throw InputError(input + ": a directory given to compare must hold summary.json (written by deb run)");
-    return {ReadSummaryFigures(summary.string(), p.filename().empty() ? p.parent_path().filename().string()
-                                                                      : p.filename().string()),
-            std::nullopt};
+    Loaded loaded{ReadSummaryFigures(summary.string(), p.filename().empty() ? p.parent_path().filename().string()
+                                                                            : p.filename().string()),
+                  std::nullopt};
+    // With its result store, a directory is drawn as a budget is.
+    const fs::path store = p / io::kResultStoreFile;
+    if (fs::is_regular_file(store)) loaded.result = io::ReadResultStore(store.string()).result;
+    return loaded;
   }
   if (p.extension() == ".json") {
     const std::string dir = fs::absolute(p).parent_path().filename().string();

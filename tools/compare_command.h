@@ -2,7 +2,8 @@
 // budget (evaluated here) or a result directory of `deb run` (its
 // summary.json is read). Every further argument is compared with the first;
 // each comparison is written, atomically, as compare.json, compare.md,
-// compare.html and compare.csv (and overlay plots when both are budgets)
+// compare.html and compare.csv (and overlay plots when both are budgets, or
+// result directories with their result store)
 // into reports/compare_<A>_vs_<B>/ (or --out for two arguments). With
 // --tolerance REL it is a regression gate: every figure that moved by more
 // than REL relative is printed, and the command fails (FiguresMoved).

@@ -59,6 +59,16 @@ TEST_CASE("deb compare of a budget with itself writes zero differences and ratio
   CHECK(k["a"] == "run_a");
   for (const auto& f : k["figures"])
     if (!f["ratio"].is_null()) CHECK(f["ratio"].get<double>() == doctest::Approx(1.0).epsilon(1e-15));
+  // Its result store draws the overlays as the budget does: the same data.
+  for (const char* stem : {"z_velocity_psd_overlay", "z_displacement_cps_overlay"}) {
+    CAPTURE(stem);
+    const std::string from_store = ReadAll(dir / "cmp" / "plots" / (std::string(stem) + ".csv"));
+    const std::string from_budget = ReadAll(out / "plots" / (std::string(stem) + ".csv"));
+    const auto data = [](const std::string& csv) { return csv.substr(csv.find("\n0.") + 1); };
+    REQUIRE(from_store.find("\n0.") != std::string::npos);
+    CHECK(data(from_store) == data(from_budget));
+    CHECK(fs::file_size(dir / "cmp" / "plots" / (std::string(stem) + ".png")) > 1000);
+  }
 
   // A directory without summary.json is invalid input, and nothing is written.
   fs::create_directories(dir / "empty");
