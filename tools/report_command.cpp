@@ -10,6 +10,7 @@
 #include "deb/core/error.h"
 #include "deb/io/result_store.h"
 #include "deb/report/report_writer.h"
+#include "tools/console_brief.h"
 #include "tools/report_flags.h"
 
 namespace deb::tools {
@@ -66,13 +67,14 @@ int ReportCommand::Run() const {
         exports.push_back(f);
   RunInfo info = stored.info;
   info.threads = o.threads;
+  if (!o.quiet) PrintBrief(stored.budget, stored.result, stored.info.seconds, report.digits);
   try {
     WriteReportDirectory(stored.budget, stored.result, info, report, out, exports);
   } catch (const InputError& e) {
     throw WriteError(e.what());  // found while writing: the report cannot be written
   }
   if (!o.quiet)
-    std::printf("report: %s (redrawn from %s: budget %s%s)\n", out.c_str(), store.string().c_str(),
+    std::printf("\nreport: %s (redrawn from %s: budget %s%s)\n", out.c_str(), store.string().c_str(),
                 stored.budget.name.c_str(),
                 info.budget_sha256.empty() ? "" : (", SHA-256 " + info.budget_sha256.substr(0, 12) + "...").c_str());
   return 0;
