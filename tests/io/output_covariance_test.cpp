@@ -191,6 +191,24 @@ TEST_CASE("a coloured source has no exact matrix, and says why") {
   CHECK(Has(r.covariance->exact_note, "not white"));
 }
 
+TEST_CASE("the matrices from the engine's response traces equal those from evaluating the paths again") {
+  // With traces the covariance reads each path's response from them; without
+  // (sweeps, sensitivities) it evaluates the path. The same h either way.
+  const Budget budget = LoadBudgetText(TwoMasses("{type: auto, min_hz: 0.1, max_hz: 1000}"), "c.yaml");
+  EngineOptions drawn, undrawn;
+  undrawn.response_traces = false;
+  const BudgetResult a = Evaluate(budget, drawn), b = Evaluate(budget, undrawn);
+  REQUIRE(a.traces);
+  REQUIRE_FALSE(b.traces);
+  const CovarianceResult &ca = *a.covariance, &cb = *b.covariance;
+  const double scale = ca.matrix.cwiseAbs().maxCoeff();
+  CHECK((ca.matrix - cb.matrix).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+  CHECK(std::abs(ca.matrix(0, 1)) > 1e-3 * scale);  // a cross term to compare
+  REQUIRE(ca.contributors.size() == cb.contributors.size());
+  for (std::size_t c = 0; c < ca.contributors.size(); ++c)
+    CHECK((ca.contributors[c].matrix - cb.contributors[c].matrix).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+}
+
 TEST_CASE("summary.json carries the matrices as the result holds them, and no covariance without a request") {
   const Budget budget = LoadBudgetText(TwoMasses("{type: auto, min_hz: 0.1, max_hz: 1000}"), "c.yaml");
   const BudgetResult r = Evaluate(budget);
