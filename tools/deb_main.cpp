@@ -228,6 +228,12 @@ int Check(const std::string& budget_file, const std::vector<deb::BudgetOverride>
     if (o.rms_max) std::printf(", rms_max %g", *o.rms_max);
     std::printf("\n");
   }
+  if (!budget.covariance.empty()) {  // validated with the budget: outputs that exist, once each, without a metric
+    std::string names;
+    for (const std::string& name : budget.covariance) names += (names.empty() ? "" : ", ") + name;
+    std::printf("covariance of %zu outputs: %s (deb run: summary.json and the reports)\n", budget.covariance.size(),
+                names.c_str());
+  }
   std::fflush(stdout);  // the warnings after the description, also when both go to one file
   for (const auto& w : plan.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
   if (sweep) {

@@ -988,9 +988,10 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
       throw InputError(Key("outputs", o, "references"), e.message());
     }
   }
-  if (!budget.covariance.empty()) result.covariance = ComputeOutputCovariance(budget, result, options.threads);
+  // The traces first: the covariance reads the paths' responses from them.
   if (options.response_traces)
     result.traces = std::make_shared<const ResponseTraces>(ComputeResponseTraces(budget, result, options.threads));
+  if (!budget.covariance.empty()) result.covariance = ComputeOutputCovariance(budget, result, options.threads);
   return result;
 }
 

@@ -7,6 +7,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/budget/path_response.h"
+#include "deb/budget/response_traces.h"
 #include "deb/core/error.h"
 #include "deb/core/integrate.h"
 #include "deb/core/suggest.h"
@@ -27,10 +28,12 @@ std::vector<Eigen::MatrixXcd> Transfers(const std::vector<PathResponse>& respons
     const PathResponse& r = responses[o];
     const std::size_t m = r.gain2.size();
     Eigen::MatrixXcd t(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
-    for (std::size_t k = 0; k < m; ++k)
+    for (std::size_t k = 0; k < m; ++k) {
+      DEB_DEMAND(r.gain2[k].size() == n && r.phase_rad[k].size() == n);
       for (std::size_t i = 0; i < n; ++i)
         t(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) =
             std::polar(std::sqrt(r.gain2[k][i]), r.phase_rad[k][i]);
+    }
     h.push_back(std::move(t));
   }
   return h;
@@ -133,8 +136,13 @@ CovarianceResult ComputeOutputCovariance(const Budget& budget, const BudgetResul
     const Eigen::MatrixXd tones = ToneCovariance(budget, result, ci, cov.index);
     Eigen::MatrixXd m = tones;
     if (!tonal) {
-      const std::vector<Eigen::MatrixXcd> h =
-          Transfers(ComputePathResponses(budget, result, ci, f, threads), cov.index, f.size());
+      // The engine's traces hold these responses on this grid when it keeps
+      // them (EngineOptions::response_traces): the path is evaluated once.
+      // Transfers rebuilds h from |h|^2 and arg h either way.
+      std::vector<PathResponse> evaluated;
+      if (!result.traces) evaluated = ComputePathResponses(budget, result, ci, f, threads);
+      const std::vector<PathResponse>& responses = result.traces ? result.traces->paths.at(ci) : evaluated;
+      const std::vector<Eigen::MatrixXcd> h = Transfers(responses, cov.index, f.size());
       const Eigen::MatrixXd l = GridCovariance(*source.spectrum, h, f, q);
       Eigen::VectorXd d(p);  // the engine's density variance over the linear rule's
       for (Eigen::Index a = 0; a < p; ++a) {

@@ -17,7 +17,9 @@
 //
 // The exact matrix, where every contributor has an exact variance on every
 // output of the set: C P C^T from one Lyapunov solve of the rows stacked
-// (PathAnalysis::ExactCovariance), plus the tones, summed over contributors.
+// (PathAnalysis::ExactCovariance; a modal path's in its modal closed form),
+// plus the tones, summed over contributors. The grid's responses h are read
+// from BudgetResult::traces where the engine kept them.
 //
 // Outputs with a `metric` have no covariance: a moving std is not a linear
 // function of the signal, and a moving average's PSD factor is a lobe average

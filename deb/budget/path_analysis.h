@@ -77,9 +77,11 @@ class PathAnalysis {
   // The exact covariance C P C^T of path rows `rows`, row i through
   // weightings[i] (null: none), under white input noise of two-sided
   // intensity `w_two_sided`: one Lyapunov solve of the rows and their
-  // weightings stacked (a modal path in its state-space form).
-  // @throws InputError as Exact (measured data, a modal path too large to
-  //   solve densely, poles, feedthrough, an unreliable solution).
+  // weightings stacked. A modal path without weightings takes the modal
+  // closed form (ModalOutputCovarianceMatrix), with weightings its
+  // state-space form.
+  // @throws InputError as Exact (measured data, a weighted modal path too
+  //   large to solve densely, poles, feedthrough, an unreliable solution).
   Eigen::MatrixXd ExactCovariance(const std::vector<int>& rows, const std::vector<const StateSpace*>& weightings,
                                   const Eigen::MatrixXd& w_two_sided) const;
 

@@ -69,6 +69,14 @@ int KindOrder(PlotKind k) {
   return 6;
 }
 
+// The covariance of the outputs the budget's `covariance:` lists, the table
+// index.html and report.md show below their summary; nothing without one.
+void AddCovarianceTable(const BudgetResult& result, int digits, std::vector<PdfBlock>* blocks) {
+  if (!result.covariance) return;
+  const Table covariance = CovarianceTable(*result.covariance, digits);
+  blocks->push_back(TableBlock(covariance.title, TypesetTable(covariance)));
+}
+
 }  // namespace
 
 std::string PdfFigureTerminal(PlotKind kind) {
@@ -191,6 +199,7 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
 
   b.push_back(Heading(1, "Overview"));
   b.push_back(TableBlock("Summary", TypesetTable(SummaryTable(result, in.digits))));
+  AddCovarianceTable(result, in.digits, &b);
   for (const Plot& p : plots)
     if (p.output < 0 && p.kind != PlotKind::kPath) figure(p);
 

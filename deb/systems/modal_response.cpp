@@ -150,8 +150,13 @@ void ModalResponse::AddModeParts(double f_hz, const std::vector<int>& columns, c
   }
 }
 
-ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector<int>& rows,
-                                      const Eigen::MatrixXd& w_two_sided) {
+namespace {
+
+// ModalOutputCovariance, and with `cross` also Y = M A (modes x rows, M the
+// modal covariance, A the rows' output shapes as columns), accumulated in the
+// same pass over the mode pairs: the covariance matrix is then A^T Y.
+ModalCovariance SolveModalCovariance(const ModalModel& model, const std::vector<int>& rows,
+                                     const Eigen::MatrixXd& w_two_sided, Eigen::MatrixXd* cross) {
   model.Validate();
   const int n = model.modes();
   const Eigen::Index m = model.phi_in.rows();
@@ -215,6 +220,7 @@ ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector
   const Eigen::MatrixXd w_phi = w_two_sided * model.phi_in;  // m x n
   Eigen::MatrixXd share = Eigen::MatrixXd::Zero(n, p);
   Eigen::VectorXd rounding = Eigen::VectorXd::Zero(p);
+  if (cross) *cross = Eigen::MatrixXd::Zero(n, p);
   for (int k = 0; k < n; ++k) {
     const Complex ak[2] = {pole[k], std::conj(pole[k])}, rk[2] = {res_pole[k], res_conj[k]};
     for (int l = 0; l <= k; ++l) {
@@ -236,6 +242,10 @@ ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector
         if (k != l) share(l, r) += t;
         rounding(r) += std::abs(a(k, r) * a(l, r)) * b;
       }
+      if (cross) {  // M_kl = M_lk = c
+        cross->row(k) += c * a.row(l);
+        if (k != l) cross->row(l) += c * a.row(k);
+      }
     }
   }
   ModalCovariance result;
@@ -253,6 +263,28 @@ ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector
     }
   }
   return result;
+}
+
+}  // namespace
+
+ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector<int>& rows,
+                                      const Eigen::MatrixXd& w_two_sided) {
+  return SolveModalCovariance(model, rows, w_two_sided, nullptr);
+}
+
+Eigen::MatrixXd ModalOutputCovarianceMatrix(const ModalModel& model, const std::vector<int>& rows,
+                                            const Eigen::MatrixXd& w_two_sided) {
+  Eigen::MatrixXd y;
+  const ModalCovariance own = SolveModalCovariance(model, rows, w_two_sided, &y);
+  const Eigen::Index p = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd a(model.modes(), p);
+  for (Eigen::Index i = 0; i < p; ++i) a.col(i) = model.phi_out.row(rows[static_cast<std::size_t>(i)]).transpose();
+  const Eigen::MatrixXd c = a.transpose() * y;
+  Eigen::MatrixXd cov = (c + c.transpose()) / 2.0;  // symmetric exactly, not to rounding
+  // The diagonal as ModalOutputCovariance sums it (its shares), so that it is
+  // each row's exact variance to the bit.
+  for (Eigen::Index i = 0; i < p; ++i) cov(i, i) = own.variance(i);
+  return cov;
 }
 
 }  // namespace deb

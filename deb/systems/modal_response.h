@@ -99,4 +99,12 @@ struct ModalCovariance {
 ModalCovariance ModalOutputCovariance(const ModalModel& model, const std::vector<int>& rows,
                                       const Eigen::MatrixXd& w_two_sided);
 
+// The covariance matrix of the output rows under the same noise (rows x
+// rows), from the same modal covariance M: E[y_r y_s] = sum_kl phi_out(r,k)
+// phi_out(s,l) M_kl, O(n^2 p) like the variances, no 2n-state Lyapunov
+// equation. Its diagonal is ModalOutputCovariance's variances to the bit.
+// @throws InputError as ModalOutputCovariance (each row's variance is checked).
+Eigen::MatrixXd ModalOutputCovarianceMatrix(const ModalModel& model, const std::vector<int>& rows,
+                                            const Eigen::MatrixXd& w_two_sided);
+
 }  // namespace deb

@@ -131,6 +131,14 @@ TEST_CASE("deb check validates and describes without writing anything") {
   CHECK(r.exit_code == 0);
   CHECK(r.out.find("budget single_axis_isolator: valid") != std::string::npos);
   CHECK(r.out.find("transmissibility") != std::string::npos);
+  CHECK(r.out.find("covariance") == std::string::npos);  // none asked for
+}
+
+TEST_CASE("deb check lists the outputs of a covariance request") {
+  const Command r = RunDeb("check " + ExampleBudget("nizamoglu2015_h210.yaml"));
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("\ncovariance of 4 outputs: x_velocity, beta_velocity, y_velocity, alpha_velocity (") !=
+        std::string::npos);
 }
 
 TEST_CASE("deb check and summary.json state the margins of every feedback loop") {

@@ -4,16 +4,19 @@
 // request's rules as located errors.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/result_writer.h"
+#include "deb/systems/lyapunov.h"
 
 namespace deb {
 namespace {
@@ -189,6 +192,78 @@ TEST_CASE("a coloured source has no exact matrix, and says why") {
   CHECK_FALSE(r.covariance->exact_matrix.has_value());
   CHECK(Has(r.covariance->exact_note, "contributor 'force' has no exact variance on output 'x'"));
   CHECK(Has(r.covariance->exact_note, "not white"));
+}
+
+TEST_CASE("the matrices from the engine's response traces equal those from evaluating the paths again") {
+  // With traces the covariance reads each path's response from them; without
+  // (sweeps, sensitivities) it evaluates the path. The same h either way.
+  const Budget budget = LoadBudgetText(TwoMasses("{type: auto, min_hz: 0.1, max_hz: 1000}"), "c.yaml");
+  EngineOptions drawn, undrawn;
+  undrawn.response_traces = false;
+  const BudgetResult a = Evaluate(budget, drawn), b = Evaluate(budget, undrawn);
+  REQUIRE(a.traces);
+  REQUIRE_FALSE(b.traces);
+  const CovarianceResult &ca = *a.covariance, &cb = *b.covariance;
+  // Each entry relative to its pair's scale sqrt(C_aa C_bb) (a in um, b in nm).
+  const auto differ = [](const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
+    double worst = 0.0;
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      for (Eigen::Index j = 0; j < x.cols(); ++j)
+        worst = std::max(worst, std::abs(x(i, j) - y(i, j)) / std::sqrt(x(i, i) * x(j, j)));
+    return worst;
+  };
+  CHECK(differ(ca.matrix, cb.matrix) <= 1e-12);
+  CHECK(std::abs(ca.correlation(0, 1)) > 0.05);  // a cross term to compare
+  REQUIRE(ca.contributors.size() == cb.contributors.size());
+  CHECK(differ(ca.contributors[0].matrix, cb.contributors[0].matrix) <= 1e-12);  // the density part (hum is tonal)
+}
+
+TEST_CASE("a modal path's exact matrix: its closed form equals the Lyapunov solve of its realisation") {
+  // Two modal paths (four and three modes) under white forces, one source
+  // with correlated channels; outputs in different units.
+  const std::string text =
+      "name: frame\ngrid: {type: auto, min_hz: 0.1, max_hz: 10000}\n"
+      "sources:\n"
+      "  - {name: f, unit: N, channels: [F, G], correlation: 0.5, spectrum: {type: flat, level: 1.0e-4}}\n"
+      "  - {name: g, unit: N, channels: [F, G], spectrum: {type: flat, level: 4.0e-6}}\n"
+      "paths:\n"
+      "  - {name: one, type: modal, frequencies_hz: [12, 40, 41, 150], damping: 0.02, input_shapes: {F: [0.3, "
+      "-0.5, 0.2, 0.7], G: [0.1, 0.4, -0.6, 0.2]}, output_shapes: {z: [1.0, 0.5, -0.3, 0.2], w: [-0.4, 0.9, 0.6, "
+      "-0.1]}, input_unit: N, output_unit: m}\n"
+      "  - {name: two, type: modal, frequencies_hz: [20, 90, 300], damping: 0.01, input_shapes: {F: [0.5, 0.2, "
+      "-0.3], G: [0.2, -0.7, 0.4]}, output_shapes: {z: [0.6, -0.2, 0.3], w: [0.8, 0.4, -0.5]},"
+      " input_unit: N, output_unit: m}\n"
+      "contributors:\n  - {name: one, source: f, path: one}\n  - {name: two, source: g, path: two}\n"
+      "outputs:\n  - {name: z, signal: z, unit: um}\n  - {name: w, signal: w, unit: nm}\n"
+      "covariance: [z, w]\n";
+  const BudgetResult r = Evaluate(LoadBudgetText(text, "m.yaml"));
+  REQUIRE(r.covariance.has_value());
+  REQUIRE(r.covariance->exact_matrix.has_value());
+  const Eigen::MatrixXd& exact = *r.covariance->exact_matrix;
+  // Independently: each path's 2n-state realisation through the Lyapunov
+  // solver, W = S0 C / 2 (C the channels' correlation), um and nm.
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(2, 2);
+  const std::pair<const char*, Eigen::Matrix2d> parts[] = {
+      {"one", (Eigen::Matrix2d() << 1.0, 0.5, 0.5, 1.0).finished() * 1.0e-4 / 2},
+      {"two", Eigen::Matrix2d::Identity() * 4.0e-6 / 2}};
+  Eigen::VectorXd to_units(2);  // m -> um, m -> nm
+  to_units << 1e6, 1e9;
+  for (const auto& part : parts) {
+    const Path& path = r.paths.at(part.first)->path();
+    const StateSpace rows = path.Rational().SelectOutputs({path.OutputIndex("z"), path.OutputIndex("w")});
+    const Eigen::MatrixXd x = OutputCovariance(rows, part.second);
+    dense += to_units.asDiagonal() * x * to_units.asDiagonal();
+  }
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) {
+      CAPTURE(a);
+      CAPTURE(b);
+      CHECK(std::abs(exact(a, b) - dense(a, b)) <= 1e-9 * std::sqrt(dense(a, a) * dense(b, b)));
+    }
+  CHECK(std::abs(dense(0, 1)) > 1e-2 * std::sqrt(dense(0, 0) * dense(1, 1)));  // correlated: the test can tell
+  for (int a = 0; a < 2; ++a)  // the exact variances the engine reports, to rounding
+    CHECK(Rel(exact(a, a), *r.outputs[a].contributors[0].exact_variance +
+                               *r.outputs[a].contributors[1].exact_variance) <= 1e-14);
 }
 
 TEST_CASE("summary.json carries the matrices as the result holds them, and no covariance without a request") {

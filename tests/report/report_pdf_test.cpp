@@ -264,3 +264,39 @@ TEST_CASE("the failing example's document keeps every box inside the margin; its
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("report.pdf has the covariance table of index.html and report.md below the summary, none without one") {
+  const Evaluated e = Evaluate("nizamoglu2015_h210.yaml");
+  REQUIRE(e.result.covariance.has_value());
+  ReportPdfInputs in;
+  in.budget = &e.budget;
+  in.result = &e.result;
+  in.digits = 4;
+  const Table expected = CovarianceTable(*e.result.covariance, 4);
+  const PdfDocumentSpec s = ReportPdfSpec(in);
+  std::vector<std::string> tables_in_overview;
+  const PdfBlock* found = nullptr;
+  std::string section;
+  for (const PdfBlock& b : s.blocks) {
+    if (b.kind == PdfBlockKind::kHeading && b.level == 1) section = b.text;
+    if (b.kind != PdfBlockKind::kTable || section != "Overview") continue;
+    tables_in_overview.push_back(b.text);
+    if (b.text == expected.title) found = &b;
+  }
+  CHECK(tables_in_overview == std::vector<std::string>{"Summary", expected.title});
+  REQUIRE(found);
+  CHECK(found->table.header == expected.header);
+  REQUIRE(found->table.rows.size() == 6);  // 4 outputs: 6 pairs
+  for (std::size_t r = 0; r < expected.rows.size(); ++r)
+    for (std::size_t c = 0; c < 4; ++c) CHECK(found->table.rows[r][c].text == expected.rows[r][c]);
+
+  const Evaluated plain = Evaluate("wafer_stage.yaml");
+  REQUIRE_FALSE(plain.result.covariance.has_value());
+  in.budget = &plain.budget;
+  in.result = &plain.result;
+  for (const PdfBlock& b : ReportPdfSpec(in).blocks) CHECK(b.text.find("Covariance") == std::string::npos);
+}
+
+}  // namespace deb::report

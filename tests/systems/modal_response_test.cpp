@@ -89,6 +89,38 @@ TEST_CASE("modal covariance equals the Lyapunov solution of the realisation, and
   }
 }
 
+TEST_CASE("modal covariance matrix equals the Lyapunov covariance of the realisation, cross terms included") {
+  for (ModalQuantity q : {ModalQuantity::kDisplacement, ModalQuantity::kVelocity}) {
+    CAPTURE(ToString(q));
+    const ModalModel model = Clustered(24, 3, 4, q, 11);
+    Eigen::MatrixXd l(3, 3);
+    l << 1.0, 0.0, 0.0, 0.4, 0.8, 0.0, -0.3, 0.2, 0.5;
+    const Eigen::MatrixXd w = l * l.transpose();
+    const std::vector<int> rows = {3, 0, 2, 0};  // out of order, one row twice
+    const Eigen::MatrixXd modal = ModalOutputCovarianceMatrix(model, rows, w);
+    const Eigen::MatrixXd lyap = OutputCovariance(ModalStateSpace(model).SelectOutputs(rows), w);
+    const ModalCovariance own = ModalOutputCovariance(model, rows, w);
+    REQUIRE(modal.rows() == 4);
+    REQUIRE(modal.cols() == 4);
+    CHECK(modal == modal.transpose());
+    double worst = 0.0;
+    for (Eigen::Index a = 0; a < 4; ++a) {
+      CHECK(modal(a, a) == own.variance(a));  // the variances, to the bit
+      for (Eigen::Index b = 0; b < 4; ++b) {
+        // Relative to the pair's scale sqrt(C_aa C_bb): a cross term may be
+        // small where the outputs are nearly uncorrelated.
+        const double scale = std::sqrt(lyap(a, a) * lyap(b, b));
+        worst = std::max(worst, std::abs(modal(a, b) - lyap(a, b)) / scale);
+      }
+    }
+    CHECK(worst < 1e-9);
+    // The repeated row: its cross term with itself is its variance.
+    CHECK(modal(1, 3) == doctest::Approx(modal(1, 1)).epsilon(1e-13));
+    // Correlated outputs, not a diagonal matrix: the test can tell.
+    CHECK(std::abs(modal(0, 1)) > 1e-3 * std::sqrt(modal(0, 0) * modal(1, 1)));
+  }
+}
+
 TEST_CASE("ten clustered modes at zeta 1e-3: the closed form matches the block-triangular Lyapunov solve") {
   // The cascade case of the exact-variance tests, here as ten modes of one
   // structure at 10 (1 + 0.03 k) Hz, one input, one output.
