@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "deb/report/budget/band_text.h"
 #include "deb/version.h"
@@ -88,11 +89,19 @@ PdfTable TypesetTable(const Table& table, std::size_t min_note_chars) {
   PdfTable t;
   t.header = table.header;
   t.numeric = table.numeric;
-  // Long text shared by several rows of a text column: a note to print once.
+  // Long text of a text column that goes below the table, once: shared by
+  // several rows, or in the column headed "note" even if one row holds it
+  // ("grid holds 99.96 % of the exact variance"), so that the note column
+  // holds marks only and its width goes to the names and numbers rather than
+  // to rows five lines tall.
   std::map<std::string, int> count;
+  std::set<std::string> below;
   for (const auto& row : table.rows)
     for (std::size_t c = 0; c < row.size(); ++c)
-      if (!(c < table.numeric.size() && table.numeric[c]) && Characters(row[c]) >= min_note_chars) ++count[row[c]];
+      if (!(c < table.numeric.size() && table.numeric[c]) && Characters(row[c]) >= min_note_chars) {
+        const bool note_column = c < table.header.size() && table.header[c] == "note";
+        if (++count[row[c]] > 1 || note_column) below.insert(row[c]);
+      }
   std::map<std::string, std::string> mark_of;
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     std::vector<PdfCell> cells;
@@ -106,8 +115,7 @@ PdfTable TypesetTable(const Table& table, std::size_t min_note_chars) {
           cell.text = text.substr(0, comma) + "\n" + text.substr(comma + 2);
       cell.alert = text == "FAIL";
       cell.bold = cell.bold || cell.alert;
-      const auto n = count.find(text);
-      if (n != count.end() && n->second > 1) {
+      if (below.count(text) != 0) {
         auto [it, added] = mark_of.emplace(text, NoteMark(mark_of.size() + 1));
         if (added) t.footnotes.push_back(it->second + " " + text);
         cell.text = it->second;

@@ -39,8 +39,9 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in);
 std::string PdfFigureTerminal(PlotKind kind);
 
 // A report table for typesetting: "FAIL" in red, emphasis in bold; a long
-// note (at least `min_note_chars` characters) that several rows share is
-// printed once below the table and each row carries its mark ("¹").
+// note (at least `min_note_chars` characters) that several rows share, or
+// any long note of the column headed "note", is printed once below the table
+// and each row carries its mark ("¹").
 PdfTable TypesetTable(const Table& table, std::size_t min_note_chars = 24);
 
 // The verdict box of page 1: one row per output with its requirement(s),

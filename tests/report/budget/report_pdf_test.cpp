@@ -35,7 +35,7 @@ std::vector<std::string> Headings(const PdfDocumentSpec& s, int level) {
 
 TEST_CASE("a long note shared by several rows is printed once below the table, each row carrying its mark") {
   Table t;
-  t.header = {"name", "rms", "note"};
+  t.header = {"name", "rms", "remark"};
   t.numeric = {false, true, false};
   const std::string shared = "the source is not white (no exact variance)";
   const std::string alone = "grid holds 99.96 % of the exact variance";
@@ -46,12 +46,33 @@ TEST_CASE("a long note shared by several rows is printed once below the table, e
   CHECK(p.footnotes[0] == "¹ " + shared);
   CHECK(p.rows[0][2].text == "¹");
   CHECK(p.rows[2][2].text == "¹");
-  CHECK(p.rows[1][2].text == alone);  // once only: stays in its row (wrapped there)
+  CHECK(p.rows[1][2].text == alone);  // once only, outside a note column: stays in its row (wrapped there)
   CHECK(p.rows[3][2].text == "ok");   // short: repeated as it is
   CHECK(p.rows[3][1].alert);
   CHECK(p.rows[3][1].bold);
   CHECK_FALSE(p.rows[0][1].alert);
   CHECK(p.numeric == t.numeric);
+}
+
+TEST_CASE("every long note of the column headed note is printed below the table, marked in the order of the rows") {
+  Table t;
+  t.header = {"contributor", "path", "rms", "note"};
+  t.numeric = {false, false, true, false};
+  const std::string shared = "the source is not white (no exact variance)";
+  const std::string alone = "grid holds 99.96 % of the exact variance";
+  const std::string long_path = "measurement_to_position_through_the_frame";  // long, once, not a note column
+  t.rows = {{"a", "p", "1.5", shared}, {"b", long_path, "0.25", alone}, {"c", "p", "0.5", shared},
+            {"d", "p", "0.1", "short note"}, {"total", "", "2.0", ""}};
+  const PdfTable p = TypesetTable(t);
+  REQUIRE(p.footnotes.size() == 2);
+  CHECK(p.footnotes[0] == "¹ " + shared);
+  CHECK(p.footnotes[1] == "² " + alone);
+  CHECK(p.rows[0][3].text == "¹");
+  CHECK(p.rows[1][3].text == "²");
+  CHECK(p.rows[2][3].text == "¹");
+  CHECK(p.rows[3][3].text == "short note");  // under 24 characters: stays
+  CHECK(p.rows[4][3].text == "");
+  CHECK(p.rows[1][1].text == long_path);
 }
 
 TEST_CASE("the verdict has a row per output: requirements, values, FAIL in red with what would meet it") {
