@@ -30,7 +30,8 @@ set(deb_config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/deb)
 # top-level CMakeLists.txt) go with the layers that link them.
 get_property(deb_top_targets DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY BUILDSYSTEM_TARGETS)
 list(FILTER deb_top_targets INCLUDE REGEX "^deb_dep_")
-install(TARGETS deb_core deb_units deb_spectra deb_signal deb_systems deb_models deb_budget deb_io deb_report
+install(TARGETS deb_core deb_units deb_spectra deb_signal deb_systems deb_models deb_budget deb_io deb_report_figure
+                deb_report_document deb_report_budget deb_report_measurement deb_report_compare deb_report
                 deb_lib ${deb_top_targets}
         EXPORT debTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})

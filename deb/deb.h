@@ -105,5 +105,5 @@
 #include "deb/io/sweep_yaml.h"
 
 // The report of `deb run` (WriteReportDirectory; gnuplot draws the plots).
-#include "deb/report/report_options.h"
-#include "deb/report/report_writer.h"
+#include "deb/report/budget/report_writer.h"
+#include "deb/report/figure/report_options.h"

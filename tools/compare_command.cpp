@@ -10,20 +10,20 @@
 #include <string>
 #include <vector>
 
-#include "deb/core/output_dir.h"
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
+#include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/comparison_files.h"
 #include "deb/io/result_store.h"
 #include "deb/io/result_writer.h"
-#include "deb/report/comparison_documents.h"
-#include "deb/report/comparison_pdf.h"
-#include "deb/report/overlay_plots.h"
-#include "deb/report/plot.h"
-#include "deb/report/report_tables.h"
+#include "deb/report/budget/report_tables.h"
+#include "deb/report/compare/comparison_documents.h"
+#include "deb/report/compare/comparison_pdf.h"
+#include "deb/report/compare/overlay_plots.h"
+#include "deb/report/figure/plot.h"
 #include "tools/budget_overrides_option.h"
 
 namespace deb::tools {

@@ -8,8 +8,8 @@
 
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
-#include "deb/report/plot.h"
-#include "deb/report/spectrum_plots.h"
+#include "deb/report/figure/plot.h"
+#include "deb/report/budget/spectrum_plots.h"
 
 namespace deb::tools {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "deb/core/error.h"
 #include "deb/io/result_store.h"
-#include "deb/report/report_writer.h"
+#include "deb/report/budget/report_writer.h"
 #include "tools/console_brief.h"
 #include "tools/report_flags.h"
 

@@ -12,7 +12,7 @@
 
 #include "deb/core/error.h"
 #include "deb/io/result_exports.h"
-#include "deb/report/report_options.h"
+#include "deb/report/figure/report_options.h"
 
 namespace deb::tools {
 

@@ -8,17 +8,17 @@
 #include <string>
 #include <vector>
 
-#include "deb/core/output_dir.h"
 #include "deb/budget/engine.h"
 #include "deb/budget/sensitivity.h"
 #include "deb/core/error.h"
+#include "deb/core/output_dir.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/result_writer.h"
 #include "deb/io/sweep_yaml.h"
-#include "deb/report/overlay_plots.h"
-#include "deb/report/plot.h"
-#include "deb/report/sensitivity_plots.h"
-#include "deb/report/report_tables.h"
+#include "deb/report/budget/report_tables.h"
+#include "deb/report/compare/overlay_plots.h"
+#include "deb/report/compare/sensitivity_plots.h"
+#include "deb/report/figure/plot.h"
 #include "tools/budget_overrides_option.h"
 
 namespace deb::tools {

@@ -3,7 +3,7 @@
 // PSD/ASD conversion, sensor self-noise, and Peterson's reference models.
 // Every command writes a spectrum CSV that `type: measured` budget sources
 // read back (deb/spectra/spectrum_csv.h), and a plot of it beside the CSV
-// (deb/report/measurement_plots.h, plot_files.h) unless --no-plots.
+// (deb/report/measurement/measurement_plots.h, plot_files.h) unless --no-plots.
 #pragma once
 
 #include <CLI/CLI.hpp>

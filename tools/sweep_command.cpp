@@ -7,16 +7,16 @@
 #include <fstream>
 #include <string>
 
-#include "deb/core/output_dir.h"
 #include "deb/budget/sweep.h"
+#include "deb/budget/sweep_ranking.h"
 #include "deb/core/error.h"
+#include "deb/core/output_dir.h"
 #include "deb/io/result_writer.h"
 #include "deb/io/sweep_yaml.h"
-#include "deb/report/overlay_plots.h"
-#include "deb/budget/sweep_ranking.h"
-#include "deb/report/plot.h"
-#include "deb/report/sweep_documents.h"
-#include "deb/report/sweep_plots.h"
+#include "deb/report/compare/overlay_plots.h"
+#include "deb/report/compare/sweep_documents.h"
+#include "deb/report/compare/sweep_plots.h"
+#include "deb/report/figure/plot.h"
 #include "tools/budget_overrides_option.h"
 
 namespace deb::tools {

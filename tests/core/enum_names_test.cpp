@@ -11,7 +11,7 @@
 #include "deb/core/extrapolation.h"
 #include "deb/models/isolation_model.h"
 #include "deb/models/isolation_system.h"
-#include "deb/report/report_options.h"
+#include "deb/report/figure/report_options.h"
 #include "deb/signal/frf_estimate.h"
 #include "deb/signal/spectral_estimate.h"
 #include "deb/signal/time_series_file.h"

@@ -1,0 +1,247 @@
+#include "deb/report/budget/loop_plots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <sstream>
+
+#include "deb/budget/response_traces.h"
+#include "deb/core/error.h"
+#include "deb/report/budget/spectrum_plots.h"
+#include "deb/report/figure/figure_script.h"
+#include "deb/report/figure/plot_style.h"
+#include "deb/systems/loop_margins.h"
+#include "deb/version.h"
+
+namespace deb::report {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr const char* kLoopColour = "#0e5274";  // L and S: a dark blue
+constexpr const char* kComplementColour = "#e66e53";  // T: orange
+constexpr const char* kMarginColour = "#b2182b";
+
+// Linear interpolation of y over log f at f_hz.
+double At(const std::vector<double>& f, const std::vector<double>& y, double f_hz) {
+  const auto hi = std::lower_bound(f.begin(), f.end(), f_hz);
+  if (hi == f.begin()) return y.front();
+  if (hi == f.end()) return y.back();
+  const std::size_t k = static_cast<std::size_t>(hi - f.begin());
+  const double t = std::log(f_hz / f[k - 1]) / std::log(f[k] / f[k - 1]);
+  return y[k - 1] + t * (y[k] - y[k - 1]);
+}
+
+FigureSeries Line(const std::string& name, const std::string& key, const std::string& data, std::size_t column,
+                  const std::string& colour) {
+  FigureSeries s;
+  s.name = name;
+  s.key = key;
+  s.data = data;
+  s.y_columns = {column};
+  s.colour = colour;
+  return s;
+}
+
+FigureAnnotation Level(double y, const std::string& key, const std::string& dash = "(6,4)") {
+  FigureAnnotation a;
+  a.kind = AnnotationKind::kHorizontalLine;
+  a.y0 = y;
+  a.colour = "#505050";
+  a.dash = dash;
+  a.width = 2.0;  // 1.5 pt in a PDF, as every line
+  a.key = key;
+  return a;
+}
+
+FigureAnnotation Marker(double x, double y, const std::string& label) {
+  FigureAnnotation a;
+  a.kind = AnnotationKind::kMarker;
+  a.x0 = x;
+  a.y0 = y;
+  a.colour = kMarginColour;
+  a.label = label;
+  return a;
+}
+
+}  // namespace
+
+std::vector<Plot> LoopPlots(const BudgetResult& result, int digits) {
+  std::vector<Plot> plots;
+  DEB_DEMAND(result.traces && result.traces->loops.size() == result.loops.size());
+  for (std::size_t loop = 0; loop < result.loops.size(); ++loop) {
+    const LoopResult& r = result.loops[loop];
+    const LoopTrace& trace = result.traces->loops[loop];
+    if (trace.f_hz.size() < 2) continue;
+    const std::vector<double>& f = trace.f_hz;
+    std::vector<std::complex<double>> l(f.size());
+    std::vector<double> mag(f.size()), phase(f.size()), s_mag(f.size()), t_mag(f.size());
+    double turns = 0.0;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      l[i] = trace.loop_gain[i];
+      mag[i] = std::abs(l[i]);
+      const double arg = std::arg(l[i]);
+      if (i) {
+        const double prev = phase[i - 1] * kPi / 180.0 - 2.0 * kPi * turns;
+        if (arg - prev > kPi) turns -= 1.0;
+        else if (arg - prev < -kPi) turns += 1.0;
+      }
+      phase[i] = (arg + 2.0 * kPi * turns) * 180.0 / kPi;
+      s_mag[i] = 1.0 / std::abs(1.0 + l[i]);
+      t_mag[i] = std::abs(l[i] / (1.0 + l[i]));
+    }
+    // Phase of L at the lowest frequency in (-360, 0]: a loop's phase is read
+    // against -180.
+    const double shift = 360.0 * std::ceil(phase.front() / 360.0);
+    for (double& p : phase) p -= shift;
+
+    const std::string stem = "loop_" + FileStem(r.plant) + "_" + FileStem(r.controller);
+    const std::string name = "loop " + Enhanced(r.plant) + " · " + Enhanced(r.controller);
+    std::string paths;
+    for (const std::string& p : r.paths) paths += (paths.empty() ? "" : ", ") + p;
+    std::ostringstream csv;
+    csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ": loop gain L = -sign G K of plant "
+        << r.plant << " and controller " << r.controller << " (sign " << r.sign
+        << "), S = 1/(1 + L), T = L/(1 + L); closing paths " << paths << "\n";
+    csv << "frequency_hz,abs_L,phase_L_deg,abs_S,abs_T,re_L,im_L\n";
+    for (std::size_t i = 0; i < f.size(); ++i)
+      csv << CsvNumber(f[i]) << ',' << CsvNumber(mag[i]) << ',' << CsvNumber(phase[i]) << ',' << CsvNumber(s_mag[i])
+          << ',' << CsvNumber(t_mag[i]) << ',' << CsvNumber(l[i].real()) << ',' << CsvNumber(l[i].imag()) << '\n';
+    const LoopMargins& m = r.margins;
+    FrequencyRange range{f.front(), f.back(), f.front() > result.grid.min_hz() || f.back() < result.grid.max_hz()};
+    const FigureAxis x_axis = FrequencyFigureAxis(range, result.grid, "where the loop's data are defined");
+
+    // Bode plot of L.
+    Plot bode;
+    bode.name = stem + "_bode";
+    bode.kind = PlotKind::kPath;
+    bode.csv = csv.str();
+    bode.caption = "Loop gain L = -sign G K of plant " + r.plant + " and controller " + r.controller +
+                   " (closing " + paths + "): magnitude over unwrapped phase, each gain crossover marked with its "
+                   "phase margin and each phase crossover with its gain margin.";
+    FigurePanel top, bottom;
+    top.x = bottom.x = x_axis;
+    top.y.label = "|L|";
+    top.y.scale = AxisScale::kLog;
+    top.y.format = "10^{%L}";
+    top.y2.shown = bottom.y2.shown = false;
+    top.series.push_back(Line("|L|", "|L|", bode.name + ".csv", 2, kLoopColour));
+    top.annotations.push_back(Level(1.0, "|L| = 1"));
+    top.key.title = "loop gain";
+    top.height = 1.3;
+    bottom.y.label = "arg L [°]";
+    bottom.y.format = "%g";
+    bottom.series.push_back(Line("arg L", "", bode.name + ".csv", 3, kLoopColour));
+    bottom.annotations.push_back(Level(-180.0, ""));
+    bottom.key.placement = KeyPlacement::kNone;
+    const auto [lo, hi] = std::minmax_element(phase.begin(), phase.end());
+    const double step = *hi - *lo > 360.0 ? 90.0 : 45.0;
+    bottom.y.min = step * std::floor(std::min(*lo, -180.0) / step - 1e-9);
+    bottom.y.max = step * std::ceil(std::max(*hi, -180.0) / step + 1e-9);
+    for (double t = *bottom.y.min; t <= *bottom.y.max + 1e-9; t += step) bottom.y.tics.push_back({t, Short(t)});
+    for (const GainCrossover& c : m.gain_crossovers)
+      top.annotations.push_back(
+          Marker(c.f_hz, 1.0, "PM " + SigLabel(c.phase_margin_deg, digits) + "° at " + SigLabel(c.f_hz, digits) + " Hz"));
+    for (const PhaseCrossover& c : m.phase_crossovers)
+      bottom.annotations.push_back(Marker(c.f_hz, At(f, phase, c.f_hz),
+                                          "GM " + SigLabel(c.gain_margin, digits) + " (" +
+                                              SigLabel(ToDecibel(c.gain_margin), digits) + " dB) at " +
+                                              SigLabel(c.f_hz, digits) + " Hz"));
+    bode.figure.title = name + ": loop gain";
+    bode.figure.panels = {std::move(top), std::move(bottom)};
+    bode.script = EmitFigure(bode.figure);
+
+    // |S| and |T|.
+    Plot st;
+    st.name = stem + "_sensitivity";
+    st.kind = PlotKind::kPath;
+    st.csv = bode.csv;
+    st.caption = "Sensitivity |S| = 1/|1 + L| and complementary sensitivity |T| = |L/(1 + L)| of the loop of " +
+                 r.plant + " and " + r.controller + "; the peak of |S| is 1 / modulus margin.";
+    FigurePanel sp;
+    sp.title = name + ": sensitivity and complementary sensitivity";
+    sp.x = x_axis;
+    sp.y.label = "magnitude";
+    sp.y.scale = AxisScale::kLog;
+    sp.y.format = "10^{%L}";
+    sp.y2.shown = false;
+    sp.series.push_back(Line("|S|", "|S|", st.name + ".csv", 4, kLoopColour));
+    FigureSeries t = Line("|T|", "|T|", st.name + ".csv", 5, kComplementColour);
+    t.dash = "(10,5)";
+    sp.series.push_back(t);
+    sp.annotations.push_back(Level(1.0, "1"));
+    if (m.modulus_margin > 0.0)  // 0: L passes through -1, |S| has no finite peak
+      sp.annotations.push_back(Marker(m.modulus_margin_f_hz, 1.0 / m.modulus_margin,
+                                    "max |S| " + SigLabel(1.0 / m.modulus_margin, digits) + " (modulus margin " +
+                                        SigLabel(m.modulus_margin, digits) + ") at " +
+                                        SigLabel(m.modulus_margin_f_hz, digits) + " Hz"));
+    double top_st = 1.0, bottom_st = HUGE_VAL;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      for (double v : {s_mag[i], t_mag[i]})
+        if (std::isfinite(v)) top_st = std::max(top_st, v);
+      for (double v : {s_mag[i], t_mag[i]})
+        if (v > 0.0 && std::isfinite(v)) bottom_st = std::min(bottom_st, v);
+    }
+    sp.y.max = std::pow(10.0, std::ceil(std::log10(top_st * 2.0)));
+    sp.y.min = std::min(std::max(std::pow(10.0, std::floor(std::log10(bottom_st))), *sp.y.max * 1e-8), 0.1);
+    sp.key.title = "";
+    st.figure.panels.push_back(std::move(sp));
+    st.script = EmitFigure(st.figure);
+
+    // Nyquist plot of L near -1, with its mirror image for negative frequencies.
+    Plot ny;
+    ny.name = stem + "_nyquist";
+    ny.kind = PlotKind::kPath;
+    ny.csv = bode.csv;
+    ny.caption = "Nyquist plot of L for the loop of " + r.plant + " and " + r.controller +
+                 " near the critical point -1 (dashed: negative frequencies), the unit circle and the circle of "
+                 "radius modulus margin around -1 that the curve touches.";
+    FigurePanel np;
+    np.title = name + ": Nyquist plot of L";
+    np.equal_axes = true;
+    np.x.label = "Re L";
+    np.y.label = "Im L";
+    np.x.min = -3.0;
+    np.x.max = 1.5;
+    np.y.min = -2.25;
+    np.y.max = 2.25;
+    np.x.format = np.y.format = "%g";
+    np.x.minor_grid = false;
+    np.y2.shown = false;
+    FigureSeries positive = Line("L", "L(j 2π f), f > 0", ny.name + ".csv", 7, kLoopColour);
+    positive.x_column = 6;
+    FigureSeries negative = positive;
+    negative.name = "L, f < 0";
+    negative.key = "f < 0";
+    negative.y_divisor = -1.0;  // the mirror image: Im L(-j w) = -Im L(j w)
+    negative.dash = "(6,4)";
+    negative.width = 2.0;
+    np.series = {positive, negative};
+    FigureAnnotation unit;
+    unit.kind = AnnotationKind::kCircle;
+    unit.x1 = 1.0;
+    unit.colour = "#808080";
+    unit.width = 2.0;
+    unit.key = "unit circle";
+    FigureAnnotation mm = unit;
+    mm.x0 = -1.0;
+    mm.x1 = m.modulus_margin;
+    mm.colour = kMarginColour;
+    mm.dash = kRequirementDash;
+    mm.width = 2.0;
+    mm.key = "modulus margin " + SigLabel(m.modulus_margin, digits);
+    FigureAnnotation minus_one = Marker(-1.0, 0.0, "-1");
+    minus_one.point_type = 2;  // a cross
+    minus_one.colour = "#000000";
+    np.annotations = {unit, mm, minus_one};
+    np.key.title = "";
+    ny.figure.panels.push_back(std::move(np));
+    ny.script = EmitFigure(ny.figure);
+
+    plots.push_back(std::move(bode));
+    plots.push_back(std::move(st));
+    plots.push_back(std::move(ny));
+  }
+  return plots;
+}
+
+}  // namespace deb::report

@@ -1,0 +1,133 @@
+#include "deb/report/budget/overview_plots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "deb/report/budget/spectrum_plots.h"
+#include "deb/report/figure/figure_script.h"
+#include "deb/report/figure/plot_style.h"
+#include "deb/units/unit.h"
+#include "deb/version.h"
+
+namespace deb::report {
+namespace {
+
+constexpr const char* kBarEdge = "#303030";
+constexpr std::size_t kPanelsPerPage = 8;
+
+}  // namespace
+
+std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
+  std::vector<Plot> plots;
+  const std::size_t outputs = result.outputs.size();
+  // Outputs spread evenly over the pages (7 outputs: 4 + 3, not 6 + 1).
+  const std::size_t pages = (outputs + kPanelsPerPage - 1) / kPanelsPerPage;
+  const std::size_t per_page = pages ? (outputs + pages - 1) / pages : 0;
+  for (std::size_t page = 0; page < pages; ++page) {
+    const std::size_t first = page * per_page, last = std::min(outputs, first + per_page);
+    const std::size_t panels = last - first;
+    Plot p;
+    p.name = pages == 1 ? "overview" : "overview_" + std::to_string(page + 1);
+    p.kind = PlotKind::kOverview;
+    p.caption = "RMS of every contributor (largest first) and the total per output, against the requirement where "
+                "there is one" +
+                std::string(pages == 1 ? "." : " (outputs " + std::to_string(first + 1) + "–" + std::to_string(last) + ").");
+
+    // Columns: 1 panel, 2 position, 3 rms, 4 label, descriptive text, 11 row (the bar's own id).
+    std::ostringstream csv;
+    csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name
+        << ": RMS per output and contributor (position: bar position in the panel; row: the bar)\n";
+    csv << "panel,position,rms,rms_label,output,unit,contributor,share_percent,rms_max,pass,row\n";
+    std::size_t row = 0;
+    const std::size_t cols = panels <= 2 ? panels : panels <= 4 ? 2 : panels <= 6 ? 3 : 4;
+    p.figure.title = "RMS per output and contributor" +
+                     std::string(pages > 1 ? " (" + std::to_string(page + 1) + "/" + std::to_string(pages) + ")" : "");
+    p.figure.columns = std::max<std::size_t>(cols, 2);  // a grid, also for one output
+    const std::string data = p.name + ".csv";
+    for (std::size_t o = first; o < last; ++o) {
+      const OutputResult& out = result.outputs[o];
+      const std::size_t n = out.contributors.size(), panel_index = o - first + 1;
+      const std::string unit = DisplayUnit(out.unit);
+      const std::vector<std::size_t> order = ShareOrder(out);
+      FigurePanel panel;
+      std::string status = "RMS " + SigLabel(out.rms(), digits) + " " + UnitLabel(unit);
+      if (out.rms_max)
+        status += std::string(out.pass() ? ": PASS" : ": FAIL") + " (requirement " + Short(*out.rms_max) + ")";
+      panel.title = Enhanced(out.name) + "\n" + status;
+      panel.title_colour = out.rms_max && !out.pass() ? kRequirementColour : "#202020";
+      panel.key.placement = KeyPlacement::kNone;
+      panel.x.min = 0.4;
+      panel.x.max = static_cast<double>(n) + 1.9;
+      panel.x.grid = panel.x.minor_grid = false;
+      const bool crowded = 1200.0 / static_cast<double>(cols) / static_cast<double>(n + 2) < 60.0;  // px per bar
+      panel.x.tic_rotation_deg = crowded ? 50 : (n > 3 || panels > 2) ? 30 : 0;
+      const double top = std::max(out.rms(), out.rms_max.value_or(0.0));
+      panel.y.min = 0.0;
+      panel.y.max = top > 0 ? top * (crowded ? 1.45 : 1.2) : 1.0;  // room for the values above the bars
+      panel.y.label = "RMS [" + UnitLabel(unit) + "]";
+      panel.y.format = "%g";
+      panel.y2.shown = false;
+      panel.bar_width = 0.7;
+      for (std::size_t i = 0; i <= n; ++i) {
+        const bool total = i == n;
+        const std::size_t c = total ? n : order[i];
+        const double position = total ? static_cast<double>(n) + 1.3 : static_cast<double>(i + 1);
+        const double var = total ? out.variance : out.contributors[c].variance;
+        ++row;
+        csv << panel_index << ',' << CsvNumber(position) << ',' << CsvNumber(std::sqrt(var)) << ','
+            << Sig(std::sqrt(var), digits) << ',' << CsvField(out.name) << ',' << CsvField(unit) << ','
+            << (total ? "total" : CsvField(out.contributors[c].name)) << ','
+            << CsvNumber(out.variance > 0 ? 100.0 * var / out.variance : 0.0) << ','
+            << (out.rms_max ? CsvNumber(*out.rms_max) : "") << ','
+            << (out.rms_max ? (out.pass() ? "pass" : "FAIL") : "") << ',' << row << '\n';
+        panel.x.tics.push_back({position, total ? "total" : Enhanced(out.contributors[c].name)});
+        FigureSeries bar;
+        bar.name = total ? "total" : out.contributors[c].name;
+        bar.kind = SeriesKind::kBars;
+        bar.data = data;
+        bar.x_column = 2;
+        bar.y_columns = {3};
+        bar.where_column = 11;
+        bar.where_value = static_cast<double>(row);
+        bar.edge_colour = kBarEdge;
+        if (total) {
+          bar.colour = kTotalColour;
+        } else {
+          const SeriesStyle st = ContributorStyle(c);
+          bar.colour = st.colour;
+          bar.fill_pattern = st.fill_pattern;
+          bar.hatch_colour = st.hatch_colour;
+        }
+        panel.series.push_back(bar);
+      }
+      if (out.rms_max) {
+        FigureAnnotation limit;
+        limit.kind = AnnotationKind::kHorizontalLine;
+        limit.y0 = *out.rms_max;
+        limit.colour = kRequirementColour;
+        limit.dash = kRequirementDash;
+        panel.annotations.push_back(limit);
+      }
+      FigureSeries values;  // last: over the requirement line
+      values.name = "values";
+      values.kind = SeriesKind::kLabels;
+      values.data = data;
+      values.x_column = 2;
+      values.y_columns = {3};
+      values.where_column = 1;
+      values.where_value = static_cast<double>(panel_index);
+      values.label_column = 4;
+      values.colour = "#202020";
+      values.labels_upright = crowded;
+      panel.series.push_back(values);
+      p.figure.panels.push_back(std::move(panel));
+    }
+    p.csv = csv.str();
+    p.script = EmitFigure(p.figure);
+    plots.push_back(std::move(p));
+  }
+  return plots;
+}
+
+}  // namespace deb::report

@@ -1,0 +1,280 @@
+#include "deb/report/budget/report_pdf.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "deb/report/budget/band_text.h"
+#include "deb/version.h"
+
+namespace deb::report {
+namespace {
+
+// Marks of merged notes: ¹ ² ³ ⁴ ... (superscript digits).
+std::string NoteMark(std::size_t k) {
+  static const char* const digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string mark;
+  for (const char c : std::to_string(k)) mark += digits[c - '0'];
+  return mark;
+}
+
+std::size_t Characters(const std::string& s) {
+  std::size_t n = 0;
+  for (char c : s) n += (c & 0xC0) != 0x80;
+  return n;
+}
+
+bool Fails(const OutputResult& o) {
+  bool fails = o.rms_max && !o.pass();
+  for (const BandRequirementResult& b : o.band_requirements) fails = fails || !b.pass();
+  return fails;
+}
+
+// The heading of an output's section, which its row of the verdict links to.
+std::string SectionTitle(const OutputResult& o) { return "Output " + o.name; }
+
+bool HasRequirement(const OutputResult& o) { return o.rms_max || !o.band_requirements.empty(); }
+
+// "FAIL: RMS 12.3 nm, limit 5 nm; 1–10 Hz: RMS 2.1 nm, limit 3 nm (pass)".
+std::string VerdictLine(const OutputResult& o) {
+  const std::string unit = UnitText(o.unit);
+  if (!HasRequirement(o)) return "No requirement: RMS " + Sig(o.rms(), 4) + " " + unit + ".";
+  std::string line = Fails(o) ? "FAIL" : "PASS";
+  std::string sep = ": ";
+  if (o.rms_max) {
+    line += sep + "RMS " + Sig(o.rms(), 4) + " " + unit + " against a limit of " + Short(*o.rms_max) + " " + unit +
+            (o.pass() ? " (met)" : " (exceeded)");
+    sep = "; ";
+  }
+  for (const BandRequirementResult& b : o.band_requirements) {
+    line += sep + BandText(b.requirement.lo_hz, b.requirement.hi_hz) + ": RMS " + Sig(b.rms(), 4) + " " + unit +
+            " against " + Short(b.requirement.rms_max) + " " + unit + (b.pass() ? " (met)" : " (exceeded)");
+    sep = "; ";
+  }
+  return line + ".";
+}
+
+// Room an output's section needs to start below the previous one rather than on a new page.
+constexpr double kOutputSectionRoomPt = 250.0;
+
+// Plots of an output in reading order: CPS, reverse CPS, spectrum, bands.
+int KindOrder(PlotKind k) {
+  switch (k) {
+    case PlotKind::kOverview: return 0;
+    case PlotKind::kCps: return 1;
+    case PlotKind::kReverseCps: return 2;
+    case PlotKind::kSpectrum: return 3;
+    case PlotKind::kBands: return 4;
+    case PlotKind::kPath: return 5;
+  }
+  return 6;
+}
+
+// The covariance of the outputs the budget's `covariance:` lists, the table
+// index.html and report.md show below their summary; nothing without one.
+void AddCovarianceTable(const BudgetResult& result, int digits, std::vector<PdfBlock>* blocks) {
+  if (!result.covariance) return;
+  const Table covariance = CovarianceTable(*result.covariance, digits);
+  blocks->push_back(TableBlock(covariance.title, TypesetTable(covariance)));
+}
+
+}  // namespace
+
+std::string PdfFigureTerminal(PlotKind kind) {
+  // Placed across the text width (A4 less two 18 mm margins, 481 pt), a
+  // 662 px wide SVG is scaled by 0.727: the plots' base font of 11 px is set
+  // at 8 pt and their titles (14 px) at 10 pt; the fonts the plot scripts ask
+  // for keep their proportions to each other and to the canvas. linewidth
+  // 2.1 puts a line of width 1 at 1.53 pt on paper (the thinnest data line,
+  // 1.1, at 1.68 pt; only the grid is lighter). Two fit on a page; the
+  // overview's panels, with their rotated names, get most of one.
+  const char* size = kind == PlotKind::kOverview ? "662,680" : "662,420";
+  return std::string("set terminal svg enhanced size ") + size +
+         " font 'DejaVu Sans,11' linewidth 2.1 background '#ffffff'\n";
+}
+
+PdfTable TypesetTable(const Table& table, std::size_t min_note_chars) {
+  PdfTable t;
+  t.header = table.header;
+  t.numeric = table.numeric;
+  // Long text of a text column that goes below the table, once: shared by
+  // several rows, or in the column headed "note" even if one row holds it
+  // ("grid holds 99.96 % of the exact variance"), so that the note column
+  // holds marks only and its width goes to the names and numbers rather than
+  // to rows five lines tall.
+  std::map<std::string, int> count;
+  std::set<std::string> below;
+  for (const auto& row : table.rows)
+    for (std::size_t c = 0; c < row.size(); ++c)
+      if (!(c < table.numeric.size() && table.numeric[c]) && Characters(row[c]) >= min_note_chars) {
+        const bool note_column = c < table.header.size() && table.header[c] == "note";
+        if (++count[row[c]] > 1 || note_column) below.insert(row[c]);
+      }
+  std::map<std::string, std::string> mark_of;
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    std::vector<PdfCell> cells;
+    for (std::size_t c = 0; c < table.rows[r].size(); ++c) {
+      const std::string& text = table.rows[r][c];
+      PdfCell cell{text, r < table.emphasis.size() && c < table.emphasis[r].size() && table.emphasis[r][c], false};
+      // A number with words after it ("1.83×, each of top 3"): the words on
+      // a line of their own, so that they do not widen the column.
+      if (c < table.numeric.size() && table.numeric[c])
+        if (const std::size_t comma = text.find(", "); comma != std::string::npos)
+          cell.text = text.substr(0, comma) + "\n" + text.substr(comma + 2);
+      cell.alert = text == "FAIL";
+      cell.bold = cell.bold || cell.alert;
+      if (below.count(text) != 0) {
+        auto [it, added] = mark_of.emplace(text, NoteMark(mark_of.size() + 1));
+        if (added) t.footnotes.push_back(it->second + " " + text);
+        cell.text = it->second;
+      }
+      cells.push_back(cell);
+    }
+    t.rows.push_back(std::move(cells));
+  }
+  return t;
+}
+
+PdfTable VerdictTable(const BudgetResult& result) {
+  PdfTable t;
+  t.boxed = true;
+  t.header = {"output", "requirement", "value", "verdict", "what would meet it"};
+  t.numeric = {false, false, false, false, false};
+  bool any_fails = false;
+  for (const OutputResult& o : result.outputs) any_fails = any_fails || Fails(o);
+  for (const OutputResult& o : result.outputs) {
+    const std::string unit = UnitText(o.unit);
+    std::string requirement, value;
+    const auto add = [](std::string* s, const std::string& line) { *s += (s->empty() ? "" : "\n") + line; };
+    if (o.rms_max) {
+      add(&requirement, "RMS ≤ " + Short(*o.rms_max) + " " + unit);
+      add(&value, Sig(o.rms(), 4) + " " + unit);
+    }
+    for (const BandRequirementResult& b : o.band_requirements) {
+      add(&requirement, BandText(b.requirement.lo_hz, b.requirement.hi_hz) + ": RMS ≤ " +
+                            Short(b.requirement.rms_max) + " " + unit);
+      add(&value, Sig(b.rms(), 4) + " " + unit);
+    }
+    if (!HasRequirement(o)) {
+      requirement = "none";
+      value = Sig(o.rms(), 4) + " " + unit;
+    }
+    const bool fails = Fails(o);
+    PdfCell verdict{HasRequirement(o) ? (fails ? "FAIL" : "PASS") : "–", true, fails};
+    const std::string guidance = fails ? GuidanceText(o, result.grid) : "";
+    t.rows.push_back({{o.name, true, false, SectionTitle(o)}, {requirement}, {value}, verdict,
+                      {guidance.empty() ? "–" : guidance}});
+    if (!any_fails) t.rows.back().pop_back();  // nothing to meet: no column for it
+  }
+  if (!any_fails) {
+    t.header.pop_back();
+    t.numeric.pop_back();
+  }
+  return t;
+}
+
+PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
+  const Budget& budget = *in.budget;
+  const BudgetResult& result = *in.result;
+  PdfDocumentSpec s;
+  s.title = budget.name + ": dynamic error budget";
+  s.subject = budget.description;
+  s.create_date = in.create_date;
+  s.footer = "deb " + std::string(DEB_VERSION) + " · " + budget.name +
+             (in.sha256.empty() ? "" : " · SHA-256 " + in.sha256.substr(0, 12));
+  auto& b = s.blocks;
+
+  // Page 1: what, from which file, and the verdict.
+  b.push_back(Heading(0, budget.name));
+  if (!budget.description.empty()) b.push_back(Paragraph(budget.description, 10.5));
+  PdfTable facts;
+  facts.numeric = {false, false};
+  for (const auto& [label, value] : in.facts.items) facts.rows.push_back({{label, true, false}, {value}});
+  b.push_back(TableBlock("", facts));
+  b.push_back(TableBlock("Verdict", VerdictTable(result)));
+  if (const std::size_t n = result.warnings.size(); n > 0)
+    b.push_back(Paragraph("The evaluation raised " + std::to_string(n) + (n == 1 ? " warning" : " warnings") +
+                              ": see Warnings and notes.",
+                          9.5, true));
+  b.push_back(PageBreak());
+  b.push_back(Heading(1, "Contents"));
+  b.push_back(Contents());
+  b.push_back(PageBreak());
+
+  const auto figure = [&](const Plot& p) { b.push_back(Figure(in.figure_dir + "/" + p.name + ".svg", p.caption)); };
+  const std::vector<Plot> none;
+  const std::vector<Plot>& plots = in.plots ? *in.plots : none;
+
+  b.push_back(Heading(1, "Overview"));
+  b.push_back(TableBlock("Summary", TypesetTable(SummaryTable(result, in.digits))));
+  AddCovarianceTable(result, in.digits, &b);
+  for (const Plot& p : plots)
+    if (p.output < 0 && p.kind != PlotKind::kPath) figure(p);
+
+  for (std::size_t i = 0; i < result.outputs.size(); ++i) {
+    const OutputResult& o = result.outputs[i];
+    // A new page unless a third of one is left: the heading, the verdict and the table's first rows fit there.
+    b.push_back(PageBreak(kOutputSectionRoomPt));
+    b.push_back(Heading(1, SectionTitle(o)));
+    b.push_back(Paragraph(VerdictLine(o), 10.0, true, Fails(o)));
+    if (Fails(o))
+      if (const std::string g = GuidanceText(o, result.grid); !g.empty()) b.push_back(Paragraph(g, 9.5));
+    const Table contributors = ContributorTable(o, in.digits);
+    b.push_back(TableBlock(contributors.title, TypesetTable(contributors)));
+    if (const Table groups = GroupTable(o, in.digits); !groups.rows.empty())
+      b.push_back(TableBlock(groups.title, TypesetTable(groups)));
+    if (const Table refs = ReferenceTable(o, in.digits); !refs.rows.empty())
+      b.push_back(TableBlock(refs.title, TypesetTable(refs)));
+    if (const Table modes = ModeTable(o); !modes.rows.empty())
+      b.push_back(TableBlock(modes.title, TypesetTable(modes)));
+    std::vector<const Plot*> mine;
+    for (const Plot& p : plots)
+      if (p.output == static_cast<int>(i)) mine.push_back(&p);
+    std::stable_sort(mine.begin(), mine.end(),
+                     [](const Plot* a, const Plot* z) { return KindOrder(a->kind) < KindOrder(z->kind); });
+    bool spectra = false, bands = false, paths = false;
+    for (const Plot* p : mine) {
+      if (KindOrder(p->kind) <= 3 && !spectra) {
+        b.push_back(Heading(2, "Spectra of " + o.name));
+        spectra = true;
+      }
+      if (p->kind == PlotKind::kBands && !bands) {
+        b.push_back(Heading(2, "Bands of " + o.name));
+        const Table band = BandTable(o, in.digits);
+        b.push_back(TableBlock(band.title, TypesetTable(band)));
+        bands = true;
+      }
+      if (p->kind == PlotKind::kPath && !paths) {
+        b.push_back(Heading(2, "Paths to " + o.name));
+        paths = true;
+      }
+      figure(*p);
+    }
+    if (!bands) {
+      const Table band = BandTable(o, in.digits);
+      b.push_back(TableBlock(band.title, TypesetTable(band)));
+    }
+  }
+
+  // Loop plots belong to no output: a section of their own.
+  bool loops = false;
+  for (const Plot& p : plots) {
+    if (p.output >= 0 || p.kind != PlotKind::kPath) continue;
+    if (!loops) {
+      b.push_back(PageBreak());
+      b.push_back(Heading(1, "Feedback loops"));
+      loops = true;
+    }
+    figure(p);
+  }
+
+  b.push_back(PageBreak());
+  b.push_back(Heading(1, "Warnings and notes"));
+  if (result.warnings.empty()) b.push_back(Paragraph("The evaluation raised no warning."));
+  for (const std::string& w : result.warnings) b.push_back(Bullet(w));
+  b.push_back(Heading(1, "Conventions"));
+  for (const std::string& c : in.facts.conventions) b.push_back(Bullet(c));
+  return s;
+}
+
+}  // namespace deb::report

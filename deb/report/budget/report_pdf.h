@@ -1,0 +1,51 @@
+// Internal: not part of the public API.
+// report.pdf as a document: page 1 names the budget, its file and digest
+// and gives the verdict (one row per output: requirements, values,
+// PASS/FAIL and, when failing, what would fix it); then the contents, an
+// overview, one section per output (verdict line, tables, its plots grouped
+// by kind, then its paths) and the warnings and conventions. This layer
+// decides what goes where; pdf_document.h typesets and draws it.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/budget/engine.h"
+#include "deb/report/budget/report_tables.h"
+#include "deb/report/document/pdf_document.h"
+#include "deb/report/figure/plot.h"
+
+namespace deb::report {
+
+struct ReportPdfInputs {
+  const Budget* budget = nullptr;
+  const BudgetResult* result = nullptr;
+  ReportFacts facts;
+  std::string sha256;                  // of the budget file; "" when unknown
+  std::string create_date;             // ISO 8601, the report's date
+  const std::vector<Plot>* plots = nullptr;
+  std::string figure_dir;              // holds <plot name>.svg drawn with PdfFigureTerminal
+  int digits = 4;                      // significant digits of the tables (deb run --digits)
+};
+
+// The document: its blocks, metadata and page footer.
+PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in);
+
+// gnuplot's terminal for a figure of report.pdf: an SVG that, placed across
+// the text width, sets a line of width 1 in a plot script at >= 1.5 pt on
+// paper and the plots' base font at 8 pt.
+std::string PdfFigureTerminal(PlotKind kind);
+
+// A report table for typesetting: "FAIL" in red, emphasis in bold; a long
+// note (at least `min_note_chars` characters) that several rows share, or
+// any long note of the column headed "note", is printed once below the table
+// and each row carries its mark ("¹").
+PdfTable TypesetTable(const Table& table, std::size_t min_note_chars = 24);
+
+// The verdict box of page 1: one row per output with its requirement(s),
+// value(s), PASS/FAIL and, for a failing output, GuidanceText.
+PdfTable VerdictTable(const BudgetResult& result);
+
+}  // namespace deb::report

@@ -1,0 +1,403 @@
+#include "deb/report/budget/report_tables.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "deb/budget/allocation.h"
+#include "deb/budget/failure_guidance.h"
+#include "deb/budget/groups.h"
+#include "deb/report/budget/band_text.h"
+#include "deb/report/budget/spectrum_plots.h"
+#include "deb/report/figure/plot.h"
+#include "deb/units/unit.h"
+#include "deb/version.h"
+
+namespace deb::report {
+namespace {
+
+
+// Characters of a UTF-8 string (for alignment of µ, –, …).
+std::size_t Width(const std::string& s) {
+  return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+
+std::string Shorten(const std::string& s, std::size_t max) {
+  if (Width(s) <= max) return s;
+  std::string out;
+  std::size_t chars = 0;
+  for (char c : s) {
+    if ((c & 0xC0) != 0x80 && ++chars == max) break;
+    out += c;
+  }
+  return out + "…";
+}
+
+std::string MarkdownEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '|' || c == '*' || c == '_' || c == '\\' || c == '`' || c == '[' || c == ']' || c == '<') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+bool Emphasised(const Table& t, std::size_t r, std::size_t c) {
+  return r < t.emphasis.size() && c < t.emphasis[r].size() && t.emphasis[r][c];
+}
+
+}  // namespace
+
+Table SummaryTable(const BudgetResult& result, int digits) {
+  Table t;
+  t.title = "Summary";
+  t.header = {"output", "unit", "RMS", "requirement", "margin", "status", "largest contributor"};
+  t.numeric = {false, false, true, true, true, false, false};
+  for (const OutputResult& o : result.outputs) {
+    std::string largest = "–";
+    if (!o.contributors.empty()) {
+      const std::size_t c = ShareOrder(o).front();
+      largest = o.contributors[c].name + " (" + Share(o.contributors[c].variance, o.variance) + ")";
+    }
+    t.rows.push_back({o.name, UnitText(o.unit), Sig(o.rms(), digits), o.rms_max ? Short(*o.rms_max) : "–",
+                      o.rms_max ? Sig(*o.rms_max - o.rms(), digits) : "–", o.rms_max ? (o.pass() ? "pass" : "FAIL") : "–",
+                      largest});
+    t.emphasis.push_back({false, false, false, false, false, o.rms_max && !o.pass(), false});
+    for (const BandRequirementResult& b : o.band_requirements) {
+      std::string in_band = "–";
+      if (!o.contributors.empty() && b.variance > 0.0) {
+        const std::vector<double> v = VarianceWithin(o, result.grid, b.requirement.lo_hz, b.requirement.hi_hz);
+        const std::size_t c = static_cast<std::size_t>(std::max_element(v.begin(), v.end()) - v.begin());
+        in_band = o.contributors[c].name + " (" + Share(v[c], b.variance) + ")";
+      }
+      t.rows.push_back({o.name + ", " + BandText(b.requirement.lo_hz, b.requirement.hi_hz), UnitText(o.unit),
+                        Sig(b.rms(), digits), Short(b.requirement.rms_max), Sig(b.requirement.rms_max - b.rms(), digits),
+                        b.pass() ? "pass" : "FAIL", in_band});
+      t.emphasis.push_back({false, false, false, false, false, !b.pass(), false});
+    }
+  }
+  return t;
+}
+
+Table ContributorTable(const OutputResult& o, int digits) {
+  Table t;
+  t.title = "Contributors to " + o.name + " [" + UnitText(o.unit) + "]" +
+            (o.metric ? ", " + o.metric->Describe() : std::string());
+  t.header = {"contributor", "source", "path", "RMS", "share", "exact RMS"};
+  t.numeric = {false, false, false, true, true, true};
+  // A failing output: the reduction of each contributor's RMS that meets the
+  // limit, alone, or together with the rest of the smallest set of largest
+  // contributors that can (failure_guidance.h); else the factor k on the
+  // source's PSD that puts the output at its limit.
+  const bool fails = o.rms_max && !o.pass();
+  std::optional<ContributorReduction> least;
+  if (fails) {
+    least = SmallestReduction(o);
+    t.title += "; must drop: the factor on the contributor's RMS that meets the limit alone, or \"each of "
+               "top n\" with the n largest";
+  }
+  if (o.rms_max) {
+    t.header.push_back(fails ? "must drop" : "allocation k");
+    t.numeric.push_back(true);
+  }
+  t.header.push_back("note");
+  t.numeric.push_back(false);
+  for (std::size_t c : ShareOrder(o)) {
+    const ContributorResult& cr = o.contributors[c];
+    std::string note = cr.exact_note;
+    if (cr.exact_variance && *cr.exact_variance > 0.0)
+      note = "grid holds " + Sig(100.0 * cr.variance / *cr.exact_variance, digits) + " % of the exact variance";
+    std::vector<std::string> row = {cr.name, cr.source, cr.path, Sig(std::sqrt(cr.variance), digits),
+                                    Share(cr.variance, o.variance),
+                                    cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), digits) : "–"};
+    if (fails) {
+      const Allocation a = AllocationFactor(o, c);
+      const auto in_least = std::find(least->contributors.begin(), least->contributors.end(), c);
+      if (a.factor && *a.factor > 0.0)
+        row.push_back(Sig(1.0 / std::sqrt(*a.factor), digits) + "×");
+      else if (in_least != least->contributors.end() && least->rms_factor)
+        row.push_back(Sig(*least->rms_factor, digits) + "×, each of top " + std::to_string(least->contributors.size()));
+      else if (in_least != least->contributors.end())
+        row.push_back("remove, with top " + std::to_string(least->contributors.size()));
+      else
+        row.push_back("–");
+    } else if (o.rms_max) {
+      const Allocation a = AllocationFactor(o, c);
+      row.push_back(a.factor ? Sig(*a.factor, digits) : "–");
+      if (!a.factor) note += std::string(note.empty() ? "" : "; ") + "no allocation: " + a.note;
+    }
+    row.push_back(note);
+    t.rows.push_back(row);
+  }
+  std::vector<std::string> total = {"total", "", "", Sig(o.rms(), digits), o.variance > 0 ? "100 %" : "–", ""};
+  if (o.rms_max) total.push_back("");
+  total.push_back("");
+  t.rows.push_back(total);
+  return t;
+}
+
+std::string GuidanceText(const OutputResult& o, const FrequencyGrid& grid) {
+  const std::optional<FailureGuidance> g = GuideFailure(o, grid);
+  return g ? GuidanceSentence(o, *g, UnitText(o.unit)) + "." : std::string();
+}
+
+Table ModeTable(const OutputResult& o) {
+  Table t;
+  t.title = "Modes carrying the variance of " + o.name +
+            " (each mode's cross-spectrum with the output; the shares of all modes add up to 100 %)";
+  t.header = {"contributor", "mode", "f_n [Hz]", "zeta", "share", "of"};
+  t.numeric = {false, true, true, true, true, false};
+  for (const ContributorResult& c : o.contributors)
+    for (const ModeShare& m : c.top_modes)
+      t.rows.push_back({c.name, std::to_string(m.mode), Sig(m.f_hz, 4), Sig(m.zeta, 2), Sig(100.0 * m.share, 3) + " %",
+                        c.top_modes_of == ModeSplit::kExactVariance ? "exact variance" : "grid variance"});
+  return t;
+}
+
+Table GroupTable(const OutputResult& o, int digits) {
+  Table t;
+  t.title = "Groups of " + o.name + " [" + UnitText(o.unit) + "]: each the sum of its members at any depth";
+  t.header = {"group", "members", "RMS", "share"};
+  t.numeric = {false, false, true, true};
+  for (const BandResult& b : o.bands) {
+    t.header.push_back(BandText(b.band.lo_hz, b.band.hi_hz));
+    t.numeric.push_back(true);
+  }
+  for (const GroupResult& g : ComputeGroups(o)) {
+    std::string members;
+    for (std::size_t c : g.contributors) members += (members.empty() ? "" : ", ") + o.contributors[c].name;
+    for (const std::string& sub : g.subgroups) members += (members.empty() ? "" : ", ") + sub.substr(sub.rfind('/') + 1) + "/";
+    std::vector<std::string> row = {std::string(2 * static_cast<std::size_t>(g.depth), ' ') + g.name, members,
+                                    Sig(std::sqrt(g.variance), digits), Share(g.variance, o.variance)};
+    for (double v : g.band_variance) row.push_back(Sig(std::sqrt(std::max(v, 0.0)), digits));
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+Table ReferenceTable(const OutputResult& o, int digits) {
+  Table t;
+  t.title = "Does the budget explain the measurement? " + o.name + " [" + UnitText(o.unit) +
+            "]: measured against budget RMS; unexplained = sqrt(max(measured^2 - budget^2, 0))";
+  t.header = {"reference", "band", "budget RMS", "measured RMS", "measured / budget", "unexplained RMS"};
+  t.numeric = {false, false, true, true, true, true};
+  const auto row = [&](const std::string& ref, const std::string& band, double budget, double measured) {
+    t.rows.push_back({ref, band, Sig(std::sqrt(budget), digits), Sig(std::sqrt(measured), digits),
+                      budget > 0.0 ? Sig(std::sqrt(measured / budget), digits) : "–",
+                      Sig(std::sqrt(std::max(measured - budget, 0.0)), digits)});
+  };
+  for (const ReferenceResult& r : o.references) {
+    for (std::size_t b = 0; b < o.bands.size(); ++b)
+      if (r.band_variance[b]) row(r.name, BandText(o.bands[b].band.lo_hz, o.bands[b].band.hi_hz), o.bands[b].variance,
+                                  *r.band_variance[b]);
+    row(r.name, "covered " + BandText(r.covered_lo_hz, r.covered_hi_hz), r.budget_variance, r.variance);
+  }
+  return t;
+}
+
+Table CovarianceTable(const CovarianceResult& cov, int digits) {
+  Table t;
+  t.title = "Covariance of outputs (each pair; the matrices are in summary.json)";
+  // The exact column only where there is an exact matrix (summary.json's exact_note says why not).
+  const bool exact = cov.exact_matrix.has_value();
+  t.header = {"output a", "output b", "correlation", "covariance"};
+  t.numeric = {false, false, true, true};
+  if (exact) {
+    t.header.push_back("exact correlation");
+    t.numeric.push_back(true);
+  }
+  t.header.push_back("largest contributor (its part)");
+  t.numeric.push_back(false);
+  const auto correlation = [](const Eigen::MatrixXd& m, Eigen::Index a, Eigen::Index b) {
+    const double d = std::sqrt(m(a, a) * m(b, b));
+    return d > 0.0 ? Sig(m(a, b) / d, 3) : std::string("–");
+  };
+  const Eigen::Index n = cov.matrix.rows();
+  for (Eigen::Index a = 0; a < n; ++a)
+    for (Eigen::Index b = a + 1; b < n; ++b) {
+      const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+      std::string largest = "–";
+      double part = 0.0;
+      for (const ContributorCovariance& c : cov.contributors)
+        if (std::abs(c.matrix(a, b)) > std::abs(part)) {
+          part = c.matrix(a, b);
+          largest = c.name;
+        }
+      if (part != 0.0 && cov.matrix(a, b) != 0.0) largest += " (" + Sig(100.0 * part / cov.matrix(a, b), 3) + " %)";
+      std::vector<std::string> row = {
+          cov.outputs[ia], cov.outputs[ib], correlation(cov.matrix, a, b),
+          Sig(cov.matrix(a, b), digits) + " " +
+              (cov.units[ia] == cov.units[ib] ? UnitText(VarianceUnit(cov.units[ia]))
+                                              : UnitText(cov.units[ia]) + "·" + UnitText(cov.units[ib]))};
+      if (exact) row.push_back(correlation(*cov.exact_matrix, a, b));
+      row.push_back(largest);
+      t.rows.push_back(std::move(row));
+    }
+  return t;
+}
+
+Table BandTable(const OutputResult& o, int digits) {
+  Table t;
+  t.title = "RMS of " + o.name + " per band [" + UnitText(o.unit) + "]";
+  t.header = {"contributor"};
+  t.numeric = {false};
+  for (const BandResult& b : o.bands) {
+    t.header.push_back(BandText(b.band.lo_hz, b.band.hi_hz));
+    t.numeric.push_back(true);
+  }
+  t.header.push_back("whole grid");
+  t.numeric.push_back(true);
+  std::vector<std::size_t> largest(o.bands.size(), 0);
+  for (std::size_t b = 0; b < o.bands.size(); ++b)
+    for (std::size_t c = 0; c < o.contributors.size(); ++c)
+      if (o.bands[b].contributor_variance[c] > o.bands[b].contributor_variance[largest[b]]) largest[b] = c;
+  for (std::size_t c : ShareOrder(o)) {
+    std::vector<std::string> row = {o.contributors[c].name};
+    std::vector<bool> bold = {false};
+    for (std::size_t b = 0; b < o.bands.size(); ++b) {
+      row.push_back(Sig(std::sqrt(o.bands[b].contributor_variance[c]), digits));
+      bold.push_back(largest[b] == c && o.bands[b].variance > 0.0);
+    }
+    row.push_back(Sig(std::sqrt(o.contributors[c].variance), digits));
+    bold.push_back(false);
+    t.rows.push_back(row);
+    t.emphasis.push_back(bold);
+  }
+  std::vector<std::string> total = {"total"};
+  for (const BandResult& b : o.bands) total.push_back(Sig(std::sqrt(b.variance), digits));
+  total.push_back(Sig(o.rms(), digits));
+  t.rows.push_back(total);
+  return t;
+}
+
+ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const std::string& budget_file,
+                      const std::string& sha256, const std::string& date, std::optional<double> seconds) {
+  ReportFacts f;
+  std::size_t failed = 0, required = 0;
+  for (const OutputResult& o : result.outputs) {
+    required += (o.rms_max ? 1 : 0) + o.band_requirements.size();
+    failed += o.pass() ? 0 : 1;
+    for (const BandRequirementResult& r : o.band_requirements) failed += r.pass() ? 0 : 1;
+  }
+  f.items = {
+      {"budget", budget.name},
+      {"budget file", budget_file.empty() ? "–" : budget_file},
+      {"SHA-256", sha256.empty() ? "–" : sha256},
+      {"date", date},
+      {"deb version", DEB_VERSION},
+      {"grid", ToString(budget.grid.kind) + ", " + std::to_string(result.grid.size()) + " frequencies, " +
+                   Short(result.grid.min_hz()) + "–" + Short(result.grid.max_hz()) + " Hz"},
+      {"bands", budget.bands.empty() ? "decades of the grid" : "as the budget defines them"},
+      {"evaluation", seconds ? Sig(*seconds, 3) + " s" : "not recorded (reproducible report: SOURCE_DATE_EPOCH)"},
+      {"requirements", required == 0 ? "none given"
+                                     : (failed == 0 ? "all " + std::to_string(required) + " met"
+                                                    : std::to_string(failed) + " of " + std::to_string(required) +
+                                                          " FAILED")},
+  };
+  f.conventions = {
+      "Frequencies in Hz. PSDs are one-sided: variance = ∫ S(f) df over 0 < f < ∞, in unit²/Hz; ASD = √PSD.",
+      "CPS(f) = ∫ S from the lowest grid frequency to f; RMS = √CPS(f_max); the reverse CPS integrates from f up.",
+      "Contributors (source × path) are mutually uncorrelated and their variances add; S_y = H S_u Hᴴ.",
+      "Exact RMS: Lyapunov A P + P Aᵀ + B W Bᵀ = 0, W = S₀/2, over 0 < f < ∞ (white sources only).",
+      "Sources declared two-sided were converted once at load: S_one-sided = 2 S_two-sided.",
+      "Share: a contributor's fraction of the output's variance (shares add to 100 %; RMS values do not add).",
+      "Allocation k = (rms_max² − (σ² − σ_c²)) / σ_c²: the factor on a contributor's source PSD that puts the "
+      "output at its limit, the others unchanged (k > 1: room to grow).",
+  };
+  return f;
+}
+
+std::string HtmlEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string ToHtml(const Table& t) {
+  std::string s = "<table>\n<caption>" + HtmlEscape(t.title) + "</caption>\n<thead><tr>";
+  for (std::size_t c = 0; c < t.header.size(); ++c)
+    s += std::string(t.numeric[c] ? "<th class=\"num\">" : "<th>") + HtmlEscape(t.header[c]) + "</th>";
+  s += "</tr></thead>\n<tbody>\n";
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    s += "<tr>";
+    for (std::size_t c = 0; c < t.rows[r].size(); ++c) {
+      std::string cell = HtmlEscape(t.rows[r][c]);
+      if (Emphasised(t, r, c)) cell = "<strong>" + cell + "</strong>";
+      const bool fail = t.rows[r][c] == "FAIL";  // a status column: red in the page
+      s += std::string("<td") + (t.numeric[c] ? (fail ? " class=\"num fail\"" : " class=\"num\"") : fail ? " class=\"fail\"" : "") +
+           ">" + cell + "</td>";
+    }
+    s += "</tr>\n";
+  }
+  return s + "</tbody>\n</table>\n";
+}
+
+std::string ToMarkdown(const Table& t) {
+  std::string s = "| ";
+  for (const auto& h : t.header) s += MarkdownEscape(h) + " | ";
+  s.pop_back();
+  s += "\n|";
+  for (std::size_t c = 0; c < t.header.size(); ++c) s += t.numeric[c] ? " ---: |" : " --- |";
+  s += "\n";
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    s += "| ";
+    for (std::size_t c = 0; c < t.rows[r].size(); ++c) {
+      const std::string cell = MarkdownEscape(t.rows[r][c]);
+      s += (Emphasised(t, r, c) && !cell.empty() ? "**" + cell + "**" : cell) + " | ";
+    }
+    s.pop_back();
+    s += "\n";
+  }
+  return s;
+}
+
+std::vector<std::string> ToText(const Table& t, std::size_t max_cell, std::size_t max_line,
+                                std::vector<std::string>* shortened) {
+  std::vector<std::vector<std::string>> cells = {t.header};
+  for (const auto& row : t.rows) cells.push_back(row);
+  const std::vector<std::vector<std::string>> full = cells;
+  const std::size_t columns = t.header.size();
+  std::vector<std::size_t> width(columns, 0);
+  for (auto& row : cells)
+    for (std::size_t c = 0; c + 1 < columns && c < row.size(); ++c) {
+      row[c] = Shorten(row[c], max_cell);
+      width[c] = std::max(width[c], Width(row[c]));
+    }
+  std::size_t used = 0;
+  for (std::size_t c = 0; c + 1 < columns; ++c) used += width[c] + 2;
+  const std::size_t last = std::max<std::size_t>(max_line > used ? max_line - used : 0, 12);
+  for (auto& row : cells)
+    if (row.size() == columns) {
+      row.back() = Shorten(row.back(), last);
+      width.back() = std::max(width.back(), Width(row.back()));
+    }
+  if (shortened)
+    for (std::size_t r = 1; r < cells.size(); ++r)
+      for (std::size_t c = 0; c < cells[r].size(); ++c)
+        if (cells[r][c] != full[r][c]) shortened->push_back(full[r][0] + ": " + t.header[c] + ": " + full[r][c]);
+  std::vector<std::string> lines;
+  for (std::size_t r = 0; r < cells.size(); ++r) {
+    std::string line;
+    for (std::size_t c = 0; c < cells[r].size(); ++c) {
+      const std::string pad(width[c] - Width(cells[r][c]), ' ');
+      line += (c ? "  " : "") + (t.numeric[c] ? pad + cells[r][c] : cells[r][c] + pad);
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    lines.push_back(line);
+    if (r == 0) {
+      std::size_t total = 0;
+      for (std::size_t w : width) total += w;
+      lines.push_back(std::string(total + 2 * (width.size() - 1), '-'));
+    }
+  }
+  return lines;
+}
+
+}  // namespace deb::report

@@ -1,0 +1,327 @@
+#include "deb/report/budget/report_writer.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <future>
+#include <mutex>
+#include <optional>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "deb/budget/groups.h"
+#include "deb/core/error.h"
+#include "deb/core/input_file.h"
+#include "deb/core/limits.h"
+#include "deb/core/output_dir.h"
+#include "deb/core/parallel.h"
+#include "deb/io/result_store.h"
+#include "deb/report/budget/band_plots.h"
+#include "deb/report/budget/band_text.h"
+#include "deb/report/budget/file_digest.h"
+#include "deb/report/budget/loop_plots.h"
+#include "deb/report/budget/overview_plots.h"
+#include "deb/report/budget/path_plots.h"
+#include "deb/report/budget/report_documents.h"
+#include "deb/report/budget/report_pdf.h"
+#include "deb/report/budget/spectrum_plots.h"
+#include "deb/report/figure/gnuplot_runner.h"
+#include "deb/report/figure/plot_style.h"
+#include "deb/version.h"
+
+namespace deb {
+namespace fs = std::filesystem;
+using namespace report;
+
+namespace {
+
+class Writer {
+ public:
+  Writer(fs::path root, ReportManifest* manifest) : root_(std::move(root)), manifest_(manifest) {}
+  void Write(const std::string& relative, const std::string& text) {
+    WriteTextFile((root_ / relative).string(), text);
+    manifest_->files.push_back(relative);
+  }
+  void WriteScript(const std::string& relative, const std::string& script) {
+    WriteGnuplotScript((root_ / relative).string(), script);
+    manifest_->files.push_back(relative);
+  }
+
+ private:
+  fs::path root_;
+  ReportManifest* manifest_;
+};
+
+// Progress on stderr as one rewritten line; nothing unless enabled.
+class Progress {
+ public:
+  Progress(bool enabled, int steps) : enabled_(enabled && steps > 0), steps_(steps) {}
+  ~Progress() {
+    if (enabled_) std::fprintf(stderr, "\r%-78s\r", "");
+  }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  // Announces `what`, which draws `files` of the steps.
+  void Step(const std::string& what, int files = 1) {
+    if (!enabled_) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const int first = done_ + 1;
+    done_ += files;
+    const std::string range = files > 1 ? std::to_string(first) + "-" + std::to_string(done_) : std::to_string(first);
+    std::fprintf(stderr, "\rdeb: drawing %s/%d %-50.50s", range.c_str(), steps_, what.c_str());
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_;
+  int steps_, done_ = 0;
+  std::mutex mutex_;
+};
+
+// $SOURCE_DATE_EPOCH (seconds since 1970) if set to a number: the date of a
+// reproducible report.
+std::optional<std::time_t> SourceDateEpoch() {
+  const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
+  if (!epoch) return std::nullopt;
+  char* end = nullptr;
+  const long long v = std::strtoll(epoch, &end, 10);
+  if (!end || *end != '\0' || end == epoch) return std::nullopt;
+  return static_cast<std::time_t>(v);
+}
+
+std::string UtcText(std::time_t t, const char* format) {
+  std::tm utc{};
+  gmtime_r(&t, &utc);
+  char text[40];
+  std::strftime(text, sizeof(text), format, &utc);
+  return text;
+}
+
+// The report's date: now, or $SOURCE_DATE_EPOCH for reproducible reports.
+std::time_t ReportTime() { return SourceDateEpoch().value_or(std::time(nullptr)); }
+
+std::string ColoursCsv(const Budget& budget) {
+  std::ostringstream s;
+  s << "# deb " << DEB_VERSION << ": style of each contributor in every plot, keyed by its index in the budget;"
+    << " then of each group (its path and '/', as the plots name it \"name/\"), after the contributors\n";
+  s << "index,contributor,colour,edge_colour,dash,lightness,fill_pattern,hatch_colour\n";
+  const auto row = [&](std::size_t index, const std::string& name, const SeriesStyle& st) {
+    s << index << ',' << CsvField(name) << ',' << st.colour << ',' << st.edge_colour << ',' << CsvField(st.dash) << ','
+      << st.lightness << ',' << st.fill_pattern << ',' << st.hatch_colour << '\n';
+  };
+  const std::size_t n = budget.contributors.size();
+  for (std::size_t c = 0; c < n; ++c) row(c, budget.contributors[c].name, ContributorStyle(c));
+  // The groups in the order the plots number them (every output has every contributor, in budget order).
+  OutputResult names;
+  for (const Contributor& c : budget.contributors) {
+    names.contributors.emplace_back();
+    names.contributors.back().name = c.name;
+    names.contributors.back().group = c.group;
+  }
+  const std::vector<GroupResult> groups = ComputeGroups(names);
+  for (std::size_t g = 0; g < groups.size(); ++g) row(n + g, groups[g].path + "/", GroupStyle(n, g));
+  return s.str();
+}
+
+void RequireFile(const fs::path& path, const std::string& what) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) == 0)
+    throw WriteError("cannot draw " + what + ": gnuplot reported success but wrote no " + path.filename().string());
+}
+
+}  // namespace
+
+ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, const RunInfo& info,
+                           const ReportOptions& options, const std::string& dir) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("report options: " + why);
+  ReportManifest manifest;
+  const fs::path root(dir), plots_dir = root / "plots";
+  const bool plot_files = options.plots || options.plot_scripts;
+  const fs::path made = plot_files ? plots_dir : root;
+  std::error_code ec;
+  fs::create_directories(made, ec);
+  if (ec) throw WriteError("cannot create directory " + made.string() + ": " + ec.message());
+  Writer writer(root, &manifest);
+
+  const std::string sha256 = !info.budget_sha256.empty() ? info.budget_sha256
+                             : info.budget_file.empty()  ? ""
+                                                         : FileSha256(info.budget_file);
+  const std::time_t when = ReportTime();
+  const ReportFacts facts =
+      MakeFacts(budget, result, info.budget_file, sha256, UtcText(when, "%Y-%m-%d %H:%M:%S UTC"), info.seconds);
+
+  std::vector<Plot> plots;
+  if (plot_files) {
+    plots = OverviewFigures(result, options.digits);
+    for (std::size_t o = 0; o < result.outputs.size(); ++o) {
+      for (Plot& p : SpectrumPlots(result, o, options, &budget.outputs[o])) plots.push_back(std::move(p));
+      plots.push_back(BandsPlot(result, o, options.digits));
+    }
+    for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
+    for (Plot& p : LoopPlots(result, options.digits)) plots.push_back(std::move(p));
+    for (const Plot& p : plots) {
+      writer.Write("plots/" + p.name + ".csv", p.csv);
+      writer.WriteScript("plots/" + p.name + ".gp", p.script);
+      manifest.plots.push_back(p.name);
+    }
+    writer.Write("plots/colours.csv", ColoursCsv(budget));
+  }
+
+  const bool pdf = options.plots && options.Has(PlotFormat::kPdf);
+  // report.pdf places each plot as an SVG drawn for it (PdfFigureTerminal)
+  // in a folder removed once the document is written.
+  const std::string pdf_figures = ".pdf_figures";
+  if (options.plots) {
+    // The figures of report.pdf (SVG, typeset afterwards), then the PNG and
+    // SVG plots, drawn by gnuplot several at a time (options.threads).
+    const std::string gnuplot = FindGnuplot(options.gnuplot);
+    struct Job {
+      std::string file;    // relative to the report directory
+      std::string script;
+    };
+    std::vector<Job> jobs;
+    if (pdf) {
+      fs::create_directories(plots_dir / pdf_figures, ec);
+      if (ec) throw WriteError("cannot create directory " + (plots_dir / pdf_figures).string() + ": " + ec.message());
+      for (const Plot& p : plots)
+        jobs.push_back({"plots/" + pdf_figures + "/" + p.name + ".svg",
+                        PdfFigureTerminal(p.kind) + "set output " + Quote(pdf_figures + "/" + p.name + ".svg") +
+                            "\nload " + Quote(p.name + ".gp") + "\nunset output\n"});
+    }
+    const std::size_t pdf_jobs = jobs.size();
+    for (Terminal t : {Terminal::kPng, Terminal::kSvg}) {
+      if (!options.Has(t == Terminal::kPng ? PlotFormat::kPng : PlotFormat::kSvg)) continue;
+      for (const Plot& p : plots) {
+        const std::string file = p.name + "." + FileExtension(t);
+        jobs.push_back({"plots/" + file, TerminalCommand(t) + "set output " + Quote(file) + "\nload " +
+                                             Quote(p.name + ".gp") + "\nunset output\n"});
+      }
+    }
+    // gnuplot starts fast but each process pays again for fonts and cairo:
+    // the files are drawn in a few batches, one process each (the figures
+    // of report.pdf, which is then typeset by the same worker while the
+    // others draw the plots split evenly over them), which halves the
+    // drawing time of a report with dozens of plots.
+    const std::size_t workers = static_cast<std::size_t>(
+        std::max(1, options.threads > 0 ? options.threads : DefaultThreadCount()));
+    std::vector<std::vector<std::size_t>> batches;
+    if (pdf) {
+      batches.emplace_back();
+      for (std::size_t i = 0; i < pdf_jobs; ++i) batches.back().push_back(i);
+    }
+    const std::size_t plot_jobs = jobs.size() - pdf_jobs;
+    const std::size_t plot_batches = std::min(workers, plot_jobs);
+    for (std::size_t b = 0; b < plot_batches; ++b) {
+      std::vector<std::size_t> batch;
+      for (std::size_t i = pdf_jobs + b * plot_jobs / plot_batches; i < pdf_jobs + (b + 1) * plot_jobs / plot_batches;
+           ++i)
+        batch.push_back(i);
+      batches.push_back(std::move(batch));
+    }
+    const auto what_of = [&](std::size_t i) {
+      return (i < pdf_jobs ? "the figure of report.pdf " : "plot ") + fs::path(jobs[i].file).filename().string();
+    };
+    Progress progress(options.progress, static_cast<int>(jobs.size()) + (pdf ? 1 : 0));
+    PdfLayout layout;
+    const auto typeset = [&] {
+      progress.Step("report.pdf");
+      ReportPdfInputs in;
+      in.budget = &budget;
+      in.result = &result;
+      in.facts = facts;
+      in.sha256 = sha256;
+      in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
+      in.plots = &plots;
+      in.figure_dir = (plots_dir / pdf_figures).string();
+      in.digits = options.digits;
+      layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
+    };
+    ParallelForEach(batches.size(), [&](std::size_t b) {
+      const std::vector<std::size_t>& batch = batches[b];
+      std::string script;
+      for (std::size_t i : batch) script += jobs[i].script;
+      progress.Step(batch.size() == 1 ? jobs[batch[0]].file : jobs[batch[0]].file + " ...",
+                    static_cast<int>(batch.size()));
+      try {
+        RunGnuplot(gnuplot, plots_dir.string(), script, batch.size() == 1 ? what_of(batch[0]) : "the plots");
+      } catch (const WriteError&) {
+        // Name the plot that failed: draw the batch's files one at a time.
+        if (batch.size() == 1) throw;
+        for (std::size_t i : batch) RunGnuplot(gnuplot, plots_dir.string(), jobs[i].script, what_of(i));
+        throw;
+      }
+      for (std::size_t i : batch) RequireFile(root / jobs[i].file, what_of(i));
+      if (pdf && b == 0) typeset();
+    }, options.threads);
+    for (std::size_t i = pdf_jobs; i < jobs.size(); ++i) manifest.files.push_back(jobs[i].file);
+    if (pdf) {
+      fs::remove_all(plots_dir / pdf_figures, ec);
+      manifest.files.push_back("report.pdf");
+      manifest.title_pages = 1;
+      manifest.pdf_pages = layout.pages;
+    }
+  }
+
+  DocumentInputs doc;
+  doc.budget = &budget;
+  doc.result = &result;
+  doc.facts = facts;
+  doc.plots = plots;
+  doc.pdf = pdf;
+  doc.digits = options.digits;
+  doc.asd = options.asd;
+  if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
+  std::vector<std::string> data = {"summary.json", io::kResultStoreFile};
+  for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));
+  for (const ExportFormat f : {ExportFormat::kMat, ExportFormat::kXlsx}) data.push_back(ExportFileName(f));
+  for (const auto& f : data)
+    if (fs::is_regular_file(root / f, ec)) doc.data_files.push_back(f);
+  writer.Write("index.html", IndexHtml(doc));
+  writer.Write("report.md", ReportMarkdown(doc));
+  return manifest;
+}
+
+ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
+                                    const ReportOptions& options, const std::string& out_dir,
+                                    const std::vector<ExportFormat>& exports) {
+  ReportManifest manifest;
+  // The budget file as it is now, read once: its text goes into the store
+  // and its digest onto every page of the report.
+  RunInfo run = info;
+  if (!run.budget_text && !run.budget_file.empty())
+    run.budget_text = ReadInputFile(run.budget_file, "budget file", limits::kMaxBudgetFileBytes);
+  if (run.budget_sha256.empty() && run.budget_text && !run.budget_file.empty()) run.budget_sha256 = Sha256(*run.budget_text);
+  ReplaceOptions replace;
+  replace.force = options.force;
+  ReplaceDirectory(
+      out_dir,
+      [&](const std::string& dir) {
+        // The store is written beside the rest (HDF5 is used by nothing
+        // else meanwhile: the exports do not use it). Its file is made
+        // here first, so that index.html links it whatever the timing.
+        const std::string store = (fs::path(dir) / io::kResultStoreFile).string();
+        if (!std::ofstream(store)) throw WriteError("cannot write " + store);
+        std::future<void> stored =
+            std::async(std::launch::async, [&] { io::WriteResultStore(budget, result, run, store); });
+        std::vector<std::string> exported;
+        try {
+          WriteResultFiles(budget, result, run, dir);
+          exported = WriteResultExports(result, exports, dir);
+          manifest = WriteReport(budget, result, run, options, dir);
+        } catch (...) {
+          stored.wait();
+          throw;
+        }
+        stored.get();
+        manifest.files.push_back(io::kResultStoreFile);
+        manifest.files.insert(manifest.files.end(), exported.begin(), exported.end());
+      },
+      replace);
+  return manifest;
+}
+
+}  // namespace deb

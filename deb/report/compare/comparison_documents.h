@@ -1,0 +1,38 @@
+// Internal: not part of the public API.
+// The documents of `deb compare`: compare.md and compare.html (one
+// self-contained page; the plots are files beside it under plots/), with one
+// table per output (RMS of A and B per contributor and band, B - A, B / A)
+// and the contributors that changed most.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/comparison.h"
+#include "deb/report/budget/report_tables.h"
+#include "deb/report/figure/plot.h"
+
+namespace deb::report {
+
+// B / A with 4 significant digits; where there is none "from ≈0" (A is
+// negligible, B is not), "to ≈0" (the reverse) or "–" (both negligible, 0 / 0).
+std::string RatioText(const ComparedFigure& f);
+
+// A total whose B / A is within this of 1 is "unchanged" (4 digits show it as 1).
+inline constexpr double kUnchangedRel = 5e-4;
+// "better" (B's RMS is lower), "worse", "unchanged" or "–" (no ratio).
+std::string Verdict(const ComparedFigure& total);
+
+// Per output: total RMS of A and B, B / A, the verdict and the contributors
+// whose variance changed most.
+Table HeadlineTable(const Comparison& cmp);
+
+// The headline, one table per output, the largest changes, and with a
+// tolerance the figures that moved beyond it.
+std::vector<Table> ComparisonTables(const Comparison& cmp);
+
+// The plots are referenced as plots/<name>.png.
+std::string ComparisonMarkdown(const Comparison& cmp, const std::vector<Plot>& plots);
+std::string ComparisonHtml(const Comparison& cmp, const std::vector<Plot>& plots);
+
+}  // namespace deb::report

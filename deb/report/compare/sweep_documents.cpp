@@ -1,0 +1,114 @@
+#include "deb/report/compare/sweep_documents.h"
+
+#include <sstream>
+
+#include "deb/budget/sweep_ranking.h"
+#include "deb/core/error.h"
+
+namespace deb::report {
+namespace {
+
+std::string Lead(const SweepSpec& spec, std::size_t variants) {
+  std::string parameters;
+  for (const SweepParameter& p : spec.parameters) parameters += (parameters.empty() ? "" : ", ") + p.AxisTitle();
+  return std::to_string(variants) + " variants (" + ToString(spec.mode) + " of " + parameters +
+         "). Best first: fewest failing outputs, then the lowest worst RMS / requirement, then the lowest sum of "
+         "RMS relative to each output's highest in the sweep.";
+}
+
+}  // namespace
+
+std::string VariantCell(const OutputResult& output) {
+  const bool has_requirement = output.rms_max || !output.band_requirements.empty();
+  return Sig(output.rms(), 4) + (has_requirement ? (output.AllPass() ? " PASS" : " FAIL") : "");
+}
+
+std::string VariantSettings(const SweepSpec& spec, const std::vector<double>& row) {
+  std::string s;
+  for (std::size_t k = 0; k < spec.parameters.size() && k < row.size(); ++k)
+    s += (k ? ", " : "") + spec.parameters[k].Setting(row[k]);
+  return s;
+}
+
+std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetResult>& results) {
+  const auto rows = spec.Variants();
+  DEB_DEMAND(rows.size() == results.size());
+  std::vector<Table> tables;
+  if (results.empty()) return tables;
+  const std::vector<OutputResult>& outputs = results.front().outputs;
+
+  Table best;
+  best.title = "Best variant per output";
+  best.header = {"output", "best variant", "RMS", "requirement", "variants that pass"};
+  best.numeric = {false, false, true, true, true};
+  for (std::size_t o = 0; o < outputs.size(); ++o) {
+    const std::size_t b = BestVariant(results, o);
+    std::size_t passing = 0;
+    for (const BudgetResult& r : results) passing += r.outputs[o].AllPass() ? 1 : 0;
+    const OutputResult& out = results[b].outputs[o];
+    const bool has_requirement = out.rms_max || !out.band_requirements.empty();
+    best.rows.push_back({out.name + " [" + UnitText(out.unit) + "]", VariantSettings(spec, rows[b]),
+                         VariantCell(out), out.rms_max ? Short(*out.rms_max) : (has_requirement ? "bands" : "–"),
+                         has_requirement ? std::to_string(passing) + " of " + std::to_string(results.size()) : "–"});
+  }
+  tables.push_back(best);
+
+  Table all;
+  all.title = "Variants, best first";
+  all.header = {"rank"};
+  all.numeric = {true};
+  for (const SweepParameter& p : spec.parameters) {
+    all.header.push_back(p.AxisTitle());
+    all.numeric.push_back(p.texts.empty());
+  }
+  for (const OutputResult& out : outputs) {
+    all.header.push_back(out.name + " [" + UnitText(out.unit) + "]");
+    all.numeric.push_back(true);
+  }
+  std::vector<std::size_t> best_of(outputs.size());
+  for (std::size_t o = 0; o < outputs.size(); ++o) best_of[o] = BestVariant(results, o);
+  int rank = 0;
+  for (const VariantScore& s : RankVariants(results)) {
+    std::vector<std::string> row = {std::to_string(++rank)};
+    std::vector<bool> bold(1 + spec.parameters.size(), false);
+    for (std::size_t k = 0; k < spec.parameters.size(); ++k)
+      row.push_back(spec.parameters[k].ShortText(rows[s.variant][k]));
+    for (std::size_t o = 0; o < outputs.size(); ++o) {
+      row.push_back(VariantCell(results[s.variant].outputs[o]));
+      bold.push_back(best_of[o] == s.variant);  // the output's best variant
+    }
+    all.rows.push_back(row);
+    all.emphasis.push_back(bold);
+  }
+  tables.push_back(all);
+  return tables;
+}
+
+std::string SweepMarkdown(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
+                          const std::vector<Plot>& plots) {
+  std::ostringstream md;
+  md << "# Sweep: " << name << "\n\n" << Lead(spec, results.size()) << "\n\n";
+  for (const Table& t : SweepTables(spec, results)) md << "## " << t.title << "\n\n" << ToMarkdown(t) << "\n";
+  for (const Plot& p : plots) md << "![" << p.caption << "](plots/" << p.name << ".png)\n\n" << p.caption << "\n\n";
+  return md.str();
+}
+
+std::string SweepHtml(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
+                      const std::vector<Plot>& plots) {
+  std::ostringstream h;
+  const std::string title = "Sweep: " + name;
+  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << HtmlEscape(title)
+    << "</title>\n<style>body{font-family:'DejaVu Sans',sans-serif;max-width:1240px;margin:2rem auto;padding:0 1.5rem}"
+       "table{border-collapse:collapse;margin:.6rem 0 1.4rem;font-size:.92rem}th,td{border-bottom:1px solid #ddd;"
+       "padding:.2rem .6rem}td.num{text-align:right;font-variant-numeric:tabular-nums}img{max-width:100%}</style>\n"
+       "</head>\n<body>\n<h1>"
+    << HtmlEscape(title) << "</h1>\n<p>" << HtmlEscape(Lead(spec, results.size())) << "</p>\n";
+  for (const Table& t : SweepTables(spec, results)) h << ToHtml(t);
+  for (const Plot& p : plots)
+    h << "<figure><img src=\"plots/" << HtmlEscape(p.name) << ".png\" alt=\"" << HtmlEscape(p.caption)
+      << "\"><figcaption>" << HtmlEscape(p.caption) << "</figcaption></figure>\n";
+  h << "</body>\n</html>\n";
+  return h.str();
+}
+
+}  // namespace deb::report

@@ -1,0 +1,35 @@
+// Internal: not part of the public API.
+// The documents of `deb sweep`: sweep.md and sweep.html (one self-contained
+// page; the plots are files beside it under plots/). They lead with the best
+// variant of each output and how many variants pass, then list every
+// variant best first (RankVariants) with PASS/FAIL per output.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/engine.h"
+#include "deb/budget/sweep.h"
+#include "deb/report/budget/report_tables.h"
+#include "deb/report/figure/plot.h"
+
+namespace deb::report {
+
+// "11.3 PASS", "87.6 FAIL" (any requirement of the output, band included)
+// or "11.3" (none).
+std::string VariantCell(const OutputResult& output);
+
+// The settings of variant `row` (one value per parameter), "K_v = 25 N/(mm/s), h = -210 mm".
+std::string VariantSettings(const SweepSpec& spec, const std::vector<double>& row);
+
+// [0] per output: the best variant (lowest RMS), its RMS, status and how many
+// variants pass; [1] every variant best first: rank, the parameters, per output VariantCell.
+// DEB_DEMANDs one result per variant of spec.
+std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetResult>& results);
+
+std::string SweepMarkdown(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
+                          const std::vector<Plot>& plots);
+std::string SweepHtml(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
+                      const std::vector<Plot>& plots);
+
+}  // namespace deb::report

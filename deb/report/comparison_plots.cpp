@@ -1,9 +1,0 @@
-#include "deb/report/comparison_plots.h"
-
-#include "deb/report/plot.h"
-
-namespace deb::report {
-
-std::string BandText(double lo_hz, double hi_hz) { return Short(lo_hz) + "–" + Short(hi_hz) + " Hz"; }
-
-}  // namespace deb::report

@@ -1,0 +1,686 @@
+#include "deb/report/document/pdf_document.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <utility>
+
+#include "deb/core/error.h"
+#include "deb/report/document/pdf_libraries.h"
+
+namespace deb::report {
+
+PdfBlock Heading(int level, std::string text) {
+  PdfBlock b;
+  b.kind = PdfBlockKind::kHeading;
+  b.level = level;
+  b.text = std::move(text);
+  return b;
+}
+
+PdfBlock Paragraph(std::string text, double size_pt, bool bold, bool alert) {
+  PdfBlock b;
+  b.text = std::move(text);
+  b.size_pt = size_pt;
+  b.bold = bold;
+  b.alert = alert;
+  return b;
+}
+
+PdfBlock Bullet(std::string text) {
+  PdfBlock b = Paragraph(std::move(text));
+  b.bullet = true;
+  return b;
+}
+
+PdfBlock TableBlock(std::string title, PdfTable table) {
+  PdfBlock b;
+  b.kind = PdfBlockKind::kTable;
+  b.text = std::move(title);
+  b.table = std::move(table);
+  return b;
+}
+
+PdfBlock Figure(std::string svg_file, std::string caption) {
+  PdfBlock b;
+  b.kind = PdfBlockKind::kFigure;
+  b.svg_file = std::move(svg_file);
+  b.text = std::move(caption);
+  return b;
+}
+
+PdfBlock Contents() {
+  PdfBlock b;
+  b.kind = PdfBlockKind::kContents;
+  return b;
+}
+
+PdfBlock PageBreak(double unless_room_pt) {
+  PdfBlock b;
+  b.kind = PdfBlockKind::kPageBreak;
+  b.unless_room_pt = unless_room_pt;
+  return b;
+}
+
+namespace {
+
+constexpr double kTextWidthPt = kPageWidthPt - 2.0 * kMarginPt;
+constexpr double kFooterPt = 9.0;                                       // footer text height
+constexpr double kBodyBottomPt = kPageHeightPt - kMarginPt - kFooterPt - 8.0;  // body stays above the footer
+constexpr double kCellPadPt = 3.5, kRowPadPt = 2.0;
+constexpr double kTableFontPt = 8.0, kSmallestTableFontPt = 5.5, kBoxInsetPt = 6.0;
+constexpr double kLongestWordPt = 75.0;  // a longer word may break inside a narrow column
+// A figure that does not fit below the cursor at the text width but would
+// at this fraction of it or more is set that much smaller (centred) rather
+// than moved to the next page, leaving the rest of this one empty.
+constexpr double kMinFigureScale = 0.85;
+const char* const kInk = "#1a1a1a";
+const char* const kAlert = "#c00000";
+const char* const kGrey = "#707070";
+
+void SetColour(cairo_t* cr, const std::string& hex) {
+  unsigned r = 0, g = 0, b = 0;
+  std::sscanf(hex.c_str(), "#%02x%02x%02x", &r, &g, &b);
+  cairo_set_source_rgb(cr, r / 255.0, g / 255.0, b / 255.0);
+}
+
+cairo_status_t Discard(void*, const unsigned char*, unsigned int) { return CAIRO_STATUS_SUCCESS; }
+
+struct LayoutDeleter {
+  void operator()(PangoLayout* l) const { g_object_unref(l); }
+};
+using Layout = std::unique_ptr<PangoLayout, LayoutDeleter>;
+
+// A figure's SVG, parsed once for both passes.
+struct Svg {
+  RsvgHandle* handle = nullptr;
+  double width = 0, height = 0;
+};
+
+class SvgCache {
+ public:
+  SvgCache() = default;
+  SvgCache(const SvgCache&) = delete;
+  SvgCache& operator=(const SvgCache&) = delete;
+  ~SvgCache() {
+    for (auto& [file, svg] : svgs_) g_object_unref(svg.handle);
+  }
+  const Svg& Get(const std::string& file) {
+    auto it = svgs_.find(file);
+    if (it != svgs_.end()) return it->second;
+    GError* error = nullptr;
+    RsvgHandle* handle = rsvg_handle_new_from_file(file.c_str(), &error);
+    if (!handle) {
+      const std::string why = error ? error->message : "unknown error";
+      if (error) g_error_free(error);
+      throw WriteError("cannot read figure " + file + ": " + why);
+    }
+    Svg svg{handle, 0, 0};
+    gboolean has_size = rsvg_handle_get_intrinsic_size_in_pixels(handle, &svg.width, &svg.height);
+    if (!has_size || svg.width <= 0 || svg.height <= 0) {
+      g_object_unref(handle);
+      throw WriteError("cannot read figure " + file + ": the SVG has no size");
+    }
+    return svgs_.emplace(file, svg).first->second;
+  }
+
+ private:
+  std::map<std::string, Svg> svgs_;
+};
+
+// Where a heading landed in the first pass: the target of its bookmark and
+// of its line in the table of contents.
+struct Target {
+  int page = 0;
+  double y_pt = 0;
+};
+
+// One pass over the blocks onto `surface`. The first pass (`draw` false)
+// only measures; the second knows every heading's page and the page count.
+class Composer {
+ public:
+  Composer(const PdfDocumentSpec& spec, cairo_surface_t* surface, bool draw, SvgCache* svgs,
+           std::vector<Target> targets, int total_pages)
+      : spec_(spec), surface_(surface), cr_(cairo_create(surface)), draw_(draw), svgs_(svgs),
+        targets_(std::move(targets)), total_pages_(total_pages) {}
+  Composer(const Composer&) = delete;
+  Composer& operator=(const Composer&) = delete;
+  ~Composer() { cairo_destroy(cr_); }
+
+  PdfLayout Run() {
+    for (std::size_t i = 0; i < spec_.blocks.size(); ++i) {
+      const PdfBlock& b = spec_.blocks[i];
+      switch (b.kind) {
+        case PdfBlockKind::kHeading:
+          DoHeading(b, i + 1 < spec_.blocks.size() ? StartHeight(spec_.blocks[i + 1]) : 0.0);
+          break;
+        case PdfBlockKind::kParagraph: DoParagraph(b); break;
+        case PdfBlockKind::kTable: DoTable(b); break;
+        case PdfBlockKind::kFigure: DoFigure(b); break;
+        case PdfBlockKind::kContents: DoContents(); break;
+        case PdfBlockKind::kPageBreak:
+          if (y_ > kMarginPt && (b.unless_room_pt <= 0.0 || kBodyBottomPt - y_ < b.unless_room_pt)) NewPage();
+          break;
+      }
+    }
+    EndPage();
+    layout_.pages = page_;
+    return layout_;
+  }
+  const std::vector<Target>& HeadingTargets() const { return found_; }
+
+ private:
+  Layout MakeLayout(const std::string& text, double size_pt, bool bold, double width_pt, bool italic = false) {
+    Layout l(pango_cairo_create_layout(cr_));
+    PangoFontDescription* font = pango_font_description_from_string(spec_.font.c_str());
+    pango_font_description_set_absolute_size(font, size_pt * PANGO_SCALE);
+    if (bold) pango_font_description_set_weight(font, PANGO_WEIGHT_BOLD);
+    if (italic) pango_font_description_set_style(font, PANGO_STYLE_ITALIC);
+    pango_layout_set_font_description(l.get(), font);
+    pango_font_description_free(font);
+    if (width_pt > 0) {
+      pango_layout_set_width(l.get(), static_cast<int>(width_pt * PANGO_SCALE));
+      pango_layout_set_wrap(l.get(), PANGO_WRAP_WORD_CHAR);
+    }
+    pango_layout_set_text(l.get(), text.c_str(), -1);
+    return l;
+  }
+  static std::pair<double, double> Size(PangoLayout* l) {
+    int w = 0, h = 0;
+    pango_layout_get_size(l, &w, &h);
+    return {static_cast<double>(w) / PANGO_SCALE, static_cast<double>(h) / PANGO_SCALE};
+  }
+  void Show(PangoLayout* l, double x, double y, const std::string& colour) {
+    if (!draw_) return;
+    cairo_move_to(cr_, x, y);
+    SetColour(cr_, colour);
+    pango_cairo_show_layout(cr_, l);
+  }
+  void Place(const std::string& what, const std::string& text, double x, double y, double w, double h,
+             const std::string& colour = "") {
+    layout_.boxes.push_back({page_, what, text, x, y, w, h, colour});
+  }
+  void Rule(double x0, double x1, double y, double width, const char* colour) {
+    if (!draw_) return;
+    SetColour(cr_, colour);
+    cairo_set_line_width(cr_, width);
+    cairo_move_to(cr_, x0, y);
+    cairo_line_to(cr_, x1, y);
+    cairo_stroke(cr_);
+  }
+
+  void EndPage() {
+    const std::string number = "page " + std::to_string(page_) + "/" + std::to_string(total_pages_);
+    const double y = kPageHeightPt - kMarginPt - kFooterPt;
+    Layout left = MakeLayout(spec_.footer, 7.0, false, kTextWidthPt * 0.8);
+    Layout right = MakeLayout(number, 7.0, false, 0);
+    const double right_w = Size(right.get()).first;
+    Rule(kMarginPt, kPageWidthPt - kMarginPt, y - 3.0, 0.4, "#b0b0b0");
+    Show(left.get(), kMarginPt, y, kGrey);
+    Show(right.get(), kPageWidthPt - kMarginPt - right_w, y, kGrey);
+    Place("footer", spec_.footer + " · " + number, kMarginPt, y, kTextWidthPt, kFooterPt, kGrey);
+    cairo_show_page(cr_);
+  }
+  void NewPage() {
+    EndPage();
+    ++page_;
+    y_ = kMarginPt;
+  }
+  // Starts a new page unless `height` fits below the cursor.
+  void Need(double height) {
+    if (y_ + height > kBodyBottomPt && y_ > kMarginPt) NewPage();
+  }
+
+  // The height of what must follow a heading on its page: a figure with its
+  // caption, a table's title and first rows, a paragraph.
+  double StartHeight(const PdfBlock& b) {
+    switch (b.kind) {
+      case PdfBlockKind::kFigure: {
+        const Svg& svg = svgs_->Get(b.svg_file);
+        return 6.0 + kMinFigureScale * kTextWidthPt * svg.height / svg.width + 30.0;
+      }
+      case PdfBlockKind::kParagraph: {
+        Layout l = MakeLayout(b.text, b.size_pt, b.bold, kTextWidthPt);
+        return Size(l.get()).second;
+      }
+      default: return 80.0;
+    }
+  }
+
+  void DoHeading(const PdfBlock& b, double keep_pt) {
+    const double size = b.level <= 0 ? 20.0 : b.level == 1 ? 14.0 : 11.0;
+    Layout l = MakeLayout(b.text, size, true, kTextWidthPt);
+    const double h = Size(l.get()).second;
+    if (y_ > kMarginPt) y_ += b.level <= 1 ? 10.0 : 6.0;
+    Need(h + 10.0 + std::min(keep_pt, 300.0));  // a heading stays with what follows it
+    Show(l.get(), kMarginPt, y_, kInk);
+    Place("heading", b.text, kMarginPt, y_, kTextWidthPt, h, kInk);
+    if (b.level >= 1) {
+      layout_.outline.push_back({b.level, b.text, page_});
+      found_.push_back({page_, y_});
+      if (draw_) {
+        const std::size_t k = found_.size() - 1;
+        const int parent = b.level >= 2 && last_section_id_ > 0 ? last_section_id_ : CAIRO_PDF_OUTLINE_ROOT;
+        const int id = cairo_pdf_surface_add_outline(surface_, parent, b.text.c_str(), Link(targets_[k]).c_str(),
+                                                     static_cast<cairo_pdf_outline_flags_t>(0));
+        if (b.level == 1) last_section_id_ = id;
+      }
+    }
+    y_ += h + 4.0;
+    if (b.level == 1) {
+      Rule(kMarginPt, kPageWidthPt - kMarginPt, y_, 0.6, "#909090");
+      y_ += 5.0;
+    }
+  }
+  // The first pass's target of the first heading (level >= 1) reading `text`.
+  const Target* HeadingTarget(const std::string& text) const {
+    std::size_t k = 0;
+    for (const PdfBlock& b : spec_.blocks) {
+      if (b.kind != PdfBlockKind::kHeading || b.level < 1) continue;
+      if (b.text == text) return k < targets_.size() ? &targets_[k] : nullptr;
+      ++k;
+    }
+    return nullptr;
+  }
+  static std::string Link(const Target& t) {
+    char text[80];
+    std::snprintf(text, sizeof(text), "page=%d pos=[%.1f %.1f]", t.page, kMarginPt, std::max(0.0, t.y_pt - 6.0));
+    return text;
+  }
+
+  void DoParagraph(const PdfBlock& b) {
+    // A bullet hangs left of its item's lines.
+    const double indent = b.bullet ? 1.2 * b.size_pt : 0.0;
+    const std::string text = b.bullet ? "•\t" + b.text : b.text;
+    Layout l = MakeLayout(text, b.size_pt, b.bold, kTextWidthPt - indent);
+    if (b.bullet) {
+      pango_layout_set_indent(l.get(), static_cast<int>(-indent * PANGO_SCALE));
+      PangoTabArray* tabs = pango_tab_array_new_with_positions(1, FALSE, PANGO_TAB_LEFT,
+                                                               static_cast<int>(indent * PANGO_SCALE));
+      pango_layout_set_tabs(l.get(), tabs);
+      pango_tab_array_free(tabs);
+    }
+    const double h = Size(l.get()).second;
+    Need(h);
+    const std::string colour = b.alert ? kAlert : kInk;
+    Show(l.get(), kMarginPt + indent, y_, colour);
+    Place("paragraph", text, kMarginPt, y_, kTextWidthPt, h, colour);
+    y_ += h + 0.45 * b.size_pt;
+  }
+
+  void DoFigure(const PdfBlock& b) {
+    const Svg& svg = svgs_->Get(b.svg_file);
+    double w = kTextWidthPt, h = w * svg.height / svg.width;
+    ++figures_;
+    const std::string caption = "Figure " + std::to_string(figures_) + ". " + b.text;
+    Layout cap = MakeLayout(caption, 8.5, false, kTextWidthPt, true);
+    const double cap_h = Size(cap.get()).second;
+    if (y_ > kMarginPt) y_ += 6.0;
+    if (const double room = kBodyBottomPt - y_ - 4.0 - cap_h; y_ > kMarginPt && h > room && room >= kMinFigureScale * h) {
+      w *= room / h;
+      h = room;
+    }
+    Need(h + 4.0 + cap_h);
+    const double x = kMarginPt + 0.5 * (kTextWidthPt - w);
+    if (draw_) {
+      cairo_save(cr_);
+      RsvgRectangle viewport{x, y_, w, h};
+      GError* error = nullptr;
+      const gboolean ok = rsvg_handle_render_document(svg.handle, cr_, &viewport, &error);
+      cairo_restore(cr_);
+      if (!ok) {
+        const std::string why = error ? error->message : "unknown error";
+        if (error) g_error_free(error);
+        throw WriteError("cannot draw figure " + b.svg_file + ": " + why);
+      }
+    }
+    Place("figure", b.svg_file, x, y_, w, h);
+    y_ += h + 4.0;
+    Show(cap.get(), kMarginPt, y_, kInk);
+    Place("caption", caption, kMarginPt, y_, kTextWidthPt, cap_h, kInk);
+    y_ += cap_h + 10.0;
+  }
+
+  void DoContents() {
+    // One line per heading of the document, linked to it; the first pass
+    // lays out the same lines with its own (placeholder) page numbers.
+    std::vector<const PdfBlock*> headings;
+    for (const PdfBlock& b : spec_.blocks)
+      if (b.kind == PdfBlockKind::kHeading && b.level >= 1) headings.push_back(&b);
+    for (std::size_t k = 0; k < headings.size(); ++k) {
+      const PdfBlock& b = *headings[k];
+      const double indent = b.level >= 2 ? 14.0 : 0.0, size = b.level >= 2 ? 9.0 : 10.0;
+      const Target t = k < targets_.size() ? targets_[k] : Target{};
+      Layout number = MakeLayout(std::to_string(t.page), size, b.level == 1, 0);
+      const double number_w = Size(number.get()).first;
+      Layout text = MakeLayout(b.text, size, b.level == 1, kTextWidthPt - indent - 40.0);
+      const double h = Size(text.get()).second;
+      Need(h);
+      if (b.level == 1) y_ += 3.0;
+      if (draw_) cairo_tag_begin(cr_, CAIRO_TAG_LINK, Link(t).c_str());
+      Show(text.get(), kMarginPt + indent, y_, kInk);
+      Show(number.get(), kPageWidthPt - kMarginPt - number_w, y_, kInk);
+      if (draw_) {  // dotted leader from the title's last line to its page number
+        PangoRectangle last{};
+        pango_layout_get_pixel_extents(text.get(), nullptr, &last);
+        const double from = kMarginPt + indent + last.x + last.width + 4.0;
+        const double to = kPageWidthPt - kMarginPt - number_w - 4.0;
+        const double baseline = y_ + Size(text.get()).second - 0.3 * size;
+        if (to > from) {
+          const double dots[] = {0.6, 2.4};
+          cairo_save(cr_);
+          cairo_set_dash(cr_, dots, 2, 0.0);
+          cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
+          Rule(from, to, baseline, 0.8, "#909090");
+          cairo_restore(cr_);
+        }
+      }
+      if (draw_) cairo_tag_end(cr_, CAIRO_TAG_LINK);
+      Place("contents", b.text + " ... " + std::to_string(t.page), kMarginPt + indent, y_, kTextWidthPt - indent, h,
+            kInk);
+      y_ += h + 2.0;
+    }
+  }
+
+  // ---- tables ----
+  struct Split {
+    std::string left, right;  // a number cut at its decimal point
+  };
+  static Split AtDecimalPoint(const std::string& s) {
+    for (std::size_t i = 1; i < s.size(); ++i)
+      if (s[i] == '.' && s[i - 1] >= '0' && s[i - 1] <= '9') return {s.substr(0, i), s.substr(i)};
+    // No decimal point: the integer part ends where the number's digits do.
+    std::size_t end = s.find_first_of("0123456789");
+    if (end == std::string::npos) return {s, ""};
+    end = s.find_first_not_of("0123456789", end);
+    return end == std::string::npos ? Split{s, ""} : Split{s.substr(0, end), s.substr(end)};
+  }
+  // The widest word of `text` (between spaces and line breaks).
+  double LongestWord(const std::string& text, bool bold) {
+    double widest = 0.0;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+      const std::size_t end = std::min(text.find(' ', start), text.find('\n', start));
+      const std::size_t length = end == std::string::npos ? std::string::npos : end - start;
+      widest = std::max(widest, Width(text.substr(start, length), bold));
+      if (end == std::string::npos) break;
+      start = end + 1;
+    }
+    return widest;
+  }
+  double Width(const std::string& text, bool bold) {
+    if (text.empty()) return 0.0;
+    Layout l = MakeLayout(text, table_font_, bold, 0);
+    return Size(l.get()).first;
+  }
+
+  void DoTable(const PdfBlock& b) {
+    const PdfTable& t = b.table;
+    std::size_t columns = t.header.size();
+    for (const auto& row : t.rows) columns = std::max(columns, row.size());
+    if (columns == 0) return;
+    const auto numeric = [&](std::size_t c) { return c < t.numeric.size() && t.numeric[c]; };
+    const double inset = t.boxed ? kBoxInsetPt : 0.0, width = kTextWidthPt - 2.0 * inset;
+    // Natural widths; numeric columns as the widest integer part plus the widest fraction.
+    std::vector<double> natural(columns, 0.0), shortest(columns, 0.0), left(columns, 0.0), right(columns, 0.0);
+    table_font_ = kTableFontPt;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      std::fill(natural.begin(), natural.end(), 0.0);
+      std::fill(shortest.begin(), shortest.end(), 0.0);
+      std::fill(left.begin(), left.end(), 0.0);
+      std::fill(right.begin(), right.end(), 0.0);
+      for (std::size_t c = 0; c < columns; ++c) {
+        if (c < t.header.size()) {
+          natural[c] = Width(t.header[c], true);
+          shortest[c] = std::min(kLongestWordPt, LongestWord(t.header[c], true));
+        }
+        for (const auto& row : t.rows) {
+          if (c >= row.size()) continue;
+          if (numeric(c)) {
+            const Split s = AtDecimalPoint(row[c].text);
+            left[c] = std::max(left[c], Width(s.left, row[c].bold));
+            right[c] = std::max(right[c], Width(s.right, row[c].bold));
+          } else {
+            Layout l = MakeLayout(row[c].text, table_font_, row[c].bold, 0);
+            natural[c] = std::max(natural[c], Size(l.get()).first);
+            shortest[c] = std::max(shortest[c], std::min(kLongestWordPt, LongestWord(row[c].text, row[c].bold)));
+          }
+        }
+        if (numeric(c)) natural[c] = std::max(natural[c], left[c] + right[c]);
+        natural[c] += 2.0 * kCellPadPt;
+        shortest[c] = numeric(c) ? natural[c] : shortest[c] + 2.0 * kCellPadPt;
+      }
+      // Columns that cannot fit even wrapped: a smaller font, once.
+      double least = 0.0;
+      for (double w : shortest) least += w;
+      if (least <= width || attempt == 1) break;
+      table_font_ = std::max(kSmallestTableFontPt, 0.97 * kTableFontPt * width / least);
+    }
+    // Too wide: every column keeps its longest word (numbers whole); of the
+    // rest of the width, a column that lacks less than an even share takes
+    // what it lacks, and the columns that must wrap share what is left in
+    // proportion to what each lacks (as browsers share a table's width), so
+    // that a column of long notes is not squeezed to the width of a column
+    // of names (long text wraps, never cut).
+    std::vector<double> widths = natural;
+    double total = 0.0, least = 0.0;
+    for (std::size_t c = 0; c < columns; ++c) {
+      total += natural[c];
+      least += shortest[c];
+    }
+    if (total > width) {
+      widths = shortest;
+      double spare = std::max(0.0, width - least);
+      std::vector<std::size_t> open;
+      for (std::size_t c = 0; c < columns; ++c)
+        if (natural[c] > shortest[c]) open.push_back(c);
+      // A column that lacks less than an even share takes only that and stays on one line.
+      while (!open.empty() && spare > 1e-9) {
+        const double share = spare / static_cast<double>(open.size());
+        std::vector<std::size_t> still;
+        for (std::size_t c : open)
+          if (natural[c] - widths[c] <= share) {
+            spare -= natural[c] - widths[c];
+            widths[c] = natural[c];
+          } else {
+            still.push_back(c);
+          }
+        if (still.size() == open.size()) {  // the rest wrap: shared in proportion to what each lacks
+          double lacking = 0.0;
+          for (std::size_t c : still) lacking += natural[c] - widths[c];
+          for (std::size_t c : still) widths[c] += spare * (natural[c] - widths[c]) / lacking;
+          break;
+        }
+        open = std::move(still);
+      }
+    }
+    // Still too wide at the smallest font: every column narrower alike (text
+    // wraps inside them; a long number may reach into its neighbour).
+    if (least > width)
+      for (double& w : widths) w *= width / least;
+    if (t.boxed) {  // a box spans the text width: its last column takes what is left
+      double used = 0.0;
+      for (double w : widths) used += w;
+      if (used < width) widths.back() += width - used;
+    }
+    double table_width = 0.0;
+    for (double w : widths) table_width += w;
+    const double x0 = kMarginPt + inset;
+
+    Layout title = MakeLayout(b.text, 9.5, true, kTextWidthPt);
+    const double title_h = b.text.empty() ? 0.0 : Size(title.get()).second;
+    const auto row_layouts = [&](const std::vector<PdfCell>& cells, bool header) {
+      std::vector<Layout> ls;
+      double h = 0.0;
+      for (std::size_t c = 0; c < columns; ++c) {
+        const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
+        const bool split = numeric(c) && !header;
+        ls.push_back(MakeLayout(cell.text, table_font_, cell.bold || header, split ? 0 : widths[c] - 2 * kCellPadPt));
+        h = std::max(h, Size(ls.back().get()).second);
+      }
+      return std::make_pair(std::move(ls), h + 2.0 * kRowPadPt);
+    };
+    std::vector<PdfCell> header_cells;
+    for (const std::string& h : t.header) header_cells.push_back({h, true, false});
+    const double header_h = t.header.empty() ? 0.0 : row_layouts(header_cells, true).second;
+
+    double first_row_h = t.rows.empty() ? 0.0 : row_layouts(t.rows.front(), false).second;
+    if (y_ > kMarginPt) y_ += 4.0;
+    Need(title_h + 4.0 + header_h + first_row_h + 2.0 * inset);
+    if (!b.text.empty()) {
+      Show(title.get(), kMarginPt, y_, kInk);
+      Place("table title", b.text, kMarginPt, y_, kTextWidthPt, title_h, kInk);
+      y_ += title_h + 3.0;
+    }
+    double box_top = y_;
+    y_ += inset;
+    const auto close_box = [&]() {
+      if (!t.boxed) return;
+      y_ += inset;
+      if (draw_) {
+        SetColour(cr_, "#606060");
+        cairo_set_line_width(cr_, 0.8);
+        cairo_rectangle(cr_, kMarginPt, box_top, kTextWidthPt, y_ - box_top);
+        cairo_stroke(cr_);
+      }
+      Place("box", b.text, kMarginPt, box_top, kTextWidthPt, y_ - box_top);
+    };
+    const auto draw_row = [&](const std::vector<PdfCell>& cells, bool header) {
+      auto [ls, h] = row_layouts(cells, header);
+      double x = x0;
+      std::string joined;
+      for (std::size_t c = 0; c < columns; ++c) {
+        const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
+        const std::string colour = cell.alert ? kAlert : kInk;
+        double point_x = 0.0;
+        if (numeric(c) && !header) {
+          // The decimal point of every row at the same x; the text right of it may stick out.
+          const Split s = AtDecimalPoint(cell.text);
+          point_x = x + widths[c] - kCellPadPt - right[c];
+          Layout l = MakeLayout(s.left, table_font_, cell.bold, 0);
+          Layout r = MakeLayout(s.right, table_font_, cell.bold, 0);
+          Show(l.get(), point_x - Size(l.get()).first, y_ + kRowPadPt, colour);
+          Show(r.get(), point_x, y_ + kRowPadPt, colour);
+        } else if (numeric(c)) {
+          Show(ls[c].get(), x + widths[c] - kCellPadPt - Size(ls[c].get()).first, y_ + kRowPadPt, colour);
+        } else {
+          Show(ls[c].get(), x + kCellPadPt, y_ + kRowPadPt, colour);
+        }
+        if (!cell.link.empty() && draw_) {
+          if (const Target* t = HeadingTarget(cell.link)) {
+            char rect[120];
+            std::snprintf(rect, sizeof(rect), " rect=[%.2f %.2f %.2f %.2f]", x, y_, widths[c], h);
+            cairo_tag_begin(cr_, CAIRO_TAG_LINK, (Link(*t) + rect).c_str());
+            cairo_tag_end(cr_, CAIRO_TAG_LINK);
+          }
+        }
+        layout_.boxes.push_back(
+            {page_, header ? "table header" : "table cell", cell.text, x, y_, widths[c], h, colour, point_x});
+        joined += (c ? " | " : "") + cell.text;
+        x += widths[c];
+      }
+      Place(header ? "table header row" : "table row", joined, x0, y_, table_width, h);
+      y_ += h;
+      Rule(x0, x0 + table_width, y_, header ? 0.7 : 0.3, header ? "#404040" : "#c8c8c8");
+    };
+    if (t.boxed && draw_) {
+      // The shade goes under the rows: measured first, drawn before them.
+      double h = header_h;
+      for (const auto& row : t.rows) h += row_layouts(row, false).second;
+      if (y_ + h + inset <= kBodyBottomPt) {
+        SetColour(cr_, "#f3f3f3");
+        cairo_rectangle(cr_, kMarginPt, box_top, kTextWidthPt, h + 2.0 * inset);
+        cairo_fill(cr_);
+      }
+    }
+    if (!t.header.empty()) draw_row(header_cells, true);
+    for (const auto& row : t.rows) {
+      const double h = row_layouts(row, false).second;
+      if (y_ + h + inset > kBodyBottomPt) {
+        close_box();
+        NewPage();
+        box_top = y_;
+        y_ += inset;
+        if (!t.header.empty()) draw_row(header_cells, true);
+      }
+      draw_row(row, false);
+    }
+    close_box();
+    y_ += 3.0;
+    for (const std::string& note : t.footnotes) {
+      Layout l = MakeLayout(note, 7.5, false, kTextWidthPt);
+      const double h = Size(l.get()).second;
+      Need(h);
+      Show(l.get(), kMarginPt, y_, kInk);
+      Place("footnote", note, kMarginPt, y_, kTextWidthPt, h, kInk);
+      y_ += h + 1.5;
+    }
+    y_ += 6.0;
+  }
+
+  const PdfDocumentSpec& spec_;
+  cairo_surface_t* surface_;
+  cairo_t* cr_;
+  bool draw_;
+  SvgCache* svgs_;
+  std::vector<Target> targets_, found_;
+  int total_pages_;
+  int page_ = 1, figures_ = 0, last_section_id_ = 0;
+  double table_font_ = kTableFontPt;  // of the table being set
+  double y_ = kMarginPt;
+  PdfLayout layout_;
+};
+
+void SetMetadata(cairo_surface_t* surface, const PdfDocumentSpec& spec) {
+  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, spec.title.c_str());
+  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, spec.subject.c_str());
+  if (!spec.create_date.empty()) {
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, spec.create_date.c_str());
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_MOD_DATE, spec.create_date.c_str());
+  }
+}
+
+}  // namespace
+
+PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path) {
+  RequirePdfLibraries();
+  struct SurfaceDeleter {
+    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+  };
+  using Surface = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
+  const auto scratch = [] {
+    return Surface(cairo_pdf_surface_create_for_stream(Discard, nullptr, kPageWidthPt, kPageHeightPt));
+  };
+  SvgCache svgs;
+  // First pass: where every heading lands and how many pages there are.
+  std::vector<Target> targets;
+  PdfLayout first;
+  {
+    const Surface measured = scratch();
+    Composer measure(spec, measured.get(), false, &svgs, {}, 0);
+    first = measure.Run();
+    targets = measure.HeadingTargets();
+  }
+  if (path.empty()) {
+    // The layout alone: the second pass's numbers without drawing.
+    const Surface again = scratch();
+    Composer lay(spec, again.get(), false, &svgs, targets, first.pages);
+    return lay.Run();
+  }
+  const Surface surface(cairo_pdf_surface_create(path.c_str(), kPageWidthPt, kPageHeightPt));
+  SetMetadata(surface.get(), spec);
+  PdfLayout layout;
+  {
+    Composer compose(spec, surface.get(), true, &svgs, targets, first.pages);
+    layout = compose.Run();
+  }
+  cairo_surface_finish(surface.get());
+  const cairo_status_t status = cairo_surface_status(surface.get());
+  if (status != CAIRO_STATUS_SUCCESS)
+    throw WriteError("cannot write " + path + ": " + cairo_status_to_string(status));
+  DEB_DEMAND(layout.pages == first.pages);
+  return layout;
+}
+
+}  // namespace deb::report

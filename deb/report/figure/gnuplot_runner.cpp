@@ -1,0 +1,304 @@
+#include "deb/report/figure/gnuplot_runner.h"
+
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <gnuplot-iostream.h>
+#include <mutex>
+#include <sstream>
+
+#include "deb/core/error.h"
+#include "deb/core/limits.h"
+#include "deb/core/output_dir.h"
+#include "deb/report/figure/plot.h"
+
+namespace deb::report {
+namespace fs = std::filesystem;
+namespace {
+
+std::string ShellQuote(const std::string& text) {
+  std::string q = "'";
+  for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+bool IsExecutableFile(const fs::path& p) {
+  std::error_code ec;
+  return fs::is_regular_file(p, ec) && ::access(p.c_str(), X_OK) == 0;
+}
+
+// Seconds one gnuplot may run: $DEB_GNUPLOT_TIMEOUT if a whole number > 0.
+int TimeoutSeconds() {
+  const char* env = std::getenv(kGnuplotTimeoutVariable);
+  if (!env || !*env) return limits::kGnuplotTimeoutSeconds;
+  char* end = nullptr;
+  const long v = std::strtol(env, &end, 10);
+  if (*end != '\0' || v < 1 || v > 86400)
+    throw WriteError(std::string("cannot draw the report's plots: ") + kGnuplotTimeoutVariable + "='" + env +
+                     "' is not a whole number of seconds in [1, 86400]");
+  return static_cast<int>(v);
+}
+
+// Removes the private directories of gnuplot runs whose deb process has
+// died (killed while plotting), and files of the older naming
+// "deb-gnuplot-PID-N.err|status". Only this user's entries; once per process.
+void CleanStaleTemporaries(const fs::path& tmp) {
+  static std::once_flag once;
+  std::call_once(once, [&] {
+    const std::string prefix = "deb-gnuplot-";
+    std::error_code ec;
+    for (fs::directory_iterator it(tmp, ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string name = it->path().filename().string();
+      if (name.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::size_t dash = name.find('-', prefix.size());
+      const long pid = PidOf(name.substr(prefix.size(), dash == std::string::npos ? 0 : dash - prefix.size()));
+      if (!IsDeadProcess(pid)) continue;
+      struct stat st {};
+      if (::lstat(it->path().c_str(), &st) != 0 || st.st_uid != ::getuid()) continue;
+      std::error_code ignored;
+      fs::remove_all(it->path(), ignored);
+    }
+  });
+}
+
+// A directory only this user can enter, for gnuplot's messages and status.
+fs::path PrivateDirectory() {
+  const fs::path tmp = fs::temp_directory_path();
+  CleanStaleTemporaries(tmp);
+  std::string pattern = (tmp / ("deb-gnuplot-" + std::to_string(::getpid()) + "-XXXXXX")).string();
+  if (!::mkdtemp(pattern.data()))
+    throw WriteError("cannot draw the report's plots: cannot create a temporary directory in " + tmp.string() +
+                     ": " + std::strerror(errno));
+  return pattern;
+}
+
+std::string ReadText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The first lines of gnuplot's messages, blank lines dropped.
+std::string Excerpt(const std::string& text, int max_lines = 8) {
+  std::istringstream in(text);
+  std::string line, out;
+  int lines = 0;
+  while (std::getline(in, line)) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (lines++ == max_lines) {
+      out += "\n  ...";
+      break;
+    }
+    out += "\n  " + line;
+  }
+  return out;
+}
+
+// Writing to a gnuplot that has exited raises SIGPIPE; while any gnuplot
+// runs it is ignored, so that the write fails and the exit status tells the
+// story. Counted, because several gnuplots may run at once.
+class IgnoreSigpipe {
+ public:
+  IgnoreSigpipe() {
+    const std::lock_guard<std::mutex> lock(Mutex());
+    if (Count()++ > 0) return;
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    ::sigaction(SIGPIPE, &ignore, &Previous());
+  }
+  ~IgnoreSigpipe() {
+    const std::lock_guard<std::mutex> lock(Mutex());
+    if (--Count() == 0) ::sigaction(SIGPIPE, &Previous(), nullptr);
+  }
+  IgnoreSigpipe(const IgnoreSigpipe&) = delete;
+  IgnoreSigpipe& operator=(const IgnoreSigpipe&) = delete;
+
+ private:
+  static std::mutex& Mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static int& Count() {
+    static int n = 0;
+    return n;
+  }
+  static struct sigaction& Previous() {
+    static struct sigaction previous {};
+    return previous;
+  }
+};
+
+}  // namespace
+
+std::string FindGnuplot(const std::string& requested) {
+  std::string name = requested, origin = "as requested";
+  if (name.empty()) {
+    const char* env = std::getenv(kGnuplotVariable);
+    if (env && *env) {
+      name = env;
+      origin = std::string("from ") + kGnuplotVariable;
+    } else {
+      name = "gnuplot";
+      origin = "searched on PATH";
+    }
+  }
+  if (name.find('/') != std::string::npos) {
+    if (IsExecutableFile(name)) return fs::absolute(name).string();
+  } else if (const char* path = std::getenv("PATH")) {
+    std::istringstream dirs(path);
+    std::string dir;
+    while (std::getline(dirs, dir, ':')) {
+      const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
+      if (IsExecutableFile(candidate)) return fs::absolute(candidate).string();
+    }
+  }
+throw WriteError("cannot draw the report's plots: gnuplot executable '" + name + "' (" + origin +
+                   ") is not an executable file. Install gnuplot (Debian: gnuplot-nox, see tools/install-deps), "
+                   "set " + kGnuplotVariable + " to a gnuplot 5 executable, or write the report without plots (--no-plots)");
+}
+
+void RunGnuplot(const std::string& executable, const std::string& dir, const std::string& script,
+                const std::string& what) {
+  CheckScript(script);
+  if (HasNonFiniteNumber(script))
+    throw WriteError("cannot draw " + what + ": its script holds a number that is not finite (inf or nan); "
+                     "the data it would show has no finite axis range");
+  const int timeout_s = TimeoutSeconds();
+  const fs::path private_dir = PrivateDirectory();
+  const fs::path err_file = private_dir / "err", status_file = private_dir / "status";
+  // The shell records gnuplot's status in a file: pclose() sees only the
+  // shell's. timeout(1) stops a gnuplot that hangs (exit 124), then kills it.
+  // gnuplot starts in `dir` or not at all: a `cd` inside the script would
+  // leave it drawing into the caller's directory if `dir` were gone (a run
+  // killed while its gnuplots still read their scripts).
+  const std::string err = ShellQuote(err_file.string());
+  const std::string command = "cd " + ShellQuote(dir.empty() ? "." : dir) + " 2>" + err + " && timeout -k 5 " +
+                              std::to_string(timeout_s) + " " + ShellQuote(executable) + " -d 2>" + err +
+                              "; echo $? >" + ShellQuote(status_file.string());
+  bool written = false;
+  {
+    const IgnoreSigpipe guard;
+    try {
+      Gnuplot gp(command);
+      gp << script << "\n";
+      gp.flush();
+      written = !gp.fail();
+    } catch (const std::exception& e) {
+      std::error_code ec;
+      fs::remove_all(private_dir, ec);
+      throw WriteError("cannot draw " + what + ": cannot start gnuplot (" + executable + "): " + e.what());
+    }
+  }
+  const std::string messages = ReadText(err_file), status_text = ReadText(status_file);
+  std::error_code ec;
+  fs::remove_all(private_dir, ec);
+  int status = -1;
+  try {
+    status = std::stoi(status_text);
+  } catch (const std::exception&) {
+  }
+  if (status != 0 || !written) {
+    std::string why = status < 0 ? "did not report an exit status" : "exited with status " + std::to_string(status);
+    if (status == 0) why = "stopped reading its commands";
+    if (status == 124 || status == 137)
+      why = "did not finish within " + std::to_string(timeout_s) + " s and was stopped (" + kGnuplotTimeoutVariable +
+            " sets the limit)";
+    throw WriteError("cannot draw " + what + ": gnuplot (" + executable + ") " + why +
+                     (messages.empty() ? std::string() : ":" + Excerpt(messages)));
+  }
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+std::string ScriptOffence(const std::string& script) {
+  bool command_start = true;  // at the start of a command: '!' would run a shell
+  for (std::size_t i = 0; i < script.size(); ++i) {
+    const char c = script[i];
+    if (c == '\'') {  // single-quoted: nothing is expanded; '' stands for '
+      for (++i; i < script.size(); ++i) {
+        if (script[i] == '\n') return "a line break inside a single-quoted string";
+        if (script[i] != '\'') continue;
+        if (i + 1 < script.size() && script[i + 1] == '\'') {
+          ++i;
+          continue;
+        }
+        break;
+      }
+      if (i >= script.size()) return "an unterminated single-quoted string";
+      command_start = false;
+      continue;
+    }
+    if (c == '"') {  // double-quoted: gnuplot expands `...` here
+      for (++i; i < script.size() && script[i] != '"'; ++i) {
+        if (script[i] == '\\') ++i;
+        else if (script[i] == '`') return "a backquote inside a double-quoted string";
+        else if (script[i] == '\n') return "a line break inside a double-quoted string";
+      }
+      if (i >= script.size()) return "an unterminated double-quoted string";
+      command_start = false;
+      continue;
+    }
+    if (c == '`') return "a backquote outside a single-quoted string";
+    if (c == '@') return "an '@' (macro) outside a single-quoted string";
+    if (c == '!' && command_start) return "a '!' shell command";
+    if (script.compare(i, 6, "system") == 0) return "a call of system";
+    if (c == '\n' || c == ';') command_start = true;
+    else if (c != ' ' && c != '\t') command_start = false;
+  }
+  return "";
+}
+
+bool HasNonFiniteNumber(const std::string& script) {
+  std::string word;
+  bool quoted = false;
+  char quote = 0;
+  for (std::size_t i = 0; i <= script.size(); ++i) {
+    const char c = i < script.size() ? script[i] : '\n';
+    if (quoted) {
+      if (c == '\\' && quote == '"') ++i;
+      else if (c == quote) quoted = false;
+      continue;
+    }
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') {
+      word += c;
+      continue;
+    }
+    if (word == "inf" || word == "nan") return true;
+    word.clear();
+    if (c == '\'' || c == '"') {
+      quoted = true;
+      quote = c;
+    }
+  }
+  return false;
+}
+
+void WriteGnuplotScript(const std::string& path, const std::string& script) {
+  CheckScript(script);
+  if (HasNonFiniteNumber(script))
+    throw WriteError("cannot write " + path + ": the plot's script holds a number that is not finite (inf or nan)");
+  WriteTextFile(path, script);
+}
+
+void CheckScript(const std::string& script) {
+  const std::string offence = ScriptOffence(script);
+  if (!offence.empty()) {
+    std::fprintf(stderr, "deb: internal error: a gnuplot script holds %s\n", offence.c_str());
+    DEB_DEMAND(offence.empty());
+  }
+}
+
+}  // namespace deb::report

@@ -1,0 +1,237 @@
+#include "deb/report/figure/plot_style.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "deb/core/error.h"
+#include "deb/report/figure/plot.h"
+
+namespace deb::report {
+namespace {
+
+constexpr double kPi = 3.141592653589793238462643383279502884;
+
+// Lightness levels (L* of the colour and of its grey in print) in an order
+// that keeps neighbours >= 20 apart, gives the contributors sharing a dash
+// pattern (i, i + 6) levels >= 25 apart, spreads the first six (solid fills)
+// 10 apart, and gives the next six (hatched fills) the levels in between:
+// 12 distinct greys. The first two, in most reports, are 30 apart.
+constexpr std::array<double, 12> kLightness = {30, 60, 80, 50, 70, 40, 65, 35, 55, 25, 45, 75};
+constexpr std::array<const char*, 6> kDashes = {"solid", "(10,5)", "(12,4,2,4)", "(4,4)", "(2,3)", "(16,4,4,4,4,4)"};
+// gnuplot fill patterns (cairo): 4, 5 and 6, 7 diagonals of two slopes, 1 and 2 crosshatches.
+constexpr std::array<int, 6> kPatterns = {4, 5, 1, 6, 7, 2};
+constexpr double kGreyTolerance = 3.0;  // L*, between the level and the colour's two greys
+constexpr double kGoldenAngleDeg = 137.50776405;
+// Hues (CIE LCh) of the first 8 contributors, a qualitative palette matched
+// to their lightness (kLightness): dark blue, orange, light yellow, purple,
+// sky blue, crimson, light green, dark olive. Hues closer than 45° differ by
+// >= 25 in lightness. Contributors 8.. take the same hues turned by 22.5°,
+// then by -22.5°, 11.25°.
+constexpr std::array<double, 8> kFirstHues = {255, 40, 95, 300, 210, 345, 140, 75};
+constexpr std::array<double, 4> kHueTurns = {0.0, 22.5, -22.5, 11.25};
+constexpr double kFirstHueDeg = kFirstHues[0];
+constexpr double kChroma = 58.0;
+
+// Linear sRGB of CIE L*a*b* (D65 white).
+std::array<double, 3> LabToLinearRgb(double l, double a, double b) {
+  const double fy = (l + 16.0) / 116.0, fx = fy + a / 500.0, fz = fy - b / 200.0;
+  const auto finv = [](double t) {
+    constexpr double d = 6.0 / 29.0;
+    return t > d ? t * t * t : 3.0 * d * d * (t - 4.0 / 29.0);
+  };
+  const double x = 0.95047 * finv(fx), y = finv(fy), z = 1.08883 * finv(fz);
+  return {3.2404542 * x - 1.5371385 * y - 0.4985314 * z, -0.9692660 * x + 1.8760108 * y + 0.0415560 * z,
+          0.0556434 * x - 0.2040259 * y + 1.0572252 * z};
+}
+
+bool InGamut(const std::array<double, 3>& rgb) {
+  return std::all_of(rgb.begin(), rgb.end(), [](double v) { return v >= -1e-9 && v <= 1.0 + 1e-9; });
+}
+
+int Encode(double linear) {
+  const double v = std::clamp(linear, 0.0, 1.0);
+  const double s = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+  return static_cast<int>(std::lround(255.0 * s));
+}
+
+// sRGB components (0..255) of "#rrggbb".
+std::array<int, 3> Components(const std::string& colour) {
+  DEB_DEMAND(colour.size() == 7 && colour[0] == '#');
+  std::array<int, 3> c{};
+  for (int i = 0; i < 3; ++i) c[i] = std::stoi(colour.substr(1 + 2 * i, 2), nullptr, 16);
+  return c;
+}
+
+// Linear value of an encoded sRGB component 0..255.
+double Decode(double encoded) {
+  const double v = encoded / 255.0;
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+
+// CIE L* of relative luminance y.
+double LightnessOfLuminance(double y) {
+  return y > 216.0 / 24389.0 ? 116.0 * std::cbrt(y) - 16.0 : 24389.0 / 27.0 * y;
+}
+
+// A colour of hue h_deg whose CIE L* and Rec. 601 grey both lie within
+// kGreyTolerance of l: chroma up to c, reduced where the two disagree (greens
+// and cyans print darker than their L*), the L* asked for nudged by up to 4.
+std::string PrintableColour(double l, double c, double h_deg) {
+  for (double chroma = c; chroma > 0.0; chroma -= 2.0) {
+    std::string best;
+    double best_error = kGreyTolerance;
+    for (double dl = -4.0; dl <= 4.0; dl += 0.5) {
+      const std::string colour = LchColour(l + dl, chroma, h_deg);
+      const double error = std::max(std::abs(Lightness(colour) - l), std::abs(GreyLightness(colour) - l));
+      if (error <= best_error) {
+        best = colour;
+        best_error = error;
+      }
+    }
+    if (!best.empty()) return best;
+  }
+  return LchColour(l, 0.0, 0.0);  // grey: both are l
+}
+
+SeriesStyle MakeContributorStyle(std::size_t index) {
+  SeriesStyle s;
+  const double hue = std::fmod(kFirstHues[index % 8] + kHueTurns[(index / 8) % 4] + 360.0, 360.0);
+  s.lightness = kLightness[index % kLightness.size()];
+  s.colour = PrintableColour(s.lightness, kChroma, hue);
+  s.edge_colour = LchColour(std::max(s.lightness - 28.0, 12.0), kChroma, hue);
+  s.dash = kDashes[index % kDashes.size()];
+  // Hatched: indices 6-11 of every 12, and 0-5 of every other 12, so that
+  // 24 contributors differ in grey level or in hatching.
+  if ((index % 12 >= 6) != ((index / 12) % 2 == 1)) {
+    s.fill_pattern = kPatterns[index % kPatterns.size()];
+    // Dark lines on light fills, light lines on dark ones; either shows on the key's white.
+    s.hatch_colour =
+        PrintableColour(s.lightness >= 50.0 ? std::max(s.lightness - 42.0, 12.0) : s.lightness + 30.0, 40.0, hue);
+  }
+  return s;
+}
+
+}  // namespace
+
+double Lightness(const std::string& colour) {
+  const auto c = Components(colour);
+  return LightnessOfLuminance(0.2126 * Decode(c[0]) + 0.7152 * Decode(c[1]) + 0.0722 * Decode(c[2]));
+}
+
+double GreyLightness(const std::string& colour) {
+  const auto c = Components(colour);
+  return LightnessOfLuminance(Decode(0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2]));  // luma of the encoded values
+}
+
+std::string LchColour(double l, double c, double h_deg) {
+  const double h = h_deg * kPi / 180.0;
+  double lo = 0.0, hi = c;
+  if (!InGamut(LabToLinearRgb(l, c * std::cos(h), c * std::sin(h)))) {
+    for (int i = 0; i < 40; ++i) {  // largest in-gamut chroma by bisection
+      const double mid = 0.5 * (lo + hi);
+      (InGamut(LabToLinearRgb(l, mid * std::cos(h), mid * std::sin(h))) ? lo : hi) = mid;
+    }
+    c = lo;
+  }
+  const auto rgb = LabToLinearRgb(l, c * std::cos(h), c * std::sin(h));
+  char text[8];
+  std::snprintf(text, sizeof(text), "#%02x%02x%02x", Encode(rgb[0]), Encode(rgb[1]), Encode(rgb[2]));
+  return text;
+}
+
+SeriesStyle ContributorStyle(std::size_t index) {
+  // The colour search costs ~500 colour conversions a style and reports ask
+  // often: each of the first 24 is made once, when it is first asked for
+  // (all 24 at once took a millisecond of a 2-contributor run).
+  static std::array<std::once_flag, 24> made;
+  static std::array<SeriesStyle, 24> table;
+  if (index >= table.size()) return MakeContributorStyle(index);
+  std::call_once(made[index], [index] { table[index] = MakeContributorStyle(index); });
+  return table[index];
+}
+
+SeriesStyle GroupStyle(std::size_t contributors, std::size_t group) { return ContributorStyle(contributors + group); }
+
+std::vector<std::string> FillClauses(const SeriesStyle& style, const std::string& source, const std::string& with,
+                                     const std::string& key, const std::string& outline_colour) {
+  const std::string solid = source + " with " + with + " fillcolor rgb " + Quote(style.colour);
+  if (!style.fill_pattern) return {solid + " " + key};
+  // The hatch's border in the fill colour gives its key sample (hatch on
+  // the key's white) the colour of the layer.
+  std::vector<std::string> clauses = {
+      solid + " notitle", source + " with " + with + " fillstyle transparent pattern " +
+                              std::to_string(style.fill_pattern) + " border linecolor rgb " + Quote(style.colour) +
+                              " fillcolor rgb " + Quote(style.hatch_colour) + " " + key};
+  if (!outline_colour.empty())
+    clauses.push_back(source + " with " + with + " fillstyle empty border linecolor rgb " + Quote(outline_colour) +
+                      " linecolor rgb " + Quote(outline_colour) + " notitle");
+  return clauses;
+}
+
+SeriesStyle ChannelStyle(std::size_t index) {
+  // Open markers first: they keep the curve beneath visible.
+  constexpr std::array<int, 12> kPoints = {6, 4, 8, 12, 10, 2, 1, 3, 7, 5, 9, 13};
+  constexpr std::array<double, 4> kChannelLightness = {38, 58, 48, 66};
+  constexpr double kFirstChannelHueDeg = 75.0, kAvoidDeg = 25.0;
+  const auto hue_distance = [](double a, double b) {
+    const double d = std::fmod(std::abs(a - b), 360.0);
+    return std::min(d, 360.0 - d);
+  };
+  double hue = kFirstChannelHueDeg;
+  for (std::size_t accepted = 0, j = 0;; ++j) {
+    hue = std::fmod(kFirstChannelHueDeg + kGoldenAngleDeg * static_cast<double>(j), 360.0);
+    if (hue_distance(hue, kFirstHueDeg) < kAvoidDeg || hue_distance(hue, kFirstHues[1]) < kAvoidDeg)
+      continue;  // the hues of contributors 0 and 1
+    if (accepted++ == index) break;
+  }
+  SeriesStyle s;
+  s.lightness = kChannelLightness[index % kChannelLightness.size()];
+  s.colour = LchColour(s.lightness, 70.0, hue);
+  s.edge_colour = LchColour(std::max(s.lightness - 28.0, 12.0), 70.0, hue);
+  s.dash = "solid";
+  s.point_type = kPoints[index % kPoints.size()];
+  return s;
+}
+
+std::string TerminalCommand(Terminal terminal) {
+  const std::string font = std::string(" font '") + kFont + ",";
+  switch (terminal) {
+    case Terminal::kPng:
+      return "set terminal pngcairo enhanced size 1200,720 background '#ffffff'" + font + "11' linewidth 1.2\n";
+    case Terminal::kSvg:
+      return "set terminal svg enhanced size 1200,720 background '#ffffff'" + font + "13' linewidth 1.2\n";
+    case Terminal::kPdf:
+      return "set terminal pdfcairo enhanced size 29.7cm,21cm background '#ffffff'" + font + "11' linewidth 1.5\n";
+  }
+  return "";
+}
+
+std::string FileExtension(Terminal terminal) {
+  switch (terminal) {
+    case Terminal::kPng: return "png";
+    case Terminal::kSvg: return "svg";
+    case Terminal::kPdf: return "pdf";
+  }
+  return "";
+}
+
+std::string StylePreamble() {
+  return "set encoding utf8\n"
+         "set datafile separator comma\n"
+         "set border 3 linewidth 1.0 linecolor rgb '#404040'\n"
+         "set tics nomirror out scale 0.6 textcolor rgb '#202020'\n"
+         "set style line 101 linecolor rgb '#c8c8c8' linewidth 0.7 dashtype solid\n"
+         "set style line 102 linecolor rgb '#e6e6e6' linewidth 0.6 dashtype solid\n"
+         "set grid xtics ytics mxtics linestyle 101, linestyle 102\n"
+         "set title font ',14' offset 0,-0.3\n"
+         "set key font ',10' samplen 2.5 spacing 1.15 nobox opaque\n"
+         "set xlabel offset 0,0.4\n"
+         "set style fill solid 1.0 noborder\n";
+}
+
+}  // namespace deb::report

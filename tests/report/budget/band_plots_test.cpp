@@ -1,0 +1,69 @@
+#include "deb/report/budget/band_plots.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "deb/io/budget_yaml.h"
+#include "deb/report/budget/spectrum_plots.h"
+#include "tests/support/cli_harness.h"
+
+namespace deb::report {
+
+TEST_CASE("the bands figure draws each band requirement as a limit segment across its own group and marks failures") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const OutputResult& out = result.outputs[0];  // position: decades 0.1..1e4 Hz; requirements 0.1-10 (fails), 10-100, 100-1e4
+  REQUIRE(out.band_requirements.size() == 3);
+  const Plot p = BandsPlot(result, 0);
+  const FigurePanel& panel = p.figure.panels.at(0);
+  // Five decade bands, then a group for each requirement range that is not a band (0.1-10, 100-1e4 Hz).
+  REQUIRE(panel.x.tics.size() == out.bands.size() + 2);
+  CHECK(panel.x.tics[out.bands.size()].second == "requirement\n0.1–10 Hz");
+  std::vector<const FigureAnnotation*> limits;
+  for (const FigureAnnotation& a : panel.annotations)
+    if (a.kind == AnnotationKind::kSegment) limits.push_back(&a);
+  REQUIRE(limits.size() == 3);
+  // 10-100 Hz is a band: its segment spans that group (x = 3), at 2 nm.
+  CHECK(limits[0]->x0 < 3.0);
+  CHECK(limits[0]->x1 > 3.0);
+  CHECK(limits[0]->x1 - limits[0]->x0 < 1.0);
+  CHECK(limits[0]->y0 == doctest::Approx(2.0));
+  // 0.1-10 Hz gets group 6, at 0.8 nm.
+  CHECK(limits[1]->x0 < 6.0);
+  CHECK(limits[1]->x1 > 6.0);
+  CHECK(limits[1]->y0 == doctest::Approx(0.8));
+  // The failing group's total is in the failing_total column; passing ones hold 0 there.
+  std::istringstream lines(p.csv);
+  std::string line;
+  std::getline(lines, line);
+  std::getline(lines, line);
+  CHECK(line.rfind("group,lo_hz,hi_hz,total,failing_total,", 0) == 0);
+  std::vector<double> failing;
+  while (std::getline(lines, line)) {
+    int group;
+    double lo, hi, total, fail;
+    REQUIRE(std::sscanf(line.c_str(), "%d,%lf,%lf,%lf,%lf", &group, &lo, &hi, &total, &fail) == 5);
+    failing.push_back(fail);
+    if (group == 6) {
+      CHECK(total == doctest::Approx(out.band_requirements[0].rms()).epsilon(1e-9));
+      CHECK(fail == total);
+    }
+  }
+  CHECK(std::count_if(failing.begin(), failing.end(), [](double v) { return v > 0.0; }) == 1);
+  const FigureSeries* outline = FindSeries(p.figure, "failing total");
+  REQUIRE(outline != nullptr);
+  CHECK(outline->y_columns == std::vector<std::size_t>{5});
+  // Contributors follow the total, largest first.
+  const std::vector<std::size_t> order = ShareOrder(out);
+  CHECK(panel.series[0].name == "total");
+  CHECK(panel.series[2].name == out.contributors[order[0]].name);
+  CHECK(panel.series.back().name == out.contributors[order.back()].name);
+  // A FAIL label names the band's RMS.
+  CHECK(std::any_of(panel.annotations.begin(), panel.annotations.end(), [](const FigureAnnotation& a) {
+    return a.kind == AnnotationKind::kLabel && a.label.find("FAIL") != std::string::npos;
+  }));
+}
+
+}  // namespace deb::report

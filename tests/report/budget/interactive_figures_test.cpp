@@ -1,0 +1,146 @@
+#include "deb/report/budget/interactive_figures.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "deb/io/budget_yaml.h"
+#include "deb/report/budget/report_documents.h"
+#include "tests/support/cli_harness.h"
+
+namespace deb::report {
+namespace {
+
+using nlohmann::json;
+
+std::size_t Count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+struct Evaluated {
+  Budget budget;
+  BudgetResult result;
+  explicit Evaluated(const std::string& file) : budget(LoadBudgetFile(test::ExampleBudget(file))), result(Evaluate(budget)) {}
+  std::string Html() const {
+    DocumentInputs in;
+    in.budget = &budget;
+    in.result = &result;
+    in.facts = MakeFacts(budget, result, "b.yaml", "00ff", "today", 0.1);
+    return IndexHtml(in);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a figure keeps at most kMaxFigurePoints of a dense grid, with a narrow resonance's peak and both ends") {
+  std::vector<double> f(40000);
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = 0.01 * std::pow(10.0, 7.0 * static_cast<double>(i) / (f.size() - 1));
+  // A resonance at 37 Hz with zeta 1e-4 (half-power width 0.0074 Hz) over a 1/f^2 background.
+  std::vector<double> psd(f.size()), cps(f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const double r = f[i] / 37.0;
+    psd[i] = 1.0 / (f[i] * f[i]) + 1.0 / ((1 - r * r) * (1 - r * r) + 4e-8 * r * r);
+    cps[i] = (i ? cps[i - 1] : 0.0) + psd[i];
+  }
+  const std::vector<std::size_t> keep = FigurePoints(f, {&psd}, {&cps});
+  CHECK(keep.size() <= kMaxFigurePoints);
+  CHECK(keep.size() > 100);
+  CHECK(std::is_sorted(keep.begin(), keep.end()));
+  CHECK(std::adjacent_find(keep.begin(), keep.end()) == keep.end());
+  CHECK(keep.front() == 0);
+  CHECK(keep.back() == f.size() - 1);
+  const std::size_t peak = static_cast<std::size_t>(std::max_element(psd.begin(), psd.end()) - psd.begin());
+  CHECK(std::binary_search(keep.begin(), keep.end(), peak));
+  // A tighter limit still holds.
+  CHECK(FigurePoints(f, {&psd}, {&cps}, 300).size() <= 300);
+}
+
+TEST_CASE("the figure data give every output's spectra by share, its bands and every path, thinned and rounded") {
+  const Evaluated e("wafer_stage.yaml");
+  const json data = json::parse(FigureDataJson(e.budget, e.result));
+  REQUIRE(data["outputs"].size() == e.result.outputs.size());
+  for (std::size_t o = 0; o < e.result.outputs.size(); ++o) {
+    const OutputResult& out = e.result.outputs[o];
+    const json& d = data["outputs"][o];
+    CAPTURE(out.name);
+    CHECK(d["name"] == out.name);
+    CHECK(d["pass"] == out.AllPass());
+    const std::vector<double> f = d["f"];
+    CHECK(f.size() <= kMaxFigurePoints);
+    CHECK(std::is_sorted(f.begin(), f.end()));  // a jump is two points at one frequency
+    CHECK(f.front() == doctest::Approx(e.result.grid.min_hz()));
+    CHECK(f.back() == doctest::Approx(e.result.grid.max_hz()).epsilon(1e-5));
+    REQUIRE(d["contributors"].size() == out.contributors.size());
+    double previous = HUGE_VAL, sum = 0.0;
+    for (std::size_t k = 0; k < out.contributors.size(); ++k) {
+      CHECK(d["psd"][k].size() == f.size());
+      CHECK(d["cps"][k].size() == f.size());
+      const double variance = d["cps"][k].back();
+      CHECK(variance <= previous * (1 + 1e-3));  // largest first
+      previous = variance;
+      sum += variance;
+    }
+    CHECK(d["total_cps"].back().get<double>() == doctest::Approx(out.variance).epsilon(1e-3));
+    CHECK(sum == doctest::Approx(out.variance).epsilon(1e-3));
+    REQUIRE(d["bands"].size() == out.bands.size());
+    for (std::size_t b = 0; b < out.bands.size(); ++b) {
+      double band = 0.0;
+      for (double v : d["band_variance"][b]) band += v;
+      CHECK(band == doctest::Approx(out.bands[b].variance).epsilon(1e-3));
+    }
+  }
+  CHECK(data["paths"].size() == e.budget.contributors.size() * e.result.outputs.size());
+  for (const json& p : data["paths"]) {
+    CHECK(p["f"].size() <= kMaxFigurePoints);
+    for (const json& m : p["magnitude"]) CHECK(m.size() == p["f"].size());
+  }
+}
+
+TEST_CASE("names cannot end the data's script element, and the page keeps exactly its own scripts") {
+  Evaluated e("wafer_stage.yaml");
+  e.result.outputs[0].name = "</script><script>alert(1)</script><!--";
+  const std::string text = FigureDataJson(e.budget, e.result);
+  CHECK(text.find('<') == std::string::npos);
+  CHECK(json::parse(text)["outputs"][0]["name"] == e.result.outputs[0].name);
+  const std::string html = e.Html();
+  CHECK(Count(html, "<script") == 3);  // dygraphs, the data, the drawing code
+  CHECK(Count(html, "</script>") == 3);
+  CHECK(html.find("alert(1)</script>") == std::string::npos);
+}
+
+TEST_CASE("a failing budget's page opens with a red verdict and the guidance, and FAIL cells are marked") {
+  const Evaluated e("wafer_stage.yaml");
+  const std::string html = e.Html();
+  const std::size_t verdict = html.find("<div class=\"verdict fail\"");
+  REQUIRE(verdict != std::string::npos);
+  CHECK(verdict < html.find("<h2 id=\"summary\">"));
+  for (const OutputResult& out : e.result.outputs) {
+    const std::string fix = GuidanceText(out, e.result.grid);
+    if (fix.empty()) continue;
+    CHECK(html.find("<strong>FAIL</strong> " + HtmlEscape(out.name)) < html.find("<h2 id=\"summary\">"));
+    CHECK(html.find(HtmlEscape(fix)) < html.find("<h2 id=\"summary\">"));
+  }
+  CHECK(html.find("<td class=\"fail\"><strong>FAIL</strong></td>") != std::string::npos);
+  CHECK(html.find("<td><strong>FAIL</strong></td>") == std::string::npos);
+  CHECK(html.find("<td>FAIL</td>") == std::string::npos);
+}
+
+TEST_CASE("a passing budget's verdict is green, one without requirements grey") {
+  Evaluated e("wafer_stage.yaml");
+  for (OutputResult& out : e.result.outputs) {
+    out.rms_max = out.rms() * 2;
+    out.band_requirements.clear();
+  }
+  CHECK(e.Html().find("<div class=\"verdict pass\"") != std::string::npos);
+  for (OutputResult& out : e.result.outputs) out.rms_max.reset();
+  const std::string html = e.Html();
+  CHECK(html.find("<div class=\"verdict none\"") != std::string::npos);
+  CHECK(html.find("<strong>no requirement</strong>") != std::string::npos);
+  CHECK(html.find("<noscript>") != std::string::npos);
+}
+
+}  // namespace deb::report

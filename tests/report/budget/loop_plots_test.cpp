@@ -1,0 +1,83 @@
+#include "deb/report/budget/loop_plots.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <sstream>
+
+#include "deb/io/budget_yaml.h"
+#include "tests/support/cli_harness.h"
+
+namespace deb::report {
+
+TEST_CASE("every evaluated loop gets a Bode, an S/T and a Nyquist figure whose marks are the loop's margins") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const std::vector<Plot> plots = LoopPlots(result);
+  std::size_t evaluated = 0;
+  for (const LoopResult& r : result.loops) evaluated += r.evaluated && r.margins.channels == 1;
+  REQUIRE(evaluated > 0);
+  REQUIRE(plots.size() == 3 * evaluated);
+  const auto stage = std::find_if(result.loops.begin(), result.loops.end(),
+                                  [](const LoopResult& r) { return r.plant == "stage" && r.controller == "controller"; });
+  REQUIRE(stage != result.loops.end());
+  const auto bode = std::find_if(plots.begin(), plots.end(),
+                                 [](const Plot& p) { return p.name == "loop_stage_controller_bode"; });
+  REQUIRE(bode != plots.end());
+  const LoopMargins& m = stage->margins;
+  REQUIRE(m.phase_margin);
+
+  // The CSV: S and T from L itself, the phase unwrapped (no step of a turn).
+  std::istringstream lines(bode->csv);
+  std::string line;
+  std::getline(lines, line);
+  std::getline(lines, line);
+  CHECK(line == "frequency_hz,abs_L,phase_L_deg,abs_S,abs_T,re_L,im_L");
+  double max_s = 0.0, last_phase = 0.0;
+  bool first = true;
+  while (std::getline(lines, line)) {
+    double f, l, ph, s, t, re, im;
+    REQUIRE(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &f, &l, &ph, &s, &t, &re, &im) == 7);
+    const std::complex<double> L(re, im);
+    CHECK(l == doctest::Approx(std::abs(L)).epsilon(1e-8));
+    CHECK(s == doctest::Approx(1.0 / std::abs(1.0 + L)).epsilon(1e-8));
+    CHECK(t == doctest::Approx(std::abs(L / (1.0 + L))).epsilon(1e-8));
+    if (!first) CHECK(std::fabs(ph - last_phase) < 90.0);
+    first = false;
+    last_phase = ph;
+    max_s = std::max(max_s, s);
+  }
+  // The peak of |S| on the grid is 1 / modulus margin, to the grid's resolution.
+  CHECK(max_s == doctest::Approx(1.0 / m.modulus_margin).epsilon(1e-3));
+
+  // The gain crossover marker sits at |L| = 1 at the phase margin's frequency.
+  const FigurePanel& top = bode->figure.panels.at(0);
+  const auto pm = std::find_if(top.annotations.begin(), top.annotations.end(),
+                               [](const FigureAnnotation& a) { return a.kind == AnnotationKind::kMarker; });
+  REQUIRE(pm != top.annotations.end());
+  CHECK(pm->x0 == doctest::Approx(m.phase_margin->f_hz));
+  CHECK(pm->y0 == 1.0);
+  CHECK(bode->figure.panels.at(1).y.label == "arg L [°]");
+
+  // The Nyquist plot: unit circle, the modulus margin's circle around -1, equal axes.
+  const Plot& ny = *(bode + 2);
+  REQUIRE(ny.name == "loop_stage_controller_nyquist");
+  const FigurePanel& np = ny.figure.panels.at(0);
+  CHECK(np.equal_axes);
+  std::vector<const FigureAnnotation*> circles;
+  for (const FigureAnnotation& a : np.annotations)
+    if (a.kind == AnnotationKind::kCircle) circles.push_back(&a);
+  REQUIRE(circles.size() == 2);
+  CHECK(circles[0]->x0 == 0.0);
+  CHECK(circles[0]->x1 == 1.0);
+  CHECK(circles[1]->x0 == -1.0);
+  CHECK(circles[1]->x1 == doctest::Approx(m.modulus_margin));
+  // Re L against Im L and its mirror image.
+  CHECK(np.series.at(0).x_column == 6);
+  CHECK(np.series.at(0).y_columns == std::vector<std::size_t>{7});
+  CHECK(np.series.at(1).y_divisor == -1.0);
+}
+
+}  // namespace deb::report

@@ -1,0 +1,181 @@
+#include "deb/report/budget/report_tables.h"
+
+#include <doctest/doctest.h>
+
+#include "deb/io/budget_yaml.h"
+#include "deb/report/figure/plot.h"
+
+#include <cmath>
+#include "tests/support/cli_harness.h"
+
+namespace deb::report {
+namespace {
+
+Table Small() {
+  Table t;
+  t.title = "t";
+  t.header = {"name", "value", "note"};
+  t.numeric = {false, true, false};
+  t.rows = {{"a|b", "1.5", "x"}, {"µm", "12.25", "a very long note that goes on"}};
+  t.emphasis = {{false, true, false}};
+  return t;
+}
+
+// Contributors a, b, ... with flat PSDs equal to their variances on {1, 2} Hz.
+OutputResult FlatOutput(const std::vector<double>& variances, double rms_max) {
+  OutputResult o;
+  o.name = "position";
+  o.unit = "um";
+  o.rms_max = rms_max;
+  o.total_psd = {0.0, 0.0};
+  o.total_cps = {0.0, 0.0};
+  for (std::size_t c = 0; c < variances.size(); ++c) {
+    ContributorResult cr;
+    cr.name = std::string(1, static_cast<char>('a' + c));
+    cr.psd = {variances[c], variances[c]};
+    cr.cps = {0.0, variances[c]};
+    cr.variance = variances[c];
+    o.total_psd[0] += variances[c];
+    o.total_psd[1] += variances[c];
+    o.total_cps[1] += variances[c];
+    o.contributors.push_back(cr);
+  }
+  o.variance = o.total_cps[1];
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("a failing output's contributor table gives the reduction of each RMS that meets the limit, not k") {
+  // 80 + 10 + 10 against 6^2: a alone meets it at 20 + 80 / r^2 = 36, r = sqrt(5); b and c cannot.
+  const Table alone = ContributorTable(FlatOutput({80.0, 10.0, 10.0}, 6.0));
+  REQUIRE(alone.header[6] == "must drop");
+  CHECK(alone.rows[0][6] == "2.236×");
+  CHECK(alone.rows[1][6] == "–");
+  CHECK(alone.rows[2][6] == "–");
+  CHECK(alone.rows[1][7].empty());  // no repeated "no allocation" note
+  // 49 + 25 + 16 + 10: none alone; a and b together, 26 + 74 / r^2 = 36, r = sqrt(7.4).
+  const Table pair = ContributorTable(FlatOutput({49.0, 25.0, 16.0, 10.0}, 6.0));
+  CHECK(pair.rows[0][6] == "2.720×, each of top 2");
+  CHECK(pair.rows[1][6] == "2.720×, each of top 2");
+  CHECK(pair.rows[2][6] == "–");
+  // A passing output keeps the allocation factor k on the PSD: (36 - 10) / 20.
+  const Table passing = ContributorTable(FlatOutput({20.0, 10.0}, 6.0));
+  CHECK(passing.header[6] == "allocation k");
+  CHECK(passing.rows[0][6] == "1.300");
+  const FrequencyGrid grid(std::vector<double>{1.0, 2.0});
+  CHECK(GuidanceText(FlatOutput({20.0, 10.0}, 6.0), grid).empty());
+  CHECK(GuidanceText(FlatOutput({80.0, 10.0, 10.0}, 6.0), grid) ==
+        "position fails by 1.667×: a (80 %) must drop 2.236×, or a and b 1.861× each; the cumulative RMS reaches "
+        "6 µm at 1.36 Hz.");
+}
+
+TEST_CASE("the summary table names each band requirement's largest contributor within the band") {
+  BudgetResult result;
+  result.grid = FrequencyGrid(std::vector<double>{1.0, 2.0});
+  OutputResult o = FlatOutput({20.0, 60.0}, 10.0);
+  BandRequirementResult b;
+  b.requirement = {1.0, 1.25, 4.0};
+  b.variance = 20.0;  // a quarter of each flat PSD: 5 + 15
+  o.band_requirements = {b};
+  result.outputs = {o};
+  const Table t = SummaryTable(result);
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.rows[1][0] == "position, 1–1.25 Hz");
+  CHECK(t.rows[1][5] == "FAIL");
+  CHECK(t.rows[1][6] == "b (75.0 %)");
+}
+
+TEST_CASE("text tables align columns by characters, numbers to the right, and shorten long cells") {
+  const std::vector<std::string> lines = ToText(Small(), 30, 24);
+  REQUIRE(lines.size() == 4);
+  CHECK(lines[0] == "name  value  note");
+  CHECK(lines[2] == "a|b     1.5  x");
+  CHECK(lines[3] == "µm    12.25  a very long…");  // the last column gets what is left of 24
+}
+
+TEST_CASE("Markdown and HTML tables escape their cells and mark emphasis") {
+  const std::string md = ToMarkdown(Small());
+  CHECK(md.find("| name | value | note |\n| --- | ---: | --- |\n") == 0);
+  CHECK(md.find("a\\|b | **1.5** | x") != std::string::npos);
+  const std::string html = ToHtml(Small());
+  CHECK(html.find("<td class=\"num\"><strong>1.5</strong></td>") != std::string::npos);
+  CHECK(HtmlEscape("<a & \"b\">") == "&lt;a &amp; &quot;b&quot;&gt;");
+}
+
+TEST_CASE("the band table lists contributors by share, emphasises the largest per band and ends with the total") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  const BudgetResult result = Evaluate(budget);
+  const Table t = BandTable(result.outputs[0]);
+  CHECK(t.header.front() == "contributor");
+  CHECK(t.header.back() == "whole grid");
+  REQUIRE(t.rows.size() == 3);
+  CHECK(t.rows[0][0] == "floor");
+  CHECK(t.rows[2][0] == "total");
+  // Floor dominates the 1-10 Hz band; sensor noise the 100-1000 Hz band (the VC spectrum stops near 89 Hz).
+  CHECK(t.emphasis[0][2]);
+  CHECK(t.emphasis[1][4]);
+  CHECK_FALSE(t.emphasis[0][4]);
+}
+
+TEST_CASE("the summary table gives status and the largest contributor of every output") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  const BudgetResult result = Evaluate(budget);
+  const Table t = SummaryTable(result);
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.rows[0][0] == "z_velocity");
+  CHECK(t.rows[0][1] == "µm/s");
+  CHECK(t.rows[0][3] == "20");
+  CHECK(t.rows[0][5] == "pass");
+  CHECK(t.rows[0][6].rfind("floor (", 0) == 0);
+  const ReportFacts f = MakeFacts(budget, result, "b.yaml", "abc", "today", 0.5);
+  CHECK(f.items[0] == std::make_pair(std::string("budget"), std::string("single_axis_isolator")));
+  CHECK(f.items.back().second == "all 2 met");
+}
+
+TEST_CASE("the group table lists every group depth first, indented, with its members and the sums") {
+  const BudgetResult r = Evaluate(LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml")));
+  const OutputResult& o = r.outputs[0];
+  const Table t = GroupTable(o, 4);
+  REQUIRE(t.rows.size() == 5);
+  CHECK(t.rows[0][0] == "environment");
+  CHECK(t.rows[2][0] == "stage");
+  CHECK(t.rows[3][0] == "  drive");  // stage/drive, one level down
+  CHECK(t.rows[2][1] == "cable_slab, y_crosstalk, drive/");
+  double environment = 0.0;
+  for (const ContributorResult& c : o.contributors)
+    if (c.group == "environment") environment += c.variance;
+  CHECK(t.rows[0][2] == Sig(std::sqrt(environment), 4));
+  CHECK(t.header.size() == 4 + o.bands.size());
+  // No groups, no rows.
+  CHECK(GroupTable(Evaluate(LoadBudgetFile(test::ExampleBudget())).outputs[0]).rows.empty());
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("the covariance table: one row per pair, correlations from the matrices, the largest part per pair") {
+  CovarianceResult cov;
+  cov.outputs = {"x", "y", "rz"};
+  cov.units = {"nm", "nm", "nrad"};
+  const auto matrix = [](double xy, double xr, double yr, double d) {
+    Eigen::MatrixXd m(3, 3);
+    m << d, xy, xr, xy, d, yr, xr, yr, d;
+    return m;
+  };
+  cov.contributors = {{"floor", matrix(1.0, -2.0, 0.0, 4.0)}, {"stage", matrix(3.0, 1.0, 0.0, 4.0)}};
+  cov.matrix = cov.contributors[0].matrix + cov.contributors[1].matrix;  // variances 8, covariances 4, -1, 0
+  Table t = CovarianceTable(cov, 4);
+  REQUIRE(t.rows.size() == 3);
+  CHECK(t.header.size() == 5);  // no exact matrix: no exact column
+  CHECK(t.rows[0] == std::vector<std::string>{"x", "y", "0.500", "4.000 nm^2", "stage (75.0 %)"});
+  CHECK(t.rows[1] == std::vector<std::string>{"x", "rz", "-0.125", "-1.000 nm·nrad", "floor (200 %)"});
+  CHECK(t.rows[2] == std::vector<std::string>{"y", "rz", "0", "0 nm·nrad", "–"});  // no contributor correlates them
+  cov.exact_matrix = 2.0 * cov.matrix;
+  t = CovarianceTable(cov, 4);
+  CHECK(t.header[4] == "exact correlation");
+  CHECK(t.rows[0][4] == "0.500");
+}
+
+}  // namespace deb::report

@@ -1,0 +1,66 @@
+#include "deb/report/compare/sweep_documents.h"
+
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+namespace deb::report {
+namespace {
+
+// One output x in nm with requirement 10: RMS per variant.
+BudgetResult Variant(double rms) {
+  BudgetResult r;
+  OutputResult x;
+  x.name = "x";
+  x.unit = "nm";
+  x.variance = rms * rms;
+  x.rms_max = 10.0;
+  r.outputs = {x};
+  return r;
+}
+
+SweepSpec Spec() {
+  SweepSpec spec;
+  SweepParameter h{"paths[0].h", {0, -100, -200}, {}, {}, {}};
+  h.label = "height <h>";
+  h.unit = "mm";
+  spec.parameters = {h};
+  return spec;
+}
+
+}  // namespace
+
+TEST_CASE("the sweep tables lead with each output's best variant, then every variant best first with PASS/FAIL") {
+  const std::vector<BudgetResult> results = {Variant(12.0), Variant(4.0), Variant(8.0)};
+  const std::vector<Table> tables = SweepTables(Spec(), results);
+  REQUIRE(tables.size() == 2);
+  REQUIRE(tables[0].rows.size() == 1);
+  CHECK(tables[0].rows[0][1] == "height <h> = -100 mm");
+  CHECK(tables[0].rows[0][2] == Sig(4.0, 4) + " PASS");
+  CHECK(tables[0].rows[0][4] == "2 of 3");
+  const Table& all = tables[1];
+  CHECK(all.header[1] == "height <h> [mm]");
+  REQUIRE(all.rows.size() == 3);
+  CHECK(all.rows[0] == std::vector<std::string>{"1", "-100", Sig(4.0, 4) + " PASS"});
+  CHECK(all.rows[1] == std::vector<std::string>{"2", "-200", Sig(8.0, 4) + " PASS"});
+  CHECK(all.rows[2] == std::vector<std::string>{"3", "0", Sig(12.0, 4) + " FAIL"});
+  CHECK(all.emphasis[0].back());  // the best of x
+  CHECK_FALSE(all.emphasis[1].back());
+}
+
+TEST_CASE("sweep.md and sweep.html carry the tables and plots, user text escaped in HTML") {
+  const std::vector<BudgetResult> results = {Variant(12.0), Variant(4.0), Variant(8.0)};
+  Plot p;
+  p.name = "x_sweep";
+  p.caption = "x against h";
+  const std::string md = SweepMarkdown("s", Spec(), results, {p});
+  CHECK(md.find("# Sweep: s\n") == 0);
+  CHECK(md.find("## Best variant per output") < md.find("## Variants, best first"));
+  CHECK(md.find("![x against h](plots/x_sweep.png)") != std::string::npos);
+  const std::string html = SweepHtml("s", Spec(), results, {p});
+  CHECK(html.find("height &lt;h&gt; [mm]") != std::string::npos);
+  CHECK(html.find("height <h>") == std::string::npos);
+}
+
+}  // namespace deb::report

@@ -1,0 +1,210 @@
+#include "deb/report/compare/sweep_plots.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "deb/io/budget_yaml.h"
+#include "deb/report/figure/figure_script.h"
+#include "deb/report/figure/plot_style.h"
+#include "tests/support/cli_harness.h"
+
+namespace deb::report {
+namespace {
+
+std::size_t Count(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+// The rows of CSV block `index` (after its comment and header lines where present), as numbers.
+std::vector<std::vector<double>> Block(const std::string& csv, int index) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(csv);
+  std::string line;
+  int block = 0, blank = 0;
+  while (std::getline(in, line)) {
+    if (line.empty()) {
+      if (++blank == 2) ++block;
+      continue;
+    }
+    blank = 0;
+    if (block != index || line[0] == '#' || !(std::isdigit(static_cast<unsigned char>(line[0])) || line[0] == '-' ||
+                                              line[0] == 'N'))
+      continue;
+    std::vector<double> row;
+    std::istringstream fields(line);
+    std::string f;
+    while (std::getline(fields, f, ',')) row.push_back(std::stod(f));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("sweep plots hold one data block per combination of the other parameters, ordered by the first") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  SweepSpec spec;
+  spec.parameters = {{"a", {3, 1, 2}, {}, {}, {}}, {"b", {10, 20}, {}, {}, {}}};  // 6 variants, a unsorted
+  std::vector<BudgetResult> results(6, Evaluate(budget));
+  const auto plots = SweepPlots(spec, results);
+  REQUIRE(plots.size() == 2 * budget.outputs.size());  // small multiples and a map per output
+  CHECK(plots[0].name == FileStem(budget.outputs[0].name) + "_sweep");
+  CHECK(plots[1].name == FileStem(budget.outputs[0].name) + "_map");
+  const std::string& csv = plots[0].csv;
+  CHECK(csv.find("# b = 10\n") != std::string::npos);
+  CHECK(csv.find("\n\n\n# b = 20\n") != std::string::npos);
+  // Rows of a block ascend in a.
+  const auto first_block = Block(csv, 0);
+  REQUIRE(first_block.size() == 3);
+  CHECK(first_block[0][0] == 1.0);
+  CHECK(first_block[1][0] == 2.0);
+  CHECK(first_block[2][0] == 3.0);
+  // Panel b draws block b.
+  REQUIRE(plots[0].figure.panels.size() == 2);
+  CHECK(FindSeries(plots[0].figure, "total", 1)->block == 1);
+}
+
+TEST_CASE("small multiples: one panel per value of the other parameters, one RMS axis, the key once") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  SweepSpec spec;
+  SweepParameter a{"paths[0].num[1]", {1, 2}, {}, {}, {}}, b{"sources[1].spectrum.level", {10, 20, 30}, {}, {}, {}};
+  a.label = "stiffness";
+  a.unit = "N/m";
+  b.label = "noise";
+  spec.parameters = {a, b};
+  const auto plots = SweepPlots(spec, std::vector<BudgetResult>(6, Evaluate(budget)));
+  const PlotFigure& figure = plots[0].figure;
+  CHECK(plots[0].script == EmitFigure(figure));
+  REQUIRE(figure.panels.size() == 3);
+  CHECK(figure.columns == 3);
+  CHECK(figure.panels[2].title == "noise = 30");
+  CHECK(figure.panels[0].x.label == "stiffness [N/m]");  // no key path on the axis
+  CHECK(plots[0].script.find("paths[0]") == std::string::npos);
+  // The key once, beside the panels; one RMS axis shared by every panel, labelled on the left.
+  CHECK(figure.panels[0].key.placement == KeyPlacement::kBesideGrid);
+  CHECK(figure.panels[1].key.placement == KeyPlacement::kNone);
+  CHECK(figure.panels[2].key.placement == KeyPlacement::kNone);
+  for (const FigurePanel& panel : figure.panels) {
+    CHECK(panel.y.min == 0.0);
+    CHECK(panel.y.max == figure.panels[0].y.max);
+  }
+  CHECK(!figure.panels[0].y.label.empty());
+  CHECK(figure.panels[1].y.label.empty());
+  // Contributors in their report colours, the total black and last; keys only in the first panel.
+  const FigureSeries* total = FindSeries(figure, "total", 1);
+  REQUIRE(total);
+  CHECK(total->colour == kTotalColour);
+  CHECK(total->key.empty());
+  CHECK(FindSeries(figure, "total", 0)->key == "total");
+  CHECK(figure.panels[1].series.back().name == "total");
+  CHECK(figure.panels[1].series[0].colour == ContributorStyle(0).colour);
+  // With one parameter: one panel, its key beside it.
+  SweepSpec one;
+  one.parameters = {a};
+  const Plot single = SweepPlots(one, std::vector<BudgetResult>(2, Evaluate(budget)))[0];
+  REQUIRE(single.figure.panels.size() == 1);
+  CHECK(single.figure.panels[0].key.placement == KeyPlacement::kOutsideRight);
+  CHECK(Count(single.script, "multiplot") == 0);
+}
+
+TEST_CASE("small multiples draw the requirement in every panel, in the key once") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  BudgetResult result = Evaluate(budget);
+  result.outputs[0].rms_max = 2.5;
+  SweepSpec spec;
+  spec.parameters = {{"a", {1, 2}, {}, {}, {}}, {"b", {10, 20}, {}, {}, {}}};
+  const PlotFigure figure = SweepPlots(spec, std::vector<BudgetResult>(4, result))[0].figure;
+  REQUIRE(figure.panels.size() == 2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    REQUIRE(figure.panels[i].annotations.size() == 1);
+    CHECK(figure.panels[i].annotations[0].kind == AnnotationKind::kHorizontalLine);
+    CHECK(figure.panels[i].annotations[0].y0 == 2.5);
+    CHECK(figure.panels[i].annotations[0].colour == kRequirementColour);
+  }
+  CHECK(figure.panels[0].annotations[0].key == "requirement: 2.5");
+  CHECK(figure.panels[1].annotations[0].key.empty());
+  CHECK(*figure.panels[0].y.max >= 2.5);
+}
+
+TEST_CASE("the contour of a plane z = x + y at level 1 runs through the cells it crosses, on x + y = 1") {
+  const std::vector<double> x = {0.0, 0.5, 2.0}, y = {0.0, 1.0};
+  std::vector<std::vector<double>> z(3, std::vector<double>(2));
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 2; ++j) z[i][j] = x[i] + y[j];
+  const auto segments = LevelSegments(x, y, z, 1.0);
+  REQUIRE(segments.size() == 2);  // through cells [0, 0.5] and [0.5, 2]
+  for (const ContourSegment& s : segments) {
+    CHECK(s.x0 + s.y0 == doctest::Approx(1.0));
+    CHECK(s.x1 + s.y1 == doctest::Approx(1.0));
+  }
+  CHECK(LevelSegments(x, y, z, 10.0).empty());  // every value below: no contour
+}
+
+TEST_CASE("the map of a two-parameter grid holds the grid by scan lines, the best variant and the requirement") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  const BudgetResult base = Evaluate(budget);
+  SweepSpec spec;
+  spec.parameters = {{"a", {2, 1}, {}, {}, {}}, {"b", {10, 20, 30}, {}, {}, {}}};  // a unsorted
+  std::vector<BudgetResult> results(6, base);
+  // Total RMS of output 0 = a * b / 10 (variance scaled), requirement 3.5.
+  const auto rows = spec.Variants();
+  for (std::size_t i = 0; i < 6; ++i) {
+    OutputResult& o = results[i].outputs[0];
+    const double rms = rows[i][0] * rows[i][1] / 10.0;
+    o.variance = rms * rms;
+    o.rms_max = 3.5;
+  }
+  const auto plots = SweepPlots(spec, results);
+  const Plot& map = plots[1];
+  const auto grid = Block(map.csv, 0);
+  REQUIRE(grid.size() == 6);
+  CHECK(grid[0] == std::vector<double>{1, 10, 1});  // a ascending, b fastest
+  CHECK(grid[5] == std::vector<double>{2, 30, 6});
+  const auto best = Block(map.csv, 1);
+  REQUIRE(best.size() == 1);
+  CHECK(best[0] == std::vector<double>{1, 10, 1});
+  const auto contour = Block(map.csv, 2);
+  REQUIRE(contour.size() >= 1);
+  for (const auto& s : contour) CHECK(s[2] == 3.5);
+  // As a figure: the heat map of block 0, the requirement's contour from block 2, the best variant ringed
+  // at its (a, b) from block 1, drawn last.
+  CHECK(map.script == EmitFigure(map.figure));
+  REQUIRE(map.figure.panels.size() == 1);
+  const FigurePanel& panel = map.figure.panels[0];
+  REQUIRE(panel.series.size() == 4);
+  CHECK(panel.series[0].kind == SeriesKind::kHeatMap);
+  CHECK(panel.series[0].block == 0);
+  CHECK(panel.series[0].z_column == 3);
+  CHECK(!panel.palette.empty());
+  const FigureSeries* line = FindSeries(map.figure, "requirement");
+  REQUIRE(line);
+  CHECK(line->kind == SeriesKind::kSegments);
+  CHECK(line->block == 2);
+  CHECK(line->key == "requirement: 3.5");
+  CHECK(line->colour == kRequirementColour);
+  const FigureSeries& ring = panel.series.back();
+  CHECK(ring.name == "best");
+  CHECK(ring.block == 1);
+  CHECK(ring.key == "best: 1.00");
+  CHECK(ring.x_column == 1);
+  CHECK(ring.y_columns == std::vector<std::size_t>{2});
+  // The axes span the grid (ascending), the colours the RMS: log, as it spans a factor 6.
+  CHECK(*panel.x.min == 1.0);
+  CHECK(*panel.x.max == 2.0);
+  CHECK(*panel.y.min == 10.0);
+  CHECK(*panel.y.max == 30.0);
+  CHECK(panel.colour_axis.scale == AxisScale::kLog);
+  CHECK(panel.colour_axis.tics.front().first == 1.0);
+  CHECK(panel.colour_axis.tics.back().first == 5.0);
+  // Zipped, or one parameter: no map.
+  spec.mode = SweepMode::kZip;
+  spec.parameters[1].values = {10, 20};
+  CHECK(SweepPlots(spec, std::vector<BudgetResult>(2, base)).size() == base.outputs.size());
+}
+
+}  // namespace deb::report

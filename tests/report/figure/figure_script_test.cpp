@@ -1,0 +1,124 @@
+#include "deb/report/figure/figure_script.h"
+
+#include <doctest/doctest.h>
+
+#include "deb/report/figure/gnuplot_runner.h"
+#include "deb/report/figure/plot.h"
+
+namespace deb::report {
+namespace {
+
+std::size_t Count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+FigurePanel Panel(const std::string& key) {
+  FigurePanel p;
+  p.title = "t";
+  p.y.scale = AxisScale::kLog;
+  FigureSeries s;
+  s.name = "s";
+  s.key = key;
+  s.data = "d.csv";
+  s.y_columns = {2, 3};
+  p.series.push_back(s);
+  FigureAnnotation limit;
+  limit.y0 = 4.0;
+  limit.key = "limit";
+  p.annotations.push_back(limit);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("the emitter quotes user text, so that no backquote or macro of a name reaches gnuplot unquoted") {
+  PlotFigure f;
+  f.panels.push_back(Panel("it's `rm -rf` @x"));
+  const std::string script = EmitFigure(f);
+  CHECK(script.find("title 'it''s `rm -rf` @x'") != std::string::npos);
+  CHECK(ScriptOffence(script).empty());
+  // y sums its columns; a log axis drops the points <= 0.
+  CHECK(script.find("'d.csv' using 1:(((column(2)+column(3))) > 0 ? ((column(2)+column(3))) : NaN)") !=
+        std::string::npos);
+  // The limit line is an arrow across the plot, and a key entry after the series.
+  CHECK(script.find("set arrow 10 from graph 0, first 4 to graph 1, first 4 nohead") != std::string::npos);
+  CHECK(script.find("keyentry with lines") > script.find("'d.csv'"));
+  CHECK(Count(script, "\nplot ") == 1);
+}
+
+TEST_CASE("stacked panels are one multiplot whose panels share their margins and the bottom panel's x axis") {
+  PlotFigure f;
+  f.title = "two";
+  f.panels = {Panel("a"), Panel("b")};
+  const std::string script = EmitFigure(f);
+  CHECK(Count(script, "\nset multiplot") == 1);
+  CHECK(Count(script, "unset multiplot") == 1);
+  CHECK(Count(script, "\nplot ") == 2);
+  CHECK(Count(script, "set lmargin 12\n") == 2);
+  CHECK(Count(script, "set format x ''") == 1);  // only the top panel hides its x tic labels
+  CHECK(ScriptOffence(script).empty());
+}
+
+TEST_CASE("a heat map panel is drawn from above (splot) in its palette, every series at its height") {
+  FigurePanel p;
+  p.palette = {"#fde725", "#440154"};
+  p.colour_axis.label = "RMS";
+  p.colour_axis.scale = AxisScale::kLog;
+  FigureSeries map;
+  map.name = "map";
+  map.kind = SeriesKind::kHeatMap;
+  map.data = "m.csv";
+  map.block = 0;
+  map.y_columns = {2};
+  map.z_column = 3;
+  FigureSeries contour = map;
+  contour.kind = SeriesKind::kSegments;
+  contour.block = 2;
+  contour.dx_column = 4;
+  contour.dy_column = 5;
+  p.series = {map, contour};
+  PlotFigure f;
+  f.panels = {p};
+  const std::string script = EmitFigure(f);
+  CHECK(script.find("set view map\n") != std::string::npos);
+  CHECK(script.find("set palette defined (0 '#fde725', 1 '#440154')") != std::string::npos);
+  CHECK(script.find("set logscale cb 10") != std::string::npos);
+  CHECK(script.find("\nsplot 'm.csv' index 0 using 1:((column(2))):3 with pm3d") != std::string::npos);
+  CHECK(script.find("'m.csv' index 2 using 1:((column(2))):3:4:5:(0) with vectors nohead") != std::string::npos);
+  CHECK(ScriptOffence(script).empty());
+}
+
+TEST_CASE("horizontal bars run from 0 to x; their values stand beside the ends; rows are picked by a test") {
+  FigurePanel p;
+  FigureSeries bars;
+  bars.name = "bars";
+  bars.kind = SeriesKind::kHorizontalBars;
+  bars.data = "t.csv";
+  bars.x_column = 2;
+  bars.y_columns = {1};
+  bars.bar_height = 0.5;
+  bars.where_column = 5;
+  bars.where_value = 3;
+  bars.where_test = WhereTest::kAtLeast;
+  FigureSeries values = bars;
+  values.kind = SeriesKind::kLabels;
+  values.label_column = 2;
+  values.label_format = "%.3g";
+  values.labels_beside_end = true;
+  values.where_column = 0;
+  p.series = {bars, values};
+  PlotFigure f;
+  f.panels = {p};
+  const std::string script = EmitFigure(f);
+  CHECK(script.find("'t.csv' using ((column(2)) / 2):(column(5) >= 3 ? ((column(1))) : NaN):(abs(column(2)) / 2):(0.25) "
+                    "with boxxyerror") != std::string::npos);
+  CHECK(script.find("using (column(2) >= 0 ? column(2) : NaN):((column(1))):(sprintf('%.3g', column(2))) with labels "
+                    "left") != std::string::npos);
+  CHECK(script.find("using (column(2) < 0 ? column(2) : NaN):((column(1))):(sprintf('%.3g', column(2))) with labels "
+                    "right") != std::string::npos);
+  CHECK(ScriptOffence(script).empty());
+}
+
+}  // namespace deb::report
