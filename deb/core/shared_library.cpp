@@ -12,7 +12,7 @@ SharedLibrary::SharedLibrary(const char* soname) : soname_(soname) {
   }
 }
 
-void* SharedLibrary::Symbol(const char* name) { return handle_ != nullptr ? dlsym(handle_, name) : nullptr; }
+void* SharedLibrary::Symbol(const char* name) const { return handle_ != nullptr ? dlsym(handle_, name) : nullptr; }
 
 void* SharedLibrary::GlobalSymbol(const char* name) { return dlsym(RTLD_DEFAULT, name); }
 

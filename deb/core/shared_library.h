@@ -23,6 +23,8 @@ class SharedLibrary {
   // Why the library or a symbol could not be loaded (the first failure);
   // "" while all is well.
   const std::string& failure() const { return failure_; }
+  // Whether the library defines `name` (no failure recorded if not).
+  bool Has(const char* name) const { return Symbol(name) != nullptr; }
 
   // The function or variable `name` into `pointer` (a pointer of its type);
   // false, with the failure recorded, if the library is not loaded or lacks
@@ -46,7 +48,7 @@ class SharedLibrary {
   }
 
  private:
-  void* Symbol(const char* name);
+  void* Symbol(const char* name) const;
   static void* GlobalSymbol(const char* name);
 
   template <class Pointer>

@@ -16,6 +16,9 @@ TEST_CASE("a shared library's function is resolved and called; a missing one is 
   REQUIRE(m.Resolve("cos", cosine));
   CHECK(cosine(0.0) == 1.0);
   CHECK(m.failure().empty());
+  CHECK(m.Has("sin"));
+  CHECK_FALSE(m.Has("no_such_function_in_libm"));
+  CHECK(m.failure().empty());  // Has records no failure
   void (*none)() = nullptr;
   CHECK_FALSE(m.Resolve("no_such_function_in_libm", none));
   CHECK(static_cast<bool>(none == nullptr));

@@ -1,12 +1,10 @@
 #include "deb/report/document/pdf_libraries.h"
 
-#include <dlfcn.h>
-
-#include <cstring>
 #include <string>
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/core/shared_library.h"
 
 namespace deb::report {
 
@@ -22,23 +20,16 @@ constexpr const char* kPdfLibraries[] = {"libglib-2.0.so.0", "libgobject-2.0.so.
 
 // Why the libraries cannot be used; "" once every function is found.
 std::string LoadPdfLibraries() {
-  std::vector<void*> handles;
+  // Never unloaded (SharedLibrary): GLib keeps process-wide state until exit.
+  std::vector<SharedLibrary> libraries;
   for (const char* soname : kPdfLibraries) {
-    // Never closed: GLib keeps process-wide state until exit.
-    void* const h = dlopen(soname, RTLD_NOW | RTLD_LOCAL);
-    if (h == nullptr) {
-      const char* why = dlerror();
-      return why != nullptr ? why : std::string(soname) + ": dlopen failed";
-    }
-    handles.push_back(h);
+    libraries.emplace_back(soname);
+    if (!libraries.back().loaded()) return libraries.back().failure();
   }
+  // Each function from the first library that has it.
   const auto resolve = [&](const char* name, auto& f) {
-    for (void* h : handles)
-      if (void* const symbol = dlsym(h, name)) {
-        static_assert(sizeof f == sizeof symbol);
-        std::memcpy(&f, &symbol, sizeof f);
-        return true;
-      }
+    for (SharedLibrary& library : libraries)
+      if (library.Has(name)) return library.Resolve(name, f);
     return false;
   };
   std::string missing;
