@@ -78,8 +78,9 @@ void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, std::opti
         std::stable_sort(parts.begin(), parts.end(), [](const auto* a, const auto* b) { return a->variance > b->variance; });
         for (const auto* p : parts) {
           const std::string label = "  channel " + p->channel;
-          std::printf("  %-24s %14s %7.2f%%\n", label.c_str(), Sig(std::sqrt(std::max(p->variance, 0.0)), digits).c_str(),
-                      o.variance > 0 ? 100.0 * p->variance / o.variance : 0.0);
+          const double v = deb::report::RoundingZero(p->variance, c.variance) ? 0.0 : std::max(p->variance, 0.0);
+          std::printf("  %-24s %14s %7.2f%%\n", label.c_str(), v > 0.0 ? Sig(std::sqrt(v), digits).c_str() : "0",
+                      o.variance > 0 ? 100.0 * v / o.variance : 0.0);
         }
         if (c.cross_variance != 0.0)
           std::printf("  %-24s %14s %7.2f%%  (variance; correlation between channels)\n", "  cross terms",

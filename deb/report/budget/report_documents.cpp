@@ -153,6 +153,7 @@ std::string IndexHtml(const DocumentInputs& in) {
     if (const std::string fix = GuidanceText(out, result.grid); !fix.empty())
       s << "<p class=\"guidance\"><strong>" << HtmlEscape(fix) << "</strong></p>\n";
     s << ToHtml(ContributorTable(out, in.digits));
+    if (const Table channels = ChannelTable(out, in.digits); !channels.rows.empty()) s << ToHtml(channels);
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToHtml(modes);
     if (const Table groups = GroupTable(out, in.digits); !groups.rows.empty()) s << ToHtml(groups);
     if (const Table refs = ReferenceTable(out, in.digits); !refs.rows.empty()) s << ToHtml(refs);
@@ -234,6 +235,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
     s << "## Output " << out.name << " [" << UnitText(out.unit) << "]\n\n" << OutputLine(out) << "\n\n";
     if (const std::string fix = GuidanceText(out, result.grid); !fix.empty()) s << "**" << fix << "**\n\n";
     s << ToMarkdown(ContributorTable(out, in.digits)) << "\n";
+    if (const Table channels = ChannelTable(out, in.digits); !channels.rows.empty()) s << ToMarkdown(channels) << "\n";
     if (const Table modes = ModeTable(out); !modes.rows.empty()) s << ToMarkdown(modes) << "\n";
     if (const Table groups = GroupTable(out, in.digits); !groups.rows.empty()) s << ToMarkdown(groups) << "\n";
     if (const Table refs = ReferenceTable(out, in.digits); !refs.rows.empty())

@@ -225,6 +225,8 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
       b.push_back(TableBlock(groups.title, TypesetTable(groups)));
     if (const Table refs = ReferenceTable(o, in.digits); !refs.rows.empty())
       b.push_back(TableBlock(refs.title, TypesetTable(refs)));
+    if (const Table channels = ChannelTable(o, in.digits); !channels.rows.empty())
+      b.push_back(TableBlock(channels.title, TypesetTable(channels)));
     if (const Table modes = ModeTable(o); !modes.rows.empty())
       b.push_back(TableBlock(modes.title, TypesetTable(modes)));
     std::vector<const Plot*> mine;

@@ -153,6 +153,31 @@ Table ModeTable(const OutputResult& o) {
   return t;
 }
 
+Table ChannelTable(const OutputResult& o, int digits) {
+  Table t;
+  t.title = "Source channels of " + o.name + " [" + UnitText(o.unit) +
+            "]: each channel's part |H|² S of its contributor (breakdown: channels)";
+  t.header = {"contributor", "channel", "RMS", "share", "of contributor"};
+  t.numeric = {false, false, true, true, true};
+  for (std::size_t c : ShareOrder(o)) {
+    const ContributorResult& cr = o.contributors[c];
+    if (cr.channels.empty()) continue;
+    std::vector<const ContributorResult::ChannelPart*> parts;
+    for (const ContributorResult::ChannelPart& p : cr.channels) parts.push_back(&p);
+    std::stable_sort(parts.begin(), parts.end(), [](const auto* a, const auto* b) { return a->variance > b->variance; });
+    for (const ContributorResult::ChannelPart* p : parts) {
+      const double v = RoundingZero(p->variance, cr.variance) ? 0.0 : p->variance;
+      t.rows.push_back({cr.name, p->channel, v > 0.0 ? Sig(std::sqrt(v), digits) : "0", Share(v, o.variance),
+                        Share(v, cr.variance)});
+    }
+    if (cr.cross_variance != 0.0)
+      t.rows.push_back({cr.name, "cross terms (variance)", Sig(cr.cross_variance, digits) + " " + UnitText(VarianceUnit(o.unit)),
+                        o.variance > 0.0 ? Sig(100.0 * cr.cross_variance / o.variance, 3) + " %" : "–",
+                        cr.variance > 0.0 ? Sig(100.0 * cr.cross_variance / cr.variance, 3) + " %" : "–"});
+  }
+  return t;
+}
+
 Table GroupTable(const OutputResult& o, int digits) {
   Table t;
   t.title = "Groups of " + o.name + " [" + UnitText(o.unit) + "]: each the sum of its members at any depth";

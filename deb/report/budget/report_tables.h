@@ -47,6 +47,13 @@ Table BandTable(const OutputResult& output, int digits = 4);
 // contributor, mode, f_n, zeta, RMS-equivalent share; no rows without any.
 Table ModeTable(const OutputResult& output);
 
+// The source channels of each contributor with `breakdown: channels`
+// (ContributorResult::channels), largest first under their contributor: RMS,
+// share of the output, share of the contributor; with correlated channels a
+// last row per contributor for the cross terms (a variance, which may be
+// negative). No rows without a breakdown.
+Table ChannelTable(const OutputResult& output, int digits = 4);
+
 // The output's groups (groups.h), depth first, each indented by its depth:
 // RMS, share, and RMS per band; no rows when no contributor names a group.
 Table GroupTable(const OutputResult& output, int digits = 4);

@@ -579,6 +579,24 @@ PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, cons
   return level;
 }
 
+namespace {
+
+// A plot under another name, its files with it: the script and the figure
+// read the data by file name.
+void Rename(Plot& p, const std::string& name) {
+  const std::string old_data = p.name + ".csv";
+  p.name = name;
+  const std::string new_data = p.name + ".csv";
+  for (std::size_t at = p.script.find(old_data); at != std::string::npos;
+       at = p.script.find(old_data, at + new_data.size()))
+    p.script.replace(at, old_data.size(), new_data);
+  for (FigurePanel& panel : p.figure.panels)
+    for (FigureSeries& series : panel.series)
+      if (series.data == old_data) series.data = new_data;
+}
+
+}  // namespace
+
 std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec) {
   const OutputResult& out = result.outputs[output];
   const std::vector<GroupResult> groups = ComputeGroups(out);
@@ -586,17 +604,61 @@ std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, 
   for (const GroupResult& g : groups) {
     if (g.contributors.size() + g.subgroups.size() < 2) continue;
     Plot p = StackedPlot(result, output, GroupLevel(out, result.grid, g.path), false, digits, spec);
-    // Its files under the plot's own name: the script and the figure read the data by file name.
-    const std::string old_data = p.name + ".csv";
-    p.name = FileStem(out.name) + "_cps_group_" + FileStem(g.path);
-    const std::string new_data = p.name + ".csv";
-    for (std::size_t at = p.script.find(old_data); at != std::string::npos;
-         at = p.script.find(old_data, at + new_data.size()))
-      p.script.replace(at, old_data.size(), new_data);
-    for (FigurePanel& panel : p.figure.panels)
-      for (FigureSeries& series : panel.series)
-        if (series.data == old_data) series.data = new_data;
+    Rename(p, FileStem(out.name) + "_cps_group_" + FileStem(g.path));
     p.caption = "Group " + g.path + ": " + p.caption;
+    plots.push_back(std::move(p));
+  }
+  return plots;
+}
+
+PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, std::size_t contributor) {
+  const ContributorResult& c = output.contributors[contributor];
+  PlotLevel level;
+  OutputResult& out = level.out;
+  out = output;
+  out.contributors.clear();
+  for (std::size_t k = 0; k < c.channels.size(); ++k) {
+    const ContributorResult::ChannelPart& part = c.channels[k];
+    ContributorResult layer;
+    layer.name = "channel " + part.channel;
+    layer.source = c.source;
+    layer.path = c.path;
+    layer.psd = part.psd;
+    layer.cps = part.cps;
+    layer.variance = RoundingZero(part.variance, c.variance) ? 0.0 : part.variance;
+    out.contributors.push_back(std::move(layer));
+    level.styles.push_back(ChannelStyle(k));
+  }
+  out.total_psd = c.psd;
+  out.total_cps = c.cps;
+  out.variance = c.variance;
+  out.bands.clear();
+  out.band_requirements.clear();
+  out.references.clear();
+  out.rms_max.reset();
+  out.name = output.name + " · " + c.name;
+  level.range = DisplayRange(out, grid);
+  level.items = c.cross_variance != 0.0
+                    ? "source channels (each |H|² S of one channel; the total also holds the cross terms between "
+                      "correlated channels, " +
+                          Sig(c.cross_variance, 4) + " " + UnitText(VarianceUnit(output.unit)) + ")"
+                    : "source channels (each |H|² S of one channel; independent channels: they add up to the total)";
+  level.item = "source channel";
+  return level;
+}
+
+std::vector<Plot> ChannelCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec) {
+  const OutputResult& out = result.outputs[output];
+  std::vector<Plot> plots;
+  for (std::size_t c = 0; c < out.contributors.size(); ++c) {
+    const ContributorResult& contributor = out.contributors[c];
+    std::size_t drawn = 0;
+    for (const ContributorResult::ChannelPart& part : contributor.channels)
+      drawn += RoundingZero(part.variance, contributor.variance) ? 0 : 1;
+    if (drawn < 2) continue;
+    Plot p = StackedPlot(result, output, ChannelLevel(out, result.grid, c), false, digits, spec);
+    Rename(p, FileStem(out.name) + "_cps_channels_" + FileStem(contributor.name));
+    p.caption = "Contributor " + contributor.name + " by source channel: " + p.caption;
     plots.push_back(std::move(p));
   }
   return plots;
@@ -610,6 +672,7 @@ std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, 
   if (options.reverse_cps) plots.push_back(StackedPlot(result, output, top, true, options.digits, spec));
   plots.push_back(SpectrumPlot(result, output, top, options.asd, options.digits, spec));
   for (Plot& p : GroupCpsPlots(result, output, options.digits, spec)) plots.push_back(std::move(p));
+  for (Plot& p : ChannelCpsPlots(result, output, options.digits, spec)) plots.push_back(std::move(p));
   return plots;
 }
 

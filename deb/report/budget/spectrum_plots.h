@@ -72,8 +72,19 @@ PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, cons
 // groups.
 std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec);
 
+// A contributor with `breakdown: channels` split by source channel: a layer
+// per channel (ContributorResult::channels; a part that is zero but for
+// rounding is 0), the contributor as the total, no requirement, bands or
+// references.
+PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, std::size_t contributor);
+
+// One stacked CPS per contributor with two or more channels that carry
+// variance (ChannelLevel), named <output>_cps_channels_<contributor>.
+std::vector<Plot> ChannelCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec);
+
 // CPS, [reverse CPS,] PSD or ASD of output `output` at its top level
-// (GroupLevel ""), then the group CPS plots, in that order. The CPS draws
+// (GroupLevel ""), then the group CPS plots, then the channel CPS plots, in
+// that order. The CPS draws
 // each measured reference's cumulative variance over the range it covers,
 // the PSD its spectrum (grey dashed, never summed). With the output's
 // definition `spec`, the captions state its weighting.

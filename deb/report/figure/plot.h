@@ -67,6 +67,14 @@ std::string Short(double value);
 // A share of a variance in percent: "78.1 %", "< 0.01 %".
 std::string Share(double part, double whole);
 
+// Whether a part of a variance is zero but for rounding: at most 1e-24 of its
+// whole (an RMS 1e-12 of the whole's), e.g. a source channel that a symmetric
+// model does not couple to the output, computed as 1e-16 of the others.
+// Tables and the console show it as 0.
+inline bool RoundingZero(double part_variance, double whole_variance) {
+  return part_variance <= 1e-24 * whole_variance;
+}
+
 // A frequency for an enhanced-mode label: powers of ten from 10^4 up or
 // 10^-4 down as "10^{8}", anything else as Short.
 std::string HzLabel(double f_hz);

@@ -179,3 +179,31 @@ TEST_CASE("the covariance table: one row per pair, correlations from the matrice
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("the channel table lists each contributor's channels largest first, a rounding zero as 0, the cross terms") {
+  OutputResult o = FlatOutput({13.0, 5.0}, 10.0);
+  ContributorResult& a = o.contributors[0];
+  a.channels = {{"x", {}, {}, 4.0}, {"z", {}, {}, 9.0}, {"y", {}, {}, 1e-30}};
+  a.cross_variance = 0.0;
+  ContributorResult& b = o.contributors[1];  // correlated channels: 3 + 3 + cross terms -1 = 5
+  b.channels = {{"u", {}, {}, 3.0}, {"v", {}, {}, 3.0}};
+  b.cross_variance = -1.0;
+  const Table t = ChannelTable(o, 4);
+  REQUIRE(t.rows.size() == 6);
+  CHECK(t.header == std::vector<std::string>{"contributor", "channel", "RMS", "share", "of contributor"});
+  CHECK(t.rows[0] == std::vector<std::string>{"a", "z", "3.000", "50.0 %", "69.2 %"});
+  CHECK(t.rows[1] == std::vector<std::string>{"a", "x", "2.000", "22.2 %", "30.8 %"});
+  CHECK(t.rows[2] == std::vector<std::string>{"a", "y", "0", "0 %", "0 %"});  // 1e-30 of 13: rounding
+  CHECK(t.rows[3][1] == "u");
+  CHECK(t.rows[4][1] == "v");
+  CHECK(t.rows[5][1] == "cross terms (variance)");
+  CHECK(t.rows[5][2] == "-1.000 µm^2");
+  CHECK(t.rows[5][3] == "-5.56 %");
+  CHECK(t.rows[5][4] == "-20.0 %");
+  // No breakdown, no rows.
+  CHECK(ChannelTable(FlatOutput({1.0}, 2.0), 4).rows.empty());
+}
+
+}  // namespace deb::report

@@ -466,3 +466,40 @@ TEST_CASE("a measured reference is drawn on the CPS plot: its cumulative varianc
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a contributor broken down by channel gets a CPS whose channel layers add up to it") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("nizamoglu2015_h210.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const OutputResult& out = result.outputs[0];  // z_velocity
+  std::size_t sensor = out.contributors.size();
+  for (std::size_t c = 0; c < out.contributors.size(); ++c)
+    if (!out.contributors[c].channels.empty()) sensor = c;
+  REQUIRE(sensor < out.contributors.size());
+  const ContributorResult& contributor = out.contributors[sensor];
+  CHECK(contributor.cross_variance == 0.0);  // independent geophones
+  const PlotLevel level = ChannelLevel(out, result.grid, sensor);
+  REQUIRE(level.out.contributors.size() == contributor.channels.size());
+  // The layers are the channels' parts, and sum to the contributor at every frequency.
+  double worst = 0.0;
+  for (std::size_t k = 0; k < result.grid.size(); ++k) {
+    double sum = 0.0;
+    for (const ContributorResult& layer : level.out.contributors) sum += layer.cps[k];
+    worst = std::max(worst, std::abs(sum - contributor.cps[k]) / contributor.variance);
+  }
+  CHECK(worst < 1e-12);
+  CHECK(level.out.variance == contributor.variance);
+  CHECK_FALSE(level.out.rms_max.has_value());
+  // One plot per output for this contributor, under its own file name.
+  const std::vector<Plot> plots = ChannelCpsPlots(result, 0, 4, nullptr);
+  REQUIRE(plots.size() == 1);
+  CHECK(plots[0].name == "z_velocity_cps_channels_" + contributor.name);
+  CHECK(plots[0].script.find("'" + plots[0].name + ".csv'") != std::string::npos);
+  CHECK(plots[0].caption.rfind("Contributor " + contributor.name + " by source channel", 0) == 0);
+  // A budget without a breakdown has none.
+  const Budget plain = LoadBudgetFile(test::ExampleBudget());
+  CHECK(ChannelCpsPlots(Evaluate(plain), 0, 4, nullptr).empty());
+}
+
+}  // namespace deb::report
