@@ -56,12 +56,6 @@ json Series(const std::vector<double>& v, const std::vector<std::size_t>& keep, 
   return out;
 }
 
-// "nm^2" -> "nm²": the page can show the superscript.
-std::string Squared(std::string unit) {
-  for (std::size_t at = unit.find("^2"); at != std::string::npos; at = unit.find("^2", at)) unit.replace(at, 2, "²");
-  return unit;
-}
-
 json Frequencies(const std::vector<double>& f, const std::vector<std::size_t>& keep) {
   json out = json::array();
   for (std::size_t i : keep) out.push_back(Rounded(f[i], 7));

@@ -171,7 +171,7 @@ Table ChannelTable(const OutputResult& o, int digits) {
                         Share(v, cr.variance)});
     }
     if (cr.cross_variance != 0.0)
-      t.rows.push_back({cr.name, "cross terms (variance)", Sig(cr.cross_variance, digits) + " " + UnitText(VarianceUnit(o.unit)),
+      t.rows.push_back({cr.name, "cross terms (variance)", Sig(cr.cross_variance, digits) + " " + Squared(UnitText(VarianceUnit(o.unit))),
                         o.variance > 0.0 ? Sig(100.0 * cr.cross_variance / o.variance, 3) + " %" : "–",
                         cr.variance > 0.0 ? Sig(100.0 * cr.cross_variance / cr.variance, 3) + " %" : "–"});
   }

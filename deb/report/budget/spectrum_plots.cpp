@@ -641,7 +641,7 @@ PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, st
   level.items = c.cross_variance != 0.0
                     ? "source channels (each |H|² S of one channel; the total also holds the cross terms between "
                       "correlated channels, " +
-                          Sig(c.cross_variance, 4) + " " + UnitText(VarianceUnit(output.unit)) + ")"
+                          Sig(c.cross_variance, 4) + " " + Squared(UnitText(VarianceUnit(output.unit))) + ")"
                     : "source channels (each |H|² S of one channel; independent channels: they add up to the total)";
   level.item = "source channel";
   return level;

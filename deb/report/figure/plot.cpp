@@ -143,6 +143,11 @@ std::string HzLabel(double f_hz) {
   return Short(f_hz);
 }
 
+std::string Squared(std::string unit) {
+  for (std::size_t at = unit.find("^2"); at != std::string::npos; at = unit.find("^2", at)) unit.replace(at, 2, "²");
+  return unit;
+}
+
 std::string Share(double part, double whole) {
   if (!(whole > 0.0)) return "–";
   const double percent = 100.0 * part / whole;

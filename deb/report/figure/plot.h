@@ -50,6 +50,9 @@ std::string UnitLabel(const std::string& unit);
 // Unit of a variance (and of a CPS): "um/s" -> "(um/s)^2", "nm" -> "nm^2".
 std::string VarianceUnit(const std::string& unit);
 
+// "nm^2" -> "nm²": for text that can show the superscript (tables, pages).
+std::string Squared(std::string unit);
+
 // A unit for plain text (HTML, Markdown, the PDF's title page): the same
 // micro sign and square root, exponents left as "^2".
 std::string UnitText(const std::string& unit);

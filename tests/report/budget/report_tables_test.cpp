@@ -199,7 +199,7 @@ TEST_CASE("the channel table lists each contributor's channels largest first, a 
   CHECK(t.rows[3][1] == "u");
   CHECK(t.rows[4][1] == "v");
   CHECK(t.rows[5][1] == "cross terms (variance)");
-  CHECK(t.rows[5][2] == "-1.000 µm^2");
+  CHECK(t.rows[5][2] == "-1.000 µm²");
   CHECK(t.rows[5][3] == "-5.56 %");
   CHECK(t.rows[5][4] == "-20.0 %");
   // No breakdown, no rows.
