@@ -31,6 +31,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/budget/groups.h"
+#include "deb/core/document_date.h"
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 #include "deb/core/parallel.h"
@@ -134,7 +135,7 @@ int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& 
     deb::RunInfo info;
     info.budget_file = budget_file;
     info.threads = threads;
-    if (!std::getenv("SOURCE_DATE_EPOCH")) info.seconds = seconds;
+    if (!deb::Reproducible()) info.seconds = seconds;
     deb::WriteReportDirectory(budget, result, info, report, out_dir, exports);
   } catch (const deb::InputError& e) {
     throw deb::WriteError(e.what());  // found while writing: the report cannot be written

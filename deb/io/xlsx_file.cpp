@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <mutex>
 
+#include "deb/core/document_date.h"
 #include "deb/core/error.h"
 #include "deb/core/shared_library.h"
 #include "deb/core/input_file.h"
@@ -97,16 +98,6 @@ std::string Lower(std::string s) {
   return s;
 }
 
-// $SOURCE_DATE_EPOCH if set to a number (a reproducible workbook); else now.
-std::time_t CreationTime() {
-  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
-    char* end = nullptr;
-    const long long v = std::strtoll(epoch, &end, 10);
-    if (end != epoch && *end == '\0') return static_cast<std::time_t>(v);
-  }
-  return std::time(nullptr);
-}
-
 constexpr std::size_t kMaxSheetName = 31;  // Excel's limit, in characters
 
 }  // namespace
@@ -157,7 +148,7 @@ XlsxWorkbook::XlsxWorkbook(const std::string& path) : path_(path), handle_(std::
   lxw_doc_properties properties{};
   char creator[] = "deb";
   properties.author = creator;
-  properties.created = CreationTime();
+  properties.created = DocumentTime();
   h.api->SetProperties(h.workbook, &properties);
   h.header = h.api->AddFormat(h.workbook);
   h.pass = h.api->AddFormat(h.workbook);

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "deb/budget/groups.h"
+#include "deb/core/document_date.h"
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
@@ -81,27 +82,6 @@ class Progress {
   std::mutex mutex_;
 };
 
-// $SOURCE_DATE_EPOCH (seconds since 1970) if set to a number: the date of a
-// reproducible report.
-std::optional<std::time_t> SourceDateEpoch() {
-  const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
-  if (!epoch) return std::nullopt;
-  char* end = nullptr;
-  const long long v = std::strtoll(epoch, &end, 10);
-  if (!end || *end != '\0' || end == epoch) return std::nullopt;
-  return static_cast<std::time_t>(v);
-}
-
-std::string UtcText(std::time_t t, const char* format) {
-  std::tm utc{};
-  gmtime_r(&t, &utc);
-  char text[40];
-  std::strftime(text, sizeof(text), format, &utc);
-  return text;
-}
-
-// The report's date: now, or $SOURCE_DATE_EPOCH for reproducible reports.
-std::time_t ReportTime() { return SourceDateEpoch().value_or(std::time(nullptr)); }
 
 std::string ColoursCsv(const Budget& budget) {
   std::ostringstream s;
@@ -150,7 +130,7 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   const std::string sha256 = !info.budget_sha256.empty() ? info.budget_sha256
                              : info.budget_file.empty()  ? ""
                                                          : FileSha256(info.budget_file);
-  const std::time_t when = ReportTime();
+  const std::time_t when = DocumentTime();
   const ReportFacts facts =
       MakeFacts(budget, result, info.budget_file, sha256, UtcText(when, "%Y-%m-%d %H:%M:%S UTC"), info.seconds);
 

@@ -4,6 +4,7 @@
 #include <ctime>
 #include <filesystem>
 
+#include "deb/core/document_date.h"
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 #include "deb/report/budget/report_pdf.h"
@@ -15,21 +16,6 @@ namespace deb::report {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Now, or $SOURCE_DATE_EPOCH (a reproducible document), as ISO 8601.
-std::string DocumentDate() {
-  std::time_t t = std::time(nullptr);
-  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
-    char* end = nullptr;
-    const long long v = std::strtoll(epoch, &end, 10);
-    if (end && *end == '\0' && end != epoch) t = static_cast<std::time_t>(v);
-  }
-  std::tm utc{};
-  gmtime_r(&t, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
 
 }  // namespace
 
@@ -83,7 +69,7 @@ void WriteComparisonPdf(const Comparison& cmp, const std::vector<Plot>& plots, c
         },
         threads);
   }
-  WritePdfDocument(ComparisonPdfSpec(cmp, plots, figure_dir.string(), DocumentDate()), pdf_path);
+  WritePdfDocument(ComparisonPdfSpec(cmp, plots, figure_dir.string(), UtcText(DocumentTime(), "%Y-%m-%dT%H:%M:%SZ")), pdf_path);
   std::error_code ec;
   fs::remove_all(figure_dir, ec);  // deb wrote it, inside the staged directory
 }
