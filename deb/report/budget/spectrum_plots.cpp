@@ -513,6 +513,28 @@ std::string RmsTics(double variance_max, double scale, const std::vector<std::pa
   return os.str();
 }
 
+namespace {
+
+// A drill-down of `output`: its layers (level->out.contributors, already
+// set) under `total`, a part of the output (a group's sum, a contributor),
+// named "<output> · <part>", with no requirement, bands or references, shown
+// over its own range.
+void DrillDown(const OutputResult& output, const ContributorResult& total, const std::string& part,
+               const FrequencyGrid& grid, PlotLevel* level) {
+  OutputResult& out = level->out;
+  out.total_psd = total.psd;
+  out.total_cps = total.cps;
+  out.variance = total.variance;
+  out.bands.clear();
+  out.band_requirements.clear();
+  out.references.clear();
+  out.rms_max.reset();
+  out.name = output.name + " · " + part;
+  level->range = DisplayRange(out, grid);
+}
+
+}  // namespace
+
 PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, const std::string& group) {
   PlotLevel level;
   const std::vector<GroupResult> groups = ComputeGroups(output);
@@ -561,19 +583,8 @@ PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, cons
     level.item = "top-level group (the sum of its members, \"name/\") and contributor in no group";
     return level;
   }
-  out.bands.clear();
-  out.band_requirements.clear();
-  out.references.clear();
   for (const GroupResult& g : groups)
-    if (g.path == group) {
-      const ContributorResult all = summed(g);
-      out.total_psd = all.psd;
-      out.total_cps = all.cps;
-      out.variance = all.variance;
-    }
-  out.name = output.name + " · " + group;
-  out.rms_max.reset();
-  level.range = DisplayRange(out, grid);
+    if (g.path == group) DrillDown(output, summed(g), group, grid, &level);
   level.items = "members (a subgroup summed into one layer \"name/\")";
   level.item = "member";
   return level;
@@ -629,15 +640,7 @@ PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, st
     out.contributors.push_back(std::move(layer));
     level.styles.push_back(ChannelStyle(k));
   }
-  out.total_psd = c.psd;
-  out.total_cps = c.cps;
-  out.variance = c.variance;
-  out.bands.clear();
-  out.band_requirements.clear();
-  out.references.clear();
-  out.rms_max.reset();
-  out.name = output.name + " · " + c.name;
-  level.range = DisplayRange(out, grid);
+  DrillDown(output, c, c.name, grid, &level);
   level.items = c.cross_variance != 0.0
                     ? "source channels (each |H|² S of one channel; the total also holds the cross terms between "
                       "correlated channels, " +
