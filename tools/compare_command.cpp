@@ -52,8 +52,9 @@ struct Loaded {
 };
 
 
-// A budget file is evaluated; a directory (or a summary.json) is read.
-Loaded Load(const std::string& input, const std::vector<BudgetOverride>& overrides, int threads) {
+// A budget file is evaluated; a directory (or a summary.json) is read, and
+// its result store too when the overlays are drawn (`plots`).
+Loaded Load(const std::string& input, const std::vector<BudgetOverride>& overrides, int threads, bool plots) {
   const fs::path p(input);
   if (fs::is_directory(p)) {
     const fs::path summary = p / "summary.json";
@@ -64,7 +65,7 @@ Loaded Load(const std::string& input, const std::vector<BudgetOverride>& overrid
                   std::nullopt};
     // With its result store, a directory is drawn as a budget is.
     const fs::path store = p / io::kResultStoreFile;
-    if (fs::is_regular_file(store)) loaded.result = io::ReadResultStore(store.string()).result;
+    if (plots && fs::is_regular_file(store)) loaded.result = io::ReadResultStore(store.string()).result;
     return loaded;
   }
   if (p.extension() == ".json") {
@@ -163,7 +164,7 @@ int CompareCommand::Run() const {
   std::vector<std::vector<BudgetOverride>> overrides(s.inputs.size(), s.overrides);
   if (!s.overrides_b.empty())
     overrides[1].insert(overrides[1].end(), s.overrides_b.begin(), s.overrides_b.end());
-  ParallelForEach(loaded.size(), [&](std::size_t i) { loaded[i] = Load(s.inputs[i], overrides[i], s.threads); },
+  ParallelForEach(loaded.size(), [&](std::size_t i) { loaded[i] = Load(s.inputs[i], overrides[i], s.threads, s.plots); },
                   s.threads);
   struct Pending {
     Comparison cmp;
