@@ -20,6 +20,7 @@
 #include "deb/budget/loop_analysis.h"
 #include "deb/budget/output_covariance.h"
 #include "deb/budget/path_analysis.h"
+#include "deb/core/enum_names.h"
 #include "deb/core/frequency_grid.h"
 
 namespace deb {
@@ -54,6 +55,10 @@ struct ModeShare {
 
 // Which variance ContributorResult::top_modes split.
 enum class ModeSplit { kNone, kExactVariance, kGridVariance };
+inline constexpr EnumName<ModeSplit> kModeSplitNames[] = {{ModeSplit::kNone, "none"},
+                                                          {ModeSplit::kExactVariance, "exact_variance"},
+                                                          {ModeSplit::kGridVariance, "grid_variance"}};
+constexpr EnumNames<ModeSplit> NamesOf(ModeSplit) { return kModeSplitNames; }
 
 struct ContributorResult {
   std::string name;

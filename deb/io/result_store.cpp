@@ -27,14 +27,14 @@ std::optional<double> FromNone(double v) { return std::isnan(v) ? std::nullopt :
 
 std::vector<double> Indices(const std::vector<std::size_t>& v) { return {v.begin(), v.end()}; }
 
-const char* SplitName(ModeSplit s) {
-  switch (s) {
-    case ModeSplit::kNone: return "none";
-    case ModeSplit::kExactVariance: return "exact";
-    case ModeSplit::kGridVariance: return "grid";
-  }
-  return "none";
+// The names of a list's entries, for its `names` dataset.
+template <class T, class Name>
+std::vector<std::string> Names(const std::vector<T>& entries, Name name) {
+  std::vector<std::string> names;
+  for (const T& e : entries) names.push_back(name(e));
+  return names;
 }
+const auto kName = [](const auto& entry) { return entry.name; };
 
 // ---------------------------------------------------------------- writing
 
@@ -53,9 +53,7 @@ void WriteCovariance(Hdf5Writer& w, const std::string& at, const CovarianceResul
   w.Rows(at + "/correlation", RowsOf(c.correlation));
   w.Rows(at + "/exact_matrix", c.exact_matrix ? RowsOf(*c.exact_matrix) : std::vector<std::vector<double>>{});
   w.Text(at + "/exact_note", c.exact_note);
-  std::vector<std::string> names;
-  for (const ContributorCovariance& k : c.contributors) names.push_back(k.name);
-  w.Texts(at + "/contributors/names", names);
+  w.Texts(at + "/contributors/names", Names(c.contributors, kName));
   for (std::size_t i = 0; i < c.contributors.size(); ++i)
     w.Rows(At(at + "/contributors", i) + "/matrix", RowsOf(c.contributors[i].matrix));
 }
@@ -92,7 +90,7 @@ void WriteContributor(Hdf5Writer& w, const std::string& at, const ContributorRes
   std::vector<std::vector<double>> modes;
   for (const ModeShare& m : c.top_modes) modes.push_back({double(m.mode), m.f_hz, m.zeta, m.variance, m.share});
   w.Rows(at + "/top_modes", modes);
-  w.Text(at + "/top_modes_of", SplitName(c.top_modes_of));
+  w.Text(at + "/top_modes_of", ToString(c.top_modes_of));
 }
 
 void WriteOutput(Hdf5Writer& w, const std::string& at, const Output& spec, const OutputResult& o) {
@@ -137,13 +135,9 @@ void WriteOutput(Hdf5Writer& w, const std::string& at, const Output& spec, const
   w.Rows(at + "/bands/edges_hz", bands);
   w.Numbers(at + "/bands/variance", band_variance);
   w.Rows(at + "/bands/contributor_variance", band_contributors);
-  std::vector<std::string> names;
-  for (const ContributorResult& c : o.contributors) names.push_back(c.name);
-  w.Texts(at + "/contributors/names", names);
+  w.Texts(at + "/contributors/names", Names(o.contributors, kName));
   for (std::size_t c = 0; c < o.contributors.size(); ++c) WriteContributor(w, At(at + "/contributors", c), o.contributors[c]);
-  names.clear();
-  for (const ReferenceResult& r : o.references) names.push_back(r.name);
-  w.Texts(at + "/references/names", names);
+  w.Texts(at + "/references/names", Names(o.references, kName));
   for (std::size_t i = 0; i < o.references.size(); ++i) {
     const ReferenceResult& r = o.references[i];
     const std::string ra = At(at + "/references", i);
@@ -160,9 +154,7 @@ void WriteOutput(Hdf5Writer& w, const std::string& at, const Output& spec, const
   // Groups are derived from the contributors (ComputeGroups): stored for
   // readers, not read back.
   const std::vector<GroupResult> groups = ComputeGroups(o);
-  names.clear();
-  for (const GroupResult& g : groups) names.push_back(g.path);
-  w.Texts(at + "/groups/paths", names);
+  w.Texts(at + "/groups/paths", Names(groups, [](const GroupResult& g) { return g.path; }));
   for (std::size_t i = 0; i < groups.size(); ++i) {
     const GroupResult& g = groups[i];
     const std::string ga = At(at + "/groups", i);
@@ -242,6 +234,15 @@ class Reading {
     if (n > bound) Fail(names_object, "lists " + std::to_string(n) + " entries, more than " + std::to_string(bound));
     return n;
   }
+  // The text `object` as a value of enum T (its name table, enum_names.h).
+  template <class T>
+  T Enum(const std::string& object, const std::string& what) const {
+    try {
+      return ParseEnum<T>(r_.Text(object), what);
+    } catch (const InputError& e) {
+      Fail(object, e.message());
+    }
+  }
   std::size_t Index(const std::string& object, double value, std::size_t bound) const {
     if (!(value >= 0.0 && value < double(bound) && value == std::floor(value)))
       Fail(object, "holds the index " + std::to_string(value) + ", not one of 0.." + std::to_string(bound) + "-1");
@@ -276,9 +277,7 @@ ContributorResult ReadContributor(const Reading& in, const std::string& at, std:
   c.cross_variance = r.Number(at + "/channels/cross_variance");
   for (const auto& m : in.Rows(at + "/top_modes", 5))
     c.top_modes.push_back({static_cast<int>(m[0]), m[1], m[2], m[3], m[4]});
-  const std::string split = r.Text(at + "/top_modes_of");
-  c.top_modes_of = split == "exact" ? ModeSplit::kExactVariance : split == "grid" ? ModeSplit::kGridVariance : ModeSplit::kNone;
-  if (split != "exact" && split != "grid" && split != "none") in.Fail(at + "/top_modes_of", "is '" + Excerpt(split) + "', not none, exact or grid");
+  c.top_modes_of = in.Enum<ModeSplit>(at + "/top_modes_of", "mode split");
   return c;
 }
 
@@ -292,11 +291,7 @@ void ReadOutput(const Reading& in, const std::string& at, std::size_t n, Output*
   const std::string metric = r.Text(at + "/metric/type");
   if (!metric.empty()) {
     OutputMetric m;
-    try {
-      m.type = ParseMetricType(metric);
-    } catch (const InputError& e) {
-      in.Fail(at + "/metric/type", e.message());
-    }
+    m.type = in.Enum<MetricType>(at + "/metric/type", "metric type");
     m.window_s = r.Number(at + "/metric/window_s");
     o->metric = spec->metric = m;
   }
@@ -435,9 +430,7 @@ void WriteResultStore(const Budget& budget, const BudgetResult& result, const Ru
   for (const Band& b : budget.bands) bands.push_back({b.lo_hz, b.hi_hz});
   w.Rows("budget/bands", bands);
   w.Number("run/seconds", info.seconds ? *info.seconds : kNone);
-  std::vector<std::string> names;
-  for (const Source& s : budget.sources) names.push_back(s.name);
-  w.Texts("budget/sources/names", names);
+  w.Texts("budget/sources/names", Names(budget.sources, kName));
   for (std::size_t i = 0; i < budget.sources.size(); ++i) {
     const Source& s = budget.sources[i];
     const std::string at = At("budget/sources", i);
@@ -446,9 +439,7 @@ void WriteResultStore(const Budget& budget, const BudgetResult& result, const Ru
     w.Text(at + "/unit", s.unit);
     w.Texts(at + "/channels", s.channel_names);
   }
-  names.clear();
-  for (const Contributor& c : budget.contributors) names.push_back(c.name);
-  w.Texts("budget/contributors/names", names);
+  w.Texts("budget/contributors/names", Names(budget.contributors, kName));
   for (std::size_t i = 0; i < budget.contributors.size(); ++i) {
     const Contributor& c = budget.contributors[i];
     const std::string at = At("budget/contributors", i);
@@ -465,18 +456,14 @@ void WriteResultStore(const Budget& budget, const BudgetResult& result, const Ru
   w.Numbers("result/grid/f_hz", result.grid.f_hz());
   w.Numbers("result/grid/panel_starts", Indices(result.grid.panel_starts()));
   w.Texts("result/warnings", result.warnings);
-  names.clear();
-  for (const OutputResult& o : result.outputs) names.push_back(o.name);
-  w.Texts("result/outputs/names", names);
+  w.Texts("result/outputs/names", Names(result.outputs, kName));
   for (std::size_t o = 0; o < result.outputs.size(); ++o)
     WriteOutput(w, At("result/outputs", o), budget.outputs[o], result.outputs[o]);
   w.Texts("budget/covariance", budget.covariance);
   w.Integer("result/covariance/present", result.covariance ? 1 : 0);
   if (result.covariance) WriteCovariance(w, "result/covariance", *result.covariance);
   const ResponseTraces& traces = *result.traces;
-  names.clear();
-  for (const LoopResult& l : result.loops) names.push_back(l.plant + " " + l.controller);
-  w.Texts("result/loops/names", names);
+  w.Texts("result/loops/names", Names(result.loops, [](const LoopResult& l) { return l.plant + " " + l.controller; }));
   for (std::size_t i = 0; i < result.loops.size(); ++i)
     WriteLoop(w, At("result/loops", i), result.loops[i], traces.loops[i]);
   std::vector<std::vector<double>> poles;
@@ -511,11 +498,7 @@ StoredResult ReadResultStore(const std::string& file) {
   s.info.budget_sha256 = r.Text("budget/sha256");
   s.info.budget_text = r.Text("budget/text");
   b.source_file = s.info.budget_file;
-  try {
-    b.grid.kind = ParseGridKind(r.Text("budget/grid_type"));
-  } catch (const InputError& e) {
-    in.Fail("budget/grid_type", e.message());
-  }
+  b.grid.kind = in.Enum<GridKind>("budget/grid_type", "grid type");
   for (const auto& band : in.Rows("budget/bands", 2)) b.bands.push_back({band[0], band[1]});
   s.info.seconds = FromNone(r.Number("run/seconds", true));
   const std::size_t sources = in.Count("budget/sources/names", kMaxEntries);
@@ -537,11 +520,7 @@ StoredResult ReadResultStore(const std::string& file) {
     c.path = r.Text(at + "/path");
     c.inputs = r.Texts(at + "/inputs");
     c.group = r.Text(at + "/group");
-    try {
-      c.exact = ParseExactVariance(r.Text(at + "/exact"));
-    } catch (const InputError& e) {
-      in.Fail(at + "/exact", e.message());
-    }
+    c.exact = in.Enum<ExactVariance>(at + "/exact", "exact-variance mode");
     c.breakdown_channels = r.Integer(at + "/breakdown_channels") != 0;
     bool known = false;
     for (const Source& src : b.sources) known |= src.name == c.source;

@@ -234,9 +234,8 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
         modes.push_back({{"mode", m.mode}, {"f_hz", m.f_hz}, {"zeta", m.zeta}, {"variance", m.variance},
                          {"share", m.share}});
       jc["top_modes"] = modes;
-      jc["top_modes_of"] = cr.top_modes_of == ModeSplit::kExactVariance  ? nlohmann::json("exact_variance")
-                           : cr.top_modes_of == ModeSplit::kGridVariance ? nlohmann::json("grid_variance")
-                                                                         : nlohmann::json(nullptr);
+      jc["top_modes_of"] =
+          cr.top_modes_of == ModeSplit::kNone ? nlohmann::json(nullptr) : nlohmann::json(ToString(cr.top_modes_of));
       if (o.rms_max) {  // factor on this source's PSD that puts the output at its limit
         const Allocation a = AllocationFactor(o, c);
         jc["allocation_factor"] = a.factor ? nlohmann::json(*a.factor) : nlohmann::json(nullptr);
