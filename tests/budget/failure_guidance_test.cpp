@@ -7,35 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/flat_output.h"
+
 namespace deb {
 namespace {
 
-// An output on the grid {1, 2} Hz whose contributors have flat PSDs equal to
-// their variances (the grid is 1 Hz wide): CPS_c = v_c (f - 1).
-OutputResult FlatOutput(const std::vector<double>& variances, std::optional<double> rms_max) {
-  OutputResult o;
-  o.name = "position";
-  o.signal = "x";
-  o.unit = "nm";
-  o.rms_max = rms_max;
-  o.total_psd = {0.0, 0.0};
-  o.total_cps = {0.0, 0.0};
-  for (std::size_t c = 0; c < variances.size(); ++c) {
-    ContributorResult cr;
-    cr.name = std::string(1, static_cast<char>('a' + c));
-    cr.source = "s_" + cr.name;
-    cr.path = "p";
-    cr.psd = {variances[c], variances[c]};
-    cr.cps = {0.0, variances[c]};
-    cr.variance = variances[c];
-    o.total_psd[0] += variances[c];
-    o.total_psd[1] += variances[c];
-    o.total_cps[1] += variances[c];
-    o.contributors.push_back(cr);
-  }
-  o.variance = o.total_cps[1];
-  return o;
-}
+using test::FlatOutput;
+
 
 const FrequencyGrid kGrid{std::vector<double>{1.0, 2.0}};
 

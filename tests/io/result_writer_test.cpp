@@ -7,35 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/flat_output.h"
+
 namespace deb {
 namespace {
 
-// An output on the grid {1, 2} Hz whose contributors a, b, ... have flat PSDs
-// equal to their variances (the grid is 1 Hz wide).
-OutputResult FlatOutput(const std::string& name, const std::vector<double>& variances, std::optional<double> rms_max) {
-  OutputResult o;
-  o.name = name;
-  o.signal = "x";
-  o.unit = "nm";
-  o.rms_max = rms_max;
-  o.total_psd = {0.0, 0.0};
-  o.total_cps = {0.0, 0.0};
-  for (std::size_t c = 0; c < variances.size(); ++c) {
-    ContributorResult cr;
-    cr.name = std::string(1, static_cast<char>('a' + c));
-    cr.source = "s_" + cr.name;
-    cr.path = "p";
-    cr.psd = {variances[c], variances[c]};
-    cr.cps = {0.0, variances[c]};
-    cr.variance = variances[c];
-    o.total_psd[0] += variances[c];
-    o.total_psd[1] += variances[c];
-    o.total_cps[1] += variances[c];
-    o.contributors.push_back(cr);
-  }
-  o.variance = o.total_cps[1];
-  return o;
-}
+using test::FlatOutput;
+
 
 }  // namespace
 
@@ -45,12 +23,12 @@ TEST_CASE("summary.json: a failing output carries guidance with the closed-form 
   BudgetResult result;
   result.budget_name = "guidance";
   result.grid = FrequencyGrid(std::vector<double>{1.0, 2.0});
-  OutputResult fails = FlatOutput("position", {49.0, 25.0, 16.0, 10.0}, 6.0);
+  OutputResult fails = FlatOutput({49.0, 25.0, 16.0, 10.0}, 6.0, "nm", "position");
   BandRequirementResult band;
   band.requirement = {1.0, 1.5, 4.0};
   band.variance = 50.0;  // half of each flat PSD
   fails.band_requirements = {band};
-  result.outputs = {fails, FlatOutput("quiet", {4.0, 1.0}, 6.0)};
+  result.outputs = {fails, FlatOutput({4.0, 1.0}, 6.0, "nm", "quiet")};
 
   const auto j = nlohmann::json::parse(SummaryJson(budget, result, {}));
   const auto& g = j["outputs"][0]["guidance"];

@@ -7,9 +7,12 @@
 
 #include <cmath>
 #include "tests/support/cli_harness.h"
+#include "tests/support/flat_output.h"
 
 namespace deb::report {
 namespace {
+
+using test::FlatOutput;
 
 Table Small() {
   Table t;
@@ -21,51 +24,29 @@ Table Small() {
   return t;
 }
 
-// Contributors a, b, ... with flat PSDs equal to their variances on {1, 2} Hz.
-OutputResult FlatOutput(const std::vector<double>& variances, double rms_max) {
-  OutputResult o;
-  o.name = "position";
-  o.unit = "um";
-  o.rms_max = rms_max;
-  o.total_psd = {0.0, 0.0};
-  o.total_cps = {0.0, 0.0};
-  for (std::size_t c = 0; c < variances.size(); ++c) {
-    ContributorResult cr;
-    cr.name = std::string(1, static_cast<char>('a' + c));
-    cr.psd = {variances[c], variances[c]};
-    cr.cps = {0.0, variances[c]};
-    cr.variance = variances[c];
-    o.total_psd[0] += variances[c];
-    o.total_psd[1] += variances[c];
-    o.total_cps[1] += variances[c];
-    o.contributors.push_back(cr);
-  }
-  o.variance = o.total_cps[1];
-  return o;
-}
 
 }  // namespace
 
 TEST_CASE("a failing output's contributor table gives the reduction of each RMS that meets the limit, not k") {
   // 80 + 10 + 10 against 6^2: a alone meets it at 20 + 80 / r^2 = 36, r = sqrt(5); b and c cannot.
-  const Table alone = ContributorTable(FlatOutput({80.0, 10.0, 10.0}, 6.0));
+  const Table alone = ContributorTable(FlatOutput({80.0, 10.0, 10.0}, 6.0, "um"));
   REQUIRE(alone.header[6] == "must drop");
   CHECK(alone.rows[0][6] == "2.236×");
   CHECK(alone.rows[1][6] == "–");
   CHECK(alone.rows[2][6] == "–");
   CHECK(alone.rows[1][7].empty());  // no repeated "no allocation" note
   // 49 + 25 + 16 + 10: none alone; a and b together, 26 + 74 / r^2 = 36, r = sqrt(7.4).
-  const Table pair = ContributorTable(FlatOutput({49.0, 25.0, 16.0, 10.0}, 6.0));
+  const Table pair = ContributorTable(FlatOutput({49.0, 25.0, 16.0, 10.0}, 6.0, "um"));
   CHECK(pair.rows[0][6] == "2.720×, each of top 2");
   CHECK(pair.rows[1][6] == "2.720×, each of top 2");
   CHECK(pair.rows[2][6] == "–");
   // A passing output keeps the allocation factor k on the PSD: (36 - 10) / 20.
-  const Table passing = ContributorTable(FlatOutput({20.0, 10.0}, 6.0));
+  const Table passing = ContributorTable(FlatOutput({20.0, 10.0}, 6.0, "um"));
   CHECK(passing.header[6] == "allocation k");
   CHECK(passing.rows[0][6] == "1.300");
   const FrequencyGrid grid(std::vector<double>{1.0, 2.0});
-  CHECK(GuidanceText(FlatOutput({20.0, 10.0}, 6.0), grid).empty());
-  CHECK(GuidanceText(FlatOutput({80.0, 10.0, 10.0}, 6.0), grid) ==
+  CHECK(GuidanceText(FlatOutput({20.0, 10.0}, 6.0, "um"), grid).empty());
+  CHECK(GuidanceText(FlatOutput({80.0, 10.0, 10.0}, 6.0, "um"), grid) ==
         "position fails by 1.667×: a (80 %) must drop 2.236×, or a and b 1.861× each; the cumulative RMS reaches "
         "6 µm at 1.36 Hz.");
 }
@@ -73,7 +54,7 @@ TEST_CASE("a failing output's contributor table gives the reduction of each RMS 
 TEST_CASE("the summary table names each band requirement's largest contributor within the band") {
   BudgetResult result;
   result.grid = FrequencyGrid(std::vector<double>{1.0, 2.0});
-  OutputResult o = FlatOutput({20.0, 60.0}, 10.0);
+  OutputResult o = FlatOutput({20.0, 60.0}, 10.0, "um");
   BandRequirementResult b;
   b.requirement = {1.0, 1.25, 4.0};
   b.variance = 20.0;  // a quarter of each flat PSD: 5 + 15
@@ -183,7 +164,7 @@ TEST_CASE("the covariance table: one row per pair, correlations from the matrice
 namespace deb::report {
 
 TEST_CASE("the channel table lists each contributor's channels largest first, a rounding zero as 0, the cross terms") {
-  OutputResult o = FlatOutput({13.0, 5.0}, 10.0);
+  OutputResult o = FlatOutput({13.0, 5.0}, 10.0, "um");
   ContributorResult& a = o.contributors[0];
   a.channels = {{"x", {}, {}, 4.0}, {"z", {}, {}, 9.0}, {"y", {}, {}, 1e-30}};
   a.cross_variance = 0.0;
@@ -203,7 +184,7 @@ TEST_CASE("the channel table lists each contributor's channels largest first, a 
   CHECK(t.rows[5][3] == "-5.56 %");
   CHECK(t.rows[5][4] == "-20.0 %");
   // No breakdown, no rows.
-  CHECK(ChannelTable(FlatOutput({1.0}, 2.0), 4).rows.empty());
+  CHECK(ChannelTable(FlatOutput({1.0}, 2.0, "um"), 4).rows.empty());
 }
 
 }  // namespace deb::report
