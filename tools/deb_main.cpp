@@ -27,7 +27,6 @@
 #include <iostream>
 #include <optional>
 #include <set>
-#include <unistd.h>
 
 #include "deb/budget/engine.h"
 #include "deb/budget/groups.h"
@@ -42,7 +41,6 @@
 #include "deb/io/result_exports.h"
 #include "deb/io/result_writer.h"
 #include "deb/io/sweep_yaml.h"
-#include "deb/report/budget/report_writer.h"
 #include "deb/units/unit.h"
 #include "deb/version.h"
 #include "tools/budget_overrides_option.h"
@@ -128,18 +126,12 @@ int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
   if (!quiet) deb::tools::PrintBrief(budget, result, seconds, report.digits);
-  try {
-    report.progress = !quiet && ::isatty(STDERR_FILENO);
-    report.threads = threads;
-    // A reproducible report (SOURCE_DATE_EPOCH set) records no wall time.
-    deb::RunInfo info;
-    info.budget_file = budget_file;
-    info.threads = threads;
-    if (!deb::Reproducible()) info.seconds = seconds;
-    deb::WriteReportDirectory(budget, result, info, report, out_dir, exports);
-  } catch (const deb::InputError& e) {
-    throw deb::WriteError(e.what());  // found while writing: the report cannot be written
-  }
+  // A reproducible report (SOURCE_DATE_EPOCH set) records no wall time.
+  deb::RunInfo info;
+  info.budget_file = budget_file;
+  info.threads = threads;
+  if (!deb::Reproducible()) info.seconds = seconds;
+  deb::tools::WriteCommandReport(budget, result, info, report, threads, quiet, out_dir, exports);
   if (!quiet) std::printf("\nreport: %s\n", out_dir.c_str());
   int failed = 0;
   for (const auto& o : result.outputs) failed += o.AllPass() ? 0 : 1;

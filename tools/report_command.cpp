@@ -1,7 +1,5 @@
 #include "tools/report_command.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -9,7 +7,6 @@
 
 #include "deb/core/error.h"
 #include "deb/io/result_store.h"
-#include "deb/report/budget/report_writer.h"
 #include "tools/console_brief.h"
 #include "tools/report_flags.h"
 
@@ -53,9 +50,7 @@ int ReportCommand::Run() const {
   const fs::path result_dir = is_dir ? input : store.parent_path().empty() ? fs::path(".") : store.parent_path();
   const io::StoredResult stored = io::ReadResultStore(store.string());
 
-  ReportOptions report = o.flags.Options();
-  report.threads = o.threads;
-  report.progress = !o.quiet && ::isatty(STDERR_FILENO);
+  const ReportOptions report = o.flags.Options();
   std::vector<ExportFormat> exports = o.flags.exports;
   const std::string out = o.out_dir.empty() ? result_dir.string() : o.out_dir;
   // Redrawn in place, the directory keeps the exports it had.
@@ -68,11 +63,7 @@ int ReportCommand::Run() const {
   RunInfo info = stored.info;
   info.threads = o.threads;
   if (!o.quiet) PrintBrief(stored.budget, stored.result, stored.info.seconds, report.digits);
-  try {
-    WriteReportDirectory(stored.budget, stored.result, info, report, out, exports);
-  } catch (const InputError& e) {
-    throw WriteError(e.what());  // found while writing: the report cannot be written
-  }
+  WriteCommandReport(stored.budget, stored.result, info, report, o.threads, o.quiet, out, exports);
   if (!o.quiet)
     std::printf("\nreport: %s (redrawn from %s: budget %s%s)\n", out.c_str(), store.string().c_str(),
                 stored.budget.name.c_str(),

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
 #include <set>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "deb/core/error.h"
 #include "deb/io/result_exports.h"
+#include "deb/report/budget/report_writer.h"
 #include "deb/report/figure/report_options.h"
 
 namespace deb::tools {
@@ -70,6 +72,22 @@ inline void AddReportFlags(CLI::App* app, ReportFlags* flags) {
          "Also write the result for MATLAB (mat: result.mat) or Excel (xlsx: result.xlsx) into the report "
          "directory; repeatable or comma-separated")
       ->delimiter(',');
+}
+
+// WriteReportDirectory for a command: gnuplot and the result files on
+// `threads`, progress on stderr when it is a terminal and not `quiet`. What
+// the report finds wrong only while writing (InputError) means it cannot be
+// written: a WriteError (exit code 4).
+inline void WriteCommandReport(const Budget& budget, const BudgetResult& result, const RunInfo& info,
+                               ReportOptions report, int threads, bool quiet, const std::string& out_dir,
+                               const std::vector<ExportFormat>& exports) {
+  report.threads = threads;
+  report.progress = !quiet && ::isatty(STDERR_FILENO);
+  try {
+    WriteReportDirectory(budget, result, info, report, out_dir, exports);
+  } catch (const InputError& e) {
+    throw WriteError(e.what());
+  }
 }
 
 }  // namespace deb::tools
