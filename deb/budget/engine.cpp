@@ -69,15 +69,28 @@ double TailEstimate(const std::vector<double>& f, const std::vector<double>& s) 
   return tail;
 }
 
-std::vector<Band> DecadeBands(const FrequencyGrid& grid) {
-  std::vector<Band> bands;
-  const int k0 = static_cast<int>(std::floor(std::log10(grid.min_hz()) + 1e-12));
-  const int k1 = static_cast<int>(std::ceil(std::log10(grid.max_hz()) - 1e-12));
-  for (int k = k0; k < k1; ++k) {
-    const double lo = std::max(std::pow(10.0, k), grid.min_hz());
-    const double hi = std::min(std::pow(10.0, k + 1), grid.max_hz());
-    if (hi > lo * (1.0 + 1e-9)) bands.push_back({lo, hi});
+// The powers of ten strictly inside (min_hz, max_hz).
+std::vector<double> DecadesWithin(double min_hz, double max_hz) {
+  std::vector<double> decades;
+  const int k0 = static_cast<int>(std::floor(std::log10(min_hz) + 1e-12));
+  const int k1 = static_cast<int>(std::ceil(std::log10(max_hz) - 1e-12));
+  for (int k = k0; k <= k1; ++k) {
+    const double f = std::pow(10.0, k);
+    if (f > min_hz && f < max_hz) decades.push_back(f);
   }
+  return decades;
+}
+
+// One band per decade, the grid's ends cutting the first and last: the
+// bands between its ends and the powers of ten inside it (which the
+// automatic grid makes grid points, BuildGrid).
+std::vector<Band> DecadeBands(const FrequencyGrid& grid) {
+  std::vector<double> edges = {grid.min_hz()};
+  for (const double f : DecadesWithin(grid.min_hz(), grid.max_hz())) edges.push_back(f);
+  edges.push_back(grid.max_hz());
+  std::vector<Band> bands;
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i)
+    if (edges[i + 1] > edges[i] * (1.0 + 1e-9)) bands.push_back({edges[i], edges[i + 1]});
   return bands;
 }
 
@@ -447,6 +460,8 @@ FrequencyGrid BuildGridUnlocated(const Budget& budget, const PathAnalyses& paths
     breakpoints.push_back(b.lo_hz);
     breakpoints.push_back(b.hi_hz);
   }
+  if (budget.bands.empty())  // the default bands' edges (DecadeBands) are grid points too
+    for (const double decade_hz : DecadesWithin(options.min_hz, options.max_hz)) breakpoints.push_back(decade_hz);
   for (const Output& o : budget.outputs)
     for (const BandRequirement& q : o.band_requirements) {
       breakpoints.push_back(q.lo_hz);
@@ -468,9 +483,7 @@ FrequencyGrid BuildGridUnlocated(const Budget& budget, const PathAnalyses& paths
 }
 
 void CheckBandsInGrid(const Budget& budget, const FrequencyGrid& grid) {
-  const auto outside = [&grid](double lo, double hi) {
-    return lo < grid.min_hz() * (1 - 1e-12) || hi > grid.max_hz() * (1 + 1e-12);
-  };
+  const auto outside = [&grid](double lo, double hi) { return !grid.Covers(lo, hi); };
   const std::string grid_text = RangeText(grid.min_hz(), grid.max_hz());
   for (std::size_t i = 0; i < budget.bands.size(); ++i) {
     const Band& b = budget.bands[i];
@@ -733,11 +746,15 @@ void AddStep(const std::vector<double>& f, double f_hz, double variance, std::ve
   for (std::size_t k = first; k < f.size(); ++k) (*cps)[k] += variance;
 }
 
-// cr.channels and cr.cross_variance from each channel's PSD: the CPS of the
-// contributor is split interval by interval in proportion to the channels'
-// mean PSD over the interval (the cross terms taking the rest), so that the
-// parts add up to the contributor's CPS exactly, on the same integration
-// rule; each channel's tones step its CPS as they step the contributor's.
+// cr.channels and cr.cross_variance from each channel's PSD: each channel's
+// density integrated on the grid's own rule (CumulativeIntegral: Lobatto on
+// panels, the power law between other points), so a part is as accurate as
+// the contributor's CPS. Independent channels sum to the contributor's
+// density: each interval's parts are scaled to its step, so that they add up
+// to the CPS exactly (the scale differs from 1 by rounding on panels, by the
+// power law's curvature between other points); correlated channels keep
+// their own integrals and the cross terms take the rest. Each channel's
+// tones step its CPS as they step the contributor's.
 void BreakDownChannels(const Source& source, const FrequencyGrid& grid,
                        const std::vector<std::vector<double>>& channel_psd,
                        const std::vector<std::vector<double>>& channel_tones, ContributorResult* cr) {
@@ -747,17 +764,22 @@ void BreakDownChannels(const Source& source, const FrequencyGrid& grid,
   for (const ContributorResult::Tone& t : cr->tones) {
     AddStep(f, t.f_hz, -t.variance, &density);
   }
+  std::vector<std::vector<double>> own;
+  for (const std::vector<double>& psd : channel_psd) own.push_back(CumulativeIntegral(grid, psd));
+  std::vector<double> scale(f.size(), 1.0);
+  if (source.spectrum->IsDiagonal())
+    for (std::size_t k = 1; k < f.size(); ++k) {
+      double sum = 0.0;
+      for (const std::vector<double>& c : own) sum += c[k] - c[k - 1];
+      scale[k] = sum > 0.0 ? (density[k] - density[k - 1]) / sum : 0.0;
+    }
   double parts = 0.0;
   for (std::size_t j = 0; j < channel_psd.size(); ++j) {
     ContributorResult::ChannelPart p;
     p.channel = j < source.channel_names.size() ? source.channel_names[j] : std::to_string(j + 1);
     p.psd = channel_psd[j];
     p.cps.assign(f.size(), 0.0);
-    for (std::size_t k = 1; k < f.size(); ++k) {
-      const double mean_total = cr->psd[k - 1] + cr->psd[k];
-      const double step = density[k] - density[k - 1];
-      p.cps[k] = p.cps[k - 1] + (mean_total > 0.0 ? step * (p.psd[k - 1] + p.psd[k]) / mean_total : 0.0);
-    }
+    for (std::size_t k = 1; k < f.size(); ++k) p.cps[k] = p.cps[k - 1] + scale[k] * (own[j][k] - own[j][k - 1]);
     for (std::size_t t = 0; t < cr->tones.size(); ++t) AddStep(f, cr->tones[t].f_hz, channel_tones[t][j], &p.cps);
     p.variance = p.cps.back();
     parts += p.variance;
@@ -1011,9 +1033,12 @@ double ContributorVarianceBetween(const FrequencyGrid& grid, const ContributorRe
   const std::vector<double>& f = grid.f_hz();
   std::vector<double> density_cps = c.cps;
   double tonal = 0.0;
+  // (lo, hi], closed below at the grid's start: the CPS holds a tone on the
+  // first point from that point on, so the band from there must count it.
+  const bool from_start = grid.ClampToRange(lo_hz) == grid.min_hz();
   for (const ContributorResult::Tone& t : c.tones) {
     AddStep(f, t.f_hz, -t.variance, &density_cps);
-    if (lo_hz < t.f_hz && t.f_hz <= hi_hz) tonal += t.variance;
+    if ((lo_hz < t.f_hz || (from_start && t.f_hz <= lo_hz)) && t.f_hz <= hi_hz) tonal += t.variance;
   }
   return IntegralBetween(grid, c.psd, density_cps, lo_hz, hi_hz) + tonal;
 }

@@ -218,7 +218,8 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options = {});
 
 // The variance of a contributor between lo_hz and hi_hz (within the grid):
 // the integral of its density (IntegralBetween on its CPS) plus each of its
-// tones with lo_hz < f0 <= hi_hz, exactly.
+// tones with lo_hz < f0 <= hi_hz, exactly; a band from the grid's first point
+// is closed there (lo_hz <= f0), as the CPS counts a tone on that point.
 double ContributorVarianceBetween(const FrequencyGrid& grid, const ContributorResult& c, double lo_hz, double hi_hz);
 
 }  // namespace deb

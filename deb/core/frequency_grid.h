@@ -51,6 +51,16 @@ class FrequencyGrid {
   double max_hz() const { return f_hz_.back(); }
   const std::vector<std::size_t>& panel_starts() const { return panel_starts_; }
 
+  // Band edges within kEdgeTolerance (relative) of the grid's ends count as
+  // on them: a band [0.9999999999995, 10] on a grid from 1 Hz is [1, 10].
+  // Covers is the one rule for "inside the grid"; ClampToRange moves an edge
+  // that Covers accepts onto the grid's end.
+  static constexpr double kEdgeTolerance = 1e-12;
+  bool Covers(double lo_hz, double hi_hz) const {
+    return lo_hz <= hi_hz && lo_hz >= min_hz() * (1.0 - kEdgeTolerance) && hi_hz <= max_hz() * (1.0 + kEdgeTolerance);
+  }
+  double ClampToRange(double f_hz) const { return f_hz < min_hz() ? min_hz() : f_hz > max_hz() ? max_hz() : f_hz; }
+
  private:
   std::vector<double> f_hz_;
   std::vector<std::size_t> panel_starts_;

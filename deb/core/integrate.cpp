@@ -120,7 +120,9 @@ double IntegralBetween(const FrequencyGrid& grid, const std::vector<double>& s,
                        const std::vector<double>& cumulative, double lo_hz, double hi_hz) {
   const std::vector<double>& f = grid.f_hz();
   DEB_DEMAND(f.size() == s.size() && cumulative.size() == f.size());
-  DEB_DEMAND(lo_hz >= f.front() && hi_hz <= f.back() && lo_hz <= hi_hz);
+  DEB_DEMAND(grid.Covers(lo_hz, hi_hz));  // the engine's band check (CheckBandsInGrid) applies the same rule
+  lo_hz = grid.ClampToRange(lo_hz);
+  hi_hz = grid.ClampToRange(hi_hz);
   const auto at = [&](double x) {
     const std::size_t i = static_cast<std::size_t>(std::upper_bound(f.begin(), f.end(), x) - f.begin()) - 1;
     if (i + 1 >= f.size() || f[i] == x) return cumulative[i];

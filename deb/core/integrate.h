@@ -45,7 +45,8 @@ std::vector<double> CumulativeIntegral(const FrequencyGrid& grid, const std::vec
 // into parts that add up (the modes of a path, mode_shares.h).
 std::vector<double> LinearQuadratureWeights(const FrequencyGrid& grid);
 
-// Integral over [lo_hz, hi_hz] within the grid from its cumulative integral:
+// Integral over [lo_hz, hi_hz] within the grid (FrequencyGrid::Covers: an edge
+// within its tolerance of an end is that end) from its cumulative integral:
 // at a grid point the cumulative value, between two points the power law
 // through them from the point below.
 double IntegralBetween(const FrequencyGrid& grid, const std::vector<double>& s,

@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <memory>
@@ -434,6 +435,58 @@ TEST_CASE("contributors add up: total CPS, shares of variance and band variances
   double sum = 0.0;
   for (const BandResult& br : d.outputs[0].bands) sum += br.variance;
   CHECK(sum == doctest::Approx(d.outputs[0].variance).epsilon(1e-12));
+}
+
+TEST_CASE("a band edge within the grid's tolerance of its end is that end: the band's figure, no abort") {
+  // Flat PSD 2 through a unit gain on the explicit grid [1, 10, 100] Hz: [1, 10] holds 18, [10, 100] 180.
+  Budget b = OnePathBudget(WhiteSource(2.0, "N"), MakePath(StateSpace::Gain(MatrixXd::Identity(1, 1)), "N", "N"), "N");
+  b.grid.kind = GridKind::kExplicit;
+  b.grid.f_hz = {1.0, 10.0, 100.0};
+  b.bands = {{0.9999999999995, 10.0}, {10.0, 100.00000000000005}};
+  b.outputs[0].band_requirements = {{0.9999999999995, 10.0, 1.0}, {10.0, 100.00000000000005, 20.0}};
+  const BudgetResult r = Evaluate(b);
+  REQUIRE(r.outputs[0].bands.size() == 2);
+  CHECK(r.outputs[0].bands[0].variance == doctest::Approx(18.0).epsilon(1e-12));
+  CHECK(r.outputs[0].bands[1].variance == doctest::Approx(180.0).epsilon(1e-12));
+  CHECK(r.outputs[0].band_requirements[0].variance == doctest::Approx(18.0).epsilon(1e-12));
+  CHECK(r.outputs[0].band_requirements[1].variance == doctest::Approx(180.0).epsilon(1e-12));
+  // Beyond the tolerance: a located error.
+  b.outputs[0].band_requirements.clear();
+  b.bands = {{0.99999999, 10.0}};
+  CHECK(ErrorOf([&] { Evaluate(b); }).key_path() == "bands[0]");
+}
+
+TEST_CASE("the default decade bands are grid points of the automatic grid: as accurate as the same bands given") {
+  // Two light resonances astride 10 Hz (zeta 0.01 at 9.7 and 10.4 Hz): a decade edge inside a panel
+  // near them was off by up to 3e-4 of the band when it was interpolated.
+  const double w1 = kTwoPi * 9.7, w2 = kTwoPi * 10.4;
+  Budget b = OnePathBudget(WhiteSource(1.0, "N"), MakePath(Tf({w1 * w1}, {1.0, 0.02 * w1, w1 * w1}), "N", "m"), "m");
+  b.sources.push_back(WhiteSource(1.0, "N", "second"));
+  b.paths.push_back(MakePath(Tf({w2 * w2}, {1.0, 0.02 * w2, w2 * w2}), "N", "m", "p2"));
+  b.contributors.push_back({"d", "second", "p2", ExactVariance::kAuto, {}, {}, false});
+  const BudgetResult by_default = Evaluate(b);
+  b.bands = {{0.1, 1.0}, {1.0, 10.0}, {10.0, 100.0}, {100.0, 1000.0}};
+  const BudgetResult given = Evaluate(b);
+  const OutputResult& d = by_default.outputs[0];
+  const OutputResult& g = given.outputs[0];
+  REQUIRE(d.bands.size() == 4);
+  REQUIRE(g.bands.size() == 4);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    CHECK(d.bands[i].band.lo_hz == g.bands[i].band.lo_hz);
+    CHECK(d.bands[i].band.hi_hz == g.bands[i].band.hi_hz);
+    CHECK(std::abs(d.bands[i].variance - g.bands[i].variance) <= 1e-12 * d.variance);
+    sum += d.bands[i].variance;
+  }
+  CHECK(std::abs(sum / d.variance - 1.0) < 1e-12);
+  // The grid holds each decade as a breakpoint: points at decade (1 -+ 1e-9), a power-law step between.
+  const std::vector<double>& f = by_default.grid.f_hz();
+  for (const double decade : {1.0, 10.0, 100.0}) {
+    const auto above = std::lower_bound(f.begin(), f.end(), decade);
+    REQUIRE(above != f.begin());
+    CHECK(*above / decade - 1.0 == doctest::Approx(1e-9).epsilon(1e-3));
+    CHECK(1.0 - *(above - 1) / decade == doctest::Approx(1e-9).epsilon(1e-3));
+  }
 }
 
 TEST_CASE("a source whose channel count differs from the path's inputs is rejected") {

@@ -90,6 +90,35 @@ TEST_CASE("tones add to a random contributor as uncorrelated terms; a band edge 
   CHECK(ContributorVarianceBetween(both.grid, o.contributors[0], 50.0, 50.001) == 0.0);
 }
 
+TEST_CASE("a tone on the grid's first or last point is in the bands that start or end there") {
+  // 1 um/s RMS at 2 Hz on a grid from 2 Hz, 0.5 um/s RMS at 100 Hz on its last point, through a unit
+  // gain: the lowest band is closed at the grid's start ([2, 5] holds the 2 Hz tone), (lo, hi] holds the
+  // other; so do the default decade bands, which add up to the total.
+  const std::string text =
+      "name: ends\ngrid: {type: auto, min_hz: 2, max_hz: 100}\nsources:\n"
+      "  - name: hum\n    unit: um/s\n    spectrum:\n      type: tones\n      tones:\n"
+      "        - {f_hz: 2, rms: 1}\n        - {f_hz: 100, rms: 0.5}\n"
+      "paths:\n  - {name: unity, type: state_space, A: [[-1]], B: [[0]], C: [[0]], D: [[1]], input_unit: um/s,"
+      " output_unit: um/s, outputs: [v]}\n"
+      "contributors:\n  - {name: hum, source: hum, path: unity}\n"
+      "outputs:\n  - name: velocity\n    signal: v\n    unit: um/s\n    band_requirements:\n"
+      "      - {lo_hz: 2, hi_hz: 5, rms_max: 0.5}\n      - {lo_hz: 50, hi_hz: 100, rms_max: 1}\n";
+  const BudgetResult r = Evaluate(LoadBudgetText(text, "t.yaml"));
+  const OutputResult& o = r.outputs[0];
+  CHECK(std::abs(o.variance - 1.25) < 1e-12);
+  REQUIRE(o.band_requirements.size() == 2);
+  CHECK(std::abs(o.band_requirements[0].variance - 1.0) < 1e-12);
+  CHECK_FALSE(o.band_requirements[0].pass());
+  CHECK(std::abs(o.band_requirements[1].variance - 0.25) < 1e-12);
+  REQUIRE(o.bands.size() == 2);  // [2, 10] and [10, 100]
+  CHECK(std::abs(o.bands[0].variance - 1.0) < 1e-12);
+  CHECK(std::abs(o.bands[1].variance - 0.25) < 1e-12);
+  // Inside the grid the rule stays (lo, hi]: a band from 2 Hz is closed only because the grid starts there.
+  CHECK(ContributorVarianceBetween(r.grid, o.contributors[0], 2.0, 2.5) == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(ContributorVarianceBetween(r.grid, o.contributors[0], 99.0, 100.0) == doctest::Approx(0.25).epsilon(1e-12));
+  CHECK(ContributorVarianceBetween(r.grid, o.contributors[0], 100.0, 100.0) == 0.0);
+}
+
 TEST_CASE("channels of a tone are coherent: equal amplitudes cancel at 180 degrees and add in quadrature at 90") {
   const auto sum_of = [](const std::string& phases) {
     const std::string src = "  - name: mains\n    unit: um/s\n    channels: [a, b]\n    spectrum:\n      type: tones\n"
