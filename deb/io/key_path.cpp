@@ -1,7 +1,8 @@
 #include "deb/io/key_path.h"
 
 #include <cstdio>
-#include <set>
+#include <map>
+#include <vector>
 #include <tuple>
 
 #include "deb/core/error.h"
@@ -11,16 +12,22 @@
 namespace deb::io {
 namespace {
 
-// The nodes a walk has reached, told apart by their position in the text
-// (a YAML::Clone would lose it: callers edit a fresh parse).
+// The nodes a walk has reached (through aliases, a node is reached more than
+// once), told apart by identity: nodes of one position in the text are
+// compared with YAML::Node::is. The position alone does not tell them apart:
+// every value parsed from an override's text is at (0, 0, 0), as the
+// budget's root is.
 class Reached {
  public:
   // False if n was reached before. Counts every call against the limit.
   bool First(const YAML::Node& n) {
     if (++calls_ > limits::kMaxKeyPathVisits) throw Overflow();
     const YAML::Mark m = n.Mark();
-    if (m.is_null()) return true;
-    return seen_.insert({m.pos, m.line, m.column}).second;
+    std::vector<YAML::Node>& same_place = seen_[{m.pos, m.line, m.column}];
+    for (const YAML::Node& s : same_place)
+      if (s.is(n)) return false;
+    same_place.push_back(n);
+    return true;
   }
   struct Overflow {};
   static std::string Why() {
@@ -30,7 +37,7 @@ class Reached {
 
  private:
   std::size_t calls_ = 0;
-  std::set<std::tuple<int, int, int>> seen_;
+  std::map<std::tuple<int, int, int>, std::vector<YAML::Node>> seen_;
 };
 
 std::string Text(double v) {

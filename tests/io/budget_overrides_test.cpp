@@ -84,6 +84,31 @@ TEST_CASE("--set of a flat source's level scales its contributor's variance by t
   CHECK(std::abs(as_map.outputs[0].variance / changed.outputs[0].variance - 1.0) < 1e-12);
 }
 
+TEST_CASE("later overrides win: the same key set twice, and a key inside a value an earlier override set") {
+  // geophone_noise: flat ASD 0.01. The last value counts: 0.03 gives 9 times the variance, 0.02 four times.
+  const BudgetResult nominal = Evaluate(LoadBudgetFile(kIsolator));
+  const auto ratio = [&](const BudgetResult& r) {
+    for (std::size_t c = 0; c < r.outputs[0].contributors.size(); ++c)
+      if (r.outputs[0].contributors[c].source == "geophone_noise")
+        return r.outputs[0].contributors[c].variance / nominal.outputs[0].contributors[c].variance;
+    return 0.0;
+  };
+  CHECK(ratio(Evaluate(LoadBudgetFile(
+            kIsolator, {{"sources[1].spectrum.level", "0.02"}, {"sources[1].spectrum.level", "0.03"}}))) ==
+        doctest::Approx(9.0).epsilon(1e-12));
+  CHECK(ratio(Evaluate(LoadBudgetFile(
+            kIsolator, {{"sources[1].spectrum.level", "0.03"}, {"sources[1].spectrum.level", "0.02"}}))) ==
+        doctest::Approx(4.0).epsilon(1e-12));
+  CHECK(ratio(Evaluate(LoadBudgetFile(kIsolator, {{"sources[1].spectrum", "{type: flat, quantity: asd, level: 0.01}"},
+                                                  {"sources[1].spectrum.level", "0.03"}}))) ==
+        doctest::Approx(9.0).epsilon(1e-12));
+  // Three in a row: the third wins.
+  CHECK(ratio(Evaluate(LoadBudgetFile(kIsolator, {{"sources[1].spectrum.level", "0.05"},
+                                                  {"sources[1].spectrum.level", "0.04"},
+                                                  {"sources[1].spectrum.level", "0.02"}}))) ==
+        doctest::Approx(4.0).epsilon(1e-12));
+}
+
 TEST_CASE("--set on every element ([*]) gives the sweep's variant with the same values, bitwise") {
   // Sweep variant (K_v = 25, h = 100 mm) against the budget with those values set by --set.
   const SweepBudget sweep = LoadSweepFile(kThesisSweep);
