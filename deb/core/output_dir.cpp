@@ -23,9 +23,11 @@ std::string Reason(int error) { return std::strerror(error); }
   throw WriteError(what + ": " + ec.message());
 }
 
+// Only the marker makes a directory deb's: a summary.json is a common name,
+// and another program's would make its directory deb's to replace.
 bool HasMarker(const fs::path& dir) {
   std::error_code ec;
-  return fs::is_regular_file(dir / kOutputMarker, ec) || fs::is_regular_file(dir / "summary.json", ec);
+  return fs::is_regular_file(dir / kOutputMarker, ec);
 }
 
 bool IsEmptyDirectory(const fs::path& dir) {

@@ -1,9 +1,9 @@
 // The directories deb writes (a run's report, compare/sweep/sensitivity
 // results), and the one rule for replacing them: deb replaces only what deb
 // wrote. A directory deb writes holds the marker file kOutputMarker; a target
-// that is missing, an empty directory, or a directory holding the marker (or
-// a summary.json of an older deb) is replaced; anything else — a regular file,
-// a directory of someone's files — is refused with a WriteError unless the
+// that is missing, an empty directory, or a directory holding the marker is
+// replaced; anything else — a regular file, a directory of someone's files,
+// even one holding a file named summary.json — is refused with a WriteError unless the
 // caller passes force (the CLI's --force).
 //
 // The new content is written into a temporary sibling ".NAME.tmp-PID" and

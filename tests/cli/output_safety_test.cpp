@@ -191,6 +191,11 @@ TEST_CASE("only what deb wrote is replaced; --force replaces anything; a symboli
   CHECK(fs::exists(dir / "mydata" / "thesis.tex"));
   CHECK(fs::is_regular_file(dir / "existing.txt"));
   CHECK(Temporaries(dir, "mydata").empty());
+  // Another program's summary.json does not make a directory deb's (nor does deb report's redraw).
+  std::ofstream(dir / "mydata" / "summary.json") << "{\"score\": 1}";
+  CHECK(RunDeb({"run", budget, "--out", (dir / "mydata").string(), "--no-plots"}) == 4);
+  CHECK(fs::exists(dir / "mydata" / "thesis.tex"));
+  CHECK(Temporaries(dir, "mydata").empty());
 
   fs::create_directory(dir / "empty");  // an empty directory holds nothing to lose
   CHECK(RunDeb({"run", budget, "--out", (dir / "empty").string(), "--no-plots"}) == 0);
@@ -199,6 +204,13 @@ TEST_CASE("only what deb wrote is replaced; --force replaces anything; a symboli
 
   CHECK(RunDeb({"run", budget, "--out", (dir / "mydata").string(), "--no-plots", "--force"}) == 0);
   CHECK(!fs::exists(dir / "mydata" / "thesis.tex"));
+  // A directory holding deb's result.h5 and another program's summary.json: deb report refuses to redraw into it.
+  fs::create_directory(dir / "got");
+  fs::copy_file(dir / "mydata" / "result.h5", dir / "got" / "result.h5");
+  std::ofstream(dir / "got" / "summary.json") << "{}";
+  std::ofstream(dir / "got" / "notes.txt") << "mine";
+  CHECK(RunDeb({"report", (dir / "got").string(), "--no-plots"}) == 4);
+  CHECK(fs::exists(dir / "got" / "notes.txt"));
   CHECK(fs::exists(dir / "mydata" / "summary.json"));
 
   fs::create_directory(dir / "elsewhere");
