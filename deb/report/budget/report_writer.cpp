@@ -169,16 +169,16 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
       if (ec) throw WriteError("cannot create directory " + (plots_dir / pdf_figures).string() + ": " + ec.message());
       for (const Plot& p : plots)
         jobs.push_back({"plots/" + pdf_figures + "/" + p.name + ".svg",
-                        PdfFigureTerminal(p.kind) + "set output " + Quote(pdf_figures + "/" + p.name + ".svg") +
-                            "\nload " + Quote(p.name + ".gp") + "\nunset output\n"});
+                        PdfFigureTerminal(p.kind) + "set output " + QuoteFile(pdf_figures + "/" + p.name + ".svg") +
+                            "\nload " + QuoteFile(p.name + ".gp") + "\nunset output\n"});
     }
     const std::size_t pdf_jobs = jobs.size();
     for (Terminal t : {Terminal::kPng, Terminal::kSvg}) {
       if (!options.Has(t == Terminal::kPng ? PlotFormat::kPng : PlotFormat::kSvg)) continue;
       for (const Plot& p : plots) {
         const std::string file = p.name + "." + FileExtension(t);
-        jobs.push_back({"plots/" + file, TerminalCommand(t) + "set output " + Quote(file) + "\nload " +
-                                             Quote(p.name + ".gp") + "\nunset output\n"});
+        jobs.push_back({"plots/" + file, TerminalCommand(t) + "set output " + QuoteFile(file) + "\nload " +
+                                             QuoteFile(p.name + ".gp") + "\nunset output\n"});
       }
     }
     // gnuplot starts fast but each process pays again for fonts and cairo:

@@ -63,8 +63,8 @@ void WriteComparisonPdf(const Comparison& cmp, const std::vector<Plot>& plots, c
         [&](std::size_t i) {
           const Plot& p = plots[i];
           RunGnuplot(gnuplot, plots_dir,
-                     PdfFigureTerminal(p.kind) + "set output " + Quote(figures + "/" + p.name + ".svg") + "\nload " +
-                         Quote(p.name + ".gp") + "\nunset output\n",
+                     PdfFigureTerminal(p.kind) + "set output " + QuoteFile(figures + "/" + p.name + ".svg") + "\nload " +
+                         QuoteFile(p.name + ".gp") + "\nunset output\n",
                      "the figure of compare.pdf " + p.name);
         },
         threads);

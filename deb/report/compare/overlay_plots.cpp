@@ -202,8 +202,8 @@ void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_di
       [&](std::size_t i) {
         const Plot& p = plots[i];
         RunGnuplot(gnuplot, plots_dir,
-                   TerminalCommand(Terminal::kPng) + "set output " + Quote(p.name + ".png") + "\nload " +
-                       Quote(p.name + ".gp") + "\nunset output\n",
+                   TerminalCommand(Terminal::kPng) + "set output " + QuoteFile(p.name + ".png") + "\nload " +
+                       QuoteFile(p.name + ".gp") + "\nunset output\n",
                    "plot " + p.name);
       },
       threads);

@@ -87,7 +87,7 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
     y = "(column(" + std::to_string(s.where_column) + ")" + Compare(s.where_test) + CsvNumber(s.where_value) + " ? " +
         y + " : NaN)";
   const std::string data =
-      Quote(s.data) + (s.block >= 0 ? " index " + std::to_string(s.block) : std::string()) + " using " + xs + ":";
+      QuoteFile(s.data) + (s.block >= 0 ? " index " + std::to_string(s.block) : std::string()) + " using " + xs + ":";
   const std::string z = map ? ":" + std::to_string(s.z_column) : "";
   const std::string size = s.point_size > 0.0 ? CsvNumber(s.point_size) : "";
   if (map) {  // a heat map's panel: the map, markers on it and contour pieces
@@ -134,7 +134,7 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
                                  : "(sprintf(" + Quote(s.label_format) + ", " + Col(s.label_column) + "))";
       if (s.labels_beside_end) {  // right of a bar's end at x >= 0, left of one at x < 0
         const std::string x = Col(s.x_column) + (s.x_offset == 0.0 ? "" : "+" + CsvNumber(s.x_offset));
-        const std::string at = Quote(s.data) + (s.block >= 0 ? " index " + std::to_string(s.block) : std::string()) +
+        const std::string at = QuoteFile(s.data) + (s.block >= 0 ? " index " + std::to_string(s.block) : std::string()) +
                                " using (" + x;
         out.push_back(at + " >= 0 ? " + x + " : NaN):" + y + ":" + label +
                       " with labels left offset 0.6,0 font ',10' textcolor rgb " + Quote(s.colour) + " notitle");
@@ -155,7 +155,7 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
     case SeriesKind::kHorizontalBars: {
       // A box centred on half the value, half the value wide (boxxyerror: x:y:dx:dy).
       const std::string x = Col(s.x_column) + (s.x_offset == 0.0 ? "" : "+" + CsvNumber(s.x_offset));
-      out.push_back(Quote(s.data) + (s.block >= 0 ? " index " + std::to_string(s.block) : std::string()) + " using ((" +
+      out.push_back(QuoteFile(s.data) + (s.block >= 0 ? " index " + std::to_string(s.block) : std::string()) + " using ((" +
                     x + ") / 2):" + y + ":(abs(" + x + ") / 2):(" + CsvNumber(s.bar_height / 2.0) +
                     ") with boxxyerror fillstyle solid 1.0" +
                     (s.edge_colour.empty() ? " noborder" : " border linecolor rgb " + Quote(s.edge_colour)) +

@@ -223,10 +223,44 @@ void RunGnuplot(const std::string& executable, const std::string& dir, const std
 
 namespace deb::report {
 
+namespace {
+
+// Words after which gnuplot reads a string as a file name, where a leading
+// '|' or '<' is a pipe to a shell or a command to read from.
+bool TakesFileName(const std::string& word) {
+  for (const char* w : {"output", "load", "call", "save", "cd", "print", "table", "plot", "splot", "replot"})
+    if (word == w) return true;
+  return false;
+}
+
+}  // namespace
+
 std::string ScriptOffence(const std::string& script) {
   bool command_start = true;  // at the start of a command: '!' would run a shell
+  std::string command;        // the command's first word
+  std::string word;           // the last bare word
+  std::string current;        // the bare word being read
+  char last = ' ';            // the last character outside strings and blanks
+  int parentheses = 0;
+  // A string at a file name's place: after a word that takes one, or after a
+  // comma between the data sources of a plot.
+  const auto at_file_name = [&] {
+    return TakesFileName(word) || (last == ',' && parentheses == 0 && (command == "plot" || command == "splot"));
+  };
   for (std::size_t i = 0; i < script.size(); ++i) {
     const char c = script[i];
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') {
+      current += c;
+    } else if (!current.empty()) {
+      word = current;
+      if (command.empty()) command = word;
+      current.clear();
+    }
+    if (c == '\'' || c == '"') {
+      const char first = i + 1 < script.size() ? script[i + 1] : '\0';
+      if ((first == '|' || first == '<') && at_file_name())
+        return std::string("a file name starting with '") + first + "' (a pipe)";
+    }
     if (c == '\'') {  // single-quoted: nothing is expanded; '' stands for '
       for (++i; i < script.size(); ++i) {
         if (script[i] == '\n') return "a line break inside a single-quoted string";
@@ -239,6 +273,8 @@ std::string ScriptOffence(const std::string& script) {
       }
       if (i >= script.size()) return "an unterminated single-quoted string";
       command_start = false;
+      word.clear();
+      last = '\'';
       continue;
     }
     if (c == '"') {  // double-quoted: gnuplot expands `...` here
@@ -249,14 +285,25 @@ std::string ScriptOffence(const std::string& script) {
       }
       if (i >= script.size()) return "an unterminated double-quoted string";
       command_start = false;
+      word.clear();
+      last = '"';
       continue;
     }
     if (c == '`') return "a backquote outside a single-quoted string";
     if (c == '@') return "an '@' (macro) outside a single-quoted string";
     if (c == '!' && command_start) return "a '!' shell command";
     if (script.compare(i, 6, "system") == 0) return "a call of system";
-    if (c == '\n' || c == ';') command_start = true;
-    else if (c != ' ' && c != '\t') command_start = false;
+    if (c == '(') ++parentheses;
+    if (c == ')' && parentheses > 0) --parentheses;
+    if (c == '\n' || c == ';') {
+      command_start = true;
+      command.clear();
+      word.clear();
+      parentheses = 0;
+    } else if (c != ' ' && c != '\t') {
+      command_start = false;
+    }
+    if (c != ' ' && c != '\t') last = c;
   }
   return "";
 }

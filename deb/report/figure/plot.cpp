@@ -49,6 +49,11 @@ std::string Quote(const std::string& text) {
   return q + "'";
 }
 
+std::string QuoteFile(const std::string& path) {
+  const bool pipe_like = !path.empty() && (path[0] == '|' || path[0] == '<' || path[0] == '!');
+  return Quote(pipe_like ? "./" + path : path);
+}
+
 std::string QuoteLines(const std::vector<std::string>& lines) {
   if (lines.empty()) return Quote("");
   std::string q = "(";

@@ -33,6 +33,10 @@ struct Plot {
 // @macros; control characters (a line break would end the command) become
 // spaces. gnuplot_runner.h's CheckScript refuses any script that strays.
 std::string Quote(const std::string& text);
+// A file name for gnuplot (set output, load, a plot's data file): Quote, and
+// "./" before a relative name that starts with '|', '<' or '!', which gnuplot
+// would take for a pipe to a shell or a command to read from.
+std::string QuoteFile(const std::string& path);
 // Several lines as one gnuplot string expression: single-quoted lines
 // joined by "\n", e.g. ('first'."\n".'second'); usable wherever a string is.
 std::string QuoteLines(const std::vector<std::string>& lines);

@@ -87,7 +87,7 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
         const std::string file = p.plot.name + "." + FileExtension(t);
         // One gnuplot per file: a PDF of one page, a PNG or an SVG.
         draws.push_back({dir.string(),
-                         TerminalCommand(t) + "set output " + Quote(file) + "\nload " + Quote(p.plot.name + ".gp") +
+                         TerminalCommand(t) + "set output " + QuoteFile(file) + "\nload " + QuoteFile(p.plot.name + ".gp") +
                              "\nunset output\n",
                          file, "plot " + (p.directory.empty() ? file : (fs::path(p.directory) / file).string())});
       }

@@ -142,6 +142,37 @@ TEST_CASE("a script may carry user text only in single quotes: backquotes, macro
   CHECK(ScriptOffence("set title " + QuoteLines("`a`\n@b") + "\n").empty());
 }
 
+TEST_CASE("a file name that gnuplot would take for a pipe or a command is refused; QuoteFile makes it a file") {
+  CHECK(ScriptOffence("set output '|id > x'\n") == "a file name starting with '|' (a pipe)");
+  CHECK(ScriptOffence("load '<cat /etc/passwd'\n") == "a file name starting with '<' (a pipe)");
+  CHECK(ScriptOffence("plot '<ls' using 1:2\n") == "a file name starting with '<' (a pipe)");
+  CHECK(ScriptOffence("plot 'a.csv' using 1:2 title 'x', \"|id\" using 1:2\n") ==
+        "a file name starting with '|' (a pipe)");
+  CHECK(ScriptOffence("set print '|id'\n") == "a file name starting with '|' (a pipe)");
+  // Text that is no file name may start so: a title, a label, a tic label.
+  CHECK(ScriptOffence("set title '<1 nm'\nset label 1 '|x|' at 1,1\nset xtics ('<1' 1, '|2' 2)\n").empty());
+  CHECK(ScriptOffence("plot 'a.csv' using 1:2 title '<3 Hz', 'b.csv' using 1:2 title '|b|'\n").empty());
+  for (const std::string name : {"|cd ..; id > x; echo y.png", "<id", "!id", "|"}) {
+    CHECK(ScriptOffence("set output " + QuoteFile(name) + "\nload " + QuoteFile(name + ".gp") + "\nplot " +
+                        QuoteFile(name + ".csv") + " using 1:2, " + QuoteFile(name) + " using 1:3\n")
+              .empty());
+    CHECK(QuoteFile(name).rfind("'./", 0) == 0);
+  }
+  CHECK(QuoteFile("/abs/a.png") == "'/abs/a.png'");
+  CHECK(QuoteFile("it's.png") == "'it''s.png'");
+}
+
+TEST_CASE("deb spectrum with an output name that starts with a pipe writes that file and runs nothing") {
+  const fs::path dir = TempDir("pipe_name");
+  // The plots are drawn in a directory below dir: "cd .." would reach dir.
+  const std::string name = "|cd ..; touch ran.txt; echo y.csv";
+  const Command r = RunDebIn(dir, "spectrum reference nlnm -o '" + name + "'");
+  CHECK_MESSAGE(r.exit_code == 0, r.err);
+  CHECK_FALSE(fs::exists(dir / "ran.txt"));
+  CHECK(fs::exists(dir / name));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a non-finite number in a script is a write error, not gnuplot's 'undefined variable'") {
   CHECK(HasNonFiniteNumber("set xrange [inf:10]\n"));
   CHECK(HasNonFiniteNumber("set yrange [1:-nan]\n"));
