@@ -1023,6 +1023,14 @@ const std::vector<Case>& Catalogue() {
       {"Y121+", "a reference PSD that overflows converted to the output's unit (um^2 -> nm^2)",
        {{"b.yaml", Reference("um")}, {"ref.csv", "f_hz,r\n0.5,1e305\n200,1e305\n"}}, kRun, 3,
        At("references: [|{name: r", "outputs[0].references[0]"), {"reference 'r' has a PSD of inf nm^2/Hz"}},
+      {"C51+", "spectrum reference --points-per-decade 1e10", {},
+       "spectrum reference nlnm --points-per-decade 1e10 -o r.csv", 3, Names("--points-per-decade"),
+       {"from 1 to 100000"}, {}, "", "", 20},
+      {"C51++", "spectrum reference --points-per-decade inf", {},
+       "spectrum reference nlnm --points-per-decade inf -o r.csv", 3, Names("--points-per-decade")},
+      {"C35c+", "spectrum welch --confidence 0.9999999999999999 (its upper tail rounds to 1)", {{"rec.csv", RecCsv()}},
+       "spectrum welch rec.csv --bounds --confidence 0.9999999999999999 -o psd.csv", 3, Names("confidence"),
+       {"too close to 1"}},
   };
   return cases;
 }
