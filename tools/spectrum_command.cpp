@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/limits.h"
 #include "deb/core/number_text.h"
 #include "deb/core/output_dir.h"
 #include "deb/report/figure/output_files.h"
@@ -491,7 +492,9 @@ int RunReference(const Settings& s) {
   const PetersonModel model = ParsePetersonModel(s.model);
   const std::string unit = s.to_unit.empty() ? PetersonSpectrum::kUnit : s.to_unit;
   const UnitConversion conv = ConvertUnit(PetersonSpectrum::kUnit, unit);
-  if (!(s.points_per_decade >= 1.0)) throw InputError("--points-per-decade must be >= 1");
+  if (!(s.points_per_decade >= 1.0 && s.points_per_decade <= limits::kMaxPointsPerDecade))
+    throw InputError("--points-per-decade " + NumberText(s.points_per_decade) + " is invalid; it must be from 1 to " +
+                     std::to_string(static_cast<long long>(limits::kMaxPointsPerDecade)));
   std::vector<double> f;
   const int n = static_cast<int>(std::ceil(6.0 * s.points_per_decade));
   for (int i = 0; i <= n; ++i) f.push_back(PetersonSpectrum::kMinHz * std::pow(10.0, 6.0 * i / n));

@@ -316,6 +316,25 @@ void CheckToneCoverage(const Budget& budget, const FrequencyGrid& grid) {
   }
 }
 
+// Every reference that may not be extrapolated overlaps the grid: it is
+// compared with the budget over the overlap (AddReferences), and an empty
+// overlap leaves nothing to compare.
+void CheckReferenceCoverage(const Budget& budget, const FrequencyGrid& grid) {
+  for (std::size_t o = 0; o < budget.outputs.size(); ++o) {
+    const std::vector<Source>& references = budget.outputs[o].references;
+    for (std::size_t i = 0; i < references.size(); ++i) {
+      const auto r = references[i].spectrum->DefinedRangeHz();
+      if (!r || std::max(r->lo_hz, grid.min_hz()) < std::min(r->hi_hz, grid.max_hz())) continue;
+      throw InputError(Key("outputs", o, "references[" + std::to_string(i) + "].spectrum"),
+                       "reference '" + references[i].name + "' is defined over " + RangeText(r->lo_hz, r->hi_hz) +
+                           " only (extrapolation: error), which does not overlap the frequency grid " +
+                           RangeText(grid.min_hz(), grid.max_hz()) +
+                           ": there is no band to compare it with the budget in; widen the grid to reach it, or set "
+                           "the reference's extrapolation (hold or zero)");
+    }
+  }
+}
+
 // The unit conversions and output rows of one contributor.
 struct ContributorSetup {
   std::vector<UnitConversion> in_conv;  // per path input
@@ -529,6 +548,7 @@ FullPlan MakePlan(const Budget& budget) {
   CheckBandsInGrid(budget, plan.grid);
   CheckDataCoverage(budget, plan.grid);
   CheckToneCoverage(budget, plan.grid);
+  CheckReferenceCoverage(budget, plan.grid);
   plan.bands = budget.bands.empty() ? DecadeBands(plan.grid) : budget.bands;
   plan.loops = AnalyseLoops(budget, plan.grid.f_hz());
   for (const LoopResult& loop : plan.loops) {
@@ -895,12 +915,15 @@ void AddTotalsAndBands(const Output& output, const FrequencyGrid& grid, const st
   }
 }
 
-// The output's references on the grid, converted to its unit (a time
+// The references of output o on the grid, converted to its unit (a time
 // derivative is (2 pi f)^2n on a PSD) and weighted as the output is.
-void AddReferences(const Output& output, const FrequencyGrid& grid, const std::vector<double>& weighting_gain2,
-                   OutputResult* r) {
+// @throws InputError at the reference if its PSD is not finite there (a
+//   conversion or weighting that overflows).
+void AddReferences(const Output& output, std::size_t o, const FrequencyGrid& grid,
+                   const std::vector<double>& weighting_gain2, OutputResult* r) {
   const std::vector<double>& f = grid.f_hz();
-  for (const Source& ref : output.references) {
+  for (std::size_t i = 0; i < output.references.size(); ++i) {
+    const Source& ref = output.references[i];
     ReferenceResult rr;
     rr.name = ref.name;
     const UnitConversion conv = ConvertUnit(ref.unit, output.unit);
@@ -912,6 +935,13 @@ void AddReferences(const Output& output, const FrequencyGrid& grid, const std::v
       if (f[k] < rr.covered_lo_hz || f[k] > rr.covered_hi_hz) continue;
       double s = ref.spectrum->Psd(f[k])(0) * conv.PsdFactor(f[k]);
       if (!weighting_gain2.empty()) s *= weighting_gain2[k];
+      if (!std::isfinite(s)) {
+        std::ostringstream os;
+        os << "reference '" << ref.name << "' has a PSD of " << s << " " << output.unit << "^2/Hz at " << f[k]
+           << " Hz in the unit of output '" << output.name << "' (" << ref.unit << " -> " << output.unit
+           << (weighting_gain2.empty() ? "" : ", weighted") << "): the converted values leave the range of a double";
+        throw InputError(Key("outputs", o, "references[" + std::to_string(i) + "]"), os.str());
+      }
       rr.psd[k] = std::max(s, 0.0);
     }
     rr.cps = CumulativeIntegral(grid, rr.psd);
@@ -1004,7 +1034,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
   for (std::size_t o = 0; o < result.outputs.size(); ++o) {
     AddTotalsAndBands(budget.outputs[o], result.grid, plan.bands, &result.outputs[o]);
     try {
-      AddReferences(budget.outputs[o], result.grid, weighting_gain2[o], &result.outputs[o]);
+      AddReferences(budget.outputs[o], o, result.grid, weighting_gain2[o], &result.outputs[o]);
     } catch (const InputError& e) {
       if (!e.key_path().empty()) throw;
       throw InputError(Key("outputs", o, "references"), e.message());

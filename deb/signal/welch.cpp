@@ -196,6 +196,11 @@ bool WelchOptions::IsValid(std::string* error) const {
     return fail("overlap " + NumberText(overlap) + " is invalid; it is a fraction of a segment in [0, 1)");
   if (!(confidence > 0.0 && confidence < 1.0))
     return fail("confidence " + NumberText(confidence) + " is invalid; it must be in (0, 1), e.g. 0.95");
+  // The bounds are the chi-square quantiles at (1 -+ confidence) / 2, which
+  // must stay below 1 in double precision.
+  if (!(1.0 - 0.5 * (1.0 - confidence) < 1.0))
+    return fail("confidence " + NumberText(confidence) + " is too close to 1: (1 + confidence) / 2 rounds to 1, "
+                "where the chi-square quantile is infinite; use e.g. 0.999");
   return true;
 }
 

@@ -293,6 +293,12 @@ std::string Correlated(const std::string& correlation) {
              kTf + "    inputs: [u]\n", "type: gain\n    gain: [[1, 1]]\n");
 }
 
+// The base output with a measured reference in `unit` read from ref.csv.
+std::string Reference(const std::string& unit) {
+  return Sub(kBase, "rms_max: 5}",
+             "rms_max: 5, references: [{name: r, unit: " + unit + ", spectrum: {type: measured, file: ref.csv}}]}");
+}
+
 // A feedback loop around the plant with a gain controller.
 std::string Loop(const std::string& controller_units, const std::string& loop_tail) {
   return Sub(kBase, "contributors:\n",
@@ -1003,6 +1009,28 @@ const std::vector<Case>& Catalogue() {
       {"X22w", "backquotes in channel names, deb spectrum welch --coherence (D01)",
        {{"rec.csv", Rec3("a`touch $DEBINJ`,b,c")}}, "spectrum welch rec.csv -o psd.csv --coherence coh.csv", 0, Ok(), {},
        {}, "", "", 0, CheckInjection},
+
+      // ---- Inputs that once reached an internal check (an abort, exit 134) ----
+      {"Y120+", "a measured reference defined only beyond the grid",
+       {{"b.yaml", Reference("nm")}, {"ref.csv", "f_hz,r\n1000,1e-6\n2000,1e-6\n"}}, kRun, 3,
+       At("spectrum: |{type: measured, file: ref.csv}", "outputs[0].references[0].spectrum"),
+       {"reference 'r' is defined over [1000, 2000] Hz only", "does not overlap the frequency grid [1, 100] Hz"}},
+      {"Y120++", "a measured reference touching the grid's end only", {{"b.yaml", Reference("nm")},
+       {"ref.csv", "f_hz,r\n100,1e-6\n2000,1e-6\n"}}, kRun, 3,
+       At("spectrum: |{type: measured, file: ref.csv}", "outputs[0].references[0].spectrum"), {"does not overlap"}},
+      {"Y120+++", "a measured reference overlapping part of the grid (valid)",
+       {{"b.yaml", Reference("nm")}, {"ref.csv", "f_hz,r\n50,1e-6\n2000,1e-6\n"}}, kRun, 0, Ok()},
+      {"Y121+", "a reference PSD that overflows converted to the output's unit (um^2 -> nm^2)",
+       {{"b.yaml", Reference("um")}, {"ref.csv", "f_hz,r\n0.5,1e305\n200,1e305\n"}}, kRun, 3,
+       At("references: [|{name: r", "outputs[0].references[0]"), {"reference 'r' has a PSD of inf nm^2/Hz"}},
+      {"C51+", "spectrum reference --points-per-decade 1e10", {},
+       "spectrum reference nlnm --points-per-decade 1e10 -o r.csv", 3, Names("--points-per-decade"),
+       {"from 1 to 100000"}, {}, "", "", 20},
+      {"C51++", "spectrum reference --points-per-decade inf", {},
+       "spectrum reference nlnm --points-per-decade inf -o r.csv", 3, Names("--points-per-decade")},
+      {"C35c+", "spectrum welch --confidence 0.9999999999999999 (its upper tail rounds to 1)", {{"rec.csv", RecCsv()}},
+       "spectrum welch rec.csv --bounds --confidence 0.9999999999999999 -o psd.csv", 3, Names("confidence"),
+       {"too close to 1"}},
   };
   return cases;
 }
@@ -1058,6 +1086,7 @@ bool FoundOnlyByComputing(const std::string& id) {
       "Y35",  // a grid point on a pole of the path: found evaluating H there
       "S27",  // PSD 1e308: S_y overflows to infinity
       "F11",  // an FRF whose |H|^2 S_u overflows
+      "Y121+",  // a reference whose PSD overflows in the output's unit
   };
   return ids.count(id) > 0;
 }

@@ -356,6 +356,11 @@ TEST_CASE("bad input: too few samples for a segment, NaN in the data, invalid op
   o.overlap = 0.5;
   o.confidence = 1.5;
   CHECK(InputErrorText([&] { WelchPsd(x, o); }).find("confidence 1.5") != std::string::npos);
+  // Below 1, but (1 + c) / 2 rounds to 1: the upper quantile would be infinite.
+  o.confidence = 0.9999999999999999;
+  CHECK(InputErrorText([&] { WelchPsd(x, o); }).find("too close to 1") != std::string::npos);
+  o.confidence = 0.999999;
+  CHECK(o.IsValid(&error));
 }
 
 TEST_CASE("an estimate carries its provenance and converts to a budget source without its 0 Hz bin") {
