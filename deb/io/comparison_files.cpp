@@ -30,6 +30,15 @@ double Number(const json& j, const std::string& key, const std::string& where, c
   return v.get<double>();
 }
 
+// A variance: finite and >= 0 (a negative one would give a NaN RMS).
+double Variance(const json& j, const std::string& key, const std::string& where, const std::string& file) {
+  const double v = Number(j, key, where, file);
+  const std::string k = Join(where, key);
+  if (!std::isfinite(v) || v < 0.0)
+    throw InputError(k, file + ": " + k + ": " + Excerpt(j.at(key).dump()) + " is not a variance (finite, >= 0)");
+  return v;
+}
+
 const json& List(const json& j, const std::string& key, const std::string& where, const std::string& file) {
   const json& v = Member(j, key, where, file);
   const std::string k = Join(where, key);
@@ -94,22 +103,29 @@ ResultFigures ReadSummaryFigures(const std::string& file, const std::string& lab
     ResultFigures::Output fo;
     fo.name = Text(o, "name", where, file);
     fo.unit = Text(o, "unit", where, file);
-    fo.variance = Number(o, "variance", where, file);
+    fo.variance = Variance(o, "variance", where, file);
     if (o.contains("requirement") && o["requirement"].is_object())
       fo.rms_max = Number(o["requirement"], "rms_max", where + ".requirement", file);
+    if (fo.rms_max && !(std::isfinite(*fo.rms_max) && *fo.rms_max > 0.0))
+      throw InputError(where + ".requirement.rms_max", file + ": " + where + ".requirement.rms_max: " +
+                                                          Excerpt(o["requirement"]["rms_max"].dump()) +
+                                                          " is not a requirement (finite, > 0)");
     const json& cs = List(o, "contributors", where, file);
     for (std::size_t c = 0; c < cs.size(); ++c)
       fo.contributors.push_back({Text(cs[c], "name", where + "." + Index("contributors", c), file),
-                                 Number(cs[c], "variance", where + "." + Index("contributors", c), file)});
+                                 Variance(cs[c], "variance", where + "." + Index("contributors", c), file)});
     if (o.contains("bands")) {
       const json& bs = List(o, "bands", where, file);
       for (std::size_t b = 0; b < bs.size(); ++b) {
         const std::string bw = where + "." + Index("bands", b);
         ResultFigures::Band fb{Number(bs[b], "lo_hz", bw, file), Number(bs[b], "hi_hz", bw, file),
-                               Number(bs[b], "variance", bw, file), {}};
+                               Variance(bs[b], "variance", bw, file), {}};
+        if (!(std::isfinite(fb.lo_hz) && std::isfinite(fb.hi_hz) && 0.0 < fb.lo_hz && fb.lo_hz < fb.hi_hz))
+          throw InputError(bw, file + ": " + bw + ": [" + Excerpt(bs[b]["lo_hz"].dump()) + ", " +
+                                   Excerpt(bs[b]["hi_hz"].dump()) + "] Hz is not a band (0 < lo_hz < hi_hz)");
         const json& bc = List(bs[b], "contributors", bw, file);
         for (std::size_t c = 0; c < bc.size(); ++c)
-          fb.contributor_variance.push_back(Number(bc[c], "variance", bw + "." + Index("contributors", c), file));
+          fb.contributor_variance.push_back(Variance(bc[c], "variance", bw + "." + Index("contributors", c), file));
         fo.bands.push_back(std::move(fb));
       }
     }

@@ -55,4 +55,30 @@ TEST_CASE("a JSON file that is not a summary names the missing key") {
   fs::remove(file);
 }
 
+TEST_CASE("a summary with a negative variance, a band that is not one or a requirement <= 0 is refused, located") {
+  const fs::path file = Temp("bad.json");
+  const auto error_of = [&](const std::string& text) {
+    std::ofstream(file) << text;
+    try {
+      ReadSummaryFigures(file.string(), "x");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const std::string ok_output = R"("name": "z", "unit": "nm", "variance": 4, "contributors": [{"name": "c", "variance": 4}])";
+  CHECK(error_of(R"({"outputs": [{"name": "z", "unit": "nm", "variance": -1, "contributors": []}]})")
+            .find("outputs[0].variance: -1 is not a variance") != std::string::npos);
+  CHECK(error_of(R"({"outputs": [{"name": "z", "unit": "nm", "variance": 1, "contributors": [{"name": "c", "variance": -1}]}]})")
+            .find("outputs[0].contributors[0].variance: -1 is not a variance") != std::string::npos);
+  CHECK(error_of("{\"outputs\": [{" + ok_output + R"(, "bands": [{"lo_hz": 10, "hi_hz": 1, "variance": 1, "contributors": []}]}]})")
+            .find("outputs[0].bands[0]: [10, 1] Hz is not a band") != std::string::npos);
+  CHECK(error_of("{\"outputs\": [{" + ok_output + R"(, "bands": [{"lo_hz": 1, "hi_hz": 10, "variance": -5, "contributors": []}]}]})")
+            .find("outputs[0].bands[0].variance: -5 is not a variance") != std::string::npos);
+  CHECK(error_of("{\"outputs\": [{" + ok_output + R"(, "requirement": {"rms_max": 0}}]})")
+            .find("outputs[0].requirement.rms_max: 0 is not a requirement") != std::string::npos);
+  CHECK(error_of("{\"outputs\": [{" + ok_output + "}]}") == "(no error)");
+  fs::remove(file);
+}
+
 }  // namespace deb
