@@ -54,17 +54,24 @@ void AtKey(const std::string& key, F&& f) {
 
 InputError Budget::Locate(const InputError& e) const { return positions ? positions->Located(e) : e; }
 
-const Source& Budget::FindSource(const std::string& n) const {
-  for (const auto& s : sources)
-    if (s.name == n) return s;
-  DEB_DEMAND(false);
+namespace {
+
+// The element of `items` named n; else an InputError at `list` naming the nearest.
+template <typename T>
+const T& Named(const std::vector<T>& items, const std::string& n, const char* list, const char* what) {
+  std::vector<std::string> names;
+  for (const T& item : items) {
+    if (item.name == n) return item;
+    names.push_back(item.name);
+  }
+  throw InputError(list, std::string("the budget has no ") + what + " named '" + n + "'" + DidYouMean(n, names));
 }
 
-const Path& Budget::FindPath(const std::string& n) const {
-  for (const auto& p : paths)
-    if (p.name == n) return p;
-  DEB_DEMAND(false);
-}
+}  // namespace
+
+const Source& Budget::FindSource(const std::string& n) const { return Named(sources, n, "sources", "source"); }
+
+const Path& Budget::FindPath(const std::string& n) const { return Named(paths, n, "paths", "path"); }
 
 void Budget::Validate() const {
   if (name.empty()) throw InputError("name", "the budget needs a name");

@@ -148,7 +148,8 @@ struct Budget {
   // has no key path or a file already, or the budget was not loaded).
   InputError Locate(const InputError& e) const;
 
-  const Source& FindSource(const std::string& name) const;  // DEB_DEMAND it exists
+  // @throws InputError at "sources" / "paths" naming the nearest name if there is none of that name.
+  const Source& FindSource(const std::string& name) const;
   const Path& FindPath(const std::string& name) const;
 };
 

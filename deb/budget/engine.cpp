@@ -1049,7 +1049,14 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
 
 }  // namespace
 
+bool EngineOptions::IsValid(std::string* error) const {
+  if (std::isfinite(exact_tolerance) && exact_tolerance > 0.0) return true;
+  if (error) *error = "engine options: exact_tolerance " + SignificantText(exact_tolerance) + " must be finite and > 0";
+  return false;
+}
+
 BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
+  if (std::string why; !options.IsValid(&why)) throw InputError(why);
   try {
     return EvaluateUnlocated(budget, options);
   } catch (const InputError& e) {

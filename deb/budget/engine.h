@@ -35,6 +35,10 @@ struct EngineOptions {
   // Also evaluate the transfers a report draws (BudgetResult::traces): off
   // for results that are only compared or summed (sweeps, sensitivities).
   bool response_traces = true;
+
+  // False, with the option, its value and the rule in *error, unless
+  // exact_tolerance is finite and > 0. Evaluate throws an InputError with it.
+  bool IsValid(std::string* error) const;
 };
 
 // One mode's part of a contributor's variance on an output (modal paths).

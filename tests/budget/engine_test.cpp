@@ -489,6 +489,33 @@ TEST_CASE("the default decade bands are grid points of the automatic grid: as ac
   }
 }
 
+TEST_CASE("misuse of the public API throws InputError, never aborts") {
+  Budget b = OnePathBudget(WhiteSource(1.0, "N", "floor"), MakePath(Tf({1.0}, {1.0, 1.0}), "N", "m", "stage"), "m");
+  InputError e = ErrorOf([&] { b.FindSource("flor"); });
+  CHECK(e.key_path() == "sources");
+  CHECK(Contains(e.what(), "no source named 'flor'"));
+  CHECK(Contains(e.what(), "did you mean 'floor'"));
+  e = ErrorOf([&] { b.FindPath("stag"); });
+  CHECK(e.key_path() == "paths");
+  CHECK(Contains(e.what(), "did you mean 'stage'"));
+  CHECK(&b.FindSource("floor") == &b.sources[0]);
+  EngineOptions options;
+  for (const double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    options.exact_tolerance = bad;
+    std::string why;
+    CHECK_FALSE(options.IsValid(&why));
+    CHECK(Contains(why, "exact_tolerance"));
+    CHECK(Contains(ErrorOf([&] { Evaluate(b, options); }).what(), "must be finite and > 0"));
+  }
+  // A band a hair outside an explicit grid (it aborted in IntegralBetween).
+  b.grid.kind = GridKind::kExplicit;
+  b.grid.f_hz = {1.0, 10.0, 100.0};
+  b.bands = {{0.9999999999995, 10.0}};
+  CHECK_NOTHROW(Evaluate(b));
+  b.bands = {{0.999999, 10.0}};
+  CHECK(ErrorOf([&] { Evaluate(b); }).key_path() == "bands[0]");
+}
+
 TEST_CASE("a source whose channel count differs from the path's inputs is rejected") {
   const Budget b =
       OnePathBudget(WhiteSource(1.0, "N"), MakePath(StateSpace::Gain(MatrixXd{{1.0, 1.0}}), "N", "N"), "N");
