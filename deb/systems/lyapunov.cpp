@@ -304,6 +304,7 @@ Eigen::MatrixXd OutputCovariance(const StateSpace& sys, const Eigen::MatrixXd& w
   // Similarity-invariant: C P C^T is the same for the balanced realisation,
   // whose poles are better conditioned (SolveScaled rescales it further).
   const StateSpace bal = sys.Balanced();
+  RequireWellScaled(bal.A());
   const Eigen::VectorXcd poles = bal.Poles();
   const double stable_margin = 64.0 * kEps * bal.A().norm();
   std::ostringstream unstable;
