@@ -59,7 +59,7 @@ Eigen::VectorXcd StateSpace::Poles() const {
 }
 
 void RequireWellScaled(const Eigen::MatrixXd& balanced_a) {
-  const double norm = balanced_a.norm();
+  const double norm = balanced_a.stableNorm();  // |A| of 1e300 does not overflow
   if (norm <= limits::kMaxStateMatrixNorm) return;
   std::ostringstream os;
   os << "the state matrix is too badly scaled: its norm is " << norm
