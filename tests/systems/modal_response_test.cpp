@@ -71,14 +71,16 @@ TEST_CASE("modal form equals the 2n-state realisation at every frequency, all th
 }
 
 TEST_CASE("ForEach gives bit-identical responses on 1, 2 and 3 threads") {
-  // 200 modes and 6 outputs make blocks of 256 frequencies; 3001 frequencies
-  // do not split evenly, so a block cut where a thread's range ends would
-  // change which frequencies share a matrix product (it did: last digits
-  // differed between 1 and 2 threads for the metrology frame).
-  const ModalModel model = Clustered(200, 3, 6, ModalQuantity::kDisplacement, 11);
-  const ModalResponse modal(model, {0, 1, 2, 3, 4, 5});
+  // 200 modes and one output make blocks of 256 frequencies. With 2562
+  // frequencies a block cut where a thread's range ends left a block of one
+  // frequency, whose product Eigen evaluates as a matrix-vector product,
+  // summed in another order: before the fix 3 (2 threads) and 4 (3 threads)
+  // frequencies differed in their last digits from 1 thread (as the
+  // metrology frame's CSVs did).
+  const ModalModel model = Clustered(200, 3, 1, ModalQuantity::kDisplacement, 11);
+  const ModalResponse modal(model, {0});
   std::vector<double> f;
-  for (int i = 0; i < 3001; ++i) f.push_back(0.5 * std::pow(1e4, i / 3000.0));
+  for (int i = 0; i < 2562; ++i) f.push_back(0.5 * std::pow(1e4, i / 2561.0));
   const auto run = [&](int threads) {
     std::vector<Eigen::MatrixXcd> h(f.size());
     modal.ForEach(f, [&](std::size_t k, const Eigen::MatrixXcd& hk) { h[k] = hk; }, threads);
