@@ -17,6 +17,11 @@ inline constexpr double kMaxPointsPerResonance = 100'000;
 // of s in a transfer function leave the range of a double.
 inline constexpr double kMinGridHz = 1e-12;
 inline constexpr double kMaxGridHz = 1e15;
+// Norm of a path's state matrix after balancing, in rad/s: beyond it the
+// squared distances of a frequency response and eps |A|, the uncertainty of
+// its poles, leave the range of a double (poles at 1e150 rad/s made every
+// frequency "coincide with a pole").
+inline constexpr double kMaxStateMatrixNorm = 1e100;
 // Channels of one source, inputs or outputs of one path.
 inline constexpr int kMaxChannels = 10'000;
 // Modes of one modal path (type: modal), evaluated in modal form (memory

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "deb/core/error.h"
+#include "deb/systems/state_space.h"
 
 namespace deb {
 namespace {
@@ -95,7 +96,7 @@ BlockSchurForm BlockDiagonalSchur(const Eigen::MatrixXd& a, double max_coupling)
   if (n == 0) return f;
   // Real input: Eigen goes through the real Schur form, cheaper than complex QR.
   const Eigen::ComplexSchur<Eigen::MatrixXd> schur(a);
-  DEB_DEMAND(schur.info() == Eigen::Success);
+  if (schur.info() != Eigen::Success) ThrowNotConverged(a);
   f.t = schur.matrixT().triangularView<Eigen::Upper>();
   f.s = schur.matrixU();
   f.s_inv = schur.matrixU().adjoint();

@@ -39,6 +39,8 @@ struct BlockSchurForm {
 // Block-diagonal Schur form of a square matrix. max_coupling bounds the
 // largest entry of each splitting X (S's condition grows like its square per
 // split), so it trades block size against accuracy.
+// @throws InputError if the Schur form's QR iteration does not converge (a
+//         matrix with entries spanning hundreds of decades).
 BlockSchurForm BlockDiagonalSchur(const Eigen::MatrixXd& a, double max_coupling = 1e3);
 
 }  // namespace deb

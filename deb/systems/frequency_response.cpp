@@ -77,6 +77,7 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
   }
   const StateSpace bal = sys.Balanced();
   const Eigen::MatrixXd& a = bal.A();
+  RequireWellScaled(a);
   pole_tolerance_ = kPoleSlack * kEps * a.norm();
   if (method == Method::kHessenberg) {
     method_ = Method::kHessenberg;
@@ -86,13 +87,14 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
     cq_ = bal.C() * q;
     qb_ = q.transpose() * bal.B();
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(a, false);
+    if (eig.info() != Eigen::Success) ThrowNotConverged(a);
     poles_ = eig.eigenvalues();
     return;
   }
 
   // Modal reduction; kept if the eigenvector matrix is well conditioned.
   const Eigen::EigenSolver<Eigen::MatrixXd> eig(a, true);
-  DEB_DEMAND(eig.info() == Eigen::Success);
+  if (eig.info() != Eigen::Success) ThrowNotConverged(a);
   Eigen::MatrixXcd v = eig.eigenvectors();
   v.colwise().normalize();
   const Eigen::VectorXcd lambda = eig.eigenvalues();
@@ -203,7 +205,11 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
   // The block Schur form can fail the same way where it splits a cluster
   // of a high multiplicity. Both are checked against the Hessenberg solve,
   // which is backward stable for any A, and replaced by it if they disagree.
-  if (method == Method::kAuto && (eigenvector_condition_ > kVerifyCondition || HasClusteredPoles(lambda))) {
+  // Poles spanning many decades need the check as well: for a cascade of
+  // sections from 0.01 to 1e5 rad/s (cond(V) below 1e2) the modal terms
+  // cancelled to H(0) = 0 instead of 1.
+  if (method == Method::kAuto &&
+      (eigenvector_condition_ > kVerifyCondition || HasClusteredPoles(lambda) || SpansDecades(lambda))) {
     FrequencyResponse reference(sys, Method::kHessenberg);
     if (!AgreesNear(reference, lambda)) {
       reference.eigenvector_condition_ = eigenvector_condition_;
@@ -235,11 +241,17 @@ void FrequencyResponse::SolveHessenberg(double omega, Workspace& w, Eigen::Matri
   const double tol = pole_tolerance_ + kPoleSlack * kEps * std::abs(omega);
   for (int k = n_ - 1; k >= 0; --k) {
     if (!(std::abs(a(k, k)) > tol)) {
-      // Singular: j omega is (numerically) a pole; name the nearest one.
+      // A small pivot is not a pole: the pivots of a non-normal H (a high
+      // order cascade or companion form) can be tiny 0.1 rad/s away from
+      // its nearest pole, where H is finite and the solve backward stable.
+      // Only a frequency within the poles' own uncertainty is refused.
       Complex nearest = poles_.size() ? poles_(0) : Complex(0.0, omega);
       for (Eigen::Index i = 0; i < poles_.size(); ++i)
         if (std::abs(poles_(i) - Complex(0.0, omega)) < std::abs(nearest - Complex(0.0, omega))) nearest = poles_(i);
-      ThrowOnPole(omega / kTwoPi, nearest);
+      if (!(std::abs(nearest - Complex(0.0, omega)) > tol)) ThrowOnPole(omega / kTwoPi, nearest);
+      // An exactly zero pivot off every pole: perturbed by the rounding
+      // bound, as LAPACK's solvers do.
+      if (a(k, k) == Complex(0.0)) a(k, k) = tol;
     }
     if (k + 1 < n_) x.row(k) -= a.row(k).segment(k + 1, n_ - k - 1) * x.bottomRows(n_ - k - 1);
     x.row(k) /= a(k, k);
@@ -254,6 +266,15 @@ bool FrequencyResponse::HasClusteredPoles(const Eigen::VectorXcd& lambda) {
       if (std::abs(lambda(i) - lambda(j)) <= kClusterGap * std::max({std::abs(lambda(i)), std::abs(lambda(j)), 1e-300}))
         return true;
   return false;
+}
+
+bool FrequencyResponse::SpansDecades(const Eigen::VectorXcd& lambda) {
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+    const double r = std::abs(lambda(i));
+    if (r > 0.0) lo = std::min(lo, r), hi = std::max(hi, r);
+  }
+  return hi > kVerifySpan * lo;
 }
 
 bool FrequencyResponse::AgreesNear(const FrequencyResponse& other, const Eigen::VectorXcd& lambda) const {
@@ -472,10 +493,13 @@ void FrequencyResponse::AddLargeBlock(const Term& term, double omega, Workspace&
 }
 
 void FrequencyResponse::ThrowOnPole(double f_hz, std::complex<double> pole) const {
+  const double omega = kTwoPi * f_hz;
   std::ostringstream os;
   os << "frequency response: frequency " << f_hz << " Hz coincides with a pole of the path at "
-     << pole.real() << (pole.imag() < 0.0 ? "" : "+") << pole.imag()
-     << "j rad/s; H is unbounded there, leave this frequency out of the grid";
+     << pole.real() << (pole.imag() < 0.0 ? "" : "+") << pole.imag() << "j rad/s: it is "
+     << std::abs(Complex(0.0, omega) - pole) << " rad/s from it, within the "
+     << pole_tolerance_ + kPoleSlack * kEps * std::abs(omega)
+     << " rad/s to which the pole is known; H is unbounded there, leave this frequency out of the grid";
   throw InputError(os.str());
 }
 

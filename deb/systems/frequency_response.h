@@ -61,7 +61,9 @@ class FrequencyResponse {
   // each, backward stable whatever the poles: the reference kAuto checks the
   // fast forms against and falls back to).
   // @throws InputError if kModal is forced on a numerically defective A
-  //         (cond(V) > 1e-3 / eps).
+  //         (cond(V) > 1e-3 / eps), or if A is too badly scaled (balanced
+  //         norm above limits::kMaxStateMatrixNorm, or an eigenvalue
+  //         iteration that does not converge).
   explicit FrequencyResponse(const StateSpace& sys, Method method = Method::kAuto);
 
   int states() const { return n_; }
@@ -113,6 +115,8 @@ class FrequencyResponse {
   [[noreturn]] void ThrowOnPole(double f_hz, std::complex<double> pole) const;
   // Two eigenvalues within kClusterGap of each other (relative).
   static bool HasClusteredPoles(const Eigen::VectorXcd& lambda);
+  // The nonzero poles' magnitudes span more than kVerifySpan.
+  static bool SpansDecades(const Eigen::VectorXcd& lambda);
   // This form and `other` agree to kAgreement at 0.5, 1 and 2 times |lambda|
   // (at most kMaxChecks frequencies) and beyond the poles' range, relative
   // to the larger of |H| there and 1e-8 of the largest |H| seen.
@@ -122,6 +126,7 @@ class FrequencyResponse {
   static constexpr double kClusterGap = 1e-3;
   static constexpr double kAgreement = 1e-8;
   static constexpr double kVerifyCondition = 1e2;
+  static constexpr double kVerifySpan = 1e3;
   static constexpr int kMaxChecks = 24;
 
   int n_ = 0, m_ = 0, p_ = 0;

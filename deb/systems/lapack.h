@@ -40,9 +40,11 @@ RealSchurForm RealSchur(const Eigen::MatrixXd& a);
 // C n1 x n2 (dtrsyl). dtrsyl returns X scaled by a factor <= 1 chosen to
 // avoid overflow; the scale is divided out, so an X too large for double has
 // infinite entries, and a C with an entry that is not finite gives X = NaN.
-// `near_singular` is set when T1 and -T2 have (nearly) common eigenvalues:
-// LAPACK then perturbed them to get a solution, which is not a solution of
-// the given equation and must not be used.
+// `near_singular` is set when dtrsyl met a pivot below eps max(|T1|, |T2|)
+// and replaced it by that bound (LAPACK's INFO = 1): T1 and -T2 may have
+// nearly common eigenvalues, or a non-normal T (large off-diagonal entries)
+// only makes the bound large. The perturbation is of the size of the
+// rounding, so X is then to be judged by its residual, not discarded.
 struct SylvesterSolution {
   Eigen::MatrixXd x;
   bool near_singular = false;

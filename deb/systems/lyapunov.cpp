@@ -89,6 +89,20 @@ class BlockLyapunov {
 
   int blocks() const { return static_cast<int>(start_.size()) - 1; }
 
+  // The two eigenvalues a, b of A_b (b may be a) whose sum a + conj(b) is
+  // smallest in modulus: the pair nearest to making the equation singular.
+  std::pair<Complex, Complex> NearestPair() const {
+    std::vector<Complex> lambda;
+    for (const RealSchurForm& f : schur_)
+      for (Eigen::Index k = 0; k < f.eigenvalues.size(); ++k) lambda.push_back(f.eigenvalues(k));
+    std::pair<Complex, Complex> best{lambda.front(), lambda.front()};
+    for (std::size_t i = 0; i < lambda.size(); ++i)
+      for (std::size_t j = i; j < lambda.size(); ++j)
+        if (std::abs(lambda[i] + std::conj(lambda[j])) < std::abs(best.first + std::conj(best.second)))
+          best = {lambda[i], lambda[j]};
+    return best;
+  }
+
   // X with A_b X + X A_b^T + Q_b = 0.
   Eigen::MatrixXd Solve(const Eigen::MatrixXd& qb) const {
     const Eigen::Index n = ap_.rows();
@@ -106,9 +120,16 @@ class BlockLyapunov {
           r.noalias() -=
               xp.block(ri, rj + nj, ni, after_j) * ap_.block(rj, rj + nj, nj, after_j).transpose();
         const RealSchurForm &si = schur_[i], &sj = schur_[j];
+        // dtrsyl's "perturbed values were used" (near_singular) is not a
+        // verdict: it compares each pivot with eps times the larger norm of
+        // the two blocks, which a non-normal block (a stiff section in graded
+        // coordinates) exceeds by far while the equation is well posed. The
+        // perturbation is of the size of the rounding, so the solution is as
+        // good as any other; the residual and error estimate of the callers
+        // judge it, and a pair of poles that truly sums to zero was refused
+        // in the constructor.
         const SylvesterSolution y =
             SolveQuasiTriangularSylvester(si.t, sj.t, si.u.transpose() * r * sj.u);
-        if (y.near_singular) ThrowNearestPair(si.eigenvalues, sj.eigenvalues);
         xp.block(ri, rj, ni, nj) = si.u * y.x * sj.u.transpose();
       }
     }
@@ -169,17 +190,6 @@ class BlockLyapunov {
     }
   }
 
-  // dtrsyl found T_i and -T_j (nearly) sharing an eigenvalue: the pair of
-  // poles closest to summing to zero makes the equation singular.
-  [[noreturn]] static void ThrowNearestPair(const Eigen::VectorXcd& li,
-                                            const Eigen::VectorXcd& lj) {
-    Complex a = li(0), b = lj(0);
-    for (Eigen::Index p = 0; p < li.size(); ++p)
-      for (Eigen::Index q = 0; q < lj.size(); ++q)
-        if (std::abs(li(p) + lj(q)) < std::abs(a + b)) a = li(p), b = lj(q);
-    ThrowSingular(a, b);
-  }
-
   std::vector<int> perm_, start_;
   Eigen::MatrixXd ap_;
   std::vector<RealSchurForm> schur_;  // of each diagonal block
@@ -193,13 +203,43 @@ struct ScaledLyapunov {
   Eigen::MatrixXd ab, qb, pb;
   std::optional<BlockLyapunov> solver;
   double residual = 0.0, residual_bound = 0.0;  // |A_b P_b + P_b A_b^T + Q_b|_F
+  // Largest estimated relative error |dP_ii| / P_ii over the excited states
+  // (symmetric Q only; invariant under diagonal scaling, so the passes can be
+  // compared by it).
+  double diagonal_error = 0.0;
   bool Reliable() const { return pb.allFinite() && residual <= residual_bound; }
 };
+
+// Residual and error estimate of the pass in s. The computed P_b solves the
+// equation with right-hand side Q_b - R, R the residual, so its error is
+// L^-1(R): one more solve with the same Schur forms.
+void Assess(ScaledLyapunov& s, bool symmetric) {
+  const Eigen::Index n = s.ab.rows();
+  const Eigen::MatrixXd r = s.ab * s.pb + s.pb * s.ab.transpose() + s.qb;
+  // Bartels-Stewart is backward stable: the residual is a few eps relative to
+  // |A||P| + |Q|; a larger one means the computed P is not a solution.
+  s.residual = r.norm();
+  s.residual_bound = 1e-10 * std::sqrt(static_cast<double>(n)) *
+                     (2.0 * s.ab.norm() * s.pb.norm() + s.qb.norm());
+  s.diagonal_error = 0.0;
+  if (!symmetric) return;
+  if (!s.pb.allFinite()) {
+    s.diagonal_error = std::numeric_limits<double>::infinity();
+    return;
+  }
+  const Eigen::MatrixXd e = s.solver->Solve(-r);
+  const double largest = s.pb.diagonal().cwiseAbs().maxCoeff();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!(std::abs(s.pb(i, i)) > kEps * kEps * largest)) continue;  // not excited
+    const double rel = s.pb(i, i) > 0.0 ? std::abs(e(i, i)) / s.pb(i, i)
+                                        : std::numeric_limits<double>::infinity();
+    s.diagonal_error = std::max(s.diagonal_error, std::isfinite(rel) ? rel : HUGE_VAL);
+  }
+}
 
 ScaledLyapunov SolveScaled(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q) {
   const Eigen::Index n = a.rows();
   const bool symmetric = q == q.transpose();
-  ScaledLyapunov s;
   // Pass 0: balancing A (exact powers of two), which helps models in mixed
   // units. Later passes (symmetric Q only) equilibrate P itself: state i is
   // rescaled by 2^round(log2 sqrt(P_b,ii)) so that diag(P_b) ~ 1 (within a
@@ -211,15 +251,28 @@ ScaledLyapunov SolveScaled(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q) {
   // rescaling. The block-triangular solve (BlockLyapunov) already keeps a
   // cascade exact; the rescaling is for graded dense blocks, and it needs a
   // pass-0 P that is right to a factor ~2. Powers of two keep scalings exact.
-  s.scale = BalancingScale(a);
+  // Equilibrating P can also hurt: a 1e4 Hz section driven by a 1e-3 Hz one
+  // has position and velocity variances in the ratio of the slow section's
+  // frequency, not its own, and scaling them equal makes its block of A_b
+  // non-normal by ~1e7. So every pass is assessed (its estimated relative
+  // error of diag P, which diagonal scaling leaves comparable) and the best
+  // one is kept.
+  std::optional<ScaledLyapunov> best;
+  Eigen::VectorXd scale = BalancingScale(a);
   constexpr int kMaxRefinements = 3;
   for (int pass = 0;; ++pass) {
+    ScaledLyapunov s;
+    s.scale = scale;
     const Eigen::VectorXd inv = s.scale.cwiseInverse();
     s.ab = inv.asDiagonal() * a * s.scale.asDiagonal();
     s.qb = inv.asDiagonal() * q * inv.asDiagonal();
     s.solver.emplace(s.ab, pass == 0);
     s.pb = s.solver->Solve(s.qb);
-    if (!symmetric || pass == kMaxRefinements || !s.pb.allFinite()) break;
+    Assess(s, symmetric);
+    const bool better = !best || (s.Reliable() && !best->Reliable()) ||
+                        (s.Reliable() == best->Reliable() && s.diagonal_error < best->diagonal_error);
+    if (better) best = s;
+    if (!symmetric || pass == kMaxRefinements || !s.pb.allFinite() || !better) break;
     const double largest = s.pb.diagonal().maxCoeff();
     if (!(largest > 0.0)) break;
     // States with P_ii ~ 0 (not excited) keep their scale.
@@ -228,14 +281,9 @@ ScaledLyapunov SolveScaled(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q) {
       if (s.pb(i, i) > kEps * kEps * largest)
         e(i) = static_cast<int>(std::lround(0.5 * std::log2(s.pb(i, i))));
     if (e.cwiseAbs().maxCoeff() <= 1) break;  // already within a factor 2
-    for (Eigen::Index i = 0; i < n; ++i) s.scale(i) = std::ldexp(s.scale(i), e(i));
+    for (Eigen::Index i = 0; i < n; ++i) scale(i) = std::ldexp(scale(i), e(i));
   }
-  // Bartels-Stewart is backward stable: the residual is a few eps relative to
-  // |A||P| + |Q|; a larger one means the computed P is not a solution.
-  s.residual = (s.ab * s.pb + s.pb * s.ab.transpose() + s.qb).norm();
-  s.residual_bound = 1e-10 * std::sqrt(static_cast<double>(n)) *
-                     (2.0 * s.ab.norm() * s.pb.norm() + s.qb.norm());
-  return s;
+  return *std::move(best);
 }
 
 }  // namespace
@@ -304,6 +352,7 @@ Eigen::MatrixXd OutputCovariance(const StateSpace& sys, const Eigen::MatrixXd& w
   // Similarity-invariant: C P C^T is the same for the balanced realisation,
   // whose poles are better conditioned (SolveScaled rescales it further).
   const StateSpace bal = sys.Balanced();
+  RequireWellScaled(bal.A());
   const Eigen::VectorXcd poles = bal.Poles();
   const double stable_margin = 64.0 * kEps * bal.A().norm();
   std::ostringstream unstable;
@@ -355,10 +404,13 @@ Eigen::MatrixXd OutputCovariance(const StateSpace& sys, const Eigen::MatrixXd& w
       throw unreliable(os.str());
     }
     if (!(std::abs(dy(i, i)) <= kMaxRelativeError * y(i, i) + rounding)) {
+      const auto [a, b] = s.solver->NearestPair();
       os << "output " << i + 1 << " variance " << y(i, i) << " has an estimated error of "
          << std::abs(dy(i, i)) << " (more than " << kMaxRelativeError
          << " relative; the Lyapunov equation is ill-conditioned even after rescaling the "
-            "states)";
+            "states; the two poles nearest to summing to zero, "
+         << FormatPole(a) << " and " << FormatPole(std::conj(b)) << ", sum to "
+         << FormatPole(a + std::conj(b)) << ")";
       throw unreliable(os.str());
     }
     if (y(i, i) < 0.0) y(i, i) = 0.0;  // rounding around a zero variance

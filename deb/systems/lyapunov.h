@@ -19,7 +19,8 @@
 // The solver therefore (1) permutes A to block triangular form (strongly
 // connected components; one block per stage of a cascade) and solves block by
 // block, so the structural zeros of A are never perturbed, and (2) rescales
-// the states (exact powers of two) until diag(P) is ~1 and solves again.
+// the states (exact powers of two) until diag(P) is ~1 and solves again,
+// keeping the solution whose estimated error is smallest.
 #pragma once
 
 #include <Eigen/Dense>
@@ -34,12 +35,13 @@ namespace deb {
 // the states are first balanced (Parlett-Reinsch on A), permuted to block
 // triangular form (exact, a permutation), then rescaled by
 // 2^round(log2 sqrt(P_ii)) and the equation solved again (up to 3 times) so
-// that diag(P) is equilibrated; non-symmetric Q gets the balancing only.
+// that diag(P) is equilibrated; the pass whose estimated error of diag(P)
+// is smallest is kept (a rescaling can make a stiff block non-normal);
+// non-symmetric Q gets the balancing only.
 // @throws InputError if sizes differ, an entry is not finite,
-//         lambda_i + lambda_j ~ 0 for some pair of eigenvalues, or LAPACK's
-//         dtrsyl finds the equation nearly singular (singular equation; names
-//         the pair), or the residual of the computed P is not small (the
-//         solution is not reliable).
+//         |lambda_i + conj(lambda_j)| <= 1e3 eps |A| for some pair of
+//         eigenvalues (singular equation; names the pair), or the residual
+//         of the computed P is not small (the solution is not reliable).
 Eigen::MatrixXd SolveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q);
 
 // C P C^T with A P + P A^T + B W B^T = 0: the output covariance of `sys`

@@ -113,14 +113,20 @@ Eigen::MatrixXcd ModalResponse::At(double f_hz) const {
 void ModalResponse::ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads) const {
   const Eigen::Index p = outputs(), m = inputs();
   const double per_frequency = std::max<double>(1.0, static_cast<double>(p) * std::max(1, modes()));
-  const int block = static_cast<int>(std::clamp(kBlockEntries / per_frequency, 1.0, 256.0));
+  const std::size_t block = static_cast<std::size_t>(std::clamp(kBlockEntries / per_frequency, 1.0, 256.0));
+  // The blocks are fixed by the frequency count alone and handed out whole:
+  // the matrix product sums a column in an order that depends on the block's
+  // width and the column's place in it, so blocks cut where a thread's range
+  // ends would make the last digits depend on the thread count.
+  const std::size_t blocks = (f_hz.size() + block - 1) / block;
   ParallelFor(
-      f_hz.size(),
-      [&](std::size_t begin, std::size_t end) {
+      blocks,
+      [&](std::size_t b0, std::size_t b1) {
         Eigen::MatrixXd xr, xi, hr, hi;
         Eigen::MatrixXcd h(p, m);
-        for (std::size_t k0 = begin; k0 < end; k0 += block) {
-          const int count = static_cast<int>(std::min<std::size_t>(block, end - k0));
+        for (std::size_t b = b0; b < b1; ++b) {
+          const std::size_t k0 = b * block;
+          const int count = static_cast<int>(std::min(block, f_hz.size() - k0));
           EvaluateBlock(f_hz.data() + k0, count, xr, xi, hr, hi);
           for (int i = 0; i < count; ++i) {
             for (Eigen::Index j = 0; j < m; ++j)
@@ -129,7 +135,7 @@ void ModalResponse::ForEach(const std::vector<double>& f_hz, const Visitor& fn, 
           }
         }
       },
-      threads);
+      threads, 1);
 }
 
 void ModalResponse::AddModeParts(double f_hz, const std::vector<int>& columns, const Eigen::MatrixXcd& t,

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/limits.h"
 
 namespace deb {
 namespace {
@@ -52,7 +53,29 @@ StateSpace StateSpace::Gain(Eigen::MatrixXd d) {
 
 Eigen::VectorXcd StateSpace::Poles() const {
   if (states() == 0) return Eigen::VectorXcd(0);
-  return Eigen::EigenSolver<Eigen::MatrixXd>(a_, false).eigenvalues();
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(a_, false);
+  if (eig.info() != Eigen::Success) ThrowNotConverged(a_);
+  return eig.eigenvalues();
+}
+
+void RequireWellScaled(const Eigen::MatrixXd& balanced_a) {
+  const double norm = balanced_a.stableNorm();  // |A| of 1e300 does not overflow
+  if (norm <= limits::kMaxStateMatrixNorm) return;
+  std::ostringstream os;
+  os << "the state matrix is too badly scaled: its norm is " << norm
+     << " after balancing, more than the " << limits::kMaxStateMatrixNorm
+     << " deb can reduce (its poles would be known only to eps times that); rescale the "
+        "model's states or units";
+  throw InputError(os.str());
+}
+
+void ThrowNotConverged(const Eigen::MatrixXd& a) {
+  std::ostringstream os;
+  os << "the state matrix is too badly scaled for its poles to be computed: the QR iteration "
+        "did not converge (entries of A up to "
+     << (a.size() ? a.cwiseAbs().maxCoeff() : 0.0) << " in magnitude); rescale the model's "
+        "states or units";
+  throw InputError(os.str());
 }
 
 bool StateSpace::IsStable() const {

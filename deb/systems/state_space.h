@@ -52,4 +52,13 @@ class StateSpace {
 // with T^-1 A T balanced. For other solvers on A (Lyapunov).
 Eigen::VectorXd BalancingScale(const Eigen::MatrixXd& a);
 
+// For the reductions of a balanced state matrix (frequency responses,
+// Lyapunov): @throws InputError "the state matrix is too badly scaled ..."
+// if |A|_F exceeds limits::kMaxStateMatrixNorm.
+void RequireWellScaled(const Eigen::MatrixXd& balanced_a);
+
+// @throws InputError "the state matrix is too badly scaled ...", for an
+//         eigenvalue or Schur iteration on `a` that did not converge.
+[[noreturn]] void ThrowNotConverged(const Eigen::MatrixXd& a);
+
 }  // namespace deb

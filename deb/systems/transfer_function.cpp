@@ -9,6 +9,7 @@
 
 #include "deb/core/error.h"
 #include "deb/systems/interconnect.h"
+#include "deb/systems/polynomial_factors.h"
 
 namespace deb {
 namespace {
@@ -43,160 +44,99 @@ StateSpace CompanionForm(const TransferFunction& tf);
 using LongDouble = long double;
 using ComplexLD = std::complex<LongDouble>;
 
-// p(s) and p'(s) in long double; p highest power first, exact in long double.
-void EvaluateLD(const std::vector<double>& p, ComplexLD s, ComplexLD& value, ComplexLD& slope) {
-  value = 0.0L;
-  slope = 0.0L;
-  for (double c : p) {
-    slope = slope * s + value;
-    value = value * s + static_cast<LongDouble>(c);
-  }
-}
-
-// A real factor s + c0 (degree 1) or s^2 + c1 s + c0 (degree 2) and one of its
-// roots (Im >= 0).
-struct Factor {
-  int degree = 1;
-  LongDouble c1 = 0.0L, c0 = 0.0L;
-  ComplexLD root;
-};
-
-// The monic real factors of p (degree >= 1, p.front() != 0): the eigenvalues of
-// the balanced companion matrix, each polished by Newton's method in long
-// double on the exact coefficients. A polynomial with clustered roots has
-// roots so sensitive that the double eigenvalues are only those of a nearby
-// polynomial (an order-20 product of resonators at 3 % spacing: 3e-4 |Re p|
-// apart); polished, they are those of p itself to ~1e-7 |Re p|.
-// Real roots are returned as degree-1 factors unless pair_real_roots, which
-// combines them two by two (sorted) into quadratics. nullopt if the
-// eigenvalues do not come in conjugate pairs or are not finite.
-std::optional<std::vector<Factor>> RealFactors(const std::vector<double>& p, bool pair_real_roots) {
-  const int n = static_cast<int>(p.size()) - 1;
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
-  for (int k = 0; k < n; ++k) companion(0, k) = -p[k + 1] / p[0];
-  for (int k = 1; k < n; ++k) companion(k, k - 1) = 1.0;
-  const Eigen::VectorXd t = BalancingScale(companion), ti = t.cwiseInverse();
-  const Eigen::EigenSolver<Eigen::MatrixXd> eig(ti.asDiagonal() * companion * t.asDiagonal(),
-                                                false);
-  if (eig.info() != Eigen::Success) return std::nullopt;
-  const auto polish = [&](ComplexLD r, bool real) {
-    ComplexLD value, slope;
-    EvaluateLD(p, r, value, slope);
-    for (int it = 0; it < 20 && std::abs(value) > 0.0L; ++it) {
-      if (std::abs(slope) == 0.0L) break;
-      ComplexLD next = r - value / slope;
-      if (real) next = next.real();
-      ComplexLD next_value, next_slope;
-      EvaluateLD(p, next, next_value, next_slope);
-      if (!(std::abs(next_value) < std::abs(value))) break;  // no more progress
-      r = next;
-      value = next_value;
-      slope = next_slope;
-    }
-    return r;
-  };
-  std::vector<Factor> factors;
-  std::vector<LongDouble> reals;
-  int upper = 0, lower = 0;
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const std::complex<double> e = eig.eigenvalues()(k);
-    if (!std::isfinite(e.real()) || !std::isfinite(e.imag())) return std::nullopt;
-    if (e.imag() < 0.0) {
-      ++lower;
-    } else if (e.imag() == 0.0) {
-      reals.push_back(polish(ComplexLD(e.real(), 0.0L), true).real());
-    } else {
-      ++upper;
-      const ComplexLD r = polish(ComplexLD(e.real(), e.imag()), false);
-      Factor f;
-      f.degree = 2;
-      f.c1 = -2.0L * r.real();
-      f.c0 = std::norm(r);
-      f.root = ComplexLD(r.real(), std::abs(r.imag()));
-      factors.push_back(f);
-    }
-  }
-  if (upper != lower) return std::nullopt;
-  std::sort(reals.begin(), reals.end());
-  for (std::size_t k = 0; k < reals.size(); ++k) {
-    Factor f;
-    if (pair_real_roots && k + 1 < reals.size()) {
-      f.degree = 2;
-      f.c1 = -(reals[k] + reals[k + 1]);
-      f.c0 = reals[k] * reals[k + 1];
-      ++k;
-    } else {
-      f.c0 = -reals[k];
-    }
-    f.root = ComplexLD(reals[k], 0.0L);
-    factors.push_back(f);
-  }
-  return factors;
-}
-
-ComplexLD EvaluateFactors(const std::vector<const Factor*>& fs, ComplexLD s) {
+ComplexLD EvaluateFactors(const std::vector<const PolynomialFactor*>& fs, ComplexLD s) {
   ComplexLD v = 1.0L;
-  for (const Factor* f : fs) v *= f->degree == 1 ? s + f->c0 : (s + f->c1) * s + f->c0;
+  for (const PolynomialFactor* f : fs) v *= f->At(s);
   return v;
 }
 
-// H = num/den as a cascade of sections of order <= 2: one per quadratic (or
-// linear) factor of den, each zero factor of num assigned to the section with
-// the nearest pole that still has room, each section scaled to unit gain
-// |H_k(-|p_k|)| = 1 and the remaining gain put on the last. nullopt if the
-// factorisation fails; the caller then uses the companion form.
+std::vector<LongDouble> Multiply(const std::vector<LongDouble>& a, const std::vector<LongDouble>& b) {
+  std::vector<LongDouble> c(a.size() + b.size() - 1, 0.0L);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
+  return c;
+}
+
+// A section of the cascade: its denominator factor, and the numerator
+// factors assigned to it.
+struct Section {
+  PolynomialFactor den;
+  std::vector<const PolynomialFactor*> zeros;
+  int room = 0;  // degree of den less the degrees of the zeros
+};
+
+// H = num/den as a cascade of sections: one per factor of den (a real root
+// or a pair, two real roots, or a cluster of close roots as one factor,
+// polynomial_factors.h), each zero factor of num assigned to the section
+// with the nearest pole that still has room (two sections are merged into
+// one where none has room for a cluster of zeros), each section scaled to
+// unit gain |H_k(-|p_k|)| = 1 and the remaining gain put on the last.
+// nullopt if the factorisation fails; the caller then uses the companion
+// form.
 std::optional<StateSpace> Cascade(const TransferFunction& tf) {
   const auto den = RealFactors(tf.den(), true);
   if (!den) return std::nullopt;
   const bool zero_num = tf.num().size() == 1 && tf.num()[0] == 0.0;
   if (zero_num) return std::nullopt;
-  std::optional<std::vector<Factor>> num = std::vector<Factor>{};
+  std::optional<std::vector<PolynomialFactor>> num = std::vector<PolynomialFactor>{};
   if (tf.num().size() > 1) num = RealFactors(tf.num(), false);
   if (!num) return std::nullopt;
-  std::vector<Factor> sections = *den;
-  std::sort(sections.begin(), sections.end(),
-            [](const Factor& a, const Factor& b) { return std::abs(a.root) < std::abs(b.root); });
-  std::vector<int> room(sections.size());
-  for (std::size_t k = 0; k < sections.size(); ++k) room[k] = sections[k].degree;
-  std::vector<std::vector<const Factor*>> zeros(sections.size());
-  std::vector<const Factor*> order;
-  for (const Factor& f : *num) if (f.degree == 2) order.push_back(&f);
-  for (const Factor& f : *num) if (f.degree == 1) order.push_back(&f);
-  for (const Factor* f : order) {
+  std::vector<Section> sections;
+  for (const PolynomialFactor& f : *den) sections.push_back({f, {}, f.degree()});
+  std::sort(sections.begin(), sections.end(), [](const Section& a, const Section& b) {
+    return std::abs(a.den.root) < std::abs(b.den.root);
+  });
+  std::vector<const PolynomialFactor*> order;
+  for (const PolynomialFactor& f : *num) order.push_back(&f);
+  std::stable_sort(order.begin(), order.end(), [](const PolynomialFactor* a, const PolynomialFactor* b) {
+    return a->degree() > b->degree();
+  });
+  const auto distance = [](const PolynomialFactor& a, const PolynomialFactor& b) {
+    return std::abs(a.root - b.root);
+  };
+  for (const PolynomialFactor* f : order) {
     int best = -1;
     for (std::size_t k = 0; k < sections.size(); ++k)
-      if (room[k] >= f->degree &&
-          (best < 0 || std::abs(f->root - sections[k].root) < std::abs(f->root - sections[best].root)))
+      if (sections[k].room >= f->degree() &&
+          (best < 0 || distance(*f, sections[k].den) < distance(*f, sections[best].den)))
         best = static_cast<int>(k);
-    if (best < 0) return std::nullopt;
-    room[best] -= f->degree;
-    zeros[best].push_back(f);
+    while (best < 0) {
+      // No section has room: merge the section nearest to the zeros with
+      // its nearest neighbour (their product is one factor).
+      if (sections.size() < 2) return std::nullopt;
+      std::size_t a = 0;
+      for (std::size_t k = 1; k < sections.size(); ++k)
+        if (distance(*f, sections[k].den) < distance(*f, sections[a].den)) a = k;
+      std::size_t b = a == 0 ? 1 : 0;
+      for (std::size_t k = 0; k < sections.size(); ++k)
+        if (k != a && distance(sections[a].den, sections[k].den) < distance(sections[a].den, sections[b].den)) b = k;
+      Section& into = sections[a];
+      into.den.coefficients = Multiply(into.den.coefficients, sections[b].den.coefficients);
+      into.zeros.insert(into.zeros.end(), sections[b].zeros.begin(), sections[b].zeros.end());
+      into.room += sections[b].room;
+      sections.erase(sections.begin() + static_cast<std::ptrdiff_t>(b));
+      if (b < a) --a;
+      if (sections[a].room >= f->degree()) best = static_cast<int>(a);
+    }
+    sections[best].room -= f->degree();
+    sections[best].zeros.push_back(f);
   }
   // Overall gain: leading coefficients of num and den.
   LongDouble gain = static_cast<LongDouble>(tf.num().front()) / tf.den().front();
   std::optional<StateSpace> result;
   for (std::size_t k = 0; k < sections.size(); ++k) {
-    const Factor& d = sections[k];
-    const ComplexLD s0(-std::max(std::abs(d.root), 1e-300L), 0.0L);
-    const ComplexLD dv = EvaluateFactors({&d}, s0), nv = EvaluateFactors(zeros[k], s0);
+    const Section& sec = sections[k];
+    const ComplexLD s0(-std::max(std::abs(sec.den.root), 1e-300L), 0.0L);
+    const ComplexLD dv = sec.den.At(s0), nv = EvaluateFactors(sec.zeros, s0);
     LongDouble g = std::abs(dv) / std::abs(nv);
     if (!std::isfinite(static_cast<double>(g)) || g == 0.0L) g = 1.0L;
     if (k + 1 == sections.size()) g = gain;
     else gain /= g;
     // Section numerator g * prod(zeros), padded to the section's degree.
     std::vector<LongDouble> nk{g};
-    for (const Factor* z : zeros[k]) {
-      std::vector<LongDouble> f = z->degree == 1 ? std::vector<LongDouble>{1.0L, z->c0}
-                                                 : std::vector<LongDouble>{1.0L, z->c1, z->c0};
-      std::vector<LongDouble> prod(nk.size() + f.size() - 1, 0.0L);
-      for (std::size_t i = 0; i < nk.size(); ++i)
-        for (std::size_t j = 0; j < f.size(); ++j) prod[i + j] += nk[i] * f[j];
-      nk = std::move(prod);
-    }
+    for (const PolynomialFactor* z : sec.zeros) nk = Multiply(nk, z->coefficients);
     std::vector<double> nd(nk.begin(), nk.end());
-    std::vector<double> dd = d.degree == 1 ? std::vector<double>{1.0, static_cast<double>(d.c0)}
-                                           : std::vector<double>{1.0, static_cast<double>(d.c1),
-                                                                 static_cast<double>(d.c0)};
+    std::vector<double> dd(sec.den.coefficients.begin(), sec.den.coefficients.end());
     for (double c : nd) if (!std::isfinite(c)) return std::nullopt;
     for (double c : dd) if (!std::isfinite(c)) return std::nullopt;
     const StateSpace section = CompanionForm(TransferFunction(std::move(nd), std::move(dd)));

@@ -42,12 +42,17 @@ class TransferFunction {
 // Realisation with n = order() states, one input, one output.
 // Order <= 2: controllable canonical form (that of MATLAB's tf2ss) with the
 // denominator made monic, followed by StateSpace::Balanced().
-// Order >= 3: a cascade (Series) of sections of order <= 2, one per real
-// quadratic or linear factor of the denominator, each numerator factor paired
-// with the nearest pole; the roots are the eigenvalues of the balanced
-// companion matrix polished by Newton's method in long double on the exact
-// coefficients. A companion form of high order is hopelessly conditioned when
-// the roots cluster (its eigenvector matrix is a Vandermonde matrix): for ten
+// Order >= 3: a cascade (Series) of sections, one per real factor of the
+// denominator (polynomial_factors.h): a real root or conjugate pair, two
+// real roots, or a cluster of (nearly) repeated roots as one factor of
+// higher degree, realised in controllable canonical form; each numerator
+// factor is paired with the nearest pole. The roots are the eigenvalues of
+// the balanced companion matrix polished together (Aberth-Ehrlich) in long double on
+// the exact coefficients, and a cluster's factor is computed as a whole from
+// the coefficients, so the product of the sections is the given polynomial
+// (separately polished repeated roots gave 1/(s + 1)^4 a DC gain 1.6e-5 off).
+// A companion form of high order is hopelessly conditioned when distinct
+// roots cluster (its eigenvector matrix is a Vandermonde matrix): for ten
 // resonators at 3 % spacing, the Lyapunov variance of the companion form came
 // out negative, that of the cascade is right to ~1e-9. If the factorisation
 // fails (no conjugate pairs, non-finite roots) the companion form is used.

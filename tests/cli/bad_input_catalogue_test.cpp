@@ -482,6 +482,21 @@ const std::vector<Case>& Catalogue() {
       {"Y63", "ragged matrix",
        B(kTf, "type: state_space\n    A: [[0, 1], [-100]]\n    B: [[0], [1]]\n    C: [[1, 0]]\n    D: [[0]]\n"), kRun,
        3, At("[[0, 1], |[-100]]", "paths[0].A[1]")},
+      // N05 of the reliability audit: finite but extreme coefficients ended
+      // in an abort of the Schur form (exit 134), or in "frequency 1 Hz
+      // coincides with a pole at -1e+300 rad/s".
+      {"Y63+", "state-space A with an entry -1e300 (deb check)",
+       B(kTf, "type: state_space\n    A: [[0, 1], [-1e300, -2]]\n    B: [[0], [1]]\n    C: [[1, 0]]\n    D: [[0]]\n"),
+       "check b.yaml", 3, At("path: |plant}", "contributors[0].path"), {"too badly scaled"}, {"internal error"}},
+      {"Y63++", "state-space A with an entry -1e300 (run)",
+       B(kTf, "type: state_space\n    A: [[0, 1], [-1e300, -2]]\n    B: [[0], [1]]\n    C: [[1, 0]]\n    D: [[0]]\n"),
+       kRun, 3, At("path: |plant}", "contributors[0].path"), {"too badly scaled"}, {"internal error"}},
+      {"Y63+++", "transfer function with coefficients 1e300",
+       B("num: [1]\n    den: [1, 2, 100]", "num: [1e300, 1]\n    den: [1, 2, 1e300]"), kRun, 3,
+       At("path: |plant}", "contributors[0].path"), {"too badly scaled"}, {"internal error", "coincides with a pole"}},
+      {"Y63++++", "transfer function with a pole at -1e300 rad/s",
+       B("den: [1, 2, 100]", "den: [1, 1e300, 1]"), kRun, 3,
+       At("path: |plant}", "contributors[0].path"), {"too badly scaled"}, {"internal error", "coincides with a pole"}},
       {"Y64", "gain: []", B(kTf + "    inputs: [u]\n    outputs: [y]\n", "type: gain\n    gain: []\n"), kRun, 3, At("{name: c1", "contributors[0]")},
       {"Y65", "correlation 1.5", Budget(Correlated("1.5")), kRun, 3, At("correlation: |1.5", "sources[0].correlation")},
       {"Y65+", "valid correlated two-channel source (baseline)", Budget(Correlated("0.3")), kRun, 0, Ok()},

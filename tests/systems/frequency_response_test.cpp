@@ -225,6 +225,23 @@ TEST_CASE("a frequency on a pole is an InputError naming the frequency") {
   const FrequencyResponse osc(ToStateSpace(TransferFunction({1.0}, {1.0, 0.0, w * w})));
   CHECK(Contains(MessageOf([&] { osc.At(5.0); }), "frequency 5 Hz coincides with a pole"));
   CHECK(Contains(MessageOf([&] { osc.At(NAN); }), "not finite"));
+  // The message says how far the frequency is from the pole, and within what.
+  CHECK(Contains(MessageOf([&] { osc.At(5.0); }), "rad/s from it, within the"));
+}
+
+TEST_CASE("a state matrix with extreme but finite entries is a located InputError, not an abort") {
+  // Audit N05: A = [0 1; -1e300 -2] aborted in the Schur form
+  // (block_schur.cpp, exit 134); den [1, 1e300, 1] (a pole at -1e300 rad/s)
+  // made every frequency "coincide with a pole" (its squared distance
+  // overflowed). Both are now "too badly scaled", for every method.
+  Eigen::MatrixXd a(2, 2);
+  a << 0.0, 1.0, -1e300, -2.0;
+  const StateSpace extreme(a, Eigen::MatrixXd::Identity(2, 1), Eigen::MatrixXd::Identity(1, 2),
+                           Eigen::MatrixXd::Zero(1, 1));
+  const StateSpace far_pole = ToStateSpace(TransferFunction({1.0}, {1.0, 1e300, 1.0}));
+  for (const StateSpace* sys : {&extreme, &far_pole})
+    for (Method method : {Method::kAuto, Method::kSchur, Method::kHessenberg})
+      CHECK(Contains(MessageOf([&] { FrequencyResponse h(*sys, method); }), "the state matrix is too badly scaled"));
 }
 
 }  // namespace

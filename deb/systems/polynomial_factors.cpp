@@ -1,0 +1,295 @@
+#include "deb/systems/polynomial_factors.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "deb/systems/state_space.h"
+
+namespace deb {
+namespace {
+
+using LongDouble = long double;
+using ComplexLD = std::complex<LongDouble>;
+constexpr LongDouble kEpsLD = std::numeric_limits<LongDouble>::epsilon();
+constexpr LongDouble kTwoPiLD = 6.283185307179586476925286766559005768L;
+// Roots i and j are one cluster if |r_i - r_j| <= kJoin max(e_i, e_j), e the
+// estimated errors: the roots of a k-fold root land within about 2 e of
+// each other.
+constexpr LongDouble kJoin = 16.0L;
+// A cluster takes in every root within kReach times its radius of its
+// centre, so that the contour of radius half the distance to the nearest
+// other root lies at least twice as far out as the cluster's roots.
+constexpr LongDouble kReach = 4.0L;
+// Nodes of the contour integrals: the trapezoid rule on a circle errs by
+// about (ratio)^kNodes, ratio <= 1/2 (the cluster's radius to the circle's,
+// and the circle's to the nearest other root).
+constexpr int kNodes = 128;
+
+// p(s), p'(s), and sum |a_k| |s|^(n-k): the size of the rounding of p(s).
+struct Value {
+  ComplexLD p = 0.0L, slope = 0.0L;
+  LongDouble magnitude = 0.0L;
+};
+
+Value Evaluate(const std::vector<double>& p, ComplexLD s) {
+  Value v;
+  const LongDouble r = std::abs(s);
+  for (const double c : p) {
+    v.slope = v.slope * s + v.p;
+    v.p = v.p * s + static_cast<LongDouble>(c);
+    v.magnitude = v.magnitude * r + std::abs(static_cast<LongDouble>(c));
+  }
+  return v;
+}
+
+// Aberth-Ehrlich iteration in long double on all roots together: Newton's
+// step N_i = p(r_i) / p'(r_i), deflated by the other roots,
+//   r_i -= N_i / (1 - N_i sum_{j != i} 1 / (r_i - r_j)),
+// so that two starting values never converge to the same root (polished one
+// by one, two eigenvalues of a clustered order-24 polynomial did, and the
+// realisation fell back to the companion form). Pairs stay exact
+// conjugates (mirror), real roots real; a step is kept only if it makes
+// |p(r_i)| smaller, and the iteration ends when no step is kept.
+void Polish(const std::vector<double>& p, std::vector<ComplexLD>& roots, const std::vector<int>& mirror) {
+  const int n = static_cast<int>(roots.size());
+  std::vector<LongDouble> size(n);
+  for (int i = 0; i < n; ++i) size[i] = std::abs(Evaluate(p, roots[i]).p);
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    bool moved = false;
+    for (int i = 0; i < n; ++i) {
+      if (roots[i].imag() < 0.0L || size[i] == 0.0L) continue;
+      const Value v = Evaluate(p, roots[i]);
+      if (std::abs(v.slope) == 0.0L) continue;
+      const ComplexLD newton = v.p / v.slope;
+      ComplexLD repel = 0.0L;
+      for (int j = 0; j < n; ++j)
+        if (j != i && roots[j] != roots[i]) repel += 1.0L / (roots[i] - roots[j]);
+      ComplexLD next = roots[i] - newton / (1.0L - newton * repel);
+      if (mirror[i] == i) next = next.real();
+      else next = ComplexLD(next.real(), std::abs(next.imag()));
+      const LongDouble next_size = std::abs(Evaluate(p, next).p);
+      if (!std::isfinite(next_size) || !(next_size < size[i])) continue;
+      roots[i] = next;
+      size[i] = next_size;
+      if (mirror[i] != i) {
+        roots[mirror[i]] = std::conj(next);
+        size[mirror[i]] = next_size;
+      }
+      moved = true;
+    }
+    if (!moved) break;
+  }
+}
+
+// The error of a computed root r of p, as far as rounding in p(r) allows:
+// with t_j = p^(j)(r) / j! (Taylor coefficients at r), a root of
+// multiplicity k moves by about (eps S / |t_k|)^(1/k) for a rounding eps S
+// of p(r); the smallest such bound over j.
+LongDouble RootError(const std::vector<double>& p, ComplexLD r) {
+  const int n = static_cast<int>(p.size()) - 1;
+  std::vector<ComplexLD> t(p.begin(), p.end());
+  const LongDouble rounding = kEpsLD * std::max(Evaluate(p, r).magnitude, LongDouble{1e-4930L});
+  LongDouble error = std::numeric_limits<LongDouble>::infinity();
+  // Repeated synthetic division by (s - r): after pass j, t[n - j] = t_j.
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 1; i <= n - j; ++i) t[i] += r * t[i - 1];
+    if (j > 0 && std::abs(t[n - j]) > 0.0L)
+      error = std::min(error, std::pow(rounding / std::abs(t[n - j]), 1.0L / j));
+  }
+  return std::max(error, kEpsLD * std::abs(r));
+}
+
+int Find(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// The monic factor of p whose roots are the roots of p inside the circle
+// |s - z| = radius, from the power sums of those roots
+//   s_m = (1 / 2 pi j) oint (s - z)^m p'(s) / p(s) ds  (trapezoid rule),
+// in units of the radius, and Newton's identities. nullopt unless s_0, the
+// number of roots inside, is `count`.
+std::optional<std::vector<ComplexLD>> ClusterFactor(const std::vector<double>& p, ComplexLD z,
+                                                    LongDouble radius, int count) {
+  std::vector<ComplexLD> sums(count + 1, 0.0L);
+  for (int l = 0; l < kNodes; ++l) {
+    const ComplexLD tau = std::polar(1.0L, kTwoPiLD * l / kNodes);
+    const Value v = Evaluate(p, z + radius * tau);
+    if (std::abs(v.p) == 0.0L) return std::nullopt;
+    const ComplexLD g = radius * v.slope / v.p;
+    ComplexLD power = tau;  // tau^(m + 1)
+    for (int m = 0; m <= count; ++m, power *= tau) sums[m] += power * g;
+  }
+  for (ComplexLD& s : sums) s /= static_cast<LongDouble>(kNodes);
+  if (!(std::abs(sums[0] - static_cast<LongDouble>(count)) < 0.25L)) return std::nullopt;
+  // Elementary symmetric functions of the roots tau_i = (r_i - z) / radius.
+  std::vector<ComplexLD> e(count + 1, 0.0L);
+  e[0] = 1.0L;
+  for (int m = 1; m <= count; ++m) {
+    ComplexLD acc = 0.0L;
+    for (int i = 1; i <= m; ++i) acc += (i % 2 ? 1.0L : -1.0L) * e[m - i] * sums[i];
+    e[m] = acc / static_cast<LongDouble>(m);
+  }
+  // q(s) = sum_m (-1)^m e_m radius^m (s - z)^(count - m), by Horner's rule.
+  std::vector<ComplexLD> q;
+  LongDouble scale = 1.0L;
+  for (int m = 0; m <= count; ++m, scale *= radius) {
+    std::vector<ComplexLD> next(q.size() + 1, 0.0L);
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      next[i] += q[i];
+      next[i + 1] -= z * q[i];
+    }
+    next.back() += (m % 2 ? -1.0L : 1.0L) * e[m] * scale;
+    q = std::move(next);
+  }
+  return q;
+}
+
+PolynomialFactor Linear(LongDouble root) { return {{1.0L, -root}, ComplexLD(root, 0.0L)}; }
+
+PolynomialFactor Quadratic(ComplexLD root) {
+  return {{1.0L, -2.0L * root.real(), std::norm(root)}, ComplexLD(root.real(), std::abs(root.imag()))};
+}
+
+}  // namespace
+
+ComplexLD PolynomialFactor::At(ComplexLD s) const {
+  ComplexLD v = 0.0L;
+  for (const LongDouble c : coefficients) v = v * s + c;
+  return v;
+}
+
+std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<double>& p,
+                                                         bool pair_real_roots) {
+  const int n = static_cast<int>(p.size()) - 1;
+  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < n; ++k) companion(0, k) = -p[k + 1] / p[0];
+  for (int k = 1; k < n; ++k) companion(k, k - 1) = 1.0;
+  if (!companion.allFinite()) return std::nullopt;
+  const Eigen::VectorXd t = BalancingScale(companion), ti = t.cwiseInverse();
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(ti.asDiagonal() * companion * t.asDiagonal(), false);
+  if (eig.info() != Eigen::Success) return std::nullopt;
+
+  // All n roots, polished; a pair as (upper, lower) at k, k + 1, exact
+  // conjugates. mirror[k] is the index of conj(root k).
+  std::vector<ComplexLD> roots(n);
+  std::vector<int> mirror(n);
+  for (int k = 0; k < n; ++k) {
+    const std::complex<double> e = eig.eigenvalues()(k);
+    if (!std::isfinite(e.real()) || !std::isfinite(e.imag())) return std::nullopt;
+    if (e.imag() == 0.0) {
+      roots[k] = ComplexLD(e.real(), 0.0L);
+      mirror[k] = k;
+    } else {
+      if (e.imag() < 0.0 || k + 1 == n || eig.eigenvalues()(k + 1) != std::conj(e)) return std::nullopt;
+      roots[k] = ComplexLD(e.real(), e.imag());
+      roots[k + 1] = std::conj(roots[k]);
+      mirror[k] = k + 1;
+      mirror[k + 1] = k;
+      ++k;
+    }
+  }
+  Polish(p, roots, mirror);
+
+  // Clusters: roots whose errors reach each other, then every root near a
+  // cluster (so that a circle can separate it from the rest).
+  std::vector<LongDouble> error(n);
+  for (int k = 0; k < n; ++k) error[k] = RootError(p, roots[k]);
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto join = [&](int a, int b) { parent[Find(parent, a)] = Find(parent, b); };
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      if (std::abs(roots[i] - roots[j]) <= kJoin * std::max(error[i], error[j])) join(i, j);
+  std::vector<std::vector<int>> members;
+  std::vector<ComplexLD> centre;
+  std::vector<LongDouble> reach;
+  for (bool changed = true; changed;) {
+    changed = false;
+    members.assign(n, {});
+    for (int k = 0; k < n; ++k) members[Find(parent, k)].push_back(k);
+    centre.assign(n, 0.0L);
+    reach.assign(n, 0.0L);
+    for (int c = 0; c < n; ++c) {
+      if (members[c].size() < 2) continue;
+      for (const int k : members[c]) centre[c] += roots[k];
+      centre[c] /= static_cast<LongDouble>(members[c].size());
+      for (const int k : members[c]) reach[c] = std::max(reach[c], std::abs(roots[k] - centre[c]));
+      for (int k = 0; k < n; ++k)
+        if (Find(parent, k) != c && std::abs(roots[k] - centre[c]) <= kReach * reach[c]) {
+          join(k, c);
+          changed = true;
+        }
+      // A cluster that reaches its mirror image holds it.
+      if (std::abs(centre[c].imag()) <= kReach * reach[c])
+        for (const int k : members[c])
+          if (Find(parent, mirror[k]) != Find(parent, k)) {
+            join(mirror[k], k);
+            changed = true;
+          }
+      if (changed) break;
+    }
+  }
+
+  std::vector<PolynomialFactor> factors;
+  std::vector<LongDouble> reals;
+  int degree = 0;
+  for (int c = 0; c < n; ++c) {
+    const std::vector<int>& m = members[c];
+    if (m.empty()) continue;
+    if (m.size() == 1) {
+      const ComplexLD r = roots[m[0]];
+      if (r.imag() == 0.0L) reals.push_back(r.real());
+      else if (r.imag() > 0.0L) factors.push_back(Quadratic(r));
+      degree += r.imag() == 0.0L ? 1 : r.imag() > 0.0L ? 2 : 0;
+      continue;
+    }
+    const bool self_mirror =
+        std::all_of(m.begin(), m.end(), [&](int k) { return Find(parent, mirror[k]) == c; });
+    if (!self_mirror && centre[c].imag() < 0.0L) continue;  // the mirror of another cluster
+    const ComplexLD z = self_mirror ? ComplexLD(centre[c].real(), 0.0L) : centre[c];
+    LongDouble nearest = std::numeric_limits<LongDouble>::infinity(), inside = 0.0L;
+    for (int k = 0; k < n; ++k) {
+      const LongDouble d = std::abs(roots[k] - z);
+      if (Find(parent, k) == c) inside = std::max(inside, d);
+      else nearest = std::min(nearest, d);
+    }
+    LongDouble radius = std::isfinite(nearest) ? 0.5L * nearest : std::max(kReach * inside, 0.5L * std::abs(z));
+    if (radius == 0.0L) radius = 1.0L;
+    if (!(radius >= 2.0L * inside)) return std::nullopt;
+    const int count = static_cast<int>(m.size());
+    const std::optional<std::vector<ComplexLD>> q = ClusterFactor(p, z, radius, count);
+    if (!q) return std::nullopt;
+    PolynomialFactor f;
+    f.root = ComplexLD(z.real(), std::abs(z.imag()));
+    if (self_mirror) {
+      for (const ComplexLD& a : *q) f.coefficients.push_back(a.real());
+    } else {
+      // q conj(q), real up to rounding.
+      f.coefficients.assign(2 * q->size() - 1, 0.0L);
+      for (std::size_t i = 0; i < q->size(); ++i)
+        for (std::size_t j = 0; j < q->size(); ++j) f.coefficients[i + j] += ((*q)[i] * std::conj((*q)[j])).real();
+    }
+    for (const LongDouble a : f.coefficients)
+      if (!std::isfinite(a)) return std::nullopt;
+    degree += f.degree();
+    factors.push_back(std::move(f));
+  }
+  if (degree != n) return std::nullopt;
+  std::sort(reals.begin(), reals.end());
+  for (std::size_t k = 0; k < reals.size(); ++k) {
+    if (pair_real_roots && k + 1 < reals.size()) {
+      factors.push_back({{1.0L, -(reals[k] + reals[k + 1]), reals[k] * reals[k + 1]},
+                         ComplexLD(reals[k + 1], 0.0L)});
+      ++k;
+    } else {
+      factors.push_back(Linear(reals[k]));
+    }
+  }
+  return factors;
+}
+
+}  // namespace deb

@@ -1,0 +1,49 @@
+// Internal: not part of the public API.
+// The real factors of a polynomial with real coefficients, for realising a
+// transfer function as a cascade (transfer_function.h). A factor is a single
+// real root, a conjugate pair, or a cluster of roots too close to be found
+// one by one.
+//
+// Why clusters: a root of multiplicity k is determined by the coefficients
+// only to about eps^(1/k) of its size, so roots found (and polished) one at a
+// time land eps^(1/k) apart in arbitrary directions and their product, the
+// polynomial they define, is off by as much: 1/(s + 1)^4 realised from four
+// separately polished roots had a DC gain 1.6e-5 off. The cluster's factor as
+// a whole is well determined. It is computed from the power sums of its
+// roots, each a contour integral of p'/p on a circle around the cluster and
+// away from every other root (Delves & Lyness, Math. Comp. 21, 1967), which
+// needs p only at points where it is evaluated accurately, then the factor's
+// coefficients by Newton's identities.
+#pragma once
+
+#include <complex>
+#include <optional>
+#include <vector>
+
+namespace deb {
+
+struct PolynomialFactor {
+  // Monic, highest power first: {1, c1, c0} = s^2 + c1 s + c0. Degree 1 or 2
+  // for a single root or pair; any degree for a cluster.
+  std::vector<long double> coefficients;
+  // A root (a single root or the upper one of a pair), or the centre of a
+  // cluster; Im >= 0.
+  std::complex<long double> root;
+  int degree() const { return static_cast<int>(coefficients.size()) - 1; }
+  // The factor's value at s.
+  std::complex<long double> At(std::complex<long double> s) const;
+};
+
+// The monic real factors of p (highest power first, degree >= 1, p.front()
+// != 0), whose product is p / p.front(). Roots are the eigenvalues of the
+// balanced companion matrix polished together (Aberth-Ehrlich iteration) in
+// long double on the exact coefficients; roots whose estimated errors are comparable to their
+// distance (multiple or nearly multiple roots) form one factor, computed as
+// above. Single real roots are combined two by two (sorted) into quadratics
+// if pair_real_roots. nullopt if the roots cannot be found or grouped
+// (eigenvalues not finite or not in conjugate pairs, a cluster's contour
+// integral that does not count its roots).
+std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<double>& p,
+                                                         bool pair_real_roots);
+
+}  // namespace deb
