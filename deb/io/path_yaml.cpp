@@ -169,7 +169,8 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
       }
       p.system = AtNode(*m, [&] { return ToStateSpace(rows); });
     } else {
-      p.system = ToStateSpace(ParseTf(node));
+      const TransferFunction tf = ParseTf(node);
+      p.system = AtNode(node.Required("den"), [&] { return ToStateSpace(tf); });
     }
   } else if (type == "state_space") {
     node.AllowOnly(With(kCommonKeys, {"A", "B", "C", "D", "file"}));
@@ -276,7 +277,8 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
 Weighting ParseWeighting(const YamlNode& node) {
   node.AllowOnly({"num", "den", "unit", "description"});
   Weighting w;
-  w.system = ToStateSpace(ParseTf(node));
+  const TransferFunction tf = ParseTf(node);
+  w.system = AtNode(node.Required("den"), [&] { return ToStateSpace(tf); });
   if (auto u = node.Optional("unit")) w.unit = u->AsString();
   AtNode(node, [&] { ValidateUnit(w.unit); });
   if (auto d = node.Optional("description")) w.description = d->AsString();

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 
+#include "deb/systems/double_double.h"
 #include "deb/systems/state_space.h"
 
 namespace deb {
@@ -34,7 +35,7 @@ struct Value {
   LongDouble magnitude = 0.0L;
 };
 
-Value Evaluate(const std::vector<double>& p, ComplexLD s) {
+Value EvaluateLD(const std::vector<double>& p, ComplexLD s) {
   Value v;
   const LongDouble r = std::abs(s);
   for (const double c : p) {
@@ -45,23 +46,60 @@ Value Evaluate(const std::vector<double>& p, ComplexLD s) {
   return v;
 }
 
-// Aberth-Ehrlich iteration in long double on all roots together: Newton's
-// step N_i = p(r_i) / p'(r_i), deflated by the other roots,
+ComplexDD ToDD(ComplexLD s) { return {DoubleDouble::From(s.real()), DoubleDouble::From(s.imag())}; }
+ComplexLD ToLD(const ComplexDD& s) { return {s.re.ToLongDouble(), s.im.ToLongDouble()}; }
+
+// The same by Horner's rule in double-double.
+Value EvaluateDD(const std::vector<double>& p, ComplexLD at) {
+  const ComplexDD s = ToDD(at);
+  ComplexDD value, slope;
+  Value v;
+  const LongDouble r = std::abs(at);
+  for (const double c : p) {
+    slope = slope * s + value;
+    value = value * s + ComplexDD{c, 0.0};
+    v.magnitude = v.magnitude * r + std::abs(static_cast<LongDouble>(c));
+  }
+  v.p = ToLD(value);
+  v.slope = ToLD(slope);
+  return v;
+}
+
+Value Evaluate(const std::vector<double>& p, ComplexLD s, Precision precision) {
+  return precision == Precision::kDoubleDouble ? EvaluateDD(p, s) : EvaluateLD(p, s);
+}
+
+// Relative rounding of one evaluation step: a complex product and sum.
+LongDouble UnitRounding(Precision precision) {
+  return precision == Precision::kDoubleDouble ? 0x1p-100L : kEpsLD;
+}
+
+// Aberth-Ehrlich iteration on all roots together: Newton's step
+// N_i = p(r_i) / p'(r_i), deflated by the other roots,
 //   r_i -= N_i / (1 - N_i sum_{j != i} 1 / (r_i - r_j)),
 // so that two starting values never converge to the same root (polished one
 // by one, two eigenvalues of a clustered order-24 polynomial did, and the
 // realisation fell back to the companion form). Pairs stay exact
-// conjugates (mirror), real roots real; a step is kept only if it makes
-// |p(r_i)| smaller, and the iteration ends when no step is kept.
-void Polish(const std::vector<double>& p, std::vector<ComplexLD>& roots, const std::vector<int>& mirror) {
+// conjugates (mirror), real roots real. Descending: a step is kept only if
+// it makes |p(r_i)| smaller, and the iteration ends when no step is kept.
+// Free: every finite step is kept (the iteration as published, which
+// converges from starting values the descending rule cannot leave: for 14
+// clustered modes as one polynomial, three pairs of eigenvalues straddled
+// the imaginary axis 0.3-1 rad/s from the roots), until no step exceeds
+// 16 eps |r_i| or after 200 sweeps.
+enum class Steps { kDescending, kFree };
+
+void Polish(const std::vector<double>& p, std::vector<ComplexLD>& roots, const std::vector<int>& mirror,
+            Precision precision, Steps steps) {
   const int n = static_cast<int>(roots.size());
   std::vector<LongDouble> size(n);
-  for (int i = 0; i < n; ++i) size[i] = std::abs(Evaluate(p, roots[i]).p);
-  for (int sweep = 0; sweep < 100; ++sweep) {
+  for (int i = 0; i < n; ++i) size[i] = std::abs(Evaluate(p, roots[i], precision).p);
+  const int sweeps = steps == Steps::kFree ? 200 : 100;
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
     bool moved = false;
     for (int i = 0; i < n; ++i) {
       if (roots[i].imag() < 0.0L || size[i] == 0.0L) continue;
-      const Value v = Evaluate(p, roots[i]);
+      const Value v = Evaluate(p, roots[i], precision);
       if (std::abs(v.slope) == 0.0L) continue;
       const ComplexLD newton = v.p / v.slope;
       ComplexLD repel = 0.0L;
@@ -70,15 +108,17 @@ void Polish(const std::vector<double>& p, std::vector<ComplexLD>& roots, const s
       ComplexLD next = roots[i] - newton / (1.0L - newton * repel);
       if (mirror[i] == i) next = next.real();
       else next = ComplexLD(next.real(), std::abs(next.imag()));
-      const LongDouble next_size = std::abs(Evaluate(p, next).p);
-      if (!std::isfinite(next_size) || !(next_size < size[i])) continue;
+      const LongDouble next_size = std::abs(Evaluate(p, next, precision).p);
+      if (!std::isfinite(next_size) || !std::isfinite(std::abs(next))) continue;
+      if (steps == Steps::kDescending && !(next_size < size[i])) continue;
+      if (steps == Steps::kFree && std::abs(next - roots[i]) > 16.0L * kEpsLD * std::abs(roots[i])) moved = true;
       roots[i] = next;
       size[i] = next_size;
       if (mirror[i] != i) {
         roots[mirror[i]] = std::conj(next);
         size[mirror[i]] = next_size;
       }
-      moved = true;
+      if (steps == Steps::kDescending) moved = true;
     }
     if (!moved) break;
   }
@@ -88,10 +128,10 @@ void Polish(const std::vector<double>& p, std::vector<ComplexLD>& roots, const s
 // with t_j = p^(j)(r) / j! (Taylor coefficients at r), a root of
 // multiplicity k moves by about (eps S / |t_k|)^(1/k) for a rounding eps S
 // of p(r); the smallest such bound over j.
-LongDouble RootError(const std::vector<double>& p, ComplexLD r) {
+LongDouble RootError(const std::vector<double>& p, ComplexLD r, Precision precision) {
   const int n = static_cast<int>(p.size()) - 1;
   std::vector<ComplexLD> t(p.begin(), p.end());
-  const LongDouble rounding = kEpsLD * std::max(Evaluate(p, r).magnitude, LongDouble{1e-4930L});
+  const LongDouble rounding = UnitRounding(precision) * std::max(EvaluateLD(p, r).magnitude, LongDouble{1e-4930L});
   LongDouble error = std::numeric_limits<LongDouble>::infinity();
   // Repeated synthetic division by (s - r): after pass j, t[n - j] = t_j.
   for (int j = 0; j <= n; ++j) {
@@ -113,11 +153,11 @@ int Find(std::vector<int>& parent, int i) {
 // in units of the radius, and Newton's identities. nullopt unless s_0, the
 // number of roots inside, is `count`.
 std::optional<std::vector<ComplexLD>> ClusterFactor(const std::vector<double>& p, ComplexLD z,
-                                                    LongDouble radius, int count) {
+                                                    LongDouble radius, int count, Precision precision) {
   std::vector<ComplexLD> sums(count + 1, 0.0L);
   for (int l = 0; l < kNodes; ++l) {
     const ComplexLD tau = std::polar(1.0L, kTwoPiLD * l / kNodes);
-    const Value v = Evaluate(p, z + radius * tau);
+    const Value v = Evaluate(p, z + radius * tau, precision);
     if (std::abs(v.p) == 0.0L) return std::nullopt;
     const ComplexLD g = radius * v.slope / v.p;
     ComplexLD power = tau;  // tau^(m + 1)
@@ -156,6 +196,12 @@ PolynomialFactor Quadratic(ComplexLD root) {
 
 }  // namespace
 
+PreciseValue EvaluatePrecisely(const std::vector<double>& p, ComplexLD s) {
+  const Value v = EvaluateDD(p, s);
+  const LongDouble degree = static_cast<LongDouble>(p.size() > 1 ? p.size() - 1 : 1);
+  return {v.p, degree * 0x1p-100L * v.magnitude + kEpsLD * std::abs(v.p)};
+}
+
 ComplexLD PolynomialFactor::At(ComplexLD s) const {
   ComplexLD v = 0.0L;
   for (const LongDouble c : coefficients) v = v * s + c;
@@ -163,7 +209,7 @@ ComplexLD PolynomialFactor::At(ComplexLD s) const {
 }
 
 std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<double>& p,
-                                                         bool pair_real_roots) {
+                                                         bool pair_real_roots, Precision precision) {
   const int n = static_cast<int>(p.size()) - 1;
   Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
   for (int k = 0; k < n; ++k) companion(0, k) = -p[k + 1] / p[0];
@@ -192,12 +238,16 @@ std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<doubl
       ++k;
     }
   }
-  Polish(p, roots, mirror);
+  Polish(p, roots, mirror, Precision::kLongDouble, Steps::kDescending);
+  if (precision == Precision::kDoubleDouble) {
+    Polish(p, roots, mirror, precision, Steps::kFree);
+    Polish(p, roots, mirror, precision, Steps::kDescending);
+  }
 
   // Clusters: roots whose errors reach each other, then every root near a
   // cluster (so that a circle can separate it from the rest).
   std::vector<LongDouble> error(n);
-  for (int k = 0; k < n; ++k) error[k] = RootError(p, roots[k]);
+  for (int k = 0; k < n; ++k) error[k] = RootError(p, roots[k], precision);
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   const auto join = [&](int a, int b) { parent[Find(parent, a)] = Find(parent, b); };
@@ -261,7 +311,7 @@ std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<doubl
     if (radius == 0.0L) radius = 1.0L;
     if (!(radius >= 2.0L * inside)) return std::nullopt;
     const int count = static_cast<int>(m.size());
-    const std::optional<std::vector<ComplexLD>> q = ClusterFactor(p, z, radius, count);
+    const std::optional<std::vector<ComplexLD>> q = ClusterFactor(p, z, radius, count, precision);
     if (!q) return std::nullopt;
     PolynomialFactor f;
     f.root = ComplexLD(z.real(), std::abs(z.imag()));

@@ -34,16 +34,31 @@ struct PolynomialFactor {
   std::complex<long double> At(std::complex<long double> s) const;
 };
 
+// The arithmetic in which roots are polished and p is evaluated: long double
+// (64 bits on x86, 53 where it is double) or double-double (106 bits,
+// double_double.h), which places the roots of an ill-conditioned polynomial
+// about 1e13 times closer and costs about ten times as much.
+enum class Precision { kLongDouble, kDoubleDouble };
+
 // The monic real factors of p (highest power first, degree >= 1, p.front()
 // != 0), whose product is p / p.front(). Roots are the eigenvalues of the
-// balanced companion matrix polished together (Aberth-Ehrlich iteration) in
-// long double on the exact coefficients; roots whose estimated errors are comparable to their
-// distance (multiple or nearly multiple roots) form one factor, computed as
-// above. Single real roots are combined two by two (sorted) into quadratics
-// if pair_real_roots. nullopt if the roots cannot be found or grouped
-// (eigenvalues not finite or not in conjugate pairs, a cluster's contour
-// integral that does not count its roots).
-std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<double>& p,
-                                                         bool pair_real_roots);
+// balanced companion matrix polished together (Aberth-Ehrlich iteration) on
+// the exact coefficients, p evaluated in `precision`; roots whose estimated
+// errors are comparable to their distance (multiple or nearly multiple roots)
+// form one factor, computed as above. Single real roots are combined two by
+// two (sorted) into quadratics if pair_real_roots. nullopt if the roots
+// cannot be found or grouped (eigenvalues not finite or not in conjugate
+// pairs, a cluster's contour integral that does not count its roots).
+std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<double>& p, bool pair_real_roots,
+                                                         Precision precision = Precision::kLongDouble);
+
+// p(s) by Horner's rule in double-double, and a bound on its rounding
+// (n 2^-100 sum |a_k| |s|^(n-k) for degree n, plus the rounding to long
+// double): the reference against which a factorisation is checked.
+struct PreciseValue {
+  std::complex<long double> value;
+  long double rounding = 0.0L;
+};
+PreciseValue EvaluatePrecisely(const std::vector<double>& p, std::complex<long double> s);
 
 }  // namespace deb
