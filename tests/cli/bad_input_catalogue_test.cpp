@@ -8,8 +8,12 @@
 // nothing changed, nothing deleted.
 //
 // Ids with a suffix (Y00p, C25f, ...) are follow-ups of the audit's case;
-// ids with a trailing '+' are new cases in the same family.
+// ids with a trailing '+' are new cases in the same family. The audit of the
+// result store, .mat files and extends adds A (deb report on a crafted
+// result.h5), B (.mat), D (extends), E (text) and H (writing) cases, by its
+// ids; their stores are what deb run wrote, changed with HDF5 itself.
 #include <doctest/doctest.h>
+#include <hdf5.h>
 #include <matio.h>
 
 #include <sys/wait.h>
@@ -261,6 +265,198 @@ std::string PlantMat(bool with_b = true) {
   return bytes;
 }
 Where AtMatFile() { return At("file: |plant.mat", "paths[0].file"); }
+
+// ---------------------------------------------------------------------------
+// Result stores (deb report RESULT_DIR) and version 7.3 .mat files, changed
+// with HDF5 itself from what deb writes.
+
+// The base budget with a second output (two outputs of one name, A12d).
+const std::string kStoreBudget = kBase + "  - {name: z2, signal: y, unit: nm}\n";
+
+// result.h5 of kStoreBudget, written by the deb under test (made once).
+const std::string& BaseStore() {
+  static const std::string bytes = [] {
+    const fs::path dir = TempDir("catalogue_store");
+    std::ofstream(dir / "b.yaml") << kStoreBudget;
+    const std::string cmd = "cd " + dir.string() + " && " + DEB_BINARY + " run b.yaml -q --no-plots --out r > /dev/null 2>&1";
+    if (std::system(cmd.c_str()) != 0) std::abort();
+    std::string s = ReadAll(dir / "r" / "result.h5");
+    fs::remove_all(dir);
+    return s;
+  }();
+  return bytes;
+}
+
+// `bytes` (an HDF5 file) after `change` on it, opened read-write.
+std::string ChangedHdf5(const std::string& bytes, const std::function<void(hid_t)>& change) {
+  const fs::path dir = TempDir("catalogue_h5"), file = dir / "f.h5";
+  std::ofstream(file, std::ios::binary) << bytes;
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (f < 0) std::abort();
+  change(f);
+  if (H5Fclose(f) < 0) std::abort();
+  std::string out = ReadAll(file);
+  fs::remove_all(dir);
+  return out;
+}
+
+// A report directory r/ whose store is BaseStore() changed by `change`.
+Files Store(const std::function<void(hid_t)>& change) {
+  return {{"r/result.h5", ChangedHdf5(BaseStore(), change)},
+          {"r/.deb-output", "written by deb; deb replaces this directory on its next run\n"}};
+}
+
+// Object `o` of file `f` replaced by a dataset of `type` and `space` made
+// with `create` (written from `data` unless it is null).
+void Put(hid_t f, const char* o, hid_t type, hid_t space, hid_t create = H5P_DEFAULT, const void* data = nullptr,
+         hid_t memory_type = -1) {
+  if (H5Lexists(f, o, H5P_DEFAULT) > 0 && H5Ldelete(f, o, H5P_DEFAULT) < 0) std::abort();
+  const hid_t d = H5Dcreate2(f, o, type, space, H5P_DEFAULT, create, H5P_DEFAULT);
+  if (d < 0) std::abort();
+  if (data != nullptr && H5Dwrite(d, memory_type < 0 ? type : memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    std::abort();
+  H5Dclose(d);
+  H5Sclose(space);
+}
+hid_t Space(std::vector<hsize_t> dims) {
+  return dims.empty() ? H5Screate(H5S_SCALAR) : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+}
+void PutNumbers(hid_t f, const char* o, const std::vector<double>& v) {
+  Put(f, o, H5T_IEEE_F64LE, Space({v.size()}), H5P_DEFAULT, v.empty() ? nullptr : v.data(), H5T_NATIVE_DOUBLE);
+}
+void PutNumber(hid_t f, const char* o, double v) { Put(f, o, H5T_IEEE_F64LE, Space({}), H5P_DEFAULT, &v, H5T_NATIVE_DOUBLE); }
+void PutText(hid_t f, const char* o, const std::string& text) {
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  const char* p = text.c_str();
+  Put(f, o, type, Space({}), H5P_DEFAULT, &p);
+  H5Tclose(type);
+}
+void PutFixedText(hid_t f, const char* o, const std::string& text) {
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, text.size());
+  Put(f, o, type, Space({}), H5P_DEFAULT, text.data());
+  H5Tclose(type);
+}
+// Declared with `dims`, never written.
+void PutDeclared(hid_t f, const char* o, std::vector<hsize_t> dims, bool text = false) {
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  Put(f, o, text ? type : H5T_IEEE_F64LE, Space(std::move(dims)));
+  H5Tclose(type);
+}
+// Its type and shape kept, its values in `target` (HDF5 external storage).
+void PutExternal(hid_t f, const char* o, const std::string& target) {
+  const hid_t d = H5Dopen2(f, o, H5P_DEFAULT);
+  if (d < 0) std::abort();
+  const hid_t type = H5Dget_type(d), space = H5Dget_space(d);
+  const hsize_t bytes = static_cast<hsize_t>(H5Sget_simple_extent_npoints(space)) * H5Tget_size(type);
+  H5Dclose(d);
+  const hid_t create = H5Pcreate(H5P_DATASET_CREATE);
+  if (H5Pset_external(create, target.c_str(), 0, bytes) < 0) std::abort();
+  Put(f, o, type, space, create);
+  H5Pclose(create);
+  H5Tclose(type);
+}
+void PutExternalLink(hid_t f, const char* o, const char* file, const char* target) {
+  if (H5Ldelete(f, o, H5P_DEFAULT) < 0 || H5Lcreate_external(file, target, f, o, H5P_DEFAULT, H5P_DEFAULT) < 0)
+    std::abort();
+}
+void PutSoftLink(hid_t f, const char* o, const char* target) {
+  if (H5Ldelete(f, o, H5P_DEFAULT) < 0 || H5Lcreate_soft(target, f, o, H5P_DEFAULT, H5P_DEFAULT) < 0) std::abort();
+}
+// A virtual dataset of `n` doubles taken from `object` of `file`.
+void PutVirtual(hid_t f, const char* o, hsize_t n, const char* file, const char* object) {
+  const hid_t create = H5Pcreate(H5P_DATASET_CREATE), source = Space({n});
+  if (H5Pset_virtual(create, source, file, object, source) < 0) std::abort();
+  Put(f, o, H5T_IEEE_F64LE, Space({n}), create);
+  H5Pclose(create);
+  H5Sclose(source);
+}
+
+// The store with the 8-byte size of the global heap entry holding `text`
+// (unique in the file) made to claim 2 GB.
+Files DamagedHeapStore(const std::string& text) {
+  std::string bytes = BaseStore();
+  const std::size_t at = bytes.find(text);
+  if (at == std::string::npos || at < 8 || bytes.find(text, at + 1) != std::string::npos) std::abort();
+  bytes.replace(at - 8, 8, std::string("\xff\xff\xff\x7f\0\0\0\0", 8));
+  return {{"r/result.h5", bytes}, {"r/.deb-output", "written by deb; deb replaces this directory on its next run\n"}};
+}
+
+const std::string kReport = "report r --no-plots";
+Where AtStore() { return InFile("r/result.h5"); }
+
+// plant.mat as a version 7.3 (HDF5) file, A changed by `change`.
+std::string PlantMat73(const std::function<void(hid_t)>& change) {
+  const fs::path dir = TempDir("catalogue_mat73"), tmp = dir / "plant.mat";
+  mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT73);
+  if (mat == nullptr) std::abort();
+  auto put = [&](const char* name, std::vector<double> v, std::size_t rows, std::size_t cols) {
+    std::size_t dims[2] = {rows, cols};
+    matvar_t* var = Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, v.data(), 0);
+    if (var == nullptr || Mat_VarWrite(mat, var, MAT_COMPRESSION_NONE) != 0) std::abort();
+    Mat_VarFree(var);
+  };
+  put("A", {0, -100, 1, -2}, 2, 2);
+  put("B", {0, 1}, 2, 1);
+  put("C", {1, 0}, 1, 2);
+  if (Mat_Close(mat) != 0) std::abort();
+  std::string bytes = ChangedHdf5(ReadAll(tmp), change);
+  fs::remove_all(dir);
+  return bytes;
+}
+
+// plant.mat written uncompressed, with the byte count of the dimensions of
+// its first variable (A, at byte 128) made to claim 2 GB (N17).
+std::string PlantMatLongPart() {
+  const fs::path dir = TempDir("catalogue_mat5"), tmp = dir / "plant.mat";
+  mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5);
+  if (mat == nullptr) std::abort();
+  std::size_t dims[2] = {2, 2};
+  std::vector<double> a = {0, -100, 1, -2};
+  matvar_t* var = Mat_VarCreate("A", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, a.data(), 0);
+  if (var == nullptr || Mat_VarWrite(mat, var, MAT_COMPRESSION_NONE) != 0) std::abort();
+  Mat_VarFree(var);
+  if (Mat_Close(mat) != 0) std::abort();
+  std::string bytes = ReadAll(tmp);
+  fs::remove_all(dir);
+  // tag (8), array flags (16), then the dimensions' tag: type (4), bytes (4).
+  if (bytes.size() < 160 || bytes[152] != 5) std::abort();
+  bytes.replace(156, 4, std::string("\xf0\xff\xff\x7f", 4));
+  return bytes;
+}
+
+// plant.mat with an n x n state matrix -I (compressed: a few KB).
+std::string PlantMatStates(std::size_t n) {
+  const fs::path dir = TempDir("catalogue_matn"), tmp = dir / "plant.mat";
+  mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5);
+  if (mat == nullptr) std::abort();
+  auto put = [&](const char* name, std::vector<double> v, std::size_t rows, std::size_t cols) {
+    std::size_t dims[2] = {rows, cols};
+    matvar_t* var = Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, v.data(), 0);
+    if (var == nullptr || Mat_VarWrite(mat, var, MAT_COMPRESSION_ZLIB) != 0) std::abort();
+    Mat_VarFree(var);
+  };
+  std::vector<double> a(n * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) a[i * n + i] = -1.0;
+  put("A", a, n, n);
+  put("B", std::vector<double>(n, 1.0), n, 1);
+  put("C", std::vector<double>(n, 1.0), 1, n);
+  if (Mat_Close(mat) != 0) std::abort();
+  std::string bytes = ReadAll(tmp);
+  fs::remove_all(dir);
+  return bytes;
+}
+
+// A denominator of order `n`: s^n + 1.
+std::string DenOfOrder(std::size_t n) {
+  std::string s = "den: [1";
+  for (std::size_t i = 0; i < n; ++i) s += i + 1 == n ? ", 1" : ", 0";
+  return s + "]";
+}
+
 
 // A sweep section over the base budget.
 std::string Sweep(const std::string& section) { return kBase + "sweep:\n" + section; }
@@ -881,6 +1077,129 @@ const std::vector<Case>& Catalogue() {
       {"M06+", "file: and A: in one state_space path",
        {{"b.yaml", Sub(kMat, "file: plant.mat\n", "file: plant.mat\n    A: [[1]]\n")}, {"plant.mat", PlantMat()}}, kRun,
        3, At("A: |[[1]]", "paths[0].A"), {"not both"}},
+
+      // ---- A: deb report on a crafted result.h5 (this audit's A cases) --------
+      {"A00+", "redraw of an untouched store (baseline)", Store([](hid_t) {}), kReport, 0, Ok()},
+      {"A13a", "f_hz stored externally in /etc/passwd (N01)",
+       Store([](hid_t f) { PutExternal(f, "result/grid/f_hz", "/etc/passwd"); }), kReport, 3, AtStore(),
+       {"object 'result/grid/f_hz' keeps its values in another file"}, {"root"}, "", "", 0, CheckNoPasswdLine},
+      {"A13b", "a PSD stored externally in a FIFO: no hang (N01)",
+       Store([](hid_t f) { PutExternal(f, "result/outputs/0/contributors/0/psd", "fifo"); }), kReport, 3, AtStore(),
+       {"keeps its values in another file"}, {}, "mkfifo fifo", "", 20},
+      {"A13c", "a PSD stored externally in /dev/zero (N01)",
+       Store([](hid_t f) { PutExternal(f, "result/outputs/0/contributors/0/psd", "/dev/zero"); }), kReport, 3,
+       AtStore(), {"keeps its values in another file"}},
+      {"A13d", "a PSD stored externally in a file of plausible values (N01)",
+       With(Store([](hid_t f) { PutExternal(f, "result/outputs/0/contributors/0/psd", "values.bin"); }), "values.bin",
+            std::string(50 * 8, '\x3e')),
+       kReport, 3, AtStore(), {"object 'result/outputs/0/contributors/0/psd' keeps its values in another file"}},
+      {"A13e", "schema_version stored externally in /proc/self/environ (N01)",
+       Store([](hid_t f) { PutExternal(f, "schema_version", "/proc/self/environ"); }), kReport, 3, AtStore(),
+       {"object 'schema_version' keeps its values in another file"}, {"schema version"}},
+      {"A14b", "budget/text an external link to another file (N01)",
+       With(Store([](hid_t f) { PutExternalLink(f, "budget/text", "other.h5", "budget/text"); }), "other.h5",
+            BaseStore()),
+       kReport, 3, AtStore(), {"object 'budget/text' is an external link"}},
+      {"A14e+", "a soft link in a store (N01)", Store([](hid_t f) { PutSoftLink(f, "budget/text", "/budget/name"); }),
+       kReport, 3, AtStore(), {"object 'budget/text' is a soft link"}},
+      {"A14f+", "f_hz a virtual dataset of another file (N01)",
+       With(Store([](hid_t f) { PutVirtual(f, "result/grid/f_hz", 50, "other.h5", "result/grid/f_hz"); }), "other.h5",
+            BaseStore()),
+       kReport, 3, AtStore(), {"object 'result/grid/f_hz' is a virtual dataset"}},
+      {"A10a", "panel_starts [0] on a grid without panels (N04)",
+       Store([](hid_t f) { PutNumbers(f, "result/grid/panel_starts", {0}); }), kReport, 3, AtStore(),
+       {"object 'result/grid/panel_starts'", "Lobatto"}, {"internal error"}},
+      {"A10d", "panel_starts decreasing [6, 0] (N04)",
+       Store([](hid_t f) { PutNumbers(f, "result/grid/panel_starts", {6, 0}); }), kReport, 3, AtStore(),
+       {"object 'result/grid/panel_starts'"}, {"internal error"}},
+      {"A16b", "an output variance of -1, with plots (N04)",
+       Store([](hid_t f) { PutNumber(f, "result/outputs/0/variance", -1); }), "report r --format png", 3, AtStore(),
+       {"object 'result/outputs/0/variance' holds -1, which must be >= 0"}, {"internal error"}},
+      {"A16d", "a total PSD all negative (N14)",
+       Store([](hid_t f) { PutNumbers(f, "result/outputs/0/total_psd", std::vector<double>(50, -1.0)); }), kReport, 3,
+       AtStore(), {"object 'result/outputs/0/total_psd' holds -1 at element 0"}},
+      {"A16f", "rms_max 0 (N14)", Store([](hid_t f) { PutNumber(f, "result/outputs/0/rms_max", 0); }), kReport, 3,
+       AtStore(), {"object 'result/outputs/0/rms_max' holds the requirement 0, which must be > 0"}},
+      {"A16g", "rms_max -5 (N14)", Store([](hid_t f) { PutNumber(f, "result/outputs/0/rms_max", -5); }), kReport, 3,
+       AtStore(), {"holds the requirement -5"}},
+      {"A05a", "f_hz declared as 250 M doubles, never written (N09)",
+       Store([](hid_t f) { PutDeclared(f, "result/grid/f_hz", {250'000'000}); }), kReport, 3, AtStore(),
+       {"object 'result/grid/f_hz' declares 250000000 values, more than the 5000000 it may hold"}, {}, "", "", 10},
+      {"A05d", "gain2 declared [250000000 x 0] (N09)",
+       Store([](hid_t f) { PutDeclared(f, "result/traces/paths/0/0/gain2", {250'000'000, 0}); }), kReport, 3,
+       AtStore(), {"declares 250000000 rows, more than the 10000 it may hold"}, {}, "", "", 10},
+      {"A05f", "outputs/names declared as 250 M texts (N09)",
+       Store([](hid_t f) { PutDeclared(f, "result/outputs/names", {250'000'000}, true); }), kReport, 3, AtStore(),
+       {"object 'result/outputs/names' declares 250000000 values, more than the 100000"}, {}, "", "", 10},
+      {"A05k", "tones declared [125000000 x 2] (N09)",
+       Store([](hid_t f) { PutDeclared(f, "result/outputs/0/contributors/0/tones", {125'000'000, 2}); }), kReport, 3,
+       AtStore(), {"declares 125000000 rows, more than the 10000"}, {}, "", "", 10},
+      {"A05n+", "a PSD declared with its 50 values, never written (N09)",
+       Store([](hid_t f) { PutDeclared(f, "result/outputs/0/total_psd", {50}); }), kReport, 3, AtStore(),
+       {"declares 50 values, but the file holds 0 of them"}},
+      {"A07b", "terminal escapes in the budget name (N14)",
+       Store([](hid_t f) { PutText(f, "budget/name", "\x1b[31mred\a"); }), kReport, 3, AtStore(),
+       {"object 'budget/name' holds the name"}, {"\x1b"}},
+      {"A07e+", "terminal escapes in an output unit (N14)",
+       Store([](hid_t f) { PutText(f, "result/outputs/0/unit", "nm\x1b[2J"); }), kReport, 3, AtStore(),
+       {"object 'result/outputs/0/unit' holds a control character"}, {"\x1b"}},
+      {"A12c", "a group path 20 levels deep (N14)",
+       Store([](hid_t f) { PutText(f, "budget/contributors/0/group", "g0/g1/g2/g3/g4/g5/g6/g7/g8/g9/g10/g11/g12/g13/g14/g15/g16/g17/g18/g19"); }),
+       "report r --format png", 3, AtStore(), {"object 'budget/contributors/0/group'", "20 levels, more than 16"}},
+      {"A12d", "two outputs of one name (N14)", Store([](hid_t f) { PutText(f, "result/outputs/1/name", "z"); }),
+       kReport, 3, AtStore(), {"object 'result/outputs/1/name' holds the name 'z', which another output has"}},
+      {"A12e", "an empty output name (N14)", Store([](hid_t f) { PutText(f, "result/outputs/0/name", ""); }), kReport,
+       3, AtStore(), {"holds an empty name"}},
+      {"A12h", "a name that is not UTF-8 (N07)",
+       Store([](hid_t f) { PutText(f, "result/outputs/0/name", "z\xff\xfe"); }), kReport, 3, AtStore(),
+       {"object 'result/outputs/0/name' holds text where byte 0xff at character 2 is not UTF-8"}, {"internal error"}},
+      {"A12i", "a group named total (N14)",
+       Store([](hid_t f) { PutText(f, "result/outputs/0/contributors/0/group", "total"); }), "report r --format png", 3,
+       AtStore(), {"object 'result/outputs/0/contributors/0/group'", "'total' is reserved"}},
+      {"A03d", "schema as a fixed-length string (N14)", Store([](hid_t f) { PutFixedText(f, "schema", "deb-result"); }),
+       kReport, 3, AtStore(), {"object 'schema' holds text of a fixed length, not text"}},
+      {"A20+", "a damaged global heap entry of a text (N11)", DamagedHeapStore(kStoreBudget), kReport, 3,
+       AtStore(), {"is damaged", "global heap"}},
+
+      // ---- B: version 7.3 .mat files (HDF5) -----------------------------------
+      {"B12a", "v7.3: A stored externally in /etc/passwd (N01)",
+       {{"b.yaml", kMat}, {"plant.mat", PlantMat73([](hid_t f) { PutExternal(f, "A", "/etc/passwd"); })}}, kRun, 3,
+       AtMatFile(), {"object 'A' keeps its values in another file"}, {"internal error"}, "", "", 0, CheckNoPasswdLine},
+      {"B12b", "v7.3: A stored externally in a FIFO: no hang (N01)",
+       {{"b.yaml", kMat}, {"plant.mat", PlantMat73([](hid_t f) { PutExternal(f, "A", "fifo"); })}}, kRun, 3,
+       AtMatFile(), {"keeps its values in another file"}, {}, "mkfifo fifo", "", 20},
+      {"B12h+", "v7.3: B an external link to another file (N01)",
+       {{"b.yaml", kMat}, {"plant.mat", PlantMat73([](hid_t f) { PutExternalLink(f, "B", "other.mat", "B"); })},
+        {"other.mat", PlantMat73([](hid_t) {})}},
+       kRun, 3, AtMatFile(), {"object 'B' is an external link"}},
+      {"B13+", "v5: a part of A claims 2 GB, in a file of 200 bytes (N17)",
+       {{"b.yaml", kMat}, {"plant.mat", PlantMatLongPart()}}, kRun, 3, AtMatFile(),
+       {"claims 2147483632 bytes, more than the variable holds"}, {}, "", "", 10},
+      {"B14+", "a state-space .mat of 1001 states (N10)", {{"b.yaml", kMat}, {"plant.mat", PlantMatStates(1001)}}, kRun,
+       3, AtMatFile(), {"1001 states, more than the 1000"}, {}, "", "", 20},
+      {"B15+", "a transfer function of order 1001 (N10)", B("den: [1, 2, 100]", DenOfOrder(1001)), kRun, 3,
+       At("den: |[1, 0", "paths[0].den"), {"1001 states, more than the 1000"}},
+
+      // ---- UTF-8, extends, file-size limit -------------------------------------
+      {"E10+", "a description in Latin-1 (N07)", B("description: bad-input catalogue base budget", "description: caf\xe9"),
+       kRun, 3, At("description: |caf", "description"), {"byte 0xe9 at character 4 is not UTF-8"}},
+      {"E11+", "a channel name with a byte 0xff (N07)",
+       B("    unit: N\n    spectrum", "    unit: N\n    channels: [x\xff]\n    spectrum"), kRun, 3,
+       At("channels: [|x", "sources[0].channels[0]"), {"is not UTF-8"}},
+      {"E12+", "a spectrum CSV column name in Latin-1 (N07)", M("f_hz,caf\xe9\n" + kSpecRows), kRun, 3, AtSpecFile(),
+       {"spec.csv:1:6:", "is not UTF-8"}},
+      {"D05b", "an alias bomb in the base a budget extends: no hang (N12)",
+       {{"b.yaml", "extends: base.yaml\nname: child\n"},
+        {"base.yaml", Sub(kBase, "description: bad-input catalogue base budget", "description: " + AliasBomb("lol"))}},
+       kRun, 3, Names("description"), {"expected a single value"}, {}, "", "", 10},
+      {"D04e", "extends a shadow-like file: its line quoted at most 40 characters (N16)",
+       {{"b.yaml", "extends: shadow\nname: child\n"},
+        {"shadow", "root:$6$0123456789abcdef$0123456789abcdefghijklmnopqrstuvwxyz0123456789:19000:0:99999:7:::\n"}},
+       kRun, 3, Names("unknown key"), {"unknown key 'root:$6$0123456789abcdef$0123456789abcde…'"},
+       {"0123456789abcdefghijklmnopqrstuvwxyz0123456789"}},
+      {"H01+", "a report larger than the file-size limit (ulimit -f): exit 4, no HDF5 error stack (N06)", B(),
+       "run b.yaml --no-plots --out out", 4, Names("File too large"), {}, {"HDF5-DIAG", "internal error"}, "",
+       "ulimit -f 20;"},
 
       // ---- C: command line --------------------------------------------------
       {"C01", "budget file missing", {}, "run nosuch.yaml", 2, Usage()},
