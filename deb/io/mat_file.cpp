@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <set>
 
 #include "deb/core/error.h"
 #include "deb/core/shared_library.h"
@@ -484,6 +485,10 @@ MatFile::MatFile(const std::string& path) : path_(path), handle_(std::make_uniqu
   if (!call.problem().empty()) Fail(path, "cannot list the variables of the MAT-file" + call.Because());
   for (std::size_t i = 0; dir != nullptr && i < n; ++i)
     if (dir[i] != nullptr) variables_.emplace_back(dir[i]);
+  // matio would read the first of two variables of one name, silently.
+  std::set<std::string> seen;
+  for (const std::string& v : variables_)
+    if (!seen.insert(v).second) Fail(path, "holds two variables named " + Quoted(v) + "; is the file damaged?");
 }
 
 MatFile::~MatFile() = default;
