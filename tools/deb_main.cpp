@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -261,6 +262,10 @@ int Model(const std::string& budget_file, const std::vector<deb::BudgetOverride>
 
 int main(int argc, char** argv) {
   deb::UseHugePagesForHeap();
+  // A file-size limit (ulimit -f) makes a write fail (EFBIG): reported as a
+  // write error, exit 4, with nothing left behind, instead of death by
+  // SIGXFSZ halfway through a report.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"deb: frequency-domain dynamic error budgeting for precision machines"};
   app.set_version_flag("--version", std::string("deb ") + DEB_VERSION);
   app.require_subcommand(1);

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
 #include "deb/core/suggest.h"
 
 namespace deb {
@@ -38,8 +39,13 @@ std::vector<std::string> GroupSegments(const std::string& group) {
       current.clear();
       continue;
     }
-    if (!GroupCharacter(group[i]))
-      fail(std::string("character '") + group[i] + "' is not allowed (letters, digits, _ - . and space)");
+    if (!GroupCharacter(group[i])) {
+      // The whole character (up to 4 bytes of UTF-8), not its first byte.
+      const unsigned char lead = static_cast<unsigned char>(group[i]);
+      const std::size_t bytes = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
+      fail("character '" + Excerpt(group.substr(i, bytes), bytes) +
+           "' is not allowed (letters, digits, _ - . and space)");
+    }
     current += group[i];
   }
   if (segments.size() > kMaxGroupDepth)

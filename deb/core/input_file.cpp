@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <istream>
@@ -85,14 +86,68 @@ bool TextLines::Next(std::string& line) {
   return true;
 }
 
+namespace {
+
+// The length of the well-formed UTF-8 sequence at text[i], or 0.
+std::size_t Utf8Length(const std::string& text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char b = byte(i);
+  if (b < 0x80) return 1;
+  // The lead byte gives the length and the range of the second byte
+  // (which excludes overlong forms, surrogates and code points > U+10FFFF).
+  std::size_t n = 0;
+  unsigned char lo = 0x80, hi = 0xBF;
+  if (b >= 0xC2 && b <= 0xDF) n = 2;
+  else if (b == 0xE0) n = 3, lo = 0xA0;
+  else if (b >= 0xE1 && b <= 0xEC) n = 3;
+  else if (b == 0xED) n = 3, hi = 0x9F;
+  else if (b >= 0xEE && b <= 0xEF) n = 3;
+  else if (b == 0xF0) n = 4, lo = 0x90;
+  else if (b >= 0xF1 && b <= 0xF3) n = 4;
+  else if (b == 0xF4) n = 4, hi = 0x8F;
+  else return 0;
+  if (i + n > text.size() || byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < n; ++k)
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
+  return n;
+}
+
+}  // namespace
+
 std::string Excerpt(const std::string& text, std::size_t max_chars) {
   std::string out;
-  for (std::size_t i = 0; i < text.size() && i < max_chars; ++i) {
+  std::size_t i = 0;
+  while (i < text.size() && i < max_chars) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
-    out += (c < 0x20 || c == 0x7f) ? '?' : static_cast<char>(c);
+    const std::size_t n = Utf8Length(text, i);
+    if (n > 1 && i + n <= max_chars) {
+      out.append(text, i, n);
+      i += n;
+      continue;
+    }
+    if (n > 1) break;  // a character the cap would cut
+    out += (n == 0 || c < 0x20 || c == 0x7f) ? '?' : static_cast<char>(c);
+    ++i;
   }
-  if (text.size() > max_chars) out += "…";
+  if (i < text.size()) out += "…";
   return out;
+}
+
+std::size_t FirstNonUtf8(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = Utf8Length(text, i);
+    if (n == 0) return i;
+    i += n;
+  }
+  return std::string::npos;
+}
+
+std::string Utf8Problem(const std::string& text) {
+  const std::size_t at = FirstNonUtf8(text);
+  if (at == std::string::npos) return "";
+  char hex[8];
+  std::snprintf(hex, sizeof hex, "0x%02x", static_cast<unsigned>(static_cast<unsigned char>(text[at])));
+  return std::string("byte ") + hex + " at character " + std::to_string(at + 1) + " is not UTF-8";
 }
 
 }  // namespace deb

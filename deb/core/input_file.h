@@ -47,7 +47,20 @@ class TextLines {
 };
 
 // `text` as a message may quote it: at most `max_chars` bytes (then "…"),
-// control and other non-printable bytes as '?'. For cells of files.
+// never cutting a UTF-8 character, control bytes and bytes that are not
+// UTF-8 as '?'. For cells of files.
 std::string Excerpt(const std::string& text, std::size_t max_chars = 40);
+
+// The position of the first byte of `text` that is not part of well-formed
+// UTF-8 (RFC 3629: no overlong forms, no surrogates, nothing above
+// U+10FFFF), or std::string::npos.
+std::size_t FirstNonUtf8(const std::string& text);
+
+// "" if `text` is UTF-8, else the rule it breaks, for a message: "byte 0xe9
+// at character 4 is not UTF-8". Every text deb
+// reads from a file (YAML scalars, table headers and names, a store's text,
+// a MAT-file's names) is checked with it where it is read: summary.json and
+// every other file deb writes are UTF-8.
+std::string Utf8Problem(const std::string& text);
 
 }  // namespace deb

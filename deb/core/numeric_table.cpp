@@ -89,6 +89,8 @@ void Comment(NumericTable& table, const std::set<std::string>& keys, const std::
   if (table.metadata.count(key)) table.Fail(line_no, column, "'# " + key + ":' is given twice; give it once");
   const std::string value = Trim(body.substr(colon + 1));
   if (value.empty()) table.Fail(line_no, column, "'# " + key + ":' has no value");
+  if (const std::string problem = Utf8Problem(value); !problem.empty())
+    table.Fail(line_no, column, "'# " + key + ":' " + problem + "; save the file as UTF-8 text");
   table.metadata[key] = {value, line_no, column};
 }
 
@@ -101,6 +103,8 @@ void Row(NumericTable& table, const std::vector<Cell>& cells, int line_no, const
                 ParseNumber(cells.front().text, &probe) == NumberStatus::kNotANumber)) {
     for (const Cell& c : cells) {
       if (c.text.empty()) table.Fail(line_no, c.column, "empty column name");
+      if (const std::string problem = Utf8Problem(c.text); !problem.empty())
+        table.Fail(line_no, c.column, "column name '" + Excerpt(c.text) + "': " + problem + "; save the file as UTF-8 text");
       table.header.push_back(c.text);
       table.header_columns.push_back(c.column);
     }
@@ -121,6 +125,8 @@ void Row(NumericTable& table, const std::vector<Cell>& cells, int line_no, const
     const Cell& cell = cells[c];
     if (c == 0 && options.names_in_first_column) {
       if (cell.text.empty()) table.Fail(line_no, cell.column, first_column + ": empty cell; every row starts with a name");
+      if (const std::string problem = Utf8Problem(cell.text); !problem.empty())
+        table.Fail(line_no, cell.column, first_column + " '" + Excerpt(cell.text) + "': " + problem + "; save the file as UTF-8 text");
       row.name = cell.text;
       row.values.push_back(0.0);
       row.columns.push_back(cell.column);

@@ -3,10 +3,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/core/limits.h"
 
 namespace deb::io {
 namespace {
@@ -22,32 +25,58 @@ bool IsFileKey(const std::string& key) {
   return false;
 }
 
+// The nodes a walk has been to. A node reached again through an alias is
+// the same node (YAML::Node::is): walked once, a few lines of nested aliases
+// cost a few visits instead of 10^9 (and a shared file name is rewritten
+// once, not once per alias). Nodes are kept by their position in the text,
+// which an alias shares with its anchor, so that each lookup compares with
+// the few nodes of other files at that position.
+class Visited {
+ public:
+  // False if `n` was inserted before.
+  bool Insert(const YAML::Node& n) {
+    const YAML::Mark m = n.Mark();
+    std::vector<YAML::Node>& same = seen_[{m.pos, m.line, m.column}];
+    for (const YAML::Node& s : same)
+      if (s.is(n)) return false;
+    same.push_back(n);
+    return true;
+  }
+
+ private:
+  std::map<std::tuple<int, int, int>, std::vector<YAML::Node>> seen_;
+};
+
 // Rewrites every relative data-file path in `n` (read from a file in
 // `from_dir`) to be relative to `to_dir`.
-void Rebase(YAML::Node n, const fs::path& from_dir, const fs::path& to_dir) {
+void Rebase(YAML::Node n, const fs::path& from_dir, const fs::path& to_dir, Visited& visited) {
+  if (!(n.IsSequence() || n.IsMap()) || !visited.Insert(n)) return;
   if (n.IsSequence()) {
-    for (std::size_t i = 0; i < n.size(); ++i) Rebase(n[i], from_dir, to_dir);
+    for (std::size_t i = 0; i < n.size(); ++i) Rebase(n[i], from_dir, to_dir, visited);
     return;
   }
-  if (!n.IsMap()) return;
   for (auto kv : n) {
     if (IsFileKey(kv.first.Scalar()) && kv.second.IsScalar()) {
       const fs::path p(kv.second.Scalar());
-      if (p.is_relative()) {
+      if (p.is_relative() && visited.Insert(kv.second)) {
         const fs::path target = fs::absolute(from_dir / p).lexically_normal();
         const fs::path relative = target.lexically_relative(fs::absolute(to_dir).lexically_normal());
         kv.second = (relative.empty() ? target : relative).generic_string();
       }
       continue;
     }
-    Rebase(kv.second, from_dir, to_dir);
+    Rebase(kv.second, from_dir, to_dir, visited);
   }
 }
 
 // Merges map `over` into map `base`: maps into maps, anything else replaces,
-// null removes.
-void Merge(YAML::Node base, const YAML::Node& over) {
+// null removes. `visits` counts the keys merged: maps nested through aliases
+// on both sides could make the merge walk 10^9 of them.
+void Merge(YAML::Node base, const YAML::Node& over, std::size_t& visits) {
   for (const auto& kv : over) {
+    if (++visits > limits::kMaxKeyPathVisits)
+      throw InputError("merging the budget into its base visits more than " +
+                       std::to_string(limits::kMaxKeyPathVisits) + " keys (nested aliases?)");
     const std::string key = kv.first.Scalar();
     const YAML::Node& existing = static_cast<const YAML::Node&>(base)[key];
     if (kv.second.IsNull()) {
@@ -55,7 +84,7 @@ void Merge(YAML::Node base, const YAML::Node& over) {
       continue;
     }
     if (kv.second.IsMap() && existing && existing.IsMap()) {
-      Merge(base[key], kv.second);
+      Merge(base[key], kv.second, visits);
       continue;
     }
     base[key] = kv.second;
@@ -103,9 +132,11 @@ Assembled Resolve(const std::string& path, std::vector<std::string>& chain) {
   }();
   chain.pop_back();
   if (!base_doc.root.IsMap()) extends.Fail("the base budget '" + name + "' is not a YAML map (key: value pairs)");
-  Rebase(base_doc.root, Directory(base_path), Directory(path));
+  Visited visited;
+  Rebase(base_doc.root, Directory(base_path), Directory(path), visited);
   out.root.remove("extends");
-  Merge(base_doc.root, out.root);
+  std::size_t visits = 0;
+  AtNode(extends, [&] { Merge(base_doc.root, out.root, visits); });
   out.positions->Inherit(*base_doc.positions);
   out.root = base_doc.root;
   return out;

@@ -12,11 +12,18 @@
 //   - a matrix of doubles given as rows of equal length (2-dimensional,
 //     rows x columns, row-major as h5py and HDF5 show it).
 // Every file read is treated as possibly hostile (deb/core/input_file.h):
-// only a regular file of at most kMaxHdf5FileBytes is opened, a dataset's
-// size is checked against kMaxHdf5Elements from its header before its data
-// is read, its class and rank must be the ones asked
-// for, and every number read must be finite unless the caller allows NaN
-// (an absent value).
+// only a regular file of at most kMaxHdf5FileBytes is opened; an object is
+// reached through hard links only (a soft or external link, which could
+// lead into another file, is refused before it is followed); a dataset
+// whose values lie outside the file (HDF5 external storage, a virtual
+// dataset) or are compressed is refused before anything is read from it;
+// its shape is checked from its header against the bound the caller gives
+// (and kMaxHdf5Elements) before anything is allocated; its class and rank
+// must be the ones asked for; variable-length text is read only after its
+// entries in the file's global heap are found to be whole and inside the
+// file (libhdf5 1.10 reads a damaged entry out of bounds); every text must
+// be UTF-8; and every number read must be finite unless the caller allows
+// NaN (an absent value).
 #pragma once
 
 #include <cstddef>
@@ -36,6 +43,24 @@ inline constexpr std::size_t kMaxHdf5Elements = std::size_t{5'000'000} * 50;
 // caller that will write a file later may start this early, in a thread of
 // its own, to overlap the loading with other work.
 void PreloadHdf5();
+
+// The most elements (or rows) one read may return. Explicit, so that a bound
+// is never taken for a flag or a column count.
+struct AtMost {
+  explicit AtMost(std::size_t n) : count(n) {}
+  std::size_t count;
+};
+
+// Checks a whole HDF5 file that another library will read (a MAT-file of
+// version 7.3, which matio reads): every object reachable from the root
+// through links, and through the object references of datasets (matio's
+// cell arrays), is reached by hard links only and holds its values in the
+// file itself (no external storage, no virtual dataset). Nothing is read
+// but the file's structure and its references.
+// @throws InputError "<path>: ..." naming the first offending object, or if
+//         the file is not HDF5, is damaged, or holds more than a bound of
+//         objects.
+void RequireSelfContainedHdf5(const std::string& path);
 
 class Hdf5Writer {
  public:
@@ -79,21 +104,29 @@ class Hdf5Reader {
 
   const std::string& path() const { return path_; }
   // Whether the object (group or dataset) exists.
+  // @throws InputError if it, or a group above it, is a soft or external link.
   bool Has(const std::string& object) const;
 
   // Each @throws InputError "<path>: object 'NAME' ..." for a missing object,
-  // one of another class or rank than asked for, more elements than the
-  // bound, a value that is not finite (NaN allowed where `allow_nan`), or
+  // one reached through a soft or external link, one stored outside the
+  // file or compressed, one of another class or rank than asked for, more
+  // elements (rows) than `most` or kMaxHdf5Elements, rows of another length
+  // than `columns`, text that is not UTF-8 or whose heap entries are
+  // damaged, a value that is not finite (NaN allowed where `allow_nan`), or
   // anything HDF5 reports while reading.
   double Number(const std::string& object, bool allow_nan = false) const;
   std::int64_t Integer(const std::string& object) const;
   std::string Text(const std::string& object) const;
-  std::vector<double> Numbers(const std::string& object, bool allow_nan = false) const;
-  std::vector<std::string> Texts(const std::string& object) const;
-  std::vector<std::vector<double>> Rows(const std::string& object, bool allow_nan = false) const;
+  std::vector<double> Numbers(const std::string& object, AtMost most, bool allow_nan = false) const;
+  std::vector<std::string> Texts(const std::string& object, AtMost most) const;
+  // A matrix of at most `most` rows of `columns` values each (a matrix
+  // without rows may declare any number of columns).
+  std::vector<std::vector<double>> Rows(const std::string& object, AtMost most, std::size_t columns,
+                                        bool allow_nan = false) const;
+
+  struct Handle;  // the open file and what was checked of it (hdf5_file.cpp)
 
  private:
-  struct Handle;
   std::string path_;
   std::unique_ptr<Handle> handle_;
 };

@@ -11,12 +11,14 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <set>
 
 #include "deb/core/error.h"
 #include "deb/core/shared_library.h"
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
 #include "deb/core/number_text.h"
+#include "deb/io/hdf5_file.h"
 
 namespace deb::io {
 namespace {
@@ -220,6 +222,44 @@ std::string ShortData(const unsigned char* body, std::size_t have, std::uintmax_
   return "";
 }
 
+// Inside an uncompressed matrix (miMATRIX) of `size` bytes from `at` (after
+// its tag): its data elements (array flags, dimensions, name, the class's
+// parts, and nested matrices of cells and structs, walked in turn) each
+// end within it. matio allocates what an element's length claims before it
+// reads: one length changed in a 688-byte file had it allocate 2 GB.
+// "" if they do, else what is wrong. `elements` counts every element walked
+// (a bound on the work).
+std::string SubElements(std::ifstream& in, std::uintmax_t at, std::uintmax_t size, bool little, int depth,
+                        std::size_t& elements) {
+  constexpr std::uint32_t kMiMatrix = 14;
+  if (depth > 32) return "its cells or structs nest more than 32 deep";
+  std::uintmax_t p = 0;
+  while (p + 8 <= size) {
+    if (++elements > 1'000'000)
+      return "it holds more parts than any variable deb reads";
+    unsigned char tag[8];
+    in.seekg(static_cast<std::streamoff>(at + p));
+    in.read(reinterpret_cast<char*>(tag), sizeof tag);
+    if (in.gcount() != static_cast<std::streamsize>(sizeof tag)) return "it runs past the end of the file";
+    const std::uint32_t type = Read32(tag, little);
+    if ((type >> 16) != 0) {  // small element: 4 bytes of data in the tag
+      if ((type >> 16) > 4) return "a part at byte " + std::to_string(at + p) + " claims more than the 4 bytes it has";
+      p += 8;
+      continue;
+    }
+    const std::uint32_t bytes = Read32(tag + 4, little);
+    if (bytes > size - p - 8)
+      return "a part at byte " + std::to_string(at + p) + " claims " + std::to_string(bytes) +
+             " bytes, more than the variable holds";
+    if (type == kMiMatrix) {
+      const std::string nested = SubElements(in, at + p + 8, bytes, little, depth + 1, elements);
+      if (!nested.empty()) return nested;
+    }
+    p += 8 + (std::uintmax_t{bytes} + 7) / 8 * 8;
+  }
+  return "";
+}
+
 // The version from the 128-byte header; for version 5 (and 7, the same
 // format with compression) the top-level data elements (one per variable)
 // are walked, each of which must end within the file: matio reads a
@@ -269,7 +309,10 @@ Version CheckLayout(const std::string& path, std::uintmax_t size) {
       in.read(reinterpret_cast<char*>(body), static_cast<std::streamsize>(have));
       if (in.gcount() != static_cast<std::streamsize>(have))
         Fail(path, "cannot read the MAT-file (it changed or shrank while being read)");
-      if (const std::string problem = ShortData(body, have, bytes, little); !problem.empty())
+      std::size_t elements = 0;
+      std::string problem = SubElements(in, at + 8, bytes, little, 0, elements);
+      if (problem.empty()) problem = ShortData(body, have, bytes, little);
+      if (!problem.empty())
         Fail(path, "the file is damaged: its variable " + std::to_string(count) + " (at byte " + std::to_string(at) +
                        "): " + problem);
       end = (end + 7) / 8 * 8;  // uncompressed variables are padded to 8 bytes
@@ -424,6 +467,10 @@ struct MatFile::Handle {
 MatFile::MatFile(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
   const std::uintmax_t size = RequireInputFile(path, "MAT-file", limits::kMaxMatFileBytes);
   const Version version = CheckLayout(path, size);
+  // matio reads a version 7.3 file through HDF5, which would follow an
+  // external link or external storage to any file (a FIFO blocks forever):
+  // the whole file is checked first.
+  if (version == Version::k73) RequireSelfContainedHdf5(path);
   RequireMatio(path);
   const MatioCall call;
   handle_->mat = Matio().Open(path.c_str(), MAT_ACC_RDONLY);
@@ -438,6 +485,10 @@ MatFile::MatFile(const std::string& path) : path_(path), handle_(std::make_uniqu
   if (!call.problem().empty()) Fail(path, "cannot list the variables of the MAT-file" + call.Because());
   for (std::size_t i = 0; dir != nullptr && i < n; ++i)
     if (dir[i] != nullptr) variables_.emplace_back(dir[i]);
+  // matio would read the first of two variables of one name, silently.
+  std::set<std::string> seen;
+  for (const std::string& v : variables_)
+    if (!seen.insert(v).second) Fail(path, "holds two variables named " + Quoted(v) + "; is the file damaged?");
 }
 
 MatFile::~MatFile() = default;
@@ -591,6 +642,8 @@ std::vector<std::string> MatFile::Names(const std::string& name) const {
       names.push_back(CharRow(*v, v->dims[0], v->dims[1], r));
       if (names.back().empty())
         Fail(path_, Describe(name, *v) + " whose row " + std::to_string(r + 1) + " is blank; every name must be given");
+      if (const std::string problem = Utf8Problem(names.back()); !problem.empty())
+        Fail(path_, Describe(name, *v) + " whose row " + std::to_string(r + 1) + " is not text: " + problem + " (save the names as UTF-8)");
     }
     return names;
   }
@@ -624,6 +677,8 @@ std::vector<std::string> MatFile::Names(const std::string& name) const {
       names.emplace_back();
     }
     if (names.back().empty()) Fail(path_, what + ": an empty name; every name must be given");
+    if (const std::string problem = Utf8Problem(names.back()); !problem.empty())
+      Fail(path_, what + " that is not text: " + problem + " (save the names as UTF-8)");
   }
   return names;
 }

@@ -59,6 +59,13 @@ std::string Resolve(const std::string& base_dir, const std::string& file) {
 
 std::string SizeText(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
 
+// The rule of limits::kMaxStates, for `states` states that `what` gives.
+std::string TooManyStates(Eigen::Index states, const std::string& what) {
+  if (states <= limits::kMaxStates) return "";
+  return what + " " + std::to_string(states) + " states, more than the " + std::to_string(limits::kMaxStates) +
+         " a state_space or transfer_function path may have (its analysis costs O(n^3) operations)";
+}
+
 // A state-space model saved in MATLAB (save plant.mat A B C D): A, B, C, an
 // optional D (zeros when absent) and optional input_names / output_names.
 struct StateSpaceMat {
@@ -86,6 +93,8 @@ StateSpaceMat ReadStateSpaceMat(const std::string& path) {
   const Eigen::MatrixXd a = f.Matrix("A");
   const std::string n = std::to_string(a.rows());
   if (a.rows() != a.cols()) throw InputError(path + ": A is " + SizeText(a) + "; the state matrix A must be square");
+  if (const std::string why = TooManyStates(a.rows(), "A is " + SizeText(a) + ":"); !why.empty())
+    throw InputError(path + ": " + why);
   const Eigen::MatrixXd b = f.Matrix("B");
   if (b.rows() != a.rows())
     throw InputError(path + ": B is " + SizeText(b) + " but A is " + SizeText(a) + ": B needs " + n + " rows");
@@ -114,7 +123,13 @@ StateSpaceMat ReadStateSpaceMat(const std::string& path) {
 }
 
 TransferFunction ParseTf(const YamlNode& node) {
-  return AtNode(node, [&] { return TransferFunction(node.Required("num").AsDoubles(), node.Required("den").AsDoubles()); });
+  const YamlNode den = node.Required("den");
+  const std::vector<double> den_coefficients = den.AsDoubles();
+  if (const std::string why = TooManyStates(static_cast<Eigen::Index>(den_coefficients.size()) - 1,
+                                            "a denominator of this order gives");
+      !why.empty())
+    den.Fail(why);
+  return AtNode(node, [&] { return TransferFunction(node.Required("num").AsDoubles(), den_coefficients); });
 }
 
 // `composed` under the name and description of `entry`.
@@ -167,6 +182,11 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
           rows.back().push_back(ParseTf(e));
         }
       }
+      Eigen::Index states = 0;
+      for (const auto& row : rows)
+        for (const TransferFunction& tf : row) states += static_cast<Eigen::Index>(tf.den().size()) - 1;
+      if (const std::string why = TooManyStates(states, "the denominators of this matrix give"); !why.empty())
+        m->Fail(why);
       p.system = AtNode(*m, [&] { return ToStateSpace(rows); });
     } else {
       const TransferFunction tf = ParseTf(node);
@@ -184,8 +204,10 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
       file_inputs = std::move(m.input_names);
       file_outputs = std::move(m.output_names);
     } else {
-      const Eigen::MatrixXd a = node.Required("A").AsMatrix(), b = node.Required("B").AsMatrix(),
-                            c = node.Required("C").AsMatrix();
+      const Eigen::MatrixXd a = node.Required("A").AsMatrix();
+      if (const std::string why = TooManyStates(a.rows(), "A is " + SizeText(a) + ":"); !why.empty())
+        node.Required("A").Fail(why);
+      const Eigen::MatrixXd b = node.Required("B").AsMatrix(), c = node.Required("C").AsMatrix();
       const Eigen::MatrixXd d =
           node.Has("D") ? node.Required("D").AsMatrix() : Eigen::MatrixXd::Zero(c.rows(), b.cols());
       p.system = AtNode(node, [&] { return StateSpace(a, b, c, d); });

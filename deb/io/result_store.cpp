@@ -1,14 +1,17 @@
 #include "deb/io/result_store.h"
 
+#include <cctype>
 #include <cmath>
 #include <Eigen/Dense>
 #include <limits>
+#include <set>
 
 #include "deb/budget/groups.h"
 #include "deb/budget/response_traces.h"
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
+#include "deb/core/number_text.h"
 #include "deb/io/hdf5_file.h"
 #include "deb/version.h"
 
@@ -201,6 +204,23 @@ void WriteLoop(Hdf5Writer& w, const std::string& at, const LoopResult& r, const 
 
 // ---------------------------------------------------------------- reading
 
+// Bounds of what a store may declare, checked from each dataset's header
+// before anything is allocated: the budget's own limits where there is one
+// (deb/core/limits.h).
+constexpr std::size_t kMaxTexts = kMaxEntries;  // warnings, combination terms, covariance outputs
+constexpr std::size_t kMaxChannels = static_cast<std::size_t>(limits::kMaxChannels);
+constexpr std::size_t kMaxModes = static_cast<std::size_t>(limits::kMaxModes);
+
+// True for a C0 or C1 control character at text[i] (C1 in UTF-8: 0xC2
+// 0x80-0x9F): a terminal acts on them (ESC [ ... sets colours, moves the
+// cursor), so names printed on the console must hold none.
+bool ControlAt(const std::string& text, std::size_t i) {
+  const auto c = static_cast<unsigned char>(text[i]);
+  return c < 0x20 || c == 0x7f ||
+         (c == 0xC2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
+          static_cast<unsigned char>(text[i + 1]) <= 0x9F);
+}
+
 class Reading {
  public:
   explicit Reading(const std::string& file) : r_(file), file_(file) {}
@@ -210,29 +230,62 @@ class Reading {
   }
   // A vector of `n` numbers.
   std::vector<double> Numbers(const std::string& object, std::size_t n, bool allow_nan = false) const {
-    std::vector<double> v = r_.Numbers(object, allow_nan);
+    std::vector<double> v = r_.Numbers(object, AtMost(n), allow_nan);
     if (v.size() != n)
       Fail(object, "has " + std::to_string(v.size()) + " values, not " + std::to_string(n));
     return v;
   }
-  // Rows of `columns` numbers each (any count of rows; a 0 x 0 matrix is no rows).
-  std::vector<std::vector<double>> Rows(const std::string& object, std::size_t columns, bool allow_nan = false) const {
-    std::vector<std::vector<double>> rows = r_.Rows(object, allow_nan);
-    for (const auto& row : rows)
-      if (row.size() != columns)
-        Fail(object, "has rows of " + std::to_string(row.size()) + " values, not " + std::to_string(columns));
-    return rows;
+  // Up to `most` numbers.
+  std::vector<double> UpTo(const std::string& object, std::size_t most) const {
+    return r_.Numbers(object, AtMost(most));
   }
-  std::vector<std::vector<double>> Rows(const std::string& object, std::size_t rows, std::size_t columns,
-                                        bool allow_nan) const {
-    std::vector<std::vector<double>> v = Rows(object, columns, allow_nan);
+  // Up to `most` rows of `columns` numbers each (a 0 x 0 matrix is no rows).
+  std::vector<std::vector<double>> Rows(const std::string& object, std::size_t columns, std::size_t most,
+                                        bool allow_nan = false) const {
+    return r_.Rows(object, AtMost(most), columns, allow_nan);
+  }
+  // Exactly `rows` rows of `columns` numbers.
+  std::vector<std::vector<double>> Exactly(const std::string& object, std::size_t rows, std::size_t columns,
+                                           bool allow_nan) const {
+    std::vector<std::vector<double>> v = r_.Rows(object, AtMost(rows), columns, allow_nan);
     if (v.size() != rows) Fail(object, "has " + std::to_string(v.size()) + " rows, not " + std::to_string(rows));
     return v;
   }
+  // Text printed on the console and drawn in figures (names, units,
+  // channels): no control characters.
+  std::string Printable(const std::string& object) const { return Checked(object, r_.Text(object)); }
+  std::vector<std::string> Printables(const std::string& object, std::size_t most) const {
+    std::vector<std::string> texts = r_.Texts(object, AtMost(most));
+    for (const std::string& t : texts) Checked(object, t);
+    return texts;
+  }
+  // A name by the rule a budget's names follow (budget_yaml.cpp,
+  // Budget::Validate): letters, digits, '_', '-' and '.', not "." or "..";
+  // it names files of the report.
+  std::string Name(const std::string& object) const {
+    const std::string name = r_.Text(object);
+    if (name.empty()) Fail(object, "holds an empty name; every name must be given");
+    for (char ch : name)
+      if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
+        Fail(object, "holds the name '" + Excerpt(name) +
+                         "', which may contain only letters, digits, '_', '-' and '.' (as in a budget)");
+    if (name == "." || name == "..") Fail(object, "holds the name '" + name + "', which names no file");
+    return name;
+  }
+  // The entries listed in `names_object` (at most `bound`).
   std::size_t Count(const std::string& names_object, std::size_t bound) const {
-    const std::size_t n = r_.Texts(names_object).size();
-    if (n > bound) Fail(names_object, "lists " + std::to_string(n) + " entries, more than " + std::to_string(bound));
-    return n;
+    return r_.Texts(names_object, AtMost(bound)).size();
+  }
+  // A figure a result never has negative (a variance, a PSD, a CPS).
+  double NonNegative(const std::string& object, bool allow_nan = false) const {
+    const double v = r_.Number(object, allow_nan);
+    if (v < 0.0) Fail(object, "holds " + NumberText(v) + ", which must be >= 0");
+    return v;
+  }
+  std::vector<double> NonNegative(const std::string& object, std::vector<double> v) const {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (v[i] < 0.0) Fail(object, "holds " + NumberText(v[i]) + " at element " + std::to_string(i) + ", which must be >= 0");
+    return v;
   }
   // The text `object` as a value of enum T (its name table, enum_names.h).
   template <class T>
@@ -245,94 +298,156 @@ class Reading {
   }
   std::size_t Index(const std::string& object, double value, std::size_t bound) const {
     if (!(value >= 0.0 && value < double(bound) && value == std::floor(value)))
-      Fail(object, "holds the index " + std::to_string(value) + ", not one of 0.." + std::to_string(bound) + "-1");
+      Fail(object, "holds the index " + NumberText(value) + ", not one of 0.." + std::to_string(bound) + "-1");
     return static_cast<std::size_t>(value);
+  }
+  // A whole number in [lo, hi] (integers of the store are int64; deb's are int).
+  int Whole(const std::string& object, std::int64_t value, int lo, int hi) const {
+    if (value < lo || value > hi)
+      Fail(object, "holds " + std::to_string(value) + ", not one of " + std::to_string(lo) + ".." + std::to_string(hi));
+    return static_cast<int>(value);
+  }
+  // `names` (of `list_object`'s entries) each once.
+  void Unique(const std::string& list_object, const std::vector<std::string>& names, const std::string& what) const {
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (!seen.insert(names[i]).second)
+        Fail(At(list_object, i) + "/name", "holds the name '" + Excerpt(names[i]) + "', which another " + what +
+                                                " has; names in a budget are unique");
   }
 
  private:
+  const std::string& Checked(const std::string& object, const std::string& text) const {
+    for (std::size_t i = 0; i < text.size(); ++i)
+      if (ControlAt(text, i))
+        Fail(object, "holds a control character at character " + std::to_string(i + 1) +
+                         " ('" + Excerpt(text) + "'); names, units and channels are printable text");
+    return text;
+  }
+
   Hdf5Reader r_;
   std::string file_;
 };
 
+// The figures of a band requirement or band, by the budget's rules.
+void CheckBand(const Reading& in, const std::string& object, double lo_hz, double hi_hz) {
+  if (!(std::isfinite(lo_hz) && std::isfinite(hi_hz) && lo_hz > 0.0 && hi_hz > lo_hz))
+    in.Fail(object, "holds the band [" + NumberText(lo_hz) + ", " + NumberText(hi_hz) +
+                        "] Hz; a band needs 0 < lo_hz < hi_hz");
+}
+
+// A group path by the budget's rules (GroupSegments: names, depth, 'total').
+std::string Group(const Reading& in, const std::string& object) {
+  const std::string group = in.Printable(object);
+  if (!group.empty()) {
+    try {
+      GroupSegments(group);
+    } catch (const InputError& e) {
+      in.Fail(object, e.message());
+    }
+  }
+  return group;
+}
+
 ContributorResult ReadContributor(const Reading& in, const std::string& at, std::size_t n) {
   const Hdf5Reader& r = in.r();
   ContributorResult c;
-  c.name = r.Text(at + "/name");
-  c.source = r.Text(at + "/source");
-  c.path = r.Text(at + "/path");
-  c.inputs = r.Texts(at + "/inputs");
-  c.group = r.Text(at + "/group");
-  c.psd = in.Numbers(at + "/psd", n);
-  c.cps = in.Numbers(at + "/cps", n);
-  c.variance = r.Number(at + "/variance");
-  c.exact_variance = FromNone(r.Number(at + "/exact_variance", true));
+  c.name = in.Name(at + "/name");
+  c.source = in.Printable(at + "/source");
+  c.path = in.Printable(at + "/path");
+  c.inputs = in.Printables(at + "/inputs", kMaxChannels);
+  c.group = Group(in, at + "/group");
+  c.psd = in.NonNegative(at + "/psd", in.Numbers(at + "/psd", n));
+  c.cps = in.NonNegative(at + "/cps", in.Numbers(at + "/cps", n));
+  c.variance = in.NonNegative(at + "/variance");
+  c.exact_variance = FromNone(in.NonNegative(at + "/exact_variance", true));
   c.exact_note = r.Text(at + "/exact_note");
   c.tail_variance_estimate = r.Number(at + "/tail_variance_estimate");
-  for (const auto& t : in.Rows(at + "/tones", 2)) c.tones.push_back({t[0], t[1]});
-  const std::vector<std::string> channels = r.Texts(at + "/channels/names");
-  const auto psd = in.Rows(at + "/channels/psd", channels.size(), channels.empty() ? 0 : n, false);
-  const auto cps = in.Rows(at + "/channels/cps", channels.size(), channels.empty() ? 0 : n, false);
+  for (const auto& t : in.Rows(at + "/tones", 2, limits::kMaxTones)) {
+    if (!(t[0] > 0.0) || t[1] < 0.0)
+      in.Fail(at + "/tones", "holds a tone at " + NumberText(t[0]) + " Hz of variance " + NumberText(t[1]) +
+                                 "; a tone needs f_hz > 0 and a variance >= 0");
+    c.tones.push_back({t[0], t[1]});
+  }
+  const std::vector<std::string> channels = in.Printables(at + "/channels/names", kMaxChannels);
+  const auto psd = in.Exactly(at + "/channels/psd", channels.size(), channels.empty() ? 0 : n, false);
+  const auto cps = in.Exactly(at + "/channels/cps", channels.size(), channels.empty() ? 0 : n, false);
   const auto variance = in.Numbers(at + "/channels/variance", channels.size());
   for (std::size_t k = 0; k < channels.size(); ++k) c.channels.push_back({channels[k], psd[k], cps[k], variance[k]});
   c.cross_variance = r.Number(at + "/channels/cross_variance");
-  for (const auto& m : in.Rows(at + "/top_modes", 5))
+  for (const auto& m : in.Rows(at + "/top_modes", 5, kMaxModes)) {
+    if (!(m[0] >= 0.0 && m[0] <= double(limits::kMaxModes) && m[0] == std::floor(m[0])))
+      in.Fail(at + "/top_modes", "holds the mode number " + NumberText(m[0]) + ", not one of 0.." +
+                                     std::to_string(limits::kMaxModes));
     c.top_modes.push_back({static_cast<int>(m[0]), m[1], m[2], m[3], m[4]});
+  }
   c.top_modes_of = in.Enum<ModeSplit>(at + "/top_modes_of", "mode split");
   return c;
 }
 
 void ReadOutput(const Reading& in, const std::string& at, std::size_t n, Output* spec, OutputResult* o) {
   const Hdf5Reader& r = in.r();
-  o->name = spec->name = r.Text(at + "/name");
-  o->signal = spec->signal = r.Text(at + "/signal");
-  o->unit = spec->unit = r.Text(at + "/unit");
-  o->variance = r.Number(at + "/variance");
+  o->name = spec->name = in.Name(at + "/name");
+  o->signal = spec->signal = in.Printable(at + "/signal");
+  o->unit = spec->unit = in.Printable(at + "/unit");
+  o->variance = in.NonNegative(at + "/variance");
   o->rms_max = spec->rms_max = FromNone(r.Number(at + "/rms_max", true));
+  if (o->rms_max && !(*o->rms_max > 0.0))
+    in.Fail(at + "/rms_max", "holds the requirement " + NumberText(*o->rms_max) + ", which must be > 0 (as in a budget)");
   const std::string metric = r.Text(at + "/metric/type");
   if (!metric.empty()) {
     OutputMetric m;
     m.type = in.Enum<MetricType>(at + "/metric/type", "metric type");
     m.window_s = r.Number(at + "/metric/window_s");
+    if (!(m.window_s > 0.0))
+      in.Fail(at + "/metric/window_s", "holds the window " + NumberText(m.window_s) + " s, which must be > 0");
     o->metric = spec->metric = m;
   }
   if (r.Integer(at + "/weighting/present") != 0) {
     Weighting wt;  // the filter itself is not stored: only what a report says of it
-    wt.unit = r.Text(at + "/weighting/unit");
+    wt.unit = in.Printable(at + "/weighting/unit");
     wt.description = r.Text(at + "/weighting/description");
     spec->weighting = wt;
   }
-  const std::vector<std::string> term_signals = r.Texts(at + "/combination/signals");
+  const std::vector<std::string> term_signals = in.Printables(at + "/combination/signals", kMaxTexts);
   const std::vector<double> term_weights = in.Numbers(at + "/combination/weights", term_signals.size());
-  const std::vector<std::string> term_units = r.Texts(at + "/combination/units");
+  const std::vector<std::string> term_units = in.Printables(at + "/combination/units", kMaxTexts);
   if (term_units.size() != term_signals.size()) in.Fail(at + "/combination/units", "does not match the signals");
   for (std::size_t i = 0; i < term_signals.size(); ++i)
     spec->combination.push_back({term_signals[i], term_weights[i], term_units[i]});
-  o->total_psd = in.Numbers(at + "/total_psd", n);
-  o->total_cps = in.Numbers(at + "/total_cps", n);
-  const auto limits = in.Rows(at + "/band_requirements/limits", 3);
-  const auto requirement_variance = in.Numbers(at + "/band_requirements/variance", limits.size());
+  o->total_psd = in.NonNegative(at + "/total_psd", in.Numbers(at + "/total_psd", n));
+  o->total_cps = in.NonNegative(at + "/total_cps", in.Numbers(at + "/total_cps", n));
+  const auto limits = in.Rows(at + "/band_requirements/limits", 3, kMaxEntries);
+  const auto requirement_variance =
+      in.NonNegative(at + "/band_requirements/variance", in.Numbers(at + "/band_requirements/variance", limits.size()));
   for (std::size_t i = 0; i < limits.size(); ++i) {
     const BandRequirement b{limits[i][0], limits[i][1], limits[i][2]};
+    CheckBand(in, at + "/band_requirements/limits", b.lo_hz, b.hi_hz);
+    if (!(b.rms_max > 0.0))
+      in.Fail(at + "/band_requirements/limits", "holds the requirement " + NumberText(b.rms_max) +
+                                                    ", which must be > 0 (as in a budget)");
     spec->band_requirements.push_back(b);
     o->band_requirements.push_back({b, requirement_variance[i]});
   }
   const std::size_t contributors = in.Count(at + "/contributors/names", kMaxEntries);
   for (std::size_t c = 0; c < contributors; ++c)
     o->contributors.push_back(ReadContributor(in, At(at + "/contributors", c), n));
-  const auto edges = in.Rows(at + "/bands/edges_hz", 2);
-  const auto band_variance = in.Numbers(at + "/bands/variance", edges.size());
-  const auto band_contributors = in.Rows(at + "/bands/contributor_variance", edges.size(), edges.empty() ? 0 : contributors, false);
+  const auto edges = in.Rows(at + "/bands/edges_hz", 2, kMaxEntries);
+  for (const auto& e : edges) CheckBand(in, at + "/bands/edges_hz", e[0], e[1]);
+  const auto band_variance = in.NonNegative(at + "/bands/variance", in.Numbers(at + "/bands/variance", edges.size()));
+  const auto band_contributors =
+      in.Exactly(at + "/bands/contributor_variance", edges.size(), edges.empty() ? 0 : contributors, false);
   for (std::size_t b = 0; b < edges.size(); ++b)
     o->bands.push_back({Band{edges[b][0], edges[b][1]}, band_variance[b], band_contributors[b]});
   const std::size_t references = in.Count(at + "/references/names", kMaxEntries);
   for (std::size_t i = 0; i < references; ++i) {
     const std::string ra = At(at + "/references", i);
     ReferenceResult ref;
-    ref.name = r.Text(ra + "/name");
-    ref.psd = in.Numbers(ra + "/psd", n);
-    ref.cps = in.Numbers(ra + "/cps", n);
-    ref.variance = r.Number(ra + "/variance");
-    ref.budget_variance = r.Number(ra + "/budget_variance");
+    ref.name = in.Printable(ra + "/name");
+    ref.psd = in.NonNegative(ra + "/psd", in.Numbers(ra + "/psd", n));
+    ref.cps = in.NonNegative(ra + "/cps", in.Numbers(ra + "/cps", n));
+    ref.variance = in.NonNegative(ra + "/variance");
+    ref.budget_variance = in.NonNegative(ra + "/budget_variance");
     const std::vector<double> covered = in.Numbers(ra + "/covered_hz", 2);
     ref.covered_lo_hz = covered[0];
     ref.covered_hi_hz = covered[1];
@@ -346,31 +461,32 @@ void ReadOutput(const Reading& in, const std::string& at, std::size_t n, Output*
 }
 
 std::optional<PhaseCrossover> PhaseCrossoverOf(const Reading& in, const std::string& object) {
-  const std::vector<double> v = in.r().Numbers(object);
+  const std::vector<double> v = in.UpTo(object, 2);
   if (v.empty()) return std::nullopt;
   if (v.size() != 2) in.Fail(object, "holds " + std::to_string(v.size()) + " values, not 0 or 2");
   return PhaseCrossover{v[0], v[1]};
 }
 
-void ReadLoop(const Reading& in, const std::string& at, LoopResult* r, LoopTrace* trace) {
+void ReadLoop(const Reading& in, const std::string& at, std::size_t n, LoopResult* r, LoopTrace* trace) {
   const Hdf5Reader& h = in.r();
-  r->plant = h.Text(at + "/plant");
-  r->controller = h.Text(at + "/controller");
-  r->sign = static_cast<int>(h.Integer(at + "/sign"));
-  r->paths = h.Texts(at + "/paths");
+  r->plant = in.Printable(at + "/plant");
+  r->controller = in.Printable(at + "/controller");
+  r->sign = in.Whole(at + "/sign", h.Integer(at + "/sign"), -1, 1);
+  if (r->sign == 0) in.Fail(at + "/sign", "holds 0, not -1 or +1");
+  r->paths = in.Printables(at + "/paths", kMaxEntries);
   r->evaluated = h.Integer(at + "/evaluated") != 0;
   r->note = h.Text(at + "/note");
   LoopMargins& m = r->margins;
-  m.channels = static_cast<int>(h.Integer(at + "/margins/channels"));
-  for (const auto& c : in.Rows(at + "/margins/gain_crossovers", 2)) m.gain_crossovers.push_back({c[0], c[1]});
-  for (const auto& c : in.Rows(at + "/margins/phase_crossovers", 2)) m.phase_crossovers.push_back({c[0], c[1]});
+  m.channels = in.Whole(at + "/margins/channels", h.Integer(at + "/margins/channels"), 0, limits::kMaxChannels);
+  for (const auto& c : in.Rows(at + "/margins/gain_crossovers", 2, n)) m.gain_crossovers.push_back({c[0], c[1]});
+  for (const auto& c : in.Rows(at + "/margins/phase_crossovers", 2, n)) m.phase_crossovers.push_back({c[0], c[1]});
   if (const auto pm = PhaseCrossoverOf(in, at + "/margins/phase_margin")) m.phase_margin = GainCrossover{pm->f_hz, pm->gain_margin};
   m.upper_gain_margin = PhaseCrossoverOf(in, at + "/margins/upper_gain_margin");
   m.lower_gain_margin = PhaseCrossoverOf(in, at + "/margins/lower_gain_margin");
   const std::vector<double> modulus = in.Numbers(at + "/margins/modulus_margin", 2);
   m.modulus_margin = modulus[0];
   m.modulus_margin_f_hz = modulus[1];
-  trace->f_hz = h.Numbers(at + "/trace/f_hz");
+  trace->f_hz = in.UpTo(at + "/trace/f_hz", limits::kMaxGridPoints);
   const std::vector<double> re = in.Numbers(at + "/trace/loop_gain_re", trace->f_hz.size());
   const std::vector<double> im = in.Numbers(at + "/trace/loop_gain_im", trace->f_hz.size());
   for (std::size_t i = 0; i < re.size(); ++i) trace->loop_gain.emplace_back(re[i], im[i]);
@@ -387,27 +503,47 @@ CovarianceResult ReadCovariance(const Reading& in, const std::string& at, std::s
                                 std::size_t contributors) {
   const Hdf5Reader& r = in.r();
   CovarianceResult c;
-  c.outputs = r.Texts(at + "/outputs");
+  c.outputs = in.Printables(at + "/outputs", outputs);
   const std::size_t n = c.outputs.size();
-  if (n > outputs) in.Fail(at + "/outputs", "lists " + std::to_string(n) + " outputs, the result " + std::to_string(outputs));
-  c.units = r.Texts(at + "/units");
+  c.units = in.Printables(at + "/units", n);
   if (c.units.size() != n) in.Fail(at + "/units", "does not match the outputs");
   for (double i : in.Numbers(at + "/index", n)) c.index.push_back(in.Index(at + "/index", i, outputs));
-  c.matrix = MatrixOf(in.Rows(at + "/matrix", n, n, false), n);
-  c.correlation = MatrixOf(in.Rows(at + "/correlation", n, n, true), n);
-  const auto exact = in.Rows(at + "/exact_matrix", n);
+  c.matrix = MatrixOf(in.Exactly(at + "/matrix", n, n, false), n);
+  c.correlation = MatrixOf(in.Exactly(at + "/correlation", n, n, true), n);
+  const auto exact = in.Rows(at + "/exact_matrix", n, n);
   if (!exact.empty()) {
     if (exact.size() != n) in.Fail(at + "/exact_matrix", "has " + std::to_string(exact.size()) + " rows, not " + std::to_string(n));
     c.exact_matrix = MatrixOf(exact, n);
   }
   c.exact_note = r.Text(at + "/exact_note");
-  const std::vector<std::string> names = r.Texts(at + "/contributors/names");
+  const std::vector<std::string> names = in.Printables(at + "/contributors/names", contributors);
   if (names.size() != contributors)
     in.Fail(at + "/contributors/names", "lists " + std::to_string(names.size()) + " contributors, the budget " +
                                             std::to_string(contributors));
   for (std::size_t i = 0; i < names.size(); ++i)
-    c.contributors.push_back({names[i], MatrixOf(in.Rows(At(at + "/contributors", i) + "/matrix", n, n, false), n)});
+    c.contributors.push_back({names[i], MatrixOf(in.Exactly(At(at + "/contributors", i) + "/matrix", n, n, false), n)});
   return c;
+}
+
+// The panels of a stored grid, as FrequencyGrid demands them: each
+// kPanelNodes points at the Lobatto nodes of its ends, in order, touching
+// but not overlapping (a store's panels are not trusted to be panels).
+void CheckPanels(const Reading& in, const std::vector<double>& f_hz, const std::vector<std::size_t>& panels) {
+  const std::vector<double>& x = FrequencyGrid::LobattoNodes();
+  const std::size_t nodes = FrequencyGrid::kPanelNodes;
+  std::size_t next_free = 0;
+  for (std::size_t p : panels) {
+    if (p < next_free || p + nodes > f_hz.size())
+      in.Fail("result/grid/panel_starts", "holds the panel start " + std::to_string(p) +
+                                              ": panels follow each other and have " + std::to_string(nodes) +
+                                              " points within the grid's " + std::to_string(f_hz.size()));
+    const double a = f_hz[p], b = f_hz[p + nodes - 1];
+    for (std::size_t j = 1; j + 1 < nodes; ++j)
+      if (!(std::abs(f_hz[p + j] - (a + 0.5 * (b - a) * (x[j] + 1.0))) <= 1e-9 * (b - a)))
+        in.Fail("result/grid/panel_starts", "holds the panel start " + std::to_string(p) + ", but the points from " +
+                                                std::to_string(p) + " do not lie at the Lobatto nodes of a panel");
+    next_free = p + nodes - 1;
+  }
 }
 
 }  // namespace
@@ -492,34 +628,39 @@ StoredResult ReadResultStore(const std::string& file) {
                             ") reads versions 1 to " + std::to_string(kResultStoreVersion));
   StoredResult s;
   Budget& b = s.budget;
-  b.name = r.Text("budget/name");
+  b.name = in.Name("budget/name");
   b.description = r.Text("budget/description");
   s.info.budget_file = r.Text("budget/file");
-  s.info.budget_sha256 = r.Text("budget/sha256");
+  s.info.budget_sha256 = in.Printable("budget/sha256");
   s.info.budget_text = r.Text("budget/text");
   b.source_file = s.info.budget_file;
   b.grid.kind = in.Enum<GridKind>("budget/grid_type", "grid type");
-  for (const auto& band : in.Rows("budget/bands", 2)) b.bands.push_back({band[0], band[1]});
+  for (const auto& band : in.Rows("budget/bands", 2, kMaxEntries)) {
+    CheckBand(in, "budget/bands", band[0], band[1]);
+    b.bands.push_back({band[0], band[1]});
+  }
   s.info.seconds = FromNone(r.Number("run/seconds", true));
   const std::size_t sources = in.Count("budget/sources/names", kMaxEntries);
   for (std::size_t i = 0; i < sources; ++i) {
     const std::string at = At("budget/sources", i);
     Source src;
-    src.name = r.Text(at + "/name");
+    src.name = in.Name(at + "/name");
     src.description = r.Text(at + "/description");
-    src.unit = r.Text(at + "/unit");
-    src.channel_names = r.Texts(at + "/channels");
+    src.unit = in.Printable(at + "/unit");
+    src.channel_names = in.Printables(at + "/channels", kMaxChannels);
     b.sources.push_back(std::move(src));
   }
+  in.Unique("budget/sources", Names(b.sources, kName), "source");
   const std::size_t contributors = in.Count("budget/contributors/names", kMaxEntries);
   for (std::size_t i = 0; i < contributors; ++i) {
     const std::string at = At("budget/contributors", i);
     Contributor c;
-    c.name = r.Text(at + "/name");
-    c.source = r.Text(at + "/source");
-    c.path = r.Text(at + "/path");
-    c.inputs = r.Texts(at + "/inputs");
-    c.group = r.Text(at + "/group");
+    c.name = in.Name(at + "/name");
+    if (c.name == "total") in.Fail(at + "/name", "holds the name 'total', which is reserved for the sum of all contributors");
+    c.source = in.Printable(at + "/source");
+    c.path = in.Printable(at + "/path");
+    c.inputs = in.Printables(at + "/inputs", kMaxChannels);
+    c.group = Group(in, at + "/group");
     c.exact = in.Enum<ExactVariance>(at + "/exact", "exact-variance mode");
     c.breakdown_channels = r.Integer(at + "/breakdown_channels") != 0;
     bool known = false;
@@ -527,22 +668,23 @@ StoredResult ReadResultStore(const std::string& file) {
     if (!known) in.Fail(at + "/source", "names the source '" + Excerpt(c.source) + "', which the store does not hold");
     b.contributors.push_back(std::move(c));
   }
+  in.Unique("budget/contributors", Names(b.contributors, kName), "contributor");
 
   BudgetResult& res = s.result;
-  res.budget_name = r.Text("result/budget_name");
-  std::vector<double> f_hz = r.Numbers("result/grid/f_hz");
-  if (f_hz.size() > limits::kMaxGridPoints)
-    in.Fail("result/grid/f_hz", "has more than " + std::to_string(limits::kMaxGridPoints) + " points");
+  res.budget_name = in.Name("result/budget_name");
+  std::vector<double> f_hz = in.UpTo("result/grid/f_hz", limits::kMaxGridPoints);
   std::vector<std::size_t> panels;
-  const std::vector<double> panel_starts = r.Numbers("result/grid/panel_starts");
-  for (double p : panel_starts) panels.push_back(in.Index("result/grid/panel_starts", p, f_hz.size()));
+  for (double p : in.UpTo("result/grid/panel_starts", f_hz.size()))
+    panels.push_back(in.Index("result/grid/panel_starts", p, f_hz.size()));
   try {
-    res.grid = FrequencyGrid(std::move(f_hz), std::move(panels));
+    res.grid = FrequencyGrid(f_hz);
   } catch (const InputError& e) {
     in.Fail("result/grid", e.message());
   }
+  CheckPanels(in, f_hz, panels);
+  res.grid = FrequencyGrid(std::move(f_hz), std::move(panels));
   const std::size_t n = res.grid.size();
-  res.warnings = r.Texts("result/warnings");
+  res.warnings = r.Texts("result/warnings", AtMost(kMaxTexts));
   const std::size_t outputs = in.Count("result/outputs/names", kMaxEntries);
   b.outputs.resize(outputs);
   res.outputs.resize(outputs);
@@ -553,15 +695,16 @@ StoredResult ReadResultStore(const std::string& file) {
       in.Fail(at + "/contributors/names", "lists " + std::to_string(res.outputs[o].contributors.size()) +
                                               " contributors, the budget " + std::to_string(contributors));
   }
-  b.covariance = r.Texts("budget/covariance");
+  in.Unique("result/outputs", Names(res.outputs, kName), "output");
+  b.covariance = in.Printables("budget/covariance", outputs);
   if (r.Integer("result/covariance/present") != 0)
     res.covariance = ReadCovariance(in, "result/covariance", outputs, contributors);
   auto traces = std::make_shared<ResponseTraces>();
   const std::size_t loops = in.Count("result/loops/names", kMaxEntries);
   res.loops.resize(loops);
   traces->loops.resize(loops);
-  for (std::size_t i = 0; i < loops; ++i) ReadLoop(in, At("result/loops", i), &res.loops[i], &traces->loops[i]);
-  for (const auto& p : in.Rows("result/traces/poles_hz", contributors, contributors == 0 ? 0 : 2, true)) {
+  for (std::size_t i = 0; i < loops; ++i) ReadLoop(in, At("result/loops", i), n, &res.loops[i], &traces->loops[i]);
+  for (const auto& p : in.Exactly("result/traces/poles_hz", contributors, contributors == 0 ? 0 : 2, true)) {
     const bool none = std::isnan(p[0]) || std::isnan(p[1]);
     traces->poles_hz.push_back(none ? std::nullopt : std::optional<std::pair<double, double>>({p[0], p[1]}));
   }
@@ -572,10 +715,10 @@ StoredResult ReadResultStore(const std::string& file) {
       PathResponse p;
       p.contributor = b.contributors[c].name;
       p.output = b.outputs[o].name;
-      p.channels = r.Texts(at + "/channels");
-      p.unit = r.Text(at + "/unit");
-      p.gain2 = in.Rows(at + "/gain2", n);
-      p.phase_rad = in.Rows(at + "/phase_rad", p.gain2.size(), p.gain2.empty() ? 0 : n, false);
+      p.channels = in.Printables(at + "/channels", kMaxChannels);
+      p.unit = in.Printable(at + "/unit");
+      p.gain2 = in.Rows(at + "/gain2", n, kMaxChannels);
+      p.phase_rad = in.Exactly(at + "/phase_rad", p.gain2.size(), p.gain2.empty() ? 0 : n, false);
       traces->paths[c].push_back(std::move(p));
     }
   res.traces = std::move(traces);

@@ -38,6 +38,7 @@ class DocumentCheck {
   void Walk(const YAML::Node& node, const std::string& key) {
     const YAML::Mark m = node.Mark();
     if (!m.is_null()) positions_->Record(key, m.line + 1, m.column + 1);
+    if (node.IsScalar()) Utf8(node, key);
     if (!node.IsMap() && !node.IsSequence()) return;
     if (!seen_.insert({m.pos, m.line, m.column}).second) return;
     if (node.IsSequence()) {
@@ -53,12 +54,19 @@ class DocumentCheck {
       const std::string k = kv.first.Scalar();
       const std::string path = key.empty() ? k : key + "." + k;
       if (!keys.insert(k).second)
-        Fail(kv.first.Mark(), path, "key '" + k + "' is given twice in this map; give it once");
+        Fail(kv.first.Mark(), key.empty() ? Excerpt(k) : key + "." + Excerpt(k),
+             "key '" + Excerpt(k) + "' is given twice in this map; give it once");
+      Utf8(kv.first, key.empty() ? Excerpt(k) : key + "." + Excerpt(k));
       Walk(kv.second, path);
     }
   }
 
  private:
+  // Every text of a budget is UTF-8: it reaches summary.json and the reports.
+  void Utf8(const YAML::Node& scalar, const std::string& key) const {
+    if (const std::string problem = Utf8Problem(scalar.Scalar()); !problem.empty())
+      Fail(scalar.Mark(), key, "'" + Excerpt(scalar.Scalar()) + "': " + problem + "; save the file as UTF-8 text");
+  }
   [[noreturn]] void Fail(const YAML::Mark& mark, const std::string& key, const std::string& message) const {
     throw InputError(Where(name_, mark, key), message);
   }
@@ -116,8 +124,17 @@ void YamlNode::AllowOnly(const std::set<std::string>& allowed) const {
   for (const auto& kv : node_) {
     const std::string k = kv.first.Scalar();  // a plain scalar: DocumentCheck
     if (!allowed.count(k)) {
-      FailAt(kv.first, key_.empty() ? k : key_ + "." + k, "unknown key '" + k + "'" + DidYouMean(k, std::vector<std::string>(allowed.begin(), allowed.end())) +
-                                                         "; allowed here: " + Join(allowed));
+      // The key is quoted as a data file's cell is, at most 40 characters:
+      // a file that is no budget (extends: /etc/shadow) makes each of its
+      // lines an unknown key.
+      const std::string path = key_.empty() ? k : key_ + "." + k;
+      InputLocation where = !reader_->assembled() && !kv.first.Mark().is_null()
+                                ? Where(reader_->name(), kv.first.Mark(), path)
+                                : reader_->positions()->Locate(path);
+      where.key_path = key_.empty() ? Excerpt(k) : key_ + "." + Excerpt(k);
+      throw InputError(where, "unknown key '" + Excerpt(k) + "'" +
+                                  DidYouMean(k, std::vector<std::string>(allowed.begin(), allowed.end())) +
+                                  "; allowed here: " + Join(allowed));
     }
   }
 }
@@ -146,13 +163,13 @@ double YamlNode::AsDouble() const {
 
 double YamlNode::AsPositive() const {
   const double v = AsDouble();
-  if (!(v > 0.0)) Fail("value " + node_.Scalar() + " must be > 0");
+  if (!(v > 0.0)) Fail("value " + Excerpt(node_.Scalar()) + " must be > 0");
   return v;
 }
 
 double YamlNode::AsNonNegative() const {
   const double v = AsDouble();
-  if (!(v >= 0.0)) Fail("value " + node_.Scalar() + " must be >= 0");
+  if (!(v >= 0.0)) Fail("value " + Excerpt(node_.Scalar()) + " must be >= 0");
   return v;
 }
 

@@ -115,6 +115,7 @@ class CsvReader {
     if (key == "unit") {
       if (value.empty()) Fail(line_no, column, "'# unit:' has no value");
       if (file_unit_) Fail(line_no, column, "'# unit:' is given twice; give it once");
+      if (const std::string problem = Utf8Problem(value); !problem.empty()) Fail(line_no, column, "'# unit:' " + problem + "; save the file as UTF-8 text");
       file_unit_ = value;
     } else if (key == "rate_hz") {
       if (file_rate_) Fail(line_no, column, "'# rate_hz:' is given twice; give it once");
@@ -132,7 +133,11 @@ class CsvReader {
       columns_ = cells.size();
       columns_line_ = line_no;
       if (ParseCell(cells.front(), &probe) == 1) {  // a header row
-        for (const Cell& c : cells) names_.emplace_back(c.begin, c.end);
+        for (const Cell& c : cells) {
+          names_.emplace_back(c.begin, c.end);
+          if (const std::string problem = Utf8Problem(names_.back()); !problem.empty())
+            Fail(line_no, c.column, "column name '" + Excerpt(names_.back()) + "': " + problem + "; save the file as UTF-8 text");
+        }
         const std::string first = Lower(names_.front());
         has_time_ = first == "t" || first == "time" || first == "time_s";
         if (has_time_) names_.erase(names_.begin());

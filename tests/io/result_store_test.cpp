@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <string>
@@ -228,6 +229,27 @@ TEST_CASE("a store the reader must refuse gives an error naming the file and the
     io::WriteResultStore(w.budget, w.result, w.info, index);
     const std::string e = ErrorOf(index);
     CHECK(Contains(e, "'result/covariance/index' holds the index 99"));
+  }
+  SUBCASE("what a budget's rules forbid: a negative variance, a requirement of 0, two outputs of one name") {
+    Written w{LoadBudgetFile(Budget("single_axis_isolator.yaml")), {}, {}};
+    w.result = Evaluate(w.budget);
+    const auto refused = [&](const std::function<void(Written&)>& change, const std::string& says) {
+      Written changed = w;
+      change(changed);
+      const std::string file = dir.File("changed.h5");
+      io::WriteResultStore(changed.budget, changed.result, changed.info, file);
+      const std::string e = ErrorOf(file);
+      CHECK_MESSAGE(Contains(e, says), e);
+    };
+    refused([](Written& c) { c.result.outputs[0].variance = -1.0; },
+            "'result/outputs/0/variance' holds -1, which must be >= 0");
+    refused([](Written& c) { c.result.outputs[1].rms_max = 0.0; },
+            "'result/outputs/1/rms_max' holds the requirement 0, which must be > 0");
+    refused([](Written& c) { c.result.outputs[1].name = c.result.outputs[0].name; },
+            "'result/outputs/1/name' holds the name");
+    refused([](Written& c) { c.result.outputs[0].contributors[0].psd[3] = -1e-9; },
+            "'result/outputs/0/contributors/0/psd' holds -1e-09 at element 3");
+    refused([](Written& c) { c.budget.name = "a\x1b[31m"; }, "'budget/name' holds the name");
   }
   SUBCASE("a NaN where a figure must be finite") {
     Written w{LoadBudgetFile(Budget("single_axis_isolator.yaml")), {}, {}};

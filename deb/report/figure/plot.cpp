@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <set>
 
@@ -164,7 +165,13 @@ std::string FileStem(const std::string& name) {
   std::string s = name.empty() ? "_" : name;
   for (char& c : s)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
-  return s;
+  if (s.size() <= 100) return s;
+  // FNV-1a of the name: the same on every machine and run.
+  std::uint64_t hash = 14695981039346656037ull;
+  for (char c : name) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  char tail[20];
+  std::snprintf(tail, sizeof tail, "~%016llx", static_cast<unsigned long long>(hash));
+  return s.substr(0, 80) + tail;
 }
 
 std::string CsvField(const std::string& text) {

@@ -86,7 +86,10 @@ inline bool RoundingZero(double part_variance, double whole_variance) {
 // 10^-4 down as "10^{8}", anything else as Short.
 std::string HzLabel(double f_hz);
 
-// A name as a file stem: characters outside [A-Za-z0-9_.-] become '_'.
+// A name as a file stem: characters outside [A-Za-z0-9_.-] become '_'; a
+// stem longer than 100 characters keeps its first 80 and a hash of the
+// whole name, so that a file named after two names stays within the 255
+// bytes a file name may have.
 std::string FileStem(const std::string& name);
 
 // A CSV field: quoted when it holds a comma, a quote or a line break.
