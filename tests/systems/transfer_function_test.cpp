@@ -96,8 +96,9 @@ TEST_CASE("1/(s + 1)^k given as an expanded polynomial keeps its gain and its H2
 
 TEST_CASE("repeated factors in numerator and denominator: (s + 2)^3 / ((s + 1)^3 (s^2 + 0.2 s + 4)^2)") {
   // A cluster of zeros that no section of order 2 has room for, and a
-  // repeated complex pair. Tolerance 1e-8 against num(jw)/den(jw)
-  // (observed 1.2e-9).
+  // repeated complex pair. Tolerance 1e-7 against num(jw)/den(jw): observed
+  // 2.0e-8 built with clang (the clusters' long-double polish rounds
+  // otherwise than with GCC), well inside the 1e-6 deb promises.
   std::vector<double> num{1.0}, den{1.0};
   for (int i = 0; i < 3; ++i) num = Multiply(num, {1.0, 2.0});
   for (int i = 0; i < 3; ++i) den = Multiply(den, {1.0, 1.0});
@@ -111,7 +112,7 @@ TEST_CASE("repeated factors in numerator and denominator: (s + 2)^3 / ((s + 1)^3
     const Complex expected = tf.Evaluate(Complex(0.0, kTwoPi * f));
     worst = std::max(worst, std::abs(h.At(f)(0, 0) - expected) / std::abs(expected));
   }
-  CHECK(worst <= 1e-8);
+  CHECK(worst <= 1e-7);
 }
 
 using LD = long double;
