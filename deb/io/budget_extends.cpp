@@ -3,13 +3,12 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
-#include <map>
 #include <memory>
-#include <tuple>
 #include <vector>
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
+#include "deb/io/yaml_node_set.h"
 
 namespace deb::io {
 namespace {
@@ -25,31 +24,12 @@ bool IsFileKey(const std::string& key) {
   return false;
 }
 
-// The nodes a walk has been to. A node reached again through an alias is
-// the same node (YAML::Node::is): walked once, a few lines of nested aliases
-// cost a few visits instead of 10^9 (and a shared file name is rewritten
-// once, not once per alias). Nodes are kept by their position in the text,
-// which an alias shares with its anchor, so that each lookup compares with
-// the few nodes of other files at that position.
-class Visited {
- public:
-  // False if `n` was inserted before.
-  bool Insert(const YAML::Node& n) {
-    const YAML::Mark m = n.Mark();
-    std::vector<YAML::Node>& same = seen_[{m.pos, m.line, m.column}];
-    for (const YAML::Node& s : same)
-      if (s.is(n)) return false;
-    same.push_back(n);
-    return true;
-  }
-
- private:
-  std::map<std::tuple<int, int, int>, std::vector<YAML::Node>> seen_;
-};
-
 // Rewrites every relative data-file path in `n` (read from a file in
-// `from_dir`) to be relative to `to_dir`.
-void Rebase(YAML::Node n, const fs::path& from_dir, const fs::path& to_dir, Visited& visited) {
+// `from_dir`) to be relative to `to_dir`. Each node once (`visited`): a node
+// reached again through an alias is the same node, so a few lines of nested
+// aliases cost a few visits instead of 10^9, and a shared file name is
+// rewritten once, not once per alias.
+void Rebase(YAML::Node n, const fs::path& from_dir, const fs::path& to_dir, YamlNodeSet& visited) {
   if (!(n.IsSequence() || n.IsMap()) || !visited.Insert(n)) return;
   if (n.IsSequence()) {
     for (std::size_t i = 0; i < n.size(); ++i) Rebase(n[i], from_dir, to_dir, visited);
@@ -132,7 +112,7 @@ Assembled Resolve(const std::string& path, std::vector<std::string>& chain) {
   }();
   chain.pop_back();
   if (!base_doc.root.IsMap()) extends.Fail("the base budget '" + name + "' is not a YAML map (key: value pairs)");
-  Visited visited;
+  YamlNodeSet visited;
   Rebase(base_doc.root, Directory(base_path), Directory(path), visited);
   out.root.remove("extends");
   std::size_t visits = 0;

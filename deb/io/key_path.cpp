@@ -1,33 +1,23 @@
 #include "deb/io/key_path.h"
 
 #include <cstdio>
-#include <map>
-#include <vector>
-#include <tuple>
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
 #include "deb/core/suggest.h"
+#include "deb/io/yaml_node_set.h"
 
 namespace deb::io {
 namespace {
 
 // The nodes a walk has reached (through aliases, a node is reached more than
-// once), told apart by identity: nodes of one position in the text are
-// compared with YAML::Node::is. The position alone does not tell them apart:
-// every value parsed from an override's text is at (0, 0, 0), as the
-// budget's root is.
+// once), by identity (yaml_node_set.h).
 class Reached {
  public:
   // False if n was reached before. Counts every call against the limit.
   bool First(const YAML::Node& n) {
     if (++calls_ > limits::kMaxKeyPathVisits) throw Overflow();
-    const YAML::Mark m = n.Mark();
-    std::vector<YAML::Node>& same_place = seen_[{m.pos, m.line, m.column}];
-    for (const YAML::Node& s : same_place)
-      if (s.is(n)) return false;
-    same_place.push_back(n);
-    return true;
+    return seen_.Insert(n);
   }
   struct Overflow {};
   static std::string Why() {
@@ -37,7 +27,7 @@ class Reached {
 
  private:
   std::size_t calls_ = 0;
-  std::map<std::tuple<int, int, int>, std::vector<YAML::Node>> seen_;
+  YamlNodeSet seen_;
 };
 
 std::string Text(double v) {
