@@ -26,24 +26,14 @@ endforeach()
 install(FILES ${PROJECT_BINARY_DIR}/generated/deb/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/deb)
 
 set(deb_config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/deb)
-# The third-party libraries' targets deb_dep_* (deb_dependency in the
-# top-level CMakeLists.txt) go with the layers that link them.
-get_property(deb_top_targets DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY BUILDSYSTEM_TARGETS)
-list(FILTER deb_top_targets INCLUDE REGEX "^deb_dep_")
 install(TARGETS deb_core deb_units deb_spectra deb_signal deb_systems deb_models deb_budget deb_io deb_report_figure
                 deb_report_document deb_report_budget deb_report_measurement deb_report_compare deb_report
-                deb_lib ${deb_top_targets}
+                deb_lib
         EXPORT debTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS deb RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(EXPORT debTargets NAMESPACE deb:: DESTINATION ${deb_config_dir})
 
-# What debConfig.cmake must find again: the dependencies linked as shared
-# targets (an archive is linked by its path and needs nothing found).
-set(DEB_SHARED_lapack OFF)
-if(NOT DEB_STATIC_LAPACK)
-  set(DEB_SHARED_lapack ON)
-endif()
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/debConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/cmake/debConfig.cmake
                               INSTALL_DESTINATION ${deb_config_dir} NO_SET_AND_CHECK_MACRO

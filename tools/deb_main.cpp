@@ -24,7 +24,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <future>
 #include <iostream>
 #include <optional>
 #include <set>
@@ -38,7 +37,6 @@
 #include "deb/core/process_heap.h"
 #include "deb/core/suggest.h"
 #include "deb/io/budget_yaml.h"
-#include "deb/io/hdf5_file.h"
 #include "deb/io/result_exports.h"
 #include "deb/io/result_writer.h"
 #include "deb/io/sweep_yaml.h"
@@ -110,10 +108,6 @@ std::string DirectoryWord(const std::string& text) {
 int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides, const std::string& group,
         std::string out_dir, int threads, bool quiet, bool strict, deb::ReportOptions report,
         const std::vector<deb::ExportFormat>& exports) {
-  // The result store's HDF5 library (about 6 ms to load) loads while the
-  // budget is read and evaluated; the report waits for it only if it is not
-  // done by then.
-  const std::future<void> hdf5 = std::async(std::launch::async, [] { deb::io::PreloadHdf5(); });
   deb::Budget budget = deb::LoadBudgetFile(budget_file, overrides);
   if (!group.empty()) budget = deb::SelectGroup(budget, group);
   if (out_dir.empty())
@@ -261,7 +255,7 @@ int Model(const std::string& budget_file, const std::vector<deb::BudgetOverride>
 }  // namespace
 
 int main(int argc, char** argv) {
-  deb::UseHugePagesForHeap();
+  deb::KeepHeapForLargeBlocks();
   // A file-size limit (ulimit -f) makes a write fail (EFBIG): reported as a
   // write error, exit 4, with nothing left behind, instead of death by
   // SIGXFSZ halfway through a report.
@@ -333,8 +327,6 @@ int main(int argc, char** argv) {
       }
     }
     app.parse(argc, argv);
-    // Every command reads units: the database loads while the budget is read.
-    const deb::UnitDatabasePreload units;
     if (*run)
       return Run(budget_file, run_overrides, run_group, out_dir, threads, quiet, strict, run_flags.Options(),
                  run_flags.exports);

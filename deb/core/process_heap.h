@@ -1,23 +1,22 @@
 // Internal: not part of the public API.
-// The heap of a short-lived deb process on transparent huge pages.
+// The C library's heap, set for deb's large, short-lived blocks.
 //
-// A run of a small budget touches about 2 MB of fresh heap (the unit
-// database, the YAML tree, the result files' text). Each first touch of a
-// 4 KiB page is a page fault, and on a virtual machine a fault costs tens of
-// microseconds: 560 of them were most of a 29 ms thesis-budget run. Backed by
-// 2 MiB pages, the same memory takes a handful of faults.
+// A budget's evaluation allocates and frees blocks of megabytes many times
+// (a path's responses over a chunk of the grid, a modal model's shapes).
+// By default glibc serves a block above 128 KiB to 32 MiB (its adaptive
+// threshold) from a fresh mapping and returns it on free, so every new
+// block is faulted in again page by page. Measured on a 1000-mode modal
+// budget (deb run --no-plots -j1): 26 000 page faults and 0.89 s of CPU by
+// default, 5 100 and 0.63 s with these settings (docs/developer.md).
 #pragma once
 
 namespace deb {
 
-// Asks the C library to grow the heap in steps of `step_mib` MiB and to keep
-// what it frees, and asks the kernel to back the heap's 2 MiB-aligned part
-// with transparent huge pages (Linux, where THP is "madvise" or "always").
-// Costs resident memory in whole 2 MiB pages (a few MiB), saves page faults.
-// Call once, first thing in main(), before threads start. Where the C
-// library or kernel lacks a part, or another allocator replaces the C
-// library's (AddressSanitizer), nothing is done; nothing fails. Returns true
-// when the heap was advised.
-bool UseHugePagesForHeap(int step_mib = 8);
+// Serves blocks up to 16 MiB from the heap, keeps up to 32 MiB of freed
+// heap instead of giving it back, and grows the heap in 8 MiB steps.
+// Linux with glibc only (elsewhere, and under AddressSanitizer's allocator,
+// nothing is done). Call once, first thing in main(), before threads start.
+// Returns true when the settings were taken.
+bool KeepHeapForLargeBlocks();
 
 }  // namespace deb

@@ -11,102 +11,38 @@
 #include <set>
 
 #include "deb/core/error.h"
-#include "deb/core/shared_library.h"
 #include "deb/core/input_file.h"
 
 namespace deb::io {
 namespace {
 
-// The HDF5 C library is not linked: it is loaded when the first file is
-// opened. With its dependencies (curl, TLS, Kerberos, ...) it costs about
-// 6 ms at every start of deb, store or not. DEB_HDF5_SONAME is the library
-// the build found. Only the functions and predefined types below are used.
-#define DEB_HDF5_FUNCTIONS(X)                                                                                     \
-  X(H5open) X(H5dont_atexit) X(H5Eset_auto2) X(H5Fcreate) X(H5Fopen) X(H5Fclose) X(H5Fget_create_plist)           \
-      X(H5Gcreate2) X(H5Gopen2) X(H5Gclose) X(H5Lexists) X(H5Lget_info) X(H5Literate) X(H5Oopen) X(H5Oopen_by_addr) X(H5Oclose)      \
-          X(H5Oget_info2) X(H5Screate) X(H5Screate_simple) X(H5Sclose)                         \
-              X(H5Sget_simple_extent_ndims) X(H5Sget_simple_extent_dims) X(H5Dcreate2) X(H5Dopen2) X(H5Dclose)    \
-                  X(H5Dwrite) X(H5Dread) X(H5Dget_space) X(H5Dget_type) X(H5Dget_offset) X(H5Dget_storage_size) X(H5Dvlen_reclaim)       \
-                      X(H5Tcopy) X(H5Tset_size) X(H5Tset_cset) X(H5Tclose) X(H5Tget_class) X(H5Tget_size) X(H5Tequal)            \
-                          X(H5Tis_variable_str) X(H5Pcreate) X(H5Pclose) X(H5Pset_obj_track_times)                \
-                              X(H5Pset_buffer) X(H5Pset_libver_bounds) X(H5Dget_create_plist) X(H5Pget_nfilters)  \
-                                  X(H5Pget_external_count) X(H5Pget_layout) X(H5Pget_sizes) X(H5Pget_userblock)   \
-                                      X(H5PLset_loading_state)
-
-struct Hdf5Api {
-#define DEB_HDF5_POINTER(f) decltype(&::f) f = nullptr;
-  DEB_HDF5_FUNCTIONS(DEB_HDF5_POINTER)
-#undef DEB_HDF5_POINTER
-  // The predefined types, valid after H5open.
-  const hid_t* native_double = nullptr;
-  const hid_t* native_int64 = nullptr;
-  const hid_t* file_double = nullptr;
-  const hid_t* file_int64 = nullptr;
-  const hid_t* c_string = nullptr;
-  const hid_t* object_reference = nullptr;
-  // The property-list classes of dataset and group creation.
-  const hid_t* dataset_create = nullptr;
-  const hid_t* group_create = nullptr;
-  const hid_t* dataset_transfer_class = nullptr;
-  const hid_t* file_access_class = nullptr;
-  const hid_t* file_create_class = nullptr;
-};
-
-struct LoadedHdf5 {
-  Hdf5Api api;
-  std::string failure;  // why HDF5 could not be loaded; "" if it was
-};
-
-LoadedHdf5 LoadHdf5() {
-  LoadedHdf5 l;
-  SharedLibrary library(DEB_HDF5_SONAME);
-  Hdf5Api& a = l.api;
-#define DEB_HDF5_RESOLVE(f) library.Resolve(#f, a.f);
-  DEB_HDF5_FUNCTIONS(DEB_HDF5_RESOLVE)
-#undef DEB_HDF5_RESOLVE
-  // The predefined types and classes are variables the library sets in
-  // H5open (SharedLibrary::ResolveVariable: a program linked with HDF5 that
-  // refers to H5T_NATIVE_DOUBLE holds the copy the library sets).
-  library.ResolveVariable("H5T_NATIVE_DOUBLE_g", a.native_double);
-  library.ResolveVariable("H5T_NATIVE_LLONG_g", a.native_int64);
-  library.ResolveVariable("H5T_IEEE_F64LE_g", a.file_double);
-  library.ResolveVariable("H5T_STD_I64LE_g", a.file_int64);
-  library.ResolveVariable("H5T_C_S1_g", a.c_string);
-  library.ResolveVariable("H5T_STD_REF_OBJ_g", a.object_reference);
-  library.ResolveVariable("H5P_CLS_DATASET_CREATE_ID_g", a.dataset_create);
-  library.ResolveVariable("H5P_CLS_GROUP_CREATE_ID_g", a.group_create);
-  library.ResolveVariable("H5P_CLS_DATASET_XFER_ID_g", a.dataset_transfer_class);
-  library.ResolveVariable("H5P_CLS_FILE_ACCESS_ID_g", a.file_access_class);
-  library.ResolveVariable("H5P_CLS_FILE_CREATE_ID_g", a.file_create_class);
-  l.failure = library.failure();
+// Starts the library once per process, before any other use of it (the
+// .mat reader calls StartHdf5 too, since matio reads version-7.3 files
+// through HDF5). "" if it started, else why not.
+std::string Start() {
   // No clean-up of HDF5 at exit: deb closes every file it opens itself, and
   // the library's own clean-up closes again a file whose H5Fclose failed (a
   // full disk), which ends the process in SIGSEGV after its error was
   // reported. Only possible before the library is first used.
-  if (l.failure.empty()) a.H5dont_atexit();
-  if (l.failure.empty() && a.H5open() < 0) l.failure = "H5open failed";
+  H5dont_atexit();
+  if (H5open() < 0) return "the HDF5 library did not start (H5open failed)";
   // Filters are refused (Open) and none is needed: no plugin is loaded
   // from the directories HDF5_PLUGIN_PATH names.
-  if (l.failure.empty()) a.H5PLset_loading_state(0);
-  if (!l.failure.empty()) l.api = Hdf5Api{};
-  return l;
+  if (H5PLset_loading_state(0) < 0) return "the HDF5 library refused to turn plugin loading off";
+  return "";
 }
 
-const LoadedHdf5& Loaded() {
-  static const LoadedHdf5 loaded = LoadHdf5();
-  return loaded;
+// Why HDF5 cannot be used, for messages; "" if it can.
+const std::string& StartFailure() {
+  static const std::string failure = Start();
+  return failure;
 }
 
-const Hdf5Api& Api() { return Loaded().api; }
-
-// H5F_ACC_TRUNC and H5F_ACC_RDONLY are macros that call H5check and H5open,
-// which would link the library: their values (H5Fpublic.h) instead.
-constexpr unsigned kCreateTruncate = 0x0002u;
-constexpr unsigned kReadOnly = 0x0000u;
-
-// Every call into HDF5 holds this lock (a library built without thread
-// safety needs it; a thread-safe one serialises its calls anyway).
-std::mutex g_hdf5;
+// Every call into HDF5, deb's and matio's, holds this lock: an HDF5 built
+// without thread safety needs it, and a thread-safe one serialises its
+// calls anyway. Recursive: a matio call that holds it may end in a read
+// of this module.
+std::recursive_mutex g_hdf5;
 
 // The lock, and HDF5's printing of its error stack turned off for the
 // calling thread: deb reports errors itself, and a thread-safe HDF5 keeps
@@ -115,20 +51,12 @@ class Locked {
  public:
   Locked() : lock_(g_hdf5) {
     thread_local bool quiet = false;
-    if (!quiet && Loaded().failure.empty()) quiet = Api().H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0;
+    if (!quiet && StartFailure().empty()) quiet = H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0;
   }
 
  private:
-  std::lock_guard<std::mutex> lock_;
+  std::lock_guard<std::recursive_mutex> lock_;
 };
-
-// The failure text if HDF5 cannot be loaded, for messages; "" if it can.
-std::string LoadFailure() {
-  const LoadedHdf5& l = Loaded();
-  return l.failure.empty() ? ""
-                           : "HDF5 (" DEB_HDF5_SONAME ") cannot be loaded: " + Excerpt(l.failure, 160) +
-                                 "; install it (Debian: libhdf5-103-1)";
-}
 
 // Closes an HDF5 identifier when it goes out of scope.
 class Id {
@@ -157,10 +85,9 @@ class Id {
 // twice as long. Made per file, not once: another user of the library in
 // the process (matio) may close and reopen it. -1 if it cannot be made.
 hid_t NewTransfer() {
-  const Hdf5Api& a = Api();
-  const hid_t t = a.H5Pcreate(*a.dataset_transfer_class);
-  if (t >= 0 && a.H5Pset_buffer(t, std::size_t{64} << 10, nullptr, nullptr) < 0) {
-    a.H5Pclose(t);
+  const hid_t t = H5Pcreate(H5P_DATASET_XFER);
+  if (t >= 0 && H5Pset_buffer(t, std::size_t{64} << 10, nullptr, nullptr) < 0) {
+    H5Pclose(t);
     return -1;
   }
   return t;
@@ -178,18 +105,21 @@ std::vector<std::string> Split(const std::string& object) {
 }
 
 Id VariableString() {
-  const Hdf5Api& a = Api();
-  Id type(a.H5Tcopy(*a.c_string), a.H5Tclose);
+  Id type(H5Tcopy(H5T_C_S1), H5Tclose);
   if (type.ok()) {
-    a.H5Tset_size(type.get(), H5T_VARIABLE);
-    a.H5Tset_cset(type.get(), H5T_CSET_UTF8);
+    H5Tset_size(type.get(), H5T_VARIABLE);
+    H5Tset_cset(type.get(), H5T_CSET_UTF8);
   }
   return type;
 }
 
 }  // namespace
 
-void PreloadHdf5() { Loaded(); }
+std::unique_lock<std::recursive_mutex> LockHdf5() {
+  std::unique_lock<std::recursive_mutex> lock(g_hdf5);
+  if (const std::string& why = StartFailure(); !why.empty()) throw InputError(why);
+  return lock;
+}
 
 // ---------------------------------------------------------------- writing
 
@@ -205,35 +135,33 @@ struct Hdf5Writer::Handle {
   std::map<std::string, hid_t> groups;
 
   void CloseAll() {
-    const Hdf5Api& a = Api();
-    for (const auto& g : groups) a.H5Gclose(g.second);
+    for (const auto& g : groups) H5Gclose(g.second);
     groups.clear();
     for (hid_t* p : {&dataset_create, &group_create, &transfer})
-      if (*p >= 0) a.H5Pclose(*p), *p = -1;
+      if (*p >= 0) H5Pclose(*p), *p = -1;
   }
 };
 
 Hdf5Writer::Hdf5Writer(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
   const Locked lock;
-  if (const std::string why = LoadFailure(); !why.empty()) throw WriteError("cannot write " + path + ": " + why);
-  const Hdf5Api& a = Api();
+  if (const std::string why = StartFailure(); !why.empty()) throw WriteError("cannot write " + path + ": " + why);
   // The file format of HDF5 1.8 (2008) and later, which any current reader
   // (h5py, MATLAB, HDFView) reads: its groups keep their few links in the
   // group's header instead of a B-tree and a heap, which makes a store of
   // thousands of small objects faster to write and read, and smaller.
   // The root group, like every object below, without modification times.
-  const Id access(a.H5Pcreate(*a.file_access_class), a.H5Pclose), create(a.H5Pcreate(*a.file_create_class), a.H5Pclose);
-  if (!access.ok() || !create.ok() || a.H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_V18) < 0 ||
-      a.H5Pset_obj_track_times(create.get(), 0) < 0)
+  const Id access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose), create(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  if (!access.ok() || !create.ok() || H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_V18) < 0 ||
+      H5Pset_obj_track_times(create.get(), 0) < 0)
     throw WriteError("cannot set up the HDF5 file " + path);
-  handle_->file = a.H5Fcreate(path.c_str(), kCreateTruncate, create.get(), access.get());
+  handle_->file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, create.get(), access.get());
   if (handle_->file < 0) throw WriteError("cannot create the HDF5 file " + path);
   handle_->transfer = NewTransfer();
-  handle_->dataset_create = a.H5Pcreate(*a.dataset_create);
-  handle_->group_create = a.H5Pcreate(*a.group_create);
+  handle_->dataset_create = H5Pcreate(H5P_DATASET_CREATE);
+  handle_->group_create = H5Pcreate(H5P_GROUP_CREATE);
   if (handle_->dataset_create < 0 || handle_->group_create < 0 || handle_->transfer < 0 ||
-      a.H5Pset_obj_track_times(handle_->dataset_create, 0) < 0 ||
-      a.H5Pset_obj_track_times(handle_->group_create, 0) < 0)
+      H5Pset_obj_track_times(handle_->dataset_create, 0) < 0 ||
+      H5Pset_obj_track_times(handle_->group_create, 0) < 0)
     throw WriteError("cannot set up the HDF5 file " + path);
 }
 
@@ -241,7 +169,7 @@ Hdf5Writer::~Hdf5Writer() {
   if (handle_ && (handle_->file >= 0 || handle_->dataset_create >= 0)) {
     const Locked lock;
     handle_->CloseAll();
-    if (handle_->file >= 0) Api().H5Fclose(handle_->file);
+    if (handle_->file >= 0) H5Fclose(handle_->file);
   }
 }
 
@@ -250,7 +178,7 @@ void Hdf5Writer::Close() {
   handle_->CloseAll();
   const hid_t file = handle_->file;
   handle_->file = -1;
-  if (file >= 0 && Api().H5Fclose(file) < 0) throw WriteError("cannot complete the HDF5 file " + path_);
+  if (file >= 0 && H5Fclose(file) < 0) throw WriteError("cannot complete the HDF5 file " + path_);
 }
 
 namespace {
@@ -259,7 +187,6 @@ namespace {
 // `data` in `type_in_memory` under `file`, creating the groups above it.
 void WriteDataset(Hdf5Writer::Handle& h, const std::string& path, const std::string& object, hid_t type_in_file,
                   hid_t type_in_memory, const std::vector<hsize_t>& dims, const void* data) {
-  const Hdf5Api& a = Api();
   const std::vector<std::string> parts = Split(object);
   DEB_DEMAND(!parts.empty());
   const auto fail = [&](const std::string& what) {
@@ -275,25 +202,25 @@ void WriteDataset(Hdf5Writer::Handle& h, const std::string& path, const std::str
       at = known->second;
       continue;
     }
-    const htri_t exists = a.H5Lexists(at, parts[i].c_str(), H5P_DEFAULT);
-    const hid_t g = exists > 0 ? a.H5Gopen2(at, parts[i].c_str(), H5P_DEFAULT)
-                               : a.H5Gcreate2(at, parts[i].c_str(), H5P_DEFAULT, h.group_create, H5P_DEFAULT);
+    const htri_t exists = H5Lexists(at, parts[i].c_str(), H5P_DEFAULT);
+    const hid_t g = exists > 0 ? H5Gopen2(at, parts[i].c_str(), H5P_DEFAULT)
+                               : H5Gcreate2(at, parts[i].c_str(), H5P_DEFAULT, h.group_create, H5P_DEFAULT);
     if (g < 0) fail("cannot create or open the group '" + parts[i] + "'");
     h.groups.emplace(group_path, g);
     at = g;
   }
 
-  Id space(dims.empty() ? a.H5Screate(H5S_SCALAR)
-                        : a.H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
-           a.H5Sclose);
+  Id space(dims.empty() ? H5Screate(H5S_SCALAR)
+                        : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+           H5Sclose);
   if (!space.ok()) fail("cannot make its dataspace");
-  Id set(a.H5Dcreate2(at, parts.back().c_str(), type_in_file, space.get(), H5P_DEFAULT, h.dataset_create, H5P_DEFAULT),
-         a.H5Dclose);
+  Id set(H5Dcreate2(at, parts.back().c_str(), type_in_file, space.get(), H5P_DEFAULT, h.dataset_create, H5P_DEFAULT),
+         H5Dclose);
   if (!set.ok())
-    fail(a.H5Lexists(at, parts.back().c_str(), H5P_DEFAULT) > 0 ? "it exists already" : "cannot create the dataset");
+    fail(H5Lexists(at, parts.back().c_str(), H5P_DEFAULT) > 0 ? "it exists already" : "cannot create the dataset");
   bool empty = false;
   for (hsize_t d : dims) empty |= d == 0;
-  if (!empty && a.H5Dwrite(set.get(), type_in_memory, H5S_ALL, H5S_ALL, h.transfer, data) < 0)
+  if (!empty && H5Dwrite(set.get(), type_in_memory, H5S_ALL, H5S_ALL, h.transfer, data) < 0)
     fail("cannot write its data");
 }
 
@@ -301,13 +228,13 @@ void WriteDataset(Hdf5Writer::Handle& h, const std::string& path, const std::str
 
 void Hdf5Writer::Number(const std::string& object, double value) {
   const Locked lock;
-  WriteDataset(*handle_, path_, object, *Api().file_double, *Api().native_double, {}, &value);
+  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {}, &value);
 }
 
 void Hdf5Writer::Integer(const std::string& object, std::int64_t value) {
   const Locked lock;
   const long long v = value;
-  WriteDataset(*handle_, path_, object, *Api().file_int64, *Api().native_int64, {}, &v);
+  WriteDataset(*handle_, path_, object, H5T_STD_I64LE, H5T_NATIVE_LLONG, {}, &v);
 }
 
 void Hdf5Writer::Text(const std::string& object, const std::string& value) {
@@ -319,7 +246,7 @@ void Hdf5Writer::Text(const std::string& object, const std::string& value) {
 
 void Hdf5Writer::Numbers(const std::string& object, const std::vector<double>& values) {
   const Locked lock;
-  WriteDataset(*handle_, path_, object, *Api().file_double, *Api().native_double, {values.size()},
+  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {values.size()},
                values.data());
 }
 
@@ -340,7 +267,7 @@ void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<d
     data.insert(data.end(), r.begin(), r.end());
   }
   const Locked lock;
-  WriteDataset(*handle_, path_, object, *Api().file_double, *Api().native_double,
+  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
                {rows.size(), rows.empty() ? 0 : columns}, data.data());
 }
 
@@ -402,16 +329,15 @@ struct Hdf5Reader::Handle {
 Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
   RequireInputFile(path, "HDF5 file", kMaxHdf5FileBytes);
   const Locked lock;
-  if (const std::string why = LoadFailure(); !why.empty()) throw InputError(path + ": reading it needs " + why);
-  const Hdf5Api& a = Api();
-  handle_->file = a.H5Fopen(path.c_str(), kReadOnly, H5P_DEFAULT);
+  if (const std::string why = StartFailure(); !why.empty()) throw InputError(path + ": reading it needs " + why);
+  handle_->file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (handle_->file < 0) throw InputError(path + ": not an HDF5 file, or a damaged one");
   handle_->transfer = NewTransfer();
   if (handle_->transfer < 0) throw InputError(path + ": cannot set up reading it (HDF5)");
-  const Id create(a.H5Fget_create_plist(handle_->file), a.H5Pclose);
+  const Id create(H5Fget_create_plist(handle_->file), H5Pclose);
   hsize_t user_block = 0;
-  if (!create.ok() || a.H5Pget_sizes(create.get(), &handle_->address_bytes, &handle_->length_bytes) < 0 ||
-      a.H5Pget_userblock(create.get(), &user_block) < 0 || handle_->address_bytes < 2 ||
+  if (!create.ok() || H5Pget_sizes(create.get(), &handle_->address_bytes, &handle_->length_bytes) < 0 ||
+      H5Pget_userblock(create.get(), &user_block) < 0 || handle_->address_bytes < 2 ||
       handle_->address_bytes > 8 || handle_->length_bytes < 2 || handle_->length_bytes > 8)
     throw InputError(path + ": not an HDF5 file, or a damaged one");
   handle_->base = user_block;
@@ -421,8 +347,8 @@ Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path), handle_(std::make
 Hdf5Reader::~Hdf5Reader() {
   if (handle_ && handle_->file >= 0) {
     const Locked lock;
-    if (handle_->transfer >= 0) Api().H5Pclose(handle_->transfer);
-    Api().H5Fclose(handle_->file);
+    if (handle_->transfer >= 0) H5Pclose(handle_->transfer);
+    H5Fclose(handle_->file);
   }
 }
 
@@ -460,13 +386,12 @@ std::string LinkKind(H5L_type_t type) {
 // it describes) before anything goes through it.
 // @throws InputError for a link of another kind on the way.
 bool Reach(Hdf5Reader::Handle& h, const std::string& path, const std::string& object) {
-  const Hdf5Api& a = Api();
   std::string prefix;
   for (const std::string& part : Split(object)) {
     prefix += (prefix.empty() ? "" : "/") + part;
     if (h.hard.count(prefix)) continue;
     H5L_info_t info;
-    if (a.H5Lget_info(h.file, prefix.c_str(), &info, H5P_DEFAULT) < 0) return false;
+    if (H5Lget_info(h.file, prefix.c_str(), &info, H5P_DEFAULT) < 0) return false;
     if (info.type != H5L_TYPE_HARD)
       throw InputError(path + ": object '" + Excerpt(prefix, 200) + "' is " + LinkKind(info.type) +
                        "; deb reads only objects the file holds itself, reached by plain (hard) links");
@@ -480,14 +405,13 @@ bool Reach(Hdf5Reader::Handle& h, const std::string& path, const std::string& ob
 // compressed (a small file could expand into any size; deb compresses
 // nothing).
 std::string StorageProblem(hid_t create, bool allow_filters) {
-  const Hdf5Api& a = Api();
   if (create < 0) return "has unreadable storage properties; is the file damaged?";
-  if (a.H5Pget_external_count(create) != 0)
+  if (H5Pget_external_count(create) != 0)
     return "keeps its values in another file (HDF5 external storage); deb reads only what the file holds itself";
-  if (a.H5Pget_layout(create) == H5D_VIRTUAL)
+  if (H5Pget_layout(create) == H5D_VIRTUAL)
     return "is a virtual dataset (its values come from other datasets or files); deb reads only what the file "
            "holds itself";
-  if (!allow_filters && a.H5Pget_nfilters(create) != 0)
+  if (!allow_filters && H5Pget_nfilters(create) != 0)
     return "is compressed or filtered; a reader of deb's files reads plain datasets only";
   return "";
 }
@@ -510,22 +434,21 @@ void CheckShape(const std::string& path, const std::string& object, const OpenSe
 
 OpenSet Open(Hdf5Reader::Handle& h, const std::string& path, const std::string& object, Kind kind, int rank,
              AtMost most = AtMost(1), std::size_t columns = 0) {
-  const Hdf5Api& a = Api();
   const auto fail = [&](const std::string& what) {
     throw InputError(path + ": object '" + Excerpt(object, 200) + "' " + what);
   };
   OpenSet s;
   s.transfer = h.transfer;
   if (!Reach(h, path, object)) fail("is missing");
-  s.set = std::make_unique<Id>(a.H5Dopen2(h.file, object.c_str(), H5P_DEFAULT), a.H5Dclose);
+  s.set = std::make_unique<Id>(H5Dopen2(h.file, object.c_str(), H5P_DEFAULT), H5Dclose);
   if (!s.set->ok()) fail("is not a dataset");
   {
-    const Id create(a.H5Dget_create_plist(s.set->get()), a.H5Pclose);
+    const Id create(H5Dget_create_plist(s.set->get()), H5Pclose);
     if (const std::string problem = StorageProblem(create.get(), false); !problem.empty()) fail(problem);
   }
-  const Id type(a.H5Dget_type(s.set->get()), a.H5Tclose);
-  const H5T_class_t cls = type.ok() ? a.H5Tget_class(type.get()) : H5T_NO_CLASS;
-  const bool variable = cls == H5T_STRING && a.H5Tis_variable_str(type.get()) > 0;
+  const Id type(H5Dget_type(s.set->get()), H5Tclose);
+  const H5T_class_t cls = type.ok() ? H5Tget_class(type.get()) : H5T_NO_CLASS;
+  const bool variable = cls == H5T_STRING && H5Tis_variable_str(type.get()) > 0;
   const bool right = kind == Kind::kDouble    ? cls == H5T_FLOAT || cls == H5T_INTEGER
                      : kind == Kind::kInteger ? cls == H5T_INTEGER
                                               : variable;
@@ -534,12 +457,12 @@ OpenSet Open(Hdf5Reader::Handle& h, const std::string& path, const std::string& 
          (cls == H5T_STRING ? (variable ? "text" : "text of a fixed length")
                             : cls == H5T_FLOAT ? "numbers" : "another class") +
          ", not " + KindName(kind) + (kind == Kind::kText ? " (variable-length strings)" : ""));
-  const Id space(a.H5Dget_space(s.set->get()), a.H5Sclose);
-  const int ndims = space.ok() ? a.H5Sget_simple_extent_ndims(space.get()) : -1;
+  const Id space(H5Dget_space(s.set->get()), H5Sclose);
+  const int ndims = space.ok() ? H5Sget_simple_extent_ndims(space.get()) : -1;
   if (ndims != rank)
     fail("has " + std::to_string(ndims) + " dimensions, not " + std::to_string(rank));
   s.dims.assign(static_cast<std::size_t>(rank), 0);
-  if (rank > 0 && a.H5Sget_simple_extent_dims(space.get(), s.dims.data(), nullptr) != rank)
+  if (rank > 0 && H5Sget_simple_extent_dims(space.get(), s.dims.data(), nullptr) != rank)
     fail("has an unreadable shape");
   for (hsize_t d : s.dims) {
     if (d > kMaxHdf5Elements || (d > 0 && s.elements > kMaxHdf5Elements / d))
@@ -550,8 +473,8 @@ OpenSet Open(Hdf5Reader::Handle& h, const std::string& path, const std::string& 
   // Every value declared is in the file: HDF5 fills a dataset whose values
   // were never written, so a small file could declare any size (deb writes
   // every value it declares).
-  const std::size_t value_bytes = a.H5Tget_size(type.get());
-  const hsize_t stored = s.elements > 0 ? a.H5Dget_storage_size(s.set->get()) : 0;
+  const std::size_t value_bytes = H5Tget_size(type.get());
+  const hsize_t stored = s.elements > 0 ? H5Dget_storage_size(s.set->get()) : 0;
   if (s.elements > 0 && (value_bytes == 0 || stored / value_bytes < s.elements))
     fail("declares " + std::to_string(s.elements) + " values, but the file holds " +
          std::to_string(value_bytes ? stored / value_bytes : 0) + " of them; is it damaged?");
@@ -560,7 +483,7 @@ OpenSet Open(Hdf5Reader::Handle& h, const std::string& path, const std::string& 
 
 void Read(const std::string& path, const std::string& object, const OpenSet& s, hid_t memory_type, void* data) {
   if (s.elements == 0) return;
-  if (Api().H5Dread(s.set->get(), memory_type, H5S_ALL, H5S_ALL, s.transfer, data) < 0)
+  if (H5Dread(s.set->get(), memory_type, H5S_ALL, H5S_ALL, s.transfer, data) < 0)
     throw InputError(path + ": object '" + Excerpt(object, 200) + "' cannot be read (a damaged file?)");
 }
 
@@ -610,15 +533,14 @@ const std::map<std::uint64_t, std::uint64_t>* HeapCollection(Hdf5Reader::Handle&
 // libhdf5 reads them: each is empty, or names an object of a whole heap
 // collection (HeapCollection) of exactly the length it gives.
 void CheckVariableText(Hdf5Reader::Handle& h, const std::string& path, const std::string& object, const OpenSet& s) {
-  const Hdf5Api& a = Api();
   const auto fail = [&](const std::string& what) {
     throw InputError(path + ": object '" + Excerpt(object, 200) + "' " + what);
   };
   if (s.elements == 0) return;
-  const Id create(a.H5Dget_create_plist(s.set->get()), a.H5Pclose);
-  if (a.H5Pget_layout(create.get()) != H5D_CONTIGUOUS)
+  const Id create(H5Dget_create_plist(s.set->get()), H5Pclose);
+  if (H5Pget_layout(create.get()) != H5D_CONTIGUOUS)
     fail("holds text in another layout than deb writes (contiguous)");
-  const haddr_t offset = a.H5Dget_offset(s.set->get());
+  const haddr_t offset = H5Dget_offset(s.set->get());
   if (offset == HADDR_UNDEF) return;  // nothing written: read as null strings
   // Each element: its length (4 bytes), the address of its heap collection
   // and its index there (4 bytes).
@@ -654,8 +576,12 @@ std::vector<std::string> ReadTexts(Hdf5Reader::Handle& h, const std::string& pat
     texts.emplace_back(t ? t : "");
   }
   if (s.elements > 0) {
-    const Id space(Api().H5Dget_space(s.set->get()), Api().H5Sclose);
-    Api().H5Dvlen_reclaim(type.get(), space.get(), s.transfer, raw.data());
+    const Id space(H5Dget_space(s.set->get()), H5Sclose);
+#if H5_VERSION_GE(1, 12, 0)
+    H5Treclaim(type.get(), space.get(), s.transfer, raw.data());
+#else
+    H5Dvlen_reclaim(type.get(), space.get(), s.transfer, raw.data());
+#endif
   }
   if (null) throw InputError(path + ": object '" + Excerpt(object, 200) + "' holds a null string");
   for (const std::string& t : texts)
@@ -675,7 +601,7 @@ double Hdf5Reader::Number(const std::string& object, bool allow_nan) const {
   const Locked lock;
   const OpenSet s = Open(*handle_, path_, object, Kind::kDouble, 0);
   std::vector<double> v(1);
-  Read(path_, object, s, *Api().native_double, v.data());
+  Read(path_, object, s, H5T_NATIVE_DOUBLE, v.data());
   CheckFinite(path_, object, v, allow_nan);
   return v[0];
 }
@@ -684,7 +610,7 @@ std::int64_t Hdf5Reader::Integer(const std::string& object) const {
   const Locked lock;
   const OpenSet s = Open(*handle_, path_, object, Kind::kInteger, 0);
   long long v = 0;
-  Read(path_, object, s, *Api().native_int64, &v);
+  Read(path_, object, s, H5T_NATIVE_LLONG, &v);
   return v;
 }
 
@@ -697,7 +623,7 @@ std::vector<double> Hdf5Reader::Numbers(const std::string& object, AtMost most, 
   const Locked lock;
   const OpenSet s = Open(*handle_, path_, object, Kind::kDouble, 1, most);
   std::vector<double> v(s.elements);
-  Read(path_, object, s, *Api().native_double, v.data());
+  Read(path_, object, s, H5T_NATIVE_DOUBLE, v.data());
   CheckFinite(path_, object, v, allow_nan);
   return v;
 }
@@ -712,7 +638,7 @@ std::vector<std::vector<double>> Hdf5Reader::Rows(const std::string& object, AtM
   const Locked lock;
   const OpenSet s = Open(*handle_, path_, object, Kind::kDouble, 2, most, columns);
   std::vector<double> v(s.elements);
-  Read(path_, object, s, *Api().native_double, v.data());
+  Read(path_, object, s, H5T_NATIVE_DOUBLE, v.data());
   CheckFinite(path_, object, v, allow_nan);
   std::vector<std::vector<double>> rows(static_cast<std::size_t>(s.dims[0]));
   for (std::size_t r = 0; r < rows.size(); ++r)
@@ -725,9 +651,8 @@ std::vector<std::vector<double>> Hdf5Reader::Rows(const std::string& object, AtM
 
 void RequireSelfContainedHdf5(const std::string& path) {
   const Locked lock;
-  if (const std::string why = LoadFailure(); !why.empty()) throw InputError(path + ": reading it needs " + why);
-  const Hdf5Api& a = Api();
-  const Id file(a.H5Fopen(path.c_str(), kReadOnly, H5P_DEFAULT), a.H5Fclose);
+  if (const std::string why = StartFailure(); !why.empty()) throw InputError(path + ": reading it needs " + why);
+  const Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!file.ok()) throw InputError(path + ": not an HDF5 file, or a damaged one");
   const auto fail = [&](const std::string& object, const std::string& what) {
     throw InputError(path + ": object '" + Excerpt(object, 200) + "' " + what);
@@ -737,8 +662,8 @@ void RequireSelfContainedHdf5(const std::string& path) {
   std::set<haddr_t> seen;
   {
     H5O_info_t root;
-    const Id g(a.H5Oopen(file.get(), "/", H5P_DEFAULT), a.H5Oclose);
-    if (!g.ok() || a.H5Oget_info2(g.get(), &root, H5O_INFO_BASIC) < 0) fail("/", "cannot be read; is the file damaged?");
+    const Id g(H5Oopen(file.get(), "/", H5P_DEFAULT), H5Oclose);
+    if (!g.ok() || H5Oget_info2(g.get(), &root, H5O_INFO_BASIC) < 0) fail("/", "cannot be read; is the file damaged?");
     pending.emplace_back(root.addr, "/");
   }
   struct Links {
@@ -762,14 +687,14 @@ void RequireSelfContainedHdf5(const std::string& path) {
     if (!seen.insert(address).second) continue;
     if (seen.size() > kMaxHdf5Objects)
       throw InputError(path + ": more than " + std::to_string(kMaxHdf5Objects) + " objects; is the file damaged?");
-    const Id object(a.H5Oopen_by_addr(file.get(), address), a.H5Oclose);
+    const Id object(H5Oopen_by_addr(file.get(), address), H5Oclose);
     H5O_info_t info;
-    if (!object.ok() || a.H5Oget_info2(object.get(), &info, H5O_INFO_BASIC) < 0)
+    if (!object.ok() || H5Oget_info2(object.get(), &info, H5O_INFO_BASIC) < 0)
       fail(name, "cannot be read; is the file damaged?");
     const std::string prefix = name == "/" ? "" : name + "/";
     if (info.type == H5O_TYPE_GROUP) {
       Links links;
-      if (a.H5Literate(object.get(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect, &links) < 0)
+      if (H5Literate(object.get(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect, &links) < 0)
         fail(name, "cannot be listed; is the file damaged?");
       if (!links.other.empty())
         fail(prefix + links.other,
@@ -782,20 +707,20 @@ void RequireSelfContainedHdf5(const std::string& path) {
     }
     if (info.type != H5O_TYPE_DATASET) continue;
     {
-      const Id create(a.H5Dget_create_plist(object.get()), a.H5Pclose);
+      const Id create(H5Dget_create_plist(object.get()), H5Pclose);
       if (const std::string problem = StorageProblem(create.get(), true); !problem.empty()) fail(name, problem);
     }
     // Object references (matio's cell arrays and structs in cells) lead to
     // objects that no link may name.
-    const Id type(a.H5Dget_type(object.get()), a.H5Tclose);
-    if (!type.ok() || a.H5Tget_class(type.get()) != H5T_REFERENCE) continue;
-    if (a.H5Tequal(type.get(), *a.object_reference) <= 0) fail(name, "holds references of another kind than objects");
-    const Id space(a.H5Dget_space(object.get()), a.H5Sclose);
-    const int rank = space.ok() ? a.H5Sget_simple_extent_ndims(space.get()) : -1;
+    const Id type(H5Dget_type(object.get()), H5Tclose);
+    if (!type.ok() || H5Tget_class(type.get()) != H5T_REFERENCE) continue;
+    if (H5Tequal(type.get(), H5T_STD_REF_OBJ) <= 0) fail(name, "holds references of another kind than objects");
+    const Id space(H5Dget_space(object.get()), H5Sclose);
+    const int rank = space.ok() ? H5Sget_simple_extent_ndims(space.get()) : -1;
     if (rank < 0 || rank > 32) fail(name, "has an unreadable shape");
     std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
     std::size_t count = 1;
-    if (rank > 0 && a.H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) != rank)
+    if (rank > 0 && H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) != rank)
       fail(name, "has an unreadable shape");
     for (hsize_t d : dims) {
       if (d > kMaxHdf5Objects || (d > 0 && count > kMaxHdf5Objects / d))
@@ -804,7 +729,7 @@ void RequireSelfContainedHdf5(const std::string& path) {
     }
     if (count == 0) continue;
     std::vector<hobj_ref_t> references(count);
-    if (a.H5Dread(object.get(), *a.object_reference, H5S_ALL, H5S_ALL, H5P_DEFAULT, references.data()) < 0)
+    if (H5Dread(object.get(), H5T_STD_REF_OBJ, H5S_ALL, H5S_ALL, H5P_DEFAULT, references.data()) < 0)
       fail(name, "cannot be read; is the file damaged?");
     for (std::size_t i = 0; i < count; ++i)
       if (references[i] != 0) pending.emplace_back(references[i], name + "[" + std::to_string(i) + "]");

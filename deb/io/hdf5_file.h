@@ -1,8 +1,7 @@
 // Internal: not part of the public API.
 // HDF5 files of numbers and text, written and read through the HDF5 C
-// library, which is loaded when the first file is opened (like matio,
-// mat_file.h: linked, it and its 30 dependencies would load at every start
-// of deb). This is the one module that uses HDF5.
+// library. This is the one module that uses HDF5 (matio, mat_file.h, reads
+// version-7.3 MAT-files through it, under LockHdf5).
 //
 // Objects are named by paths of '/'-separated names ("outputs/0/psd");
 // writing a dataset creates the groups above it. What is written:
@@ -29,6 +28,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -39,10 +39,13 @@ namespace deb::io {
 inline constexpr std::uintmax_t kMaxHdf5FileBytes = 16ull << 30;
 inline constexpr std::size_t kMaxHdf5Elements = std::size_t{5'000'000} * 50;
 
-// Loads the HDF5 library now (a no-op after the first call; thread-safe): a
-// caller that will write a file later may start this early, in a thread of
-// its own, to overlap the loading with other work.
-void PreloadHdf5();
+// Starts the HDF5 library if it has not started (before any other use of it
+// in the process, matio's included: deb turns off its clean-up at exit and
+// its plugin loading) and returns the one lock that every call into HDF5
+// holds, this module's and matio's. Recursive: the holder may call this
+// module.
+// @throws InputError if the library does not start.
+std::unique_lock<std::recursive_mutex> LockHdf5();
 
 // The most elements (or rows) one read may return. Explicit, so that a bound
 // is never taken for a flag or a column count.

@@ -14,7 +14,6 @@
 #include <set>
 
 #include "deb/core/error.h"
-#include "deb/core/shared_library.h"
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
 #include "deb/core/number_text.h"
@@ -23,95 +22,9 @@
 namespace deb::io {
 namespace {
 
-// matio is not linked: it is loaded when the first MAT-file is opened. With
-// the HDF5 library under it, it brings 31 shared libraries (curl, TLS,
-// Kerberos, LDAP, ...) that cost 14 ms at every start of deb, .mat or not
-// (a program linked to them starts in 26 ms, 12 ms without). Only the
-// functions below are used; DEB_MATIO_SONAME is the library the build found.
-struct MatioApi {
-  decltype(&::Mat_Close) Close;
-  decltype(&::Mat_CreateVer) CreateVer;
-  decltype(&::Mat_GetDir) GetDir;
-  decltype(&::Mat_GetVersion) GetVersion;
-  decltype(&::Mat_LogInitFunc) LogInitFunc;
-  decltype(&::Mat_Open) Open;
-  decltype(&::Mat_SizeOf) SizeOf;
-  decltype(&::Mat_VarFree) VarFree;
-  decltype(&::Mat_VarGetCell) VarGetCell;
-  decltype(&::Mat_VarGetNumberOfFields) VarGetNumberOfFields;
-  decltype(&::Mat_VarGetStructFieldByName) VarGetStructFieldByName;
-  decltype(&::Mat_VarGetStructFieldnames) VarGetStructFieldnames;
-  decltype(&::Mat_VarReadDataAll) VarReadDataAll;
-  decltype(&::Mat_VarReadInfo) VarReadInfo;
-  // Writing (WriteMatFile).
-  decltype(&::Mat_VarCreate) VarCreate;
-  decltype(&::Mat_VarCreateStruct2) VarCreateStruct2;
-  decltype(&::Mat_VarSetCell) VarSetCell;
-  decltype(&::Mat_VarSetStructFieldByName) VarSetStructFieldByName;
-  decltype(&::Mat_VarWrite) VarWrite;
-};
-
-struct LoadedMatio {
-  MatioApi api{};
-  std::string failure;  // why matio could not be loaded; "" if it was
-};
-
-LoadedMatio LoadMatio() {
-  LoadedMatio m;
-  SharedLibrary library(DEB_MATIO_SONAME);
-  MatioApi& a = m.api;
-  const bool all = library.Resolve("Mat_Close", a.Close) &&
-                   library.Resolve("Mat_GetDir", a.GetDir) &&
-                   library.Resolve("Mat_GetVersion", a.GetVersion) &&
-                   library.Resolve("Mat_LogInitFunc", a.LogInitFunc) &&
-                   library.Resolve("Mat_Open", a.Open) &&
-                   library.Resolve("Mat_SizeOf", a.SizeOf) &&
-                   library.Resolve("Mat_VarFree", a.VarFree) &&
-                   library.Resolve("Mat_VarGetCell", a.VarGetCell) &&
-                   library.Resolve("Mat_VarGetNumberOfFields", a.VarGetNumberOfFields) &&
-                   library.Resolve("Mat_VarGetStructFieldByName", a.VarGetStructFieldByName) &&
-                   library.Resolve("Mat_VarGetStructFieldnames", a.VarGetStructFieldnames) &&
-                   library.Resolve("Mat_VarReadDataAll", a.VarReadDataAll) &&
-                   library.Resolve("Mat_VarReadInfo", a.VarReadInfo) &&
-                   library.Resolve("Mat_CreateVer", a.CreateVer) &&
-                   library.Resolve("Mat_VarCreate", a.VarCreate) &&
-                   library.Resolve("Mat_VarCreateStruct2", a.VarCreateStruct2) &&
-                   library.Resolve("Mat_VarSetCell", a.VarSetCell) &&
-                   library.Resolve("Mat_VarSetStructFieldByName", a.VarSetStructFieldByName) &&
-                   library.Resolve("Mat_VarWrite", a.VarWrite);
-  if (!all) m.api = MatioApi{};
-  m.failure = library.failure();
-  return m;
-}
-
-const LoadedMatio& Loaded() {
-  static const LoadedMatio loaded = LoadMatio();
-  return loaded;
-}
-
-// The functions, once RequireMatio has succeeded.
-const MatioApi& Matio() { return Loaded().api; }
-
-// "<path>: <doing> a MAT-file needs ..." if matio cannot be loaded; "" if it can.
-std::string MatioMissing(const std::string& path, const std::string& doing) {
-  const LoadedMatio& m = Loaded();
-  if (m.failure.empty()) return "";
-  return path + ": " + doing + " a MAT-file needs the matio library (" DEB_MATIO_SONAME
-                               "), which cannot be loaded: " + Excerpt(m.failure, 160) +
-         "; install it (Debian: libmatio11)";
-}
-
-// @throws InputError "<path>: reading a MAT-file needs ..." if matio cannot
-//         be loaded.
-void RequireMatio(const std::string& path) {
-  const std::string missing = MatioMissing(path, "reading");
-  if (!missing.empty()) throw InputError(missing + " or save the data as CSV tables");
-}
-
 // matio's log function and the HDF5 library under it are process-wide:
-// every matio call holds this lock. Recursive, because a variable or the
-// file may be freed while an error leaves a locked scope.
-std::recursive_mutex g_matio;
+// every matio call holds HDF5's lock (LockHdf5, hdf5_file.h), which also
+// starts HDF5 as deb wants it before matio first uses it.
 // The first error or warning matio logged since the current MatioCall
 // began. matio reports many problems (a short read, a bad inflate, an HDF5
 // error) only through its log and still returns success, so the log is
@@ -130,8 +43,8 @@ void Log(int level, char* message) {
 // during them ("" if nothing).
 class MatioCall {
  public:
-  MatioCall() : lock_(g_matio) {
-    static const int installed = Matio().LogInitFunc("deb", Log);
+  MatioCall() : lock_(LockHdf5()) {
+    static const int installed = Mat_LogInitFunc("deb", Log);
     (void)installed;
     g_problem.clear();
   }
@@ -140,13 +53,13 @@ class MatioCall {
   std::string Because() const { return g_problem.empty() ? "" : " (matio: " + g_problem + ")"; }
 
  private:
-  std::lock_guard<std::recursive_mutex> lock_;
+  std::unique_lock<std::recursive_mutex> lock_;
 };
 
 struct VarFree {
   void operator()(matvar_t* v) const {
-    const std::lock_guard<std::recursive_mutex> lock(g_matio);
-    Matio().VarFree(v);
+    const auto lock = LockHdf5();
+    Mat_VarFree(v);
   }
 };
 using VarPtr = std::unique_ptr<matvar_t, VarFree>;
@@ -459,8 +372,8 @@ struct MatFile::Handle {
   mat_t* mat = nullptr;
   ~Handle() {
     if (mat == nullptr) return;
-    const std::lock_guard<std::recursive_mutex> lock(g_matio);
-    Matio().Close(mat);  // read only: nothing to lose if closing fails
+    const auto lock = LockHdf5();
+    Mat_Close(mat);  // read only: nothing to lose if closing fails
   }
 };
 
@@ -471,17 +384,16 @@ MatFile::MatFile(const std::string& path) : path_(path), handle_(std::make_uniqu
   // external link or external storage to any file (a FIFO blocks forever):
   // the whole file is checked first.
   if (version == Version::k73) RequireSelfContainedHdf5(path);
-  RequireMatio(path);
   const MatioCall call;
-  handle_->mat = Matio().Open(path.c_str(), MAT_ACC_RDONLY);
+  handle_->mat = Mat_Open(path.c_str(), MAT_ACC_RDONLY);
   if (handle_->mat == nullptr || !call.problem().empty())
     Fail(path, "cannot be read as a MAT-file" + call.Because() +
                    (version == Version::k73 ? ": a version 7.3 (HDF5) file that is truncated or damaged" : ""));
-  const mat_ft opened = Matio().GetVersion(handle_->mat);
+  const mat_ft opened = Mat_GetVersion(handle_->mat);
   if (opened != (version == Version::k73 ? MAT_FT_MAT73 : MAT_FT_MAT5))
     Fail(path, "matio reads the file as another MAT-file version than its header gives; is it damaged?");
   std::size_t n = 0;
-  char** dir = Matio().GetDir(handle_->mat, &n);  // owned by the mat_t
+  char** dir = Mat_GetDir(handle_->mat, &n);  // owned by the mat_t
   if (!call.problem().empty()) Fail(path, "cannot list the variables of the MAT-file" + call.Because());
   for (std::size_t i = 0; dir != nullptr && i < n; ++i)
     if (dir[i] != nullptr) variables_.emplace_back(dir[i]);
@@ -532,7 +444,7 @@ Var ReadInfo(const MatFile& file, mat_t* mat, const std::string& name) {
   }
   const MatioCall call;
   Var var;
-  var.root.reset(Matio().VarReadInfo(mat, top.c_str()));
+  var.root.reset(Mat_VarReadInfo(mat, top.c_str()));
   var.v = var.root.get();
   if (!var.v || !call.problem().empty() || var.v->rank < 1 || var.v->dims == nullptr)
     Fail(file.path(), "variable " + Quoted(top) + " cannot be read" + call.Because() + "; is the file damaged?");
@@ -541,11 +453,11 @@ Var ReadInfo(const MatFile& file, mat_t* mat, const std::string& name) {
     if (var.v->class_type != MAT_C_STRUCT || Count(*var.v) != 1)
       Fail(file.path(), Describe(at, *var.v) + ", not a 1x1 struct; " + Quoted(name) + " asks for its field " +
                             Quoted(parts[p]));
-    matvar_t* const field = Matio().VarGetStructFieldByName(var.v, parts[p].c_str(), 0);
+    matvar_t* const field = Mat_VarGetStructFieldByName(var.v, parts[p].c_str(), 0);
     if (field == nullptr) {
       std::string fields;
-      const unsigned n = Matio().VarGetNumberOfFields(var.v);
-      char* const* names = Matio().VarGetStructFieldnames(var.v);
+      const unsigned n = Mat_VarGetNumberOfFields(var.v);
+      char* const* names = Mat_VarGetStructFieldnames(var.v);
       for (unsigned i = 0; names != nullptr && i < n && i < 20; ++i)
         fields += (i ? ", " : "") + Excerpt(names[i] != nullptr ? names[i] : "");
       if (n > 20) fields += ", ...";
@@ -562,7 +474,7 @@ Var ReadInfo(const MatFile& file, mat_t* mat, const std::string& name) {
 
 void ReadData(const MatFile& file, mat_t* mat, matvar_t& v, const std::string& name) {
   const MatioCall call;
-  const int err = Matio().VarReadDataAll(mat, &v);
+  const int err = Mat_VarReadDataAll(mat, &v);
   if (err != MATIO_E_NO_ERROR || !call.problem().empty())
     Fail(file.path(), "the values of " + Describe(name, v) + " cannot be read" + call.Because() +
                           "; is the file damaged?");
@@ -570,7 +482,7 @@ void ReadData(const MatFile& file, mat_t* mat, matvar_t& v, const std::string& n
 
 // Data present and as long as `count` values of its type.
 void RequireData(const MatFile& file, const matvar_t& v, const std::string& name, std::size_t count) {
-  const std::size_t size = Matio().SizeOf(v.data_type);
+  const std::size_t size = Mat_SizeOf(v.data_type);
   if (v.data == nullptr || size == 0 || v.nbytes / size < count)
     Fail(file.path(), Describe(name, v) + " but holds fewer values; is the file damaged?");
 }
@@ -659,7 +571,7 @@ std::vector<std::string> MatFile::Names(const std::string& name) const {
     matvar_t* e = nullptr;
     {
       const MatioCall call;
-      e = Matio().VarGetCell(v.get(), static_cast<int>(i));  // owned by the cell array
+      e = Mat_VarGetCell(v.get(), static_cast<int>(i));  // owned by the cell array
       if (e == nullptr || !call.problem().empty())
         Fail(path_, element + " of the " + SizeText(*v) + " cell array cannot be read" + call.Because() +
                         "; is the file damaged?");
@@ -764,7 +676,6 @@ using NewVar = std::unique_ptr<matvar_t, VarFree>;
 // The matio variable of `value`, named `name` (nullptr inside a struct or
 // cell). `where` names it in messages ("outputs.position.psd").
 NewVar MakeVar(const char* name, const MatValue& value, const std::string& path, const std::string& where) {
-  const MatioApi& m = Matio();
   const auto made = [&](matvar_t* v) {
     if (v == nullptr) throw WriteError(path + ": cannot make the MAT-file variable " + where + " (matio refused it)");
     return NewVar(v);
@@ -774,12 +685,12 @@ NewVar MakeVar(const char* name, const MatValue& value, const std::string& path,
       size_t dims[2] = {static_cast<size_t>(value.matrix.rows()), static_cast<size_t>(value.matrix.cols())};
       // Copied by matio (opt 0); Eigen stores columns first, as MATLAB does.
       void* data = value.matrix.size() ? const_cast<double*>(value.matrix.data()) : nullptr;
-      return made(m.VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, data, 0));
+      return made(Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, data, 0));
     }
     case MatValue::Kind::kText: {
       std::vector<std::uint16_t> chars = Utf16(value.text);
       size_t dims[2] = {chars.empty() ? size_t{0} : size_t{1}, chars.size()};
-      return made(m.VarCreate(name, MAT_C_CHAR, MAT_T_UINT16, 2, dims, chars.empty() ? nullptr : chars.data(), 0));
+      return made(Mat_VarCreate(name, MAT_C_CHAR, MAT_T_UINT16, 2, dims, chars.empty() ? nullptr : chars.data(), 0));
     }
     case MatValue::Kind::kNames: {
       std::vector<NewVar> cells;
@@ -789,7 +700,7 @@ NewVar MakeVar(const char* name, const MatValue& value, const std::string& path,
       // matio copies the array of pointers and owns the elements from here.
       std::vector<matvar_t*> pointers;
       for (const NewVar& c : cells) pointers.push_back(c.get());
-      NewVar cell = made(m.VarCreate(name, MAT_C_CELL, MAT_T_CELL, 2, dims, pointers.empty() ? nullptr : pointers.data(), 0));
+      NewVar cell = made(Mat_VarCreate(name, MAT_C_CELL, MAT_T_CELL, 2, dims, pointers.empty() ? nullptr : pointers.data(), 0));
       for (NewVar& c : cells) c.release();
       return cell;
     }
@@ -798,11 +709,11 @@ NewVar MakeVar(const char* name, const MatValue& value, const std::string& path,
       for (const std::string& f : value.field_names) fields.push_back(f.c_str());
       fields.push_back(nullptr);
       const size_t dims[2] = {1, 1};
-      NewVar s = made(m.VarCreateStruct2(name, 2, dims, fields.data()));
+      NewVar s = made(Mat_VarCreateStruct2(name, 2, dims, fields.data()));
       for (std::size_t i = 0; i < value.fields.size(); ++i) {
         const std::string field_where = where + "." + value.field_names[i];
         NewVar f = MakeVar(nullptr, value.fields[i], path, field_where);
-        if (m.VarSetStructFieldByName(s.get(), value.field_names[i].c_str(), 0, f.get()) != nullptr)
+        if (Mat_VarSetStructFieldByName(s.get(), value.field_names[i].c_str(), 0, f.get()) != nullptr)
           throw WriteError(path + ": cannot set the MAT-file field " + field_where + " (it was set twice)");
         f.release();  // owned by the struct (SetStructFieldByName returned no previous field)
       }
@@ -816,8 +727,6 @@ NewVar MakeVar(const char* name, const MatValue& value, const std::string& path,
 
 void WriteMatFile(const std::string& path, const std::vector<std::pair<std::string, MatValue>>& variables,
                   const std::string& description) {
-  const std::string missing = MatioMissing(path, "writing");
-  if (!missing.empty()) throw WriteError(missing);
   std::error_code ec;
   std::filesystem::remove(path, ec);  // matio would refuse an existing file of another version
   bool written = false;
@@ -827,20 +736,20 @@ void WriteMatFile(const std::string& path, const std::vector<std::pair<std::stri
   try {
     const MatioCall call;
     const std::string header = ("MATLAB 5.0 MAT-file, " + description).substr(0, 116);
-    mat_t* mat = Matio().CreateVer(path.c_str(), header.c_str(), MAT_FT_MAT5);
+    mat_t* mat = Mat_CreateVer(path.c_str(), header.c_str(), MAT_FT_MAT5);
     if (mat == nullptr)
       throw WriteError(path + ": cannot create the MAT-file" + call.Because() + " (" + std::strerror(errno) + ")");
     try {
       for (const auto& [name, value] : variables) {
         NewVar v = MakeVar(name.c_str(), value, path, name);
-        if (Matio().VarWrite(mat, v.get(), MAT_COMPRESSION_ZLIB) != 0 || !call.problem().empty())
+        if (Mat_VarWrite(mat, v.get(), MAT_COMPRESSION_ZLIB) != 0 || !call.problem().empty())
           throw WriteError(path + ": cannot write the MAT-file variable " + name + call.Because());
       }
     } catch (...) {
-      Matio().Close(mat);
+      Mat_Close(mat);
       throw;
     }
-    if (Matio().Close(mat) != 0 || !call.problem().empty())
+    if (Mat_Close(mat) != 0 || !call.problem().empty())
       throw WriteError(path + ": cannot finish the MAT-file" + call.Because());
     written = true;
   } catch (...) {

@@ -94,7 +94,7 @@ struct MatValue {
 // `path` (replaced if it exists); on failure nothing is left at `path`.
 // `description` goes into the file's 116-character text header after
 // "MATLAB 5.0 MAT-file, ".
-// @throws WriteError "<path>: ..." if matio cannot be loaded, a value cannot
+// @throws WriteError "<path>: ..." if a value cannot
 //         be made (naming the variable and field) or the file cannot be
 //         written.
 void WriteMatFile(const std::string& path, const std::vector<std::pair<std::string, MatValue>>& variables,

@@ -3,9 +3,8 @@
 // (stored as numbers, full double precision) and text, a bold header row
 // kept in view, column widths, FAIL in red. Rows of a sheet are written
 // in order (the workbook holds one row per sheet in memory; the rest waits
-// in temporary files beside the target). libxlsxwriter is loaded when the
-// first workbook is made, not at every start of deb. This is the one module
-// that uses libxlsxwriter.
+// in temporary files beside the target). This is the one module that uses
+// libxlsxwriter.
 #pragma once
 
 #include <memory>
@@ -26,8 +25,7 @@ std::string XlsxSheetName(const std::string& name, const std::string& suffix, st
 class XlsxWorkbook {
  public:
   // A new workbook to be written to `path` by Close().
-  // @throws WriteError "<path>: ..." if libxlsxwriter cannot be loaded or
-  //         the workbook cannot be made.
+  // @throws WriteError "<path>: ..." if the workbook cannot be made.
   explicit XlsxWorkbook(const std::string& path);
   // Without Close(): nothing is left at the path.
   ~XlsxWorkbook();

@@ -11,9 +11,9 @@
 // ComplexSchur (complex QR iterations) and no Sylvester solver; the exact
 // variance of a dense A of 200-2000 states came out 1.6-2x faster
 // (tools/bench/bench_dense). Eigenvalues and eigenvectors stay with Eigen's
-// EigenSolver: against the reference LAPACK and BLAS deb links
-// (CMakeLists.txt, DEB_STATIC_LAPACK), dgeev was no faster for eigenvalues
-// and 1.3-2x slower with eigenvectors than Eigen compiled for AVX2.
+// EigenSolver: against Debian's reference LAPACK and BLAS, dgeev was no
+// faster for eigenvalues and 1.3-2x slower with eigenvectors than Eigen
+// compiled for AVX2.
 #pragma once
 
 #include <Eigen/Dense>

@@ -9,7 +9,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <thread>
 #include <unordered_map>
 #include <vector>
 
@@ -233,17 +232,6 @@ std::string UnitConversion::Describe() const {
   text += n == 1 ? "once" : n == 2 ? "twice" : std::to_string(n) + " times";
   return text + " in time";
 }
-
-UnitDatabasePreload::UnitDatabasePreload()
-    : thread_([] {
-        try {
-          System();
-        } catch (const InputError&) {
-          // The first real use tries again and reports it.
-        }
-      }) {}
-
-UnitDatabasePreload::~UnitDatabasePreload() { thread_.join(); }
 
 void ValidateUnit(const std::string& unit) {
   static Memo<bool> valid;

@@ -20,7 +20,6 @@
 
 #include <complex>
 #include <string>
-#include <thread>
 
 namespace deb {
 
@@ -43,23 +42,6 @@ struct UnitConversion {
 
   // One line for reports, e.g. "scale 1000, integrated once in time".
   std::string Describe() const;
-};
-
-// While alive, reads the UDUNITS-2 database (a few milliseconds of XML) on a
-// thread of its own, so that it overlaps a command's other start-up work
-// (reading and parsing the budget); the first conversion waits for it. A
-// failure is not reported here: the first use reports it. The destructor
-// joins the thread: keep the object in main(), so that it ends before any
-// static object the loading uses.
-class UnitDatabasePreload {
- public:
-  UnitDatabasePreload();
-  ~UnitDatabasePreload();
-  UnitDatabasePreload(const UnitDatabasePreload&) = delete;
-  UnitDatabasePreload& operator=(const UnitDatabasePreload&) = delete;
-
- private:
-  std::thread thread_;
 };
 
 // Checks that UDUNITS-2 can parse `unit`.

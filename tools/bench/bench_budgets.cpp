@@ -36,7 +36,6 @@ int main(int argc, char** argv) {
   const auto out = std::filesystem::temp_directory_path() / "deb_bench_budgets";
   std::printf("%-24s %8s %9s %11s %11s %9s %9s %9s %9s %9s\n", "budget", "points", "load ms", "eval 1t ms",
               "eval all ms", "write ms", "total 1t", "store ms", "read ms", "store MB");
-  deb::io::PreloadHdf5();  // once per process, as deb run does in the background
   for (const auto& file : budgets) {
     constexpr int kRepeats = 5;
     double best_load = 1e9, best_eval1 = 1e9, best_evaln = 1e9, best_write = 1e9, best_store = 1e9, best_read = 1e9;

@@ -1,5 +1,10 @@
 #include "deb/report/document/pdf_document.h"
 
+#include <cairo-pdf.h>
+#include <cairo.h>
+#include <librsvg/rsvg.h>
+#include <pango/pangocairo.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -7,7 +12,6 @@
 #include <utility>
 
 #include "deb/core/error.h"
-#include "deb/report/document/pdf_libraries.h"
 
 namespace deb::report {
 
@@ -644,7 +648,6 @@ void SetMetadata(cairo_surface_t* surface, const PdfDocumentSpec& spec) {
 }  // namespace
 
 PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path) {
-  RequirePdfLibraries();
   struct SurfaceDeleter {
     void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
   };

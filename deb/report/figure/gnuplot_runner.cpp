@@ -1,10 +1,16 @@
 #include "deb/report/figure/gnuplot_runner.h"
 
+#include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
+#include <spawn.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -12,9 +18,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <gnuplot-iostream.h>
 #include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
@@ -24,12 +30,6 @@
 namespace deb::report {
 namespace fs = std::filesystem;
 namespace {
-
-std::string ShellQuote(const std::string& text) {
-  std::string q = "'";
-  for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 bool IsExecutableFile(const fs::path& p) {
   std::error_code ec;
@@ -168,6 +168,81 @@ throw WriteError("cannot draw the report's plots: gnuplot executable '" + name +
                    "set " + kGnuplotVariable + " to a gnuplot 5 executable, or write the report without plots (--no-plots)");
 }
 
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Writes all of `text` to the pipe `fd` (non-blocking) before `deadline`.
+// False if gnuplot closed its end (it exited: EPIPE, with SIGPIPE ignored)
+// or did not read it all in time.
+bool WriteAll(int fd, const std::string& text, Clock::time_point deadline) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n > 0) {
+      done += static_cast<std::size_t>(n);
+      continue;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno != EAGAIN) return false;
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    if (left <= 0) return false;
+    pollfd p{fd, POLLOUT, 0};
+    ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
+  }
+  return true;
+}
+
+// How gnuplot ended: its exit status (a signal's number + 128), or -1.
+struct GnuplotEnd {
+  int status = -1;
+  bool timed_out = false;
+};
+
+// Reaps `pid`; past `deadline` stops it (SIGTERM, SIGKILL 5 s later).
+GnuplotEnd WaitFor(pid_t pid, Clock::time_point deadline) {
+  GnuplotEnd end;
+  auto nap = std::chrono::microseconds(100);
+  bool terminated = false;
+  for (;;) {
+    int wstatus = 0;
+    const pid_t r = ::waitpid(pid, &wstatus, WNOHANG);
+    if (r == pid) {
+      end.status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : WIFSIGNALED(wstatus) ? 128 + WTERMSIG(wstatus) : -1;
+      return end;
+    }
+    if (r < 0 && errno != EINTR) return end;
+    const auto now = Clock::now();
+    if (now >= deadline) {
+      end.timed_out = true;
+      ::kill(pid, terminated ? SIGKILL : SIGTERM);
+      deadline = now + std::chrono::seconds(terminated ? 3600 : 5);
+      terminated = true;
+    }
+    std::this_thread::sleep_for(nap);
+    nap = std::min(nap * 2, std::chrono::microseconds(10000));
+  }
+}
+
+// Closes a file descriptor when it goes out of scope.
+class Descriptor {
+ public:
+  explicit Descriptor(int fd = -1) : fd_(fd) {}
+  ~Descriptor() { Close(); }
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  int get() const { return fd_; }
+  void Close() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+
+ private:
+  int fd_;
+};
+
+}  // namespace
+
 void RunGnuplot(const std::string& executable, const std::string& dir, const std::string& script,
                 const std::string& what) {
   CheckScript(script);
@@ -176,42 +251,66 @@ void RunGnuplot(const std::string& executable, const std::string& dir, const std
                      "the data it would show has no finite axis range");
   const int timeout_s = TimeoutSeconds();
   const fs::path private_dir = PrivateDirectory();
-  const fs::path err_file = private_dir / "err", status_file = private_dir / "status";
-  // The shell records gnuplot's status in a file: pclose() sees only the
-  // shell's. timeout(1) stops a gnuplot that hangs (exit 124), then kills it.
-  // gnuplot starts in `dir` or not at all: a `cd` inside the script would
-  // leave it drawing into the caller's directory if `dir` were gone (a run
-  // killed while its gnuplots still read their scripts).
-  const std::string err = ShellQuote(err_file.string());
-  const std::string command = "cd " + ShellQuote(dir.empty() ? "." : dir) + " 2>" + err + " && timeout -k 5 " +
-                              std::to_string(timeout_s) + " " + ShellQuote(executable) + " -d 2>" + err +
-                              "; echo $? >" + ShellQuote(status_file.string());
+  const fs::path err_file = private_dir / "err";
+  const auto remove_private = [&] {
+    std::error_code ec;
+    fs::remove_all(private_dir, ec);
+  };
+  // gnuplot is started directly (no shell): `executable -d` (no init
+  // files), in `dir` or not at all (a `cd` inside the script would leave it
+  // drawing into the caller's directory if `dir` were gone: a run killed
+  // while its gnuplots still read their scripts), the script on its
+  // standard input, its messages into the private directory, SIGPIPE at
+  // its default whatever deb does with it.
+  int ends[2];
+  if (::pipe2(ends, O_CLOEXEC) != 0) {
+    remove_private();
+    throw WriteError("cannot draw " + what + ": cannot make a pipe to gnuplot: " + std::strerror(errno));
+  }
+  Descriptor read_end(ends[0]), write_end(ends[1]);
+  posix_spawn_file_actions_t actions;
+  posix_spawnattr_t attributes;
+  ::posix_spawn_file_actions_init(&actions);
+  ::posix_spawnattr_init(&attributes);
+  const std::string work_dir = dir.empty() ? "." : dir;
+  ::posix_spawn_file_actions_adddup2(&actions, read_end.get(), 0);
+  ::posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  ::posix_spawn_file_actions_addopen(&actions, 2, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  ::posix_spawn_file_actions_addchdir_np(&actions, work_dir.c_str());
+  sigset_t defaults, none;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGPIPE);
+  sigemptyset(&none);
+  ::posix_spawnattr_setsigdefault(&attributes, &defaults);
+  ::posix_spawnattr_setsigmask(&attributes, &none);
+  ::posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
+  std::string program = executable, flag = "-d";
+  char* argv[] = {program.data(), flag.data(), nullptr};
+  pid_t pid = -1;
+  const int spawned = ::posix_spawn(&pid, executable.c_str(), &actions, &attributes, argv, environ);
+  ::posix_spawn_file_actions_destroy(&actions);
+  ::posix_spawnattr_destroy(&attributes);
+  read_end.Close();
+  if (spawned != 0) {
+    remove_private();
+    throw WriteError("cannot draw " + what + ": cannot start gnuplot (" + executable + ") in " + work_dir + ": " +
+                     std::strerror(spawned));
+  }
+  const Clock::time_point deadline = Clock::now() + std::chrono::seconds(timeout_s);
   bool written = false;
   {
     const IgnoreSigpipe guard;
-    try {
-      Gnuplot gp(command);
-      gp << script << "\n";
-      gp.flush();
-      written = !gp.fail();
-    } catch (const std::exception& e) {
-      std::error_code ec;
-      fs::remove_all(private_dir, ec);
-      throw WriteError("cannot draw " + what + ": cannot start gnuplot (" + executable + "): " + e.what());
-    }
+    ::fcntl(write_end.get(), F_SETFL, ::fcntl(write_end.get(), F_GETFL) | O_NONBLOCK);
+    written = WriteAll(write_end.get(), script + "\n", deadline);
+    write_end.Close();
   }
-  const std::string messages = ReadText(err_file), status_text = ReadText(status_file);
-  std::error_code ec;
-  fs::remove_all(private_dir, ec);
-  int status = -1;
-  try {
-    status = std::stoi(status_text);
-  } catch (const std::exception&) {
-  }
-  if (status != 0 || !written) {
-    std::string why = status < 0 ? "did not report an exit status" : "exited with status " + std::to_string(status);
-    if (status == 0) why = "stopped reading its commands";
-    if (status == 124 || status == 137)
+  const GnuplotEnd end = WaitFor(pid, deadline);
+  const std::string messages = ReadText(err_file);
+  remove_private();
+  if (end.status != 0 || end.timed_out || !written) {
+    std::string why = end.status < 0 ? "did not report an exit status" : "exited with status " + std::to_string(end.status);
+    if (end.status == 0) why = "stopped reading its commands";
+    if (end.timed_out)
       why = "did not finish within " + std::to_string(timeout_s) + " s and was stopped (" + kGnuplotTimeoutVariable +
             " sets the limit)";
     throw WriteError("cannot draw " + what + ": gnuplot (" + executable + ") " + why +

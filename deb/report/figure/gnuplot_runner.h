@@ -1,6 +1,6 @@
 // Internal: not part of the public API.
 // Runs gnuplot, headless, on a script: the only code in deb that talks to
-// gnuplot (through gnuplot-iostream). gnuplot is an external program, so
+// gnuplot (started with posix_spawn, no shell between). gnuplot is an external program, so
 // its absence, its errors and a run past the time limit are failures to
 // write the report, reported as WriteError with gnuplot's own message; the
 // caller writes into a temporary directory, so such a failure leaves no
