@@ -1,6 +1,6 @@
 // The bounds deb puts on every size that input can ask for, so that a typo or
 // a hostile file ends in a located error instead of exhausting memory or time.
-// Each is far above what a real budget needs; the README lists them.
+// Each is far above what a real budget needs; docs/cli.md lists them.
 #pragma once
 
 #include <cstddef>

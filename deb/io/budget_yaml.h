@@ -1,7 +1,8 @@
-// Loads a budget from a YAML file (the schema is documented in README.md and
-// in the example budgets). Everything the budget says is checked here or by
-// Budget::Validate(); any error is an InputError whose message starts with
-// "file:line:col: key.path:" and names the value and the rule.
+// Loads a budget from a YAML file (the schema is documented in
+// docs/budget_reference.md and in the example budgets). Everything the budget
+// says is checked here or by Budget::Validate(); any error is an InputError
+// whose message starts with "file:line:col: key.path:" and names the value and
+// the rule.
 #pragma once
 
 #include <memory>

@@ -44,7 +44,7 @@ StateSpace CompanionForm(const TransferFunction& tf);
 using LongDouble = long double;
 using ComplexLD = std::complex<LongDouble>;
 
-// The accuracy deb promises for |H| and variances (README), and the error of
+// The accuracy deb promises for |H| and variances (docs/method.md), and the error of
 // a long-double factorisation above which it is redone in double-double.
 constexpr double kMaxRelativeError = 1e-6;
 constexpr double kRefine = 1e-9;

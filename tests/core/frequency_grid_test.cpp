@@ -65,8 +65,9 @@ TEST_CASE("the automatic grid integrates a Lorentzian peak to 1e-6 of its area, 
 }
 
 TEST_CASE("the automatic grid integrates a Lorentzian peak to 5e-7 at random f_n and zeta") {
-  // The README's figure is this test's bound: f_n log-uniform over 2-500 Hz,
-  // zeta log-uniform over 1e-4 ... 1e-2, the default grid over 1-1000 Hz.
+  // The figure of docs/method.md ("The automatic grid and its accuracy") is this
+  // test's bound: f_n log-uniform over 2-500 Hz, zeta log-uniform over
+  // 1e-4 ... 1e-2, the default grid over 1-1000 Hz.
   // 3000 peaks (seed 1) gave a worst error of 2.55e-7; the test runs the
   // first 60 of them.
   std::mt19937 rng(1);

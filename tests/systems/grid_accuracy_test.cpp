@@ -95,7 +95,7 @@ TEST_CASE("the default automatic grid integrates clustered modes at zeta 1e-4..1
   }
 }
 
-// A random member of the class the README states the accuracy for: 1 to 60
+// A random member of the class docs/method.md states the accuracy for: 1 to 60
 // modes at log-uniform random frequencies over 2-2000 Hz, every fourth a twin
 // 0.3 % above its neighbour, zeta log-uniform over 1e-4 ... 1e-2, shapes of
 // random size and sign.
@@ -121,9 +121,10 @@ ModalModel RandomStructure(std::mt19937& rng) {
   return m;
 }
 
-TEST_CASE("the default automatic grid stays within 5e-7 on random members of the class the README states") {
-  // The README's figure is this test's bound. 1000 members (seed 1) gave a
-  // worst error of 2.9e-7; the test runs the first 60 of them.
+TEST_CASE("the default automatic grid stays within 5e-7 on random members of the class docs/method.md states") {
+  // The figure of docs/method.md ("The automatic grid and its accuracy") is this
+  // test's bound. 1000 members (seed 1) gave a worst error of 2.9e-7; the
+  // test runs the first 60 of them.
   std::mt19937 rng(1);
   double worst = 0.0;
   for (int trial = 0; trial < 60; ++trial) {
