@@ -72,7 +72,6 @@
 
 #include "deb/models/isolation_model.h"
 #include "deb/models/isolation_system.h"
-#include "deb/models/thesis_layout.h"
 
 // A budget, its evaluation (Evaluate, BudgetResult) and what is built on it.
 #include "deb/budget/allocation.h"

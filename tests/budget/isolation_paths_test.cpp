@@ -6,7 +6,7 @@
 
 #include "deb/core/error.h"
 #include "deb/models/isolation_model.h"
-#include "deb/models/thesis_layout.h"
+#include "tests/support/thesis_layout.h"
 
 namespace deb {
 namespace {

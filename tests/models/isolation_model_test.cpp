@@ -6,7 +6,7 @@
 #include <complex>
 
 #include "deb/core/error.h"
-#include "deb/models/thesis_layout.h"
+#include "tests/support/thesis_layout.h"
 #include "model_test_support.h"
 
 namespace deb {

@@ -1,4 +1,4 @@
-#include "deb/models/thesis_layout.h"
+#include "tests/support/thesis_layout.h"
 
 #include <doctest/doctest.h>
 
