@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/file_name.h"
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
@@ -81,13 +82,6 @@ Loaded Load(const std::string& input, const std::vector<BudgetOverride>& overrid
   return {std::move(figures), std::move(result)};
 }
 
-
-std::string Safe(const std::string& label) {
-  std::string s = label;
-  for (char& ch : s)
-    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.')) ch = '_';
-  return s;
-}
 
 void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plots, const std::string& out_dir,
                      bool force, int threads) {
@@ -182,7 +176,7 @@ int CompareCommand::Run() const {
     r.cmp.tolerance = s.tolerance;
     if (s.plots && la.result && lb.result)
       r.plots = report::OverlayPlots(a.label, *la.result, b.label, *lb.result);
-    r.dir = s.out_dir.empty() ? (fs::path("reports") / ("compare_" + Safe(a.label) + "_vs_" + Safe(b.label))).string()
+    r.dir = s.out_dir.empty() ? (fs::path("reports") / ("compare_" + deb::FileNameWord(a.label) + "_vs_" + deb::FileNameWord(b.label))).string()
                               : s.out_dir;
     reports.push_back(std::move(r));
   }

@@ -28,6 +28,7 @@
 #include <optional>
 #include <set>
 
+#include "deb/core/file_name.h"
 #include "deb/budget/engine.h"
 #include "deb/budget/groups.h"
 #include "deb/core/document_date.h"
@@ -95,16 +96,6 @@ int RunMapped(CLI::App& app, F&& parse_and_run) {
   }
 }
 
-// A group path as part of a directory name: "stage/amplifier" -> "stage_amplifier".
-std::string DirectoryWord(const std::string& text) {
-  std::string word = text;
-  for (char& c : word)
-    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
-          c == '.'))
-      c = '_';
-  return word;
-}
-
 int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& overrides, const std::string& group,
         std::string out_dir, int threads, bool quiet, bool strict, deb::ReportOptions report,
         const std::vector<deb::ExportFormat>& exports) {
@@ -112,7 +103,7 @@ int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& 
   if (!group.empty()) budget = deb::SelectGroup(budget, group);
   if (out_dir.empty())
     out_dir = (std::filesystem::path("reports") /
-               (group.empty() ? budget.name : budget.name + "_" + DirectoryWord(group)))
+               (group.empty() ? budget.name : budget.name + "_" + deb::FileNameWord(group)))
                   .string();
   deb::EngineOptions options;
   options.threads = threads;

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "deb/core/file_name.h"
 #include "deb/budget/groups.h"
 #include "deb/budget/output_covariance.h"
 #include "deb/budget/path_composition.h"
@@ -28,7 +29,7 @@ void RequireUniqueNames(const std::vector<T>& items, const char* list) {
   for (std::size_t i = 0; i < items.size(); ++i) {
     if (items[i].name.empty()) throw InputError(Indexed(list, i) + ".name", "a name is required");
     for (char ch : items[i].name)
-      if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
+      if (!IsFileNameCharacter(ch))
         throw InputError(Indexed(list, i) + ".name", "name '" + items[i].name +
                                                          "' may contain only letters, digits, '_', '-' and '.'");
     if (items[i].name == "." || items[i].name == "..")

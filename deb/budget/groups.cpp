@@ -4,6 +4,7 @@
 #include <functional>
 #include <map>
 
+#include "deb/core/file_name.h"
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 #include "deb/core/suggest.h"
@@ -11,10 +12,7 @@
 namespace deb {
 namespace {
 
-bool GroupCharacter(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
-         c == '.' || c == ' ';
-}
+bool GroupCharacter(char c) { return IsFileNameCharacter(c) || c == ' '; }
 
 // True when `path` is `group` or lies below it.
 bool Within(const std::string& path, const std::string& group) {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 
+#include "deb/core/file_name.h"
 #include "deb/core/input_file.h"
 #include "deb/io/budget_extends.h"
 #include "deb/io/budget_overrides.h"
@@ -179,7 +180,7 @@ Budget Load(const YamlReader& reader, const std::string& base_dir) {
   b.positions = reader.positions();
   b.name = root.Required("name").AsString();
   for (char ch : b.name)
-    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
+    if (!IsFileNameCharacter(ch))
       root.Required("name").Fail("budget name '" + Excerpt(b.name) +
                                  "' may contain only letters, digits, '_', '-' and '.' (it names the report directory)");
   if (b.name == "." || b.name == "..")

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "deb/core/file_name.h"
 #include "deb/budget/allocation.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
@@ -328,12 +329,7 @@ std::string SummaryJson(const Budget& budget, const BudgetResult& result, const 
   return j.dump(2) + "\n";
 }
 
-std::string OutputCsvName(const std::string& output_name) {
-  std::string s = output_name;
-  for (char& ch : s)
-    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.')) ch = '_';
-  return s + ".csv";
-}
+std::string OutputCsvName(const std::string& output_name) { return FileNameWord(output_name) + ".csv"; }
 
 std::string OutputCsv(const BudgetResult& result, const OutputResult& o) {
   std::ostringstream os;

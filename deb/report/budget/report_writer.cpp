@@ -173,8 +173,8 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
                             "\nload " + QuoteFile(p.name + ".gp") + "\nunset output\n"});
     }
     const std::size_t pdf_jobs = jobs.size();
-    for (Terminal t : {Terminal::kPng, Terminal::kSvg}) {
-      if (!options.Has(t == Terminal::kPng ? PlotFormat::kPng : PlotFormat::kSvg)) continue;
+    for (PlotFormat t : {PlotFormat::kPng, PlotFormat::kSvg}) {
+      if (!options.Has(t)) continue;
       for (const Plot& p : plots) {
         const std::string file = p.name + "." + FileExtension(t);
         jobs.push_back({"plots/" + file, TerminalCommand(t) + "set output " + QuoteFile(file) + "\nload " +

@@ -202,7 +202,7 @@ void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_di
       [&](std::size_t i) {
         const Plot& p = plots[i];
         RunGnuplot(gnuplot, plots_dir,
-                   TerminalCommand(Terminal::kPng) + "set output " + QuoteFile(p.name + ".png") + "\nload " +
+                   TerminalCommand(PlotFormat::kPng) + "set output " + QuoteFile(p.name + ".png") + "\nload " +
                        QuoteFile(p.name + ".gp") + "\nunset output\n",
                    "plot " + p.name);
       },

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <set>
 
+#include "deb/core/file_name.h"
 #include "deb/units/unit.h"
 
 namespace deb::report {
@@ -162,9 +163,7 @@ std::string Share(double part, double whole) {
 }
 
 std::string FileStem(const std::string& name) {
-  std::string s = name.empty() ? "_" : name;
-  for (char& c : s)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
+  const std::string s = name.empty() ? "_" : FileNameWord(name);
   if (s.size() <= 100) return s;
   // FNV-1a of the name: the same on every machine and run.
   std::uint64_t hash = 14695981039346656037ull;

@@ -16,20 +16,11 @@ namespace deb::report {
 namespace fs = std::filesystem;
 namespace {
 
-Terminal TerminalOf(PlotFormat format) {
-  switch (format) {
-    case PlotFormat::kPng: return Terminal::kPng;
-    case PlotFormat::kSvg: return Terminal::kSvg;
-    case PlotFormat::kPdf: return Terminal::kPdf;
-  }
-  return Terminal::kPng;
-}
-
 fs::path Directory(const StandalonePlot& p) { return p.directory.empty() ? fs::path(".") : fs::path(p.directory); }
 
 std::vector<std::string> FileNames(const std::string& name, const std::vector<PlotFormat>& formats) {
   std::vector<std::string> names = {StandaloneDataFile(name), name + ".gp"};
-  for (PlotFormat f : formats) names.push_back(name + "." + FileExtension(TerminalOf(f)));
+  for (PlotFormat f : formats) names.push_back(name + "." + FileExtension(f));
   return names;
 }
 
@@ -82,8 +73,7 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
       temporary_dirs_.push_back(dir.string());
       WriteTextFile((dir / StandaloneDataFile(p.plot.name)).string(), p.plot.csv);
       WriteGnuplotScript((dir / (p.plot.name + ".gp")).string(), p.plot.script);
-      for (PlotFormat f : formats) {
-        const Terminal t = TerminalOf(f);
+      for (PlotFormat t : formats) {
         const std::string file = p.plot.name + "." + FileExtension(t);
         // One gnuplot per file: a PDF of one page, a PNG or an SVG.
         draws.push_back({dir.string(),

@@ -198,24 +198,24 @@ SeriesStyle ChannelStyle(std::size_t index) {
   return s;
 }
 
-std::string TerminalCommand(Terminal terminal) {
+std::string TerminalCommand(PlotFormat format) {
   const std::string font = std::string(" font '") + kFont + ",";
-  switch (terminal) {
-    case Terminal::kPng:
+  switch (format) {
+    case PlotFormat::kPng:
       return "set terminal pngcairo enhanced size 1200,720 background '#ffffff'" + font + "11' linewidth 1.2\n";
-    case Terminal::kSvg:
+    case PlotFormat::kSvg:
       return "set terminal svg enhanced size 1200,720 background '#ffffff'" + font + "13' linewidth 1.2\n";
-    case Terminal::kPdf:
+    case PlotFormat::kPdf:
       return "set terminal pdfcairo enhanced size 29.7cm,21cm background '#ffffff'" + font + "11' linewidth 1.5\n";
   }
   return "";
 }
 
-std::string FileExtension(Terminal terminal) {
-  switch (terminal) {
-    case Terminal::kPng: return "png";
-    case Terminal::kSvg: return "svg";
-    case Terminal::kPdf: return "pdf";
+std::string FileExtension(PlotFormat format) {
+  switch (format) {
+    case PlotFormat::kPng: return "png";
+    case PlotFormat::kSvg: return "svg";
+    case PlotFormat::kPdf: return "pdf";
   }
   return "";
 }

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "deb/report/figure/report_options.h"
+
 namespace deb::report {
 
 struct SeriesStyle {
@@ -80,9 +82,8 @@ inline constexpr const char* kMonoFont = "DejaVu Sans Mono";
 // Terminal settings for one output file. PNG and SVG pages are 1200 x 720
 // pixels; PDF pages are A4 landscape. Data lines are drawn at linewidth >= 2,
 // which is >= 1.5 pt in PDF (0.75 pt per unit) and SVG (1.2 px per unit).
-enum class Terminal { kPng, kSvg, kPdf };
-std::string TerminalCommand(Terminal terminal);
-std::string FileExtension(Terminal terminal);  // "png", "svg", "pdf"
+std::string TerminalCommand(PlotFormat format);
+std::string FileExtension(PlotFormat format);  // "png", "svg", "pdf"
 
 // Settings every plot script starts with (after `reset`): encoding, CSV
 // input, grid, borders, fonts of titles and keys.

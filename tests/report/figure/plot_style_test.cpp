@@ -238,10 +238,10 @@ TEST_CASE("a contributor's colour follows its index in the budget, not its share
 }
 
 TEST_CASE("every terminal is headless cairo or SVG") {
-  CHECK(TerminalCommand(Terminal::kPng).find("pngcairo") != std::string::npos);
-  CHECK(TerminalCommand(Terminal::kPdf).find("pdfcairo") != std::string::npos);
-  CHECK(TerminalCommand(Terminal::kSvg).find("terminal svg") != std::string::npos);
-  CHECK(FileExtension(Terminal::kPdf) == "pdf");
+  CHECK(TerminalCommand(PlotFormat::kPng).find("pngcairo") != std::string::npos);
+  CHECK(TerminalCommand(PlotFormat::kPdf).find("pdfcairo") != std::string::npos);
+  CHECK(TerminalCommand(PlotFormat::kSvg).find("terminal svg") != std::string::npos);
+  CHECK(FileExtension(PlotFormat::kPdf) == "pdf");
 }
 
 }  // namespace deb::report
