@@ -88,6 +88,7 @@
 #include "deb/budget/path.h"
 #include "deb/budget/path_analysis.h"
 #include "deb/budget/path_composition.h"
+#include "deb/budget/result.h"
 #include "deb/budget/sensitivity.h"
 #include "deb/budget/source.h"
 #include "deb/budget/sweep.h"

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 
 namespace deb::tools {
 

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/io/result_writer.h"
 
 namespace deb::io {

@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/core/output_dir.h"
 
 namespace deb {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/result_writer.h"

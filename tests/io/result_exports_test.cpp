@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/core/error.h"
 #include "deb/io/mat_file.h"
 #include "deb/io/result_exports.h"

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 
 namespace deb::report {
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/io/result_exports.h"
 #include "deb/io/result_writer.h"
 #include "deb/report/figure/report_options.h"

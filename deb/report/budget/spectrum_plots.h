@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/report/figure/figure_axis.h"
 #include "deb/report/figure/plot.h"
 #include "deb/report/figure/plot_style.h"

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "deb/budget/engine.h"
 #include "deb/budget/path_response.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/figure/plot_style.h"

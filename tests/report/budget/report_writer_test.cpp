@@ -7,6 +7,7 @@
 #include <set>
 #include <sys/stat.h>
 
+#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/figure/gnuplot_runner.h"

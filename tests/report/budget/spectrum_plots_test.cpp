@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
 #include "deb/io/budget_yaml.h"

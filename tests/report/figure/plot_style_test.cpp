@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/budget/report_writer.h"
 #include "deb/report/budget/spectrum_plots.h"
