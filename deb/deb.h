@@ -77,6 +77,7 @@
 // A budget, its evaluation (Evaluate, BudgetResult) and what is built on it.
 #include "deb/budget/allocation.h"
 #include "deb/budget/budget.h"
+#include "deb/budget/budget_outline.h"
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"

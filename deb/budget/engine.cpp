@@ -933,7 +933,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
   FullPlan full = MakePlan(budget);
   EvaluationPlan& plan = full.plan;
   BudgetResult result;
-  result.budget_name = budget.name;
+  result.outline = OutlineOf(budget);
   result.paths = std::move(plan.paths);
   result.grid = std::move(plan.grid);
   result.warnings = std::move(plan.warnings);

@@ -1,10 +1,11 @@
 // What Evaluate gives back (engine.h): per output its total and every
 // contributor's PSD and CPS on one frequency grid, variances, bands,
 // requirements and measured references; the feedback loops with their
-// margins; the output covariance. The types are plain data, and a result
-// read back from its store (deb/io/result_store.h) is the same type: what
-// reads a result (the studies, the result files, the report) includes this
-// header, not the engine's.
+// margins; the output covariance; and the outline of the budget (names,
+// units, descriptions; no model). The types are plain data, and a result
+// read back from its store (deb/io/result_store.h) is the same type: the
+// result files and the report are functions of a result alone, and what
+// reads a result includes this header, not the engine's.
 #pragma once
 
 #include <cstddef>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "deb/budget/budget.h"
+#include "deb/budget/budget_outline.h"
 #include "deb/budget/loop_analysis.h"
 #include "deb/budget/output_covariance.h"
 #include "deb/budget/path_analysis.h"
@@ -136,7 +138,9 @@ struct OutputResult {
 };
 
 struct BudgetResult {
-  std::string budget_name;
+  // The budget's names, descriptions, units and contributors: what the
+  // result files and the report say of it (budget_outline.h).
+  BudgetOutline outline;
   FrequencyGrid grid{std::vector<double>{1.0, 2.0}};
   std::vector<OutputResult> outputs;
   std::vector<std::string> warnings;

@@ -36,7 +36,7 @@ using test::Contains;
 // 0, 2, 6); the output's variance 9 (RMS 3) against rms_max 2: FAIL.
 BudgetResult SmallResult() {
   BudgetResult r;
-  r.budget_name = "small";
+  r.outline.name = "small";
   r.grid = FrequencyGrid({1.0, 2.0, 4.0});
   OutputResult o;
   o.name = "x pos";

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/budget.h"
 #include "deb/budget/result.h"
 #include "deb/report/budget/report_tables.h"
 #include "deb/report/figure/plot.h"
@@ -17,7 +16,6 @@
 namespace deb::report {
 
 struct DocumentInputs {
-  const Budget* budget = nullptr;
   const BudgetResult* result = nullptr;
   ReportFacts facts;
   std::vector<Plot> plots;            // in report order
