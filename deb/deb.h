@@ -76,6 +76,7 @@
 // A budget, its evaluation (Evaluate, BudgetResult) and what is built on it.
 #include "deb/budget/allocation.h"
 #include "deb/budget/budget.h"
+#include "deb/budget/budget_outline.h"
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
@@ -87,6 +88,7 @@
 #include "deb/budget/path.h"
 #include "deb/budget/path_analysis.h"
 #include "deb/budget/path_composition.h"
+#include "deb/budget/result.h"
 #include "deb/budget/sensitivity.h"
 #include "deb/budget/source.h"
 #include "deb/budget/sweep.h"

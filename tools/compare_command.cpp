@@ -66,7 +66,7 @@ Loaded Load(const std::string& input, const std::vector<BudgetOverride>& overrid
                   std::nullopt};
     // With its result store, a directory is drawn as a budget is.
     const fs::path store = p / io::kResultStoreFile;
-    if (plots && fs::is_regular_file(store)) loaded.result = io::ReadResultStore(store.string()).result;
+    if (plots && fs::is_regular_file(store)) loaded.result = io::ReadResultStore(store.string());
     return loaded;
   }
   if (p.extension() == ".json") {

@@ -44,8 +44,8 @@ void PrintCorrelation(const deb::CovarianceResult& cov) {
 
 }  // namespace
 
-void PrintBrief(const deb::Budget& budget, const deb::BudgetResult& r, std::optional<double> seconds, int digits) {
-  std::printf("budget %s: %zu frequencies, %g-%g Hz", budget.name.c_str(), r.grid.size(), r.grid.min_hz(),
+void PrintBrief(const deb::BudgetResult& r, std::optional<double> seconds, int digits) {
+  std::printf("budget %s: %zu frequencies, %g-%g Hz", r.outline.name.c_str(), r.grid.size(), r.grid.min_hz(),
               r.grid.max_hz());
   if (seconds) std::printf(", evaluated in %.3f s", *seconds);
   std::printf("\n");

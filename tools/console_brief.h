@@ -8,13 +8,12 @@
 
 #include <optional>
 
-#include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 
 namespace deb::tools {
 
 // `seconds`: the evaluation's wall time, if known. `digits`: significant
 // digits of every figure (ReportOptions::digits).
-void PrintBrief(const Budget& budget, const BudgetResult& result, std::optional<double> seconds, int digits);
+void PrintBrief(const BudgetResult& result, std::optional<double> seconds, int digits);
 
 }  // namespace deb::tools

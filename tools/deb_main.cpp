@@ -111,13 +111,13 @@ int Run(const std::string& budget_file, const std::vector<deb::BudgetOverride>& 
   const deb::BudgetResult result = deb::Evaluate(budget, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& w : result.warnings) std::fprintf(stderr, "deb: warning: %s\n", w.c_str());
-  if (!quiet) deb::tools::PrintBrief(budget, result, seconds, report.digits);
+  if (!quiet) deb::tools::PrintBrief(result, seconds, report.digits);
   // A reproducible report (SOURCE_DATE_EPOCH set) records no wall time.
   deb::RunInfo info;
   info.budget_file = budget_file;
   info.threads = threads;
   if (!deb::Reproducible()) info.seconds = seconds;
-  deb::tools::WriteCommandReport(budget, result, info, report, threads, quiet, out_dir, exports);
+  deb::tools::WriteCommandReport(result, info, report, threads, quiet, out_dir, exports);
   if (!quiet) std::printf("\nreport: %s\n", out_dir.c_str());
   int failed = 0;
   for (const auto& o : result.outputs) failed += o.AllPass() ? 0 : 1;

@@ -48,7 +48,8 @@ int ReportCommand::Run() const {
     throw InputError(o.input + ": holds no result store (" + io::kResultStoreFile +
                      "); deb run writes one into every report directory");
   const fs::path result_dir = is_dir ? input : store.parent_path().empty() ? fs::path(".") : store.parent_path();
-  const io::StoredResult stored = io::ReadResultStore(store.string());
+  RunInfo info;
+  const BudgetResult result = io::ReadResultStore(store.string(), &info);
 
   const ReportOptions report = o.flags.Options();
   std::vector<ExportFormat> exports = o.flags.exports;
@@ -60,13 +61,12 @@ int ReportCommand::Run() const {
       if (fs::is_regular_file(result_dir / ExportFileName(f), ec) &&
           std::find(exports.begin(), exports.end(), f) == exports.end())
         exports.push_back(f);
-  RunInfo info = stored.info;
   info.threads = o.threads;
-  if (!o.quiet) PrintBrief(stored.budget, stored.result, stored.info.seconds, report.digits);
-  WriteCommandReport(stored.budget, stored.result, info, report, o.threads, o.quiet, out, exports);
+  if (!o.quiet) PrintBrief(result, info.seconds, report.digits);
+  WriteCommandReport(result, info, report, o.threads, o.quiet, out, exports);
   if (!o.quiet)
     std::printf("\nreport: %s (redrawn from %s: budget %s%s)\n", out.c_str(), store.string().c_str(),
-                stored.budget.name.c_str(),
+                result.outline.name.c_str(),
                 info.budget_sha256.empty() ? "" : (", SHA-256 " + info.budget_sha256.substr(0, 12) + "...").c_str());
   return 0;
 }

@@ -78,13 +78,12 @@ inline void AddReportFlags(CLI::App* app, ReportFlags* flags) {
 // `threads`, progress on stderr when it is a terminal and not `quiet`. What
 // the report finds wrong only while writing (InputError) means it cannot be
 // written: a WriteError (exit code 4).
-inline void WriteCommandReport(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                               ReportOptions report, int threads, bool quiet, const std::string& out_dir,
-                               const std::vector<ExportFormat>& exports) {
+inline void WriteCommandReport(const BudgetResult& result, const RunInfo& info, ReportOptions report, int threads,
+                               bool quiet, const std::string& out_dir, const std::vector<ExportFormat>& exports) {
   report.threads = threads;
   report.progress = !quiet && ::isatty(STDERR_FILENO);
   try {
-    WriteReportDirectory(budget, result, info, report, out_dir, exports);
+    WriteReportDirectory(result, info, report, out_dir, exports);
   } catch (const InputError& e) {
     throw WriteError(e.what());
   }

@@ -200,26 +200,6 @@ std::vector<ModeShare> TopModes(const ModalModel& model, const Eigen::VectorXd& 
 
 }  // namespace
 
-double OutputResult::rms() const { return std::sqrt(variance); }
-
-bool OutputResult::pass() const { return !rms_max || rms() <= *rms_max; }
-
-double BandRequirementResult::rms() const { return std::sqrt(variance); }
-
-bool BandRequirementResult::pass() const { return rms() <= requirement.rms_max; }
-
-bool OutputResult::AllPass() const {
-  for (const auto& b : band_requirements)
-    if (!b.pass()) return false;
-  return pass();
-}
-
-std::vector<double> ReverseCps(const std::vector<double>& cps) {
-  std::vector<double> r(cps.size());
-  for (std::size_t i = 0; i < cps.size(); ++i) r[i] = cps.back() - cps[i];
-  return r;
-}
-
 using PathAnalyses = std::map<std::string, std::shared_ptr<const PathAnalysis>>;
 
 PathAnalyses AnalysePaths(const Budget& budget) {
@@ -759,13 +739,6 @@ std::vector<std::vector<double>> ChannelTones(const PathAnalysis& analysis, cons
   return v;
 }
 
-// A tone's step in a CPS: `variance` added from the first grid point at or
-// above f_hz on (a negative variance takes the step out again).
-void AddStep(const std::vector<double>& f, double f_hz, double variance, std::vector<double>* cps) {
-  const std::size_t first = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), f_hz) - f.begin());
-  for (std::size_t k = first; k < f.size(); ++k) (*cps)[k] += variance;
-}
-
 // cr.channels and cr.cross_variance from each channel's PSD: each channel's
 // density integrated on the grid's own rule (CumulativeIntegral: Lobatto on
 // panels, the power law between other points), so a part is as accurate as
@@ -782,7 +755,7 @@ void BreakDownChannels(const Source& source, const FrequencyGrid& grid,
   // The density's CPS alone (tones taken out again).
   std::vector<double> density = cr->cps;
   for (const ContributorResult::Tone& t : cr->tones) {
-    AddStep(f, t.f_hz, -t.variance, &density);
+    AddToneStep(f, t.f_hz, -t.variance, &density);
   }
   std::vector<std::vector<double>> own;
   for (const std::vector<double>& psd : channel_psd) own.push_back(CumulativeIntegral(grid, psd));
@@ -800,7 +773,7 @@ void BreakDownChannels(const Source& source, const FrequencyGrid& grid,
     p.psd = channel_psd[j];
     p.cps.assign(f.size(), 0.0);
     for (std::size_t k = 1; k < f.size(); ++k) p.cps[k] = p.cps[k - 1] + scale[k] * (own[j][k] - own[j][k - 1]);
-    for (std::size_t t = 0; t < cr->tones.size(); ++t) AddStep(f, cr->tones[t].f_hz, channel_tones[t][j], &p.cps);
+    for (std::size_t t = 0; t < cr->tones.size(); ++t) AddToneStep(f, cr->tones[t].f_hz, channel_tones[t][j], &p.cps);
     p.variance = p.cps.back();
     parts += p.variance;
     cr->channels.push_back(std::move(p));
@@ -960,7 +933,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
   FullPlan full = MakePlan(budget);
   EvaluationPlan& plan = full.plan;
   BudgetResult result;
-  result.budget_name = budget.name;
+  result.outline = OutlineOf(budget);
   result.paths = std::move(plan.paths);
   result.grid = std::move(plan.grid);
   result.warnings = std::move(plan.warnings);
@@ -1013,7 +986,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
         double tonal = 0.0;
         for (const ContributorResult::Tone& t : cr.tones) {
           tonal += t.variance;
-          AddStep(f, t.f_hz, t.variance, &cr.cps);
+          AddToneStep(f, t.f_hz, t.variance, &cr.cps);
         }
         if (purely_tonal) cr.exact_variance = tonal;  // |H(f0) a|^2 is the exact variance of a sinusoid
       }
@@ -1062,22 +1035,6 @@ BudgetResult Evaluate(const Budget& budget, const EngineOptions& options) {
   } catch (const InputError& e) {
     throw budget.Locate(e);  // at file:line:col, from the positions recorded at load
   }
-}
-
-double ContributorVarianceBetween(const FrequencyGrid& grid, const ContributorResult& c, double lo_hz, double hi_hz) {
-  if (c.tones.empty()) return IntegralBetween(grid, c.psd, c.cps, lo_hz, hi_hz);
-  // The density's CPS: the tones' steps taken out again.
-  const std::vector<double>& f = grid.f_hz();
-  std::vector<double> density_cps = c.cps;
-  double tonal = 0.0;
-  // (lo, hi], closed below at the grid's start: the CPS holds a tone on the
-  // first point from that point on, so the band from there must count it.
-  const bool from_start = grid.ClampToRange(lo_hz) == grid.min_hz();
-  for (const ContributorResult::Tone& t : c.tones) {
-    AddStep(f, t.f_hz, -t.variance, &density_cps);
-    if ((lo_hz < t.f_hz || (from_start && t.f_hz <= lo_hz)) && t.f_hz <= hi_hz) tonal += t.variance;
-  }
-  return IntegralBetween(grid, c.psd, density_cps, lo_hz, hi_hz) + tonal;
 }
 
 }  // namespace deb

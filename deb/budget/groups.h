@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 
 namespace deb {
 

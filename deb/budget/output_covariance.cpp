@@ -5,9 +5,9 @@
 #include <limits>
 #include <set>
 
-#include "deb/budget/engine.h"
 #include "deb/budget/path_response.h"
 #include "deb/budget/response_traces.h"
+#include "deb/budget/result.h"
 #include "deb/core/error.h"
 #include "deb/core/integrate.h"
 #include "deb/core/suggest.h"

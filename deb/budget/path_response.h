@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/units/unit.h"
 
 namespace deb {

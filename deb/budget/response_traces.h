@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
 #include "deb/budget/path_response.h"
+#include "deb/budget/result.h"
 
 namespace deb {
 

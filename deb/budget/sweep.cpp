@@ -5,6 +5,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 

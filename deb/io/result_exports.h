@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/core/enum_names.h"
 
 namespace deb {

@@ -168,7 +168,7 @@ void WriteResultMat(const BudgetResult& result, const std::string& file) {
   }
   std::vector<std::pair<std::string, MatValue>> variables;
   variables.emplace_back("f_hz", MatValue::Column(result.grid.f_hz()));
-  variables.emplace_back("budget_name", MatValue::Text(result.budget_name));
+  variables.emplace_back("budget_name", MatValue::Text(result.outline.name));
   variables.emplace_back("deb_version", MatValue::Text(DEB_VERSION));
   variables.emplace_back("output_names", MatValue::Names(names));
   variables.emplace_back("output_fields", MatValue::Names(taken));

@@ -96,7 +96,7 @@ void WriteContributor(Hdf5Writer& w, const std::string& at, const ContributorRes
   w.Text(at + "/top_modes_of", ToString(c.top_modes_of));
 }
 
-void WriteOutput(Hdf5Writer& w, const std::string& at, const Output& spec, const OutputResult& o) {
+void WriteOutput(Hdf5Writer& w, const std::string& at, const OutputOutline& spec, const OutputResult& o) {
   w.Text(at + "/name", o.name);
   w.Text(at + "/signal", o.signal);
   w.Text(at + "/unit", o.unit);
@@ -385,13 +385,13 @@ ContributorResult ReadContributor(const Reading& in, const std::string& at, std:
   return c;
 }
 
-void ReadOutput(const Reading& in, const std::string& at, std::size_t n, Output* spec, OutputResult* o) {
+void ReadOutput(const Reading& in, const std::string& at, std::size_t n, OutputOutline* spec, OutputResult* o) {
   const Hdf5Reader& r = in.r();
-  o->name = spec->name = in.Name(at + "/name");
-  o->signal = spec->signal = in.Printable(at + "/signal");
-  o->unit = spec->unit = in.Printable(at + "/unit");
+  o->name = in.Name(at + "/name");
+  o->signal = in.Printable(at + "/signal");
+  o->unit = in.Printable(at + "/unit");
   o->variance = in.NonNegative(at + "/variance");
-  o->rms_max = spec->rms_max = FromNone(r.Number(at + "/rms_max", true));
+  o->rms_max = FromNone(r.Number(at + "/rms_max", true));
   if (o->rms_max && !(*o->rms_max > 0.0))
     in.Fail(at + "/rms_max", "holds the requirement " + NumberText(*o->rms_max) + ", which must be > 0 (as in a budget)");
   const std::string metric = r.Text(at + "/metric/type");
@@ -401,13 +401,11 @@ void ReadOutput(const Reading& in, const std::string& at, std::size_t n, Output*
     m.window_s = r.Number(at + "/metric/window_s");
     if (!(m.window_s > 0.0))
       in.Fail(at + "/metric/window_s", "holds the window " + NumberText(m.window_s) + " s, which must be > 0");
-    o->metric = spec->metric = m;
+    o->metric = m;
   }
   if (r.Integer(at + "/weighting/present") != 0) {
-    Weighting wt;  // the filter itself is not stored: only what a report says of it
-    wt.unit = in.Printable(at + "/weighting/unit");
-    wt.description = r.Text(at + "/weighting/description");
-    spec->weighting = wt;
+    // The filter itself is not stored: only what a report says of it.
+    spec->weighting = WeightingOutline{in.Printable(at + "/weighting/unit"), r.Text(at + "/weighting/description")};
   }
   const std::vector<std::string> term_signals = in.Printables(at + "/combination/signals", kMaxTexts);
   const std::vector<double> term_weights = in.Numbers(at + "/combination/weights", term_signals.size());
@@ -426,7 +424,6 @@ void ReadOutput(const Reading& in, const std::string& at, std::size_t n, Output*
     if (!(b.rms_max > 0.0))
       in.Fail(at + "/band_requirements/limits", "holds the requirement " + NumberText(b.rms_max) +
                                                     ", which must be > 0 (as in a budget)");
-    spec->band_requirements.push_back(b);
     o->band_requirements.push_back({b, requirement_variance[i]});
   }
   const std::size_t contributors = in.Count(at + "/contributors/names", kMaxEntries);
@@ -453,10 +450,6 @@ void ReadOutput(const Reading& in, const std::string& at, std::size_t n, Output*
     ref.covered_hi_hz = covered[1];
     for (double v : in.Numbers(ra + "/band_variance", edges.size(), true)) ref.band_variance.push_back(FromNone(v));
     o->references.push_back(std::move(ref));
-    Source named;  // Output::references: the names, for the outline
-    named.name = o->references.back().name;
-    named.unit = o->unit;
-    spec->references.push_back(std::move(named));
   }
 }
 
@@ -548,36 +541,36 @@ void CheckPanels(const Reading& in, const std::vector<double>& f_hz, const std::
 
 }  // namespace
 
-void WriteResultStore(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                      const std::string& file) {
-  DEB_DEMAND(result.traces && result.traces->paths.size() == budget.contributors.size());
-  DEB_DEMAND(result.outputs.size() == budget.outputs.size());
+void WriteResultStore(const BudgetResult& result, const RunInfo& info, const std::string& file) {
+  const BudgetOutline& outline = result.outline;
+  DEB_DEMAND(result.traces && result.traces->paths.size() == outline.contributors.size());
+  DEB_DEMAND(result.outputs.size() == outline.outputs.size());
   Hdf5Writer w(file);
   w.Text("schema", kResultStoreSchema);
   w.Integer("schema_version", kResultStoreVersion);
   w.Text("deb_version", DEB_VERSION);
-  w.Text("budget/name", budget.name);
-  w.Text("budget/description", budget.description);
+  w.Text("budget/name", outline.name);
+  w.Text("budget/description", outline.description);
   w.Text("budget/file", info.budget_file);
   w.Text("budget/sha256", info.budget_sha256);
   w.Text("budget/text", info.budget_text ? *info.budget_text : "");
-  w.Text("budget/grid_type", ToString(budget.grid.kind));
+  w.Text("budget/grid_type", ToString(outline.grid_kind));
   std::vector<std::vector<double>> bands;
-  for (const Band& b : budget.bands) bands.push_back({b.lo_hz, b.hi_hz});
+  for (const Band& b : outline.bands) bands.push_back({b.lo_hz, b.hi_hz});
   w.Rows("budget/bands", bands);
   w.Number("run/seconds", info.seconds ? *info.seconds : kNone);
-  w.Texts("budget/sources/names", Names(budget.sources, kName));
-  for (std::size_t i = 0; i < budget.sources.size(); ++i) {
-    const Source& s = budget.sources[i];
+  w.Texts("budget/sources/names", Names(outline.sources, kName));
+  for (std::size_t i = 0; i < outline.sources.size(); ++i) {
+    const SourceOutline& s = outline.sources[i];
     const std::string at = At("budget/sources", i);
     w.Text(at + "/name", s.name);
     w.Text(at + "/description", s.description);
     w.Text(at + "/unit", s.unit);
-    w.Texts(at + "/channels", s.channel_names);
+    w.Texts(at + "/channels", s.channels);
   }
-  w.Texts("budget/contributors/names", Names(budget.contributors, kName));
-  for (std::size_t i = 0; i < budget.contributors.size(); ++i) {
-    const Contributor& c = budget.contributors[i];
+  w.Texts("budget/contributors/names", Names(outline.contributors, kName));
+  for (std::size_t i = 0; i < outline.contributors.size(); ++i) {
+    const Contributor& c = outline.contributors[i];
     const std::string at = At("budget/contributors", i);
     w.Text(at + "/name", c.name);
     w.Text(at + "/source", c.source);
@@ -588,14 +581,14 @@ void WriteResultStore(const Budget& budget, const BudgetResult& result, const Ru
     w.Integer(at + "/breakdown_channels", c.breakdown_channels ? 1 : 0);
   }
 
-  w.Text("result/budget_name", result.budget_name);
+  w.Text("result/budget_name", outline.name);
   w.Numbers("result/grid/f_hz", result.grid.f_hz());
   w.Numbers("result/grid/panel_starts", Indices(result.grid.panel_starts()));
   w.Texts("result/warnings", result.warnings);
   w.Texts("result/outputs/names", Names(result.outputs, kName));
   for (std::size_t o = 0; o < result.outputs.size(); ++o)
-    WriteOutput(w, At("result/outputs", o), budget.outputs[o], result.outputs[o]);
-  w.Texts("budget/covariance", budget.covariance);
+    WriteOutput(w, At("result/outputs", o), outline.outputs[o], result.outputs[o]);
+  w.Texts("budget/covariance", outline.covariance);
   w.Integer("result/covariance/present", result.covariance ? 1 : 0);
   if (result.covariance) WriteCovariance(w, "result/covariance", *result.covariance);
   const ResponseTraces& traces = *result.traces;
@@ -617,7 +610,7 @@ void WriteResultStore(const Budget& budget, const BudgetResult& result, const Ru
   w.Close();
 }
 
-StoredResult ReadResultStore(const std::string& file) {
+BudgetResult ReadResultStore(const std::string& file, RunInfo* info) {
   const Reading in(file);
   const Hdf5Reader& r = in.r();
   if (!r.Has("schema") || r.Text("schema") != kResultStoreSchema)
@@ -626,28 +619,28 @@ StoredResult ReadResultStore(const std::string& file) {
   if (version < 1 || version > kResultStoreVersion)
     throw InputError(file + ": result store schema version " + std::to_string(version) + "; this deb (" DEB_VERSION
                             ") reads versions 1 to " + std::to_string(kResultStoreVersion));
-  StoredResult s;
-  Budget& b = s.budget;
+  BudgetResult res;
+  BudgetOutline& b = res.outline;
   b.name = in.Name("budget/name");
   b.description = r.Text("budget/description");
-  s.info.budget_file = r.Text("budget/file");
-  s.info.budget_sha256 = in.Printable("budget/sha256");
-  s.info.budget_text = r.Text("budget/text");
-  b.source_file = s.info.budget_file;
-  b.grid.kind = in.Enum<GridKind>("budget/grid_type", "grid type");
+  RunInfo run;
+  run.budget_file = r.Text("budget/file");
+  run.budget_sha256 = in.Printable("budget/sha256");
+  run.budget_text = r.Text("budget/text");
+  b.grid_kind = in.Enum<GridKind>("budget/grid_type", "grid type");
   for (const auto& band : in.Rows("budget/bands", 2, kMaxEntries)) {
     CheckBand(in, "budget/bands", band[0], band[1]);
     b.bands.push_back({band[0], band[1]});
   }
-  s.info.seconds = FromNone(r.Number("run/seconds", true));
+  run.seconds = FromNone(r.Number("run/seconds", true));
   const std::size_t sources = in.Count("budget/sources/names", kMaxEntries);
   for (std::size_t i = 0; i < sources; ++i) {
     const std::string at = At("budget/sources", i);
-    Source src;
+    SourceOutline src;
     src.name = in.Name(at + "/name");
     src.description = r.Text(at + "/description");
     src.unit = in.Printable(at + "/unit");
-    src.channel_names = in.Printables(at + "/channels", kMaxChannels);
+    src.channels = in.Printables(at + "/channels", kMaxChannels);
     b.sources.push_back(std::move(src));
   }
   in.Unique("budget/sources", Names(b.sources, kName), "source");
@@ -664,14 +657,14 @@ StoredResult ReadResultStore(const std::string& file) {
     c.exact = in.Enum<ExactVariance>(at + "/exact", "exact-variance mode");
     c.breakdown_channels = r.Integer(at + "/breakdown_channels") != 0;
     bool known = false;
-    for (const Source& src : b.sources) known |= src.name == c.source;
+    for (const SourceOutline& src : b.sources) known |= src.name == c.source;
     if (!known) in.Fail(at + "/source", "names the source '" + Excerpt(c.source) + "', which the store does not hold");
     b.contributors.push_back(std::move(c));
   }
   in.Unique("budget/contributors", Names(b.contributors, kName), "contributor");
 
-  BudgetResult& res = s.result;
-  res.budget_name = in.Name("result/budget_name");
+  if (in.Name("result/budget_name") != b.name)
+    in.Fail("result/budget_name", "holds another name than budget/name ('" + Excerpt(b.name) + "')");
   std::vector<double> f_hz = in.UpTo("result/grid/f_hz", limits::kMaxGridPoints);
   std::vector<std::size_t> panels;
   for (double p : in.UpTo("result/grid/panel_starts", f_hz.size()))
@@ -714,7 +707,7 @@ StoredResult ReadResultStore(const std::string& file) {
       const std::string at = At(At("result/traces/paths", c), o);
       PathResponse p;
       p.contributor = b.contributors[c].name;
-      p.output = b.outputs[o].name;
+      p.output = res.outputs[o].name;
       p.channels = in.Printables(at + "/channels", kMaxChannels);
       p.unit = in.Printable(at + "/unit");
       p.gain2 = in.Rows(at + "/gain2", n, kMaxChannels);
@@ -722,7 +715,8 @@ StoredResult ReadResultStore(const std::string& file) {
       traces->paths[c].push_back(std::move(p));
     }
   res.traces = std::move(traces);
-  return s;
+  if (info) *info = std::move(run);
+  return res;
 }
 
 }  // namespace deb::io

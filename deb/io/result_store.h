@@ -4,16 +4,15 @@
 // the frequency grid, every output's and contributor's PSD and CPS, tones,
 // channel parts, bands, requirements, references, groups, loops with their
 // margins, the traces of the paths and loops (response_traces.h), the
-// budget's outline (names, units, descriptions; no model) and the budget
-// file's text and SHA-256. `deb report RESULT_DIR` reads it back and redraws
+// budget's outline (budget_outline.h: names, units, descriptions; no model)
+// and the budget file's text and SHA-256. `deb report RESULT_DIR` reads it back and redraws
 // the report without evaluating anything; the .mat and .xlsx exports can be
 // made from it too.
 #pragma once
 
 #include <string>
 
-#include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/io/result_writer.h"
 
 namespace deb::io {
@@ -25,29 +24,19 @@ inline constexpr int kResultStoreVersion = 1;
 // Its name in a report directory, beside summary.json.
 inline constexpr const char* kResultStoreFile = "result.h5";
 
-// What a store gives back.
-struct StoredResult {
-  // The budget's outline: name, description, grid type, bands, sources
-  // (name, description, unit, channel names; no spectrum), contributors,
-  // outputs (with weighting unit and description, no filter; metric,
-  // requirements, combination terms); no paths or models.
-  Budget budget;
-  // With its traces; without path analyses (BudgetResult::paths is empty).
-  BudgetResult result;
-  RunInfo info;  // budget_file, budget_text, budget_sha256, seconds
-};
-
-// Writes `file` (replacing it). `result` must have its traces
-// (EngineOptions::response_traces); info.budget_text and budget_sha256 are
-// stored as they are (none: "").
+// Writes `file` (replacing it): the result with its outline. `result` must
+// have its traces (EngineOptions::response_traces); info.budget_text and
+// budget_sha256 are stored as they are (none: "").
 // @throws WriteError if HDF5 cannot be loaded or the file cannot be written.
-void WriteResultStore(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                      const std::string& file);
+void WriteResultStore(const BudgetResult& result, const RunInfo& info, const std::string& file);
 
+// The result with its outline and traces, without path analyses
+// (BudgetResult::paths is empty); the run's budget_file, budget_text,
+// budget_sha256 and seconds into *info if given.
 // @throws InputError "<file>: ..." for a file that is not a store of this
 //         schema (or of a newer version), or any object that is missing,
 //         malformed or inconsistent (lengths that do not match the grid,
 //         indices out of range).
-StoredResult ReadResultStore(const std::string& file);
+BudgetResult ReadResultStore(const std::string& file, RunInfo* info = nullptr);
 
 }  // namespace deb::io

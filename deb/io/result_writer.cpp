@@ -148,14 +148,14 @@ nlohmann::json GuidanceJson(const OutputResult& o, const FrequencyGrid& grid) {
 
 }  // namespace
 
-std::string SummaryJson(const Budget& budget, const BudgetResult& result, const RunInfo& info) {
+std::string SummaryJson(const BudgetResult& result, const RunInfo& info) {
   nlohmann::json j;
-  j["budget"] = budget.name;
-  j["description"] = budget.description;
+  j["budget"] = result.outline.name;
+  j["description"] = result.outline.description;
   j["budget_file"] = info.budget_file;
   j["deb_version"] = DEB_VERSION;
   j["conventions"] = Conventions();
-  j["grid"] = {{"type", ToString(budget.grid.kind)},
+  j["grid"] = {{"type", ToString(result.outline.grid_kind)},
                {"points", result.grid.size()},
                {"min_hz", result.grid.min_hz()},
                {"max_hz", result.grid.max_hz()}};
@@ -334,7 +334,7 @@ std::string OutputCsvName(const std::string& output_name) { return FileNameWord(
 std::string OutputCsv(const BudgetResult& result, const OutputResult& o) {
   std::ostringstream os;
   os.precision(10);
-  os << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ", output " << o.name << " (signal "
+  os << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << o.name << " (signal "
      << o.signal << ")\n"
      << "# psd_*: one-sided PSD in " << PsdUnitLabel(o.unit) << "; cps_*: cumulative from " << result.grid.min_hz()
      << " Hz in (" << o.unit << ")^2; reverse_cps_total: integral from f to " << result.grid.max_hz() << " Hz\n";
@@ -366,7 +366,7 @@ std::string OutputCsv(const BudgetResult& result, const OutputResult& o) {
   return text;
 }
 
-void WriteResultFiles(const Budget& budget, const BudgetResult& result, const RunInfo& info, const std::string& dir) {
+void WriteResultFiles(const BudgetResult& result, const RunInfo& info, const std::string& dir) {
   // Formatting the numbers is most of the work: one file per job.
   const std::size_t outputs = result.outputs.size();
   ParallelFor(
@@ -374,7 +374,7 @@ void WriteResultFiles(const Budget& budget, const BudgetResult& result, const Ru
       [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
           if (i == outputs) {
-            WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(budget, result, info));
+            WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(result, info));
           } else {
             const OutputResult& o = result.outputs[i];
             WriteTextFile((fs::path(dir) / OutputCsvName(o.name)).string(), OutputCsv(result, o));
@@ -384,9 +384,8 @@ void WriteResultFiles(const Budget& budget, const BudgetResult& result, const Ru
       info.threads, 1);
 }
 
-void WriteResultDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                          const std::string& out_dir, const ReplaceOptions& options) {
-  ReplaceDirectory(out_dir, [&](const std::string& dir) { WriteResultFiles(budget, result, info, dir); }, options);
+void WriteResultDirectory(const BudgetResult& result, const RunInfo& info, const std::string& out_dir, const ReplaceOptions& options) {
+  ReplaceDirectory(out_dir, [&](const std::string& dir) { WriteResultFiles(result, info, dir); }, options);
 }
 
 }  // namespace deb

@@ -9,8 +9,7 @@
 #include <string>
 #include <utility>
 
-#include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/core/output_dir.h"
 
 namespace deb {
@@ -36,7 +35,7 @@ struct RunInfo {
 };
 
 // summary.json's text.
-std::string SummaryJson(const Budget& budget, const BudgetResult& result, const RunInfo& info);
+std::string SummaryJson(const BudgetResult& result, const RunInfo& info);
 
 // File name used for an output's CSV: the name with characters outside
 // [A-Za-z0-9_.-] replaced by '_', plus ".csv".
@@ -47,12 +46,12 @@ std::string OutputCsv(const BudgetResult& result, const OutputResult& output);
 
 // summary.json and the CSVs into the existing directory `dir`.
 // @throws WriteError if a file cannot be written.
-void WriteResultFiles(const Budget& budget, const BudgetResult& result, const RunInfo& info, const std::string& dir);
+void WriteResultFiles(const BudgetResult& result, const RunInfo& info, const std::string& dir);
 
 // summary.json and the CSVs, atomically, into out_dir (deb/core/output_dir.h:
 // replaced only if deb wrote it, unless options.force).
 // @throws WriteError if out_dir is not deb's or cannot be written.
-void WriteResultDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                          const std::string& out_dir, const ReplaceOptions& options = {});
+void WriteResultDirectory(const BudgetResult& result, const RunInfo& info, const std::string& out_dir,
+                          const ReplaceOptions& options = {});
 
 }  // namespace deb

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/spectra/flat_spectrum.h"
 #include "deb/spectra/scaled_spectrum.h"

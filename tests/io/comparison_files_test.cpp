@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/io/result_writer.h"
@@ -29,7 +30,7 @@ TEST_CASE("figures read back from summary.json equal those of the evaluation, an
   const Budget budget = LoadBudgetFile(std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml");
   const BudgetResult result = Evaluate(budget);
   const fs::path file = Temp("summary.json");
-  std::ofstream(file) << SummaryJson(budget, result, {"b.yaml", 0.0});
+  std::ofstream(file) << SummaryJson(result, {"b.yaml", 0.0});
   const ResultFigures read = ReadSummaryFigures(file.string(), "dir");
   const ResultFigures direct = FiguresOf("eval", result);
   REQUIRE(read.outputs.size() == direct.outputs.size());

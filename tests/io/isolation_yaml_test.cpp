@@ -6,7 +6,6 @@
 #include <sstream>
 #include <string>
 
-#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 
 namespace deb {

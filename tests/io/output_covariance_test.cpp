@@ -270,7 +270,7 @@ TEST_CASE("summary.json carries the matrices as the result holds them, and no co
   const Budget budget = LoadBudgetText(TwoMasses("{type: auto, min_hz: 0.1, max_hz: 1000}"), "c.yaml");
   const BudgetResult r = Evaluate(budget);
   const CovarianceResult& cov = *r.covariance;
-  const auto j = nlohmann::json::parse(SummaryJson(budget, r, {}))["covariance"];
+  const auto j = nlohmann::json::parse(SummaryJson(r, {}))["covariance"];
   CHECK(j["outputs"] == nlohmann::json({"a", "b"}));
   CHECK(j["units"] == nlohmann::json({"um", "nm"}));
   for (int a = 0; a < 2; ++a)
@@ -287,7 +287,7 @@ TEST_CASE("summary.json carries the matrices as the result holds them, and no co
   const Budget plain = LoadBudgetText(Oscillator(kOscillatorOutputs, ""), "c.yaml");
   const BudgetResult none = Evaluate(plain);
   CHECK_FALSE(none.covariance.has_value());
-  CHECK_FALSE(nlohmann::json::parse(SummaryJson(plain, none, {})).contains("covariance"));
+  CHECK_FALSE(nlohmann::json::parse(SummaryJson(none, {})).contains("covariance"));
 }
 
 TEST_CASE("covariance requests that cannot be met are located errors") {

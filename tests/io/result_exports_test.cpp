@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/core/error.h"
 #include "deb/io/mat_file.h"
 #include "deb/io/result_exports.h"
@@ -36,7 +36,7 @@ using test::Contains;
 // 0, 2, 6); the output's variance 9 (RMS 3) against rms_max 2: FAIL.
 BudgetResult SmallResult() {
   BudgetResult r;
-  r.budget_name = "small";
+  r.outline.name = "small";
   r.grid = FrequencyGrid({1.0, 2.0, 4.0});
   OutputResult o;
   o.name = "x pos";

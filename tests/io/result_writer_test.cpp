@@ -18,10 +18,8 @@ using test::FlatOutput;
 }  // namespace
 
 TEST_CASE("summary.json: a failing output carries guidance with the closed-form figures, a passing one null") {
-  Budget budget;
-  budget.name = "guidance";
   BudgetResult result;
-  result.budget_name = "guidance";
+  result.outline.name = "guidance";
   result.grid = FrequencyGrid(std::vector<double>{1.0, 2.0});
   OutputResult fails = FlatOutput({49.0, 25.0, 16.0, 10.0}, 6.0, "nm", "position");
   BandRequirementResult band;
@@ -30,7 +28,7 @@ TEST_CASE("summary.json: a failing output carries guidance with the closed-form 
   fails.band_requirements = {band};
   result.outputs = {fails, FlatOutput({4.0, 1.0}, 6.0, "nm", "quiet")};
 
-  const auto j = nlohmann::json::parse(SummaryJson(budget, result, {}));
+  const auto j = nlohmann::json::parse(SummaryJson(result, {}));
   const auto& g = j["outputs"][0]["guidance"];
   REQUIRE(g.is_object());
   CHECK(g["fail_factor"].get<double>() == doctest::Approx(10.0 / 6.0).epsilon(1e-12));

@@ -58,11 +58,11 @@ int main(int argc, char** argv) {
       deb::RunInfo info;
       info.budget_file = file;
       info.seconds = 0.0;
-      deb::WriteResultDirectory(budget, result, info, out.string());
+      deb::WriteResultDirectory(result, info, out.string());
       best_write = std::min(best_write, Seconds(t0));
       const std::string store = (out / deb::io::kResultStoreFile).string();
       t0 = std::chrono::steady_clock::now();
-      deb::io::WriteResultStore(budget, result, info, store);
+      deb::io::WriteResultStore(result, info, store);
       best_store = std::min(best_store, Seconds(t0));
       t0 = std::chrono::steady_clock::now();
       deb::io::ReadResultStore(store);

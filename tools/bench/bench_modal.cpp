@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
     const double eval = Seconds(t0);
     t0 = std::chrono::steady_clock::now();
     fs::create_directories(dir / "out");
-    deb::WriteResultFiles(budget, result, {budget_file.string(), 0.0}, (dir / "out").string());
+    deb::WriteResultFiles(result, {budget_file.string(), 0.0}, (dir / "out").string());
     const double write = Seconds(t0);
     double worst = 0.0;
     for (const deb::OutputResult& o : result.outputs)

@@ -63,7 +63,7 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
                  "where the range is not one of the bands); a failing total has a red outline and reads FAIL.";
 
   std::ostringstream csv;
-  csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ", output " << out.name << ": RMS in "
+  csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << out.name << ": RMS in "
       << unit << " per band, in total and per contributor; failing_total: the total where the band's requirement fails\n";
   csv << "group,lo_hz,hi_hz,total,failing_total";
   for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);

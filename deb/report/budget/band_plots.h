@@ -9,7 +9,7 @@
 
 #include <cstddef>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {

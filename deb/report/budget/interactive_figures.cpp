@@ -62,13 +62,13 @@ json Frequencies(const std::vector<double>& f, const std::vector<std::size_t>& k
   return out;
 }
 
-std::size_t BudgetIndex(const Budget& budget, const std::string& contributor) {
+std::size_t BudgetIndex(const BudgetOutline& budget, const std::string& contributor) {
   for (std::size_t c = 0; c < budget.contributors.size(); ++c)
     if (budget.contributors[c].name == contributor) return c;
   return 0;
 }
 
-json OutputData(const Budget& budget, const BudgetResult& result, const OutputResult& out) {
+json OutputData(const BudgetResult& result, const OutputResult& out) {
   const std::vector<double>& f = result.grid.f_hz();
   std::vector<const std::vector<double>*> psd = {&out.total_psd}, cps = {&out.total_cps};
   for (const ContributorResult& c : out.contributors) {
@@ -97,7 +97,7 @@ json OutputData(const Budget& budget, const BudgetResult& result, const OutputRe
   for (std::size_t k : order) {
     const ContributorResult& c = out.contributors[k];
     names.push_back(c.name);
-    colours.push_back(ContributorStyle(BudgetIndex(budget, c.name)).colour);
+    colours.push_back(ContributorStyle(BudgetIndex(result.outline, c.name)).colour);
     psds.push_back(Series(c.psd, keep, true));
     cpss.push_back(Series(c.cps, keep, false));
   }
@@ -254,14 +254,14 @@ std::vector<std::size_t> FigurePoints(const std::vector<double>& f_hz,
   return keep;
 }
 
-std::string FigureDataJson(const Budget& budget, const BudgetResult& result, int threads) {
+std::string FigureDataJson(const BudgetResult& result, int threads) {
   // Thinning a dense grid takes tens of ms per figure: one job per output
   // and per contributor's paths.
   std::vector<json> outputs(result.outputs.size());
-  ParallelForEach(outputs.size(), [&](std::size_t o) { outputs[o] = OutputData(budget, result, result.outputs[o]); },
+  ParallelForEach(outputs.size(), [&](std::size_t o) { outputs[o] = OutputData(result, result.outputs[o]); },
                   threads);
-  DEB_DEMAND(result.traces && result.traces->paths.size() == budget.contributors.size());
-  std::vector<json> paths(budget.contributors.size(), json::array());
+  DEB_DEMAND(result.traces && result.traces->paths.size() == result.outline.contributors.size());
+  std::vector<json> paths(result.outline.contributors.size(), json::array());
   ParallelForEach(paths.size(), [&](std::size_t c) {
     const std::vector<PathResponse>& responses = result.traces->paths[c];
     for (std::size_t o = 0; o < responses.size(); ++o) paths[c].push_back(PathData(result, c, o, responses[o]));

@@ -19,8 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 
 namespace deb::report {
 
@@ -36,7 +35,7 @@ std::vector<std::size_t> FigurePoints(const std::vector<double>& f_hz,
 // The data of every figure, as JSON (see interactive_figures.cpp for its
 // fields), safe inside a <script> element: every '<' is written \u003c.
 // @throws InputError as ComputePathResponses.
-std::string FigureDataJson(const Budget& budget, const BudgetResult& result, int threads = 0);
+std::string FigureDataJson(const BudgetResult& result, int threads = 0);
 
 // The <figure> elements the script fills: for output `index`, kind "cps",
 // "psd" (or "asd": the same, opened as amplitudes) or "bands"; for paths,

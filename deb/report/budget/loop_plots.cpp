@@ -99,7 +99,7 @@ std::vector<Plot> LoopPlots(const BudgetResult& result, int digits) {
     std::string paths;
     for (const std::string& p : r.paths) paths += (paths.empty() ? "" : ", ") + p;
     std::ostringstream csv;
-    csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ": loop gain L = -sign G K of plant "
+    csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ": loop gain L = -sign G K of plant "
         << r.plant << " and controller " << r.controller << " (sign " << r.sign
         << "), S = 1/(1 + L), T = L/(1 + L); closing paths " << paths << "\n";
     csv << "frequency_hz,abs_L,phase_L_deg,abs_S,abs_T,re_L,im_L\n";

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {

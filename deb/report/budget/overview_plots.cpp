@@ -36,7 +36,7 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
 
     // Columns: 1 panel, 2 position, 3 rms, 4 label, descriptive text, 11 row (the bar's own id).
     std::ostringstream csv;
-    csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name
+    csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name
         << ": RMS per output and contributor (position: bar position in the panel; row: the bar)\n";
     csv << "panel,position,rms,rms_label,output,unit,contributor,share_percent,rms_max,pass,row\n";
     std::size_t row = 0;

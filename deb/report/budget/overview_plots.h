@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {

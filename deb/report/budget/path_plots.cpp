@@ -86,13 +86,15 @@ std::vector<double> UnwrappedPhaseDeg(const std::vector<double>& phase_rad, cons
 }
 
 // Bode magnitude over phase of one (path, output) pair, for the contributors
-// `users` (indices into budget.contributors, the first one's source feeding
-// `r`).
-Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vector<std::size_t>& users, std::size_t o,
-              const PathResponse& r, const std::string& suffix) {
+// `users` (indices into the outline's contributors, the first one's source
+// feeding `r`).
+Plot PathPlot(const BudgetResult& result, const std::vector<std::size_t>& users, std::size_t o, const PathResponse& r,
+              const std::string& suffix) {
   const std::vector<double>& f = result.grid.f_hz();
+  const BudgetOutline& budget = result.outline;
   const Contributor& contributor = budget.contributors[users.front()];
-  const Output& output = budget.outputs[o];
+  const OutputResult& output = result.outputs[o];
+  const bool weighted = budget.outputs[o].weighting.has_value();
   const std::size_t m = r.gain2.size();
   std::string names;
   for (std::size_t c : users) names += (names.empty() ? "" : ", ") + budget.contributors[c].name;
@@ -109,8 +111,8 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vecto
                                                                  : Sig(poles_hz.first) + "–" + Sig(poles_hz.second)) +
                             " Hz";
   p.caption = "Bode magnitude and phase (unwrapped) of the transfer through path " + contributor.path + " to " +
-              output.name + (output.weighting ? ", weighting included" : "") + ", per source channel, from source unit " +
-              UnitText(budget.FindSource(contributor.source).unit) + "; used by " +
+              output.name + (weighted ? ", weighting included" : "") +
+              ", per source channel, from source unit " + UnitText(budget.SourceOf(contributor).unit) + "; used by " +
               (users.size() == 1 ? "contributor " : std::to_string(users.size()) + " contributors: ") + names + "." +
               RangeCaption(range) +
               (widened ? " The range reaches half a decade beyond the natural frequency of every pole of the path (f_n " +
@@ -120,7 +122,7 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vecto
   std::vector<std::vector<double>> phase_deg(m);
   for (std::size_t k = 0; k < m; ++k) phase_deg[k] = UnwrappedPhaseDeg(r.phase_rad[k], f, range.lo_hz);
   std::ostringstream csv;
-  csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ": |h| in " << r.unit
+  csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ": |h| in " << r.unit
       << " and unwrapped phase in degrees of path " << contributor.path << " to output " << output.name
       << ", per source channel; used by " << names << "\n";
   csv << "frequency_hz";
@@ -231,7 +233,7 @@ Plot PathPlot(const Budget& budget, const BudgetResult& result, const std::vecto
     for (double t = *phase.y.min; t <= *phase.y.max + 1e-9; t += step) phase.y.tics.push_back({t, Short(t)});
   }
   p.figure.title = "path " + Enhanced(contributor.path) + " → " + Enhanced(output.name) +
-                   (output.weighting ? " (weighted)" : "") + ", used by " +
+                   (weighted ? " (weighted)" : "") + ", used by " +
                    (users.size() <= 3 ? Enhanced(names) : std::to_string(users.size()) + " contributors");
   p.figure.panels = {std::move(mag), std::move(phase)};
   p.script = EmitFigure(p.figure);
@@ -256,16 +258,17 @@ FrequencyRange PathRange(const std::optional<std::pair<double, double>>& poles, 
   return r;
 }
 
-std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, int threads) {
+std::vector<Plot> PathPlots(const BudgetResult& result, int threads) {
+  const BudgetOutline& budget = result.outline;
   // Contributors sharing a path, a source unit and source channels see the
   // same transfer: one plot per such group and output, naming them all.
   std::vector<std::vector<std::size_t>> groups;
   const auto same = [&](std::size_t a, std::size_t b) {
     const Contributor &ca = budget.contributors[a], &cb = budget.contributors[b];
-    const Source &sa = budget.FindSource(ca.source), &sb = budget.FindSource(cb.source);
+    const SourceOutline &sa = budget.SourceOf(ca), &sb = budget.SourceOf(cb);
     // One channel is named after its source: only several channels must agree by name.
-    return ca.path == cb.path && sa.unit == sb.unit && sa.channel_names.size() == sb.channel_names.size() &&
-           (sa.channel_names.size() == 1 || sa.channel_names == sb.channel_names);
+    return ca.path == cb.path && sa.unit == sb.unit && sa.channels.size() == sb.channels.size() &&
+           (sa.channels.size() == 1 || sa.channels == sb.channels);
   };
   for (std::size_t c = 0; c < budget.contributors.size(); ++c) {
     auto g = std::find_if(groups.begin(), groups.end(), [&](const auto& group) { return same(group.front(), c); });
@@ -287,8 +290,8 @@ std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, in
       groups.size(),
       [&](std::size_t g) {
         const std::vector<PathResponse>& r = result.traces->paths[groups[g].front()];
-        for (std::size_t o = 0; o < budget.outputs.size(); ++o)
-          per_group[g].push_back(PathPlot(budget, result, groups[g], o, r[o], suffix[g]));
+        for (std::size_t o = 0; o < result.outputs.size(); ++o)
+          per_group[g].push_back(PathPlot(result, groups[g], o, r[o], suffix[g]));
       },
       threads);
   std::vector<Plot> plots;

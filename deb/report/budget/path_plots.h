@@ -11,8 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "deb/report/figure/plot.h"
 
@@ -31,6 +30,6 @@ FrequencyRange PathRange(const std::optional<std::pair<double, double>>& poles, 
 // One plot per (contributor, output), contributors outer, from the result's
 // traces (BudgetResult::traces, DEB_DEMANDed); contributors that see the same
 // transfer share a plot. Built on `threads` threads (<= 0: the default count).
-std::vector<Plot> PathPlots(const Budget& budget, const BudgetResult& result, int threads = 0);
+std::vector<Plot> PathPlots(const BudgetResult& result, int threads = 0);
 
 }  // namespace deb::report

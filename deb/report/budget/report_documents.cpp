@@ -112,7 +112,7 @@ void ForPlots(const std::vector<Plot>& plots, PlotKind kind, int output, Fn fn) 
 std::string OutputAnchor(const std::string& output_name) { return "output-" + FileStem(output_name); }
 
 std::string IndexHtml(const DocumentInputs& in) {
-  const Budget& budget = *in.budget;
+  const BudgetOutline& budget = in.result->outline;
   const BudgetResult& result = *in.result;
   std::ostringstream s;
   s << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -204,12 +204,12 @@ std::string IndexHtml(const DocumentInputs& in) {
          "contributor</li>\n";
   s << "</ul>\n<p class=\"lead\">Written by deb " << DEB_VERSION << ". Figures drawn with dygraphs "
        "(MIT licence, inlined below with its notice).</p>\n"
-    << FigureScripts(FigureDataJson(budget, result)) << "</body>\n</html>\n";
+    << FigureScripts(FigureDataJson(result)) << "</body>\n</html>\n";
   return s.str();
 }
 
 std::string ReportMarkdown(const DocumentInputs& in) {
-  const Budget& budget = *in.budget;
+  const BudgetOutline& budget = in.result->outline;
   const BudgetResult& result = *in.result;
   std::ostringstream s;
   s << "# Dynamic error budget: " << budget.name << "\n\n";

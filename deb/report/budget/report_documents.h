@@ -9,15 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/report/budget/report_tables.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {
 
 struct DocumentInputs {
-  const Budget* budget = nullptr;
   const BudgetResult* result = nullptr;
   ReportFacts facts;
   std::vector<Plot> plots;            // in report order

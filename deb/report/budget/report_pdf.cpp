@@ -174,7 +174,7 @@ PdfTable VerdictTable(const BudgetResult& result) {
 }
 
 PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
-  const Budget& budget = *in.budget;
+  const BudgetOutline& budget = in.result->outline;
   const BudgetResult& result = *in.result;
   PdfDocumentSpec s;
   s.title = budget.name + ": dynamic error budget";

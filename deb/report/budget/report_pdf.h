@@ -11,8 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/report/budget/report_tables.h"
 #include "deb/report/document/pdf_document.h"
 #include "deb/report/figure/plot.h"
@@ -20,7 +19,6 @@
 namespace deb::report {
 
 struct ReportPdfInputs {
-  const Budget* budget = nullptr;
   const BudgetResult* result = nullptr;
   ReportFacts facts;
   std::string sha256;                  // of the budget file; "" when unknown

@@ -294,8 +294,8 @@ Table BandTable(const OutputResult& o, int digits) {
   return t;
 }
 
-ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const std::string& budget_file,
-                      const std::string& sha256, const std::string& date, std::optional<double> seconds) {
+ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file, const std::string& sha256,
+                      const std::string& date, std::optional<double> seconds) {
   ReportFacts f;
   std::size_t failed = 0, required = 0;
   for (const OutputResult& o : result.outputs) {
@@ -304,14 +304,14 @@ ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const st
     for (const BandRequirementResult& r : o.band_requirements) failed += r.pass() ? 0 : 1;
   }
   f.items = {
-      {"budget", budget.name},
+      {"budget", result.outline.name},
       {"budget file", budget_file.empty() ? "–" : budget_file},
       {"SHA-256", sha256.empty() ? "–" : sha256},
       {"date", date},
       {"deb version", DEB_VERSION},
-      {"grid", ToString(budget.grid.kind) + ", " + std::to_string(result.grid.size()) + " frequencies, " +
+      {"grid", ToString(result.outline.grid_kind) + ", " + std::to_string(result.grid.size()) + " frequencies, " +
                    Short(result.grid.min_hz()) + "–" + Short(result.grid.max_hz()) + " Hz"},
-      {"bands", budget.bands.empty() ? "decades of the grid" : "as the budget defines them"},
+      {"bands", result.outline.bands.empty() ? "decades of the grid" : "as the budget defines them"},
       {"evaluation", seconds ? Sig(*seconds, 3) + " s" : "not recorded (reproducible report: SOURCE_DATE_EPOCH)"},
       {"requirements", required == 0 ? "none given"
                                      : (failed == 0 ? "all " + std::to_string(required) + " met"

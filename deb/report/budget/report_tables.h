@@ -10,8 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 
 namespace deb::report {
 
@@ -76,8 +75,8 @@ struct ReportFacts {
   std::vector<std::pair<std::string, std::string>> items;
   std::vector<std::string> conventions;  // one sentence each
 };
-ReportFacts MakeFacts(const Budget& budget, const BudgetResult& result, const std::string& budget_file,
-                      const std::string& sha256, const std::string& date, std::optional<double> seconds);
+ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file, const std::string& sha256,
+                      const std::string& date, std::optional<double> seconds);
 
 std::string HtmlEscape(const std::string& text);
 std::string ToHtml(const Table& table);

@@ -83,7 +83,7 @@ class Progress {
 };
 
 
-std::string ColoursCsv(const Budget& budget) {
+std::string ColoursCsv(const BudgetOutline& budget) {
   std::ostringstream s;
   s << "# deb " << DEB_VERSION << ": style of each contributor in every plot, keyed by its index in the budget;"
     << " then of each group (its path and '/', as the plots name it \"name/\"), after the contributors\n";
@@ -114,8 +114,8 @@ void RequireFile(const fs::path& path, const std::string& what) {
 
 }  // namespace
 
-ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                           const ReportOptions& options, const std::string& dir) {
+ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, const ReportOptions& options,
+                           const std::string& dir) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("report options: " + why);
   ReportManifest manifest;
@@ -132,23 +132,23 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
                                                          : FileSha256(info.budget_file);
   const std::time_t when = DocumentTime();
   const ReportFacts facts =
-      MakeFacts(budget, result, info.budget_file, sha256, UtcText(when, "%Y-%m-%d %H:%M:%S UTC"), info.seconds);
+      MakeFacts(result, info.budget_file, sha256, UtcText(when, "%Y-%m-%d %H:%M:%S UTC"), info.seconds);
 
   std::vector<Plot> plots;
   if (plot_files) {
     plots = OverviewFigures(result, options.digits);
     for (std::size_t o = 0; o < result.outputs.size(); ++o) {
-      for (Plot& p : SpectrumPlots(result, o, options, &budget.outputs[o])) plots.push_back(std::move(p));
+      for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
       plots.push_back(BandsPlot(result, o, options.digits));
     }
-    for (Plot& p : PathPlots(budget, result, options.threads)) plots.push_back(std::move(p));
+    for (Plot& p : PathPlots(result, options.threads)) plots.push_back(std::move(p));
     for (Plot& p : LoopPlots(result, options.digits)) plots.push_back(std::move(p));
     for (const Plot& p : plots) {
       writer.Write("plots/" + p.name + ".csv", p.csv);
       writer.WriteScript("plots/" + p.name + ".gp", p.script);
       manifest.plots.push_back(p.name);
     }
-    writer.Write("plots/colours.csv", ColoursCsv(budget));
+    writer.Write("plots/colours.csv", ColoursCsv(result.outline));
   }
 
   const bool pdf = options.plots && options.Has(PlotFormat::kPdf);
@@ -210,7 +210,6 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
     const auto typeset = [&] {
       progress.Step("report.pdf");
       ReportPdfInputs in;
-      in.budget = &budget;
       in.result = &result;
       in.facts = facts;
       in.sha256 = sha256;
@@ -247,7 +246,6 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   }
 
   DocumentInputs doc;
-  doc.budget = &budget;
   doc.result = &result;
   doc.facts = facts;
   doc.plots = plots;
@@ -265,9 +263,8 @@ ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, con
   return manifest;
 }
 
-ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                                    const ReportOptions& options, const std::string& out_dir,
-                                    const std::vector<ExportFormat>& exports) {
+ReportManifest WriteReportDirectory(const BudgetResult& result, const RunInfo& info, const ReportOptions& options,
+                                    const std::string& out_dir, const std::vector<ExportFormat>& exports) {
   ReportManifest manifest;
   // The budget file as it is now, read once: its text goes into the store
   // and its digest onto every page of the report.
@@ -286,12 +283,12 @@ ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& re
         const std::string store = (fs::path(dir) / io::kResultStoreFile).string();
         if (!std::ofstream(store)) throw WriteError("cannot write " + store);
         std::future<void> stored =
-            std::async(std::launch::async, [&] { io::WriteResultStore(budget, result, run, store); });
+            std::async(std::launch::async, [&] { io::WriteResultStore(result, run, store); });
         std::vector<std::string> exported;
         try {
-          WriteResultFiles(budget, result, run, dir);
+          WriteResultFiles(result, run, dir);
           exported = WriteResultExports(result, exports, dir);
-          manifest = WriteReport(budget, result, run, options, dir);
+          manifest = WriteReport(result, run, options, dir);
         } catch (...) {
           stored.wait();
           throw;

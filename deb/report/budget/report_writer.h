@@ -17,8 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/budget.h"
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/io/result_exports.h"
 #include "deb/io/result_writer.h"
 #include "deb/report/figure/report_options.h"
@@ -39,16 +38,15 @@ struct ReportManifest {
 // already in `dir`.
 // @throws InputError if the options are invalid, gnuplot is missing or fails
 //         (naming the plot and quoting gnuplot), or a file cannot be written.
-ReportManifest WriteReport(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                           const ReportOptions& options, const std::string& dir);
+ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, const ReportOptions& options,
+                           const std::string& dir);
 
 // summary.json, the output CSVs, the files of `exports` (result.mat,
 // result.xlsx; listed in the manifest) and WriteReport, atomically into
 // out_dir: on any failure out_dir is left as it was.
 // @throws InputError as WriteReport and WriteDirectoryAtomically; WriteError
 //         if an export cannot be written.
-ReportManifest WriteReportDirectory(const Budget& budget, const BudgetResult& result, const RunInfo& info,
-                                    const ReportOptions& options, const std::string& out_dir,
-                                    const std::vector<ExportFormat>& exports = {});
+ReportManifest WriteReportDirectory(const BudgetResult& result, const RunInfo& info, const ReportOptions& options,
+                                    const std::string& out_dir, const std::vector<ExportFormat>& exports = {});
 
 }  // namespace deb

@@ -48,14 +48,18 @@ FigureSeries ReferenceSeries(const ReferenceResult& r, int digits, const std::st
   return m;
 }
 
-// " Weighted by <description>; metric: <metric>." from the output's
-// definition: what the plotted quantity is, stated in the caption.
-std::string WeightingCaption(const OutputResult& out, const Output* spec) {
+// " Weighted by <description>; metric: <metric>." from output o's outline
+// (none in a result made without one) and `out`, a level of it: what the
+// plotted quantity is, stated in the caption.
+std::string WeightingCaption(const BudgetResult& result, std::size_t o, const OutputResult& out) {
   std::string s;
-  if (spec && spec->weighting)
+  const std::vector<OutputOutline>& outlines = result.outline.outputs;
+  const WeightingOutline* weighting =
+      o < outlines.size() && outlines[o].weighting ? &*outlines[o].weighting : nullptr;
+  if (weighting)
     s += " The output is weighted by " +
-         (spec->weighting->description.empty() ? std::string("a weighting filter") : spec->weighting->description) +
-         " (filter unit " + UnitText(spec->weighting->unit) + ").";
+         (weighting->description.empty() ? std::string("a weighting filter") : weighting->description) +
+         " (filter unit " + UnitText(weighting->unit) + ").";
   if (out.metric) s += " Metric: " + out.metric->Describe() + " (the PSD is that of the metric).";
   return s;
 }
@@ -70,8 +74,7 @@ double NiceStep(double x) {
 
 // Stacked CPS (reverse = false) or reverse CPS of one output at one level
 // (its items in `level.out.contributors`).
-Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& level, bool reverse, int digits,
-                 const Output* spec) {
+Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& level, bool reverse, int digits) {
   const OutputResult& out = level.out;
   const std::size_t n = out.contributors.size();
   const std::vector<double>& f = result.grid.f_hz();
@@ -89,7 +92,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
               " of " + out.name + ", " + level.items +
               " stacked by share, the largest on top and first in the key; left axis variance, "
               "right axis RMS." +
-              WeightingCaption(out, spec) + RangeCaption(range);
+              WeightingCaption(result, o, out) + RangeCaption(range);
   if (!refs.empty())
     p.caption += " Grey dashed: the measured reference(s), never summed: the variance from the lowest frequency "
                  "each covers to f (the table compares it with the budget's over the same range).";
@@ -100,7 +103,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
   const std::vector<double> total = reverse ? ReverseCps(out.total_cps) : out.total_cps;
 
   std::ostringstream csv;
-  csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ", output " << out.name << ": "
+  csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << out.name << ": "
       << (reverse ? "variance from f to " + CsvNumber(result.grid.max_hz()) + " Hz"
                   : "variance from " + CsvNumber(result.grid.min_hz()) + " Hz to f")
       << " in (" << unit << ")^2, per contributor and total\n";
@@ -231,8 +234,7 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
   return p;
 }
 
-Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& level, bool asd, int digits,
-                  const Output* spec) {
+Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& level, bool asd, int digits) {
   const OutputResult& out = level.out;
   const std::size_t n = out.contributors.size();
   const std::vector<double>& f = result.grid.f_hz();
@@ -246,7 +248,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
   const FrequencyRange range = level.range;
   p.caption = (asd ? "Amplitude spectral density" : "Power spectral density (one-sided)") + std::string(" of ") +
               out.name + " per " + level.item + ", largest first in the key, and in total (drawn last)." +
-              WeightingCaption(out, spec) + RangeCaption(range);
+              WeightingCaption(result, o, out) + RangeCaption(range);
   if (!out.band_requirements.empty())
     p.caption += std::string(" Each red segment is a band requirement drawn as the flat ") + quantity +
                  " that would use the band's whole allowance (rms_max^2 spread evenly over the band" +
@@ -254,7 +256,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
 
   const auto value = [&](double psd) { return asd ? std::sqrt(psd) : psd; };
   std::ostringstream csv;
-  csv << "# deb " << DEB_VERSION << ", budget " << result.budget_name << ", output " << out.name
+  csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << out.name
       << ": one-sided " << quantity << " in " << unit_text << ", per contributor and total\n";
   csv << "frequency_hz";
   for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
@@ -608,13 +610,13 @@ void Rename(Plot& p, const std::string& name) {
 
 }  // namespace
 
-std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec) {
+std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits) {
   const OutputResult& out = result.outputs[output];
   const std::vector<GroupResult> groups = ComputeGroups(out);
   std::vector<Plot> plots;
   for (const GroupResult& g : groups) {
     if (g.contributors.size() + g.subgroups.size() < 2) continue;
-    Plot p = StackedPlot(result, output, GroupLevel(out, result.grid, g.path), false, digits, spec);
+    Plot p = StackedPlot(result, output, GroupLevel(out, result.grid, g.path), false, digits);
     Rename(p, FileStem(out.name) + "_cps_group_" + FileStem(g.path));
     p.caption = "Group " + g.path + ": " + p.caption;
     plots.push_back(std::move(p));
@@ -650,7 +652,7 @@ PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, st
   return level;
 }
 
-std::vector<Plot> ChannelCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec) {
+std::vector<Plot> ChannelCpsPlots(const BudgetResult& result, std::size_t output, int digits) {
   const OutputResult& out = result.outputs[output];
   std::vector<Plot> plots;
   for (std::size_t c = 0; c < out.contributors.size(); ++c) {
@@ -659,7 +661,7 @@ std::vector<Plot> ChannelCpsPlots(const BudgetResult& result, std::size_t output
     for (const ContributorResult::ChannelPart& part : contributor.channels)
       drawn += RoundingZero(part.variance, contributor.variance) ? 0 : 1;
     if (drawn < 2) continue;
-    Plot p = StackedPlot(result, output, ChannelLevel(out, result.grid, c), false, digits, spec);
+    Plot p = StackedPlot(result, output, ChannelLevel(out, result.grid, c), false, digits);
     Rename(p, FileStem(out.name) + "_cps_channels_" + FileStem(contributor.name));
     p.caption = "Contributor " + contributor.name + " by source channel: " + p.caption;
     plots.push_back(std::move(p));
@@ -667,15 +669,14 @@ std::vector<Plot> ChannelCpsPlots(const BudgetResult& result, std::size_t output
   return plots;
 }
 
-std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
-                                const Output* spec) {
+std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options) {
   const PlotLevel top = GroupLevel(result.outputs[output], result.grid, "");
   std::vector<Plot> plots;
-  plots.push_back(StackedPlot(result, output, top, false, options.digits, spec));
-  if (options.reverse_cps) plots.push_back(StackedPlot(result, output, top, true, options.digits, spec));
-  plots.push_back(SpectrumPlot(result, output, top, options.asd, options.digits, spec));
-  for (Plot& p : GroupCpsPlots(result, output, options.digits, spec)) plots.push_back(std::move(p));
-  for (Plot& p : ChannelCpsPlots(result, output, options.digits, spec)) plots.push_back(std::move(p));
+  plots.push_back(StackedPlot(result, output, top, false, options.digits));
+  if (options.reverse_cps) plots.push_back(StackedPlot(result, output, top, true, options.digits));
+  plots.push_back(SpectrumPlot(result, output, top, options.asd, options.digits));
+  for (Plot& p : GroupCpsPlots(result, output, options.digits)) plots.push_back(std::move(p));
+  for (Plot& p : ChannelCpsPlots(result, output, options.digits)) plots.push_back(std::move(p));
   return plots;
 }
 

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/report/figure/figure_axis.h"
 #include "deb/report/figure/plot.h"
 #include "deb/report/figure/plot_style.h"
@@ -70,7 +70,7 @@ PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, cons
 // With groups: one drill-down CPS per group with two or more direct members
 // (GroupLevel of its path), named <output>_cps_group_<path>; none without
 // groups.
-std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec);
+std::vector<Plot> GroupCpsPlots(const BudgetResult& result, std::size_t output, int digits);
 
 // A contributor with `breakdown: channels` split by source channel: a layer
 // per channel (ContributorResult::channels; a part that is zero but for
@@ -80,16 +80,15 @@ PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, st
 
 // One stacked CPS per contributor with two or more channels that carry
 // variance (ChannelLevel), named <output>_cps_channels_<contributor>.
-std::vector<Plot> ChannelCpsPlots(const BudgetResult& result, std::size_t output, int digits, const Output* spec);
+std::vector<Plot> ChannelCpsPlots(const BudgetResult& result, std::size_t output, int digits);
 
 // CPS, [reverse CPS,] PSD or ASD of output `output` at its top level
 // (GroupLevel ""), then the group CPS plots, then the channel CPS plots, in
 // that order. The CPS draws
 // each measured reference's cumulative variance over the range it covers,
 // the PSD its spectrum (grey dashed, never summed). With the output's
-// definition `spec`, the captions state its weighting.
-std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options,
-                                const Output* spec = nullptr);
+// outline (BudgetResult::outline), the captions state its weighting.
+std::vector<Plot> SpectrumPlots(const BudgetResult& result, std::size_t output, const ReportOptions& options);
 
 // Tics for an RMS axis drawn beside a linear variance axis [0, variance_max]
 // plotted in units of `scale`: "set y2tics (...)" with labels r at positions

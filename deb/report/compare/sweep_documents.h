@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/budget/sweep.h"
 #include "deb/report/budget/report_tables.h"
 #include "deb/report/figure/plot.h"

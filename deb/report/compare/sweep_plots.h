@@ -12,7 +12,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "deb/budget/engine.h"
+#include "deb/budget/result.h"
 #include "deb/budget/sweep.h"
 #include "deb/report/figure/plot.h"
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "tests/support/cli_harness.h"

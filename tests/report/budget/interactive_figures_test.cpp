@@ -6,6 +6,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/budget/report_documents.h"
 #include "tests/support/cli_harness.h"
@@ -27,9 +28,8 @@ struct Evaluated {
   explicit Evaluated(const std::string& file) : budget(LoadBudgetFile(test::ExampleBudget(file))), result(Evaluate(budget)) {}
   std::string Html() const {
     DocumentInputs in;
-    in.budget = &budget;
     in.result = &result;
-    in.facts = MakeFacts(budget, result, "b.yaml", "00ff", "today", 0.1);
+    in.facts = MakeFacts(result, "b.yaml", "00ff", "today", 0.1);
     return IndexHtml(in);
   }
 };
@@ -61,7 +61,7 @@ TEST_CASE("a figure keeps at most kMaxFigurePoints of a dense grid, with a narro
 
 TEST_CASE("the figure data give every output's spectra by share, its bands and every path, thinned and rounded") {
   const Evaluated e("wafer_stage.yaml");
-  const json data = json::parse(FigureDataJson(e.budget, e.result));
+  const json data = json::parse(FigureDataJson(e.result));
   REQUIRE(data["outputs"].size() == e.result.outputs.size());
   for (std::size_t o = 0; o < e.result.outputs.size(); ++o) {
     const OutputResult& out = e.result.outputs[o];
@@ -103,7 +103,7 @@ TEST_CASE("the figure data give every output's spectra by share, its bands and e
 TEST_CASE("names cannot end the data's script element, and the page keeps exactly its own scripts") {
   Evaluated e("wafer_stage.yaml");
   e.result.outputs[0].name = "</script><script>alert(1)</script><!--";
-  const std::string text = FigureDataJson(e.budget, e.result);
+  const std::string text = FigureDataJson(e.result);
   CHECK(text.find('<') == std::string::npos);
   CHECK(json::parse(text)["outputs"][0]["name"] == e.result.outputs[0].name);
   const std::string html = e.Html();

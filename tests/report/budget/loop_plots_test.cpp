@@ -7,6 +7,7 @@
 #include <complex>
 #include <sstream>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "tests/support/cli_harness.h"
 

@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "deb/report/figure/plot_style.h"

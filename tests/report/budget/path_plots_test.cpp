@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "deb/budget/engine.h"
 #include "deb/budget/path_response.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/figure/plot_style.h"
@@ -28,13 +29,13 @@ outputs:
   - {name: out, signal: y, unit: um/s}
 )",
                                        "gain_paths.yaml");
-  return PathPlots(budget, Evaluate(budget));
+  return PathPlots(Evaluate(budget));
 }
 
 TEST_CASE("one path plot per contributor and output, whose CSV holds |h| of every source channel") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   const BudgetResult result = Evaluate(budget);
-  const std::vector<Plot> plots = PathPlots(budget, result);
+  const std::vector<Plot> plots = PathPlots(result);
   REQUIRE(plots.size() == budget.contributors.size() * budget.outputs.size());
   CHECK(plots[0].name == "path_transmissibility_to_z_velocity");
   CHECK(plots[3].name == "path_sensor_sensitivity_to_z_displacement");
@@ -90,7 +91,7 @@ outputs:
   CHECK(r.lo_hz == doctest::Approx(display.lo_hz));
   CHECK(r.hi_hz == doctest::Approx(1000.0));  // 200 Hz x 10^0.5 = 632 Hz, to the decade
   CHECK(r.trimmed);
-  const std::vector<Plot> plots = PathPlots(budget, result);
+  const std::vector<Plot> plots = PathPlots(result);
   REQUIRE(plots.size() == 1);
   CHECK(*plots[0].figure.panels[0].x.min == doctest::Approx(1.0));
   CHECK(*plots[0].figure.panels[0].x.max == doctest::Approx(1000.0));
@@ -132,7 +133,7 @@ TEST_CASE("the avis case study's path plots show its closed-loop poles up to 7.4
   const BudgetResult result = Evaluate(budget);
   REQUIRE(DisplayRange(result.outputs[0], result.grid).hi_hz == doctest::Approx(10.0));
   int found = 0;
-  for (const Plot& p : PathPlots(budget, result)) {
+  for (const Plot& p : PathPlots(result)) {
     if (p.caption.find("contributor sensor_noise.") == std::string::npos || p.name.find("_to_z_displacement") == std::string::npos) continue;
     ++found;
     CHECK(*p.figure.panels[0].x.min == doctest::Approx(0.01));
@@ -161,7 +162,7 @@ TEST_CASE("channels with identical curves are drawn once and named together, in 
 
 TEST_CASE("a single-channel path plot keeps its contributor's colour") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
-  const std::vector<Plot> plots = PathPlots(budget, Evaluate(budget));
+  const std::vector<Plot> plots = PathPlots(Evaluate(budget));
   const FigureSeries& s = plots[0].figure.panels.at(0).series.at(0);
   CHECK(s.colour == ContributorStyle(0).colour);
   CHECK(s.kind == SeriesKind::kLine);
@@ -198,7 +199,7 @@ outputs:
 )",
                                        "shared_path.yaml");
   const BudgetResult result = Evaluate(budget);
-  const std::vector<Plot> plots = PathPlots(budget, result);
+  const std::vector<Plot> plots = PathPlots(result);
   REQUIRE(plots.size() == 2);
   CHECK(plots[0].name == "path_lowpass_to_out");
   CHECK(plots[0].caption.find("used by 2 contributors: a, b.") != std::string::npos);

@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "tests/support/cli_harness.h"
@@ -14,9 +15,8 @@ struct Example {
   BudgetResult result = Evaluate(budget);
   DocumentInputs Inputs(const std::string& ext) const {
     DocumentInputs in;
-    in.budget = &budget;
     in.result = &result;
-    in.facts = MakeFacts(budget, result, "b.yaml", "00ff", "today", 0.1);
+    in.facts = MakeFacts(result, "b.yaml", "00ff", "today", 0.1);
     in.plots = SpectrumPlots(result, 0, {});
     in.image_extension = ext;
     in.data_files = {"summary.json"};
@@ -77,7 +77,7 @@ TEST_CASE("without images the documents still give every table and link the data
 
 TEST_CASE("names are escaped in HTML and anchors are safe") {
   Example e;
-  e.budget.description = "<b>a & b</b>";
+  e.result.outline.description = "<b>a & b</b>";
   const std::string html = IndexHtml(e.Inputs("png"));
   CHECK(html.find("&lt;b&gt;a &amp; b&lt;/b&gt;") != std::string::npos);
   CHECK(OutputAnchor("z velocity/1") == "output-z_velocity_1");

@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/budget/report_writer.h"
 #include "tests/support/cli_harness.h"
@@ -137,7 +138,6 @@ TEST_CASE("the document: title page, contents, overview, a section per output wi
   plot("psd_0", PlotKind::kSpectrum, 0);
   plot("cps_1", PlotKind::kCps, 1);
   ReportPdfInputs in;
-  in.budget = &e.budget;
   in.result = &e.result;
   in.plots = &plots;
   in.figure_dir = "/figs";
@@ -175,7 +175,7 @@ TEST_CASE("report.pdf of a failing budget: verdict and guidance on page 1, a sec
   const Evaluated e = Evaluate("wafer_stage.yaml");
   const fs::path dir = TempDir("report_pdf") / "report";
   const ReportManifest m =
-      WriteReportDirectory(e.budget, e.result, {ExampleBudget("wafer_stage.yaml"), 0.1}, {}, dir.string());
+      WriteReportDirectory(e.result, {ExampleBudget("wafer_stage.yaml"), 0.1}, {}, dir.string());
   REQUIRE(m.pdf_pages > 5);
   CHECK(PdfPages(dir / "report.pdf") == m.pdf_pages);
   const Command page1 = Shell("pdftotext -f 1 -l 1 \"" + (dir / "report.pdf").string() + "\" -");
@@ -202,7 +202,6 @@ TEST_CASE("page 1 says how many warnings the evaluation raised; the last section
   e.result = deb::Evaluate(e.budget);
   REQUIRE(e.result.warnings.size() == 1);
   ReportPdfInputs in;
-  in.budget = &e.budget;
   in.result = &e.result;
   const PdfDocumentSpec s = ReportPdfSpec(in);
   bool on_page_1 = false, listed = false, first_page = true;
@@ -239,7 +238,6 @@ TEST_CASE("the failing example's document keeps every box inside the margin; its
       if (o < 0) break;
     }
   ReportPdfInputs in;
-  in.budget = &e.budget;
   in.result = &e.result;
   in.plots = &plots;
   in.figure_dir = dir.string();
@@ -292,7 +290,6 @@ TEST_CASE("report.pdf has the covariance table of index.html and report.md below
   const Evaluated e = Evaluate("nizamoglu2015_h210.yaml");
   REQUIRE(e.result.covariance.has_value());
   ReportPdfInputs in;
-  in.budget = &e.budget;
   in.result = &e.result;
   in.digits = 4;
   const Table expected = CovarianceTable(*e.result.covariance, 4);
@@ -315,7 +312,6 @@ TEST_CASE("report.pdf has the covariance table of index.html and report.md below
 
   const Evaluated plain = Evaluate("wafer_stage.yaml");
   REQUIRE_FALSE(plain.result.covariance.has_value());
-  in.budget = &plain.budget;
   in.result = &plain.result;
   for (const PdfBlock& b : ReportPdfSpec(in).blocks) CHECK(b.text.find("Covariance") == std::string::npos);
 }

@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/figure/plot.h"
 
@@ -109,7 +110,7 @@ TEST_CASE("the summary table gives status and the largest contributor of every o
   CHECK(t.rows[0][3] == "20");
   CHECK(t.rows[0][5] == "pass");
   CHECK(t.rows[0][6].rfind("floor (", 0) == 0);
-  const ReportFacts f = MakeFacts(budget, result, "b.yaml", "abc", "today", 0.5);
+  const ReportFacts f = MakeFacts(result, "b.yaml", "abc", "today", 0.5);
   CHECK(f.items[0] == std::make_pair(std::string("budget"), std::string("single_axis_isolator")));
   CHECK(f.items.back().second == "all 2 met");
 }

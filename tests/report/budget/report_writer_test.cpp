@@ -7,6 +7,7 @@
 #include <set>
 #include <sys/stat.h>
 
+#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/figure/gnuplot_runner.h"
@@ -62,7 +63,7 @@ TEST_CASE("a report holds every plot as a valid PNG with its CSV and script, and
   const fs::path dir = TempDir("writer") / "report";
   ReportOptions options;
   options.reverse_cps = true;
-  const ReportManifest m = WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string());
+  const ReportManifest m = WriteReportDirectory(e.result, {ExampleBudget(), 0.1}, options, dir.string());
 
   // Overview, then per output CPS, reverse CPS, PSD and bands, then one path per contributor and output.
   const std::size_t outputs = e.result.outputs.size(), contributors = e.budget.contributors.size();
@@ -92,7 +93,7 @@ TEST_CASE("a report holds every plot as a valid PNG with its CSV and script, and
 TEST_CASE("index.html and report.md reference only files that exist and nothing on the network") {
   const Evaluated e = EvaluateExample();
   const fs::path dir = TempDir("links") / "report";
-  WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, {}, dir.string());
+  WriteReportDirectory(e.result, {ExampleBudget(), 0.1}, {}, dir.string());
   const std::string html = ReadAll(dir / "index.html");
   // One file: no image, style sheet or script is loaded (dygraphs' licence
   // comment names its web page, which is not a reference).
@@ -119,7 +120,7 @@ TEST_CASE("SVG plots are XML documents and replace PNGs in index.html when PNG i
   const fs::path dir = TempDir("svg") / "report";
   ReportOptions options;
   options.formats = {PlotFormat::kSvg};
-  const ReportManifest m = WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string());
+  const ReportManifest m = WriteReportDirectory(e.result, {ExampleBudget(), 0.1}, options, dir.string());
   CHECK(m.pdf_pages == 0);
   CHECK_FALSE(fs::exists(dir / "report.pdf"));
   for (const auto& name : m.plots) {
@@ -139,7 +140,7 @@ TEST_CASE("the ASD option plots amplitude spectral densities in unit per root he
   ReportOptions options;
   options.asd = true;
   options.formats = {PlotFormat::kPng};
-  WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string());
+  WriteReportDirectory(e.result, {ExampleBudget(), 0.1}, options, dir.string());
   CHECK(fs::is_regular_file(dir / "plots" / "z_velocity_asd.png"));
   CHECK_FALSE(fs::exists(dir / "plots" / "z_velocity_psd.png"));
   const std::string script = ReadAll(dir / "plots" / "z_velocity_asd.gp");
@@ -164,7 +165,7 @@ TEST_CASE("without plots the report needs no gnuplot and still writes tables, da
   ReportOptions options;
   options.plots = false;
   options.gnuplot = "/nonexistent/gnuplot";
-  const ReportManifest m = WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string());
+  const ReportManifest m = WriteReportDirectory(e.result, {ExampleBudget(), 0.1}, options, dir.string());
   CHECK(m.pdf_pages == 0);
   CHECK(fs::is_regular_file(dir / "index.html"));
   CHECK(fs::is_regular_file(dir / "plots" / "z_velocity_cps.csv"));
@@ -177,10 +178,10 @@ TEST_CASE("invalid report options are an error before anything is drawn") {
   const fs::path parent = TempDir("options");
   ReportOptions options;
   options.formats = {PlotFormat::kPng, PlotFormat::kPng};
-  CHECK_THROWS_WITH_AS(WriteReportDirectory(e.budget, e.result, {}, options, (parent / "r").string()),
+  CHECK_THROWS_WITH_AS(WriteReportDirectory(e.result, {}, options, (parent / "r").string()),
                        doctest::Contains("'png' is given twice"), InputError);
   options.formats.clear();
-  CHECK_THROWS_WITH_AS(WriteReportDirectory(e.budget, e.result, {}, options, (parent / "r").string()),
+  CHECK_THROWS_WITH_AS(WriteReportDirectory(e.result, {}, options, (parent / "r").string()),
                        doctest::Contains("png, pdf, svg"), InputError);
   CHECK_FALSE(fs::exists(parent / "r"));
 }
@@ -200,9 +201,9 @@ TEST_CASE("plots are drawn in batches, yet a failing plot is named in the error 
     options.gnuplot = exe.string();
     options.threads = threads;
     const fs::path dir = parent / ("report" + std::to_string(threads));
-    CHECK_THROWS_WITH_AS(WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string()),
+    CHECK_THROWS_WITH_AS(WriteReportDirectory(e.result, {ExampleBudget(), 0.1}, options, dir.string()),
                          doctest::Contains("cannot draw plot z_velocity_psd.png: gnuplot"), WriteError);
-    CHECK_THROWS_WITH_AS(WriteReportDirectory(e.budget, e.result, {ExampleBudget(), 0.1}, options, dir.string()),
+    CHECK_THROWS_WITH_AS(WriteReportDirectory(e.result, {ExampleBudget(), 0.1}, options, dir.string()),
                          doctest::Contains("picky gnuplot refuses this plot"), WriteError);
     CHECK_FALSE(fs::exists(dir));
   }

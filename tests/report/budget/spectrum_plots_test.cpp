@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
 #include "deb/io/budget_yaml.h"
@@ -214,16 +215,16 @@ TEST_CASE("the captions state an output's weighting and metric") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
   const BudgetResult result = Evaluate(budget);
   REQUIRE(result.outputs[1].metric);
-  const std::vector<Plot> plots = SpectrumPlots(result, 1, {}, &budget.outputs[1]);
+  const std::vector<Plot> plots = SpectrumPlots(result, 1, {});
   CHECK(plots[0].caption.find(" Metric: " + result.outputs[1].metric->Describe()) != std::string::npos);
   CHECK(plots[1].caption.find(" Metric: ") != std::string::npos);
   // Without a weighting or metric, nothing is added.
-  CHECK(SpectrumPlots(result, 0, {}, &budget.outputs[0])[0].caption.find("Metric") == std::string::npos);
+  CHECK(SpectrumPlots(result, 0, {})[0].caption.find("Metric") == std::string::npos);
   const Budget thesis = LoadBudgetFile(test::ExampleBudget("nizamoglu2015_h210.yaml"));
   const BudgetResult thesis_result = Evaluate(thesis);
   for (std::size_t o = 0; o < thesis.outputs.size(); ++o) {
     if (!thesis.outputs[o].weighting) continue;
-    CHECK(SpectrumPlots(thesis_result, o, {}, &thesis.outputs[o])[0].caption.find("The output is weighted by") !=
+    CHECK(SpectrumPlots(thesis_result, o, {})[0].caption.find("The output is weighted by") !=
           std::string::npos);
     break;
   }
@@ -286,7 +287,7 @@ namespace deb::report {
 TEST_CASE("group CPS plots: one drill-down per group of two or more members, stacking its members") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
   const BudgetResult result = Evaluate(budget);
-  const std::vector<Plot> plots = GroupCpsPlots(result, 0, 4, &budget.outputs[0]);
+  const std::vector<Plot> plots = GroupCpsPlots(result, 0, 4);
   // environment, stage, stage/drive and metrology (facility has one member: no drill-down); the top level is the
   // output's main CPS plot.
   std::vector<std::string> names;
@@ -309,7 +310,7 @@ TEST_CASE("group CPS plots: one drill-down per group of two or more members, sta
   CHECK(stage.figure.panels.at(0).title.find(SigLabel(std::sqrt(v), 4)) != std::string::npos);
   // Without groups: none.
   const BudgetResult plain = Evaluate(LoadBudgetFile(test::ExampleBudget()));
-  CHECK(GroupCpsPlots(plain, 0, 4, nullptr).empty());
+  CHECK(GroupCpsPlots(plain, 0, 4).empty());
 }
 
 // The names of the stacked layers (CPS) or of the curves (PSD) of a figure, in the key's order.
@@ -344,7 +345,7 @@ TEST_CASE("with groups the main CPS and PSD plots show the top level: each group
     for (const ContributorResult& c : top.out.contributors) variance += c.variance;
     CHECK(std::fabs(variance - out.variance) <= 1e-12 * out.variance);
     // The figures stack (CPS) and draw (PSD) these items, largest first, and nothing else.
-    const std::vector<Plot> plots = SpectrumPlots(result, o, {}, &budget.outputs[o]);
+    const std::vector<Plot> plots = SpectrumPlots(result, o, {});
     REQUIRE(plots.size() >= 2);
     CHECK(plots[0].kind == PlotKind::kCps);
     CHECK(plots[1].kind == PlotKind::kSpectrum);
@@ -382,7 +383,7 @@ TEST_CASE("a contributor and a group keep one colour in the main plots, every dr
   std::map<std::string, std::set<std::string>> seen;  // item -> its colours in every figure
   std::size_t drill_downs = 0;
   for (std::size_t o = 0; o < result.outputs.size(); ++o)
-    for (const Plot& p : SpectrumPlots(result, o, {}, &budget.outputs[o])) {
+    for (const Plot& p : SpectrumPlots(result, o, {})) {
       drill_downs += p.name.find("_cps_group_") != std::string::npos;
       for (const FigureSeries& s : p.figure.panels.at(0).series)
         if (expected.count(s.name)) seen[s.name].insert(s.colour);
@@ -404,7 +405,7 @@ TEST_CASE("a contributor and a group keep one colour in the main plots, every dr
   const test::fs::path dir = test::TempDir("group_colours") / "report";
   ReportOptions options;
   options.plots = false;
-  WriteReportDirectory(budget, result, {}, options, dir.string());
+  WriteReportDirectory(result, {}, options, dir.string());
   const std::string csv = test::ReadAll(dir / "plots" / "colours.csv");
   for (std::size_t g = 0; g < groups.size(); ++g)
     CHECK(csv.find("\n" + std::to_string(n + g) + "," + groups[g].path + "/," + GroupStyle(n, g).colour + ",") !=
@@ -419,7 +420,7 @@ TEST_CASE("a measured reference is drawn on the CPS plot: its cumulative varianc
   const ReferenceResult& r = out.references[0];
   ReportOptions options;
   options.reverse_cps = true;
-  const std::vector<Plot> plots = SpectrumPlots(result, 0, options, &budget.outputs[0]);
+  const std::vector<Plot> plots = SpectrumPlots(result, 0, options);
   const Plot& cps = plots.at(0);
   REQUIRE(cps.kind == PlotKind::kCps);
   const auto& series = cps.figure.panels.at(0).series;
@@ -492,14 +493,14 @@ TEST_CASE("a contributor broken down by channel gets a CPS whose channel layers 
   CHECK(level.out.variance == contributor.variance);
   CHECK_FALSE(level.out.rms_max.has_value());
   // One plot per output for this contributor, under its own file name.
-  const std::vector<Plot> plots = ChannelCpsPlots(result, 0, 4, nullptr);
+  const std::vector<Plot> plots = ChannelCpsPlots(result, 0, 4);
   REQUIRE(plots.size() == 1);
   CHECK(plots[0].name == "z_velocity_cps_channels_" + contributor.name);
   CHECK(plots[0].script.find("'" + plots[0].name + ".csv'") != std::string::npos);
   CHECK(plots[0].caption.rfind("Contributor " + contributor.name + " by source channel", 0) == 0);
   // A budget without a breakdown has none.
   const Budget plain = LoadBudgetFile(test::ExampleBudget());
-  CHECK(ChannelCpsPlots(Evaluate(plain), 0, 4, nullptr).empty());
+  CHECK(ChannelCpsPlots(Evaluate(plain), 0, 4).empty());
 }
 
 }  // namespace deb::report

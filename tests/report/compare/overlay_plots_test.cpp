@@ -8,6 +8,7 @@
 #include <string>
 
 #include "deb/budget/comparison.h"
+#include "deb/budget/engine.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_style.h"

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_style.h"

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "deb/budget/engine.h"
 #include "deb/io/budget_yaml.h"
 #include "deb/report/budget/report_writer.h"
 #include "deb/report/budget/spectrum_plots.h"
@@ -128,7 +129,7 @@ TEST_CASE("the stacked CPS and the band bars of a budget with 8 contributors hat
   const fs::path dir = TempDir("eight") / "report";
   ReportOptions options;
   options.plots = false;
-  WriteReportDirectory(budget, Evaluate(budget), {}, options, dir.string());
+  WriteReportDirectory(Evaluate(budget), {}, options, dir.string());
   for (const char* plot : {"z_cps.gp", "z_bands.gp", "overview.gp"}) {
     const std::string script = ReadAll(dir / "plots" / plot);
     CHECK_MESSAGE(script.find("fillstyle transparent pattern " + std::to_string(ContributorStyle(6).fill_pattern) +
@@ -223,7 +224,7 @@ TEST_CASE("a contributor's colour follows its index in the budget, not its share
   const fs::path dir = TempDir("keyed") / "report";
   ReportOptions options;
   options.plots = false;  // the scripts are written without drawing
-  WriteReportDirectory(budget, result, {}, options, dir.string());
+  WriteReportDirectory(result, {}, options, dir.string());
   const std::string colours = ReadAll(dir / "plots" / "colours.csv");
   CHECK(colours.find("0,minor," + ContributorStyle(0).colour) != std::string::npos);
   CHECK(colours.find("1,major," + ContributorStyle(1).colour) != std::string::npos);

@@ -1,0 +1,33 @@
+#include "deb/budget/budget_outline.h"
+
+#include <algorithm>
+
+#include "deb/core/error.h"
+
+namespace deb {
+
+const SourceOutline& BudgetOutline::SourceOf(const Contributor& contributor) const {
+  const auto s = std::find_if(sources.begin(), sources.end(),
+                              [&](const SourceOutline& source) { return source.name == contributor.source; });
+  DEB_DEMAND(s != sources.end());
+  return *s;
+}
+
+BudgetOutline OutlineOf(const Budget& budget) {
+  BudgetOutline outline;
+  outline.name = budget.name;
+  outline.description = budget.description;
+  outline.grid_kind = budget.grid.kind;
+  outline.bands = budget.bands;
+  for (const Source& s : budget.sources) outline.sources.push_back({s.name, s.description, s.unit, s.channel_names});
+  outline.contributors = budget.contributors;
+  for (const Output& o : budget.outputs) {
+    OutputOutline& out = outline.outputs.emplace_back();
+    if (o.weighting) out.weighting = WeightingOutline{o.weighting->unit, o.weighting->description};
+    out.combination = o.combination;
+  }
+  outline.covariance = budget.covariance;
+  return outline;
+}
+
+}  // namespace deb

@@ -1,0 +1,57 @@
+// What a result keeps of the budget it was evaluated from: names,
+// descriptions, units, the sources' channels, the contributors, and what a
+// report says of an output beyond its figures (its weighting filter and the
+// terms of a combined output). It holds no spectrum, path or model. Evaluate
+// fills it (BudgetResult::outline) and the result store saves it, so the
+// result files and the report are functions of the result alone, whether it
+// was just evaluated or read back from its store.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/budget/path_composition.h"
+
+namespace deb {
+
+// A source without its spectrum.
+struct SourceOutline {
+  std::string name;
+  std::string description;
+  std::string unit;                   // of the signal; its PSD is in unit^2/Hz
+  std::vector<std::string> channels;  // Source::channel_names
+};
+
+// A weighting filter as a report states it, without the filter.
+struct WeightingOutline {
+  std::string unit;  // of the filter's gain
+  std::string description;
+};
+
+// What a report says of an output beyond its OutputResult.
+struct OutputOutline {
+  std::optional<WeightingOutline> weighting;  // none: the output is not weighted
+  std::vector<SignalTerm> combination;        // Output::combination; empty unless combined
+};
+
+struct BudgetOutline {
+  std::string name;
+  std::string description;
+  GridKind grid_kind = GridKind::kAuto;
+  std::vector<Band> bands;                // the budget's; empty: decades of the grid
+  std::vector<SourceOutline> sources;
+  std::vector<Contributor> contributors;  // in budget order, as every OutputResult lists them
+  std::vector<OutputOutline> outputs;     // outputs[o] describes BudgetResult::outputs[o]
+  std::vector<std::string> covariance;    // Budget::covariance
+
+  // The source a contributor of this outline names; aborts (DEB_DEMAND) if
+  // the outline holds none of that name.
+  const SourceOutline& SourceOf(const Contributor& contributor) const;
+};
+
+// The outline of a validated budget.
+BudgetOutline OutlineOf(const Budget& budget);
+
+}  // namespace deb
