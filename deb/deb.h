@@ -96,14 +96,14 @@
 
 // Budget files in (LoadBudgetFile), result directories out
 // (WriteResultDirectory: summary.json and a CSV per output).
-#include "deb/io/budget_yaml.h"
-#include "deb/io/comparison_files.h"
-#include "deb/io/mat_file.h"
-#include "deb/io/result_exports.h"
-#include "deb/io/result_mat.h"
-#include "deb/io/result_writer.h"
-#include "deb/io/result_xlsx.h"
-#include "deb/io/sweep_yaml.h"
+#include "deb/load/budget_yaml.h"
+#include "deb/results/comparison_files.h"
+#include "deb/formats/mat_file.h"
+#include "deb/results/result_exports.h"
+#include "deb/results/result_mat.h"
+#include "deb/results/result_writer.h"
+#include "deb/results/result_xlsx.h"
+#include "deb/load/sweep_yaml.h"
 
 // The report of `deb run` (WriteReportDirectory; gnuplot draws the plots).
 #include "deb/report/budget/report_writer.h"

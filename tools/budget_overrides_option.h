@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "deb/core/error.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 
 namespace deb::tools {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "deb/core/error.h"
-#include "deb/io/result_store.h"
+#include "deb/results/result_store.h"
 #include "tools/console_brief.h"
 #include "tools/report_flags.h"
 

@@ -1,5 +1,5 @@
 // `deb report RESULT_DIR`: redraws the report of a result directory from its
-// result store (result.h5, deb/io/result_store.h) without evaluating
+// result store (result.h5, deb/results/result_store.h) without evaluating
 // anything: no budget file, data file or model is read. The report is
 // written atomically into RESULT_DIR itself (or --out), with the report
 // options of `deb run` (--format, --digits, --asd, --export, ...): the same

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "deb/core/error.h"
-#include "deb/io/result_exports.h"
+#include "deb/results/result_exports.h"
 #include "deb/report/budget/report_writer.h"
 #include "deb/report/figure/report_options.h"
 

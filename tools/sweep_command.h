@@ -1,5 +1,5 @@
 // `deb sweep BUDGET.yaml`: evaluates every variant of a budget's `sweep`
-// section (deb/io/sweep_yaml.h), variants in parallel, and writes sweep.csv
+// section (deb/load/sweep_yaml.h), variants in parallel, and writes sweep.csv
 // (one row per variant: parameter values, RMS per output and contributor)
 // and plots/<output>_sweep.png (RMS against the first parameter) atomically
 // into reports/<budget-name>_sweep/ (or --out).

@@ -4,7 +4,7 @@
 // whose variance changed most. Figures are matched by output name,
 // contributor name and band edges; what exists on one side only is listed,
 // not compared. Figures come from an evaluation (FiguresOf) or from a
-// result directory's summary.json (deb/io/comparison_files.h).
+// result directory's summary.json (deb/results/comparison_files.h).
 #pragma once
 
 #include <cstddef>

@@ -4,7 +4,7 @@
 // output (path_response.h) and the loop gain of every single-channel
 // feedback loop. With them a result describes its own plots: the report
 // draws from a BudgetResult alone, and so can a result read back from its
-// store (deb/io/result_store.h) without any model.
+// store (deb/results/result_store.h) without any model.
 #pragma once
 
 #include <complex>

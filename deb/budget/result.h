@@ -3,7 +3,7 @@
 // requirements and measured references; the feedback loops with their
 // margins; the output covariance; and the outline of the budget (names,
 // units, descriptions; no model). The types are plain data, and a result
-// read back from its store (deb/io/result_store.h) is the same type: the
+// read back from its store (deb/results/result_store.h) is the same type: the
 // result files and the report are functions of a result alone, and what
 // reads a result includes this header, not the engine's.
 #pragma once

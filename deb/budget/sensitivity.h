@@ -32,7 +32,7 @@ struct Sensitivity {
 std::vector<Sensitivity> Sensitivities(const std::string& parameter, double relative_step, const BudgetResult& nominal,
                                        const BudgetResult& up, const BudgetResult& down);
 
-// The budget with `parameter` multiplied by `factor` (deb/io's
+// The budget with `parameter` multiplied by `factor` (deb/load's
 // LoadBudgetWithScaledParameter for a key path of the budget file).
 using ScaledBudget = std::function<Budget(const std::string& parameter, double factor)>;
 

@@ -4,7 +4,7 @@
 // "paths[0].isolators[*].position[2]". Values come as lists or linear / log
 // ranges, combined as a full grid (every combination; the last parameter
 // varies fastest) or zipped (the i-th value of every parameter together).
-// The YAML loader builds the variants (deb/io/sweep_yaml.h); the results
+// The YAML loader builds the variants (deb/load/sweep_yaml.h); the results
 // become one CSV row per variant.
 #pragma once
 

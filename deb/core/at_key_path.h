@@ -2,7 +2,7 @@
 // Locating errors of library code that the caller described by key path: a
 // function given "paths[2].of[1]" throws InputError(key_path, message) for a
 // rule that part breaks, and the YAML loader turns the key path into
-// file:line:col (deb/io). AtKeyPath gives the same location to errors of the
+// file:line:col (deb/load). AtKeyPath gives the same location to errors of the
 // functions it calls, which know no key paths.
 #pragma once
 

@@ -37,7 +37,7 @@ inline constexpr int kMaxDenseStates = 2'000;
 // variance. A dense random model of 400 states took 2.8 s, 800 states 16 s
 // (O(n^3)); 2000 states did not finish in 10 minutes.
 inline constexpr int kMaxStates = 1'000;
-// Values of one variable of a MATLAB .mat file (deb/io/mat_file.h), checked
+// Values of one variable of a MATLAB .mat file (deb/formats/mat_file.h), checked
 // from its header before its data is read: a mode-shape matrix of the most
 // modes at the most channels (400 MB of doubles).
 inline constexpr std::size_t kMaxMatElements =

@@ -142,7 +142,7 @@ TEST_CASE("deb check lists the outputs of a covariance request") {
 }
 
 TEST_CASE("deb check and summary.json state the margins of every feedback loop") {
-  // budgets/measured_stage.yaml: PM 53.01 deg at 30.06 Hz (tests/io/frf_path_test.cpp checks the figures).
+  // budgets/measured_stage.yaml: PM 53.01 deg at 30.06 Hz (tests/load/frf_path_test.cpp checks the figures).
   const Command r = RunDeb("check " + ExampleBudget("measured_stage.yaml"));
   CHECK(r.exit_code == 0);
   CHECK(r.out.find("feedback loops:\n  stage closed by controller (negative feedback), in closed_loop\n"

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "deb/io/mat_file.h"
+#include "deb/formats/mat_file.h"
 #include "tests/support/cli_harness.h"
 #include "tests/support/contains.h"
 

@@ -1,7 +1,7 @@
 // Fuzzes the budget loader and the sweep loader with the same YAML text.
 // Relative data-file paths resolve in a private, empty directory.
-#include "deb/io/budget_yaml.h"
-#include "deb/io/sweep_yaml.h"
+#include "deb/load/budget_yaml.h"
+#include "deb/load/sweep_yaml.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <set>
 
-#include "deb/io/mat_file.h"
+#include "deb/formats/mat_file.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,7 +1,7 @@
 // Fuzzes the reader of a result store (result.h5, what `deb report` and
 // `deb compare` read), starting from stores `deb run` wrote for shipped
 // budgets (tools/fuzz). A crash inside libhdf5 is a finding like any other.
-#include "deb/io/result_store.h"
+#include "deb/results/result_store.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

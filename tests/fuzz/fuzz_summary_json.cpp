@@ -1,5 +1,5 @@
 // Fuzzes the reader of a run's summary.json (what `deb compare` reads).
-#include "deb/io/comparison_files.h"
+#include "deb/results/comparison_files.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

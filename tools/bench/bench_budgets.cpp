@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "deb/budget/engine.h"
-#include "deb/io/budget_yaml.h"
-#include "deb/io/hdf5_file.h"
-#include "deb/io/result_store.h"
-#include "deb/io/result_writer.h"
+#include "deb/load/budget_yaml.h"
+#include "deb/formats/hdf5_file.h"
+#include "deb/results/result_store.h"
+#include "deb/results/result_writer.h"
 
 namespace {
 

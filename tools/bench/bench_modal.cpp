@@ -25,8 +25,8 @@
 #include <vector>
 
 #include "deb/budget/engine.h"
-#include "deb/io/budget_yaml.h"
-#include "deb/io/result_writer.h"
+#include "deb/load/budget_yaml.h"
+#include "deb/results/result_writer.h"
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include "deb/core/limits.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
-#include "deb/io/result_store.h"
+#include "deb/results/result_store.h"
 #include "deb/report/budget/band_plots.h"
 #include "deb/report/budget/band_text.h"
 #include "deb/report/budget/file_digest.h"

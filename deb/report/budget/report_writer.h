@@ -6,10 +6,10 @@
 // report directory beside summary.json and the per-output CSVs.
 //
 // Layout of a report directory:
-//   summary.json, <output>.csv           (WriteReportDirectory, deb/io)
-//   result.h5                            (the result store: deb/io/result_store.h;
+//   summary.json, <output>.csv           (WriteReportDirectory, deb/results)
+//   result.h5                            (the result store: deb/results/result_store.h;
 //                                         `deb report` redraws the report from it)
-//   result.mat, result.xlsx              (with exports; deb/io/result_exports.h)
+//   result.mat, result.xlsx              (with exports; deb/results/result_exports.h)
 //   index.html, report.md, report.pdf
 //   plots/<name>.png|.svg, plots/<name>.csv, plots/<name>.gp, plots/colours.csv
 #pragma once
@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "deb/budget/result.h"
-#include "deb/io/result_exports.h"
-#include "deb/io/result_writer.h"
+#include "deb/results/result_exports.h"
+#include "deb/results/result_writer.h"
 #include "deb/report/figure/report_options.h"
 
 namespace deb {

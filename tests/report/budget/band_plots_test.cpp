@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "deb/budget/engine.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "tests/support/cli_harness.h"
 

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "deb/budget/engine.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/report/budget/report_documents.h"
 #include "tests/support/cli_harness.h"
 

@@ -7,7 +7,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/budget/path_response.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/report/figure/plot_style.h"
 #include "tests/support/cli_harness.h"
 

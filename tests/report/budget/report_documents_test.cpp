@@ -3,7 +3,7 @@
 #include <doctest/doctest.h>
 
 #include "deb/budget/engine.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "tests/support/cli_harness.h"
 

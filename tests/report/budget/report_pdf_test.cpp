@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "deb/budget/engine.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/report/budget/report_writer.h"
 #include "tests/support/cli_harness.h"
 

@@ -9,7 +9,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/report/figure/gnuplot_runner.h"
 #include "tests/support/cli_harness.h"
 

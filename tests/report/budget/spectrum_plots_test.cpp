@@ -11,7 +11,7 @@
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/report/budget/report_writer.h"
 #include "deb/report/figure/plot_style.h"
 #include "tests/support/cli_harness.h"

@@ -13,7 +13,7 @@
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_style.h"
 
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "tests/support/cli_harness.h"
 
 namespace deb::report {

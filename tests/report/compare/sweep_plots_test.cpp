@@ -7,7 +7,7 @@
 #include <string>
 
 #include "deb/budget/engine.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_style.h"
 #include "tests/support/cli_harness.h"

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "deb/budget/engine.h"
-#include "deb/io/budget_yaml.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/report/budget/report_writer.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "tests/support/cli_harness.h"

@@ -1,0 +1,739 @@
+#include "deb/formats/hdf5_file.h"
+
+#include <hdf5.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <set>
+
+#include "deb/core/error.h"
+#include "deb/core/input_file.h"
+
+namespace deb::io {
+namespace {
+
+// Starts the library once per process, before any other use of it (the
+// .mat reader calls StartHdf5 too, since matio reads version-7.3 files
+// through HDF5). "" if it started, else why not.
+std::string Start() {
+  // No clean-up of HDF5 at exit: deb closes every file it opens itself, and
+  // the library's own clean-up closes again a file whose H5Fclose failed (a
+  // full disk), which ends the process in SIGSEGV after its error was
+  // reported. Only possible before the library is first used.
+  H5dont_atexit();
+  if (H5open() < 0) return "the HDF5 library did not start (H5open failed)";
+  // Filters are refused (Open) and none is needed: no plugin is loaded
+  // from the directories HDF5_PLUGIN_PATH names.
+  if (H5PLset_loading_state(0) < 0) return "the HDF5 library refused to turn plugin loading off";
+  return "";
+}
+
+// Why HDF5 cannot be used, for messages; "" if it can.
+const std::string& StartFailure() {
+  static const std::string failure = Start();
+  return failure;
+}
+
+// Every call into HDF5, deb's and matio's, holds this lock: an HDF5 built
+// without thread safety needs it, and a thread-safe one serialises its
+// calls anyway. Recursive: a matio call that holds it may end in a read
+// of this module.
+std::recursive_mutex g_hdf5;
+
+// The lock, and HDF5's printing of its error stack turned off for the
+// calling thread: deb reports errors itself, and a thread-safe HDF5 keeps
+// that setting per thread (the store is written on a thread of its own).
+class Locked {
+ public:
+  Locked() : lock_(g_hdf5) {
+    thread_local bool quiet = false;
+    if (!quiet && StartFailure().empty()) quiet = H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0;
+  }
+
+ private:
+  std::lock_guard<std::recursive_mutex> lock_;
+};
+
+// Closes an HDF5 identifier when it goes out of scope.
+class Id {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Id(hid_t id, Closer close) : id_(id), close_(close) {}
+  ~Id() {
+    if (id_ >= 0) close_(id_);
+  }
+  Id(Id&& other) noexcept : id_(other.id_), close_(other.close_) { other.id_ = -1; }
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  Id& operator=(Id&&) = delete;
+  hid_t get() const { return id_; }
+  bool ok() const { return id_ >= 0; }
+
+ private:
+  hid_t id_;
+  Closer close_;
+};
+
+// The transfer properties of every read and write of one file: a
+// type-conversion buffer of 64 KiB instead of HDF5's 1 MiB, which it
+// allocates and zeroes for every dataset of text (converted on the way):
+// with the default, writing a store of a few thousand small datasets took
+// twice as long. Made per file, not once: another user of the library in
+// the process (matio) may close and reopen it. -1 if it cannot be made.
+hid_t NewTransfer() {
+  const hid_t t = H5Pcreate(H5P_DATASET_XFER);
+  if (t >= 0 && H5Pset_buffer(t, std::size_t{64} << 10, nullptr, nullptr) < 0) {
+    H5Pclose(t);
+    return -1;
+  }
+  return t;
+}
+
+std::vector<std::string> Split(const std::string& object) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (start <= object.size()) {
+    const std::size_t end = std::min(object.find('/', start), object.size());
+    if (end > start) parts.push_back(object.substr(start, end - start));
+    start = end + 1;
+  }
+  return parts;
+}
+
+Id VariableString() {
+  Id type(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (type.ok()) {
+    H5Tset_size(type.get(), H5T_VARIABLE);
+    H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  }
+  return type;
+}
+
+}  // namespace
+
+std::unique_lock<std::recursive_mutex> LockHdf5() {
+  std::unique_lock<std::recursive_mutex> lock(g_hdf5);
+  if (const std::string& why = StartFailure(); !why.empty()) throw InputError(why);
+  return lock;
+}
+
+// ---------------------------------------------------------------- writing
+
+struct Hdf5Writer::Handle {
+  hid_t file = -1;
+  // Creation properties of every dataset and group: without modification
+  // times, which HDF5 records by default, so that a file written twice from
+  // the same values is the same file (a reproducible report).
+  hid_t dataset_create = -1;
+  hid_t group_create = -1;
+  hid_t transfer = -1;  // NewTransfer
+  // The groups created or opened so far, by '/'-path, open until Close.
+  std::map<std::string, hid_t> groups;
+
+  void CloseAll() {
+    for (const auto& g : groups) H5Gclose(g.second);
+    groups.clear();
+    for (hid_t* p : {&dataset_create, &group_create, &transfer})
+      if (*p >= 0) H5Pclose(*p), *p = -1;
+  }
+};
+
+Hdf5Writer::Hdf5Writer(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
+  const Locked lock;
+  if (const std::string why = StartFailure(); !why.empty()) throw WriteError("cannot write " + path + ": " + why);
+  // The file format of HDF5 1.8 (2008) and later, which any current reader
+  // (h5py, MATLAB, HDFView) reads: its groups keep their few links in the
+  // group's header instead of a B-tree and a heap, which makes a store of
+  // thousands of small objects faster to write and read, and smaller.
+  // The root group, like every object below, without modification times.
+  const Id access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose), create(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  if (!access.ok() || !create.ok() || H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_V18) < 0 ||
+      H5Pset_obj_track_times(create.get(), 0) < 0)
+    throw WriteError("cannot set up the HDF5 file " + path);
+  handle_->file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, create.get(), access.get());
+  if (handle_->file < 0) throw WriteError("cannot create the HDF5 file " + path);
+  handle_->transfer = NewTransfer();
+  handle_->dataset_create = H5Pcreate(H5P_DATASET_CREATE);
+  handle_->group_create = H5Pcreate(H5P_GROUP_CREATE);
+  if (handle_->dataset_create < 0 || handle_->group_create < 0 || handle_->transfer < 0 ||
+      H5Pset_obj_track_times(handle_->dataset_create, 0) < 0 ||
+      H5Pset_obj_track_times(handle_->group_create, 0) < 0)
+    throw WriteError("cannot set up the HDF5 file " + path);
+}
+
+Hdf5Writer::~Hdf5Writer() {
+  if (handle_ && (handle_->file >= 0 || handle_->dataset_create >= 0)) {
+    const Locked lock;
+    handle_->CloseAll();
+    if (handle_->file >= 0) H5Fclose(handle_->file);
+  }
+}
+
+void Hdf5Writer::Close() {
+  const Locked lock;
+  handle_->CloseAll();
+  const hid_t file = handle_->file;
+  handle_->file = -1;
+  if (file >= 0 && H5Fclose(file) < 0) throw WriteError("cannot complete the HDF5 file " + path_);
+}
+
+namespace {
+
+// Writes one dataset of `type_in_file` and `dims` (empty: a scalar) from
+// `data` in `type_in_memory` under `file`, creating the groups above it.
+void WriteDataset(Hdf5Writer::Handle& h, const std::string& path, const std::string& object, hid_t type_in_file,
+                  hid_t type_in_memory, const std::vector<hsize_t>& dims, const void* data) {
+  const std::vector<std::string> parts = Split(object);
+  DEB_DEMAND(!parts.empty());
+  const auto fail = [&](const std::string& what) {
+    throw WriteError("cannot write '" + object + "' to the HDF5 file " + path + ": " + what);
+  };
+  // The groups above, opened or created once and kept open.
+  hid_t at = h.file;
+  std::string group_path;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    group_path += "/" + parts[i];
+    const auto known = h.groups.find(group_path);
+    if (known != h.groups.end()) {
+      at = known->second;
+      continue;
+    }
+    const htri_t exists = H5Lexists(at, parts[i].c_str(), H5P_DEFAULT);
+    const hid_t g = exists > 0 ? H5Gopen2(at, parts[i].c_str(), H5P_DEFAULT)
+                               : H5Gcreate2(at, parts[i].c_str(), H5P_DEFAULT, h.group_create, H5P_DEFAULT);
+    if (g < 0) fail("cannot create or open the group '" + parts[i] + "'");
+    h.groups.emplace(group_path, g);
+    at = g;
+  }
+
+  Id space(dims.empty() ? H5Screate(H5S_SCALAR)
+                        : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+           H5Sclose);
+  if (!space.ok()) fail("cannot make its dataspace");
+  Id set(H5Dcreate2(at, parts.back().c_str(), type_in_file, space.get(), H5P_DEFAULT, h.dataset_create, H5P_DEFAULT),
+         H5Dclose);
+  if (!set.ok())
+    fail(H5Lexists(at, parts.back().c_str(), H5P_DEFAULT) > 0 ? "it exists already" : "cannot create the dataset");
+  bool empty = false;
+  for (hsize_t d : dims) empty |= d == 0;
+  if (!empty && H5Dwrite(set.get(), type_in_memory, H5S_ALL, H5S_ALL, h.transfer, data) < 0)
+    fail("cannot write its data");
+}
+
+}  // namespace
+
+void Hdf5Writer::Number(const std::string& object, double value) {
+  const Locked lock;
+  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {}, &value);
+}
+
+void Hdf5Writer::Integer(const std::string& object, std::int64_t value) {
+  const Locked lock;
+  const long long v = value;
+  WriteDataset(*handle_, path_, object, H5T_STD_I64LE, H5T_NATIVE_LLONG, {}, &v);
+}
+
+void Hdf5Writer::Text(const std::string& object, const std::string& value) {
+  const Locked lock;
+  const Id type = VariableString();
+  const char* text = value.c_str();
+  WriteDataset(*handle_, path_, object, type.get(), type.get(), {}, &text);
+}
+
+void Hdf5Writer::Numbers(const std::string& object, const std::vector<double>& values) {
+  const Locked lock;
+  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {values.size()},
+               values.data());
+}
+
+void Hdf5Writer::Texts(const std::string& object, const std::vector<std::string>& values) {
+  const Locked lock;
+  const Id type = VariableString();
+  std::vector<const char*> texts;
+  for (const std::string& v : values) texts.push_back(v.c_str());
+  WriteDataset(*handle_, path_, object, type.get(), type.get(), {values.size()}, texts.data());
+}
+
+void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<double>>& rows) {
+  const std::size_t columns = rows.empty() ? 0 : rows.front().size();
+  std::vector<double> data;
+  data.reserve(rows.size() * columns);
+  for (const std::vector<double>& r : rows) {
+    DEB_DEMAND(r.size() == columns);
+    data.insert(data.end(), r.begin(), r.end());
+  }
+  const Locked lock;
+  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+               {rows.size(), rows.empty() ? 0 : columns}, data.data());
+}
+
+// ---------------------------------------------------------------- reading
+
+namespace {
+
+// Objects one file may hold for RequireSelfContainedHdf5: a MAT-file's
+// 100 000 variables (limits::kMaxMatVariables) with their cells and structs.
+constexpr std::size_t kMaxHdf5Objects = 250'000;
+
+// A little-endian unsigned integer of `n` bytes (HDF5's file format).
+std::uint64_t Little(const unsigned char* p, std::size_t n) {
+  std::uint64_t v = 0;
+  for (std::size_t k = n; k-- > 0;) v = v << 8 | p[k];
+  return v;
+}
+
+// The bytes of the file as they are on disk, read by deb itself for the
+// checks libhdf5 1.10 does not make (VariableText).
+class RawFile {
+ public:
+  explicit RawFile(const std::string& path) : in_(path, std::ios::binary) {
+    in_.seekg(0, std::ios::end);
+    size_ = in_ ? static_cast<std::uint64_t>(in_.tellg()) : 0;
+  }
+  std::uint64_t size() const { return size_; }
+  // `n` bytes at `at`; false if they are not all in the file.
+  bool Read(std::uint64_t at, std::uint64_t n, unsigned char* out) {
+    if (at > size_ || n > size_ - at) return false;
+    in_.clear();
+    in_.seekg(static_cast<std::streamoff>(at));
+    in_.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n));
+    return in_.gcount() == static_cast<std::streamsize>(n);
+  }
+
+ private:
+  std::ifstream in_;
+  std::uint64_t size_ = 0;
+};
+
+}  // namespace
+
+struct Hdf5Reader::Handle {
+  hid_t file = -1;
+  hid_t transfer = -1;  // NewTransfer
+  // Paths found to be reached through hard links only (Reach).
+  std::set<std::string> hard;
+  // The file's layout, for VariableText: its user block (addresses count
+  // from its end), and the bytes of an address and of a length.
+  std::uint64_t base = 0;
+  std::size_t address_bytes = 8, length_bytes = 8;
+  std::unique_ptr<RawFile> raw;
+  // Global heap collections found whole, by address: each object's index
+  // and size.
+  std::map<std::uint64_t, std::map<std::uint64_t, std::uint64_t>> heaps;
+};
+
+Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
+  RequireInputFile(path, "HDF5 file", kMaxHdf5FileBytes);
+  const Locked lock;
+  if (const std::string why = StartFailure(); !why.empty()) throw InputError(path + ": reading it needs " + why);
+  handle_->file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (handle_->file < 0) throw InputError(path + ": not an HDF5 file, or a damaged one");
+  handle_->transfer = NewTransfer();
+  if (handle_->transfer < 0) throw InputError(path + ": cannot set up reading it (HDF5)");
+  const Id create(H5Fget_create_plist(handle_->file), H5Pclose);
+  hsize_t user_block = 0;
+  if (!create.ok() || H5Pget_sizes(create.get(), &handle_->address_bytes, &handle_->length_bytes) < 0 ||
+      H5Pget_userblock(create.get(), &user_block) < 0 || handle_->address_bytes < 2 ||
+      handle_->address_bytes > 8 || handle_->length_bytes < 2 || handle_->length_bytes > 8)
+    throw InputError(path + ": not an HDF5 file, or a damaged one");
+  handle_->base = user_block;
+  handle_->raw = std::make_unique<RawFile>(path);
+}
+
+Hdf5Reader::~Hdf5Reader() {
+  if (handle_ && handle_->file >= 0) {
+    const Locked lock;
+    if (handle_->transfer >= 0) H5Pclose(handle_->transfer);
+    H5Fclose(handle_->file);
+  }
+}
+
+namespace {
+
+enum class Kind { kDouble, kInteger, kText };
+
+const char* KindName(Kind k) {
+  switch (k) {
+    case Kind::kDouble: return "numbers";
+    case Kind::kInteger: return "an integer";
+    case Kind::kText: return "text";
+  }
+  return "";
+}
+
+// An open dataset with its checked shape.
+struct OpenSet {
+  std::unique_ptr<Id> set;
+  std::vector<hsize_t> dims;
+  std::size_t elements = 1;
+  hid_t transfer = H5P_DEFAULT;  // the reader's (NewTransfer)
+};
+
+std::string LinkKind(H5L_type_t type) {
+  switch (type) {
+    case H5L_TYPE_SOFT: return "a soft link (a path to another object)";
+    case H5L_TYPE_EXTERNAL: return "an external link (to an object of another file)";
+    default: return "a user-defined link";
+  }
+}
+
+// Whether `object` exists, reached from the root through hard links only.
+// Each name on the way is looked at (H5Lget_info does not follow the link
+// it describes) before anything goes through it.
+// @throws InputError for a link of another kind on the way.
+bool Reach(Hdf5Reader::Handle& h, const std::string& path, const std::string& object) {
+  std::string prefix;
+  for (const std::string& part : Split(object)) {
+    prefix += (prefix.empty() ? "" : "/") + part;
+    if (h.hard.count(prefix)) continue;
+    H5L_info_t info;
+    if (H5Lget_info(h.file, prefix.c_str(), &info, H5P_DEFAULT) < 0) return false;
+    if (info.type != H5L_TYPE_HARD)
+      throw InputError(path + ": object '" + Excerpt(prefix, 200) + "' is " + LinkKind(info.type) +
+                       "; deb reads only objects the file holds itself, reached by plain (hard) links");
+    h.hard.insert(prefix);
+  }
+  return !prefix.empty();
+}
+
+// Why a dataset with creation properties `create` must not be read, or "":
+// its values outside the file (external storage, a virtual dataset), or
+// compressed (a small file could expand into any size; deb compresses
+// nothing).
+std::string StorageProblem(hid_t create, bool allow_filters) {
+  if (create < 0) return "has unreadable storage properties; is the file damaged?";
+  if (H5Pget_external_count(create) != 0)
+    return "keeps its values in another file (HDF5 external storage); deb reads only what the file holds itself";
+  if (H5Pget_layout(create) == H5D_VIRTUAL)
+    return "is a virtual dataset (its values come from other datasets or files); deb reads only what the file "
+           "holds itself";
+  if (!allow_filters && H5Pget_nfilters(create) != 0)
+    return "is compressed or filtered; a reader of deb's files reads plain datasets only";
+  return "";
+}
+
+// The shape against the caller's bound, before anything is allocated: at
+// most `most` elements (rank 1) or rows (rank 2) of `columns` values.
+void CheckShape(const std::string& path, const std::string& object, const OpenSet& s, AtMost most,
+                std::size_t columns = 0) {
+  const auto fail = [&](const std::string& what) {
+    throw InputError(path + ": object '" + Excerpt(object, 200) + "' " + what);
+  };
+  if (s.dims.empty()) return;
+  if (s.dims[0] > most.count)
+    fail((s.dims.size() == 1 ? "declares " + std::to_string(s.dims[0]) + " values"
+                              : "declares " + std::to_string(s.dims[0]) + " rows") +
+         ", more than the " + std::to_string(most.count) + " it may hold");
+  if (s.dims.size() == 2 && s.dims[0] > 0 && s.dims[1] != columns)
+    fail("has rows of " + std::to_string(s.dims[1]) + " values, not " + std::to_string(columns));
+}
+
+OpenSet Open(Hdf5Reader::Handle& h, const std::string& path, const std::string& object, Kind kind, int rank,
+             AtMost most = AtMost(1), std::size_t columns = 0) {
+  const auto fail = [&](const std::string& what) {
+    throw InputError(path + ": object '" + Excerpt(object, 200) + "' " + what);
+  };
+  OpenSet s;
+  s.transfer = h.transfer;
+  if (!Reach(h, path, object)) fail("is missing");
+  s.set = std::make_unique<Id>(H5Dopen2(h.file, object.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!s.set->ok()) fail("is not a dataset");
+  {
+    const Id create(H5Dget_create_plist(s.set->get()), H5Pclose);
+    if (const std::string problem = StorageProblem(create.get(), false); !problem.empty()) fail(problem);
+  }
+  const Id type(H5Dget_type(s.set->get()), H5Tclose);
+  const H5T_class_t cls = type.ok() ? H5Tget_class(type.get()) : H5T_NO_CLASS;
+  const bool variable = cls == H5T_STRING && H5Tis_variable_str(type.get()) > 0;
+  const bool right = kind == Kind::kDouble    ? cls == H5T_FLOAT || cls == H5T_INTEGER
+                     : kind == Kind::kInteger ? cls == H5T_INTEGER
+                                              : variable;
+  if (!right)
+    fail(std::string("holds ") +
+         (cls == H5T_STRING ? (variable ? "text" : "text of a fixed length")
+                            : cls == H5T_FLOAT ? "numbers" : "another class") +
+         ", not " + KindName(kind) + (kind == Kind::kText ? " (variable-length strings)" : ""));
+  const Id space(H5Dget_space(s.set->get()), H5Sclose);
+  const int ndims = space.ok() ? H5Sget_simple_extent_ndims(space.get()) : -1;
+  if (ndims != rank)
+    fail("has " + std::to_string(ndims) + " dimensions, not " + std::to_string(rank));
+  s.dims.assign(static_cast<std::size_t>(rank), 0);
+  if (rank > 0 && H5Sget_simple_extent_dims(space.get(), s.dims.data(), nullptr) != rank)
+    fail("has an unreadable shape");
+  for (hsize_t d : s.dims) {
+    if (d > kMaxHdf5Elements || (d > 0 && s.elements > kMaxHdf5Elements / d))
+      fail("has more than " + std::to_string(kMaxHdf5Elements) + " elements");
+    s.elements *= static_cast<std::size_t>(d);
+  }
+  CheckShape(path, object, s, most, columns);
+  // Every value declared is in the file: HDF5 fills a dataset whose values
+  // were never written, so a small file could declare any size (deb writes
+  // every value it declares).
+  const std::size_t value_bytes = H5Tget_size(type.get());
+  const hsize_t stored = s.elements > 0 ? H5Dget_storage_size(s.set->get()) : 0;
+  if (s.elements > 0 && (value_bytes == 0 || stored / value_bytes < s.elements))
+    fail("declares " + std::to_string(s.elements) + " values, but the file holds " +
+         std::to_string(value_bytes ? stored / value_bytes : 0) + " of them; is it damaged?");
+  return s;
+}
+
+void Read(const std::string& path, const std::string& object, const OpenSet& s, hid_t memory_type, void* data) {
+  if (s.elements == 0) return;
+  if (H5Dread(s.set->get(), memory_type, H5S_ALL, H5S_ALL, s.transfer, data) < 0)
+    throw InputError(path + ": object '" + Excerpt(object, 200) + "' cannot be read (a damaged file?)");
+}
+
+void CheckFinite(const std::string& path, const std::string& object, const std::vector<double>& v, bool allow_nan) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]) && !(allow_nan && std::isnan(v[i])))
+      throw InputError(path + ": object '" + Excerpt(object, 200) + "' holds a value that is not finite at element " +
+                       std::to_string(i));
+}
+
+// The objects of the global heap collection at `address` (HDF5 file format,
+// "Global Heap"): index -> size, if the collection lies whole inside the
+// file and its objects inside it, laid out as libhdf5 walks them; else
+// nullptr. libhdf5 1.10 walks a collection without bounds and copies an
+// object's stored size into a buffer sized from the reference: a damaged
+// file made it read and write out of bounds (SIGSEGV).
+const std::map<std::uint64_t, std::uint64_t>* HeapCollection(Hdf5Reader::Handle& h, std::uint64_t address) {
+  const auto known = h.heaps.find(address);
+  if (known != h.heaps.end()) return &known->second;
+  const std::size_t length = h.length_bytes;
+  const auto align = [](std::uint64_t n) { return (n + 7) / 8 * 8; };
+  const std::uint64_t header = align(8 + length), object_header = 8 + length;
+  if (address > h.raw->size() || h.base > h.raw->size() - address) return nullptr;
+  const std::uint64_t at = h.base + address;
+  unsigned char head[16];
+  if (!h.raw->Read(at, 8 + length, head) || std::memcmp(head, "GCOL", 4) != 0 || head[4] != 1) return nullptr;
+  const std::uint64_t size = Little(head + 8, length);
+  if (size < header || size > h.raw->size() - at) return nullptr;
+  std::vector<unsigned char> heap(static_cast<std::size_t>(size));
+  if (!h.raw->Read(at, size, heap.data())) return nullptr;
+  std::map<std::uint64_t, std::uint64_t> objects;
+  std::uint64_t p = header;
+  while (p < size) {
+    if (p + object_header > size) break;  // too small for an object: free space to the end
+    const unsigned char* o = heap.data() + p;
+    const std::uint64_t index = Little(o, 2), bytes = Little(o + 8, length);
+    // Object 0 is the free space, its size counting its header.
+    const std::uint64_t need = index > 0 ? (bytes > size ? size + 1 : object_header + align(bytes)) : bytes;
+    if (need == 0 || need > size - p) return nullptr;
+    if (index > 0) objects[index] = bytes;
+    p += need;
+  }
+  return &h.heaps.emplace(address, std::move(objects)).first->second;
+}
+
+// Checks the references of a dataset of variable-length text (`s`) before
+// libhdf5 reads them: each is empty, or names an object of a whole heap
+// collection (HeapCollection) of exactly the length it gives.
+void CheckVariableText(Hdf5Reader::Handle& h, const std::string& path, const std::string& object, const OpenSet& s) {
+  const auto fail = [&](const std::string& what) {
+    throw InputError(path + ": object '" + Excerpt(object, 200) + "' " + what);
+  };
+  if (s.elements == 0) return;
+  const Id create(H5Dget_create_plist(s.set->get()), H5Pclose);
+  if (H5Pget_layout(create.get()) != H5D_CONTIGUOUS)
+    fail("holds text in another layout than deb writes (contiguous)");
+  const haddr_t offset = H5Dget_offset(s.set->get());
+  if (offset == HADDR_UNDEF) return;  // nothing written: read as null strings
+  // Each element: its length (4 bytes), the address of its heap collection
+  // and its index there (4 bytes).
+  const std::size_t each = 8 + h.address_bytes;
+  if (s.elements > (h.raw->size() + each - 1) / each) fail("is damaged: its texts run past the end of the file");
+  std::vector<unsigned char> refs(s.elements * each);
+  if (offset > h.raw->size() || h.base > h.raw->size() - offset ||
+      !h.raw->Read(h.base + offset, refs.size(), refs.data()))
+    fail("is damaged: its texts run past the end of the file");
+  for (std::size_t i = 0; i < s.elements; ++i) {
+    const unsigned char* r = refs.data() + i * each;
+    const std::uint64_t length = Little(r, 4), heap = Little(r + 4, h.address_bytes),
+                        index = Little(r + 4 + h.address_bytes, 4);
+    if (heap == 0) continue;  // a null string
+    const auto* objects = HeapCollection(h, heap);
+    const auto found = objects ? objects->find(index) : decltype(objects->end()){};
+    if (objects == nullptr || found == objects->end() || found->second != length)
+      fail("is damaged: text " + std::to_string(i) + " points to no whole entry of the file's global heap");
+  }
+}
+
+std::vector<std::string> ReadTexts(Hdf5Reader::Handle& h, const std::string& path, const std::string& object,
+                                   int rank, AtMost most) {
+  const OpenSet s = Open(h, path, object, Kind::kText, rank, most);
+  CheckVariableText(h, path, object, s);
+  const Id type = VariableString();
+  std::vector<char*> raw(s.elements, nullptr);
+  Read(path, object, s, type.get(), raw.data());
+  std::vector<std::string> texts;
+  bool null = false;
+  for (char* t : raw) {
+    null |= t == nullptr;
+    texts.emplace_back(t ? t : "");
+  }
+  if (s.elements > 0) {
+    const Id space(H5Dget_space(s.set->get()), H5Sclose);
+#if H5_VERSION_GE(1, 12, 0)
+    H5Treclaim(type.get(), space.get(), s.transfer, raw.data());
+#else
+    H5Dvlen_reclaim(type.get(), space.get(), s.transfer, raw.data());
+#endif
+  }
+  if (null) throw InputError(path + ": object '" + Excerpt(object, 200) + "' holds a null string");
+  for (const std::string& t : texts)
+    if (const std::string problem = Utf8Problem(t); !problem.empty())
+      throw InputError(path + ": object '" + Excerpt(object, 200) + "' holds text where " + problem);
+  return texts;
+}
+
+}  // namespace
+
+bool Hdf5Reader::Has(const std::string& object) const {
+  const Locked lock;
+  return Reach(*handle_, path_, object);
+}
+
+double Hdf5Reader::Number(const std::string& object, bool allow_nan) const {
+  const Locked lock;
+  const OpenSet s = Open(*handle_, path_, object, Kind::kDouble, 0);
+  std::vector<double> v(1);
+  Read(path_, object, s, H5T_NATIVE_DOUBLE, v.data());
+  CheckFinite(path_, object, v, allow_nan);
+  return v[0];
+}
+
+std::int64_t Hdf5Reader::Integer(const std::string& object) const {
+  const Locked lock;
+  const OpenSet s = Open(*handle_, path_, object, Kind::kInteger, 0);
+  long long v = 0;
+  Read(path_, object, s, H5T_NATIVE_LLONG, &v);
+  return v;
+}
+
+std::string Hdf5Reader::Text(const std::string& object) const {
+  const Locked lock;
+  return ReadTexts(*handle_, path_, object, 0, AtMost(1)).front();
+}
+
+std::vector<double> Hdf5Reader::Numbers(const std::string& object, AtMost most, bool allow_nan) const {
+  const Locked lock;
+  const OpenSet s = Open(*handle_, path_, object, Kind::kDouble, 1, most);
+  std::vector<double> v(s.elements);
+  Read(path_, object, s, H5T_NATIVE_DOUBLE, v.data());
+  CheckFinite(path_, object, v, allow_nan);
+  return v;
+}
+
+std::vector<std::string> Hdf5Reader::Texts(const std::string& object, AtMost most) const {
+  const Locked lock;
+  return ReadTexts(*handle_, path_, object, 1, most);
+}
+
+std::vector<std::vector<double>> Hdf5Reader::Rows(const std::string& object, AtMost most, std::size_t columns,
+                                                  bool allow_nan) const {
+  const Locked lock;
+  const OpenSet s = Open(*handle_, path_, object, Kind::kDouble, 2, most, columns);
+  std::vector<double> v(s.elements);
+  Read(path_, object, s, H5T_NATIVE_DOUBLE, v.data());
+  CheckFinite(path_, object, v, allow_nan);
+  std::vector<std::vector<double>> rows(static_cast<std::size_t>(s.dims[0]));
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    rows[r].assign(v.begin() + static_cast<std::ptrdiff_t>(r * columns),
+                   v.begin() + static_cast<std::ptrdiff_t>((r + 1) * columns));
+  return rows;
+}
+
+// ---------------------------------------------------------------- a whole file
+
+void RequireSelfContainedHdf5(const std::string& path) {
+  const Locked lock;
+  if (const std::string why = StartFailure(); !why.empty()) throw InputError(path + ": reading it needs " + why);
+  const Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.ok()) throw InputError(path + ": not an HDF5 file, or a damaged one");
+  const auto fail = [&](const std::string& object, const std::string& what) {
+    throw InputError(path + ": object '" + Excerpt(object, 200) + "' " + what);
+  };
+  // The objects still to look at: their addresses, and a name for messages.
+  std::vector<std::pair<haddr_t, std::string>> pending;
+  std::set<haddr_t> seen;
+  {
+    H5O_info_t root;
+    const Id g(H5Oopen(file.get(), "/", H5P_DEFAULT), H5Oclose);
+    if (!g.ok() || H5Oget_info2(g.get(), &root, H5O_INFO_BASIC) < 0) fail("/", "cannot be read; is the file damaged?");
+    pending.emplace_back(root.addr, "/");
+  }
+  struct Links {
+    std::vector<std::pair<haddr_t, std::string>> hard;
+    std::string other;  // the first link of another kind
+    H5L_type_t other_type = H5L_TYPE_HARD;
+  };
+  const H5L_iterate_t collect = [](hid_t, const char* name, const H5L_info_t* info, void* data) -> herr_t {
+    Links& links = *static_cast<Links*>(data);
+    if (info->type != H5L_TYPE_HARD) {
+      links.other = name;
+      links.other_type = info->type;
+      return 1;
+    }
+    links.hard.emplace_back(info->u.address, name);
+    return links.hard.size() > kMaxHdf5Objects ? 1 : 0;
+  };
+  while (!pending.empty()) {
+    const auto [address, name] = pending.back();
+    pending.pop_back();
+    if (!seen.insert(address).second) continue;
+    if (seen.size() > kMaxHdf5Objects)
+      throw InputError(path + ": more than " + std::to_string(kMaxHdf5Objects) + " objects; is the file damaged?");
+    const Id object(H5Oopen_by_addr(file.get(), address), H5Oclose);
+    H5O_info_t info;
+    if (!object.ok() || H5Oget_info2(object.get(), &info, H5O_INFO_BASIC) < 0)
+      fail(name, "cannot be read; is the file damaged?");
+    const std::string prefix = name == "/" ? "" : name + "/";
+    if (info.type == H5O_TYPE_GROUP) {
+      Links links;
+      if (H5Literate(object.get(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect, &links) < 0)
+        fail(name, "cannot be listed; is the file damaged?");
+      if (!links.other.empty())
+        fail(prefix + links.other,
+             "is " + LinkKind(links.other_type) + "; deb reads only objects the file holds itself, reached by plain "
+                                                  "(hard) links");
+      if (links.hard.size() > kMaxHdf5Objects)
+        throw InputError(path + ": more than " + std::to_string(kMaxHdf5Objects) + " objects; is the file damaged?");
+      for (const auto& [child, child_name] : links.hard) pending.emplace_back(child, prefix + child_name);
+      continue;
+    }
+    if (info.type != H5O_TYPE_DATASET) continue;
+    {
+      const Id create(H5Dget_create_plist(object.get()), H5Pclose);
+      if (const std::string problem = StorageProblem(create.get(), true); !problem.empty()) fail(name, problem);
+    }
+    // Object references (matio's cell arrays and structs in cells) lead to
+    // objects that no link may name.
+    const Id type(H5Dget_type(object.get()), H5Tclose);
+    if (!type.ok() || H5Tget_class(type.get()) != H5T_REFERENCE) continue;
+    if (H5Tequal(type.get(), H5T_STD_REF_OBJ) <= 0) fail(name, "holds references of another kind than objects");
+    const Id space(H5Dget_space(object.get()), H5Sclose);
+    const int rank = space.ok() ? H5Sget_simple_extent_ndims(space.get()) : -1;
+    if (rank < 0 || rank > 32) fail(name, "has an unreadable shape");
+    std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+    std::size_t count = 1;
+    if (rank > 0 && H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) != rank)
+      fail(name, "has an unreadable shape");
+    for (hsize_t d : dims) {
+      if (d > kMaxHdf5Objects || (d > 0 && count > kMaxHdf5Objects / d))
+        fail(name, "holds more than " + std::to_string(kMaxHdf5Objects) + " references");
+      count *= static_cast<std::size_t>(d);
+    }
+    if (count == 0) continue;
+    std::vector<hobj_ref_t> references(count);
+    if (H5Dread(object.get(), H5T_STD_REF_OBJ, H5S_ALL, H5S_ALL, H5P_DEFAULT, references.data()) < 0)
+      fail(name, "cannot be read; is the file damaged?");
+    for (std::size_t i = 0; i < count; ++i)
+      if (references[i] != 0) pending.emplace_back(references[i], name + "[" + std::to_string(i) + "]");
+  }
+}
+
+}  // namespace deb::io

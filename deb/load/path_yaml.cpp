@@ -1,0 +1,310 @@
+#include "deb/load/path_yaml.h"
+
+#include <filesystem>
+#include <memory>
+
+#include "deb/budget/path_composition.h"
+#include "deb/core/limits.h"
+#include "deb/core/suggest.h"
+#include "deb/load/isolation_yaml.h"
+#include "deb/formats/mat_file.h"
+#include "deb/load/modal_yaml.h"
+#include "deb/systems/frf_csv.h"
+#include "deb/systems/transfer_function.h"
+#include "deb/units/unit.h"
+
+namespace deb::io {
+namespace {
+
+const std::set<std::string> kCommonKeys = {"name", "description", "type", "inputs", "outputs",
+                                           "input_unit", "input_units", "output_unit", "output_units"};
+
+std::set<std::string> With(std::set<std::string> keys, std::initializer_list<std::string> more) {
+  keys.insert(more);
+  return keys;
+}
+
+std::vector<std::string> Names(const YamlNode& node, const char* field, int count, const std::string& stem) {
+  if (auto n = node.Optional(field)) {
+    auto names = n->AsStrings();
+    if (static_cast<int>(names.size()) != count)
+      n->Fail(std::to_string(names.size()) + " name(s) given, the system has " + std::to_string(count));
+    return names;
+  }
+  if (count == 1) return {stem};
+  std::vector<std::string> names;
+  for (int i = 1; i <= count; ++i) names.push_back(stem + std::to_string(i));
+  return names;
+}
+
+std::vector<std::string> Units(const YamlNode& node, const std::string& single, const std::string& list, int count) {
+  const auto one = node.Optional(single), many = node.Optional(list);
+  if (one && many) many->Fail("give '" + single + "' or '" + list + "', not both");
+  if (one) return std::vector<std::string>(count, one->AsString());
+  if (many) {
+    auto units = many->AsStrings();
+    if (static_cast<int>(units.size()) != count)
+      many->Fail(std::to_string(units.size()) + " unit(s) given, the system has " + std::to_string(count));
+    return units;
+  }
+  node.Fail("missing '" + single + "' (one unit for all) or '" + list + "' (one per channel)");
+}
+
+// `file` relative to the budget's directory, unless absolute.
+std::string Resolve(const std::string& base_dir, const std::string& file) {
+  std::filesystem::path f(file);
+  if (f.is_relative()) f = std::filesystem::path(base_dir) / f;
+  return f.lexically_normal().string();
+}
+
+std::string SizeText(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
+
+// The rule of limits::kMaxStates, for `states` states that `what` gives.
+std::string TooManyStates(Eigen::Index states, const std::string& what) {
+  if (states <= limits::kMaxStates) return "";
+  return what + " " + std::to_string(states) + " states, more than the " + std::to_string(limits::kMaxStates) +
+         " a state_space or transfer_function path may have (its analysis costs O(n^3) operations)";
+}
+
+// A state-space model saved in MATLAB (save plant.mat A B C D): A, B, C, an
+// optional D (zeros when absent) and optional input_names / output_names.
+struct StateSpaceMat {
+  StateSpace system;
+  std::vector<std::string> input_names, output_names;  // empty when the file has none
+};
+
+// The names in variable `var` of `f`, one per channel, none repeated; {} if
+// the file has no such variable.
+std::vector<std::string> ChannelNames(const MatFile& f, const std::string& var, Eigen::Index count,
+                                      const std::string& count_from) {
+  if (!f.Has(var)) return {};
+  std::vector<std::string> names = f.Names(var);
+  if (static_cast<Eigen::Index>(names.size()) != count)
+    throw InputError(f.path() + ": " + var + " holds " + std::to_string(names.size()) + " name(s) but " + count_from);
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (!seen.insert(names[i]).second)
+      throw InputError(f.path() + ": " + var + "{" + std::to_string(i + 1) + "} '" + names[i] + "' is given twice");
+  return names;
+}
+
+StateSpaceMat ReadStateSpaceMat(const std::string& path) {
+  const MatFile f(path);
+  const Eigen::MatrixXd a = f.Matrix("A");
+  const std::string n = std::to_string(a.rows());
+  if (a.rows() != a.cols()) throw InputError(path + ": A is " + SizeText(a) + "; the state matrix A must be square");
+  if (const std::string why = TooManyStates(a.rows(), "A is " + SizeText(a) + ":"); !why.empty())
+    throw InputError(path + ": " + why);
+  const Eigen::MatrixXd b = f.Matrix("B");
+  if (b.rows() != a.rows())
+    throw InputError(path + ": B is " + SizeText(b) + " but A is " + SizeText(a) + ": B needs " + n + " rows");
+  const Eigen::MatrixXd c = f.Matrix("C");
+  if (c.cols() != a.rows())
+    throw InputError(path + ": C is " + SizeText(c) + " but A is " + SizeText(a) + ": C needs " + n + " columns");
+  if (b.cols() == 0) throw InputError(path + ": B is " + SizeText(b) + ": the model needs at least one input");
+  if (c.rows() == 0) throw InputError(path + ": C is " + SizeText(c) + ": the model needs at least one output");
+  const std::string at_most = "; at most " + std::to_string(limits::kMaxChannels) + " are allowed";
+  if (b.cols() > limits::kMaxChannels)
+    throw InputError(path + ": B is " + SizeText(b) + ": " + std::to_string(b.cols()) + " inputs" + at_most);
+  if (c.rows() > limits::kMaxChannels)
+    throw InputError(path + ": C is " + SizeText(c) + ": " + std::to_string(c.rows()) + " outputs" + at_most);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(c.rows(), b.cols());
+  if (f.Has("D")) {
+    d = f.Matrix("D");
+    if (d.rows() != c.rows() || d.cols() != b.cols())
+      throw InputError(path + ": D is " + SizeText(d) + " but B is " + SizeText(b) + " and C is " + SizeText(c) +
+                       ": D needs to be " + std::to_string(c.rows()) + "x" + std::to_string(b.cols()) +
+                       " (outputs x inputs)");
+  }
+  StateSpaceMat m{StateSpace(a, b, c, d), {}, {}};
+  m.input_names = ChannelNames(f, "input_names", b.cols(), "B has " + std::to_string(b.cols()) + " column(s) (inputs)");
+  m.output_names = ChannelNames(f, "output_names", c.rows(), "C has " + std::to_string(c.rows()) + " row(s) (outputs)");
+  return m;
+}
+
+TransferFunction ParseTf(const YamlNode& node) {
+  const YamlNode den = node.Required("den");
+  const std::vector<double> den_coefficients = den.AsDoubles();
+  if (const std::string why = TooManyStates(static_cast<Eigen::Index>(den_coefficients.size()) - 1,
+                                            "a denominator of this order gives");
+      !why.empty())
+    den.Fail(why);
+  return AtNode(node, [&] { return TransferFunction(node.Required("num").AsDoubles(), den_coefficients); });
+}
+
+// `composed` under the name and description of `entry`.
+Path Named(const Path& entry, Path composed) {
+  composed.name = entry.name;
+  composed.description = entry.description;
+  return composed;
+}
+
+}  // namespace
+
+const Path& PathContext::Lookup(const YamlNode& name_node) const {
+  const std::string name = name_node.AsString();
+  const auto it = parsed_.find(name);
+  if (it == parsed_.end()) {
+    std::vector<std::string> before;
+    for (const auto& [n, p] : parsed_) before.push_back(n);
+    name_node.Fail("no path named '" + name + "'" + DidYouMean(name, before) + " is defined before this one");
+  }
+  return it->second;
+}
+
+std::vector<Path> PathContext::Parse(const YamlNode& node) {
+  if (node.Has("type") && node.Required("type").AsString() == "isolation_system") {
+    IsolationPaths model = ParseIsolationSystem(node);
+    models_.push_back({node.Required("name").AsString(), model.report});
+    for (const Path& p : model.paths) {
+      if (parsed_.count(p.name)) node.Required("name").Fail("path name '" + p.name + "' is used twice");
+      parsed_.emplace(p.name, p);
+    }
+    return model.paths;
+  }
+  Path p;
+  p.name = node.Required("name").AsString();
+  if (auto d = node.Optional("description")) p.description = d->AsString();
+  const YamlNode type_node = node.Required("type");
+  const std::string type = type_node.AsString();
+  bool composite = false;
+  // Channel names from a data file (state_space file:), unless the entry gives inputs/outputs.
+  std::vector<std::string> file_inputs, file_outputs;
+
+  if (type == "transfer_function") {
+    node.AllowOnly(With(kCommonKeys, {"num", "den", "matrix"}));
+    if (auto m = node.Optional("matrix")) {
+      std::vector<std::vector<TransferFunction>> rows;
+      for (const auto& row : m->Elements()) {
+        rows.emplace_back();
+        for (const auto& e : row.Elements()) {
+          e.AllowOnly({"num", "den"});
+          rows.back().push_back(ParseTf(e));
+        }
+      }
+      Eigen::Index states = 0;
+      for (const auto& row : rows)
+        for (const TransferFunction& tf : row) states += static_cast<Eigen::Index>(tf.den().size()) - 1;
+      if (const std::string why = TooManyStates(states, "the denominators of this matrix give"); !why.empty())
+        m->Fail(why);
+      p.system = AtNode(*m, [&] { return ToStateSpace(rows); });
+    } else {
+      const TransferFunction tf = ParseTf(node);
+      p.system = AtNode(node.Required("den"), [&] { return ToStateSpace(tf); });
+    }
+  } else if (type == "state_space") {
+    node.AllowOnly(With(kCommonKeys, {"A", "B", "C", "D", "file"}));
+    if (const auto file = node.Optional("file")) {
+      for (const char* m : {"A", "B", "C", "D"})
+        if (node.Has(m))
+          node.Required(m).Fail("give 'file' (a MAT-file with A, B, C and D) or the matrices inline, not both");
+      const std::string path = Resolve(base_dir_, file->AsString());
+      StateSpaceMat m = AtNode(*file, [&] { return ReadStateSpaceMat(path); });
+      p.system = std::move(m.system);
+      file_inputs = std::move(m.input_names);
+      file_outputs = std::move(m.output_names);
+    } else {
+      const Eigen::MatrixXd a = node.Required("A").AsMatrix();
+      if (const std::string why = TooManyStates(a.rows(), "A is " + SizeText(a) + ":"); !why.empty())
+        node.Required("A").Fail(why);
+      const Eigen::MatrixXd b = node.Required("B").AsMatrix(), c = node.Required("C").AsMatrix();
+      const Eigen::MatrixXd d =
+          node.Has("D") ? node.Required("D").AsMatrix() : Eigen::MatrixXd::Zero(c.rows(), b.cols());
+      p.system = AtNode(node, [&] { return StateSpace(a, b, c, d); });
+    }
+  } else if (type == "gain") {
+    node.AllowOnly(With(kCommonKeys, {"gain"}));
+    p.system = StateSpace::Gain(node.Required("gain").AsMatrix());
+  } else if (type == "series" || type == "parallel") {
+    node.AllowOnly({"name", "description", "type", "inputs", "outputs", "of"});
+    composite = true;
+    const YamlNode of = node.Required("of");
+    const std::vector<YamlNode> parts = of.Elements();
+    std::vector<PathPart> looked_up;
+    if (parts.size() >= 2)  // else the composition refuses the list before any name is looked up
+      for (const YamlNode& part : parts) looked_up.push_back({&Lookup(part), part.key()});
+    p = Named(p, AtNodes(of, parts, [&] {
+      return type == "series" ? SeriesOfPaths(looked_up) : ParallelOfPaths(looked_up);
+    }));
+  } else if (type == "feedback") {
+    node.AllowOnly({"name", "description", "type", "inputs", "outputs", "plant", "controller", "sign"});
+    composite = true;
+    const YamlNode plant = node.Required("plant"), controller = node.Required("controller");
+    const PathPart g{&Lookup(plant), plant.key()}, k{&Lookup(controller), controller.key()};
+    int sign = -1;
+    if (auto s = node.Optional("sign")) {
+      sign = s->AsInt();
+      AtNode(*s, [&] { CheckFeedbackSign(sign); });
+    }
+    p = Named(p, AtNodes(node, {plant, controller}, [&] { return FeedbackOfPaths(g, k, sign); }));
+  } else if (type == "frf") {
+    node.AllowOnly(With(kCommonKeys, {"file", "extrapolation"}));
+    const YamlNode file = node.Required("file");
+    std::filesystem::path f(file.AsString());
+    if (f.is_relative()) f = std::filesystem::path(base_dir_) / f;
+    const Extrapolation extrapolation =
+        node.Has("extrapolation")
+            ? AtNode(node.Required("extrapolation"), [&] { return ParseExtrapolation(node.Required("extrapolation").AsString()); })
+            : Extrapolation::kError;
+    const std::vector<std::string> outs = node.Has("outputs") ? node.Required("outputs").AsStrings() : std::vector<std::string>{};
+    const std::vector<std::string> ins = node.Has("inputs") ? node.Required("inputs").AsStrings() : std::vector<std::string>{};
+    FrfCsv frf = AtNode(file, [&] { return ReadFrfCsv(f.lexically_normal().string(), outs, ins, extrapolation); });
+    p.input_names = frf.inputs;
+    p.output_names = frf.outputs;
+    p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(frf.response.outputs(), frf.response.inputs()));
+    p.measured = std::make_shared<const FrequencyModel>(std::move(frf.response));
+    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+    composite = true;  // names come from the file
+  } else if (type == "modal") {
+    std::set<std::string> keys = {"name", "description", "type", "input_unit", "input_units", "output_unit",
+                                  "output_units"};
+    keys.insert(std::begin(kModalKeys), std::end(kModalKeys));
+    node.AllowOnly(keys);  // no inputs/outputs: the DOF names come from the shapes
+    const ModalModel model = ParseModalModel(node, base_dir_);
+    AtNode(node, [&] { model.Validate(); });
+    p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(model.phi_out.rows(), model.phi_in.rows()));
+    p.modal = std::make_shared<const ModalModel>(model);
+    p.input_names = model.input_names;
+    p.output_names = model.output_names;
+    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+    const YamlNode unit_node = node.Required(node.Has("output_unit") ? "output_unit" : "output_units");
+    for (std::string& u : p.output_units)
+      u = AtNode(unit_node, [&] { return ModalOutputUnit(u, model.quantity); });
+    composite = true;  // names come from the shapes
+  } else {
+    type_node.Fail("unknown path type '" + type +
+                   "'; allowed: transfer_function, state_space, gain, frf, modal, series, parallel, feedback, "
+                   "isolation_system");
+  }
+
+  if (composite) {
+    if (node.Has("inputs")) p.input_names = Names(node, "inputs", p.system.inputs(), "u");
+    if (node.Has("outputs")) p.output_names = Names(node, "outputs", p.system.outputs(), "y");
+  } else {
+    p.input_names = file_inputs.empty() || node.Has("inputs") ? Names(node, "inputs", p.system.inputs(), "u")
+                                                              : file_inputs;
+    p.output_names = file_outputs.empty() || node.Has("outputs") ? Names(node, "outputs", p.system.outputs(), "y")
+                                                                 : file_outputs;
+    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+  }
+  AtNode(node, [&] { p.Validate(); });
+  if (parsed_.count(p.name)) node.Required("name").Fail("name '" + p.name + "' is used twice in paths");
+  parsed_.emplace(p.name, p);
+  return {p};
+}
+
+Weighting ParseWeighting(const YamlNode& node) {
+  node.AllowOnly({"num", "den", "unit", "description"});
+  Weighting w;
+  const TransferFunction tf = ParseTf(node);
+  w.system = AtNode(node.Required("den"), [&] { return ToStateSpace(tf); });
+  if (auto u = node.Optional("unit")) w.unit = u->AsString();
+  AtNode(node, [&] { ValidateUnit(w.unit); });
+  if (auto d = node.Optional("description")) w.description = d->AsString();
+  return w;
+}
+
+}  // namespace deb::io

@@ -1,0 +1,329 @@
+// deb/formats/hdf5_file.h: every kind of dataset written and read back exactly
+// (HDF5 stores the doubles and the UTF-8 text as given), the groups above a
+// dataset created on the way, and a located InputError for what a reader
+// must refuse: a missing object, another class or rank, a value that is not
+// finite, a file that is not HDF5.
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cmath>
+#include <iterator>
+#include <thread>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <string>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <vector>
+
+#include "deb/core/error.h"
+#include "deb/formats/hdf5_file.h"
+#include <hdf5.h>
+#include "tests/support/contains.h"
+
+namespace deb {
+namespace {
+
+namespace fs = std::filesystem;
+using test::Contains;
+
+class TempDir {
+ public:
+  TempDir() : dir_(fs::temp_directory_path() / ("deb_hdf5_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  ~TempDir() { fs::remove_all(dir_); }
+  std::string File(const std::string& name) const { return (dir_ / name).string(); }
+
+ private:
+  fs::path dir_;
+};
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_CASE("an HDF5 file holds numbers, integers, text, vectors and matrices exactly") {
+  const TempDir dir;
+  const std::string file = dir.File("a.h5");
+  const double tiny = 5.9e-300, third = 1.0 / 3.0;
+  {
+    io::Hdf5Writer w(file);
+    w.Number("scalar", third);
+    w.Number("absent", std::numeric_limits<double>::quiet_NaN());
+    w.Integer("version", -42);
+    w.Text("unit", "µm/s, '\"quoted\"'");
+    w.Text("empty", "");
+    w.Numbers("deep/group/f_hz", {0.1, tiny, 1e300});
+    w.Numbers("deep/group/none", {});
+    w.Texts("deep/names", {"x", "β", ""});
+    w.Rows("deep/matrix", {{1.0, 2.0, 3.0}, {4.0, 5.0, 6.0}});
+    w.Rows("deep/no_rows", {});
+    CHECK_THROWS_AS(w.Number("scalar", 1.0), WriteError);  // exists already
+    w.Close();
+  }
+  const io::Hdf5Reader r(file);
+  CHECK(r.Has("deep/group"));
+  CHECK(r.Has("deep/group/f_hz"));
+  CHECK_FALSE(r.Has("deep/other"));
+  CHECK_FALSE(r.Has("nothing/at/all"));
+  CHECK(r.Number("scalar") == third);
+  CHECK(std::isnan(r.Number("absent", true)));
+  CHECK(r.Integer("version") == -42);
+  CHECK(r.Text("unit") == "µm/s, '\"quoted\"'");
+  CHECK(r.Text("empty").empty());
+  CHECK(r.Numbers("deep/group/f_hz", io::AtMost(3)) == std::vector<double>{0.1, tiny, 1e300});
+  CHECK(r.Numbers("deep/group/none", io::AtMost(0)).empty());
+  CHECK(r.Texts("deep/names", io::AtMost(3)) == std::vector<std::string>{"x", "β", ""});
+  CHECK(r.Rows("deep/matrix", io::AtMost(2), 3) == std::vector<std::vector<double>>{{1.0, 2.0, 3.0}, {4.0, 5.0, 6.0}});
+  CHECK(r.Rows("deep/no_rows", io::AtMost(0), 5).empty());
+  CHECK(r.Number("version") == -42.0);  // an integer reads as a number
+}
+
+TEST_CASE("an HDF5 reader refuses what it was not asked for, naming the file and the object") {
+  const TempDir dir;
+  const std::string file = dir.File("b.h5");
+  {
+    io::Hdf5Writer w(file);
+    w.Numbers("v", {1.0, std::numeric_limits<double>::quiet_NaN()});
+    w.Numbers("inf", {std::numeric_limits<double>::infinity()});
+    w.Text("t", "text");
+    w.Close();
+  }
+  const io::Hdf5Reader r(file);
+  const std::string missing = ErrorOf([&] { r.Numbers("w", io::AtMost(9)); });
+  CHECK(Contains(missing, file));
+  CHECK(Contains(missing, "object 'w' is missing"));
+  CHECK(Contains(ErrorOf([&] { r.Text("v"); }), "object 'v' holds numbers, not text"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("t", io::AtMost(9)); }), "object 't' holds text, not numbers"));
+  CHECK(Contains(ErrorOf([&] { r.Number("v"); }), "object 'v' has 1 dimensions, not 0"));
+  CHECK(Contains(ErrorOf([&] { r.Rows("v", io::AtMost(9), 2); }), "has 1 dimensions, not 2"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("v", io::AtMost(9)); }), "not finite at element 1"));
+  CHECK(std::isnan(r.Numbers("v", io::AtMost(2), true)[1]));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("inf", io::AtMost(1), true); }), "not finite at element 0"));
+  CHECK(Contains(ErrorOf([&] { r.Integer("v"); }), "not an integer"));
+
+  const std::string text = dir.File("not.h5");
+  std::ofstream(text) << "frequency_hz,psd\n1,2\n";
+  CHECK(Contains(ErrorOf([&] { io::Hdf5Reader bad(text); }), "not an HDF5 file"));
+  CHECK(Contains(ErrorOf([&] { io::Hdf5Reader none(dir.File("absent.h5")); }), "absent.h5"));
+}
+
+TEST_CASE("a compressed dataset is refused: a small file could expand beyond any bound") {
+  const TempDir dir;
+  const std::string file = dir.File("compressed.h5");
+  {
+    const hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    REQUIRE(f >= 0);
+    const hsize_t n = 100000;
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t create = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(create, 1, &n);
+    H5Pset_deflate(create, 9);
+    const hid_t set = H5Dcreate2(f, "zeros", H5T_IEEE_F64LE, space, H5P_DEFAULT, create, H5P_DEFAULT);
+    REQUIRE(set >= 0);
+    const std::vector<double> zeros(n, 0.0);
+    REQUIRE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, zeros.data()) >= 0);
+    H5Dclose(set);
+    H5Pclose(create);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+  CHECK(fs::file_size(file) < 100000);  // 800 kB of zeros in a few kB
+  const std::string e = ErrorOf([&] { io::Hdf5Reader(file).Numbers("zeros", io::AtMost(100000)); });
+  CHECK(Contains(e, "object 'zeros' is compressed or filtered"));
+}
+
+// A file written by HDF5 itself with what deb's writer never makes: values
+// stored in other files (one holding known bytes, one a FIFO), links to
+// another file and within the file, a virtual dataset, and datasets declared
+// far larger than what they hold.
+struct Hostile {
+  std::string file, secret, fifo;
+};
+
+Hostile WriteHostile(const TempDir& dir) {
+  Hostile h{dir.File("hostile.h5"), dir.File("secret.bin"), dir.File("fifo")};
+  const double known[2] = {1234.5, 6789.25};
+  std::ofstream(h.secret, std::ios::binary).write(reinterpret_cast<const char*>(known), sizeof known);
+  REQUIRE(::mkfifo(h.fifo.c_str(), 0600) == 0);
+  const std::string other = dir.File("other.h5");
+  const hsize_t two = 2;
+  {
+    const hid_t f = H5Fcreate(other.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t space = H5Screate_simple(1, &two, nullptr);
+    const hid_t set = H5Dcreate2(f, "v", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    REQUIRE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, known) >= 0);
+    H5Dclose(set);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+  const hid_t f = H5Fcreate(h.file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  REQUIRE(f >= 0);
+  const hid_t space = H5Screate_simple(1, &two, nullptr);
+  const auto dataset = [&](const char* name, hid_t create) {
+    const hid_t set = H5Dcreate2(f, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, create, H5P_DEFAULT);
+    REQUIRE(set >= 0);
+    return set;
+  };
+  const hid_t plain = dataset("plain", H5P_DEFAULT);
+  REQUIRE(H5Dwrite(plain, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, known) >= 0);
+  H5Dclose(plain);
+  for (const auto& [name, target] : {std::make_pair("external", h.secret), std::make_pair("fifo_data", h.fifo)}) {
+    const hid_t create = H5Pcreate(H5P_DATASET_CREATE);
+    REQUIRE(H5Pset_external(create, target.c_str(), 0, sizeof known) >= 0);
+    H5Dclose(dataset(name, create));  // created, never written: the target is not touched
+    H5Pclose(create);
+  }
+  {
+    const hid_t create = H5Pcreate(H5P_DATASET_CREATE);
+    REQUIRE(H5Pset_virtual(create, space, other.c_str(), "v", space) >= 0);
+    H5Dclose(dataset("virtual", create));
+    H5Pclose(create);
+  }
+  REQUIRE(H5Lcreate_external(other.c_str(), "v", f, "elink", H5P_DEFAULT, H5P_DEFAULT) >= 0);
+  REQUIRE(H5Lcreate_external(other.c_str(), "/", f, "egroup", H5P_DEFAULT, H5P_DEFAULT) >= 0);
+  REQUIRE(H5Lcreate_soft("/plain", f, "soft", H5P_DEFAULT, H5P_DEFAULT) >= 0);
+  // Declared, never written: 250 M values, and 250 M rows of nothing.
+  const hsize_t huge = 250'000'000, empty_rows[2] = {250'000'000, 0};
+  const hid_t huge_space = H5Screate_simple(1, &huge, nullptr), rows_space = H5Screate_simple(2, empty_rows, nullptr);
+  H5Dclose(H5Dcreate2(f, "declared", H5T_IEEE_F64LE, huge_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Dclose(H5Dcreate2(f, "no_columns", H5T_IEEE_F64LE, rows_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  const hsize_t hundred = 100;
+  const hid_t hundred_space = H5Screate_simple(1, &hundred, nullptr);
+  H5Dclose(H5Dcreate2(f, "unwritten", H5T_IEEE_F64LE, hundred_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Sclose(hundred_space);
+  H5Sclose(huge_space);
+  H5Sclose(rows_space);
+  H5Sclose(space);
+  H5Fclose(f);
+  return h;
+}
+
+TEST_CASE("values in another file, links and virtual datasets are refused before anything is read from them") {
+  const TempDir dir;
+  const Hostile h = WriteHostile(dir);
+  const io::Hdf5Reader r(h.file);
+  CHECK(r.Numbers("plain", io::AtMost(2)) == std::vector<double>{1234.5, 6789.25});
+  const std::string external = ErrorOf([&] { r.Numbers("external", io::AtMost(2)); });
+  CHECK(Contains(external, "object 'external' keeps its values in another file (HDF5 external storage)"));
+  CHECK_FALSE(Contains(external, "1234"));
+  // A FIFO never read: the error comes at once instead of a wait for a writer.
+  const auto t0 = std::chrono::steady_clock::now();
+  CHECK(Contains(ErrorOf([&] { r.Numbers("fifo_data", io::AtMost(2)); }), "keeps its values in another file"));
+  CHECK(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(5));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("virtual", io::AtMost(2)); }), "object 'virtual' is a virtual dataset"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("elink", io::AtMost(2)); }), "object 'elink' is an external link"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("egroup/v", io::AtMost(2)); }), "object 'egroup' is an external link"));
+  CHECK(Contains(ErrorOf([&] { r.Has("egroup/v"); }), "object 'egroup' is an external link"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("soft", io::AtMost(2)); }), "object 'soft' is a soft link"));
+  // The whole-file check a MAT-file of version 7.3 gets names the first offender.
+  const std::string whole = ErrorOf([&] { io::RequireSelfContainedHdf5(h.file); });
+  CHECK(Contains(whole, h.file));
+  CHECK((Contains(whole, "keeps its values in another file") || Contains(whole, "is a virtual dataset") ||
+         Contains(whole, "link")));
+  // The secret was read by nobody: it is as it was, and so is the FIFO.
+  CHECK(fs::file_size(h.secret) == 16);
+}
+
+TEST_CASE("declared shapes are checked against the caller's bound and the file before anything is allocated") {
+  const TempDir dir;
+  const Hostile h = WriteHostile(dir);
+  const io::Hdf5Reader r(h.file);
+  const auto t0 = std::chrono::steady_clock::now();
+  CHECK(Contains(ErrorOf([&] { r.Numbers("declared", io::AtMost(1000)); }),
+                 "object 'declared' declares 250000000 values, more than the 1000 it may hold"));
+  CHECK(Contains(ErrorOf([&] { r.Rows("no_columns", io::AtMost(10), 0); }),
+                 "declares 250000000 rows, more than the 10 it may hold"));
+  // Within any bound, but never written: HDF5 would make it up from the fill value.
+  CHECK(Contains(ErrorOf([&] { r.Numbers("declared", io::AtMost(300'000'000)); }),
+                 "declares 250000000 values, but the file holds 0 of them"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("unwritten", io::AtMost(100)); }), "but the file holds 0 of them"));
+  CHECK(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(5));
+  CHECK(Contains(ErrorOf([&] { r.Rows("plain", io::AtMost(9), 2); }), "has 1 dimensions, not 2"));
+}
+
+// The position of `needle` in `bytes`; fails the test if it is not there once.
+std::size_t FindOnce(const std::string& bytes, const std::string& needle) {
+  const std::size_t at = bytes.find(needle);
+  REQUIRE(at != std::string::npos);
+  REQUIRE(bytes.find(needle, at + 1) == std::string::npos);
+  return at;
+}
+
+TEST_CASE("text whose heap entry is damaged is refused before libhdf5 reads it (it read out of bounds)") {
+  const TempDir dir;
+  const std::string file = dir.File("text.h5");
+  const std::string marker = "a text of thirty-two characters!";
+  {
+    io::Hdf5Writer w(file);
+    w.Text("t", marker);
+    w.Texts("list", {"x", "y"});
+    w.Close();
+  }
+  const auto bytes = [&] {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const auto patch = [&](std::size_t at, const std::string& with) {
+    std::fstream io(file, std::ios::in | std::ios::out | std::ios::binary);
+    io.seekp(static_cast<std::streamoff>(at));
+    io.write(with.data(), static_cast<std::streamsize>(with.size()));
+  };
+  CHECK(io::Hdf5Reader(file).Text("t") == marker);
+  // The heap object's size field (8 bytes before the text) claims far more.
+  const std::size_t text_at = FindOnce(bytes(), marker);
+  const std::string original = bytes().substr(text_at - 8, 8);
+  patch(text_at - 8, std::string("\xff\xff\xff\x7f\0\0\0\0", 8));
+  const std::string e = ErrorOf([&] { io::Hdf5Reader(file).Text("t"); });
+  CHECK(Contains(e, "object 't' is damaged"));
+  patch(text_at - 8, original);
+  CHECK(io::Hdf5Reader(file).Text("t") == marker);
+  // The collection's size beyond the end of the file.
+  const std::size_t heap_at = FindOnce(bytes(), "GCOL");
+  patch(heap_at + 8, std::string("\0\0\0\0\0\0\x10\0", 8));
+  CHECK(Contains(ErrorOf([&] { io::Hdf5Reader(file).Text("t"); }), "object 't' is damaged"));
+}
+
+TEST_CASE("text that is not UTF-8 is refused with the object and the byte") {
+  const TempDir dir;
+  const std::string file = dir.File("latin1.h5");
+  {
+    io::Hdf5Writer w(file);
+    w.Text("name", "caf\xe9");
+    w.Close();
+  }
+  const std::string e = ErrorOf([&] { io::Hdf5Reader(file).Text("name"); });
+  CHECK(Contains(e, "object 'name' holds text where byte 0xe9 at character 4 is not UTF-8"));
+}
+
+TEST_CASE("the same values written a second later give the same file (no times in the objects)") {
+  const TempDir dir;
+  const auto write = [&](const std::string& name) {
+    io::Hdf5Writer w(dir.File(name));
+    w.Text("schema", "x");
+    w.Numbers("a/b/c", {1.0, 2.0});
+    w.Rows("a/m", {{1.0, 2.0}, {3.0, 4.0}});
+    w.Close();
+    std::ifstream in(dir.File(name), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const std::string first = write("first.h5");
+  // HDF5 stores times in whole seconds.
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+  const std::string second = write("second.h5");
+  CHECK(first.size() > 100);
+  const bool same = first == second;
+  CHECK(same);
+}
+
+}  // namespace
+}  // namespace deb

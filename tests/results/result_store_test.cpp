@@ -1,0 +1,279 @@
+// deb/results/result_store.h: a result written to result.h5 and read back is the
+// same result. Four shipped budgets together use every part of the schema
+// (groups, a measured reference, band requirements and metrics: the wafer
+// stage; channel breakdown, a weighting and the output covariance: the
+// thesis; tones: the measured stage; modal paths and their top modes: the
+// metrology frame). The strongest check is that the result read back,
+// written again, gives the same file byte for byte: a field the reader
+// dropped or changed would change the file. The figures a report shows are
+// also compared one by one, exactly (HDF5 keeps the doubles as written).
+// A store a reader must refuse (not HDF5, another schema, a newer version,
+// a PSD of the wrong length, an index out of range) gives an InputError
+// naming the file and the object.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "deb/budget/engine.h"
+#include "deb/budget/response_traces.h"
+#include "deb/core/error.h"
+#include "deb/load/budget_yaml.h"
+#include "deb/formats/hdf5_file.h"
+#include "deb/results/result_store.h"
+#include "tests/support/contains.h"
+
+namespace deb {
+namespace {
+
+namespace fs = std::filesystem;
+using test::Contains;
+
+class StoreDir {
+ public:
+  StoreDir() : dir_(fs::temp_directory_path() / ("deb_store_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  ~StoreDir() { fs::remove_all(dir_); }
+  std::string File(const std::string& name) const { return (dir_ / name).string(); }
+
+ private:
+  fs::path dir_;
+};
+
+std::string Bytes(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::string Budget(const std::string& name) { return std::string(DEB_SOURCE_DIR) + "/budgets/" + name; }
+
+struct Written {
+  BudgetResult result;
+  RunInfo info;
+};
+
+Written WriteStore(const std::string& budget_file, const std::string& store) {
+  Written w{Evaluate(LoadBudgetFile(budget_file)), {}};
+  w.info.budget_file = budget_file;
+  w.info.budget_text = "name: the text of the budget file, kept as it was read\n";
+  w.info.budget_sha256 = std::string(64, 'a');
+  w.info.seconds = 0.25;
+  io::WriteResultStore(w.result, w.info, store);
+  return w;
+}
+
+std::string ErrorOf(const std::string& store) {
+  try {
+    io::ReadResultStore(store);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST_CASE("a result store read back and written again is the same file, for every shipped feature") {
+  const StoreDir dir;
+  for (const char* name : {"wafer_stage.yaml", "nizamoglu2015_h210.yaml", "measured_stage.yaml",
+                           "metrology_frame.yaml"}) {
+    CAPTURE(name);
+    const std::string first = dir.File("first.h5"), second = dir.File("second.h5");
+    const Written w = WriteStore(Budget(name), first);
+    RunInfo info;
+    const BudgetResult s = io::ReadResultStore(first, &info);
+    io::WriteResultStore(s, info, second);
+    const std::string a = Bytes(first), b = Bytes(second);
+    CHECK(a.size() > 1000);
+    const bool same_bytes = a == b;
+    CHECK(same_bytes);
+
+    // What the report reads, exactly.
+    CHECK(info.budget_file == w.info.budget_file);
+    CHECK(*info.budget_text == *w.info.budget_text);
+    CHECK(info.budget_sha256 == w.info.budget_sha256);
+    CHECK(*info.seconds == 0.25);
+    CHECK(s.outline.name == w.result.outline.name);
+    CHECK(s.outline.description == w.result.outline.description);
+    CHECK(s.outline.grid_kind == w.result.outline.grid_kind);
+    CHECK(s.outline.bands.size() == w.result.outline.bands.size());
+    CHECK(s.outline.covariance == w.result.outline.covariance);
+    REQUIRE(s.outline.sources.size() == w.result.outline.sources.size());
+    for (std::size_t i = 0; i < s.outline.sources.size(); ++i) {
+      CHECK(s.outline.sources[i].name == w.result.outline.sources[i].name);
+      CHECK(s.outline.sources[i].unit == w.result.outline.sources[i].unit);
+      CHECK(s.outline.sources[i].channels == w.result.outline.sources[i].channels);
+    }
+    REQUIRE(s.outline.contributors.size() == w.result.outline.contributors.size());
+    for (std::size_t i = 0; i < s.outline.contributors.size(); ++i) {
+      CHECK(s.outline.contributors[i].name == w.result.outline.contributors[i].name);
+      CHECK(s.outline.contributors[i].exact == w.result.outline.contributors[i].exact);
+      CHECK(s.outline.contributors[i].breakdown_channels == w.result.outline.contributors[i].breakdown_channels);
+    }
+    REQUIRE(s.outline.outputs.size() == w.result.outline.outputs.size());
+    CHECK(s.grid.f_hz() == w.result.grid.f_hz());
+    CHECK(s.grid.panel_starts() == w.result.grid.panel_starts());
+    CHECK(s.warnings == w.result.warnings);
+    REQUIRE(s.outputs.size() == w.result.outputs.size());
+    for (std::size_t o = 0; o < w.result.outputs.size(); ++o) {
+      const OutputResult &x = w.result.outputs[o], &y = s.outputs[o];
+      CHECK(y.name == x.name);
+      CHECK(y.unit == x.unit);
+      CHECK(y.total_psd == x.total_psd);
+      CHECK(y.total_cps == x.total_cps);
+      CHECK(y.variance == x.variance);
+      CHECK(y.rms_max == x.rms_max);
+      CHECK(y.metric.has_value() == x.metric.has_value());
+      CHECK(y.band_requirements.size() == x.band_requirements.size());
+      CHECK(y.references.size() == x.references.size());
+      CHECK(s.outline.outputs[o].weighting.has_value() == w.result.outline.outputs[o].weighting.has_value());
+      CHECK(s.outline.outputs[o].combination.size() == w.result.outline.outputs[o].combination.size());
+      REQUIRE(y.contributors.size() == x.contributors.size());
+      for (std::size_t c = 0; c < x.contributors.size(); ++c) {
+        const ContributorResult &cx = x.contributors[c], &cy = y.contributors[c];
+        CHECK(cy.psd == cx.psd);
+        CHECK(cy.cps == cx.cps);
+        CHECK(cy.exact_variance == cx.exact_variance);
+        CHECK(cy.tones.size() == cx.tones.size());
+        CHECK(cy.channels.size() == cx.channels.size());
+        CHECK(cy.top_modes.size() == cx.top_modes.size());
+        CHECK(cy.group == cx.group);
+        const PathResponse &px = w.result.traces->paths[c][o], &py = s.traces->paths[c][o];
+        CHECK(py.gain2 == px.gain2);
+        CHECK(py.phase_rad == px.phase_rad);
+      }
+    }
+    CHECK(s.loops.size() == w.result.loops.size());
+    CHECK(s.traces->poles_hz == w.result.traces->poles_hz);
+    REQUIRE(s.covariance.has_value() == w.result.covariance.has_value());
+    if (w.result.covariance) {
+      CHECK(s.covariance->matrix == w.result.covariance->matrix);
+      CHECK(s.covariance->exact_matrix.has_value() == w.result.covariance->exact_matrix.has_value());
+    }
+  }
+}
+
+TEST_CASE("the features each example stands for are in its store") {
+  const StoreDir dir;
+  const auto read = [&](const char* name) {
+    WriteStore(Budget(name), dir.File("s.h5"));
+    return io::ReadResultStore(dir.File("s.h5"));
+  };
+  const BudgetResult wafer = read("wafer_stage.yaml");
+  bool grouped = false, referenced = false, metric = false, band_requirement = false;
+  for (const OutputResult& o : wafer.outputs) {
+    for (const ContributorResult& c : o.contributors) grouped |= !c.group.empty();
+    referenced |= !o.references.empty();
+    metric |= o.metric.has_value();
+    band_requirement |= !o.band_requirements.empty();
+  }
+  CHECK(grouped);
+  CHECK(referenced);
+  CHECK(metric);
+  CHECK(band_requirement);
+  const BudgetResult thesis = read("nizamoglu2015_h210.yaml");
+  CHECK(thesis.covariance.has_value());
+  bool broken_down = false, weighted = false;
+  for (const OutputResult& o : thesis.outputs)
+    for (const ContributorResult& c : o.contributors) broken_down |= !c.channels.empty();
+  for (const OutputOutline& o : thesis.outline.outputs) weighted |= o.weighting.has_value();
+  CHECK(broken_down);
+  CHECK(weighted);
+  const BudgetResult measured = read("measured_stage.yaml");
+  bool tones = false;
+  for (const OutputResult& o : measured.outputs)
+    for (const ContributorResult& c : o.contributors) tones |= !c.tones.empty();
+  CHECK(tones);
+  const BudgetResult frame = read("metrology_frame.yaml");
+  bool modes = false;
+  for (const OutputResult& o : frame.outputs)
+    for (const ContributorResult& c : o.contributors) modes |= !c.top_modes.empty();
+  CHECK(modes);
+}
+
+TEST_CASE("a store the reader must refuse gives an error naming the file and the object") {
+  const StoreDir dir;
+  SUBCASE("not an HDF5 file") {
+    const std::string file = dir.File("text.h5");
+    std::ofstream(file) << "schema: deb-result\n";
+    CHECK(Contains(ErrorOf(file), file));
+  }
+  SUBCASE("another schema, or a newer version of this one") {
+    const std::string other = dir.File("other.h5"), newer = dir.File("newer.h5");
+    {
+      io::Hdf5Writer w(other);
+      w.Text("schema", "someone-else");
+      w.Integer("schema_version", 1);
+      w.Close();
+      io::Hdf5Writer v(newer);
+      v.Text("schema", io::kResultStoreSchema);
+      v.Integer("schema_version", io::kResultStoreVersion + 1);
+      v.Close();
+    }
+    CHECK(Contains(ErrorOf(other), "not a result store of deb"));
+    const std::string e = ErrorOf(newer);
+    CHECK(Contains(e, newer));
+    CHECK(Contains(e, "schema version " + std::to_string(io::kResultStoreVersion + 1)));
+  }
+  SUBCASE("a PSD one value short of the grid") {
+    Written w{Evaluate(LoadBudgetFile(Budget("single_axis_isolator.yaml"))), {}};
+    w.result.outputs[1].contributors[0].psd.pop_back();
+    const std::string file = dir.File("short.h5");
+    io::WriteResultStore(w.result, w.info, file);
+    const std::string e = ErrorOf(file);
+    CHECK(Contains(e, file));
+    CHECK(Contains(e, "'result/outputs/1/contributors/0/psd' has " + std::to_string(w.result.grid.size() - 1) +
+                          " values, not " + std::to_string(w.result.grid.size())));
+  }
+  SUBCASE("a contributor of a source the store does not hold, an output index out of range") {
+    Written w{Evaluate(LoadBudgetFile(Budget("nizamoglu2015_h210.yaml"))), {}};
+    REQUIRE(w.result.covariance);
+    const std::string renamed = dir.File("renamed.h5"), index = dir.File("index.h5");
+    BudgetResult changed = w.result;
+    changed.outline.sources[0].name = "renamed";
+    io::WriteResultStore(changed, w.info, renamed);
+    CHECK(Contains(ErrorOf(renamed), "'budget/contributors/0/source' names the source"));
+    w.result.covariance->index[1] = 99;
+    io::WriteResultStore(w.result, w.info, index);
+    const std::string e = ErrorOf(index);
+    CHECK(Contains(e, "'result/covariance/index' holds the index 99"));
+  }
+  SUBCASE("what a budget's rules forbid: a negative variance, a requirement of 0, two outputs of one name") {
+    Written w{Evaluate(LoadBudgetFile(Budget("single_axis_isolator.yaml"))), {}};
+    const auto refused = [&](const std::function<void(Written&)>& change, const std::string& says) {
+      Written changed = w;
+      change(changed);
+      const std::string file = dir.File("changed.h5");
+      io::WriteResultStore(changed.result, changed.info, file);
+      const std::string e = ErrorOf(file);
+      CHECK_MESSAGE(Contains(e, says), e);
+    };
+    refused([](Written& c) { c.result.outputs[0].variance = -1.0; },
+            "'result/outputs/0/variance' holds -1, which must be >= 0");
+    refused([](Written& c) { c.result.outputs[1].rms_max = 0.0; },
+            "'result/outputs/1/rms_max' holds the requirement 0, which must be > 0");
+    refused([](Written& c) { c.result.outputs[1].name = c.result.outputs[0].name; },
+            "'result/outputs/1/name' holds the name");
+    refused([](Written& c) { c.result.outputs[0].contributors[0].psd[3] = -1e-9; },
+            "'result/outputs/0/contributors/0/psd' holds -1e-09 at element 3");
+    refused([](Written& c) { c.result.outline.name = "a\x1b[31m"; }, "'budget/name' holds the name");
+  }
+  SUBCASE("a NaN where a figure must be finite") {
+    Written w{Evaluate(LoadBudgetFile(Budget("single_axis_isolator.yaml"))), {}};
+    w.result.outputs[0].variance = std::numeric_limits<double>::quiet_NaN();
+    const std::string file = dir.File("nan.h5");
+    io::WriteResultStore(w.result, w.info, file);
+    const std::string e = ErrorOf(file);
+    CHECK(Contains(e, "result/outputs/0/variance"));
+  }
+}
+
+}  // namespace
+}  // namespace deb
