@@ -32,6 +32,11 @@ void ApplyOverrides(YAML::Node root, const std::vector<BudgetOverride>& override
     try {
       path = ParseKeyPath(o.key_path);
       value = YAML::Load(o.value);
+      // YAML::Load keeps the first of several documents: refuse the rest
+      // rather than drop them.
+      if (const std::size_t documents = YAML::LoadAll(o.value).size(); documents > 1)
+        throw InputError("the value holds " + std::to_string(documents) +
+                         " YAML documents ('---' starts each); give one value");
     } catch (const YAML::Exception& e) {
       throw InputError(what + "the value is not YAML (" + e.msg + ")");
     } catch (const InputError& e) {

@@ -1,5 +1,8 @@
 #include "deb/load/yaml_reader.h"
 
+#include <stdexcept>
+#include <limits>
+#include <cstdlib>
 #include <cmath>
 #include <set>
 #include <tuple>
@@ -152,6 +155,14 @@ double YamlNode::AsDouble() const {
     std::size_t used = 0;
     value = std::stod(text, &used);
     if (used != text.size()) throw std::invalid_argument(text);
+  } catch (const std::out_of_range&) {
+    // strtod's ERANGE: beyond the largest double, or below the smallest
+    // normal one (a subnormal keeps few digits, and no quantity deb reads is
+    // that small: it is a unit or exponent slip).
+    // strtod returns HUGE_VAL beyond the range, at most DBL_MIN below it.
+    if (std::abs(std::strtod(text.c_str(), nullptr)) <= std::numeric_limits<double>::min())
+      Fail("value '" + Excerpt(text) + "' is below the smallest normal double, 2.2e-308: write 0, or check its unit");
+    Fail("value '" + Excerpt(text) + "' is beyond the largest double, 1.8e308");
   } catch (const std::exception&) {
     if (text == ".inf" || text == "-.inf" || text == ".nan" || text == ".NaN")
       Fail("value '" + text + "' is not finite; a finite number is required");

@@ -109,6 +109,16 @@ TEST_CASE("later overrides win: the same key set twice, and a key inside a value
         doctest::Approx(4.0).epsilon(1e-12));
 }
 
+TEST_CASE("a --set value of several YAML documents is refused, not cut to its first") {
+  try {
+    (void)LoadBudgetFile(kIsolator, {{"sources[1].spectrum.level", "0.02\n---\n0.03"}});
+    FAIL("expected an InputError");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("the value holds 2 YAML documents ('---' starts each); give one value") !=
+          std::string::npos);
+  }
+}
+
 TEST_CASE("--set on every element ([*]) gives the sweep's variant with the same values, bitwise") {
   // Sweep variant (K_v = 25, h = 100 mm) against the budget with those values set by --set.
   const SweepBudget sweep = LoadSweepFile(kThesisSweep);

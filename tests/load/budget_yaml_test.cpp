@@ -90,6 +90,14 @@ TEST_CASE("a non-numeric value is reported as such") {
         "b.yaml:11:17: paths[0].den[1]: expected a number, got 'one'");
 }
 
+TEST_CASE("a number outside the range of normal doubles says which end it is beyond") {
+  CHECK(ErrorOf(Replace(kBudget, "level: 2", "level: 1e-320")) ==
+        "b.yaml:6:35: sources[0].spectrum.level: value '1e-320' is below the smallest normal double, 2.2e-308: "
+        "write 0, or check its unit");
+  CHECK(ErrorOf(Replace(kBudget, "level: 2", "level: 1e400")) ==
+        "b.yaml:6:35: sources[0].spectrum.level: value '1e400' is beyond the largest double, 1.8e308");
+}
+
 TEST_CASE("a non-finite value is rejected") {
   CHECK(ErrorOf(Replace(kBudget, "level: 2", "level: .nan")).find("is not finite") != std::string::npos);
 }
@@ -256,3 +264,4 @@ TEST_CASE("an unknown key is answered with the nearest allowed one, if any is ne
 }
 
 }  // namespace deb
+
