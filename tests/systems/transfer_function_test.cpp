@@ -247,7 +247,11 @@ TEST_CASE("ten modes 1 % apart as one order-20 polynomial are stable or unstable
   // and 2.5e-13.
   for (const double zeta : {3e-3, 1e-3}) {
     CAPTURE(zeta);
-    const auto [den, num] = TenModesOnePercentApart(zeta);
+    // Named copies, not structured bindings: a lambda may not capture a
+    // binding in C++17 (clang refuses it).
+    const auto coefficients = TenModesOnePercentApart(zeta);
+    const auto& den = coefficients.first;
+    const auto& num = coefficients.second;
     const testing::ReferenceVariance reference = testing::ReferenceH2({num}, testing::ToQuad(den));
     REQUIRE(reference.right_half_plane >= 0);
     CHECK(reference.right_half_plane == (zeta == 3e-3 ? 0 : 6));
