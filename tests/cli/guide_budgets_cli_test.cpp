@@ -53,7 +53,11 @@ TEST_CASE("every guide budget passes deb check and deb run") {
 }
 
 TEST_CASE("the guide budgets print the figures the guide and the README quote") {
-  for (const auto& [file, lines] : kQuoted) {
+  for (const auto& quoted : kQuoted) {
+    // Named, not a structured binding: CAPTURE's lambda may not capture one
+    // in C++17 (clang refuses it).
+    const auto& file = quoted.first;
+    const auto& lines = quoted.second;
     CAPTURE(file);
     const fs::path dir = TempDir("guide_quoted");
     const Command run =
