@@ -6,7 +6,6 @@
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
-#include "deb/systems/block_triangular.h"
 
 namespace deb {
 namespace {
@@ -54,7 +53,9 @@ StateSpace StateSpace::Gain(Eigen::MatrixXd d) {
 
 Eigen::VectorXcd StateSpace::Poles() const {
   if (states() == 0) return Eigen::VectorXcd(0);
-  return BlockEigenvalues(a_);
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(a_, false);
+  if (eig.info() != Eigen::Success) ThrowNotConverged(a_);
+  return eig.eigenvalues();
 }
 
 void RequireWellScaled(const Eigen::MatrixXd& balanced_a) {
