@@ -17,7 +17,7 @@ namespace deb::io {
 namespace {
 
 // Starts the library once per process, before any other use of it (the
-// .mat reader calls StartHdf5 too, since matio reads version-7.3 files
+// .mat reader calls LockHdf5 too, since matio reads version-7.3 files
 // through HDF5). "" if it started, else why not.
 std::string Start() {
   // No clean-up of HDF5 at exit: deb closes every file it opens itself, and
@@ -44,15 +44,18 @@ const std::string& StartFailure() {
 // of this module.
 std::recursive_mutex g_hdf5;
 
-// The lock, and HDF5's printing of its error stack turned off for the
-// calling thread: deb reports errors itself, and a thread-safe HDF5 keeps
-// that setting per thread (the store is written on a thread of its own).
+// Turns HDF5's printing of its error stack off for the calling thread (once
+// per thread): deb reports errors itself, and a thread-safe HDF5 keeps that
+// setting per thread (the store is written on a thread of its own).
+void QuietThisThread() {
+  thread_local bool quiet = false;
+  if (!quiet && StartFailure().empty()) quiet = H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0;
+}
+
+// The lock, with the calling thread quiet.
 class Locked {
  public:
-  Locked() : lock_(g_hdf5) {
-    thread_local bool quiet = false;
-    if (!quiet && StartFailure().empty()) quiet = H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0;
-  }
+  Locked() : lock_(g_hdf5) { QuietThisThread(); }
 
  private:
   std::lock_guard<std::recursive_mutex> lock_;
@@ -118,6 +121,7 @@ Id VariableString() {
 std::unique_lock<std::recursive_mutex> LockHdf5() {
   std::unique_lock<std::recursive_mutex> lock(g_hdf5);
   if (const std::string& why = StartFailure(); !why.empty()) throw InputError(why);
+  QuietThisThread();
   return lock;
 }
 
