@@ -10,6 +10,7 @@
 // standard on every platform.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace deb {
@@ -61,6 +62,20 @@ inline DoubleDouble operator*(DoubleDouble a, DoubleDouble b) {
   return double_double::Normalise(p.hi, p.lo + (a.hi * b.lo + a.lo * b.hi));
 }
 
+// Long division: three quotient digits, each from the remainder left by the
+// previous ones.
+inline DoubleDouble operator/(DoubleDouble a, DoubleDouble b) {
+  const double q1 = a.hi / b.hi;
+  const DoubleDouble r1 = a - b * DoubleDouble(q1);
+  const double q2 = r1.hi / b.hi;
+  const DoubleDouble r2 = r1 - b * DoubleDouble(q2);
+  const double q3 = r2.hi / b.hi;
+  return double_double::Normalise(q1, q2) + DoubleDouble(q3);
+}
+
+// x 2^e, exact (barring underflow).
+inline DoubleDouble Ldexp(DoubleDouble x, int e) { return {std::ldexp(x.hi, e), std::ldexp(x.lo, e)}; }
+
 // A complex double-double, re + j im.
 struct ComplexDD {
   DoubleDouble re, im;
@@ -70,6 +85,17 @@ inline ComplexDD operator+(const ComplexDD& a, const ComplexDD& b) { return {a.r
 inline ComplexDD operator-(const ComplexDD& a, const ComplexDD& b) { return {a.re - b.re, a.im - b.im}; }
 inline ComplexDD operator*(const ComplexDD& a, const ComplexDD& b) {
   return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re};
+}
+inline ComplexDD Ldexp(const ComplexDD& x, int e) { return {Ldexp(x.re, e), Ldexp(x.im, e)}; }
+inline ComplexDD Conj(const ComplexDD& x) { return {x.re, -x.im}; }
+// a / b = a conj(b) / |b|^2, both scaled by a power of two first so that
+// |b|^2 neither overflows nor underflows. b != 0.
+inline ComplexDD operator/(const ComplexDD& a, const ComplexDD& b) {
+  const int e = std::ilogb(std::max(std::abs(b.re.hi), std::abs(b.im.hi)));
+  const ComplexDD as = Ldexp(a, -e), bs = Ldexp(b, -e);
+  const DoubleDouble norm = bs.re * bs.re + bs.im * bs.im;
+  const ComplexDD n = as * Conj(bs);
+  return {n.re / norm, n.im / norm};
 }
 
 }  // namespace deb

@@ -10,6 +10,7 @@
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 #include "deb/systems/block_schur.h"
+#include "deb/systems/block_triangular.h"
 
 namespace deb {
 namespace {
@@ -86,9 +87,7 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
     const Eigen::MatrixXd q = hd.matrixQ();
     cq_ = bal.C() * q;
     qb_ = q.transpose() * bal.B();
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(a, false);
-    if (eig.info() != Eigen::Success) ThrowNotConverged(a);
-    poles_ = eig.eigenvalues();
+    poles_ = BlockEigenvalues(a);
     return;
   }
 
@@ -98,7 +97,10 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
   Eigen::MatrixXcd v = eig.eigenvectors();
   v.colwise().normalize();
   const Eigen::VectorXcd lambda = eig.eigenvalues();
-  poles_ = lambda;
+  // The poles reported (stability, modes, the grid) are the diagonal
+  // blocks' own where A is reducible (a cascade): those of the dense solver
+  // can cross the imaginary axis (block_triangular.h).
+  poles_ = BlockTriangular(a).blocks() > 1 ? BlockEigenvalues(a) : lambda;
   // cond_1(V) = |V|_1 |V^-1|_1 (within a factor n of the 2-norm one); the
   // inverse is needed anyway for the residues. A defective A gives a
   // numerically singular V and an infinite or huge condition number.

@@ -77,7 +77,8 @@ class FrequencyResponse {
   // Size of the largest diagonal block of the block Schur form (1 for the
   // modal form): 2 for a double pole, n if no eigenvalue could be split off.
   int largest_block() const { return largest_block_; }
-  // The eigenvalues of A [rad/s], from the reduction (empty without states).
+  // The eigenvalues of A [rad/s] (empty without states), found block by
+  // block on its block triangular form (block_triangular.h).
   const Eigen::VectorXcd& poles() const { return poles_; }
 
   // H(j 2 pi f), outputs x inputs.

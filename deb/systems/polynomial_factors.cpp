@@ -147,45 +147,119 @@ int Find(std::vector<int>& parent, int i) {
   return i;
 }
 
-// The monic factor of p whose roots are the roots of p inside the circle
-// |s - z| = radius, from the power sums of those roots
-//   s_m = (1 / 2 pi j) oint (s - z)^m p'(s) / p(s) ds  (trapezoid rule),
-// in units of the radius, and Newton's identities. nullopt unless s_0, the
-// number of roots inside, is `count`.
-std::optional<std::vector<ComplexLD>> ClusterFactor(const std::vector<double>& p, ComplexLD z,
-                                                    LongDouble radius, int count, Precision precision) {
-  std::vector<ComplexLD> sums(count + 1, 0.0L);
-  for (int l = 0; l < kNodes; ++l) {
-    const ComplexLD tau = std::polar(1.0L, kTwoPiLD * l / kNodes);
-    const Value v = Evaluate(p, z + radius * tau, precision);
-    if (std::abs(v.p) == 0.0L) return std::nullopt;
-    const ComplexLD g = radius * v.slope / v.p;
-    ComplexLD power = tau;  // tau^(m + 1)
-    for (int m = 0; m <= count; ++m, power *= tau) sums[m] += power * g;
-  }
-  for (ComplexLD& s : sums) s /= static_cast<LongDouble>(kNodes);
-  if (!(std::abs(sums[0] - static_cast<LongDouble>(count)) < 0.25L)) return std::nullopt;
-  // Elementary symmetric functions of the roots tau_i = (r_i - z) / radius.
-  std::vector<ComplexLD> e(count + 1, 0.0L);
-  e[0] = 1.0L;
-  for (int m = 1; m <= count; ++m) {
-    ComplexLD acc = 0.0L;
-    for (int i = 1; i <= m; ++i) acc += (i % 2 ? 1.0L : -1.0L) * e[m - i] * sums[i];
-    e[m] = acc / static_cast<LongDouble>(m);
-  }
-  // q(s) = sum_m (-1)^m e_m radius^m (s - z)^(count - m), by Horner's rule.
-  std::vector<ComplexLD> q;
-  LongDouble scale = 1.0L;
-  for (int m = 0; m <= count; ++m, scale *= radius) {
-    std::vector<ComplexLD> next(q.size() + 1, 0.0L);
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      next[i] += q[i];
-      next[i + 1] -= z * q[i];
+// e^(2 pi j l / kNodes), l = 0 .. kNodes - 1, in double-double: cosine and
+// sine by their Taylor series on the first octant, the rest by symmetry.
+const std::vector<ComplexDD>& UnitRoots() {
+  static_assert(kNodes % 8 == 0, "the nodes' octants are mirrored");
+  static const std::vector<ComplexDD> roots = [] {
+    constexpr int kQuarter = kNodes / 4;
+    const DoubleDouble two_pi(6.283185307179586232, 2.4492935982947064e-16);
+    std::vector<ComplexDD> octant(kQuarter / 2 + 1);
+    for (int r = 0; r <= kQuarter / 2; ++r) {
+      const DoubleDouble x = two_pi * DoubleDouble(r) / DoubleDouble(kNodes), x2 = x * x;
+      DoubleDouble c = 1.0, s = x, tc = 1.0, ts = x;
+      for (int i = 1; i <= 20; ++i) {  // x <= pi/4: the 20th terms are below 1e-60
+        tc = -(tc * x2 / DoubleDouble((2.0 * i - 1) * (2.0 * i)));
+        ts = -(ts * x2 / DoubleDouble((2.0 * i) * (2.0 * i + 1)));
+        c = c + tc;
+        s = s + ts;
+      }
+      octant[r] = {c, s};
     }
-    next.back() += (m % 2 ? -1.0L : 1.0L) * e[m] * scale;
-    q = std::move(next);
+    std::vector<ComplexDD> all(kNodes);
+    for (int l = 0; l < kNodes; ++l) {
+      const int q = l / kQuarter, r = l % kQuarter;
+      ComplexDD v = r <= kQuarter / 2 ? octant[r] : ComplexDD{octant[kQuarter - r].im, octant[kQuarter - r].re};
+      for (int i = 0; i < q; ++i) v = {-v.im, v.re};  // times j
+      all[l] = v;
+    }
+    return all;
+  }();
+  return roots;
+}
+
+// The roots of p inside the circle |s - z| = radius, taken together: the
+// monic factor q of p that holds them, from their power sums
+//   s_m = (1 / 2 pi j) oint (s - z)^m p'(s) / p(s) ds  (trapezoid rule)
+// in units of the radius and Newton's identities, all in double-double; then
+// the eigenvalues of q's companion matrix (long double QR) in units of the
+// roots' own spread rho. The eigenvalues are the exact roots of a polynomial
+// within rounding of q in those units, so their product is q to about
+// eps_LD rho / |s - z| relative at s: the linear and quadratic factors they
+// make multiply to p near the cluster, where polished roots of a k-fold root
+// would not (each is off by eps^(1/k) in its own direction). q itself is
+// known to the rounding of p in double-double, relative to |q(s)| about
+// 2^-104 |s - z|^-k for a k-fold root. Real q (z real) if `real`. nullopt
+// unless s_0, the number of roots inside, is `count`, or if the QR
+// iteration fails.
+std::optional<std::vector<ComplexLD>> ClusterRoots(const std::vector<double>& p, ComplexLD z, LongDouble radius,
+                                                   int count, bool real) {
+  const std::vector<ComplexDD>& tau = UnitRoots();
+  const ComplexDD zd = ToDD(z);
+  const DoubleDouble rd = DoubleDouble::From(radius);
+  std::vector<ComplexDD> sums(count + 1);
+  for (int l = 0; l < kNodes; ++l) {
+    const ComplexDD s = zd + ComplexDD{rd * tau[l].re, rd * tau[l].im};
+    ComplexDD value, slope;
+    for (const double c : p) {
+      slope = slope * s + value;
+      value = value * s + ComplexDD{c, 0.0};
+    }
+    if (value.re.hi == 0.0 && value.im.hi == 0.0) return std::nullopt;
+    ComplexDD g = slope / value;
+    g = {rd * g.re, rd * g.im};
+    for (int m = 0; m <= count; ++m) sums[m] = sums[m] + tau[(l * (m + 1)) % kNodes] * g;
   }
-  return q;
+  for (ComplexDD& s : sums) s = {s.re / DoubleDouble(kNodes), s.im / DoubleDouble(kNodes)};
+  if (!(std::abs(ToLD(sums[0]) - static_cast<LongDouble>(count)) < 0.25L)) return std::nullopt;
+  // Elementary symmetric functions of the roots t_i = (r_i - z) / radius.
+  std::vector<ComplexDD> e(count + 1);
+  e[0] = {1.0, 0.0};
+  LongDouble rho = 0.0L;
+  for (int m = 1; m <= count; ++m) {
+    ComplexDD acc;
+    for (int i = 1; i <= m; ++i) {
+      const ComplexDD term = e[m - i] * sums[i];
+      acc = i % 2 ? acc + term : acc - term;
+    }
+    e[m] = {acc.re / DoubleDouble(m), acc.im / DoubleDouble(m)};
+    if (real) e[m].im = 0.0;
+    rho = std::max(rho, std::pow(std::abs(ToLD(e[m])), 1.0L / m));
+  }
+  if (!std::isfinite(rho)) return std::nullopt;
+  if (rho == 0.0L) return std::vector<ComplexLD>(count, z);  // one root of multiplicity count
+  // u = t / 2^scale, |u| < 2 for every root: q(u) = u^count + sum_m a_m u^(count - m),
+  // a_m = (-1)^m e_m 2^(-m scale), exact.
+  const int scale = std::ilogb(static_cast<double>(rho)) + 1;
+  std::vector<ComplexLD> a(count + 1);
+  for (int m = 1; m <= count; ++m) a[m] = (m % 2 ? -1.0L : 1.0L) * ToLD(Ldexp(e[m], -m * scale));
+  std::vector<ComplexLD> u;
+  if (real) {
+    Eigen::Matrix<LongDouble, Eigen::Dynamic, Eigen::Dynamic> companion =
+        Eigen::Matrix<LongDouble, Eigen::Dynamic, Eigen::Dynamic>::Zero(count, count);
+    for (int m = 0; m < count; ++m) companion(0, m) = -a[m + 1].real();
+    for (int m = 1; m < count; ++m) companion(m, m - 1) = 1.0L;
+    const Eigen::EigenSolver<decltype(companion)> eig(companion, false);
+    if (eig.info() != Eigen::Success) return std::nullopt;
+    for (int m = 0; m < count; ++m) u.push_back(eig.eigenvalues()(m));
+  } else {
+    Eigen::Matrix<ComplexLD, Eigen::Dynamic, Eigen::Dynamic> companion =
+        Eigen::Matrix<ComplexLD, Eigen::Dynamic, Eigen::Dynamic>::Zero(count, count);
+    for (int m = 0; m < count; ++m) companion(0, m) = -a[m + 1];
+    for (int m = 1; m < count; ++m) companion(m, m - 1) = 1.0L;
+    const Eigen::ComplexEigenSolver<decltype(companion)> eig(companion, false);
+    if (eig.info() != Eigen::Success) return std::nullopt;
+    for (int m = 0; m < count; ++m) u.push_back(eig.eigenvalues()(m));
+  }
+  std::vector<ComplexLD> roots;
+  const LongDouble unit = std::ldexp(radius, scale);
+  for (const ComplexLD& x : u) {
+    // Real roots and exact conjugate pairs stay so (z is real if `real`).
+    const ComplexLD r = z + unit * x;
+    if (!std::isfinite(r.real()) || !std::isfinite(r.imag())) return std::nullopt;
+    roots.push_back(r);
+  }
+  return roots;
 }
 
 PolynomialFactor Linear(LongDouble root) { return {{1.0L, -root}, ComplexLD(root, 0.0L)}; }
@@ -311,22 +385,18 @@ std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<doubl
     if (radius == 0.0L) radius = 1.0L;
     if (!(radius >= 2.0L * inside)) return std::nullopt;
     const int count = static_cast<int>(m.size());
-    const std::optional<std::vector<ComplexLD>> q = ClusterFactor(p, z, radius, count, precision);
-    if (!q) return std::nullopt;
-    PolynomialFactor f;
-    f.root = ComplexLD(z.real(), std::abs(z.imag()));
-    if (self_mirror) {
-      for (const ComplexLD& a : *q) f.coefficients.push_back(a.real());
-    } else {
-      // q conj(q), real up to rounding.
-      f.coefficients.assign(2 * q->size() - 1, 0.0L);
-      for (std::size_t i = 0; i < q->size(); ++i)
-        for (std::size_t j = 0; j < q->size(); ++j) f.coefficients[i + j] += ((*q)[i] * std::conj((*q)[j])).real();
+    const std::optional<std::vector<ComplexLD>> cluster = ClusterRoots(p, z, radius, count, self_mirror);
+    if (!cluster) return std::nullopt;
+    for (const ComplexLD& r : *cluster) {
+      if (self_mirror && r.imag() == 0.0L) {
+        reals.push_back(r.real());
+        degree += 1;
+      } else if (!self_mirror || r.imag() > 0.0L) {
+        // A root of a cluster off the real axis and its mirror image.
+        factors.push_back(Quadratic(r));
+        degree += 2;
+      }
     }
-    for (const LongDouble a : f.coefficients)
-      if (!std::isfinite(a)) return std::nullopt;
-    degree += f.degree();
-    factors.push_back(std::move(f));
   }
   if (degree != n) return std::nullopt;
   std::sort(reals.begin(), reals.end());

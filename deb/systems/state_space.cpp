@@ -6,6 +6,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
+#include "deb/systems/block_triangular.h"
 
 namespace deb {
 namespace {
@@ -53,9 +54,7 @@ StateSpace StateSpace::Gain(Eigen::MatrixXd d) {
 
 Eigen::VectorXcd StateSpace::Poles() const {
   if (states() == 0) return Eigen::VectorXcd(0);
-  const Eigen::EigenSolver<Eigen::MatrixXd> eig(a_, false);
-  if (eig.info() != Eigen::Success) ThrowNotConverged(a_);
-  return eig.eigenvalues();
+  return BlockEigenvalues(a_);
 }
 
 void RequireWellScaled(const Eigen::MatrixXd& balanced_a) {

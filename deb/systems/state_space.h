@@ -27,7 +27,8 @@ class StateSpace {
   const Eigen::MatrixXd& C() const { return c_; }
   const Eigen::MatrixXd& D() const { return d_; }
 
-  // Eigenvalues of A [rad/s].
+  // Eigenvalues of A [rad/s], found block by block on its block triangular
+  // form (block_triangular.h): those of a cascade are its stages' own.
   Eigen::VectorXcd Poles() const;
   // All poles strictly in the open left half plane.
   bool IsStable() const;

@@ -71,13 +71,12 @@ struct Section {
 };
 
 // H = num/den as a cascade of sections: one per factor of den (a real root
-// or a pair, two real roots, or a cluster of close roots as one factor,
-// polynomial_factors.h), each zero factor of num assigned to the section
-// with the nearest pole that still has room (two sections are merged into
-// one where none has room for a cluster of zeros), each section scaled to
-// unit gain |H_k(-|p_k|)| = 1 and the remaining gain put on the last.
-// nullopt if the factorisation fails; the caller then uses the companion
-// form.
+// or a pair, or two real roots, polynomial_factors.h), each zero factor of
+// num assigned to the section with the nearest pole that still has room
+// (two sections are merged into one where none has room for a pair of
+// zeros), each section scaled to unit gain |H_k(-|p_k|)| = 1 and the
+// remaining gain put on the last. nullopt if the factorisation fails; the
+// caller then uses the companion form.
 struct CascadeForm {
   StateSpace system;
   // The estimated relative error of its H (CascadeError).
