@@ -100,9 +100,12 @@ TEST_CASE("1/(s + 1)^k given as an expanded polynomial keeps its gain and its H2
 
 TEST_CASE("repeated factors in numerator and denominator: (s + 2)^3 / ((s + 1)^3 (s^2 + 0.2 s + 4)^2)") {
   // A cluster of zeros that no section of order 2 has room for, and a
-  // repeated complex pair. Tolerance 1e-7 against num(jw)/den(jw): observed
-  // 2.0e-8 built with clang (the clusters' long-double polish rounds
-  // otherwise than with GCC), well inside the 1e-6 deb promises.
+  // repeated complex pair. Against num(jw)/den(jw), what deb promises for H
+  // (docs/method.md): 1e-7 relative where |H| is at least 1e-6 of its peak
+  // (observed 2.1e-9), 1e-8 of the peak everywhere (observed 3.7e-10).
+  // Further down the f^-4 roll-off the relative error depends on the
+  // rounding of the realisation: at 90 Hz, |H| 1e-13 of its peak, it was
+  // 1e-9 built with GCC and 8.3e-5 with clang.
   std::vector<double> num{1.0}, den{1.0};
   for (int i = 0; i < 3; ++i) num = Multiply(num, {1.0, 2.0});
   for (int i = 0; i < 3; ++i) den = Multiply(den, {1.0, 1.0});
@@ -111,12 +114,23 @@ TEST_CASE("repeated factors in numerator and denominator: (s + 2)^3 / ((s + 1)^3
   const StateSpace ss = ToStateSpace(tf);
   CHECK(ss.states() == 7);
   const FrequencyResponse h(ss);
-  double worst = 0.0;
-  for (double f : testing::LogSpace(1e-3, 100.0, 300)) {
+  const std::vector<double> f_hz = testing::LogSpace(1e-3, 100.0, 300);
+  double peak = 0.0;
+  for (double f : f_hz) peak = std::max(peak, std::abs(tf.Evaluate(Complex(0.0, kTwoPi * f))));
+  double worst_relative = 0.0, worst_absolute = 0.0, where = 0.0;
+  for (double f : f_hz) {
     const Complex expected = tf.Evaluate(Complex(0.0, kTwoPi * f));
-    worst = std::max(worst, std::abs(h.At(f)(0, 0) - expected) / std::abs(expected));
+    const double error = std::abs(h.At(f)(0, 0) - expected);
+    if (std::abs(expected) >= 1e-6 * peak && error / std::abs(expected) > worst_relative) {
+      worst_relative = error / std::abs(expected);
+      where = f;
+    }
+    worst_absolute = std::max(worst_absolute, error / peak);
   }
-  CHECK(worst <= 1e-7);
+  MESSAGE("H where |H| >= 1e-6 of its peak: worst relative error " << worst_relative << " at " << where
+          << " Hz; everywhere: worst error " << worst_absolute << " of the peak");
+  CHECK(worst_relative <= 1e-7);
+  CHECK(worst_absolute <= 1e-8);
 }
 
 using LD = long double;
