@@ -5,12 +5,15 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "deb/budget/comparison.h"
+#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
+#include "deb/io/budget_yaml.h"
 #include "deb/report/compare/comparison_directory.h"
 #include "deb/report/compare/comparison_documents.h"
 #include "deb/report/compare/overlay_plots.h"
@@ -18,6 +21,24 @@
 #include "tools/budget_overrides_option.h"
 
 namespace deb::tools {
+namespace {
+
+// A budget file is evaluated (without response traces: compared, not
+// drawn); a result directory or summary.json is read (its result store too
+// when the overlays are drawn, `plots`).
+report::ComparisonInput Load(const std::string& input, const std::vector<BudgetOverride>& overrides, int threads,
+                             bool plots) {
+  if (!report::IsComparisonBudgetFile(input)) return report::ReadComparisonResult(input, plots);
+  const Budget budget = LoadBudgetFile(input, overrides);
+  EngineOptions options;
+  options.threads = threads;
+  options.response_traces = false;
+  BudgetResult result = Evaluate(budget, options);
+  ResultFigures figures = FiguresOf(budget.name, result);
+  return {std::move(figures), std::move(result)};
+}
+
+}  // namespace
 
 struct CompareCommand::Options {
   std::vector<std::string> inputs;
@@ -84,7 +105,7 @@ int CompareCommand::Run() const {
     overrides[1].insert(overrides[1].end(), s.overrides_b.begin(), s.overrides_b.end());
   ParallelForEach(
       loaded.size(),
-      [&](std::size_t i) { loaded[i] = report::LoadComparisonInput(s.inputs[i], overrides[i], s.threads, s.plots); },
+      [&](std::size_t i) { loaded[i] = Load(s.inputs[i], overrides[i], s.threads, s.plots); },
       s.threads);
   struct Pending {
     Comparison cmp;

@@ -3,7 +3,6 @@
 #include <filesystem>
 #include <utility>
 
-#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/core/file_name.h"
 #include "deb/io/comparison_files.h"
@@ -21,33 +20,23 @@ bool IsComparisonBudgetFile(const std::string& path) {
   return !fs::is_directory(p) && p.extension() != ".json";
 }
 
-ComparisonInput LoadComparisonInput(const std::string& path, const std::vector<BudgetOverride>& overrides, int threads,
-                                    bool with_result) {
+ComparisonInput ReadComparisonResult(const std::string& path, bool with_result) {
   const fs::path p(path);
-  if (fs::is_directory(p)) {
-    const fs::path summary = p / "summary.json";
-    if (!fs::exists(summary))
-      throw InputError(path + ": a directory given to compare must hold summary.json (written by deb run)");
-    ComparisonInput input{
-        ReadSummaryFigures(summary.string(),
-                           p.filename().empty() ? p.parent_path().filename().string() : p.filename().string()),
-        std::nullopt};
-    // With its result store, a directory is drawn as a budget is.
-    const fs::path store = p / io::kResultStoreFile;
-    if (with_result && fs::is_regular_file(store)) input.result = io::ReadResultStore(store.string());
-    return input;
-  }
-  if (p.extension() == ".json") {
+  if (!fs::is_directory(p)) {
     const std::string dir = fs::absolute(p).parent_path().filename().string();
     return {ReadSummaryFigures(path, dir.empty() ? p.stem().string() : dir), std::nullopt};
   }
-  const Budget budget = LoadBudgetFile(path, overrides);
-  EngineOptions options;
-  options.threads = threads;
-  options.response_traces = false;  // compared, not drawn
-  BudgetResult result = Evaluate(budget, options);
-  ResultFigures figures = FiguresOf(budget.name, result);
-  return {std::move(figures), std::move(result)};
+  const fs::path summary = p / "summary.json";
+  if (!fs::exists(summary))
+    throw InputError(path + ": a directory given to compare must hold summary.json (written by deb run)");
+  ComparisonInput input{
+      ReadSummaryFigures(summary.string(),
+                         p.filename().empty() ? p.parent_path().filename().string() : p.filename().string()),
+      std::nullopt};
+  // With its result store, a directory is drawn as a budget is.
+  const fs::path store = p / io::kResultStoreFile;
+  if (with_result && fs::is_regular_file(store)) input.result = io::ReadResultStore(store.string());
+  return input;
 }
 
 std::string DefaultComparisonDirectory(const std::string& label_a, const std::string& label_b) {

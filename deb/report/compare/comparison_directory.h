@@ -1,9 +1,11 @@
 // Internal: not part of the public API.
-// The directory `deb compare` writes for one comparison of A and B, written
+// The directories of `deb compare`: the result directories it reads as
+// inputs (ReadComparisonResult; a budget input is evaluated by the caller,
+// FiguresOf), and the directory it writes for one comparison of A and B,
 // atomically (ReplaceDirectory): compare.json and compare.csv (the figures,
 // deb/io/comparison_files.h), compare.md and compare.html (the documents,
 // comparison_documents.h), compare.pdf, and the overlay plots under plots/
-// when there are any. What can be compared is read by LoadComparisonInput.
+// when there are any.
 #pragma once
 
 #include <optional>
@@ -13,7 +15,6 @@
 #include "deb/budget/comparison.h"
 #include "deb/budget/result.h"
 #include "deb/core/output_dir.h"
-#include "deb/io/budget_yaml.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {
@@ -30,15 +31,12 @@ struct ComparisonInput {
 // summary.json.
 bool IsComparisonBudgetFile(const std::string& path);
 
-// A budget file is loaded with `overrides` and evaluated on `threads`
-// (without response traces); a result directory's summary.json is read (the
-// label: the directory's name), and its result store too when
-// `with_result`; a summary.json file is read (the label: its directory's
-// name).
+// A result directory of `deb run` or its summary.json: the figures of
+// summary.json, labelled with the directory's name; and, for a directory
+// when `with_result`, its result store's result if it has one.
 // @throws InputError for a directory without summary.json, and as
-//         LoadBudgetFile, Evaluate, ReadSummaryFigures and ReadResultStore.
-ComparisonInput LoadComparisonInput(const std::string& path, const std::vector<BudgetOverride>& overrides, int threads,
-                                    bool with_result);
+//         ReadSummaryFigures and ReadResultStore.
+ComparisonInput ReadComparisonResult(const std::string& path, bool with_result);
 
 // reports/compare_<A>_vs_<B>, the labels made file-name words.
 std::string DefaultComparisonDirectory(const std::string& label_a, const std::string& label_b);
