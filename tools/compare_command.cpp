@@ -1,33 +1,44 @@
 #include "tools/compare_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "deb/core/file_name.h"
 #include "deb/budget/comparison.h"
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
 #include "deb/load/budget_yaml.h"
-#include "deb/results/comparison_files.h"
-#include "deb/results/result_store.h"
-#include "deb/results/result_writer.h"
-#include "deb/report/budget/report_tables.h"
+#include "deb/report/compare/comparison_directory.h"
 #include "deb/report/compare/comparison_documents.h"
-#include "deb/report/compare/comparison_pdf.h"
 #include "deb/report/compare/overlay_plots.h"
 #include "deb/report/figure/plot.h"
 #include "tools/budget_overrides_option.h"
 
 namespace deb::tools {
+namespace {
+
+// A budget file is evaluated (without response traces: compared, not
+// drawn); a result directory or summary.json is read (its result store too
+// when the overlays are drawn, `plots`).
+report::ComparisonInput Load(const std::string& input, const std::vector<BudgetOverride>& overrides, int threads,
+                             bool plots) {
+  if (!report::IsComparisonBudgetFile(input)) return report::ReadComparisonResult(input, plots);
+  const Budget budget = LoadBudgetFile(input, overrides);
+  EngineOptions options;
+  options.threads = threads;
+  options.response_traces = false;
+  BudgetResult result = Evaluate(budget, options);
+  ResultFigures figures = FiguresOf(budget.name, result);
+  return {std::move(figures), std::move(result)};
+}
+
+}  // namespace
 
 struct CompareCommand::Options {
   std::vector<std::string> inputs;
@@ -40,69 +51,6 @@ struct CompareCommand::Options {
   bool plots = true;
   std::optional<double> tolerance;  // --tolerance: relative change that fails the command
 };
-
-namespace {
-
-namespace fs = std::filesystem;
-
-
-// Figures, and the full result where the input was a budget (for plots).
-struct Loaded {
-  ResultFigures figures;
-  std::optional<BudgetResult> result;
-};
-
-
-// A budget file is evaluated; a directory (or a summary.json) is read, and
-// its result store too when the overlays are drawn (`plots`).
-Loaded Load(const std::string& input, const std::vector<BudgetOverride>& overrides, int threads, bool plots) {
-  const fs::path p(input);
-  if (fs::is_directory(p)) {
-    const fs::path summary = p / "summary.json";
-    if (!fs::exists(summary))
-      throw InputError(input + ": a directory given to compare must hold summary.json (written by deb run)");
-    Loaded loaded{ReadSummaryFigures(summary.string(), p.filename().empty() ? p.parent_path().filename().string()
-                                                                            : p.filename().string()),
-                  std::nullopt};
-    // With its result store, a directory is drawn as a budget is.
-    const fs::path store = p / io::kResultStoreFile;
-    if (plots && fs::is_regular_file(store)) loaded.result = io::ReadResultStore(store.string());
-    return loaded;
-  }
-  if (p.extension() == ".json") {
-    const std::string dir = fs::absolute(p).parent_path().filename().string();
-    return {ReadSummaryFigures(input, dir.empty() ? p.stem().string() : dir), std::nullopt};
-  }
-  const Budget budget = LoadBudgetFile(input, overrides);
-  EngineOptions options;
-  options.threads = threads;
-  options.response_traces = false;  // compared, not drawn
-  BudgetResult result = Evaluate(budget, options);
-  ResultFigures figures = FiguresOf(budget.name, result);
-  return {std::move(figures), std::move(result)};
-}
-
-
-void WriteComparison(const Comparison& cmp, const std::vector<report::Plot>& plots, const std::string& out_dir,
-                     bool force, int threads) {
-  ReplaceOptions replace;
-  replace.force = force;
-  ReplaceDirectory(out_dir, [&](const std::string& dir) {
-    if (!plots.empty()) {
-      fs::create_directories(fs::path(dir) / "plots");
-      report::WritePlotsAsPng(plots, (fs::path(dir) / "plots").string(), threads);
-    }
-    report::WriteComparisonPdf(cmp, plots, (fs::path(dir) / "plots").string(), (fs::path(dir) / "compare.pdf").string(),
-                               threads);
-    const std::vector<std::pair<std::string, std::string>> files = {{"compare.json", ComparisonJson(cmp)},
-                                                                    {"compare.md", report::ComparisonMarkdown(cmp, plots)},
-                                                                    {"compare.html", report::ComparisonHtml(cmp, plots)},
-                                                                    {"compare.csv", ComparisonCsv(cmp)}};
-    for (const auto& [name, text] : files) WriteTextFile((fs::path(dir) / name).string(), text);
-  }, replace);
-}
-
-}  // namespace
 
 CompareCommand::CompareCommand() : options_(std::make_unique<Options>()) {}
 CompareCommand::~CompareCommand() = default;
@@ -145,11 +93,8 @@ int CompareCommand::Run() const {
   // comparison built before the first directory is written.
   // One job per input (loading and evaluating it); an error is the first
   // input's that fails, as in a serial loop.
-  std::vector<Loaded> loaded(s.inputs.size());
-  const auto is_budget = [](const std::string& input) {
-    const fs::path p(input);
-    return !fs::is_directory(p) && p.extension() != ".json";
-  };
+  std::vector<report::ComparisonInput> loaded(s.inputs.size());
+  const auto is_budget = report::IsComparisonBudgetFile;
   if ((!s.overrides.empty() || !s.overrides_b.empty()) &&
       std::none_of(s.inputs.begin(), s.inputs.end(), is_budget))
     throw InputError("--set and --set-b change budget files, and every input is a result directory");
@@ -158,30 +103,33 @@ int CompareCommand::Run() const {
   std::vector<std::vector<BudgetOverride>> overrides(s.inputs.size(), s.overrides);
   if (!s.overrides_b.empty())
     overrides[1].insert(overrides[1].end(), s.overrides_b.begin(), s.overrides_b.end());
-  ParallelForEach(loaded.size(), [&](std::size_t i) { loaded[i] = Load(s.inputs[i], overrides[i], s.threads, s.plots); },
-                  s.threads);
+  ParallelForEach(
+      loaded.size(),
+      [&](std::size_t i) { loaded[i] = Load(s.inputs[i], overrides[i], s.threads, s.plots); },
+      s.threads);
   struct Pending {
     Comparison cmp;
     std::vector<report::Plot> plots;
     std::string dir;
   };
   std::vector<Pending> reports;
-  const Loaded& la = loaded.front();
+  const report::ComparisonInput& la = loaded.front();
   const ResultFigures& a = la.figures;
   for (std::size_t i = 1; i < loaded.size(); ++i) {
-    const Loaded& lb = loaded[i];
+    const report::ComparisonInput& lb = loaded[i];
     const ResultFigures& b = lb.figures;
     Pending r;
     r.cmp = Compare(a, b);
     r.cmp.tolerance = s.tolerance;
     if (s.plots && la.result && lb.result)
       r.plots = report::OverlayPlots(a.label, *la.result, b.label, *lb.result);
-    r.dir = s.out_dir.empty() ? (fs::path("reports") / ("compare_" + deb::FileNameWord(a.label) + "_vs_" + deb::FileNameWord(b.label))).string()
-                              : s.out_dir;
+    r.dir = s.out_dir.empty() ? report::DefaultComparisonDirectory(a.label, b.label) : s.out_dir;
     reports.push_back(std::move(r));
   }
+  ReplaceOptions replace;
+  replace.force = s.force;
   for (const Pending& r : reports) {
-    WriteComparison(r.cmp, r.plots, r.dir, s.force, s.threads);
+    report::WriteComparisonDirectory(r.cmp, r.plots, r.dir, replace, s.threads);
     if (s.quiet) continue;
     std::printf("%s (A) vs %s (B):\n", r.cmp.label_a.c_str(), r.cmp.label_b.c_str());
     for (const ComparedFigure& f : r.cmp.figures)

@@ -7,7 +7,6 @@
 
 #include "deb/core/error.h"
 #include "deb/results/result_store.h"
-#include "tools/console_brief.h"
 #include "tools/report_flags.h"
 
 namespace deb::tools {
@@ -62,7 +61,7 @@ int ReportCommand::Run() const {
           std::find(exports.begin(), exports.end(), f) == exports.end())
         exports.push_back(f);
   info.threads = o.threads;
-  if (!o.quiet) PrintBrief(result, info.seconds, report.digits);
+  if (!o.quiet) PrintConsoleSummary(result, info.seconds, report.digits);
   WriteCommandReport(result, info, report, o.threads, o.quiet, out, exports);
   if (!o.quiet)
     std::printf("\nreport: %s (redrawn from %s: budget %s%s)\n", out.c_str(), store.string().c_str(),

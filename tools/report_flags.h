@@ -1,18 +1,22 @@
 // The options of a report directory, shared by `deb run` (which evaluates a
 // budget and writes one) and `deb report` (which redraws one from its result
 // store): --force, --format, --digits, --asd, --reverse-cps, --no-plots,
-// --plot-scripts and --export, with the same meaning and checks in both.
+// --plot-scripts and --export, with the same meaning and checks in both; and
+// how both print the result and write the directory.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <cstdio>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "deb/core/error.h"
 #include "deb/results/result_exports.h"
+#include "deb/report/budget/console_summary.h"
 #include "deb/report/budget/report_writer.h"
 #include "deb/report/figure/report_options.h"
 
@@ -74,19 +78,20 @@ inline void AddReportFlags(CLI::App* app, ReportFlags* flags) {
       ->delimiter(',');
 }
 
+// The console summary (deb/report/budget/console_summary.h), flushed before
+// the report's progress and gnuplot's time.
+inline void PrintConsoleSummary(const BudgetResult& result, std::optional<double> evaluation_seconds, int digits) {
+  std::fputs(report::ConsoleSummary(result, evaluation_seconds, digits).c_str(), stdout);
+  std::fflush(stdout);
+}
+
 // WriteReportDirectory for a command: gnuplot and the result files on
-// `threads`, progress on stderr when it is a terminal and not `quiet`. What
-// the report finds wrong only while writing (InputError) means it cannot be
-// written: a WriteError (exit code 4).
+// `threads`, progress on stderr when it is a terminal and not `quiet`.
 inline void WriteCommandReport(const BudgetResult& result, const RunInfo& info, ReportOptions report, int threads,
                                bool quiet, const std::string& out_dir, const std::vector<ExportFormat>& exports) {
   report.threads = threads;
   report.progress = !quiet && ::isatty(STDERR_FILENO);
-  try {
-    WriteReportDirectory(result, info, report, out_dir, exports);
-  } catch (const InputError& e) {
-    throw WriteError(e.what());
-  }
+  WriteReportDirectory(result, info, report, out_dir, exports);
 }
 
 }  // namespace deb::tools

@@ -3,17 +3,15 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <string>
+#include <vector>
 
 #include "deb/budget/sweep.h"
 #include "deb/budget/sweep_ranking.h"
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
-#include "deb/results/result_writer.h"
 #include "deb/load/sweep_yaml.h"
-#include "deb/report/compare/overlay_plots.h"
+#include "deb/report/compare/sweep_directory.h"
 #include "deb/report/compare/sweep_documents.h"
 #include "deb/report/compare/sweep_plots.h"
 #include "deb/report/figure/plot.h"
@@ -32,8 +30,6 @@ struct SweepCommand::Options {
 };
 
 namespace {
-
-namespace fs = std::filesystem;
 
 // The best three variants (RankVariants), each with its settings and every
 // output's RMS and status.
@@ -80,20 +76,11 @@ int SweepCommand::Run() const {
     if (progress) std::fprintf(stderr, "\rdeb: sweep %zu/%zu variants", done, total);
   });
   if (progress) std::fprintf(stderr, "\n");
-  const std::string csv = SweepCsv(sweep.spec, results);
-  const std::string dir = s.out_dir.empty() ? (fs::path("reports") / (sweep.name + "_sweep")).string() : s.out_dir;
+  const std::string dir = s.out_dir.empty() ? report::DefaultSweepDirectory(sweep.name) : s.out_dir;
   ReplaceOptions replace;
   replace.force = s.force;
   const std::vector<report::Plot> plots = s.plots ? report::SweepPlots(sweep.spec, results) : std::vector<report::Plot>{};
-  ReplaceDirectory(dir, [&](const std::string& tmp) {
-    WriteTextFile((fs::path(tmp) / "sweep.csv").string(), csv);
-    WriteTextFile((fs::path(tmp) / "sweep.md").string(), report::SweepMarkdown(sweep.name, sweep.spec, results, plots));
-    WriteTextFile((fs::path(tmp) / "sweep.html").string(), report::SweepHtml(sweep.name, sweep.spec, results, plots));
-    if (!plots.empty()) {
-      fs::create_directories(fs::path(tmp) / "plots");
-      report::WritePlotsAsPng(plots, (fs::path(tmp) / "plots").string(), s.threads);
-    }
-  }, replace);
+  report::WriteSweepDirectory(sweep.name, sweep.spec, results, plots, dir, replace, s.threads);
   if (!s.quiet) {
     std::printf("sweep of %s: %zu variants\n", sweep.name.c_str(), results.size());
     PrintTopThree(sweep.spec, results);

@@ -100,6 +100,11 @@ std::vector<BandRms> ThirdOctaveBandRms(const std::vector<double>& f_hz, const s
   return result;
 }
 
+int CoarseBandCount(const std::vector<BandRms>& bands) {
+  return static_cast<int>(
+      std::count_if(bands.begin(), bands.end(), [](const BandRms& b) { return b.points < kFewLines; }));
+}
+
 PsdTable BandRmsToPsd(const std::vector<ThirdOctaveBand>& bands, const std::vector<double>& rms) {
   if (bands.size() != rms.size() || bands.empty())
     throw InputError("band RMS to PSD: " + std::to_string(bands.size()) + " bands but " + std::to_string(rms.size()) +

@@ -9,7 +9,7 @@
 // bin's PSD times the part of its width inside the band, which keeps the
 // estimate's variance exactly (a tone a few bins wide is not cut down). A band is analysed only when the data
 // cover it entirely; `points` says how many samples fall inside it, and a
-// band with fewer than about 5 is resolved too coarsely to trust (raise the
+// band with fewer than kFewLines is resolved too coarsely to trust (raise the
 // frequency resolution, i.e. the segment length, to fix it).
 #pragma once
 
@@ -25,6 +25,13 @@ struct BandRms {
   double rms = 0.0;  // in the unit of the signal whose PSD was integrated
   int points = 0;    // samples with lo_hz <= f < hi_hz
 };
+
+// A band holding fewer spectral lines (samples) than this is resolved too
+// coarsely to trust.
+inline constexpr int kFewLines = 5;
+
+// How many of `bands` hold fewer than kFewLines samples.
+int CoarseBandCount(const std::vector<BandRms>& bands);
 
 // Bands named lowest_nominal_hz .. highest_nominal_hz. Samples at f <= 0
 // (a 0 Hz bin) are ignored.

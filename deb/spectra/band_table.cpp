@@ -136,4 +136,53 @@ BandTable ReadBandTable(const std::string& path) {
   return ParseBandTable(text.str(), path);
 }
 
+namespace {
+
+// 10 significant digits.
+std::string Number(double v) { return SignificantText(v, 10); }
+
+}  // namespace
+
+std::string BandTableText(const std::vector<std::string>& comments, const std::string& unit,
+                          const std::vector<std::string>& channel_names, const SpectrumClasses& classes) {
+  const std::vector<std::vector<BandRms>>& per_channel = classes.bands;
+  const bool classified = !classes.classes.empty();
+  DEB_DEMAND(!per_channel.empty() && per_channel.size() == channel_names.size());
+  std::ostringstream out;
+  for (const std::string& c : comments) out << "# " << c << "\n";
+  if (!unit.empty()) out << "# unit: " << unit << "\n";  // for convert --from-bands
+  out << "centre_hz, lo_hz, hi_hz, points";
+  for (const std::string& n : channel_names) out << ", " << n << (classified ? ", " + n + "_class" : "");
+  out << "\n";
+  for (std::size_t i = 0; i < per_channel.front().size(); ++i) {
+    const BandRms& b = per_channel.front()[i];
+    out << Number(b.band.centre_hz) << ", " << Number(b.band.lo_hz) << ", " << Number(b.band.hi_hz) << ", " << b.points;
+    for (std::size_t c = 0; c < per_channel.size(); ++c) {
+      out << ", " << Number(per_channel[c][i].rms);
+      if (classified) {
+        const BandVerdict& v = classes.classes[c].bands[i];
+        out << ", " << (!v.assessed ? "-" : v.best ? classes.classes[c].criteria[*v.best].name : "none");
+      }
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+BandTablePsd PsdOfBandTable(const BandTable& table, ThirdOctaveSeries series) {
+  std::vector<ThirdOctaveBand> bands;
+  for (double f : table.centre_hz) bands.push_back(ThirdOctaveBandNear(f, series));
+  BandTablePsd out;
+  for (Eigen::Index c = 0; c < table.rms.cols(); ++c) {
+    const Eigen::VectorXd col = table.rms.col(c);
+    const PsdTable t = BandRmsToPsd(bands, std::vector<double>(col.data(), col.data() + col.size()));
+    if (c == 0) {
+      out.f_hz = t.f_hz;
+      out.psd.resize(static_cast<Eigen::Index>(t.f_hz.size()), table.rms.cols());
+    }
+    out.psd.col(c) = Eigen::Map<const Eigen::VectorXd>(t.psd.data(), static_cast<Eigen::Index>(t.psd.size()));
+  }
+  return out;
+}
+
 }  // namespace deb

@@ -19,6 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "deb/spectra/building_criteria.h"
+#include "deb/spectra/third_octave.h"
+
 namespace deb {
 
 struct BandTable {
@@ -38,5 +41,24 @@ bool IsBandTableExtraColumn(const std::string& name);
 //   one channel or one row, a '# quantity:' or '# sides:' line (band RMS has neither).
 BandTable ReadBandTable(const std::string& path);
 BandTable ParseBandTable(const std::string& text, const std::string& name);
+
+// The table of `classes` (ClassifySpectrum: every channel on the same
+// bands), as `deb spectrum bands` writes it: each comment as a '#' line,
+// then '# unit:' unless `unit` is empty, the header row, and a row per band
+// with its centre, edges, points and per channel the RMS (10 significant
+// digits) and, when the channels were classified, the best criterion met
+// ("none" if none, "-" for a band not assessed).
+std::string BandTableText(const std::vector<std::string>& comments, const std::string& unit,
+                          const std::vector<std::string>& channel_names, const SpectrumClasses& classes);
+
+// The PSD constant in each band whose band integral is the table's RMS
+// (BandRmsToPsd), per channel; the bands are those of `series` nearest the
+// table's centres.
+// @throws InputError as ThirdOctaveBandNear and BandRmsToPsd.
+struct BandTablePsd {
+  std::vector<double> f_hz;
+  Eigen::MatrixXd psd;  // rows f_hz, one column per channel of the table
+};
+BandTablePsd PsdOfBandTable(const BandTable& table, ThirdOctaveSeries series);
 
 }  // namespace deb

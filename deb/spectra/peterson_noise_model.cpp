@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "deb/core/error.h"
+#include "deb/core/limits.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
@@ -54,6 +55,17 @@ std::string PetersonSpectrum::Describe() const {
   return std::string("Peterson (1993) ") + (model_ == PetersonModel::kLow ? "New Low" : "New High") +
          " Noise Model, vertical acceleration, 1e-05-10 Hz; PSD in (m/s^2)^2/Hz; outside: " +
          ToString(extrapolation_);
+}
+
+std::vector<double> PetersonFrequencies(double points_per_decade) {
+  if (!(points_per_decade >= 1.0 && points_per_decade <= limits::kMaxPointsPerDecade))
+    throw InputError("points per decade " + NumberText(points_per_decade) + " is invalid; it must be from 1 to " +
+                     std::to_string(static_cast<long long>(limits::kMaxPointsPerDecade)));
+  std::vector<double> f;
+  const int n = static_cast<int>(std::ceil(6.0 * points_per_decade));
+  for (int i = 0; i <= n; ++i) f.push_back(PetersonSpectrum::kMinHz * std::pow(10.0, 6.0 * i / n));
+  f.back() = PetersonSpectrum::kMaxHz;
+  return f;
 }
 
 }  // namespace deb

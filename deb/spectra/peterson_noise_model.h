@@ -39,6 +39,12 @@ const std::vector<PetersonSegment>& PetersonSegments(PetersonModel model);
 // @throws InputError if f_hz is outside [1e-5, 10] Hz.
 double PetersonAccelerationPsd(PetersonModel model, double f_hz);
 
+// The frequencies at which `deb spectrum reference` tabulates a model:
+// kMinHz to kMaxHz (six decades), ceil(6 points_per_decade) + 1 of them,
+// evenly spaced in log f.
+// @throws InputError unless 1 <= points_per_decade <= limits::kMaxPointsPerDecade.
+std::vector<double> PetersonFrequencies(double points_per_decade);
+
 class PetersonSpectrum final : public Spectrum {
  public:
   static constexpr const char* kUnit = "m/s^2";

@@ -23,7 +23,7 @@
 // Before either reduction the state is balanced (StateSpace::Balanced), which
 // changes nothing in H but reduces cond(V) for models in mixed units.
 //
-// Measured with tools/bench/bench_response (12 states, 6 outputs, 10 inputs,
+// Measured with bench/bench_response (12 states, 6 outputs, 10 inputs,
 // 10^5 frequencies, one core, CPU time): modal 17 ms, block Schur 37 ms, a
 // dense LU solve per frequency 480 ms. The modal form is the cheaper one: two
 // real multiply-adds per pole and entry of H, against four for the complex

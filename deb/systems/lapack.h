@@ -10,7 +10,7 @@
 // arithmetic, conjugate pairs together in 2x2 blocks, where Eigen has only
 // ComplexSchur (complex QR iterations) and no Sylvester solver; the exact
 // variance of a dense A of 200-2000 states came out 1.6-2x faster
-// (tools/bench/bench_dense). Eigenvalues and eigenvectors stay with Eigen's
+// (bench/bench_dense). Eigenvalues and eigenvectors stay with Eigen's
 // EigenSolver: against Debian's reference LAPACK and BLAS, dgeev was no
 // faster for eigenvalues and 1.3-2x slower with eigenvectors than Eigen
 // compiled for AVX2.

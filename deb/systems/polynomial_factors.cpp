@@ -15,7 +15,6 @@ namespace {
 using LongDouble = long double;
 using ComplexLD = std::complex<LongDouble>;
 constexpr LongDouble kEpsLD = std::numeric_limits<LongDouble>::epsilon();
-constexpr LongDouble kTwoPiLD = 6.283185307179586476925286766559005768L;
 // Roots i and j are one cluster if |r_i - r_j| <= kJoin max(e_i, e_j), e the
 // estimated errors: the roots of a k-fold root land within about 2 e of
 // each other.

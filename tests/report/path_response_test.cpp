@@ -1,5 +1,5 @@
 // deb/budget/path_response.h, tested here because it needs the YAML loader
-// (deb_io) for the example budgets, which the budget layer's tests do not link.
+// (deb_load) for the example budgets, which the budget layer's tests do not link.
 #include "deb/budget/path_response.h"
 
 #include <doctest/doctest.h>

@@ -110,3 +110,15 @@ TEST_CASE("a band RMS table as PSD covers its last band up to the band's edge") 
 
 }  // namespace
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("bands holding fewer than kFewLines spectral lines are counted as coarse") {
+  const ThirdOctaveBand band{};
+  const std::vector<BandRms> bands = {{band, 1.0, 0}, {band, 1.0, kFewLines - 1}, {band, 1.0, kFewLines},
+                                      {band, 1.0, 40}};
+  CHECK(CoarseBandCount(bands) == 2);
+  CHECK(CoarseBandCount({}) == 0);
+}
+
+}  // namespace deb

@@ -46,3 +46,33 @@ TEST_CASE("a band table by hand may have no header; bad cells are located") {
 }
 
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("a band table written from band RMS values reads back to the same centres, channels and RMS") {
+  SpectrumClasses classes;
+  const std::vector<ThirdOctaveBand> bands = {ThirdOctaveBandNear(8.0, ThirdOctaveSeries::kBase2From1Hz),
+                                              ThirdOctaveBandNear(10.0, ThirdOctaveSeries::kBase2From1Hz)};
+  classes.bands = {{{bands[0], 1.5, 3}, {bands[1], 0.5, 7}}, {{bands[0], 2.5, 3}, {bands[1], 3.5, 7}}};
+  const std::string text = BandTableText({"band RMS of psd.csv"}, "um/s", {"x", "y"}, classes);
+  CHECK(text.rfind("# band RMS of psd.csv\n# unit: um/s\ncentre_hz, lo_hz, hi_hz, points, x, y\n", 0) == 0);
+  const BandTable t = ParseBandTable(text, "t.csv");
+  CHECK(t.unit == std::string("um/s"));
+  CHECK(t.channel_names == std::vector<std::string>{"x", "y"});
+  REQUIRE(t.rms.rows() == 2);
+  CHECK(t.centre_hz[0] == doctest::Approx(bands[0].centre_hz).epsilon(1e-9));
+  CHECK(t.rms(0, 1) == 2.5);
+  CHECK(t.rms(1, 0) == 0.5);
+  CHECK(BandTableText({}, "", {"x", "y"}, classes).rfind("centre_hz,", 0) == 0);  // no unit line
+}
+
+TEST_CASE("a band table as a PSD holds each band's RMS squared over its width") {
+  const BandTable t = ParseBandTable("8 1 2\n10 3 4\n", "t.csv");
+  const BandTablePsd p = PsdOfBandTable(t, ThirdOctaveSeries::kBase2From1Hz);
+  REQUIRE(p.psd.cols() == 2);
+  REQUIRE(p.f_hz.size() == 4);  // two points per band
+  const ThirdOctaveBand b = ThirdOctaveBandNear(10.0, ThirdOctaveSeries::kBase2From1Hz);
+  CHECK(p.psd(2, 1) == doctest::Approx(16.0 / (b.hi_hz - b.lo_hz)).epsilon(1e-12));
+}
+
+}  // namespace deb

@@ -79,3 +79,17 @@ TEST_CASE("spectra/peterson_1993_noise_models.csv matches the compiled tables ex
 
 }  // namespace
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("a model is tabulated from 1e-5 to 10 Hz, evenly in log f, at the points per decade asked for") {
+  const std::vector<double> f = PetersonFrequencies(2.0);
+  REQUIRE(f.size() == 13);  // six decades, 2 per decade, both ends
+  CHECK(f.front() == PetersonSpectrum::kMinHz);
+  CHECK(f.back() == PetersonSpectrum::kMaxHz);
+  CHECK(f[2] == doctest::Approx(1e-4).epsilon(1e-12));
+  CHECK_THROWS_AS(PetersonFrequencies(0.5), InputError);
+  CHECK_THROWS_AS(PetersonFrequencies(2e5), InputError);
+}
+
+}  // namespace deb

@@ -265,40 +265,48 @@ ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, cons
 
 ReportManifest WriteReportDirectory(const BudgetResult& result, const RunInfo& info, const ReportOptions& options,
                                     const std::string& out_dir, const std::vector<ExportFormat>& exports) {
-  ReportManifest manifest;
-  // The budget file as it is now, read once: its text goes into the store
-  // and its digest onto every page of the report.
-  RunInfo run = info;
-  if (!run.budget_text && !run.budget_file.empty())
-    run.budget_text = ReadInputFile(run.budget_file, "budget file", limits::kMaxBudgetFileBytes);
-  if (run.budget_sha256.empty() && run.budget_text && !run.budget_file.empty()) run.budget_sha256 = Sha256(*run.budget_text);
-  ReplaceOptions replace;
-  replace.force = options.force;
-  ReplaceDirectory(
-      out_dir,
-      [&](const std::string& dir) {
-        // The store is written beside the rest (HDF5 is used by nothing
-        // else meanwhile: the exports do not use it). Its file is made
-        // here first, so that index.html links it whatever the timing.
-        const std::string store = (fs::path(dir) / io::kResultStoreFile).string();
-        if (!std::ofstream(store)) throw WriteError("cannot write " + store);
-        std::future<void> stored =
-            std::async(std::launch::async, [&] { io::WriteResultStore(result, run, store); });
-        std::vector<std::string> exported;
-        try {
-          WriteResultFiles(result, run, dir);
-          exported = WriteResultExports(result, exports, dir);
-          manifest = WriteReport(result, run, options, dir);
-        } catch (...) {
-          stored.wait();
-          throw;
-        }
-        stored.get();
-        manifest.files.push_back(io::kResultStoreFile);
-        manifest.files.insert(manifest.files.end(), exported.begin(), exported.end());
-      },
-      replace);
-  return manifest;
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("report options: " + why);
+  // What is found wrong only while writing means the report cannot be written.
+  try {
+    ReportManifest manifest;
+    // The budget file as it is now, read once: its text goes into the store
+    // and its digest onto every page of the report.
+    RunInfo run = info;
+    if (!run.budget_text && !run.budget_file.empty())
+      run.budget_text = ReadInputFile(run.budget_file, "budget file", limits::kMaxBudgetFileBytes);
+    if (run.budget_sha256.empty() && run.budget_text && !run.budget_file.empty())
+      run.budget_sha256 = Sha256(*run.budget_text);
+    ReplaceOptions replace;
+    replace.force = options.force;
+    ReplaceDirectory(
+        out_dir,
+        [&](const std::string& dir) {
+          // The store is written beside the rest (HDF5 is used by nothing
+          // else meanwhile: the exports do not use it). Its file is made
+          // here first, so that index.html links it whatever the timing.
+          const std::string store = (fs::path(dir) / io::kResultStoreFile).string();
+          if (!std::ofstream(store)) throw WriteError("cannot write " + store);
+          std::future<void> stored =
+              std::async(std::launch::async, [&] { io::WriteResultStore(result, run, store); });
+          std::vector<std::string> exported;
+          try {
+            WriteResultFiles(result, run, dir);
+            exported = WriteResultExports(result, exports, dir);
+            manifest = WriteReport(result, run, options, dir);
+          } catch (...) {
+            stored.wait();
+            throw;
+          }
+          stored.get();
+          manifest.files.push_back(io::kResultStoreFile);
+          manifest.files.insert(manifest.files.end(), exported.begin(), exported.end());
+        },
+        replace);
+    return manifest;
+  } catch (const InputError& e) {
+    throw WriteError(e.what());
+  }
 }
 
 }  // namespace deb

@@ -44,8 +44,10 @@ ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, cons
 // summary.json, the output CSVs, the files of `exports` (result.mat,
 // result.xlsx; listed in the manifest) and WriteReport, atomically into
 // out_dir: on any failure out_dir is left as it was.
-// @throws InputError as WriteReport and WriteDirectoryAtomically; WriteError
-//         if an export cannot be written.
+// @throws InputError if the options are invalid (before anything is
+//         written); WriteError for anything else that stops the report
+//         (gnuplot missing or failing, a file that cannot be written or
+//         read again, what WriteReport finds wrong while writing).
 ReportManifest WriteReportDirectory(const BudgetResult& result, const RunInfo& info, const ReportOptions& options,
                                     const std::string& out_dir, const std::vector<ExportFormat>& exports = {});
 

@@ -12,6 +12,7 @@
 #include "deb/report/figure/plot_files.h"
 #include "deb/report/figure/plot_points.h"
 #include "deb/report/figure/plot_style.h"
+#include "deb/spectra/band_rms.h"
 #include "deb/units/unit.h"
 #include "deb/version.h"
 
@@ -20,7 +21,6 @@ namespace {
 
 constexpr const char* kContextColour = "#8c8c8c";  // reference curves and criteria not met
 constexpr const char* kContextDash = "(6,4)";
-constexpr int kFewLines = 5;                         // band_rms.h: fewer spectral lines than this resolve a band poorly
 
 // A title of several lines; lines after the first are details, a size smaller.
 std::string Lines(const std::vector<std::string>& lines) {

@@ -23,7 +23,7 @@
 #include "deb/core/error.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/lyapunov.h"
-#include "tools/bench/random_modes.h"
+#include "bench/random_modes.h"
 
 namespace {
 

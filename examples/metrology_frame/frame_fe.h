@@ -1,8 +1,8 @@
 // A small finite-element code for frames of straight Euler-Bernoulli beams
 // (3-D frame elements, 6 DOFs per node), with lumped payloads and spring
 // mounts, and the metrology frame of budgets/metrology_frame.yaml built with
-// it. tools/frame_model.cpp writes that frame's modal tables; the tests in
-// tests/tools check the code against closed forms.
+// it. frame_model.cpp (deb-frame-model) writes that frame's modal tables;
+// frame_fe_test.cpp checks the code against closed forms.
 //
 // DOFs: node n has DOFs 6n + c, c = 0..5: the translations u_x, u_y, u_z [m]
 // and the small rotations theta_x, theta_y, theta_z [rad] about the global
@@ -160,7 +160,7 @@ struct ModalTables {
   Eigen::MatrixXd stage, floor, output;  // rows x modes
 };
 
-// The tables deb reads (see tools/frame_model.cpp for what each holds).
+// The tables deb reads (see frame_model.cpp for what each holds).
 ModalTables MetrologyTables(const MetrologyFrameParameters& p, const FeModel& model, const Modes& modes);
 
 // One line per parameter, for the tables' header comment.

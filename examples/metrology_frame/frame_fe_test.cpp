@@ -11,7 +11,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "tools/frame_fe.h"
+#include "examples/metrology_frame/frame_fe.h"
 
 namespace deb::frame {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/frame_fe.h"
+#include "examples/metrology_frame/frame_fe.h"
 
 #include <algorithm>
 #include <cmath>

@@ -20,7 +20,7 @@
 
 #include "deb/core/parallel.h"
 #include "deb/systems/frequency_response.h"
-#include "tools/bench/random_modes.h"
+#include "bench/random_modes.h"
 
 namespace {
 

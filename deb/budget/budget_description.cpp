@@ -1,0 +1,108 @@
+#include "deb/budget/budget_description.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "deb/budget/loop_analysis.h"
+#include "deb/core/formatted_text.h"
+
+namespace deb {
+namespace {
+
+void AddPath(std::string& text, const Path& p) {
+  if (p.HasMeasuredData()) {
+    const std::vector<double> f = p.measured->DataFrequencies();
+    AppendFormatted(text, "  %-20s %d input(s) -> %d output(s), measured frequency data (%zu points, %g-%g Hz)%s\n",
+                    p.name.c_str(), p.system.inputs(), p.system.outputs(), f.size(), f.front(), f.back(),
+                    p.measured->HasLoopAroundData() ? ", loop stability not verified" : "");
+    return;
+  }
+  if (p.IsModal()) {
+    const ModalModel& m = *p.modal;
+    const auto [lo, hi] = std::minmax_element(m.f_hz.begin(), m.f_hz.end());
+    AppendFormatted(text, "  %-20s %d input(s) -> %d output(s), %d mode(s), %g-%g Hz, %s\n", p.name.c_str(),
+                    p.system.inputs(), p.system.outputs(), m.modes(), *lo, *hi,
+                    *lo > 0.0 ? "stable" : "rigid-body mode(s) at 0 Hz");
+    return;
+  }
+  AppendFormatted(text, "  %-20s %d input(s) -> %d output(s), %d state(s), %s\n", p.name.c_str(), p.system.inputs(),
+                  p.system.outputs(), p.system.states(),
+                  p.system.IsStable() ? "stable" : "unstable: no contributor may use it");
+}
+
+void AddContributors(std::string& text, const Budget& budget, const EvaluationPlan& plan) {
+  AppendFormatted(text, "contributors:\n");
+  for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
+    const Contributor& c = budget.contributors[ci];
+    AppendFormatted(text, "  %-20s source %s, path %s, exact variance: %s\n", c.name.c_str(), c.source.c_str(),
+                    ContributorPathKey(c).c_str(), ToString(c.exact).c_str());
+    // Why there will be none where it was asked for, once per distinct reason (the outputs usually share it).
+    std::vector<std::string> reasons;
+    for (const std::string& why : plan.exact_refusal[ci])
+      if (c.exact != ExactVariance::kOff && !why.empty() &&
+          std::find(reasons.begin(), reasons.end(), why) == reasons.end())
+        reasons.push_back(why);
+    for (const std::string& why : reasons) AppendFormatted(text, "  %-20s no exact variance: %s\n", "", why.c_str());
+  }
+}
+
+void AddOutputs(std::string& text, const Budget& budget) {
+  AppendFormatted(text, "outputs:\n");
+  for (const auto& o : budget.outputs) {
+    AppendFormatted(text, "  %-20s signal %s in %s", o.name.c_str(), o.signal.c_str(), o.unit.c_str());
+    if (o.weighting) AppendFormatted(text, ", weighted (%s)", o.weighting->unit.c_str());
+    if (o.metric) AppendFormatted(text, ", %s", o.metric->Describe().c_str());
+    if (o.rms_max) AppendFormatted(text, ", rms_max %g", *o.rms_max);
+    AppendFormatted(text, "\n");
+  }
+  if (!budget.covariance.empty()) {  // validated with the budget: outputs that exist, once each, without a metric
+    std::string names;
+    for (const std::string& name : budget.covariance) names += (names.empty() ? "" : ", ") + name;
+    AppendFormatted(text, "covariance of %zu outputs: %s (deb run: summary.json and the reports)\n",
+                    budget.covariance.size(), names.c_str());
+  }
+}
+
+}  // namespace
+
+std::string DescribeBudget(const Budget& budget, const EvaluationPlan& plan) {
+  std::string text;
+  const FrequencyGrid& grid = plan.grid;
+  AppendFormatted(text, "budget %s: valid\n", budget.name.c_str());
+  if (!budget.description.empty()) AppendFormatted(text, "  %s\n", budget.description.c_str());
+  AppendFormatted(text, "grid: %s, %zu frequencies, %g-%g Hz\n", ToString(budget.grid.kind).c_str(), grid.size(),
+                  grid.min_hz(), grid.max_hz());
+  AppendFormatted(text, "sources:\n");
+  for (const auto& s : budget.sources)
+    AppendFormatted(text, "  %-20s %d channel(s) in %s: %s\n", s.name.c_str(), s.channels(), s.unit.c_str(),
+                    s.spectrum->Describe().c_str());
+  AppendFormatted(text, "paths:\n");
+  for (const Path& p : budget.paths) AddPath(text, p);
+  if (!plan.loops.empty()) AppendFormatted(text, "feedback loops:\n");
+  for (const LoopResult& loop : plan.loops) {
+    std::string paths;
+    for (const std::string& p : loop.paths) paths += (paths.empty() ? "" : ", ") + p;
+    AppendFormatted(text, "  %s closed by %s (%s feedback), in %s\n    %s\n", loop.plant.c_str(),
+                    loop.controller.c_str(), loop.sign < 0 ? "negative" : "positive", paths.c_str(),
+                    MarginsText(loop).c_str());
+  }
+  AddContributors(text, budget, plan);
+  AddOutputs(text, budget);
+  return text;
+}
+
+std::string DescribeSweep(const SweepSpec& spec, std::size_t variant_count) {
+  std::string text;
+  AppendFormatted(text, "sweep: %s of %zu parameter(s), %zu variants, each valid:\n", ToString(spec.mode).c_str(),
+                  spec.parameters.size(), variant_count);
+  for (const SweepParameter& p : spec.parameters) {
+    AppendFormatted(text, "  %-40s %zu value(s): %s", p.key_path.c_str(), p.values.size(),
+                    p.Text(p.values.front()).c_str());
+    if (p.values.size() > 1) AppendFormatted(text, " ... %s", p.Text(p.values.back()).c_str());
+    if (!p.label.empty() || !p.unit.empty()) AppendFormatted(text, " (%s)", p.AxisTitle().c_str());
+    AppendFormatted(text, "\n");
+  }
+  return text;
+}
+
+}  // namespace deb

@@ -1,0 +1,97 @@
+#include "deb/report/compare/sensitivity_directory.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+
+#include "deb/core/number_text.h"
+#include "deb/report/budget/report_tables.h"
+#include "deb/report/compare/overlay_plots.h"
+
+namespace deb::report {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string Number(double v) { return SignificantText(v, 6); }
+
+}  // namespace
+
+std::string NominalText(const std::vector<double>& values) {
+  if (values.empty()) return "–";
+  const bool equal = std::all_of(values.begin(), values.end(), [&](double v) { return v == values.front(); });
+  if (equal) return Number(values.front()) + (values.size() > 1 ? " (all " + std::to_string(values.size()) + ")" : "");
+  std::string s;
+  for (double v : values) s += (s.empty() ? "" : ", ") + Number(v);
+  return s;
+}
+
+std::string SensitivityCsv(const std::vector<Sensitivity>& all) {
+  std::ostringstream os;
+  os.precision(10);
+  os << "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity\n";
+  for (const auto& s : all)
+    os << CsvField(s.parameter) << ',' << CsvField(s.output) << ',' << CsvField(s.unit) << ','
+       << CsvField(s.contributor) << ',' << s.variance << ',' << s.d_variance_d_log_p << ',' << s.elasticity << '\n';
+  return os.str();
+}
+
+std::string SensitivityMarkdown(const SensitivitySetting& setting, const SensitivityStudy& study,
+                                const std::vector<Plot>& plots) {
+  const BudgetResult& nominal = study.nominal;
+  std::ostringstream md;
+  md << "# Sensitivities of " << setting.name << "\n\n"
+     << "Central differences with the parameter multiplied by 1 ± " << setting.step
+     << " (every number its key path reaches), on the nominal frequency grid. "
+        "d var / d ln p is the change of variance per relative change of the parameter (divide by p for d var / dp); "
+        "the elasticity is (d var / var) / (dp / p).\n\n";
+  Table nominal_table;
+  nominal_table.title = "Nominal parameters";
+  nominal_table.header = {"parameter (key path)", "nominal value(s)"};
+  nominal_table.numeric = {false, false};
+  for (const auto& [key, values] : setting.parameters) nominal_table.rows.push_back({key, NominalText(values)});
+  md << "## " << nominal_table.title << "\n\n" << ToMarkdown(nominal_table) << "\n";
+  for (const OutputResult& out : nominal.outputs) {
+    const std::string& o = out.name;
+    const auto ranked = RankedForOutput(study.sensitivities, o);
+    if (ranked.empty()) continue;
+    Table t;
+    t.title = o;
+    t.header = {"parameter", "contributor", "variance [" + UnitText(VarianceUnit(ranked[0].unit)) + "]",
+                "d var / d ln p", "elasticity"};
+    t.numeric = {false, false, true, true, true};
+    for (const auto& s : ranked)
+      t.rows.push_back(
+          {s.parameter, s.contributor, Sig(s.variance, 4), Sig(s.d_variance_d_log_p, 4), Sig(s.elasticity, 4)});
+    md << "## " << o << "\n\nNominal RMS " << Sig(out.rms(), 4) << " " << UnitText(out.unit)
+       << "; the total first, then the contributors.\n\n"
+       << ToMarkdown(t) << "\n";
+    for (const Plot& p : plots)
+      if (p.output >= 0 && nominal.outputs[static_cast<std::size_t>(p.output)].name == o)
+        md << "![" << p.caption << "](plots/" << p.name << ".png)\n\n" << p.caption << "\n\n";
+  }
+  return md.str();
+}
+
+std::string DefaultSensitivityDirectory(const std::string& budget_name) {
+  return (fs::path("reports") / (budget_name + "_sensitivity")).string();
+}
+
+void WriteSensitivityDirectory(const SensitivitySetting& setting, const SensitivityStudy& study,
+                               const std::vector<Plot>& plots, const std::string& out_dir,
+                               const ReplaceOptions& replace, int threads) {
+  ReplaceDirectory(
+      out_dir,
+      [&](const std::string& tmp) {
+        WriteTextFile((fs::path(tmp) / "sensitivity.csv").string(), SensitivityCsv(study.sensitivities));
+        WriteTextFile((fs::path(tmp) / "sensitivity.md").string(), SensitivityMarkdown(setting, study, plots));
+        if (!plots.empty()) {
+          fs::create_directories(fs::path(tmp) / "plots");
+          WritePlotsAsPng(plots, (fs::path(tmp) / "plots").string(), threads);
+        }
+      },
+      replace);
+}
+
+}  // namespace deb::report

@@ -1,0 +1,34 @@
+#include "deb/report/compare/sweep_directory.h"
+
+#include <filesystem>
+
+#include "deb/report/compare/overlay_plots.h"
+#include "deb/report/compare/sweep_documents.h"
+
+namespace deb::report {
+
+namespace fs = std::filesystem;
+
+std::string DefaultSweepDirectory(const std::string& budget_name) {
+  return (fs::path("reports") / (budget_name + "_sweep")).string();
+}
+
+void WriteSweepDirectory(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
+                         const std::vector<Plot>& plots, const std::string& out_dir, const ReplaceOptions& replace,
+                         int threads) {
+  const std::string csv = SweepCsv(spec, results);
+  ReplaceDirectory(
+      out_dir,
+      [&](const std::string& tmp) {
+        WriteTextFile((fs::path(tmp) / "sweep.csv").string(), csv);
+        WriteTextFile((fs::path(tmp) / "sweep.md").string(), SweepMarkdown(name, spec, results, plots));
+        WriteTextFile((fs::path(tmp) / "sweep.html").string(), SweepHtml(name, spec, results, plots));
+        if (!plots.empty()) {
+          fs::create_directories(fs::path(tmp) / "plots");
+          WritePlotsAsPng(plots, (fs::path(tmp) / "plots").string(), threads);
+        }
+      },
+      replace);
+}
+
+}  // namespace deb::report
