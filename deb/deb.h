@@ -26,7 +26,13 @@
 #include "deb/core/limits.h"
 #include "deb/core/output_dir.h"
 
+#include "deb/units/dimension.h"
+#include "deb/units/quantity.h"
 #include "deb/units/unit.h"
+
+// Named parameters and expressions with units.
+#include "deb/parameters/expression.h"
+#include "deb/parameters/parameter_set.h"
 
 // Sources: S_u(f) of flat, VC, measured, multi-channel spectra.
 #include "deb/spectra/band_rms.h"

@@ -20,6 +20,7 @@ std::string SweepParameter::Text(double value) const {
   std::ostringstream os;
   os.precision(10);
   os << value;
+  if (!value_unit.empty()) os << ' ' << value_unit;
   return os.str();
 }
 

@@ -33,7 +33,11 @@ struct SweepParameter {
   std::string label;  // how axes and tables name it (`label:`); empty: the key path
   std::string unit;   // of its values (`unit:`, UDUNITS-2), for axes and tables; may be empty
 
-  // The value as the budget file receives it: a number, or texts[index].
+  // Written after each number the budget file receives: the unit of a
+  // budget parameter the sweep varies ("N/m"), or "".
+  std::string value_unit;
+  // The value as the budget file receives it: a number (and value_unit), or
+  // texts[index].
   std::string Text(double value) const;
   // For tables and axes: a number to 4 significant digits, or texts[index].
   std::string ShortText(double value) const;

@@ -42,7 +42,8 @@ void ApplyOverrides(YAML::Node root, const std::vector<BudgetOverride>& override
     } catch (const InputError& e) {
       throw InputError(what + e.message());
     }
-    const std::string why = ReplaceAt(root, path, value);
+    // A parameter by its name: --set k_iso=6e4N/m.
+    const std::string why = ReplaceAt(root, ResolveParameterName(root, path), value);
     if (!why.empty()) throw InputError(what + why);
   }
 }

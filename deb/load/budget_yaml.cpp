@@ -10,6 +10,7 @@
 #include "deb/core/input_file.h"
 #include "deb/load/budget_extends.h"
 #include "deb/load/budget_overrides.h"
+#include "deb/load/parameters_yaml.h"
 #include "deb/load/path_yaml.h"
 #include "deb/load/source_yaml.h"
 #include "deb/load/yaml_reader.h"
@@ -170,11 +171,12 @@ Band ParseBand(const YamlNode& node) {
   return b;
 }
 
-Budget Load(const YamlReader& reader, const std::string& base_dir) {
+Budget Load(YamlReader reader, const std::string& base_dir) {
   const YamlNode root = reader.Root();
   // sweep: read by deb sweep (deb/load/sweep_yaml.h); a run evaluates the budget as written.
-  root.AllowOnly(
-      {"name", "description", "grid", "sources", "paths", "contributors", "outputs", "bands", "covariance", "sweep"});
+  root.AllowOnly({"name", "description", "parameters", "grid", "sources", "paths", "contributors", "outputs", "bands",
+                  "covariance", "sweep"});
+  if (auto parameters = root.Optional("parameters")) reader.SetParameters(io::ParseParameters(*parameters));
   Budget b;
   b.source_file = reader.name();
   b.positions = reader.positions();

@@ -1,6 +1,7 @@
 #include "deb/load/key_path.h"
 
 #include <cstdio>
+#include <limits>
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
@@ -54,6 +55,23 @@ std::string NoKey(const YAML::Node& n, const std::string& key, const std::string
          " (it has: " + list + ")";
 }
 
+// A number, or each number of a list of numbers, replaced by scale(x).
+std::string ScaleLeaf(YAML::Node n, const std::string& where, Reached& reached,
+                      const std::function<double(double)>& scale) {
+  if (IsNumber(n)) {
+    n = Text(scale(n.as<double>()));
+    return "";
+  }
+  if (n.IsSequence() && n.size() > 0) {
+    for (std::size_t k = 0; k < n.size(); ++k)
+      if (!IsNumber(n[k])) return where + " is a list that holds something other than numbers";
+    for (std::size_t k = 0; k < n.size(); ++k)
+      if (reached.First(n[k])) n[k] = Text(scale(n[k].as<double>()));
+    return "";
+  }
+  return where + " is not a number or a list of numbers";
+}
+
 // What to do with each node the path reaches (and its key path): "" or why not.
 using Leaf = std::function<std::string(YAML::Node, const std::string& where, Reached&)>;
 
@@ -95,6 +113,32 @@ std::string WalkFromRoot(YAML::Node root, const KeyPath& path, const Leaf& leaf)
 
 }  // namespace
 
+KeyPath ResolveParameterName(const YAML::Node& root, KeyPath path) {
+  if (path.size() != 1 || !path[0].is_key || !root.IsMap()) return path;
+  const std::string& name = path[0].key;
+  if (root[name]) return path;  // a top-level key: the budget's own
+  const YAML::Node parameters = root["parameters"];
+  if (!parameters || !parameters.IsMap() || !parameters[name]) return path;
+  KeyPath resolved{{"parameters", 0, true}, {name, 0, true}};
+  if (parameters[name].IsMap()) resolved.push_back({"value", 0, true});
+  return resolved;
+}
+
+std::string MultiplyValuesAt(YAML::Node root, const KeyPath& path, double factor, std::vector<double>* numbers) {
+  return WalkFromRoot(root, path, [&](YAML::Node n, const std::string& where, Reached& reached) -> std::string {
+    if (n.IsScalar() && !IsNumber(n)) {
+      // An expression: "(TEXT)*F" (a number and a unit stay one quantity).
+      if (numbers) numbers->push_back(std::numeric_limits<double>::quiet_NaN());
+      n = "(" + n.Scalar() + ")*" + Text(factor);
+      return "";
+    }
+    return ScaleLeaf(n, where, reached, [&](double x) {
+      if (numbers) numbers->push_back(x);
+      return x * factor;
+    });
+  });
+}
+
 KeyPath ParseKeyPath(const std::string& text) {
   KeyPath steps;
   std::size_t i = 0;
@@ -131,19 +175,8 @@ KeyPath ParseKeyPath(const std::string& text) {
 }
 
 std::string ScaleNumbersAt(YAML::Node root, const KeyPath& path, const std::function<double(double)>& scale) {
-  return WalkFromRoot(root, path, [&](YAML::Node n, const std::string& where, Reached& reached) -> std::string {
-    if (IsNumber(n)) {
-      n = Text(scale(n.as<double>()));
-      return "";
-    }
-    if (n.IsSequence() && n.size() > 0) {
-      for (std::size_t k = 0; k < n.size(); ++k)
-        if (!IsNumber(n[k])) return where + " is a list that holds something other than numbers";
-      for (std::size_t k = 0; k < n.size(); ++k)
-        if (reached.First(n[k])) n[k] = Text(scale(n[k].as<double>()));
-      return "";
-    }
-    return where + " is not a number or a list of numbers";
+  return WalkFromRoot(root, path, [&](YAML::Node n, const std::string& where, Reached& reached) {
+    return ScaleLeaf(n, where, reached, scale);
   });
 }
 

@@ -32,9 +32,22 @@ using KeyPath = std::vector<KeyPathStep>;
 //         (write e.g. paths[0].isolators[*].position[2])" for malformed text.
 KeyPath ParseKeyPath(const std::string& text);
 
+// A budget's parameter by its name alone: a path of one key that is not a
+// top-level key of `root` but names one of its `parameters:` becomes
+// parameters.NAME (parameters.NAME.value where it is given as a map).
+// Any other path is returned as it is.
+KeyPath ResolveParameterName(const YAML::Node& root, KeyPath path);
+
 // Replaces every number x the path reaches (a number, or each element of a
 // list of numbers) by scale(x).
 std::string ScaleNumbersAt(YAML::Node root, const KeyPath& path, const std::function<double(double)>& scale);
+
+// Multiplies every value the path reaches by `factor`: numbers and lists of
+// numbers as ScaleNumbersAt, and an expression (a parameter's "5.2e4 N/m")
+// as a whole, "(TEXT)*F"; `numbers` (if given) receives each number's value
+// before, and NaN for an expression.
+std::string MultiplyValuesAt(YAML::Node root, const KeyPath& path, double factor,
+                             std::vector<double>* numbers = nullptr);
 
 // Writes `text` at every single value (scalar) the path reaches.
 std::string SetTextAt(YAML::Node root, const KeyPath& path, const std::string& text);

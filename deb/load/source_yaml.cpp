@@ -239,6 +239,12 @@ Source ParseSource(const YamlNode& node, const std::string& base_dir) {
     if (auto q = spec.Optional("quantity")) {
       const auto quantity = AtNode(*q, [&] { return ParseSpectrumQuantity(q->AsString()); });
       if (quantity == SpectrumQuantity::kAsd) level *= level;
+    } else {
+      // As a measured file without '# quantity:': an ASD read as a PSD is
+      // off by its own value in power (a level of 2e-4 by 5000x).
+      s.notes.push_back("the flat level " + spec.Required("level").AsString() + " has no 'quantity:', so it is read as a PSD in " +
+                        PsdUnitLabel(s.unit) + "; if it is an ASD in " + AsdUnitLabel(s.unit) +
+                        ", add 'quantity: asd' (or 'quantity: psd' to confirm)");
     }
     level *= ConventionFactor(node);
     s.channel_names = ChannelNames(node, s.name, 1);

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -21,7 +22,9 @@
 #include "deb/load/budget_overrides.h"
 #include "deb/load/budget_yaml.h"
 #include "deb/load/key_path.h"
+#include "deb/load/parameters_yaml.h"
 #include "deb/load/yaml_reader.h"
+#include "deb/units/quantity.h"
 #include "deb/units/unit.h"
 
 namespace deb {
@@ -39,7 +42,9 @@ KeyPath ParseKeyPath(const YamlNode& node) {
 }
 
 std::string Assign(YAML::Node n, const KeyPath& steps, const SweepParameter& p, double v) {
-  if (!p.texts.empty()) return SetTextAt(n, steps, p.Text(v));
+  // A budget parameter receives its value as text, with its unit.
+  const bool parameter = steps.size() >= 2 && steps[0].is_key && steps[0].key == "parameters";
+  if (!p.texts.empty() || parameter) return SetTextAt(n, steps, p.Text(v));
   return ScaleNumbersAt(n, steps, [v](double) { return v; });
 }
 
@@ -148,10 +153,16 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir, const st
   const YamlNode params = sweep.Required("parameters");
   std::vector<KeyPath> steps;
   std::vector<YamlNode> path_nodes;
+  // The budget's parameters, by name: a sweep of one gives each value its
+  // unit (the sweep's unit:, or the one the parameter is written in).
+  const std::shared_ptr<const ParameterSet> budget_parameters =
+      root.Has("parameters") ? io::ParseParameters(root.Required("parameters")) : std::make_shared<ParameterSet>();
+  const YAML::Node document = reader.LoadCopy();
   for (const YamlNode& p : params.Elements()) {
     p.AllowOnly({"path", "label", "unit", "values", "linear", "log"});
     const YamlNode path = p.Required("path");
-    steps.push_back(ParseKeyPath(path));
+    const KeyPath written = ParseKeyPath(path);
+    steps.push_back(io::ResolveParameterName(document, written));
     path_nodes.push_back(path);
     SweepParameter param;
     param.key_path = path.AsString();
@@ -161,6 +172,11 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir, const st
       io::AtNode(*unit, [&] { ValidateUnit(param.unit); });
     }
     param.values = ParseValues(p, &param.texts);
+    if (steps.back().size() != written.size() && param.texts.empty()) {
+      for (const Parameter& known : budget_parameters->parameters())
+        if (known.definition.name == written[0].key) param.value_unit = param.unit.empty() ? known.unit : param.unit;
+      if (param.unit.empty()) param.unit = param.value_unit;
+    }
     out.spec.parameters.push_back(param);
   }
   if (out.spec.parameters.empty()) params.Fail("no parameters to sweep");
@@ -208,14 +224,19 @@ std::vector<double> ParameterValues(const std::string& path, const std::string& 
   const YamlReader reader = io::ReadBudgetFile(path);
   YAML::Node raw = reader.LoadCopy();
   io::ApplyOverrides(raw, overrides, reader.name());
-  const KeyPath steps = io::ParseKeyPath(key_path);
+  const KeyPath steps = io::ResolveParameterName(raw, io::ParseKeyPath(key_path));
   if (raw.IsMap()) raw.remove("sweep");
   std::vector<double> values;
-  const std::string why = ScaleNumbersAt(raw, steps, [&values](double x) {
-    values.push_back(x);
-    return x;
-  });
+  const std::string why = io::MultiplyValuesAt(raw, steps, 1.0, &values);
   if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
+  // A parameter written as an expression: its value, in the unit of its
+  // number if it is one ("5.2e4 N/m": 5.2e4), else in SI base units.
+  if (values.size() == 1 && std::isnan(values[0]) && steps.size() >= 2 && steps[0].key == "parameters") {
+    const YamlReader copy = YamlReader::FromString(io::OverriddenText(reader.text(), overrides, reader.name()), path);
+    const std::shared_ptr<const ParameterSet> set = io::ParseParameters(copy.Root().Required("parameters"));
+    for (const Parameter& p : set->parameters())
+      if (p.definition.name == steps[1].key) values[0] = p.unit.empty() ? p.value.value : ValueIn(p.value, p.unit);
+  }
   return values;
 }
 
@@ -224,9 +245,9 @@ Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string&
   const YamlReader reader = io::ReadBudgetFile(path);
   YAML::Node raw = reader.LoadCopy();
   io::ApplyOverrides(raw, overrides, reader.name());
-  const KeyPath steps = io::ParseKeyPath(key_path);
+  const KeyPath steps = io::ResolveParameterName(raw, io::ParseKeyPath(key_path));
   if (raw.IsMap()) raw.remove("sweep");
-  const std::string why = ScaleNumbersAt(raw, steps, [factor](double x) { return x * factor; });
+  const std::string why = io::MultiplyValuesAt(raw, steps, factor);
   if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
   YAML::Emitter emitter;
   emitter << raw;

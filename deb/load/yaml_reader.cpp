@@ -12,6 +12,7 @@
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
 #include "deb/core/suggest.h"
+#include "deb/units/quantity.h"
 
 namespace deb::io {
 namespace {
@@ -86,6 +87,14 @@ YamlNode::YamlNode(const YamlReader* reader, YAML::Node node, std::string key)
 
 void YamlNode::Fail(const std::string& message) const { FailAt(node_, key_, message); }
 
+void YamlNode::FailInText(int column, const std::string& message) const {
+  if (reader_->assembled() || !node_.IsDefined() || node_.Mark().is_null()) Fail(message);
+  InputLocation where = Where(reader_->name(), node_.Mark(), key_);
+  // A quoted scalar's text starts after its quote (yaml-cpp tags it "!").
+  where.column += column - 1 + (node_.Tag() == "!" ? 1 : 0);
+  throw InputError(where, message);
+}
+
 void YamlNode::FailAt(const YAML::Node& at, const std::string& key, const std::string& message) const {
   if (!reader_->assembled() && at.IsDefined() && !at.Mark().is_null())
     throw InputError(Where(reader_->name(), at.Mark(), key), message);
@@ -147,6 +156,25 @@ std::string YamlNode::AsString() const {
   return node_.Scalar();
 }
 
+namespace {
+
+// The unit a key's name gives its value: "bands[0].lo_hz" takes Hz.
+std::string UnitOfKey(const std::string& key) {
+  std::string k = key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
+  k = k.substr(0, k.find('['));
+  const auto ends = [&k](const std::string& suffix) {
+    return k.size() > suffix.size() && k.compare(k.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (ends("_hz")) return "Hz";
+  if (ends("_s")) return "s";
+  if (ends("_deg")) return "arc_degree";
+  return "";
+}
+
+std::string UnitName(const std::string& unit) { return unit == "arc_degree" ? "degrees" : unit; }
+
+}  // namespace
+
 double YamlNode::AsDouble() const {
   if (!node_.IsScalar()) Fail("expected a number");
   const std::string text = node_.Scalar();
@@ -166,10 +194,37 @@ double YamlNode::AsDouble() const {
   } catch (const std::exception&) {
     if (text == ".inf" || text == "-.inf" || text == ".nan" || text == ".NaN")
       Fail("value '" + text + "' is not finite; a finite number is required");
-    Fail("expected a number, got '" + Excerpt(text) + "'");
+    return EvaluateExpression(text);
   }
   if (!std::isfinite(value)) Fail("value '" + text + "' is not finite; a finite number is required");
   return value;
+}
+
+double YamlNode::EvaluateExpression(const std::string& text) const {
+  Quantity q;
+  try {
+    q = reader_->parameters().EvaluateText(text);
+  } catch (const ExpressionError& e) {
+    FailInText(e.column_in_text(), "expected a number, got '" + Excerpt(text) + "': " + e.reason());
+  }
+  const std::string unit = UnitOfKey(key_);
+  if (q.dimension.IsNone()) {
+    // A dimensionless number in a field with a unit is in that unit.
+    return q.value;
+  }
+  if (unit.empty()) {
+    Fail("'" + Excerpt(text) + "' is a quantity in " + q.dimension.Text() +
+         "; this value is a plain number (a unit is taken where the key names it: _hz, _s, _deg)");
+  }
+  if (unit == "Hz" && text.find("rad") != std::string::npos) {
+    Fail("'" + Excerpt(text) + "': give frequencies in Hz, not rad/s (deb counts rad as 1, so 10 rad/s would be "
+         "read as 10 Hz; write 10/(2*pi) Hz)");
+  }
+  try {
+    return ValueIn(q, unit);
+  } catch (const InputError&) {
+    Fail("'" + Excerpt(text) + "' is a quantity in " + q.dimension.Text() + "; this value is in " + UnitName(unit));
+  }
 }
 
 double YamlNode::AsPositive() const {
@@ -229,6 +284,11 @@ Eigen::MatrixXd YamlNode::AsMatrix() const {
     for (std::size_t j = 0; j < v.size(); ++j) m(i, j) = v[j];
   }
   return m;
+}
+
+const ParameterSet& YamlReader::parameters() const {
+  static const ParameterSet none;
+  return parameters_ ? *parameters_ : none;
 }
 
 YamlReader::YamlReader(YAML::Node root, std::string name, std::string text,

@@ -17,6 +17,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/key_positions.h"
+#include "deb/parameters/parameter_set.h"
 
 namespace deb::io {
 
@@ -46,7 +47,14 @@ class YamlNode {
   void AllowOnly(const std::set<std::string>& allowed) const;
 
   std::string AsString() const;
-  double AsDouble() const;             // finite number
+  // A finite number, written as one or as an expression (deb/parameters/
+  // expression.h) of the budget's parameters. The field's unit comes from
+  // its key: a key ending in _hz takes Hz, _s seconds, _deg degrees, and a
+  // quantity with a unit is converted to it ("2 kHz" in f_hz is 2000); any
+  // other number must be dimensionless (transfer-function coefficients,
+  // matrices and gains are relative to their path's units, which a
+  // quantity's SI value would silently ignore).
+  double AsDouble() const;
   double AsPositive() const;           // finite and > 0
   double AsNonNegative() const;        // finite and >= 0
   int AsInt() const;
@@ -57,10 +65,13 @@ class YamlNode {
 
   // An InputError located at this node.
   [[noreturn]] void Fail(const std::string& message) const;
+  // The same, at byte `column` (1-based) of the node's text.
+  [[noreturn]] void FailInText(int column, const std::string& message) const;
   // The same, at the node `at` (e.g. a map's key) under key path `key`.
   [[noreturn]] void FailAt(const YAML::Node& at, const std::string& key, const std::string& message) const;
 
  private:
+  double EvaluateExpression(const std::string& text) const;
   const YamlReader* reader_;
   YAML::Node node_;
   std::string key_;
@@ -93,12 +104,18 @@ class YamlReader {
   // which nobody wrote, so errors are located by key path only.
   bool assembled() const { return assembled_; }
 
+  // The budget's parameters, which expressions in its numbers may use (none
+  // until set).
+  void SetParameters(std::shared_ptr<const ParameterSet> parameters) { parameters_ = std::move(parameters); }
+  const ParameterSet& parameters() const;
+
  private:
   YamlReader(YAML::Node root, std::string name, std::string text, std::shared_ptr<const KeyPositions> positions);
   YAML::Node root_;
   std::string text_;
   std::string name_;
   std::shared_ptr<const KeyPositions> positions_;
+  std::shared_ptr<const ParameterSet> parameters_;
   bool assembled_ = false;
 };
 

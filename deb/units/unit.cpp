@@ -346,6 +346,90 @@ std::string UnitDefinition(const std::string& unit) {
   return definition;
 }
 
+namespace {
+
+// Collects a unit's scale and base-unit powers while UDUNITS-2 walks its
+// structure (ut_accept_visitor): a Galilean unit is a scale (and an offset,
+// dropped) on an underlying unit, a product unit basic units raised to
+// powers, a basic unit a base unit or a dimensionless named one (rad).
+struct SiWalk {
+  double scale = 1.0;
+  Dimension dimension;
+  std::string failure;  // why the unit has no SI form
+  int power = 1;        // of the unit being visited, within its product
+
+  static ut_status Basic(const ut_unit* unit, void* arg) {
+    auto* walk = static_cast<SiWalk*>(arg);
+    if (ut_is_dimensionless(unit)) return UT_SUCCESS;
+    const char* symbol = ut_get_symbol(unit, UT_ASCII);
+    if (!symbol) symbol = ut_get_name(unit, UT_ASCII);
+    const auto& symbols = Dimension::Symbols();
+    for (int k = 0; k < Dimension::kBaseUnits; ++k) {
+      if (symbol && std::string(symbol) == symbols[k]) {
+        walk->dimension = walk->dimension * Dimension::Of(k, walk->power);
+        return UT_SUCCESS;
+      }
+    }
+    walk->failure = std::string("its base unit '") + (symbol ? symbol : "?") + "' is not an SI base unit";
+    return UT_VISIT_ERROR;
+  }
+  static ut_status Product(const ut_unit*, int count, const ut_unit* const* units, const int* powers,
+                           void* arg) {
+    auto* walk = static_cast<SiWalk*>(arg);
+    const int outer = walk->power;
+    for (int i = 0; i < count; ++i) {
+      walk->power = outer * powers[i];
+      const ut_status status = Basic(units[i], arg);
+      if (status != UT_SUCCESS) return status;
+    }
+    walk->power = outer;
+    return UT_SUCCESS;
+  }
+  static ut_status Galilean(const ut_unit*, double scale, const ut_unit* underlying, double, void* arg);
+  static ut_status Timestamp(const ut_unit*, const ut_unit*, double, void* arg) {
+    static_cast<SiWalk*>(arg)->failure = "it is a time stamp";
+    return UT_VISIT_ERROR;
+  }
+  static ut_status Logarithmic(const ut_unit*, double, const ut_unit*, void* arg) {
+    static_cast<SiWalk*>(arg)->failure = "it is logarithmic";
+    return UT_VISIT_ERROR;
+  }
+  static const ut_visitor& Visitor() {
+    static const ut_visitor visitor{Basic, Product, Galilean, Timestamp, Logarithmic};
+    return visitor;
+  }
+};
+
+ut_status SiWalk::Galilean(const ut_unit*, double scale, const ut_unit* underlying, double, void* arg) {
+  auto* walk = static_cast<SiWalk*>(arg);
+  walk->scale *= std::pow(scale, walk->power);
+  return ut_accept_visitor(underlying, &Visitor(), arg);
+}
+
+SiBaseUnits InSiBaseUnitsUncached(const std::string& unit) {
+  ut_system* system = System();
+  const std::lock_guard<std::mutex> lock(LibraryMutex());
+  const UnitPtr parsed = Parse(system, unit);
+  SiWalk walk;
+  if (ut_accept_visitor(parsed.get(), &SiWalk::Visitor(), &walk) != UT_SUCCESS || !std::isfinite(walk.scale) ||
+      walk.scale == 0.0) {
+    throw InputError("unit '" + unit + "' has no value in SI base units" +
+                     (walk.failure.empty() ? std::string() : ": " + walk.failure));
+  }
+  return {walk.scale, walk.dimension};
+}
+
+}  // namespace
+
+SiBaseUnits InSiBaseUnits(const std::string& unit) {
+  static Memo<SiBaseUnits> known_units;
+  const std::string key = MemoKey(unit);
+  if (auto known = known_units.Find(key)) return *known;
+  const SiBaseUnits si = InSiBaseUnitsUncached(unit);
+  known_units.Store(key, si);
+  return si;
+}
+
 std::string PsdUnitLabel(const std::string& unit) {
   const std::string display = DisplayUnit(unit);
   if (display == "1") return "1/Hz";

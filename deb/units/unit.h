@@ -21,6 +21,8 @@
 #include <complex>
 #include <string>
 
+#include "deb/units/dimension.h"
+
 namespace deb {
 
 // How to express a signal given in unit `from` as a signal in unit `to`:
@@ -70,6 +72,18 @@ std::string DisplayUnit(const std::string& unit);
 // "um/s". The result parses back to the same unit.
 // @throws InputError for an invalid unit string (as ValidateUnit).
 std::string UnitDefinition(const std::string& unit);
+
+// A unit in the SI base units: a value v in `unit` is v * scale in the
+// coherent SI unit of `dimension` ("um/s": scale 1e-6, m s-1; "N/m": 1,
+// kg s-2; "deg": pi/180, none). An offset (degC) is dropped, as in
+// ConvertUnit.
+struct SiBaseUnits {
+  double scale = 1.0;
+  Dimension dimension;
+};
+// @throws InputError for an invalid unit string (as ValidateUnit), or a
+// logarithmic or time-stamp unit.
+SiBaseUnits InSiBaseUnits(const std::string& unit);
 
 // Label of a PSD in `unit`: "um/s" -> "(um/s)^2/Hz", "nm" -> "nm^2/Hz",
 // "1" -> "1/Hz". UDUNITS-2 parses it. Does not validate.

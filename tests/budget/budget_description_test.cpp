@@ -67,7 +67,7 @@ TEST_CASE("a budget is described section by section: grid, sources, paths, contr
 
 TEST_CASE("a sweep is described by its mode, variant count and each parameter's first and last value") {
   SweepSpec spec;
-  SweepParameter h{"paths[0].h", {0, -100, -200}, {}, {}, {}};
+  SweepParameter h{"paths[0].h", {0, -100, -200}, {}, {}, {}, {}};
   h.label = "height";
   h.unit = "mm";
   spec.parameters = {h};

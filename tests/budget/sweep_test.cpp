@@ -11,7 +11,7 @@ namespace deb {
 
 TEST_CASE("a grid sweep holds every combination with the last parameter fastest; a zip pairs values") {
   SweepSpec s;
-  s.parameters = {{"a", {1, 2}, {}, {}, {}}, {"b", {10, 20, 30}, {}, {}, {}}};
+  s.parameters = {{"a", {1, 2}, {}, {}, {}, {}}, {"b", {10, 20, 30}, {}, {}, {}, {}}};
   const auto grid = s.Variants();
   REQUIRE(grid.size() == 6);
   CHECK(grid[0] == std::vector<double>{1, 10});
@@ -39,7 +39,7 @@ TEST_CASE("linear and log ranges include both ends and reject empty or non-posit
 
 TEST_CASE("a sweep whose variants fail to load reports the first variant's error on any thread count") {
   SweepSpec spec;
-  spec.parameters.push_back({"sources[0].spectrum.level", {1, 2, 3, 4, 5, 6, 7, 8}, {}, {}, {}});
+  spec.parameters.push_back({"sources[0].spectrum.level", {1, 2, 3, 4, 5, 6, 7, 8}, {}, {}, {}, {}});
   for (int threads : {1, 2, 5}) {
     CAPTURE(threads);
     CHECK_THROWS_WITH_AS(EvaluateSweep(

@@ -67,6 +67,17 @@ TEST_CASE("a valid budget loads with every section") {
   CHECK(b.bands.size() == 1);
 }
 
+TEST_CASE("a flat level without quantity: is read as a PSD and says so, as a measured file does") {
+  const Budget b = LoadBudgetText(kBudget, "b.yaml");
+  REQUIRE(b.sources[0].notes.size() == 1);
+  CHECK(b.sources[0].notes[0] ==
+        "the flat level 2 has no 'quantity:', so it is read as a PSD in (um/s)^2/Hz; if it is an ASD in "
+        "(um/s)/sqrt(Hz), add 'quantity: asd' (or 'quantity: psd' to confirm)");
+  const Budget confirmed = LoadBudgetText(Replace(kBudget, "level: 2}", "level: 2, quantity: psd}"), "b.yaml");
+  CHECK(confirmed.sources[0].notes.empty());
+  CHECK(confirmed.sources[0].spectrum->Psd(1.0)(0) == b.sources[0].spectrum->Psd(1.0)(0));
+}
+
 TEST_CASE("a two-sided level is doubled and an ASD level squared at load") {
   auto text = Replace(kBudget, "    unit: um/s\n    spectrum: {type: flat, level: 2}",
                       "    unit: um/s\n    convention: two-sided\n    spectrum: {type: flat, level: 3, quantity: asd}");
@@ -87,7 +98,8 @@ TEST_CASE("a negative PSD level names file, line, column, key and value") {
 
 TEST_CASE("a non-numeric value is reported as such") {
   CHECK(ErrorOf(Replace(kBudget, "den: [0.01, 1]", "den: [0.01, one]")) ==
-        "b.yaml:11:17: paths[0].den[1]: expected a number, got 'one'");
+        "b.yaml:11:17: paths[0].den[1]: expected a number, got 'one': unknown name 'one' (no parameters are "
+        "defined)");
 }
 
 TEST_CASE("a number outside the range of normal doubles says which end it is beyond") {

@@ -29,7 +29,7 @@ BudgetResult Variant(double rms) {
 
 TEST_CASE("the sweep directory holds sweep.csv, sweep.md and sweep.html, and no plots/ without plots") {
   SweepSpec spec;
-  spec.parameters = {SweepParameter{"paths[0].h", {0, -100}, {}, {}, {}}};
+  spec.parameters = {SweepParameter{"paths[0].h", {0, -100}, {}, {}, {}, {}}};
   const std::vector<BudgetResult> results = {Variant(3.0), Variant(2.0)};
   const fs::path dir = test::TempDir("sweep_directory") / "out";
   WriteSweepDirectory("s", spec, results, {}, dir.string(), {}, 1);

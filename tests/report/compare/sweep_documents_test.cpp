@@ -22,7 +22,7 @@ BudgetResult Variant(double rms) {
 
 SweepSpec Spec() {
   SweepSpec spec;
-  SweepParameter h{"paths[0].h", {0, -100, -200}, {}, {}, {}};
+  SweepParameter h{"paths[0].h", {0, -100, -200}, {}, {}, {}, {}};
   h.label = "height <h>";
   h.unit = "mm";
   spec.parameters = {h};

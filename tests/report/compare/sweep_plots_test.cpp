@@ -50,7 +50,7 @@ std::vector<std::vector<double>> Block(const std::string& csv, int index) {
 TEST_CASE("sweep plots hold one data block per combination of the other parameters, ordered by the first") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   SweepSpec spec;
-  spec.parameters = {{"a", {3, 1, 2}, {}, {}, {}}, {"b", {10, 20}, {}, {}, {}}};  // 6 variants, a unsorted
+  spec.parameters = {{"a", {3, 1, 2}, {}, {}, {}, {}}, {"b", {10, 20}, {}, {}, {}, {}}};  // 6 variants, a unsorted
   std::vector<BudgetResult> results(6, Evaluate(budget));
   const auto plots = SweepPlots(spec, results);
   REQUIRE(plots.size() == 2 * budget.outputs.size());  // small multiples and a map per output
@@ -73,7 +73,7 @@ TEST_CASE("sweep plots hold one data block per combination of the other paramete
 TEST_CASE("small multiples: one panel per value of the other parameters, one RMS axis, the key once") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   SweepSpec spec;
-  SweepParameter a{"paths[0].num[1]", {1, 2}, {}, {}, {}}, b{"sources[1].spectrum.level", {10, 20, 30}, {}, {}, {}};
+  SweepParameter a{"paths[0].num[1]", {1, 2}, {}, {}, {}, {}}, b{"sources[1].spectrum.level", {10, 20, 30}, {}, {}, {}, {}};
   a.label = "stiffness";
   a.unit = "N/m";
   b.label = "noise";
@@ -118,7 +118,7 @@ TEST_CASE("small multiples draw the requirement in every panel, in the key once"
   BudgetResult result = Evaluate(budget);
   result.outputs[0].rms_max = 2.5;
   SweepSpec spec;
-  spec.parameters = {{"a", {1, 2}, {}, {}, {}}, {"b", {10, 20}, {}, {}, {}}};
+  spec.parameters = {{"a", {1, 2}, {}, {}, {}, {}}, {"b", {10, 20}, {}, {}, {}, {}}};
   const PlotFigure figure = SweepPlots(spec, std::vector<BudgetResult>(4, result))[0].figure;
   REQUIRE(figure.panels.size() == 2);
   for (std::size_t i = 0; i < 2; ++i) {
@@ -150,7 +150,7 @@ TEST_CASE("the map of a two-parameter grid holds the grid by scan lines, the bes
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   const BudgetResult base = Evaluate(budget);
   SweepSpec spec;
-  spec.parameters = {{"a", {2, 1}, {}, {}, {}}, {"b", {10, 20, 30}, {}, {}, {}}};  // a unsorted
+  spec.parameters = {{"a", {2, 1}, {}, {}, {}, {}}, {"b", {10, 20, 30}, {}, {}, {}, {}}};  // a unsorted
   std::vector<BudgetResult> results(6, base);
   // Total RMS of output 0 = a * b / 10 (variance scaled), requirement 3.5.
   const auto rows = spec.Variants();
