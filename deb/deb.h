@@ -64,6 +64,7 @@
 
 // Paths: state space, transfer functions, modal and measured models.
 #include "deb/systems/frequency_model.h"
+#include "deb/systems/control_blocks.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/frf_csv.h"
 #include "deb/systems/interconnect.h"

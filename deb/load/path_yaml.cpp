@@ -6,6 +6,7 @@
 #include "deb/budget/path_composition.h"
 #include "deb/core/limits.h"
 #include "deb/core/suggest.h"
+#include "deb/load/block_yaml.h"
 #include "deb/load/isolation_yaml.h"
 #include "deb/formats/mat_file.h"
 #include "deb/load/modal_yaml.h"
@@ -18,6 +19,26 @@ namespace {
 
 const std::set<std::string> kCommonKeys = {"name", "description", "type", "inputs", "outputs",
                                            "input_unit", "input_units", "output_unit", "output_units"};
+
+// A block built in SI units (from `si_in` to `si_out`) scaled to the
+// path's input and output units: a mass_spring_damper is N to m, and a path
+// from N to um needs 1e6 times its H. The units must be the same quantities.
+StateSpace InPathUnits(const YamlNode& node, const Path& p, const std::string& si_in, const std::string& si_out) {
+  const std::string type = node.Required("type").AsString();
+  // The factor from the SI unit to the user's (output) or back (input).
+  const auto scale = [&](const std::string& user, const std::string& si, const char* key, bool output) {
+    const YamlNode at = node.Has(key) ? node.Required(key) : node;
+    const UnitConversion c = AtNode(at, [&] { return output ? ConvertUnit(si, user) : ConvertUnit(user, si); });
+    if (!c.IsPureScale())
+      at.Fail("a " + type + " is " + si_in + " to " + si_out + ": '" + user + "' is not the same quantity as '" + si +
+              "'");
+    return c.scale;
+  };
+  const double factor =
+      scale(p.output_units[0], si_out, "output_unit", true) * scale(p.input_units[0], si_in, "input_unit", false);
+  const StateSpace& s = p.system;
+  return StateSpace(s.A(), s.B(), s.C() * factor, s.D() * factor);
+}
 
 std::set<std::string> With(std::set<std::string> keys, std::initializer_list<std::string> more) {
   keys.insert(more);
@@ -273,10 +294,17 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
     for (std::string& u : p.output_units)
       u = AtNode(unit_node, [&] { return ModalOutputUnit(u, model.quantity); });
     composite = true;  // names come from the shapes
+  } else if (IsBlockType(type)) {
+    std::set<std::string> keys = BlockKeys(type);
+    keys.insert(kCommonKeys.begin(), kCommonKeys.end());
+    node.AllowOnly(keys);
+    const TransferFunction tf = ParseBlock(node, type);
+    p.system = AtNode(node, [&] { return ToStateSpace(tf); });
   } else {
     type_node.Fail("unknown path type '" + type +
                    "'; allowed: transfer_function, state_space, gain, frf, modal, series, parallel, feedback, "
-                   "isolation_system");
+                   "isolation_system, zpk, second_order, mass_spring_damper, pid, lead_lag, notch, lowpass, "
+                   "highpass, integrator");
   }
 
   if (composite) {
@@ -289,6 +317,7 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
                                                                  : file_outputs;
     p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
     p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+    if (type == "mass_spring_damper") p.system = InPathUnits(node, p, "N", "m");
   }
   AtNode(node, [&] { p.Validate(); });
   if (parsed_.count(p.name)) node.Required("name").Fail("name '" + p.name + "' is used twice in paths");

@@ -175,7 +175,11 @@ std::string UnitName(const std::string& unit) { return unit == "arc_degree" ? "d
 
 }  // namespace
 
-double YamlNode::AsDouble() const {
+double YamlNode::AsDouble() const { return NumberIn(UnitOfKey(key_)); }
+
+double YamlNode::AsValueIn(const std::string& unit) const { return NumberIn(unit); }
+
+double YamlNode::NumberIn(const std::string& unit) const {
   if (!node_.IsScalar()) Fail("expected a number");
   const std::string text = node_.Scalar();
   double value = 0.0;
@@ -194,23 +198,23 @@ double YamlNode::AsDouble() const {
   } catch (const std::exception&) {
     if (text == ".inf" || text == "-.inf" || text == ".nan" || text == ".NaN")
       Fail("value '" + text + "' is not finite; a finite number is required");
-    return EvaluateExpression(text);
+    return EvaluateExpression(text, unit);
   }
   if (!std::isfinite(value)) Fail("value '" + text + "' is not finite; a finite number is required");
   return value;
 }
 
-double YamlNode::EvaluateExpression(const std::string& text) const {
+double YamlNode::EvaluateExpression(const std::string& text, const std::string& unit) const {
   Quantity q;
   try {
     q = reader_->parameters().EvaluateText(text);
   } catch (const ExpressionError& e) {
     FailInText(e.column_in_text(), "expected a number, got '" + Excerpt(text) + "': " + e.reason());
   }
-  const std::string unit = UnitOfKey(key_);
-  if (q.dimension.IsNone()) {
-    // A dimensionless number in a field with a unit is in that unit.
-    return q.value;
+  if (unit.empty() || !q.has_unit) {
+    // Where no unit is expected, a dimensionless quantity ("50 %" is 0.5);
+    // where one is, a plain number is in it.
+    if (q.dimension.IsNone()) return q.value;
   }
   if (unit.empty()) {
     Fail("'" + Excerpt(text) + "' is a quantity in " + q.dimension.Text() +

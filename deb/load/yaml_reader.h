@@ -55,6 +55,9 @@ class YamlNode {
   // matrices and gains are relative to their path's units, which a
   // quantity's SI value would silently ignore).
   double AsDouble() const;
+  // A number in `unit` ("kg", "N/m"): a plain number is taken in it, a
+  // quantity converted to it ("2.1 t" is 2100 in kg).
+  double AsValueIn(const std::string& unit) const;
   double AsPositive() const;           // finite and > 0
   double AsNonNegative() const;        // finite and >= 0
   int AsInt() const;
@@ -71,7 +74,8 @@ class YamlNode {
   [[noreturn]] void FailAt(const YAML::Node& at, const std::string& key, const std::string& message) const;
 
  private:
-  double EvaluateExpression(const std::string& text) const;
+  double NumberIn(const std::string& unit) const;
+  double EvaluateExpression(const std::string& text, const std::string& unit) const;
   const YamlReader* reader_;
   YAML::Node node_;
   std::string key_;

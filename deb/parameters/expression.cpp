@@ -186,7 +186,7 @@ class Parser {
     const std::size_t unit_start = UnitStart();
     node->unit = unit_start == std::string::npos ? "" : Unit(unit_start);
     try {
-      node->number = node->unit.empty() ? Quantity{value, {}} : QuantityOf(value, node->unit);
+      node->number = node->unit.empty() ? Quantity{value, {}, false} : QuantityOf(value, node->unit);
     } catch (const InputError& e) {
       std::string hint;
       const std::size_t first_end = node->unit.find_first_of(" ./^()0123456789");
@@ -322,7 +322,7 @@ class Evaluator {
 
   Quantity Value(const Node& node) const {
     const Quantity q = Compute(node);
-    if (!std::isfinite(q.value)) Fail(node.offset, "the result is not finite (" + Describe(q) + ")");
+    if (!std::isfinite(q.value)) Fail(node.offset, "the result is not finite (beyond the range of numbers)");
     return q;
   }
 
@@ -348,7 +348,7 @@ class Evaluator {
       case Kind::kNumber:
         return node.number;
       case Kind::kName: {
-        if (node.name == "pi") return {kPi, {}};
+        if (node.name == "pi") return {kPi, {}, false};
         const Quantity* q = lookup_ ? lookup_(node.name) : nullptr;
         if (!q) {
           std::vector<std::string> candidates = known_;
@@ -368,14 +368,14 @@ class Evaluator {
         const Quantity a = Value(*node.args[0]), b = Value(*node.args[1]);
         const bool add = node.kind == Kind::kAdd;
         RequireSame(node, a, b, add ? "add" : "subtract");
-        return {add ? a.value + b.value : a.value - b.value, a.dimension};
+        return {add ? a.value + b.value : a.value - b.value, a.dimension, a.has_unit || b.has_unit};
       }
       case Kind::kMultiply:
         return Multiply(Value(*node.args[0]), Value(*node.args[1]));
       case Kind::kDivide: {
         const Quantity a = Value(*node.args[0]), b = Value(*node.args[1]);
         if (b.value == 0.0) Fail(node.offset, "division by zero");
-        return {a.value / b.value, a.dimension / b.dimension};
+        return {a.value / b.value, a.dimension / b.dimension, a.has_unit || b.has_unit};
       }
       case Kind::kPower:
         return Power(node, Value(*node.args[0]), Value(*node.args[1]));
@@ -386,7 +386,7 @@ class Evaluator {
   }
 
   static Quantity Multiply(const Quantity& a, const Quantity& b) {
-    return {a.value * b.value, a.dimension * b.dimension};
+    return {a.value * b.value, a.dimension * b.dimension, a.has_unit || b.has_unit};
   }
 
   Quantity Power(const Node& node, const Quantity& base, const Quantity& exponent) const {
@@ -396,7 +396,7 @@ class Evaluator {
         Fail(node.offset, "a negative number to a power that is not whole (" + Describe(base) + "^" +
                               Describe(exponent) + ")");
       if (base.value == 0.0 && exponent.value < 0.0) Fail(node.offset, "zero to a negative power");
-      return {std::pow(base.value, exponent.value), {}};
+      return {std::pow(base.value, exponent.value), {}, base.has_unit};
     }
     const double halves = 2.0 * exponent.value;
     Dimension d;
@@ -407,7 +407,7 @@ class Evaluator {
     if (base.value < 0.0 && exponent.value != std::round(exponent.value))
       Fail(node.offset, "a negative quantity to a power that is not whole");
     if (base.value == 0.0 && exponent.value < 0.0) Fail(node.offset, "zero to a negative power");
-    return {std::pow(base.value, exponent.value), d};
+    return {std::pow(base.value, exponent.value), d, base.has_unit};
   }
 
   Quantity Call(const Node& node) const {
@@ -420,26 +420,27 @@ class Evaluator {
         RequireSame(*node.args[i], best, a[i], "compare");
         if (f == "min" ? a[i].value < best.value : a[i].value > best.value) best = a[i];
       }
+      for (const Quantity& q : a) best.has_unit = best.has_unit || q.has_unit;
       return best;
     }
-    if (f == "abs") return {std::abs(a[0].value), a[0].dimension};
+    if (f == "abs") return {std::abs(a[0].value), a[0].dimension, a[0].has_unit};
     if (f == "sqrt") {
       if (a[0].value < 0.0) Fail(node.offset, "sqrt of a negative number (" + Describe(a[0]) + ")");
       Dimension d;
       if (!a[0].dimension.RaisedTo(1, &d))
         Fail(node.offset, "sqrt of a quantity in " + a[0].dimension.Text() + " has no unit (powers of units must be multiples of 1/2)");
-      return {std::sqrt(a[0].value), d};
+      return {std::sqrt(a[0].value), d, a[0].has_unit};
     }
     RequireNone(node, a[0], f);
     const double x = a[0].value;
     if ((f == "log" || f == "log10") && !(x > 0.0))
       Fail(node.offset, f + " of a number that is not positive (" + Describe(a[0]) + ")");
-    if (f == "exp") return {std::exp(x), {}};
-    if (f == "log") return {std::log(x), {}};
-    if (f == "log10") return {std::log10(x), {}};
-    if (f == "sin") return {std::sin(x), {}};
-    if (f == "cos") return {std::cos(x), {}};
-    return {std::tan(x), {}};
+    if (f == "exp") return {std::exp(x), {}, false};
+    if (f == "log") return {std::log(x), {}, false};
+    if (f == "log10") return {std::log10(x), {}, false};
+    if (f == "sin") return {std::sin(x), {}, false};
+    if (f == "cos") return {std::cos(x), {}, false};
+    return {std::tan(x), {}, false};
   }
 
   const std::string& text_;

@@ -9,7 +9,7 @@ namespace deb {
 
 Quantity QuantityOf(double number, const std::string& unit) {
   const SiBaseUnits si = InSiBaseUnits(unit);
-  return {number * si.scale, si.dimension};
+  return {number * si.scale, si.dimension, true};
 }
 
 double ValueIn(const Quantity& quantity, const std::string& unit) {

@@ -12,6 +12,11 @@ namespace deb {
 struct Quantity {
   double value = 0.0;  // in the coherent SI unit of `dimension` (kg s-2 for N/m)
   Dimension dimension;
+  // Made with a unit ("0.5 rad", "2 kHz"), not from plain numbers alone: a
+  // plain number given where a unit is expected is in that unit (45 in a
+  // field in degrees), a dimensionless quantity with a unit is converted
+  // (0.5 rad there is 28.6).
+  bool has_unit = false;
 };
 
 // `number` in `unit` ("210", "mm": 0.21 m).

@@ -63,6 +63,16 @@ TEST_CASE("numbers with units are quantities in SI") {
   CHECK_FALSE(Expression::Parse("2*m").IsLiteral());
 }
 
+TEST_CASE("a quantity knows whether a unit made it: 0.5 rad is an angle, 0.5 a plain number") {
+  CHECK(Eval("0.5 rad").has_unit);
+  CHECK(Eval("0.5 rad").dimension.IsNone());
+  CHECK(Eval("-2 mm * 3").has_unit);
+  CHECK_FALSE(Eval("2*3 + 1").has_unit);
+  CHECK_FALSE(Eval("sin(30 arc_degree)").has_unit);  // a function of an angle is a plain number
+  CHECK(Near(Eval("sin(30 arc_degree)").value, 0.5));
+  CHECK(Near(ValueIn(Eval("0.5 rad"), "arc_degree"), 0.5 * 180.0 / kPi));
+}
+
 TEST_CASE("precedence and associativity") {
   CHECK(Near(Eval("2*3+4").value, 10.0));
   CHECK(Near(Eval("2+3*4").value, 14.0));
