@@ -17,6 +17,7 @@
 #include "deb/core/enum_names.h"
 #include "deb/core/frequency_grid.h"
 #include "deb/core/key_positions.h"
+#include "deb/parameters/parameter_set.h"
 #include "deb/systems/state_space.h"
 
 namespace deb {
@@ -138,6 +139,9 @@ struct Budget {
   // `covariance:`: outputs whose covariance matrix is reported
   // (output_covariance.h); empty: none. Validate checks the rules.
   std::vector<std::string> covariance;
+  // `parameters:`, evaluated (deb/parameters/parameter_set.h), in the order
+  // written; the numbers above already hold their values.
+  std::vector<Parameter> parameters;
   bool has_sweep = false;  // the file has a `sweep` section (read by deb sweep, checked by deb check)
 
   // Checks names, references, channel counts and units.

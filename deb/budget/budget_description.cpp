@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "deb/budget/budget_outline.h"
 #include "deb/budget/loop_analysis.h"
 #include "deb/core/formatted_text.h"
 
@@ -72,6 +73,12 @@ std::string DescribeBudget(const Budget& budget, const EvaluationPlan& plan) {
   if (!budget.description.empty()) AppendFormatted(text, "  %s\n", budget.description.c_str());
   AppendFormatted(text, "grid: %s, %zu frequencies, %g-%g Hz\n", ToString(budget.grid.kind).c_str(), grid.size(),
                   grid.min_hz(), grid.max_hz());
+  if (!budget.parameters.empty()) {
+    AppendFormatted(text, "parameters:\n");
+    for (const ParameterOutline& p : OutlineOf(budget).parameters)
+      AppendFormatted(text, "  %-20s %.6g%s%s%s\n", p.name.c_str(), p.value, p.unit.empty() ? "" : " ",
+                      p.unit.c_str(), p.derived ? ("  = " + p.expression).c_str() : "");
+  }
   AppendFormatted(text, "sources:\n");
   for (const auto& s : budget.sources)
     AppendFormatted(text, "  %-20s %d channel(s) in %s: %s\n", s.name.c_str(), s.channels(), s.unit.c_str(),

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "deb/core/error.h"
+#include "deb/units/quantity.h"
 
 namespace deb {
 
@@ -27,6 +28,20 @@ BudgetOutline OutlineOf(const Budget& budget) {
     out.combination = o.combination;
   }
   outline.covariance = budget.covariance;
+  for (const Parameter& p : budget.parameters) {
+    ParameterOutline& out = outline.parameters.emplace_back();
+    out.name = p.definition.name;
+    out.expression = p.definition.expression;
+    out.description = p.definition.description;
+    out.derived = p.derived;
+    if (!p.derived && !p.unit.empty()) {
+      out.value = ValueIn(p.value, p.unit);
+      out.unit = p.unit;
+    } else {
+      out.value = p.value.value;
+      out.unit = p.value.dimension.IsNone() ? "" : p.value.dimension.Text();
+    }
+  }
   return outline;
 }
 

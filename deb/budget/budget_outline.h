@@ -36,6 +36,18 @@ struct OutputOutline {
   std::vector<SignalTerm> combination;        // Output::combination; empty unless combined
 };
 
+// A budget parameter as a report lists it.
+struct ParameterOutline {
+  std::string name;
+  std::string expression;  // as written: "2100 kg", "sqrt(4*k/m)/(2*pi)"
+  std::string description;
+  bool derived = false;    // a formula of other parameters
+  double value = 0.0;      // in `unit`
+  // A literal's unit as written ("kg"); a derived one's SI base units
+  // ("s-1"); "" for a dimensionless value.
+  std::string unit;
+};
+
 struct BudgetOutline {
   std::string name;
   std::string description;
@@ -45,6 +57,7 @@ struct BudgetOutline {
   std::vector<Contributor> contributors;  // in budget order, as every OutputResult lists them
   std::vector<OutputOutline> outputs;     // outputs[o] describes BudgetResult::outputs[o]
   std::vector<std::string> covariance;    // Budget::covariance
+  std::vector<ParameterOutline> parameters;  // Budget::parameters, in order
 
   // The source a contributor of this outline names; aborts (DEB_DEMAND) if
   // the outline holds none of that name.

@@ -178,6 +178,7 @@ Budget Load(YamlReader reader, const std::string& base_dir) {
                   "covariance", "sweep"});
   if (auto parameters = root.Optional("parameters")) reader.SetParameters(io::ParseParameters(*parameters));
   Budget b;
+  b.parameters = reader.parameters().parameters();
   b.source_file = reader.name();
   b.positions = reader.positions();
   b.name = root.Required("name").AsString();

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "deb/core/error.h"
+#include "deb/core/suggest.h"
 
 namespace deb {
 namespace {
@@ -55,13 +56,15 @@ ParameterSet ParameterSet::Evaluate(const std::vector<ParameterDefinition>& defi
     } catch (const ExpressionError& e) {
       throw e.At(d.key_path);
     }
-    for (const auto& [name, offset] : parsed.back().names())
-      if (!index.count(name)) {
-        try {
-          parsed.back().Evaluate([](const std::string&) { return nullptr; }, names);
-        } catch (const ExpressionError& e) {
-          throw e.At(d.key_path);
-        }
+    // A name no parameter has: the error the evaluation would give there,
+    // before the order of evaluation is worked out.
+    for (const auto& used : parsed.back().names())
+      if (!index.count(used.first)) {
+        std::vector<std::string> candidates = names;
+        candidates.push_back("pi");
+        throw ExpressionError(d.expression, used.second,
+                              "unknown name '" + used.first + "'" + DidYouMean(used.first, candidates))
+            .At(d.key_path);
       }
   }
 

@@ -589,6 +589,19 @@ void WriteResultStore(const BudgetResult& result, const RunInfo& info, const std
   for (std::size_t o = 0; o < result.outputs.size(); ++o)
     WriteOutput(w, At("result/outputs", o), outline.outputs[o], result.outputs[o]);
   w.Texts("budget/covariance", outline.covariance);
+  if (!outline.parameters.empty()) {
+    w.Texts("budget/parameters/names", Names(outline.parameters, kName));
+    for (std::size_t i = 0; i < outline.parameters.size(); ++i) {
+      const ParameterOutline& p = outline.parameters[i];
+      const std::string at = At("budget/parameters", i);
+      w.Text(at + "/name", p.name);
+      w.Text(at + "/expression", p.expression);
+      w.Text(at + "/description", p.description);
+      w.Integer(at + "/derived", p.derived ? 1 : 0);
+      w.Number(at + "/value", p.value);
+      w.Text(at + "/unit", p.unit);
+    }
+  }
   w.Integer("result/covariance/present", result.covariance ? 1 : 0);
   if (result.covariance) WriteCovariance(w, "result/covariance", *result.covariance);
   const ResponseTraces& traces = *result.traces;
@@ -690,6 +703,24 @@ BudgetResult ReadResultStore(const std::string& file, RunInfo* info) {
   }
   in.Unique("result/outputs", Names(res.outputs, kName), "output");
   b.covariance = in.Printables("budget/covariance", outputs);
+  // Parameters: in stores of budgets that have them (none before them).
+  if (r.Has("budget/parameters/names")) {
+    const std::size_t parameters = in.Count("budget/parameters/names", kMaxParameters);
+    for (std::size_t i = 0; i < parameters; ++i) {
+      const std::string at = At("budget/parameters", i);
+      ParameterOutline p;
+      p.name = r.Text(at + "/name");
+      if (!IsParameterName(p.name)) in.Fail(at + "/name", "holds '" + Excerpt(p.name) + "', which is not a parameter name");
+      p.expression = in.Printable(at + "/expression");
+      p.description = r.Text(at + "/description");
+      p.derived = r.Integer(at + "/derived") != 0;
+      p.value = r.Number(at + "/value");
+      if (!std::isfinite(p.value)) in.Fail(at + "/value", "is not finite");
+      p.unit = in.Printable(at + "/unit");
+      b.parameters.push_back(std::move(p));
+    }
+    in.Unique("budget/parameters", Names(b.parameters, kName), "parameter");
+  }
   if (r.Integer("result/covariance/present") != 0)
     res.covariance = ReadCovariance(in, "result/covariance", outputs, contributors);
   auto traces = std::make_shared<ResponseTraces>();

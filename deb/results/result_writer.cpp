@@ -326,6 +326,13 @@ std::string SummaryJson(const BudgetResult& result, const RunInfo& info) {
   j["warnings"] = result.warnings;
   if (!result.loops.empty()) j["loops"] = LoopsJson(result.loops);
   if (result.covariance) j["covariance"] = CovarianceJson(*result.covariance);
+  if (!result.outline.parameters.empty()) {
+    nlohmann::json params = nlohmann::json::array();
+    for (const ParameterOutline& p : result.outline.parameters)
+      params.push_back({{"name", p.name}, {"value", p.value}, {"unit", p.unit}, {"expression", p.expression},
+                        {"derived", p.derived}, {"description", p.description}});
+    j["parameters"] = params;
+  }
   return j.dump(2) + "\n";
 }
 

@@ -59,6 +59,8 @@ TEST_CASE("bad parameter sets are refused at the parameter, saying why") {
                  "cycle: a -> b -> c -> a"));
   CHECK(Contains(ErrorOf({Def("k_iso", "1 N/m"), Def("f", "kiso*2")}, &where), "unknown name 'kiso' (did you mean 'k_iso'?)"));
   CHECK(where == "parameters.f");
+  // The unknown name, wherever it stands among known ones.
+  CHECK(Contains(ErrorOf({Def("k", "1 N/m"), Def("f", "sqrt(k/mass)")}), "column 8: unknown name 'mass'"));
   CHECK(Contains(ErrorOf({Def("m", "1 kg"), Def("m", "2 kg")}), "parameter 'm' is defined twice"));
   CHECK(Contains(ErrorOf({Def("pi", "3")}), "'pi' is not a parameter name (it is a function or the constant pi)"));
   CHECK(Contains(ErrorOf({Def("2x", "3")}), "'2x' is not a parameter name"));

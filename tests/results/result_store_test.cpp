@@ -160,6 +160,44 @@ TEST_CASE("a result store read back and written again is the same file, for ever
   }
 }
 
+TEST_CASE("a budget's parameters are in its store, read back as written") {
+  const StoreDir dir;
+  const std::string budget = dir.File("p.yaml");
+  std::ofstream(budget) << R"(name: p
+parameters:
+  m: 2100 kg
+  k_iso: {value: 5.2e4 N/m, description: vertical stiffness per isolator}
+  f_susp: sqrt(4*k_iso/m)/(2*pi)
+grid: {type: log, min_hz: f_susp/100, max_hz: 2 kHz, points: 100}
+sources:
+  - {name: floor, unit: um/s, spectrum: {type: flat, quantity: asd, level: 0.1}}
+paths:
+  - {name: iso, type: second_order, f_hz: f_susp, zeta: 0.05, input_unit: um/s, output_unit: um/s, outputs: [v]}
+contributors:
+  - {name: floor, source: floor, path: iso}
+outputs:
+  - {name: v, signal: v, unit: um/s}
+)";
+  const std::string first = dir.File("first.h5"), second = dir.File("second.h5");
+  const Written w = WriteStore(budget, first);
+  RunInfo info;
+  const BudgetResult s = io::ReadResultStore(first, &info);
+  io::WriteResultStore(s, info, second);
+  const bool same_bytes = Bytes(first) == Bytes(second);
+  CHECK(same_bytes);
+  REQUIRE(s.outline.parameters.size() == 3);
+  CHECK(s.outline.parameters[0].name == "m");
+  CHECK(s.outline.parameters[0].value == 2100.0);
+  CHECK(s.outline.parameters[0].unit == "kg");
+  CHECK_FALSE(s.outline.parameters[0].derived);
+  CHECK(s.outline.parameters[1].description == "vertical stiffness per isolator");
+  CHECK(s.outline.parameters[2].derived);
+  CHECK(s.outline.parameters[2].expression == "sqrt(4*k_iso/m)/(2*pi)");
+  CHECK(s.outline.parameters[2].unit == "s-1");
+  CHECK(s.outline.parameters[2].value == w.result.outline.parameters[2].value);
+  CHECK(std::abs(s.outline.parameters[2].value - std::sqrt(4 * 5.2e4 / 2100.0) / (2 * M_PI)) <= 1e-15);
+}
+
 TEST_CASE("the features each example stands for are in its store") {
   const StoreDir dir;
   const auto read = [&](const char* name) {

@@ -135,6 +135,8 @@ std::string IndexHtml(const DocumentInputs& in) {
   for (const auto& [key, value] : in.facts.items)
     s << "<tr><td>" << HtmlEscape(key) << "</td><td>" << HtmlEscape(value) << "</td></tr>\n";
   s << "</table>\n" << ToHtml(SummaryTable(result, in.digits));
+  if (const Table parameters = ParametersTable(result.outline, in.digits); !parameters.rows.empty())
+    s << ToHtml(parameters);
   if (result.covariance) s << ToHtml(CovarianceTable(*result.covariance, in.digits));
   s << "<h3>Conventions</h3>\n<ul>\n";
   for (const auto& c : in.facts.conventions) s << "<li>" << HtmlEscape(c) << "</li>\n";
@@ -217,6 +219,8 @@ std::string ReportMarkdown(const DocumentInputs& in) {
   s << "## Summary\n\n| | |\n| --- | --- |\n";
   for (const auto& [key, value] : in.facts.items) s << "| " << key << " | `" << value << "` |\n";
   s << "\n" << ToMarkdown(SummaryTable(result, in.digits)) << "\n";
+  if (const Table parameters = ParametersTable(budget, in.digits); !parameters.rows.empty())
+    s << "### " << parameters.title << "\n\n" << ToMarkdown(parameters) << "\n";
   if (result.covariance) {
     const Table covariance = CovarianceTable(*result.covariance, in.digits);
     s << "### " << covariance.title << "\n\n" << ToMarkdown(covariance) << "\n";

@@ -192,6 +192,8 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   for (const auto& [label, value] : in.facts.items) facts.rows.push_back({{label, true, false}, {value}});
   b.push_back(TableBlock("", facts));
   b.push_back(TableBlock("Verdict", VerdictTable(result)));
+  if (const Table parameters = ParametersTable(budget, in.digits); !parameters.rows.empty())
+    b.push_back(TableBlock(parameters.title, TypesetTable(parameters)));
   if (const std::size_t n = result.warnings.size(); n > 0)
     b.push_back(Paragraph("The evaluation raised " + std::to_string(n) + (n == 1 ? " warning" : " warnings") +
                               ": see Warnings and notes.",

@@ -1,6 +1,7 @@
 #include "deb/report/budget/report_tables.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 
 #include "deb/budget/allocation.h"
@@ -291,6 +292,24 @@ Table BandTable(const OutputResult& o, int digits) {
   for (const BandResult& b : o.bands) total.push_back(Sig(std::sqrt(b.variance), digits));
   total.push_back(Sig(o.rms(), digits));
   t.rows.push_back(total);
+  return t;
+}
+
+// `digits` significant digits without trailing zeros: 2100, 0.02, 1.58395.
+std::string Compact(double v, int digits) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", digits, v);
+  return text;
+}
+
+Table ParametersTable(const BudgetOutline& outline, int digits) {
+  Table t;
+  t.title = "Parameters";
+  t.header = {"parameter", "value", "unit", "formula", "description"};
+  t.numeric = {false, true, false, false, false};
+  for (const ParameterOutline& p : outline.parameters)
+    t.rows.push_back({p.name, Compact(p.value, std::max(digits, 6)), p.unit.empty() ? "–" : p.unit,
+                      p.derived ? p.expression : "", p.description});
   return t;
 }
 

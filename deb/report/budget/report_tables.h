@@ -22,6 +22,10 @@ struct Table {
   std::vector<std::vector<bool>> emphasis;  // per cell (may be empty): bold
 };
 
+// The budget's parameters: name, value, unit, expression (for a derived
+// one), description; no rows if it has none.
+Table ParametersTable(const BudgetOutline& outline, int digits = 4);
+
 // One row per output: unit, RMS, requirement, margin, status, largest
 // contributor (share of the variance); then one per band requirement, its
 // largest contributor within the band (share of the band's variance).
