@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace deb {
@@ -48,6 +49,34 @@ const T* Find(const std::vector<T>& items, const Key& key) {
 
 }  // namespace
 
+namespace {
+
+std::string ParameterText(const ParameterOutline& p) {
+  char value[40];
+  std::snprintf(value, sizeof value, "%.6g", p.value);
+  return std::string(value) + (p.unit.empty() ? "" : " " + p.unit) + (p.derived ? " = " + p.expression : "");
+}
+
+std::vector<ParameterChange> ParameterChanges(const std::vector<ParameterOutline>& a,
+                                              const std::vector<ParameterOutline>& b) {
+  std::vector<ParameterChange> changes;
+  const auto find = [](const std::vector<ParameterOutline>& list, const std::string& name) -> const ParameterOutline* {
+    for (const ParameterOutline& p : list)
+      if (p.name == name) return &p;
+    return nullptr;
+  };
+  for (const ParameterOutline& pa : a) {
+    const ParameterOutline* pb = find(b, pa.name);
+    const std::string ta = ParameterText(pa), tb = pb ? ParameterText(*pb) : "";
+    if (ta != tb) changes.push_back({pa.name, ta, tb});
+  }
+  for (const ParameterOutline& pb : b)
+    if (!find(a, pb.name)) changes.push_back({pb.name, "", ParameterText(pb)});
+  return changes;
+}
+
+}  // namespace
+
 ResultFigures FiguresOf(const std::string& label, const BudgetResult& result) {
   ResultFigures r;
   r.label = label;
@@ -61,6 +90,7 @@ ResultFigures FiguresOf(const std::string& label, const BudgetResult& result) {
     for (const BandResult& b : o.bands) fo.bands.push_back({b.band.lo_hz, b.band.hi_hz, b.variance, b.contributor_variance});
     r.outputs.push_back(std::move(fo));
   }
+  r.parameters = result.outline.parameters;
   return r;
 }
 
@@ -68,6 +98,7 @@ Comparison Compare(const ResultFigures& a, const ResultFigures& b) {
   Comparison cmp;
   cmp.label_a = a.label;
   cmp.label_b = b.label;
+  cmp.parameters = ParameterChanges(a.parameters, b.parameters);
   for (const auto& oa : a.outputs) {
     const auto* ob = Find(b.outputs, [&](const ResultFigures::Output& o) { return o.name == oa.name; });
     if (!ob) {

@@ -37,6 +37,14 @@ struct ResultFigures {
   };
   std::string label;  // how the result is named in tables (budget name, directory)
   std::vector<Output> outputs;
+  std::vector<ParameterOutline> parameters;  // the budget's, if it has any
+};
+
+// A parameter whose value, unit or formula differs between A and B, or that
+// only one has ("" on the other side).
+struct ParameterChange {
+  std::string name;
+  std::string a, b;  // "52000 N/m", "1.58395 s-1 = sqrt(4*k/m)/(2*pi)"
 };
 
 ResultFigures FiguresOf(const std::string& label, const BudgetResult& result);
@@ -79,6 +87,8 @@ struct Comparison {
   // `deb compare --tolerance`: the relative change beyond which a figure has
   // moved (documents list Moved(*tolerance)); none when not asked.
   std::optional<double> tolerance;
+  // The parameters that differ (pygwinc's --diff), in A's order then B's.
+  std::vector<ParameterChange> parameters;
 
   // Contributor figures (whole grid) by |variance_change_of_total|, largest
   // first, at most `count` per output.

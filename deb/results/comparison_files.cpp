@@ -131,6 +131,20 @@ ResultFigures ReadSummaryFigures(const std::string& file, const std::string& lab
     }
     r.outputs.push_back(std::move(fo));
   }
+  // summary.json lists `parameters` when the budget has them.
+  if (j.contains("parameters")) {
+    const json& ps = List(j, "parameters", "", file);
+    for (std::size_t p = 0; p < ps.size() && p < kMaxParameters; ++p) {
+      const std::string where = Index("parameters", p);
+      ParameterOutline po;
+      po.name = Text(ps[p], "name", where, file);
+      po.value = Number(ps[p], "value", where, file);
+      po.unit = Text(ps[p], "unit", where, file);
+      po.expression = Text(ps[p], "expression", where, file);
+      po.derived = ps[p].contains("derived") && ps[p]["derived"].is_boolean() && ps[p]["derived"].get<bool>();
+      r.parameters.push_back(std::move(po));
+    }
+  }
   return r;
 }
 
@@ -150,6 +164,11 @@ std::string ComparisonJson(const Comparison& cmp) {
   for (const auto& f : cmp.LargestChanges()) largest.push_back(FigureJson(f));
   j["largest_changes"] = largest;
   j["unmatched"] = cmp.unmatched;
+  if (!cmp.parameters.empty()) {
+    json parameters = json::array();
+    for (const ParameterChange& p : cmp.parameters) parameters.push_back({{"name", p.name}, {"a", p.a}, {"b", p.b}});
+    j["parameters_differ"] = parameters;
+  }
   if (cmp.tolerance) {  // the regression gate's verdict
     j["tolerance"] = *cmp.tolerance;
     json moved = json::array();

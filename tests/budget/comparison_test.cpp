@@ -24,6 +24,32 @@ ResultFigures Example(double floor_scale) {
 
 }  // namespace
 
+TEST_CASE("parameters that differ are listed, with those only one side has") {
+  ResultFigures a, b;
+  a.label = "A";
+  b.label = "B";
+  ParameterOutline m{"m", "2100 kg", "", false, 2100.0, "kg"};
+  ParameterOutline k{"k_iso", "5.2e4 N/m", "", false, 5.2e4, "N/m"};
+  ParameterOutline f{"f_susp", "sqrt(4*k_iso/m)/(2*pi)", "", true, 1.58395249, "s-1"};
+  a.parameters = {m, k, f};
+  ParameterOutline k2 = k, f2 = f, extra{"zeta", "0.02", "", false, 0.02, ""};
+  k2.expression = "6e4 N/m";
+  k2.value = 6e4;
+  f2.value = 1.70139;
+  b.parameters = {m, k2, f2, extra};
+  const Comparison cmp = Compare(a, b);
+  REQUIRE(cmp.parameters.size() == 3);  // m is the same on both sides
+  CHECK(cmp.parameters[0].name == "k_iso");
+  CHECK(cmp.parameters[0].a == "52000 N/m");
+  CHECK(cmp.parameters[0].b == "60000 N/m");
+  CHECK(cmp.parameters[1].name == "f_susp");
+  CHECK(cmp.parameters[1].a == "1.58395 s-1 = sqrt(4*k_iso/m)/(2*pi)");
+  CHECK(cmp.parameters[2].name == "zeta");
+  CHECK(cmp.parameters[2].a.empty());
+  CHECK(cmp.parameters[2].b == "0.02");
+  CHECK(Compare(a, a).parameters.empty());
+}
+
 TEST_CASE("a result compared with itself shows zero differences and ratio 1 everywhere") {
   const Comparison cmp = Compare(Example(1.0), Example(1.0));
   REQUIRE(cmp.figures.size() == 1 + 2 + 2 * 3);  // total, contributors, two bands x (total + 2)

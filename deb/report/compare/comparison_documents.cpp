@@ -72,6 +72,15 @@ std::vector<Table> ComparisonTables(const Comparison& cmp) {
     largest.rows.push_back({f.output, f.contributor, Sig(f.rms_a, 4), Sig(f.rms_b, 4), RatioText(f),
                             Sig(100.0 * f.variance_change_of_total, 3) + " %"});
   tables.push_back(largest);
+  if (!cmp.parameters.empty()) {
+    Table changed;
+    changed.title = "Parameters that differ";
+    changed.header = {"parameter", "A: " + cmp.label_a, "B: " + cmp.label_b};
+    changed.numeric = {false, false, false};
+    for (const ParameterChange& p : cmp.parameters)
+      changed.rows.push_back({p.name, p.a.empty() ? "–" : p.a, p.b.empty() ? "–" : p.b});
+    tables.push_back(changed);
+  }
   if (cmp.tolerance) {
     Table moved;
     moved.title = "Moved by more than " + Sig(100.0 * *cmp.tolerance, 3) + " % (--tolerance)";
