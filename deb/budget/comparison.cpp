@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
+
+#include "deb/core/number_text.h"
 
 namespace deb {
 namespace {
@@ -52,9 +53,7 @@ const T* Find(const std::vector<T>& items, const Key& key) {
 namespace {
 
 std::string ParameterText(const ParameterOutline& p) {
-  char value[40];
-  std::snprintf(value, sizeof value, "%.6g", p.value);
-  return std::string(value) + (p.unit.empty() ? "" : " " + p.unit) + (p.derived ? " = " + p.expression : "");
+  return SignificantText(p.value, 6) + (p.unit.empty() ? "" : " " + p.unit) + (p.derived ? " = " + p.expression : "");
 }
 
 std::vector<ParameterChange> ParameterChanges(const std::vector<ParameterOutline>& a,

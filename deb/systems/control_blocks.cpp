@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <complex>
-#include <sstream>
 #include <string>
 
 #include "deb/core/error.h"
+#include "deb/core/number_text.h"
 
 namespace deb {
 namespace {
@@ -23,12 +23,7 @@ Poly Multiply(const Poly& a, const Poly& b) {
   return c;
 }
 
-std::string Text(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
+std::string Text(double v) { return SignificantText(v, 6); }
 
 void RequirePositive(double v, const char* what) {
   if (!(v > 0.0) || !std::isfinite(v)) throw InputError(std::string(what) + " must be a finite number > 0, not " + Text(v));

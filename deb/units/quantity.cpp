@@ -1,8 +1,7 @@
 #include "deb/units/quantity.h"
 
-#include <cstdio>
-
 #include "deb/core/error.h"
+#include "deb/core/number_text.h"
 #include "deb/units/unit.h"
 
 namespace deb {
@@ -22,9 +21,8 @@ double ValueIn(const Quantity& quantity, const std::string& unit) {
 }
 
 std::string Describe(const Quantity& quantity) {
-  char number[32];
-  std::snprintf(number, sizeof number, "%.6g", quantity.value);
-  return quantity.dimension.IsNone() ? std::string(number) : std::string(number) + " " + quantity.dimension.Text();
+  const std::string number = SignificantText(quantity.value, 6);
+  return quantity.dimension.IsNone() ? number : number + " " + quantity.dimension.Text();
 }
 
 }  // namespace deb

@@ -1,12 +1,12 @@
 #include "deb/report/budget/report_tables.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
 
 #include "deb/budget/allocation.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/budget/groups.h"
+#include "deb/core/number_text.h"
 #include "deb/report/budget/band_text.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "deb/report/figure/plot.h"
@@ -295,20 +295,13 @@ Table BandTable(const OutputResult& o, int digits) {
   return t;
 }
 
-// `digits` significant digits without trailing zeros: 2100, 0.02, 1.58395.
-std::string Compact(double v, int digits) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.*g", digits, v);
-  return text;
-}
-
 Table ParametersTable(const BudgetOutline& outline, int digits) {
   Table t;
   t.title = "Parameters";
   t.header = {"parameter", "value", "unit", "formula", "description"};
   t.numeric = {false, true, false, false, false};
   for (const ParameterOutline& p : outline.parameters)
-    t.rows.push_back({p.name, Compact(p.value, std::max(digits, 6)), p.unit.empty() ? "–" : p.unit,
+    t.rows.push_back({p.name, SignificantText(p.value, std::max(digits, 6)), p.unit.empty() ? "–" : p.unit,
                       p.derived ? p.expression : "", p.description});
   return t;
 }
