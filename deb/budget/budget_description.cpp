@@ -75,7 +75,7 @@ std::string DescribeBudget(const Budget& budget, const EvaluationPlan& plan) {
                   grid.min_hz(), grid.max_hz());
   if (!budget.parameters.empty()) {
     AppendFormatted(text, "parameters:\n");
-    for (const ParameterOutline& p : OutlineOf(budget).parameters)
+    for (const ParameterOutline& p : OutlineOf(budget.parameters))
       AppendFormatted(text, "  %-20s %.6g%s%s%s\n", p.name.c_str(), p.value, p.unit.empty() ? "" : " ",
                       p.unit.c_str(), p.derived ? ("  = " + p.expression).c_str() : "");
   }

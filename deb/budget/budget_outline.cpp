@@ -28,8 +28,14 @@ BudgetOutline OutlineOf(const Budget& budget) {
     out.combination = o.combination;
   }
   outline.covariance = budget.covariance;
-  for (const Parameter& p : budget.parameters) {
-    ParameterOutline& out = outline.parameters.emplace_back();
+  outline.parameters = OutlineOf(budget.parameters);
+  return outline;
+}
+
+std::vector<ParameterOutline> OutlineOf(const std::vector<Parameter>& parameters) {
+  std::vector<ParameterOutline> outlines;
+  for (const Parameter& p : parameters) {
+    ParameterOutline& out = outlines.emplace_back();
     out.name = p.definition.name;
     out.expression = p.definition.expression;
     out.description = p.definition.description;
@@ -42,7 +48,7 @@ BudgetOutline OutlineOf(const Budget& budget) {
       out.unit = p.value.dimension.IsNone() ? "" : p.value.dimension.Text();
     }
   }
-  return outline;
+  return outlines;
 }
 
 }  // namespace deb

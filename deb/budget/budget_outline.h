@@ -66,5 +66,7 @@ struct BudgetOutline {
 
 // The outline of a validated budget.
 BudgetOutline OutlineOf(const Budget& budget);
+// Its parameters' part (BudgetOutline::parameters).
+std::vector<ParameterOutline> OutlineOf(const std::vector<Parameter>& parameters);
 
 }  // namespace deb

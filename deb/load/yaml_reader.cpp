@@ -175,11 +175,9 @@ std::string UnitName(const std::string& unit) { return unit == "arc_degree" ? "d
 
 }  // namespace
 
-double YamlNode::AsDouble() const { return NumberIn(UnitOfKey(key_)); }
+double YamlNode::AsDouble() const { return AsValueIn(UnitOfKey(key_)); }
 
-double YamlNode::AsValueIn(const std::string& unit) const { return NumberIn(unit); }
-
-double YamlNode::NumberIn(const std::string& unit) const {
+double YamlNode::AsValueIn(const std::string& unit) const {
   if (!node_.IsScalar()) Fail("expected a number");
   const std::string text = node_.Scalar();
   double value = 0.0;

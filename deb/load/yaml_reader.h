@@ -74,7 +74,6 @@ class YamlNode {
   [[noreturn]] void FailAt(const YAML::Node& at, const std::string& key, const std::string& message) const;
 
  private:
-  double NumberIn(const std::string& unit) const;
   double EvaluateExpression(const std::string& text, const std::string& unit) const;
   const YamlReader* reader_;
   YAML::Node node_;

@@ -1,5 +1,6 @@
 #include "deb/parameters/expression.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -236,7 +237,7 @@ class Parser {
         // A space multiplies units ("kg m2") if a unit factor follows.
         std::size_t q = p;
         while (q < text_.size() && (text_[q] == ' ' || text_[q] == '\t')) ++q;
-        if (q < text_.size() && (IsLetter(text_[q]) || IsHighByte(text_[q]) || (text_[q] == '(' && open >= 0)))
+        if (q < text_.size() && (IsLetter(text_[q]) || IsHighByte(text_[q]) || text_[q] == '('))
           p = q;
         else
           break;
@@ -315,6 +316,15 @@ class Parser {
   int depth_ = 0;
 };
 
+// "unknown name 'x' (did you mean 'y'?)" at `offset` of `text`.
+ExpressionError UnknownName(const std::string& text, std::size_t offset, const std::string& name,
+                            const std::vector<std::string>& known) {
+  std::vector<std::string> candidates = known;
+  candidates.push_back("pi");
+  return ExpressionError(text, offset, "unknown name '" + name + "'" + DidYouMean(name, candidates) +
+                                           (known.empty() ? " (no parameters are defined)" : ""));
+}
+
 class Evaluator {
  public:
   Evaluator(const std::string& text, const Expression::Lookup& lookup, const std::vector<std::string>& known)
@@ -350,12 +360,7 @@ class Evaluator {
       case Kind::kName: {
         if (node.name == "pi") return {kPi, {}, false};
         const Quantity* q = lookup_ ? lookup_(node.name) : nullptr;
-        if (!q) {
-          std::vector<std::string> candidates = known_;
-          candidates.push_back("pi");
-          Fail(node.offset, "unknown name '" + node.name + "'" + DidYouMean(node.name, candidates) +
-                                (known_.empty() ? " (no parameters are defined)" : ""));
-        }
+        if (!q) throw UnknownName(text_, node.offset, node.name, known_);
         return *q;
       }
       case Kind::kNegate: {
@@ -475,6 +480,12 @@ Expression Expression::Parse(const std::string& text) {
 Quantity Expression::Evaluate(const Lookup& lookup, const std::vector<std::string>& known_names) const {
   DEB_DEMAND(root_ != nullptr);
   return Evaluator(text_, lookup, known_names).Value(*root_);
+}
+
+void Expression::RequireKnownNames(const std::vector<std::string>& known_names) const {
+  for (const auto& used : names_)
+    if (std::find(known_names.begin(), known_names.end(), used.first) == known_names.end())
+      throw UnknownName(text_, used.second, used.first, known_names);
 }
 
 bool Expression::IsLiteral() const {

@@ -72,6 +72,10 @@ class Expression {
   // function outside its domain or a result that is not finite.
   Quantity Evaluate(const Lookup& lookup, const std::vector<std::string>& known_names = {}) const;
 
+  // @throws ExpressionError, as Evaluate would, at the first name it refers
+  // to that is not in `known_names`.
+  void RequireKnownNames(const std::vector<std::string>& known_names) const;
+
   // The parameter names it refers to (not pi or functions), each once, in
   // order of first use; with the byte offset of that use.
   const std::vector<std::pair<std::string, std::size_t>>& names() const { return names_; }

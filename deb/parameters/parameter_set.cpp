@@ -4,7 +4,6 @@
 #include <map>
 
 #include "deb/core/error.h"
-#include "deb/core/suggest.h"
 
 namespace deb {
 namespace {
@@ -56,15 +55,15 @@ ParameterSet ParameterSet::Evaluate(const std::vector<ParameterDefinition>& defi
     } catch (const ExpressionError& e) {
       throw e.At(d.key_path);
     }
-    // A name no parameter has: the error the evaluation would give there,
-    // before the order of evaluation is worked out.
+    // A name no parameter has, before the order of evaluation is worked out
+    // (found by the index; the error, with its suggestion, by the expression).
     for (const auto& used : parsed.back().names())
       if (!index.count(used.first)) {
-        std::vector<std::string> candidates = names;
-        candidates.push_back("pi");
-        throw ExpressionError(d.expression, used.second,
-                              "unknown name '" + used.first + "'" + DidYouMean(used.first, candidates))
-            .At(d.key_path);
+        try {
+          parsed.back().RequireKnownNames(names);
+        } catch (const ExpressionError& e) {
+          throw e.At(d.key_path);
+        }
       }
   }
 
