@@ -67,6 +67,7 @@
 #include "deb/systems/control_blocks.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/frf_csv.h"
+#include "deb/systems/irrational_block.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/loop_margins.h"
 #include "deb/systems/lyapunov.h"

@@ -6,9 +6,24 @@
 #include "deb/budget/budget_outline.h"
 #include "deb/budget/loop_analysis.h"
 #include "deb/core/formatted_text.h"
+#include "deb/systems/modes.h"
 
 namespace deb {
 namespace {
+
+// "stable", "unstable: ...", or marginally stable with what sits on the
+// axis: a controller's integrator is not a fault, but it has no exact
+// variance on its own and a loop must close around it.
+std::string Stability(const StateSpace& system) {
+  const PoleStability s = ClassifyPoles(system.Poles());
+  if (!s.unstable.empty()) return "unstable: no contributor may use it";
+  if (s.marginal.empty()) return "stable";
+  const bool origin = std::all_of(s.marginal.begin(), s.marginal.end(),
+                                  [](const std::complex<double>& z) { return std::abs(z) <= 1e-9; });
+  return origin ? "marginally stable (integrator: " + std::to_string(s.marginal.size()) +
+                      " pole(s) at 0; close a loop around it)"
+                : "marginally stable (" + std::to_string(s.marginal.size()) + " pole(s) on the imaginary axis)";
+}
 
 void AddPath(std::string& text, const Path& p) {
   if (p.HasMeasuredData()) {
@@ -26,9 +41,15 @@ void AddPath(std::string& text, const Path& p) {
                     *lo > 0.0 ? "stable" : "rigid-body mode(s) at 0 Hz");
     return;
   }
-  AppendFormatted(text, "  %-20s %d input(s) -> %d output(s), %d state(s), %s\n", p.name.c_str(), p.system.inputs(),
-                  p.system.outputs(), p.system.states(),
-                  p.system.IsStable() ? "stable" : "unstable: no contributor may use it");
+  std::string approximated;
+  if (p.SystemApproximates())
+    for (const IrrationalBlock& b : p.measured->IrrationalBlocks())
+      approximated += (approximated.empty() ? " (exact on the grid; poles and variance by its approximation: "
+                                            : "; ") + b.Describe() + " by " + b.DescribeApproximation();
+  if (!approximated.empty()) approximated += ")";
+  AppendFormatted(text, "  %-20s %d input(s) -> %d output(s), %d state(s)%s, %s\n", p.name.c_str(), p.system.inputs(),
+                  p.system.outputs(), p.system.states(), approximated.c_str(),
+                  Stability(p.system).c_str());
 }
 
 void AddContributors(std::string& text, const Budget& budget, const EvaluationPlan& plan) {

@@ -302,6 +302,21 @@ FullPlan MakePlan(const Budget& budget) {
                               SignificantText(kLowModulusMargin) + " or more is usual)");
   }
 
+  // A sampled block's response is periodic in f: above its Nyquist frequency
+  // the grid sees its images, which a continuous-time signal there aliases.
+  for (const auto& [key, analysis] : plan.paths) {
+    const Path& path = analysis->path();
+    if (!path.measured) continue;
+    for (const IrrationalBlock& b : path.measured->IrrationalBlocks())
+      if (b.nyquist_hz() > 0.0 && plan.grid.max_hz() > b.nyquist_hz())
+        plan.warnings.push_back("path '" + path.name + "' holds " + b.Describe() + ", evaluated up to " +
+                                SignificantText(plan.grid.max_hz()) + " Hz, above its Nyquist frequency " +
+                                SignificantText(b.nyquist_hz()) +
+                                " Hz: there its response repeats (H(e^(j w T)) is periodic) and a signal aliases; "
+                                "end the grid at the Nyquist frequency (grid.max_hz) or read those bands with that "
+                                "in mind");
+  }
+
   for (const Source& s : budget.sources)
     for (const std::string& note : s.notes) plan.warnings.push_back("source '" + s.name + "': " + note);
 

@@ -51,6 +51,13 @@ std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<dou
           },
           f);
       loops[i].evaluated = true;
+      const LoopMargins& m = loops[i].margins;
+      const double at_hz = m.phase_margin ? m.phase_margin->f_hz : m.modulus_margin_f_hz;
+      for (const FrequencyModel* part : {loop.plant_model.get(), loop.controller_model.get()})
+        for (const IrrationalBlock& b : part->IrrationalBlocks()) {
+          const ApproximationError e = ApproximationErrorAt(b, at_hz);
+          loops[i].approximations.push_back({b.Describe(), b.DescribeApproximation(), at_hz, e.phase_deg, e.gain_ratio});
+        }
     } catch (const InputError& e) {
       loops[i].note = e.message();
     }
@@ -78,7 +85,11 @@ std::string MarginsText(const LoopResult& loop) {
   } else {
     text = std::to_string(m.channels) + " channels: ";
   }
-  return text + "modulus margin " + SignificantText(m.modulus_margin) + at(m.modulus_margin_f_hz);
+  text += "modulus margin " + SignificantText(m.modulus_margin) + at(m.modulus_margin_f_hz);
+  for (const LoopApproximation& a : loop.approximations)
+    text += "; " + a.block + " by " + a.approximation + ": phase error " + SignificantText(a.phase_error_deg) +
+            " deg, gain ratio " + SignificantText(a.gain_ratio, 8) + at(a.f_hz);
+  return text;
 }
 
 }  // namespace deb

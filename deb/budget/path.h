@@ -35,10 +35,14 @@ struct Path {
   std::string name;
   std::string description;
   StateSpace system = StateSpace::Gain(Eigen::MatrixXd::Zero(0, 0));
-  // Set when the path holds measured frequency data (type: frf, or a series,
-  // parallel or feedback path with such a part): H is evaluated frequency by
-  // frequency from it, and `system` is only a zero gain of the path's size,
-  // carrying its dimensions (no poles, no Lyapunov variance).
+  // Set when the path holds measured frequency data (type: frf) or a block
+  // that is not rational in s (delay, discrete), or is a series, parallel or
+  // feedback path with such a part: H is evaluated frequency by frequency
+  // from it. With measured data `system` is only a zero gain of the path's
+  // size, carrying its dimensions (no poles, no Lyapunov variance); with
+  // delays and sampled blocks only, `system` is the path's rational
+  // approximation (SystemApproximates()), which gives the poles, stability
+  // and the exact variance, while H on the grid stays exact.
   std::shared_ptr<const FrequencyModel> measured;
   // Set for a path of `type: modal`: it is evaluated in modal form
   // (path_analysis.h), and `system` is again only a zero gain of its size.
@@ -58,7 +62,9 @@ struct Path {
   // Row of the output named `signal`, or -1.
   int OutputIndex(const std::string& signal) const;
 
-  bool HasMeasuredData() const { return measured != nullptr; }
+  bool HasMeasuredData() const { return measured && measured->HasData(); }
+  // H is evaluated per frequency from `measured`, and `system` approximates it.
+  bool SystemApproximates() const { return measured && !measured->HasData(); }
   bool IsModal() const { return modal != nullptr; }
   // The rational transfer as a state space: `system`, or the realisation of
   // the modal model (2 states per mode; for joining it with other paths).

@@ -55,12 +55,16 @@ PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : pat
     modal_ = std::make_unique<ModalResponse>(*path.modal, rows_);
   } else if (path.measured) {
     measured_ = path.measured->SelectOutputs(rows_);
-    std::vector<std::complex<double>> all;
-    for (const StateSpace& part : path.measured->RationalParts()) {
-      const Eigen::VectorXcd p = part.Poles();
-      all.insert(all.end(), p.data(), p.data() + p.size());
+    if (path.SystemApproximates()) {  // the rational approximation's poles (Pade's too)
+      poles = path.system.Poles();
+    } else {
+      std::vector<std::complex<double>> all;
+      for (const StateSpace& part : path.measured->RationalParts()) {
+        const Eigen::VectorXcd p = part.Poles();
+        all.insert(all.end(), p.data(), p.data() + p.size());
+      }
+      poles = Eigen::Map<const Eigen::VectorXcd>(all.data(), static_cast<Eigen::Index>(all.size()));
     }
-    poles = Eigen::Map<const Eigen::VectorXcd>(all.data(), static_cast<Eigen::Index>(all.size()));
     modes_ = ModesFromPoles(poles);
   } else {
     rational_ = std::make_unique<FrequencyResponse>(path.system.SelectOutputs(rows_));
@@ -169,7 +173,7 @@ const PathAnalysis::Cached& PathAnalysis::AllRows(const Eigen::MatrixXd& w_two_s
         return ExactVariance{one.variance(0), one.share.row(0).transpose()};
       });
     }
-  } else if (rational_) {
+  } else if (rational_ || path_.SystemApproximates()) {
     try {
       const Eigen::MatrixXd cov = OutputCovariance(path_.system.SelectOutputs(rows_), w_two_sided);
       for (std::size_t i = 0; i < rows_.size(); ++i) c.rows[i] = ExactVariance{cov(i, i), {}};
@@ -201,7 +205,7 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
                                               const std::vector<const StateSpace*>& weightings,
                                               const Eigen::MatrixXd& w_two_sided) const {
   DEB_DEMAND(!rows.empty() && rows.size() == weightings.size());
-  if (measured_) throw InputError("the path holds measured frequency data (no state-space model for a Lyapunov solution)");
+  if (measured_ && !path_.SystemApproximates()) throw InputError("the path holds measured frequency data (no state-space model for a Lyapunov solution)");
   // Unweighted rows of a modal path: the modal covariance's closed form, as
   // their variances (AllRows), O(n^2 p) instead of a 2n-state Lyapunov solve.
   if (modal_ && std::all_of(weightings.begin(), weightings.end(), [](const StateSpace* w) { return w == nullptr; }))

@@ -8,7 +8,10 @@
 //   - modal: evaluated in modal form (modal_response.h), poles and the exact
 //     covariance in closed form, nothing of size 2n x 2n is formed;
 //   - measured (a block diagram with frequency data): evaluated per frequency
-//     (frequency_model.h); the poles are those of its rational blocks.
+//     (frequency_model.h); the poles are those of its rational blocks;
+//   - with delays or sampled blocks (and no data): evaluated exactly per
+//     frequency as a diagram; poles, stability and the exact variance are
+//     those of its rational approximation (Path::SystemApproximates).
 #pragma once
 
 #include <Eigen/Dense>

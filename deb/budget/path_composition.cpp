@@ -36,18 +36,24 @@ Eigen::MatrixXd ScaleBetween(const std::string& key_path, const std::vector<std:
 
 // Sets p's transfer to the combination of a and b: in state space when both
 // are rational (poles and Lyapunov variances stay available), else as a
-// diagram evaluated per frequency, with a zero gain of the result's size as
-// `system`.
+// diagram evaluated per frequency, with as `system` the combination of the
+// parts' rational approximations where there are no measured data (delays
+// and sampled blocks: Path::SystemApproximates), or a zero gain of the
+// result's size. p may be a or b.
 template <typename StateSpaceOp, typename ModelOp>
 void Combine(Path* p, const Path& a, const Path& b, StateSpaceOp rational, ModelOp diagram) {
-  p->modal.reset();  // a combination is realised in state space (path.h)
-  if (!a.HasMeasuredData() && !b.HasMeasuredData()) {
-    p->system = rational(a.Rational(), b.Rational());
+  if (!a.measured && !b.measured) {
+    StateSpace system = rational(a.Rational(), b.Rational());
+    p->modal.reset();  // a combination is realised in state space (path.h)
+    p->system = std::move(system);
     p->measured.reset();
     return;
   }
   auto model = std::make_shared<const FrequencyModel>(diagram(a.Model(), b.Model()));
-  p->system = StateSpace::Gain(Eigen::MatrixXd::Zero(model->outputs(), model->inputs()));
+  StateSpace system = model->HasData() ? StateSpace::Gain(Eigen::MatrixXd::Zero(model->outputs(), model->inputs()))
+                                       : rational(a.Rational(), b.Rational());
+  p->modal.reset();
+  p->system = std::move(system);
   p->measured = std::move(model);
 }
 
@@ -180,13 +186,15 @@ Path SelectPathInputs(const Path& path, const std::vector<std::string>& inputs) 
     p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(path.system.outputs(), k));
     return p;
   }
-  if (path.HasMeasuredData()) {
+  if (path.measured) {
     Eigen::MatrixXd selector = Eigen::MatrixXd::Zero(path.system.inputs(), k);
     for (int i = 0; i < k; ++i) selector(columns[i], i) = 1.0;
     p.measured = std::make_shared<const FrequencyModel>(
         FrequencyModel::Series(FrequencyModel(StateSpace::Gain(selector)), *path.measured));
-    p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(path.system.outputs(), k));
-    return p;
+    if (path.HasMeasuredData()) {
+      p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(path.system.outputs(), k));
+      return p;
+    }
   }
   p.system = path.system.SelectInputs(columns);
   return p;
@@ -231,14 +239,16 @@ Path AddCombinedOutput(const Path& path, const std::string& name, const std::vec
     q.system = StateSpace::Gain(Eigen::MatrixXd::Zero(p + 1, m));
     return q;
   }
-  if (path.HasMeasuredData()) {
+  if (path.measured) {
     Eigen::MatrixXd stack(p + 1, p);
     stack.topRows(p).setIdentity();
     stack.row(p) = weights;
     q.measured = std::make_shared<const FrequencyModel>(
         FrequencyModel::Series(*path.measured, FrequencyModel(StateSpace::Gain(stack))));
-    q.system = StateSpace::Gain(Eigen::MatrixXd::Zero(p + 1, m));
-    return q;
+    if (path.HasMeasuredData()) {
+      q.system = StateSpace::Gain(Eigen::MatrixXd::Zero(p + 1, m));
+      return q;
+    }
   }
   Eigen::MatrixXd c(p + 1, path.system.states()), d(p + 1, m);
   c.topRows(p) = path.system.C();

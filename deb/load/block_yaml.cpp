@@ -59,6 +59,34 @@ FilterShape Shape(const YamlNode& node) {
 
 bool IsBlockType(const std::string& type) { return Keys().count(type) > 0; }
 
+bool IsIrrationalType(const std::string& type) { return type == "delay" || type == "discrete"; }
+
+std::set<std::string> IrrationalKeys(const std::string& type) {
+  if (type == "delay") return {"seconds", "pade_order"};
+  return {"sample_hz", "num", "den", "zoh", "pade_order"};
+}
+
+IrrationalBlock ParseIrrationalBlock(const YamlNode& node, const std::string& type) {
+  int pade = kDefaultPadeOrder;
+  if (auto n = node.Optional("pade_order")) {
+    pade = n->AsInt();
+    if (pade < kMinPadeOrder || pade > kMaxPadeOrder)
+      n->Fail("pade_order must be " + std::to_string(kMinPadeOrder) + " to " + std::to_string(kMaxPadeOrder) +
+              ", not " + std::to_string(pade));
+  }
+  if (type == "delay") {
+    const YamlNode seconds = node.Required("seconds");
+    const double tau = seconds.AsValueIn("s");
+    return AtNode(seconds, [&] { return Delay(tau, pade); });
+  }
+  const YamlNode rate = node.Required("sample_hz");
+  const double sample_hz = rate.AsDouble();
+  if (!(sample_hz > 0.0)) rate.Fail("sample_hz must be > 0");
+  const std::vector<double> num = node.Required("num").AsDoubles(), den = node.Required("den").AsDoubles();
+  const bool zoh = node.Has("zoh") && node.Required("zoh").AsBool();
+  return AtNode(node.Required("den"), [&] { return Discrete(sample_hz, num, den, zoh, pade); });
+}
+
 std::set<std::string> BlockKeys(const std::string& type) { return Keys().at(type); }
 
 TransferFunction ParseBlock(const YamlNode& node, const std::string& type) {

@@ -294,6 +294,20 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
     for (std::string& u : p.output_units)
       u = AtNode(unit_node, [&] { return ModalOutputUnit(u, model.quantity); });
     composite = true;  // names come from the shapes
+  } else if (IsIrrationalType(type)) {
+    std::set<std::string> keys = IrrationalKeys(type);
+    keys.insert(kCommonKeys.begin(), kCommonKeys.end());
+    node.AllowOnly(keys);
+    if (type == "discrete") {
+      const YamlNode den = node.Required("den");
+      if (const std::string why = TooManyStates(static_cast<Eigen::Index>(den.AsDoubles().size()) - 1,
+                                                "a denominator of this order gives");
+          !why.empty())
+        den.Fail(why);
+    }
+    IrrationalBlock block = ParseIrrationalBlock(node, type);
+    p.system = block.approximation;
+    p.measured = std::make_shared<const FrequencyModel>(std::move(block));
   } else if (IsBlockType(type)) {
     std::set<std::string> keys = BlockKeys(type);
     keys.insert(kCommonKeys.begin(), kCommonKeys.end());
@@ -304,7 +318,7 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
     type_node.Fail("unknown path type '" + type +
                    "'; allowed: transfer_function, state_space, gain, frf, modal, series, parallel, feedback, "
                    "isolation_system, zpk, second_order, mass_spring_damper, pid, lead_lag, notch, lowpass, "
-                   "highpass, integrator");
+                   "highpass, integrator, delay, discrete");
   }
 
   if (composite) {

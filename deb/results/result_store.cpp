@@ -192,6 +192,18 @@ void WriteLoop(Hdf5Writer& w, const std::string& at, const LoopResult& r, const 
     w.Numbers(at + "/margins/" + name,
               *margin ? std::vector<double>{(*margin)->f_hz, (*margin)->gain_margin} : std::vector<double>{});
   w.Numbers(at + "/margins/modulus_margin", {m.modulus_margin, m.modulus_margin_f_hz});
+  if (!r.approximations.empty()) {  // only loops around delays or sampled blocks
+    std::vector<std::string> blocks, how;
+    std::vector<std::vector<double>> errors;
+    for (const LoopApproximation& a : r.approximations) {
+      blocks.push_back(a.block);
+      how.push_back(a.approximation);
+      errors.push_back({a.f_hz, a.phase_error_deg, a.gain_ratio});
+    }
+    w.Texts(at + "/approximations/blocks", blocks);
+    w.Texts(at + "/approximations/approximations", how);
+    w.Rows(at + "/approximations/errors", errors);
+  }
   std::vector<double> re, im;
   for (const std::complex<double>& l : trace.loop_gain) {
     re.push_back(l.real());
@@ -479,6 +491,17 @@ void ReadLoop(const Reading& in, const std::string& at, std::size_t n, LoopResul
   const std::vector<double> modulus = in.Numbers(at + "/margins/modulus_margin", 2);
   m.modulus_margin = modulus[0];
   m.modulus_margin_f_hz = modulus[1];
+  if (h.Has(at + "/approximations/blocks")) {
+    const std::vector<std::string> blocks = in.Printables(at + "/approximations/blocks", kMaxEntries);
+    const std::vector<std::string> how = in.Printables(at + "/approximations/approximations", blocks.size());
+    const auto errors = in.Rows(at + "/approximations/errors", 3, blocks.size());
+    if (how.size() != blocks.size() || errors.size() != blocks.size())
+      in.Fail(at + "/approximations", "lists " + std::to_string(blocks.size()) + " blocks but " +
+                                          std::to_string(how.size()) + " approximations and " +
+                                          std::to_string(errors.size()) + " errors");
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+      r->approximations.push_back({blocks[i], how[i], errors[i][0], errors[i][1], errors[i][2]});
+  }
   trace->f_hz = in.UpTo(at + "/trace/f_hz", limits::kMaxGridPoints);
   const std::vector<double> re = in.Numbers(at + "/trace/loop_gain_re", trace->f_hz.size());
   const std::vector<double> im = in.Numbers(at + "/trace/loop_gain_im", trace->f_hz.size());

@@ -93,6 +93,12 @@ nlohmann::json LoopsJson(const std::vector<LoopResult>& loops) {
       jl["lower_gain_margin"] =
           crossing(m.lower_gain_margin, "factor", m.lower_gain_margin ? m.lower_gain_margin->gain_margin : 0.0);
     }
+    for (const LoopApproximation& a : l.approximations)
+      jl["approximations"].push_back({{"block", a.block},
+                                      {"approximation", a.approximation},
+                                      {"f_hz", a.f_hz},
+                                      {"phase_error_deg", a.phase_error_deg},
+                                      {"gain_ratio", a.gain_ratio}});
     out.push_back(jl);
   }
   return out;

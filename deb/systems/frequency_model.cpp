@@ -11,12 +11,13 @@
 namespace deb {
 
 struct FrequencyModel::Node {
-  enum class Kind { kRational, kMeasured, kSeries, kParallel, kFeedback, kSelect };
+  enum class Kind { kRational, kMeasured, kIrrational, kSeries, kParallel, kFeedback, kSelect };
   Kind kind = Kind::kRational;
   int inputs = 0, outputs = 0;
   std::optional<StateSpace> rational;
   std::shared_ptr<const FrequencyResponse> response;  // of `rational`, reduced once
   std::optional<MeasuredResponse> measured;
+  std::optional<IrrationalBlock> irrational;
   std::shared_ptr<const Node> a, b;  // series: first, second; feedback: plant, controller
   int sign = -1;
   std::vector<int> rows;  // kSelect
@@ -25,6 +26,7 @@ struct FrequencyModel::Node {
     switch (kind) {
       case Kind::kRational: return response->At(f_hz);
       case Kind::kMeasured: return measured->At(f_hz);
+      case Kind::kIrrational: return Eigen::MatrixXcd::Constant(1, 1, irrational->At(f_hz));
       case Kind::kSeries: return b->At(f_hz) * a->At(f_hz);
       case Kind::kParallel: return a->At(f_hz) + b->At(f_hz);
       case Kind::kFeedback: {
@@ -51,12 +53,14 @@ struct FrequencyModel::Node {
     return {};
   }
 
-  void Collect(std::vector<StateSpace>* parts, std::vector<double>* f_hz, bool* loop_around_data) const {
+  void Collect(std::vector<StateSpace>* parts, std::vector<double>* f_hz, bool* loop_around_data,
+               std::vector<IrrationalBlock>* blocks = nullptr) const {
     if (rational && parts) parts->push_back(*rational);
+    if (irrational && blocks) blocks->push_back(*irrational);
     if (measured && f_hz) f_hz->insert(f_hz->end(), measured->f_hz().begin(), measured->f_hz().end());
     if (kind == Kind::kFeedback && loop_around_data && (a->HasData() || b->HasData())) *loop_around_data = true;
-    if (a) a->Collect(parts, f_hz, loop_around_data);
-    if (b) b->Collect(parts, f_hz, loop_around_data);
+    if (a) a->Collect(parts, f_hz, loop_around_data, blocks);
+    if (b) b->Collect(parts, f_hz, loop_around_data, blocks);
   }
 
   // Where every measured table whose extrapolation is an error is defined.
@@ -88,6 +92,15 @@ FrequencyModel::FrequencyModel(MeasuredResponse measured) {
   n->inputs = measured.inputs();
   n->outputs = measured.outputs();
   n->measured = std::move(measured);
+  node_ = std::move(n);
+}
+
+FrequencyModel::FrequencyModel(IrrationalBlock block) {
+  auto n = std::make_shared<Node>();
+  n->kind = Node::Kind::kIrrational;
+  n->inputs = 1;
+  n->outputs = 1;
+  n->irrational = std::move(block);
   node_ = std::move(n);
 }
 
@@ -167,6 +180,14 @@ bool FrequencyModel::HasLoopAroundData() const {
   bool loop = false;
   node_->Collect(nullptr, nullptr, &loop);
   return loop;
+}
+
+bool FrequencyModel::HasData() const { return node_->HasData(); }
+
+std::vector<IrrationalBlock> FrequencyModel::IrrationalBlocks() const {
+  std::vector<IrrationalBlock> blocks;
+  node_->Collect(nullptr, nullptr, nullptr, &blocks);
+  return blocks;
 }
 
 Eigen::MatrixXcd FrequencyModel::At(double f_hz) const { return node_->At(f_hz); }

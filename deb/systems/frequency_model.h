@@ -1,5 +1,6 @@
 // A linear transfer evaluated frequency by frequency, for paths that hold
-// measured data. Rational models are joined in state space (interconnect.h),
+// measured data or blocks that are not rational in s (a delay, a sampled
+// block: irrational_block.h). Rational models are joined in state space (interconnect.h),
 // where poles and Lyapunov variances stay available; a chain or loop with a
 // measured frequency response (measured_response.h) cannot be, so it is kept
 // as a block diagram and evaluated at each frequency by the same algebra as
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "deb/core/frequency_interval.h"
+#include "deb/systems/irrational_block.h"
 #include "deb/systems/measured_response.h"
 #include "deb/systems/state_space.h"
 
@@ -28,6 +30,8 @@ class FrequencyModel {
  public:
   explicit FrequencyModel(const StateSpace& rational);
   explicit FrequencyModel(MeasuredResponse measured);
+  // A SISO delay or sampled block, evaluated exactly.
+  explicit FrequencyModel(IrrationalBlock block);
 
   // @throws InputError if the sizes do not fit (as interconnect.h).
   static FrequencyModel Series(const FrequencyModel& first, const FrequencyModel& second);
@@ -48,6 +52,11 @@ class FrequencyModel {
   std::optional<FrequencyInterval> DefinedRangeHz() const;
   // A feedback loop whose plant or controller holds measured data.
   bool HasLoopAroundData() const;
+  // Some block holds measured data (else every block is rational or
+  // irrational, and the diagram has a rational approximation).
+  bool HasData() const;
+  // Every delay and sampled block of the diagram, in diagram order.
+  std::vector<IrrationalBlock> IrrationalBlocks() const;
 
   // H(j 2 pi f), outputs x inputs.
   // @throws InputError outside a table's range (Extrapolation::kError), on a

@@ -38,7 +38,7 @@ Budget Example() {
     p.output_units = {"um"};
     return p;
   };
-  b.paths = {path("lowpass", 10.0), path("runaway", -10.0)};
+  b.paths = {path("lowpass", 10.0), path("runaway", -10.0), path("integrator", 0.0)};
   b.contributors = {{"ca", "a", "lowpass", ExactVariance::kAuto, {}, {}, false}};
   Output o;
   o.name = "y";
@@ -59,6 +59,8 @@ TEST_CASE("a budget is described section by section: grid, sources, paths, contr
   CHECK(Has(text, "\npaths:\n  lowpass              1 input(s) -> 1 output(s), 1 state(s), stable\n"));
   CHECK(
       Has(text, "  runaway              1 input(s) -> 1 output(s), 1 state(s), unstable: no contributor may use it\n"));
+  CHECK(Has(text, "  integrator           1 input(s) -> 1 output(s), 1 state(s), marginally stable (integrator: 1 "
+                  "pole(s) at 0; close a loop around it)\n"));
   CHECK(Has(text, "\ncontributors:\n  ca                   source a, path lowpass, exact variance: auto\n"));
   CHECK(Has(text, "\noutputs:\n  y                    signal y in um, rms_max 2\n"));
   CHECK_FALSE(Has(text, "feedback loops:"));

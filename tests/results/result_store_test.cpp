@@ -198,6 +198,46 @@ outputs:
   CHECK(std::abs(s.outline.parameters[2].value - std::sqrt(4 * 5.2e4 / 2100.0) / (2 * M_PI)) <= 1e-15);
 }
 
+TEST_CASE("a loop around a delay keeps its approximation's error at the crossover in the store") {
+  const StoreDir dir;
+  const std::string budget = dir.File("d.yaml");
+  std::ofstream(budget) << R"(name: d
+grid: {type: log, min_hz: 0.1, max_hz: 2000, points: 400}
+sources:
+  - {name: force, unit: N, spectrum: {type: flat, quantity: asd, level: 1}}
+paths:
+  - {name: plant, type: mass_spring_damper, m: 1 kg, k: 3948 N/m, d: 12.6 N s/m, input_unit: N, output_unit: um, outputs: [x]}
+  - {name: pid, type: pid, gain: 0.1, f_i_hz: 5, f_d_hz: 20, f_lp_hz: 200, input_unit: um, output_unit: N}
+  - {name: wait, type: delay, seconds: 200 us, pade_order: 3, input_unit: N, output_unit: N}
+  - {name: late_pid, type: series, of: [pid, wait]}
+  - {name: loop, type: feedback, plant: plant, controller: late_pid}
+contributors:
+  - {name: force, source: force, path: loop}
+outputs:
+  - {name: x, signal: x, unit: um}
+)";
+  const std::string first = dir.File("first.h5"), second = dir.File("second.h5");
+  const Written w = WriteStore(budget, first);
+  RunInfo info;
+  const BudgetResult s = io::ReadResultStore(first, &info);
+  io::WriteResultStore(s, info, second);
+  const bool same_bytes = Bytes(first) == Bytes(second);
+  CHECK(same_bytes);
+  REQUIRE(w.result.loops.size() == 1);
+  REQUIRE(s.loops.size() == 1);
+  REQUIRE(w.result.loops[0].approximations.size() == 1);
+  REQUIRE(s.loops[0].approximations.size() == 1);
+  const LoopApproximation &a = w.result.loops[0].approximations[0], &b = s.loops[0].approximations[0];
+  CHECK(b.block == "a delay of 200 us");
+  CHECK(b.approximation == "Pade (3, 3)");
+  CHECK(b.approximation == a.approximation);
+  CHECK(b.f_hz == a.f_hz);
+  CHECK(b.phase_error_deg == a.phase_error_deg);
+  CHECK(b.gain_ratio == a.gain_ratio);
+  CHECK(std::abs(b.phase_error_deg) > 0.0);  // order 3 at ~110 Hz: small, not zero
+  CHECK(std::abs(b.phase_error_deg) < 1e-3);
+}
+
 TEST_CASE("the features each example stands for are in its store") {
   const StoreDir dir;
   const auto read = [&](const char* name) {
