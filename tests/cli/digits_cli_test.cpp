@@ -16,8 +16,8 @@ TEST_CASE("deb run --digits 3 prints 3 significant digits, largest contributor f
   const fs::path dir = TempDir("digits");
   const Command r = RunDeb("run " + ExampleBudget("wafer_stage.yaml") + " --no-plots --plot-scripts --digits 3 --out " + (dir / "r").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
-  // position: 2.114 nm, air_turbulence 1.111 nm (27.6 %) the largest, then floor 1.054 nm.
-  CHECK(r.out.find("output position [nm]: rms 2.11  (requirement 1.5: FAIL)") != std::string::npos);
+  // position: 2.173 nm, air_turbulence 1.116 nm (26.6 %) the largest, then floor 1.067 nm.
+  CHECK(r.out.find("output position [nm]: rms 2.17  (requirement 1.5: FAIL)") != std::string::npos);
   const std::size_t head = r.out.find("output position");
   const std::size_t air = r.out.find("  air_turbulence", head), floor = r.out.find("  floor", head),
                     dac = r.out.find("  dac", head);
@@ -26,11 +26,11 @@ TEST_CASE("deb run --digits 3 prints 3 significant digits, largest contributor f
   std::istringstream row(r.out.substr(air));
   std::string name, rms;
   row >> name >> rms;
-  CHECK(rms == "1.11");
+  CHECK(rms == "1.12");
   // The report's summary table: the same precision.
-  CHECK(ReadAll(dir / "r" / "report.md").find("| position | nm | 2.11 | 1.5 |") != std::string::npos);
+  CHECK(ReadAll(dir / "r" / "report.md").find("| position | nm | 2.17 | 1.5 |") != std::string::npos);
   // The plot scripts written without plots carry it into the labels.
-  CHECK(ReadAll(dir / "r" / "plots" / "position_cps.gp").find("'position: 2.11 nm RMS, FAIL 1.41× over 1.5 nm'") !=
+  CHECK(ReadAll(dir / "r" / "plots" / "position_cps.gp").find("'position: 2.17 nm RMS, FAIL 1.45× over 1.5 nm'") !=
         std::string::npos);
 }
 

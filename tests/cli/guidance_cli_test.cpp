@@ -115,12 +115,12 @@ TEST_CASE("deb run says what to fix for each failing output: the sentence on the
   // The figures behind these two are checked in closed form below and in
   // tests/budget/failure_guidance_test.cpp; here the text a reader gets.
   CHECK(Output(j, "position")["guidance"]["sentence"] ==
-        "position fails by 1.409×: air_turbulence (27.6 %, 1–10 Hz) and floor must drop 4.293× each, or "
-        "air_turbulence, floor and cable_slab 1.83× each; the cumulative RMS reaches 1.5 nm at 20.31 Hz; band "
-        "0.1–10 Hz fails by 1.666× (largest: air_turbulence, 52.7 % of the band)");
+        "position fails by 1.449×: air_turbulence (26.6 %, 1–10 Hz), floor and cable_slab must drop 2.059× each, or "
+        "air_turbulence, floor, cable_slab and cooling_water 1.658× each; the cumulative RMS reaches 1.5 nm at 20.28 "
+        "Hz; band 0.1–10 Hz fails by 1.666× (largest: air_turbulence, 52.7 % of the band)");
   CHECK(Output(j, "image_shift")["guidance"]["sentence"] ==
-        "image_shift fails by 1.295×: air_turbulence (43.1 %, 1–10 Hz) must drop 3.991×, or air_turbulence and floor "
-        "1.435× each; the cumulative RMS reaches 1.2 nm at 4.982 Hz");
+        "image_shift fails by 1.297×: air_turbulence (42.9 %, 1–10 Hz) must drop 4.295×, or air_turbulence and floor "
+        "1.442× each; the cumulative RMS reaches 1.2 nm at 4.982 Hz");
   // The console table comes before the report is written: here the report line closes it.
   CHECK(r.out.find("to fix: ") < r.out.find("\nreport: "));
   fs::remove_all(dir);
