@@ -7,18 +7,27 @@
 namespace deb::io {
 namespace {
 
-Eigen::Vector3d Vector3(const YamlNode& node) {
-  const auto v = node.AsDoubles();
-  if (v.size() != 3) node.Fail("expected 3 numbers [x, y, z] (or [p, q, r]), got " + std::to_string(v.size()));
-  return Eigen::Vector3d(v[0], v[1], v[2]);
+// [x, y, z] (or [p, q, r]), each a number in `unit` or a quantity
+// converted to it.
+Eigen::Vector3d Vector3(const YamlNode& node, const std::string& unit) {
+  if (!node.IsSequence() || node.size() != 3)
+    node.Fail("expected 3 numbers [x, y, z] (or [p, q, r]), got " +
+              (node.IsSequence() ? std::to_string(node.size()) : std::string("a single value")));
+  const std::vector<YamlNode> e = node.Elements();
+  return Eigen::Vector3d(e[0].AsValueIn(unit), e[1].AsValueIn(unit), e[2].AsValueIn(unit));
 }
 
-Eigen::Matrix3d Inertia(const YamlNode& node) {
+Eigen::Matrix3d Inertia(const YamlNode& node, const std::string& unit) {
   if (node.IsSequence() && node.size() == 3 && !node.Elements()[0].IsSequence()) {
-    return Vector3(node).asDiagonal();  // principal moments [J_xx, J_yy, J_zz]
+    return Vector3(node, unit).asDiagonal();  // principal moments [J_xx, J_yy, J_zz]
   }
-  const Eigen::MatrixXd j = node.AsMatrix();
-  if (j.rows() != 3 || j.cols() != 3) node.Fail("inertia must be [J_xx, J_yy, J_zz] or a 3x3 matrix");
+  if (!node.IsSequence() || node.size() != 3) node.Fail("inertia must be [J_xx, J_yy, J_zz] or a 3x3 matrix");
+  Eigen::Matrix3d j;
+  const std::vector<YamlNode> rows = node.Elements();
+  for (int r = 0; r < 3; ++r) {
+    if (!rows[r].IsSequence() || rows[r].size() != 3) node.Fail("inertia must be [J_xx, J_yy, J_zz] or a 3x3 matrix");
+    j.row(r) = Vector3(rows[r], unit).transpose();
+  }
   return j;
 }
 
@@ -40,20 +49,30 @@ IsolationPaths ParseIsolationSystem(const YamlNode& node) {
   IsolationSystem& sys = spec.system;
   const YamlNode body = node.Required("body");
   body.AllowOnly({"mass", "inertia", "gravity"});
-  sys.body.mass = body.Required("mass").AsDouble();
-  sys.body.inertia = Inertia(body.Required("inertia"));
-  if (auto g = body.Optional("gravity")) sys.body.gravity = g->AsNonNegative();
+  // Every dimensional number in the model's units (a plain number), or a
+  // quantity converted to them: `position: [0.615 m, 570, -h]` in mm.
+  const IsolationUnits& u = spec.units;
+  const std::string length = "(" + u.length + ")", mass = "(" + u.mass + ")", force = "(" + u.force + ")";
+  sys.body.mass = body.Required("mass").AsValueIn(mass);
+  sys.body.inertia = Inertia(body.Required("inertia"), mass + " " + length + "^2");
+  if (auto g = body.Optional("gravity")) {
+    sys.body.gravity = g->AsValueIn(length + "/s^2");
+    if (!(sys.body.gravity >= 0.0)) g->Fail("gravity must be >= 0");
+  }
   AtNode(body, [&] { sys.body.Validate(); });
 
   for (const auto& n : node.Required("isolators").Elements()) {
     n.AllowOnly({"name", "position", "stiffness", "damping", "rotation_deg", "spring_length"});
     Isolator iso;
     iso.name = n.Required("name").AsString();
-    iso.position = Vector3(n.Required("position"));
-    iso.stiffness = Vector3(n.Required("stiffness"));
-    iso.damping = Vector3(n.Required("damping"));
+    iso.position = Vector3(n.Required("position"), length);
+    iso.stiffness = Vector3(n.Required("stiffness"), force + "/" + length);
+    iso.damping = Vector3(n.Required("damping"), force + " s/" + length);
     if (auto r = n.Optional("rotation_deg")) iso.rotation_rad = r->AsDouble() * std::acos(-1.0) / 180.0;
-    if (auto l = n.Optional("spring_length")) iso.spring_length = l->AsPositive();
+    if (auto l = n.Optional("spring_length")) {
+      iso.spring_length = l->AsValueIn(length);
+      if (!(iso.spring_length > 0.0)) l->Fail("spring_length must be > 0");
+    }
     sys.isolators.push_back(iso);
   }
   if (auto sensors = node.Optional("sensors")) {

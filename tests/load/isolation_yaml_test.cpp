@@ -52,6 +52,33 @@ TEST_CASE("an isolation_system entry yields the floor, noise and actuator paths,
   CHECK(b.models[0].report.find("Static pre-stress") != std::string::npos);
 }
 
+TEST_CASE("the model's numbers take quantities in any unit, converted to the model's; the literal twin is identical") {
+  // The shipped budget writes h, k_h, c_iso and Kv as parameters; its literal twin writes 210 (mm), 12 (N/mm),
+  // 0.1 (N s/mm) and 50, and a third writes them in SI and other units.
+  const std::string thesis = ThesisBudgetText();
+  std::string literal = thesis, si = thesis;
+  literal = Replace(literal, "h: {value: 210 mm,", "h: {value: 210,");
+  literal = Replace(literal, "k_h: {value: 12 N/mm,", "k_h: {value: 12,");
+  literal = Replace(literal, "c_iso: {value: 0.1 N s/mm,", "c_iso: {value: 0.1,");
+  si = Replace(si, "h: {value: 210 mm,", "h: {value: 0.21 m,");
+  si = Replace(si, "k_h: {value: 12 N/mm,", "k_h: {value: 12 kN/m,");
+  si = Replace(si, "c_iso: {value: 0.1 N s/mm,", "c_iso: {value: 100 N s/m,");
+  si = Replace(si, "mass: 2.1\n", "mass: 2100 kg\n");
+  si = Replace(si, "gravity: 9810\n", "gravity: 9.81 m/s^2\n");
+  si = Replace(si, "inertia: [4.8e5, 5.0e5, 6.4e5]", "inertia: [480 kg m^2, 500 kg m^2, 640 kg m^2]");
+  const Budget a = LoadBudgetText(thesis, "avis.yaml"), b = LoadBudgetText(literal, "avis.yaml"),
+               c = LoadBudgetText(si, "avis.yaml");
+  const StateSpace &sa = a.FindPath("avis.floor").system, &sb = b.FindPath("avis.floor").system,
+                   &sc = c.FindPath("avis.floor").system;
+  CHECK(sa.A() == sb.A());
+  CHECK(sa.B() == sb.B());
+  CHECK(sa.C() == sb.C());
+  CHECK(((sa.A() - sc.A()).norm() <= 1e-12 * sa.A().norm()));
+  CHECK(((sa.B() - sc.B()).norm() <= 1e-12 * sa.B().norm()));
+  CHECK(ErrorOf(Replace(thesis, "position: [615, 570, -h]", "position: [615, 570, -h*2 N]")).find("isolators[0].position") !=
+        std::string::npos);
+}
+
 TEST_CASE("a sensor naming an unknown isolator is an error at the sensor") {
   const std::string e = ErrorOf(Replace(ThesisBudgetText(), "{name: y4, isolator: P4, axis: y}", "{name: y4, isolator: P9, axis: y}"));
   CHECK(e.find("avis.yaml:") == 0);
@@ -71,21 +98,21 @@ TEST_CASE("non-positive mass is rejected at the body") {
 }
 
 TEST_CASE("an unstable closed loop is an error listing its poles, not a NaN report") {
-  const std::string e = ErrorOf(Replace(ThesisBudgetText(), "gains: 50", "gains: -50"));
+  const std::string e = ErrorOf(Replace(ThesisBudgetText(), "gains: Kv", "gains: -Kv"));
   CHECK(e.find("avis.yaml:") == 0);
   CHECK(e.find("paths[0].control") != std::string::npos);
   CHECK(e.find("is not stable; poles with Re >= 0 [rad/s]: 45.4554 + 0j") != std::string::npos);
 }
 
 TEST_CASE("a wrong number of skyhook gains is rejected") {
-  CHECK(ErrorOf(Replace(ThesisBudgetText(), "gains: 50", "gains: [50, 50]")).find(
+  CHECK(ErrorOf(Replace(ThesisBudgetText(), "gains: Kv", "gains: [Kv, Kv]")).find(
             "one number for all six logical axes, or six numbers, got 2") != std::string::npos);
 }
 
 TEST_CASE("fewer than three isolators cannot carry the body") {
   std::string text = ThesisBudgetText();
-  for (const char* p : {"      - {name: P3, position: [-615, -445, -210], stiffness: [12, 12, 19.7], damping: [0.1, 0.1, 0.1]}\n",
-                        "      - {name: P4, position: [-615, 570, -210], stiffness: [12, 12, 15.38], damping: [0.1, 0.1, 0.1]}\n"})
+  for (const char* p : {"      - {name: P3, position: [-615, -445, -h], stiffness: [k_h, k_h, 19.7], damping: [c_iso, c_iso, c_iso]}\n",
+                        "      - {name: P4, position: [-615, 570, -h], stiffness: [k_h, k_h, 15.38], damping: [c_iso, c_iso, c_iso]}\n"})
     text = Replace(text, p, "");
   const std::string e = ErrorOf(text);
   CHECK(e.find("avis.yaml:") == 0);
