@@ -22,12 +22,11 @@
 #include "deb/budget/path_analysis.h"
 #include "deb/budget/result.h"
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/spectra/spectrum.h"
 #include "deb/units/unit.h"
 
 namespace deb::evaluation {
-
-inline constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // The position of the item named `name` in the budget's sources or paths (Budget::Validate: it exists).
 template <typename Item>

@@ -4,11 +4,11 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 
 namespace deb {
 
 double OutputMetric::PsdFactor(double f_hz) const {
-  constexpr double kPi = 3.141592653589793238462643383279502884;
   const double x = kPi * f_hz * window_s;
   // sin(x)/x loses no accuracy near 0 for |x| > 1e-4; below, its series 1 - x^2/6.
   const double sinc = std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x;

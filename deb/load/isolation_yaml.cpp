@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "deb/core/math_constants.h"
 #include "deb/models/isolation_system.h"
 
 namespace deb::io {
@@ -68,7 +69,7 @@ IsolationPaths ParseIsolationSystem(const YamlNode& node) {
     iso.position = Vector3(n.Required("position"), length);
     iso.stiffness = Vector3(n.Required("stiffness"), force + "/" + length);
     iso.damping = Vector3(n.Required("damping"), force + " s/" + length);
-    if (auto r = n.Optional("rotation_deg")) iso.rotation_rad = r->AsDouble() * std::acos(-1.0) / 180.0;
+    if (auto r = n.Optional("rotation_deg")) iso.rotation_rad = r->AsDouble() * kPi / 180.0;
     if (auto l = n.Optional("spring_length")) {
       iso.spring_length = l->AsValueIn(length);
       if (!(iso.spring_length > 0.0)) l->Fail("spring_length must be > 0");

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "deb/core/limits.h"
+#include "deb/core/math_constants.h"
 #include "deb/signal/recording.h"
 #include "deb/spectra/channel_set.h"
 #include "deb/spectra/converted_spectrum.h"
@@ -215,7 +216,7 @@ static std::shared_ptr<const Spectrum> ToneSource(const YamlNode& node, const Ya
     line.rms.resize(static_cast<Eigen::Index>(n));
     const double to_rms = t.Has("peak") ? 1.0 / std::sqrt(2.0) : 1.0;
     for (std::size_t j = 0; j < n; ++j)
-      line.rms(static_cast<Eigen::Index>(j)) = std::polar(amplitude[j] * to_rms, phase[j] * M_PI / 180.0);
+      line.rms(static_cast<Eigen::Index>(j)) = std::polar(amplitude[j] * to_rms, phase[j] * kPi / 180.0);
     lines.push_back(std::move(line));
   }
   return AtNode(list, [&] { return std::make_shared<ToneSpectrum>(std::move(lines), static_cast<int>(n)); });

@@ -8,11 +8,10 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 
 namespace deb {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // R_phi of eq. 3-9: local (p, q, r) -> body (x, y, z), thesis sign convention.
 Eigen::Matrix3d RotationPhi(double phi) {

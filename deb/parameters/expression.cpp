@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "deb/core/math_constants.h"
 #include "deb/core/suggest.h"
 #include "deb/units/unit.h"
 
@@ -24,7 +25,6 @@ namespace {
 
 using Node = Expression::Node;
 using NodePtr = std::shared_ptr<const Node>;
-constexpr double kPi = 3.14159265358979323846;
 
 // For messages: the expression, cut to kShown bytes around `offset`.
 std::string Shown(const std::string& text) {

@@ -3,11 +3,10 @@
 #include <cmath>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 
 namespace deb {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<double> Coefficients(WindowKind kind) {
   switch (kind) {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
@@ -21,7 +22,6 @@ ConvertedSpectrum::ConvertedSpectrum(std::shared_ptr<const Spectrum> base, doubl
 
 double ConvertedSpectrum::Factor(double f_hz) const {
   DEB_DEMAND(std::isfinite(f_hz) && f_hz > 0.0);
-  constexpr double kTwoPi = 6.283185307179586476925;
   const double omega2 = (kTwoPi * f_hz) * (kTwoPi * f_hz);
   double factor = scale_ * scale_;
   for (int k = 0; k < derivative_order_; ++k) factor *= omega2;
@@ -33,7 +33,7 @@ std::vector<SpectralLine> ConvertedSpectrum::Lines() const {
   std::vector<SpectralLine> lines = base_->Lines();
   for (SpectralLine& l : lines) {
     std::complex<double> factor = scale_;
-    const std::complex<double> j_omega(0.0, 2.0 * M_PI * l.f_hz);
+    const std::complex<double> j_omega(0.0, 2.0 * kPi * l.f_hz);
     for (int k = 0; k < derivative_order_; ++k) factor *= j_omega;
     for (int k = 0; k > derivative_order_; --k) factor /= j_omega;
     l.rms *= factor;

@@ -5,12 +5,12 @@
 #include <string>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxFilterOrder = 10;
 
 // Polynomials here are highest power first, as TransferFunction takes them.

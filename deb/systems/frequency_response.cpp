@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/parallel.h"
 #include "deb/systems/block_schur.h"
 #include "deb/systems/block_triangular.h"
@@ -16,7 +17,6 @@ namespace deb {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 // |j omega - lambda| <= kPoleSlack * eps * (|A| + |omega|) is "on the pole":
 // eigenvalues are only known to about eps * |A|.
@@ -290,10 +290,10 @@ bool FrequencyResponse::AgreesNear(const FrequencyResponse& other, const Eigen::
   const std::size_t picks = std::min<std::size_t>(w.size(), kMaxChecks / 3);
   for (std::size_t i = 0; i < picks; ++i) {
     const double x = w[picks == 1 ? 0 : i * (w.size() - 1) / (picks - 1)];
-    for (const double r : {0.5, 1.0, 2.0}) f_hz.push_back(r * x / (2.0 * M_PI));
+    for (const double r : {0.5, 1.0, 2.0}) f_hz.push_back(r * x / (2.0 * kPi));
   }
-  f_hz.push_back(0.01 * w.front() / (2.0 * M_PI));
-  f_hz.push_back(100.0 * w.back() / (2.0 * M_PI));
+  f_hz.push_back(0.01 * w.front() / (2.0 * kPi));
+  f_hz.push_back(100.0 * w.back() / (2.0 * kPi));
   std::vector<std::pair<Eigen::MatrixXcd, Eigen::MatrixXcd>> values;
   double largest = 0.0;
   for (double f : f_hz) {

@@ -6,14 +6,13 @@
 #include <map>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/number_text.h"
-#include "deb/core/suggest.h"
 #include "deb/core/numeric_table.h"
+#include "deb/core/suggest.h"
 
 namespace deb {
 namespace {
-
-constexpr double kPi = 3.141592653589793238462643383279502884;
 
 enum class Part { kRe, kIm, kMag, kDb, kPhaseDeg, kCoherence };  // coherence: skipped
 

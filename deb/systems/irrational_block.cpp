@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/number_text.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/interconnect.h"
@@ -12,8 +13,6 @@
 
 namespace deb {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Polynomials lowest power first here; TransferFunction takes highest first.
 using Poly = std::vector<double>;

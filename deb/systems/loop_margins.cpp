@@ -5,12 +5,12 @@
 #include <limits>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 
 namespace deb {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Bisection and golden-section searches run in log f down to this width.
 constexpr double kLogTolerance = 1e-13;
 

@@ -4,14 +4,10 @@
 #include <cmath>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
-namespace {
-
-constexpr double kPi = 3.141592653589793238462643383279502884;
-
-}  // namespace
 
 MeasuredResponse::MeasuredResponse(std::vector<double> f_hz, std::vector<Eigen::MatrixXcd> h,
                                    Extrapolation extrapolation, std::string origin)

@@ -5,12 +5,11 @@
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 void ValidateNames(const std::vector<std::string>& names, Eigen::Index rows, const char* side) {
   const std::string what = std::string(side) + " DOF";

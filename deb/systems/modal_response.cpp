@@ -7,13 +7,13 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/parallel.h"
 
 namespace deb {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Entries of the per-block matrix of weighted output shapes (rows x modes x
 // frequencies) a worker holds: 3.2 MB of doubles per part, so that it and the

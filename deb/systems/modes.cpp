@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "deb/core/math_constants.h"
+
 namespace deb {
-namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-}  // namespace
 
 double Mode::damped_f_hz() const { return pole_rad_s.imag() / kTwoPi; }
 

@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 
 namespace deb {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Time-derivative orders ConvertUnit tries, the plain scale first.
 constexpr int kDerivativeOrders[] = {0, -1, 1, -2, 2};
 constexpr const char* kDatabasePackage = "libudunits2-data";

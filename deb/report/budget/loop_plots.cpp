@@ -7,6 +7,7 @@
 
 #include "deb/budget/response_traces.h"
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_style.h"
@@ -16,7 +17,6 @@
 namespace deb::report {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr const char* kLoopColour = "#0e5274";  // L and S: a dark blue
 constexpr const char* kComplementColour = "#e66e53";  // T: orange
 constexpr const char* kMarginColour = "#b2182b";

@@ -9,6 +9,7 @@
 #include "deb/budget/path_response.h"
 #include "deb/budget/response_traces.h"
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/parallel.h"
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_points.h"
@@ -65,7 +66,6 @@ std::vector<std::vector<std::size_t>> CoincidentChannels(const std::vector<std::
 // (-180°, 180°].
 std::vector<double> UnwrappedPhaseDeg(const std::vector<double>& phase_rad, const std::vector<double>& f,
                                       double lo_hz) {
-  constexpr double kPi = 3.14159265358979323846;
   std::vector<double> deg(phase_rad.size());
   double turns = 0.0;
   for (std::size_t i = 0; i < phase_rad.size(); ++i) {

@@ -9,12 +9,11 @@
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {
 namespace {
-
-constexpr double kPi = 3.141592653589793238462643383279502884;
 
 // Lightness levels (L* of the colour and of its grey in print) in an order
 // that keeps neighbours >= 20 apart, gives the contributors sharing a dash

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_files.h"
 #include "deb/report/figure/plot_points.h"
@@ -277,7 +278,7 @@ Plot FrfPlot(const FrfEstimate& e, const std::string& unit, const std::string& s
     for (std::size_t k : bins) {
       const std::complex<double> h = e.h(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(o));
       mag[o].push_back(std::abs(h));
-      phase[o].push_back(std::arg(h) * 180.0 / M_PI);  // wrapped to (-180, 180]
+      phase[o].push_back(std::arg(h) * 180.0 / kPi);  // wrapped to (-180, 180]
       coh[o].push_back(e.coherence(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(o)));
     }
   // The points either panel needs: |H1| on its log axis, gamma^2 on its linear one.
