@@ -7,6 +7,7 @@
 #include "deb/core/error.h"
 #include "deb/core/math_constants.h"
 #include "deb/core/number_text.h"
+#include "deb/systems/polynomial_product.h"
 
 namespace deb {
 namespace {
@@ -15,13 +16,6 @@ constexpr int kMaxFilterOrder = 10;
 
 // Polynomials here are highest power first, as TransferFunction takes them.
 using Poly = std::vector<double>;
-
-Poly Multiply(const Poly& a, const Poly& b) {
-  Poly c(a.size() + b.size() - 1, 0.0);
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
-  return c;
-}
 
 std::string Text(double v) { return SignificantText(v, 6); }
 
@@ -49,7 +43,7 @@ Poly Factor(const ZpkRoot& r, const char* what) {
 
 Poly Product(const std::vector<ZpkRoot>& roots, const char* what) {
   Poly p{1.0};
-  for (const ZpkRoot& r : roots) p = Multiply(p, Factor(r, what));
+  for (const ZpkRoot& r : roots) p = PolynomialProduct(p, Factor(r, what));
   return p;
 }
 
@@ -77,9 +71,9 @@ std::vector<double> Prototype(int order, FilterShape shape) {
       const double angle = kPi * (2.0 * k + order - 1) / (2.0 * order);
       const std::complex<double> pole = std::polar(1.0, angle);
       if (std::abs(pole.imag()) < 1e-12) {
-        p = Multiply(p, {1.0, 1.0});
+        p = PolynomialProduct(p, {1.0, 1.0});
       } else if (pole.imag() > 0.0) {
-        p = Multiply(p, {1.0, -2.0 * pole.real(), 1.0});
+        p = PolynomialProduct(p, {1.0, -2.0 * pole.real(), 1.0});
       }
     }
     return std::vector<double>(p.rbegin(), p.rend());
@@ -160,12 +154,12 @@ TransferFunction PidParallel(double kp, double ki, double kd, std::optional<doub
     const double w = Omega(*f_lp_hz);
     const Poly lp{1.0 / w, 1.0};
     // (num / den) + kd s / (1 + s / w) = (num lp + kd s den) / (den lp)
-    Poly a = Multiply(num, lp), b = Multiply({kd, 0.0}, den);
+    Poly a = PolynomialProduct(num, lp), b = PolynomialProduct({kd, 0.0}, den);
     if (b.size() > a.size()) a.insert(a.begin(), b.size() - a.size(), 0.0);
     if (a.size() > b.size()) b.insert(b.begin(), a.size() - b.size(), 0.0);
     for (std::size_t i = 0; i < a.size(); ++i) a[i] += b[i];
     num = a;
-    den = Multiply(den, lp);
+    den = PolynomialProduct(den, lp);
   }
   return TransferFunction(num, den);
 }
@@ -177,16 +171,16 @@ TransferFunction PidSeries(double gain, std::optional<double> f_i_hz, std::optio
   Poly num{gain}, den{1.0};
   if (f_i_hz) {
     RequirePositive(*f_i_hz, "pid f_i_hz");
-    num = Multiply(num, {1.0, Omega(*f_i_hz)});  // (s + w_i) / s
-    den = Multiply(den, {1.0, 0.0});
+    num = PolynomialProduct(num, {1.0, Omega(*f_i_hz)});  // (s + w_i) / s
+    den = PolynomialProduct(den, {1.0, 0.0});
   }
   if (f_d_hz) {
     RequirePositive(*f_d_hz, "pid f_d_hz");
-    num = Multiply(num, {1.0 / Omega(*f_d_hz), 1.0});
+    num = PolynomialProduct(num, {1.0 / Omega(*f_d_hz), 1.0});
   }
   if (f_lp_hz) {
     RequirePositive(*f_lp_hz, "pid f_lp_hz");
-    den = Multiply(den, {1.0 / Omega(*f_lp_hz), 1.0});
+    den = PolynomialProduct(den, {1.0 / Omega(*f_lp_hz), 1.0});
   }
   return TransferFunction(num, den);
 }

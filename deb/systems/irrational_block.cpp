@@ -9,6 +9,7 @@
 #include "deb/core/number_text.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/interconnect.h"
+#include "deb/systems/polynomial_product.h"
 #include "deb/systems/transfer_function.h"
 
 namespace deb {
@@ -17,16 +18,9 @@ namespace {
 // Polynomials lowest power first here; TransferFunction takes highest first.
 using Poly = std::vector<double>;
 
-Poly Multiply(const Poly& a, const Poly& b) {
-  Poly c(a.size() + b.size() - 1, 0.0);
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
-  return c;
-}
-
 Poly Power(const Poly& p, int k) {
   Poly r{1.0};
-  for (int i = 0; i < k; ++i) r = Multiply(r, p);
+  for (int i = 0; i < k; ++i) r = PolynomialProduct(r, p);
   return r;
 }
 
@@ -100,12 +94,12 @@ std::pair<Poly, Poly> InverseTustin(const Poly& num, const Poly& den) {
   const Poly p{1.0, 1.0}, q{1.0, -1.0};
   Poly b{0.0}, a{0.0};
   for (int j = 0; j <= m; ++j) {
-    Poly t = Multiply(Power(p, m - j), Power(q, n - m + j));
+    Poly t = PolynomialProduct(Power(p, m - j), Power(q, n - m + j));
     for (double& v : t) v *= num[j];
     b = Add(b, t);
   }
   for (int j = 0; j <= n; ++j) {
-    Poly t = Multiply(Power(p, n - j), Power(q, j));
+    Poly t = PolynomialProduct(Power(p, n - j), Power(q, j));
     for (double& v : t) v *= den[j];
     a = Add(a, t);
   }

@@ -10,6 +10,7 @@
 #include "deb/core/error.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/polynomial_factors.h"
+#include "deb/systems/polynomial_product.h"
 
 namespace deb {
 namespace {
@@ -53,13 +54,6 @@ ComplexLD EvaluateFactors(const std::vector<const PolynomialFactor*>& fs, Comple
   ComplexLD v = 1.0L;
   for (const PolynomialFactor* f : fs) v *= f->At(s);
   return v;
-}
-
-std::vector<LongDouble> Multiply(const std::vector<LongDouble>& a, const std::vector<LongDouble>& b) {
-  std::vector<LongDouble> c(a.size() + b.size() - 1, 0.0L);
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
-  return c;
 }
 
 // A section of the cascade: its denominator factor, and the numerator
@@ -155,7 +149,7 @@ std::optional<CascadeForm> Cascade(const TransferFunction& tf, Precision precisi
       for (std::size_t k = 0; k < sections.size(); ++k)
         if (k != a && distance(sections[a].den, sections[k].den) < distance(sections[a].den, sections[b].den)) b = k;
       Section& into = sections[a];
-      into.den.coefficients = Multiply(into.den.coefficients, sections[b].den.coefficients);
+      into.den.coefficients = PolynomialProduct(into.den.coefficients, sections[b].den.coefficients);
       into.zeros.insert(into.zeros.end(), sections[b].zeros.begin(), sections[b].zeros.end());
       into.room += sections[b].room;
       sections.erase(sections.begin() + static_cast<std::ptrdiff_t>(b));
@@ -179,7 +173,7 @@ std::optional<CascadeForm> Cascade(const TransferFunction& tf, Precision precisi
     else gain /= g;
     // Section numerator g * prod(zeros), padded to the section's degree.
     std::vector<LongDouble> nk{g};
-    for (const PolynomialFactor* z : sec.zeros) nk = Multiply(nk, z->coefficients);
+    for (const PolynomialFactor* z : sec.zeros) nk = PolynomialProduct(nk, z->coefficients);
     std::vector<double> nd(nk.begin(), nk.end());
     std::vector<double> dd(sec.den.coefficients.begin(), sec.den.coefficients.end());
     for (double c : nd) if (!std::isfinite(c)) return std::nullopt;
