@@ -42,17 +42,12 @@ Eigen::MatrixXd ScaleBetween(const std::string& key_path, const std::vector<std:
 // result's size. p may be a or b.
 template <typename StateSpaceOp, typename ModelOp>
 void Combine(Path* p, const Path& a, const Path& b, StateSpaceOp rational, ModelOp diagram) {
-  if (!a.measured && !b.measured) {
-    StateSpace system = rational(a.Rational(), b.Rational());
-    p->modal.reset();  // a combination is realised in state space (path.h)
-    p->system = std::move(system);
-    p->measured.reset();
-    return;
-  }
-  auto model = std::make_shared<const FrequencyModel>(diagram(a.Model(), b.Model()));
-  StateSpace system = model->HasData() ? StateSpace::Gain(Eigen::MatrixXd::Zero(model->outputs(), model->inputs()))
-                                       : rational(a.Rational(), b.Rational());
-  p->modal.reset();
+  std::shared_ptr<const FrequencyModel> model;
+  if (a.measured || b.measured) model = std::make_shared<const FrequencyModel>(diagram(a.Model(), b.Model()));
+  StateSpace system = model && model->HasData()
+                          ? StateSpace::Gain(Eigen::MatrixXd::Zero(model->outputs(), model->inputs()))
+                          : rational(a.Rational(), b.Rational());
+  p->modal.reset();  // a combination is realised in state space (path.h)
   p->system = std::move(system);
   p->measured = std::move(model);
 }
