@@ -56,10 +56,7 @@ IsolationPaths ParseIsolationSystem(const YamlNode& node) {
   const std::string length = "(" + u.length + ")", mass = "(" + u.mass + ")", force = "(" + u.force + ")";
   sys.body.mass = body.Required("mass").AsValueIn(mass);
   sys.body.inertia = Inertia(body.Required("inertia"), mass + " " + length + "^2");
-  if (auto g = body.Optional("gravity")) {
-    sys.body.gravity = g->AsValueIn(length + "/s^2");
-    if (!(sys.body.gravity >= 0.0)) g->Fail("gravity must be >= 0");
-  }
+  if (auto g = body.Optional("gravity")) sys.body.gravity = g->AsNonNegativeIn(length + "/s^2");
   AtNode(body, [&] { sys.body.Validate(); });
 
   for (const auto& n : node.Required("isolators").Elements()) {
@@ -70,10 +67,7 @@ IsolationPaths ParseIsolationSystem(const YamlNode& node) {
     iso.stiffness = Vector3(n.Required("stiffness"), force + "/" + length);
     iso.damping = Vector3(n.Required("damping"), force + " s/" + length);
     if (auto r = n.Optional("rotation_deg")) iso.rotation_rad = r->AsDouble() * kPi / 180.0;
-    if (auto l = n.Optional("spring_length")) {
-      iso.spring_length = l->AsValueIn(length);
-      if (!(iso.spring_length > 0.0)) l->Fail("spring_length must be > 0");
-    }
+    if (auto l = n.Optional("spring_length")) iso.spring_length = l->AsPositiveIn(length);
     sys.isolators.push_back(iso);
   }
   if (auto sensors = node.Optional("sensors")) {

@@ -229,14 +229,18 @@ double YamlNode::EvaluateExpression(const std::string& text, const std::string& 
   }
 }
 
-double YamlNode::AsPositive() const {
-  const double v = AsDouble();
+double YamlNode::AsPositive() const { return AsPositiveIn(UnitOfKey(key_)); }
+
+double YamlNode::AsNonNegative() const { return AsNonNegativeIn(UnitOfKey(key_)); }
+
+double YamlNode::AsPositiveIn(const std::string& unit) const {
+  const double v = AsValueIn(unit);
   if (!(v > 0.0)) Fail("value " + Excerpt(node_.Scalar()) + " must be > 0");
   return v;
 }
 
-double YamlNode::AsNonNegative() const {
-  const double v = AsDouble();
+double YamlNode::AsNonNegativeIn(const std::string& unit) const {
+  const double v = AsValueIn(unit);
   if (!(v >= 0.0)) Fail("value " + Excerpt(node_.Scalar()) + " must be >= 0");
   return v;
 }

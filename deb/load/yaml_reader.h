@@ -60,6 +60,9 @@ class YamlNode {
   double AsValueIn(const std::string& unit) const;
   double AsPositive() const;           // finite and > 0
   double AsNonNegative() const;        // finite and >= 0
+  // The same in `unit`, as AsValueIn.
+  double AsPositiveIn(const std::string& unit) const;
+  double AsNonNegativeIn(const std::string& unit) const;
   int AsInt() const;
   bool AsBool() const;
   std::vector<double> AsDoubles() const;       // a scalar or a sequence of numbers
