@@ -26,6 +26,7 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/formats/mat_file.h"
 #include "tests/support/contains.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -322,11 +323,7 @@ TEST_CASE("hostile files: a clear error naming the file, no crash") {
 // ---------------------------------------------------------------------------
 // Budgets.
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 // YAML for m: [[a, b], [c, d]] with the shortest text that reads back exactly.
 std::string Yaml(const Eigen::MatrixXd& m) {

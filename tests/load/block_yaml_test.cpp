@@ -11,6 +11,7 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/systems/frequency_response.h"
 #include "tests/support/contains.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -46,19 +47,10 @@ outputs:
   - {name: x, signal: x, unit: um}
 )";
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE_MESSAGE(at != std::string::npos, from);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    LoadBudgetText(text, "b.yaml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { LoadBudgetText(text, "b.yaml"); });
 }
 
 const Path& Find(const Budget& b, const std::string& name) {

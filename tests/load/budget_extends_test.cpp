@@ -12,6 +12,7 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/load/sweep_yaml.h"
 #include "tests/support/cli_harness.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -36,12 +37,7 @@ bands: [[0.1, 1], [1, 100]]
 )";
 
 std::string ErrorOf(const fs::path& file) {
-  try {
-    LoadBudgetFile(file.string());
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { LoadBudgetFile(file.string()); });
 }
 
 bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

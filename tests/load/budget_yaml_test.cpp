@@ -11,6 +11,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -38,19 +39,10 @@ bands:
   - [1, 10]
 )";
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE_MESSAGE(at != std::string::npos, from);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    LoadBudgetText(text, "b.yaml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { LoadBudgetText(text, "b.yaml"); });
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -36,12 +37,7 @@ outputs:
 }
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    Evaluate(LoadBudgetText(text, "c.yaml"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { Evaluate(LoadBudgetText(text, "c.yaml")); });
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -58,19 +59,10 @@ outputs:
   - {name: position, signal: x, unit: um}
 )";
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE_MESSAGE(at != std::string::npos, from);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    Evaluate(LoadBudgetText(text, "b.yaml"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { Evaluate(LoadBudgetText(text, "b.yaml")); });
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
 #include "tests/support/contains.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -109,7 +110,7 @@ TEST_CASE("a sampled controller: evaluated at e^(j w T), its Tustin equivalent s
   int above = 0;
   for (const std::string& w : r.warnings) above += Contains(w, "above its Nyquist frequency 5000 Hz");
   CHECK(above == 0);  // the grid ends at 4 kHz
-  const std::string wide = std::string(kBudget).replace(std::string(kBudget).find("max_hz: 4000"), 12, "max_hz: 2e4");
+  const std::string wide = test::Replace(kBudget, "max_hz: 4000", "max_hz: 2e4");
   const BudgetResult r2 = Evaluate(LoadBudgetText(wide, "b.yaml"));
   for (const std::string& w : r2.warnings) above += Contains(w, "above its Nyquist frequency 5000 Hz");
   CHECK(above >= 1);
@@ -119,14 +120,7 @@ TEST_CASE("a sampled controller: evaluated at e^(j w T), its Tustin equivalent s
 
 TEST_CASE("bad delay and discrete entries: the key and the rule") {
   const auto error = [](const std::string& from, const std::string& to) {
-    std::string text = kBudget;
-    text.replace(text.find(from), from.size(), to);
-    try {
-      LoadBudgetText(text, "b.yaml");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("(no error)");
+    return test::InputErrorOf([&] { LoadBudgetText(test::Replace(kBudget, from, to), "b.yaml"); });
   };
   CHECK(Contains(error("seconds: Td", "seconds: -Td"), "finite number of seconds >= 0"));
   CHECK(Contains(error("seconds: Td", "seconds: 3 m"), "paths[2].seconds"));

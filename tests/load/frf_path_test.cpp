@@ -11,6 +11,7 @@
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -93,11 +94,7 @@ std::string ErrorOf(const std::string& file) {
   return "(no InputError)";
 }
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 TEST_CASE("a measured SDOF response gives the variance of its rational model to 1e-3, open and closed loop") {
   const FrfDir dir;

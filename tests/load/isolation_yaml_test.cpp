@@ -7,6 +7,7 @@
 #include <string>
 
 #include "deb/core/error.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -18,19 +19,10 @@ std::string ThesisBudgetText() {
   return s.str();
 }
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE_MESSAGE(at != std::string::npos, from);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    LoadBudgetText(text, "avis.yaml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { LoadBudgetText(text, "avis.yaml"); });
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -80,11 +81,7 @@ outputs:
   - {name: z, signal: z, unit: um}
 )";
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 // The message as the CLI prints it: an engine error (a key path, no
 // position) located in the budget file.

@@ -17,6 +17,7 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/results/result_writer.h"
 #include "deb/systems/lyapunov.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -69,12 +70,7 @@ std::string TwoMasses(const std::string& grid) {
 }
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    Evaluate(LoadBudgetText(text, "c.yaml"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { Evaluate(LoadBudgetText(text, "c.yaml")); });
 }
 
 bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

@@ -14,6 +14,7 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/load/sweep_yaml.h"
 #include "tests/support/contains.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -71,19 +72,10 @@ bands:
   - [f_lo*decade/(1 Hz), decade^2/10]
 )";
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE_MESSAGE(at != std::string::npos, from);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    LoadBudgetText(text, "b.yaml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { LoadBudgetText(text, "b.yaml"); });
 }
 
 TEST_CASE("a parametric budget and its literal twin give identical figures") {

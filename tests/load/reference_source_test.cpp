@@ -6,6 +6,7 @@
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -26,19 +27,10 @@ outputs:
   - {name: z, signal: z, unit: m/s^2}
 )";
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE_MESSAGE(at != std::string::npos, from);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    Evaluate(LoadBudgetText(text, "b.yaml", "."));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { Evaluate(LoadBudgetText(text, "b.yaml", ".")); });
 }
 
 double FromDb(double db) { return std::pow(10.0, db / 10.0); }

@@ -8,6 +8,7 @@
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -38,19 +39,10 @@ sweep:
     - {path: "paths[0].den[0]", log: {from: 0.001, to: 0.1, count: 3}}
 )";
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE_MESSAGE(at != std::string::npos, from);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    LoadSweepVariants(LoadSweepText(text, "s.yaml"), 1);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { LoadSweepVariants(LoadSweepText(text, "s.yaml"), 1); });
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -52,11 +53,7 @@ class Recording {
   std::filesystem::path dir_;
 };
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE_MESSAGE(at != std::string::npos, from);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 // One path, three rows: y_sum = a + b, y_a = a, y_diff = a - b.
 const char* kSumBudget = R"(name: pair
@@ -207,12 +204,7 @@ TEST_CASE("a delayed copy differenced gives |1 - e^{-j2 pi f tau}|^2 S_aa, and t
 }
 
 std::string ErrorOf(const std::string& text, const std::string& dir) {
-  try {
-    LoadBudgetText(text, "b.yaml", dir);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { LoadBudgetText(text, "b.yaml", dir); });
 }
 
 TEST_CASE("cross_spectra accepts full or none; median averaging and a correlation conflict with full cross-spectra") {

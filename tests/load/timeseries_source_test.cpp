@@ -13,6 +13,7 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/signal/time_series_file.h"
 #include "deb/signal/welch.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -56,19 +57,10 @@ class RecordingDir {
   std::filesystem::path dir_;
 };
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE_MESSAGE(at != std::string::npos, from);
-  return text.replace(at, from.size(), to);
-}
+using test::Replace;
 
 std::string ErrorOf(const std::string& text, const std::string& dir) {
-  try {
-    LoadBudgetText(text, "b.yaml", dir);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { LoadBudgetText(text, "b.yaml", dir); });
 }
 
 TEST_CASE("a timeseries source is the Welch PSD of the selected column, scaled to the budget unit (rel 1e-12)") {

@@ -10,6 +10,7 @@
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -43,12 +44,7 @@ const std::string kTwoTones =
     "        - {f_hz: 50, rms: 0.2}\n        - {f_hz: 150, peak: 0.1}\n";
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    Evaluate(LoadBudgetText(text, "t.yaml"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::InputErrorOf([&] { Evaluate(LoadBudgetText(text, "t.yaml")); });
 }
 
 bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

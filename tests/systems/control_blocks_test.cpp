@@ -10,6 +10,7 @@
 #include "deb/core/error.h"
 #include "deb/systems/frequency_response.h"
 #include "tests/support/contains.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -33,14 +34,7 @@ double WorstAgainst(const TransferFunction& tf, const std::function<Complex(Comp
   return worst;
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string ErrorOf(const std::function<void()>& f) { return test::InputErrorOf(f); }
 
 TEST_CASE("zpk: monic factors in s, roots in Hz, the gain or the gain at a frequency") {
   const double w1 = 2 * kPi, w10 = 20 * kPi, w100 = 200 * kPi;

@@ -14,6 +14,7 @@
 #include "deb/systems/frequency_model.h"
 #include "deb/systems/loop_margins.h"
 #include "tests/support/contains.h"
+#include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
@@ -141,14 +142,7 @@ TEST_CASE("a frequency model holds a delay exactly and lists it") {
 }
 
 TEST_CASE("bad delays and sampled blocks: the rule") {
-  const auto error = [](auto&& make) -> std::string {
-    try {
-      make();
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "(no error)";
-  };
+  const auto error = [](auto&& make) { return test::InputErrorOf(make); };
   CHECK(Contains(error([] { Delay(-1e-3); }), "finite number of seconds >= 0"));
   CHECK(Contains(error([] { Delay(std::nan("")); }), "finite number of seconds >= 0"));
   CHECK(Contains(error([] { Delay(1e-3, 0); }), "Pade order must be 1 to 12, not 0"));
