@@ -63,6 +63,7 @@
 #include "deb/signal/window.h"
 
 // Paths: state space, transfer functions, modal and measured models.
+#include "deb/systems/axis_cancellation.h"
 #include "deb/systems/frequency_model.h"
 #include "deb/systems/control_blocks.h"
 #include "deb/systems/frequency_response.h"

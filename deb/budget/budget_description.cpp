@@ -6,6 +6,7 @@
 #include "deb/budget/budget_outline.h"
 #include "deb/budget/loop_analysis.h"
 #include "deb/core/formatted_text.h"
+#include "deb/systems/axis_cancellation.h"
 #include "deb/systems/modes.h"
 
 namespace deb {
@@ -13,16 +14,21 @@ namespace {
 
 // "stable", "unstable: ...", or marginally stable with what sits on the
 // axis: a controller's integrator is not a fault, but it has no exact
-// variance on its own and a loop must close around it.
+// variance on its own and a loop must close around it. Axis poles the
+// transfer cancels (axis_cancellation.h) are named as such.
 std::string Stability(const StateSpace& system) {
   const PoleStability s = ClassifyPoles(system.Poles());
   if (!s.unstable.empty()) return "unstable: no contributor may use it";
   if (s.marginal.empty()) return "stable";
-  const bool origin = std::all_of(s.marginal.begin(), s.marginal.end(),
-                                  [](const std::complex<double>& z) { return std::abs(z) <= 1e-9; });
-  return origin ? "marginally stable (integrator: " + std::to_string(s.marginal.size()) +
-                      " pole(s) at 0; close a loop around it)"
-                : "marginally stable (" + std::to_string(s.marginal.size()) + " pole(s) on the imaginary axis)";
+  const auto at_origin = [](const std::vector<std::complex<double>>& poles) {
+    return std::all_of(poles.begin(), poles.end(), [](const std::complex<double>& z) { return std::abs(z) <= 1e-9; });
+  };
+  const std::string count = std::to_string(s.marginal.size());
+  if (CancelAxisPoles(system))
+    return at_origin(s.marginal) ? "stable (" + count + " pole(s) at 0 cancelled by zeros at 0: they do not reach the outputs)"
+                                 : "stable (" + count + " pole(s) on the imaginary axis cancelled by zeros there: they do not reach the outputs)";
+  return at_origin(s.marginal) ? "marginally stable (integrator: " + count + " pole(s) at 0; close a loop around it)"
+                               : "marginally stable (" + count + " pole(s) on the imaginary axis)";
 }
 
 void AddPath(std::string& text, const Path& p) {

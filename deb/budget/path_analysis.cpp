@@ -7,6 +7,7 @@
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
 #include "deb/core/parallel.h"
+#include "deb/systems/axis_cancellation.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/lyapunov.h"
@@ -77,6 +78,19 @@ PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : pat
     unstable_ = std::move(s.unstable);
     marginal_ = std::move(s.marginal);
   }
+  // Axis poles the transfer cancels (an integrator before a loop's zero at DC).
+  if (!marginal_.empty() && unstable_.empty() && (rational_ || path.SystemApproximates())) {
+    if (std::optional<AxisCancellation> c = CancelAxisPoles(path.system.SelectOutputs(rows_))) {
+      cancelled_.assign(c->cancelled.data(), c->cancelled.data() + c->cancelled.size());
+      marginal_.clear();
+      modes_ = ModesFromPoles(c->system.Poles());
+      reduced_ = std::move(c->system);
+    }
+  }
+}
+
+StateSpace PathAnalysis::Realisation() const {
+  return reduced_ ? *reduced_ : path_.system.SelectOutputs(rows_);
 }
 
 PathAnalysis::~PathAnalysis() = default;
@@ -175,12 +189,12 @@ const PathAnalysis::Cached& PathAnalysis::AllRows(const Eigen::MatrixXd& w_two_s
     }
   } else if (rational_ || path_.SystemApproximates()) {
     try {
-      const Eigen::MatrixXd cov = OutputCovariance(path_.system.SelectOutputs(rows_), w_two_sided);
+      const StateSpace all = Realisation();
+      const Eigen::MatrixXd cov = OutputCovariance(all, w_two_sided);
       for (std::size_t i = 0; i < rows_.size(); ++i) c.rows[i] = ExactVariance{cov(i, i), {}};
     } catch (const InputError&) {
-      one_by_one([&](int i) {
-        return ExactVariance{OutputCovariance(path_.system.SelectOutputs({rows_[i]}), w_two_sided)(0, 0), {}};
-      });
+      const StateSpace all = Realisation();
+      one_by_one([&](int i) { return ExactVariance{OutputCovariance(all.SelectOutputs({i}), w_two_sided)(0, 0), {}}; });
     }
   } else {
     for (auto& e : c.errors) e = "the path holds measured frequency data (no state-space model for a Lyapunov solution)";
@@ -215,10 +229,13 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
                      std::to_string(path_.modal->modes()) + " modes make " +
                      std::to_string(2 * path_.modal->modes()) + " states, more than the " +
                      std::to_string(limits::kMaxDenseStates) + " deb solves densely");
-  const StateSpace rational = path_.Rational();
+  // Rows of the reduced realisation are numbered as the evaluated rows.
+  const StateSpace rational = reduced_ ? *reduced_ : path_.Rational();
   std::optional<StateSpace> stacked;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const StateSpace row = rational.SelectOutputs({rows[i]});
+    const int r = reduced_ ? Position(rows[i]) : rows[i];
+    DEB_DEMAND(r >= 0);
+    const StateSpace row = rational.SelectOutputs({r});
     const StateSpace one = weightings[i] ? Series(row, *weightings[i]) : row;
     stacked = stacked ? StackOutputs(*stacked, one) : one;
   }

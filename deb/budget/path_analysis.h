@@ -25,6 +25,7 @@
 #include "deb/budget/path.h"
 #include "deb/core/frequency_grid.h"
 #include "deb/systems/frequency_model.h"
+#include "deb/systems/state_space.h"
 #include "deb/systems/modes.h"
 
 namespace deb {
@@ -54,6 +55,10 @@ class PathAnalysis {
   // Poles with Re > 1e-9 max(1, |p|) and on the imaginary axis (|Re| within it).
   const std::vector<std::complex<double>>& unstable_poles() const { return unstable_; }
   const std::vector<std::complex<double>>& marginal_poles() const { return marginal_; }
+  // Poles on the axis that the evaluated rows' transfer cancels
+  // (axis_cancellation.h): not in modes(), not marginal; the exact variance
+  // is that of the realisation without them.
+  const std::vector<std::complex<double>>& cancelled_poles() const { return cancelled_; }
   // A loop closed around measured data: its stability is not known.
   bool loop_around_data() const { return path_.measured && path_.measured->HasLoopAroundData(); }
 
@@ -110,7 +115,11 @@ class PathAnalysis {
   const Path path_;  // a copy: results may outlive the budget
   std::vector<int> rows_;
   std::vector<Mode> modes_;
-  std::vector<std::complex<double>> unstable_, marginal_;
+  std::vector<std::complex<double>> unstable_, marginal_, cancelled_;
+  // The evaluated rows' realisation without cancelled axis poles, if any.
+  std::optional<StateSpace> reduced_;
+  // The evaluated rows' realisation for the exact variance: reduced_ or the path's.
+  StateSpace Realisation() const;
   std::unique_ptr<FrequencyResponse> rational_;
   std::unique_ptr<ModalResponse> modal_;
   std::optional<FrequencyModel> measured_;

@@ -5,6 +5,7 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <vector>
 
 // LAPACKE's own complex types would be C99 _Complex, which is not C++; the
 // real routines used here do not take complex arguments.
@@ -72,9 +73,11 @@ RealSchurForm RealSchur(const Eigen::MatrixXd& a) {
   return form;
 }
 
-SylvesterSolution SolveQuasiTriangularSylvester(const Eigen::MatrixXd& t1,
-                                                const Eigen::MatrixXd& t2,
-                                                const Eigen::MatrixXd& c) {
+namespace {
+
+// T1 X + isgn X op(T2) = C, op(T2) = T2^T ('T') or T2 ('N').
+SylvesterSolution SolveSylvester(const Eigen::MatrixXd& t1, const Eigen::MatrixXd& t2, const Eigen::MatrixXd& c,
+                                 char trans2, lapack_int isgn) {
   const lapack_int n1 = RequireSquare(t1, "Sylvester equation (dtrsyl)");
   const lapack_int n2 = RequireSquare(t2, "Sylvester equation (dtrsyl)");
   DEB_DEMAND(c.rows() == n1 && c.cols() == n2);
@@ -86,8 +89,7 @@ SylvesterSolution SolveQuasiTriangularSylvester(const Eigen::MatrixXd& t1,
     return s;
   }
   double scale = 1.0;
-  // isgn = +1 and op(T2) = T2^T: T1 X + X T2^T = scale C.
-  const lapack_int info = LAPACKE_dtrsyl(LAPACK_COL_MAJOR, 'N', 'T', 1, n1, n2, t1.data(), n1,
+  const lapack_int info = LAPACKE_dtrsyl(LAPACK_COL_MAJOR, 'N', trans2, isgn, n1, n2, t1.data(), n1,
                                          t2.data(), n2, s.x.data(), n1, &scale);
   if (info == LAPACK_WORK_MEMORY_ERROR || info == LAPACK_TRANSPOSE_MEMORY_ERROR)
     throw std::bad_alloc();
@@ -95,6 +97,49 @@ SylvesterSolution SolveQuasiTriangularSylvester(const Eigen::MatrixXd& t1,
   s.near_singular = info > 0;
   if (scale != 1.0) s.x /= scale;
   return s;
+}
+
+}  // namespace
+
+SylvesterSolution SolveQuasiTriangularSylvester(const Eigen::MatrixXd& t1,
+                                                const Eigen::MatrixXd& t2,
+                                                const Eigen::MatrixXd& c) {
+  return SolveSylvester(t1, t2, c, 'T', 1);
+}
+
+SylvesterSolution SolveQuasiTriangularSylvesterMinus(const Eigen::MatrixXd& t1,
+                                                     const Eigen::MatrixXd& t2,
+                                                     const Eigen::MatrixXd& c) {
+  return SolveSylvester(t1, t2, c, 'N', -1);
+}
+
+int ReorderRealSchur(RealSchurForm& form, const std::vector<bool>& lead) {
+  const lapack_int n = static_cast<lapack_int>(form.t.rows());
+  DEB_DEMAND(form.t.cols() == n && form.u.rows() == n && form.u.cols() == n &&
+             lead.size() == static_cast<std::size_t>(n));
+  if (n == 0) return 0;
+  std::vector<lapack_logical> select(lead.begin(), lead.end());
+  Eigen::MatrixXd t = form.t, u = form.u;
+  Eigen::VectorXd wr(n), wi(n);
+  lapack_int m = 0;
+  double s = 0.0, sep = 0.0;
+  // The _work form with its workspace here: LAPACKE_dtrsen's workspace query
+  // writes through a null iwork for job 'N' in the reference LAPACKE of
+  // Debian 12. For job 'N': lwork >= n, liwork >= 1.
+  std::vector<double> work(static_cast<std::size_t>(n));
+  lapack_int iwork = 0;
+  const lapack_int info = LAPACKE_dtrsen_work(LAPACK_COL_MAJOR, 'N', 'V', select.data(), n, t.data(), n, u.data(),
+                                              n, wr.data(), wi.data(), &m, &s, &sep, work.data(), n, &iwork, 1);
+  if (info == LAPACK_WORK_MEMORY_ERROR || info == LAPACK_TRANSPOSE_MEMORY_ERROR)
+    throw std::bad_alloc();
+  DEB_DEMAND(info >= 0);
+  if (info > 0)
+    throw InputError("reordering the real Schur form (dtrsen): two eigenvalues are too close to be swapped "
+                     "(LAPACK info " + std::to_string(info) + ")");
+  form.t = std::move(t);
+  form.u = std::move(u);
+  form.eigenvalues = Pack(wr, wi);
+  return static_cast<int>(m);
 }
 
 }  // namespace deb

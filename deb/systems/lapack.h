@@ -17,6 +17,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <vector>
 
 namespace deb {
 
@@ -53,5 +54,19 @@ struct SylvesterSolution {
 SylvesterSolution SolveQuasiTriangularSylvester(const Eigen::MatrixXd& t1,
                                                 const Eigen::MatrixXd& t2,
                                                 const Eigen::MatrixXd& c);
+
+// X with T1 X - X T2 = C (dtrsyl, no transposes), as above otherwise: the
+// equation that decouples the blocks of a block upper triangular T.
+SylvesterSolution SolveQuasiTriangularSylvesterMinus(const Eigen::MatrixXd& t1,
+                                                     const Eigen::MatrixXd& t2,
+                                                     const Eigen::MatrixXd& c);
+
+// Reorders a real Schur form (dtrsen) so that the eigenvalues with
+// lead[k] set (k in the order of form.eigenvalues; a pair's two members
+// alike) come first on T's diagonal; U and the eigenvalues follow. Returns
+// how many lead.
+// @throws InputError if LAPACK could not swap two blocks (eigenvalues too
+//         close: info 1); the form is then unchanged.
+int ReorderRealSchur(RealSchurForm& form, const std::vector<bool>& lead);
 
 }  // namespace deb

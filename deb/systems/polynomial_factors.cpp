@@ -281,8 +281,11 @@ ComplexLD PolynomialFactor::At(ComplexLD s) const {
   return v;
 }
 
-std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<double>& p,
-                                                         bool pair_real_roots, Precision precision) {
+namespace {
+
+// RealFactors of a p whose last coefficient is not zero (no root at 0).
+std::optional<std::vector<PolynomialFactor>> FactorsAwayFromOrigin(const std::vector<double>& p,
+                                                                   bool pair_real_roots, Precision precision) {
   const int n = static_cast<int>(p.size()) - 1;
   Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
   for (int k = 0; k < n; ++k) companion(0, k) = -p[k + 1] / p[0];
@@ -406,6 +409,36 @@ std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<doubl
       ++k;
     } else {
       factors.push_back(Linear(reals[k]));
+    }
+  }
+  return factors;
+}
+
+}  // namespace
+
+// Roots at the origin are exact, one per trailing zero coefficient, and are
+// split off before the others are located: the companion matrix and the
+// polishing would place a k-fold root at 0 only to about eps^(1/k) of the
+// polynomial's scale, off the origin (a double integrator as the pair
+// 6e-117 +- 2e-59 j, which no realisation error bound survives).
+std::optional<std::vector<PolynomialFactor>> RealFactors(const std::vector<double>& p,
+                                                         bool pair_real_roots, Precision precision) {
+  std::size_t at_origin = 0;
+  while (at_origin + 1 < p.size() && p[p.size() - 1 - at_origin] == 0.0) ++at_origin;
+  if (at_origin == 0) return FactorsAwayFromOrigin(p, pair_real_roots, precision);
+  std::vector<PolynomialFactor> factors;
+  if (p.size() - at_origin > 1) {
+    const std::vector<double> rest(p.begin(), p.end() - static_cast<std::ptrdiff_t>(at_origin));
+    std::optional<std::vector<PolynomialFactor>> others = FactorsAwayFromOrigin(rest, pair_real_roots, precision);
+    if (!others) return std::nullopt;
+    factors = std::move(*others);
+  }
+  for (std::size_t k = 0; k < at_origin; ++k) {
+    if (pair_real_roots && k + 1 < at_origin) {
+      factors.push_back({{1.0L, 0.0L, 0.0L}, ComplexLD(0.0L, 0.0L)});
+      ++k;
+    } else {
+      factors.push_back({{1.0L, 0.0L}, ComplexLD(0.0L, 0.0L)});
     }
   }
   return factors;

@@ -165,7 +165,11 @@ std::optional<CascadeForm> Cascade(const TransferFunction& tf, Precision precisi
   std::vector<std::vector<double>> num_k, den_k;
   for (std::size_t k = 0; k < sections.size(); ++k) {
     const Section& sec = sections[k];
-    const ComplexLD s0(-std::max(std::abs(sec.den.root), 1e-300L), 0.0L);
+    // Each section's gain is set near its own pole; a pole at the origin (an
+    // integrator) has no scale of its own and is set at 1 rad/s (a bound
+    // like 1e-300 there made its gain 1e-300 and the last section's 1e300).
+    const LongDouble at = std::abs(sec.den.root);
+    const ComplexLD s0(at > 0.0L ? -at : -1.0L, 0.0L);
     const ComplexLD dv = sec.den.At(s0), nv = EvaluateFactors(sec.zeros, s0);
     LongDouble g = std::abs(dv) / std::abs(nv);
     if (!std::isfinite(static_cast<double>(g)) || g == 0.0L) g = 1.0L;

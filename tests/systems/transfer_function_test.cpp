@@ -61,6 +61,43 @@ TEST_CASE("a fourth-order transfer function responds as num(jw)/den(jw)") {
   }
 }
 
+TEST_CASE("poles and zeros at the origin are exact: integrators and differentiators of a two-mass plant, a PID") {
+  // A collocated two-mass plant (m2 s^2 + d s + k) / (s^2 (m1 m2 s^2 + (m1 + m2)(d s + k))), m1 = 20,
+  // m2 = 5, d = 20, k = 2e6; a PID with filtered derivative over s (1 + s/w_lp); a
+  // second-order high-pass s^2 / (s^2 + 2 z w s + w^2). Before roots at 0 were split
+  // off they were placed eps^(1/k) off the origin and the first was refused ("an
+  // estimated error of 5.1e+15"), the single integrator realised with gains 1e-300 and 1e300.
+  struct Case {
+    std::vector<double> num, den;
+    int at_origin;
+  };
+  const std::vector<Case> cases = {
+      {{5.0, 20.0, 2e6}, {100.0, 500.0, 5e7, 0.0, 0.0}, 2},
+      {{1.0}, {1.0, 500.0, 5e7, 0.0}, 1},
+      {{2.0, 30.0, 100.0}, {0.01, 1.0, 0.0}, 1},
+      {{1.0, 0.0, 0.0}, {1.0, 2.0, 100.0}, 0},
+      {{1.0}, {2.0, 0.0, 0.0, 0.0}, 3},
+  };
+  for (const Case& c : cases) {
+    const TransferFunction tf(c.num, c.den);
+    const StateSpace ss = ToStateSpace(tf);
+    const Eigen::VectorXcd p = ss.Poles();
+    int zeros = 0;
+    for (Eigen::Index k = 0; k < p.size(); ++k) zeros += p(k) == Complex(0.0, 0.0);
+    CHECK(zeros == c.at_origin);
+    CHECK(ss.B().cwiseAbs().maxCoeff() < 1e12);
+    CHECK(ss.C().cwiseAbs().maxCoeff() < 1e12);
+    double worst = 0.0;
+    for (double f : testing::LogSpace(0.01, 1000.0, 200)) {
+      const Complex s(0.0, kTwoPi * f), expected = tf.Evaluate(s);
+      const Eigen::MatrixXcd m = s * Eigen::MatrixXcd::Identity(ss.states(), ss.states()) - ss.A().cast<Complex>();
+      const Complex h = (ss.C().cast<Complex>() * m.partialPivLu().solve(ss.B().cast<Complex>()))(0, 0) + ss.D()(0, 0);
+      worst = std::max(worst, std::abs(h - expected) / std::abs(expected));
+    }
+    CHECK(worst <= 1e-10);  // as for any fourth-order transfer (above); measured 3.4e-12 at most
+  }
+}
+
 std::vector<double> Multiply(const std::vector<double>& a, const std::vector<double>& b) {
   std::vector<double> c(a.size() + b.size() - 1, 0.0);
   for (std::size_t i = 0; i < a.size(); ++i)
