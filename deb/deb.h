@@ -81,6 +81,7 @@
 
 #include "deb/models/isolation_model.h"
 #include "deb/models/isolation_system.h"
+#include "deb/models/lumped_masses.h"
 
 // A budget, its evaluation (Evaluate, BudgetResult) and what is built on it.
 #include "deb/budget/allocation.h"

@@ -40,7 +40,7 @@ std::vector<ParameterOutline> OutlineOf(const std::vector<Parameter>& parameters
     out.expression = p.definition.expression;
     out.description = p.definition.description;
     out.derived = p.derived;
-    if (!p.derived && !p.unit.empty()) {
+    if (!p.unit.empty()) {
       out.value = ValueIn(p.value, p.unit);
       out.unit = p.unit;
     } else {

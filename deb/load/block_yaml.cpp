@@ -2,9 +2,12 @@
 
 #include <map>
 #include <optional>
+#include <utility>
 #include <vector>
 
+#include "deb/core/limits.h"
 #include "deb/systems/control_blocks.h"
+#include "deb/systems/polynomial_product.h"
 
 namespace deb::io {
 namespace {
@@ -63,8 +66,46 @@ bool IsIrrationalType(const std::string& type) { return type == "delay" || type 
 
 std::set<std::string> IrrationalKeys(const std::string& type) {
   if (type == "delay") return {"seconds", "pade_order"};
-  return {"sample_hz", "num", "den", "zoh", "pade_order"};
+  return {"sample_hz", "num", "den", "zeros", "poles", "gain", "zoh", "pade_order"};
 }
+
+namespace {
+
+// A sampled block's coefficients in powers of z, highest first: num and den
+// as given, or gain * prod(z - z_i) / prod(z - p_i) from its zeros and poles
+// in the z-plane, each a real number or a conjugate pair {re, im}.
+std::pair<std::vector<double>, std::vector<double>> DiscreteCoefficients(const YamlNode& node) {
+  const bool polynomials = node.Has("num") || node.Has("den");
+  const bool roots = node.Has("zeros") || node.Has("poles") || node.Has("gain");
+  if (polynomials && roots)
+    node.Fail("give num and den, or zeros, poles and gain (in the z-plane), not both");
+  if (!roots) return {node.Required("num").AsDoubles(), node.Required("den").AsDoubles()};
+  const auto product = [](const YamlNode& list) {
+    std::vector<double> p{1.0};
+    const std::vector<YamlNode> elements = list.Elements();
+    if (elements.size() > static_cast<std::size_t>(limits::kMaxStates))
+      list.Fail(std::to_string(elements.size()) + " roots give more than the " + std::to_string(limits::kMaxStates) +
+                " states a path may have");
+    for (const YamlNode& r : elements) {
+      if (r.IsMap()) {
+        r.AllowOnly({"re", "im"});
+        const double re = r.Required("re").AsDouble(), im = r.Required("im").AsDouble();
+        if (im == 0.0) r.Required("im").Fail("a conjugate pair needs im != 0 (give a real root as a number)");
+        p = PolynomialProduct(p, std::vector<double>{1.0, -2.0 * re, re * re + im * im});
+      } else {
+        p = PolynomialProduct(p, std::vector<double>{1.0, -r.AsDouble()});
+      }
+    }
+    return p;
+  };
+  std::vector<double> num = node.Has("zeros") ? product(node.Required("zeros")) : std::vector<double>{1.0};
+  const std::vector<double> den = node.Has("poles") ? product(node.Required("poles")) : std::vector<double>{1.0};
+  const double gain = node.Has("gain") ? node.Required("gain").AsDouble() : 1.0;
+  for (double& c : num) c *= gain;
+  return {num, den};
+}
+
+}  // namespace
 
 IrrationalBlock ParseIrrationalBlock(const YamlNode& node, const std::string& type) {
   int pade = kDefaultPadeOrder;
@@ -82,9 +123,10 @@ IrrationalBlock ParseIrrationalBlock(const YamlNode& node, const std::string& ty
   const YamlNode rate = node.Required("sample_hz");
   const double sample_hz = rate.AsDouble();
   if (!(sample_hz > 0.0)) rate.Fail("sample_hz must be > 0");
-  const std::vector<double> num = node.Required("num").AsDoubles(), den = node.Required("den").AsDoubles();
+  const auto [num, den] = DiscreteCoefficients(node);
   const bool zoh = node.Has("zoh") && node.Required("zoh").AsBool();
-  return AtNode(node.Required("den"), [&] { return Discrete(sample_hz, num, den, zoh, pade); });
+  const YamlNode at = node.Has("den") ? node.Required("den") : node.Has("poles") ? node.Required("poles") : node;
+  return AtNode(at, [&] { return Discrete(sample_hz, num, den, zoh, pade); });
 }
 
 std::set<std::string> BlockKeys(const std::string& type) { return Keys().at(type); }

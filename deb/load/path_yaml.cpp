@@ -2,12 +2,14 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "deb/budget/path_composition.h"
 #include "deb/core/limits.h"
 #include "deb/core/suggest.h"
 #include "deb/load/block_yaml.h"
 #include "deb/load/isolation_yaml.h"
+#include "deb/load/lumped_masses_yaml.h"
 #include "deb/formats/mat_file.h"
 #include "deb/load/modal_yaml.h"
 #include "deb/systems/frf_csv.h"
@@ -38,6 +40,34 @@ StateSpace InPathUnits(const YamlNode& node, const Path& p, const std::string& s
       scale(p.output_units[0], si_out, "output_unit", true) * scale(p.input_units[0], si_in, "input_unit", false);
   const StateSpace& s = p.system;
   return StateSpace(s.A(), s.B(), s.C() * factor, s.D() * factor);
+}
+
+// A model built in SI units, channel by channel (`si_in[j]` to
+// `si_out[i]`), scaled to the path's units: each must be the same quantity.
+StateSpace InChannelUnits(const YamlNode& node, const Path& p, const std::vector<std::string>& si_in,
+                          const std::vector<std::string>& si_out) {
+  const auto scale = [&](const std::string& user, const std::string& si, const char* one, const char* many,
+                         bool output, const std::string& channel) {
+    const YamlNode at = node.Has(one) ? node.Required(one) : node.Has(many) ? node.Required(many) : node;
+    const std::string what = std::string(output ? "output" : "input") + " '" + channel + "' is in " + si + ": '" +
+                             user + "' is not the same quantity";
+    std::optional<UnitConversion> c;
+    try {
+      c = output ? ConvertUnit(si, user) : ConvertUnit(user, si);
+    } catch (const InputError& e) {
+      at.Fail(what + " (" + e.message() + ")");
+    }
+    if (!c->IsPureScale()) at.Fail(what);
+    return c->scale;
+  };
+  Eigen::VectorXd in(p.system.inputs()), out(p.system.outputs());
+  for (int j = 0; j < p.system.inputs(); ++j)
+    in(j) = scale(p.input_units[j], si_in[j], "input_unit", "input_units", false, p.input_names[j]);
+  for (int i = 0; i < p.system.outputs(); ++i)
+    out(i) = scale(p.output_units[i], si_out[i], "output_unit", "output_units", true, p.output_names[i]);
+  const StateSpace& s = p.system;
+  return StateSpace(s.A(), s.B() * in.asDiagonal(), out.asDiagonal() * s.C(),
+                    out.asDiagonal() * s.D() * in.asDiagonal());
 }
 
 std::set<std::string> With(std::set<std::string> keys, std::initializer_list<std::string> more) {
@@ -189,6 +219,7 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
   const YamlNode type_node = node.Required("type");
   const std::string type = type_node.AsString();
   bool composite = false;
+  bool own_channels = false;  // names and units set by the type's own entries
   // Channel names from a data file (state_space file:), unless the entry gives inputs/outputs.
   std::vector<std::string> file_inputs, file_outputs;
 
@@ -294,11 +325,24 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
     for (std::string& u : p.output_units)
       u = AtNode(unit_node, [&] { return ModalOutputUnit(u, model.quantity); });
     composite = true;  // names come from the shapes
+  } else if (type == "lumped_masses") {
+    std::set<std::string> keys = LumpedMassesKeys();
+    keys.insert({"name", "description", "type", "input_unit", "input_units", "output_unit", "output_units"});
+    node.AllowOnly(keys);
+    LumpedMassesPath lumped = ParseLumpedMasses(node);
+    p.system = std::move(lumped.system);
+    p.input_names = std::move(lumped.input_names);
+    p.output_names = std::move(lumped.output_names);
+    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+    p.system = InChannelUnits(node, p, lumped.input_si_units, lumped.output_si_units);
+    composite = true;  // names from the entries
+    own_channels = true;
   } else if (IsIrrationalType(type)) {
     std::set<std::string> keys = IrrationalKeys(type);
     keys.insert(kCommonKeys.begin(), kCommonKeys.end());
     node.AllowOnly(keys);
-    if (type == "discrete") {
+    if (type == "discrete" && node.Has("den")) {
       const YamlNode den = node.Required("den");
       if (const std::string why = TooManyStates(static_cast<Eigen::Index>(den.AsDoubles().size()) - 1,
                                                 "a denominator of this order gives");
@@ -317,11 +361,12 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
   } else {
     type_node.Fail("unknown path type '" + type +
                    "'; allowed: transfer_function, state_space, gain, frf, modal, series, parallel, feedback, "
-                   "isolation_system, zpk, second_order, mass_spring_damper, pid, lead_lag, notch, lowpass, "
-                   "highpass, integrator, delay, discrete");
+                   "isolation_system, lumped_masses, zpk, second_order, mass_spring_damper, pid, lead_lag, notch, "
+                   "lowpass, highpass, integrator, delay, discrete");
   }
 
-  if (composite) {
+  if (own_channels) {
+  } else if (composite) {
     if (node.Has("inputs")) p.input_names = Names(node, "inputs", p.system.inputs(), "u");
     if (node.Has("outputs")) p.output_names = Names(node, "outputs", p.system.outputs(), "y");
   } else {

@@ -109,6 +109,16 @@ ParameterSet ParameterSet::Evaluate(const std::vector<ParameterDefinition>& defi
     p.value = value[i];
     p.derived = !parsed[i].IsLiteral();
     p.unit = parsed[i].LiteralUnit();
+    if (!definitions[i].unit.empty()) {
+      try {
+        ValueIn(p.value, definitions[i].unit);
+      } catch (const InputError& e) {
+        throw InputError(definitions[i].key_path + ".unit", "'" + definitions[i].name + "' is " + Describe(p.value) +
+                                                                 ", not a quantity in '" + definitions[i].unit +
+                                                                 "' (" + e.message() + ")");
+      }
+      p.unit = definitions[i].unit;
+    }
     set.parameters_.push_back(std::move(p));
   }
   set.index_ = std::move(index);

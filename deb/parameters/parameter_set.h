@@ -19,6 +19,9 @@ struct ParameterDefinition {
   std::string expression;   // its value: "2100 kg", "0.02", "sqrt(k/m)"
   std::string description;  // optional, for reports
   std::string key_path;     // where it is defined ("parameters.m"), for errors
+  // Optional: the unit it is shown in ("N/m" for m*(2*pi*f)^2, which is
+  // otherwise shown in SI base units, kg s-2); its value must be in it.
+  std::string unit;
 };
 
 struct Parameter {
@@ -26,7 +29,8 @@ struct Parameter {
   Quantity value;
   // Refers to other parameters (a formula, not a number with a unit).
   bool derived = false;
-  // For a literal, the unit as written ("kg"; "" for a plain number).
+  // The unit it is shown in: definition.unit if given, else for a literal
+  // the unit as written ("kg"; "" for a plain number).
   std::string unit;
 };
 
@@ -44,7 +48,8 @@ class ParameterSet {
   // is not a name, is defined twice or is a function's or pi; an
   // ExpressionError (with its column) for a bad expression, an unknown name
   // (the nearest suggested) or a unit mismatch; a cycle, naming its members
-  // in order; more than kMaxParameters.
+  // in order; more than kMaxParameters; a definition's unit that its value
+  // is not in (at key path "<key_path>.unit").
   static ParameterSet Evaluate(const std::vector<ParameterDefinition>& definitions);
 
   // The parameter's value, or nullptr if there is none by that name.

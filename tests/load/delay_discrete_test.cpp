@@ -3,8 +3,10 @@
 // and the notes a user reads (the approximation at the crossover, Nyquist).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "deb/budget/budget_description.h"
 #include "deb/budget/engine.h"
@@ -116,6 +118,30 @@ TEST_CASE("a sampled controller: evaluated at e^(j w T), its Tustin equivalent s
   CHECK(above >= 1);
   const std::string text = DescribeBudget(b, PlanEvaluation(b));
   CHECK(Contains(text, "by its approximation: a 10 kHz sampled block with a zero-order hold by its Tustin"));
+}
+
+TEST_CASE("a sampled block from its zeros and poles in z equals its num/den twin") {
+  // 0.2 (z - 0.5) / ((z - 0.8)(z^2 - 0.6 z + 0.25)): a real zero, a real
+  // pole and the pair 0.3 +- 0.4j.
+  const auto psd_of = [](const std::string& sampler) {
+    const std::string text =
+        test::Replace(kBudget, "num: [0.2], den: [1, -0.8]", sampler);
+    const BudgetResult r = Evaluate(LoadBudgetText(text, "b.yaml"));
+    return Of(r, "sampled_loop").psd;
+  };
+  const std::vector<double> twin = psd_of("num: [0.2, -0.1], den: [1, -1.4, 0.73, -0.2]");
+  const std::vector<double> roots = psd_of("zeros: [0.5], poles: [0.8, {re: 0.3, im: 0.4}], gain: 0.2");
+  REQUIRE(twin.size() == roots.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < twin.size(); ++k) worst = std::max(worst, std::abs(roots[k] - twin[k]) / twin[k]);
+  CHECK(worst <= 1e-13);
+  const auto error = [](const std::string& to) {
+    return test::InputErrorOf(
+        [&] { LoadBudgetText(test::Replace(kBudget, "num: [0.2], den: [1, -0.8]", to), "b.yaml"); });
+  };
+  CHECK(Contains(error("num: [0.2], den: [1, -0.8], poles: [0.8]"), "give num and den, or zeros, poles and gain"));
+  CHECK(Contains(error("poles: [{re: 0.3, im: 0}]"), "a conjugate pair needs im != 0"));
+  CHECK(Contains(error("poles: [-1]"), "root at z = -1"));
 }
 
 TEST_CASE("bad delay and discrete entries: the key and the rule") {

@@ -152,8 +152,11 @@ TEST_CASE("bad parameters and expressions: file, line, column, key path and the 
                  "b.yaml:6:11: parameters.decade: parameters refer to each other in a cycle: decade -> decade"));
   CHECK(Contains(ErrorOf(Replace(kParametric, "  decade: 10", "  decade: [10]")),
                  "parameters.decade: a parameter's value is a number with its unit or an expression"));
+  CHECK(Contains(ErrorOf(Replace(kParametric, "  decade: 10", "  decade: {value: 10, units: m}")),
+                 "unknown key 'units'"));
+  // A unit to show it in that its value is not in: located at `unit`.
   CHECK(Contains(ErrorOf(Replace(kParametric, "  decade: 10", "  decade: {value: 10, unit: m}")),
-                 "unknown key 'unit'"));
+                 ":6:29: parameters.decade.unit: 'decade' is 10, not a quantity in 'm'"));
   // In a field: a unit where the field takes a plain number, a unit of the
   // wrong kind, rad/s for Hz, an unknown name.
   CHECK(ErrorOf(Replace(kParametric, "den: [tau/(1 s), 1]", "den: [tau, 1]")) ==

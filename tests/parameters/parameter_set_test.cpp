@@ -79,3 +79,32 @@ TEST_CASE("bad parameter sets are refused at the parameter, saying why") {
 
 }  // namespace
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("a parameter's unit: a derived stiffness shown in N/m, checked against its value") {
+  ParameterDefinition k{"k", "m*(2*pi*f)^2", "", "parameters.k", "N/m"};
+  ParameterDefinition c{"c", "2*0.01*sqrt(k*m)", "", "parameters.c", "N s/m"};
+  const ParameterSet set = ParameterSet::Evaluate({{"m", "20 kg", "", "parameters.m", ""},
+                                                   {"f", "60 Hz", "", "parameters.f", ""}, k, c});
+  CHECK(set.parameters()[2].unit == "N/m");
+  CHECK(set.parameters()[3].unit == "N s/m");
+  CHECK(ValueIn(set.parameters()[2].value, "N/m") == doctest::Approx(20.0 * std::pow(2 * 3.14159265358979323846 * 60.0, 2)).epsilon(1e-15));
+  // A literal keeps its own unit unless one is given.
+  CHECK(set.parameters()[0].unit == "kg");
+  k.unit = "N s/m";
+  std::string key;
+  const std::string message = [&] {
+    try {
+      ParameterSet::Evaluate({{"m", "20 kg", "", "parameters.m", ""}, {"f", "60 Hz", "", "parameters.f", ""}, k});
+    } catch (const InputError& e) {
+      key = e.key_path();
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  }();
+  CHECK(key == "parameters.k.unit");
+  CHECK(test::Contains(message, "'k' is 2.84245e+06 kg s-2, not a quantity in 'N s/m'"));
+}
+
+}  // namespace deb
