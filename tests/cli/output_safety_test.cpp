@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -118,16 +119,20 @@ TEST_CASE("SIGKILL at random moments while a report replaces a complete one leav
   REQUIRE(complete.count(".deb-output") == 1);
 
   // Moments spread over a whole run, until 22 runs have been killed (runs
-  // that finish first count too: they replace the report as well).
+  // that finish first count too: they replace the report as well). A run
+  // that finishes first shortens the span the moments are drawn from: the
+  // first run, timed on a busy machine, may have taken longer than the rest.
   const std::set<std::string> plots_here = PlotsIn(fs::current_path());
   std::mt19937 random(12345);
-  std::uniform_real_distribution<double> moment(0.0, full_s);
   constexpr int kKills = 22;
   int killed = 0, finished = 0;
   std::set<pid_t> killed_pids;
+  double span_s = full_s;
   for (int k = 0; killed < kKills && k < 3 * kKills; ++k) {
+    const auto spawned = std::chrono::steady_clock::now();
     const pid_t pid = Spawn(args);
-    std::this_thread::sleep_for(std::chrono::duration<double>(moment(random)));
+    std::this_thread::sleep_for(
+        std::chrono::duration<double>(std::uniform_real_distribution<double>(0.0, span_s)(random)));
     ::kill(pid, SIGKILL);
     const int status = Wait(pid);
     if (status == -SIGKILL) {
@@ -135,6 +140,7 @@ TEST_CASE("SIGKILL at random moments while a report replaces a complete one leav
       killed_pids.insert(pid);
     } else {
       ++finished;
+      span_s = std::min(span_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - spawned).count());
     }
     CAPTURE(k);
     CAPTURE(status);

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "deb/budget/engine.h"
+#include "deb/budget/path_analysis.h"
 #include "deb/load/budget_yaml.h"
 #include "tests/support/contains.h"
 #include "tests/support/text_edit.h"
@@ -63,6 +64,22 @@ TEST_CASE("the two-mass optical table from blocks gives the independent computat
     CheckPrinted(loop.margins.phase_margin->phase_margin_deg, 48.0, 2);
     CheckPrinted(loop.margins.phase_margin->f_hz, 215.0, 3);
   }
+}
+
+TEST_CASE("the closed loop's responses to the two forces: the independent computation's figures at 1 and 100 Hz") {
+  // The same walk-through: |F_ac -> gap| 5.49 and |F_act -> gap| 4.98 nm/N at
+  // 1 Hz, 64.8 and 68.0 nm/N at 100 Hz.
+  const Budget b = LoadBudgetFile(kFile);
+  const PathAnalysis closed(b.FindPath("closed"), {0});
+  double h[2][3] = {};
+  const std::vector<double> f = {1.0, 100.0};
+  closed.ForEachResponse(f, [&](std::size_t k, const Eigen::MatrixXcd& r) {
+    for (int j = 0; j < 3; ++j) h[k][j] = std::abs(r(0, j)) * 1e9;  // m/N -> nm/N (the path is in m)
+  });
+  CheckPrinted(h[0][1], 5.49, 3);
+  CheckPrinted(h[0][2], 4.98, 3);
+  CheckPrinted(h[1][1], 64.8, 3);
+  CheckPrinted(h[1][2], 68.0, 3);
 }
 
 TEST_CASE("lumped_masses: each broken rule is refused at its key") {

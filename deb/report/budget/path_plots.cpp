@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "deb/budget/budget.h"
 #include "deb/budget/path_response.h"
 #include "deb/budget/response_traces.h"
 #include "deb/core/error.h"
@@ -110,7 +111,9 @@ Plot PathPlot(const BudgetResult& result, const std::vector<std::size_t>& users,
   const std::string poles = (poles_hz.first == poles_hz.second ? Sig(poles_hz.first)
                                                                  : Sig(poles_hz.first) + "–" + Sig(poles_hz.second)) +
                             " Hz";
-  p.caption = "Bode magnitude and phase (unwrapped) of the transfer through path " + contributor.path + " to " +
+  // The path with the inputs its contributors drive, if they select some: "closed(F_act)".
+  const std::string through = ContributorPathKey(contributor);
+  p.caption = "Bode magnitude and phase (unwrapped) of the transfer through path " + through + " to " +
               output.name + (weighted ? ", weighting included" : "") +
               ", per source channel, from source unit " + UnitText(budget.SourceOf(contributor).unit) + "; used by " +
               (users.size() == 1 ? "contributor " : std::to_string(users.size()) + " contributors: ") + names + "." +
@@ -123,7 +126,7 @@ Plot PathPlot(const BudgetResult& result, const std::vector<std::size_t>& users,
   for (std::size_t k = 0; k < m; ++k) phase_deg[k] = UnwrappedPhaseDeg(r.phase_rad[k], f, range.lo_hz);
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ": |h| in " << r.unit
-      << " and unwrapped phase in degrees of path " << contributor.path << " to output " << output.name
+      << " and unwrapped phase in degrees of path " << through << " to output " << output.name
       << ", per source channel; used by " << names << "\n";
   csv << "frequency_hz";
   for (const auto& ch : r.channels) csv << ',' << CsvField(ch);
@@ -232,7 +235,7 @@ Plot PathPlot(const BudgetResult& result, const std::vector<std::size_t>& users,
     phase.y.max = std::max(step * std::ceil(phase_hi / step + 1e-9), *phase.y.min + 90.0);
     for (double t = *phase.y.min; t <= *phase.y.max + 1e-9; t += step) phase.y.tics.push_back({t, Short(t)});
   }
-  p.figure.title = "path " + Enhanced(contributor.path) + " → " + Enhanced(output.name) +
+  p.figure.title = "path " + Enhanced(through) + " → " + Enhanced(output.name) +
                    (weighted ? " (weighted)" : "") + ", used by " +
                    (users.size() <= 3 ? Enhanced(names) : std::to_string(users.size()) + " contributors");
   p.figure.panels = {std::move(mag), std::move(phase)};
@@ -267,7 +270,10 @@ std::vector<Plot> PathPlots(const BudgetResult& result, int threads) {
     const Contributor &ca = budget.contributors[a], &cb = budget.contributors[b];
     const SourceOutline &sa = budget.SourceOf(ca), &sb = budget.SourceOf(cb);
     // One channel is named after its source: only several channels must agree by name.
-    return ca.path == cb.path && sa.unit == sb.unit && sa.channels.size() == sb.channels.size() &&
+    // Contributors that drive different inputs of one path see different
+    // transfers (ContributorPathKey names the inputs).
+    return ContributorPathKey(ca) == ContributorPathKey(cb) && sa.unit == sb.unit &&
+           sa.channels.size() == sb.channels.size() &&
            (sa.channels.size() == 1 || sa.channels == sb.channels);
   };
   for (std::size_t c = 0; c < budget.contributors.size(); ++c) {

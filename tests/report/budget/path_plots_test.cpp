@@ -245,3 +245,56 @@ outputs:
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("contributors driving different inputs of one path get a plot each, of their own input's transfer") {
+  // Path p: input a through 1/(1 + s/w1), input b through 2/(1 + s/w2),
+  // w1 = 2 pi 1 Hz, w2 = 2 pi 100 Hz. c1 drives a; c2 and c3 drive b. One
+  // plot for all three drew a's transfer under the title "used by c1, c2, c3".
+  const Budget budget = LoadBudgetText(R"(
+name: two_inputs
+grid: {type: log, min_hz: 0.01, max_hz: 10000, points: 300}
+sources:
+  - {name: s, unit: N, spectrum: {type: flat, level: 1}}
+paths:
+  - name: p
+    type: transfer_function
+    matrix: [[{num: [6.283185307179586], den: [1, 6.283185307179586]}, {num: [1256.6370614359172], den: [1, 628.3185307179586]}]]
+    inputs: [a, b]
+    outputs: [y]
+    input_unit: N
+    output_unit: nm
+contributors:
+  - {name: c1, source: s, path: p, inputs: [a]}
+  - {name: c2, source: s, path: p, inputs: [b]}
+  - {name: c3, source: s, path: p, inputs: [b]}
+outputs:
+  - {name: out, signal: y, unit: nm}
+)",
+                                       "two_inputs.yaml");
+  const std::vector<Plot> plots = PathPlots(Evaluate(budget));
+  REQUIRE(plots.size() == 2);
+  CHECK(plots[0].name == "path_p_to_out_from_c1");
+  CHECK(plots[1].name == "path_p_to_out_from_c2");
+  CHECK(plots[0].figure.title == "path p(a) → out, used by c1");
+  CHECK(plots[1].figure.title == "path p(b) → out, used by c2, c3");
+  // Each CSV holds its own input's |h|: 1/|1 + j f/1 Hz| and 2/|1 + j f/100 Hz|.
+  const double corner[2] = {1.0, 100.0}, gain[2] = {1.0, 2.0};
+  for (int k = 0; k < 2; ++k) {
+    std::istringstream lines(plots[k].csv);
+    std::string line;
+    std::getline(lines, line);
+    std::getline(lines, line);
+    int rows = 0;
+    while (std::getline(lines, line)) {
+      double f, mag, deg;
+      REQUIRE(std::sscanf(line.c_str(), "%lf,%lf,%lf", &f, &mag, &deg) == 3);
+      CHECK(mag == doctest::Approx(gain[k] / std::hypot(1.0, f / corner[k])).epsilon(1e-6));
+      ++rows;
+    }
+    CHECK(rows > 10);
+  }
+}
+
+}  // namespace deb::report
