@@ -229,13 +229,14 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
                      std::to_string(path_.modal->modes()) + " modes make " +
                      std::to_string(2 * path_.modal->modes()) + " states, more than the " +
                      std::to_string(limits::kMaxDenseStates) + " deb solves densely");
-  // Rows of the reduced realisation are numbered as the evaluated rows.
-  const StateSpace rational = reduced_ ? *reduced_ : path_.Rational();
+  // The reduced realisation (its rows numbered as the evaluated rows) where
+  // it holds every row asked for; else the path's own.
+  const bool reduced =
+      reduced_ && std::all_of(rows.begin(), rows.end(), [&](int row) { return Position(row) >= 0; });
+  const StateSpace rational = reduced ? *reduced_ : path_.Rational();
   std::optional<StateSpace> stacked;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const int r = reduced_ ? Position(rows[i]) : rows[i];
-    DEB_DEMAND(r >= 0);
-    const StateSpace row = rational.SelectOutputs({r});
+    const StateSpace row = rational.SelectOutputs({reduced ? Position(rows[i]) : rows[i]});
     const StateSpace one = weightings[i] ? Series(row, *weightings[i]) : row;
     stacked = stacked ? StackOutputs(*stacked, one) : one;
   }

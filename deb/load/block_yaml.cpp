@@ -123,7 +123,10 @@ IrrationalBlock ParseIrrationalBlock(const YamlNode& node, const std::string& ty
   const YamlNode rate = node.Required("sample_hz");
   const double sample_hz = rate.AsDouble();
   if (!(sample_hz > 0.0)) rate.Fail("sample_hz must be > 0");
-  const auto [num, den] = DiscreteCoefficients(node);
+  // Not a structured binding: C++17 lambdas cannot capture those (Clang refuses).
+  const std::pair<std::vector<double>, std::vector<double>> coefficients = DiscreteCoefficients(node);
+  const std::vector<double>& num = coefficients.first;
+  const std::vector<double>& den = coefficients.second;
   const bool zoh = node.Has("zoh") && node.Required("zoh").AsBool();
   const YamlNode at = node.Has("den") ? node.Required("den") : node.Has("poles") ? node.Required("poles") : node;
   return AtNode(at, [&] { return Discrete(sample_hz, num, den, zoh, pade); });
