@@ -1,6 +1,7 @@
 #include "deb/formats/mat_file.h"
 
 #include <matio.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -10,8 +11,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <set>
+#include <vector>
 
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
@@ -135,25 +138,64 @@ std::string ShortData(const unsigned char* body, std::size_t have, std::uintmax_
   return "";
 }
 
-// Inside an uncompressed matrix (miMATRIX) of `size` bytes from `at` (after
-// its tag): its data elements (array flags, dimensions, name, the class's
-// parts, and nested matrices of cells and structs, walked in turn) each
-// end within it. matio allocates what an element's length claims before it
-// reads: one length changed in a 688-byte file had it allocate 2 GB.
-// "" if they do, else what is wrong. `elements` counts every element walked
-// (a bound on the work).
-std::string SubElements(std::ifstream& in, std::uintmax_t at, std::uintmax_t size, bool little, int depth,
+// Reads the 8-byte tag at byte `at` of a matrix's bytes (the file's, or the
+// part of a compressed variable deb inflated).
+enum class TagRead { kRead, kPastEnd, kNotHeld };
+using TagReader = std::function<TagRead(std::uintmax_t at, unsigned char* tag)>;
+
+// Inside a matrix (miMATRIX) of `size` bytes from `at` (after its tag): its
+// data elements (array flags, dimensions, name, the class's parts, and
+// nested matrices of cells and structs, walked in turn) each end within it.
+// matio allocates what an element's length claims before it reads: one
+// length changed in a 688-byte file had it allocate 2 GB. "" if they do
+// (or the walk reaches bytes `read` does not hold), else what is wrong.
+// `elements` counts every element walked (a bound on the work).
+// A cell array or struct array (array flags then dimensions at `at`, its
+// matrix `size` bytes long): each of its elements is a matrix of at least
+// 8 bytes, so its dimensions may ask for at most size/8; matio allocates a
+// pointer per element before it reads one (a 840-byte file asking for
+// 1.9e9 cells had it allocate 15.5 GB). "" if it fits or is no such array.
+std::string ElementsFit(const TagReader& read, std::uintmax_t at, std::uintmax_t size, bool little) {
+  unsigned char word[8];
+  if (size < 24 || read(at, word) != TagRead::kRead || Read32(word, little) != 6) return "";
+  if (read(at + 8, word) != TagRead::kRead) return "";
+  const std::uint32_t class_type = Read32(word, little) & 0xFF;
+  if (class_type != 1 && class_type != 2) return "";  // mxCELL_CLASS, mxSTRUCT_CLASS
+  if (read(at + 16, word) != TagRead::kRead || Read32(word, little) != 5) return "";
+  const std::uint32_t dims_bytes = Read32(word + 4, little);
+  if (dims_bytes > 4 * 32 || dims_bytes > size) return "";  // not the plain layout: the walk judges it
+  std::uintmax_t count = 1;
+  const std::uintmax_t most = size / 8;
+  for (std::uint32_t k = 0; k < dims_bytes; k += 8) {
+    if (read(at + 24 + k, word) != TagRead::kRead) return "";
+    for (std::uint32_t j = 0; j < 8 && k + j + 4 <= dims_bytes; j += 4) {
+      const std::uint32_t d = Read32(word + j, little);
+      if (d == 0) return "";
+      if (count > most / d) {
+        count = most + 1;
+        break;
+      }
+      count *= d;
+    }
+  }
+  if (count <= most) return "";
+  return std::string("its dimensions ask for more ") + (class_type == 1 ? "cells" : "struct elements") +
+         " than its " + std::to_string(size) + " bytes can hold (at most " + std::to_string(most) + ")";
+}
+
+std::string SubElements(const TagReader& read, std::uintmax_t at, std::uintmax_t size, bool little, int depth,
                         std::size_t& elements) {
   constexpr std::uint32_t kMiMatrix = 14;
   if (depth > 32) return "its cells or structs nest more than 32 deep";
+  if (std::string problem = ElementsFit(read, at, size, little); !problem.empty()) return problem;
   std::uintmax_t p = 0;
   while (p + 8 <= size) {
     if (++elements > 1'000'000)
       return "it holds more parts than any variable deb reads";
     unsigned char tag[8];
-    in.seekg(static_cast<std::streamoff>(at + p));
-    in.read(reinterpret_cast<char*>(tag), sizeof tag);
-    if (in.gcount() != static_cast<std::streamsize>(sizeof tag)) return "it runs past the end of the file";
+    const TagRead got = read(at + p, tag);
+    if (got == TagRead::kPastEnd) return "it runs past the end of the file";
+    if (got == TagRead::kNotHeld) return "";
     const std::uint32_t type = Read32(tag, little);
     if ((type >> 16) != 0) {  // small element: 4 bytes of data in the tag
       if ((type >> 16) > 4) return "a part at byte " + std::to_string(at + p) + " claims more than the 4 bytes it has";
@@ -165,12 +207,77 @@ std::string SubElements(std::ifstream& in, std::uintmax_t at, std::uintmax_t siz
       return "a part at byte " + std::to_string(at + p) + " claims " + std::to_string(bytes) +
              " bytes, more than the variable holds";
     if (type == kMiMatrix) {
-      const std::string nested = SubElements(in, at + p + 8, bytes, little, depth + 1, elements);
+      const std::string nested = SubElements(read, at + p + 8, bytes, little, depth + 1, elements);
       if (!nested.empty()) return nested;
     }
     p += 8 + (std::uintmax_t{bytes} + 7) / 8 * 8;
   }
   return "";
+}
+
+// The first bytes of a compressed variable (miCOMPRESSED: a zlib stream of
+// one data element), inflated up to `limit` bytes; fewer if the stream ends
+// or is damaged (`damaged` then says so).
+std::vector<unsigned char> InflateHead(std::ifstream& in, std::uintmax_t at, std::uint32_t bytes, std::size_t limit,
+                                       bool& damaged) {
+  std::vector<unsigned char> out(limit);
+  z_stream z{};
+  damaged = inflateInit(&z) != Z_OK;
+  if (damaged) return {};
+  in.seekg(static_cast<std::streamoff>(at));
+  unsigned char chunk[16384];
+  std::uintmax_t left = bytes;
+  z.next_out = out.data();
+  z.avail_out = static_cast<uInt>(limit);
+  int status = Z_OK;
+  while (z.avail_out > 0 && left > 0 && status == Z_OK) {
+    const std::size_t n = static_cast<std::size_t>(std::min<std::uintmax_t>(sizeof chunk, left));
+    in.read(reinterpret_cast<char*>(chunk), static_cast<std::streamsize>(n));
+    if (in.gcount() != static_cast<std::streamsize>(n)) {
+      damaged = true;
+      break;
+    }
+    left -= n;
+    z.next_in = chunk;
+    z.avail_in = static_cast<uInt>(n);
+    while (z.avail_in > 0 && z.avail_out > 0 && status == Z_OK) status = inflate(&z, Z_NO_FLUSH);
+  }
+  if (status != Z_OK && status != Z_STREAM_END) damaged = true;
+  out.resize(limit - z.avail_out);
+  inflateEnd(&z);
+  return out;
+}
+
+// A compressed variable of `bytes` bytes at `at` (after its tag): the
+// matrix it inflates to is checked as an uncompressed one is, as far as its
+// first 64 KiB (where matio reads the array flags, dimensions and name
+// before it allocates); the size it claims must be one that `bytes` of zlib
+// data can inflate to (at most 1032 times as many). "" if it passes.
+std::string CompressedVariable(std::ifstream& in, std::uintmax_t at, std::uint32_t bytes, bool little) {
+  constexpr std::uint32_t kMiMatrix = 14;
+  constexpr std::uintmax_t kZlibMostRatio = 1032;  // deflate's largest expansion (RFC 1951, 258 bytes per 2 bits)
+  bool damaged = false;
+  const std::vector<unsigned char> head = InflateHead(in, at, bytes, 65536, damaged);
+  if (head.size() < 8)
+    return damaged ? "its compressed data cannot be inflated" : "its compressed data holds no variable";
+  const std::uint32_t type = Read32(head.data(), little);
+  if (type != kMiMatrix) return "its compressed data holds no matrix";
+  const std::uint32_t size = Read32(head.data() + 4, little);
+  if (size > kZlibMostRatio * std::uintmax_t{bytes})
+    return "its compressed data of " + std::to_string(bytes) + " bytes claims " + std::to_string(size) +
+           " bytes, more than zlib data of that size can inflate to";
+  if (damaged && head.size() < std::min<std::uintmax_t>(size + 8, 65536))
+    return "its compressed data is damaged (it inflates to " + std::to_string(head.size()) + " of the " +
+           std::to_string(size + 8) + " bytes it claims)";
+  const TagReader read = [&](std::uintmax_t p, unsigned char* tag) {
+    if (p + 8 > head.size()) return TagRead::kNotHeld;
+    std::memcpy(tag, head.data() + p, 8);
+    return TagRead::kRead;
+  };
+  std::size_t elements = 0;
+  std::string problem = SubElements(read, 8, size, little, 0, elements);
+  if (problem.empty()) problem = ShortData(head.data() + 8, head.size() - 8, size, little);
+  return problem;
 }
 
 // The version from the 128-byte header; for version 5 (and 7, the same
@@ -198,7 +305,7 @@ Version CheckLayout(const std::string& path, std::uintmax_t size) {
     std::snprintf(text, sizeof text, "0x%04x", version);
     Fail(path, std::string("unknown MAT-file version ") + text + " in the header (5, 7 and 7.3 are read)");
   }
-  constexpr std::uint32_t kMiMatrix = 14;
+  constexpr std::uint32_t kMiMatrix = 14, kMiCompressed = 15;
   std::uintmax_t at = 128;
   std::size_t count = 0;
   while (at + 8 <= size) {
@@ -223,12 +330,22 @@ Version CheckLayout(const std::string& path, std::uintmax_t size) {
       if (in.gcount() != static_cast<std::streamsize>(have))
         Fail(path, "cannot read the MAT-file (it changed or shrank while being read)");
       std::size_t elements = 0;
-      std::string problem = SubElements(in, at + 8, bytes, little, 0, elements);
+      const TagReader read = [&](std::uintmax_t p, unsigned char* tag) {
+        in.seekg(static_cast<std::streamoff>(p));
+        in.read(reinterpret_cast<char*>(tag), 8);
+        return in.gcount() == 8 ? TagRead::kRead : TagRead::kPastEnd;
+      };
+      std::string problem = SubElements(read, at + 8, bytes, little, 0, elements);
       if (problem.empty()) problem = ShortData(body, have, bytes, little);
       if (!problem.empty())
         Fail(path, "the file is damaged: its variable " + std::to_string(count) + " (at byte " + std::to_string(at) +
                        "): " + problem);
       end = (end + 7) / 8 * 8;  // uncompressed variables are padded to 8 bytes
+    } else if (type == kMiCompressed) {
+      const std::string problem = CompressedVariable(in, at + 8, bytes, little);
+      if (!problem.empty())
+        Fail(path, "the file is damaged: its variable " + std::to_string(count) + " (at byte " + std::to_string(at) +
+                       "): " + problem);
     }
     at = end;
   }

@@ -6,6 +6,7 @@
 // hostile file is a clear error naming the file, the variable and its size.
 #include <doctest/doctest.h>
 #include <matio.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <optional>
 #include <regex>
 #include <string>
 #include <unistd.h>
@@ -318,6 +320,57 @@ TEST_CASE("hostile files: a clear error naming the file, no crash") {
   // The hand-made layout itself is read: 2x1 with both values.
   dir.WriteText("ok.mat", HandMadeV5({2, 1}, 16, 16));
   CHECK(MatFile(dir.Path("ok.mat")).Vector("A") == std::vector<double>{0, 0});
+}
+
+// A hand-made file (HandMadeV5) with its variable compressed (miCOMPRESSED,
+// as save -v7 writes it); `tag_bytes` replaces the size in the inflated
+// matrix's tag where given.
+std::string Compressed(const std::string& plain, std::optional<std::uint32_t> tag_bytes = std::nullopt) {
+  std::string element = plain.substr(128);
+  if (tag_bytes)
+    for (int i = 0; i < 4; ++i) element[4 + i] = static_cast<char>((*tag_bytes >> (8 * i)) & 0xFF);
+  uLongf n = compressBound(static_cast<uLong>(element.size()));
+  std::string z(n, '\0');
+  REQUIRE(compress(reinterpret_cast<Bytef*>(z.data()), &n, reinterpret_cast<const Bytef*>(element.data()),
+                   static_cast<uLong>(element.size())) == Z_OK);
+  z.resize(n);
+  std::string tag(8, '\0');
+  tag[0] = 15;  // miCOMPRESSED
+  for (int i = 0; i < 4; ++i) tag[4 + i] = static_cast<char>((n >> (8 * i)) & 0xFF);
+  return plain.substr(0, 128) + tag + z;
+}
+
+TEST_CASE("compressed variables are checked as plain ones before matio reads them") {
+  // A fuzzed 17 KB file whose compressed variable was damaged made matio
+  // allocate 10 GB; each claim inside the inflated matrix is now checked.
+  const TempDir dir;
+  dir.WriteText("ok.mat", Compressed(HandMadeV5({2, 1}, 16, 16)));
+  CHECK(MatFile(dir.Path("ok.mat")).Vector("A") == std::vector<double>{0, 0});
+  dir.WriteText("short.mat", Compressed(HandMadeV5({3, 3}, 16, 16)));
+  CHECK_ERROR(MatFile(dir.Path("short.mat")), dir.Path("short.mat") +
+                                                  ": the file is damaged: its variable 1 (at byte 128): its dimensions "
+                                                  "ask for 9 values, its data holds 2");
+  // The real part claims 10^9 bytes of the 80 the matrix holds.
+  dir.WriteText("part.mat", Compressed(HandMadeV5({2, 1}, 1000000000u, 16), 80));
+  CHECK_ERROR(MatFile(dir.Path("part.mat")), "claims 1000000000 bytes, more than the variable holds");
+  // The matrix claims 4 GB from a few dozen bytes of zlib data.
+  dir.WriteText("ratio.mat", Compressed(HandMadeV5({2, 1}, 16, 16), 4000000000u));
+  CHECK_ERROR(MatFile(dir.Path("ratio.mat")), "more than zlib data of that size can inflate to");
+  // Bytes that are not zlib data.
+  std::string garbage = Compressed(HandMadeV5({2, 1}, 16, 16));
+  for (std::size_t k = 136; k < garbage.size(); ++k) garbage[k] = static_cast<char>(0xA5);
+  dir.WriteText("garbage.mat", garbage);
+  CHECK_ERROR(MatFile(dir.Path("garbage.mat")), "its compressed data cannot be inflated");
+}
+
+TEST_CASE("the files the fuzzer found: refused before matio allocates 10 and 15 GB") {
+  const std::string corpus = std::string(DEB_SOURCE_DIR) + "/tests/fuzz/corpus/mat_file/";
+  // A byte changed in a compressed variable's zlib stream (17 KB; matio asked for 10 GB).
+  CHECK_ERROR(MatFile(corpus + "damaged_compressed.mat"),
+              "its variable 6 (at byte 1886): its compressed data is damaged (it inflates to 30733 of the 30752 bytes");
+  // A cell array's dimensions changed to 2 x 973078529 (840 bytes; matio asked for 15.5 GB).
+  CHECK_ERROR(MatFile(corpus + "huge_cell.mat"),
+              "its variable 6 (at byte 648): its dimensions ask for more cells than its 184 bytes can hold (at most 23)");
 }
 
 // ---------------------------------------------------------------------------
