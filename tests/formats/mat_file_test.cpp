@@ -363,13 +363,25 @@ TEST_CASE("compressed variables are checked as plain ones before matio reads the
   CHECK_ERROR(MatFile(dir.Path("garbage.mat")), "its compressed data cannot be inflated");
 }
 
-TEST_CASE("the files the fuzzer found: refused before matio allocates 10 and 15 GB") {
+TEST_CASE("the files the fuzzer found: refused before matio allocates 10 and 15 GB or reads 33 million values") {
   const std::string corpus = std::string(DEB_SOURCE_DIR) + "/tests/fuzz/corpus/mat_file/";
   // A byte changed in a compressed variable's zlib stream (17 KB; matio asked for 10 GB).
   CHECK_ERROR(MatFile(corpus + "damaged_compressed.mat"),
               "its variable 6 (at byte 1886): its compressed data is damaged (it inflates to 30733 of the 30752 bytes");
-  // A cell array's dimensions changed to 2 x 973078529 (840 bytes; matio asked for 15.5 GB).
-  CHECK_ERROR(MatFile(corpus + "huge_cell.mat"),
+  // A numeric variable's values stored as data type 0, for 2 x 16449538 values (840 bytes).
+  CHECK_ERROR(MatFile(corpus + "unknown_type.mat"),
+              "its variable 3 (at byte 264): its values are stored as data type 0, which is no numeric type");
+  // A cell array's dimensions changed to 2 x 973078529 (840 bytes; matio asked for 15.5 GB). The
+  // same file stores variable 3's values as type 0 too, which is refused first; with that part's
+  // type set back to miDOUBLE (9) the cell array is what is refused.
+  CHECK_ERROR(MatFile(corpus + "huge_cell.mat"), "its variable 3 (at byte 264): its values are stored as data type 0");
+  std::ifstream in(corpus + "huge_cell.mat", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  REQUIRE(bytes.size() == 840);
+  bytes[320] = 9;
+  const TempDir dir;
+  dir.WriteText("cell.mat", bytes);
+  CHECK_ERROR(MatFile(dir.Path("cell.mat")),
               "its variable 6 (at byte 648): its dimensions ask for more cells than its 184 bytes can hold (at most 23)");
 }
 
