@@ -714,9 +714,18 @@ void RequireSelfContainedHdf5(const std::string& path) {
       const Id create(H5Dget_create_plist(object.get()), H5Pclose);
       if (const std::string problem = StorageProblem(create.get(), true); !problem.empty()) fail(name, problem);
     }
+    const Id type(H5Dget_type(object.get()), H5Tclose);
+    // A value of a MAT-file is at most 16 bytes (a complex double); matio
+    // allocates count x size before it reads (a fuzzed file's datatype of
+    // 4294966792 bytes had it ask for 4 GB).
+    if (type.ok()) {
+      const std::size_t value_bytes = H5Tget_size(type.get());
+      if (value_bytes == 0 || value_bytes > 16)
+        fail(name, "stores values of " + std::to_string(value_bytes) +
+                       " bytes each; the values of a MAT-file are 1 to 16 bytes");
+    }
     // Object references (matio's cell arrays and structs in cells) lead to
     // objects that no link may name.
-    const Id type(H5Dget_type(object.get()), H5Tclose);
     if (!type.ok() || H5Tget_class(type.get()) != H5T_REFERENCE) continue;
     if (H5Tequal(type.get(), H5T_STD_REF_OBJ) <= 0) fail(name, "holds references of another kind than objects");
     const Id space(H5Dget_space(object.get()), H5Sclose);

@@ -363,11 +363,14 @@ TEST_CASE("compressed variables are checked as plain ones before matio reads the
   CHECK_ERROR(MatFile(dir.Path("garbage.mat")), "its compressed data cannot be inflated");
 }
 
-TEST_CASE("the files the fuzzer found: refused before matio allocates 10 and 15 GB or reads 33 million values") {
+TEST_CASE("the files the fuzzer found: refused before matio allocates 4, 10 and 15 GB or reads 33 million values") {
   const std::string corpus = std::string(DEB_SOURCE_DIR) + "/tests/fuzz/corpus/mat_file/";
   // A byte changed in a compressed variable's zlib stream (17 KB; matio asked for 10 GB).
   CHECK_ERROR(MatFile(corpus + "damaged_compressed.mat"),
               "its variable 6 (at byte 1886): its compressed data is damaged (it inflates to 30733 of the 30752 bytes");
+  // Version 7.3: a dataset's HDF5 datatype of 4294966792 bytes (matio asked for 4 GB).
+  CHECK_ERROR(MatFile(corpus + "huge_value_v73.mat"),
+              "object 'C' stores values of 4294966792 bytes each; the values of a MAT-file are 1 to 16 bytes");
   // A numeric variable's values stored as data type 0, for 2 x 16449538 values (840 bytes).
   CHECK_ERROR(MatFile(corpus + "unknown_type.mat"),
               "its variable 3 (at byte 264): its values are stored as data type 0, which is no numeric type");
