@@ -119,8 +119,12 @@ std::string ShortData(const unsigned char* body, std::size_t have, std::uintmax_
   std::size_t data = 0;
   if (!next(type, bytes, data) || type != 6 || bytes < 8 || data + 8 > have) return "";
   const std::uint32_t class_type = Read32(body + data, little) & 0xFF;
+  // The dimensions follow the array flags as miINT32 (5) in every class;
+  // matio reads them whatever the type says (a fuzzed file: a name of 4 GB).
+  if (!next(type, bytes, data)) return "";
+  if (type != 5) return "its dimensions are stored as data type " + std::to_string(type) + ", not int32";
   if (class_type < 6 || class_type > 15) return "";  // not numeric (mxDOUBLE_CLASS ... mxUINT64_CLASS)
-  if (!next(type, bytes, data) || type != 5 || data + bytes > have) return "";
+  if (data + bytes > have) return "";
   std::uintmax_t count = 1;
   for (std::uint32_t k = 0; k + 4 <= bytes; k += 4) {
     const std::uint32_t d = Read32(body + data + k, little);

@@ -371,6 +371,9 @@ TEST_CASE("the files the fuzzer found: refused before matio allocates 4, 10 and 
   // Version 7.3: a dataset's HDF5 datatype of 4294966792 bytes (matio asked for 4 GB).
   CHECK_ERROR(MatFile(corpus + "huge_value_v73.mat"),
               "object 'C' stores values of 4294966792 bytes each; the values of a MAT-file are 1 to 16 bytes");
+  // Dimensions stored as data type 1280 instead of int32 (840 bytes; matio asked for 4.3 GB).
+  CHECK_ERROR(MatFile(corpus + "dims_type.mat"),
+              "its variable 2 (at byte 200): its dimensions are stored as data type 1280, not int32");
   // A numeric variable's values stored as data type 0, for 2 x 16449538 values (840 bytes).
   CHECK_ERROR(MatFile(corpus + "unknown_type.mat"),
               "its variable 3 (at byte 264): its values are stored as data type 0, which is no numeric type");
