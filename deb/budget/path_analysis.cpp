@@ -81,7 +81,6 @@ PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : pat
   // Axis poles the transfer cancels (an integrator before a loop's zero at DC).
   if (!marginal_.empty() && unstable_.empty() && (rational_ || path.SystemApproximates())) {
     if (std::optional<AxisCancellation> c = CancelAxisPoles(path.system.SelectOutputs(rows_))) {
-      cancelled_.assign(c->cancelled.data(), c->cancelled.data() + c->cancelled.size());
       marginal_.clear();
       modes_ = ModesFromPoles(c->system.Poles());
       reduced_ = std::move(c->system);

@@ -55,10 +55,6 @@ class PathAnalysis {
   // Poles with Re > 1e-9 max(1, |p|) and on the imaginary axis (|Re| within it).
   const std::vector<std::complex<double>>& unstable_poles() const { return unstable_; }
   const std::vector<std::complex<double>>& marginal_poles() const { return marginal_; }
-  // Poles on the axis that the evaluated rows' transfer cancels
-  // (axis_cancellation.h): not in modes(), not marginal; the exact variance
-  // is that of the realisation without them.
-  const std::vector<std::complex<double>>& cancelled_poles() const { return cancelled_; }
   // A loop closed around measured data: its stability is not known.
   bool loop_around_data() const { return path_.measured && path_.measured->HasLoopAroundData(); }
 
@@ -115,8 +111,10 @@ class PathAnalysis {
   const Path path_;  // a copy: results may outlive the budget
   std::vector<int> rows_;
   std::vector<Mode> modes_;
-  std::vector<std::complex<double>> unstable_, marginal_, cancelled_;
-  // The evaluated rows' realisation without cancelled axis poles, if any.
+  std::vector<std::complex<double>> unstable_, marginal_;
+  // The evaluated rows' realisation without the axis poles their transfer
+  // cancels (axis_cancellation.h), if any: modes() and the exact variance
+  // are then its, and those poles are not marginal.
   std::optional<StateSpace> reduced_;
   // The evaluated rows' realisation for the exact variance: reduced_ or the path's.
   StateSpace Realisation() const;

@@ -23,10 +23,7 @@ std::optional<AxisCancellation> CancelAxisPoles(const StateSpace& sys) {
   const PoleStability stability = ClassifyPoles(form.eigenvalues);
   if (!stability.unstable.empty() || stability.marginal.empty()) return std::nullopt;
   std::vector<bool> stable(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    const std::complex<double> p = form.eigenvalues(k);
-    stable[static_cast<std::size_t>(k)] = p.real() < -1e-9 * std::max(1.0, std::abs(p));
-  }
+  for (int k = 0; k < n; ++k) stable[static_cast<std::size_t>(k)] = IsStrictlyStable(form.eigenvalues(k));
   int ns = 0;
   try {
     ns = ReorderRealSchur(form, stable);

@@ -29,13 +29,18 @@ std::vector<Mode> ModesFromPoles(const Eigen::VectorXcd& poles_rad_s) {
   return modes;
 }
 
+namespace {
+double AxisTolerance(std::complex<double> p) { return 1e-9 * std::max(1.0, std::abs(p)); }
+}  // namespace
+
+bool IsStrictlyStable(std::complex<double> pole_rad_s) { return pole_rad_s.real() < -AxisTolerance(pole_rad_s); }
+
 PoleStability ClassifyPoles(const Eigen::VectorXcd& poles_rad_s) {
   PoleStability s;
   for (Eigen::Index i = 0; i < poles_rad_s.size(); ++i) {
     const std::complex<double> p = poles_rad_s(i);
-    const double tol = 1e-9 * std::max(1.0, std::abs(p));
-    if (p.real() > tol) s.unstable.push_back(p);
-    else if (p.real() >= -tol) s.marginal.push_back(p);
+    if (p.real() > AxisTolerance(p)) s.unstable.push_back(p);
+    else if (!IsStrictlyStable(p)) s.marginal.push_back(p);
   }
   return s;
 }

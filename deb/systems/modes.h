@@ -32,6 +32,10 @@ struct Mode {
 // (the Im < 0 members are dropped), sorted by f_n_hz, then by damping ratio.
 std::vector<Mode> ModesFromPoles(const Eigen::VectorXcd& poles_rad_s);
 
+// True for a pole with Re < -1e-9 max(1, |p|): neither unstable nor on the
+// imaginary axis (the rule of ClassifyPoles).
+bool IsStrictlyStable(std::complex<double> pole_rad_s);
+
 // Poles with Re > 1e-9 max(1, |p|) (unstable) and with |Re| within that
 // (on the imaginary axis: marginal), for the stability checks.
 struct PoleStability {
