@@ -29,6 +29,7 @@
 #include "deb/formats/mat_file.h"
 #include "tests/support/contains.h"
 #include "tests/support/text_edit.h"
+#include "tests/support/contributor_of.h"
 
 namespace deb {
 namespace {
@@ -438,12 +439,7 @@ void CheckLocated(const std::string& message, const std::string& key, const std:
   CHECK(Contains(message, part));
 }
 
-const ContributorResult& Find(const OutputResult& o, const std::string& name) {
-  for (const auto& c : o.contributors)
-    if (c.name == name) return c;
-  FAIL("no contributor " << name);
-  return o.contributors.front();
-}
+using test::ContributorOf;
 
 // Two resonances (12 Hz, 70 Hz), two force inputs, one displacement output.
 struct Plant {
@@ -517,8 +513,8 @@ TEST_CASE("state_space from a .mat: the RMS of the same matrices inline, names f
     CHECK(mat.output_names == std::vector<std::string>{"z"});
     CHECK(mat.system.A() == plant.a);
     const BudgetResult r = Evaluate(b);
-    const ContributorResult& inline_c = Find(r.outputs[0], "inline");
-    const ContributorResult& mat_c = Find(r.outputs[0], "mat");
+    const ContributorResult& inline_c = ContributorOf(r.outputs[0], "inline");
+    const ContributorResult& mat_c = ContributorOf(r.outputs[0], "mat");
     REQUIRE(inline_c.variance > 0);
     CHECK(std::abs(mat_c.variance - inline_c.variance) <= 1e-12 * inline_c.variance);
     REQUIRE(mat_c.exact_variance.has_value());
@@ -717,8 +713,8 @@ TEST_CASE("modal from a .mat: the modes of the CSV tables, the same RMS") {
     CHECK(mat.modal->phi_in == b.FindPath("tables").modal->phi_in);
     CHECK(mat.modal->phi_out == b.FindPath("tables").modal->phi_out);
     const BudgetResult r = Evaluate(b);
-    const ContributorResult& t = Find(r.outputs[0], "tables");
-    const ContributorResult& m = Find(r.outputs[0], "mat");
+    const ContributorResult& t = ContributorOf(r.outputs[0], "tables");
+    const ContributorResult& m = ContributorOf(r.outputs[0], "mat");
     CHECK(std::abs(m.variance - t.variance) <= 1e-12 * t.variance);
     REQUIRE(m.exact_variance.has_value());
     CHECK(std::abs(*m.exact_variance - *t.exact_variance) <= 1e-12 * *t.exact_variance);

@@ -12,25 +12,21 @@
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/contributor_of.h"
 
 namespace deb {
 namespace {
 
 const std::string kThesis = std::string(DEB_SOURCE_DIR) + "/budgets/nizamoglu2015_h210.yaml";
 
-const ContributorResult& Named(const OutputResult& o, const std::string& name) {
-  for (const ContributorResult& c : o.contributors)
-    if (c.name == name) return c;
-  FAIL("no contributor " << name);
-  return o.contributors.front();
-}
+using test::ContributorOf;
 
 }  // namespace
 
 TEST_CASE("seven independent geophones: the parts add up to the contributor and each is that geophone alone") {
   const BudgetResult r = Evaluate(LoadBudgetFile(kThesis));
   for (const OutputResult& o : r.outputs) {
-    const ContributorResult& c = Named(o, "sensor_noise");
+    const ContributorResult& c = ContributorOf(o, "sensor_noise");
     REQUIRE(c.channels.size() == 7);
     double sum = 0.0;
     for (const auto& p : c.channels) sum += p.variance;
@@ -50,8 +46,8 @@ TEST_CASE("seven independent geophones: the parts add up to the contributor and 
                   {"contributors[1]", "{name: sensor_noise, source: geophone_noise, path: avis.sensor_noise, inputs: [" +
                                           geophones[j] + "]}"}}));
     for (std::size_t o = 0; o < r.outputs.size(); ++o) {
-      const ContributorResult& part = Named(r.outputs[o], "sensor_noise");
-      const ContributorResult& alone = Named(one.outputs[o], "sensor_noise");
+      const ContributorResult& part = ContributorOf(r.outputs[o], "sensor_noise");
+      const ContributorResult& alone = ContributorOf(one.outputs[o], "sensor_noise");
       const double whole = part.variance;
       // Against the geophone alone, integrated on its own grid (the reduced single-input path gets its
       // own automatic grid of ~46 points per decade, the power-law rule on its PSD, where the part splits

@@ -13,6 +13,7 @@
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
 #include "tests/support/contains.h"
+#include "tests/support/contributor_of.h"
 #include "tests/support/text_edit.h"
 
 namespace deb {
@@ -52,12 +53,7 @@ outputs:
   - {name: x, signal: x, unit: um}
 )";
 
-const ContributorResult& Of(const BudgetResult& r, const std::string& name) {
-  for (const ContributorResult& c : r.outputs[0].contributors)
-    if (c.name == name) return c;
-  FAIL("no contributor " << name);
-  return r.outputs[0].contributors[0];
-}
+using test::ContributorOf;
 
 const LoopResult& LoopOf(const BudgetResult& r, const std::string& controller) {
   for (const LoopResult& l : r.loops)
@@ -68,7 +64,7 @@ const LoopResult& LoopOf(const BudgetResult& r, const std::string& controller) {
 
 TEST_CASE("a delay in series keeps the exact variance: the Pade approximant is an all-pass") {
   const BudgetResult r = Evaluate(LoadBudgetText(kBudget, "b.yaml"));
-  const ContributorResult& c = Of(r, "late_filter");
+  const ContributorResult& c = ContributorOf(r.outputs[0], "late_filter");
   REQUIRE(c.exact_variance);
   // One-sided S0 = 1 N^2/Hz through 1/(1 + j f/100) um/N: S0 f_c pi/2 um^2.
   CHECK(*c.exact_variance == doctest::Approx(100.0 * kPi / 2.0).epsilon(1e-10));
@@ -94,10 +90,10 @@ TEST_CASE("a loop with a delay: 360 f_c tau degrees less phase margin, its Pade 
   CHECK(Contains(MarginsText(late), "a delay of 100 us by Pade (6, 6): phase error"));
   // The closed loop gets an exact variance from the approximation, and the
   // grid (exact delay) agrees with it.
-  const ContributorResult& c = Of(r, "late_loop");
+  const ContributorResult& c = ContributorOf(r.outputs[0], "late_loop");
   REQUIRE(c.exact_variance);
   CHECK(c.variance + c.tail_variance_estimate == doctest::Approx(*c.exact_variance).epsilon(1e-4));
-  CHECK(*c.exact_variance > *Of(r, "loop").exact_variance);  // less phase margin, more peaking
+  CHECK(*c.exact_variance > *ContributorOf(r.outputs[0], "loop").exact_variance);  // less phase margin, more peaking
 }
 
 TEST_CASE("a sampled controller: evaluated at e^(j w T), its Tustin equivalent stated, a warning above Nyquist") {
@@ -127,7 +123,7 @@ TEST_CASE("a sampled block from its zeros and poles in z equals its num/den twin
     const std::string text =
         test::Replace(kBudget, "num: [0.2], den: [1, -0.8]", sampler);
     const BudgetResult r = Evaluate(LoadBudgetText(text, "b.yaml"));
-    return Of(r, "sampled_loop").psd;
+    return ContributorOf(r.outputs[0], "sampled_loop").psd;
   };
   const std::vector<double> twin = psd_of("num: [0.2, -0.1], den: [1, -1.4, 0.73, -0.2]");
   const std::vector<double> roots = psd_of("zeros: [0.5], poles: [0.8, {re: 0.3, im: 0.4}], gain: 0.2");

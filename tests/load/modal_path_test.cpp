@@ -13,6 +13,7 @@
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
 #include "tests/support/text_edit.h"
+#include "tests/support/contributor_of.h"
 
 namespace deb {
 namespace {
@@ -100,12 +101,7 @@ std::string ErrorOf(const std::string& file) {
   return "(no InputError)";
 }
 
-const ContributorResult& Find(const OutputResult& o, const std::string& name) {
-  for (const auto& c : o.contributors)
-    if (c.name == name) return c;
-  FAIL("no contributor " << name);
-  return o.contributors.front();
-}
+using test::ContributorOf;
 
 // "…/b.yaml:LINE:COL: KEY: …" and the rest of the message.
 void CheckLocated(const std::string& message, const std::string& key, const std::string& part) {
@@ -126,7 +122,7 @@ TEST_CASE("one mode from tables and inline: RMS and exact variance equal the clo
   const BudgetResult r = Evaluate(b);
   for (const std::string name : {"csv", "inline"}) {
     CAPTURE(name);
-    const ContributorResult& c = Find(r.outputs[0], name);
+    const ContributorResult& c = ContributorOf(r.outputs[0], name);
     REQUIRE(c.exact_variance.has_value());
     // Lyapunov against the closed form: 1e-9.
     CHECK(*c.exact_variance == doctest::Approx(kDisplacementUm2).epsilon(1e-9));
@@ -150,7 +146,7 @@ TEST_CASE("velocity outputs are in output_unit/s and give S0 phi^2 / (8 zeta w)"
   CHECK(b.FindPath("inline").output_units == std::vector<std::string>{"m/s"});
   const BudgetResult r = Evaluate(b);
   for (const char* name : {"csv", "inline"}) {
-    const ContributorResult& c = Find(r.outputs[0], name);
+    const ContributorResult& c = ContributorOf(r.outputs[0], name);
     REQUIRE(c.exact_variance.has_value());
     CHECK(*c.exact_variance == doctest::Approx(kVelocityUm2).epsilon(1e-9));
     CHECK(c.variance == doctest::Approx(kVelocityUm2).epsilon(1e-4));
@@ -169,7 +165,7 @@ TEST_CASE("acceleration outputs are in output_unit/s^2; their white-force varian
   const Budget b = LoadBudgetFile(dir.Write(text));
   CHECK(b.FindPath("inline").output_units == std::vector<std::string>{"mm/s^2"});
   const BudgetResult r = Evaluate(b);
-  const ContributorResult& c = Find(r.outputs[0], "inline");
+  const ContributorResult& c = ContributorOf(r.outputs[0], "inline");
   CHECK_FALSE(c.exact_variance.has_value());
   CHECK(c.exact_note.find("feedthrough") != std::string::npos);
 }
@@ -182,7 +178,7 @@ TEST_CASE("a rigid-body mode: the grid starts above 0 Hz, and the exact variance
   text = Replace(text, "output_shapes: {z: [-0.7]}", "output_shapes: {z: [1, -0.7]}");
   text = Replace(text, "path: inline, exact: required}", "path: inline}");
   const BudgetResult r = Evaluate(LoadBudgetFile(dir.Write(text)));
-  const ContributorResult& c = Find(r.outputs[0], "inline");
+  const ContributorResult& c = ContributorOf(r.outputs[0], "inline");
   CHECK_FALSE(c.exact_variance.has_value());
   CHECK(c.exact_note == "the path has poles on the imaginary axis");
   bool warned = false;
@@ -242,7 +238,7 @@ TEST_CASE("residual: static from YAML: the dropped 2000 Hz mode's compliance as 
   CHECK(tables.modal->residual(0, 0) == doctest::Approx(3.0 * 5.0 / (w * w)).epsilon(1e-15));  // z from F
   CHECK(tables.modal->residual(0, 1) == doctest::Approx(3.0 * 1.0 / (w * w)).epsilon(1e-15));  // z from G
   const BudgetResult r = Evaluate(b);
-  const ContributorResult& c = Find(r.outputs[0], "csv");
+  const ContributorResult& c = ContributorOf(r.outputs[0], "csv");
   CHECK(!c.exact_variance.has_value());
   CHECK(c.exact_note.find("static residual") != std::string::npos);
 }
@@ -333,7 +329,7 @@ TEST_CASE("per-mode shares under a source that is not white: the grid split, che
   double worst = 0.0;  // largest |part - superposition| / variance
   for (const OutputResult& o : r.outputs) {
     CAPTURE(o.name);
-    const ContributorResult& full = Find(o, "full");
+    const ContributorResult& full = ContributorOf(o, "full");
     CHECK(full.top_modes_of == ModeSplit::kGridVariance);
     REQUIRE(full.top_modes.size() == 3);
     double sum = 0.0;
@@ -341,8 +337,8 @@ TEST_CASE("per-mode shares under a source that is not white: the grid split, che
     CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));  // the parts add up (no residual)
     for (int k = 1; k <= 3; ++k) {
       CAPTURE(k);
-      const double expected = 0.5 * (full.variance + Find(o, "only_" + std::to_string(k)).variance -
-                                     Find(o, "rest_" + std::to_string(k)).variance);
+      const double expected = 0.5 * (full.variance + ContributorOf(o, "only_" + std::to_string(k)).variance -
+                                     ContributorOf(o, "rest_" + std::to_string(k)).variance);
       // The grid is all Lobatto panels (linear in the PSD) but for the
       // 1e-9-wide steps at the VC band edges: observed 2.3e-13.
       CHECK(ModeOf(full, k).variance == doctest::Approx(expected).epsilon(1e-10).scale(full.variance));
@@ -366,8 +362,8 @@ TEST_CASE("per-mode shares: the grid split of a flat band equals the closed-form
       Evaluate(LoadBudgetFile(dir.Write(ThreeModeBudget("{type: flat, level: 2.5, lo_hz: 0.001, hi_hz: 100000}"))));
   double worst = 0.0;  // largest |share difference|
   for (std::size_t o = 0; o < 2; ++o) {
-    const ContributorResult& a = Find(white.outputs[o], "full");
-    const ContributorResult& b = Find(band.outputs[o], "full");
+    const ContributorResult& a = ContributorOf(white.outputs[o], "full");
+    const ContributorResult& b = ContributorOf(band.outputs[o], "full");
     CAPTURE(white.outputs[o].name);
     CHECK(a.top_modes_of == ModeSplit::kExactVariance);
     CHECK(b.top_modes_of == ModeSplit::kGridVariance);

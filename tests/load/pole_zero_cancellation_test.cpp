@@ -10,6 +10,7 @@
 #include "deb/budget/engine.h"
 #include "deb/load/budget_yaml.h"
 #include "tests/support/contains.h"
+#include "tests/support/contributor_of.h"
 
 namespace deb {
 namespace {
@@ -43,20 +44,15 @@ outputs:
   - {name: x, signal: x, unit: nm}
 )";
 
-const ContributorResult& Of(const BudgetResult& r, const std::string& name) {
-  for (const ContributorResult& c : r.outputs[0].contributors)
-    if (c.name == name) return c;
-  FAIL("no contributor " << name);
-  return r.outputs[0].contributors[0];
-}
+using test::ContributorOf;
 
 }  // namespace
 
 TEST_CASE("series [minus, pid, closed loop]: the integrator cancels, the exact variance is T's") {
   const Budget b = LoadBudgetText(kBudget, "b.yaml");
   const BudgetResult r = Evaluate(b);
-  const ContributorResult& t = Of(r, "through_t");
-  const ContributorResult& s = Of(r, "through_series");
+  const ContributorResult& t = ContributorOf(r.outputs[0], "through_t");
+  const ContributorResult& s = ContributorOf(r.outputs[0], "through_series");
   REQUIRE(t.exact_variance);
   REQUIRE(s.exact_variance);
   // Two realisations of one transfer, solved independently.
@@ -79,7 +75,7 @@ TEST_CASE("an integrator that does reach the output is not cancelled: no exact v
   text.replace(text.find("contributors:"), 0, "  - {name: open_loop, type: series, of: [minus, pid, plant]}\n");
   const Budget b = LoadBudgetText(text, "b.yaml");
   const BudgetResult r = Evaluate(b);
-  CHECK_FALSE(Of(r, "through_series").exact_variance);
+  CHECK_FALSE(ContributorOf(r.outputs[0], "through_series").exact_variance);
   bool warned = false;
   for (const std::string& w : r.warnings) warned = warned || Contains(w, "grid's ends");
   CHECK(warned);
