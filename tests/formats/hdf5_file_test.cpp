@@ -142,6 +142,51 @@ TEST_CASE("a compressed dataset is refused: a small file could expand beyond any
   CHECK(Contains(e, "object 'zeros' is compressed or filtered"));
 }
 
+TEST_CASE("an object header claiming more than the file holds is refused before libhdf5 allocates it") {
+  // Version-2 object headers (HDF5 1.8 and later with the latest format);
+  // the version-1 headers of MAT-files have their test in mat_file_test.
+  const TempDir dir;
+  const std::string file = dir.File("v2.h5");
+  {
+    const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+    REQUIRE(H5Pset_libver_bounds(access, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST) >= 0);
+    const hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access);
+    REQUIRE(f >= 0);
+    const hsize_t n = 4;
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t set = H5Dcreate2(f, "v", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const double values[4] = {1, 2, 3, 4};
+    REQUIRE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) >= 0);
+    H5Dclose(set);
+    H5Sclose(space);
+    H5Fclose(f);
+    H5Pclose(access);
+  }
+  io::RequireSelfContainedHdf5(file);  // whole, it passes
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  // The last "OHDR" is the dataset's (the root group's comes first). Its
+  // flags byte gives the width of the first chunk's size and what precedes it.
+  const std::size_t at = bytes.rfind("OHDR");
+  REQUIRE(at != std::string::npos);
+  REQUIRE(at > bytes.find("OHDR"));
+  const unsigned flags = static_cast<unsigned char>(bytes[at + 5]);
+  const std::size_t size_at = at + 6 + ((flags & 0x20) ? 16 : 0) + ((flags & 0x10) ? 4 : 0);
+  const std::size_t width = std::size_t{1} << (flags & 0x03);
+  for (std::size_t k = 0; k < width; ++k) bytes[size_at + k] = '\xff';
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out << bytes;
+  }
+  const std::string e = ErrorOf([&] { io::RequireSelfContainedHdf5(file); });
+  const std::string claimed = std::to_string((width == 8 ? 0 : (std::uint64_t{1} << (8 * width))) - 1);
+  CHECK(Contains(e, "object 'v' has a header of " + claimed + " bytes at address " + std::to_string(at)));
+  CHECK(Contains(e, "which the file (" + std::to_string(bytes.size()) + " bytes) does not hold"));
+}
+
 // A file written by HDF5 itself with what deb's writer never makes: values
 // stored in other files (one holding known bytes, one a FIFO), links to
 // another file and within the file, a virtual dataset, and datasets declared

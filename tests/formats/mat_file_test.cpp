@@ -364,7 +364,7 @@ TEST_CASE("compressed variables are checked as plain ones before matio reads the
   CHECK_ERROR(MatFile(dir.Path("garbage.mat")), "its compressed data cannot be inflated");
 }
 
-TEST_CASE("the files the fuzzer found: refused before matio allocates 4, 10 and 15 GB or reads 33 million values") {
+TEST_CASE("the files the fuzzer found: refused before matio or libhdf5 allocates 4, 10 and 15 GB or reads 33 million values") {
   const std::string corpus = std::string(DEB_SOURCE_DIR) + "/tests/fuzz/corpus/mat_file/";
   // A byte changed in a compressed variable's zlib stream (17 KB; matio asked for 10 GB).
   CHECK_ERROR(MatFile(corpus + "damaged_compressed.mat"),
@@ -372,6 +372,23 @@ TEST_CASE("the files the fuzzer found: refused before matio allocates 4, 10 and 
   // Version 7.3: a dataset's HDF5 datatype of 4294966792 bytes (matio asked for 4 GB).
   CHECK_ERROR(MatFile(corpus + "huge_value_v73.mat"),
               "object 'C' stores values of 4294966792 bytes each; the values of a MAT-file are 1 to 16 bytes");
+  // Version 7.3: an object header continued at 1 MB for 4 GB, in a 7.6 KB file (libhdf5 asked
+  // for 4.3 GB before it read a byte of it).
+  CHECK_ERROR(MatFile(corpus + "header_continuation_v73.mat"),
+              "object 'output_names[1]' has a header continuation of 4295491589 bytes at address 1048576, "
+              "which the file (7760 bytes) does not hold");
+  // The same file with that object's first header chunk claiming 2 GB.
+  {
+    std::ifstream in(corpus + "header_continuation_v73.mat", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t size_at = 512 + 6240 + 8;  // the user block, the header's address, its size field
+    REQUIRE(bytes.substr(size_at - 8, 8) == std::string("\x01\x00\x07\x00\x01\x00\x00\x00", 8));
+    bytes.replace(size_at, 4, "\xff\xff\xff\x7f", 4);
+    const TempDir dir;
+    dir.WriteText("header.mat", bytes);
+    CHECK_ERROR(MatFile(dir.Path("header.mat")),
+                "has a header of 2147483647 bytes at address 6240, which the file (7760 bytes) does not hold");
+  }
   // Dimensions stored as data type 1280 instead of int32 (840 bytes; matio asked for 4.3 GB).
   CHECK_ERROR(MatFile(corpus + "dims_type.mat"),
               "its variable 2 (at byte 200): its dimensions are stored as data type 1280, not int32");
