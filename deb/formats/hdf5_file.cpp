@@ -313,6 +313,83 @@ class RawFile {
   std::uint64_t size_ = 0;
 };
 
+// What is wrong with an old-style group's index (HDF5 file format, "Symbol
+// Table Message", "Version 1 B-trees", "Symbol Table Node", "Local Heap"), or
+// "" if its local heap lies inside the file and its B-tree is a tree: every
+// node inside the file, one level below its parent, reached once, its leaves
+// symbol table nodes whose entries lie inside the file. libhdf5 1.10 follows
+// a B-tree's child addresses without these checks: a fuzzed 13 KB MAT-file
+// whose B-tree led back into itself had it allocate 24 GB.
+std::string SymbolTableProblem(RawFile& raw, std::uint64_t base, std::size_t sa, std::size_t ss, std::uint64_t btree,
+                               std::uint64_t heap) {
+  const std::uint64_t size = raw.size();
+  const auto outside = [&](std::uint64_t at, std::uint64_t n) {
+    return at > size || base > size - at || n > size - base - at;
+  };
+  const auto damaged = [](const std::string& what, std::uint64_t at) {
+    return "has a damaged group index: " + what + " at address " + std::to_string(at) + "; is the file damaged?";
+  };
+  unsigned char head[64] = {};
+  if (outside(heap, 8 + 2 * ss + sa) || !raw.Read(base + heap, 8 + 2 * ss + sa, head) ||
+      std::memcmp(head, "HEAP", 4) != 0)
+    return damaged("no local heap", heap);
+  const std::uint64_t heap_bytes = Little(head + 8, ss), heap_data = Little(head + 8 + 2 * ss, sa);
+  if (outside(heap_data, heap_bytes)) return damaged("a local heap of " + std::to_string(heap_bytes) + " bytes", heap_data);
+  // The heap's free list: blocks of (next offset, size), ended by offset 1.
+  // libhdf5 follows it without looking for a cycle, allocating a node per
+  // block: a fuzzed MAT-file's list that led back to itself grew it to 24 GB.
+  {
+    std::uint64_t free_block = Little(head + 8 + ss, ss), blocks = 0;
+    unsigned char pair[16];
+    while (free_block != 1) {
+      if (++blocks > heap_bytes / (2 * ss) || free_block > heap_bytes || 2 * ss > heap_bytes - free_block ||
+          !raw.Read(base + heap_data + free_block, 2 * ss, pair))
+        return damaged("a local heap whose free list is not a list inside it", heap);
+      const std::uint64_t bytes = Little(pair + ss, ss);
+      if (bytes > heap_bytes - free_block) return damaged("a local heap whose free list is not a list inside it", heap);
+      free_block = Little(pair, ss);
+    }
+  }
+  const std::size_t entry = 2 * sa + 24;  // a symbol table entry
+  std::vector<std::pair<std::uint64_t, int>> pending{{btree, -1}};  // address, expected level (-1: any)
+  std::set<std::uint64_t> seen;
+  while (!pending.empty()) {
+    const auto [at, expected] = pending.back();
+    pending.pop_back();
+    if (!seen.insert(at).second) return damaged("a node reached twice", at);
+    if (seen.size() > kMaxHdf5Objects) return damaged("more than " + std::to_string(kMaxHdf5Objects) + " nodes", at);
+    const std::size_t node_head = 8 + 2 * sa;
+    if (outside(at, node_head) || !raw.Read(base + at, node_head, head) || std::memcmp(head, "TREE", 4) != 0 ||
+        head[4] != 0)
+      return damaged("no group B-tree node", at);
+    const int level = head[5];
+    const std::uint64_t entries = Little(head + 6, 2);
+    if (expected >= 0 && level != expected)
+      return damaged("a B-tree node at level " + std::to_string(level) + " below one at level " +
+                         std::to_string(expected + 1),
+                     at);
+    const std::uint64_t body = entries * (ss + sa) + ss;
+    if (outside(at + node_head, body)) return damaged("a B-tree node of " + std::to_string(entries) + " entries", at);
+    std::vector<unsigned char> keys(static_cast<std::size_t>(body));
+    if (!raw.Read(base + at + node_head, body, keys.data())) return damaged("an unreadable B-tree node", at);
+    for (std::uint64_t u = 0; u < entries; ++u) {
+      const std::uint64_t child = Little(keys.data() + u * (ss + sa) + ss, sa);
+      if (level > 0) {
+        pending.emplace_back(child, level - 1);
+        continue;
+      }
+      unsigned char node[8];
+      if (outside(child, 8) || !raw.Read(base + child, 8, node) || std::memcmp(node, "SNOD", 4) != 0)
+        return damaged("no symbol table node", child);
+      const std::uint64_t symbols = Little(node + 6, 2);
+      if (outside(child + 8, symbols * entry))
+        return damaged("a symbol table node of " + std::to_string(symbols) + " entries", child);
+      if (!seen.insert(child).second) return damaged("a node reached twice", child);
+    }
+  }
+  return "";
+}
+
 // What is wrong with the object header at `address` (HDF5 file format,
 // "Data Object Headers", versions 1 and 2), or "" if its first chunk and
 // every continuation chunk it names lie inside the file. libhdf5 1.10
@@ -356,7 +433,8 @@ std::string ObjectHeaderProblem(RawFile& raw, std::uint64_t base, std::size_t ad
   }
   std::vector<std::pair<std::uint64_t, std::uint64_t>> chunks{{start, length}};
   std::set<std::uint64_t> seen;
-  std::uint64_t checked = 0;
+  std::uint64_t checked = 0, btree = 0, heap = 0;
+  bool symbol_table = false;
   while (!chunks.empty() && seen.size() < kMaxChunks) {
     const auto [at, n] = chunks.back();
     chunks.pop_back();
@@ -370,6 +448,12 @@ std::string ObjectHeaderProblem(RawFile& raw, std::uint64_t base, std::size_t ad
       const std::uint64_t type = v2 ? m[0] : Little(m, 2), bytes = v2 ? Little(m + 1, 2) : Little(m + 2, 2);
       p += message_head;
       if (bytes > chunk.size() - p) break;
+      // An old-style group's index: checked once the header is.
+      if (type == 0x11 && 2 * address_bytes <= chunk.size() - p) {
+        symbol_table = true;
+        btree = Little(chunk.data() + p, address_bytes);
+        heap = Little(chunk.data() + p + address_bytes, address_bytes);
+      }
       // A continuation: libhdf5 decodes its address and length whatever
       // size the message states.
       if (type == 0x10 && address_bytes + length_bytes <= chunk.size() - p) {
@@ -383,7 +467,7 @@ std::string ObjectHeaderProblem(RawFile& raw, std::uint64_t base, std::size_t ad
       p += static_cast<std::size_t>(bytes);
     }
   }
-  return "";
+  return symbol_table ? SymbolTableProblem(raw, base, address_bytes, length_bytes, btree, heap) : "";
 }
 
 }  // namespace

@@ -377,6 +377,31 @@ TEST_CASE("the files the fuzzer found: refused before matio or libhdf5 allocates
   CHECK_ERROR(MatFile(corpus + "header_continuation_v73.mat"),
               "object 'output_names[1]' has a header continuation of 4295491589 bytes at address 1048576, "
               "which the file (7760 bytes) does not hold");
+  // Version 7.3: the root group's local heap keeps a free list that leads back into itself
+  // (13 KB; libhdf5 followed it until the process held 24 GB).
+  CHECK_ERROR(MatFile(corpus + "heap_free_list_v73.mat"),
+              "object '/' has a damaged group index: a local heap whose free list is not a list inside it at "
+              "address 680");
+  // A real version 7.3 file whose root group's B-tree (one leaf node at byte 648, address 136)
+  // is changed to name its symbol table node twice, or to claim a level above its leaves.
+  {
+    std::ifstream in(corpus + "ss_v73.mat", std::ios::binary);
+    const std::string whole((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    REQUIRE(whole.substr(648, 8) == std::string("TREE\x00\x00\x01\x00", 8));
+    const TempDir dir;
+    std::string twice = whole;
+    twice[654] = 2;                            // two entries used
+    twice.replace(648 + 48, 8, whole.substr(648 + 32, 8));  // child 1 = child 0
+    twice.replace(648 + 56, 8, whole.substr(648 + 40, 8));  // and a last key
+    dir.WriteText("twice.mat", twice);
+    CHECK_ERROR(MatFile(dir.Path("twice.mat")),
+                "object '/' has a damaged group index: a node reached twice at address 1072");
+    std::string level = whole;
+    level[653] = 1;
+    dir.WriteText("level.mat", level);
+    CHECK_ERROR(MatFile(dir.Path("level.mat")),
+                "object '/' has a damaged group index: no group B-tree node at address 1072");
+  }
   // The same file with that object's first header chunk claiming 2 GB.
   {
     std::ifstream in(corpus + "header_continuation_v73.mat", std::ios::binary);
