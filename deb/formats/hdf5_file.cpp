@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -351,6 +352,10 @@ std::string SymbolTableProblem(RawFile& raw, std::uint64_t base, std::size_t sa,
     }
   }
   const std::size_t entry = 2 * sa + 24;  // a symbol table entry
+  // The heap's data, for the link names: each must end inside it (libhdf5
+  // copies a name up to its terminating zero).
+  std::vector<unsigned char> names(static_cast<std::size_t>(heap_bytes));
+  if (!raw.Read(base + heap_data, heap_bytes, names.data())) return damaged("an unreadable local heap", heap_data);
   std::vector<std::pair<std::uint64_t, int>> pending{{btree, -1}};  // address, expected level (-1: any)
   std::set<std::uint64_t> seen;
   while (!pending.empty()) {
@@ -385,6 +390,14 @@ std::string SymbolTableProblem(RawFile& raw, std::uint64_t base, std::size_t sa,
       if (outside(child + 8, symbols * entry))
         return damaged("a symbol table node of " + std::to_string(symbols) + " entries", child);
       if (!seen.insert(child).second) return damaged("a node reached twice", child);
+      std::vector<unsigned char> symbol(entry);
+      for (std::uint64_t k = 0; k < symbols; ++k) {
+        if (!raw.Read(base + child + 8 + k * entry, entry, symbol.data())) return damaged("an unreadable entry", child);
+        const std::uint64_t name = Little(symbol.data(), ss);
+        if (name >= names.size() || std::find(names.begin() + static_cast<std::ptrdiff_t>(name), names.end(), 0) ==
+                                        names.end())
+          return damaged("a link name that does not end inside the group's local heap", child);
+      }
     }
   }
   return "";
@@ -448,6 +461,16 @@ std::string ObjectHeaderProblem(RawFile& raw, std::uint64_t base, std::size_t ad
       const std::uint64_t type = v2 ? m[0] : Little(m, 2), bytes = v2 ? Little(m + 1, 2) : Little(m + 2, 2);
       p += message_head;
       if (bytes > chunk.size() - p) break;
+      // An attribute's name (versions 1 to 3 of the message: version,
+      // flags, name size, datatype size, dataspace size, [encoding], name)
+      // must end with its zero inside the message: libhdf5 copies it up to
+      // the zero (a fuzzed MAT-file's name ran past the end of the header).
+      if (type == 0x0C && bytes >= 8) {
+        const unsigned char* m = chunk.data() + p;
+        const std::uint64_t name_bytes = Little(m + 2, 2), at = m[0] >= 3 ? 9 : 8;
+        if (m[0] < 1 || m[0] > 3 || name_bytes == 0 || at + name_bytes > bytes || m[at + name_bytes - 1] != 0)
+          return "has a damaged attribute (its name does not end inside it); is the file damaged?";
+      }
       // An old-style group's index: checked once the header is.
       if (type == 0x11 && 2 * address_bytes <= chunk.size() - p) {
         symbol_table = true;

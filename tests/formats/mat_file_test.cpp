@@ -382,6 +382,10 @@ TEST_CASE("the files the fuzzer found: refused before matio or libhdf5 allocates
   CHECK_ERROR(MatFile(corpus + "heap_free_list_v73.mat"),
               "object '/' has a damaged group index: a local heap whose free list is not a list inside it at "
               "address 680");
+  // Version 7.3: an attribute whose name has no terminating zero inside its message (8.6 KB;
+  // libhdf5 copied the name past the end of the header, a heap read out of bounds).
+  CHECK_ERROR(MatFile(corpus + "attribute_name_v73.mat"),
+              "object 'output_Mames[1]' has a damaged attribute (its name does not end inside it)");
   // A real version 7.3 file whose root group's B-tree (one leaf node at byte 648, address 136)
   // is changed to name its symbol table node twice, or to claim a level above its leaves.
   {
