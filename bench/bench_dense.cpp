@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     Seconds t = Time([&] { poles = sys.Poles(); });
     PrintRow(n, "poles", t, poles.real().maxCoeff());
     double condition = 0.0;
-    t = Time([&] { condition = deb::FrequencyResponse(sys).eigenvector_condition(); });
+    t = Time([&] { condition = deb::FrequencyResponse(sys).condition(); });
     PrintRow(n, "response", t, condition);
     Eigen::MatrixXd y;
     try {

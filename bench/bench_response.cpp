@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
     const Timing reduce = Best(repeats, [&] { h = FrequencyResponse(sys, method); });
     const char* form = h.method() == FrequencyResponse::Method::kModal ? "modal" : "schur";
     std::printf("%-8s %-9s %7d %10.3f %10.3f %10s %14s   cond(V) = %.3g\n", form, "reduce", 1,
-                reduce.wall_ms, reduce.cpu_ms, "-", "-", h.eigenvector_condition());
+                reduce.wall_ms, reduce.cpu_ms, "-", "-", h.condition());
     for (const int threads : {1, all}) {
       double check = 0.0;
       const Timing t = Best(repeats, [&] { check = EngineLikePass(h, f, threads); });

@@ -10,8 +10,8 @@
 #include "deb/core/error.h"
 #include "deb/core/math_constants.h"
 #include "deb/core/parallel.h"
-#include "deb/systems/block_schur.h"
 #include "deb/systems/block_triangular.h"
+#include "deb/systems/real_block_diagonal.h"
 
 namespace deb {
 namespace {
@@ -91,133 +91,209 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
     return;
   }
 
-  // Modal reduction; kept if the eigenvector matrix is well conditioned.
+  if (method == Method::kModal) {
+    BuildModal(bal, 1e-3 / kEps, true);
+  } else if (method == Method::kSchur) {
+    BuildBlockDiagonal(bal);
+  } else if (BlockTriangular(a).blocks() == 1) {
+    // Irreducible (a dense model, a loop): the block-diagonal form. Its
+    // rounding is that of a backward-stable solve times at most about
+    // cond(Y): kept as it is up to kVerifyCondition, checked against the
+    // Hessenberg solve up to kMaxBlockCondition (a companion form of close
+    // modes decouples only with a large Y), and beyond, or where they
+    // disagree, the Hessenberg solve takes over, at O(n^2 m) per frequency.
+    BuildBlockDiagonal(bal);
+    if (condition_ > kVerifyCondition) {
+      columns_ = static_cast<int>(residues_.cols());
+      FrequencyResponse reference(sys, Method::kHessenberg);
+      if (!(condition_ <= kMaxBlockCondition) || !AgreesNear(reference, poles_)) {
+        reference.condition_ = condition_;
+        *this = std::move(reference);
+      }
+    }
+  } else {
+    // Reducible (a cascade: series connections, transfer functions of order
+    // 3 and more): stages may be coupled by entries far below eps |A| that
+    // carry the whole response (balancing a cascade of equal sections gave
+    // a coupling of 2e-17 and an output row of 4e16); a Schur form of the
+    // whole A rounds them away, the Hessenberg solve keeps them. The modal
+    // form (or the block-diagonal one where cond(V) > kMaxModalCondition)
+    // is used where it agrees with the Hessenberg solve.
+    const bool modal = BuildModal(bal, kMaxModalCondition, false);
+    if (!modal) BuildBlockDiagonal(bal);
+    if (!modal || condition_ > kVerifyCondition || HasClusteredPoles(poles_) || SpansDecades(poles_)) {
+      columns_ = static_cast<int>(residues_.cols());
+      FrequencyResponse reference(sys, Method::kHessenberg);
+      if (!AgreesNear(reference, poles_)) {
+        reference.condition_ = condition_;
+        *this = std::move(reference);
+      }
+    }
+  }
+  columns_ = static_cast<int>(residues_.cols());
+}
+
+bool FrequencyResponse::BuildModal(const StateSpace& bal, double max_condition, bool required) {
+  const Eigen::MatrixXd& a = bal.A();
   const Eigen::EigenSolver<Eigen::MatrixXd> eig(a, true);
   if (eig.info() != Eigen::Success) ThrowNotConverged(a);
   Eigen::MatrixXcd v = eig.eigenvectors();
   v.colwise().normalize();
   const Eigen::VectorXcd lambda = eig.eigenvalues();
-  // The poles reported (stability, modes, the grid) are the diagonal
-  // blocks' own where A is reducible (a cascade): those of the dense solver
-  // can cross the imaginary axis (block_triangular.h).
-  poles_ = BlockTriangular(a).blocks() > 1 ? BlockEigenvalues(a) : lambda;
   // cond_1(V) = |V|_1 |V^-1|_1 (within a factor n of the 2-norm one); the
   // inverse is needed anyway for the residues. A defective A gives a
   // numerically singular V and an infinite or huge condition number.
   const Eigen::MatrixXcd v_inv = v.partialPivLu().inverse();
-  const auto norm1 = [](const Eigen::MatrixXcd& x) {
-    return x.cwiseAbs().colwise().sum().maxCoeff();
-  };
-  eigenvector_condition_ = v_inv.allFinite() ? norm1(v) * norm1(v_inv)
-                                             : std::numeric_limits<double>::infinity();
-  const bool modal = method == Method::kModal ||
-                     (method == Method::kAuto && eigenvector_condition_ <= kMaxModalCondition);
-  std::vector<Eigen::VectorXd> cols;
-  if (modal) {
+  const auto norm1 = [](const Eigen::MatrixXcd& x) { return x.cwiseAbs().colwise().sum().maxCoeff(); };
+  const double condition = v_inv.allFinite() ? norm1(v) * norm1(v_inv) : std::numeric_limits<double>::infinity();
+  if (!(condition <= max_condition)) {
+    if (!required) return false;
     // Beyond 1e-3 / eps the eigenvectors are numerically dependent: modal
     // results would carry errors of 1e-3 and more.
-    if (!(eigenvector_condition_ * kEps <= 1e-3)) {
-      std::ostringstream os;
-      os << "frequency response: the modal form was requested but A is numerically defective "
-            "(eigenvector condition number " << eigenvector_condition_
-         << "); use Method::kAuto or kSchur";
-      throw InputError(os.str());
+    std::ostringstream os;
+    os << "frequency response: the modal form was requested but A is numerically defective "
+          "(eigenvector condition number "
+       << condition << "); use Method::kAuto or kSchur";
+    throw InputError(os.str());
+  }
+  condition_ = condition;
+  // The poles reported (stability, modes, the grid) are the diagonal
+  // blocks' own where A is reducible (a cascade): those of the dense solver
+  // can cross the imaginary axis (block_triangular.h).
+  poles_ = BlockTriangular(a).blocks() > 1 ? BlockEigenvalues(a) : lambda;
+  method_ = Method::kModal;
+  const Eigen::MatrixXcd ct = bal.C() * v;      // p x n
+  const Eigen::MatrixXcd bt = v_inv * bal.B();  // n x m
+  std::vector<Eigen::VectorXd> cols;
+  // Real eigenvalues have im == 0 exactly; complex ones come in exact
+  // conjugate pairs (real Schur 2x2 blocks), of which the im > 0 member
+  // carries the pair.
+  for (int k = 0; k < n_; ++k) {
+    const double re = lambda(k).real(), im = lambda(k).imag();
+    if (im < 0.0) continue;
+    const Eigen::MatrixXcd r = ct.col(k) * bt.row(k);  // residue, p x m
+    const Eigen::Map<const Eigen::VectorXcd> rv(r.data(), p_ * m_);
+    if (im == 0.0) {
+      terms_.push_back({TermKind::kRealPole, re, 0.0, 0, 1});
+      cols.push_back(rv.real());
+    } else {
+      terms_.push_back({TermKind::kPolePair, re, im, 0, 2});
+      cols.push_back(2.0 * rv.real());                           // P
+      cols.push_back(2.0 * (rv * std::conj(lambda(k))).real());  // Q
     }
-    method_ = Method::kModal;
-    const Eigen::MatrixXcd ct = bal.C() * v;  // p x n
-    const Eigen::MatrixXcd bt = v_inv * bal.B();  // n x m
-    // Real eigenvalues have im == 0 exactly; complex ones come in exact
-    // conjugate pairs (real Schur 2x2 blocks), of which the im > 0 member
-    // carries the pair.
-    for (int k = 0; k < n_; ++k) {
-      const double re = lambda(k).real(), im = lambda(k).imag();
-      if (im < 0.0) continue;
-      const Eigen::MatrixXcd r = ct.col(k) * bt.row(k);  // residue, p x m
-      const Eigen::Map<const Eigen::VectorXcd> rv(r.data(), p_ * m_);
-      if (im == 0.0) {
-        terms_.push_back({TermKind::kRealPole, re, 0.0, 0, 1});
-        cols.push_back(rv.real());
-      } else {
-        terms_.push_back({TermKind::kPolePair, re, im, 0, 2});
-        cols.push_back(2.0 * rv.real());                           // P
-        cols.push_back(2.0 * (rv * std::conj(lambda(k))).real());  // Q
-      }
+  }
+  StoreResidues(cols);
+  return true;
+}
+
+void FrequencyResponse::BuildBlockDiagonal(const StateSpace& bal) {
+  const Eigen::MatrixXd& a = bal.A();
+  const RealBlockDiagonalForm form = RealBlockDiagonal(a);
+  method_ = Method::kSchur;
+  condition_ = form.condition;
+  largest_block_ = 1;
+  poles_ = BlockTriangular(a).blocks() > 1 ? BlockEigenvalues(a) : form.eigenvalues;
+  const Eigen::MatrixXd l = form.Left(bal.C());   // p x n
+  const Eigen::MatrixXd r = form.Right(bal.B());  // n x m
+  const Eigen::MatrixXd& t = form.t;
+  // A group is a real pole, a pole pair in its standardised 2x2 block
+  // [a b; c a], or a cluster, brought to complex Schur form on its own.
+  const auto is_pair = [&](int g) { return form.group_size(g) == 2 && t(form.start[g] + 1, form.start[g]) != 0.0; };
+  for (int g = 0; g < form.groups(); ++g)
+    if (form.group_size(g) > 1 && !is_pair(g)) largest_block_ = std::max(largest_block_, form.group_size(g));
+  transposed_ = m_ < p_ && largest_block_ > kMaxExpandedBlock;
+  if (transposed_) {
+    rows_ = m_;
+    cols_ = p_;
+    d_.transposeInPlace();
+  }
+  // Residue columns in the layout of G (H, or H^T when transposed).
+  const auto outer = [&](int i, int j) -> Eigen::VectorXd {
+    Eigen::MatrixXd o = transposed_ ? Eigen::MatrixXd(r.row(j).transpose() * l.col(i).transpose())
+                                    : Eigen::MatrixXd(l.col(i) * r.row(j));
+    return Eigen::Map<const Eigen::VectorXd>(o.data(), o.size());
+  };
+  std::vector<Eigen::VectorXd> cols;
+  const bool clusters = largest_block_ > 1;
+  Eigen::MatrixXcd tc, lc, rc;  // clusters in complex Schur form, at their rows
+  if (clusters) {
+    tc = Eigen::MatrixXcd::Zero(n_, n_);
+    lc = Eigen::MatrixXcd::Zero(p_, n_);
+    rc = Eigen::MatrixXcd::Zero(n_, m_);
+  }
+  for (int g = 0; g < form.groups(); ++g) {
+    const int s0 = form.start[g], k = form.group_size(g);
+    if (k == 1) {
+      terms_.push_back({TermKind::kRealPole, t(s0, s0), 0.0, s0, 1});
+      cols.push_back(outer(s0, s0));
+    } else if (is_pair(g)) {
+      // L (sI - T)^-1 R = (s P - Q) / ((s - a)^2 - b c) with
+      //   P = l1 r1 + l2 r2,  Q = a P - b l1 r2 - c l2 r1.
+      const double a0 = t(s0, s0), b0 = t(s0, s0 + 1), c0 = t(s0 + 1, s0);
+      const double im = std::sqrt(std::abs(b0)) * std::sqrt(std::abs(c0));
+      terms_.push_back({TermKind::kPolePair, a0, im, s0, 2});
+      const Eigen::VectorXd p = outer(s0, s0) + outer(s0 + 1, s0 + 1);
+      cols.push_back(p);
+      cols.push_back(a0 * p - b0 * outer(s0, s0 + 1) - c0 * outer(s0 + 1, s0));
+    } else {
+      const Eigen::ComplexSchur<Eigen::MatrixXcd> schur(t.block(s0, s0, k, k).cast<Complex>());
+      if (schur.info() != Eigen::Success) ThrowNotConverged(a);
+      const Eigen::MatrixXcd& z = schur.matrixU();
+      tc.block(s0, s0, k, k) = schur.matrixT();
+      lc.middleCols(s0, k) = l.middleCols(s0, k) * z;
+      rc.middleRows(s0, k) = z.adjoint() * r.middleRows(s0, k);
+      terms_.push_back({TermKind::kBlock, 0.0, 0.0, s0, k});  // completed below
     }
-  } else {
-    method_ = Method::kSchur;
-    const BlockSchurForm form = BlockDiagonalSchur(a);
-    largest_block_ = form.largest_block();
-    Eigen::MatrixXcd t = form.t;
-    Eigen::MatrixXcd l = bal.C().cast<Complex>() * form.s;  // p x n
-    Eigen::MatrixXcd r = form.s_inv * bal.B();              // n x m
-    std::vector<int> start(form.block_start.begin(), form.block_start.end() - 1);
-    std::vector<int> size(start.size());
-    for (int i = 0; i < form.blocks(); ++i) size[i] = form.block_size(i);
-    transposed_ = m_ < p_ && largest_block_ > kMaxExpandedBlock;
+  }
+  if (clusters) {
+    std::vector<Term> cluster_terms;
+    for (Term& term : terms_)
+      if (term.kind == TermKind::kBlock) cluster_terms.push_back(term);
+    terms_.erase(std::remove_if(terms_.begin(), terms_.end(), [](const Term& x) { return x.kind == TermKind::kBlock; }),
+                 terms_.end());
     if (transposed_) {
       // H^T = (R^T J) (sI - J T^T J)^-1 (J L^T), J the reversal: the blocks
       // stay upper triangular (in reverse order) and the substitution runs
       // on the m < p inputs.
-      const Eigen::MatrixXcd rt = r.transpose().rowwise().reverse();
-      r = l.transpose().colwise().reverse();
-      l = rt;
-      t = t.transpose().colwise().reverse().rowwise().reverse().eval();
-      for (std::size_t i = 0; i < start.size(); ++i) start[i] = n_ - start[i] - size[i];
-      rows_ = m_;
-      cols_ = p_;
-      d_.transposeInPlace();
+      const Eigen::MatrixXcd rt = rc.transpose().rowwise().reverse();
+      rc = lc.transpose().colwise().reverse();
+      lc = rt;
+      tc = tc.transpose().colwise().reverse().rowwise().reverse().eval();
+      for (Term& term : cluster_terms) term.start = n_ - term.start - term.size;
     }
-    for (std::size_t i = 0; i < start.size(); ++i) {
-      const int s0 = start[i], k = size[i];
+    for (Term& term : cluster_terms) {
+      const int s0 = term.start, k = term.size;
       if (k > kMaxExpandedBlock) {
-        terms_.push_back({TermKind::kLargeBlock, 0.0, 0.0, s0, k});
+        term.kind = TermKind::kLargeBlock;
+        terms_.push_back(term);
         continue;
       }
-      terms_.push_back({TermKind::kBlock, 0.0, 0.0, s0, k});
+      terms_.push_back(term);
       // Column pairs (Re, Im) of L_a R_b for a <= b, in the order the
       // weights are computed.
       for (int bi = 0; bi < k; ++bi)
         for (int ai = bi; ai >= 0; --ai) {
-          const Eigen::MatrixXcd outer = l.col(s0 + ai) * r.row(s0 + bi);
-          const Eigen::Map<const Eigen::VectorXcd> ov(outer.data(), outer.size());
+          const Eigen::MatrixXcd o = lc.col(s0 + ai) * rc.row(s0 + bi);
+          const Eigen::Map<const Eigen::VectorXcd> ov(o.data(), o.size());
           cols.push_back(ov.real());
           cols.push_back(ov.imag());
         }
     }
-    tr_ = t.real();
-    ti_ = t.imag();
+    tr_ = tc.real();
+    ti_ = tc.imag();
     if (largest_block_ > kMaxExpandedBlock) {
-      lr_ = l.real();
-      li_ = l.imag();
-      rr_ = r.real();
-      ri_ = r.imag();
+      lr_ = lc.real();
+      li_ = lc.imag();
+      rr_ = rc.real();
+      ri_ = rc.imag();
     }
   }
-  columns_ = static_cast<int>(cols.size());
-  residues_.resize(static_cast<Eigen::Index>(rows_) * cols_, columns_);
-  for (std::size_t c = 0; c < cols.size(); ++c) residues_.col(c) = cols[c];
+  StoreResidues(cols);
+}
 
-  // cond(V) does not bound the modal form's error near a repeated pole: a
-  // nearly defective pair (a double pole of a cascade, (s + a)^k) splits
-  // into eigenvalues eps^(1/k) apart whose large residues cancel, and the
-  // merged terms can lose every digit while V still looks well conditioned
-  // (1/(0.01 s + 1)^4: cond 6e4, |H(0)| = 1.74). Where poles cluster, the
-  // modal form is checked against the block Schur form at frequencies
-  // around them and replaced by it if they disagree beyond 1e-9.
-  // The block Schur form can fail the same way where it splits a cluster
-  // of a high multiplicity. Both are checked against the Hessenberg solve,
-  // which is backward stable for any A, and replaced by it if they disagree.
-  // Poles spanning many decades need the check as well: for a cascade of
-  // sections from 0.01 to 1e5 rad/s (cond(V) below 1e2) the modal terms
-  // cancelled to H(0) = 0 instead of 1.
-  if (method == Method::kAuto &&
-      (eigenvector_condition_ > kVerifyCondition || HasClusteredPoles(lambda) || SpansDecades(lambda))) {
-    FrequencyResponse reference(sys, Method::kHessenberg);
-    if (!AgreesNear(reference, lambda)) {
-      reference.eigenvector_condition_ = eigenvector_condition_;
-      *this = std::move(reference);
-    }
-  }
+void FrequencyResponse::StoreResidues(const std::vector<Eigen::VectorXd>& cols) {
+  residues_.resize(static_cast<Eigen::Index>(rows_) * cols_, static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t c = 0; c < cols.size(); ++c) residues_.col(static_cast<Eigen::Index>(c)) = cols[c];
 }
 
 void FrequencyResponse::SolveHessenberg(double omega, Workspace& w, Eigen::MatrixXcd& h) const {

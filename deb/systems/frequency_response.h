@@ -3,25 +3,33 @@
 // O(n^3) work on A is done once, in the constructor, and each frequency costs
 // O(n p m):
 //
-//  - modal form (default when it is accurate): A = V diag(lambda) V^-1, so
+//  - block-diagonal form (default): A = S D S^-1 with S = U Y, U the real
+//    Schur vectors and Y a unit upper triangular decoupling of well-separated
+//    blocks (real_block_diagonal.h). A real pole contributes R / (s - re); a
+//    pole pair keeps its standardised real 2x2 block [a b; c a] of T, so
+//      L (sI - T_2)^-1 R = (s P - Q) / ((s - a)^2 - b c),
+//      P = l1 r1 + l2 r2,  Q = a P - b l1 r2 - c l2 r1,
+//    with L = C S, R = S^-1 B: the same real second-order term as a modal
+//    pair, two real multiply-adds per pair and entry of H, but no eigenvector
+//    of the pair is ever formed (a lightly damped pair in physical
+//    coordinates has two nearly parallel ones). A cluster of poles that
+//    cannot be decoupled (a double pole, a Jordan chain, close modes) is one
+//    group, brought to complex Schur form on its own; a group of a few states
+//    contributes sum_{a<=b} [(sI - T_c)^-1]_ab L_a R_b, a larger one is solved
+//    by triangular substitution on the cheaper side, min(outputs, inputs)
+//    right-hand sides. Rounding in this form is that of the Schur form (a
+//    backward-stable reduction) amplified by at most about cond(Y); above
+//    kMaxBlockCondition the Hessenberg solve is used instead.
+//  - modal form (Method::kModal, for comparisons): A = V diag(lambda) V^-1,
 //      H(s) = D + sum_k R_k / (s - lambda_k),  R_k = (C V)_k (V^-1 B)_k,
-//    with each complex-conjugate pair merged into one real second-order term
-//      (s P - Q) / ((s - lambda)(s - conj lambda)),  P = 2 Re R, Q = 2 Re(R conj lambda).
-//    The factor (s - lambda) is formed as a difference before any product, so
-//    lightly damped poles (zeta = 1e-4 and below) keep full relative accuracy.
-//    Rounding in V^-1 is amplified by cond(V), hence the modal form is used
-//    only if cond(V) <= kMaxModalCondition.
-//  - block Schur form (fallback when cond(V) is large: defective or nearly
-//    repeated poles): A = S T S^-1 with T block diagonal, upper triangular
-//    blocks, S well conditioned (block_schur.h). A 1x1 block is a modal term
-//    with a complex residue; a block of a few states contributes
-//      sum_{a<=b} [(sI - T_c)^-1]_ab (C S)_a (S^-1 B)_b;
-//    a larger block is solved by triangular substitution on the cheaper side,
-//    min(outputs, inputs) right-hand sides. With one block this is the plain
-//    Schur method, backward stable for any A.
+//    pairs merged as above with P = 2 Re R, Q = 2 Re(R conj lambda). Its
+//    rounding is amplified by cond(V), which can be large for poles that are
+//    far apart (see above).
+//  - Hessenberg form (the fallback): A = Q H Q^T, and j omega I - H solved at
+//    every frequency (O(n^2 m) each, backward stable whatever the poles).
 //
-// Before either reduction the state is balanced (StateSpace::Balanced), which
-// changes nothing in H but reduces cond(V) for models in mixed units.
+// Before any reduction the state is balanced (StateSpace::Balanced), which
+// changes nothing in H but makes models in mixed units better conditioned.
 //
 // Measured with bench/bench_response (12 states, 6 outputs, 10 inputs,
 // 10^5 frequencies, one core, CPU time): modal 17 ms, block Schur 37 ms, a
@@ -50,16 +58,15 @@ class FrequencyResponse {
  public:
   enum class Method { kAuto, kModal, kSchur, kHessenberg };
 
-  // Largest 1-norm condition number of the (unit-column) eigenvector matrix
-  // for which Method::kAuto picks the modal form; relative errors scale like
-  // 1e-16 * cond(V), so this keeps them near 1e-10 or below.
-  static constexpr double kMaxModalCondition = 1e6;
+  // Largest estimated 1-norm condition number of the decoupling Y for which
+  // Method::kAuto keeps the block-diagonal form: rounding errors grow by at
+  // most about this factor over those of a backward-stable solve.
+  static constexpr double kMaxBlockCondition = 1e6;
 
-  // Reduces A once. kModal forces the modal form even when cond(V) is large
-  // (for benchmarks and tests); kSchur forces the block Schur form;
-  // kHessenberg the Hessenberg form, solved at every frequency (O(n^2 m)
-  // each, backward stable whatever the poles: the reference kAuto checks the
-  // fast forms against and falls back to).
+  // Reduces A once. kAuto and kSchur use the block-diagonal form; kAuto
+  // falls back to the Hessenberg form where cond(Y) > kMaxBlockCondition.
+  // kModal forces the modal form (for benchmarks and tests); kHessenberg the
+  // Hessenberg form, solved at every frequency (O(n^2 m) each).
   // @throws InputError if kModal is forced on a numerically defective A
   //         (cond(V) > 1e-3 / eps), or if A is too badly scaled (balanced
   //         norm above limits::kMaxStateMatrixNorm, or an eigenvalue
@@ -69,13 +76,17 @@ class FrequencyResponse {
   int states() const { return n_; }
   int inputs() const { return m_; }
   int outputs() const { return p_; }
-  // The reduction in use: kModal or kSchur.
+  // The reduction in use: kSchur (block-diagonal), kModal or kHessenberg.
   Method method() const { return method_; }
-  // 1-norm condition number of the unit-column eigenvector matrix (computed
-  // also when kSchur is forced; huge or infinite if A is defective).
-  double eigenvector_condition() const { return eigenvector_condition_; }
-  // Size of the largest diagonal block of the block Schur form (1 for the
-  // modal form): 2 for a double pole, n if no eigenvalue could be split off.
+  // The 1-norm condition number of the transformation of the form that was
+  // computed: cond(Y) for the block-diagonal form (also when the Hessenberg
+  // form replaced it), cond(V) of the unit-column eigenvectors for the modal
+  // form (huge or infinite if A is defective); 1 for the Hessenberg form asked
+  // for directly.
+  double condition() const { return condition_; }
+  // Size of the largest cluster (a group of poles brought to complex Schur
+  // form together): 1 if every real pole and pole pair stands alone, 2 for a
+  // double pole, n if no pole could be decoupled.
   int largest_block() const { return largest_block_; }
   // The eigenvalues of A [rad/s] (empty without states), found block by
   // block on its block triangular form (block_triangular.h).
@@ -114,6 +125,11 @@ class FrequencyResponse {
   void AddLargeBlock(const Term& term, double omega, Workspace& w,
                      std::complex<double>* g) const;
   [[noreturn]] void ThrowOnPole(double f_hz, std::complex<double> pole) const;
+  // The modal form if cond(V) <= max_condition; else false (or, if
+  // required, InputError).
+  bool BuildModal(const StateSpace& balanced, double max_condition, bool required);
+  void BuildBlockDiagonal(const StateSpace& balanced);
+  void StoreResidues(const std::vector<Eigen::VectorXd>& columns);
   // Two eigenvalues within kClusterGap of each other (relative).
   static bool HasClusteredPoles(const Eigen::VectorXcd& lambda);
   // The nonzero poles' magnitudes span more than kVerifySpan.
@@ -124,6 +140,8 @@ class FrequencyResponse {
   bool AgreesNear(const FrequencyResponse& other, const Eigen::VectorXcd& lambda) const;
   // H by a Hessenberg solve at omega (Method::kHessenberg).
   void SolveHessenberg(double omega, Workspace& w, Eigen::MatrixXcd& h) const;
+
+  static constexpr double kMaxModalCondition = 1e6;
   static constexpr double kClusterGap = 1e-3;
   static constexpr double kAgreement = 1e-8;
   static constexpr double kVerifyCondition = 1e2;
@@ -132,7 +150,7 @@ class FrequencyResponse {
 
   int n_ = 0, m_ = 0, p_ = 0;
   Method method_ = Method::kModal;
-  double eigenvector_condition_ = 1.0;
+  double condition_ = 1.0;
   double pole_tolerance_ = 0.0;  // |j omega - lambda| below this counts as on a pole
   int largest_block_ = 1;
   Eigen::VectorXcd poles_;

@@ -1,5 +1,6 @@
 #include "deb/systems/lapack.h"
 
+#include <cmath>
 #include <complex>
 #include <limits>
 #include <new>
@@ -140,6 +141,66 @@ int ReorderRealSchur(RealSchurForm& form, const std::vector<bool>& lead) {
   form.u = std::move(u);
   form.eigenvalues = Pack(wr, wi);
   return static_cast<int>(m);
+}
+
+SylvesterSolution SolveSchurCoupling(const Eigen::MatrixXd& t, int s, int e, const Eigen::MatrixXd& c) {
+  const lapack_int n = static_cast<lapack_int>(t.rows());
+  DEB_DEMAND(t.cols() == n && 0 < s && s < e && e <= n && c.rows() == s && c.cols() == e - s);
+  SylvesterSolution out{c};
+  if (!c.allFinite()) {
+    out.x.setConstant(std::numeric_limits<double>::quiet_NaN());
+    return out;
+  }
+  double scale = 1.0;
+  // The _work form: LAPACKE's NaN scan of the whole leading block would
+  // cost as much as the solve (T comes from dgees: finite).
+  const lapack_int info = LAPACKE_dtrsyl_work(LAPACK_COL_MAJOR, 'N', 'N', -1, s, e - s, t.data(), n,
+                                              t.data() + static_cast<Eigen::Index>(s) * n + s, n, out.x.data(), s,
+                                              &scale);
+  DEB_DEMAND(info >= 0);
+  out.near_singular = info > 0;
+  if (scale != 1.0) out.x /= scale;
+  return out;
+}
+
+bool MoveRealSchurBlock(RealSchurForm& form, int& from, int& to) {
+  const lapack_int n = static_cast<lapack_int>(form.t.rows());
+  DEB_DEMAND(form.t.cols() == n && form.u.rows() == n && form.u.cols() == n && 0 <= from && from < n && 0 <= to &&
+             to < n);
+  lapack_int ifst = from + 1, ilst = to + 1;
+  std::vector<double> work(static_cast<std::size_t>(n));
+  const lapack_int info = LAPACKE_dtrexc_work(LAPACK_COL_MAJOR, 'V', n, form.t.data(), n, form.u.data(), n, &ifst,
+                                              &ilst, work.data());
+  DEB_DEMAND(info >= 0);
+  // The eigenvalues from the diagonal blocks as they now stand.
+  for (lapack_int i = 0; i < n;) {
+    if (i + 1 < n && form.t(i + 1, i) != 0.0) {
+      const double a = form.t(i, i), im = std::sqrt(std::abs(form.t(i, i + 1))) * std::sqrt(std::abs(form.t(i + 1, i)));
+      form.eigenvalues(i) = std::complex<double>(a + 0.0, im);
+      form.eigenvalues(i + 1) = std::complex<double>(a + 0.0, -im);
+      i += 2;
+    } else {
+      form.eigenvalues(i) = std::complex<double>(form.t(i, i) + 0.0, 0.0);
+      i += 1;
+    }
+  }
+  // dtrexc leaves ilst on the first row of the block's position, where it
+  // stopped if a swap failed.
+  from = to = static_cast<int>(ilst) - 1;
+  return info == 0;
+}
+
+double UnitUpperTriangularCondition(const Eigen::MatrixXd& y) {
+  const lapack_int n = static_cast<lapack_int>(y.rows());
+  DEB_DEMAND(y.cols() == n);
+  if (n == 0) return 1.0;
+  double rcond = 0.0;
+  std::vector<double> work(3 * static_cast<std::size_t>(n));
+  std::vector<lapack_int> iwork(static_cast<std::size_t>(n));
+  const lapack_int info =
+      LAPACKE_dtrcon_work(LAPACK_COL_MAJOR, '1', 'U', 'U', n, y.data(), n, &rcond, work.data(), iwork.data());
+  DEB_DEMAND(info == 0);
+  return rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace deb

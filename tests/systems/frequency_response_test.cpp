@@ -44,18 +44,20 @@ double WorstErrorVsDense(const StateSpace& sys, const FrequencyResponse& h,
 
 TEST_CASE("a random 12-state MIMO response matches a dense solve at 1000 frequencies") {
   // Includes a zeta = 1e-4 pair and an integrator (evaluated off the pole).
-  // Tolerance 1e-9 relative, for both the modal and the Schur form, on the
+  // Tolerance 1e-9 relative, for both the block-diagonal and the modal form, on the
   // input-heavy (6 x 10) and the output-heavy (10 x 6) shape.
   std::mt19937 rng(2015);
   for (const auto& [p, m] : {std::pair{6, 10}, std::pair{10, 6}}) {
     const StateSpace sys = testing::RandomSystem(testing::TwelveStateSpec(), p, m, rng);
     CHECK(sys.states() == 12);
-    const FrequencyResponse automatic(sys), schur(sys, Method::kSchur);
-    CHECK(automatic.method() == Method::kModal);
-    CHECK(schur.method() == Method::kSchur);
+    const FrequencyResponse automatic(sys), modal(sys, Method::kModal);
+    // A random A is irreducible: the block-diagonal form, well conditioned.
+    CHECK(automatic.method() == Method::kSchur);
+    CHECK(automatic.condition() <= FrequencyResponse::kMaxBlockCondition);
+    CHECK(modal.method() == Method::kModal);
     const std::vector<double> f = TestFrequencies();
     CHECK(WorstErrorVsDense(sys, automatic, f) <= 1e-9);
-    CHECK(WorstErrorVsDense(sys, schur, f) <= 1e-9);
+    CHECK(WorstErrorVsDense(sys, modal, f) <= 1e-9);
   }
 }
 
@@ -122,7 +124,7 @@ TEST_CASE("ForEach visits every frequency once with the batch matrices") {
   CHECK(equal == static_cast<int>(f.size()));
 }
 
-TEST_CASE("a defective A (double pole) falls back to the Schur form and stays exact") {
+TEST_CASE("a defective A (double pole) is one group of the block-diagonal form and stays exact") {
   // 1/(s + 2)^2 realised as a Jordan chain: cond(V) is infinite or huge.
   Eigen::MatrixXd a(2, 2), b(2, 1), c(1, 2), d = Eigen::MatrixXd::Zero(1, 1);
   a << -2.0, 1.0, 0.0, -2.0;
@@ -131,7 +133,7 @@ TEST_CASE("a defective A (double pole) falls back to the Schur form and stays ex
   const FrequencyResponse h(StateSpace(a, b, c, d));
   CHECK(h.method() == Method::kSchur);
   CHECK(h.largest_block() == 2);
-  CHECK(h.eigenvector_condition() > FrequencyResponse::kMaxModalCondition);
+  CHECK(h.condition() <= FrequencyResponse::kMaxBlockCondition);  // the chain is one group: Y = I
   // Exactly defective: eigenvector matrix singular, the modal form impossible.
   CHECK(Contains(MessageOf([&] { FrequencyResponse(StateSpace(a, b, c, d), Method::kModal); }),
                  "defective"));
@@ -231,7 +233,7 @@ TEST_CASE("a frequency on a pole is an InputError naming the frequency") {
 
 TEST_CASE("a state matrix with extreme but finite entries is a located InputError, not an abort") {
   // Audit N05: A = [0 1; -1e300 -2] aborted in the Schur form
-  // (block_schur.cpp, exit 134); den [1, 1e300, 1] (a pole at -1e300 rad/s)
+  // (the complex block Schur form, exit 134); den [1, 1e300, 1] (a pole at -1e300 rad/s)
   // made every frequency "coincide with a pole" (its squared distance
   // overflowed). Both are now "too badly scaled", for every method.
   Eigen::MatrixXd a(2, 2);
