@@ -119,10 +119,8 @@ std::string ShortData(const unsigned char* body, std::size_t have, std::uintmax_
   std::size_t data = 0;
   if (!next(type, bytes, data) || type != 6 || bytes < 8 || data + 8 > have) return "";
   const std::uint32_t class_type = Read32(body + data, little) & 0xFF;
-  // The dimensions follow the array flags as miINT32 (5) in every class;
-  // matio reads them whatever the type says (a fuzzed file: a name of 4 GB).
-  if (!next(type, bytes, data)) return "";
-  if (type != 5) return "its dimensions are stored as data type " + std::to_string(type) + ", not int32";
+  // The dimensions (their type is checked by MatrixHeaderProblem).
+  if (!next(type, bytes, data) || type != 5) return "";
   if (class_type < 6 || class_type > 15) return "";  // not numeric (mxDOUBLE_CLASS ... mxUINT64_CLASS)
   if (data + bytes > have) return "";
   std::uintmax_t count = 1;
@@ -189,10 +187,54 @@ std::string ElementsFit(const TagReader& read, std::uintmax_t at, std::uintmax_t
          " than its " + std::to_string(size) + " bytes can hold (at most " + std::to_string(most) + ")";
 }
 
+// A matrix (of `size` > 0 bytes at `at`, after its tag) starts with its
+// array flags (miUINT32, 8 bytes), its dimensions (miINT32, at least two)
+// and its name (miINT8, possibly empty), as MATLAB and matio write it. ""
+// if it does (or the bytes are not held), else what is wrong: matio reads
+// these three by position whatever their tags say (a fuzzed 360-byte file
+// whose name element was tagged as a matrix had it read 4.2 GB).
+std::string MatrixHeaderProblem(const TagReader& read, std::uintmax_t at, std::uintmax_t size, bool little) {
+  const char* what[] = {"array flags", "dimensions", "name"};
+  const std::uint32_t want[] = {6, 5, 1};
+  std::uintmax_t p = 0;
+  for (int k = 0; k < 3; ++k) {
+    unsigned char tag[8];
+    if (p + 8 > size) return std::string("its ") + what[k] + (k == 2 ? " is" : " are") + " missing";
+    const TagRead got = read(at + p, tag);
+    if (got == TagRead::kPastEnd) return "it runs past the end of the file";
+    if (got == TagRead::kNotHeld) return "";
+    std::uint32_t type = Read32(tag, little), bytes = 0;
+    if ((type >> 16) != 0) {
+      bytes = type >> 16;
+      type &= 0xFFFF;
+      p += 8;
+    } else {
+      bytes = Read32(tag + 4, little);
+      p += 8 + (std::uintmax_t{bytes} + 7) / 8 * 8;
+    }
+    const bool fits = k == 0 ? bytes == 8 : k == 1 ? bytes >= 8 && bytes % 4 == 0 : true;
+    if (type != want[k] || !fits)
+      return std::string("its ") + what[k] + (k == 2 ? " is" : " are") + " stored as data type " +
+             std::to_string(type) + " of " + std::to_string(bytes) + " bytes, not as MAT-files store " +
+             (k == 2 ? "it" : "them");
+    // Function handles (16) and MATLAB objects such as strings (17) are laid
+    // out otherwise after their flags; deb refuses them by class later.
+    if (k == 0) {
+      unsigned char flags[8];
+      if (read(at + 8, flags) != TagRead::kRead) return "";
+      const std::uint32_t class_type = Read32(flags, little) & 0xFF;
+      if (class_type == 16 || class_type == 17) return "";
+    }
+  }
+  return "";
+}
+
 std::string SubElements(const TagReader& read, std::uintmax_t at, std::uintmax_t size, bool little, int depth,
                         std::size_t& elements) {
   constexpr std::uint32_t kMiMatrix = 14;
   if (depth > 32) return "its cells or structs nest more than 32 deep";
+  if (size > 0)
+    if (std::string problem = MatrixHeaderProblem(read, at, size, little); !problem.empty()) return problem;
   if (std::string problem = ElementsFit(read, at, size, little); !problem.empty()) return problem;
   std::uintmax_t p = 0;
   while (p + 8 <= size) {
