@@ -210,6 +210,9 @@ std::string MatrixHeaderProblem(const TagReader& read, std::uintmax_t at, std::u
       p += 8;
     } else {
       bytes = Read32(tag + 4, little);
+      if (bytes > size - p - 8)
+        return "a part at byte " + std::to_string(at + p) + " claims " + std::to_string(bytes) +
+               " bytes, more than the variable holds";
       p += 8 + (std::uintmax_t{bytes} + 7) / 8 * 8;
     }
     const bool fits = k == 0 ? bytes == 8 : k == 1 ? bytes >= 8 && bytes % 4 == 0 : true;
