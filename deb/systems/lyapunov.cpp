@@ -12,6 +12,7 @@
 #include "deb/core/error.h"
 #include "deb/systems/block_triangular.h"
 #include "deb/systems/lapack.h"
+#include "deb/systems/real_block_diagonal.h"
 
 namespace deb {
 namespace {
@@ -262,6 +263,108 @@ Eigen::MatrixXd SolveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q
   return s.scale.asDiagonal() * s.pb * s.scale.asDiagonal();
 }
 
+namespace {
+
+// Couplings of the block-diagonal form up to this condition number are used
+// for the exact variance of an irreducible A (a dense model, a loop).
+constexpr double kMaxBlockCondition = 1e2;
+
+// X with D_i X + X D_j^T + Q = 0 for two diagonal blocks of a real Schur
+// form (1x1 or 2x2 each: the Kronecker system, at most 4x4; larger groups
+// through dtrsyl).
+Eigen::MatrixXd SolveGroupPair(const Eigen::MatrixXd& di, const Eigen::MatrixXd& dj, const Eigen::MatrixXd& q) {
+  const Eigen::Index ki = di.rows(), kj = dj.rows();
+  if (ki > 2 || kj > 2) return SolveQuasiTriangularSylvester(di, dj, -q).x;
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
+  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1>;
+  Small k = Small::Zero(ki * kj, ki * kj);
+  // vec(D_i X) = (I (x) D_i) vec X, vec(X D_j^T) = (D_j (x) I) vec X.
+  for (Eigen::Index b = 0; b < kj; ++b)
+    for (Eigen::Index a = 0; a < ki; ++a)
+      for (Eigen::Index c = 0; c < ki; ++c) k(b * ki + a, b * ki + c) += di(a, c);
+  for (Eigen::Index b = 0; b < kj; ++b)
+    for (Eigen::Index d = 0; d < kj; ++d)
+      for (Eigen::Index a = 0; a < ki; ++a) k(b * ki + a, d * ki + a) += dj(b, d);
+  SmallVector rhs(ki * kj);
+  for (Eigen::Index b = 0; b < kj; ++b)
+    for (Eigen::Index a = 0; a < ki; ++a) rhs(b * ki + a) = -q(a, b);
+  const SmallVector x = k.partialPivLu().solve(rhs);
+  Eigen::MatrixXd out(ki, kj);
+  for (Eigen::Index b = 0; b < kj; ++b)
+    for (Eigen::Index a = 0; a < ki; ++a) out(a, b) = x(b * ki + a);
+  return out;
+}
+
+// C P C^T on the block-diagonal form A = S D S^-1 (real_block_diagonal.h):
+// with L = C S, R = S^-1 B, the state covariance is P = S X S^T where
+//   D_i X_ij + X_ij D_j^T + R_i W R_j^T = 0
+// for every pair of groups, a Sylvester equation of at most 4 unknowns for
+// poles and pairs: O(n^2 (m + p)) in all instead of a Schur solve of the
+// whole n x n equation.
+//
+// Its error is estimated from the residual of the reduction itself: in the
+// coordinates of the form, A is D + E with E = Y^-1 (U^T A U) Y - D (the
+// Schur form's backward error and the decoupling's rounding, formed in
+// double: of the size of the rounding it measures), which moves X by dX with
+//   D dX + dX D^T + E X + X E^T = 0,
+// solved block by block as X is, and the variances by L dX L^T. Returns
+// nothing if ten times that estimate, plus the rounding of the sums (8 n eps
+// cond(Y) times the sum of the absolute terms), exceeds 1e-6 of a variance,
+// or a variance is negative or not finite: the caller then solves the whole
+// equation, which estimates its error from its own residual.
+std::optional<Eigen::MatrixXd> BlockDiagonalCovariance(const RealBlockDiagonalForm& form, const StateSpace& bal,
+                                                       const Eigen::MatrixXd& w) {
+  const Eigen::MatrixXd l = form.Left(bal.C());
+  const Eigen::MatrixXd r = form.Right(bal.B());
+  const Eigen::MatrixXd q = r * w * r.transpose();
+  const int n = static_cast<int>(q.rows()), groups = form.groups();
+  Eigen::MatrixXd x(n, n);
+  for (int i = 0; i < groups; ++i) {
+    const int si = form.start[i], ki = form.group_size(i);
+    const Eigen::MatrixXd di = form.t.block(si, si, ki, ki);
+    for (int j = i; j < groups; ++j) {
+      const int sj = form.start[j], kj = form.group_size(j);
+      const Eigen::MatrixXd xij = SolveGroupPair(di, form.t.block(sj, sj, kj, kj), q.block(si, sj, ki, kj));
+      x.block(si, sj, ki, kj) = xij;
+      if (j != i) x.block(sj, si, kj, ki) = xij.transpose();
+    }
+  }
+  if (!x.allFinite()) return std::nullopt;
+  Eigen::MatrixXd y = l * (x * l.transpose());
+  y = 0.5 * (y + y.transpose()).eval();
+  const Eigen::MatrixXd abs_y = l.cwiseAbs() * (x.cwiseAbs() * l.cwiseAbs().transpose());
+  const auto upper = form.y.triangularView<Eigen::UnitUpper>();
+  Eigen::MatrixXd e = form.u.transpose() * (bal.A() * form.u);  // U^T A U
+  e = upper.solve(e * form.y);                                   // Y^-1 (U^T A U) Y
+  for (int g = 0; g < groups; ++g)
+    e.block(form.start[g], form.start[g], form.group_size(g), form.group_size(g)) -=
+        form.t.block(form.start[g], form.start[g], form.group_size(g), form.group_size(g));
+  Eigen::MatrixXd ex = e * x;
+  ex += ex.transpose().eval();
+  Eigen::MatrixXd dx(n, n);
+  for (int i = 0; i < groups; ++i) {
+    const int si = form.start[i], ki = form.group_size(i);
+    const Eigen::MatrixXd di = form.t.block(si, si, ki, ki);
+    for (int j = i; j < groups; ++j) {
+      const int sj = form.start[j], kj = form.group_size(j);
+      const Eigen::MatrixXd dij = SolveGroupPair(di, form.t.block(sj, sj, kj, kj), ex.block(si, sj, ki, kj));
+      dx.block(si, sj, ki, kj) = dij;
+      if (j != i) dx.block(sj, si, kj, ki) = dij.transpose();
+    }
+  }
+  const Eigen::MatrixXd dy = l * (dx * l.transpose());
+  for (int i = 0; i < y.rows(); ++i) {
+    const double rounding = 8.0 * n * kEps * form.condition * abs_y(i, i);
+    if (!std::isfinite(y(i, i)) || y(i, i) < -rounding) return std::nullopt;
+    if (abs_y(i, i) > 0.0 && !(rounding + 10.0 * std::abs(dy(i, i)) <= kMaxRelativeError * y(i, i)))
+      return std::nullopt;
+    if (y(i, i) < 0.0) y(i, i) = 0.0;
+  }
+  return y;
+}
+
+}  // namespace
+
 Eigen::MatrixXd OutputCovariance(const StateSpace& sys, const Eigen::MatrixXd& w_two_sided) {
   const Eigen::MatrixXd& w = w_two_sided;
   const int m = sys.inputs(), p = sys.outputs();
@@ -305,7 +408,13 @@ Eigen::MatrixXd OutputCovariance(const StateSpace& sys, const Eigen::MatrixXd& w
   // whose poles are better conditioned (SolveScaled rescales it further).
   const StateSpace bal = sys.Balanced();
   RequireWellScaled(bal.A());
-  const Eigen::VectorXcd poles = bal.Poles();
+  // An irreducible A (a dense model, a loop) is reduced to block-diagonal
+  // form, which gives its poles too; a reducible one (a cascade) is solved
+  // stage by stage below, since a Schur form of the whole A could round
+  // away the couplings between stages (frequency_response.h).
+  std::optional<RealBlockDiagonalForm> form;
+  if (BlockTriangular(bal.A()).blocks() == 1) form = RealBlockDiagonal(bal.A());
+  const Eigen::VectorXcd poles = form ? form->eigenvalues : bal.Poles();
   const double stable_margin = 64.0 * kEps * bal.A().norm();
   std::ostringstream unstable;
   int count = 0;
@@ -320,6 +429,8 @@ Eigen::MatrixXd OutputCovariance(const StateSpace& sys, const Eigen::MatrixXd& w
        << (count > 1 ? " are" : " is") << " not in the open left half plane";
     throw InputError(os.str());
   }
+  if (form && form->condition <= kMaxBlockCondition)
+    if (std::optional<Eigen::MatrixXd> y = BlockDiagonalCovariance(*form, bal, w)) return *y;
   const ScaledLyapunov s = SolveScaled(bal.A(), bal.B() * w * bal.B().transpose());
   const auto unreliable = [](const std::string& why) {
     return InputError("OutputCovariance: exact variance is not reliable for this realisation: " +
