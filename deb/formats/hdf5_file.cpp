@@ -465,11 +465,20 @@ std::string ObjectHeaderProblem(RawFile& raw, std::uint64_t base, std::size_t ad
       // flags, name size, datatype size, dataspace size, [encoding], name)
       // must end with its zero inside the message: libhdf5 copies it up to
       // the zero (a fuzzed MAT-file's name ran past the end of the header).
-      if (type == 0x0C && bytes >= 8) {
+      // Its datatype and dataspace, whose sizes follow the name size, must
+      // fit in the message too (version 1 pads each part to 8 bytes): a
+      // fuzzed file's dataspace of 2048 bytes in a 48-byte message had it
+      // copy past a buffer.
+      if (type == 0x0C) {
         const unsigned char* m = chunk.data() + p;
-        const std::uint64_t name_bytes = Little(m + 2, 2), at = m[0] >= 3 ? 9 : 8;
-        if (m[0] < 1 || m[0] > 3 || name_bytes == 0 || at + name_bytes > bytes || m[at + name_bytes - 1] != 0)
+        const std::uint64_t version = bytes >= 8 ? m[0] : 0, at = version >= 3 ? 9 : 8;
+        const std::uint64_t name_bytes = bytes >= 8 ? Little(m + 2, 2) : 0;
+        if (version < 1 || version > 3 || name_bytes == 0 || at + name_bytes > bytes || m[at + name_bytes - 1] != 0)
           return "has a damaged attribute (its name does not end inside it); is the file damaged?";
+        const auto part = [&](std::uint64_t n) { return version == 1 ? (n + 7) / 8 * 8 : n; };
+        const std::uint64_t datatype = Little(m + 4, 2), dataspace = Little(m + 6, 2);
+        if (datatype == 0 || dataspace == 0 || at + part(name_bytes) + part(datatype) + part(dataspace) > bytes)
+          return "has a damaged attribute (its parts do not fit in it); is the file damaged?";
       }
       // An old-style group's index: checked once the header is.
       if (type == 0x11 && 2 * address_bytes <= chunk.size() - p) {

@@ -386,6 +386,10 @@ TEST_CASE("the files the fuzzer found: refused before matio or libhdf5 allocates
   // libhdf5 copied the name past the end of the header, a heap read out of bounds).
   CHECK_ERROR(MatFile(corpus + "attribute_name_v73.mat"),
               "object 'output_Mames[1]' has a damaged attribute (its name does not end inside it)");
+  // Version 7.3: an attribute's dataspace of 2048 bytes in a 48-byte message (libhdf5 copied
+  // past the end of a buffer).
+  CHECK_ERROR(MatFile(corpus + "attribute_parts_v73.mat"),
+              "object 'C' has a damaged attribute (its parts do not fit in it)");
   // A real version 7.3 file whose root group's B-tree (one leaf node at byte 648, address 136)
   // is changed to name its symbol table node twice, or to claim a level above its leaves.
   {
