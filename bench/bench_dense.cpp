@@ -21,12 +21,17 @@
 // points (default 10201, log 0.1-1000 Hz, on all threads) with its worst
 // error against the modal model's own H at every resonance, and with
 // --exact the output variances (Lyapunov) against the modal closed form.
+// --keep DIR writes DIR/plant.mat (A, B, C, D of the rotated model) and
+// DIR/b.yaml (unit white forces on every input, exact variance required),
+// for timing `deb run DIR/b.yaml --no-plots`.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
+#include <fstream>
 #include <optional>
 #include <random>
 #include <string>
@@ -34,6 +39,7 @@
 
 #include "deb/core/error.h"
 #include "deb/systems/frequency_response.h"
+#include "deb/formats/mat_file.h"
 #include "deb/systems/lyapunov.h"
 #include "deb/systems/modal_model.h"
 #include "deb/systems/modal_response.h"
@@ -82,7 +88,36 @@ const char* FormName(deb::FrequencyResponse::Method m) {
   }
 }
 
-int FiniteElementBench(int modes, int inputs, int outputs, int points, bool exact) {
+std::vector<std::string> Numbered(const std::string& stem, int count) {
+  std::vector<std::string> names;
+  for (int i = 1; i <= count; ++i) names.push_back(stem + std::to_string(i));
+  return names;
+}
+
+// DIR/plant.mat and DIR/b.yaml for `deb run` (see the usage above).
+void KeepBudget(const std::string& dir, const StateSpace& sys, int modes) {
+  std::filesystem::create_directories(dir);
+  deb::io::WriteMatFile(dir + "/plant.mat",
+                        {{"A", deb::io::MatValue::Matrix(sys.A())},
+                         {"B", deb::io::MatValue::Matrix(sys.B())},
+                         {"C", deb::io::MatValue::Matrix(sys.C())},
+                         {"D", deb::io::MatValue::Matrix(sys.D())},
+                         {"input_names", deb::io::MatValue::Names(Numbered("F", sys.inputs()))},
+                         {"output_names", deb::io::MatValue::Names(Numbered("y", sys.outputs()))}},
+                        "a rotated finite-element model (bench_dense --fe)");
+  std::ofstream b(dir + "/b.yaml");
+  b << "name: dense_" << modes << "_modes\n"
+    << "grid: {type: auto, min_hz: 0.001, max_hz: 100000}\n"
+    << "sources:\n  - name: forces\n    unit: N\n    channels: [";
+  for (int i = 1; i <= sys.inputs(); ++i) b << (i > 1 ? ", " : "") << "F" << i;
+  b << "]\n    spectrum: {type: flat, level: 1, quantity: psd}\n"
+    << "paths:\n  - {name: frame, type: state_space, file: plant.mat, input_unit: N, output_unit: m}\n"
+    << "contributors:\n  - {name: forces, source: forces, path: frame, exact: required}\n"
+    << "outputs:\n";
+  for (int i = 1; i <= sys.outputs(); ++i) b << "  - {name: y" << i << ", signal: y" << i << ", unit: nm}\n";
+}
+
+int FiniteElementBench(int modes, int inputs, int outputs, int points, bool exact, const std::string& keep) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -109,6 +144,7 @@ int FiniteElementBench(int modes, int inputs, int outputs, int points, bool exac
   std::vector<int> rows(outputs);
   for (int i = 0; i < outputs; ++i) rows[i] = i;
   const deb::ModalResponse reference(model, rows);
+  if (!keep.empty()) KeepBudget(keep, sys, modes);
 
   std::printf("finite-element model: %d modes (%d states) x %d inputs x %d outputs, rotated; %d threads\n", modes, n,
               inputs, outputs, deb::DefaultThreadCount());
@@ -156,20 +192,23 @@ int main(int argc, char** argv) {
   if (argc >= 3 && std::strcmp(argv[1], "--fe") == 0) {
     std::vector<int> numbers;
     bool exact = false;
+    std::string keep;
     for (int i = 2; i < argc; ++i) {
-      if (std::strcmp(argv[i], "--exact") == 0) {
+      if (std::strcmp(argv[i], "--keep") == 0 && i + 1 < argc) {
+        keep = argv[++i];
+      } else if (std::strcmp(argv[i], "--exact") == 0) {
         exact = true;
       } else {
         numbers.push_back(std::atoi(argv[i]));
         if (numbers.back() < 1) {
-          std::fprintf(stderr, "usage: bench_dense --fe MODES [INPUTS OUTPUTS [FREQUENCIES]] [--exact]\n");
+          std::fprintf(stderr, "usage: bench_dense --fe MODES [INPUTS OUTPUTS [FREQUENCIES]] [--exact] [--keep DIR]\n");
           return 2;
         }
       }
     }
     numbers.resize(4, 0);
     return FiniteElementBench(numbers[0], numbers[1] ? numbers[1] : 20, numbers[2] ? numbers[2] : 20,
-                              numbers[3] ? numbers[3] : 10201, exact);
+                              numbers[3] ? numbers[3] : 10201, exact, keep);
   }
   bool eigen = false;
   std::vector<int> sizes;
