@@ -188,7 +188,8 @@ bool FrequencyResponse::BuildModal(const StateSpace& bal, double max_condition, 
 
 void FrequencyResponse::BuildBlockDiagonal(const StateSpace& bal) {
   const Eigen::MatrixXd& a = bal.A();
-  const RealBlockDiagonalForm form = RealBlockDiagonal(a);
+  const std::shared_ptr<const RealBlockDiagonalForm> shared = SharedRealBlockDiagonal(a);
+  const RealBlockDiagonalForm& form = *shared;
   method_ = Method::kSchur;
   condition_ = form.condition;
   largest_block_ = 1;

@@ -143,20 +143,26 @@ int ReorderRealSchur(RealSchurForm& form, const std::vector<bool>& lead) {
   return static_cast<int>(m);
 }
 
-SylvesterSolution SolveSchurCoupling(const Eigen::MatrixXd& t, int s, int e, const Eigen::MatrixXd& c) {
+SylvesterSolution SolveSchurCoupling(const Eigen::MatrixXd& t, int lo, int s, int e, const Eigen::MatrixXd& c,
+                                     bool blocked) {
   const lapack_int n = static_cast<lapack_int>(t.rows());
-  DEB_DEMAND(t.cols() == n && 0 < s && s < e && e <= n && c.rows() == s && c.cols() == e - s);
+  DEB_DEMAND(t.cols() == n && 0 <= lo && lo < s && s < e && e <= n && c.rows() == s - lo && c.cols() == e - s);
   SylvesterSolution out{c};
   if (!c.allFinite()) {
     out.x.setConstant(std::numeric_limits<double>::quiet_NaN());
     return out;
   }
   double scale = 1.0;
-  // The _work form: LAPACKE's NaN scan of the whole leading block would
-  // cost as much as the solve (T comes from dgees: finite).
-  const lapack_int info = LAPACKE_dtrsyl_work(LAPACK_COL_MAJOR, 'N', 'N', -1, s, e - s, t.data(), n,
-                                              t.data() + static_cast<Eigen::Index>(s) * n + s, n, out.x.data(), s,
-                                              &scale);
+  const double* t1 = t.data() + static_cast<Eigen::Index>(lo) * n + lo;
+  const double* t2 = t.data() + static_cast<Eigen::Index>(s) * n + s;
+  // The _work form for dtrsyl: LAPACKE's NaN scan of the whole leading
+  // block would cost as much as the solve (T comes from dgees: finite).
+  const lapack_int info =
+      blocked ? LAPACKE_dtrsyl3(LAPACK_COL_MAJOR, 'N', 'N', -1, s - lo, e - s, t1, n, t2, n, out.x.data(), s - lo,
+                                &scale)
+              : LAPACKE_dtrsyl_work(LAPACK_COL_MAJOR, 'N', 'N', -1, s - lo, e - s, t1, n, t2, n, out.x.data(),
+                                    s - lo, &scale);
+  if (info == LAPACK_WORK_MEMORY_ERROR || info == LAPACK_TRANSPOSE_MEMORY_ERROR) throw std::bad_alloc();
   DEB_DEMAND(info >= 0);
   out.near_singular = info > 0;
   if (scale != 1.0) out.x /= scale;

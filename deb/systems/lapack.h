@@ -63,11 +63,13 @@ SylvesterSolution SolveQuasiTriangularSylvesterMinus(const Eigen::MatrixXd& t1,
                                                      const Eigen::MatrixXd& t2,
                                                      const Eigen::MatrixXd& c);
 
-// X with T(0:s, 0:s) X - X T(s:e, s:e) = C for one real Schur form T,
-// 0 < s < e <= n, s and e not inside a 2x2 block, C s x (e - s) (dtrsyl on
-// T's own storage, no copies): the coupling that block-diagonalisation
+// X with T(lo:s, lo:s) X - X T(s:e, s:e) = C for one real Schur form T,
+// 0 <= lo < s < e <= n, none inside a 2x2 block, C (s - lo) x (e - s)
+// (dtrsyl on T's own storage, no copies; `blocked`: dtrsyl3, LAPACK's
+// level-3 version, for wide C): the coupling that block-diagonalisation
 // removes (real_block_diagonal.h). Scale and INFO = 1 as above.
-SylvesterSolution SolveSchurCoupling(const Eigen::MatrixXd& t, int s, int e, const Eigen::MatrixXd& c);
+SylvesterSolution SolveSchurCoupling(const Eigen::MatrixXd& t, int lo, int s, int e, const Eigen::MatrixXd& c,
+                                     bool blocked = false);
 
 // Moves the diagonal block of a real Schur form that starts at row `from`
 // to start at row `to` by adjacent swaps (dtrexc), updating T, U and the

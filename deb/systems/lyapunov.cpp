@@ -3,6 +3,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -412,8 +413,8 @@ Eigen::MatrixXd OutputCovariance(const StateSpace& sys, const Eigen::MatrixXd& w
   // form, which gives its poles too; a reducible one (a cascade) is solved
   // stage by stage below, since a Schur form of the whole A could round
   // away the couplings between stages (frequency_response.h).
-  std::optional<RealBlockDiagonalForm> form;
-  if (BlockTriangular(bal.A()).blocks() == 1) form = RealBlockDiagonal(bal.A());
+  std::shared_ptr<const RealBlockDiagonalForm> form;
+  if (BlockTriangular(bal.A()).blocks() == 1) form = SharedRealBlockDiagonal(bal.A());
   const Eigen::VectorXcd poles = form ? form->eigenvalues : bal.Poles();
   const double stable_margin = 64.0 * kEps * bal.A().norm();
   std::ostringstream unstable;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <utility>
 
@@ -80,6 +81,41 @@ void GatherClusters(RealSchurForm& f, double gap, double floor, int& failed) {
   }
 }
 
+// Decouples blocks [first, last) of T (starts in `blocks`) group by group,
+// each from the rows [lo, s) above it: the column block Y(lo:s, s:e) with
+//   T(lo:s, lo:s) X - X T(s:e, s:e) = -T(lo:s, s:e).
+// A block in the cluster of the one before it joins its group; a group whose
+// coupling would exceed max_coupling is merged with the group above and
+// solved again. `group_start` holds the groups' starts (those at or above
+// lo may be merged into).
+void DecoupleBlocks(const Eigen::MatrixXd& t, Eigen::MatrixXd& y, const std::vector<int>& blocks,
+                    const std::vector<int>& label, std::size_t first, std::size_t last, int lo, double max_coupling,
+                    std::vector<int>& group_start) {
+  for (std::size_t b = first; b < last; ++b) {
+    int s = blocks[b];
+    const int e = blocks[b + 1];
+    const auto merge_up = [&] {
+      s = group_start.back();
+      group_start.pop_back();
+      y.block(lo, s, e - lo, e - s).setZero();
+      y.block(s, s, e - s, e - s).setIdentity();
+    };
+    // A cluster is never split: its poles are too close for the coupling
+    // to be bounded by anything but rounding.
+    if (s > lo && b > 0 && label[b] == label[b - 1]) merge_up();
+    while (s > lo) {
+      const SylvesterSolution x = SolveSchurCoupling(t, lo, s, e, -t.block(lo, s, s - lo, e - s));
+      const double coupling = x.x.cwiseAbs().maxCoeff();
+      if (std::isfinite(coupling) && coupling <= max_coupling) {
+        y.block(lo, s, s - lo, e - s) = x.x;
+        break;
+      }
+      merge_up();  // and solve again for the merged columns
+    }
+    group_start.push_back(s);
+  }
+}
+
 }  // namespace
 
 int RealBlockDiagonalForm::largest_group() const {
@@ -106,37 +142,43 @@ RealBlockDiagonalForm RealBlockDiagonal(const Eigen::MatrixXd& a, double max_cou
   const double floor = 1e3 * std::numeric_limits<double>::epsilon() * a.norm();
   GatherClusters(f, cluster_gap, floor, form.swaps_failed);
 
-  // Decoupling, group by group from the top.
+  // Decoupling, in batches of about kBatch states (whole clusters): each
+  // batch's groups are first decoupled from each other (DecoupleBlocks on
+  // the batch alone), then the batch from everything above it by one
+  // level-3 Sylvester solve, Y(0:s, batch) = X Y(batch, batch). Where a
+  // group of the batch would then be coupled above max_coupling, the batch
+  // is done group by group against all above it, merging as needed.
+  constexpr int kBatch = 128;
   const std::vector<int> blocks = SchurBlockStarts(f.t);
   const std::vector<int> label = ClusterLabels(f.eigenvalues, blocks, cluster_gap, floor);
   Eigen::MatrixXd y = Eigen::MatrixXd::Identity(n, n);
   std::vector<int> group_start;  // starts of the groups found so far
-  for (std::size_t b = 0; b + 1 < blocks.size(); ++b) {
-    int s = blocks[b];
-    const int e = blocks[b + 1];
-    // A cluster is never split: its poles are too close for the coupling
-    // to be bounded by anything but rounding.
-    if (b > 0 && label[b] == label[b - 1]) {
-      s = group_start.back();
-      group_start.pop_back();
-      y.block(0, s, e, e - s).setZero();
-      y.block(s, s, e - s, e - s).setIdentity();
-    }
-    for (;;) {
-      if (s == 0) break;  // nothing above: a group of its own
-      const SylvesterSolution x = SolveSchurCoupling(f.t, s, e, -f.t.block(0, s, s, e - s));
-      const double coupling = x.x.cwiseAbs().maxCoeff();
-      if (std::isfinite(coupling) && coupling <= max_coupling) {
-        y.block(0, s, s, e - s) = x.x;
-        break;
+  const std::size_t count = blocks.size() - 1;
+  for (std::size_t b = 0; b < count;) {
+    std::size_t end = b + 1;
+    while (end < count && (blocks[end] - blocks[b] < kBatch || label[end] == label[end - 1])) ++end;
+    const int s = blocks[b], e = blocks[end];
+    bool done = false;
+    if (s > 0) {
+      std::vector<int> local;
+      DecoupleBlocks(f.t, y, blocks, label, b, end, s, max_coupling, local);
+      const SylvesterSolution x = SolveSchurCoupling(f.t, 0, s, e, -f.t.block(0, s, s, e - s), true);
+      const Eigen::MatrixXd above = x.x * y.block(s, s, e - s, e - s).triangularView<Eigen::UnitUpper>();
+      done = above.allFinite();
+      local.push_back(e);
+      for (std::size_t g = 0; done && g + 1 < local.size(); ++g)
+        done = above.middleCols(local[g] - s, local[g + 1] - local[g]).cwiseAbs().maxCoeff() <= max_coupling;
+      local.pop_back();
+      if (done) {
+        y.block(0, s, s, e - s) = above;
+        group_start.insert(group_start.end(), local.begin(), local.end());
+      } else {
+        y.block(0, s, e, e - s).setZero();
+        y.block(s, s, e - s, e - s).setIdentity();
       }
-      // Merge with the group above and solve again for the merged columns.
-      s = group_start.back();
-      group_start.pop_back();
-      y.block(0, s, e, e - s).setZero();
-      y.block(s, s, e - s, e - s).setIdentity();
     }
-    group_start.push_back(s);
+    if (!done) DecoupleBlocks(f.t, y, blocks, label, b, end, 0, max_coupling, group_start);
+    b = end;
   }
   form.start = group_start;
   form.start.push_back(n);
@@ -145,6 +187,26 @@ RealBlockDiagonalForm RealBlockDiagonal(const Eigen::MatrixXd& a, double max_cou
   form.u = std::move(f.u);
   form.y = std::move(y);
   form.eigenvalues = std::move(f.eigenvalues);
+  return form;
+}
+
+std::shared_ptr<const RealBlockDiagonalForm> SharedRealBlockDiagonal(const Eigen::MatrixXd& a) {
+  if (a.rows() < kSharedFormStates) return std::make_shared<const RealBlockDiagonalForm>(RealBlockDiagonal(a));
+  struct Entry {
+    Eigen::MatrixXd a;
+    std::shared_ptr<const RealBlockDiagonalForm> form;
+  };
+  static std::mutex mutex;
+  static std::vector<Entry> kept;  // most recent first
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const Entry& e : kept)
+      if (e.a.rows() == a.rows() && e.a.cols() == a.cols() && e.a == a) return e.form;
+  }
+  auto form = std::make_shared<const RealBlockDiagonalForm>(RealBlockDiagonal(a));
+  const std::lock_guard<std::mutex> lock(mutex);
+  kept.insert(kept.begin(), Entry{a, form});
+  if (kept.size() > 2) kept.pop_back();
   return form;
 }
 
