@@ -31,7 +31,7 @@ std::string Stability(const StateSpace& system) {
                                : "marginally stable (" + count + " pole(s) on the imaginary axis)";
 }
 
-void AddPath(std::string& text, const Path& p) {
+void AddPath(std::string& text, const Path& p, const EvaluationPlan& plan) {
   if (p.HasMeasuredData()) {
     const std::vector<double> f = p.measured->DataFrequencies();
     AppendFormatted(text, "  %-20s %d input(s) -> %d output(s), measured frequency data (%zu points, %g-%g Hz)%s\n",
@@ -56,6 +56,12 @@ void AddPath(std::string& text, const Path& p) {
   AppendFormatted(text, "  %-20s %d input(s) -> %d output(s), %d state(s)%s, %s\n", p.name.c_str(), p.system.inputs(),
                   p.system.outputs(), p.system.states(), approximated.c_str(),
                   Stability(p.system).c_str());
+  // How its H is evaluated, where a contributor uses it (once per path).
+  for (const auto& [key, analysis] : plan.paths)
+    if (analysis && analysis->path().name == p.name && !analysis->ResponseForm().empty()) {
+      AppendFormatted(text, "  %-20s H by the %s\n", "", analysis->ResponseForm().c_str());
+      break;
+    }
 }
 
 void AddContributors(std::string& text, const Budget& budget, const EvaluationPlan& plan) {
@@ -111,7 +117,7 @@ std::string DescribeBudget(const Budget& budget, const EvaluationPlan& plan) {
     AppendFormatted(text, "  %-20s %d channel(s) in %s: %s\n", s.name.c_str(), s.channels(), s.unit.c_str(),
                     s.spectrum->Describe().c_str());
   AppendFormatted(text, "paths:\n");
-  for (const Path& p : budget.paths) AddPath(text, p);
+  for (const Path& p : budget.paths) AddPath(text, p, plan);
   if (!plan.loops.empty()) AppendFormatted(text, "feedback loops:\n");
   for (const LoopResult& loop : plan.loops) {
     std::string paths;

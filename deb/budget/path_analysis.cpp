@@ -106,6 +106,8 @@ std::vector<Resonance> PathAnalysis::Resonances() const {
   return r;
 }
 
+std::string PathAnalysis::ResponseForm() const { return rational_ ? rational_->Describe() : ""; }
+
 void PathAnalysis::ForEachResponse(const std::vector<double>& f_hz, const FrequencyModel::Visitor& fn,
                                    int threads) const {
   if (modal_) return modal_->ForEach(f_hz, fn, threads);

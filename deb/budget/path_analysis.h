@@ -55,6 +55,9 @@ class PathAnalysis {
   // Poles with Re > 1e-9 max(1, |p|) and on the imaginary axis (|Re| within it).
   const std::vector<std::complex<double>>& unstable_poles() const { return unstable_; }
   const std::vector<std::complex<double>>& marginal_poles() const { return marginal_; }
+  // How H of a state-space path is evaluated and why (FrequencyResponse::
+  // Describe); "" for modal paths and block diagrams with measured data.
+  std::string ResponseForm() const;
   // A loop closed around measured data: its stability is not known.
   bool loop_around_data() const { return path_.measured && path_.measured->HasLoopAroundData(); }
 

@@ -106,8 +106,13 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
     if (condition_ > kVerifyCondition) {
       columns_ = static_cast<int>(residues_.cols());
       FrequencyResponse reference(sys, Method::kHessenberg);
-      if (!(condition_ <= kMaxBlockCondition) || !AgreesNear(reference, poles_)) {
+      const bool too_large = !(condition_ <= kMaxBlockCondition);
+      if (too_large || !AgreesNear(reference, poles_)) {
+        std::ostringstream why;
+        why << "the block-diagonal form's cond(Y) " << condition_
+            << (too_large ? " is above 1e6" : " is above 100 and it differed from this solve by more than 1e-8");
         reference.condition_ = condition_;
+        reference.hessenberg_reason_ = why.str();
         *this = std::move(reference);
       }
     }
@@ -126,6 +131,8 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
       FrequencyResponse reference(sys, Method::kHessenberg);
       if (!AgreesNear(reference, poles_)) {
         reference.condition_ = condition_;
+        reference.hessenberg_reason_ = std::string("a cascade whose ") + (modal ? "modal" : "block-diagonal") +
+                                       " form differed from this solve by more than 1e-8";
         *this = std::move(reference);
       }
     }
@@ -384,6 +391,27 @@ bool FrequencyResponse::AgreesNear(const FrequencyResponse& other, const Eigen::
   for (const auto& [a, b] : values)
     if (!((a - b).norm() <= kAgreement * std::max(b.norm(), 1e-8 * largest))) return false;
   return true;
+}
+
+std::string FrequencyResponse::Describe() const {
+  std::ostringstream os;
+  if (n_ == 0) return "a static gain";
+  switch (method_) {
+    case Method::kSchur: {
+      int largest = 0;
+      for (const Term& t : terms_) largest = std::max(largest, t.size);
+      os << "block-diagonal form (" << terms_.size() << (terms_.size() == 1 ? " group" : " groups")
+         << ", the largest of " << largest << (largest == 1 ? " state" : " states") << "; cond(Y) " << condition_
+         << ")";
+      break;
+    }
+    case Method::kModal:
+      os << "modal form (eigenvector condition " << condition_ << ")";
+      break;
+    default:
+      os << "Hessenberg solve at every frequency (" << hessenberg_reason_ << ")";
+  }
+  return os.str();
 }
 
 Eigen::MatrixXcd FrequencyResponse::At(double f_hz) const {
