@@ -108,6 +108,8 @@ std::vector<Resonance> PathAnalysis::Resonances() const {
 
 std::string PathAnalysis::ResponseForm() const { return rational_ ? rational_->Describe() : ""; }
 
+Eigen::VectorXcd PathAnalysis::StateSpacePoles() const { return rational_ ? rational_->poles() : Eigen::VectorXcd(); }
+
 void PathAnalysis::ForEachResponse(const std::vector<double>& f_hz, const FrequencyModel::Visitor& fn,
                                    int threads) const {
   if (modal_) return modal_->ForEach(f_hz, fn, threads);

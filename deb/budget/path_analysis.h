@@ -58,6 +58,9 @@ class PathAnalysis {
   // How H of a state-space path is evaluated and why (FrequencyResponse::
   // Describe); "" for modal paths and block diagrams with measured data.
   std::string ResponseForm() const;
+  // The poles of a state-space path as its response found them (empty for
+  // modal paths and block diagrams with measured data).
+  Eigen::VectorXcd StateSpacePoles() const;
   // A loop closed around measured data: its stability is not known.
   bool loop_around_data() const { return path_.measured && path_.measured->HasLoopAroundData(); }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "deb/systems/lapack.h"
 #include "deb/systems/state_space.h"
 
 namespace deb {
@@ -59,6 +60,8 @@ BlockTriangularForm BlockTriangular(const Eigen::MatrixXd& a) {
   return form;
 }
 
+constexpr int kLapackEigenvalueStates = 200;
+
 Eigen::VectorXcd BlockEigenvalues(const Eigen::MatrixXd& a) {
   const BlockTriangularForm form = BlockTriangular(a);
   Eigen::VectorXcd lambda(a.rows());
@@ -70,11 +73,29 @@ Eigen::VectorXcd BlockEigenvalues(const Eigen::MatrixXd& a) {
       lambda(at) = block(0, 0) + 0.0;  // -0 is 0, as from the eigenvalue solver
       continue;
     }
+    // Large blocks through LAPACK (dgees on 2000 states: 1.3 s with
+    // OpenBLAS against 7 s for Eigen's EigenSolver), small ones through Eigen.
+    if (size > kLapackEigenvalueStates) {
+      lambda.segment(at, size) = RealEigenvalues(block);
+      continue;
+    }
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(block, false);
     if (eig.info() != Eigen::Success) ThrowNotConverged(a);
     lambda.segment(at, size) = eig.eigenvalues();
   }
   return lambda;
+}
+
+bool HasCoupledBlocks(const Eigen::MatrixXd& a) {
+  const BlockTriangularForm form = BlockTriangular(a);
+  if (form.blocks() <= 1) return false;
+  std::vector<int> block_of(form.perm.size());
+  for (int b = 0; b < form.blocks(); ++b)
+    for (int k = form.start[b]; k < form.start[b + 1]; ++k) block_of[form.perm[k]] = b;
+  for (Eigen::Index j = 0; j < a.cols(); ++j)
+    for (Eigen::Index i = 0; i < a.rows(); ++i)
+      if (a(i, j) != 0.0 && block_of[i] != block_of[j]) return true;
+  return false;
 }
 
 }  // namespace deb

@@ -31,6 +31,11 @@ struct BlockTriangularForm {
 // permutation, decided by which entries are exactly zero).
 BlockTriangularForm BlockTriangular(const Eigen::MatrixXd& a);
 
+// True if A is reducible and some entry couples two of its blocks (a
+// cascade: a stage drives the next); false for an irreducible A and for one
+// whose blocks stand apart (a modal realisation, blockdiag of 2x2 blocks).
+bool HasCoupledBlocks(const Eigen::MatrixXd& a);
+
 // The eigenvalues of a square matrix, found block by block on its block
 // triangular form (complex pairs as exact conjugates, real eigenvalues with
 // Im = 0 exactly). @throws InputError (ThrowNotConverged) if an eigenvalue

@@ -95,8 +95,9 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
     BuildModal(bal, 1e-3 / kEps, true);
   } else if (method == Method::kSchur) {
     BuildBlockDiagonal(bal);
-  } else if (BlockTriangular(a).blocks() == 1) {
-    // Irreducible (a dense model, a loop): the block-diagonal form. Its
+  } else if (!HasCoupledBlocks(a)) {
+    // Irreducible (a dense model, a loop), or blocks standing apart (a
+    // modal realisation): the block-diagonal form. Its
     // rounding is that of a backward-stable solve times at most about
     // cond(Y): kept as it is up to kVerifyCondition, checked against the
     // Hessenberg solve up to kMaxBlockCondition (a companion form of close
@@ -400,16 +401,16 @@ std::string FrequencyResponse::Describe() const {
     case Method::kSchur: {
       int largest = 0;
       for (const Term& t : terms_) largest = std::max(largest, t.size);
-      os << "block-diagonal form (" << terms_.size() << (terms_.size() == 1 ? " group" : " groups")
+      os << "the block-diagonal form (" << terms_.size() << (terms_.size() == 1 ? " group" : " groups")
          << ", the largest of " << largest << (largest == 1 ? " state" : " states") << "; cond(Y) " << condition_
          << ")";
       break;
     }
     case Method::kModal:
-      os << "modal form (eigenvector condition " << condition_ << ")";
+      os << "the modal form (eigenvector condition " << condition_ << ")";
       break;
     default:
-      os << "Hessenberg solve at every frequency (" << hessenberg_reason_ << ")";
+      os << "the Hessenberg solve at every frequency (" << hessenberg_reason_ << ")";
   }
   return os.str();
 }

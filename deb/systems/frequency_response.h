@@ -85,10 +85,10 @@ class FrequencyResponse {
   // form (huge or infinite if A is defective); 1 for the Hessenberg form asked
   // for directly.
   double condition() const { return condition_; }
-  // Which form evaluates H and why, for `deb check`: "block-diagonal form
-  // (996 groups, the largest of 4 states; cond(Y) 1)", "modal form
-  // (eigenvector condition 14)", or "Hessenberg solve at every frequency
-  // (...the reason...)".
+  // Which form evaluates H and why, for `deb check`: "the block-diagonal
+  // form (996 groups, the largest of 4 states; cond(Y) 1)", "the modal form
+  // (eigenvector condition 14)", "the Hessenberg solve at every frequency
+  // (...the reason...)", or "a static gain".
   std::string Describe() const;
   // Size of the largest cluster (a group of poles brought to complex Schur
   // form together): 1 if every real pole and pole pair stands alone, 2 for a

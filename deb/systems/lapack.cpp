@@ -74,6 +74,19 @@ RealSchurForm RealSchur(const Eigen::MatrixXd& a) {
   return form;
 }
 
+Eigen::VectorXcd RealEigenvalues(const Eigen::MatrixXd& a) {
+  const lapack_int n = RequireSquare(a, "eigenvalues (dgees)");
+  if (n == 0) return Eigen::VectorXcd(0);
+  Eigen::MatrixXd t = a;
+  Eigen::VectorXd wr(n), wi(n);
+  lapack_int sdim = 0;
+  double no_vectors = 0.0;
+  const lapack_int info = LAPACKE_dgees(LAPACK_COL_MAJOR, 'N', 'N', nullptr, n, t.data(), n, &sdim, wr.data(),
+                                        wi.data(), &no_vectors, 1);
+  CheckEigenInfo(info, "eigenvalues (dgees)", n);
+  return Pack(wr, wi);
+}
+
 namespace {
 
 // T1 X + isgn X op(T2) = C, op(T2) = T2^T ('T') or T2 ('N').

@@ -39,6 +39,10 @@ struct RealSchurForm {
 //         iteration does not converge.
 RealSchurForm RealSchur(const Eigen::MatrixXd& a);
 
+// The eigenvalues alone (dgees without Schur vectors), as RealSchur's.
+// @throws as RealSchur.
+Eigen::VectorXcd RealEigenvalues(const Eigen::MatrixXd& a);
+
 // X with T1 X + X T2^T = C, T1 (n1 x n1) and T2 (n2 x n2) in real Schur form,
 // C n1 x n2 (dtrsyl). dtrsyl returns X scaled by a factor <= 1 chosen to
 // avoid overflow; the scale is divided out, so an X too large for double has

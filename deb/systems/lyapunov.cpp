@@ -414,7 +414,7 @@ Eigen::MatrixXd OutputCovariance(const StateSpace& sys, const Eigen::MatrixXd& w
   // stage by stage below, since a Schur form of the whole A could round
   // away the couplings between stages (frequency_response.h).
   std::shared_ptr<const RealBlockDiagonalForm> form;
-  if (BlockTriangular(bal.A()).blocks() == 1) form = SharedRealBlockDiagonal(bal.A());
+  if (!HasCoupledBlocks(bal.A())) form = SharedRealBlockDiagonal(bal.A());
   const Eigen::VectorXcd poles = form ? form->eigenvalues : bal.Poles();
   const double stable_margin = 64.0 * kEps * bal.A().norm();
   std::ostringstream unstable;
