@@ -165,7 +165,12 @@ TEST_CASE("a 12-state system with a defective double pole matches a dense solve"
                          testing::RandomMatrix(p, m, rng));
     const FrequencyResponse h(sys);
     CHECK(h.method() == Method::kSchur);
-    CHECK(h.largest_block() == 2);
+    // The double pole is one group of 2 states: two real 1x1 blocks (a
+    // cluster, largest_block() 2) or, as rounding goes in another build, one
+    // 2x2 block of a pair 1e-8 off the axis (largest_block() 1; GCC and Clang
+    // differ here). Either way the group is evaluated whole.
+    CHECK(h.largest_block() <= 2);
+    CHECK(h.Describe().find("the largest of 2 states") != std::string::npos);
     CHECK(WorstErrorVsDense(sys, h, TestFrequencies()) <= 1e-9);
   }
 }
