@@ -300,6 +300,11 @@ class RawFile {
     size_ = in_ ? static_cast<std::uint64_t>(in_.tellg()) : 0;
   }
   std::uint64_t size() const { return size_; }
+  // True if `n` bytes at HDF5 address `address` lie in the file; addresses
+  // count from `base`, the end of the user block.
+  bool Holds(std::uint64_t base, std::uint64_t address, std::uint64_t n) const {
+    return address <= size_ && base <= size_ - address && n <= size_ - base - address;
+  }
   // `n` bytes at `at`; false if they are not all in the file.
   bool Read(std::uint64_t at, std::uint64_t n, unsigned char* out) {
     if (at > size_ || n > size_ - at) return false;
@@ -323,10 +328,7 @@ class RawFile {
 // whose B-tree led back into itself had it allocate 24 GB.
 std::string SymbolTableProblem(RawFile& raw, std::uint64_t base, std::size_t sa, std::size_t ss, std::uint64_t btree,
                                std::uint64_t heap) {
-  const std::uint64_t size = raw.size();
-  const auto outside = [&](std::uint64_t at, std::uint64_t n) {
-    return at > size || base > size - at || n > size - base - at;
-  };
+  const auto outside = [&](std::uint64_t at, std::uint64_t n) { return !raw.Holds(base, at, n); };
   const auto damaged = [](const std::string& what, std::uint64_t at) {
     return "has a damaged group index: " + what + " at address " + std::to_string(at) + "; is the file damaged?";
   };
@@ -414,9 +416,7 @@ std::string ObjectHeaderProblem(RawFile& raw, std::uint64_t base, std::size_t ad
   constexpr std::size_t kMaxChunks = 1000;
   constexpr std::uint64_t kMaxCheckedBytes = 64ull << 20;
   const std::uint64_t size = raw.size();
-  const auto outside = [&](std::uint64_t at, std::uint64_t n) {
-    return at > size || base > size - at || n > size - base - at;
-  };
+  const auto outside = [&](std::uint64_t at, std::uint64_t n) { return !raw.Holds(base, at, n); };
   const auto past_end = [&](const char* what, std::uint64_t at, std::uint64_t n) {
     return std::string("has ") + what + " of " + std::to_string(n) + " bytes at address " + std::to_string(at) +
            ", which the file (" + std::to_string(size) + " bytes) does not hold; is the file damaged?";
@@ -711,7 +711,7 @@ const std::map<std::uint64_t, std::uint64_t>* HeapCollection(Hdf5Reader::Handle&
   const std::size_t length = h.length_bytes;
   const auto align = [](std::uint64_t n) { return (n + 7) / 8 * 8; };
   const std::uint64_t header = align(8 + length), object_header = 8 + length;
-  if (address > h.raw->size() || h.base > h.raw->size() - address) return nullptr;
+  if (!h.raw->Holds(h.base, address, 0)) return nullptr;
   const std::uint64_t at = h.base + address;
   unsigned char head[16];
   if (!h.raw->Read(at, 8 + length, head) || std::memcmp(head, "GCOL", 4) != 0 || head[4] != 1) return nullptr;
@@ -752,8 +752,7 @@ void CheckVariableText(Hdf5Reader::Handle& h, const std::string& path, const std
   const std::size_t each = 8 + h.address_bytes;
   if (s.elements > (h.raw->size() + each - 1) / each) fail("is damaged: its texts run past the end of the file");
   std::vector<unsigned char> refs(s.elements * each);
-  if (offset > h.raw->size() || h.base > h.raw->size() - offset ||
-      !h.raw->Read(h.base + offset, refs.size(), refs.data()))
+  if (!h.raw->Holds(h.base, offset, 0) || !h.raw->Read(h.base + offset, refs.size(), refs.data()))
     fail("is damaged: its texts run past the end of the file");
   for (std::size_t i = 0; i < s.elements; ++i) {
     const unsigned char* r = refs.data() + i * each;

@@ -86,8 +86,9 @@ Eigen::VectorXcd BlockEigenvalues(const Eigen::MatrixXd& a) {
   return lambda;
 }
 
-bool HasCoupledBlocks(const Eigen::MatrixXd& a) {
-  const BlockTriangularForm form = BlockTriangular(a);
+bool HasCoupledBlocks(const Eigen::MatrixXd& a) { return HasCoupledBlocks(a, BlockTriangular(a)); }
+
+bool HasCoupledBlocks(const Eigen::MatrixXd& a, const BlockTriangularForm& form) {
   if (form.blocks() <= 1) return false;
   std::vector<int> block_of(form.perm.size());
   for (int b = 0; b < form.blocks(); ++b)

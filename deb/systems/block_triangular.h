@@ -35,6 +35,8 @@ BlockTriangularForm BlockTriangular(const Eigen::MatrixXd& a);
 // cascade: a stage drives the next); false for an irreducible A and for one
 // whose blocks stand apart (a modal realisation, blockdiag of 2x2 blocks).
 bool HasCoupledBlocks(const Eigen::MatrixXd& a);
+// The same, for A's block triangular form already found.
+bool HasCoupledBlocks(const Eigen::MatrixXd& a, const BlockTriangularForm& form);
 
 // The eigenvalues of a square matrix, found block by block on its block
 // triangular form (complex pairs as exact conjugates, real eigenvalues with

@@ -91,11 +91,15 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
     return;
   }
 
+  // One block per stage of a cascade (block_triangular.h): the poles are
+  // found stage by stage where there are several.
+  const BlockTriangularForm structure = BlockTriangular(a);
+  const bool reducible = structure.blocks() > 1;
   if (method == Method::kModal) {
-    BuildModal(bal, 1e-3 / kEps, true);
+    BuildModal(bal, reducible, 1e-3 / kEps, true);
   } else if (method == Method::kSchur) {
-    BuildBlockDiagonal(bal);
-  } else if (!HasCoupledBlocks(a)) {
+    BuildBlockDiagonal(bal, reducible);
+  } else if (!HasCoupledBlocks(a, structure)) {
     // Irreducible (a dense model, a loop), or blocks standing apart (a
     // modal realisation): the block-diagonal form. Its
     // rounding is that of a backward-stable solve times at most about
@@ -103,7 +107,7 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
     // Hessenberg solve up to kMaxBlockCondition (a companion form of close
     // modes decouples only with a large Y), and beyond, or where they
     // disagree, the Hessenberg solve takes over, at O(n^2 m) per frequency.
-    BuildBlockDiagonal(bal);
+    BuildBlockDiagonal(bal, reducible);
     if (condition_ > kVerifyCondition) {
       columns_ = static_cast<int>(residues_.cols());
       FrequencyResponse reference(sys, Method::kHessenberg);
@@ -125,8 +129,8 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
     // whole A rounds them away, the Hessenberg solve keeps them. The modal
     // form (or the block-diagonal one where cond(V) > kMaxModalCondition)
     // is used where it agrees with the Hessenberg solve.
-    const bool modal = BuildModal(bal, kMaxModalCondition, false);
-    if (!modal) BuildBlockDiagonal(bal);
+    const bool modal = BuildModal(bal, reducible, kMaxModalCondition, false);
+    if (!modal) BuildBlockDiagonal(bal, reducible);
     if (!modal || condition_ > kVerifyCondition || HasClusteredPoles(poles_) || SpansDecades(poles_)) {
       columns_ = static_cast<int>(residues_.cols());
       FrequencyResponse reference(sys, Method::kHessenberg);
@@ -141,7 +145,7 @@ FrequencyResponse::FrequencyResponse(const StateSpace& sys, Method method)
   columns_ = static_cast<int>(residues_.cols());
 }
 
-bool FrequencyResponse::BuildModal(const StateSpace& bal, double max_condition, bool required) {
+bool FrequencyResponse::BuildModal(const StateSpace& bal, bool reducible, double max_condition, bool required) {
   const Eigen::MatrixXd& a = bal.A();
   const Eigen::EigenSolver<Eigen::MatrixXd> eig(a, true);
   if (eig.info() != Eigen::Success) ThrowNotConverged(a);
@@ -168,7 +172,7 @@ bool FrequencyResponse::BuildModal(const StateSpace& bal, double max_condition, 
   // The poles reported (stability, modes, the grid) are the diagonal
   // blocks' own where A is reducible (a cascade): those of the dense solver
   // can cross the imaginary axis (block_triangular.h).
-  poles_ = BlockTriangular(a).blocks() > 1 ? BlockEigenvalues(a) : lambda;
+  poles_ = reducible ? BlockEigenvalues(a) : lambda;
   method_ = Method::kModal;
   const Eigen::MatrixXcd ct = bal.C() * v;      // p x n
   const Eigen::MatrixXcd bt = v_inv * bal.B();  // n x m
@@ -194,14 +198,14 @@ bool FrequencyResponse::BuildModal(const StateSpace& bal, double max_condition, 
   return true;
 }
 
-void FrequencyResponse::BuildBlockDiagonal(const StateSpace& bal) {
+void FrequencyResponse::BuildBlockDiagonal(const StateSpace& bal, bool reducible) {
   const Eigen::MatrixXd& a = bal.A();
   const std::shared_ptr<const RealBlockDiagonalForm> shared = SharedRealBlockDiagonal(a);
   const RealBlockDiagonalForm& form = *shared;
   method_ = Method::kSchur;
   condition_ = form.condition;
   largest_block_ = 1;
-  poles_ = BlockTriangular(a).blocks() > 1 ? BlockEigenvalues(a) : form.eigenvalues;
+  poles_ = reducible ? BlockEigenvalues(a) : form.eigenvalues;
   const Eigen::MatrixXd l = form.Left(bal.C());   // p x n
   const Eigen::MatrixXd r = form.Right(bal.B());  // n x m
   const Eigen::MatrixXd& t = form.t;
@@ -239,8 +243,7 @@ void FrequencyResponse::BuildBlockDiagonal(const StateSpace& bal) {
       // L (sI - T)^-1 R = (s P - Q) / ((s - a)^2 - b c) with
       //   P = l1 r1 + l2 r2,  Q = a P - b l1 r2 - c l2 r1.
       const double a0 = t(s0, s0), b0 = t(s0, s0 + 1), c0 = t(s0 + 1, s0);
-      const double im = std::sqrt(std::abs(b0)) * std::sqrt(std::abs(c0));
-      terms_.push_back({TermKind::kPolePair, a0, im, s0, 2});
+      terms_.push_back({TermKind::kPolePair, a0, form.eigenvalues(s0).imag(), s0, 2});
       const Eigen::VectorXd p = outer(s0, s0) + outer(s0 + 1, s0 + 1);
       cols.push_back(p);
       cols.push_back(a0 * p - b0 * outer(s0, s0 + 1) - c0 * outer(s0 + 1, s0));

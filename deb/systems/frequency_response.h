@@ -133,8 +133,10 @@ class FrequencyResponse {
   [[noreturn]] void ThrowOnPole(double f_hz, std::complex<double> pole) const;
   // The modal form if cond(V) <= max_condition; else false (or, if
   // required, InputError).
-  bool BuildModal(const StateSpace& balanced, double max_condition, bool required);
-  void BuildBlockDiagonal(const StateSpace& balanced);
+  // `reducible`: A has several blocks (block_triangular.h), whose poles are
+  // then found block by block.
+  bool BuildModal(const StateSpace& balanced, bool reducible, double max_condition, bool required);
+  void BuildBlockDiagonal(const StateSpace& balanced, bool reducible);
   void StoreResidues(const std::vector<Eigen::VectorXd>& columns);
   // Two eigenvalues within kClusterGap of each other (relative).
   static bool HasClusteredPoles(const Eigen::VectorXcd& lambda);

@@ -296,6 +296,23 @@ Eigen::MatrixXd SolveGroupPair(const Eigen::MatrixXd& di, const Eigen::MatrixXd&
   return out;
 }
 
+// X with D X + X D^T + Q = 0 for the block-diagonal D of `form` and a
+// symmetric Q: one SolveGroupPair per pair of groups i <= j, X_ji = X_ij^T.
+Eigen::MatrixXd SolveGroupLyapunov(const RealBlockDiagonalForm& form, const Eigen::MatrixXd& q) {
+  Eigen::MatrixXd x(q.rows(), q.cols());
+  for (int i = 0; i < form.groups(); ++i) {
+    const int si = form.start[i], ki = form.group_size(i);
+    const Eigen::MatrixXd di = form.t.block(si, si, ki, ki);
+    for (int j = i; j < form.groups(); ++j) {
+      const int sj = form.start[j], kj = form.group_size(j);
+      const Eigen::MatrixXd xij = SolveGroupPair(di, form.t.block(sj, sj, kj, kj), q.block(si, sj, ki, kj));
+      x.block(si, sj, ki, kj) = xij;
+      if (j != i) x.block(sj, si, kj, ki) = xij.transpose();
+    }
+  }
+  return x;
+}
+
 // C P C^T on the block-diagonal form A = S D S^-1 (real_block_diagonal.h):
 // with L = C S, R = S^-1 B, the state covariance is P = S X S^T where
 //   D_i X_ij + X_ij D_j^T + R_i W R_j^T = 0
@@ -319,17 +336,7 @@ std::optional<Eigen::MatrixXd> BlockDiagonalCovariance(const RealBlockDiagonalFo
   const Eigen::MatrixXd r = form.Right(bal.B());
   const Eigen::MatrixXd q = r * w * r.transpose();
   const int n = static_cast<int>(q.rows()), groups = form.groups();
-  Eigen::MatrixXd x(n, n);
-  for (int i = 0; i < groups; ++i) {
-    const int si = form.start[i], ki = form.group_size(i);
-    const Eigen::MatrixXd di = form.t.block(si, si, ki, ki);
-    for (int j = i; j < groups; ++j) {
-      const int sj = form.start[j], kj = form.group_size(j);
-      const Eigen::MatrixXd xij = SolveGroupPair(di, form.t.block(sj, sj, kj, kj), q.block(si, sj, ki, kj));
-      x.block(si, sj, ki, kj) = xij;
-      if (j != i) x.block(sj, si, kj, ki) = xij.transpose();
-    }
-  }
+  const Eigen::MatrixXd x = SolveGroupLyapunov(form, q);
   if (!x.allFinite()) return std::nullopt;
   Eigen::MatrixXd y = l * (x * l.transpose());
   y = 0.5 * (y + y.transpose()).eval();
@@ -342,17 +349,7 @@ std::optional<Eigen::MatrixXd> BlockDiagonalCovariance(const RealBlockDiagonalFo
         form.t.block(form.start[g], form.start[g], form.group_size(g), form.group_size(g));
   Eigen::MatrixXd ex = e * x;
   ex += ex.transpose().eval();
-  Eigen::MatrixXd dx(n, n);
-  for (int i = 0; i < groups; ++i) {
-    const int si = form.start[i], ki = form.group_size(i);
-    const Eigen::MatrixXd di = form.t.block(si, si, ki, ki);
-    for (int j = i; j < groups; ++j) {
-      const int sj = form.start[j], kj = form.group_size(j);
-      const Eigen::MatrixXd dij = SolveGroupPair(di, form.t.block(sj, sj, kj, kj), ex.block(si, sj, ki, kj));
-      dx.block(si, sj, ki, kj) = dij;
-      if (j != i) dx.block(sj, si, kj, ki) = dij.transpose();
-    }
-  }
+  const Eigen::MatrixXd dx = SolveGroupLyapunov(form, ex);
   const Eigen::MatrixXd dy = l * (dx * l.transpose());
   for (int i = 0; i < y.rows(); ++i) {
     const double rounding = 8.0 * n * kEps * form.condition * abs_y(i, i);

@@ -81,6 +81,13 @@ void GatherClusters(RealSchurForm& f, double gap, double floor, int& failed) {
   }
 }
 
+// Columns [s, e) of Y back to the identity's from row `lo` down: a group not
+// (or no longer) decoupled from the rows above it.
+void ResetColumns(Eigen::MatrixXd& y, int lo, int s, int e) {
+  y.block(lo, s, e - lo, e - s).setZero();
+  y.block(s, s, e - s, e - s).setIdentity();
+}
+
 // Decouples blocks [first, last) of T (starts in `blocks`) group by group,
 // each from the rows [lo, s) above it: the column block Y(lo:s, s:e) with
 //   T(lo:s, lo:s) X - X T(s:e, s:e) = -T(lo:s, s:e).
@@ -97,8 +104,7 @@ void DecoupleBlocks(const Eigen::MatrixXd& t, Eigen::MatrixXd& y, const std::vec
     const auto merge_up = [&] {
       s = group_start.back();
       group_start.pop_back();
-      y.block(lo, s, e - lo, e - s).setZero();
-      y.block(s, s, e - s, e - s).setIdentity();
+      ResetColumns(y, lo, s, e);
     };
     // A cluster is never split: its poles are too close for the coupling
     // to be bounded by anything but rounding.
@@ -173,8 +179,7 @@ RealBlockDiagonalForm RealBlockDiagonal(const Eigen::MatrixXd& a, double max_cou
         y.block(0, s, s, e - s) = above;
         group_start.insert(group_start.end(), local.begin(), local.end());
       } else {
-        y.block(0, s, e, e - s).setZero();
-        y.block(s, s, e - s, e - s).setIdentity();
+        ResetColumns(y, 0, s, e);
       }
     }
     if (!done) DecoupleBlocks(f.t, y, blocks, label, b, end, 0, max_coupling, group_start);

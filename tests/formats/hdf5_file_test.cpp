@@ -22,6 +22,7 @@
 #include "deb/formats/hdf5_file.h"
 #include <hdf5.h>
 #include "tests/support/contains.h"
+#include "tests/support/file_bytes.h"
 
 namespace deb {
 namespace {
@@ -163,11 +164,7 @@ TEST_CASE("an object header claiming more than the file holds is refused before 
     H5Pclose(access);
   }
   io::RequireSelfContainedHdf5(file);  // whole, it passes
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  std::string bytes = test::ReadAll(file);
   // The last "OHDR" is the dataset's (the root group's comes first). Its
   // flags byte gives the width of the first chunk's size and what precedes it.
   const std::size_t at = bytes.rfind("OHDR");
@@ -314,10 +311,7 @@ TEST_CASE("text whose heap entry is damaged is refused before libhdf5 reads it (
     w.Texts("list", {"x", "y"});
     w.Close();
   }
-  const auto bytes = [&] {
-    std::ifstream in(file, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  };
+  const auto bytes = [&] { return test::ReadAll(file); };
   const auto patch = [&](std::size_t at, const std::string& with) {
     std::fstream io(file, std::ios::in | std::ios::out | std::ios::binary);
     io.seekp(static_cast<std::streamoff>(at));
@@ -358,8 +352,7 @@ TEST_CASE("the same values written a second later give the same file (no times i
     w.Numbers("a/b/c", {1.0, 2.0});
     w.Rows("a/m", {{1.0, 2.0}, {3.0, 4.0}});
     w.Close();
-    std::ifstream in(dir.File(name), std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return test::ReadAll(dir.File(name));
   };
   const std::string first = write("first.h5");
   // HDF5 stores times in whole seconds.

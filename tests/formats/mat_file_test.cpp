@@ -30,6 +30,7 @@
 #include "tests/support/contains.h"
 #include "tests/support/text_edit.h"
 #include "tests/support/contributor_of.h"
+#include "tests/support/file_bytes.h"
 
 namespace deb {
 namespace {
@@ -289,8 +290,7 @@ TEST_CASE("hostile files: a clear error naming the file, no crash") {
       w.Matrix("B", Eigen::MatrixXd::Ones(100, 1));
     }
     REQUIRE(MatFile(path).Matrix("A") == big);
-    std::ifstream in(path, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = test::ReadAll(path);
     for (const double fraction : {0.3, 0.6, 0.99}) {
       CAPTURE(fraction);
       dir.WriteText("cut.mat", bytes.substr(0, static_cast<std::size_t>(fraction * static_cast<double>(bytes.size()))));
@@ -393,8 +393,7 @@ TEST_CASE("the files the fuzzer found: refused before matio or libhdf5 allocates
   // A real version 7.3 file whose root group's B-tree (one leaf node at byte 648, address 136)
   // is changed to name its symbol table node twice, or to claim a level above its leaves.
   {
-    std::ifstream in(corpus + "ss_v73.mat", std::ios::binary);
-    const std::string whole((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string whole = test::ReadAll(corpus + "ss_v73.mat");
     REQUIRE(whole.substr(648, 8) == std::string("TREE\x00\x00\x01\x00", 8));
     const TempDir dir;
     std::string twice = whole;
@@ -412,8 +411,7 @@ TEST_CASE("the files the fuzzer found: refused before matio or libhdf5 allocates
   }
   // The same file with that object's first header chunk claiming 2 GB.
   {
-    std::ifstream in(corpus + "header_continuation_v73.mat", std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string bytes = test::ReadAll(corpus + "header_continuation_v73.mat");
     const std::size_t size_at = 512 + 6240 + 8;  // the user block, the header's address, its size field
     REQUIRE(bytes.substr(size_at - 8, 8) == std::string("\x01\x00\x07\x00\x01\x00\x00\x00", 8));
     bytes.replace(size_at, 4, "\xff\xff\xff\x7f", 4);
@@ -436,8 +434,7 @@ TEST_CASE("the files the fuzzer found: refused before matio or libhdf5 allocates
   // same file stores variable 3's values as type 0 too, which is refused first; with that part's
   // type set back to miDOUBLE (9) the cell array is what is refused.
   CHECK_ERROR(MatFile(corpus + "huge_cell.mat"), "its variable 3 (at byte 264): its values are stored as data type 0");
-  std::ifstream in(corpus + "huge_cell.mat", std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes = test::ReadAll(corpus + "huge_cell.mat");
   REQUIRE(bytes.size() == 840);
   bytes[320] = 9;
   // ... and a cell of variable 5 has its (empty) name tagged as type 0x1001: set back to miINT8.

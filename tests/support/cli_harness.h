@@ -14,6 +14,8 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/file_bytes.h"
+
 namespace deb::test {
 
 namespace fs = std::filesystem;
@@ -22,13 +24,6 @@ struct Command {
   int exit_code = -1;  // -1: killed by a signal
   std::string out, err;
 };
-
-inline std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 inline fs::path WriteFile(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
