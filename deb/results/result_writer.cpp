@@ -152,6 +152,200 @@ nlohmann::json GuidanceJson(const OutputResult& o, const FrequencyGrid& grid) {
   return j;
 }
 
+// A contributor's factor on its source's PSD that puts the output at its
+// limit and, when the source feeds several contributors, the factor that
+// scales them all.
+void AllocationJson(nlohmann::json& jc, const OutputResult& o, std::size_t c) {
+  const ContributorResult& cr = o.contributors[c];
+  const Allocation a = AllocationFactor(o, c);
+  jc["allocation_factor"] = a.factor ? nlohmann::json(*a.factor) : nlohmann::json(nullptr);
+  jc["allocation_note"] = a.factor ? nlohmann::json(nullptr) : nlohmann::json(a.note);
+  std::vector<std::size_t> group;
+  nlohmann::json shared = nlohmann::json::array();
+  for (std::size_t k = 0; k < o.contributors.size(); ++k)
+    if (o.contributors[k].source == cr.source) {
+      group.push_back(k);
+      if (k != c) shared.push_back(o.contributors[k].name);
+    }
+  if (group.size() > 1) {
+    const Allocation g = SourceAllocationFactor(o, group);
+    jc["source_shared_with"] = shared;
+    jc["source_allocation_factor"] = g.factor ? nlohmann::json(*g.factor) : nlohmann::json(nullptr);
+    jc["source_allocation_note"] = g.factor ? nlohmann::json(nullptr) : nlohmann::json(g.note);
+  }
+}
+
+// A contributor's variance split over its source's channels, and the cross terms.
+nlohmann::json BreakdownJson(const ContributorResult& cr) {
+  nlohmann::json parts = nlohmann::json::array();
+  for (const ContributorResult::ChannelPart& p : cr.channels)
+    parts.push_back({{"channel", p.channel},
+                     {"rms", std::sqrt(std::max(p.variance, 0.0))},
+                     {"variance", p.variance},
+                     {"share_of_contributor", cr.variance > 0.0 ? p.variance / cr.variance : 0.0}});
+  return {{"channels", parts}, {"cross_variance", cr.cross_variance}};
+}
+
+// The exact (Lyapunov) figures of a contributor, or null and why not.
+void ExactJson(nlohmann::json& jc, const ContributorResult& cr) {
+  if (cr.exact_variance) {
+    jc["exact_rms"] = std::sqrt(*cr.exact_variance);
+    jc["exact_variance"] = *cr.exact_variance;
+    // Everything the grid figure misses: the tails beyond its ends and its
+    // quadrature error (tail_variance_estimate is the tails alone).
+    jc["exact_minus_grid_variance"] = *cr.exact_variance - cr.variance;
+    jc["exact_note"] = nullptr;
+  } else {
+    jc["exact_rms"] = nullptr;
+    jc["exact_variance"] = nullptr;
+    jc["exact_minus_grid_variance"] = nullptr;
+    jc["exact_note"] = cr.exact_note;
+  }
+  jc["tail_variance_estimate"] = NumberOrNull(cr.tail_variance_estimate);
+}
+
+nlohmann::json ContributorJson(const OutputResult& o, std::size_t c) {
+  const ContributorResult& cr = o.contributors[c];
+  nlohmann::json jc;
+  jc["name"] = cr.name;
+  jc["source"] = cr.source;
+  jc["path"] = cr.path;
+  if (!cr.inputs.empty()) jc["inputs"] = cr.inputs;
+  if (!cr.group.empty()) jc["group"] = cr.group;
+  if (!cr.channels.empty()) jc["breakdown"] = BreakdownJson(cr);
+  if (!cr.tones.empty()) {
+    nlohmann::json tones = nlohmann::json::array();
+    for (const ContributorResult::Tone& t : cr.tones)
+      tones.push_back({{"f_hz", t.f_hz}, {"rms", std::sqrt(t.variance)}, {"variance", t.variance}});
+    jc["tones"] = tones;
+  }
+  jc["rms"] = std::sqrt(cr.variance);
+  jc["variance"] = cr.variance;
+  jc["share"] = o.variance > 0.0 ? cr.variance / o.variance : 0.0;
+  ExactJson(jc, cr);
+  nlohmann::json modes = nlohmann::json::array();
+  for (const ModeShare& m : cr.top_modes)
+    modes.push_back(
+        {{"mode", m.mode}, {"f_hz", m.f_hz}, {"zeta", m.zeta}, {"variance", m.variance}, {"share", m.share}});
+  jc["top_modes"] = modes;
+  jc["top_modes_of"] =
+      cr.top_modes_of == ModeSplit::kNone ? nlohmann::json(nullptr) : nlohmann::json(ToString(cr.top_modes_of));
+  if (o.rms_max) AllocationJson(jc, o, c);
+  return jc;
+}
+
+// The output's requirement (or null) and its band requirements.
+void RequirementsJson(nlohmann::json& jo, const OutputResult& o) {
+  if (o.rms_max) jo["requirement"] = {{"rms_max", *o.rms_max}, {"pass", o.pass()}, {"margin", *o.rms_max - o.rms()}};
+  else jo["requirement"] = nullptr;
+  nlohmann::json band_requirements = nlohmann::json::array();
+  for (const BandRequirementResult& b : o.band_requirements)
+    band_requirements.push_back({{"lo_hz", b.requirement.lo_hz},
+                                 {"hi_hz", b.requirement.hi_hz},
+                                 {"rms_max", b.requirement.rms_max},
+                                 {"rms", b.rms()},
+                                 {"pass", b.pass()},
+                                 {"margin", b.requirement.rms_max - b.rms()}});
+  jo["band_requirements"] = band_requirements;
+}
+
+nlohmann::json BandsJson(const OutputResult& o) {
+  nlohmann::json bands = nlohmann::json::array();
+  for (const BandResult& b : o.bands) {
+    nlohmann::json jb = {{"lo_hz", b.band.lo_hz}, {"hi_hz", b.band.hi_hz}, {"rms", std::sqrt(b.variance)},
+                         {"variance", b.variance}};
+    nlohmann::json bc = nlohmann::json::array();
+    for (std::size_t c = 0; c < o.contributors.size(); ++c)
+      bc.push_back({{"name", o.contributors[c].name},
+                    {"rms", std::sqrt(b.contributor_variance[c])},
+                    {"variance", b.contributor_variance[c]}});
+    jb["contributors"] = bc;
+    bands.push_back(jb);
+  }
+  return bands;
+}
+
+// A measured reference against the budget, overall and per band; a band
+// reaching beyond the measurement has null measured figures.
+nlohmann::json ReferenceJson(const OutputResult& o, const ReferenceResult& ref) {
+  const double budget_covered = ref.budget_variance;
+  nlohmann::json rb = nlohmann::json::array();
+  for (std::size_t b = 0; b < o.bands.size(); ++b) {
+    nlohmann::json jb = {{"lo_hz", o.bands[b].band.lo_hz}, {"hi_hz", o.bands[b].band.hi_hz},
+                         {"budget_rms", std::sqrt(o.bands[b].variance)}};
+    if (const auto& v = ref.band_variance[b]) {
+      jb["measured_rms"] = std::sqrt(*v);
+      jb["ratio"] = o.bands[b].variance > 0.0 ? nlohmann::json(std::sqrt(*v / o.bands[b].variance))
+                                              : nlohmann::json(nullptr);
+      jb["unexplained_rms"] = std::sqrt(std::max(*v - o.bands[b].variance, 0.0));
+    } else {
+      jb["measured_rms"] = nullptr;
+      jb["ratio"] = nullptr;
+      jb["unexplained_rms"] = nullptr;
+    }
+    rb.push_back(jb);
+  }
+  return {{"name", ref.name},
+          {"covered_hz", {ref.covered_lo_hz, ref.covered_hi_hz}},
+          {"measured_rms", std::sqrt(ref.variance)},
+          {"budget_rms", std::sqrt(budget_covered)},
+          {"ratio", budget_covered > 0.0 ? nlohmann::json(std::sqrt(ref.variance / budget_covered))
+                                         : nlohmann::json(nullptr)},
+          {"unexplained_rms", std::sqrt(std::max(ref.variance - budget_covered, 0.0))},
+          {"bands", rb}};
+}
+
+nlohmann::json GroupsJson(const OutputResult& o, const std::vector<GroupResult>& groups) {
+  nlohmann::json jg = nlohmann::json::array();
+  for (const GroupResult& g : groups) {
+    nlohmann::json members = nlohmann::json::array();
+    for (std::size_t c : g.contributors) members.push_back(o.contributors[c].name);
+    nlohmann::json subgroups = g.subgroups;
+    nlohmann::json gb = nlohmann::json::array();
+    for (std::size_t b = 0; b < o.bands.size(); ++b)
+      gb.push_back({{"lo_hz", o.bands[b].band.lo_hz}, {"hi_hz", o.bands[b].band.hi_hz},
+                    {"rms", std::sqrt(g.band_variance[b])}, {"variance", g.band_variance[b]}});
+    jg.push_back({{"name", g.name}, {"path", g.path}, {"depth", g.depth}, {"variance", g.variance},
+                  {"rms", std::sqrt(g.variance)}, {"share", g.share}, {"members", members},
+                  {"subgroups", subgroups}, {"bands", gb}});
+  }
+  return jg;
+}
+
+nlohmann::json OutputJson(const OutputResult& o, const FrequencyGrid& grid) {
+  nlohmann::json jo;
+  jo["name"] = o.name;
+  jo["signal"] = o.signal;
+  jo["unit"] = o.unit;
+  jo["rms"] = o.rms();
+  jo["variance"] = o.variance;
+  if (o.metric)  // rms is then sqrt(E[MA^2]) or sqrt(E[MSD^2]) over the window
+    jo["metric"] = {{"type", ToString(o.metric->type)}, {"window_s", o.metric->window_s}};
+  else
+    jo["metric"] = nullptr;
+  RequirementsJson(jo, o);
+  jo["guidance"] = GuidanceJson(o, grid);
+  nlohmann::json contributors = nlohmann::json::array();
+  for (std::size_t c = 0; c < o.contributors.size(); ++c) contributors.push_back(ContributorJson(o, c));
+  jo["contributors"] = contributors;
+  jo["bands"] = BandsJson(o);
+  if (!o.references.empty()) {
+    nlohmann::json refs = nlohmann::json::array();
+    for (const ReferenceResult& ref : o.references) refs.push_back(ReferenceJson(o, ref));
+    jo["references"] = refs;
+  }
+  if (const std::vector<GroupResult> groups = ComputeGroups(o); !groups.empty()) jo["groups"] = GroupsJson(o, groups);
+  return jo;
+}
+
+nlohmann::json ParametersJson(const std::vector<ParameterOutline>& parameters) {
+  nlohmann::json params = nlohmann::json::array();
+  for (const ParameterOutline& p : parameters)
+    params.push_back({{"name", p.name}, {"value", p.value}, {"unit", p.unit}, {"expression", p.expression},
+                      {"derived", p.derived}, {"description", p.description}});
+  return params;
+}
+
 }  // namespace
 
 std::string SummaryJson(const BudgetResult& result, const RunInfo& info) {
@@ -169,176 +363,15 @@ std::string SummaryJson(const BudgetResult& result, const RunInfo& info) {
   bool all_pass = true;
   nlohmann::json outputs = nlohmann::json::array();
   for (const OutputResult& o : result.outputs) {
-    nlohmann::json jo;
-    jo["name"] = o.name;
-    jo["signal"] = o.signal;
-    jo["unit"] = o.unit;
-    jo["rms"] = o.rms();
-    jo["variance"] = o.variance;
-    if (o.metric)  // rms is then sqrt(E[MA^2]) or sqrt(E[MSD^2]) over the window
-      jo["metric"] = {{"type", ToString(o.metric->type)}, {"window_s", o.metric->window_s}};
-    else
-      jo["metric"] = nullptr;
-    if (o.rms_max) {
-      jo["requirement"] = {{"rms_max", *o.rms_max}, {"pass", o.pass()}, {"margin", *o.rms_max - o.rms()}};
-    } else {
-      jo["requirement"] = nullptr;
-    }
-    nlohmann::json band_requirements = nlohmann::json::array();
-    for (const BandRequirementResult& b : o.band_requirements)
-      band_requirements.push_back({{"lo_hz", b.requirement.lo_hz},
-                                   {"hi_hz", b.requirement.hi_hz},
-                                   {"rms_max", b.requirement.rms_max},
-                                   {"rms", b.rms()},
-                                   {"pass", b.pass()},
-                                   {"margin", b.requirement.rms_max - b.rms()}});
-    jo["band_requirements"] = band_requirements;
-    jo["guidance"] = GuidanceJson(o, result.grid);
+    outputs.push_back(OutputJson(o, result.grid));
     all_pass &= o.AllPass();
-    nlohmann::json contributors = nlohmann::json::array();
-    for (std::size_t c = 0; c < o.contributors.size(); ++c) {
-      const ContributorResult& cr = o.contributors[c];
-      nlohmann::json jc;
-      jc["name"] = cr.name;
-      jc["source"] = cr.source;
-      jc["path"] = cr.path;
-      if (!cr.inputs.empty()) jc["inputs"] = cr.inputs;
-      if (!cr.group.empty()) jc["group"] = cr.group;
-      if (!cr.channels.empty()) {
-        nlohmann::json parts = nlohmann::json::array();
-        for (const ContributorResult::ChannelPart& p : cr.channels)
-          parts.push_back({{"channel", p.channel},
-                           {"rms", std::sqrt(std::max(p.variance, 0.0))},
-                           {"variance", p.variance},
-                           {"share_of_contributor", cr.variance > 0.0 ? p.variance / cr.variance : 0.0}});
-        jc["breakdown"] = {{"channels", parts}, {"cross_variance", cr.cross_variance}};
-      }
-      if (!cr.tones.empty()) {
-        nlohmann::json tones = nlohmann::json::array();
-        for (const ContributorResult::Tone& t : cr.tones)
-          tones.push_back({{"f_hz", t.f_hz}, {"rms", std::sqrt(t.variance)}, {"variance", t.variance}});
-        jc["tones"] = tones;
-      }
-      jc["rms"] = std::sqrt(cr.variance);
-      jc["variance"] = cr.variance;
-      jc["share"] = o.variance > 0.0 ? cr.variance / o.variance : 0.0;
-      if (cr.exact_variance) {
-        jc["exact_rms"] = std::sqrt(*cr.exact_variance);
-        jc["exact_variance"] = *cr.exact_variance;
-        // Everything the grid figure misses: the tails beyond its ends and its
-        // quadrature error (tail_variance_estimate is the tails alone).
-        jc["exact_minus_grid_variance"] = *cr.exact_variance - cr.variance;
-        jc["exact_note"] = nullptr;
-      } else {
-        jc["exact_rms"] = nullptr;
-        jc["exact_variance"] = nullptr;
-        jc["exact_minus_grid_variance"] = nullptr;
-        jc["exact_note"] = cr.exact_note;
-      }
-      jc["tail_variance_estimate"] = NumberOrNull(cr.tail_variance_estimate);
-      nlohmann::json modes = nlohmann::json::array();
-      for (const ModeShare& m : cr.top_modes)
-        modes.push_back({{"mode", m.mode}, {"f_hz", m.f_hz}, {"zeta", m.zeta}, {"variance", m.variance},
-                         {"share", m.share}});
-      jc["top_modes"] = modes;
-      jc["top_modes_of"] =
-          cr.top_modes_of == ModeSplit::kNone ? nlohmann::json(nullptr) : nlohmann::json(ToString(cr.top_modes_of));
-      if (o.rms_max) {  // factor on this source's PSD that puts the output at its limit
-        const Allocation a = AllocationFactor(o, c);
-        jc["allocation_factor"] = a.factor ? nlohmann::json(*a.factor) : nlohmann::json(nullptr);
-        jc["allocation_note"] = a.factor ? nlohmann::json(nullptr) : nlohmann::json(a.note);
-        // A source feeding several contributors: its own factor scales them all.
-        std::vector<std::size_t> group;
-        nlohmann::json shared = nlohmann::json::array();
-        for (std::size_t k = 0; k < o.contributors.size(); ++k)
-          if (o.contributors[k].source == cr.source) {
-            group.push_back(k);
-            if (k != c) shared.push_back(o.contributors[k].name);
-          }
-        if (group.size() > 1) {
-          const Allocation g = SourceAllocationFactor(o, group);
-          jc["source_shared_with"] = shared;
-          jc["source_allocation_factor"] = g.factor ? nlohmann::json(*g.factor) : nlohmann::json(nullptr);
-          jc["source_allocation_note"] = g.factor ? nlohmann::json(nullptr) : nlohmann::json(g.note);
-        }
-      }
-      contributors.push_back(jc);
-    }
-    jo["contributors"] = contributors;
-    nlohmann::json bands = nlohmann::json::array();
-    for (const BandResult& b : o.bands) {
-      nlohmann::json jb = {{"lo_hz", b.band.lo_hz}, {"hi_hz", b.band.hi_hz}, {"rms", std::sqrt(b.variance)},
-                           {"variance", b.variance}};
-      nlohmann::json bc = nlohmann::json::array();
-      for (std::size_t c = 0; c < o.contributors.size(); ++c)
-        bc.push_back({{"name", o.contributors[c].name},
-                      {"rms", std::sqrt(b.contributor_variance[c])},
-                      {"variance", b.contributor_variance[c]}});
-      jb["contributors"] = bc;
-      bands.push_back(jb);
-    }
-    jo["bands"] = bands;
-    if (!o.references.empty()) {
-      nlohmann::json refs = nlohmann::json::array();
-      for (const ReferenceResult& ref : o.references) {
-        const double budget_covered = ref.budget_variance;
-        nlohmann::json rb = nlohmann::json::array();
-        for (std::size_t b = 0; b < o.bands.size(); ++b) {
-          nlohmann::json jb = {{"lo_hz", o.bands[b].band.lo_hz}, {"hi_hz", o.bands[b].band.hi_hz},
-                               {"budget_rms", std::sqrt(o.bands[b].variance)}};
-          if (const auto& v = ref.band_variance[b]) {
-            jb["measured_rms"] = std::sqrt(*v);
-            jb["ratio"] = o.bands[b].variance > 0.0 ? nlohmann::json(std::sqrt(*v / o.bands[b].variance))
-                                                    : nlohmann::json(nullptr);
-            jb["unexplained_rms"] = std::sqrt(std::max(*v - o.bands[b].variance, 0.0));
-          } else {
-            jb["measured_rms"] = nullptr;  // the band reaches beyond the measurement
-            jb["ratio"] = nullptr;
-            jb["unexplained_rms"] = nullptr;
-          }
-          rb.push_back(jb);
-        }
-        refs.push_back({{"name", ref.name},
-                        {"covered_hz", {ref.covered_lo_hz, ref.covered_hi_hz}},
-                        {"measured_rms", std::sqrt(ref.variance)},
-                        {"budget_rms", std::sqrt(budget_covered)},
-                        {"ratio", budget_covered > 0.0 ? nlohmann::json(std::sqrt(ref.variance / budget_covered))
-                                                       : nlohmann::json(nullptr)},
-                        {"unexplained_rms", std::sqrt(std::max(ref.variance - budget_covered, 0.0))},
-                        {"bands", rb}});
-      }
-      jo["references"] = refs;
-    }
-    if (const std::vector<GroupResult> groups = ComputeGroups(o); !groups.empty()) {
-      nlohmann::json jg = nlohmann::json::array();
-      for (const GroupResult& g : groups) {
-        nlohmann::json members = nlohmann::json::array();
-        for (std::size_t c : g.contributors) members.push_back(o.contributors[c].name);
-        nlohmann::json subgroups = g.subgroups;
-        nlohmann::json gb = nlohmann::json::array();
-        for (std::size_t b = 0; b < o.bands.size(); ++b)
-          gb.push_back({{"lo_hz", o.bands[b].band.lo_hz}, {"hi_hz", o.bands[b].band.hi_hz},
-                        {"rms", std::sqrt(g.band_variance[b])}, {"variance", g.band_variance[b]}});
-        jg.push_back({{"name", g.name}, {"path", g.path}, {"depth", g.depth}, {"variance", g.variance},
-                      {"rms", std::sqrt(g.variance)}, {"share", g.share}, {"members", members},
-                      {"subgroups", subgroups}, {"bands", gb}});
-      }
-      jo["groups"] = jg;
-    }
-    outputs.push_back(jo);
   }
   j["outputs"] = outputs;
   j["pass"] = all_pass;
   j["warnings"] = result.warnings;
   if (!result.loops.empty()) j["loops"] = LoopsJson(result.loops);
   if (result.covariance) j["covariance"] = CovarianceJson(*result.covariance);
-  if (!result.outline.parameters.empty()) {
-    nlohmann::json params = nlohmann::json::array();
-    for (const ParameterOutline& p : result.outline.parameters)
-      params.push_back({{"name", p.name}, {"value", p.value}, {"unit", p.unit}, {"expression", p.expression},
-                        {"derived", p.derived}, {"description", p.description}});
-    j["parameters"] = params;
-  }
+  if (!result.outline.parameters.empty()) j["parameters"] = ParametersJson(result.outline.parameters);
   return j.dump(2) + "\n";
 }
 

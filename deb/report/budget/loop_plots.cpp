@@ -63,6 +63,207 @@ FigureAnnotation Marker(double x, double y, const std::string& label) {
   return a;
 }
 
+// A loop's responses on its trace's frequencies: L, |L|, the unwrapped
+// phase of L in degrees (at the lowest frequency in (-360, 0]: a loop's
+// phase is read against -180), |S| and |T|.
+struct LoopCurves {
+  std::vector<double> f;
+  std::vector<std::complex<double>> l;
+  std::vector<double> mag, phase, s_mag, t_mag;
+};
+
+LoopCurves Curves(const LoopTrace& trace) {
+  const std::size_t n = trace.f_hz.size();
+  LoopCurves c{trace.f_hz, std::vector<std::complex<double>>(n), std::vector<double>(n), std::vector<double>(n),
+               std::vector<double>(n), std::vector<double>(n)};
+  double turns = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    c.l[i] = trace.loop_gain[i];
+    c.mag[i] = std::abs(c.l[i]);
+    const double arg = std::arg(c.l[i]);
+    if (i) {
+      const double prev = c.phase[i - 1] * kPi / 180.0 - 2.0 * kPi * turns;
+      if (arg - prev > kPi) turns -= 1.0;
+      else if (arg - prev < -kPi) turns += 1.0;
+    }
+    c.phase[i] = (arg + 2.0 * kPi * turns) * 180.0 / kPi;
+    c.s_mag[i] = 1.0 / std::abs(1.0 + c.l[i]);
+    c.t_mag[i] = std::abs(c.l[i] / (1.0 + c.l[i]));
+  }
+  const double shift = 360.0 * std::ceil(c.phase.front() / 360.0);
+  for (double& p : c.phase) p -= shift;
+  return c;
+}
+
+// What every figure of one loop shares.
+struct LoopFigures {
+  const LoopResult& loop;
+  LoopCurves curves;
+  std::string stem, name, paths, csv;
+  FigureAxis x_axis;
+  int digits;
+};
+
+std::string LoopCsv(const LoopResult& r, const LoopCurves& c, const std::string& budget, const std::string& paths) {
+  std::ostringstream csv;
+  csv << "# deb " << DEB_VERSION << ", budget " << budget << ": loop gain L = -sign G K of plant " << r.plant
+      << " and controller " << r.controller << " (sign " << r.sign
+      << "), S = 1/(1 + L), T = L/(1 + L); closing paths " << paths << "\n";
+  csv << "frequency_hz,abs_L,phase_L_deg,abs_S,abs_T,re_L,im_L\n";
+  for (std::size_t i = 0; i < c.f.size(); ++i)
+    csv << CsvNumber(c.f[i]) << ',' << CsvNumber(c.mag[i]) << ',' << CsvNumber(c.phase[i]) << ','
+        << CsvNumber(c.s_mag[i]) << ',' << CsvNumber(c.t_mag[i]) << ',' << CsvNumber(c.l[i].real()) << ','
+        << CsvNumber(c.l[i].imag()) << '\n';
+  return csv.str();
+}
+
+// The phase axis in steps of 45° (90° over more than a turn), reaching -180.
+void PhaseAxis(FigurePanel& panel, const std::vector<double>& phase) {
+  const auto [lo, hi] = std::minmax_element(phase.begin(), phase.end());
+  const double step = *hi - *lo > 360.0 ? 90.0 : 45.0;
+  panel.y.min = step * std::floor(std::min(*lo, -180.0) / step - 1e-9);
+  panel.y.max = step * std::ceil(std::max(*hi, -180.0) / step + 1e-9);
+  for (double t = *panel.y.min; t <= *panel.y.max + 1e-9; t += step) panel.y.tics.push_back({t, Short(t)});
+}
+
+// Bode plot of L, each gain crossover marked with its phase margin and each
+// phase crossover with its gain margin.
+Plot BodePlot(const LoopFigures& lf) {
+  const LoopResult& r = lf.loop;
+  const int digits = lf.digits;
+  Plot bode;
+  bode.name = lf.stem + "_bode";
+  bode.kind = PlotKind::kPath;
+  bode.csv = lf.csv;
+  bode.caption = "Loop gain L = -sign G K of plant " + r.plant + " and controller " + r.controller + " (closing " +
+                 lf.paths + "): magnitude over unwrapped phase, each gain crossover marked with its "
+                 "phase margin and each phase crossover with its gain margin.";
+  FigurePanel top, bottom;
+  top.x = bottom.x = lf.x_axis;
+  top.y.label = "|L|";
+  top.y.scale = AxisScale::kLog;
+  top.y.format = "10^{%L}";
+  top.y2.shown = bottom.y2.shown = false;
+  top.series.push_back(Line("|L|", "|L|", bode.name + ".csv", 2, kLoopColour));
+  top.annotations.push_back(Level(1.0, "|L| = 1"));
+  top.key.title = "loop gain";
+  top.height = 1.3;
+  bottom.y.label = "arg L [°]";
+  bottom.y.format = "%g";
+  bottom.series.push_back(Line("arg L", "", bode.name + ".csv", 3, kLoopColour));
+  bottom.annotations.push_back(Level(-180.0, ""));
+  bottom.key.placement = KeyPlacement::kNone;
+  PhaseAxis(bottom, lf.curves.phase);
+  for (const GainCrossover& c : r.margins.gain_crossovers)
+    top.annotations.push_back(
+        Marker(c.f_hz, 1.0, "PM " + SigLabel(c.phase_margin_deg, digits) + "° at " + SigLabel(c.f_hz, digits) + " Hz"));
+  for (const PhaseCrossover& c : r.margins.phase_crossovers)
+    bottom.annotations.push_back(Marker(c.f_hz, At(lf.curves.f, lf.curves.phase, c.f_hz),
+                                        "GM " + SigLabel(c.gain_margin, digits) + " (" +
+                                            SigLabel(ToDecibel(c.gain_margin), digits) + " dB) at " +
+                                            SigLabel(c.f_hz, digits) + " Hz"));
+  bode.figure.title = lf.name + ": loop gain";
+  bode.figure.panels = {std::move(top), std::move(bottom)};
+  bode.script = EmitFigure(bode.figure);
+  return bode;
+}
+
+// |S| and |T|, the peak of |S| marked with the modulus margin.
+Plot SensitivityPlot(const LoopFigures& lf) {
+  const LoopResult& r = lf.loop;
+  const LoopMargins& m = r.margins;
+  const LoopCurves& c = lf.curves;
+  Plot st;
+  st.name = lf.stem + "_sensitivity";
+  st.kind = PlotKind::kPath;
+  st.csv = lf.csv;
+  st.caption = "Sensitivity |S| = 1/|1 + L| and complementary sensitivity |T| = |L/(1 + L)| of the loop of " +
+               r.plant + " and " + r.controller + "; the peak of |S| is 1 / modulus margin.";
+  FigurePanel sp;
+  sp.title = lf.name + ": sensitivity and complementary sensitivity";
+  sp.x = lf.x_axis;
+  sp.y.label = "magnitude";
+  sp.y.scale = AxisScale::kLog;
+  sp.y.format = "10^{%L}";
+  sp.y2.shown = false;
+  sp.series.push_back(Line("|S|", "|S|", st.name + ".csv", 4, kLoopColour));
+  FigureSeries t = Line("|T|", "|T|", st.name + ".csv", 5, kComplementColour);
+  t.dash = "(10,5)";
+  sp.series.push_back(t);
+  sp.annotations.push_back(Level(1.0, "1"));
+  if (m.modulus_margin > 0.0)  // 0: L passes through -1, |S| has no finite peak
+    sp.annotations.push_back(Marker(m.modulus_margin_f_hz, 1.0 / m.modulus_margin,
+                                    "max |S| " + SigLabel(1.0 / m.modulus_margin, lf.digits) + " (modulus margin " +
+                                        SigLabel(m.modulus_margin, lf.digits) + ") at " +
+                                        SigLabel(m.modulus_margin_f_hz, lf.digits) + " Hz"));
+  double top_st = 1.0, bottom_st = HUGE_VAL;
+  for (std::size_t i = 0; i < c.f.size(); ++i)
+    for (double v : {c.s_mag[i], c.t_mag[i]}) {
+      if (std::isfinite(v)) top_st = std::max(top_st, v);
+      if (v > 0.0 && std::isfinite(v)) bottom_st = std::min(bottom_st, v);
+    }
+  sp.y.max = std::pow(10.0, std::ceil(std::log10(top_st * 2.0)));
+  sp.y.min = std::min(std::max(std::pow(10.0, std::floor(std::log10(bottom_st))), *sp.y.max * 1e-8), 0.1);
+  sp.key.title = "";
+  st.figure.panels.push_back(std::move(sp));
+  st.script = EmitFigure(st.figure);
+  return st;
+}
+
+// Nyquist plot of L near -1, with its mirror image for negative frequencies.
+Plot NyquistPlot(const LoopFigures& lf) {
+  const LoopResult& r = lf.loop;
+  Plot ny;
+  ny.name = lf.stem + "_nyquist";
+  ny.kind = PlotKind::kPath;
+  ny.csv = lf.csv;
+  ny.caption = "Nyquist plot of L for the loop of " + r.plant + " and " + r.controller +
+               " near the critical point -1 (dashed: negative frequencies), the unit circle and the circle of "
+               "radius modulus margin around -1 that the curve touches.";
+  FigurePanel np;
+  np.title = lf.name + ": Nyquist plot of L";
+  np.equal_axes = true;
+  np.x.label = "Re L";
+  np.y.label = "Im L";
+  np.x.min = -3.0;
+  np.x.max = 1.5;
+  np.y.min = -2.25;
+  np.y.max = 2.25;
+  np.x.format = np.y.format = "%g";
+  np.x.minor_grid = false;
+  np.y2.shown = false;
+  FigureSeries positive = Line("L", "L(j 2π f), f > 0", ny.name + ".csv", 7, kLoopColour);
+  positive.x_column = 6;
+  FigureSeries negative = positive;
+  negative.name = "L, f < 0";
+  negative.key = "f < 0";
+  negative.y_divisor = -1.0;  // the mirror image: Im L(-j w) = -Im L(j w)
+  negative.dash = "(6,4)";
+  negative.width = 2.0;
+  np.series = {positive, negative};
+  FigureAnnotation unit;
+  unit.kind = AnnotationKind::kCircle;
+  unit.x1 = 1.0;
+  unit.colour = "#808080";
+  unit.width = 2.0;
+  unit.key = "unit circle";
+  FigureAnnotation mm = unit;
+  mm.x0 = -1.0;
+  mm.x1 = r.margins.modulus_margin;
+  mm.colour = kMarginColour;
+  mm.dash = kRequirementDash;
+  mm.width = 2.0;
+  mm.key = "modulus margin " + SigLabel(r.margins.modulus_margin, lf.digits);
+  FigureAnnotation minus_one = Marker(-1.0, 0.0, "-1");
+  minus_one.point_type = 2;  // a cross
+  minus_one.colour = "#000000";
+  np.annotations = {unit, mm, minus_one};
+  np.key.title = "";
+  ny.figure.panels.push_back(std::move(np));
+  ny.script = EmitFigure(ny.figure);
+  return ny;
+}
+
 }  // namespace
 
 std::vector<Plot> LoopPlots(const BudgetResult& result, int digits) {
@@ -72,174 +273,25 @@ std::vector<Plot> LoopPlots(const BudgetResult& result, int digits) {
     const LoopResult& r = result.loops[loop];
     const LoopTrace& trace = result.traces->loops[loop];
     if (trace.f_hz.size() < 2) continue;
-    const std::vector<double>& f = trace.f_hz;
-    std::vector<std::complex<double>> l(f.size());
-    std::vector<double> mag(f.size()), phase(f.size()), s_mag(f.size()), t_mag(f.size());
-    double turns = 0.0;
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      l[i] = trace.loop_gain[i];
-      mag[i] = std::abs(l[i]);
-      const double arg = std::arg(l[i]);
-      if (i) {
-        const double prev = phase[i - 1] * kPi / 180.0 - 2.0 * kPi * turns;
-        if (arg - prev > kPi) turns -= 1.0;
-        else if (arg - prev < -kPi) turns += 1.0;
-      }
-      phase[i] = (arg + 2.0 * kPi * turns) * 180.0 / kPi;
-      s_mag[i] = 1.0 / std::abs(1.0 + l[i]);
-      t_mag[i] = std::abs(l[i] / (1.0 + l[i]));
-    }
-    // Phase of L at the lowest frequency in (-360, 0]: a loop's phase is read
-    // against -180.
-    const double shift = 360.0 * std::ceil(phase.front() / 360.0);
-    for (double& p : phase) p -= shift;
-
-    const std::string stem = "loop_" + FileStem(r.plant) + "_" + FileStem(r.controller);
-    const std::string name = "loop " + Enhanced(r.plant) + " · " + Enhanced(r.controller);
     std::string paths;
     for (const std::string& p : r.paths) paths += (paths.empty() ? "" : ", ") + p;
-    std::ostringstream csv;
-    csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ": loop gain L = -sign G K of plant "
-        << r.plant << " and controller " << r.controller << " (sign " << r.sign
-        << "), S = 1/(1 + L), T = L/(1 + L); closing paths " << paths << "\n";
-    csv << "frequency_hz,abs_L,phase_L_deg,abs_S,abs_T,re_L,im_L\n";
-    for (std::size_t i = 0; i < f.size(); ++i)
-      csv << CsvNumber(f[i]) << ',' << CsvNumber(mag[i]) << ',' << CsvNumber(phase[i]) << ',' << CsvNumber(s_mag[i])
-          << ',' << CsvNumber(t_mag[i]) << ',' << CsvNumber(l[i].real()) << ',' << CsvNumber(l[i].imag()) << '\n';
-    const LoopMargins& m = r.margins;
-    FrequencyRange range{f.front(), f.back(), f.front() > result.grid.min_hz() || f.back() < result.grid.max_hz()};
+    LoopCurves curves = Curves(trace);
+    const std::vector<double>& f = curves.f;
+    const FrequencyRange range{f.front(), f.back(),
+                               f.front() > result.grid.min_hz() || f.back() < result.grid.max_hz()};
     const FigureAxis x_axis = FrequencyFigureAxis(range, result.grid, "where the loop's data are defined");
-
-    // Bode plot of L.
-    Plot bode;
-    bode.name = stem + "_bode";
-    bode.kind = PlotKind::kPath;
-    bode.csv = csv.str();
-    bode.caption = "Loop gain L = -sign G K of plant " + r.plant + " and controller " + r.controller +
-                   " (closing " + paths + "): magnitude over unwrapped phase, each gain crossover marked with its "
-                   "phase margin and each phase crossover with its gain margin.";
-    FigurePanel top, bottom;
-    top.x = bottom.x = x_axis;
-    top.y.label = "|L|";
-    top.y.scale = AxisScale::kLog;
-    top.y.format = "10^{%L}";
-    top.y2.shown = bottom.y2.shown = false;
-    top.series.push_back(Line("|L|", "|L|", bode.name + ".csv", 2, kLoopColour));
-    top.annotations.push_back(Level(1.0, "|L| = 1"));
-    top.key.title = "loop gain";
-    top.height = 1.3;
-    bottom.y.label = "arg L [°]";
-    bottom.y.format = "%g";
-    bottom.series.push_back(Line("arg L", "", bode.name + ".csv", 3, kLoopColour));
-    bottom.annotations.push_back(Level(-180.0, ""));
-    bottom.key.placement = KeyPlacement::kNone;
-    const auto [lo, hi] = std::minmax_element(phase.begin(), phase.end());
-    const double step = *hi - *lo > 360.0 ? 90.0 : 45.0;
-    bottom.y.min = step * std::floor(std::min(*lo, -180.0) / step - 1e-9);
-    bottom.y.max = step * std::ceil(std::max(*hi, -180.0) / step + 1e-9);
-    for (double t = *bottom.y.min; t <= *bottom.y.max + 1e-9; t += step) bottom.y.tics.push_back({t, Short(t)});
-    for (const GainCrossover& c : m.gain_crossovers)
-      top.annotations.push_back(
-          Marker(c.f_hz, 1.0, "PM " + SigLabel(c.phase_margin_deg, digits) + "° at " + SigLabel(c.f_hz, digits) + " Hz"));
-    for (const PhaseCrossover& c : m.phase_crossovers)
-      bottom.annotations.push_back(Marker(c.f_hz, At(f, phase, c.f_hz),
-                                          "GM " + SigLabel(c.gain_margin, digits) + " (" +
-                                              SigLabel(ToDecibel(c.gain_margin), digits) + " dB) at " +
-                                              SigLabel(c.f_hz, digits) + " Hz"));
-    bode.figure.title = name + ": loop gain";
-    bode.figure.panels = {std::move(top), std::move(bottom)};
-    bode.script = EmitFigure(bode.figure);
-
-    // |S| and |T|.
-    Plot st;
-    st.name = stem + "_sensitivity";
-    st.kind = PlotKind::kPath;
-    st.csv = bode.csv;
-    st.caption = "Sensitivity |S| = 1/|1 + L| and complementary sensitivity |T| = |L/(1 + L)| of the loop of " +
-                 r.plant + " and " + r.controller + "; the peak of |S| is 1 / modulus margin.";
-    FigurePanel sp;
-    sp.title = name + ": sensitivity and complementary sensitivity";
-    sp.x = x_axis;
-    sp.y.label = "magnitude";
-    sp.y.scale = AxisScale::kLog;
-    sp.y.format = "10^{%L}";
-    sp.y2.shown = false;
-    sp.series.push_back(Line("|S|", "|S|", st.name + ".csv", 4, kLoopColour));
-    FigureSeries t = Line("|T|", "|T|", st.name + ".csv", 5, kComplementColour);
-    t.dash = "(10,5)";
-    sp.series.push_back(t);
-    sp.annotations.push_back(Level(1.0, "1"));
-    if (m.modulus_margin > 0.0)  // 0: L passes through -1, |S| has no finite peak
-      sp.annotations.push_back(Marker(m.modulus_margin_f_hz, 1.0 / m.modulus_margin,
-                                    "max |S| " + SigLabel(1.0 / m.modulus_margin, digits) + " (modulus margin " +
-                                        SigLabel(m.modulus_margin, digits) + ") at " +
-                                        SigLabel(m.modulus_margin_f_hz, digits) + " Hz"));
-    double top_st = 1.0, bottom_st = HUGE_VAL;
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      for (double v : {s_mag[i], t_mag[i]})
-        if (std::isfinite(v)) top_st = std::max(top_st, v);
-      for (double v : {s_mag[i], t_mag[i]})
-        if (v > 0.0 && std::isfinite(v)) bottom_st = std::min(bottom_st, v);
-    }
-    sp.y.max = std::pow(10.0, std::ceil(std::log10(top_st * 2.0)));
-    sp.y.min = std::min(std::max(std::pow(10.0, std::floor(std::log10(bottom_st))), *sp.y.max * 1e-8), 0.1);
-    sp.key.title = "";
-    st.figure.panels.push_back(std::move(sp));
-    st.script = EmitFigure(st.figure);
-
-    // Nyquist plot of L near -1, with its mirror image for negative frequencies.
-    Plot ny;
-    ny.name = stem + "_nyquist";
-    ny.kind = PlotKind::kPath;
-    ny.csv = bode.csv;
-    ny.caption = "Nyquist plot of L for the loop of " + r.plant + " and " + r.controller +
-                 " near the critical point -1 (dashed: negative frequencies), the unit circle and the circle of "
-                 "radius modulus margin around -1 that the curve touches.";
-    FigurePanel np;
-    np.title = name + ": Nyquist plot of L";
-    np.equal_axes = true;
-    np.x.label = "Re L";
-    np.y.label = "Im L";
-    np.x.min = -3.0;
-    np.x.max = 1.5;
-    np.y.min = -2.25;
-    np.y.max = 2.25;
-    np.x.format = np.y.format = "%g";
-    np.x.minor_grid = false;
-    np.y2.shown = false;
-    FigureSeries positive = Line("L", "L(j 2π f), f > 0", ny.name + ".csv", 7, kLoopColour);
-    positive.x_column = 6;
-    FigureSeries negative = positive;
-    negative.name = "L, f < 0";
-    negative.key = "f < 0";
-    negative.y_divisor = -1.0;  // the mirror image: Im L(-j w) = -Im L(j w)
-    negative.dash = "(6,4)";
-    negative.width = 2.0;
-    np.series = {positive, negative};
-    FigureAnnotation unit;
-    unit.kind = AnnotationKind::kCircle;
-    unit.x1 = 1.0;
-    unit.colour = "#808080";
-    unit.width = 2.0;
-    unit.key = "unit circle";
-    FigureAnnotation mm = unit;
-    mm.x0 = -1.0;
-    mm.x1 = m.modulus_margin;
-    mm.colour = kMarginColour;
-    mm.dash = kRequirementDash;
-    mm.width = 2.0;
-    mm.key = "modulus margin " + SigLabel(m.modulus_margin, digits);
-    FigureAnnotation minus_one = Marker(-1.0, 0.0, "-1");
-    minus_one.point_type = 2;  // a cross
-    minus_one.colour = "#000000";
-    np.annotations = {unit, mm, minus_one};
-    np.key.title = "";
-    ny.figure.panels.push_back(std::move(np));
-    ny.script = EmitFigure(ny.figure);
-
-    plots.push_back(std::move(bode));
-    plots.push_back(std::move(st));
-    plots.push_back(std::move(ny));
+    const std::string csv = LoopCsv(r, curves, result.outline.name, paths);
+    const LoopFigures lf{r,
+                         std::move(curves),
+                         "loop_" + FileStem(r.plant) + "_" + FileStem(r.controller),
+                         "loop " + Enhanced(r.plant) + " · " + Enhanced(r.controller),
+                         paths,
+                         csv,
+                         x_axis,
+                         digits};
+    plots.push_back(BodePlot(lf));
+    plots.push_back(SensitivityPlot(lf));
+    plots.push_back(NyquistPlot(lf));
   }
   return plots;
 }

@@ -419,81 +419,88 @@ class Composer {
     return Size(l.get()).first;
   }
 
-  void DoTable(const PdfBlock& b) {
-    const PdfTable& t = b.table;
-    std::size_t columns = t.header.size();
-    for (const auto& row : t.rows) columns = std::max(columns, row.size());
-    if (columns == 0) return;
-    const auto numeric = [&](std::size_t c) { return c < t.numeric.size() && t.numeric[c]; };
-    const double inset = t.boxed ? kBoxInsetPt : 0.0, width = kTextWidthPt - 2.0 * inset;
-    // Natural widths; numeric columns as the widest integer part plus the widest fraction.
-    std::vector<double> natural(columns, 0.0), shortest(columns, 0.0), left(columns, 0.0), right(columns, 0.0);
-    table_font_ = kTableFontPt;
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      std::fill(natural.begin(), natural.end(), 0.0);
-      std::fill(shortest.begin(), shortest.end(), 0.0);
-      std::fill(left.begin(), left.end(), 0.0);
-      std::fill(right.begin(), right.end(), 0.0);
-      for (std::size_t c = 0; c < columns; ++c) {
-        if (c < t.header.size()) {
-          natural[c] = Width(t.header[c], true);
-          shortest[c] = std::min(kLongestWordPt, LongestWord(t.header[c], true));
-        }
-        for (const auto& row : t.rows) {
-          if (c >= row.size()) continue;
-          if (numeric(c)) {
-            const Split s = AtDecimalPoint(row[c].text);
-            left[c] = std::max(left[c], Width(s.left, row[c].bold));
-            right[c] = std::max(right[c], Width(s.right, row[c].bold));
-          } else {
-            Layout l = MakeLayout(row[c].text, table_font_, row[c].bold, 0);
-            natural[c] = std::max(natural[c], Size(l.get()).first);
-            shortest[c] = std::max(shortest[c], std::min(kLongestWordPt, LongestWord(row[c].text, row[c].bold)));
-          }
-        }
-        if (numeric(c)) natural[c] = std::max(natural[c], left[c] + right[c]);
-        natural[c] += 2.0 * kCellPadPt;
-        shortest[c] = numeric(c) ? natural[c] : shortest[c] + 2.0 * kCellPadPt;
+  // A table's columns measured at table_font_: natural (one line), shortest
+  // (its longest word; numbers whole), and a numeric column's widest integer
+  // part (left) and fraction (right).
+  struct ColumnMeasures {
+    std::vector<double> natural, shortest, left, right;
+  };
+  static bool Numeric(const PdfTable& t, std::size_t c) { return c < t.numeric.size() && t.numeric[c]; }
+
+  ColumnMeasures MeasureColumns(const PdfTable& t, std::size_t columns) {
+    ColumnMeasures m{std::vector<double>(columns, 0.0), std::vector<double>(columns, 0.0),
+                     std::vector<double>(columns, 0.0), std::vector<double>(columns, 0.0)};
+    for (std::size_t c = 0; c < columns; ++c) {
+      if (c < t.header.size()) {
+        m.natural[c] = Width(t.header[c], true);
+        m.shortest[c] = std::min(kLongestWordPt, LongestWord(t.header[c], true));
       }
-      // Columns that cannot fit even wrapped: a smaller font, once.
-      double least = 0.0;
-      for (double w : shortest) least += w;
-      if (least <= width || attempt == 1) break;
-      table_font_ = std::max(kSmallestTableFontPt, 0.97 * kTableFontPt * width / least);
+      for (const auto& row : t.rows) {
+        if (c >= row.size()) continue;
+        if (Numeric(t, c)) {
+          const Split s = AtDecimalPoint(row[c].text);
+          m.left[c] = std::max(m.left[c], Width(s.left, row[c].bold));
+          m.right[c] = std::max(m.right[c], Width(s.right, row[c].bold));
+        } else {
+          Layout l = MakeLayout(row[c].text, table_font_, row[c].bold, 0);
+          m.natural[c] = std::max(m.natural[c], Size(l.get()).first);
+          m.shortest[c] = std::max(m.shortest[c], std::min(kLongestWordPt, LongestWord(row[c].text, row[c].bold)));
+        }
+      }
+      if (Numeric(t, c)) m.natural[c] = std::max(m.natural[c], m.left[c] + m.right[c]);
+      m.natural[c] += 2.0 * kCellPadPt;
+      m.shortest[c] = Numeric(t, c) ? m.natural[c] : m.shortest[c] + 2.0 * kCellPadPt;
     }
-    // Too wide: every column keeps its longest word (numbers whole); of the
-    // rest of the width, a column that lacks less than an even share takes
-    // what it lacks, and the columns that must wrap share what is left in
-    // proportion to what each lacks (as browsers share a table's width), so
-    // that a column of long notes is not squeezed to the width of a column
-    // of names (long text wraps, never cut).
-    std::vector<double> widths = natural;
+    return m;
+  }
+
+  // Sets table_font_ and measures: columns that cannot fit `width` even
+  // wrapped get a smaller font, once.
+  ColumnMeasures FitFont(const PdfTable& t, std::size_t columns, double width) {
+    table_font_ = kTableFontPt;
+    ColumnMeasures m = MeasureColumns(t, columns);
+    double least = 0.0;
+    for (double w : m.shortest) least += w;
+    if (least <= width) return m;
+    table_font_ = std::max(kSmallestTableFontPt, 0.97 * kTableFontPt * width / least);
+    return MeasureColumns(t, columns);
+  }
+
+  // Each column's width. Too wide: every column keeps its longest word
+  // (numbers whole); of the rest of the width, a column that lacks less than
+  // an even share takes what it lacks, and the columns that must wrap share
+  // what is left in proportion to what each lacks (as browsers share a
+  // table's width), so that a column of long notes is not squeezed to the
+  // width of a column of names (long text wraps, never cut).
+  static std::vector<double> ColumnWidths(const ColumnMeasures& m, double width, bool boxed) {
+    const std::size_t columns = m.natural.size();
+    std::vector<double> widths = m.natural;
     double total = 0.0, least = 0.0;
     for (std::size_t c = 0; c < columns; ++c) {
-      total += natural[c];
-      least += shortest[c];
+      total += m.natural[c];
+      least += m.shortest[c];
     }
     if (total > width) {
-      widths = shortest;
+      widths = m.shortest;
       double spare = std::max(0.0, width - least);
       std::vector<std::size_t> open;
       for (std::size_t c = 0; c < columns; ++c)
-        if (natural[c] > shortest[c]) open.push_back(c);
+        if (m.natural[c] > m.shortest[c]) open.push_back(c);
       // A column that lacks less than an even share takes only that and stays on one line.
       while (!open.empty() && spare > 1e-9) {
         const double share = spare / static_cast<double>(open.size());
         std::vector<std::size_t> still;
         for (std::size_t c : open)
-          if (natural[c] - widths[c] <= share) {
-            spare -= natural[c] - widths[c];
-            widths[c] = natural[c];
+          if (m.natural[c] - widths[c] <= share) {
+            spare -= m.natural[c] - widths[c];
+            widths[c] = m.natural[c];
           } else {
             still.push_back(c);
           }
         if (still.size() == open.size()) {  // the rest wrap: shared in proportion to what each lacks
           double lacking = 0.0;
-          for (std::size_t c : still) lacking += natural[c] - widths[c];
-          for (std::size_t c : still) widths[c] += spare * (natural[c] - widths[c]) / lacking;
+          for (std::size_t c : still) lacking += m.natural[c] - widths[c];
+          for (std::size_t c : still) widths[c] += spare * (m.natural[c] - widths[c]) / lacking;
           break;
         }
         open = std::move(still);
@@ -503,116 +510,111 @@ class Composer {
     // wraps inside them; a long number may reach into its neighbour).
     if (least > width)
       for (double& w : widths) w *= width / least;
-    if (t.boxed) {  // a box spans the text width: its last column takes what is left
+    if (boxed) {  // a box spans the text width: its last column takes what is left
       double used = 0.0;
       for (double w : widths) used += w;
       if (used < width) widths.back() += width - used;
     }
-    double table_width = 0.0;
-    for (double w : widths) table_width += w;
-    const double x0 = kMarginPt + inset;
+    return widths;
+  }
 
-    Layout title = MakeLayout(b.text, 9.5, true, kTextWidthPt);
-    const double title_h = b.text.empty() ? 0.0 : Size(title.get()).second;
-    const auto row_layouts = [&](const std::vector<PdfCell>& cells, bool header) {
-      std::vector<Layout> ls;
-      double h = 0.0;
-      for (std::size_t c = 0; c < columns; ++c) {
-        const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
-        const bool split = numeric(c) && !header;
-        ls.push_back(MakeLayout(cell.text, table_font_, cell.bold || header, split ? 0 : widths[c] - 2 * kCellPadPt));
-        h = std::max(h, Size(ls.back().get()).second);
-      }
-      return std::make_pair(std::move(ls), h + 2.0 * kRowPadPt);
-    };
+  // A table being set: its block, its columns and where its box began.
+  struct TableRun {
+    const PdfBlock& block;
+    std::size_t columns;
+    std::vector<double> widths, right;  // right: a numeric column's widest fraction
+    double inset, x0, table_width;
+    double box_top = 0.0;
     std::vector<PdfCell> header_cells;
-    for (const std::string& h : t.header) header_cells.push_back({h, true, false});
-    const double header_h = t.header.empty() ? 0.0 : row_layouts(header_cells, true).second;
+  };
 
-    double first_row_h = t.rows.empty() ? 0.0 : row_layouts(t.rows.front(), false).second;
-    if (y_ > kMarginPt) y_ += 4.0;
-    Need(title_h + 4.0 + header_h + first_row_h + 2.0 * inset);
-    if (!b.text.empty()) {
-      Show(title.get(), kMarginPt, y_, kInk);
-      Place("table title", b.text, kMarginPt, y_, kTextWidthPt, title_h, kInk);
-      y_ += title_h + 3.0;
+  // A row's cell layouts and its height.
+  std::pair<std::vector<Layout>, double> RowLayouts(const TableRun& run, const std::vector<PdfCell>& cells,
+                                                    bool header) {
+    std::vector<Layout> ls;
+    double h = 0.0;
+    for (std::size_t c = 0; c < run.columns; ++c) {
+      const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
+      const bool split = Numeric(run.block.table, c) && !header;
+      ls.push_back(MakeLayout(cell.text, table_font_, cell.bold || header, split ? 0 : run.widths[c] - 2 * kCellPadPt));
+      h = std::max(h, Size(ls.back().get()).second);
     }
-    double box_top = y_;
-    y_ += inset;
-    const auto close_box = [&]() {
-      if (!t.boxed) return;
-      y_ += inset;
-      if (draw_) {
-        SetColour(cr_, "#606060");
-        cairo_set_line_width(cr_, 0.8);
-        cairo_rectangle(cr_, kMarginPt, box_top, kTextWidthPt, y_ - box_top);
-        cairo_stroke(cr_);
-      }
-      Place("box", b.text, kMarginPt, box_top, kTextWidthPt, y_ - box_top);
-    };
-    const auto draw_row = [&](const std::vector<PdfCell>& cells, bool header) {
-      auto [ls, h] = row_layouts(cells, header);
-      double x = x0;
-      std::string joined;
-      for (std::size_t c = 0; c < columns; ++c) {
-        const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
-        const std::string colour = cell.alert ? kAlert : kInk;
-        double point_x = 0.0;
-        if (numeric(c) && !header) {
-          // The decimal point of every row at the same x; the text right of it may stick out.
-          const Split s = AtDecimalPoint(cell.text);
-          point_x = x + widths[c] - kCellPadPt - right[c];
-          Layout l = MakeLayout(s.left, table_font_, cell.bold, 0);
-          Layout r = MakeLayout(s.right, table_font_, cell.bold, 0);
-          Show(l.get(), point_x - Size(l.get()).first, y_ + kRowPadPt, colour);
-          Show(r.get(), point_x, y_ + kRowPadPt, colour);
-        } else if (numeric(c)) {
-          Show(ls[c].get(), x + widths[c] - kCellPadPt - Size(ls[c].get()).first, y_ + kRowPadPt, colour);
-        } else {
-          Show(ls[c].get(), x + kCellPadPt, y_ + kRowPadPt, colour);
+    return std::make_pair(std::move(ls), h + 2.0 * kRowPadPt);
+  }
+  double RowHeight(const TableRun& run, const std::vector<PdfCell>& cells, bool header) {
+    return RowLayouts(run, cells, header).second;
+  }
+
+  void CloseBox(const TableRun& run) {
+    if (!run.block.table.boxed) return;
+    y_ += run.inset;
+    if (draw_) {
+      SetColour(cr_, "#606060");
+      cairo_set_line_width(cr_, 0.8);
+      cairo_rectangle(cr_, kMarginPt, run.box_top, kTextWidthPt, y_ - run.box_top);
+      cairo_stroke(cr_);
+    }
+    Place("box", run.block.text, kMarginPt, run.box_top, kTextWidthPt, y_ - run.box_top);
+  }
+
+  // One cell's text: numbers aligned at their decimal point (the text right
+  // of it may stick out) or right-aligned, other text left-aligned. Returns
+  // the decimal point's x (0 where not split).
+  double ShowCell(const TableRun& run, std::size_t c, const PdfCell& cell, PangoLayout* layout, bool header, double x,
+                  const std::string& colour) {
+    if (Numeric(run.block.table, c) && !header) {
+      const Split s = AtDecimalPoint(cell.text);
+      const double point_x = x + run.widths[c] - kCellPadPt - run.right[c];
+      Layout l = MakeLayout(s.left, table_font_, cell.bold, 0);
+      Layout r = MakeLayout(s.right, table_font_, cell.bold, 0);
+      Show(l.get(), point_x - Size(l.get()).first, y_ + kRowPadPt, colour);
+      Show(r.get(), point_x, y_ + kRowPadPt, colour);
+      return point_x;
+    }
+    if (Numeric(run.block.table, c)) Show(layout, x + run.widths[c] - kCellPadPt - Size(layout).first, y_ + kRowPadPt, colour);
+    else Show(layout, x + kCellPadPt, y_ + kRowPadPt, colour);
+    return 0.0;
+  }
+
+  void DrawRow(const TableRun& run, const std::vector<PdfCell>& cells, bool header) {
+    auto [ls, h] = RowLayouts(run, cells, header);
+    double x = run.x0;
+    std::string joined;
+    for (std::size_t c = 0; c < run.columns; ++c) {
+      const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
+      const std::string colour = cell.alert ? kAlert : kInk;
+      const double point_x = ShowCell(run, c, cell, ls[c].get(), header, x, colour);
+      if (!cell.link.empty() && draw_) {
+        if (const Target* t = HeadingTarget(cell.link)) {
+          char rect[120];
+          std::snprintf(rect, sizeof(rect), " rect=[%.2f %.2f %.2f %.2f]", x, y_, run.widths[c], h);
+          cairo_tag_begin(cr_, CAIRO_TAG_LINK, (Link(*t) + rect).c_str());
+          cairo_tag_end(cr_, CAIRO_TAG_LINK);
         }
-        if (!cell.link.empty() && draw_) {
-          if (const Target* t = HeadingTarget(cell.link)) {
-            char rect[120];
-            std::snprintf(rect, sizeof(rect), " rect=[%.2f %.2f %.2f %.2f]", x, y_, widths[c], h);
-            cairo_tag_begin(cr_, CAIRO_TAG_LINK, (Link(*t) + rect).c_str());
-            cairo_tag_end(cr_, CAIRO_TAG_LINK);
-          }
-        }
-        layout_.boxes.push_back(
-            {page_, header ? "table header" : "table cell", cell.text, x, y_, widths[c], h, colour, point_x});
-        joined += (c ? " | " : "") + cell.text;
-        x += widths[c];
       }
-      Place(header ? "table header row" : "table row", joined, x0, y_, table_width, h);
-      y_ += h;
-      Rule(x0, x0 + table_width, y_, header ? 0.7 : 0.3, header ? "#404040" : "#c8c8c8");
-    };
-    if (t.boxed && draw_) {
-      // The shade goes under the rows: measured first, drawn before them.
-      double h = header_h;
-      for (const auto& row : t.rows) h += row_layouts(row, false).second;
-      if (y_ + h + inset <= kBodyBottomPt) {
-        SetColour(cr_, "#f3f3f3");
-        cairo_rectangle(cr_, kMarginPt, box_top, kTextWidthPt, h + 2.0 * inset);
-        cairo_fill(cr_);
-      }
+      layout_.boxes.push_back(
+          {page_, header ? "table header" : "table cell", cell.text, x, y_, run.widths[c], h, colour, point_x});
+      joined += (c ? " | " : "") + cell.text;
+      x += run.widths[c];
     }
-    if (!t.header.empty()) draw_row(header_cells, true);
-    for (const auto& row : t.rows) {
-      const double h = row_layouts(row, false).second;
-      if (y_ + h + inset > kBodyBottomPt) {
-        close_box();
-        NewPage();
-        box_top = y_;
-        y_ += inset;
-        if (!t.header.empty()) draw_row(header_cells, true);
-      }
-      draw_row(row, false);
+    Place(header ? "table header row" : "table row", joined, run.x0, y_, run.table_width, h);
+    y_ += h;
+    Rule(run.x0, run.x0 + run.table_width, y_, header ? 0.7 : 0.3, header ? "#404040" : "#c8c8c8");
+  }
+
+  // A boxed table's shade goes under its rows: measured first, drawn before them.
+  void ShadeBox(const TableRun& run, double header_h) {
+    double h = header_h;
+    for (const auto& row : run.block.table.rows) h += RowHeight(run, row, false);
+    if (y_ + h + run.inset <= kBodyBottomPt) {
+      SetColour(cr_, "#f3f3f3");
+      cairo_rectangle(cr_, kMarginPt, run.box_top, kTextWidthPt, h + 2.0 * run.inset);
+      cairo_fill(cr_);
     }
-    close_box();
-    y_ += 3.0;
-    for (const std::string& note : t.footnotes) {
+  }
+
+  void Footnotes(const std::vector<std::string>& notes) {
+    for (const std::string& note : notes) {
       Layout l = MakeLayout(note, 7.5, false, kTextWidthPt);
       const double h = Size(l.get()).second;
       Need(h);
@@ -620,6 +622,47 @@ class Composer {
       Place("footnote", note, kMarginPt, y_, kTextWidthPt, h, kInk);
       y_ += h + 1.5;
     }
+  }
+
+  void DoTable(const PdfBlock& b) {
+    const PdfTable& t = b.table;
+    std::size_t columns = t.header.size();
+    for (const auto& row : t.rows) columns = std::max(columns, row.size());
+    if (columns == 0) return;
+    const double inset = t.boxed ? kBoxInsetPt : 0.0, width = kTextWidthPt - 2.0 * inset;
+    const ColumnMeasures m = FitFont(t, columns, width);
+    TableRun run{b, columns, ColumnWidths(m, width, t.boxed), m.right, inset, kMarginPt + inset, 0.0};
+    for (double w : run.widths) run.table_width += w;
+    for (const std::string& h : t.header) run.header_cells.push_back({h, true, false});
+
+    Layout title = MakeLayout(b.text, 9.5, true, kTextWidthPt);
+    const double title_h = b.text.empty() ? 0.0 : Size(title.get()).second;
+    const double header_h = t.header.empty() ? 0.0 : RowHeight(run, run.header_cells, true);
+    const double first_row_h = t.rows.empty() ? 0.0 : RowHeight(run, t.rows.front(), false);
+    if (y_ > kMarginPt) y_ += 4.0;
+    Need(title_h + 4.0 + header_h + first_row_h + 2.0 * inset);
+    if (!b.text.empty()) {
+      Show(title.get(), kMarginPt, y_, kInk);
+      Place("table title", b.text, kMarginPt, y_, kTextWidthPt, title_h, kInk);
+      y_ += title_h + 3.0;
+    }
+    run.box_top = y_;
+    y_ += inset;
+    if (t.boxed && draw_) ShadeBox(run, header_h);
+    if (!t.header.empty()) DrawRow(run, run.header_cells, true);
+    for (const auto& row : t.rows) {
+      if (y_ + RowHeight(run, row, false) + inset > kBodyBottomPt) {
+        CloseBox(run);
+        NewPage();
+        run.box_top = y_;
+        y_ += inset;
+        if (!t.header.empty()) DrawRow(run, run.header_cells, true);
+      }
+      DrawRow(run, row, false);
+    }
+    CloseBox(run);
+    y_ += 3.0;
+    Footnotes(t.footnotes);
     y_ += 6.0;
   }
 

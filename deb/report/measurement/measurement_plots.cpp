@@ -550,38 +550,41 @@ Plot PetersonPlot(PetersonModel written, const std::vector<double>& f_hz, const 
   return LogLogPlot(fig);
 }
 
-Plot BandClassPlot(const std::vector<std::string>& channel_names, const std::vector<std::vector<BandRms>>& bands,
-                   const std::vector<Classification>& verdicts, const ClassifyOptions& options,
-                   const std::string& unit, const std::string& source, const std::string& name) {
-  DEB_DEMAND(!bands.empty() && bands.size() == channel_names.size() && !bands.front().empty());
-  DEB_DEMAND(verdicts.empty() || verdicts.size() == bands.size());
-  const std::size_t channels = bands.size(), n = bands.front().size();
-  const std::string unit_label = unit.empty() ? "unit not declared" : UnitLabel(DisplayUnit(unit));
-  const double lo_hz = bands.front().front().band.lo_hz, hi_hz = bands.front().back().band.hi_hz;
-  Plot p;
-  p.name = name;
-  p.kind = PlotKind::kBands;
-  p.caption = "One-third-octave band RMS of " + source + " per channel" +
-              (verdicts.empty() ? "." : ", against the building vibration criteria.");
+namespace {
 
-  // Block 0: steps (each band's lower edge, then the last upper edge);
-  // block 1: band centres; block 2: the criteria drawn.
-  std::ostringstream csv;
-  csv << "# deb " << DEB_VERSION << ": one-third-octave band RMS of " << source << " ("
-      << ToString(options.series) << " centres)" << (unit.empty() ? "" : " in " + DisplayUnit(unit))
-      << "; block 0 steps, block 1 bands, block 2 criteria\nedge_hz";
+// The range of the positive levels a band chart draws.
+struct LevelRange {
+  double bottom = HUGE_VAL, top = 0.0;
+  void Take(double level) {
+    top = std::max(top, level);
+    bottom = std::min(bottom, level);
+  }
+};
+
+// A building criterion over the bands it covers (continued down with the
+// extension), clipped to the bands analysed.
+struct DrawnCriterion {
+  std::string name;
+  double level = 0.0, from_hz = 0.0, to_hz = 0.0;
+  bool met = false;  // some channel's overall class
+};
+
+// The band chart's data blocks 0 (steps: each band's lower edge, then the
+// last upper edge) and 1 (band centres); the range takes every positive RMS.
+void WriteBandBlocks(std::ostream& csv, const std::vector<std::string>& channel_names,
+                     const std::vector<std::vector<BandRms>>& bands, const std::vector<Classification>& verdicts,
+                     LevelRange& range) {
+  const std::size_t channels = bands.size(), n = bands.front().size();
+  const double hi_hz = bands.front().back().band.hi_hz;
+  csv << "edge_hz";
   for (const std::string& c : channel_names) csv << ',' << CsvField(c);
   csv << '\n';
-  double top = 0.0, bottom = HUGE_VAL;
   for (std::size_t i = 0; i <= n; ++i) {
     csv << CsvNumber(i < n ? bands.front()[i].band.lo_hz : hi_hz);
     for (std::size_t c = 0; c < channels; ++c) {
       const double rms = bands[c][std::min(i, n - 1)].rms;
       csv << ',' << CsvNumber(rms);
-      if (rms > 0.0) {
-        top = std::max(top, rms);
-        bottom = std::min(bottom, rms);
-      }
+      if (rms > 0.0) range.Take(rms);
     }
     csv << '\n';
   }
@@ -593,155 +596,166 @@ Plot BandClassPlot(const std::vector<std::string>& channel_names, const std::vec
     csv << CsvNumber(b.band.centre_hz) << ',' << CsvNumber(b.band.lo_hz) << ',' << CsvNumber(b.band.hi_hz) << ','
         << b.points;
     for (std::size_t c = 0; c < channels; ++c)
-      csv << ',' << CsvNumber(bands[c][i].rms) << ','
-          << (!verdicts.empty() && verdicts[c].limiting_band == i ? 1 : 0);
+      csv << ',' << CsvNumber(bands[c][i].rms) << ',' << (!verdicts.empty() && verdicts[c].limiting_band == i ? 1 : 0);
     csv << '\n';
   }
+}
 
-  // The criteria over the bands they cover (continued down with the
-  // extension), clipped to the bands analysed.
-  struct Drawn {
-    std::string name;
-    double level = 0.0, from_hz = 0.0, to_hz = 0.0;
-    bool met = false;  // some channel's overall class
-  };
-  std::vector<Drawn> criteria;
-  if (!verdicts.empty()) {
-    std::set<std::size_t> overall;
-    for (const Classification& v : verdicts)
-      if (v.overall) overall.insert(*v.overall);
-    const std::vector<BuildingCriterion>& all = verdicts.front().criteria;
-    for (std::size_t k = 0; k < all.size(); ++k) {
-      const BuildingCriterion& bc = all[k];
-      const bool extended = options.low_frequency_extension && bc.extendable;
-      const double from = extended ? lo_hz : ThirdOctaveBandNear(bc.lowest_band_hz, options.series).lo_hz;
-      const double to = ThirdOctaveBandNear(bc.highest_band_hz, options.series).hi_hz;
-      const double a = std::max(from, lo_hz), b = std::min(to, hi_hz);
-      if (!(b > a)) continue;
-      criteria.push_back({bc.name, bc.velocity_um_s, a, b, overall.count(k) > 0});
-      top = std::max(top, bc.velocity_um_s);
-      bottom = std::min(bottom, bc.velocity_um_s);
-    }
-    csv << "\n\ncriterion,level_um_s,from_hz,to_hz,met\n";
-    for (const Drawn& d : criteria)
-      csv << CsvField(d.name) << ',' << CsvNumber(d.level) << ',' << CsvNumber(d.from_hz) << ','
-          << CsvNumber(d.to_hz) << ',' << (d.met ? 1 : 0) << '\n';
+// The criteria over [lo_hz, hi_hz]; the range takes their levels.
+std::vector<DrawnCriterion> CriteriaDrawn(const std::vector<Classification>& verdicts, const ClassifyOptions& options,
+                                          double lo_hz, double hi_hz, LevelRange& range) {
+  std::vector<DrawnCriterion> criteria;
+  std::set<std::size_t> overall;
+  for (const Classification& v : verdicts)
+    if (v.overall) overall.insert(*v.overall);
+  const std::vector<BuildingCriterion>& all = verdicts.front().criteria;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const BuildingCriterion& bc = all[k];
+    const bool extended = options.low_frequency_extension && bc.extendable;
+    const double from = extended ? lo_hz : ThirdOctaveBandNear(bc.lowest_band_hz, options.series).lo_hz;
+    const double to = ThirdOctaveBandNear(bc.highest_band_hz, options.series).hi_hz;
+    const double a = std::max(from, lo_hz), b = std::min(to, hi_hz);
+    if (!(b > a)) continue;
+    criteria.push_back({bc.name, bc.velocity_um_s, a, b, overall.count(k) > 0});
+    range.Take(bc.velocity_um_s);
   }
-  p.csv = csv.str();
+  return criteria;
+}
 
-  // Title: what, then the class of each channel (up to three; more in the key).
-  std::vector<std::string> title = {"One-third-octave band RMS of " + Enhanced(source) + " (" +
-                                    SeriesText(options.series) + ")"};
-  std::vector<std::string> verdict_text(channels), key_text(channels);  // long, short
+// Data block 2: the criteria drawn.
+void WriteCriteriaBlock(std::ostream& csv, const std::vector<DrawnCriterion>& criteria) {
+  csv << "\n\ncriterion,level_um_s,from_hz,to_hz,met\n";
+  for (const DrawnCriterion& d : criteria)
+    csv << CsvField(d.name) << ',' << CsvNumber(d.level) << ',' << CsvNumber(d.from_hz) << ','
+        << CsvNumber(d.to_hz) << ',' << (d.met ? 1 : 0) << '\n';
+}
+
+// Each channel's class in words: long for the title, short for the key.
+struct ChannelVerdictText {
+  std::vector<std::string> title, key;
+};
+
+ChannelVerdictText VerdictText(const std::vector<Classification>& verdicts, std::size_t channels,
+                               const std::string& unit_label) {
+  ChannelVerdictText text;
+  text.title.resize(channels);
+  text.key.resize(channels);
   for (std::size_t c = 0; c < verdicts.size(); ++c) {
     const Classification& v = verdicts[c];
     const std::string met = v.overall ? Enhanced(v.criteria[*v.overall].name) : "none";
-    verdict_text[c] = v.overall ? met + " met" : "no criterion met";
-    key_text[c] = ": " + met;
+    text.title[c] = v.overall ? met + " met" : "no criterion met";
+    text.key[c] = ": " + met;
     if (v.limiting_band) {
       const BandRms& b = v.bands[*v.limiting_band].band;
-      verdict_text[c] += "; limiting band " + Sig(b.band.centre_hz) + " Hz at " + SigLabel(b.rms) + " " + unit_label;
-      key_text[c] += " (limiting " + Sig(b.band.centre_hz) + " Hz)";
+      text.title[c] += "; limiting band " + Sig(b.band.centre_hz) + " Hz at " + SigLabel(b.rms) + " " + unit_label;
+      text.key[c] += " (limiting " + Sig(b.band.centre_hz) + " Hz)";
     }
   }
-  if (!verdicts.empty()) {
-    if (channels == 1) title.push_back(verdict_text[0]);
-    else if (channels <= 3)
-      for (std::size_t c = 0; c < channels; ++c) title.push_back(Enhanced(channel_names[c]) + ": " + verdict_text[c]);
-    else title.push_back("class of each channel in the key");
-    if (options.low_frequency_extension) title.back() += " (VC continued below 8 Hz)";
-  }
+  return text;
+}
 
-  FigurePanel panel;
-  panel.title = Lines(title);
-  panel.x = FrequencyAxis(lo_hz, hi_hz);
-  LogY(panel, bottom / 1.2, top * 1.2, 8.0);
-  panel.y.label = "band RMS [" + unit_label + "]";
-  panel.y2.shown = false;
-  panel.key.title = "channel";
-  if (!criteria.empty()) {
-    // Criteria named on the right axis at their level: they sit a factor 2
-    // apart, so the names never crowd.
-    panel.y2 = panel.y;
-    panel.y2.label.clear();
-    panel.y2.format.clear();
-    for (const Drawn& d : criteria) panel.y2.tics.push_back({d.level, Enhanced(d.name)});
-    for (const Drawn& d : criteria) {
-      FigureAnnotation line;  // behind the bands' steps
-      line.kind = AnnotationKind::kSegment;
-      line.x0 = d.from_hz;
-      line.x1 = d.to_hz;
-      line.y0 = line.y1 = d.level;
-      line.colour = d.met ? kRequirementColour : kContextColour;
-      line.dash = d.met ? "solid" : kContextDash;
-      line.width = d.met ? 2.0 : 1.3;
-      line.behind = true;
-      panel.annotations.push_back(line);
-    }
+// Title: what, then the class of each channel (up to three; more in the key).
+std::vector<std::string> BandClassTitle(const std::vector<std::string>& channel_names, bool classified,
+                                        const ChannelVerdictText& text, const ClassifyOptions& options,
+                                        const std::string& source) {
+  std::vector<std::string> title = {"One-third-octave band RMS of " + Enhanced(source) + " (" +
+                                    SeriesText(options.series) + ")"};
+  if (!classified) return title;
+  const std::size_t channels = channel_names.size();
+  if (channels == 1) title.push_back(text.title[0]);
+  else if (channels <= 3)
+    for (std::size_t c = 0; c < channels; ++c) title.push_back(Enhanced(channel_names[c]) + ": " + text.title[c]);
+  else title.push_back("class of each channel in the key");
+  if (options.low_frequency_extension) title.back() += " (VC continued below 8 Hz)";
+  return title;
+}
+
+// The criteria named on the right axis at their level (they sit a factor 2
+// apart, so the names never crowd) and drawn as lines behind the bands' steps.
+void DrawCriteria(FigurePanel& panel, const std::vector<DrawnCriterion>& criteria) {
+  panel.y2 = panel.y;
+  panel.y2.label.clear();
+  panel.y2.format.clear();
+  for (const DrawnCriterion& d : criteria) panel.y2.tics.push_back({d.level, Enhanced(d.name)});
+  for (const DrawnCriterion& d : criteria) {
+    FigureAnnotation line;
+    line.kind = AnnotationKind::kSegment;
+    line.x0 = d.from_hz;
+    line.x1 = d.to_hz;
+    line.y0 = line.y1 = d.level;
+    line.colour = d.met ? kRequirementColour : kContextColour;
+    line.dash = d.met ? "solid" : kContextDash;
+    line.width = d.met ? 2.0 : 1.3;
+    line.behind = true;
+    panel.annotations.push_back(line);
   }
-  const std::string data = StandaloneDataFile(name);
-  for (std::size_t c = 0; c < channels; ++c) {
-    const SeriesStyle st = ContributorStyle(c);
-    FigureSeries steps;
-    steps.name = channel_names[c];
-    steps.key = Enhanced(channel_names[c]) + (channels == 1 ? "" : key_text[c]);
-    steps.kind = SeriesKind::kSteps;
-    steps.data = data;
-    steps.block = 0;
-    steps.y_columns = {2 + c};
-    steps.colour = st.colour;
-    panel.series.push_back(steps);
-    // A point at each centre: filled where the band holds enough spectral lines, open where not.
-    FigureSeries centres;
-    centres.name = channel_names[c] + " centres";
-    centres.kind = SeriesKind::kPoints;
-    centres.data = data;
-    centres.block = 1;
-    centres.y_columns = {5 + 2 * c};
-    centres.where_column = 4;
-    centres.where_value = kFewLines;
-    centres.where_test = WhereTest::kAtLeast;
-    centres.colour = st.edge_colour;
-    centres.point_type = 7;
-    centres.point_size = 0.8;
-    centres.width = 1.0;
-    panel.series.push_back(centres);
-    centres.name = channel_names[c] + " coarse centres";
-    centres.where_test = WhereTest::kLess;
-    centres.point_type = 6;
-    centres.point_size = 0.9;
-    panel.series.push_back(centres);
-    if (!verdicts.empty()) {
-      FigureSeries ring = centres;
-      ring.name = channel_names[c] + " limiting band";
-      ring.where_column = 6 + 2 * c;
-      ring.where_value = 1.0;
-      ring.where_test = WhereTest::kEqual;
-      ring.point_size = 2.6;
-      ring.width = 1.5;
-      ring.colour = kRequirementColour;
-      panel.series.push_back(ring);
-    }
-  }
-  bool coarse = false;
-  for (const BandRms& b : bands.front()) coarse = coarse || b.points < kFewLines;
-  const auto marker_entry = [&](const std::string& key, const std::string& colour, double size, double width) {
-    FigureAnnotation entry;
-    entry.kind = AnnotationKind::kKeyEntry;
-    entry.key = key;
-    entry.colour = colour;
-    entry.point_type = 6;
-    entry.point_size = size;
-    entry.width = width;
-    return entry;
-  };
-  // The key's entries for the markers and the criteria's lines, after the channels.
+}
+
+// Channel c's steps, a point at each centre (filled where the band holds
+// enough spectral lines, open where not) and, when classified, a ring on
+// its limiting band.
+void AddChannelSeries(FigurePanel& panel, std::size_t c, const std::string& channel, const std::string& key,
+                      const std::string& data, bool classified) {
+  const SeriesStyle st = ContributorStyle(c);
+  FigureSeries steps;
+  steps.name = channel;
+  steps.key = key;
+  steps.kind = SeriesKind::kSteps;
+  steps.data = data;
+  steps.block = 0;
+  steps.y_columns = {2 + c};
+  steps.colour = st.colour;
+  panel.series.push_back(steps);
+  FigureSeries centres;
+  centres.name = channel + " centres";
+  centres.kind = SeriesKind::kPoints;
+  centres.data = data;
+  centres.block = 1;
+  centres.y_columns = {5 + 2 * c};
+  centres.where_column = 4;
+  centres.where_value = kFewLines;
+  centres.where_test = WhereTest::kAtLeast;
+  centres.colour = st.edge_colour;
+  centres.point_type = 7;
+  centres.point_size = 0.8;
+  centres.width = 1.0;
+  panel.series.push_back(centres);
+  centres.name = channel + " coarse centres";
+  centres.where_test = WhereTest::kLess;
+  centres.point_type = 6;
+  centres.point_size = 0.9;
+  panel.series.push_back(centres);
+  if (!classified) return;
+  FigureSeries ring = centres;
+  ring.name = channel + " limiting band";
+  ring.where_column = 6 + 2 * c;
+  ring.where_value = 1.0;
+  ring.where_test = WhereTest::kEqual;
+  ring.point_size = 2.6;
+  ring.width = 1.5;
+  ring.colour = kRequirementColour;
+  panel.series.push_back(ring);
+}
+
+FigureAnnotation MarkerKeyEntry(const std::string& key, const std::string& colour, double size, double width) {
+  FigureAnnotation entry;
+  entry.kind = AnnotationKind::kKeyEntry;
+  entry.key = key;
+  entry.colour = colour;
+  entry.point_type = 6;
+  entry.point_size = size;
+  entry.width = width;
+  return entry;
+}
+
+// The key's entries for the markers and the criteria's lines, after the channels.
+std::vector<FigureAnnotation> BandClassKeyEntries(bool coarse, bool classified) {
   std::vector<FigureAnnotation> entries;
   if (coarse)
-    entries.push_back(marker_entry("band with < " + std::to_string(kFewLines) + " spectral lines", "#404040", 0.9, 1.0));
-  if (!verdicts.empty()) {
-    entries.push_back(marker_entry("limiting band", kRequirementColour, 2.0, 1.5));
-    FigureAnnotation met = marker_entry("class met", kRequirementColour, 1.0, 2.0);
+    entries.push_back(MarkerKeyEntry("band with < " + std::to_string(kFewLines) + " spectral lines", "#404040", 0.9, 1.0));
+  if (classified) {
+    entries.push_back(MarkerKeyEntry("limiting band", kRequirementColour, 2.0, 1.5));
+    FigureAnnotation met = MarkerKeyEntry("class met", kRequirementColour, 1.0, 2.0);
     met.point_type = 0;  // a line
     FigureAnnotation other = met;
     other.key = "other criteria";
@@ -751,6 +765,55 @@ Plot BandClassPlot(const std::vector<std::string>& channel_names, const std::vec
     entries.push_back(met);
     entries.push_back(other);
   }
+  return entries;
+}
+
+}  // namespace
+
+Plot BandClassPlot(const std::vector<std::string>& channel_names, const std::vector<std::vector<BandRms>>& bands,
+                   const std::vector<Classification>& verdicts, const ClassifyOptions& options,
+                   const std::string& unit, const std::string& source, const std::string& name) {
+  DEB_DEMAND(!bands.empty() && bands.size() == channel_names.size() && !bands.front().empty());
+  DEB_DEMAND(verdicts.empty() || verdicts.size() == bands.size());
+  const std::size_t channels = bands.size();
+  const bool classified = !verdicts.empty();
+  const std::string unit_label = unit.empty() ? "unit not declared" : UnitLabel(DisplayUnit(unit));
+  const double lo_hz = bands.front().front().band.lo_hz, hi_hz = bands.front().back().band.hi_hz;
+  Plot p;
+  p.name = name;
+  p.kind = PlotKind::kBands;
+  p.caption = "One-third-octave band RMS of " + source + " per channel" +
+              (classified ? ", against the building vibration criteria." : ".");
+
+  std::ostringstream csv;
+  csv << "# deb " << DEB_VERSION << ": one-third-octave band RMS of " << source << " ("
+      << ToString(options.series) << " centres)" << (unit.empty() ? "" : " in " + DisplayUnit(unit))
+      << "; block 0 steps, block 1 bands, block 2 criteria\n";
+  LevelRange range;
+  WriteBandBlocks(csv, channel_names, bands, verdicts, range);
+  std::vector<DrawnCriterion> criteria;
+  if (classified) {
+    criteria = CriteriaDrawn(verdicts, options, lo_hz, hi_hz, range);
+    WriteCriteriaBlock(csv, criteria);
+  }
+  p.csv = csv.str();
+
+  const ChannelVerdictText text = VerdictText(verdicts, channels, unit_label);
+  FigurePanel panel;
+  panel.title = Lines(BandClassTitle(channel_names, classified, text, options, source));
+  panel.x = FrequencyAxis(lo_hz, hi_hz);
+  LogY(panel, range.bottom / 1.2, range.top * 1.2, 8.0);
+  panel.y.label = "band RMS [" + unit_label + "]";
+  panel.y2.shown = false;
+  panel.key.title = "channel";
+  if (!criteria.empty()) DrawCriteria(panel, criteria);
+  const std::string data = StandaloneDataFile(name);
+  for (std::size_t c = 0; c < channels; ++c)
+    AddChannelSeries(panel, c, channel_names[c], Enhanced(channel_names[c]) + (channels == 1 ? "" : text.key[c]), data,
+                     classified);
+  bool coarse = false;
+  for (const BandRms& b : bands.front()) coarse = coarse || b.points < kFewLines;
+  const std::vector<FigureAnnotation> entries = BandClassKeyEntries(coarse, classified);
   panel.annotations.insert(panel.annotations.end(), entries.begin(), entries.end());
   p.figure.panels.push_back(std::move(panel));
   p.script = EmitFigure(p.figure);
