@@ -60,12 +60,12 @@ int main(int argc, char** argv) {
       info.seconds = 0.0;
       deb::WriteResultDirectory(result, info, out.string());
       best_write = std::min(best_write, Seconds(t0));
-      const std::string store = (out / deb::io::kResultStoreFile).string();
+      const std::string store = (out / deb::kResultStoreFile).string();
       t0 = std::chrono::steady_clock::now();
-      deb::io::WriteResultStore(result, info, store);
+      deb::WriteResultStore(result, info, store);
       best_store = std::min(best_store, Seconds(t0));
       t0 = std::chrono::steady_clock::now();
-      deb::io::ReadResultStore(store);
+      deb::ReadResultStore(store);
       best_read = std::min(best_read, Seconds(t0));
       store_mb = static_cast<double>(std::filesystem::file_size(store)) / 1e6;
       points = result.grid.size();

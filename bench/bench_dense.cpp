@@ -97,13 +97,13 @@ std::vector<std::string> Numbered(const std::string& stem, int count) {
 // DIR/plant.mat and DIR/b.yaml for `deb run` (see the usage above).
 void KeepBudget(const std::string& dir, const StateSpace& sys, int modes) {
   std::filesystem::create_directories(dir);
-  deb::io::WriteMatFile(dir + "/plant.mat",
-                        {{"A", deb::io::MatValue::Matrix(sys.A())},
-                         {"B", deb::io::MatValue::Matrix(sys.B())},
-                         {"C", deb::io::MatValue::Matrix(sys.C())},
-                         {"D", deb::io::MatValue::Matrix(sys.D())},
-                         {"input_names", deb::io::MatValue::Names(Numbered("F", sys.inputs()))},
-                         {"output_names", deb::io::MatValue::Names(Numbered("y", sys.outputs()))}},
+  deb::formats::WriteMatFile(dir + "/plant.mat",
+                        {{"A", deb::formats::MatValue::Matrix(sys.A())},
+                         {"B", deb::formats::MatValue::Matrix(sys.B())},
+                         {"C", deb::formats::MatValue::Matrix(sys.C())},
+                         {"D", deb::formats::MatValue::Matrix(sys.D())},
+                         {"input_names", deb::formats::MatValue::Names(Numbered("F", sys.inputs()))},
+                         {"output_names", deb::formats::MatValue::Names(Numbered("y", sys.outputs()))}},
                         "a rotated finite-element model (bench_dense --fe)");
   std::ofstream b(dir + "/b.yaml");
   b << "name: dense_" << modes << "_modes\n"

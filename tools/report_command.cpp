@@ -42,13 +42,13 @@ int ReportCommand::Run() const {
   const Options& o = *options_;
   const fs::path input(o.input);
   const bool is_dir = fs::is_directory(input);
-  const fs::path store = is_dir ? input / io::kResultStoreFile : input;
+  const fs::path store = is_dir ? input / kResultStoreFile : input;
   if (!fs::is_regular_file(store))
-    throw InputError(o.input + ": holds no result store (" + io::kResultStoreFile +
+    throw InputError(o.input + ": holds no result store (" + kResultStoreFile +
                      "); deb run writes one into every report directory");
   const fs::path result_dir = is_dir ? input : store.parent_path().empty() ? fs::path(".") : store.parent_path();
   RunInfo info;
-  const BudgetResult result = io::ReadResultStore(store.string(), &info);
+  const BudgetResult result = ReadResultStore(store.string(), &info);
 
   const ReportOptions report = o.flags.Options();
   std::vector<ExportFormat> exports = o.flags.exports;

@@ -14,7 +14,7 @@
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 
-namespace deb::io {
+namespace deb::formats {
 namespace {
 
 // Starts the library once per process, before any other use of it (the
@@ -956,4 +956,4 @@ void RequireSelfContainedHdf5(const std::string& path) {
   }
 }
 
-}  // namespace deb::io
+}  // namespace deb::formats

@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-namespace deb::io {
+namespace deb::formats {
 
 // Bounds of what a reader opens: a file of 16 GiB, and a dataset of the
 // densest grid (limits::kMaxGridPoints) times 50 channels (2 GB of doubles).
@@ -134,4 +134,4 @@ class Hdf5Reader {
   std::unique_ptr<Handle> handle_;
 };
 
-}  // namespace deb::io
+}  // namespace deb::formats

@@ -22,7 +22,7 @@
 #include "deb/core/number_text.h"
 #include "deb/formats/hdf5_file.h"
 
-namespace deb::io {
+namespace deb::formats {
 namespace {
 
 // matio's log function and the HDF5 library under it are process-wide:
@@ -926,4 +926,4 @@ void WriteMatFile(const std::string& path, const std::vector<std::pair<std::stri
   }
 }
 
-}  // namespace deb::io
+}  // namespace deb::formats

@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-namespace deb::io {
+namespace deb::formats {
 
 class MatFile {
  public:
@@ -100,4 +100,4 @@ struct MatValue {
 void WriteMatFile(const std::string& path, const std::vector<std::pair<std::string, MatValue>>& variables,
                   const std::string& description);
 
-}  // namespace deb::io
+}  // namespace deb::formats

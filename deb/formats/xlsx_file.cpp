@@ -12,7 +12,7 @@
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
 
-namespace deb::io {
+namespace deb::formats {
 namespace {
 
 // UTF-8 characters of `s` (continuation bytes not counted).
@@ -169,4 +169,4 @@ void XlsxWorkbook::Close() {
   }
 }
 
-}  // namespace deb::io
+}  // namespace deb::formats

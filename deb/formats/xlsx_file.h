@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace deb::io {
+namespace deb::formats {
 
 enum class XlsxStyle { kPlain, kHeader, kPass, kFail };
 
@@ -54,4 +54,4 @@ class XlsxWorkbook {
   std::unique_ptr<Handle> handle_;
 };
 
-}  // namespace deb::io
+}  // namespace deb::formats

@@ -9,7 +9,7 @@
 #include "deb/systems/control_blocks.h"
 #include "deb/systems/polynomial_product.h"
 
-namespace deb::io {
+namespace deb::load {
 namespace {
 
 const std::map<std::string, std::set<std::string>>& Keys() {
@@ -179,4 +179,4 @@ TransferFunction ParseBlock(const YamlNode& node, const std::string& type) {
   });
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

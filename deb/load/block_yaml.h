@@ -13,7 +13,7 @@
 #include "deb/systems/irrational_block.h"
 #include "deb/systems/transfer_function.h"
 
-namespace deb::io {
+namespace deb::load {
 
 // True for the name of a block path type.
 bool IsBlockType(const std::string& type);
@@ -35,4 +35,4 @@ IrrationalBlock ParseIrrationalBlock(const YamlNode& node, const std::string& ty
 // @throws InputError located at the offending key.
 TransferFunction ParseBlock(const YamlNode& node, const std::string& type);
 
-}  // namespace deb::io
+}  // namespace deb::load

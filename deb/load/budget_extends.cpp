@@ -10,7 +10,7 @@
 #include "deb/core/limits.h"
 #include "deb/load/yaml_node_set.h"
 
-namespace deb::io {
+namespace deb::load {
 namespace {
 
 namespace fs = std::filesystem;
@@ -136,4 +136,4 @@ YamlReader ReadBudgetFile(const std::string& path) {
   return YamlReader::FromAssembled(emitter.c_str(), path, std::move(a.positions));
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

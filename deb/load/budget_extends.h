@@ -14,7 +14,7 @@
 
 #include "deb/load/yaml_reader.h"
 
-namespace deb::io {
+namespace deb::load {
 
 inline constexpr int kMaxExtendsDepth = 16;
 
@@ -25,4 +25,4 @@ inline constexpr int kMaxExtendsDepth = 16;
 //         chain deeper than kMaxExtendsDepth.
 YamlReader ReadBudgetFile(const std::string& path);
 
-}  // namespace deb::io
+}  // namespace deb::load

@@ -15,11 +15,11 @@ BudgetOverride ParseBudgetOverride(const std::string& text) {
   BudgetOverride o{text.substr(0, eq), text.substr(eq + 1)};
   if (o.key_path.empty()) fail("the key path before '=' is empty");
   if (o.value.find_first_not_of(" \t") == std::string::npos) fail("the value after '=' is empty");
-  io::ParseKeyPath(o.key_path);  // malformed paths fail here, before any file is read
+  load::ParseKeyPath(o.key_path);  // malformed paths fail here, before any file is read
   return o;
 }
 
-namespace io {
+namespace load {
 
 void ApplyOverrides(YAML::Node root, const std::vector<BudgetOverride>& overrides, const std::string& file) {
   if (overrides.size() > limits::kMaxOverrides)
@@ -64,5 +64,5 @@ std::string OverriddenText(const std::string& text, const std::vector<BudgetOver
   return emitter.c_str();
 }
 
-}  // namespace io
+}  // namespace load
 }  // namespace deb

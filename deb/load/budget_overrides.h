@@ -12,7 +12,7 @@
 
 #include "deb/load/budget_yaml.h"
 
-namespace deb::io {
+namespace deb::load {
 
 // Applies the overrides to `root` (the document of `file`) in order.
 // @throws InputError "file: --set KEY=VALUE: why" for a malformed key path,
@@ -28,4 +28,4 @@ std::string OverridesNote(const std::vector<BudgetOverride>& overrides);
 std::string OverriddenText(const std::string& text, const std::vector<BudgetOverride>& overrides,
                            const std::string& file);
 
-}  // namespace deb::io
+}  // namespace deb::load

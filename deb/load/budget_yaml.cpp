@@ -19,14 +19,14 @@
 namespace deb {
 namespace {
 
-using io::YamlNode;
-using io::YamlReader;
+using load::YamlNode;
+using load::YamlReader;
 
 GridSpec ParseGrid(const YamlNode& node) {
   node.AllowOnly({"type", "min_hz", "max_hz", "points", "points_per_decade", "points_per_resonance",
                   "resonance_flank_points_per_decade", "max_refined_zeta", "f_hz"});
   GridSpec g;
-  if (auto t = node.Optional("type")) g.kind = io::AtNode(*t, [&] { return ParseGridKind(t->AsString()); });
+  if (auto t = node.Optional("type")) g.kind = load::AtNode(*t, [&] { return ParseGridKind(t->AsString()); });
   auto& o = g.auto_options;
   const auto min = node.Optional("min_hz"), max = node.Optional("max_hz");
   if (min) o.min_hz = min->AsPositive();
@@ -40,15 +40,15 @@ GridSpec ParseGrid(const YamlNode& node) {
     const YamlNode points = node.Required("points");
     g.points = points.AsInt();
     const std::string what = ToString(g.kind) + " grid";
-    io::AtNode(points, [&] { FrequencyGrid::CheckPoints(g.points, what.c_str()); });
-    io::AtNode(node, [&] { FrequencyGrid::CheckRange(o.min_hz, o.max_hz, what.c_str()); });
+    load::AtNode(points, [&] { FrequencyGrid::CheckPoints(g.points, what.c_str()); });
+    load::AtNode(node, [&] { FrequencyGrid::CheckRange(o.min_hz, o.max_hz, what.c_str()); });
   } else if (node.Has("points")) {
     node.Required("points").Fail("'points' applies to log and linear grids only");
   }
   if (g.kind == GridKind::kExplicit) {
     const YamlNode f = node.Required("f_hz");
     g.f_hz = f.AsDoubles();
-    io::AtNode(f, [&] { FrequencyGrid check(g.f_hz); });
+    load::AtNode(f, [&] { FrequencyGrid check(g.f_hz); });
   } else if (node.Has("f_hz")) {
     node.Required("f_hz").Fail("'f_hz' applies to explicit grids only");
   }
@@ -58,12 +58,12 @@ GridSpec ParseGrid(const YamlNode& node) {
     v->Fail("resonance_flank_points_per_decade is no longer used: the automatic grid widens its panels in "
             "proportion to the distance from each pole; points_per_resonance sets both");
   if (auto v = node.Optional("max_refined_zeta")) o.max_refined_zeta = v->AsDouble();
-  if (g.kind == GridKind::kAuto && g.range_given) io::AtNode(node, [&] { o.Validate(); });
+  if (g.kind == GridKind::kAuto && g.range_given) load::AtNode(node, [&] { o.Validate(); });
   else if (g.kind == GridKind::kAuto) {
     AutoGridOptions check = o;
     check.min_hz = 0.1;
     check.max_hz = 1000.0;
-    io::AtNode(node, [&] { check.Validate(); });
+    load::AtNode(node, [&] { check.Validate(); });
   }
   return g;
 }
@@ -75,12 +75,12 @@ Output ParseOutput(const YamlNode& node, const std::string& base_dir) {
   o.name = node.Required("name").AsString();
   o.signal = node.Has("signal") ? node.Required("signal").AsString() : o.name;
   o.unit = node.Required("unit").AsString();
-  if (auto w = node.Optional("weighting")) o.weighting = io::ParseWeighting(*w);
+  if (auto w = node.Optional("weighting")) o.weighting = load::ParseWeighting(*w);
   if (auto m = node.Optional("metric")) {
     m->AllowOnly({"type", "window_s"});
     const YamlNode type = m->Required("type");
     OutputMetric metric;
-    metric.type = io::AtNode(type, [&] { return ParseMetricType(type.AsString()); });
+    metric.type = load::AtNode(type, [&] { return ParseMetricType(type.AsString()); });
     metric.window_s = m->Required("window_s").AsPositive();
     o.metric = metric;
   }
@@ -114,19 +114,19 @@ Output ParseOutput(const YamlNode& node, const std::string& base_dir) {
       if (number.empty() || !end || *end != '\0' || !std::isfinite(t.weight))
         w.Fail("weight '" + text + "' is not a number with an optional unit, e.g. -210 mm");
       if (space != std::string::npos) t.unit = text.substr(text.find_first_not_of(" \t", space));
-      io::AtNode(w, [&] { ValidateUnit(t.unit); });
+      load::AtNode(w, [&] { ValidateUnit(t.unit); });
       o.combination.push_back(t);
     }
     o.signal = o.name;
   }
   if (auto refs = node.Optional("references"))
     for (const auto& r : refs->Elements()) {
-      Source ref = io::ParseSource(r, base_dir);
+      Source ref = load::ParseSource(r, base_dir);
       if (ref.channels() != 1)
         r.Fail("a reference is one measured signal of the output: it has " + std::to_string(ref.channels()) +
                " channels (select one with columns: [...])");
       const YamlNode unit = r.Has("unit") ? r.Required("unit") : r;
-      io::AtNode(unit, [&] { ConvertUnit(ref.unit, o.unit); });
+      load::AtNode(unit, [&] { ConvertUnit(ref.unit, o.unit); });
       o.references.push_back(std::move(ref));
     }
   return o;
@@ -149,7 +149,7 @@ Contributor ParseContributor(const YamlNode& node) {
     c.inputs = inputs->AsStrings();
     if (c.inputs.empty()) inputs->Fail("name at least one input of the path, or leave 'inputs' out to drive them all");
   }
-  if (auto e = node.Optional("exact")) c.exact = io::AtNode(*e, [&] { return ParseExactVariance(e->AsString()); });
+  if (auto e = node.Optional("exact")) c.exact = load::AtNode(*e, [&] { return ParseExactVariance(e->AsString()); });
   return c;
 }
 
@@ -176,7 +176,7 @@ Budget Load(YamlReader reader, const std::string& base_dir) {
   // sweep: read by deb sweep (deb/load/sweep_yaml.h); a run evaluates the budget as written.
   root.AllowOnly({"name", "description", "parameters", "grid", "sources", "paths", "contributors", "outputs", "bands",
                   "covariance", "sweep"});
-  if (auto parameters = root.Optional("parameters")) reader.SetParameters(io::ParseParameters(*parameters));
+  if (auto parameters = root.Optional("parameters")) reader.SetParameters(load::ParseParameters(*parameters));
   Budget b;
   b.parameters = reader.parameters().parameters();
   b.source_file = reader.name();
@@ -191,8 +191,8 @@ Budget Load(YamlReader reader, const std::string& base_dir) {
   if (auto d = root.Optional("description")) b.description = d->AsString();
   b.has_sweep = root.Optional("sweep").has_value();
   if (auto g = root.Optional("grid")) b.grid = ParseGrid(*g);
-  io::PathContext paths(base_dir);
-  for (const auto& n : root.Required("sources").Elements()) b.sources.push_back(io::ParseSource(n, base_dir));
+  load::PathContext paths(base_dir);
+  for (const auto& n : root.Required("sources").Elements()) b.sources.push_back(load::ParseSource(n, base_dir));
   for (const auto& n : root.Required("paths").Elements())
     for (Path& p : paths.Parse(n)) b.paths.push_back(std::move(p));
   b.models = paths.models();
@@ -217,17 +217,17 @@ Budget Load(YamlReader reader, const std::string& base_dir) {
 }  // namespace
 
 Budget LoadBudgetFile(const std::string& path) {
-  const YamlReader reader = io::ReadBudgetFile(path);
+  const YamlReader reader = load::ReadBudgetFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return Load(reader, dir.empty() ? "." : dir);
 }
 
 Budget LoadBudgetFile(const std::string& path, const std::vector<BudgetOverride>& overrides) {
   if (overrides.empty()) return LoadBudgetFile(path);
-  const YamlReader reader = io::ReadBudgetFile(path);
+  const YamlReader reader = load::ReadBudgetFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
-  return LoadBudgetVariant(io::OverriddenText(reader.text(), overrides, reader.name()), reader.positions(),
-                           io::OverridesNote(overrides), dir.empty() ? "." : dir);
+  return LoadBudgetVariant(load::OverriddenText(reader.text(), overrides, reader.name()), reader.positions(),
+                           load::OverridesNote(overrides), dir.empty() ? "." : dir);
 }
 
 Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const KeyPositions>& original,

@@ -5,7 +5,7 @@
 #include "deb/core/math_constants.h"
 #include "deb/models/isolation_system.h"
 
-namespace deb::io {
+namespace deb::load {
 namespace {
 
 // [x, y, z] (or [p, q, r]), each a number in `unit` or a quantity
@@ -113,4 +113,4 @@ IsolationPaths ParseIsolationSystem(const YamlNode& node) {
   return AtNodes(node, located, [&] { return MakeIsolationPaths(spec); });
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

@@ -7,8 +7,8 @@
 #include "deb/budget/isolation_paths.h"
 #include "deb/load/yaml_reader.h"
 
-namespace deb::io {
+namespace deb::load {
 
 IsolationPaths ParseIsolationSystem(const YamlNode& node);
 
-}  // namespace deb::io
+}  // namespace deb::load

@@ -8,7 +8,7 @@
 #include "deb/core/suggest.h"
 #include "deb/load/yaml_node_set.h"
 
-namespace deb::io {
+namespace deb::load {
 namespace {
 
 // The nodes a walk has reached (through aliases, a node is reached more than
@@ -195,4 +195,4 @@ std::string ReplaceAt(YAML::Node root, const KeyPath& path, const YAML::Node& va
   });
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

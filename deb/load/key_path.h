@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace deb::io {
+namespace deb::load {
 
 // One segment: a map key, or an index into a list (-1: every element).
 struct KeyPathStep {
@@ -56,4 +56,4 @@ std::string SetTextAt(YAML::Node root, const KeyPath& path, const std::string& t
 // `value`. The key must exist: a misspelt key is an error, not a new entry.
 std::string ReplaceAt(YAML::Node root, const KeyPath& path, const YAML::Node& value);
 
-}  // namespace deb::io
+}  // namespace deb::load

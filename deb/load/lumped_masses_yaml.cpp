@@ -7,7 +7,7 @@
 #include "deb/core/suggest.h"
 #include "deb/models/lumped_masses.h"
 
-namespace deb::io {
+namespace deb::load {
 namespace {
 
 // The index of mass `name` (LumpedMasses::kGround for "ground" where allowed).
@@ -118,4 +118,4 @@ LumpedMassesPath ParseLumpedMasses(const YamlNode& node) {
   return p;
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

@@ -14,7 +14,7 @@
 #include "deb/load/yaml_reader.h"
 #include "deb/systems/state_space.h"
 
-namespace deb::io {
+namespace deb::load {
 
 // The keys of a lumped_masses path besides name, description, type and the
 // unit keys.
@@ -29,4 +29,4 @@ struct LumpedMassesPath {
 // @throws InputError located at the offending key.
 LumpedMassesPath ParseLumpedMasses(const YamlNode& node);
 
-}  // namespace deb::io
+}  // namespace deb::load

@@ -9,7 +9,8 @@
 #include "deb/systems/modal_csv.h"
 #include "deb/units/unit.h"
 
-namespace deb::io {
+namespace deb::load {
+using formats::MatFile;
 
 const char* const kModalKeys[9] = {"file",          "modes",           "frequencies_hz",  "damping",
                                    "input_shapes",  "output_shapes",   "output_quantity", "max_frequency_hz",
@@ -232,4 +233,4 @@ std::string ModalOutputUnit(const std::string& displacement_unit, ModalQuantity 
   return unit;
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

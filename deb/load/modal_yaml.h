@@ -22,7 +22,7 @@
 #include "deb/load/yaml_reader.h"
 #include "deb/systems/modal_model.h"
 
-namespace deb::io {
+namespace deb::load {
 
 // The keys above (besides the common ones of every path).
 extern const char* const kModalKeys[9];
@@ -40,4 +40,4 @@ ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir);
 // @throws InputError if UDUNITS-2 cannot parse displacement_unit or the result.
 std::string ModalOutputUnit(const std::string& displacement_unit, ModalQuantity q);
 
-}  // namespace deb::io
+}  // namespace deb::load

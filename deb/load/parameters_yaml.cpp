@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-namespace deb::io {
+namespace deb::load {
 
 std::shared_ptr<const ParameterSet> ParseParameters(const YamlNode& node) {
   std::vector<ParameterDefinition> definitions;
@@ -44,4 +44,4 @@ std::shared_ptr<const ParameterSet> ParseParameters(const YamlNode& node) {
   }
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

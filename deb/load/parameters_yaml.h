@@ -10,10 +10,10 @@
 #include "deb/load/yaml_reader.h"
 #include "deb/parameters/parameter_set.h"
 
-namespace deb::io {
+namespace deb::load {
 
 // @throws InputError located at the offending parameter's value, and for a
 // bad expression at the column where it goes wrong.
 std::shared_ptr<const ParameterSet> ParseParameters(const YamlNode& node);
 
-}  // namespace deb::io
+}  // namespace deb::load

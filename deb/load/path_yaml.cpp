@@ -16,7 +16,8 @@
 #include "deb/systems/transfer_function.h"
 #include "deb/units/unit.h"
 
-namespace deb::io {
+namespace deb::load {
+using formats::MatFile;
 namespace {
 
 const std::set<std::string> kCommonKeys = {"name", "description", "type", "inputs", "outputs",
@@ -395,4 +396,4 @@ Weighting ParseWeighting(const YamlNode& node) {
   return w;
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

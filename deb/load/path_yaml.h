@@ -14,7 +14,7 @@
 #include "deb/budget/path.h"
 #include "deb/load/yaml_reader.h"
 
-namespace deb::io {
+namespace deb::load {
 
 class PathContext {
  public:
@@ -34,4 +34,4 @@ class PathContext {
 
 Weighting ParseWeighting(const YamlNode& node);
 
-}  // namespace deb::io
+}  // namespace deb::load

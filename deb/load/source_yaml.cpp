@@ -18,7 +18,7 @@
 #include "deb/spectra/vc_curve.h"
 #include "deb/units/unit.h"
 
-namespace deb::io {
+namespace deb::load {
 namespace {
 
 // Channel names from `channels:` (a count or a list); `fallback` for none.
@@ -367,4 +367,4 @@ Source ParseSource(const YamlNode& node, const std::string& base_dir) {
   return s;
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

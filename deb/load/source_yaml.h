@@ -8,8 +8,8 @@
 #include "deb/budget/source.h"
 #include "deb/load/yaml_reader.h"
 
-namespace deb::io {
+namespace deb::load {
 
 Source ParseSource(const YamlNode& node, const std::string& base_dir);
 
-}  // namespace deb::io
+}  // namespace deb::load

@@ -30,15 +30,15 @@
 namespace deb {
 namespace {
 
-using io::AtNode;
-using io::KeyPath;
-using io::ScaleNumbersAt;
-using io::SetTextAt;
-using io::YamlNode;
-using io::YamlReader;
+using load::AtNode;
+using load::KeyPath;
+using load::ScaleNumbersAt;
+using load::SetTextAt;
+using load::YamlNode;
+using load::YamlReader;
 
 KeyPath ParseKeyPath(const YamlNode& node) {
-  return AtNode(node, [&] { return io::ParseKeyPath(node.AsString()); });
+  return AtNode(node, [&] { return load::ParseKeyPath(node.AsString()); });
 }
 
 std::string Assign(YAML::Node n, const KeyPath& steps, const SweepParameter& p, double v) {
@@ -91,7 +91,7 @@ std::vector<double> ParseValues(const YamlNode& p, std::vector<std::string>* tex
   if (static_cast<std::size_t>(n) > limits::kMaxSweepVariants)
     count.Fail("count " + std::to_string(n) + " is more than the " + std::to_string(limits::kMaxSweepVariants) +
                " variants a sweep may have");
-  return io::AtNode(r, [&] { return log ? LogRange(from, to, n) : LinearRange(from, to, n); });
+  return load::AtNode(r, [&] { return log ? LogRange(from, to, n) : LinearRange(from, to, n); });
 }
 
 // Loads the variants of one sweep file: its text, the parameters' parsed
@@ -149,27 +149,27 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir, const st
   const YamlNode sweep = root.Required("sweep");
   sweep.AllowOnly({"mode", "parameters"});
   SweepBudget out;
-  if (auto m = sweep.Optional("mode")) out.spec.mode = io::AtNode(*m, [&] { return ParseSweepMode(m->AsString()); });
+  if (auto m = sweep.Optional("mode")) out.spec.mode = load::AtNode(*m, [&] { return ParseSweepMode(m->AsString()); });
   const YamlNode params = sweep.Required("parameters");
   std::vector<KeyPath> steps;
   std::vector<YamlNode> path_nodes;
   // The budget's parameters, by name: a sweep of one gives each value its
   // unit (the sweep's unit:, or the one the parameter is written in).
   const std::shared_ptr<const ParameterSet> budget_parameters =
-      root.Has("parameters") ? io::ParseParameters(root.Required("parameters")) : std::make_shared<ParameterSet>();
+      root.Has("parameters") ? load::ParseParameters(root.Required("parameters")) : std::make_shared<ParameterSet>();
   const YAML::Node document = reader.LoadCopy();
   for (const YamlNode& p : params.Elements()) {
     p.AllowOnly({"path", "label", "unit", "values", "linear", "log"});
     const YamlNode path = p.Required("path");
     const KeyPath written = ParseKeyPath(path);
-    steps.push_back(io::ResolveParameterName(document, written));
+    steps.push_back(load::ResolveParameterName(document, written));
     path_nodes.push_back(path);
     SweepParameter param;
     param.key_path = path.AsString();
     if (auto label = p.Optional("label")) param.label = ParseLabel(*label);
     if (auto unit = p.Optional("unit")) {
       param.unit = unit->AsString();
-      io::AtNode(*unit, [&] { ValidateUnit(param.unit); });
+      load::AtNode(*unit, [&] { ValidateUnit(param.unit); });
     }
     param.values = ParseValues(p, &param.texts);
     if (steps.back().size() != written.size() && param.texts.empty()) {
@@ -193,9 +193,9 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir, const st
       params.Fail("the grid of these parameters has " + NumberText(variants) + " variants, more than the " +
                   std::to_string(limits::kMaxSweepVariants) + " a sweep may have; sweep fewer values");
   }
-  const auto loader = std::make_shared<const VariantLoader>(io::OverriddenText(reader.text(), overrides, reader.name()),
+  const auto loader = std::make_shared<const VariantLoader>(load::OverriddenText(reader.text(), overrides, reader.name()),
                                                             reader.positions(), base_dir, out.spec, steps,
-                                                            io::OverridesNote(overrides));
+                                                            load::OverridesNote(overrides));
   // Check every path once (with its first value) before any variant loads,
   // on one copy: the assignments change values, never what a path reaches.
   YAML::Node probe = loader->BaseCopy();
@@ -214,26 +214,26 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir, const st
 }  // namespace
 
 SweepBudget LoadSweepFile(const std::string& path, const std::vector<BudgetOverride>& overrides) {
-  const YamlReader reader = io::ReadBudgetFile(path);
+  const YamlReader reader = load::ReadBudgetFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return Load(reader, dir.empty() ? "." : dir, overrides);
 }
 
 std::vector<double> ParameterValues(const std::string& path, const std::string& key_path,
                                     const std::vector<BudgetOverride>& overrides) {
-  const YamlReader reader = io::ReadBudgetFile(path);
+  const YamlReader reader = load::ReadBudgetFile(path);
   YAML::Node raw = reader.LoadCopy();
-  io::ApplyOverrides(raw, overrides, reader.name());
-  const KeyPath steps = io::ResolveParameterName(raw, io::ParseKeyPath(key_path));
+  load::ApplyOverrides(raw, overrides, reader.name());
+  const KeyPath steps = load::ResolveParameterName(raw, load::ParseKeyPath(key_path));
   if (raw.IsMap()) raw.remove("sweep");
   std::vector<double> values;
-  const std::string why = io::MultiplyValuesAt(raw, steps, 1.0, &values);
+  const std::string why = load::MultiplyValuesAt(raw, steps, 1.0, &values);
   if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
   // A parameter written as an expression: its value, in the unit of its
   // number if it is one ("5.2e4 N/m": 5.2e4), else in SI base units.
   if (values.size() == 1 && std::isnan(values[0]) && steps.size() >= 2 && steps[0].key == "parameters") {
-    const YamlReader copy = YamlReader::FromString(io::OverriddenText(reader.text(), overrides, reader.name()), path);
-    const std::shared_ptr<const ParameterSet> set = io::ParseParameters(copy.Root().Required("parameters"));
+    const YamlReader copy = YamlReader::FromString(load::OverriddenText(reader.text(), overrides, reader.name()), path);
+    const std::shared_ptr<const ParameterSet> set = load::ParseParameters(copy.Root().Required("parameters"));
     for (const Parameter& p : set->parameters())
       if (p.definition.name == steps[1].key) values[0] = p.unit.empty() ? p.value.value : ValueIn(p.value, p.unit);
   }
@@ -242,17 +242,17 @@ std::vector<double> ParameterValues(const std::string& path, const std::string& 
 
 Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string& key_path, double factor,
                                      const std::vector<BudgetOverride>& overrides) {
-  const YamlReader reader = io::ReadBudgetFile(path);
+  const YamlReader reader = load::ReadBudgetFile(path);
   YAML::Node raw = reader.LoadCopy();
-  io::ApplyOverrides(raw, overrides, reader.name());
-  const KeyPath steps = io::ResolveParameterName(raw, io::ParseKeyPath(key_path));
+  load::ApplyOverrides(raw, overrides, reader.name());
+  const KeyPath steps = load::ResolveParameterName(raw, load::ParseKeyPath(key_path));
   if (raw.IsMap()) raw.remove("sweep");
-  const std::string why = io::MultiplyValuesAt(raw, steps, factor);
+  const std::string why = load::MultiplyValuesAt(raw, steps, factor);
   if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
   YAML::Emitter emitter;
   emitter << raw;
   std::ostringstream note;
-  if (!overrides.empty()) note << io::OverridesNote(overrides) << "; ";
+  if (!overrides.empty()) note << load::OverridesNote(overrides) << "; ";
   note << key_path << " x " << factor;
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return LoadBudgetVariant(emitter.c_str(), reader.positions(), note.str(), dir.empty() ? "." : dir);

@@ -13,7 +13,7 @@
 #include <tuple>
 #include <vector>
 
-namespace deb::io {
+namespace deb::load {
 
 class YamlNodeSet {
  public:
@@ -31,4 +31,4 @@ class YamlNodeSet {
   std::map<std::tuple<int, int, int>, std::vector<YAML::Node>> seen_;
 };
 
-}  // namespace deb::io
+}  // namespace deb::load

@@ -14,7 +14,7 @@
 #include "deb/core/suggest.h"
 #include "deb/units/quantity.h"
 
-namespace deb::io {
+namespace deb::load {
 namespace {
 
 InputLocation Where(const std::string& name, const YAML::Mark& mark, const std::string& key) {
@@ -329,4 +329,4 @@ YamlNode YamlReader::Root() const {
   return YamlNode(this, root_, "");
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

@@ -19,7 +19,7 @@
 #include "deb/core/key_positions.h"
 #include "deb/parameters/parameter_set.h"
 
-namespace deb::io {
+namespace deb::load {
 
 class YamlReader;
 
@@ -152,4 +152,4 @@ auto AtNodes(const YamlNode& fallback, const std::vector<YamlNode>& nodes, F&& f
   }
 }
 
-}  // namespace deb::io
+}  // namespace deb::load

@@ -12,7 +12,7 @@
 namespace deb {
 namespace {
 
-using io::MatValue;
+using formats::MatValue;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kMaxMatlabName = 63;  // MATLAB's namelengthmax
@@ -174,7 +174,7 @@ void WriteResultMat(const BudgetResult& result, const std::string& file) {
   variables.emplace_back("output_fields", MatValue::Names(taken));
   variables.emplace_back("outputs", std::move(outputs));
   variables.emplace_back("warnings", MatValue::Names(result.warnings));
-  io::WriteMatFile(file, variables, "written by deb " DEB_VERSION);
+  formats::WriteMatFile(file, variables, "written by deb " DEB_VERSION);
 }
 
 }  // namespace deb

@@ -15,7 +15,11 @@
 #include "deb/formats/hdf5_file.h"
 #include "deb/version.h"
 
-namespace deb::io {
+namespace deb {
+using formats::AtMost;
+using formats::Hdf5Reader;
+using formats::Hdf5Writer;
+
 namespace {
 
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
@@ -773,4 +777,4 @@ BudgetResult ReadResultStore(const std::string& file, RunInfo* info) {
   return res;
 }
 
-}  // namespace deb::io
+}  // namespace deb

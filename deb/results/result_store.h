@@ -15,7 +15,7 @@
 #include "deb/budget/result.h"
 #include "deb/results/result_writer.h"
 
-namespace deb::io {
+namespace deb {
 
 // The schema's name and version, in every store (/schema, /schema_version).
 // A reader refuses another name or a newer version.
@@ -39,4 +39,4 @@ void WriteResultStore(const BudgetResult& result, const RunInfo& info, const std
 //         indices out of range).
 BudgetResult ReadResultStore(const std::string& file, RunInfo* info = nullptr);
 
-}  // namespace deb::io
+}  // namespace deb

@@ -11,8 +11,8 @@
 namespace deb {
 namespace {
 
-using io::XlsxStyle;
-using io::XlsxWorkbook;
+using formats::XlsxStyle;
+using formats::XlsxWorkbook;
 
 // A sheet filled row by row, which widens each column to its longest text.
 class Sheet {
@@ -185,12 +185,12 @@ void TraceSheet(XlsxWorkbook& book, const BudgetResult& result, const OutputResu
 void WriteResultXlsx(const BudgetResult& result, const std::string& file) {
   XlsxWorkbook book(file);
   std::vector<std::string> taken;
-  SummarySheet(book, result, io::XlsxSheetName("Summary", "", taken));
+  SummarySheet(book, result, formats::XlsxSheetName("Summary", "", taken));
   for (const OutputResult& o : result.outputs) {
     // Named before any is filled, so that an output called "Summary" gets "Summary~2".
-    const std::string contributors = io::XlsxSheetName(o.name, "", taken);
-    const std::string bands = io::XlsxSheetName(o.name, " bands", taken);
-    const std::string traces = io::XlsxSheetName(o.name, " traces", taken);
+    const std::string contributors = formats::XlsxSheetName(o.name, "", taken);
+    const std::string bands = formats::XlsxSheetName(o.name, " bands", taken);
+    const std::string traces = formats::XlsxSheetName(o.name, " traces", taken);
     ContributorSheet(book, o, contributors);
     BandSheet(book, o, bands);
     TraceSheet(book, result, o, traces);

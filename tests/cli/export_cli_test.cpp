@@ -32,7 +32,7 @@ TEST_CASE("run --export mat --export xlsx writes result.mat and result.xlsx besi
   CHECK(Contains(ReadAll(out / "report.md"), "(result.xlsx)"));
 
   const nlohmann::json summary = nlohmann::json::parse(ReadAll(out / "summary.json"));
-  deb::io::MatFile mat((out / "result.mat").string());
+  deb::formats::MatFile mat((out / "result.mat").string());
   const std::vector<std::string> fields = mat.Names("output_fields");
   REQUIRE(fields.size() == summary["outputs"].size());
   for (std::size_t o = 0; o < fields.size(); ++o) {

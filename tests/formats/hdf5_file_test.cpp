@@ -57,7 +57,7 @@ TEST_CASE("an HDF5 file holds numbers, integers, text, vectors and matrices exac
   const std::string file = dir.File("a.h5");
   const double tiny = 5.9e-300, third = 1.0 / 3.0;
   {
-    io::Hdf5Writer w(file);
+    formats::Hdf5Writer w(file);
     w.Number("scalar", third);
     w.Number("absent", std::numeric_limits<double>::quiet_NaN());
     w.Integer("version", -42);
@@ -71,7 +71,7 @@ TEST_CASE("an HDF5 file holds numbers, integers, text, vectors and matrices exac
     CHECK_THROWS_AS(w.Number("scalar", 1.0), WriteError);  // exists already
     w.Close();
   }
-  const io::Hdf5Reader r(file);
+  const formats::Hdf5Reader r(file);
   CHECK(r.Has("deep/group"));
   CHECK(r.Has("deep/group/f_hz"));
   CHECK_FALSE(r.Has("deep/other"));
@@ -81,11 +81,11 @@ TEST_CASE("an HDF5 file holds numbers, integers, text, vectors and matrices exac
   CHECK(r.Integer("version") == -42);
   CHECK(r.Text("unit") == "µm/s, '\"quoted\"'");
   CHECK(r.Text("empty").empty());
-  CHECK(r.Numbers("deep/group/f_hz", io::AtMost(3)) == std::vector<double>{0.1, tiny, 1e300});
-  CHECK(r.Numbers("deep/group/none", io::AtMost(0)).empty());
-  CHECK(r.Texts("deep/names", io::AtMost(3)) == std::vector<std::string>{"x", "β", ""});
-  CHECK(r.Rows("deep/matrix", io::AtMost(2), 3) == std::vector<std::vector<double>>{{1.0, 2.0, 3.0}, {4.0, 5.0, 6.0}});
-  CHECK(r.Rows("deep/no_rows", io::AtMost(0), 5).empty());
+  CHECK(r.Numbers("deep/group/f_hz", formats::AtMost(3)) == std::vector<double>{0.1, tiny, 1e300});
+  CHECK(r.Numbers("deep/group/none", formats::AtMost(0)).empty());
+  CHECK(r.Texts("deep/names", formats::AtMost(3)) == std::vector<std::string>{"x", "β", ""});
+  CHECK(r.Rows("deep/matrix", formats::AtMost(2), 3) == std::vector<std::vector<double>>{{1.0, 2.0, 3.0}, {4.0, 5.0, 6.0}});
+  CHECK(r.Rows("deep/no_rows", formats::AtMost(0), 5).empty());
   CHECK(r.Number("version") == -42.0);  // an integer reads as a number
 }
 
@@ -93,29 +93,29 @@ TEST_CASE("an HDF5 reader refuses what it was not asked for, naming the file and
   const TempDir dir;
   const std::string file = dir.File("b.h5");
   {
-    io::Hdf5Writer w(file);
+    formats::Hdf5Writer w(file);
     w.Numbers("v", {1.0, std::numeric_limits<double>::quiet_NaN()});
     w.Numbers("inf", {std::numeric_limits<double>::infinity()});
     w.Text("t", "text");
     w.Close();
   }
-  const io::Hdf5Reader r(file);
-  const std::string missing = ErrorOf([&] { r.Numbers("w", io::AtMost(9)); });
+  const formats::Hdf5Reader r(file);
+  const std::string missing = ErrorOf([&] { r.Numbers("w", formats::AtMost(9)); });
   CHECK(Contains(missing, file));
   CHECK(Contains(missing, "object 'w' is missing"));
   CHECK(Contains(ErrorOf([&] { r.Text("v"); }), "object 'v' holds numbers, not text"));
-  CHECK(Contains(ErrorOf([&] { r.Numbers("t", io::AtMost(9)); }), "object 't' holds text, not numbers"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("t", formats::AtMost(9)); }), "object 't' holds text, not numbers"));
   CHECK(Contains(ErrorOf([&] { r.Number("v"); }), "object 'v' has 1 dimensions, not 0"));
-  CHECK(Contains(ErrorOf([&] { r.Rows("v", io::AtMost(9), 2); }), "has 1 dimensions, not 2"));
-  CHECK(Contains(ErrorOf([&] { r.Numbers("v", io::AtMost(9)); }), "not finite at element 1"));
-  CHECK(std::isnan(r.Numbers("v", io::AtMost(2), true)[1]));
-  CHECK(Contains(ErrorOf([&] { r.Numbers("inf", io::AtMost(1), true); }), "not finite at element 0"));
+  CHECK(Contains(ErrorOf([&] { r.Rows("v", formats::AtMost(9), 2); }), "has 1 dimensions, not 2"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("v", formats::AtMost(9)); }), "not finite at element 1"));
+  CHECK(std::isnan(r.Numbers("v", formats::AtMost(2), true)[1]));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("inf", formats::AtMost(1), true); }), "not finite at element 0"));
   CHECK(Contains(ErrorOf([&] { r.Integer("v"); }), "not an integer"));
 
   const std::string text = dir.File("not.h5");
   std::ofstream(text) << "frequency_hz,psd\n1,2\n";
-  CHECK(Contains(ErrorOf([&] { io::Hdf5Reader bad(text); }), "not an HDF5 file"));
-  CHECK(Contains(ErrorOf([&] { io::Hdf5Reader none(dir.File("absent.h5")); }), "absent.h5"));
+  CHECK(Contains(ErrorOf([&] { formats::Hdf5Reader bad(text); }), "not an HDF5 file"));
+  CHECK(Contains(ErrorOf([&] { formats::Hdf5Reader none(dir.File("absent.h5")); }), "absent.h5"));
 }
 
 TEST_CASE("a compressed dataset is refused: a small file could expand beyond any bound") {
@@ -139,7 +139,7 @@ TEST_CASE("a compressed dataset is refused: a small file could expand beyond any
     H5Fclose(f);
   }
   CHECK(fs::file_size(file) < 100000);  // 800 kB of zeros in a few kB
-  const std::string e = ErrorOf([&] { io::Hdf5Reader(file).Numbers("zeros", io::AtMost(100000)); });
+  const std::string e = ErrorOf([&] { formats::Hdf5Reader(file).Numbers("zeros", formats::AtMost(100000)); });
   CHECK(Contains(e, "object 'zeros' is compressed or filtered"));
 }
 
@@ -163,7 +163,7 @@ TEST_CASE("an object header claiming more than the file holds is refused before 
     H5Fclose(f);
     H5Pclose(access);
   }
-  io::RequireSelfContainedHdf5(file);  // whole, it passes
+  formats::RequireSelfContainedHdf5(file);  // whole, it passes
   std::string bytes = test::ReadAll(file);
   // The last "OHDR" is the dataset's (the root group's comes first). Its
   // flags byte gives the width of the first chunk's size and what precedes it.
@@ -178,7 +178,7 @@ TEST_CASE("an object header claiming more than the file holds is refused before 
     std::ofstream out(file, std::ios::binary | std::ios::trunc);
     out << bytes;
   }
-  const std::string e = ErrorOf([&] { io::RequireSelfContainedHdf5(file); });
+  const std::string e = ErrorOf([&] { formats::RequireSelfContainedHdf5(file); });
   const std::string claimed = std::to_string((width == 8 ? 0 : (std::uint64_t{1} << (8 * width))) - 1);
   CHECK(Contains(e, "object 'v' has a header of " + claimed + " bytes at address " + std::to_string(at)));
   CHECK(Contains(e, "which the file (" + std::to_string(bytes.size()) + " bytes) does not hold"));
@@ -253,22 +253,22 @@ Hostile WriteHostile(const TempDir& dir) {
 TEST_CASE("values in another file, links and virtual datasets are refused before anything is read from them") {
   const TempDir dir;
   const Hostile h = WriteHostile(dir);
-  const io::Hdf5Reader r(h.file);
-  CHECK(r.Numbers("plain", io::AtMost(2)) == std::vector<double>{1234.5, 6789.25});
-  const std::string external = ErrorOf([&] { r.Numbers("external", io::AtMost(2)); });
+  const formats::Hdf5Reader r(h.file);
+  CHECK(r.Numbers("plain", formats::AtMost(2)) == std::vector<double>{1234.5, 6789.25});
+  const std::string external = ErrorOf([&] { r.Numbers("external", formats::AtMost(2)); });
   CHECK(Contains(external, "object 'external' keeps its values in another file (HDF5 external storage)"));
   CHECK_FALSE(Contains(external, "1234"));
   // A FIFO never read: the error comes at once instead of a wait for a writer.
   const auto t0 = std::chrono::steady_clock::now();
-  CHECK(Contains(ErrorOf([&] { r.Numbers("fifo_data", io::AtMost(2)); }), "keeps its values in another file"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("fifo_data", formats::AtMost(2)); }), "keeps its values in another file"));
   CHECK(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(5));
-  CHECK(Contains(ErrorOf([&] { r.Numbers("virtual", io::AtMost(2)); }), "object 'virtual' is a virtual dataset"));
-  CHECK(Contains(ErrorOf([&] { r.Numbers("elink", io::AtMost(2)); }), "object 'elink' is an external link"));
-  CHECK(Contains(ErrorOf([&] { r.Numbers("egroup/v", io::AtMost(2)); }), "object 'egroup' is an external link"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("virtual", formats::AtMost(2)); }), "object 'virtual' is a virtual dataset"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("elink", formats::AtMost(2)); }), "object 'elink' is an external link"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("egroup/v", formats::AtMost(2)); }), "object 'egroup' is an external link"));
   CHECK(Contains(ErrorOf([&] { r.Has("egroup/v"); }), "object 'egroup' is an external link"));
-  CHECK(Contains(ErrorOf([&] { r.Numbers("soft", io::AtMost(2)); }), "object 'soft' is a soft link"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("soft", formats::AtMost(2)); }), "object 'soft' is a soft link"));
   // The whole-file check a MAT-file of version 7.3 gets names the first offender.
-  const std::string whole = ErrorOf([&] { io::RequireSelfContainedHdf5(h.file); });
+  const std::string whole = ErrorOf([&] { formats::RequireSelfContainedHdf5(h.file); });
   CHECK(Contains(whole, h.file));
   CHECK((Contains(whole, "keeps its values in another file") || Contains(whole, "is a virtual dataset") ||
          Contains(whole, "link")));
@@ -279,18 +279,18 @@ TEST_CASE("values in another file, links and virtual datasets are refused before
 TEST_CASE("declared shapes are checked against the caller's bound and the file before anything is allocated") {
   const TempDir dir;
   const Hostile h = WriteHostile(dir);
-  const io::Hdf5Reader r(h.file);
+  const formats::Hdf5Reader r(h.file);
   const auto t0 = std::chrono::steady_clock::now();
-  CHECK(Contains(ErrorOf([&] { r.Numbers("declared", io::AtMost(1000)); }),
+  CHECK(Contains(ErrorOf([&] { r.Numbers("declared", formats::AtMost(1000)); }),
                  "object 'declared' declares 250000000 values, more than the 1000 it may hold"));
-  CHECK(Contains(ErrorOf([&] { r.Rows("no_columns", io::AtMost(10), 0); }),
+  CHECK(Contains(ErrorOf([&] { r.Rows("no_columns", formats::AtMost(10), 0); }),
                  "declares 250000000 rows, more than the 10 it may hold"));
   // Within any bound, but never written: HDF5 would make it up from the fill value.
-  CHECK(Contains(ErrorOf([&] { r.Numbers("declared", io::AtMost(300'000'000)); }),
+  CHECK(Contains(ErrorOf([&] { r.Numbers("declared", formats::AtMost(300'000'000)); }),
                  "declares 250000000 values, but the file holds 0 of them"));
-  CHECK(Contains(ErrorOf([&] { r.Numbers("unwritten", io::AtMost(100)); }), "but the file holds 0 of them"));
+  CHECK(Contains(ErrorOf([&] { r.Numbers("unwritten", formats::AtMost(100)); }), "but the file holds 0 of them"));
   CHECK(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(5));
-  CHECK(Contains(ErrorOf([&] { r.Rows("plain", io::AtMost(9), 2); }), "has 1 dimensions, not 2"));
+  CHECK(Contains(ErrorOf([&] { r.Rows("plain", formats::AtMost(9), 2); }), "has 1 dimensions, not 2"));
 }
 
 // The position of `needle` in `bytes`; fails the test if it is not there once.
@@ -306,7 +306,7 @@ TEST_CASE("text whose heap entry is damaged is refused before libhdf5 reads it (
   const std::string file = dir.File("text.h5");
   const std::string marker = "a text of thirty-two characters!";
   {
-    io::Hdf5Writer w(file);
+    formats::Hdf5Writer w(file);
     w.Text("t", marker);
     w.Texts("list", {"x", "y"});
     w.Close();
@@ -317,37 +317,37 @@ TEST_CASE("text whose heap entry is damaged is refused before libhdf5 reads it (
     io.seekp(static_cast<std::streamoff>(at));
     io.write(with.data(), static_cast<std::streamsize>(with.size()));
   };
-  CHECK(io::Hdf5Reader(file).Text("t") == marker);
+  CHECK(formats::Hdf5Reader(file).Text("t") == marker);
   // The heap object's size field (8 bytes before the text) claims far more.
   const std::size_t text_at = FindOnce(bytes(), marker);
   const std::string original = bytes().substr(text_at - 8, 8);
   patch(text_at - 8, std::string("\xff\xff\xff\x7f\0\0\0\0", 8));
-  const std::string e = ErrorOf([&] { io::Hdf5Reader(file).Text("t"); });
+  const std::string e = ErrorOf([&] { formats::Hdf5Reader(file).Text("t"); });
   CHECK(Contains(e, "object 't' is damaged"));
   patch(text_at - 8, original);
-  CHECK(io::Hdf5Reader(file).Text("t") == marker);
+  CHECK(formats::Hdf5Reader(file).Text("t") == marker);
   // The collection's size beyond the end of the file.
   const std::size_t heap_at = FindOnce(bytes(), "GCOL");
   patch(heap_at + 8, std::string("\0\0\0\0\0\0\x10\0", 8));
-  CHECK(Contains(ErrorOf([&] { io::Hdf5Reader(file).Text("t"); }), "object 't' is damaged"));
+  CHECK(Contains(ErrorOf([&] { formats::Hdf5Reader(file).Text("t"); }), "object 't' is damaged"));
 }
 
 TEST_CASE("text that is not UTF-8 is refused with the object and the byte") {
   const TempDir dir;
   const std::string file = dir.File("latin1.h5");
   {
-    io::Hdf5Writer w(file);
+    formats::Hdf5Writer w(file);
     w.Text("name", "caf\xe9");
     w.Close();
   }
-  const std::string e = ErrorOf([&] { io::Hdf5Reader(file).Text("name"); });
+  const std::string e = ErrorOf([&] { formats::Hdf5Reader(file).Text("name"); });
   CHECK(Contains(e, "object 'name' holds text where byte 0xe9 at character 4 is not UTF-8"));
 }
 
 TEST_CASE("the same values written a second later give the same file (no times in the objects)") {
   const TempDir dir;
   const auto write = [&](const std::string& name) {
-    io::Hdf5Writer w(dir.File(name));
+    formats::Hdf5Writer w(dir.File(name));
     w.Text("schema", "x");
     w.Numbers("a/b/c", {1.0, 2.0});
     w.Rows("a/m", {{1.0, 2.0}, {3.0, 4.0}});

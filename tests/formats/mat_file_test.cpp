@@ -36,7 +36,7 @@ namespace deb {
 namespace {
 
 namespace fs = std::filesystem;
-using io::MatFile;
+using formats::MatFile;
 
 struct Format {
   const char* name;

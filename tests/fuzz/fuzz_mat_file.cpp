@@ -12,7 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size > deb_fuzz::kMaxInput) return 0;
   const std::string path = deb_fuzz::WriteTempFile("x.mat", data, size);
   deb_fuzz::ExpectOnlyInputError("MatFile", [&] {
-    const deb::io::MatFile f(path);
+    const deb::formats::MatFile f(path);
     std::set<std::string> names = {"A", "B", "C", "D", "input_names", "output_names", "f_hz", "zeta", "phi_in",
                                    "phi_out"};
     for (std::size_t i = 0; i < std::min<std::size_t>(f.variables().size(), 8); ++i) names.insert(f.variables()[i]);

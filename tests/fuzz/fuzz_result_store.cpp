@@ -7,6 +7,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size > deb_fuzz::kMaxInput) return 0;
   const std::string path = deb_fuzz::WriteTempFile("result.h5", data, size);
-  deb_fuzz::ExpectOnlyInputError("ReadResultStore", [&] { deb::io::ReadResultStore(path); });
+  deb_fuzz::ExpectOnlyInputError("ReadResultStore", [&] { deb::ReadResultStore(path); });
   return 0;
 }

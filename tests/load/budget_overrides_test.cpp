@@ -46,22 +46,22 @@ TEST_CASE("an override is KEY.PATH=VALUE split at the first '='; malformed ones 
 
 TEST_CASE("the key-path editor replaces, sets and scales what the path reaches, an alias once") {
   YAML::Node doc = YAML::Load("a: {b: [1, 2, 3], c: &x {v: 2}, d: *x}\nlist: [{k: 1}, {k: 2}]\n");
-  CHECK(io::ScaleNumbersAt(doc, io::ParseKeyPath("a.b"), [](double x) { return 10 * x; }).empty());
+  CHECK(load::ScaleNumbersAt(doc, load::ParseKeyPath("a.b"), [](double x) { return 10 * x; }).empty());
   CHECK(doc["a"]["b"][2].as<double>() == 30.0);
   // c and d are one node: scaled once, not twice.
-  CHECK(io::ScaleNumbersAt(doc, io::ParseKeyPath("a.c.v"), [](double x) { return 3 * x; }).empty());
-  CHECK(io::ScaleNumbersAt(doc, io::ParseKeyPath("a.d.v"), [](double x) { return x; }).empty());
+  CHECK(load::ScaleNumbersAt(doc, load::ParseKeyPath("a.c.v"), [](double x) { return 3 * x; }).empty());
+  CHECK(load::ScaleNumbersAt(doc, load::ParseKeyPath("a.d.v"), [](double x) { return x; }).empty());
   CHECK(doc["a"]["c"]["v"].as<double>() == 6.0);
-  CHECK(io::SetTextAt(doc, io::ParseKeyPath("list[*].k"), "seven").empty());
+  CHECK(load::SetTextAt(doc, load::ParseKeyPath("list[*].k"), "seven").empty());
   CHECK(doc["list"][1]["k"].as<std::string>() == "seven");
-  CHECK(io::ReplaceAt(doc, io::ParseKeyPath("list[0]"), YAML::Load("{k: 5, extra: [1]}")).empty());
+  CHECK(load::ReplaceAt(doc, load::ParseKeyPath("list[0]"), YAML::Load("{k: 5, extra: [1]}")).empty());
   CHECK(doc["list"][0]["extra"][0].as<int>() == 1);
   CHECK(doc["list"][1]["k"].as<std::string>() == "seven");
   // What a path cannot reach is said, with the nearest key.
-  CHECK(Contains(io::ReplaceAt(doc, io::ParseKeyPath("a.cc"), YAML::Load("1")), "did you mean 'c'"));
-  CHECK(Contains(io::ReplaceAt(doc, io::ParseKeyPath("list[5]"), YAML::Load("1")), "list has 2 element(s), so no [5]"));
-  CHECK(Contains(io::ReplaceAt(doc, io::ParseKeyPath("a.b.c"), YAML::Load("1")), "a.b is not a map"));
-  CHECK(Contains(io::SetTextAt(doc, io::ParseKeyPath("a.b"), "x"), "a.b is not a single value"));
+  CHECK(Contains(load::ReplaceAt(doc, load::ParseKeyPath("a.cc"), YAML::Load("1")), "did you mean 'c'"));
+  CHECK(Contains(load::ReplaceAt(doc, load::ParseKeyPath("list[5]"), YAML::Load("1")), "list has 2 element(s), so no [5]"));
+  CHECK(Contains(load::ReplaceAt(doc, load::ParseKeyPath("a.b.c"), YAML::Load("1")), "a.b is not a map"));
+  CHECK(Contains(load::SetTextAt(doc, load::ParseKeyPath("a.b"), "x"), "a.b is not a single value"));
 }
 
 TEST_CASE("--set of a flat source's level scales its contributor's variance by the ratio of levels") {

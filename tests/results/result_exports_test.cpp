@@ -100,17 +100,17 @@ TEST_CASE("MatlabName: valid identifiers of at most 63 characters, unique") {
 
 TEST_CASE("XlsxSheetName: Excel's 31 characters, no []:*?/\\, unique ignoring case") {
   std::vector<std::string> taken;
-  CHECK(io::XlsxSheetName("Summary", "", taken) == "Summary");
-  CHECK(io::XlsxSheetName("summary", "", taken) == "summary~2");
-  CHECK(io::XlsxSheetName("a[b]:c*d?e/f\\g", "", taken) == "a_b__c_d_e_f_g");
-  CHECK(io::XlsxSheetName("'quoted'", "", taken) == "_quoted_");
+  CHECK(formats::XlsxSheetName("Summary", "", taken) == "Summary");
+  CHECK(formats::XlsxSheetName("summary", "", taken) == "summary~2");
+  CHECK(formats::XlsxSheetName("a[b]:c*d?e/f\\g", "", taken) == "a_b__c_d_e_f_g");
+  CHECK(formats::XlsxSheetName("'quoted'", "", taken) == "_quoted_");
   const std::string long_name(40, 'x');
-  const std::string traces = io::XlsxSheetName(long_name, " traces", taken);
+  const std::string traces = formats::XlsxSheetName(long_name, " traces", taken);
   CHECK(traces == std::string(24, 'x') + " traces");
-  CHECK(io::XlsxSheetName(long_name, " traces", taken) == std::string(22, 'x') + "~2 traces");
+  CHECK(formats::XlsxSheetName(long_name, " traces", taken) == std::string(22, 'x') + "~2 traces");
   // Shortened at a character, not inside one: 30 x and a two-byte é fit 31 characters.
   const std::string accented = std::string(30, 'y') + "\xC3\xA9" + "zz";
-  CHECK(io::XlsxSheetName(accented, "", taken) == std::string(30, 'y') + "\xC3\xA9");
+  CHECK(formats::XlsxSheetName(accented, "", taken) == std::string(30, 'y') + "\xC3\xA9");
 }
 
 TEST_CASE("result.mat read back with MatFile: the grid, each output's struct, exact values") {
@@ -118,7 +118,7 @@ TEST_CASE("result.mat read back with MatFile: the grid, each output's struct, ex
   const std::string file = (dir / "result.mat").string();
   const BudgetResult r = SmallResult();
   WriteResultMat(r, file);
-  io::MatFile m(file);
+  formats::MatFile m(file);
   CHECK(m.variables() ==
         std::vector<std::string>{"f_hz", "budget_name", "deb_version", "output_names", "output_fields", "outputs",
                                  "warnings"});

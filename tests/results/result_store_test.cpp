@@ -67,13 +67,13 @@ Written WriteStore(const std::string& budget_file, const std::string& store) {
   w.info.budget_text = "name: the text of the budget file, kept as it was read\n";
   w.info.budget_sha256 = std::string(64, 'a');
   w.info.seconds = 0.25;
-  io::WriteResultStore(w.result, w.info, store);
+  WriteResultStore(w.result, w.info, store);
   return w;
 }
 
 std::string ErrorOf(const std::string& store) {
   try {
-    io::ReadResultStore(store);
+    ReadResultStore(store);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -88,8 +88,8 @@ TEST_CASE("a result store read back and written again is the same file, for ever
     const std::string first = dir.File("first.h5"), second = dir.File("second.h5");
     const Written w = WriteStore(Budget(name), first);
     RunInfo info;
-    const BudgetResult s = io::ReadResultStore(first, &info);
-    io::WriteResultStore(s, info, second);
+    const BudgetResult s = ReadResultStore(first, &info);
+    WriteResultStore(s, info, second);
     const std::string a = Bytes(first), b = Bytes(second);
     CHECK(a.size() > 1000);
     const bool same_bytes = a == b;
@@ -181,8 +181,8 @@ outputs:
   const std::string first = dir.File("first.h5"), second = dir.File("second.h5");
   const Written w = WriteStore(budget, first);
   RunInfo info;
-  const BudgetResult s = io::ReadResultStore(first, &info);
-  io::WriteResultStore(s, info, second);
+  const BudgetResult s = ReadResultStore(first, &info);
+  WriteResultStore(s, info, second);
   const bool same_bytes = Bytes(first) == Bytes(second);
   CHECK(same_bytes);
   REQUIRE(s.outline.parameters.size() == 3);
@@ -219,8 +219,8 @@ outputs:
   const std::string first = dir.File("first.h5"), second = dir.File("second.h5");
   const Written w = WriteStore(budget, first);
   RunInfo info;
-  const BudgetResult s = io::ReadResultStore(first, &info);
-  io::WriteResultStore(s, info, second);
+  const BudgetResult s = ReadResultStore(first, &info);
+  WriteResultStore(s, info, second);
   const bool same_bytes = Bytes(first) == Bytes(second);
   CHECK(same_bytes);
   REQUIRE(w.result.loops.size() == 1);
@@ -242,7 +242,7 @@ TEST_CASE("the features each example stands for are in its store") {
   const StoreDir dir;
   const auto read = [&](const char* name) {
     WriteStore(Budget(name), dir.File("s.h5"));
-    return io::ReadResultStore(dir.File("s.h5"));
+    return ReadResultStore(dir.File("s.h5"));
   };
   const BudgetResult wafer = read("wafer_stage.yaml");
   bool grouped = false, referenced = false, metric = false, band_requirement = false;
@@ -286,25 +286,25 @@ TEST_CASE("a store the reader must refuse gives an error naming the file and the
   SUBCASE("another schema, or a newer version of this one") {
     const std::string other = dir.File("other.h5"), newer = dir.File("newer.h5");
     {
-      io::Hdf5Writer w(other);
+      formats::Hdf5Writer w(other);
       w.Text("schema", "someone-else");
       w.Integer("schema_version", 1);
       w.Close();
-      io::Hdf5Writer v(newer);
-      v.Text("schema", io::kResultStoreSchema);
-      v.Integer("schema_version", io::kResultStoreVersion + 1);
+      formats::Hdf5Writer v(newer);
+      v.Text("schema", kResultStoreSchema);
+      v.Integer("schema_version", kResultStoreVersion + 1);
       v.Close();
     }
     CHECK(Contains(ErrorOf(other), "not a result store of deb"));
     const std::string e = ErrorOf(newer);
     CHECK(Contains(e, newer));
-    CHECK(Contains(e, "schema version " + std::to_string(io::kResultStoreVersion + 1)));
+    CHECK(Contains(e, "schema version " + std::to_string(kResultStoreVersion + 1)));
   }
   SUBCASE("a PSD one value short of the grid") {
     Written w{Evaluate(LoadBudgetFile(Budget("single_axis_isolator.yaml"))), {}};
     w.result.outputs[1].contributors[0].psd.pop_back();
     const std::string file = dir.File("short.h5");
-    io::WriteResultStore(w.result, w.info, file);
+    WriteResultStore(w.result, w.info, file);
     const std::string e = ErrorOf(file);
     CHECK(Contains(e, file));
     CHECK(Contains(e, "'result/outputs/1/contributors/0/psd' has " + std::to_string(w.result.grid.size() - 1) +
@@ -316,10 +316,10 @@ TEST_CASE("a store the reader must refuse gives an error naming the file and the
     const std::string renamed = dir.File("renamed.h5"), index = dir.File("index.h5");
     BudgetResult changed = w.result;
     changed.outline.sources[0].name = "renamed";
-    io::WriteResultStore(changed, w.info, renamed);
+    WriteResultStore(changed, w.info, renamed);
     CHECK(Contains(ErrorOf(renamed), "'budget/contributors/0/source' names the source"));
     w.result.covariance->index[1] = 99;
-    io::WriteResultStore(w.result, w.info, index);
+    WriteResultStore(w.result, w.info, index);
     const std::string e = ErrorOf(index);
     CHECK(Contains(e, "'result/covariance/index' holds the index 99"));
   }
@@ -329,7 +329,7 @@ TEST_CASE("a store the reader must refuse gives an error naming the file and the
       Written changed = w;
       change(changed);
       const std::string file = dir.File("changed.h5");
-      io::WriteResultStore(changed.result, changed.info, file);
+      WriteResultStore(changed.result, changed.info, file);
       const std::string e = ErrorOf(file);
       CHECK_MESSAGE(Contains(e, says), e);
     };
@@ -347,7 +347,7 @@ TEST_CASE("a store the reader must refuse gives an error naming the file and the
     Written w{Evaluate(LoadBudgetFile(Budget("single_axis_isolator.yaml"))), {}};
     w.result.outputs[0].variance = std::numeric_limits<double>::quiet_NaN();
     const std::string file = dir.File("nan.h5");
-    io::WriteResultStore(w.result, w.info, file);
+    WriteResultStore(w.result, w.info, file);
     const std::string e = ErrorOf(file);
     CHECK(Contains(e, "result/outputs/0/variance"));
   }

@@ -253,7 +253,7 @@ ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, cons
   doc.digits = options.digits;
   doc.asd = options.asd;
   if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
-  std::vector<std::string> data = {"summary.json", io::kResultStoreFile};
+  std::vector<std::string> data = {"summary.json", kResultStoreFile};
   for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));
   for (const ExportFormat f : {ExportFormat::kMat, ExportFormat::kXlsx}) data.push_back(ExportFileName(f));
   for (const auto& f : data)
@@ -285,10 +285,10 @@ ReportManifest WriteReportDirectory(const BudgetResult& result, const RunInfo& i
           // The store is written beside the rest (HDF5 is used by nothing
           // else meanwhile: the exports do not use it). Its file is made
           // here first, so that index.html links it whatever the timing.
-          const std::string store = (fs::path(dir) / io::kResultStoreFile).string();
+          const std::string store = (fs::path(dir) / kResultStoreFile).string();
           if (!std::ofstream(store)) throw WriteError("cannot write " + store);
           std::future<void> stored =
-              std::async(std::launch::async, [&] { io::WriteResultStore(result, run, store); });
+              std::async(std::launch::async, [&] { WriteResultStore(result, run, store); });
           std::vector<std::string> exported;
           try {
             WriteResultFiles(result, run, dir);
@@ -299,7 +299,7 @@ ReportManifest WriteReportDirectory(const BudgetResult& result, const RunInfo& i
             throw;
           }
           stored.get();
-          manifest.files.push_back(io::kResultStoreFile);
+          manifest.files.push_back(kResultStoreFile);
           manifest.files.insert(manifest.files.end(), exported.begin(), exported.end());
         },
         replace);

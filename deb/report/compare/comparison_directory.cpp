@@ -34,8 +34,8 @@ ComparisonInput ReadComparisonResult(const std::string& path, bool with_result) 
                          p.filename().empty() ? p.parent_path().filename().string() : p.filename().string()),
       std::nullopt};
   // With its result store, a directory is drawn as a budget is.
-  const fs::path store = p / io::kResultStoreFile;
-  if (with_result && fs::is_regular_file(store)) input.result = io::ReadResultStore(store.string());
+  const fs::path store = p / kResultStoreFile;
+  if (with_result && fs::is_regular_file(store)) input.result = ReadResultStore(store.string());
   return input;
 }
 
