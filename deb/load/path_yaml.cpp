@@ -191,6 +191,155 @@ Path Named(const Path& entry, Path composed) {
   return composed;
 }
 
+// Where a parsed path's channel names and units come from: the entry's
+// inputs/outputs and units (a file's names as the default), the parts or
+// data it was made of (inputs/outputs may rename them), or the type's own
+// entries alone.
+enum class ChannelSource { kEntry, kComposed, kOwn };
+
+ChannelSource ParseTransferFunctionPath(const YamlNode& node, Path& p) {
+  node.AllowOnly(With(kCommonKeys, {"num", "den", "matrix"}));
+  if (auto m = node.Optional("matrix")) {
+    std::vector<std::vector<TransferFunction>> rows;
+    for (const auto& row : m->Elements()) {
+      rows.emplace_back();
+      for (const auto& e : row.Elements()) {
+        e.AllowOnly({"num", "den"});
+        rows.back().push_back(ParseTf(e));
+      }
+    }
+    Eigen::Index states = 0;
+    for (const auto& row : rows)
+      for (const TransferFunction& tf : row) states += static_cast<Eigen::Index>(tf.den().size()) - 1;
+    if (const std::string why = TooManyStates(states, "the denominators of this matrix give"); !why.empty())
+      m->Fail(why);
+    p.system = AtNode(*m, [&] { return ToStateSpace(rows); });
+  } else {
+    const TransferFunction tf = ParseTf(node);
+    p.system = AtNode(node.Required("den"), [&] { return ToStateSpace(tf); });
+  }
+  return ChannelSource::kEntry;
+}
+
+// A MAT-file's channel names become the path's default names.
+ChannelSource ParseStateSpacePath(const YamlNode& node, const std::string& base_dir, Path& p) {
+  node.AllowOnly(With(kCommonKeys, {"A", "B", "C", "D", "file"}));
+  if (const auto file = node.Optional("file")) {
+    for (const char* m : {"A", "B", "C", "D"})
+      if (node.Has(m)) node.Required(m).Fail("give 'file' (a MAT-file with A, B, C and D) or the matrices inline, not both");
+    const std::string path = Resolve(base_dir, file->AsString());
+    StateSpaceMat m = AtNode(*file, [&] { return ReadStateSpaceMat(path); });
+    p.system = std::move(m.system);
+    p.input_names = std::move(m.input_names);
+    p.output_names = std::move(m.output_names);
+    return ChannelSource::kEntry;
+  }
+  const Eigen::MatrixXd a = node.Required("A").AsMatrix();
+  if (const std::string why = TooManyStates(a.rows(), "A is " + SizeText(a) + ":"); !why.empty())
+    node.Required("A").Fail(why);
+  const Eigen::MatrixXd b = node.Required("B").AsMatrix(), c = node.Required("C").AsMatrix();
+  const Eigen::MatrixXd d = node.Has("D") ? node.Required("D").AsMatrix() : Eigen::MatrixXd::Zero(c.rows(), b.cols());
+  p.system = AtNode(node, [&] { return StateSpace(a, b, c, d); });
+  return ChannelSource::kEntry;
+}
+
+// Names and units from the file.
+ChannelSource ParseFrfPath(const YamlNode& node, const std::string& base_dir, Path& p) {
+  node.AllowOnly(With(kCommonKeys, {"file", "extrapolation"}));
+  const YamlNode file = node.Required("file");
+  std::filesystem::path f(file.AsString());
+  if (f.is_relative()) f = std::filesystem::path(base_dir) / f;
+  const Extrapolation extrapolation =
+      node.Has("extrapolation")
+          ? AtNode(node.Required("extrapolation"), [&] { return ParseExtrapolation(node.Required("extrapolation").AsString()); })
+          : Extrapolation::kError;
+  const std::vector<std::string> outs = node.Has("outputs") ? node.Required("outputs").AsStrings() : std::vector<std::string>{};
+  const std::vector<std::string> ins = node.Has("inputs") ? node.Required("inputs").AsStrings() : std::vector<std::string>{};
+  FrfCsv frf = AtNode(file, [&] { return ReadFrfCsv(f.lexically_normal().string(), outs, ins, extrapolation); });
+  p.input_names = frf.inputs;
+  p.output_names = frf.outputs;
+  p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(frf.response.outputs(), frf.response.inputs()));
+  p.measured = std::make_shared<const FrequencyModel>(std::move(frf.response));
+  p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+  p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+  return ChannelSource::kComposed;
+}
+
+// Names from the mode shapes' DOFs (no inputs/outputs keys).
+ChannelSource ParseModalPath(const YamlNode& node, const std::string& base_dir, Path& p) {
+  std::set<std::string> keys = {"name", "description", "type", "input_unit", "input_units", "output_unit",
+                                "output_units"};
+  keys.insert(std::begin(kModalKeys), std::end(kModalKeys));
+  node.AllowOnly(keys);
+  const ModalModel model = ParseModalModel(node, base_dir);
+  AtNode(node, [&] { model.Validate(); });
+  p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(model.phi_out.rows(), model.phi_in.rows()));
+  p.modal = std::make_shared<const ModalModel>(model);
+  p.input_names = model.input_names;
+  p.output_names = model.output_names;
+  p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+  p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+  const YamlNode unit_node = node.Required(node.Has("output_unit") ? "output_unit" : "output_units");
+  for (std::string& u : p.output_units) u = AtNode(unit_node, [&] { return ModalOutputUnit(u, model.quantity); });
+  return ChannelSource::kComposed;
+}
+
+ChannelSource ParseLumpedMassesPath(const YamlNode& node, Path& p) {
+  std::set<std::string> keys = LumpedMassesKeys();
+  keys.insert({"name", "description", "type", "input_unit", "input_units", "output_unit", "output_units"});
+  node.AllowOnly(keys);
+  LumpedMassesPath lumped = ParseLumpedMasses(node);
+  p.system = std::move(lumped.system);
+  p.input_names = std::move(lumped.input_names);
+  p.output_names = std::move(lumped.output_names);
+  p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+  p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+  p.system = InChannelUnits(node, p, lumped.input_si_units, lumped.output_si_units);
+  return ChannelSource::kOwn;
+}
+
+// A delay or a sampled controller: its rational approximation, and its exact response.
+ChannelSource ParseIrrationalPath(const YamlNode& node, const std::string& type, Path& p) {
+  std::set<std::string> keys = IrrationalKeys(type);
+  keys.insert(kCommonKeys.begin(), kCommonKeys.end());
+  node.AllowOnly(keys);
+  if (type == "discrete" && node.Has("den")) {
+    const YamlNode den = node.Required("den");
+    if (const std::string why =
+            TooManyStates(static_cast<Eigen::Index>(den.AsDoubles().size()) - 1, "a denominator of this order gives");
+        !why.empty())
+      den.Fail(why);
+  }
+  IrrationalBlock block = ParseIrrationalBlock(node, type);
+  p.system = block.approximation;
+  p.measured = std::make_shared<const FrequencyModel>(std::move(block));
+  return ChannelSource::kEntry;
+}
+
+ChannelSource ParseBlockPath(const YamlNode& node, const std::string& type, Path& p) {
+  std::set<std::string> keys = BlockKeys(type);
+  keys.insert(kCommonKeys.begin(), kCommonKeys.end());
+  node.AllowOnly(keys);
+  const TransferFunction tf = ParseBlock(node, type);
+  p.system = AtNode(node, [&] { return ToStateSpace(tf); });
+  return ChannelSource::kEntry;
+}
+
+// The entry's channel names and units, by where they come from.
+void NameChannels(const YamlNode& node, const std::string& type, ChannelSource from, Path& p) {
+  if (from == ChannelSource::kOwn) return;
+  if (from == ChannelSource::kComposed) {
+    if (node.Has("inputs")) p.input_names = Names(node, "inputs", p.system.inputs(), "u");
+    if (node.Has("outputs")) p.output_names = Names(node, "outputs", p.system.outputs(), "y");
+    return;
+  }
+  if (p.input_names.empty() || node.Has("inputs")) p.input_names = Names(node, "inputs", p.system.inputs(), "u");
+  if (p.output_names.empty() || node.Has("outputs")) p.output_names = Names(node, "outputs", p.system.outputs(), "y");
+  p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
+  p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+  if (type == "mass_spring_damper") p.system = InPathUnits(node, p, "N", "m");
+}
+
 }  // namespace
 
 const Path& PathContext::Lookup(const YamlNode& name_node) const {
@@ -202,6 +351,30 @@ const Path& PathContext::Lookup(const YamlNode& name_node) const {
     name_node.Fail("no path named '" + name + "'" + DidYouMean(name, before) + " is defined before this one");
   }
   return it->second;
+}
+
+// A path made of paths parsed before: series, parallel or feedback.
+Path PathContext::Compose(const YamlNode& node, const std::string& type, const Path& entry) const {
+  if (type == "feedback") {
+    node.AllowOnly({"name", "description", "type", "inputs", "outputs", "plant", "controller", "sign"});
+    const YamlNode plant = node.Required("plant"), controller = node.Required("controller");
+    const PathPart g{&Lookup(plant), plant.key()}, k{&Lookup(controller), controller.key()};
+    int sign = -1;
+    if (auto s = node.Optional("sign")) {
+      sign = s->AsInt();
+      AtNode(*s, [&] { CheckFeedbackSign(sign); });
+    }
+    return Named(entry, AtNodes(node, {plant, controller}, [&] { return FeedbackOfPaths(g, k, sign); }));
+  }
+  node.AllowOnly({"name", "description", "type", "inputs", "outputs", "of"});
+  const YamlNode of = node.Required("of");
+  const std::vector<YamlNode> parts = of.Elements();
+  std::vector<PathPart> looked_up;
+  if (parts.size() >= 2)  // else the composition refuses the list before any name is looked up
+    for (const YamlNode& part : parts) looked_up.push_back({&Lookup(part), part.key()});
+  return Named(entry, AtNodes(of, parts, [&] {
+    return type == "series" ? SeriesOfPaths(looked_up) : ParallelOfPaths(looked_up);
+  }));
 }
 
 std::vector<Path> PathContext::Parse(const YamlNode& node) {
@@ -219,166 +392,34 @@ std::vector<Path> PathContext::Parse(const YamlNode& node) {
   if (auto d = node.Optional("description")) p.description = d->AsString();
   const YamlNode type_node = node.Required("type");
   const std::string type = type_node.AsString();
-  bool composite = false;
-  bool own_channels = false;  // names and units set by the type's own entries
-  // Channel names from a data file (state_space file:), unless the entry gives inputs/outputs.
-  std::vector<std::string> file_inputs, file_outputs;
-
+  ChannelSource from = ChannelSource::kEntry;
   if (type == "transfer_function") {
-    node.AllowOnly(With(kCommonKeys, {"num", "den", "matrix"}));
-    if (auto m = node.Optional("matrix")) {
-      std::vector<std::vector<TransferFunction>> rows;
-      for (const auto& row : m->Elements()) {
-        rows.emplace_back();
-        for (const auto& e : row.Elements()) {
-          e.AllowOnly({"num", "den"});
-          rows.back().push_back(ParseTf(e));
-        }
-      }
-      Eigen::Index states = 0;
-      for (const auto& row : rows)
-        for (const TransferFunction& tf : row) states += static_cast<Eigen::Index>(tf.den().size()) - 1;
-      if (const std::string why = TooManyStates(states, "the denominators of this matrix give"); !why.empty())
-        m->Fail(why);
-      p.system = AtNode(*m, [&] { return ToStateSpace(rows); });
-    } else {
-      const TransferFunction tf = ParseTf(node);
-      p.system = AtNode(node.Required("den"), [&] { return ToStateSpace(tf); });
-    }
+    from = ParseTransferFunctionPath(node, p);
   } else if (type == "state_space") {
-    node.AllowOnly(With(kCommonKeys, {"A", "B", "C", "D", "file"}));
-    if (const auto file = node.Optional("file")) {
-      for (const char* m : {"A", "B", "C", "D"})
-        if (node.Has(m))
-          node.Required(m).Fail("give 'file' (a MAT-file with A, B, C and D) or the matrices inline, not both");
-      const std::string path = Resolve(base_dir_, file->AsString());
-      StateSpaceMat m = AtNode(*file, [&] { return ReadStateSpaceMat(path); });
-      p.system = std::move(m.system);
-      file_inputs = std::move(m.input_names);
-      file_outputs = std::move(m.output_names);
-    } else {
-      const Eigen::MatrixXd a = node.Required("A").AsMatrix();
-      if (const std::string why = TooManyStates(a.rows(), "A is " + SizeText(a) + ":"); !why.empty())
-        node.Required("A").Fail(why);
-      const Eigen::MatrixXd b = node.Required("B").AsMatrix(), c = node.Required("C").AsMatrix();
-      const Eigen::MatrixXd d =
-          node.Has("D") ? node.Required("D").AsMatrix() : Eigen::MatrixXd::Zero(c.rows(), b.cols());
-      p.system = AtNode(node, [&] { return StateSpace(a, b, c, d); });
-    }
+    from = ParseStateSpacePath(node, base_dir_, p);
   } else if (type == "gain") {
     node.AllowOnly(With(kCommonKeys, {"gain"}));
     p.system = StateSpace::Gain(node.Required("gain").AsMatrix());
-  } else if (type == "series" || type == "parallel") {
-    node.AllowOnly({"name", "description", "type", "inputs", "outputs", "of"});
-    composite = true;
-    const YamlNode of = node.Required("of");
-    const std::vector<YamlNode> parts = of.Elements();
-    std::vector<PathPart> looked_up;
-    if (parts.size() >= 2)  // else the composition refuses the list before any name is looked up
-      for (const YamlNode& part : parts) looked_up.push_back({&Lookup(part), part.key()});
-    p = Named(p, AtNodes(of, parts, [&] {
-      return type == "series" ? SeriesOfPaths(looked_up) : ParallelOfPaths(looked_up);
-    }));
-  } else if (type == "feedback") {
-    node.AllowOnly({"name", "description", "type", "inputs", "outputs", "plant", "controller", "sign"});
-    composite = true;
-    const YamlNode plant = node.Required("plant"), controller = node.Required("controller");
-    const PathPart g{&Lookup(plant), plant.key()}, k{&Lookup(controller), controller.key()};
-    int sign = -1;
-    if (auto s = node.Optional("sign")) {
-      sign = s->AsInt();
-      AtNode(*s, [&] { CheckFeedbackSign(sign); });
-    }
-    p = Named(p, AtNodes(node, {plant, controller}, [&] { return FeedbackOfPaths(g, k, sign); }));
+  } else if (type == "series" || type == "parallel" || type == "feedback") {
+    p = Compose(node, type, p);
+    from = ChannelSource::kComposed;
   } else if (type == "frf") {
-    node.AllowOnly(With(kCommonKeys, {"file", "extrapolation"}));
-    const YamlNode file = node.Required("file");
-    std::filesystem::path f(file.AsString());
-    if (f.is_relative()) f = std::filesystem::path(base_dir_) / f;
-    const Extrapolation extrapolation =
-        node.Has("extrapolation")
-            ? AtNode(node.Required("extrapolation"), [&] { return ParseExtrapolation(node.Required("extrapolation").AsString()); })
-            : Extrapolation::kError;
-    const std::vector<std::string> outs = node.Has("outputs") ? node.Required("outputs").AsStrings() : std::vector<std::string>{};
-    const std::vector<std::string> ins = node.Has("inputs") ? node.Required("inputs").AsStrings() : std::vector<std::string>{};
-    FrfCsv frf = AtNode(file, [&] { return ReadFrfCsv(f.lexically_normal().string(), outs, ins, extrapolation); });
-    p.input_names = frf.inputs;
-    p.output_names = frf.outputs;
-    p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(frf.response.outputs(), frf.response.inputs()));
-    p.measured = std::make_shared<const FrequencyModel>(std::move(frf.response));
-    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
-    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
-    composite = true;  // names come from the file
+    from = ParseFrfPath(node, base_dir_, p);
   } else if (type == "modal") {
-    std::set<std::string> keys = {"name", "description", "type", "input_unit", "input_units", "output_unit",
-                                  "output_units"};
-    keys.insert(std::begin(kModalKeys), std::end(kModalKeys));
-    node.AllowOnly(keys);  // no inputs/outputs: the DOF names come from the shapes
-    const ModalModel model = ParseModalModel(node, base_dir_);
-    AtNode(node, [&] { model.Validate(); });
-    p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(model.phi_out.rows(), model.phi_in.rows()));
-    p.modal = std::make_shared<const ModalModel>(model);
-    p.input_names = model.input_names;
-    p.output_names = model.output_names;
-    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
-    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
-    const YamlNode unit_node = node.Required(node.Has("output_unit") ? "output_unit" : "output_units");
-    for (std::string& u : p.output_units)
-      u = AtNode(unit_node, [&] { return ModalOutputUnit(u, model.quantity); });
-    composite = true;  // names come from the shapes
+    from = ParseModalPath(node, base_dir_, p);
   } else if (type == "lumped_masses") {
-    std::set<std::string> keys = LumpedMassesKeys();
-    keys.insert({"name", "description", "type", "input_unit", "input_units", "output_unit", "output_units"});
-    node.AllowOnly(keys);
-    LumpedMassesPath lumped = ParseLumpedMasses(node);
-    p.system = std::move(lumped.system);
-    p.input_names = std::move(lumped.input_names);
-    p.output_names = std::move(lumped.output_names);
-    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
-    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
-    p.system = InChannelUnits(node, p, lumped.input_si_units, lumped.output_si_units);
-    composite = true;  // names from the entries
-    own_channels = true;
+    from = ParseLumpedMassesPath(node, p);
   } else if (IsIrrationalType(type)) {
-    std::set<std::string> keys = IrrationalKeys(type);
-    keys.insert(kCommonKeys.begin(), kCommonKeys.end());
-    node.AllowOnly(keys);
-    if (type == "discrete" && node.Has("den")) {
-      const YamlNode den = node.Required("den");
-      if (const std::string why = TooManyStates(static_cast<Eigen::Index>(den.AsDoubles().size()) - 1,
-                                                "a denominator of this order gives");
-          !why.empty())
-        den.Fail(why);
-    }
-    IrrationalBlock block = ParseIrrationalBlock(node, type);
-    p.system = block.approximation;
-    p.measured = std::make_shared<const FrequencyModel>(std::move(block));
+    from = ParseIrrationalPath(node, type, p);
   } else if (IsBlockType(type)) {
-    std::set<std::string> keys = BlockKeys(type);
-    keys.insert(kCommonKeys.begin(), kCommonKeys.end());
-    node.AllowOnly(keys);
-    const TransferFunction tf = ParseBlock(node, type);
-    p.system = AtNode(node, [&] { return ToStateSpace(tf); });
+    from = ParseBlockPath(node, type, p);
   } else {
     type_node.Fail("unknown path type '" + type +
                    "'; allowed: transfer_function, state_space, gain, frf, modal, series, parallel, feedback, "
                    "isolation_system, lumped_masses, zpk, second_order, mass_spring_damper, pid, lead_lag, notch, "
                    "lowpass, highpass, integrator, delay, discrete");
   }
-
-  if (own_channels) {
-  } else if (composite) {
-    if (node.Has("inputs")) p.input_names = Names(node, "inputs", p.system.inputs(), "u");
-    if (node.Has("outputs")) p.output_names = Names(node, "outputs", p.system.outputs(), "y");
-  } else {
-    p.input_names = file_inputs.empty() || node.Has("inputs") ? Names(node, "inputs", p.system.inputs(), "u")
-                                                              : file_inputs;
-    p.output_names = file_outputs.empty() || node.Has("outputs") ? Names(node, "outputs", p.system.outputs(), "y")
-                                                                 : file_outputs;
-    p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
-    p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
-    if (type == "mass_spring_damper") p.system = InPathUnits(node, p, "N", "m");
-  }
+  NameChannels(node, type, from, p);
   AtNode(node, [&] { p.Validate(); });
   if (parsed_.count(p.name)) node.Required("name").Fail("name '" + p.name + "' is used twice in paths");
   parsed_.emplace(p.name, p);

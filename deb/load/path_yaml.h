@@ -27,6 +27,7 @@ class PathContext {
 
  private:
   const Path& Lookup(const YamlNode& name_node) const;
+  Path Compose(const YamlNode& node, const std::string& type, const Path& entry) const;
   std::string base_dir_;
   std::map<std::string, Path> parsed_;
   std::vector<ModelReport> models_;
