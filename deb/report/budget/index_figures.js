@@ -196,7 +196,10 @@
       var fig = { names: o.contributors.concat(['total']), colours: o.colours.concat(['#000000']), raw: psd,
                   rows: rows(o.f, psd), logY: true, ylabel: 'PSD [' + units.psd + ']', xText: hz,
                   valueText: function (v) { return num(v) + ' ' + units[fig.raw === psd ? 'psd' : 'asd']; } };
-      var g = draw(fig, el, { dateWindow: window_hz });
+      // Contributors wide, the total a thin line over them: a contributor that is all of the total shows.
+      var widths = {};
+      fig.names.forEach(function (n, k) { widths['s' + k] = { strokeWidth: k < o.contributors.length ? 2.6 : 1.0 }; });
+      var g = draw(fig, el, { dateWindow: window_hz, series: widths });
       graphs['psd' + i] = g;
       var label = document.createElement('label'), box = document.createElement('input');
       box.type = 'checkbox';

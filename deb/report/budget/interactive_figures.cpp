@@ -154,11 +154,11 @@ json PathData(const BudgetResult& result, std::size_t c, std::size_t o, const Pa
 }
 
 constexpr const char* kCss = R"(
-.verdict { border-radius: 4px; padding: 0.6rem 1rem; margin: 1rem 0; color: #fff; }
-.verdict.pass { background: #1b7837; }
-.verdict.fail { background: var(--fail); }
-.verdict.none { background: #4d4d4d; }
-.verdict p { margin: 0.2rem 0; }
+.verdict { margin: 1rem 0; color: #fff; }
+.verdict p { margin: 0.15rem 0; padding: 0.35rem 1rem; border-radius: 4px; }
+.verdict p.pass { background: #1b7837; }
+.verdict p.fail { background: var(--fail); }
+.verdict p.none { background: #4d4d4d; }
 td.fail { background: #fbe3e6; }
 figure.chart { border: 1px solid var(--line); padding: 0.6rem; }
 figure.chart .plot { width: 100%; height: 380px; }

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "deb/report/budget/interactive_figures.h"
+#include "deb/report/budget/requirement_lines.h"
 #include "deb/version.h"
 
 namespace deb::report {
@@ -79,26 +80,35 @@ std::string OutputLine(const OutputResult& o) {
   return s + ". Signal " + o.signal + ".";
 }
 
-// The verdict at the head of index.html: one line per output, green when
-// every output meets its requirements, red with the guidance when one fails,
-// grey without any requirement.
+// The verdict at the head of index.html: a line per requirement, green
+// where it is met and red with the guidance where it fails; an output
+// without requirements in grey. The banner's class says whether every
+// output meets its requirements (pass), one fails (fail), or none has any.
 std::string VerdictBanner(const BudgetResult& result) {
   bool all_pass = true, any_required = false;
   std::string lines;
   for (const OutputResult& o : result.outputs) {
-    const bool required = o.rms_max || !o.band_requirements.empty();
+    const std::string unit = UnitText(o.unit);
     all_pass = all_pass && o.AllPass();
-    any_required = any_required || required;
-    lines += "<p><strong>" + std::string(!required ? "no requirement" : o.AllPass() ? "PASS" : "FAIL") + "</strong> " +
-             HtmlEscape(o.name) + ": RMS " + HtmlEscape(Sig(o.rms(), 4) + " " + UnitText(o.unit));
-    if (o.rms_max) lines += HtmlEscape(" (requirement " + Short(*o.rms_max) + " " + UnitText(o.unit) + ")");
-    lines += ".";
-    if (const std::string fix = GuidanceText(o, result.grid); !fix.empty()) lines += " " + HtmlEscape(fix);
-    lines += "</p>\n";
+    const std::vector<RequirementLine> required = RequirementLines(o);
+    any_required = any_required || !required.empty();
+    if (required.empty()) {
+      lines += "<p class=\"none\"><strong>no requirement</strong> " + HtmlEscape(o.name) + ": RMS " +
+               HtmlEscape(Sig(o.rms(), 4) + " " + unit) + ".</p>\n";
+      continue;
+    }
+    std::string fix = GuidanceText(o, result.grid);
+    for (const RequirementLine& l : required) {
+      lines += std::string("<p class=\"") + (l.pass ? "pass" : "fail") + "\"><strong>" + (l.pass ? "PASS" : "FAIL") +
+               "</strong> " + HtmlEscape(o.name) + (l.scope == "RMS" ? "" : ", " + HtmlEscape(l.scope)) + ": RMS " +
+               HtmlEscape(Sig(l.rms, 4) + " " + unit + " (requirement " + Short(l.rms_max) + " " + unit + ").");
+      if (!l.pass && !fix.empty()) lines += " " + HtmlEscape(fix);
+      if (!l.pass) fix.clear();  // once per output
+      lines += "</p>\n";
+    }
   }
   const char* verdict = !all_pass ? "fail" : any_required ? "pass" : "none";
-  return std::string("<div class=\"verdict ") + verdict + "\" id=\"verdict\">\n" + lines +
-         "</div>\n";
+  return std::string("<div class=\"verdict ") + verdict + "\" id=\"verdict\">\n" + lines + "</div>\n";
 }
 
 template <typename Fn>

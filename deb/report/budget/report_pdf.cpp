@@ -5,6 +5,7 @@
 #include <set>
 
 #include "deb/report/budget/band_text.h"
+#include "deb/report/budget/requirement_lines.h"
 #include "deb/version.h"
 
 namespace deb::report {
@@ -35,23 +36,23 @@ std::string SectionTitle(const OutputResult& o) { return "Output " + o.name; }
 
 bool HasRequirement(const OutputResult& o) { return o.rms_max || !o.band_requirements.empty(); }
 
-// "FAIL: RMS 12.3 nm, limit 5 nm; 1–10 Hz: RMS 2.1 nm, limit 3 nm (pass)".
-std::string VerdictLine(const OutputResult& o) {
+// PASS in green or FAIL in red.
+PdfCell Verdict(bool pass) {
+  PdfCell c{pass ? "PASS" : "FAIL", true, !pass};
+  c.good = pass;
+  return c;
+}
+
+// An output's verdict, a line per requirement: "FAIL: RMS 12.3 nm against a
+// limit of 5 nm (exceeded)." then "PASS: 1–10 Hz: RMS 2.1 nm against 3 nm
+// (met).", each red only where it fails.
+std::vector<std::pair<std::string, bool>> VerdictLines(const OutputResult& o) {
   const std::string unit = UnitText(o.unit);
-  if (!HasRequirement(o)) return "No requirement: RMS " + Sig(o.rms(), 4) + " " + unit + ".";
-  std::string line = Fails(o) ? "FAIL" : "PASS";
-  std::string sep = ": ";
-  if (o.rms_max) {
-    line += sep + "RMS " + Sig(o.rms(), 4) + " " + unit + " against a limit of " + Short(*o.rms_max) + " " + unit +
-            (o.pass() ? " (met)" : " (exceeded)");
-    sep = "; ";
-  }
-  for (const BandRequirementResult& b : o.band_requirements) {
-    line += sep + BandText(b.requirement.lo_hz, b.requirement.hi_hz) + ": RMS " + Sig(b.rms(), 4) + " " + unit +
-            " against " + Short(b.requirement.rms_max) + " " + unit + (b.pass() ? " (met)" : " (exceeded)");
-    sep = "; ";
-  }
-  return line + ".";
+  if (!HasRequirement(o)) return {{"No requirement: RMS " + Sig(o.rms(), 4) + " " + unit + ".", false}};
+  std::vector<std::pair<std::string, bool>> lines;
+  for (const RequirementLine& l : RequirementLines(o))
+    lines.emplace_back(std::string(l.pass ? "PASS" : "FAIL") + ": " + RequirementSentence(l, unit) + ".", !l.pass);
+  return lines;
 }
 
 // Room an output's section needs to start below the previous one rather than on a new page.
@@ -142,29 +143,27 @@ PdfTable VerdictTable(const BudgetResult& result) {
   t.numeric = {false, false, false, false, false};
   bool any_fails = false;
   for (const OutputResult& o : result.outputs) any_fails = any_fails || Fails(o);
+  // A row per requirement line, the output named on its first; what would
+  // meet a failing output's requirements beside its first line.
   for (const OutputResult& o : result.outputs) {
     const std::string unit = UnitText(o.unit);
-    std::string requirement, value;
-    const auto add = [](std::string* s, const std::string& line) { *s += (s->empty() ? "" : "\n") + line; };
-    if (o.rms_max) {
-      add(&requirement, "RMS ≤ " + Short(*o.rms_max) + " " + unit);
-      add(&value, Sig(o.rms(), 4) + " " + unit);
-    }
-    for (const BandRequirementResult& b : o.band_requirements) {
-      add(&requirement, BandText(b.requirement.lo_hz, b.requirement.hi_hz) + ": RMS ≤ " +
-                            Short(b.requirement.rms_max) + " " + unit);
-      add(&value, Sig(b.rms(), 4) + " " + unit);
-    }
+    const std::string guidance = Fails(o) ? GuidanceText(o, result.grid) : "";
+    const PdfCell name{o.name, true, false, SectionTitle(o)};
     if (!HasRequirement(o)) {
-      requirement = "none";
-      value = Sig(o.rms(), 4) + " " + unit;
+      t.rows.push_back({name, {"none"}, {Sig(o.rms(), 4) + " " + unit}, {"–", true, false}, {"–"}});
+      if (!any_fails) t.rows.back().pop_back();  // nothing to meet: no column for it
+      continue;
     }
-    const bool fails = Fails(o);
-    PdfCell verdict{HasRequirement(o) ? (fails ? "FAIL" : "PASS") : "–", true, fails};
-    const std::string guidance = fails ? GuidanceText(o, result.grid) : "";
-    t.rows.push_back({{o.name, true, false, SectionTitle(o)}, {requirement}, {value}, verdict,
-                      {guidance.empty() ? "–" : guidance}});
-    if (!any_fails) t.rows.back().pop_back();  // nothing to meet: no column for it
+    const std::vector<RequirementLine> lines = RequirementLines(o);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      const RequirementLine& l = lines[i];
+      const std::string requirement =
+          (l.scope == "RMS" ? "" : l.scope + ": ") + "RMS ≤ " + Short(l.rms_max) + " " + unit;
+      t.rows.push_back({i == 0 ? name : PdfCell{""}, {requirement}, {Sig(l.rms, 4) + " " + unit},
+                        Verdict(l.pass),
+                        {i == 0 && !guidance.empty() ? guidance : "–"}});
+      if (!any_fails) t.rows.back().pop_back();
+    }
   }
   if (!any_fails) {
     t.header.pop_back();
@@ -218,7 +217,8 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
     // A new page unless a third of one is left: the heading, the verdict and the table's first rows fit there.
     b.push_back(PageBreak(kOutputSectionRoomPt));
     b.push_back(Heading(1, SectionTitle(o)));
-    b.push_back(Paragraph(VerdictLine(o), 10.0, true, Fails(o)));
+    for (const auto& [line, fails] : VerdictLines(o))
+      b.push_back(Paragraph(line, 10.0, true, fails, HasRequirement(o) && !fails));
     if (Fails(o))
       if (const std::string g = GuidanceText(o, result.grid); !g.empty()) b.push_back(Paragraph(g, 9.5));
     const Table contributors = ContributorTable(o, in.digits);

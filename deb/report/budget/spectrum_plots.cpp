@@ -247,7 +247,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
   p.output = static_cast<int>(o);
   const FrequencyRange range = level.range;
   p.caption = (asd ? "Amplitude spectral density" : "Power spectral density (one-sided)") + std::string(" of ") +
-              out.name + " per " + level.item + ", largest first in the key, and in total (drawn last)." +
+              out.name + " per " + level.item + ", largest first in the key, and in total (the thin black line over them)." +
               WeightingCaption(result, o, out) + RangeCaption(range);
   if (!out.band_requirements.empty())
     p.caption += std::string(" Each red segment is a band requirement drawn as the flat ") + quantity +
@@ -375,18 +375,20 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
     s.y_columns = {2 + c};
     s.colour = st.colour;
     s.dash = st.dash;
-    s.width = 3.0;  // wider than the total, so that a dominant contributor shows on both sides of it
+    s.width = 3.0;  // three times the total's width
     panel.series.push_back(std::move(s));
   }
   for (std::size_t i = 0; i < out.references.size(); ++i)
     panel.series.push_back(ReferenceSeries(out.references[i], digits, data, 3 + n + i, 1.0));
-  FigureSeries t;  // drawn last: on top of every contributor
+  // The total last, a thin line over the contributors: a contributor that
+  // is all of the total shows on both sides of it.
+  FigureSeries t;
   t.name = "total";
   t.key = "total: " + SigLabel(out.rms(), digits);
   t.data = data;
   t.y_columns = {2 + n};
   t.colour = kTotalColour;
-  t.width = 2.0;
+  t.width = 1.0;
   panel.series.push_back(t);
   p.figure.panels.push_back(std::move(panel));
   p.script = EmitFigure(p.figure);

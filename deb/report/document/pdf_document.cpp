@@ -23,12 +23,13 @@ PdfBlock Heading(int level, std::string text) {
   return b;
 }
 
-PdfBlock Paragraph(std::string text, double size_pt, bool bold, bool alert) {
+PdfBlock Paragraph(std::string text, double size_pt, bool bold, bool alert, bool good) {
   PdfBlock b;
   b.text = std::move(text);
   b.size_pt = size_pt;
   b.bold = bold;
   b.alert = alert;
+  b.good = good;
   return b;
 }
 
@@ -81,6 +82,7 @@ constexpr double kLongestWordPt = 75.0;  // a longer word may break inside a nar
 constexpr double kMinFigureScale = 0.85;
 const char* const kInk = "#1a1a1a";
 const char* const kAlert = "#c00000";
+const char* const kGood = "#1b7837";  // a met requirement
 const char* const kGrey = "#707070";
 
 void SetColour(cairo_t* cr, const std::string& hex) {
@@ -307,7 +309,7 @@ class Composer {
     }
     const double h = Size(l.get()).second;
     Need(h);
-    const std::string colour = b.alert ? kAlert : kInk;
+    const std::string colour = b.alert ? kAlert : b.good ? kGood : kInk;
     Show(l.get(), kMarginPt + indent, y_, colour);
     Place("paragraph", text, kMarginPt, y_, kTextWidthPt, h, colour);
     y_ += h + 0.45 * b.size_pt;
@@ -582,7 +584,7 @@ class Composer {
     std::string joined;
     for (std::size_t c = 0; c < run.columns; ++c) {
       const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
-      const std::string colour = cell.alert ? kAlert : kInk;
+      const std::string colour = cell.alert ? kAlert : cell.good ? kGood : kInk;
       const double point_x = ShowCell(run, c, cell, ls[c].get(), header, x, colour);
       if (!cell.link.empty() && draw_) {
         if (const Target* t = HeadingTarget(cell.link)) {
@@ -631,7 +633,7 @@ class Composer {
     if (columns == 0) return;
     const double inset = t.boxed ? kBoxInsetPt : 0.0, width = kTextWidthPt - 2.0 * inset;
     const ColumnMeasures m = FitFont(t, columns, width);
-    TableRun run{b, columns, ColumnWidths(m, width, t.boxed), m.right, inset, kMarginPt + inset, 0.0};
+    TableRun run{b, columns, ColumnWidths(m, width, t.boxed), m.right, inset, kMarginPt + inset, 0.0, 0.0, {}};
     for (double w : run.widths) run.table_width += w;
     for (const std::string& h : t.header) run.header_cells.push_back({h, true, false});
 

@@ -26,6 +26,7 @@ struct PdfCell {
   std::string text;  // may hold line breaks; long text wraps in its column
   bool bold = false;
   bool alert = false;  // drawn in red (a failed requirement)
+  bool good = false;   // drawn in green (a met requirement)
   std::string link;    // the text of a heading the cell links to; "" for none
 };
 
@@ -44,7 +45,7 @@ struct PdfBlock {
   std::string text;   // heading, paragraph, a table's title, a figure's caption
   int level = 1;      // heading: 0 title (not in the outline), 1 section, 2 subsection
   double size_pt = 9.5;  // paragraph
-  bool bold = false, alert = false;  // paragraph
+  bool bold = false, alert = false, good = false;  // paragraph: red, green
   bool bullet = false;               // paragraph: an item of a list, "• " and a hanging indent
   PdfTable table;
   std::string svg_file;  // figure: drawn as vectors across the text width
@@ -53,7 +54,7 @@ struct PdfBlock {
 
 // Starts `kind` blocks: Heading(1, "Overview"), Paragraph("..."), ...
 PdfBlock Heading(int level, std::string text);
-PdfBlock Paragraph(std::string text, double size_pt = 9.5, bool bold = false, bool alert = false);
+PdfBlock Paragraph(std::string text, double size_pt = 9.5, bool bold = false, bool alert = false, bool good = false);
 PdfBlock Bullet(std::string text);
 PdfBlock TableBlock(std::string title, PdfTable table);
 PdfBlock Figure(std::string svg_file, std::string caption);

@@ -124,6 +124,12 @@ TEST_CASE("a failing budget's page opens with a red verdict and the guidance, an
     CHECK(html.find("<strong>FAIL</strong> " + HtmlEscape(out.name)) < html.find("<h2 id=\"summary\">"));
     CHECK(html.find(HtmlEscape(fix)) < html.find("<h2 id=\"summary\">"));
   }
+  // A line per requirement, each coloured by its own verdict: position fails overall and in 0.1–10 Hz,
+  // image_shift overall; the lines that pass are green, not red like the rest of a failing banner.
+  const std::string banner = html.substr(verdict, html.find("</div>", verdict) - verdict);
+  CHECK(Count(banner, "<p class=\"fail\"><strong>FAIL</strong> ") == 3);
+  CHECK(Count(banner, "<p class=\"pass\"><strong>PASS</strong> ") >= 1);
+  CHECK(banner.find("<strong>FAIL</strong> position, 0.1–10 Hz: RMS ") != std::string::npos);
   CHECK(html.find("<td class=\"fail\"><strong>FAIL</strong></td>") != std::string::npos);
   CHECK(html.find("<td><strong>FAIL</strong></td>") == std::string::npos);
   CHECK(html.find("<td>FAIL</td>") == std::string::npos);

@@ -259,6 +259,25 @@ TEST_CASE("tones are triangles on the total at their frequencies, labelled with 
 
 namespace deb::report {
 
+TEST_CASE("a contributor that is all of an output's PSD shows beside the total, a thin line drawn over it") {
+  // single_axis_isolator's displacement is floor alone (100 %): its curve and the total coincide.
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("single_axis_isolator.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
+    const std::vector<Plot> plots = SpectrumPlots(result, o, {});
+    const auto psd = std::find_if(plots.begin(), plots.end(), [](const Plot& p) { return p.kind == PlotKind::kSpectrum; });
+    REQUIRE(psd != plots.end());
+    const auto& series = psd->figure.panels.at(0).series;
+    REQUIRE(series.size() >= 2);
+    CHECK(series.back().name == "total");
+    for (std::size_t k = 0; k + 1 < series.size(); ++k) {
+      CAPTURE(series[k].name);
+      // At least twice as wide: a band of the contributor's colour on each side of the total.
+      CHECK(series[k].width >= 2.0 * series.back().width);
+    }
+  }
+}
+
 TEST_CASE("a measured reference is a grey dashed series on the PSD plot, NaN outside what it covers") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
   const BudgetResult result = Evaluate(budget);
