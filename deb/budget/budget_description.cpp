@@ -129,9 +129,11 @@ std::string DescribeBudget(const Budget& budget, const EvaluationPlan& plan) {
   for (const LoopResult& loop : plan.loops) {
     std::string paths;
     for (const std::string& p : loop.paths) paths += (paths.empty() ? "" : ", ") + p;
-    AppendFormatted(text, "  %s closed by %s (%s feedback), in %s\n    %s\n", loop.plant.c_str(),
-                    loop.controller.c_str(), loop.sign < 0 ? "negative" : "positive", paths.c_str(),
-                    MarginsText(loop).c_str());
+    AppendFormatted(text, "  %s closed by %s (%s feedback), in %s\n", loop.plant.c_str(), loop.controller.c_str(),
+                    loop.sign < 0 ? "negative" : "positive", paths.c_str());
+    if (const std::string same = SameLoopText(loop); !same.empty())
+      AppendFormatted(text, "    the same loop as %s\n", same.c_str());
+    AppendFormatted(text, "    %s\n", MarginsText(loop).c_str());
   }
   AddContributors(text, budget, plan);
   AddOutputs(text, budget);

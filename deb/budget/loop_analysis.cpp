@@ -1,12 +1,80 @@
 #include "deb/budget/loop_analysis.h"
 
 #include <algorithm>
+#include <complex>
 #include <set>
 
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
 
 namespace deb {
+namespace {
+
+// Relative agreement of two loop gains that makes them one physical loop.
+constexpr double kSameLoopTolerance = 1e-9;
+
+bool SameValue(std::complex<double> a, std::complex<double> b) {
+  return std::abs(a - b) <= kSameLoopTolerance * std::max(std::abs(a), std::abs(b));
+}
+
+// One-channel loops a and b (evaluated on the same frequencies f) with the
+// same loop gain: first on every 64th frequency, then on all of them.
+bool SameLoopGain(const FeedbackLoop& a, const FeedbackLoop& b, const std::vector<double>& f) {
+  for (std::size_t step : {std::size_t{64}, std::size_t{1}})
+    for (std::size_t i = 0; i < f.size(); i += step)
+      if (!SameValue(a.LoopGainAt(f[i])(0, 0), b.LoopGainAt(f[i])(0, 0))) return false;
+  return true;
+}
+
+// A part of a loop that is a constant gain (the 1 of "G K closed by 1").
+bool StaticGain(const FrequencyModel& m) {
+  if (m.HasData() || !m.IrrationalBlocks().empty()) return false;
+  for (const StateSpace& part : m.RationalParts())
+    if (part.states() > 0) return false;
+  return true;
+}
+
+// A form that names the physical plant and controller (neither a constant
+// gain) is the one a loop is reported as.
+bool NamesPhysicalParts(const FeedbackLoop& loop) {
+  return !StaticGain(*loop.plant_model) && !StaticGain(*loop.controller_model);
+}
+
+// Merges each evaluated one-channel loop into an earlier one with the same
+// loop gain on the same frequencies; the merged loop is reported in the
+// form that names the physical plant and controller, where one does.
+void MergeSameLoops(std::vector<LoopResult>& loops, std::vector<const FeedbackLoop*>& of,
+                    std::vector<std::vector<double>>& f_of) {
+  for (std::size_t j = 1; j < loops.size(); ++j) {
+    if (!loops[j].evaluated || loops[j].margins.channels != 1) continue;
+    for (std::size_t i = 0; i < j; ++i) {
+      if (!loops[i].evaluated || loops[i].margins.channels != 1 || f_of[i] != f_of[j]) continue;
+      if (!SameLoopGain(*of[i], *of[j], f_of[j])) continue;
+      const bool swap = !NamesPhysicalParts(*of[i]) && NamesPhysicalParts(*of[j]);
+      LoopResult merged = swap ? loops[j] : loops[i];
+      // Every form in the order the paths show them, less the one reported.
+      std::vector<LoopForm> forms = {{loops[i].plant, loops[i].controller, loops[i].sign}};
+      forms.insert(forms.end(), loops[i].same_loop.begin(), loops[i].same_loop.end());
+      forms.push_back({loops[j].plant, loops[j].controller, loops[j].sign});
+      merged.same_loop.clear();
+      for (const LoopForm& f : forms)
+        if (!(f.plant == merged.plant && f.controller == merged.controller && f.sign == merged.sign))
+          merged.same_loop.push_back(f);
+      merged.paths = loops[i].paths;
+      for (const std::string& p : loops[j].paths)
+        if (std::find(merged.paths.begin(), merged.paths.end(), p) == merged.paths.end()) merged.paths.push_back(p);
+      loops[i] = std::move(merged);
+      if (swap) of[i] = of[j];
+      loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(j));
+      of.erase(of.begin() + static_cast<std::ptrdiff_t>(j));
+      f_of.erase(f_of.begin() + static_cast<std::ptrdiff_t>(j));
+      --j;
+      break;
+    }
+  }
+}
+
+}  // namespace
 
 std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<double>& f_hz) {
   std::vector<LoopResult> loops;
@@ -32,9 +100,10 @@ std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<dou
         same->paths.push_back(path.name);
     }
   }
+  std::vector<std::vector<double>> f_of(loops.size());  // the frequencies each loop is evaluated on
   for (std::size_t i = 0; i < loops.size(); ++i) {
     const FeedbackLoop& loop = *of[i];
-    std::vector<double> f;
+    std::vector<double>& f = f_of[i];
     const auto g = loop.plant_model->DefinedRangeHz(), k = loop.controller_model->DefinedRangeHz();
     for (double x : f_hz)
       if ((!g || g->Contains(x, x)) && (!k || k->Contains(x, x))) f.push_back(x);
@@ -62,7 +131,16 @@ std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<dou
       loops[i].note = e.message();
     }
   }
+  MergeSameLoops(loops, of, f_of);
   return loops;
+}
+
+std::string SameLoopText(const LoopResult& loop) {
+  std::string text;
+  for (const LoopForm& f : loop.same_loop)
+    text += (text.empty() ? "" : ", ") + f.plant + " closed by " + f.controller +
+            (f.sign == loop.sign ? "" : f.sign < 0 ? " (negative feedback)" : " (positive feedback)");
+  return text;
 }
 
 std::string MarginsText(const LoopResult& loop) {

@@ -1,8 +1,10 @@
 // The feedback loops of a budget's paths, analysed as a control engineer
 // reads them: the stability margins of every distinct loop (a plant closed
 // by a controller with a sign), over the budget's frequency grid. A loop
-// that several paths share (the same plant, controller and sign) is
-// analysed once and lists every path that holds it.
+// that several paths share is analysed once and lists every path that holds
+// it: the same plant, controller and sign, or one physical loop built in
+// several ways (S, PS and T of one plant and controller: G closed by K, and
+// G K closed by 1 or 1 by G K, have the same loop gain L).
 #pragma once
 
 #include <string>
@@ -30,17 +32,28 @@ struct LoopApproximation {
   double gain_ratio = 1.0;       // |approximation / exact|
 };
 
+// A plant closed by a controller with a sign.
+struct LoopForm {
+  std::string plant, controller;
+  int sign = -1;
+};
+
 struct LoopResult {
   std::string plant, controller;
   int sign = -1;
   std::vector<std::string> paths;  // the contributors' paths that close it, in budget order
+  // The other forms of this physical loop among the paths: one-channel loops
+  // whose loop gain equals this one's at every grid frequency (within 1e-9
+  // relative), analysed and drawn once, as this one.
+  std::vector<LoopForm> same_loop;
   bool evaluated = false;          // false: `note` says why no margins were computed
   std::string note;
   LoopMargins margins;
   std::vector<LoopApproximation> approximations;  // evaluated loops only
 };
 
-// Every distinct loop of the paths that contributors use, with its margins
+// Every distinct loop of the paths that contributors use (one-channel loops
+// with the same loop gain merged into the first), with its margins
 // over the frequencies f_hz (ascending) that lie where the loop's measured
 // data may be evaluated. A loop that cannot be evaluated there (a pole on
 // the grid, fewer than 2 frequencies in range) is kept with a note.
@@ -52,5 +65,9 @@ std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<dou
 // such; the note if it was not evaluated. Each approximation follows, e.g.
 // "; a delay of 100 us by Pade (6, 6): phase error -1.2e-09 deg at 80.1 Hz".
 std::string MarginsText(const LoopResult& loop);
+
+// "loop_gain closed by unity, unity closed by loop_gain": the loop's other
+// forms; "" when it has none.
+std::string SameLoopText(const LoopResult& loop);
 
 }  // namespace deb

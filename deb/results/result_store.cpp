@@ -181,6 +181,18 @@ void WriteLoop(Hdf5Writer& w, const std::string& at, const LoopResult& r, const 
   w.Texts(at + "/paths", r.paths);
   w.Integer(at + "/evaluated", r.evaluated ? 1 : 0);
   w.Text(at + "/note", r.note);
+  if (!r.same_loop.empty()) {  // only loops built in several ways
+    std::vector<std::string> plants, controllers;
+    std::vector<double> signs;
+    for (const LoopForm& f : r.same_loop) {
+      plants.push_back(f.plant);
+      controllers.push_back(f.controller);
+      signs.push_back(f.sign);
+    }
+    w.Texts(at + "/same_loop/plants", plants);
+    w.Texts(at + "/same_loop/controllers", controllers);
+    w.Numbers(at + "/same_loop/signs", signs);
+  }
   const LoopMargins& m = r.margins;
   w.Integer(at + "/margins/channels", m.channels);
   std::vector<std::vector<double>> gain, phase;
@@ -485,6 +497,19 @@ void ReadLoop(const Reading& in, const std::string& at, std::size_t n, LoopResul
   r->paths = in.Printables(at + "/paths", kMaxEntries);
   r->evaluated = h.Integer(at + "/evaluated") != 0;
   r->note = h.Text(at + "/note");
+  if (h.Has(at + "/same_loop/plants")) {
+    const std::vector<std::string> plants = in.Printables(at + "/same_loop/plants", kMaxEntries);
+    const std::vector<std::string> controllers = in.Printables(at + "/same_loop/controllers", plants.size());
+    const std::vector<double> signs = in.Numbers(at + "/same_loop/signs", plants.size());
+    if (controllers.size() != plants.size() || signs.size() != plants.size())
+      in.Fail(at + "/same_loop", "lists " + std::to_string(plants.size()) + " plants but " +
+                                     std::to_string(controllers.size()) + " controllers and " +
+                                     std::to_string(signs.size()) + " signs");
+    for (std::size_t i = 0; i < plants.size(); ++i) {
+      if (signs[i] != -1.0 && signs[i] != 1.0) in.Fail(at + "/same_loop/signs", "holds a sign other than -1 or +1");
+      r->same_loop.push_back({plants[i], controllers[i], signs[i] < 0 ? -1 : 1});
+    }
+  }
   LoopMargins& m = r->margins;
   m.channels = in.Whole(at + "/margins/channels", h.Integer(at + "/margins/channels"), 0, limits::kMaxChannels);
   for (const auto& c : in.Rows(at + "/margins/gain_crossovers", 2, n)) m.gain_crossovers.push_back({c[0], c[1]});

@@ -75,6 +75,8 @@ nlohmann::json LoopsJson(const std::vector<LoopResult>& loops) {
   for (const LoopResult& l : loops) {
     nlohmann::json jl = {{"plant", l.plant}, {"controller", l.controller}, {"sign", l.sign}, {"paths", l.paths},
                          {"evaluated", l.evaluated}};
+    for (const LoopForm& f : l.same_loop)  // only a loop built in several ways
+      jl["same_loop_as"].push_back({{"plant", f.plant}, {"controller", f.controller}, {"sign", f.sign}});
     if (!l.evaluated) {
       jl["note"] = l.note;
       out.push_back(jl);

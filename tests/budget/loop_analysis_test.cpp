@@ -98,6 +98,47 @@ TEST_CASE("a loop that several paths hold is analysed once, naming each path; se
   CHECK(loops[0].paths == std::vector<std::string>{"closed", "chain"});
 }
 
+TEST_CASE("one physical loop built as PS, T and S is analysed once, as plant and controller; another loop is not") {
+  // P = 1/(m s^2), K the lead above, in SI units. PS = feedback(P, K); with
+  // G K = series(K, P): T = feedback(G K, 1) and S = feedback(1, G K). All
+  // three have the loop gain L = P K; feedback(P, 2 K) does not.
+  const double m = 5.0, wc = kTwoPi * 30.0, kp = m * wc * wc / 3.0;
+  const Path stage = Siso("stage", TransferFunction({1.0}, {m, 0.0, 0.0}), "N", "m");
+  const Path lead = Siso("lead", TransferFunction({kp * 3.0 / wc, kp}, {1.0 / (3.0 * wc), 1.0}), "m", "N");
+  const Path lead2 = Siso("lead2", TransferFunction({2.0 * kp * 3.0 / wc, 2.0 * kp}, {1.0 / (3.0 * wc), 1.0}), "m", "N");
+  const Path unity = Siso("unity", TransferFunction({1.0}, {1.0}), "m", "m");
+  Path loop_gain = SeriesOfPaths({{&lead, "of[0]"}, {&stage, "of[1]"}});
+  loop_gain.name = "loop_gain";
+  Path s_path = FeedbackOfPaths({&unity, "plant"}, {&loop_gain, "controller"});
+  s_path.name = "S";
+  Path t_path = FeedbackOfPaths({&loop_gain, "plant"}, {&unity, "controller"});
+  t_path.name = "T";
+  Path ps_path = FeedbackOfPaths({&stage, "plant"}, {&lead, "controller"});
+  ps_path.name = "PS";
+  Path other = FeedbackOfPaths({&stage, "plant"}, {&lead2, "controller"});
+  other.name = "stiffer";
+  const std::vector<double> f = LogGrid(0.5, 2000.0, 400);
+  const std::vector<LoopResult> alone = AnalyseLoops(LoopBudget({ps_path}), f);
+  const std::vector<LoopResult> loops = AnalyseLoops(LoopBudget({s_path, t_path, ps_path, other}), f);
+  REQUIRE(loops.size() == 2);
+  // Reported as the form that names the physical parts, though S came first.
+  CHECK(loops[0].plant == "stage");
+  CHECK(loops[0].controller == "lead");
+  REQUIRE(loops[0].same_loop.size() == 2);
+  CHECK(loops[0].same_loop[0].plant == "unity");
+  CHECK(loops[0].same_loop[1].plant == "loop_gain");
+  CHECK(loops[0].paths == std::vector<std::string>{"S", "T", "PS"});
+  CHECK(SameLoopText(loops[0]) == "unity closed by loop_gain, loop_gain closed by unity");
+  // Its margins are those of the loop analysed alone.
+  REQUIRE(alone.size() == 1);
+  REQUIRE(loops[0].margins.phase_margin);
+  CHECK(loops[0].margins.phase_margin->phase_margin_deg ==
+        doctest::Approx(alone[0].margins.phase_margin->phase_margin_deg).epsilon(1e-12));
+  CHECK(loops[1].controller == "lead2");
+  CHECK(loops[1].same_loop.empty());
+  CHECK(loops[1].paths == std::vector<std::string>{"stiffer"});
+}
+
 TEST_CASE("Evaluate reports the loops and warns below a modulus margin of 0.5") {
   // The same loop with the controller gain 20x lower: crossover near
   // 30/sqrt(20)... the phase of the lead is small there, PM small, |1 + L| < 0.5.

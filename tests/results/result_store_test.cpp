@@ -150,7 +150,16 @@ TEST_CASE("a result store read back and written again is the same file, for ever
         CHECK(py.phase_rad == px.phase_rad);
       }
     }
-    CHECK(s.loops.size() == w.result.loops.size());
+    REQUIRE(s.loops.size() == w.result.loops.size());
+    for (std::size_t l = 0; l < s.loops.size(); ++l) {
+      CHECK(s.loops[l].paths == w.result.loops[l].paths);
+      REQUIRE(s.loops[l].same_loop.size() == w.result.loops[l].same_loop.size());
+      for (std::size_t k = 0; k < s.loops[l].same_loop.size(); ++k) {
+        CHECK(s.loops[l].same_loop[k].plant == w.result.loops[l].same_loop[k].plant);
+        CHECK(s.loops[l].same_loop[k].controller == w.result.loops[l].same_loop[k].controller);
+        CHECK(s.loops[l].same_loop[k].sign == w.result.loops[l].same_loop[k].sign);
+      }
+    }
     CHECK(s.traces->poles_hz == w.result.traces->poles_hz);
     REQUIRE(s.covariance.has_value() == w.result.covariance.has_value());
     if (w.result.covariance) {
@@ -256,6 +265,9 @@ TEST_CASE("the features each example stands for are in its store") {
   CHECK(referenced);
   CHECK(metric);
   CHECK(band_requirement);
+  // One physical loop, built as PS, T and S: one loop naming its two other forms.
+  REQUIRE(wafer.loops.size() == 1);
+  CHECK(wafer.loops[0].same_loop.size() == 2);
   const BudgetResult thesis = read("nizamoglu2015_h210.yaml");
   CHECK(thesis.covariance.has_value());
   bool broken_down = false, weighted = false;

@@ -135,8 +135,10 @@ Plot BodePlot(const LoopFigures& lf) {
   bode.name = lf.stem + "_bode";
   bode.kind = PlotKind::kPath;
   bode.csv = lf.csv;
+  const std::string same = SameLoopText(r);
   bode.caption = "Loop gain L = -sign G K of plant " + r.plant + " and controller " + r.controller + " (closing " +
-                 lf.paths + "): magnitude over unwrapped phase, each gain crossover marked with its "
+                 lf.paths + (same.empty() ? "" : "; the same loop as " + same) +
+                 "): magnitude over unwrapped phase, each gain crossover marked with its "
                  "phase margin and each phase crossover with its gain margin.";
   FigurePanel top, bottom;
   top.x = bottom.x = lf.x_axis;
