@@ -113,6 +113,7 @@ Plot PathPlot(const BudgetResult& result, const std::vector<std::size_t>& users,
                             " Hz";
   // The path with the inputs its contributors drive, if they select some: "closed(F_act)".
   const std::string through = ContributorPathKey(contributor);
+  p.label = "path " + through + " to " + output.name + ", used by " + names;
   p.caption = "Bode magnitude and phase (unwrapped) of the transfer through path " + through + " to " +
               output.name + (weighted ? ", weighting included" : "") +
               ", per source channel, from source unit " + UnitText(budget.SourceOf(contributor).unit) + "; used by " +

@@ -55,8 +55,26 @@ std::vector<std::pair<std::string, bool>> VerdictLines(const OutputResult& o) {
   return lines;
 }
 
+// The Bode figures of an output's paths, listed rather than drawn: a
+// budget's path catalogue can fill more pages than its results (wafer_stage:
+// 15 figures). index.html draws each, and plots/ holds its image, data and
+// script.
+std::string PathFiguresTitle() {
+  return "Bode figures of the paths: drawn in index.html; image, data and script in plots/";
+}
+
+PdfTable PathFigures(const std::vector<const Plot*>& plots) {
+  PdfTable t;
+  t.header = {"path (inputs) to output, used by", "plots/ file stem (image, .csv, .gp)"};
+  t.numeric = {false, false};
+  for (const Plot* p : plots) t.rows.push_back({{p->label.empty() ? p->caption : p->label}, {p->name}});
+  return t;
+}
+
 // Room an output's section needs to start below the previous one rather than on a new page.
-constexpr double kOutputSectionRoomPt = 250.0;
+constexpr double kOutputSectionRoomPt = 200.0;
+// Room the table of contents (a line per section) needs to follow page 1's tables.
+constexpr double kContentsRoomPt = 140.0;
 
 // Plots of an output in reading order: CPS, reverse CPS, spectrum, bands.
 int KindOrder(PlotKind k) {
@@ -89,7 +107,7 @@ std::string PdfFigureTerminal(PlotKind kind) {
   // 2.1 puts a line of width 1 at 1.53 pt on paper (the thinnest data line,
   // 1.1, at 1.68 pt; only the grid is lighter). Two fit on a page; the
   // overview's panels, with their rotated names, get most of one.
-  const char* size = kind == PlotKind::kOverview ? "662,680" : "662,420";
+  const char* size = kind == PlotKind::kOverview ? "662,600" : "662,420";
   return std::string("set terminal svg enhanced size ") + size +
          " font 'DejaVu Sans,11' linewidth 2.1 background '#ffffff'\n";
 }
@@ -197,10 +215,10 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
     b.push_back(Paragraph("The evaluation raised " + std::to_string(n) + (n == 1 ? " warning" : " warnings") +
                               ": see Warnings and notes.",
                           9.5, true));
-  b.push_back(PageBreak());
+  b.push_back(PageBreak(kContentsRoomPt));  // the contents below a short first page
   b.push_back(Heading(1, "Contents"));
   b.push_back(Contents());
-  b.push_back(PageBreak());
+  b.push_back(PageBreak(kOutputSectionRoomPt));  // the overview below a short table of contents
 
   const auto figure = [&](const Plot& p) { b.push_back(Figure(in.figure_dir + "/" + p.name + ".svg", p.caption)); };
   const std::vector<Plot> none;
@@ -212,6 +230,7 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   for (const Plot& p : plots)
     if (p.output < 0 && p.kind != PlotKind::kPath) figure(p);
 
+  std::vector<const Plot*> all_path_plots;  // listed after the loops, drawn in index.html
   for (std::size_t i = 0; i < result.outputs.size(); ++i) {
     const OutputResult& o = result.outputs[i];
     // A new page unless a third of one is left: the heading, the verdict and the table's first rows fit there.
@@ -231,33 +250,20 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
       b.push_back(TableBlock(channels.title, TypesetTable(channels)));
     if (const Table modes = ModeTable(o); !modes.rows.empty())
       b.push_back(TableBlock(modes.title, TypesetTable(modes)));
-    std::vector<const Plot*> mine;
+    // The tables first (the band table fills the page the output's tables
+    // began), then its figures in reading order; its path figures are
+    // listed in the section Paths.
+    std::vector<const Plot*> mine, path_plots;
     for (const Plot& p : plots)
-      if (p.output == static_cast<int>(i)) mine.push_back(&p);
+      if (p.output == static_cast<int>(i)) (p.kind == PlotKind::kPath ? path_plots : mine).push_back(&p);
     std::stable_sort(mine.begin(), mine.end(),
                      [](const Plot* a, const Plot* z) { return KindOrder(a->kind) < KindOrder(z->kind); });
-    bool spectra = false, bands = false, paths = false;
-    for (const Plot* p : mine) {
-      if (KindOrder(p->kind) <= 3 && !spectra) {
-        b.push_back(Heading(2, "Spectra of " + o.name));
-        spectra = true;
-      }
-      if (p->kind == PlotKind::kBands && !bands) {
-        b.push_back(Heading(2, "Bands of " + o.name));
-        const Table band = BandTable(o, in.digits);
-        b.push_back(TableBlock(band.title, TypesetTable(band)));
-        bands = true;
-      }
-      if (p->kind == PlotKind::kPath && !paths) {
-        b.push_back(Heading(2, "Paths to " + o.name));
-        paths = true;
-      }
-      figure(*p);
-    }
-    if (!bands) {
-      const Table band = BandTable(o, in.digits);
-      b.push_back(TableBlock(band.title, TypesetTable(band)));
-    }
+    b.push_back(Heading(2, "Bands of " + o.name));
+    const Table band = BandTable(o, in.digits);
+    b.push_back(TableBlock(band.title, TypesetTable(band)));
+    if (!mine.empty()) b.push_back(Heading(2, "Figures of " + o.name));
+    for (const Plot* p : mine) figure(*p);
+    all_path_plots.insert(all_path_plots.end(), path_plots.begin(), path_plots.end());
   }
 
   // Loop plots belong to no output: a section of their own.
@@ -265,14 +271,19 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   for (const Plot& p : plots) {
     if (p.output >= 0 || p.kind != PlotKind::kPath) continue;
     if (!loops) {
-      b.push_back(PageBreak());
+      b.push_back(PageBreak(kOutputSectionRoomPt));
       b.push_back(Heading(1, "Feedback loops"));
       loops = true;
     }
     figure(p);
   }
 
-  b.push_back(PageBreak());
+  if (!all_path_plots.empty()) {
+    b.push_back(PageBreak(kOutputSectionRoomPt));
+    b.push_back(Heading(1, "Paths"));
+    b.push_back(TableBlock(PathFiguresTitle(), PathFigures(all_path_plots)));
+  }
+  b.push_back(PageBreak(kOutputSectionRoomPt));
   b.push_back(Heading(1, "Warnings and notes"));
   if (result.warnings.empty()) b.push_back(Paragraph("The evaluation raised no warning."));
   for (const std::string& w : result.warnings) b.push_back(Bullet(w));

@@ -349,13 +349,15 @@ class Composer {
   }
 
   void DoContents() {
-    // One line per heading of the document, linked to it; the first pass
-    // lays out the same lines with its own (placeholder) page numbers.
+    // One line per section (level-1 heading) of the document, linked to it;
+    // subsections are in the PDF's bookmarks. The first pass lays out the
+    // same lines with its own (placeholder) page numbers.
     std::vector<const PdfBlock*> headings;
     for (const PdfBlock& b : spec_.blocks)
       if (b.kind == PdfBlockKind::kHeading && b.level >= 1) headings.push_back(&b);
     for (std::size_t k = 0; k < headings.size(); ++k) {
       const PdfBlock& b = *headings[k];
+      if (b.level >= 2) continue;
       const double indent = b.level >= 2 ? 14.0 : 0.0, size = b.level >= 2 ? 9.0 : 10.0;
       const Target t = k < targets_.size() ? targets_[k] : Target{};
       Layout number = MakeLayout(std::to_string(t.page), size, b.level == 1, 0);

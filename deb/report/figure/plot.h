@@ -19,6 +19,7 @@ enum class PlotKind { kCps, kReverseCps, kSpectrum, kBands, kPath, kOverview };
 struct Plot {
   std::string name;     // file stem under plots/, e.g. "z_velocity_cps"
   std::string caption;  // one sentence for index.html and report.md
+  std::string label;    // a line naming what it shows, for a list of figures ("" for the caption)
   PlotKind kind = PlotKind::kCps;
   int output = -1;      // index of the output it belongs to, -1 for none
   std::string csv;      // the data, written as plots/<name>.csv

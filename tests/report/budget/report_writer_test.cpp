@@ -210,3 +210,26 @@ TEST_CASE("plots are drawn in batches, yet a failing plot is named in the error 
 }
 
 }  // namespace deb
+
+namespace deb {
+using namespace deb::test;
+
+TEST_CASE("wafer_stage's report says each thing once: its one loop drawn once, path figures listed, under 20 pages") {
+  const Budget budget = LoadBudgetFile(ExampleBudget("wafer_stage.yaml"));
+  const BudgetResult result = Evaluate(budget);
+  const fs::path dir = TempDir("once") / "report";
+  const ReportManifest m = WriteReportDirectory(result, {ExampleBudget("wafer_stage.yaml"), 0.1}, {}, dir.string());
+  // One physical loop (closed as PS, T and S by three paths): Bode, |S| and |T|, Nyquist, once.
+  int loop_plots = 0;
+  for (const std::string& name : m.plots) loop_plots += name.rfind("loop_", 0) == 0;
+  CHECK(loop_plots == 3);
+  // The 15 path figures stay in plots/ (and index.html); report.pdf lists them.
+  int path_plots = 0;
+  for (const std::string& name : m.plots) path_plots += name.rfind("path_", 0) == 0;
+  CHECK(path_plots == 15);
+  CHECK(m.pdf_pages < 20);
+  CHECK(PdfPages(dir / "report.pdf") == m.pdf_pages);
+  fs::remove_all(dir.parent_path());
+}
+
+}  // namespace deb
