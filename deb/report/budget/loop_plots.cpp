@@ -10,6 +10,7 @@
 #include "deb/core/math_constants.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "deb/report/figure/figure_script.h"
+#include "deb/report/figure/phase_axis.h"
 #include "deb/report/figure/plot_style.h"
 #include "deb/systems/loop_margins.h"
 #include "deb/version.h"
@@ -117,13 +118,10 @@ std::string LoopCsv(const LoopResult& r, const LoopCurves& c, const std::string&
   return csv.str();
 }
 
-// The phase axis in steps of 45° (90° over more than a turn), reaching -180.
+// The phase axis in whole steps of 45° · 2^k (at most 8 of them), reaching -180.
 void PhaseAxis(FigurePanel& panel, const std::vector<double>& phase) {
   const auto [lo, hi] = std::minmax_element(phase.begin(), phase.end());
-  const double step = *hi - *lo > 360.0 ? 90.0 : 45.0;
-  panel.y.min = step * std::floor(std::min(*lo, -180.0) / step - 1e-9);
-  panel.y.max = step * std::ceil(std::max(*hi, -180.0) / step + 1e-9);
-  for (double t = *panel.y.min; t <= *panel.y.max + 1e-9; t += step) panel.y.tics.push_back({t, Short(t)});
+  SetPhaseAxis(panel.y, std::min(*lo, -180.0), std::max(*hi, -180.0));
 }
 
 // Bode plot of L, each gain crossover marked with its phase margin and each

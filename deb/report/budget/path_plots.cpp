@@ -13,6 +13,7 @@
 #include "deb/core/math_constants.h"
 #include "deb/core/parallel.h"
 #include "deb/report/figure/figure_script.h"
+#include "deb/report/figure/phase_axis.h"
 #include "deb/report/figure/plot_points.h"
 #include "deb/report/figure/plot_style.h"
 #include "deb/version.h"
@@ -229,12 +230,8 @@ Plot PathPlot(const BudgetResult& result, const std::vector<std::size_t>& users,
         phase_hi = std::max(phase_hi, phase_deg[k][i]);
       }
   }
-  if (phase_hi >= phase_lo) {  // whole steps of 45° (90°, 180° over more turns), at least 90° tall
-    const double span = phase_hi - phase_lo;
-    const double step = span > 540.0 ? 180.0 : span > 360.0 ? 90.0 : 45.0;
-    phase.y.min = step * std::floor(phase_lo / step - 1e-9);
-    phase.y.max = std::max(step * std::ceil(phase_hi / step + 1e-9), *phase.y.min + 90.0);
-    for (double t = *phase.y.min; t <= *phase.y.max + 1e-9; t += step) phase.y.tics.push_back({t, Short(t)});
+  if (phase_hi >= phase_lo) {  // whole steps of 45° · 2^k, at most 8 of them, at least 90° tall
+    SetPhaseAxis(phase.y, phase_lo, phase_hi, 90.0);
   }
   p.figure.title = "path " + Enhanced(through) + " → " + Enhanced(output.name) +
                    (weighted ? " (weighted)" : "") + ", used by " +
