@@ -199,14 +199,24 @@
       // Contributors wide, the total a thin line over them: a contributor that is all of the total shows.
       var widths = {};
       fig.names.forEach(function (n, k) { widths['s' + k] = { strokeWidth: k < o.contributors.length ? 2.6 : 1.0 }; });
-      var g = draw(fig, el, { dateWindow: window_hz, series: widths });
+      // The y axis over the decades that hold the variance: at most 10 (PSD) or 5 (ASD) below the peak,
+      // as the PNG (notches of a sinc^2 would otherwise stretch it to 1e-24).
+      function decades(series, n) {
+        var top = 0, bottom = Infinity;
+        series.forEach(function (s) { s.forEach(function (v) { if (v > 0) { top = Math.max(top, v); bottom = Math.min(bottom, v); } }); });
+        if (!(top > 0)) return null;
+        var lo = Math.max(bottom, top * Math.pow(10, -n));
+        return [Math.pow(10, Math.floor(Math.log10(lo))), Math.pow(10, Math.ceil(Math.log10(top * 1.5)))];
+      }
+      var ranges = { psd: decades(psd, 10), asd: decades(asd, 5) };
+      var g = draw(fig, el, { dateWindow: window_hz, series: widths, valueRange: ranges.psd });
       graphs['psd' + i] = g;
       var label = document.createElement('label'), box = document.createElement('input');
       box.type = 'checkbox';
       box.className = 'asd';
       box.addEventListener('change', function () {
         fig.raw = box.checked ? asd : psd;
-        g.updateOptions({ file: rows(o.f, fig.raw),
+        g.updateOptions({ file: rows(o.f, fig.raw), valueRange: box.checked ? ranges.asd : ranges.psd,
                           ylabel: esc(box.checked ? 'ASD [' + units.asd + ']' : 'PSD [' + units.psd + ']') });
       });
       label.appendChild(box);

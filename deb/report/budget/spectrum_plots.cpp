@@ -126,10 +126,26 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
   p.csv = csv.str();
 
   const double limit2 = out.rms_max ? *out.rms_max * *out.rms_max : 0.0;
-  // Headroom above the larger of total, limit and references for the key-free top edge and the marker's label.
-  double top = std::max({out.variance, limit2, 1e-300});
-  for (const ReferenceResult& r : refs) top = std::max(top, r.variance);
+  // The variance axis fits the budget: a limit or a reference more than
+  // kFarAbove times the total variance is not scaled to (a passing budget
+  // would fill the bottom of the figure); the limit is then named at the top
+  // instead, and a reference runs off the top. Headroom above for the
+  // marker's label.
+  constexpr double kFarAbove = 3.0;
+  const auto fits = [&](double v) { return !(out.variance > 0.0) || v <= kFarAbove * out.variance; };
+  double top = std::max(out.variance, 1e-300);
+  const bool limit_above = out.rms_max && !fits(limit2);
+  if (!limit_above) top = std::max(top, limit2);
+  bool reference_above = false;
+  for (const ReferenceResult& r : refs) {
+    if (fits(r.variance)) top = std::max(top, r.variance);
+    else reference_above = true;
+  }
   const double y_max = top * 1.12;
+  if (limit_above)
+    p.caption += " The requirement (" + Short(*out.rms_max) + " " + UnitText(out.unit) +
+                 ") lies above the axis, which fits the budget.";
+  if (reference_above) p.caption += " A reference more than " + Short(kFarAbove) + "× the budget's variance runs off the top.";
   // Variance axis in units of 10^e where the numbers would be long.
   const int e = static_cast<int>(std::floor(std::log10(y_max)));
   const double scale = (e >= 4 || e <= -3) ? std::pow(10.0, e) : 1.0;
@@ -187,7 +203,23 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
     panel.series.push_back(std::move(layer));
   }
   panel.series.insert(panel.series.end(), edges.begin(), edges.end());
-  if (out.rms_max) {
+  if (limit_above) {  // named at the top of the plot, in the key as a line
+    FigureAnnotation above;
+    above.kind = AnnotationKind::kText;
+    above.x0 = 0.02;
+    above.y0 = 0.95;
+    above.colour = kRequirementColour;
+    above.label = "↑ requirement " + Short(*out.rms_max) + " " + UnitLabel(unit) + " RMS, above the axis: the budget "
+                  "uses " + Share(out.variance, limit2) + " of its variance";
+    panel.annotations.push_back(above);
+    FigureAnnotation entry;
+    entry.kind = AnnotationKind::kKeyEntry;
+    entry.colour = kRequirementColour;
+    entry.dash = kRequirementDash;
+    entry.point_type = 0;
+    entry.key = "requirement: " + Short(*out.rms_max) + " (pass, above the axis)";
+    panel.annotations.push_back(entry);
+  } else if (out.rms_max) {
     FigureAnnotation limit;
     limit.kind = AnnotationKind::kHorizontalLine;
     limit.y0 = limit2 / scale;

@@ -259,6 +259,45 @@ TEST_CASE("tones are triangles on the total at their frequencies, labelled with 
 
 namespace deb::report {
 
+TEST_CASE("a CPS axis fits the budget: a requirement far above is named at the top, one near is drawn as a line") {
+  // optical_table: 0.9683 nm RMS against 2 nm, a limit 4.27x the variance (above kFarAbove = 3).
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("optical_table.yaml"));
+  BudgetResult result = Evaluate(budget);
+  const OutputResult& out = result.outputs.at(0);
+  REQUIRE(out.rms_max);
+  const auto cps_of = [&](const BudgetResult& r) {
+    for (const Plot& p : SpectrumPlots(r, 0, {}))
+      if (p.kind == PlotKind::kCps) return p;
+    FAIL("no CPS plot");
+    return Plot{};
+  };
+  const Plot far = cps_of(result);
+  const FigurePanel& panel = far.figure.panels.at(0);
+  REQUIRE(panel.y.max);
+  // The axis: the total variance plus its headroom, not the limit's 4 nm^2.
+  CHECK(*panel.y.max == doctest::Approx(1.12 * out.variance));
+  bool named = false, line = false, entry = false;
+  for (const FigureAnnotation& a : panel.annotations) {
+    named |= a.kind == AnnotationKind::kText && a.label.find("requirement 2 nm RMS, above the axis") != std::string::npos;
+    line |= a.kind == AnnotationKind::kHorizontalLine;
+    entry |= a.kind == AnnotationKind::kKeyEntry && a.key.find("above the axis") != std::string::npos;
+    // Text sits in the band above the headroom, which no data reaches (the total is at 1/1.12 of the axis).
+    if (a.kind == AnnotationKind::kText) CHECK(a.y0 > 1.0 / 1.12 + 0.03);
+  }
+  CHECK(named);
+  CHECK(entry);
+  CHECK_FALSE(line);
+  CHECK(far.caption.find("lies above the axis") != std::string::npos);
+  // A limit twice the variance: the axis reaches it and the limit is a line.
+  result.outputs[0].rms_max = std::sqrt(2.0 * out.variance);
+  const Plot near = cps_of(result);
+  CHECK(*near.figure.panels.at(0).y.max == doctest::Approx(1.12 * 2.0 * out.variance));
+  bool near_line = false;
+  for (const FigureAnnotation& a : near.figure.panels.at(0).annotations)
+    near_line |= a.kind == AnnotationKind::kHorizontalLine;
+  CHECK(near_line);
+}
+
 TEST_CASE("a contributor that is all of an output's PSD shows beside the total, a thin line drawn over it") {
   // single_axis_isolator's displacement is floor alone (100 %): its curve and the total coincide.
   const Budget budget = LoadBudgetFile(test::ExampleBudget("single_axis_isolator.yaml"));
