@@ -71,19 +71,39 @@ void AddPath(std::string& text, const Path& p, const EvaluationPlan& plan) {
     AppendFormatted(text, "  %-20s H by %s\n", "", analysis->ResponseForm().c_str());
 }
 
+// A spectrum's description (in "unit^2/Hz", as a spectrum knows no unit) in
+// its source's unit: "N^2/Hz", "(m/s)^2/Hz".
+std::string InSourceUnit(std::string described, const std::string& unit) {
+  const std::string token = "unit^2/Hz";
+  const std::string psd = (unit.find_first_of("/ *^.") != std::string::npos ? "(" + unit + ")" : unit) + "^2/Hz";
+  for (std::size_t at = described.find(token); at != std::string::npos; at = described.find(token, at + psd.size()))
+    described.replace(at, token.size(), psd);
+  return described;
+}
+
 void AddContributors(std::string& text, const Budget& budget, const EvaluationPlan& plan) {
   AppendFormatted(text, "contributors:\n");
   for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
     const Contributor& c = budget.contributors[ci];
     AppendFormatted(text, "  %-20s source %s, path %s, exact variance: %s\n", c.name.c_str(), c.source.c_str(),
                     ContributorPathKey(c).c_str(), ToString(c.exact).c_str());
-    // Why there will be none where it was asked for, once per distinct reason (the outputs usually share it).
-    std::vector<std::string> reasons;
-    for (const std::string& why : plan.exact_refusal[ci])
-      if (c.exact != ExactVariance::kOff && !why.empty() &&
-          std::find(reasons.begin(), reasons.end(), why) == reasons.end())
-        reasons.push_back(why);
-    for (const std::string& why : reasons) AppendFormatted(text, "  %-20s no exact variance: %s\n", "", why.c_str());
+    // Why there will be none where it was asked for, once per distinct reason (the outputs usually share
+    // it), naming the outputs unless it holds for every one.
+    std::vector<std::pair<std::string, std::vector<std::string>>> reasons;  // why, for which outputs
+    const std::vector<std::string>& refusals = plan.exact_refusal[ci];
+    for (std::size_t o = 0; o < refusals.size(); ++o) {
+      const std::string& why = refusals[o];
+      if (c.exact == ExactVariance::kOff || why.empty()) continue;
+      auto it = std::find_if(reasons.begin(), reasons.end(), [&](const auto& r) { return r.first == why; });
+      if (it == reasons.end()) it = reasons.insert(reasons.end(), {why, {}});
+      if (o < budget.outputs.size()) it->second.push_back(budget.outputs[o].name);
+    }
+    for (const auto& [why, outputs] : reasons) {
+      std::string where;
+      if (outputs.size() < refusals.size())
+        for (const std::string& o : outputs) where += (where.empty() ? " for " : ", ") + o;
+      AppendFormatted(text, "  %-20s no exact variance%s: %s\n", "", where.c_str(), why.c_str());
+    }
   }
 }
 
@@ -122,7 +142,7 @@ std::string DescribeBudget(const Budget& budget, const EvaluationPlan& plan) {
   AppendFormatted(text, "sources:\n");
   for (const auto& s : budget.sources)
     AppendFormatted(text, "  %-20s %d channel(s) in %s: %s\n", s.name.c_str(), s.channels(), s.unit.c_str(),
-                    s.spectrum->Describe().c_str());
+                    InSourceUnit(s.spectrum->Describe(), s.unit).c_str());
   AppendFormatted(text, "paths:\n");
   for (const Path& p : budget.paths) AddPath(text, p, plan);
   if (!plan.loops.empty()) AppendFormatted(text, "feedback loops:\n");

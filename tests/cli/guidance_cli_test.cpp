@@ -59,6 +59,14 @@ TEST_CASE("the shipped failing budget checks cleanly, has ten or more contributo
   const Command check = RunDeb("check " + ExampleBudget("wafer_stage.yaml"));
   REQUIRE_MESSAGE(check.exit_code == 0, check.err);
   CHECK(check.err.empty());  // no warning
+  // Sources' levels in their own unit; a reason for no exact variance names the outputs it holds for.
+  CHECK(check.out.find("flat, one-sided PSD 1e-08 N^2/Hz") != std::string::npos);
+  CHECK(check.out.find("unit^2/Hz") == std::string::npos);
+  CHECK(check.out.find("no exact variance for image_shift: the moving_average weighting") != std::string::npos);
+  // One physical loop, built three ways, listed once.
+  CHECK(check.out.find("  stage closed by controller (negative feedback), in ") != std::string::npos);
+  CHECK(check.out.find("    the same loop as ") != std::string::npos);
+  CHECK(check.out.find("unity closed by loop_gain (negative feedback)") == std::string::npos);
 
   const fs::path dir = TempDir("guidance");
   const Command r = RunDeb("run " + ExampleBudget("wafer_stage.yaml") + " --no-plots --out " + (dir / "r").string());

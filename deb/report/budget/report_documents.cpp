@@ -76,7 +76,7 @@ std::string OutputLine(const OutputResult& o) {
   std::string s = "RMS " + Sig(o.rms(), 4) + " " + UnitText(o.unit);
   if (o.rms_max)
     s += "; requirement " + Short(*o.rms_max) + " " + UnitText(o.unit) + ": " + (o.pass() ? "pass" : "FAIL") +
-         " (margin " + Sig(*o.rms_max - o.rms(), 4) + ")";
+         " (margin " + Sig(*o.rms_max - o.rms(), 4) + " " + UnitText(o.unit) + ")";
   return s + ". Signal " + o.signal + ".";
 }
 

@@ -105,7 +105,11 @@ Table ContributorTable(const OutputResult& o, int digits) {
   for (std::size_t c : ShareOrder(o)) {
     const ContributorResult& cr = o.contributors[c];
     std::string note = cr.exact_note;
-    if (cr.exact_variance && *cr.exact_variance > 0.0)
+    // A contributor of tones alone: its variance is exact on any grid (no note).
+    double tone_variance = 0.0;
+    for (const ContributorResult::Tone& t : cr.tones) tone_variance += t.variance;
+    const bool tones_only = !cr.tones.empty() && tone_variance >= cr.variance * (1.0 - 1e-12);
+    if (cr.exact_variance && *cr.exact_variance > 0.0 && !tones_only)
       note = "grid holds " + Sig(100.0 * cr.variance / *cr.exact_variance, digits) + " % of the exact variance";
     std::vector<std::string> row = {cr.name, cr.source, cr.path, Sig(std::sqrt(cr.variance), digits),
                                     Share(cr.variance, o.variance),
@@ -335,7 +339,7 @@ ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file
       "CPS(f) = ∫ S from the lowest grid frequency to f; RMS = √CPS(f_max); the reverse CPS integrates from f up.",
       "Contributors (source × path) are mutually uncorrelated and their variances add; S_y = H S_u Hᴴ.",
       "Exact RMS: Lyapunov A P + P Aᵀ + B W Bᵀ = 0, W = S₀/2, over 0 < f < ∞ (white sources only).",
-      "Sources declared two-sided were converted once at load: S_one-sided = 2 S_two-sided.",
+      "A source declared two-sided (convention: two-sided) is converted once at load: S_one-sided = 2 S_two-sided.",
       "Share: a contributor's fraction of the output's variance (shares add to 100 %; RMS values do not add).",
       "Allocation k = (rms_max² − (σ² − σ_c²)) / σ_c²: the factor on a contributor's source PSD that puts the "
       "output at its limit, the others unchanged (k > 1: room to grow).",

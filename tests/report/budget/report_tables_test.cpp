@@ -189,3 +189,23 @@ TEST_CASE("the channel table lists each contributor's channels largest first, a 
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a contributor of tones alone gets no 'grid holds' note: its variance is exact on any grid") {
+  // optical_table's ripple: a 5 mN tone at 50 Hz; the other contributors are densities.
+  const BudgetResult r = Evaluate(LoadBudgetFile(test::ExampleBudget("optical_table.yaml")));
+  const OutputResult& gap = r.outputs.at(0);
+  const Table t = ContributorTable(gap, 4);
+  const std::size_t note = t.header.size() - 1;
+  REQUIRE(t.header[note] == "note");
+  bool ripple = false;
+  for (const auto& row : t.rows)
+    if (row[0] == "ripple") {
+      ripple = true;
+      CHECK(row[note].empty());  // it has an exact variance (the tone itself): no note at all
+    }
+  CHECK(ripple);
+}
+
+}  // namespace deb::report
