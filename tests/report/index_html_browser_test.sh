@@ -7,7 +7,9 @@
 #     500 pixels that are neither blank nor white,
 #   - hovering each figure shows a value with its frequency in its legend,
 #   - a legend box hides its contributor, the ASD box relabels the PSD,
-#   - a drag on an output's CPS zooms its PSD too (their x-axis labels change).
+#   - a drag on an output's CPS zooms its PSD too (their x-axis labels change),
+#   - the verdict has a line per requirement, green where met and red where not,
+#   - every CPS stacks the groups and reads as RMS on a right axis.
 # Exit 77 (CTest: skipped) when chromium or chromedriver is missing.
 # Usage: index_html_browser_test.sh DEB_BINARY BUDGET.yaml
 # With DEB_SCREENSHOTS=DIR, the top of the page and each figure while hovered
@@ -97,6 +99,36 @@ blank=$(js "
   });
   return out;")
 check "every figure has a drawn canvas (blank: $blank)" "$([ "$blank" = '[]' ] && echo 1 || echo 0)"
+
+# The verdict: a line per requirement, each coloured by its own verdict
+# (a passing line of a failing budget is green, not red).
+verdict=$(js "
+  var bg = function (p) { return getComputedStyle(p).backgroundColor; };
+  var pass = document.querySelectorAll('#verdict p.pass'), fail = document.querySelectorAll('#verdict p.fail');
+  var greens = Array.prototype.filter.call(pass, function (p) { return bg(p) === 'rgb(27, 120, 55)'; }).length;
+  var reds = Array.prototype.filter.call(fail, function (p) { return bg(p) !== 'rgb(27, 120, 55)'; }).length;
+  return [pass.length, greens, fail.length, reds].join(' ');")
+read -r n_pass n_green n_fail n_red <<<"${verdict//\"/}"
+check "the verdict has a line per requirement, green where met ($n_green of $n_pass), red where not ($n_red of $n_fail)" \
+  "$([ "$n_pass" -ge 1 ] && [ "$n_green" = "$n_pass" ] && [ "$n_fail" -ge 1 ] && [ "$n_red" = "$n_fail" ] && echo 1 || echo 0)"
+
+# Each CPS stacks what its PNG stacks (the budget's top-level groups, "name/")
+# and reads on the right as RMS: labels of the rms-axis at round values.
+cps=$(js "
+  var out = [];
+  document.querySelectorAll('figure.chart[data-kind=cps]').forEach(function (fig) {
+    var toggles = Array.prototype.map.call(fig.querySelectorAll('.toggles label'), function (l) { return l.textContent; });
+    var groups = toggles.filter(function (t) { return /\/$/.test(t); }).length;
+    out.push(groups + ':' + fig.querySelectorAll('.rms-axis').length);
+  });
+  return out.join(' ');")
+bad_cps=0
+cps=${cps//\"/}
+for c in $cps; do
+  groups=${c%%:*}; labels=${c##*:}
+  { [ "$groups" -ge 1 ] && [ "$labels" -ge 3 ]; } || bad_cps=1
+done
+check "every CPS stacks the groups and has an RMS axis (groups:labels per CPS: $cps)" "$([ "$bad_cps" = 0 ] && echo 1 || echo 0)"
 
 # Hover: the pointer at 40 % of each figure's plot area; its legend must then
 # give a frequency and a number.

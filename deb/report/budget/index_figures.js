@@ -83,6 +83,58 @@
     toggles(el.querySelector('.toggles'), g, fig.names, fig.colours);
     return g;
   }
+  // The cumulative RMS on the right of a CPS, as its PNG: a label at the
+  // variance r^2 of each round RMS value r. HTML over the chart (the canvas
+  // callbacks draw inside the plot area only), placed again after each draw.
+  function rmsAxis(o) {
+    return function (g) {
+      var div = g.graphDiv, area = g.getArea(), hi = g.yAxisRange()[1];
+      Array.prototype.slice.call(div.querySelectorAll('.rms-axis')).forEach(function (e) { e.remove(); });
+      if (!(hi > 0)) return;
+      var top = Math.sqrt(hi), p = Math.pow(10, Math.floor(Math.log10(top / 6))), step = 10 * p;
+      [1, 2, 2.5, 5].some(function (m) { if (m * p >= top / 6) { step = m * p; return true; } return false; });
+      var label = function (text, x, y, cls) {
+        var e = document.createElement('div');
+        e.className = 'rms-axis' + (cls ? ' ' + cls : '');
+        e.textContent = text;
+        e.style.left = x + 'px';
+        e.style.top = y + 'px';
+        div.appendChild(e);
+      };
+      for (var k = 1; k * step * k * step <= hi * (1 + 1e-9); k++)
+        label('– ' + String(Number((k * step).toPrecision(4))), area.x + area.w, g.toDomYCoord(k * step * k * step) - 7);
+      label('RMS [' + o.unit + ']', area.x + area.w + 44, area.y + area.h / 2, 'title');
+    };
+  }
+  // Where the cumulative RMS reaches the requirement (forward CPS only), as
+  // the PNG marks it: a dashed vertical line, a dot on the limit and its
+  // label left of the dot, above the limit, where the stack is still below it.
+  function crossingMarker(o, shown) {
+    return function (ctx, area, g) {
+      if (o.crossing_hz === null || o.rms_max === null || !shown()) return;
+      var x = area.x + g.toPercentXCoord(o.crossing_hz) * area.w, y = g.toDomYCoord(o.rms_max * o.rms_max);
+      if (!(x >= area.x && x <= area.x + area.w)) return;
+      ctx.save();
+      ctx.strokeStyle = '#b2182b';
+      ctx.fillStyle = '#b2182b';
+      ctx.lineWidth = 1.5;
+      ctx.setLineDash([4, 4]);
+      ctx.beginPath();
+      ctx.moveTo(x, area.y);
+      ctx.lineTo(x, area.y + area.h);
+      ctx.stroke();
+      ctx.setLineDash([]);
+      ctx.beginPath();
+      ctx.arc(x, y, 4, 0, 2 * Math.PI);
+      ctx.fill();
+      ctx.font = '12px sans-serif';
+      ctx.textBaseline = 'bottom';
+      var label = 'RMS reaches ' + num(o.rms_max) + ' ' + o.unit + ' at ' + num(o.crossing_hz) + ' Hz';
+      var w = ctx.measureText(label).width;
+      ctx.fillText(label, x - 8 - w >= area.x ? x - 8 - w : x + 8, Math.max(area.y + 14, y - 6));
+      ctx.restore();
+    };
+  }
   function requirementLine(variance) {
     return function (ctx, area, g) {
       if (variance === null) return;
@@ -163,10 +215,11 @@
       });
       var forwardShown = function () { return cpsFig.raw === forward.raw; };
       var gc = draw(cpsFig, el, { stackedGraph: true, fillGraph: true, fillAlpha: 0.7, valueRange: [0, top],
-                                  dateWindow: window_hz, underlayCallback: function (ctx, area, g) {
+                                  dateWindow: window_hz, rightGap: 64, underlayCallback: function (ctx, area, g) {
                                     requirementLine(req)(ctx, area, g);
                                     referenceLines(refs, forwardShown)(ctx, area, g);
-                                  } });
+                                    crossingMarker(o, forwardShown)(ctx, area, g);
+                                  }, drawCallback: rmsAxis(o) });
       graphs['cps' + i] = gc;
       var rlabel = document.createElement('label'), rbox = document.createElement('input');
       rbox.type = 'checkbox';
@@ -225,13 +278,13 @@
       el.querySelector('.toggles').appendChild(label);
       if (kind === 'asd') box.click();  // the report was asked for amplitudes (--asd)
     } else if (kind === 'bands') {
-      var names = o.contributors, raw = names.map(function (n, k) {
+      var names = o.band_contributors, raw = names.map(function (n, k) {
         return o.band_variance.map(function (b) { return b[k]; });
       });
       var totals = o.band_variance.map(function (b) { return b.reduce(function (a, v) { return a + v; }, 0); });
       var bandRows = o.bands.map(function (b, j) { return [j].concat(raw.map(function (r) { return r[j]; })); });
       var bandText = function (x) { return o.bands[Math.round(x)] ? o.bands[Math.round(x)] + ' Hz' : ''; };
-      draw({ names: names, colours: o.colours, raw: raw, total: totals, rows: bandRows, logX: false,
+      draw({ names: names, colours: o.band_colours, raw: raw, total: totals, rows: bandRows, logX: false,
              xlabel: 'frequency band [Hz]', ylabel: 'variance [' + o.variance_unit + ']', xText: bandText,
              valueText: varianceText },
            el, { stackedGraph: true, plotter: barPlotter, dateWindow: [-0.5, o.bands.length - 0.5],

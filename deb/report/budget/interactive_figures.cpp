@@ -5,11 +5,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "deb/budget/failure_guidance.h"
 #include "deb/budget/path_response.h"
 #include "deb/budget/response_traces.h"
 #include "deb/core/error.h"
@@ -70,41 +72,58 @@ std::size_t BudgetIndex(const BudgetOutline& budget, const std::string& contribu
 
 json OutputData(const BudgetResult& result, const OutputResult& out) {
   const std::vector<double>& f = result.grid.f_hz();
+  // The CPS and PSD stack what the PNG and PDF figures stack: the top-level
+  // groups (each the sum of its members) and the contributors outside any
+  // group, or the contributors of a budget without groups.
+  const PlotLevel level = GroupLevel(out, result.grid, "");
+  const OutputResult& items = level.out;
   std::vector<const std::vector<double>*> psd = {&out.total_psd}, cps = {&out.total_cps};
-  for (const ContributorResult& c : out.contributors) {
+  for (const ContributorResult& c : items.contributors) {
     psd.push_back(&c.psd);
     cps.push_back(&c.cps);
   }
   const std::vector<std::size_t> keep = FigurePoints(f, psd, cps);
   const FrequencyRange shown = DisplayRange(out, result.grid);
+  const double limit2 = out.rms_max ? *out.rms_max * *out.rms_max : 0.0;
+  const std::optional<double> crossing =
+      out.rms_max ? CpsCrossingHz(f, out.total_psd, out.total_cps, limit2) : std::nullopt;
   json o = {{"name", out.name},
             {"unit", UnitText(out.unit)},
             {"variance_unit", Squared(UnitText(VarianceUnit(out.unit)))},
             {"rms", out.rms()},
             {"rms_max", out.rms_max ? json(*out.rms_max) : json(nullptr)},
+            {"crossing_hz", crossing ? json(*crossing) : json(nullptr)},  // where the CPS reaches rms_max^2
             {"pass", out.AllPass()},
             {"display_hz", {shown.lo_hz, shown.hi_hz}},
             {"f", Frequencies(f, keep)},
             {"total_psd", Series(out.total_psd, keep, true)},
             {"total_cps", Series(out.total_cps, keep, false)}};
   // Largest first: the bottom of the stack, the head of the legend (as the tables).
+  json names = json::array(), colours = json::array(), psds = json::array(), cpss = json::array();
+  for (std::size_t k : ShareOrder(items)) {
+    const ContributorResult& c = items.contributors[k];
+    names.push_back(c.name);
+    colours.push_back(level.styles[k].colour);
+    psds.push_back(Series(c.psd, keep, true));
+    cpss.push_back(Series(c.cps, keep, false));
+  }
+  o["contributors"] = names;  // the items stacked: groups ("name/") and contributors
+  o["colours"] = colours;
+  o["psd"] = psds;
+  o["cps"] = cpss;
+  // The band chart, as its PNG: each contributor.
   std::vector<std::size_t> order(out.contributors.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return out.contributors[a].variance > out.contributors[b].variance;
   });
-  json names = json::array(), colours = json::array(), psds = json::array(), cpss = json::array();
+  json band_names = json::array(), band_colours = json::array();
   for (std::size_t k : order) {
-    const ContributorResult& c = out.contributors[k];
-    names.push_back(c.name);
-    colours.push_back(ContributorStyle(BudgetIndex(result.outline, c.name)).colour);
-    psds.push_back(Series(c.psd, keep, true));
-    cpss.push_back(Series(c.cps, keep, false));
+    band_names.push_back(out.contributors[k].name);
+    band_colours.push_back(ContributorStyle(BudgetIndex(result.outline, out.contributors[k].name)).colour);
   }
-  o["contributors"] = names;
-  o["colours"] = colours;
-  o["psd"] = psds;
-  o["cps"] = cpss;
+  o["band_contributors"] = band_names;
+  o["band_colours"] = band_colours;
   json bands = json::array(), band_variance = json::array();
   for (const BandResult& b : out.bands) {
     bands.push_back(Short(b.band.lo_hz) + "–" + Short(b.band.hi_hz));
@@ -159,6 +178,9 @@ constexpr const char* kCss = R"(
 .verdict p.pass { background: #1b7837; }
 .verdict p.fail { background: var(--fail); }
 .verdict p.none { background: #4d4d4d; }
+figure.chart .plot { position: relative; }
+.rms-axis { position: absolute; font-size: 11px; color: #333; white-space: nowrap; pointer-events: none; }
+.rms-axis.title { transform: translate(-50%, -50%) rotate(90deg); }
 td.fail { background: #fbe3e6; }
 figure.chart { border: 1px solid var(--line); padding: 0.6rem; }
 figure.chart .plot { width: 100%; height: 380px; }

@@ -5,6 +5,7 @@
 
 #include "deb/report/budget/interactive_figures.h"
 #include "deb/report/budget/requirement_lines.h"
+#include "deb/report/budget/spectrum_plots.h"
 #include "deb/version.h"
 
 namespace deb::report {
@@ -173,13 +174,17 @@ std::string IndexHtml(const DocumentInputs& in) {
         out.rms_max ? " The dashed red line is the requirement, " + Short(*out.rms_max) + " " + UnitText(out.unit) +
                           " RMS, as a variance." : "";
     const int oi = static_cast<int>(o);
+    // What the CPS and PSD show: the items of the PNG figures (GroupLevel).
+    const PlotLevel level = GroupLevel(out, result.grid, "");
+    const std::string cross = out.rms_max ? " The dotted line marks where the cumulative RMS reaches it." : "";
     s << FigureElement("cps", o,
-                       HtmlEscape("Cumulative power spectrum of " + out.name + ", contributors stacked: the height at f "
-                                  "is the variance from the lowest frequency to f." + req) +
+                       HtmlEscape("Cumulative power spectrum of " + out.name + ", " + level.items +
+                                  " stacked: the height at f is the variance from the lowest frequency to f; the "
+                                  "right axis reads it as RMS." + req + cross) +
                            DataLinks(in, PlotKind::kCps, oi))
       << FigureElement(in.asd ? "asd" : "psd", o,
-                       HtmlEscape("Power spectral density of " + out.name + " per contributor and in total (black); "
-                                  "zooming here zooms the CPS above.") +
+                       HtmlEscape("Power spectral density of " + out.name + " per " + level.item +
+                                  " and in total (black); zooming here zooms the CPS above.") +
                            DataLinks(in, PlotKind::kSpectrum, oi));
     s << "<h3>Frequency bands</h3>\n" << ToHtml(BandTable(out, in.digits));
     s << FigureElement("bands", o,

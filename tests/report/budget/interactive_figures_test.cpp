@@ -7,8 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "deb/budget/engine.h"
+#include "deb/budget/failure_guidance.h"
 #include "deb/load/budget_yaml.h"
 #include "deb/report/budget/report_documents.h"
+#include "deb/report/budget/spectrum_plots.h"
 #include "tests/support/cli_harness.h"
 
 namespace deb::report {
@@ -74,9 +76,23 @@ TEST_CASE("the figure data give every output's spectra by share, its bands and e
     CHECK(std::is_sorted(f.begin(), f.end()));  // a jump is two points at one frequency
     CHECK(f.front() == doctest::Approx(e.result.grid.min_hz()));
     CHECK(f.back() == doctest::Approx(e.result.grid.max_hz()).epsilon(1e-5));
-    REQUIRE(d["contributors"].size() == out.contributors.size());
+    // The CPS and PSD stack what the PNG stacks: the top-level groups ("name/") and ungrouped contributors.
+    const PlotLevel level = GroupLevel(out, e.result.grid, "");
+    REQUIRE(d["contributors"].size() == level.out.contributors.size());
+    const std::vector<std::size_t> order = ShareOrder(level.out);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      CHECK(d["contributors"][k] == level.out.contributors[order[k]].name);
+      CHECK(d["colours"][k] == level.styles[order[k]].colour);
+    }
+    CHECK(level.out.contributors.size() < out.contributors.size());  // the example groups its contributors
+    // Where the cumulative RMS reaches the requirement, for the marker.
+    const std::optional<double> crossing =
+        CpsCrossingHz(e.result.grid.f_hz(), out.total_psd, out.total_cps, *out.rms_max * *out.rms_max);
+    if (crossing) CHECK(d["crossing_hz"].get<double>() == *crossing);
+    else CHECK(d["crossing_hz"].is_null());
+    REQUIRE(d["band_contributors"].size() == out.contributors.size());
     double previous = HUGE_VAL, sum = 0.0;
-    for (std::size_t k = 0; k < out.contributors.size(); ++k) {
+    for (std::size_t k = 0; k < level.out.contributors.size(); ++k) {
       CHECK(d["psd"][k].size() == f.size());
       CHECK(d["cps"][k].size() == f.size());
       const double variance = d["cps"][k].back();
