@@ -72,36 +72,13 @@ double NiceStep(double x) {
   return 10.0 * p;
 }
 
-// Stacked CPS (reverse = false) or reverse CPS of one output at one level
-// (its items in `level.out.contributors`).
-Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& level, bool reverse, int digits) {
-  const OutputResult& out = level.out;
-  const std::size_t n = out.contributors.size();
+// The stacked CPS's data: frequency, each item's and the total's (reverse)
+// cumulative variance, then each reference's (NaN outside what it covers),
+// thinned for a linear variance axis over the shown range.
+std::string StackedCsv(const BudgetResult& result, const OutputResult& out, const std::vector<std::vector<double>>& series,
+                       const std::vector<double>& total, const std::vector<ReferenceResult>& refs,
+                       const FrequencyRange& range, bool reverse, const std::string& unit) {
   const std::vector<double>& f = result.grid.f_hz();
-  Plot p;
-  p.name = FileStem(out.name) + (reverse ? "_reverse_cps" : "_cps");
-  p.kind = reverse ? PlotKind::kReverseCps : PlotKind::kCps;
-  p.output = static_cast<int>(o);
-  const FrequencyRange range = level.range;
-  const std::string unit = DisplayUnit(out.unit);
-  // The references' cumulative variance, over what each covers (forward CPS only).
-  const std::vector<ReferenceResult> none;
-  const std::vector<ReferenceResult>& refs = reverse ? none : out.references;
-  p.caption = std::string(reverse ? "Reverse cumulative power spectrum (variance above f)" :
-                                    "Cumulative power spectrum (variance below f)") +
-              " of " + out.name + ", " + level.items +
-              " stacked by share, the largest on top and first in the key; left axis variance, "
-              "right axis RMS." +
-              WeightingCaption(result, o, out) + RangeCaption(range);
-  if (!refs.empty())
-    p.caption += " Grey dashed: the measured reference(s), never summed: the variance from the lowest frequency "
-                 "each covers to f (the table compares it with the budget's over the same range).";
-
-  std::vector<std::vector<double>> series(n);
-  for (std::size_t c = 0; c < n; ++c)
-    series[c] = reverse ? ReverseCps(out.contributors[c].cps) : out.contributors[c].cps;
-  const std::vector<double> total = reverse ? ReverseCps(out.total_cps) : out.total_cps;
-
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << out.name << ": "
       << (reverse ? "variance from f to " + CsvNumber(result.grid.max_hz()) + " Hz"
@@ -117,59 +94,46 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
   for (const ReferenceResult& r : refs) drawn.push_back(&r.cps);
   for (std::size_t k : PlotPoints(f, drawn, range.lo_hz, range.hi_hz, PlotScale::kLinear)) {
     csv << CsvNumber(f[k]);
-    for (std::size_t c = 0; c < n; ++c) csv << ',' << CsvNumber(series[c][k]);
+    for (const auto& s : series) csv << ',' << CsvNumber(s[k]);
     csv << ',' << CsvNumber(total[k]);
     for (const ReferenceResult& r : refs)
       csv << ',' << (f[k] >= r.covered_lo_hz && f[k] <= r.covered_hi_hz ? CsvNumber(r.cps[k]) : std::string("NaN"));
     csv << '\n';
   }
-  p.csv = csv.str();
+  return csv.str();
+}
 
+// The variance axis of a CPS fits the budget: a limit or a reference more
+// than kFarAbove times the total variance is not scaled to (a passing budget
+// would fill the bottom of the figure); the limit is then named at the top
+// instead, and a reference runs off the top. y_max leaves 12 % headroom for
+// the marker's label.
+constexpr double kFarAbove = 3.0;
+struct CpsAxisFit {
+  double y_max = 0.0;
+  bool limit_above = false, reference_above = false;
+};
+
+CpsAxisFit FitCpsAxis(const OutputResult& out, const std::vector<ReferenceResult>& refs) {
   const double limit2 = out.rms_max ? *out.rms_max * *out.rms_max : 0.0;
-  // The variance axis fits the budget: a limit or a reference more than
-  // kFarAbove times the total variance is not scaled to (a passing budget
-  // would fill the bottom of the figure); the limit is then named at the top
-  // instead, and a reference runs off the top. Headroom above for the
-  // marker's label.
-  constexpr double kFarAbove = 3.0;
   const auto fits = [&](double v) { return !(out.variance > 0.0) || v <= kFarAbove * out.variance; };
+  CpsAxisFit fit;
   double top = std::max(out.variance, 1e-300);
-  const bool limit_above = out.rms_max && !fits(limit2);
-  if (!limit_above) top = std::max(top, limit2);
-  bool reference_above = false;
+  fit.limit_above = out.rms_max && !fits(limit2);
+  if (!fit.limit_above) top = std::max(top, limit2);
   for (const ReferenceResult& r : refs) {
     if (fits(r.variance)) top = std::max(top, r.variance);
-    else reference_above = true;
+    else fit.reference_above = true;
   }
-  const double y_max = top * 1.12;
-  if (limit_above)
-    p.caption += " The requirement (" + Short(*out.rms_max) + " " + UnitText(out.unit) +
-                 ") lies above the axis, which fits the budget.";
-  if (reference_above) p.caption += " A reference more than " + Short(kFarAbove) + "× the budget's variance runs off the top.";
-  // Variance axis in units of 10^e where the numbers would be long.
-  const int e = static_cast<int>(std::floor(std::log10(y_max)));
-  const double scale = (e >= 4 || e <= -3) ? std::pow(10.0, e) : 1.0;
-  const std::string scale_label = scale == 1.0 ? "" : "10^{" + std::to_string(e) + "} ";
+  fit.y_max = top * 1.12;
+  return fit;
+}
 
-  FigurePanel panel;
-  panel.title = CpsTitle(out, digits) + (reverse ? " (reverse CPS)" : "");
-  panel.x = FrequencyFigureAxis(range, result.grid);
-  panel.y.label = std::string(reverse ? "variance above f" : "cumulative variance") + " [" + scale_label +
-                  UnitLabel(VarianceUnit(unit)) + "]";
-  panel.y.min = 0.0;
-  panel.y.max = y_max / scale;
-  panel.y.format = "%g";
-  panel.y2 = panel.y;
-  panel.y2.label = std::string(reverse ? "RMS above f" : "cumulative RMS") + " [" + UnitLabel(unit) + "]";
-  panel.y2.format.clear();
-  panel.y2.tics = RmsTicList(y_max, scale,
-                             {{out.rms(), SigLabel(out.rms(), digits)},
-                              {out.rms_max.value_or(0.0), Short(out.rms_max.value_or(0.0))}});
-  panel.key.title = "RMS [" + UnitLabel(unit) + "] (share)";
-  const std::string data = p.name + ".csv";
-  // The largest layer on top of the stack and first in the key: the key
-  // reads top to bottom like the stack. Layer order[i] lies on the layers
-  // order[i+1..n-1].
+// The stacked layers, the largest on top of the stack and first in the key
+// (the key reads top to bottom like the stack): layer order[i] lies on the
+// layers order[i+1..n-1]; then the boundaries between them.
+void AddLayers(FigurePanel& panel, const PlotLevel& level, const std::string& data, double scale, int digits) {
+  const OutputResult& out = level.out;
   const std::vector<std::size_t> order = ShareOrder(out);
   std::vector<FigureSeries> edges;
   for (std::size_t i = 0; i < order.size(); ++i) {
@@ -203,7 +167,18 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
     panel.series.push_back(std::move(layer));
   }
   panel.series.insert(panel.series.end(), edges.begin(), edges.end());
-  if (limit_above) {  // named at the top of the plot, in the key as a line
+}
+
+// The requirement: named at the top of the plot (and in the key as a line)
+// when far above, else a line, with a marker and a vertical line where the
+// cumulative RMS reaches it (they keep it visible when the limit is a sliver
+// at the axis' foot).
+void AddRequirement(FigurePanel& panel, const BudgetResult& result, const OutputResult& out, const FrequencyRange& range,
+                    bool above_axis, bool reverse, double scale, int digits) {
+  if (!out.rms_max) return;
+  const double limit2 = *out.rms_max * *out.rms_max;
+  const std::string unit = DisplayUnit(out.unit);
+  if (above_axis) {
     FigureAnnotation above;
     above.kind = AnnotationKind::kText;
     above.x0 = 0.02;
@@ -219,37 +194,96 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
     entry.point_type = 0;
     entry.key = "requirement: " + Short(*out.rms_max) + " (pass, above the axis)";
     panel.annotations.push_back(entry);
-  } else if (out.rms_max) {
-    FigureAnnotation limit;
-    limit.kind = AnnotationKind::kHorizontalLine;
-    limit.y0 = limit2 / scale;
-    limit.colour = kRequirementColour;
-    limit.dash = kRequirementDash;
-    limit.key = "requirement: " + Short(*out.rms_max) + (out.pass() ? " (pass)" : " (FAIL)");
-    panel.annotations.push_back(limit);
-    // Where the cumulative RMS reaches the limit: a marker and a vertical
-    // line keep it visible when the limit is a sliver at the axis' foot.
-    const std::optional<double> cross =
-        reverse ? std::nullopt : CpsCrossingHz(f, out.total_psd, out.total_cps, limit2);
-    if (cross && *cross >= range.lo_hz && *cross <= range.hi_hz) {
-      FigureAnnotation v;
-      v.kind = AnnotationKind::kVerticalLine;
-      v.x0 = *cross;
-      v.colour = kRequirementColour;
-      v.dash = "(4,4)";
-      v.width = 2.0;
-      panel.annotations.push_back(v);
-      FigureAnnotation m;
-      m.kind = AnnotationKind::kMarker;
-      m.x0 = *cross;
-      m.y0 = limit2 / scale;
-      m.colour = kRequirementColour;
-      m.label = "RMS reaches " + Short(*out.rms_max) + " " + UnitLabel(unit) + " at " + SigLabel(*cross, digits) + " Hz";
-      m.label_dx = 1.0;
-      m.label_dy = 1.2;
-      panel.annotations.push_back(m);
-    }
+    return;
   }
+  FigureAnnotation limit;
+  limit.kind = AnnotationKind::kHorizontalLine;
+  limit.y0 = limit2 / scale;
+  limit.colour = kRequirementColour;
+  limit.dash = kRequirementDash;
+  limit.key = "requirement: " + Short(*out.rms_max) + (out.pass() ? " (pass)" : " (FAIL)");
+  panel.annotations.push_back(limit);
+  const std::optional<double> cross =
+      reverse ? std::nullopt : CpsCrossingHz(result.grid.f_hz(), out.total_psd, out.total_cps, limit2);
+  if (!cross || *cross < range.lo_hz || *cross > range.hi_hz) return;
+  FigureAnnotation v;
+  v.kind = AnnotationKind::kVerticalLine;
+  v.x0 = *cross;
+  v.colour = kRequirementColour;
+  v.dash = "(4,4)";
+  v.width = 2.0;
+  panel.annotations.push_back(v);
+  FigureAnnotation m;
+  m.kind = AnnotationKind::kMarker;
+  m.x0 = *cross;
+  m.y0 = limit2 / scale;
+  m.colour = kRequirementColour;
+  m.label = "RMS reaches " + Short(*out.rms_max) + " " + UnitLabel(unit) + " at " + SigLabel(*cross, digits) + " Hz";
+  m.label_dx = 1.0;
+  m.label_dy = 1.2;
+  panel.annotations.push_back(m);
+}
+
+// Stacked CPS (reverse = false) or reverse CPS of one output at one level
+// (its items in `level.out.contributors`).
+Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& level, bool reverse, int digits) {
+  const OutputResult& out = level.out;
+  const std::size_t n = out.contributors.size();
+  Plot p;
+  p.name = FileStem(out.name) + (reverse ? "_reverse_cps" : "_cps");
+  p.kind = reverse ? PlotKind::kReverseCps : PlotKind::kCps;
+  p.output = static_cast<int>(o);
+  const FrequencyRange range = level.range;
+  const std::string unit = DisplayUnit(out.unit);
+  // The references' cumulative variance, over what each covers (forward CPS only).
+  const std::vector<ReferenceResult> none;
+  const std::vector<ReferenceResult>& refs = reverse ? none : out.references;
+  p.caption = std::string(reverse ? "Reverse cumulative power spectrum (variance above f)" :
+                                    "Cumulative power spectrum (variance below f)") +
+              " of " + out.name + ", " + level.items +
+              " stacked by share, the largest on top and first in the key; left axis variance, "
+              "right axis RMS." +
+              WeightingCaption(result, o, out) + RangeCaption(range);
+  if (!refs.empty())
+    p.caption += " Grey dashed: the measured reference(s), never summed: the variance from the lowest frequency "
+                 "each covers to f (the table compares it with the budget's over the same range).";
+
+  std::vector<std::vector<double>> series(n);
+  for (std::size_t c = 0; c < n; ++c)
+    series[c] = reverse ? ReverseCps(out.contributors[c].cps) : out.contributors[c].cps;
+  const std::vector<double> total = reverse ? ReverseCps(out.total_cps) : out.total_cps;
+  p.csv = StackedCsv(result, out, series, total, refs, range, reverse, unit);
+
+  const CpsAxisFit fit = FitCpsAxis(out, refs);
+  const double y_max = fit.y_max;
+  if (fit.limit_above)
+    p.caption += " The requirement (" + Short(*out.rms_max) + " " + UnitText(out.unit) +
+                 ") lies above the axis, which fits the budget.";
+  if (fit.reference_above)
+    p.caption += " A reference more than " + Short(kFarAbove) + "× the budget's variance runs off the top.";
+  // Variance axis in units of 10^e where the numbers would be long.
+  const int e = static_cast<int>(std::floor(std::log10(y_max)));
+  const double scale = (e >= 4 || e <= -3) ? std::pow(10.0, e) : 1.0;
+  const std::string scale_label = scale == 1.0 ? "" : "10^{" + std::to_string(e) + "} ";
+
+  FigurePanel panel;
+  panel.title = CpsTitle(out, digits) + (reverse ? " (reverse CPS)" : "");
+  panel.x = FrequencyFigureAxis(range, result.grid);
+  panel.y.label = std::string(reverse ? "variance above f" : "cumulative variance") + " [" + scale_label +
+                  UnitLabel(VarianceUnit(unit)) + "]";
+  panel.y.min = 0.0;
+  panel.y.max = y_max / scale;
+  panel.y.format = "%g";
+  panel.y2 = panel.y;
+  panel.y2.label = std::string(reverse ? "RMS above f" : "cumulative RMS") + " [" + UnitLabel(unit) + "]";
+  panel.y2.format.clear();
+  panel.y2.tics = RmsTicList(y_max, scale,
+                             {{out.rms(), SigLabel(out.rms(), digits)},
+                              {out.rms_max.value_or(0.0), Short(out.rms_max.value_or(0.0))}});
+  panel.key.title = "RMS [" + UnitLabel(unit) + "] (share)";
+  const std::string data = p.name + ".csv";
+  AddLayers(panel, level, data, scale, digits);
+  AddRequirement(panel, result, out, range, fit.limit_above, reverse, scale, digits);
   for (std::size_t i = 0; i < refs.size(); ++i)  // over the layers, under the total
     panel.series.push_back(ReferenceSeries(refs[i], digits, data, 3 + n + i, scale));
   FigureSeries t;  // drawn last: never under a layer
