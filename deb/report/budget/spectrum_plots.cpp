@@ -300,10 +300,121 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
   return p;
 }
 
+// The range of the positive values a log axis shows.
+struct LogRange {
+  double top = 0.0, bottom = HUGE_VAL;
+};
+
+// The PSD (or ASD) figure's data: frequency, each item's and the total's
+// density, then each reference's (NaN outside what it covers). `range`
+// takes the shown positive values: every item and reference for the bottom,
+// the total and the references for the top.
+std::string SpectrumCsv(const BudgetResult& result, const OutputResult& out, const FrequencyRange& shown_range, bool asd,
+                        LogRange& range) {
+  const std::vector<double>& f = result.grid.f_hz();
+  const auto value = [&](double psd) { return asd ? std::sqrt(psd) : psd; };
+  const std::string unit = DisplayUnit(out.unit);
+  std::ostringstream csv;
+  csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << out.name << ": one-sided "
+      << (asd ? "ASD" : "PSD") << " in " << (asd ? AsdUnitLabel(unit) : PsdUnitLabel(unit))
+      << ", per contributor and total\n";
+  csv << "frequency_hz";
+  for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
+  csv << ",total";
+  for (const ReferenceResult& r : out.references) csv << ',' << CsvField("measured: " + r.name);
+  csv << '\n';
+  std::vector<const std::vector<double>*> drawn = {&out.total_psd};
+  for (const auto& c : out.contributors) drawn.push_back(&c.psd);
+  for (const ReferenceResult& r : out.references) drawn.push_back(&r.psd);
+  for (std::size_t k : PlotPoints(f, drawn, shown_range.lo_hz, shown_range.hi_hz)) {
+    csv << CsvNumber(f[k]);
+    const bool shown = f[k] >= shown_range.lo_hz && f[k] <= shown_range.hi_hz;
+    for (const ContributorResult& c : out.contributors) {
+      const double v = value(c.psd[k]);
+      csv << ',' << CsvNumber(v);
+      if (v > 0.0 && shown) range.bottom = std::min(range.bottom, v);
+    }
+    const double v = value(out.total_psd[k]);
+    csv << ',' << CsvNumber(v);
+    if (shown) range.top = std::max(range.top, v);
+    // A reference outside the part of the grid it covers: no point (NaN).
+    for (const ReferenceResult& r : out.references) {
+      const bool covered = f[k] >= r.covered_lo_hz && f[k] <= r.covered_hi_hz;
+      csv << ',' << (covered ? CsvNumber(value(r.psd[k])) : std::string("NaN"));
+      if (covered && shown) range.top = std::max(range.top, value(r.psd[k]));
+    }
+    csv << '\n';
+  }
+  return csv.str();
+}
+
+// Band limits as flat levels: a PSD of rms_max^2 / (hi - lo) over the band
+// (square-rooted for an ASD); each shown one widens a non-empty range.
+void AddBandLimits(FigurePanel& panel, const OutputResult& out, const FrequencyRange& shown, bool asd, LogRange& range) {
+  for (const BandRequirementResult& b : out.band_requirements) {
+    const BandRequirement& r = b.requirement;
+    const double psd = r.rms_max * r.rms_max / (r.hi_hz - r.lo_hz);
+    const double level = asd ? std::sqrt(psd) : psd;
+    FigureAnnotation a;
+    a.kind = AnnotationKind::kSegment;
+    a.x0 = std::max(r.lo_hz, shown.lo_hz);
+    a.x1 = std::min(r.hi_hz, shown.hi_hz);
+    a.y0 = a.y1 = level;
+    a.colour = kRequirementColour;
+    a.dash = kRequirementDash;
+    a.width = 2.5;
+    a.key = "band limit " + HzLabel(r.lo_hz) + "–" + HzLabel(r.hi_hz) + " Hz: " + Short(r.rms_max) +
+            (b.pass() ? " (pass)" : " (FAIL)");
+    if (!(a.x1 > a.x0)) continue;
+    panel.annotations.push_back(a);
+    if (range.top > 0.0) {
+      range.top = std::max(range.top, level);
+      range.bottom = std::min(range.bottom, level);
+    }
+  }
+}
+
+// Tones have no density: a marker each, on the total at its frequency,
+// labelled with its RMS (the largest kMaxToneLabels labelled). Returns
+// whether any is shown.
+bool AddToneMarkers(FigurePanel& panel, const BudgetResult& result, const PlotLevel& level, const FrequencyRange& shown,
+                    bool asd, bool has_data, int digits) {
+  const OutputResult& out = level.out;
+  const std::vector<double>& f = result.grid.f_hz();
+  struct ToneMark {
+    double f_hz, variance;
+    std::size_t contributor;
+  };
+  std::vector<ToneMark> tones;
+  for (std::size_t c = 0; c < out.contributors.size(); ++c)
+    for (const ContributorResult::Tone& t : out.contributors[c].tones)
+      if (t.f_hz >= shown.lo_hz && t.f_hz <= shown.hi_hz) tones.push_back({t.f_hz, t.variance, c});
+  std::stable_sort(tones.begin(), tones.end(), [](const ToneMark& a, const ToneMark& b) { return a.variance > b.variance; });
+  constexpr std::size_t kMaxToneLabels = 8;
+  for (std::size_t i = 0; i < tones.size() && i < 4 * kMaxToneLabels; ++i) {
+    const ToneMark& t = tones[i];
+    const std::size_t k = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), t.f_hz) - f.begin());
+    const double psd = out.total_psd[std::min(k, f.size() - 1)];
+    const double on_total = asd ? std::sqrt(psd) : psd;
+    FigureAnnotation m;
+    m.kind = AnnotationKind::kMarker;
+    m.x0 = t.f_hz;
+    m.y0 = has_data ? std::max(on_total, *panel.y.min) : 1.0;
+    m.colour = level.styles[t.contributor].colour;
+    m.point_type = 9;  // a triangle
+    if (i < kMaxToneLabels)
+      m.label = Enhanced(out.contributors[t.contributor].name) + " " + Short(t.f_hz) + " Hz: " +
+                SigLabel(std::sqrt(t.variance), digits) + " " + UnitLabel(DisplayUnit(out.unit)) + " RMS";
+    m.label_dx = 0.8;
+    m.label_dy = 0.8 + 1.2 * static_cast<double>(i % 3);
+    panel.annotations.push_back(m);
+  }
+  return !tones.empty();
+}
+
 Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& level, bool asd, int digits) {
   const OutputResult& out = level.out;
   const std::size_t n = out.contributors.size();
-  const std::vector<double>& f = result.grid.f_hz();
   const std::string unit = DisplayUnit(out.unit);
   const std::string quantity = asd ? "ASD" : "PSD";
   const std::string unit_text = asd ? AsdUnitLabel(unit) : PsdUnitLabel(unit);
@@ -311,123 +422,41 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
   p.name = FileStem(out.name) + (asd ? "_asd" : "_psd");
   p.kind = PlotKind::kSpectrum;
   p.output = static_cast<int>(o);
-  const FrequencyRange range = level.range;
+  const FrequencyRange shown = level.range;
   p.caption = (asd ? "Amplitude spectral density" : "Power spectral density (one-sided)") + std::string(" of ") +
               out.name + " per " + level.item + ", largest first in the key, and in total (the thin black line over them)." +
-              WeightingCaption(result, o, out) + RangeCaption(range);
+              WeightingCaption(result, o, out) + RangeCaption(shown);
   if (!out.band_requirements.empty())
     p.caption += std::string(" Each red segment is a band requirement drawn as the flat ") + quantity +
                  " that would use the band's whole allowance (rms_max^2 spread evenly over the band" +
                  (asd ? ", square-rooted" : "") + "): a curve above it over the whole band fails that band.";
-
-  const auto value = [&](double psd) { return asd ? std::sqrt(psd) : psd; };
-  std::ostringstream csv;
-  csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << out.name
-      << ": one-sided " << quantity << " in " << unit_text << ", per contributor and total\n";
-  csv << "frequency_hz";
-  for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
-  csv << ",total";
-  for (const ReferenceResult& r : out.references) csv << ',' << CsvField("measured: " + r.name);
-  csv << '\n';
-  double top = 0.0, bottom = HUGE_VAL;
-  std::vector<const std::vector<double>*> drawn = {&out.total_psd};
-  for (const auto& c : out.contributors) drawn.push_back(&c.psd);
-  for (const ReferenceResult& r : out.references) drawn.push_back(&r.psd);
-  for (std::size_t k : PlotPoints(f, drawn, range.lo_hz, range.hi_hz)) {
-    csv << CsvNumber(f[k]);
-    const bool shown = f[k] >= range.lo_hz && f[k] <= range.hi_hz;
-    for (std::size_t c = 0; c < n; ++c) {
-      const double v = value(out.contributors[c].psd[k]);
-      csv << ',' << CsvNumber(v);
-      if (v > 0.0 && shown) bottom = std::min(bottom, v);
-    }
-    const double v = value(out.total_psd[k]);
-    csv << ',' << CsvNumber(v);
-    if (shown) top = std::max(top, v);
-    // A reference outside the part of the grid it covers: no point (NaN).
-    for (const ReferenceResult& r : out.references) {
-      const bool covered = f[k] >= r.covered_lo_hz && f[k] <= r.covered_hi_hz;
-      csv << ',' << (covered ? CsvNumber(value(r.psd[k])) : std::string("NaN"));
-      if (covered && shown) top = std::max(top, value(r.psd[k]));
-    }
-    csv << '\n';
-  }
+  LogRange range;
+  p.csv = SpectrumCsv(result, out, shown, asd, range);
   if (!out.references.empty())
     p.caption += " Grey dashed: the measured reference(s), never summed (the report's table compares them band by "
                  "band).";
-  p.csv = csv.str();
 
   FigurePanel panel;
   panel.title = Enhanced(out.name) + ": " + (asd ? "amplitude" : "power") + " spectral density, " +
                 SigLabel(out.rms(), digits) + " " + UnitLabel(unit) + " RMS";
-  panel.x = FrequencyFigureAxis(range, result.grid);
+  panel.x = FrequencyFigureAxis(shown, result.grid);
   panel.y.label = quantity + " [" + UnitLabel(unit_text) + "]";
   panel.y.scale = AxisScale::kLog;
   panel.y.format = "10^{%L}";
   panel.y2.shown = false;
-  // Band limits as flat levels: a PSD of rms_max^2 / (hi - lo) over the band.
-  for (const BandRequirementResult& b : out.band_requirements) {
-    const BandRequirement& r = b.requirement;
-    const double level = value(r.rms_max * r.rms_max / (r.hi_hz - r.lo_hz));
-    FigureAnnotation a;
-    a.kind = AnnotationKind::kSegment;
-    a.x0 = std::max(r.lo_hz, range.lo_hz);
-    a.x1 = std::min(r.hi_hz, range.hi_hz);
-    a.y0 = a.y1 = level;
-    a.colour = kRequirementColour;
-    a.dash = kRequirementDash;
-    a.width = 2.5;
-    a.key = "band limit " + HzLabel(r.lo_hz) + "–" + HzLabel(r.hi_hz) + " Hz: " + Short(r.rms_max) +
-            (b.pass() ? " (pass)" : " (FAIL)");
-    if (a.x1 > a.x0) {
-      panel.annotations.push_back(a);
-      if (top > 0.0) {
-        top = std::max(top, level);
-        bottom = std::min(bottom, level);
-      }
-    }
-  }
+  AddBandLimits(panel, out, shown, asd, range);
   // At most 10 decades (PSD) below the peak: deeper roll-offs only squeeze the figure.
   const double decades = asd ? 5.0 : 10.0;
-  if (top > 0.0) {
-    const double lo = std::max(bottom, top * std::pow(10.0, -decades));
+  if (range.top > 0.0) {
+    const double lo = std::max(range.bottom, range.top * std::pow(10.0, -decades));
     panel.y.min = std::pow(10.0, std::floor(std::log10(lo)));
-    panel.y.max = std::pow(10.0, std::ceil(std::log10(top * 1.5)));
+    panel.y.max = std::pow(10.0, std::ceil(std::log10(range.top * 1.5)));
   } else {
     panel.y.min = 0.1;
     panel.y.max = 10.0;
     panel.note = "every contributor is zero on this output";
   }
-  // Tones have no density: a marker each, on the total at its frequency,
-  // labelled with its RMS (the largest kMaxToneLabels labelled).
-  struct ToneMark {
-    double f_hz, variance;
-    std::size_t contributor;
-  };
-  std::vector<ToneMark> tones;
-  for (std::size_t c = 0; c < n; ++c)
-    for (const ContributorResult::Tone& t : out.contributors[c].tones)
-      if (t.f_hz >= range.lo_hz && t.f_hz <= range.hi_hz) tones.push_back({t.f_hz, t.variance, c});
-  std::stable_sort(tones.begin(), tones.end(), [](const ToneMark& a, const ToneMark& b) { return a.variance > b.variance; });
-  constexpr std::size_t kMaxToneLabels = 8;
-  for (std::size_t i = 0; i < tones.size() && i < 4 * kMaxToneLabels; ++i) {
-    const ToneMark& t = tones[i];
-    const std::size_t k = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), t.f_hz) - f.begin());
-    const double on_total = value(out.total_psd[std::min(k, f.size() - 1)]);
-    FigureAnnotation m;
-    m.kind = AnnotationKind::kMarker;
-    m.x0 = t.f_hz;
-    m.y0 = top > 0.0 ? std::max(on_total, *panel.y.min) : 1.0;
-    m.colour = level.styles[t.contributor].colour;
-    m.point_type = 9;  // a triangle
-    if (i < kMaxToneLabels)
-      m.label = Enhanced(out.contributors[t.contributor].name) + " " + Short(t.f_hz) + " Hz: " +
-                SigLabel(std::sqrt(t.variance), digits) + " " + UnitLabel(unit) + " RMS";
-    m.label_dx = 0.8;
-    m.label_dy = 0.8 + 1.2 * static_cast<double>(i % 3);
-    panel.annotations.push_back(m);
-  }
-  if (!tones.empty())
+  if (AddToneMarkers(panel, result, level, shown, asd, range.top > 0.0, digits))
     p.caption += " Triangles mark tones (sinusoids, no density): each at its frequency on the total, labelled with "
                  "its RMS; the CPS steps there by its variance.";
   panel.key.title = "RMS [" + UnitLabel(unit) + "] (share)";
