@@ -232,13 +232,36 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
   if (lo > 0.0 && hi / lo > 5.0) {  // a bad corner would wash out the rest
     panel.colour_axis.scale = AxisScale::kLog;
     panel.colour_axis.format = "%g";
-    for (int d = static_cast<int>(std::floor(std::log10(lo))); d <= static_cast<int>(std::ceil(std::log10(hi))); ++d)
+    // At most kMapDecades of colour below the highest RMS: a variant that is
+    // zero but for rounding (an axis decoupled by symmetry) would otherwise
+    // stretch the bar over 13 decades and paint the map one colour. Lower
+    // values take the lightest colour; the ring still marks the best.
+    constexpr double kMapDecades = 3.0;
+    const double bottom = std::max(lo, hi * std::pow(10.0, -kMapDecades));
+    if (bottom > lo) {
+      panel.colour_axis.min = bottom;
+      panel.colour_axis.max = hi;
+      panel.colour_axis.label += " (below " + SigLabel(bottom, 3) + ": lightest)";
+      p.caption += " Colours span 3 decades below the highest RMS; lower values (down to " + Sig(lo, 3) +
+                   ") take the lightest.";
+    }
+    for (int d = static_cast<int>(std::floor(std::log10(bottom))); d <= static_cast<int>(std::ceil(std::log10(hi))); ++d)
       for (const double m : {1.0, 2.0, 5.0}) {
         const double v = m * std::pow(10.0, d);
-        if (v >= lo * 0.999 && v <= hi * 1.001) panel.colour_axis.tics.push_back({v, Short(v)});
+        if (v >= bottom * 0.999 && v <= hi * 1.001) panel.colour_axis.tics.push_back({v, Short(v)});
       }
+    // The ends labelled with the lowest and highest value shown, unless a
+    // round tick sits within 4 % of the bar.
+    const double span = std::log(hi / bottom);
+    for (const double end : {bottom, hi}) {
+      bool near = false;
+      for (const auto& [v, label] : panel.colour_axis.tics) near = near || std::fabs(std::log(v / end)) < 0.04 * span;
+      if (!near) panel.colour_axis.tics.push_back({end, SigLabel(end, 3)});
+    }
+    std::sort(panel.colour_axis.tics.begin(), panel.colour_axis.tics.end());
   }
-  panel.key.placement = KeyPlacement::kAbove;
+  // The key below the map, never over it.
+  panel.key.placement = KeyPlacement::kBelowMap;
   const std::string file = p.name + ".csv";
   const auto layer = [&](const std::string& name, SeriesKind kind, int block) {
     FigureSeries s;

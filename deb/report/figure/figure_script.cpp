@@ -228,6 +228,9 @@ void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool las
     case KeyPlacement::kBelow: s << "set key below Left reverse"; break;
     case KeyPlacement::kAbove: s << "set key outside top center horizontal Left reverse"; break;
     case KeyPlacement::kBesideGrid: s << "set key at screen 0.85,0.9 left top Left reverse"; break;
+    case KeyPlacement::kBelowMap:
+      s << "set bmargin 6\nset key at screen 0.45,0.06 center center horizontal maxrows 1 Left reverse";
+      break;
   }
   if (p.key.placement != KeyPlacement::kNone)
     s << (p.key.invert ? " invert" : " noinvert") << " title " << Label(p.key.title) << "\n";

@@ -18,7 +18,8 @@ namespace deb::report {
 
 // kBesideGrid: right of a grid of panels, once for all of them (the
 // panels leave it room); the other panels have none.
-enum class KeyPlacement { kNone, kOutsideRight, kInsideTopRight, kInsideTopLeft, kBelow, kAbove, kBesideGrid };
+// kBelowMap: one row under a map (splot), which keeps no room for a key of its own.
+enum class KeyPlacement { kNone, kOutsideRight, kInsideTopRight, kInsideTopLeft, kBelow, kAbove, kBesideGrid, kBelowMap };
 
 struct FigureKey {
   KeyPlacement placement = KeyPlacement::kOutsideRight;

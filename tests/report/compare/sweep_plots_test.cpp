@@ -201,7 +201,22 @@ TEST_CASE("the map of a two-parameter grid holds the grid by scan lines, the bes
   CHECK(*panel.y.max == 30.0);
   CHECK(panel.colour_axis.scale == AxisScale::kLog);
   CHECK(panel.colour_axis.tics.front().first == 1.0);
-  CHECK(panel.colour_axis.tics.back().first == 5.0);
+  // Round ticks (1, 2, 5) and the highest RMS at the top end of the bar.
+  CHECK(panel.colour_axis.tics[panel.colour_axis.tics.size() - 2].first == 5.0);
+  CHECK(panel.colour_axis.tics.back().first == 6.0);
+  // The key in a row below the map, never over it.
+  CHECK(panel.key.placement == KeyPlacement::kBelowMap);
+  // A variant zero but for rounding (4e-11 against up to 6): the colours span 3 decades below the
+  // highest RMS, the bar is labelled in steps that stay apart, and the caption says what is clipped.
+  std::vector<BudgetResult> zeroed = results;
+  zeroed[0].outputs[0].variance = 4e-11 * 4e-11;
+  const Plot clipped = SweepPlots(spec, zeroed)[1];
+  const FigureAxis& bar = clipped.figure.panels.at(0).colour_axis;
+  REQUIRE(bar.min);
+  CHECK(*bar.min == doctest::Approx(6e-3));
+  CHECK(bar.tics.size() <= 12);  // 3 decades of 1, 2, 5 and the ends
+  for (const auto& [v, label] : bar.tics) CHECK(v >= *bar.min * 0.999);
+  CHECK(clipped.caption.find("Colours span 3 decades") != std::string::npos);
   // Zipped, or one parameter: no map.
   spec.mode = SweepMode::kZip;
   spec.parameters[1].values = {10, 20};
