@@ -164,6 +164,40 @@ std::vector<std::size_t> Ascending(const std::vector<double>& v) {
   return idx;
 }
 
+// A logarithmic colour bar over the RMS values [lo, hi], with at most
+// kMapDecades of colour below the highest: a variant that is zero but for
+// rounding (an axis decoupled by symmetry) would otherwise stretch the bar
+// over 13 decades and paint the map one colour. Lower values take the
+// lightest colour (the ring still marks the best), said in the bar's label
+// and appended to `caption`. Ticks at 1, 2, 5 per decade; the ends labelled
+// with the lowest and highest value shown unless a tick is within 4 % of the
+// bar.
+void LogColourBar(FigureAxis& bar, double lo, double hi, std::string& caption) {
+  bar.scale = AxisScale::kLog;
+  bar.format = "%g";
+  constexpr double kMapDecades = 3.0;
+  const double bottom = std::max(lo, hi * std::pow(10.0, -kMapDecades));
+  if (bottom > lo) {
+    bar.min = bottom;
+    bar.max = hi;
+    bar.label += " (below " + SigLabel(bottom, 3) + ": lightest)";
+    caption += " Colours span 3 decades below the highest RMS; lower values (down to " + Sig(lo, 3) +
+             ") take the lightest.";
+  }
+  for (int d = static_cast<int>(std::floor(std::log10(bottom))); d <= static_cast<int>(std::ceil(std::log10(hi))); ++d)
+    for (const double m : {1.0, 2.0, 5.0}) {
+      const double v = m * std::pow(10.0, d);
+      if (v >= bottom * 0.999 && v <= hi * 1.001) bar.tics.push_back({v, Short(v)});
+    }
+  const double span = std::log(hi / bottom);
+  for (const double end : {bottom, hi}) {
+    bool near = false;
+    for (const auto& [v, label] : bar.tics) near = near || std::fabs(std::log(v / end)) < 0.04 * span;
+    if (!near) bar.tics.push_back({end, SigLabel(end, 3)});
+  }
+  std::sort(bar.tics.begin(), bar.tics.end());
+}
+
 Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>>& rows,
                     const std::vector<BudgetResult>& results, std::size_t o) {
   const OutputResult& out0 = results[0].outputs[o];
@@ -229,37 +263,7 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
   // Perceptually ordered, light where the RMS is low (viridis reversed).
   panel.palette = {"#fde725", "#5ec962", "#21918c", "#3b528b", "#440154"};
   panel.colour_axis.label = "total RMS [" + UnitLabel(out0.unit) + "]";
-  if (lo > 0.0 && hi / lo > 5.0) {  // a bad corner would wash out the rest
-    panel.colour_axis.scale = AxisScale::kLog;
-    panel.colour_axis.format = "%g";
-    // At most kMapDecades of colour below the highest RMS: a variant that is
-    // zero but for rounding (an axis decoupled by symmetry) would otherwise
-    // stretch the bar over 13 decades and paint the map one colour. Lower
-    // values take the lightest colour; the ring still marks the best.
-    constexpr double kMapDecades = 3.0;
-    const double bottom = std::max(lo, hi * std::pow(10.0, -kMapDecades));
-    if (bottom > lo) {
-      panel.colour_axis.min = bottom;
-      panel.colour_axis.max = hi;
-      panel.colour_axis.label += " (below " + SigLabel(bottom, 3) + ": lightest)";
-      p.caption += " Colours span 3 decades below the highest RMS; lower values (down to " + Sig(lo, 3) +
-                   ") take the lightest.";
-    }
-    for (int d = static_cast<int>(std::floor(std::log10(bottom))); d <= static_cast<int>(std::ceil(std::log10(hi))); ++d)
-      for (const double m : {1.0, 2.0, 5.0}) {
-        const double v = m * std::pow(10.0, d);
-        if (v >= bottom * 0.999 && v <= hi * 1.001) panel.colour_axis.tics.push_back({v, Short(v)});
-      }
-    // The ends labelled with the lowest and highest value shown, unless a
-    // round tick sits within 4 % of the bar.
-    const double span = std::log(hi / bottom);
-    for (const double end : {bottom, hi}) {
-      bool near = false;
-      for (const auto& [v, label] : panel.colour_axis.tics) near = near || std::fabs(std::log(v / end)) < 0.04 * span;
-      if (!near) panel.colour_axis.tics.push_back({end, SigLabel(end, 3)});
-    }
-    std::sort(panel.colour_axis.tics.begin(), panel.colour_axis.tics.end());
-  }
+  if (lo > 0.0 && hi / lo > 5.0) LogColourBar(panel.colour_axis, lo, hi, p.caption);  // a bad corner would wash out the rest
   // The key below the map, never over it.
   panel.key.placement = KeyPlacement::kBelowMap;
   const std::string file = p.name + ".csv";
