@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <utility>
@@ -115,8 +117,22 @@ class SvgCache {
   const Svg& Get(const std::string& file) {
     auto it = svgs_.find(file);
     if (it != svgs_.end()) return it->second;
+    // gnuplot writes a superscript's following text as a tspan that starts
+    // with its space ("10</tspan><tspan>-3</tspan><tspan> of"), and librsvg
+    // drops a tspan's leading space under SVG's default white-space
+    // handling ("10^-3of"): the figure is parsed with xml:space="preserve"
+    // on its root (gnuplot puts no other white space inside its texts).
+    std::string svg_text;
+    {
+      std::ifstream in(file, std::ios::binary);
+      if (!in) throw WriteError("cannot read figure " + file);
+      svg_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    if (const std::size_t root = svg_text.find("<svg"); root != std::string::npos)
+      svg_text.insert(root + 4, " xml:space=\"preserve\"");
     GError* error = nullptr;
-    RsvgHandle* handle = rsvg_handle_new_from_file(file.c_str(), &error);
+    RsvgHandle* handle = rsvg_handle_new_from_data(reinterpret_cast<const guint8*>(svg_text.data()),
+                                                   svg_text.size(), &error);
     if (!handle) {
       const std::string why = error ? error->message : "unknown error";
       if (error) g_error_free(error);

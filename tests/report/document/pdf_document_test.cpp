@@ -299,3 +299,30 @@ TEST_CASE("in a table too wide, the columns that must wrap share the width by wh
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a figure's text keeps the space after a superscript, as gnuplot writes it to SVG") {
+  // gnuplot's enhanced "10^{-3} of" in SVG: the text after the superscript is a tspan starting with its space,
+  // which librsvg would drop under SVG's default white-space handling ("10-3of").
+  const fs::path dir = TempDir("pdf_tspan");
+  const fs::path svg = dir / "text.svg";
+  std::ofstream(svg) << "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"400\" "
+                        "height=\"100\" viewBox=\"0 0 400 100\"><g transform=\"translate(20,50)\" font-family=\"DejaVu "
+                        "Sans\" font-size=\"11\"><text><tspan>all but 10</tspan><tspan font-size=\"7\" dy=\"-4px\">-3"
+                        "</tspan><tspan dy=\"4px\"> of every contributor</tspan></text></g></svg>\n";
+  PdfDocumentSpec s;
+  s.title = "t";
+  s.footer = "t";
+  s.create_date = "2023-11-14T22:13:20Z";
+  s.blocks.push_back(Figure(svg.string(), "A figure."));
+  WritePdfDocument(s, (dir / "t.pdf").string());
+  const Command text = Shell("pdftotext \"" + (dir / "t.pdf").string() + "\" -");
+  if (text.exit_code == 0) {  // poppler-utils present
+    CHECK(text.out.find("-3 of every contributor") != std::string::npos);
+    CHECK(text.out.find("-3of") == std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace deb::report
