@@ -190,6 +190,8 @@ PdfTable VerdictTable(const BudgetResult& result) {
   return t;
 }
 
+bool DrawnInPdf(const Plot& p) { return !(p.kind == PlotKind::kPath && p.output >= 0); }
+
 PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   const BudgetOutline& budget = in.result->outline;
   const BudgetResult& result = *in.result;
@@ -255,7 +257,7 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
     // listed in the section Paths.
     std::vector<const Plot*> mine, path_plots;
     for (const Plot& p : plots)
-      if (p.output == static_cast<int>(i)) (p.kind == PlotKind::kPath ? path_plots : mine).push_back(&p);
+      if (p.output == static_cast<int>(i)) (DrawnInPdf(p) ? mine : path_plots).push_back(&p);
     std::stable_sort(mine.begin(), mine.end(),
                      [](const Plot* a, const Plot* z) { return KindOrder(a->kind) < KindOrder(z->kind); });
     b.push_back(Heading(2, "Bands of " + o.name));

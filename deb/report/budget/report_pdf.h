@@ -31,6 +31,10 @@ struct ReportPdfInputs {
 // The document: its blocks, metadata and page footer.
 PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in);
 
+// Whether report.pdf draws plot `p` (only these need a figure SVG): every
+// plot but an output's path Bode figures, which the section Paths lists.
+bool DrawnInPdf(const Plot& p);
+
 // gnuplot's terminal for a figure of report.pdf: an SVG that, placed across
 // the text width, sets a line of width 1 in a plot script at >= 1.5 pt on
 // paper and the plots' base font at 8 pt.

@@ -168,9 +168,10 @@ ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, cons
       fs::create_directories(plots_dir / pdf_figures, ec);
       if (ec) throw WriteError("cannot create directory " + (plots_dir / pdf_figures).string() + ": " + ec.message());
       for (const Plot& p : plots)
-        jobs.push_back({"plots/" + pdf_figures + "/" + p.name + ".svg",
-                        PdfFigureTerminal(p.kind) + "set output " + QuoteFile(pdf_figures + "/" + p.name + ".svg") +
-                            "\nload " + QuoteFile(p.name + ".gp") + "\nunset output\n"});
+        if (DrawnInPdf(p))
+          jobs.push_back({"plots/" + pdf_figures + "/" + p.name + ".svg",
+                          PdfFigureTerminal(p.kind) + "set output " + QuoteFile(pdf_figures + "/" + p.name + ".svg") +
+                              "\nload " + QuoteFile(p.name + ".gp") + "\nunset output\n"});
     }
     const std::size_t pdf_jobs = jobs.size();
     for (PlotFormat t : {PlotFormat::kPng, PlotFormat::kSvg}) {
