@@ -18,7 +18,7 @@ using test::Contains;
 constexpr double kPi = 3.14159265358979323846;
 
 ParameterDefinition Def(const std::string& name, const std::string& expression) {
-  return {name, expression, "", "parameters." + name};
+  return {name, expression, "", "parameters." + name, ""};
 }
 
 std::string ErrorOf(const std::vector<ParameterDefinition>& defs, std::string* key_path = nullptr) {
