@@ -1,6 +1,8 @@
 #include "tools/sensitivity_command.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -8,6 +10,8 @@
 #include "deb/budget/sensitivity.h"
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
+#include "deb/core/input_file.h"
+#include "deb/core/suggest.h"
 #include "deb/load/budget_yaml.h"
 #include "deb/load/sweep_yaml.h"
 #include "deb/report/compare/sensitivity_directory.h"
@@ -17,10 +21,40 @@
 
 namespace deb::tools {
 
+namespace {
+
+// --label KEY.PATH=TEXT, by key path: the text after the first '=' outside
+// brackets (a key path may select by [name=...]) names that -p parameter.
+// @throws InputError for a label without '=', with empty text, or naming no -p.
+std::map<std::string, std::string> ParameterLabels(const std::vector<std::string>& labels,
+                                                   const std::vector<std::string>& parameters) {
+  std::map<std::string, std::string> out;
+  for (const std::string& l : labels) {
+    int depth = 0;
+    std::size_t at = std::string::npos;
+    for (std::size_t i = 0; i < l.size() && at == std::string::npos; ++i) {
+      if (l[i] == '[') ++depth;
+      else if (l[i] == ']') --depth;
+      else if (l[i] == '=' && depth == 0) at = i;
+    }
+    if (at == std::string::npos || at + 1 == l.size())
+      throw InputError("--label '" + Excerpt(l) + "': give KEY.PATH=TEXT, the key path of a -p parameter and its name");
+    const std::string key = l.substr(0, at);
+    if (std::find(parameters.begin(), parameters.end(), key) == parameters.end())
+      throw InputError("--label '" + Excerpt(l) + "': '" + Excerpt(key) + "' is not one of the -p parameters" +
+                       DidYouMean(key, parameters));
+    out[key] = l.substr(at + 1);
+  }
+  return out;
+}
+
+}  // namespace
+
 struct SensitivityCommand::Options {
   std::string budget_file;
   std::vector<BudgetOverride> overrides;  // --set
   std::vector<std::string> parameters;
+  std::vector<std::string> labels;  // --label KEY.PATH=TEXT
   double step = 1e-3;
   std::string out_dir;
   int threads = 0;
@@ -39,6 +73,8 @@ CLI::App* SensitivityCommand::Register(CLI::App& app) {
   c->add_option("budget", s.budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
   c->add_option("--parameter,-p", s.parameters, "Key path of a numeric parameter, e.g. paths[0].control.gains")
       ->required();
+  c->add_option("--label", s.labels,
+                "A parameter's name on the tables and charts, KEY.PATH=TEXT (the KEY.PATH of a -p); repeatable");
   c->add_option("--step", s.step, "Relative step h of the central difference (default 1e-3)")
       ->check(CLI::Validator(
           [](std::string& text) -> std::string {
@@ -83,21 +119,22 @@ int SensitivityCommand::Run() const {
   setting.step = s.step;
   for (const std::string& key : s.parameters)
     setting.parameters.emplace_back(key, ParameterValues(s.budget_file, key, s.overrides));
+  setting.labels = ParameterLabels(s.labels, s.parameters);
   const std::vector<report::Plot> plots =
-      s.plots ? report::TornadoPlots(study.sensitivities, nominal) : std::vector<report::Plot>{};
+      s.plots ? report::TornadoPlots(study.sensitivities, nominal, setting.labels) : std::vector<report::Plot>{};
   const std::string dir = s.out_dir.empty() ? report::DefaultSensitivityDirectory(budget.name) : s.out_dir;
   ReplaceOptions replace;
   replace.force = s.force;
   report::WriteSensitivityDirectory(setting, study, plots, dir, replace, s.threads);
   if (!s.quiet) {
     for (const auto& [key, values] : setting.parameters)
-      std::printf("nominal %s = %s\n", key.c_str(), report::NominalText(values).c_str());
+      std::printf("nominal %s = %s\n", setting.Label(key).c_str(), report::NominalText(values).c_str());
     for (const OutputResult& out : nominal.outputs) {
       const std::string& o = out.name;
       std::printf("output %s: nominal rms %.6g %s; variance per relative change of the parameter, total first\n",
                   o.c_str(), out.rms(), out.unit.c_str());
       for (const auto& r : RankedForOutput(study.sensitivities, o))
-        std::printf("  %-36s %-20s d var/d ln p %12.5g  elasticity %9.4g\n", r.parameter.c_str(),
+        std::printf("  %-36s %-20s d var/d ln p %12.5g  elasticity %9.4g\n", setting.Label(r.parameter).c_str(),
                     r.contributor.c_str(), r.d_variance_d_log_p, r.elasticity);
     }
     std::printf("report: %s\n", dir.c_str());

@@ -124,16 +124,19 @@ KeyPath ResolveParameterName(const YAML::Node& root, KeyPath path) {
   return resolved;
 }
 
-std::string MultiplyValuesAt(YAML::Node root, const KeyPath& path, double factor, std::vector<double>* numbers) {
+std::string MultiplyValuesAt(YAML::Node root, const KeyPath& path, double factor, std::vector<double>* numbers,
+                             std::vector<std::string>* expressions) {
   return WalkFromRoot(root, path, [&](YAML::Node n, const std::string& where, Reached& reached) -> std::string {
     if (n.IsScalar() && !IsNumber(n)) {
       // An expression: "(TEXT)*F" (a number and a unit stay one quantity).
       if (numbers) numbers->push_back(std::numeric_limits<double>::quiet_NaN());
+      if (expressions) expressions->push_back(n.Scalar());
       n = "(" + n.Scalar() + ")*" + Text(factor);
       return "";
     }
     return ScaleLeaf(n, where, reached, [&](double x) {
       if (numbers) numbers->push_back(x);
+      if (expressions) expressions->push_back("");
       return x * factor;
     });
   });

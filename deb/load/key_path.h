@@ -45,9 +45,10 @@ std::string ScaleNumbersAt(YAML::Node root, const KeyPath& path, const std::func
 // Multiplies every value the path reaches by `factor`: numbers and lists of
 // numbers as ScaleNumbersAt, and an expression (a parameter's "5.2e4 N/m")
 // as a whole, "(TEXT)*F"; `numbers` (if given) receives each number's value
-// before, and NaN for an expression.
+// before, and NaN for an expression; `expressions` (if given) receives each
+// expression's text, and "" for a number.
 std::string MultiplyValuesAt(YAML::Node root, const KeyPath& path, double factor,
-                             std::vector<double>* numbers = nullptr);
+                             std::vector<double>* numbers = nullptr, std::vector<std::string>* expressions = nullptr);
 
 // Writes `text` at every single value (scalar) the path reaches.
 std::string SetTextAt(YAML::Node root, const KeyPath& path, const std::string& text);

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cctype>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -227,16 +228,23 @@ std::vector<double> ParameterValues(const std::string& path, const std::string& 
   const KeyPath steps = load::ResolveParameterName(raw, load::ParseKeyPath(key_path));
   if (raw.IsMap()) raw.remove("sweep");
   std::vector<double> values;
-  const std::string why = load::MultiplyValuesAt(raw, steps, 1.0, &values);
+  std::vector<std::string> expressions;
+  const std::string why = load::MultiplyValuesAt(raw, steps, 1.0, &values, &expressions);
   if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
-  // A parameter written as an expression: its value, in the unit of its
-  // number if it is one ("5.2e4 N/m": 5.2e4), else in SI base units.
-  if (values.size() == 1 && std::isnan(values[0]) && steps.size() >= 2 && steps[0].key == "parameters") {
-    const YamlReader copy = YamlReader::FromString(load::OverriddenText(reader.text(), overrides, reader.name()), path);
-    const std::shared_ptr<const ParameterSet> set = load::ParseParameters(copy.Root().Required("parameters"));
+  if (std::none_of(values.begin(), values.end(), [](double v) { return std::isnan(v); })) return values;
+  // Expressions: their values under the budget's parameters. A parameter
+  // itself in the unit of its number if it is one ("5.2e4 N/m": 5.2e4), an
+  // expression elsewhere (gains: Kv) as the budget reads it, in SI base units.
+  const YamlReader copy = YamlReader::FromString(load::OverriddenText(reader.text(), overrides, reader.name()), path);
+  if (!copy.Root().Has("parameters")) return values;
+  const std::shared_ptr<const ParameterSet> set = load::ParseParameters(copy.Root().Required("parameters"));
+  if (values.size() == 1 && steps.size() >= 2 && steps[0].key == "parameters") {
     for (const Parameter& p : set->parameters())
       if (p.definition.name == steps[1].key) values[0] = p.unit.empty() ? p.value.value : ValueIn(p.value, p.unit);
+    return values;
   }
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (std::isnan(values[i]) && !expressions[i].empty()) values[i] = set->EvaluateText(expressions[i]).value;
   return values;
 }
 

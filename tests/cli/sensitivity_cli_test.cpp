@@ -56,8 +56,34 @@ TEST_CASE("deb sensitivity states the nominal values, puts the total first and d
   CHECK(c.out.substr(second, c.out.find('\n', second) - second).find(" total ") != std::string::npos);
   const std::string md = deb::test::ReadAll(dir / "out" / "sensitivity.md");
   CHECK(md.find("## Nominal parameters") < md.find("## z_velocity"));
-  CHECK(md.find("| sources\\[1\\].spectrum.level | 0.01 |") != std::string::npos);
+  CHECK(md.find("| sources\\[1\\].spectrum.level | sources\\[1\\].spectrum.level | 0.01 |") != std::string::npos);
   CHECK(md.find("(plots/z_velocity_tornado.png)") != std::string::npos);
   CHECK(fs::file_size(dir / "out" / "plots" / "z_velocity_tornado.png") > 1000);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("deb sensitivity names a parameter by its --label, and states an expression's nominal value") {
+  // nizamoglu2015_h210: gains: Kv, a parameter of 50; the label names it on the console, tables and tornado.
+  const fs::path dir = deb::test::TempDir("sensitivity_cli_label");
+  const deb::test::Command c = deb::test::RunDeb(
+      "sensitivity " + deb::test::ExampleBudget("nizamoglu2015_h210.yaml") +
+      " -p 'paths[0].control.gains' --label 'paths[0].control.gains=skyhook gain K_v' --no-plots --out \"" +
+      (dir / "out").string() + "\"");
+  REQUIRE_MESSAGE(c.exit_code == 0, c.err);
+  CHECK(c.out.find("nominal skyhook gain K_v = 50\n") != std::string::npos);  // not nan
+  CHECK(c.out.find("  skyhook gain K_v ") != std::string::npos);
+  const std::string md = deb::test::ReadAll(dir / "out" / "sensitivity.md");
+  CHECK(md.find("| skyhook gain K\\_v | paths\\[0\\].control.gains | 50 |") != std::string::npos);
+  // The CSV keeps the key path, for scripts.
+  const std::string csv = deb::test::ReadAll(dir / "out" / "sensitivity.csv");
+  CHECK(csv.find("\npaths[0].control.gains,") != std::string::npos);
+  // A label for no -p parameter: exit 3, the nearest named.
+  const deb::test::Command bad = deb::test::RunDeb(
+      "sensitivity " + deb::test::ExampleBudget("nizamoglu2015_h210.yaml") +
+      " -p 'paths[0].control.gains' --label 'paths[0].control.gain=x' --no-plots --out \"" + (dir / "bad").string() +
+      "\"");
+  CHECK(bad.exit_code == 3);
+  CHECK(bad.err.find("is not one of the -p parameters (did you mean 'paths[0].control.gains'?)") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "bad"));
   fs::remove_all(dir);
 }

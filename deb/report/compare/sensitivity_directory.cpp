@@ -37,6 +37,11 @@ std::string SensitivityCsv(const std::vector<Sensitivity>& all) {
   return os.str();
 }
 
+std::string SensitivitySetting::Label(const std::string& key) const {
+  const auto it = labels.find(key);
+  return it == labels.end() ? key : it->second;
+}
+
 std::string SensitivityMarkdown(const SensitivitySetting& setting, const SensitivityStudy& study,
                                 const std::vector<Plot>& plots) {
   const BudgetResult& nominal = study.nominal;
@@ -48,9 +53,10 @@ std::string SensitivityMarkdown(const SensitivitySetting& setting, const Sensiti
         "the elasticity is (d var / var) / (dp / p).\n\n";
   Table nominal_table;
   nominal_table.title = "Nominal parameters";
-  nominal_table.header = {"parameter (key path)", "nominal value(s)"};
-  nominal_table.numeric = {false, false};
-  for (const auto& [key, values] : setting.parameters) nominal_table.rows.push_back({key, NominalText(values)});
+  nominal_table.header = {"parameter", "key path", "nominal value(s)"};
+  nominal_table.numeric = {false, false, false};
+  for (const auto& [key, values] : setting.parameters)
+    nominal_table.rows.push_back({setting.Label(key), key, NominalText(values)});
   md << "## " << nominal_table.title << "\n\n" << ToMarkdown(nominal_table) << "\n";
   for (const OutputResult& out : nominal.outputs) {
     const std::string& o = out.name;
@@ -63,7 +69,8 @@ std::string SensitivityMarkdown(const SensitivitySetting& setting, const Sensiti
     t.numeric = {false, false, true, true, true};
     for (const auto& s : ranked)
       t.rows.push_back(
-          {s.parameter, s.contributor, Sig(s.variance, 4), Sig(s.d_variance_d_log_p, 4), Sig(s.elasticity, 4)});
+          {setting.Label(s.parameter), s.contributor, Sig(s.variance, 4), Sig(s.d_variance_d_log_p, 4),
+           Sig(s.elasticity, 4)});
     md << "## " << o << "\n\nNominal RMS " << Sig(out.rms(), 4) << " " << UnitText(out.unit)
        << "; the total first, then the contributors.\n\n"
        << ToMarkdown(t) << "\n";

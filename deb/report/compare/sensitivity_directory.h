@@ -6,6 +6,8 @@
 // plots/<output>_tornado.png (sensitivity_plots.h) when there are plots.
 #pragma once
 
+#include <map>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +28,11 @@ struct SensitivitySetting {
   std::string name;
   double step = 0.0;
   std::vector<NominalParameter> parameters;
+  // A parameter's name on tables and plots (deb sensitivity --label
+  // KEY.PATH=TEXT), by key path; a parameter without one is named by it.
+  std::map<std::string, std::string> labels;
+  // The label of `key`, or the key path itself.
+  std::string Label(const std::string& key) const;
 };
 
 // "50" for one value, "50 (all 6)" for several equal ones, else the list;

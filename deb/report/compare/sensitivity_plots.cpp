@@ -39,7 +39,12 @@ std::vector<TornadoBar> TornadoBars(const std::vector<Sensitivity>& all, const O
   return bars;
 }
 
-std::vector<Plot> TornadoPlots(const std::vector<Sensitivity>& all, const BudgetResult& nominal) {
+std::vector<Plot> TornadoPlots(const std::vector<Sensitivity>& all, const BudgetResult& nominal,
+                               const std::map<std::string, std::string>& labels) {
+  const auto label = [&](const std::string& key) {
+    const auto it = labels.find(key);
+    return it == labels.end() ? key : it->second;
+  };
   std::vector<Plot> plots;
   for (std::size_t o = 0; o < nominal.outputs.size(); ++o) {
     const OutputResult& out = nominal.outputs[o];
@@ -82,7 +87,7 @@ std::vector<Plot> TornadoPlots(const std::vector<Sensitivity>& all, const Budget
     for (std::size_t i = 0; i < n; ++i) {
       const TornadoBar& b = bars[i];
       panel.y.tics.push_back({static_cast<double>(n - 1 - i),
-                              Enhanced(b.contributor == "total" ? b.parameter + ": total" : "of which " + b.contributor)});
+                              Enhanced(b.contributor == "total" ? label(b.parameter) + ": total" : "of which " + b.contributor)});
     }
     panel.y2.shown = false;
     const std::string data = p.name + ".csv";

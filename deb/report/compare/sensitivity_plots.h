@@ -7,6 +7,7 @@
 // total's elasticity, so a reader sees which contributor a parameter moves.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,9 @@ struct TornadoBar {
 // below 1e-3 of the largest bar are left out.
 std::vector<TornadoBar> TornadoBars(const std::vector<Sensitivity>& all, const OutputResult& output);
 
-// One plot per output of nominal that has sensitivities.
-std::vector<Plot> TornadoPlots(const std::vector<Sensitivity>& all, const BudgetResult& nominal);
+// One plot per output of nominal that has sensitivities; a parameter is
+// named by its label where `labels` (by key path) gives one.
+std::vector<Plot> TornadoPlots(const std::vector<Sensitivity>& all, const BudgetResult& nominal,
+                               const std::map<std::string, std::string>& labels = {});
 
 }  // namespace deb::report
