@@ -21,7 +21,10 @@ TEST_CASE("the bands figure draws each band requirement as a limit segment acros
   const FigurePanel& panel = p.figure.panels.at(0);
   // Five decade bands, then a group for each requirement range that is not a band (0.1-10, 100-1e4 Hz).
   REQUIRE(panel.x.tics.size() == out.bands.size() + 2);
-  CHECK(panel.x.tics[out.bands.size()].second == "requirement\n0.1–10 Hz");
+  CHECK(panel.x.tics[out.bands.size()].second == "requirement\n0.1–10");
+  // The unit once on the axis; seven groups: the labels turned so that they do not run together.
+  CHECK(panel.x.label == "frequency band [Hz]");
+  CHECK(panel.x.tic_rotation_deg == 30);
   std::vector<const FigureAnnotation*> limits;
   for (const FigureAnnotation& a : panel.annotations)
     if (a.kind == AnnotationKind::kSegment) limits.push_back(&a);
