@@ -23,20 +23,14 @@ namespace deb::tools {
 
 namespace {
 
-// --label KEY.PATH=TEXT, by key path: the text after the first '=' outside
-// brackets (a key path may select by [name=...]) names that -p parameter.
+// --label KEY.PATH=TEXT, by key path: the text after the first '=' (a key
+// path's brackets hold an index or *) names that -p parameter.
 // @throws InputError for a label without '=', with empty text, or naming no -p.
 std::map<std::string, std::string> ParameterLabels(const std::vector<std::string>& labels,
                                                    const std::vector<std::string>& parameters) {
   std::map<std::string, std::string> out;
   for (const std::string& l : labels) {
-    int depth = 0;
-    std::size_t at = std::string::npos;
-    for (std::size_t i = 0; i < l.size() && at == std::string::npos; ++i) {
-      if (l[i] == '[') ++depth;
-      else if (l[i] == ']') --depth;
-      else if (l[i] == '=' && depth == 0) at = i;
-    }
+    const std::size_t at = l.find('=');
     if (at == std::string::npos || at + 1 == l.size())
       throw InputError("--label '" + Excerpt(l) + "': give KEY.PATH=TEXT, the key path of a -p parameter and its name");
     const std::string key = l.substr(0, at);

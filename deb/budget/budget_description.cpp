@@ -9,6 +9,7 @@
 #include "deb/core/formatted_text.h"
 #include "deb/systems/axis_cancellation.h"
 #include "deb/systems/modes.h"
+#include "deb/units/unit.h"
 
 namespace deb {
 namespace {
@@ -75,7 +76,7 @@ void AddPath(std::string& text, const Path& p, const EvaluationPlan& plan) {
 // its source's unit: "N^2/Hz", "(m/s)^2/Hz".
 std::string InSourceUnit(std::string described, const std::string& unit) {
   const std::string token = "unit^2/Hz";
-  const std::string psd = (unit.find_first_of("/ *^.") != std::string::npos ? "(" + unit + ")" : unit) + "^2/Hz";
+  const std::string psd = PsdUnitLabel(unit);
   for (std::size_t at = described.find(token); at != std::string::npos; at = described.find(token, at + psd.size()))
     described.replace(at, token.size(), psd);
   return described;

@@ -112,11 +112,7 @@ json OutputData(const BudgetResult& result, const OutputResult& out) {
   o["psd"] = psds;
   o["cps"] = cpss;
   // The band chart, as its PNG: each contributor.
-  std::vector<std::size_t> order(out.contributors.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return out.contributors[a].variance > out.contributors[b].variance;
-  });
+  const std::vector<std::size_t> order = ShareOrder(out);
   json band_names = json::array(), band_colours = json::array();
   for (std::size_t k : order) {
     band_names.push_back(out.contributors[k].name);

@@ -101,7 +101,7 @@ std::string VerdictBanner(const BudgetResult& result) {
     std::string fix = GuidanceText(o, result.grid);
     for (const RequirementLine& l : required) {
       lines += std::string("<p class=\"") + (l.pass ? "pass" : "fail") + "\"><strong>" + (l.pass ? "PASS" : "FAIL") +
-               "</strong> " + HtmlEscape(o.name) + (l.scope == "RMS" ? "" : ", " + HtmlEscape(l.scope)) + ": RMS " +
+               "</strong> " + HtmlEscape(o.name) + (l.overall() ? "" : ", " + HtmlEscape(l.scope)) + ": RMS " +
                HtmlEscape(Sig(l.rms, 4) + " " + unit + " (requirement " + Short(l.rms_max) + " " + unit + ").");
       if (!l.pass && !fix.empty()) lines += " " + HtmlEscape(fix);
       if (!l.pass) fix.clear();  // once per output

@@ -176,7 +176,7 @@ PdfTable VerdictTable(const BudgetResult& result) {
     for (std::size_t i = 0; i < lines.size(); ++i) {
       const RequirementLine& l = lines[i];
       const std::string requirement =
-          (l.scope == "RMS" ? "" : l.scope + ": ") + "RMS ≤ " + Short(l.rms_max) + " " + unit;
+          (l.overall() ? "" : l.scope + ": ") + "RMS ≤ " + Short(l.rms_max) + " " + unit;
       t.rows.push_back({i == 0 ? name : PdfCell{""}, {requirement}, {Sig(l.rms, 4) + " " + unit},
                         Verdict(l.pass),
                         {i == 0 && !guidance.empty() ? guidance : "–"}});
@@ -235,7 +235,7 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   std::vector<const Plot*> all_path_plots;  // listed after the loops, drawn in index.html
   for (std::size_t i = 0; i < result.outputs.size(); ++i) {
     const OutputResult& o = result.outputs[i];
-    // A new page unless a third of one is left: the heading, the verdict and the table's first rows fit there.
+    // A new page unless kOutputSectionRoomPt are left: the heading, the verdict and the table's first rows fit there.
     b.push_back(PageBreak(kOutputSectionRoomPt));
     b.push_back(Heading(1, SectionTitle(o)));
     for (const auto& [line, fails] : VerdictLines(o))

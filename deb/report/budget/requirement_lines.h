@@ -13,9 +13,11 @@
 namespace deb::report {
 
 struct RequirementLine {
-  std::string scope;  // "RMS" or a band, "1–10 Hz"
+  std::string scope;  // kOverallScope or a band, "1–10 Hz"
   double rms = 0.0, rms_max = 0.0;
   bool pass = true;
+  static constexpr const char* kOverallScope = "RMS";
+  bool overall() const { return scope == kOverallScope; }  // the output's RMS limit, not a band's
 };
 
 // Empty for an output without requirements.
