@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "deb/budget/engine.h"
 #include "deb/budget/sensitivity.h"
+#include "deb/budget/sweep.h"
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/input_file.h"
@@ -25,7 +27,8 @@ namespace {
 
 // --label KEY.PATH=TEXT, by key path: the text after the first '=' (a key
 // path's brackets hold an index or *) names that -p parameter.
-// @throws InputError for a label without '=', with empty text, or naming no -p.
+// @throws InputError for a label without '=', naming no -p, or whose text
+//         is no label (ParameterLabelProblem: blank, too long, a control character).
 std::map<std::string, std::string> ParameterLabels(const std::vector<std::string>& labels,
                                                    const std::vector<std::string>& parameters) {
   std::map<std::string, std::string> out;
@@ -37,7 +40,10 @@ std::map<std::string, std::string> ParameterLabels(const std::vector<std::string
     if (std::find(parameters.begin(), parameters.end(), key) == parameters.end())
       throw InputError("--label '" + Excerpt(l) + "': '" + Excerpt(key) + "' is not one of the -p parameters" +
                        DidYouMean(key, parameters));
-    out[key] = l.substr(at + 1);
+    const std::string text = l.substr(at + 1);
+    if (const std::string why = ParameterLabelProblem(text); !why.empty())
+      throw InputError("--label '" + Excerpt(l) + "': " + why);
+    out[key] = text;
   }
   return out;
 }
@@ -98,6 +104,7 @@ CLI::App* SensitivityCommand::Register(CLI::App& app) {
 int SensitivityCommand::Run() const {
   const Options& s = *options_;
   const Budget budget = LoadBudgetFile(s.budget_file, s.overrides);
+  std::map<std::string, std::string> labels = ParameterLabels(s.labels, s.parameters);  // before any evaluation
   EngineOptions options;
   options.threads = s.threads;
   options.response_traces = false;  // differenced, not drawn
@@ -113,7 +120,7 @@ int SensitivityCommand::Run() const {
   setting.step = s.step;
   for (const std::string& key : s.parameters)
     setting.parameters.emplace_back(key, ParameterValues(s.budget_file, key, s.overrides));
-  setting.labels = ParameterLabels(s.labels, s.parameters);
+  setting.labels = std::move(labels);
   const std::vector<report::Plot> plots =
       s.plots ? report::TornadoPlots(study.sensitivities, nominal, setting.labels) : std::vector<report::Plot>{};
   const std::string dir = s.out_dir.empty() ? report::DefaultSensitivityDirectory(budget.name) : s.out_dir;

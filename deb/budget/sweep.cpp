@@ -11,6 +11,18 @@
 
 namespace deb {
 
+std::string ParameterLabelProblem(const std::string& label) {
+  if (label.find_first_not_of(" \t") == std::string::npos)
+    return "the label is empty; name the parameter, e.g. 'isolator height h'";
+  if (label.size() > kMaxSweepLabelChars)
+    return "the label has " + std::to_string(label.size()) + " characters, more than the " +
+           std::to_string(kMaxSweepLabelChars) + " an axis can show";
+  for (const char ch : label)
+    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
+      return "the label holds a control character (a line break?); write it on one line";
+  return "";
+}
+
 std::string SweepParameter::Text(double value) const {
   if (!texts.empty()) {
     const auto i = static_cast<std::size_t>(value);

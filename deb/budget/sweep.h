@@ -52,6 +52,11 @@ struct SweepParameter {
 // The longest `label:` of a sweep parameter (it must fit an axis).
 inline constexpr std::size_t kMaxSweepLabelChars = 60;
 
+// What is wrong with a parameter's label (a sweep's `label:`, deb
+// sensitivity --label): blank, longer than kMaxSweepLabelChars, or holding a
+// control character; "" when it is one line of printable text that fits.
+std::string ParameterLabelProblem(const std::string& label);
+
 struct SweepSpec {
   SweepMode mode = SweepMode::kGrid;
   std::vector<SweepParameter> parameters;

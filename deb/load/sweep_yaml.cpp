@@ -52,14 +52,7 @@ std::string Assign(YAML::Node n, const KeyPath& steps, const SweepParameter& p, 
 // A parameter's name on axes and in tables: one line of printable text.
 std::string ParseLabel(const YamlNode& node) {
   const std::string label = node.AsString();
-  if (label.find_first_not_of(" \t") == std::string::npos)
-    node.Fail("the label is empty; name the parameter, e.g. 'isolator height h'");
-  if (label.size() > kMaxSweepLabelChars)
-    node.Fail("the label has " + std::to_string(label.size()) + " characters, more than the " +
-              std::to_string(kMaxSweepLabelChars) + " an axis can show");
-  for (const char ch : label)
-    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
-      node.Fail("the label holds a control character (a line break?); write it on one line");
+  if (const std::string why = ParameterLabelProblem(label); !why.empty()) node.Fail(why);
   return label;
 }
 

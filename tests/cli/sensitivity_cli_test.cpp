@@ -85,5 +85,18 @@ TEST_CASE("deb sensitivity names a parameter by its --label, and states an expre
   CHECK(bad.exit_code == 3);
   CHECK(bad.err.find("is not one of the -p parameters (did you mean 'paths[0].control.gains'?)") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "bad"));
+  // A label's text follows the rule of a sweep's label: one line of at most 60 characters.
+  const deb::test::Command long_label = deb::test::RunDeb(
+      "sensitivity " + deb::test::ExampleBudget("nizamoglu2015_h210.yaml") + " -p 'paths[0].control.gains' --label "
+      "'paths[0].control.gains=" + std::string(61, 'k') + "' --no-plots --out \"" + (dir / "long").string() + "\"");
+  CHECK(long_label.exit_code == 3);
+  CHECK(long_label.err.find("the label has 61 characters, more than the 60 an axis can show") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "long"));
+  const deb::test::Command blank = deb::test::RunDeb(
+      "sensitivity " + deb::test::ExampleBudget("nizamoglu2015_h210.yaml") +
+      " -p 'paths[0].control.gains' --label 'paths[0].control.gains= ' --no-plots --out \"" + (dir / "blank").string() +
+      "\"");
+  CHECK(blank.exit_code == 3);
+  CHECK(blank.err.find("the label is empty") != std::string::npos);
   fs::remove_all(dir);
 }
