@@ -222,6 +222,141 @@ static std::shared_ptr<const Spectrum> ToneSource(const YamlNode& node, const Ya
   return AtNode(list, [&] { return std::make_shared<ToneSpectrum>(std::move(lines), static_cast<int>(n)); });
 }
 
+// A flat spectrum: `level` in unit^2/Hz (or an ASD with quantity: asd), optionally band-limited.
+static std::shared_ptr<const Spectrum> FlatSource(const YamlNode& node, const YamlNode& spec, Source* s) {
+  const auto unit_node = node.Optional("unit");
+  spec.AllowOnly({"type", "level", "quantity", "lo_hz", "hi_hz"});
+  if (!unit_node) node.Fail("missing required key 'unit' (the unit of the signal; the level is in unit^2/Hz)");
+  s->unit = unit_node->AsString();
+  double level = spec.Required("level").AsNonNegative();
+  if (auto q = spec.Optional("quantity")) {
+    const auto quantity = AtNode(*q, [&] { return ParseSpectrumQuantity(q->AsString()); });
+    if (quantity == SpectrumQuantity::kAsd) level *= level;
+  } else {
+    // As a measured file without '# quantity:': an ASD read as a PSD is
+    // off by its own value in power (a level of 2e-4 by 5000x).
+    s->notes.push_back("the flat level " + spec.Required("level").AsString() + " has no 'quantity:', so it is read as a PSD in " +
+                       PsdUnitLabel(s->unit) + "; if it is an ASD in " + AsdUnitLabel(s->unit) +
+                       ", add 'quantity: asd' (or 'quantity: psd' to confirm)");
+  }
+  level *= ConventionFactor(node);
+  s->channel_names = ChannelNames(node, s->name, 1);
+  const auto lo = spec.Optional("lo_hz"), hi = spec.Optional("hi_hz");
+  std::shared_ptr<const Spectrum> one;
+  if (lo || hi) {
+    const double lo_hz = lo ? lo->AsNonNegative() : 0.0;
+    const double hi_hz = hi ? hi->AsPositive() : std::numeric_limits<double>::infinity();
+    one = AtNode(spec, [&] { return std::make_shared<FlatSpectrum>(level, lo_hz, hi_hz); });
+  } else {
+    one = AtNode(spec, [&] { return std::make_shared<FlatSpectrum>(level); });
+  }
+  return Repeat(one, s->channel_names.size());
+}
+
+// A vibration-criteria curve, in its velocity unit or one the budget converts it to.
+static std::shared_ptr<const Spectrum> VcSource(const YamlNode& node, const YamlNode& spec, Source* s) {
+  const auto unit_node = node.Optional("unit");
+  spec.AllowOnly({"type", "class", "lowest_band_hz", "highest_band_hz", "low_frequency_extension", "series"});
+  const YamlNode cls = spec.Required("class");
+  const VcClass vc_class = AtNode(cls, [&] { return ParseVcClass(cls.AsString()); });
+  VcOptions options;
+  if (auto v = spec.Optional("lowest_band_hz")) options.lowest_band_hz = v->AsPositive();
+  if (auto v = spec.Optional("highest_band_hz")) options.highest_band_hz = v->AsPositive();
+  if (auto v = spec.Optional("low_frequency_extension")) options.low_frequency_extension = v->AsBool();
+  if (auto v = spec.Optional("series"))
+    options.series = AtNode(*v, [&] { return ParseThirdOctaveSeries(v->AsString()); });
+  s->unit = unit_node ? unit_node->AsString() : VcSpectrum::kUnit;
+  const UnitConversion conv =
+      AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(VcSpectrum::kUnit, s->unit); });
+  if (!conv.IsPureScale())
+    unit_node->Fail("a VC curve is a velocity; unit '" + s->unit + "' is not a velocity unit");
+  std::shared_ptr<const Spectrum> one = AtNode(spec, [&] { return std::make_shared<VcSpectrum>(vc_class, options); });
+  const double factor = conv.scale * conv.scale * ConventionFactor(node);
+  if (factor != 1.0) one = std::make_shared<ScaledSpectrum>(one, factor);
+  s->channel_names = ChannelNames(node, s->name, 1);
+  return Repeat(one, s->channel_names.size());
+}
+
+// A measured spectrum read from a CSV file (relative to `base_dir`), its columns picked by name.
+static std::shared_ptr<const Spectrum> MeasuredSource(const YamlNode& node, const YamlNode& spec,
+                                                      const std::string& base_dir, Source* s) {
+  const auto unit_node = node.Optional("unit");
+  spec.AllowOnly({"type", "file", "columns", "extrapolation"});
+  if (node.Has("convention"))
+    node.Required("convention").Fail("a measured spectrum declares its convention in the file ('# sides: one|two')");
+  const YamlNode file = spec.Required("file");
+  std::filesystem::path p(file.AsString());
+  if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  SpectrumCsv csv = AtNode(file, [&] { return ReadSpectrumCsv(p.string()); });
+  if (auto cols = spec.Optional("columns")) {
+    const auto wanted = cols->AsStrings();
+    Eigen::MatrixXd picked(csv.psd.rows(), static_cast<Eigen::Index>(wanted.size()));
+    for (std::size_t j = 0; j < wanted.size(); ++j) {
+      const auto it = std::find(csv.channel_names.begin(), csv.channel_names.end(), wanted[j]);
+      // A confidence bound (x_hi: a conservative source) may be picked by name too.
+      const auto bound = std::find(csv.bound_names.begin(), csv.bound_names.end(), wanted[j]);
+      if (it == csv.channel_names.end() && bound == csv.bound_names.end()) {
+        std::string have;
+        for (const auto& n : csv.channel_names) have += (have.empty() ? "" : ", ") + n;
+        for (const auto& n : csv.bound_names) have += (have.empty() ? "" : ", ") + n;
+        cols->Fail("column '" + wanted[j] + "' is not in " + p.string() + " (columns: " + have + ")");
+      }
+      picked.col(static_cast<Eigen::Index>(j)) = it != csv.channel_names.end()
+                                                     ? Eigen::VectorXd(csv.psd.col(it - csv.channel_names.begin()))
+                                                     : Eigen::VectorXd(csv.bounds.col(bound - csv.bound_names.begin()));
+    }
+    csv.psd = picked;
+    csv.channel_names = wanted;
+  }
+  Extrapolation extrapolation = Extrapolation::kError;
+  if (auto e = spec.Optional("extrapolation"))
+    extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
+  if (!unit_node && !csv.unit) node.Fail("missing 'unit': neither the budget nor " + p.string() + " ('# unit:') gives one");
+  s->unit = unit_node ? unit_node->AsString() : *csv.unit;
+  if (!csv.quantity_declared) {
+    const std::string u = csv.unit.value_or(s->unit);
+    s->notes.push_back(p.string() + " has no '# quantity:' line, so its values are read as a PSD in " +
+                       PsdUnitLabel(u) + "; if they are an ASD in " + AsdUnitLabel(u) +
+                       ", add the line '# quantity: asd' (or '# quantity: psd' to confirm)");
+  }
+  double factor = 1.0;
+  if (csv.unit) {
+    const UnitConversion conv = AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(*csv.unit, s->unit); });
+    if (!conv.IsPureScale())
+      unit_node->Fail("the file's unit '" + *csv.unit + "' and '" + s->unit + "' are not the same quantity");
+    factor = conv.scale * conv.scale;
+  }
+  std::shared_ptr<const Spectrum> m = AtNode(file, [&] { return MakeMeasuredSpectrum(csv, extrapolation); });
+  if (factor != 1.0) m = std::make_shared<ScaledSpectrum>(m, factor);
+  s->channel_names = node.Has("channels") ? ChannelNames(node, s->name, m->channels()) : csv.channel_names;
+  if (static_cast<int>(s->channel_names.size()) != m->channels())
+    node.Required("channels").Fail("the file gives " + std::to_string(m->channels()) + " column(s) but " +
+                                   std::to_string(s->channel_names.size()) + " channel names are listed");
+  return m;
+}
+
+// `spectrum` with the channels correlated as `c` says: one coefficient for every pair, or the matrix.
+static std::shared_ptr<const Spectrum> Correlated(const YamlNode& c, const std::string& type,
+                                                  std::shared_ptr<const Spectrum> spectrum) {
+  if (type == "tones")
+    c.Fail("tones on several channels are coherent: their phases (phase_deg) relate them; remove 'correlation'");
+  if (type == "timeseries" && !spectrum->IsDiagonal())
+    c.Fail("the recording's cross-spectra already give the channels' correlation; remove 'correlation', or "
+           "set cross_spectra: none to impose one on independent channels");
+  const int n = spectrum->channels();
+  Eigen::MatrixXd rho;
+  if (c.IsScalar()) {
+    rho = Eigen::MatrixXd::Constant(n, n, c.AsDouble());
+    rho.diagonal().setOnes();
+  } else {
+    rho = c.AsMatrix();
+  }
+  if (rho.rows() != n || rho.cols() != n)
+    c.Fail("correlation must be a number or a " + std::to_string(n) + "x" + std::to_string(n) + " matrix, got " +
+           std::to_string(rho.rows()) + "x" + std::to_string(rho.cols()));
+  return AtNode(c, [&] { return std::make_shared<CorrelatedChannels>(spectrum, rho); });
+}
+
 Source ParseSource(const YamlNode& node, const std::string& base_dir) {
   node.AllowOnly({"name", "description", "unit", "channels", "convention", "spectrum", "correlation"});
   Source s;
@@ -233,105 +368,11 @@ Source ParseSource(const YamlNode& node, const std::string& base_dir) {
   std::shared_ptr<const Spectrum> spectrum;
 
   if (type == "flat") {
-    spec.AllowOnly({"type", "level", "quantity", "lo_hz", "hi_hz"});
-    if (!unit_node) node.Fail("missing required key 'unit' (the unit of the signal; the level is in unit^2/Hz)");
-    s.unit = unit_node->AsString();
-    double level = spec.Required("level").AsNonNegative();
-    if (auto q = spec.Optional("quantity")) {
-      const auto quantity = AtNode(*q, [&] { return ParseSpectrumQuantity(q->AsString()); });
-      if (quantity == SpectrumQuantity::kAsd) level *= level;
-    } else {
-      // As a measured file without '# quantity:': an ASD read as a PSD is
-      // off by its own value in power (a level of 2e-4 by 5000x).
-      s.notes.push_back("the flat level " + spec.Required("level").AsString() + " has no 'quantity:', so it is read as a PSD in " +
-                        PsdUnitLabel(s.unit) + "; if it is an ASD in " + AsdUnitLabel(s.unit) +
-                        ", add 'quantity: asd' (or 'quantity: psd' to confirm)");
-    }
-    level *= ConventionFactor(node);
-    s.channel_names = ChannelNames(node, s.name, 1);
-    const auto lo = spec.Optional("lo_hz"), hi = spec.Optional("hi_hz");
-    std::shared_ptr<const Spectrum> one;
-    if (lo || hi) {
-      const double lo_hz = lo ? lo->AsNonNegative() : 0.0;
-      const double hi_hz = hi ? hi->AsPositive() : std::numeric_limits<double>::infinity();
-      one = AtNode(spec, [&] { return std::make_shared<FlatSpectrum>(level, lo_hz, hi_hz); });
-    } else {
-      one = AtNode(spec, [&] { return std::make_shared<FlatSpectrum>(level); });
-    }
-    spectrum = Repeat(one, s.channel_names.size());
+    spectrum = FlatSource(node, spec, &s);
   } else if (type == "vc") {
-    spec.AllowOnly({"type", "class", "lowest_band_hz", "highest_band_hz", "low_frequency_extension", "series"});
-    const YamlNode cls = spec.Required("class");
-    const VcClass vc_class = AtNode(cls, [&] { return ParseVcClass(cls.AsString()); });
-    VcOptions options;
-    if (auto v = spec.Optional("lowest_band_hz")) options.lowest_band_hz = v->AsPositive();
-    if (auto v = spec.Optional("highest_band_hz")) options.highest_band_hz = v->AsPositive();
-    if (auto v = spec.Optional("low_frequency_extension")) options.low_frequency_extension = v->AsBool();
-    if (auto v = spec.Optional("series"))
-      options.series = AtNode(*v, [&] { return ParseThirdOctaveSeries(v->AsString()); });
-    s.unit = unit_node ? unit_node->AsString() : VcSpectrum::kUnit;
-    const UnitConversion conv =
-        AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(VcSpectrum::kUnit, s.unit); });
-    if (!conv.IsPureScale())
-      unit_node->Fail("a VC curve is a velocity; unit '" + s.unit + "' is not a velocity unit");
-    std::shared_ptr<const Spectrum> one = AtNode(spec, [&] { return std::make_shared<VcSpectrum>(vc_class, options); });
-    const double factor = conv.scale * conv.scale * ConventionFactor(node);
-    if (factor != 1.0) one = std::make_shared<ScaledSpectrum>(one, factor);
-    s.channel_names = ChannelNames(node, s.name, 1);
-    spectrum = Repeat(one, s.channel_names.size());
+    spectrum = VcSource(node, spec, &s);
   } else if (type == "measured") {
-    spec.AllowOnly({"type", "file", "columns", "extrapolation"});
-    if (node.Has("convention"))
-      node.Required("convention").Fail("a measured spectrum declares its convention in the file ('# sides: one|two')");
-    const YamlNode file = spec.Required("file");
-    std::filesystem::path p(file.AsString());
-    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
-    SpectrumCsv csv = AtNode(file, [&] { return ReadSpectrumCsv(p.string()); });
-    if (auto cols = spec.Optional("columns")) {
-      const auto wanted = cols->AsStrings();
-      Eigen::MatrixXd picked(csv.psd.rows(), static_cast<Eigen::Index>(wanted.size()));
-      for (std::size_t j = 0; j < wanted.size(); ++j) {
-        const auto it = std::find(csv.channel_names.begin(), csv.channel_names.end(), wanted[j]);
-        // A confidence bound (x_hi: a conservative source) may be picked by name too.
-        const auto bound = std::find(csv.bound_names.begin(), csv.bound_names.end(), wanted[j]);
-        if (it == csv.channel_names.end() && bound == csv.bound_names.end()) {
-          std::string have;
-          for (const auto& n : csv.channel_names) have += (have.empty() ? "" : ", ") + n;
-          for (const auto& n : csv.bound_names) have += (have.empty() ? "" : ", ") + n;
-          cols->Fail("column '" + wanted[j] + "' is not in " + p.string() + " (columns: " + have + ")");
-        }
-        picked.col(static_cast<Eigen::Index>(j)) = it != csv.channel_names.end()
-                                                       ? Eigen::VectorXd(csv.psd.col(it - csv.channel_names.begin()))
-                                                       : Eigen::VectorXd(csv.bounds.col(bound - csv.bound_names.begin()));
-      }
-      csv.psd = picked;
-      csv.channel_names = wanted;
-    }
-    Extrapolation extrapolation = Extrapolation::kError;
-    if (auto e = spec.Optional("extrapolation"))
-      extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
-    if (!unit_node && !csv.unit) node.Fail("missing 'unit': neither the budget nor " + p.string() + " ('# unit:') gives one");
-    s.unit = unit_node ? unit_node->AsString() : *csv.unit;
-    if (!csv.quantity_declared) {
-      const std::string u = csv.unit.value_or(s.unit);
-      s.notes.push_back(p.string() + " has no '# quantity:' line, so its values are read as a PSD in " +
-                        PsdUnitLabel(u) + "; if they are an ASD in " + AsdUnitLabel(u) +
-                        ", add the line '# quantity: asd' (or '# quantity: psd' to confirm)");
-    }
-    double factor = 1.0;
-    if (csv.unit) {
-      const UnitConversion conv = AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(*csv.unit, s.unit); });
-      if (!conv.IsPureScale())
-        unit_node->Fail("the file's unit '" + *csv.unit + "' and '" + s.unit + "' are not the same quantity");
-      factor = conv.scale * conv.scale;
-    }
-    std::shared_ptr<const Spectrum> m = AtNode(file, [&] { return MakeMeasuredSpectrum(csv, extrapolation); });
-    if (factor != 1.0) m = std::make_shared<ScaledSpectrum>(m, factor);
-    s.channel_names = node.Has("channels") ? ChannelNames(node, s.name, m->channels()) : csv.channel_names;
-    if (static_cast<int>(s.channel_names.size()) != m->channels())
-      node.Required("channels").Fail("the file gives " + std::to_string(m->channels()) + " column(s) but " +
-                                     std::to_string(s.channel_names.size()) + " channel names are listed");
-    spectrum = m;
+    spectrum = MeasuredSource(node, spec, base_dir, &s);
   } else if (type == "tones") {
     spectrum = ToneSource(node, spec, &s);
   } else if (type == "timeseries") {
@@ -343,25 +384,7 @@ Source ParseSource(const YamlNode& node, const std::string& base_dir) {
                                "'; allowed: flat, vc, measured, timeseries, reference, tones");
   }
 
-  if (auto c = node.Optional("correlation")) {
-    if (type == "tones")
-      c->Fail("tones on several channels are coherent: their phases (phase_deg) relate them; remove 'correlation'");
-    if (type == "timeseries" && !spectrum->IsDiagonal())
-      c->Fail("the recording's cross-spectra already give the channels' correlation; remove 'correlation', or "
-              "set cross_spectra: none to impose one on independent channels");
-    const int n = spectrum->channels();
-    Eigen::MatrixXd rho;
-    if (c->IsScalar()) {
-      rho = Eigen::MatrixXd::Constant(n, n, c->AsDouble());
-      rho.diagonal().setOnes();
-    } else {
-      rho = c->AsMatrix();
-    }
-    if (rho.rows() != n || rho.cols() != n)
-      c->Fail("correlation must be a number or a " + std::to_string(n) + "x" + std::to_string(n) + " matrix, got " +
-              std::to_string(rho.rows()) + "x" + std::to_string(rho.cols()));
-    spectrum = AtNode(*c, [&] { return std::make_shared<CorrelatedChannels>(spectrum, rho); });
-  }
+  if (auto c = node.Optional("correlation")) spectrum = Correlated(*c, type, spectrum);
   AtNode(unit_node ? *unit_node : node, [&] { ValidateUnit(s.unit); });
   s.spectrum = spectrum;
   return s;

@@ -112,6 +112,139 @@ void RequireFile(const fs::path& path, const std::string& what) {
     throw WriteError("cannot draw " + what + ": gnuplot reported success but wrote no " + path.filename().string());
 }
 
+// Every figure of the report: the overview, then per output its spectra and
+// bands, then the paths and the loops.
+std::vector<Plot> ReportPlots(const BudgetResult& result, const ReportOptions& options) {
+  std::vector<Plot> plots = OverviewFigures(result, options.digits);
+  for (std::size_t o = 0; o < result.outputs.size(); ++o) {
+    for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
+    plots.push_back(BandsPlot(result, o, options.digits));
+  }
+  for (Plot& p : PathPlots(result, options.threads)) plots.push_back(std::move(p));
+  for (Plot& p : LoopPlots(result, options.digits)) plots.push_back(std::move(p));
+  return plots;
+}
+
+// One file gnuplot draws: its path relative to the report directory and the
+// commands that draw it from the plot's script.
+struct DrawJob {
+  std::string file;
+  std::string script;
+};
+
+// report.pdf places each plot as an SVG drawn for it (PdfFigureTerminal)
+// in a folder removed once the document is written.
+const char* const kPdfFigures = ".pdf_figures";
+
+// The figures of report.pdf first (when `pdf`; their number in `pdf_jobs`),
+// then the PNG and SVG plots.
+std::vector<DrawJob> DrawJobs(const std::vector<Plot>& plots, const ReportOptions& options, bool pdf,
+                              std::size_t* pdf_jobs) {
+  std::vector<DrawJob> jobs;
+  const std::string pdf_figures = kPdfFigures;
+  if (pdf)
+    for (const Plot& p : plots)
+      if (DrawnInPdf(p))
+        jobs.push_back({"plots/" + pdf_figures + "/" + p.name + ".svg",
+                        PdfFigureTerminal(p.kind) + "set output " + QuoteFile(pdf_figures + "/" + p.name + ".svg") +
+                            "\nload " + QuoteFile(p.name + ".gp") + "\nunset output\n"});
+  *pdf_jobs = jobs.size();
+  for (PlotFormat t : {PlotFormat::kPng, PlotFormat::kSvg}) {
+    if (!options.Has(t)) continue;
+    for (const Plot& p : plots) {
+      const std::string file = p.name + "." + FileExtension(t);
+      jobs.push_back({"plots/" + file, TerminalCommand(t) + "set output " + QuoteFile(file) + "\nload " +
+                                           QuoteFile(p.name + ".gp") + "\nunset output\n"});
+    }
+  }
+  return jobs;
+}
+
+// gnuplot starts fast but each process pays again for fonts and cairo: the
+// files are drawn in a few batches, one process each (when `pdf`, the first
+// `pdf_jobs`, the figures of report.pdf, in one batch whose worker then
+// typesets the document, while the others draw the plots split evenly over
+// `workers`), which halves the drawing time of a report with dozens of plots.
+std::vector<std::vector<std::size_t>> DrawBatches(bool pdf, std::size_t pdf_jobs, std::size_t jobs,
+                                                  std::size_t workers) {
+  std::vector<std::vector<std::size_t>> batches;
+  if (pdf) {
+    batches.emplace_back();
+    for (std::size_t i = 0; i < pdf_jobs; ++i) batches.back().push_back(i);
+  }
+  const std::size_t plot_jobs = jobs - pdf_jobs;
+  const std::size_t plot_batches = std::min(workers, plot_jobs);
+  for (std::size_t b = 0; b < plot_batches; ++b) {
+    std::vector<std::size_t> batch;
+    for (std::size_t i = pdf_jobs + b * plot_jobs / plot_batches; i < pdf_jobs + (b + 1) * plot_jobs / plot_batches;
+         ++i)
+      batch.push_back(i);
+    batches.push_back(std::move(batch));
+  }
+  return batches;
+}
+
+// Draws every plot file and, when `pdf`, typesets report.pdf from the
+// figures drawn for it; lists what it wrote in `manifest`.
+void DrawReport(const BudgetResult& result, const std::vector<Plot>& plots, const ReportFacts& facts,
+                const std::string& sha256, std::time_t when, const ReportOptions& options, bool pdf,
+                const fs::path& root, ReportManifest& manifest) {
+  const fs::path plots_dir = root / "plots";
+  const std::string gnuplot = FindGnuplot(options.gnuplot);
+  if (pdf) {
+    std::error_code ec;
+    fs::create_directories(plots_dir / kPdfFigures, ec);
+    if (ec) throw WriteError("cannot create directory " + (plots_dir / kPdfFigures).string() + ": " + ec.message());
+  }
+  std::size_t pdf_jobs = 0;
+  const std::vector<DrawJob> jobs = DrawJobs(plots, options, pdf, &pdf_jobs);
+  const std::size_t workers = static_cast<std::size_t>(
+      std::max(1, options.threads > 0 ? options.threads : DefaultThreadCount()));
+  const std::vector<std::vector<std::size_t>> batches = DrawBatches(pdf, pdf_jobs, jobs.size(), workers);
+  const auto what_of = [&](std::size_t i) {
+    return (i < pdf_jobs ? "the figure of report.pdf " : "plot ") + fs::path(jobs[i].file).filename().string();
+  };
+  Progress progress(options.progress, static_cast<int>(jobs.size()) + (pdf ? 1 : 0));
+  PdfLayout layout;
+  const auto typeset = [&] {
+    progress.Step("report.pdf");
+    ReportPdfInputs in;
+    in.result = &result;
+    in.facts = facts;
+    in.sha256 = sha256;
+    in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
+    in.plots = &plots;
+    in.figure_dir = (plots_dir / kPdfFigures).string();
+    in.digits = options.digits;
+    layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
+  };
+  ParallelForEach(batches.size(), [&](std::size_t b) {
+    const std::vector<std::size_t>& batch = batches[b];
+    std::string script;
+    for (std::size_t i : batch) script += jobs[i].script;
+    progress.Step(batch.size() == 1 ? jobs[batch[0]].file : jobs[batch[0]].file + " ...",
+                  static_cast<int>(batch.size()));
+    try {
+      RunGnuplot(gnuplot, plots_dir.string(), script, batch.size() == 1 ? what_of(batch[0]) : "the plots");
+    } catch (const WriteError&) {
+      // Name the plot that failed: draw the batch's files one at a time.
+      if (batch.size() == 1) throw;
+      for (std::size_t i : batch) RunGnuplot(gnuplot, plots_dir.string(), jobs[i].script, what_of(i));
+      throw;
+    }
+    for (std::size_t i : batch) RequireFile(root / jobs[i].file, what_of(i));
+    if (pdf && b == 0) typeset();
+  }, options.threads);
+  for (std::size_t i = pdf_jobs; i < jobs.size(); ++i) manifest.files.push_back(jobs[i].file);
+  if (pdf) {
+    std::error_code ec;
+    fs::remove_all(plots_dir / kPdfFigures, ec);
+    manifest.files.push_back("report.pdf");
+    manifest.title_pages = 1;
+    manifest.pdf_pages = layout.pages;
+  }
+}
+
 }  // namespace
 
 ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, const ReportOptions& options,
@@ -136,13 +269,7 @@ ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, cons
 
   std::vector<Plot> plots;
   if (plot_files) {
-    plots = OverviewFigures(result, options.digits);
-    for (std::size_t o = 0; o < result.outputs.size(); ++o) {
-      for (Plot& p : SpectrumPlots(result, o, options)) plots.push_back(std::move(p));
-      plots.push_back(BandsPlot(result, o, options.digits));
-    }
-    for (Plot& p : PathPlots(result, options.threads)) plots.push_back(std::move(p));
-    for (Plot& p : LoopPlots(result, options.digits)) plots.push_back(std::move(p));
+    plots = ReportPlots(result, options);
     for (const Plot& p : plots) {
       writer.Write("plots/" + p.name + ".csv", p.csv);
       writer.WriteScript("plots/" + p.name + ".gp", p.script);
@@ -150,101 +277,8 @@ ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, cons
     }
     writer.Write("plots/colours.csv", ColoursCsv(result.outline));
   }
-
   const bool pdf = options.plots && options.Has(PlotFormat::kPdf);
-  // report.pdf places each plot as an SVG drawn for it (PdfFigureTerminal)
-  // in a folder removed once the document is written.
-  const std::string pdf_figures = ".pdf_figures";
-  if (options.plots) {
-    // The figures of report.pdf (SVG, typeset afterwards), then the PNG and
-    // SVG plots, drawn by gnuplot several at a time (options.threads).
-    const std::string gnuplot = FindGnuplot(options.gnuplot);
-    struct Job {
-      std::string file;    // relative to the report directory
-      std::string script;
-    };
-    std::vector<Job> jobs;
-    if (pdf) {
-      fs::create_directories(plots_dir / pdf_figures, ec);
-      if (ec) throw WriteError("cannot create directory " + (plots_dir / pdf_figures).string() + ": " + ec.message());
-      for (const Plot& p : plots)
-        if (DrawnInPdf(p))
-          jobs.push_back({"plots/" + pdf_figures + "/" + p.name + ".svg",
-                          PdfFigureTerminal(p.kind) + "set output " + QuoteFile(pdf_figures + "/" + p.name + ".svg") +
-                              "\nload " + QuoteFile(p.name + ".gp") + "\nunset output\n"});
-    }
-    const std::size_t pdf_jobs = jobs.size();
-    for (PlotFormat t : {PlotFormat::kPng, PlotFormat::kSvg}) {
-      if (!options.Has(t)) continue;
-      for (const Plot& p : plots) {
-        const std::string file = p.name + "." + FileExtension(t);
-        jobs.push_back({"plots/" + file, TerminalCommand(t) + "set output " + QuoteFile(file) + "\nload " +
-                                             QuoteFile(p.name + ".gp") + "\nunset output\n"});
-      }
-    }
-    // gnuplot starts fast but each process pays again for fonts and cairo:
-    // the files are drawn in a few batches, one process each (the figures
-    // of report.pdf, which is then typeset by the same worker while the
-    // others draw the plots split evenly over them), which halves the
-    // drawing time of a report with dozens of plots.
-    const std::size_t workers = static_cast<std::size_t>(
-        std::max(1, options.threads > 0 ? options.threads : DefaultThreadCount()));
-    std::vector<std::vector<std::size_t>> batches;
-    if (pdf) {
-      batches.emplace_back();
-      for (std::size_t i = 0; i < pdf_jobs; ++i) batches.back().push_back(i);
-    }
-    const std::size_t plot_jobs = jobs.size() - pdf_jobs;
-    const std::size_t plot_batches = std::min(workers, plot_jobs);
-    for (std::size_t b = 0; b < plot_batches; ++b) {
-      std::vector<std::size_t> batch;
-      for (std::size_t i = pdf_jobs + b * plot_jobs / plot_batches; i < pdf_jobs + (b + 1) * plot_jobs / plot_batches;
-           ++i)
-        batch.push_back(i);
-      batches.push_back(std::move(batch));
-    }
-    const auto what_of = [&](std::size_t i) {
-      return (i < pdf_jobs ? "the figure of report.pdf " : "plot ") + fs::path(jobs[i].file).filename().string();
-    };
-    Progress progress(options.progress, static_cast<int>(jobs.size()) + (pdf ? 1 : 0));
-    PdfLayout layout;
-    const auto typeset = [&] {
-      progress.Step("report.pdf");
-      ReportPdfInputs in;
-      in.result = &result;
-      in.facts = facts;
-      in.sha256 = sha256;
-      in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
-      in.plots = &plots;
-      in.figure_dir = (plots_dir / pdf_figures).string();
-      in.digits = options.digits;
-      layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
-    };
-    ParallelForEach(batches.size(), [&](std::size_t b) {
-      const std::vector<std::size_t>& batch = batches[b];
-      std::string script;
-      for (std::size_t i : batch) script += jobs[i].script;
-      progress.Step(batch.size() == 1 ? jobs[batch[0]].file : jobs[batch[0]].file + " ...",
-                    static_cast<int>(batch.size()));
-      try {
-        RunGnuplot(gnuplot, plots_dir.string(), script, batch.size() == 1 ? what_of(batch[0]) : "the plots");
-      } catch (const WriteError&) {
-        // Name the plot that failed: draw the batch's files one at a time.
-        if (batch.size() == 1) throw;
-        for (std::size_t i : batch) RunGnuplot(gnuplot, plots_dir.string(), jobs[i].script, what_of(i));
-        throw;
-      }
-      for (std::size_t i : batch) RequireFile(root / jobs[i].file, what_of(i));
-      if (pdf && b == 0) typeset();
-    }, options.threads);
-    for (std::size_t i = pdf_jobs; i < jobs.size(); ++i) manifest.files.push_back(jobs[i].file);
-    if (pdf) {
-      fs::remove_all(plots_dir / pdf_figures, ec);
-      manifest.files.push_back("report.pdf");
-      manifest.title_pages = 1;
-      manifest.pdf_pages = layout.pages;
-    }
-  }
+  if (options.plots) DrawReport(result, plots, facts, sha256, when, options, pdf, root, manifest);
 
   DocumentInputs doc;
   doc.result = &result;
