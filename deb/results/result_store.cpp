@@ -675,6 +675,109 @@ void WriteResultStore(const BudgetResult& result, const RunInfo& info, const std
   w.Close();
 }
 
+namespace {
+
+// The budget's sources and contributors, each contributor's source among the sources.
+void ReadSourcesAndContributors(const Reading& in, BudgetOutline* b) {
+  const Hdf5Reader& r = in.r();
+  const std::size_t sources = in.Count("budget/sources/names", kMaxEntries);
+  for (std::size_t i = 0; i < sources; ++i) {
+    const std::string at = At("budget/sources", i);
+    SourceOutline src;
+    src.name = in.Name(at + "/name");
+    src.description = r.Text(at + "/description");
+    src.unit = in.Printable(at + "/unit");
+    src.channels = in.Printables(at + "/channels", kMaxChannels);
+    b->sources.push_back(std::move(src));
+  }
+  in.Unique("budget/sources", Names(b->sources, kName), "source");
+  const std::size_t contributors = in.Count("budget/contributors/names", kMaxEntries);
+  for (std::size_t i = 0; i < contributors; ++i) {
+    const std::string at = At("budget/contributors", i);
+    Contributor c;
+    c.name = in.Name(at + "/name");
+    if (c.name == "total") in.Fail(at + "/name", "holds the name 'total', which is reserved for the sum of all contributors");
+    c.source = in.Printable(at + "/source");
+    c.path = in.Printable(at + "/path");
+    c.inputs = in.Printables(at + "/inputs", kMaxChannels);
+    c.group = Group(in, at + "/group");
+    c.exact = in.Enum<ExactVariance>(at + "/exact", "exact-variance mode");
+    c.breakdown_channels = r.Integer(at + "/breakdown_channels") != 0;
+    bool known = false;
+    for (const SourceOutline& src : b->sources) known |= src.name == c.source;
+    if (!known) in.Fail(at + "/source", "names the source '" + Excerpt(c.source) + "', which the store does not hold");
+    b->contributors.push_back(std::move(c));
+  }
+  in.Unique("budget/contributors", Names(b->contributors, kName), "contributor");
+}
+
+// The frequency grid and its panels, checked as FrequencyGrid checks a grid.
+FrequencyGrid ReadGrid(const Reading& in) {
+  std::vector<double> f_hz = in.UpTo("result/grid/f_hz", limits::kMaxGridPoints);
+  std::vector<std::size_t> panels;
+  for (double p : in.UpTo("result/grid/panel_starts", f_hz.size()))
+    panels.push_back(in.Index("result/grid/panel_starts", p, f_hz.size()));
+  try {
+    static_cast<void>(FrequencyGrid(f_hz));  // throws on a bad grid
+  } catch (const InputError& e) {
+    in.Fail("result/grid", e.message());
+  }
+  CheckPanels(in, f_hz, panels);
+  return FrequencyGrid(std::move(f_hz), std::move(panels));
+}
+
+// The parameters, in stores of budgets that have them (none before them).
+void ReadParameters(const Reading& in, BudgetOutline* b) {
+  const Hdf5Reader& r = in.r();
+  if (r.Has("budget/parameters/names")) {
+    const std::size_t parameters = in.Count("budget/parameters/names", kMaxParameters);
+    for (std::size_t i = 0; i < parameters; ++i) {
+      const std::string at = At("budget/parameters", i);
+      ParameterOutline p;
+      p.name = r.Text(at + "/name");
+      if (!IsParameterName(p.name)) in.Fail(at + "/name", "holds '" + Excerpt(p.name) + "', which is not a parameter name");
+      p.expression = in.Printable(at + "/expression");
+      p.description = r.Text(at + "/description");
+      p.derived = r.Integer(at + "/derived") != 0;
+      p.value = r.Number(at + "/value");
+      if (!std::isfinite(p.value)) in.Fail(at + "/value", "is not finite");
+      p.unit = in.Printable(at + "/unit");
+      b->parameters.push_back(std::move(p));
+    }
+    in.Unique("budget/parameters", Names(b->parameters, kName), "parameter");
+  }
+}
+
+// The loops and every path's response, over the result's grid.
+std::shared_ptr<ResponseTraces> ReadTraces(const Reading& in, const BudgetOutline& b, BudgetResult* res) {
+  const std::size_t n = res->grid.size(), outputs = res->outputs.size(), contributors = b.contributors.size();
+  auto traces = std::make_shared<ResponseTraces>();
+  const std::size_t loops = in.Count("result/loops/names", kMaxEntries);
+  res->loops.resize(loops);
+  traces->loops.resize(loops);
+  for (std::size_t i = 0; i < loops; ++i) ReadLoop(in, At("result/loops", i), n, &res->loops[i], &traces->loops[i]);
+  for (const auto& p : in.Exactly("result/traces/poles_hz", contributors, contributors == 0 ? 0 : 2, true)) {
+    const bool none = std::isnan(p[0]) || std::isnan(p[1]);
+    traces->poles_hz.push_back(none ? std::nullopt : std::optional<std::pair<double, double>>({p[0], p[1]}));
+  }
+  traces->paths.resize(contributors);
+  for (std::size_t c = 0; c < contributors; ++c)
+    for (std::size_t o = 0; o < outputs; ++o) {
+      const std::string at = At(At("result/traces/paths", c), o);
+      PathResponse p;
+      p.contributor = b.contributors[c].name;
+      p.output = res->outputs[o].name;
+      p.channels = in.Printables(at + "/channels", kMaxChannels);
+      p.unit = in.Printable(at + "/unit");
+      p.gain2 = in.Rows(at + "/gain2", n, kMaxChannels);
+      p.phase_rad = in.Exactly(at + "/phase_rad", p.gain2.size(), p.gain2.empty() ? 0 : n, false);
+      traces->paths[c].push_back(std::move(p));
+    }
+  return traces;
+}
+
+}  // namespace
+
 BudgetResult ReadResultStore(const std::string& file, RunInfo* info) {
   const Reading in(file);
   const Hdf5Reader& r = in.r();
@@ -698,49 +801,12 @@ BudgetResult ReadResultStore(const std::string& file, RunInfo* info) {
     b.bands.push_back({band[0], band[1]});
   }
   run.seconds = FromNone(r.Number("run/seconds", true));
-  const std::size_t sources = in.Count("budget/sources/names", kMaxEntries);
-  for (std::size_t i = 0; i < sources; ++i) {
-    const std::string at = At("budget/sources", i);
-    SourceOutline src;
-    src.name = in.Name(at + "/name");
-    src.description = r.Text(at + "/description");
-    src.unit = in.Printable(at + "/unit");
-    src.channels = in.Printables(at + "/channels", kMaxChannels);
-    b.sources.push_back(std::move(src));
-  }
-  in.Unique("budget/sources", Names(b.sources, kName), "source");
-  const std::size_t contributors = in.Count("budget/contributors/names", kMaxEntries);
-  for (std::size_t i = 0; i < contributors; ++i) {
-    const std::string at = At("budget/contributors", i);
-    Contributor c;
-    c.name = in.Name(at + "/name");
-    if (c.name == "total") in.Fail(at + "/name", "holds the name 'total', which is reserved for the sum of all contributors");
-    c.source = in.Printable(at + "/source");
-    c.path = in.Printable(at + "/path");
-    c.inputs = in.Printables(at + "/inputs", kMaxChannels);
-    c.group = Group(in, at + "/group");
-    c.exact = in.Enum<ExactVariance>(at + "/exact", "exact-variance mode");
-    c.breakdown_channels = r.Integer(at + "/breakdown_channels") != 0;
-    bool known = false;
-    for (const SourceOutline& src : b.sources) known |= src.name == c.source;
-    if (!known) in.Fail(at + "/source", "names the source '" + Excerpt(c.source) + "', which the store does not hold");
-    b.contributors.push_back(std::move(c));
-  }
-  in.Unique("budget/contributors", Names(b.contributors, kName), "contributor");
+  ReadSourcesAndContributors(in, &b);
+  const std::size_t contributors = b.contributors.size();
 
   if (in.Name("result/budget_name") != b.name)
     in.Fail("result/budget_name", "holds another name than budget/name ('" + Excerpt(b.name) + "')");
-  std::vector<double> f_hz = in.UpTo("result/grid/f_hz", limits::kMaxGridPoints);
-  std::vector<std::size_t> panels;
-  for (double p : in.UpTo("result/grid/panel_starts", f_hz.size()))
-    panels.push_back(in.Index("result/grid/panel_starts", p, f_hz.size()));
-  try {
-    res.grid = FrequencyGrid(f_hz);
-  } catch (const InputError& e) {
-    in.Fail("result/grid", e.message());
-  }
-  CheckPanels(in, f_hz, panels);
-  res.grid = FrequencyGrid(std::move(f_hz), std::move(panels));
+  res.grid = ReadGrid(in);
   const std::size_t n = res.grid.size();
   res.warnings = r.Texts("result/warnings", AtMost(kMaxTexts));
   const std::size_t outputs = in.Count("result/outputs/names", kMaxEntries);
@@ -755,49 +821,10 @@ BudgetResult ReadResultStore(const std::string& file, RunInfo* info) {
   }
   in.Unique("result/outputs", Names(res.outputs, kName), "output");
   b.covariance = in.Printables("budget/covariance", outputs);
-  // Parameters: in stores of budgets that have them (none before them).
-  if (r.Has("budget/parameters/names")) {
-    const std::size_t parameters = in.Count("budget/parameters/names", kMaxParameters);
-    for (std::size_t i = 0; i < parameters; ++i) {
-      const std::string at = At("budget/parameters", i);
-      ParameterOutline p;
-      p.name = r.Text(at + "/name");
-      if (!IsParameterName(p.name)) in.Fail(at + "/name", "holds '" + Excerpt(p.name) + "', which is not a parameter name");
-      p.expression = in.Printable(at + "/expression");
-      p.description = r.Text(at + "/description");
-      p.derived = r.Integer(at + "/derived") != 0;
-      p.value = r.Number(at + "/value");
-      if (!std::isfinite(p.value)) in.Fail(at + "/value", "is not finite");
-      p.unit = in.Printable(at + "/unit");
-      b.parameters.push_back(std::move(p));
-    }
-    in.Unique("budget/parameters", Names(b.parameters, kName), "parameter");
-  }
+  ReadParameters(in, &b);
   if (r.Integer("result/covariance/present") != 0)
     res.covariance = ReadCovariance(in, "result/covariance", outputs, contributors);
-  auto traces = std::make_shared<ResponseTraces>();
-  const std::size_t loops = in.Count("result/loops/names", kMaxEntries);
-  res.loops.resize(loops);
-  traces->loops.resize(loops);
-  for (std::size_t i = 0; i < loops; ++i) ReadLoop(in, At("result/loops", i), n, &res.loops[i], &traces->loops[i]);
-  for (const auto& p : in.Exactly("result/traces/poles_hz", contributors, contributors == 0 ? 0 : 2, true)) {
-    const bool none = std::isnan(p[0]) || std::isnan(p[1]);
-    traces->poles_hz.push_back(none ? std::nullopt : std::optional<std::pair<double, double>>({p[0], p[1]}));
-  }
-  traces->paths.resize(contributors);
-  for (std::size_t c = 0; c < contributors; ++c)
-    for (std::size_t o = 0; o < outputs; ++o) {
-      const std::string at = At(At("result/traces/paths", c), o);
-      PathResponse p;
-      p.contributor = b.contributors[c].name;
-      p.output = res.outputs[o].name;
-      p.channels = in.Printables(at + "/channels", kMaxChannels);
-      p.unit = in.Printable(at + "/unit");
-      p.gain2 = in.Rows(at + "/gain2", n, kMaxChannels);
-      p.phase_rad = in.Exactly(at + "/phase_rad", p.gain2.size(), p.gain2.empty() ? 0 : n, false);
-      traces->paths[c].push_back(std::move(p));
-    }
-  res.traces = std::move(traces);
+  res.traces = ReadTraces(in, b, &res);
   if (info) *info = std::move(run);
   return res;
 }
