@@ -56,10 +56,12 @@ int ReportCommand::Run() const {
   // Redrawn in place, the directory keeps the exports it had.
   std::error_code ec;
   if (fs::equivalent(out, result_dir, ec))
-    for (const ExportFormat f : {ExportFormat::kMat, ExportFormat::kXlsx})
-      if (fs::is_regular_file(result_dir / ExportFileName(f), ec) &&
-          std::find(exports.begin(), exports.end(), f) == exports.end())
-        exports.push_back(f);
+    for (const EnumName<ExportFormat>& f : kExportFormatNames) {
+      const std::vector<std::string> files = ExportFileNames(result, f.value);
+      if (!files.empty() && fs::is_regular_file(result_dir / files.front(), ec) &&
+          std::find(exports.begin(), exports.end(), f.value) == exports.end())
+        exports.push_back(f.value);
+    }
   info.threads = o.threads;
   if (!o.quiet) PrintConsoleSummary(result, info.seconds, report.digits);
   WriteCommandReport(result, info, report, o.threads, o.quiet, out, exports);

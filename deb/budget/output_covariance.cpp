@@ -1,5 +1,6 @@
 #include "deb/budget/output_covariance.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -139,9 +140,12 @@ CovarianceResult ComputeOutputCovariance(const Budget& budget, const BudgetResul
       // The engine's traces hold these responses on this grid when it keeps
       // them (EngineOptions::response_traces): the path is evaluated once.
       // Transfers rebuilds h from |h|^2 and arg h either way.
+      const bool on_grid = result.traces && std::all_of(result.traces->paths.at(ci).begin(),
+                                                        result.traces->paths.at(ci).end(),
+                                                        [](const PathResponse& r) { return r.f_hz.empty(); });
       std::vector<PathResponse> evaluated;
-      if (!result.traces) evaluated = ComputePathResponses(budget, result, ci, f, threads);
-      const std::vector<PathResponse>& responses = result.traces ? result.traces->paths.at(ci) : evaluated;
+      if (!on_grid) evaluated = ComputePathResponses(budget, result, ci, f, threads);
+      const std::vector<PathResponse>& responses = on_grid ? result.traces->paths.at(ci) : evaluated;
       const std::vector<Eigen::MatrixXcd> h = Transfers(responses, cov.index, f.size());
       const Eigen::MatrixXd l = GridCovariance(*source.spectrum, h, f, q);
       Eigen::VectorXd d(p);  // the engine's density variance over the linear rule's

@@ -41,10 +41,18 @@ UnitConversion OutputConversion(const Path& path, int row, const Output& output)
 std::vector<double> WeightingGain2(const Output& output, const std::vector<double>& f_hz, int threads = 0);
 
 struct PathResponse {
+  // The frequencies of the response: f_hz, or `grid` where f_hz is empty.
+  const std::vector<double>& Frequencies(const std::vector<double>& grid_hz) const {
+    return f_hz.empty() ? grid_hz : f_hz;
+  }
+
   std::string contributor;
   std::string output;
   std::vector<std::string> channels;  // the source's channel names
   std::string unit;                   // "output unit / source unit", for labels
+  // The frequencies f_i of gain2 and phase_rad; empty: the result's grid
+  // (as the engine computes them; a report keeps fewer, FiguresTraces).
+  std::vector<double> f_hz;
   // gain2[k][i] = |h_k(f_i)|^2, output unit^2 per source unit^2.
   std::vector<std::vector<double>> gain2;
   // phase_rad[k][i] = arg h_k(f_i) in (-pi, pi], the weighting's phase

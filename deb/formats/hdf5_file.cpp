@@ -1,6 +1,7 @@
 #include "deb/formats/hdf5_file.h"
 
 #include <hdf5.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -188,10 +189,32 @@ void Hdf5Writer::Close() {
 
 namespace {
 
+// Numbers from kCompressFromValues values on are stored compressed: in
+// chunks of at most kChunkValues (256 KiB), each byte-shuffled and then
+// deflated, HDF5's standard filters, which h5py, MATLAB and HDFView read.
+// Spectra compress by 1.5-3x so. Smaller datasets stay contiguous: in this
+// file format each chunked dataset carries a chunk index of about 2.5 KiB,
+// more than compressing a small one saves.
+constexpr std::size_t kCompressFromValues = 2048;
+constexpr std::size_t kChunkValues = 32768;
+constexpr unsigned kDeflateLevel = 4;
+
+// The chunk of a compressed dataset of `dims`: whole rows, at most kChunkValues.
+std::vector<hsize_t> ChunkOf(const std::vector<hsize_t>& dims) {
+  std::vector<hsize_t> chunk = dims;
+  if (dims.size() == 1) chunk[0] = std::min<hsize_t>(dims[0], kChunkValues);
+  if (dims.size() == 2) {
+    chunk[1] = std::min<hsize_t>(dims[1], kChunkValues);
+    chunk[0] = std::min<hsize_t>(dims[0], std::max<hsize_t>(1, kChunkValues / chunk[1]));
+  }
+  return chunk;
+}
+
 // Writes one dataset of `type_in_file` and `dims` (empty: a scalar) from
-// `data` in `type_in_memory` under `file`, creating the groups above it.
+// `data` in `type_in_memory` under `file`, creating the groups above it;
+// `compress`: numbers, compressed when there are enough of them.
 void WriteDataset(Hdf5Writer::Handle& h, const std::string& path, const std::string& object, hid_t type_in_file,
-                  hid_t type_in_memory, const std::vector<hsize_t>& dims, const void* data) {
+                  hid_t type_in_memory, const std::vector<hsize_t>& dims, const void* data, bool compress = false) {
   const std::vector<std::string> parts = Split(object);
   DEB_DEMAND(!parts.empty());
   const auto fail = [&](const std::string& what) {
@@ -219,7 +242,18 @@ void WriteDataset(Hdf5Writer::Handle& h, const std::string& path, const std::str
                         : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
            H5Sclose);
   if (!space.ok()) fail("cannot make its dataspace");
-  Id set(H5Dcreate2(at, parts.back().c_str(), type_in_file, space.get(), H5P_DEFAULT, h.dataset_create, H5P_DEFAULT),
+  hsize_t values = 1;
+  for (hsize_t d : dims) values *= d;
+  const bool chunked = compress && values >= kCompressFromValues;
+  const Id compressed(chunked ? H5Pcopy(h.dataset_create) : -1, H5Pclose);
+  if (chunked) {
+    const std::vector<hsize_t> chunk = ChunkOf(dims);
+    if (!compressed.ok() || H5Pset_chunk(compressed.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
+        H5Pset_shuffle(compressed.get()) < 0 || H5Pset_deflate(compressed.get(), kDeflateLevel) < 0)
+      fail("cannot set up its compression");
+  }
+  Id set(H5Dcreate2(at, parts.back().c_str(), type_in_file, space.get(), H5P_DEFAULT,
+                    compressed.ok() ? compressed.get() : h.dataset_create, H5P_DEFAULT),
          H5Dclose);
   if (!set.ok())
     fail(H5Lexists(at, parts.back().c_str(), H5P_DEFAULT) > 0 ? "it exists already" : "cannot create the dataset");
@@ -251,8 +285,7 @@ void Hdf5Writer::Text(const std::string& object, const std::string& value) {
 
 void Hdf5Writer::Numbers(const std::string& object, const std::vector<double>& values) {
   const Locked lock;
-  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {values.size()},
-               values.data());
+  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {values.size()}, values.data(), true);
 }
 
 void Hdf5Writer::Texts(const std::string& object, const std::vector<std::string>& values) {
@@ -273,7 +306,7 @@ void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<d
   }
   const Locked lock;
   WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-               {rows.size(), rows.empty() ? 0 : columns}, data.data());
+               {rows.size(), rows.empty() ? 0 : columns}, data.data(), true);
 }
 
 // ---------------------------------------------------------------- reading
@@ -576,6 +609,7 @@ struct OpenSet {
   std::vector<hsize_t> dims;
   std::size_t elements = 1;
   hid_t transfer = H5P_DEFAULT;  // the reader's (NewTransfer)
+  std::vector<hsize_t> chunk;    // of a compressed dataset (ReadCompressed); empty otherwise
 };
 
 std::string LinkKind(H5L_type_t type) {
@@ -607,8 +641,9 @@ bool Reach(Hdf5Reader::Handle& h, const std::string& path, const std::string& ob
 
 // Why a dataset with creation properties `create` must not be read, or "":
 // its values outside the file (external storage, a virtual dataset), or
-// compressed (a small file could expand into any size; deb compresses
-// nothing).
+// compressed where `allow_filters` is false (a small file could expand into
+// any size; a compressed dataset of numbers is read by ReadCompressed,
+// which bounds what each chunk expands into).
 std::string StorageProblem(hid_t create, bool allow_filters) {
   if (create < 0) return "has unreadable storage properties; is the file damaged?";
   if (H5Pget_external_count(create) != 0)
@@ -618,6 +653,46 @@ std::string StorageProblem(hid_t create, bool allow_filters) {
            "holds itself";
   if (!allow_filters && H5Pget_nfilters(create) != 0)
     return "is compressed or filtered; a reader of deb's files reads plain datasets only";
+  return "";
+}
+
+// The most values of one chunk of a compressed dataset: 32 MiB of doubles
+// (deb writes chunks of 256 KiB).
+constexpr hsize_t kMaxChunkValues = hsize_t{1} << 22;
+
+// Why a filtered dataset of numbers of shape `dims` must not be read, or ""
+// (setting `chunk`): deb reads the compression it writes only, chunks of
+// little-endian doubles byte-shuffled and then deflated, each chunk at most
+// kMaxChunkValues and no larger than the dataset.
+std::string CompressionProblem(hid_t create, hid_t type, const std::vector<hsize_t>& dims,
+                               std::vector<hsize_t>* chunk) {
+  const std::string rule =
+      "; a reader of deb's files reads plain datasets, or chunks of doubles byte-shuffled and then deflated";
+  const int filters = H5Pget_nfilters(create);
+  bool expected = filters == 2;
+  for (int k = 0; expected && k < 2; ++k) {
+    unsigned flags = 0, info = 0;
+    std::size_t values = 0;
+    char name[64];
+    const H5Z_filter_t id = H5Pget_filter2(create, static_cast<unsigned>(k), &flags, &values, nullptr, sizeof name,
+                                           name, &info);
+    expected = id == (k == 0 ? H5Z_FILTER_SHUFFLE : H5Z_FILTER_DEFLATE);
+  }
+  if (!expected) return "is compressed or filtered in another way than deb writes" + rule;
+  if (H5Tequal(type, H5T_IEEE_F64LE) <= 0) return "is compressed but does not hold little-endian doubles" + rule;
+  if (H5Pget_layout(create) != H5D_CHUNKED) return "is filtered but not chunked; is the file damaged?";
+  chunk->assign(dims.size(), 0);
+  if (H5Pget_chunk(create, static_cast<int>(dims.size()), chunk->data()) != static_cast<int>(dims.size()))
+    return "has an unreadable chunk shape; is the file damaged?";
+  hsize_t values = 1;
+  for (std::size_t d = 0; d < dims.size(); ++d) {
+    if ((*chunk)[d] == 0 || (*chunk)[d] > std::max<hsize_t>(dims[d], 1))
+      return "has chunks of " + std::to_string((*chunk)[d]) + " along a dimension of " + std::to_string(dims[d]);
+    values *= (*chunk)[d];
+  }
+  if (values > kMaxChunkValues)
+    return "has chunks of " + std::to_string(values) + " values, more than the " + std::to_string(kMaxChunkValues) +
+           " deb reads in one";
   return "";
 }
 
@@ -647,10 +722,9 @@ OpenSet Open(Hdf5Reader::Handle& h, const std::string& path, const std::string& 
   if (!Reach(h, path, object)) fail("is missing");
   s.set = std::make_unique<Id>(H5Dopen2(h.file, object.c_str(), H5P_DEFAULT), H5Dclose);
   if (!s.set->ok()) fail("is not a dataset");
-  {
-    const Id create(H5Dget_create_plist(s.set->get()), H5Pclose);
-    if (const std::string problem = StorageProblem(create.get(), false); !problem.empty()) fail(problem);
-  }
+  const Id create(H5Dget_create_plist(s.set->get()), H5Pclose);
+  const bool numbers = kind == Kind::kDouble && rank > 0;
+  if (const std::string problem = StorageProblem(create.get(), numbers); !problem.empty()) fail(problem);
   const Id type(H5Dget_type(s.set->get()), H5Tclose);
   const H5T_class_t cls = type.ok() ? H5Tget_class(type.get()) : H5T_NO_CLASS;
   const bool variable = cls == H5T_STRING && H5Tis_variable_str(type.get()) > 0;
@@ -675,6 +749,11 @@ OpenSet Open(Hdf5Reader::Handle& h, const std::string& path, const std::string& 
     s.elements *= static_cast<std::size_t>(d);
   }
   CheckShape(path, object, s, most, columns);
+  if (numbers && H5Pget_nfilters(create.get()) > 0) {
+    if (const std::string problem = CompressionProblem(create.get(), type.get(), s.dims, &s.chunk); !problem.empty())
+      fail(problem);
+    return s;  // ReadCompressed checks that every chunk is in the file
+  }
   // Every value declared is in the file: HDF5 fills a dataset whose values
   // were never written, so a small file could declare any size (deb writes
   // every value it declares).
@@ -686,8 +765,83 @@ OpenSet Open(Hdf5Reader::Handle& h, const std::string& path, const std::string& 
   return s;
 }
 
+// The values of a compressed dataset of doubles (CompressionProblem) into
+// `out` (s.elements), chunk by chunk without HDF5's filters: each chunk's
+// bytes are read as stored and inflated into exactly the chunk's size (a
+// chunk that would expand further is refused, where HDF5's own filter
+// grows its buffer without bound), then unshuffled; every chunk of the
+// dataset must be in the file, once.
+void ReadCompressed(const std::string& path, const std::string& object, const OpenSet& s, double* out) {
+  const auto fail = [&](const std::string& what) {
+    throw InputError(path + ": object '" + Excerpt(object, 200) + "' " + what);
+  };
+  const std::size_t rank = s.dims.size();
+  std::vector<hsize_t> grid(rank);
+  std::size_t chunks = 1, chunk_values = 1;
+  for (std::size_t d = 0; d < rank; ++d) {
+    grid[d] = (s.dims[d] + s.chunk[d] - 1) / s.chunk[d];
+    chunks *= static_cast<std::size_t>(grid[d]);
+    chunk_values *= static_cast<std::size_t>(s.chunk[d]);
+  }
+  const std::size_t chunk_bytes = chunk_values * sizeof(double);
+  const Id space(H5Dget_space(s.set->get()), H5Sclose);
+  hsize_t stored = 0;
+  if (!space.ok() || H5Dget_num_chunks(s.set->get(), space.get(), &stored) < 0)
+    fail("has an unreadable chunk index; is the file damaged?");
+  if (stored != chunks)
+    fail("holds " + std::to_string(stored) + " of its " + std::to_string(chunks) + " chunks; is it damaged?");
+  std::vector<bool> seen(chunks, false);
+  std::vector<unsigned char> packed, shuffled(chunk_bytes), values(chunk_bytes);
+  for (hsize_t i = 0; i < stored; ++i) {
+    hsize_t offset[2] = {0, 0}, size = 0;
+    unsigned mask = 0;
+    haddr_t address = 0;
+    if (H5Dget_chunk_info(s.set->get(), space.get(), i, offset, &mask, &address, &size) < 0)
+      fail("has an unreadable chunk; is the file damaged?");
+    if (mask != 0) fail("has a chunk stored without its filters");
+    std::size_t index = 0;
+    for (std::size_t d = 0; d < rank; ++d) {
+      if (offset[d] % s.chunk[d] != 0 || offset[d] >= s.dims[d]) fail("has a chunk outside its shape");
+      index = index * static_cast<std::size_t>(grid[d]) + static_cast<std::size_t>(offset[d] / s.chunk[d]);
+    }
+    if (seen[index]) fail("holds a chunk twice; is the file damaged?");
+    seen[index] = true;
+    if (size == 0 || size > compressBound(static_cast<uLong>(chunk_bytes)))
+      fail("has a chunk of " + std::to_string(size) + " bytes, more than a deflated chunk of " +
+           std::to_string(chunk_bytes) + " bytes can take");
+    packed.resize(static_cast<std::size_t>(size));
+    std::uint32_t filters = 0;
+    if (H5Dread_chunk(s.set->get(), s.transfer, offset, &filters, packed.data()) < 0 || filters != 0)
+      fail("has a chunk that cannot be read (a damaged file?)");
+    uLongf inflated = static_cast<uLongf>(chunk_bytes);
+    if (uncompress(shuffled.data(), &inflated, packed.data(), static_cast<uLong>(size)) != Z_OK ||
+        inflated != chunk_bytes)
+      fail("has a chunk that does not inflate to its " + std::to_string(chunk_bytes) + " bytes");
+    // HDF5's shuffle stores byte k of every value together, k = 0..7.
+    for (std::size_t v = 0; v < chunk_values; ++v)
+      for (std::size_t k = 0; k < sizeof(double); ++k) values[v * sizeof(double) + k] = shuffled[k * chunk_values + v];
+    if (H5Tconvert(H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, chunk_values, values.data(), nullptr, H5P_DEFAULT) < 0)
+      fail("cannot be converted to this machine's doubles");
+    // The part of the chunk inside the dataset, row by row.
+    const std::size_t columns = rank == 2 ? static_cast<std::size_t>(s.dims[1]) : 0;
+    const std::size_t chunk_rows = rank == 2 ? static_cast<std::size_t>(s.chunk[0]) : 1;
+    const std::size_t chunk_columns = static_cast<std::size_t>(s.chunk[rank - 1]);
+    const std::size_t rows = std::min<std::size_t>(chunk_rows, rank == 2 ? s.dims[0] - offset[0] : 1);
+    const std::size_t take = std::min<std::size_t>(chunk_columns, s.dims[rank - 1] - offset[rank - 1]);
+    for (std::size_t r = 0; r < rows; ++r) {
+      const std::size_t to = rank == 2 ? (offset[0] + r) * columns + offset[1] : offset[0];
+      std::memcpy(out + to, values.data() + r * chunk_columns * sizeof(double), take * sizeof(double));
+    }
+  }
+}
+
 void Read(const std::string& path, const std::string& object, const OpenSet& s, hid_t memory_type, void* data) {
   if (s.elements == 0) return;
+  if (!s.chunk.empty()) {
+    DEB_DEMAND(memory_type == H5T_NATIVE_DOUBLE);
+    ReadCompressed(path, object, s, static_cast<double*>(data));
+    return;
+  }
   if (H5Dread(s.set->get(), memory_type, H5S_ALL, H5S_ALL, s.transfer, data) < 0)
     throw InputError(path + ": object '" + Excerpt(object, 200) + "' cannot be read (a damaged file?)");
 }

@@ -10,12 +10,16 @@
 //   - a vector of doubles or of texts (1-dimensional),
 //   - a matrix of doubles given as rows of equal length (2-dimensional,
 //     rows x columns, row-major as h5py and HDF5 show it).
+// Vectors and matrices of 2 048 numbers or more are stored in chunks,
+// byte-shuffled and deflated (HDF5's standard filters).
 // Every file read is treated as possibly hostile (deb/core/input_file.h):
 // only a regular file of at most kMaxHdf5FileBytes is opened; an object is
 // reached through hard links only (a soft or external link, which could
 // lead into another file, is refused before it is followed); a dataset
 // whose values lie outside the file (HDF5 external storage, a virtual
-// dataset) or are compressed is refused before anything is read from it;
+// dataset) or are compressed other than as the writer compresses numbers
+// is refused before anything is read from it, and a compressed one is
+// inflated chunk by chunk into no more than each chunk's size;
 // its shape is checked from its header against the bound the caller gives
 // (and kMaxHdf5Elements) before anything is allocated; its class and rank
 // must be the ones asked for; variable-length text is read only after its
@@ -112,9 +116,10 @@ class Hdf5Reader {
 
   // Each @throws InputError "<path>: object 'NAME' ..." for a missing object,
   // one reached through a soft or external link, one stored outside the
-  // file or compressed, one of another class or rank than asked for, more
-  // elements (rows) than `most` or kMaxHdf5Elements, rows of another length
-  // than `columns`, text that is not UTF-8 or whose heap entries are
+  // file or compressed otherwise than deb writes, a compressed chunk that
+  // does not inflate to its size or is missing, one of another class or
+  // rank than asked for, more elements (rows) than `most` or
+  // kMaxHdf5Elements, rows of another length than `columns`, text that is not UTF-8 or whose heap entries are
   // damaged, a value that is not finite (NaN allowed where `allow_nan`), or
   // anything HDF5 reports while reading.
   double Number(const std::string& object, bool allow_nan = false) const;

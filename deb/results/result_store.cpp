@@ -1,10 +1,15 @@
 #include "deb/results/result_store.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <Eigen/Dense>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <set>
+#include <utility>
 
 #include "deb/budget/groups.h"
 #include "deb/budget/response_traces.h"
@@ -593,6 +598,35 @@ void CheckPanels(const Reading& in, const std::vector<double>& f_hz, const std::
 
 }  // namespace
 
+namespace {
+
+// Whether two rows of numbers hold the same bits (a store read back draws
+// exactly what the run drew, signs of zeros included).
+bool SameBits(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t r = 0; r < a.size(); ++r)
+    if (a[r].size() != b[r].size() || std::memcmp(a[r].data(), b[r].data(), a[r].size() * sizeof(double)) != 0)
+      return false;
+  return true;
+}
+
+// The first response before traces.paths[c][o] (in the order the store
+// writes them) whose frequencies, gains and phases are the same in every
+// bit, if any.
+std::optional<std::pair<std::size_t, std::size_t>> EarlierSameResponse(const ResponseTraces& traces, std::size_t c,
+                                                                       std::size_t o) {
+  const PathResponse& p = traces.paths[c][o];
+  for (std::size_t ec = 0; ec <= c; ++ec)
+    for (std::size_t eo = 0; eo < traces.paths[ec].size() && (ec < c || eo < o); ++eo) {
+      const PathResponse& e = traces.paths[ec][eo];
+      if (SameBits({e.f_hz}, {p.f_hz}) && SameBits(e.gain2, p.gain2) && SameBits(e.phase_rad, p.phase_rad))
+        return std::make_pair(ec, eo);
+    }
+  return std::nullopt;
+}
+
+}  // namespace
+
 void WriteResultStore(const BudgetResult& result, const RunInfo& info, const std::string& file) {
   const BudgetOutline& outline = result.outline;
   DEB_DEMAND(result.traces && result.traces->paths.size() == outline.contributors.size());
@@ -669,6 +703,13 @@ void WriteResultStore(const BudgetResult& result, const RunInfo& info, const std
       const std::string at = At(At("result/traces/paths", c), o);
       w.Texts(at + "/channels", p.channels);
       w.Text(at + "/unit", p.unit);
+      // Contributors of one path and inputs share its response: kept once.
+      if (const auto same = EarlierSameResponse(traces, c, o)) {
+        w.Integer(at + "/same_as_contributor", static_cast<std::int64_t>(same->first));
+        w.Integer(at + "/same_as_output", static_cast<std::int64_t>(same->second));
+        continue;
+      }
+      if (!p.f_hz.empty()) w.Numbers(at + "/f_hz", p.f_hz);
       w.Rows(at + "/gain2", p.gain2);
       w.Rows(at + "/phase_rad", p.phase_rad);
     }
@@ -750,6 +791,7 @@ void ReadParameters(const Reading& in, BudgetOutline* b) {
 
 // The loops and every path's response, over the result's grid.
 std::shared_ptr<ResponseTraces> ReadTraces(const Reading& in, const BudgetOutline& b, BudgetResult* res) {
+  const Hdf5Reader& r = in.r();
   const std::size_t n = res->grid.size(), outputs = res->outputs.size(), contributors = b.contributors.size();
   auto traces = std::make_shared<ResponseTraces>();
   const std::size_t loops = in.Count("result/loops/names", kMaxEntries);
@@ -769,8 +811,30 @@ std::shared_ptr<ResponseTraces> ReadTraces(const Reading& in, const BudgetOutlin
       p.output = res->outputs[o].name;
       p.channels = in.Printables(at + "/channels", kMaxChannels);
       p.unit = in.Printable(at + "/unit");
-      p.gain2 = in.Rows(at + "/gain2", n, kMaxChannels);
-      p.phase_rad = in.Exactly(at + "/phase_rad", p.gain2.size(), p.gain2.empty() ? 0 : n, false);
+      if (r.Has(at + "/same_as_contributor")) {  // schema version 2: gains and phases kept once
+        const std::int64_t sc = r.Integer(at + "/same_as_contributor"), so = r.Integer(at + "/same_as_output");
+        if (sc < 0 || so < 0 || static_cast<std::uint64_t>(so) >= outputs ||
+            static_cast<std::uint64_t>(sc) * outputs + static_cast<std::uint64_t>(so) >= c * outputs + o)
+          in.Fail(at + "/same_as_contributor", "names the response " + std::to_string(sc) + "/" + std::to_string(so) +
+                                                   ", which is not one written before it");
+        const PathResponse& same = traces->paths[static_cast<std::size_t>(sc)][static_cast<std::size_t>(so)];
+        p.f_hz = same.f_hz;
+        p.gain2 = same.gain2;
+        p.phase_rad = same.phase_rad;
+      } else {
+        // Version 2: the response at its own frequencies, a rising part of the grid's.
+        if (r.Has(at + "/f_hz")) {
+          p.f_hz = in.UpTo(at + "/f_hz", n);
+          if (p.f_hz.empty() || !std::is_sorted(p.f_hz.begin(), p.f_hz.end(), std::less_equal<double>()) ||
+              p.f_hz.front() < res->grid.min_hz() || p.f_hz.back() > res->grid.max_hz())
+            in.Fail(at + "/f_hz", "does not hold rising frequencies within the grid's " +
+                                      std::to_string(res->grid.min_hz()) + " to " + std::to_string(res->grid.max_hz()) +
+                                      " Hz");
+        }
+        const std::size_t points = p.f_hz.empty() ? n : p.f_hz.size();
+        p.gain2 = in.Exactly(at + "/gain2", p.channels.size(), points, false);
+        p.phase_rad = in.Exactly(at + "/phase_rad", p.gain2.size(), p.gain2.empty() ? 0 : points, false);
+      }
       traces->paths[c].push_back(std::move(p));
     }
   return traces;

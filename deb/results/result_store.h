@@ -18,9 +18,11 @@
 namespace deb {
 
 // The schema's name and version, in every store (/schema, /schema_version).
-// A reader refuses another name or a newer version.
+// A reader refuses another name or a newer version. Version 2 (deb 0.1.0
+// from this change on) compresses its numbers and keeps a path response
+// shared by several contributors once; version 1 is read as well.
 inline constexpr const char* kResultStoreSchema = "deb-result";
-inline constexpr int kResultStoreVersion = 1;
+inline constexpr int kResultStoreVersion = 2;
 // Its name in a report directory, beside summary.json.
 inline constexpr const char* kResultStoreFile = "result.h5";
 

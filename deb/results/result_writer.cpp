@@ -415,21 +415,7 @@ std::string OutputCsv(const BudgetResult& result, const OutputResult& o) {
 }
 
 void WriteResultFiles(const BudgetResult& result, const RunInfo& info, const std::string& dir) {
-  // Formatting the numbers is most of the work: one file per job.
-  const std::size_t outputs = result.outputs.size();
-  ParallelFor(
-      outputs + 1,
-      [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-          if (i == outputs) {
-            WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(result, info));
-          } else {
-            const OutputResult& o = result.outputs[i];
-            WriteTextFile((fs::path(dir) / OutputCsvName(o.name)).string(), OutputCsv(result, o));
-          }
-        }
-      },
-      info.threads, 1);
+  WriteTextFile((fs::path(dir) / "summary.json").string(), SummaryJson(result, info));
 }
 
 void WriteResultDirectory(const BudgetResult& result, const RunInfo& info, const std::string& out_dir, const ReplaceOptions& options) {

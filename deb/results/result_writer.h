@@ -44,11 +44,12 @@ std::string OutputCsvName(const std::string& output_name);
 // One output's CSV text.
 std::string OutputCsv(const BudgetResult& result, const OutputResult& output);
 
-// summary.json and the CSVs into the existing directory `dir`.
+// summary.json into the existing directory `dir` (each output's CSV is an
+// export: result_exports.h).
 // @throws WriteError if a file cannot be written.
 void WriteResultFiles(const BudgetResult& result, const RunInfo& info, const std::string& dir);
 
-// summary.json and the CSVs, atomically, into out_dir (deb/core/output_dir.h:
+// summary.json, atomically, into out_dir (deb/core/output_dir.h:
 // replaced only if deb wrote it, unless options.force).
 // @throws WriteError if out_dir is not deb's or cannot be written.
 void WriteResultDirectory(const BudgetResult& result, const RunInfo& info, const std::string& out_dir,

@@ -15,9 +15,10 @@
 namespace fs = std::filesystem;
 using namespace deb::test;
 
-TEST_CASE("deb run writes summary.json with the documented shape and one CSV per output") {
+TEST_CASE("deb run writes summary.json with the documented shape, and with --export csv one CSV per output") {
   const fs::path dir = TempDir("run");
-  const Command r = RunDeb("run " + ExampleBudget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string());
+  const Command r =
+      RunDeb("run " + ExampleBudget("single_axis_isolator.yaml") + " --export csv --out " + (dir / "rep").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   const auto j = nlohmann::json::parse(ReadAll(dir / "rep" / "summary.json"));
   CHECK(j["budget"] == "single_axis_isolator");
@@ -53,7 +54,7 @@ TEST_CASE("deb run writes summary.json with the documented shape and one CSV per
 
 TEST_CASE("the CSV has a header row and one row per grid frequency") {
   const fs::path dir = TempDir("csv");
-  REQUIRE(RunDeb("run -q " + ExampleBudget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string())
+  REQUIRE(RunDeb("run -q " + ExampleBudget("single_axis_isolator.yaml") + " --export csv --out " + (dir / "rep").string())
               .exit_code == 0);
   const auto j = nlohmann::json::parse(ReadAll(dir / "rep" / "summary.json"));
   std::ifstream in(dir / "rep" / "z_velocity.csv");
@@ -86,7 +87,7 @@ TEST_CASE("a bad budget exits 3 with file:line:col and leaves no report behind")
 
 TEST_CASE("a failing run keeps the previous report intact") {
   const fs::path dir = TempDir("keep");
-  REQUIRE(RunDeb("run -q " + ExampleBudget("single_axis_isolator.yaml") + " --out " + (dir / "rep").string())
+  REQUIRE(RunDeb("run -q " + ExampleBudget("single_axis_isolator.yaml") + " --export csv --out " + (dir / "rep").string())
               .exit_code == 0);
   const std::string before = ReadAll(dir / "rep" / "summary.json");
   // Unstable path: caught during evaluation, after loading succeeded.

@@ -62,9 +62,9 @@ TEST_CASE("run --export mat,xlsx is the same as two options; an unknown format l
               .exit_code == 0);
   CHECK(fs::is_regular_file(dir / "r" / "result.mat"));
   CHECK(fs::is_regular_file(dir / "r" / "result.xlsx"));
-  const Command bad = RunDeb("run \"" + kBudget + "\" -q --no-plots --export csv --out \"" + (dir / "s").string() + "\"");
+  const Command bad = RunDeb("run \"" + kBudget + "\" -q --no-plots --export pdf --out \"" + (dir / "s").string() + "\"");
   CHECK(bad.exit_code == 2);
-  CHECK(Contains(bad.err, "unknown export format 'csv'; allowed: mat, xlsx"));
+  CHECK(Contains(bad.err, "unknown export format 'pdf'; allowed: csv, mat, xlsx"));
   CHECK_FALSE(fs::exists(dir / "s"));
   // Without --export: neither file.
   REQUIRE(RunDeb("run \"" + kBudget + "\" -q --no-plots --out \"" + (dir / "t").string() + "\"").exit_code == 0);

@@ -136,7 +136,7 @@ TEST_CASE("deb run says what to fix for each failing output: the sentence on the
 
 TEST_CASE("summary.json's guidance for position agrees with the summary's own variances and the CSV's CPS") {
   const fs::path dir = TempDir("guidance");
-  const Command r = RunDeb("run " + ExampleBudget("wafer_stage.yaml") + " --no-plots -q --out " + (dir / "r").string());
+  const Command r = RunDeb("run " + ExampleBudget("wafer_stage.yaml") + " --no-plots -q --export csv --out " + (dir / "r").string());
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   const auto j = nlohmann::json::parse(ReadAll(dir / "r" / "summary.json"));
   const auto& o = Output(j, "position");

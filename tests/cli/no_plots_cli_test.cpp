@@ -33,7 +33,8 @@ TEST_CASE("run --no-plots leaves no plots/ directory; the documents link no plot
   CHECK(fs::is_regular_file(dir / "r" / "summary.json"));
   CHECK(fs::is_regular_file(dir / "r" / "index.html"));
   CHECK(fs::is_regular_file(dir / "r" / "report.md"));
-  CHECK(CountWithExtension(dir / "r", ".csv") >= 1);  // the per-output data
+  CHECK(fs::is_regular_file(dir / "r" / "result.h5"));  // the data
+  CHECK(CountWithExtension(dir / "r", ".csv") == 0);    // each output's CSV: --export csv
   CHECK_FALSE(fs::exists(dir / "r" / "plots"));
   CHECK_FALSE(fs::exists(dir / "r" / "report.pdf"));
   CHECK(ReadAll(dir / "r" / "index.html").find("plots/") == std::string::npos);

@@ -21,6 +21,7 @@
 #include "deb/core/error.h"
 #include "deb/formats/hdf5_file.h"
 #include <hdf5.h>
+#include <zlib.h>
 #include "tests/support/contains.h"
 #include "tests/support/file_bytes.h"
 
@@ -118,29 +119,111 @@ TEST_CASE("an HDF5 reader refuses what it was not asked for, naming the file and
   CHECK(Contains(ErrorOf([&] { formats::Hdf5Reader none(dir.File("absent.h5")); }), "absent.h5"));
 }
 
-TEST_CASE("a compressed dataset is refused: a small file could expand beyond any bound") {
+TEST_CASE("numbers are written compressed in chunks and read back exactly, whatever the chunks' edges") {
   const TempDir dir;
   const std::string file = dir.File("compressed.h5");
+  // A smooth spectrum (compresses), a vector not a multiple of the chunk,
+  // rows split across chunks by columns and by rows, and a short vector
+  // that stays contiguous.
+  std::vector<double> spectrum(100003);
+  for (std::size_t i = 0; i < spectrum.size(); ++i) spectrum[i] = 1e-18 / (1.0 + 1e-6 * double(i) * double(i));
+  std::vector<std::vector<double>> wide(3, std::vector<double>(40000)), tall(5000, std::vector<double>(7));
+  for (std::size_t r = 0; r < wide.size(); ++r)
+    for (std::size_t c = 0; c < wide[r].size(); ++c) wide[r][c] = std::sin(0.001 * double(c)) + double(r);
+  for (std::size_t r = 0; r < tall.size(); ++r)
+    for (std::size_t c = 0; c < 7; ++c) tall[r][c] = std::exp(-1e-3 * double(r)) * double(c + 1);
+  const std::vector<double> few = {1.0, 2.0, 3.0};
   {
-    const hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    REQUIRE(f >= 0);
-    const hsize_t n = 100000;
-    const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t create = H5Pcreate(H5P_DATASET_CREATE);
-    H5Pset_chunk(create, 1, &n);
-    H5Pset_deflate(create, 9);
-    const hid_t set = H5Dcreate2(f, "zeros", H5T_IEEE_F64LE, space, H5P_DEFAULT, create, H5P_DEFAULT);
-    REQUIRE(set >= 0);
-    const std::vector<double> zeros(n, 0.0);
-    REQUIRE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, zeros.data()) >= 0);
-    H5Dclose(set);
-    H5Pclose(create);
-    H5Sclose(space);
-    H5Fclose(f);
+    formats::Hdf5Writer w(file);
+    w.Numbers("a/spectrum", spectrum);
+    w.Rows("a/wide", wide);
+    w.Rows("a/tall", tall);
+    w.Numbers("a/few", few);
+    w.Close();
   }
-  CHECK(fs::file_size(file) < 100000);  // 800 kB of zeros in a few kB
-  const std::string e = ErrorOf([&] { formats::Hdf5Reader(file).Numbers("zeros", formats::AtMost(100000)); });
-  CHECK(Contains(e, "object 'zeros' is compressed or filtered"));
+  const std::uintmax_t raw = (spectrum.size() + 3 * 40000 + 5000 * 7) * sizeof(double);
+  CHECK(fs::file_size(file) < raw * 2 / 3);
+  MESSAGE("compressed " << raw << " bytes of doubles into a file of " << fs::file_size(file));
+  const formats::Hdf5Reader r(file);
+  CHECK(r.Numbers("a/spectrum", formats::AtMost(200000)) == spectrum);
+  CHECK(r.Rows("a/wide", formats::AtMost(3), 40000) == wide);
+  CHECK(r.Rows("a/tall", formats::AtMost(5000), 7) == tall);
+  CHECK(r.Numbers("a/few", formats::AtMost(3)) == few);
+  // Each compressed dataset is chunked, shuffled and deflated, as h5py sees it.
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(f >= 0);
+  for (const char* name : {"a/spectrum", "a/wide", "a/tall"}) {
+    const hid_t set = H5Dopen2(f, name, H5P_DEFAULT);
+    const hid_t create = H5Dget_create_plist(set);
+    CHECK(H5Pget_layout(create) == H5D_CHUNKED);
+    CHECK(H5Pget_nfilters(create) == 2);
+    H5Pclose(create);
+    H5Dclose(set);
+  }
+  H5Fclose(f);
+}
+
+// A dataset of `n` doubles in chunks of `chunk`, shuffled and deflated as deb
+// writes them, whose chunks are written raw: (offset, filter mask, bytes).
+struct RawChunk {
+  hsize_t offset;
+  std::uint32_t mask;
+  std::vector<unsigned char> bytes;
+};
+void WriteRawChunks(const std::string& file, hsize_t n, hsize_t chunk, const std::vector<RawChunk>& chunks,
+                    bool shuffle = true) {
+  const hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  REQUIRE(f >= 0);
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t create = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(create, 1, &chunk);
+  if (shuffle) H5Pset_shuffle(create);
+  H5Pset_deflate(create, 4);
+  const hid_t set = H5Dcreate2(f, "x", H5T_IEEE_F64LE, space, H5P_DEFAULT, create, H5P_DEFAULT);
+  REQUIRE(set >= 0);
+  for (const RawChunk& c : chunks)
+    REQUIRE(H5Dwrite_chunk(set, H5P_DEFAULT, c.mask, &c.offset, c.bytes.size(), c.bytes.data()) >= 0);
+  H5Dclose(set);
+  H5Pclose(create);
+  H5Sclose(space);
+  H5Fclose(f);
+}
+
+std::vector<unsigned char> Deflated(std::size_t zero_bytes) {
+  const std::vector<unsigned char> zeros(zero_bytes, 0);
+  uLongf size = compressBound(static_cast<uLong>(zero_bytes));
+  std::vector<unsigned char> out(size);
+  REQUIRE(compress2(out.data(), &size, zeros.data(), static_cast<uLong>(zero_bytes), 9) == Z_OK);
+  out.resize(size);
+  return out;
+}
+
+TEST_CASE("a compressed dataset is read only as deb writes it, and no chunk expands beyond its size") {
+  const TempDir dir;
+  const std::string file = dir.File("hostile.h5");
+  const auto error = [&](hsize_t n) {
+    return ErrorOf([&] { formats::Hdf5Reader(file).Numbers("x", formats::AtMost(n)); });
+  };
+  // The deb layout, written raw: read back (8000 zero bytes per chunk).
+  WriteRawChunks(file, 2000, 1000, {{0, 0, Deflated(8000)}, {1000, 0, Deflated(8000)}});
+  CHECK(formats::Hdf5Reader(file).Numbers("x", formats::AtMost(2000)) == std::vector<double>(2000, 0.0));
+  // A bomb: 1 MB of zeros in a chunk of 1000 values (8000 bytes), 1 kB in
+  // the file; HDF5's own deflate filter would grow its buffer to 1 MB.
+  WriteRawChunks(file, 1000, 1000, {{0, 0, Deflated(1'000'000)}});
+  CHECK(fs::file_size(file) < 10000);
+  CHECK(Contains(error(1000), "object 'x' has a chunk that does not inflate to its 8000 bytes"));
+  // A chunk the file never holds (HDF5 would fill it with zeros).
+  WriteRawChunks(file, 2000, 1000, {{0, 0, Deflated(8000)}});
+  CHECK(Contains(error(2000), "object 'x' holds 1 of its 2 chunks"));
+  // A chunk stored with its deflation skipped.
+  WriteRawChunks(file, 1000, 1000, {{0, 2, std::vector<unsigned char>(8000, 0)}});
+  CHECK(Contains(error(1000), "object 'x' has a chunk stored without its filters"));
+  // Deflate without the shuffle: another pipeline than deb writes.
+  WriteRawChunks(file, 1000, 1000, {{0, 0, Deflated(8000)}}, false);
+  CHECK(Contains(error(1000), "object 'x' is compressed or filtered in another way than deb writes"));
+  // The declared size still bounds the read before anything is inflated.
+  WriteRawChunks(file, 2000, 1000, {{0, 0, Deflated(8000)}, {1000, 0, Deflated(8000)}});
+  CHECK(Contains(error(1999), "declares 2000 values, more than the 1999 it may hold"));
 }
 
 TEST_CASE("an object header claiming more than the file holds is refused before libhdf5 allocates it") {

@@ -264,7 +264,7 @@ TEST_CASE("WriteResultExports: result.mat and result.xlsx once each, in the orde
   CHECK(written == std::vector<std::string>{"result.xlsx", "result.mat"});
   CHECK(fs::is_regular_file(dir / "result.xlsx"));
   CHECK(fs::is_regular_file(dir / "result.mat"));
-  CHECK_THROWS_WITH_AS(ParseExportFormat("csv"), doctest::Contains("unknown export format 'csv'; allowed: mat, xlsx"),
+  CHECK_THROWS_WITH_AS(ParseExportFormat("pdf"), doctest::Contains("unknown export format 'pdf'; allowed: csv, mat, xlsx"),
                        InputError);
 }
 

@@ -169,6 +169,77 @@ TEST_CASE("a result store read back and written again is the same file, for ever
   }
 }
 
+TEST_CASE("a store of schema version 1 (uncompressed, every response in full) is still read, and written as version 2") {
+  // Written by deb 0.1.0 before version 2, from budgets/guide/feedback_loop.yaml.
+  const std::string v1 = std::string(DEB_SOURCE_DIR) + "/tests/results/data/feedback_loop_v1.h5";
+  CHECK(formats::Hdf5Reader(v1).Integer("schema_version") == 1);
+  RunInfo info;
+  const BudgetResult a = ReadResultStore(v1, &info);
+  CHECK(info.budget_file == "budgets/guide/feedback_loop.yaml");
+  REQUIRE(a.traces);
+  REQUIRE_FALSE(a.outputs.empty());
+  for (const auto& per_output : a.traces->paths)
+    for (const PathResponse& p : per_output) {
+      CHECK(p.f_hz.empty());  // on the grid
+      for (const auto& g : p.gain2) CHECK(g.size() == a.grid.size());
+    }
+  // The CPS ends at the variance, which is the RMS squared.
+  for (const OutputResult& o : a.outputs) CHECK(o.total_cps.back() == doctest::Approx(o.rms() * o.rms()).epsilon(1e-12));
+
+  const StoreDir dir;
+  const std::string v2 = dir.File("v2.h5");
+  WriteResultStore(a, info, v2);
+  CHECK(formats::Hdf5Reader(v2).Integer("schema_version") == 2);
+  const BudgetResult b = ReadResultStore(v2);
+  REQUIRE(b.outputs.size() == a.outputs.size());
+  for (std::size_t o = 0; o < a.outputs.size(); ++o) {
+    CHECK(b.outputs[o].rms() == a.outputs[o].rms());
+    CHECK(b.outputs[o].total_psd == a.outputs[o].total_psd);
+    CHECK(b.outputs[o].total_cps == a.outputs[o].total_cps);
+    for (std::size_t c = 0; c < a.outputs[o].contributors.size(); ++c) {
+      CHECK(b.outputs[o].contributors[c].psd == a.outputs[o].contributors[c].psd);
+      CHECK(b.outputs[o].contributors[c].cps == a.outputs[o].contributors[c].cps);
+    }
+  }
+  for (std::size_t c = 0; c < a.traces->paths.size(); ++c)
+    for (std::size_t o = 0; o < a.traces->paths[c].size(); ++o) {
+      CHECK(b.traces->paths[c][o].gain2 == a.traces->paths[c][o].gain2);
+      CHECK(b.traces->paths[c][o].phase_rad == a.traces->paths[c][o].phase_rad);
+    }
+  REQUIRE(b.traces->loops.size() == a.traces->loops.size());
+  for (std::size_t i = 0; i < a.traces->loops.size(); ++i)
+    CHECK(b.traces->loops[i].loop_gain == a.traces->loops[i].loop_gain);
+}
+
+TEST_CASE("responses that contributors share are stored once, and compressed: the store is under half its raw size") {
+  // wafer_stage: seven contributors drive force_to_position, so each output
+  // has five distinct responses for eleven contributors.
+  const StoreDir dir;
+  const std::string file = dir.File("w.h5");
+  const Written w = WriteStore(Budget("wafer_stage.yaml"), file);
+  const formats::Hdf5Reader r(file);
+  std::size_t shared = 0, raw = 0;
+  const ResponseTraces& t = *w.result.traces;
+  for (std::size_t c = 0; c < t.paths.size(); ++c)
+    for (std::size_t o = 0; o < t.paths[c].size(); ++o) {
+      const std::string at = "result/traces/paths/" + std::to_string(c) + "/" + std::to_string(o);
+      if (r.Has(at + "/same_as_contributor")) {
+        ++shared;
+        CHECK_FALSE(r.Has(at + "/gain2"));
+        const auto sc = static_cast<std::size_t>(r.Integer(at + "/same_as_contributor"));
+        const auto so = static_cast<std::size_t>(r.Integer(at + "/same_as_output"));
+        CHECK(w.result.outline.contributors[sc].path == w.result.outline.contributors[c].path);
+        CHECK(so == o);
+      }
+      for (const auto& g : t.paths[c][o].gain2) raw += 2 * g.size() * sizeof(double);  // with the phase
+    }
+  CHECK(shared == 3 * 6);
+  for (const OutputResult& o : w.result.outputs)
+    for (const ContributorResult& c : o.contributors) raw += (c.psd.size() + c.cps.size()) * sizeof(double);
+  MESSAGE("store " << Bytes(file).size() << " bytes for " << raw << " bytes of responses and spectra");
+  CHECK(Bytes(file).size() * 2 < raw);
+}
+
 TEST_CASE("a budget's parameters are in its store, read back as written") {
   const StoreDir dir;
   const std::string budget = dir.File("p.yaml");

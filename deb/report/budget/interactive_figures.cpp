@@ -142,7 +142,7 @@ json OutputData(const BudgetResult& result, const OutputResult& out) {
 }
 
 json PathData(const BudgetResult& result, std::size_t c, std::size_t o, const PathResponse& r) {
-  const std::vector<double>& f = result.grid.f_hz();
+  const std::vector<double>& f = r.Frequencies(result.grid.f_hz());
   std::vector<std::vector<double>> magnitude;
   for (const auto& g2 : r.gain2) {
     magnitude.emplace_back(g2.size());

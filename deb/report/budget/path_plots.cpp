@@ -92,7 +92,7 @@ std::vector<double> UnwrappedPhaseDeg(const std::vector<double>& phase_rad, cons
 // feeding `r`).
 Plot PathPlot(const BudgetResult& result, const std::vector<std::size_t>& users, std::size_t o, const PathResponse& r,
               const std::string& suffix) {
-  const std::vector<double>& f = result.grid.f_hz();
+  const std::vector<double>& f = r.Frequencies(result.grid.f_hz());
   const BudgetOutline& budget = result.outline;
   const Contributor& contributor = budget.contributors[users.front()];
   const OutputResult& output = result.outputs[o];

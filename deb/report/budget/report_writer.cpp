@@ -22,6 +22,7 @@
 #include "deb/results/result_store.h"
 #include "deb/report/budget/band_plots.h"
 #include "deb/report/budget/band_text.h"
+#include "deb/report/budget/figure_traces.h"
 #include "deb/report/budget/file_digest.h"
 #include "deb/report/budget/loop_plots.h"
 #include "deb/report/budget/overview_plots.h"
@@ -289,8 +290,8 @@ ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, cons
   doc.asd = options.asd;
   if (options.plots) doc.image_extension = options.Has(PlotFormat::kPng) ? "png" : options.Has(PlotFormat::kSvg) ? "svg" : "";
   std::vector<std::string> data = {"summary.json", kResultStoreFile};
-  for (const OutputResult& o : result.outputs) data.push_back(OutputCsvName(o.name));
-  for (const ExportFormat f : {ExportFormat::kMat, ExportFormat::kXlsx}) data.push_back(ExportFileName(f));
+  for (const EnumName<ExportFormat>& f : kExportFormatNames)
+    for (const std::string& file : ExportFileNames(result, f.value)) data.push_back(file);
   for (const auto& f : data)
     if (fs::is_regular_file(root / f, ec)) doc.data_files.push_back(f);
   writer.Write("index.html", IndexHtml(doc));
@@ -314,6 +315,9 @@ ReportManifest WriteReportDirectory(const BudgetResult& result, const RunInfo& i
       run.budget_sha256 = Sha256(*run.budget_text);
     ReplaceOptions replace;
     replace.force = options.force;
+    // The path responses at the frequencies the figures need, in the store
+    // as in the report (figure_traces.h).
+    const BudgetResult drawn = WithFigureTraces(result, options.threads);
     ReplaceDirectory(
         out_dir,
         [&](const std::string& dir) {
@@ -323,12 +327,12 @@ ReportManifest WriteReportDirectory(const BudgetResult& result, const RunInfo& i
           const std::string store = (fs::path(dir) / kResultStoreFile).string();
           if (!std::ofstream(store)) throw WriteError("cannot write " + store);
           std::future<void> stored =
-              std::async(std::launch::async, [&] { WriteResultStore(result, run, store); });
+              std::async(std::launch::async, [&] { WriteResultStore(drawn, run, store); });
           std::vector<std::string> exported;
           try {
-            WriteResultFiles(result, run, dir);
-            exported = WriteResultExports(result, exports, dir);
-            manifest = WriteReport(result, run, options, dir);
+            WriteResultFiles(drawn, run, dir);
+            exported = WriteResultExports(drawn, exports, dir);
+            manifest = WriteReport(drawn, run, options, dir);
           } catch (...) {
             stored.wait();
             throw;

@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <regex>
 #include <set>
@@ -9,6 +10,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
+#include "deb/results/result_writer.h"
 #include "deb/load/budget_yaml.h"
 #include "deb/report/figure/gnuplot_runner.h"
 #include "tests/support/cli_harness.h"
@@ -85,9 +87,19 @@ TEST_CASE("a report holds every plot as a valid PNG with its CSV and script, and
     CHECK(BigEndian32(png, 16) == 1200);  // width
     CHECK(BigEndian32(png, 20) == 720);   // height
   }
-  for (const char* f : {"summary.json", "z_velocity.csv", "z_displacement.csv", "index.html", "report.md",
-                        "plots/colours.csv"})
+  for (const char* f : {"summary.json", "result.h5", "index.html", "report.md", "plots/colours.csv"})
     CHECK_MESSAGE(fs::is_regular_file(dir / f), f);
+  // Each output's CSV is an export (--export csv): result.h5 holds it all.
+  for (const char* f : {"z_velocity.csv", "z_displacement.csv"}) CHECK_FALSE_MESSAGE(fs::exists(dir / f), f);
+  const fs::path with_csv = TempDir("writer_csv") / "report";
+  const ReportManifest c = WriteReportDirectory(e.result, {ExampleBudget(), 0.1}, options, with_csv.string(),
+                                                {ExportFormat::kCsv});
+  REQUIRE(outputs == 2);
+  for (const OutputResult& o : e.result.outputs) {
+    const std::string f = OutputCsvName(o.name);
+    CHECK(std::count(c.files.begin(), c.files.end(), f) == 1);
+    CHECK(ReadAll(with_csv / f) == OutputCsv(e.result, o));
+  }
 }
 
 TEST_CASE("index.html and report.md reference only files that exist and nothing on the network") {
