@@ -16,7 +16,7 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/report/compare/comparison_directory.h"
 #include "deb/report/compare/comparison_documents.h"
-#include "deb/report/compare/overlay_plots.h"
+#include "deb/report/compare/ratio_plots.h"
 #include "deb/report/figure/plot.h"
 #include "tools/budget_overrides_option.h"
 
@@ -122,7 +122,7 @@ int CompareCommand::Run() const {
     r.cmp = Compare(a, b);
     r.cmp.tolerance = s.tolerance;
     if (s.plots && la.result && lb.result)
-      r.plots = report::OverlayPlots(a.label, *la.result, b.label, *lb.result);
+      r.plots = report::ComparisonPlots(a.label, *la.result, b.label, *lb.result);
     r.dir = s.out_dir.empty() ? report::DefaultComparisonDirectory(a.label, b.label) : s.out_dir;
     reports.push_back(std::move(r));
   }

@@ -8,7 +8,6 @@
 #include "deb/results/comparison_files.h"
 #include "deb/results/result_store.h"
 #include "deb/report/compare/comparison_documents.h"
-#include "deb/report/compare/comparison_pdf.h"
 #include "deb/report/compare/overlay_plots.h"
 
 namespace deb::report {
@@ -53,10 +52,11 @@ void WriteComparisonDirectory(const Comparison& cmp, const std::vector<Plot>& pl
           fs::create_directories(plots_dir);
           WritePlotsAsPng(plots, plots_dir, threads);
         }
-        WriteComparisonPdf(cmp, plots, plots_dir, (fs::path(dir) / "compare.pdf").string(), threads);
+        const StudyDocument doc = ComparisonDocument(cmp, plots);
+        WriteStudyPdf(doc, plots_dir, (fs::path(dir) / "compare.pdf").string(), threads);
         const std::vector<std::pair<std::string, std::string>> files = {{"compare.json", ComparisonJson(cmp)},
-                                                                        {"compare.md", ComparisonMarkdown(cmp, plots)},
-                                                                        {"compare.html", ComparisonHtml(cmp, plots)},
+                                                                        {"compare.md", StudyMarkdown(doc)},
+                                                                        {"compare.html", StudyHtml(doc)},
                                                                         {"compare.csv", ComparisonCsv(cmp)}};
         for (const auto& [name, text] : files) WriteTextFile((fs::path(dir) / name).string(), text);
       },

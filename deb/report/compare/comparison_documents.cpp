@@ -3,15 +3,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "deb/version.h"
+
 namespace deb::report {
-namespace {
-
-std::string Lead() {
-  return "RMS per output, contributor and band; difference B − A in the output's unit; ratio B / A.";
-}
-
-}  // namespace
-
 std::string RatioText(const ComparedFigure& f) {
   if (f.ratio) return Sig(*f.ratio, 4);
   if (f.negligible_a && !f.negligible_b) return "from ≈0";
@@ -96,40 +90,24 @@ std::vector<Table> ComparisonTables(const Comparison& cmp) {
 }
 
 
-std::string ComparisonMarkdown(const Comparison& cmp, const std::vector<Plot>& plots) {
-  std::ostringstream md;
-  md << "# Comparison: " << cmp.label_a << " (A) vs " << cmp.label_b << " (B)\n\n" << Lead() << "\n\n";
-  for (const Table& t : ComparisonTables(cmp)) md << "## " << t.title << "\n\n" << ToMarkdown(t) << "\n";
-  for (const Plot& p : plots)
-    md << "![" << p.caption << "](plots/" << p.name << ".png)\n\n" << p.caption << "\n\n";
-  if (!cmp.unmatched.empty()) {
-    md << "## Not compared\n\n";
-    for (const std::string& s : cmp.unmatched) md << "- " << s << "\n";
+StudyDocument ComparisonDocument(const Comparison& cmp, const std::vector<Plot>& plots) {
+  StudyDocument d;
+  d.title = "Comparison: " + cmp.label_a + " (A) vs " + cmp.label_b + " (B)";
+  d.lead = "A is " + cmp.label_a + ", B is " + cmp.label_b +
+           ". RMS per output, contributor and band; B − A in the output's unit, B / A, and the change of variance as "
+           "a fraction of the output's larger total. A figure below 10⁻⁶ of its total's variance is negligible: it "
+           "gets no ratio (\"from ≈0\", \"to ≈0\", \"–\").";
+  d.footer = std::string("deb ") + DEB_VERSION + " · compare " + cmp.label_a + " (A) with " + cmp.label_b + " (B)";
+  const std::vector<Table> tables = ComparisonTables(cmp);
+  d.sections.push_back({"", "", {tables.front()}, {}, {}, false});
+  d.sections.push_back({"Outputs", "", std::vector<Table>(tables.begin() + 1, tables.end()), {}, {}, false});
+  if (!cmp.unmatched.empty()) d.sections.push_back({"Not compared", "", {}, {}, cmp.unmatched, false});
+  if (!plots.empty()) {
+    StudySection figures{"A and B overlaid, and B / A", "", {}, {}, {}, true};
+    for (const Plot& p : plots) figures.figures.push_back(&p);
+    d.sections.push_back(std::move(figures));
   }
-  return md.str();
-}
-
-// One self-contained page (the plots are files beside it).
-std::string ComparisonHtml(const Comparison& cmp, const std::vector<Plot>& plots) {
-  std::ostringstream h;
-  const std::string title = "Comparison: " + cmp.label_a + " (A) vs " + cmp.label_b + " (B)";
-  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << HtmlEscape(title)
-    << "</title>\n<style>body{font-family:'DejaVu Sans',sans-serif;max-width:1240px;margin:2rem auto;padding:0 1.5rem}"
-       "table{border-collapse:collapse;margin:.6rem 0 1.4rem;font-size:.92rem}th,td{border-bottom:1px solid #ddd;"
-       "padding:.2rem .6rem}td.num{text-align:right;font-variant-numeric:tabular-nums}img{max-width:100%}</style>\n"
-       "</head>\n<body>\n<h1>"
-    << HtmlEscape(title) << "</h1>\n<p>" << HtmlEscape(Lead()) << "</p>\n";
-  for (const Table& t : ComparisonTables(cmp)) h << ToHtml(t);  // the caption titles it
-  for (const Plot& p : plots)
-    h << "<figure><img src=\"plots/" << HtmlEscape(p.name) << ".png\" alt=\"" << HtmlEscape(p.caption)
-      << "\"><figcaption>" << HtmlEscape(p.caption) << "</figcaption></figure>\n";
-  if (!cmp.unmatched.empty()) {
-    h << "<h2>Not compared</h2>\n<ul>\n";
-    for (const std::string& s : cmp.unmatched) h << "<li>" << HtmlEscape(s) << "</li>\n";
-    h << "</ul>\n";
-  }
-  h << "</body>\n</html>\n";
-  return h.str();
+  return d;
 }
 
 }  // namespace deb::report

@@ -1,8 +1,8 @@
 // Internal: not part of the public API.
-// The documents of `deb compare`: compare.md and compare.html (one
-// self-contained page; the plots are files beside it under plots/), with one
-// table per output (RMS of A and B per contributor and band, B - A, B / A)
-// and the contributors that changed most.
+// The documents of `deb compare`: compare.md, compare.html and compare.pdf
+// (study_document.h), with the headline, one table per output (RMS of A and
+// B per contributor and band, B - A, B / A), the contributors that changed
+// most, the parameters that differ, and the figures.
 #pragma once
 
 #include <string>
@@ -10,6 +10,7 @@
 
 #include "deb/budget/comparison.h"
 #include "deb/report/budget/report_tables.h"
+#include "deb/report/compare/study_document.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {
@@ -31,8 +32,7 @@ Table HeadlineTable(const Comparison& cmp);
 // tolerance the figures that moved beyond it.
 std::vector<Table> ComparisonTables(const Comparison& cmp);
 
-// The plots are referenced as plots/<name>.png.
-std::string ComparisonMarkdown(const Comparison& cmp, const std::vector<Plot>& plots);
-std::string ComparisonHtml(const Comparison& cmp, const std::vector<Plot>& plots);
+// The comparison as a document; `plots` outlive it.
+StudyDocument ComparisonDocument(const Comparison& cmp, const std::vector<Plot>& plots);
 
 }  // namespace deb::report

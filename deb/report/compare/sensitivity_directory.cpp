@@ -7,6 +7,7 @@
 #include "deb/core/number_text.h"
 #include "deb/report/budget/report_tables.h"
 #include "deb/report/compare/overlay_plots.h"
+#include "deb/version.h"
 
 namespace deb::report {
 
@@ -42,43 +43,44 @@ std::string SensitivitySetting::Label(const std::string& key) const {
   return it == labels.end() ? key : it->second;
 }
 
-std::string SensitivityMarkdown(const SensitivitySetting& setting, const SensitivityStudy& study,
-                                const std::vector<Plot>& plots) {
+StudyDocument SensitivityDocument(const SensitivitySetting& setting, const SensitivityStudy& study,
+                                  const std::vector<Plot>& plots) {
   const BudgetResult& nominal = study.nominal;
-  std::ostringstream md;
-  md << "# Sensitivities of " << setting.name << "\n\n"
-     << "Central differences with the parameter multiplied by 1 ± " << setting.step
-     << " (every number its key path reaches), on the nominal frequency grid. "
-        "d var / d ln p is the change of variance per relative change of the parameter (divide by p for d var / dp); "
-        "the elasticity is (d var / var) / (dp / p).\n\n";
+  StudyDocument d;
+  d.title = "Sensitivities of " + setting.name;
+  std::ostringstream lead;
+  lead << "Central differences with the parameter multiplied by 1 ± " << setting.step
+       << " (every number its key path reaches), on the nominal frequency grid. d var / d ln p is the change of "
+          "variance per relative change of the parameter (divide by p for d var / dp); the elasticity is "
+          "(d var / var) / (dp / p).";
+  d.lead = lead.str();
+  d.footer = std::string("deb ") + DEB_VERSION + " · sensitivities of " + setting.name;
   Table nominal_table;
   nominal_table.title = "Nominal parameters";
   nominal_table.header = {"parameter", "key path", "nominal value(s)"};
   nominal_table.numeric = {false, false, false};
   for (const auto& [key, values] : setting.parameters)
     nominal_table.rows.push_back({setting.Label(key), key, NominalText(values)});
-  md << "## " << nominal_table.title << "\n\n" << ToMarkdown(nominal_table) << "\n";
-  for (const OutputResult& out : nominal.outputs) {
-    const std::string& o = out.name;
-    const auto ranked = RankedForOutput(study.sensitivities, o);
+  d.sections.push_back({"", "", {nominal_table}, {}, {}, false});
+  for (std::size_t o = 0; o < nominal.outputs.size(); ++o) {
+    const OutputResult& out = nominal.outputs[o];
+    const auto ranked = RankedForOutput(study.sensitivities, out.name);
     if (ranked.empty()) continue;
     Table t;
-    t.title = o;
+    t.title = out.name + ": the total first, then the contributors";
     t.header = {"parameter", "contributor", "variance [" + UnitText(VarianceUnit(ranked[0].unit)) + "]",
                 "d var / d ln p", "elasticity"};
     t.numeric = {false, false, true, true, true};
     for (const auto& s : ranked)
-      t.rows.push_back(
-          {setting.Label(s.parameter), s.contributor, Sig(s.variance, 4), Sig(s.d_variance_d_log_p, 4),
-           Sig(s.elasticity, 4)});
-    md << "## " << o << "\n\nNominal RMS " << Sig(out.rms(), 4) << " " << UnitText(out.unit)
-       << "; the total first, then the contributors.\n\n"
-       << ToMarkdown(t) << "\n";
+      t.rows.push_back({setting.Label(s.parameter), s.contributor, Sig(s.variance, 4), Sig(s.d_variance_d_log_p, 4),
+                        Sig(s.elasticity, 4)});
+    StudySection section{out.name, "Nominal RMS " + Sig(out.rms(), 4) + " " + UnitText(out.unit) + ".", {t}, {}, {},
+                         false};
     for (const Plot& p : plots)
-      if (p.output >= 0 && nominal.outputs[static_cast<std::size_t>(p.output)].name == o)
-        md << "![" << p.caption << "](plots/" << p.name << ".png)\n\n" << p.caption << "\n\n";
+      if (p.output == static_cast<int>(o)) section.figures.push_back(&p);
+    d.sections.push_back(std::move(section));
   }
-  return md.str();
+  return d;
 }
 
 std::string DefaultSensitivityDirectory(const std::string& budget_name) {
@@ -92,11 +94,15 @@ void WriteSensitivityDirectory(const SensitivitySetting& setting, const Sensitiv
       out_dir,
       [&](const std::string& tmp) {
         WriteTextFile((fs::path(tmp) / "sensitivity.csv").string(), SensitivityCsv(study.sensitivities));
-        WriteTextFile((fs::path(tmp) / "sensitivity.md").string(), SensitivityMarkdown(setting, study, plots));
+        const StudyDocument doc = SensitivityDocument(setting, study, plots);
+        WriteTextFile((fs::path(tmp) / "sensitivity.md").string(), StudyMarkdown(doc));
+        WriteTextFile((fs::path(tmp) / "sensitivity.html").string(), StudyHtml(doc));
+        const std::string plots_dir = (fs::path(tmp) / "plots").string();
         if (!plots.empty()) {
-          fs::create_directories(fs::path(tmp) / "plots");
-          WritePlotsAsPng(plots, (fs::path(tmp) / "plots").string(), threads);
+          fs::create_directories(plots_dir);
+          WritePlotsAsPng(plots, plots_dir, threads);
         }
+        WriteStudyPdf(doc, plots_dir, (fs::path(tmp) / "sensitivity.pdf").string(), threads);
       },
       replace);
 }

@@ -1,9 +1,10 @@
 // Internal: not part of the public API.
 // The directory `deb sensitivity` writes, atomically (ReplaceDirectory):
-// sensitivity.csv (one row per parameter, output and term), sensitivity.md
-// (the nominal parameters, then per output its terms ranked as
-// RankedForOutput ranks them, with its tornado chart) and
-// plots/<output>_tornado.png (sensitivity_plots.h) when there are plots.
+// sensitivity.csv (one row per parameter, output and term), sensitivity.md,
+// sensitivity.html and sensitivity.pdf (study_document.h: the nominal
+// parameters, then per output its terms ranked as RankedForOutput ranks
+// them, with its tornado chart) and plots/<output>_tornado.png
+// (sensitivity_plots.h) when there are plots.
 #pragma once
 
 #include <map>
@@ -15,6 +16,7 @@
 #include "deb/budget/result.h"
 #include "deb/budget/sensitivity.h"
 #include "deb/core/output_dir.h"
+#include "deb/report/compare/study_document.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {
@@ -43,9 +45,10 @@ std::string NominalText(const std::vector<double>& values);
 // 10 significant digits.
 std::string SensitivityCsv(const std::vector<Sensitivity>& sensitivities);
 
-// sensitivity.md, linking `plots` under plots/.
-std::string SensitivityMarkdown(const SensitivitySetting& setting, const SensitivityStudy& study,
-                                const std::vector<Plot>& plots);
+// The study as a document, each output's tornado charts (Plot::output) in
+// its section; `plots` outlive it.
+StudyDocument SensitivityDocument(const SensitivitySetting& setting, const SensitivityStudy& study,
+                                  const std::vector<Plot>& plots);
 
 // reports/<budget-name>_sensitivity.
 std::string DefaultSensitivityDirectory(const std::string& budget_name);

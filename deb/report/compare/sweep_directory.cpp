@@ -21,12 +21,15 @@ void WriteSweepDirectory(const std::string& name, const SweepSpec& spec, const s
       out_dir,
       [&](const std::string& tmp) {
         WriteTextFile((fs::path(tmp) / "sweep.csv").string(), csv);
-        WriteTextFile((fs::path(tmp) / "sweep.md").string(), SweepMarkdown(name, spec, results, plots));
-        WriteTextFile((fs::path(tmp) / "sweep.html").string(), SweepHtml(name, spec, results, plots));
+        const StudyDocument doc = SweepDocument(name, spec, results, plots);
+        WriteTextFile((fs::path(tmp) / "sweep.md").string(), StudyMarkdown(doc));
+        WriteTextFile((fs::path(tmp) / "sweep.html").string(), StudyHtml(doc));
+        const std::string plots_dir = (fs::path(tmp) / "plots").string();
         if (!plots.empty()) {
-          fs::create_directories(fs::path(tmp) / "plots");
-          WritePlotsAsPng(plots, (fs::path(tmp) / "plots").string(), threads);
+          fs::create_directories(plots_dir);
+          WritePlotsAsPng(plots, plots_dir, threads);
         }
+        WriteStudyPdf(doc, plots_dir, (fs::path(tmp) / "sweep.pdf").string(), threads);
       },
       replace);
 }

@@ -1,7 +1,8 @@
 // Internal: not part of the public API.
 // The directory `deb sweep` writes, atomically (ReplaceDirectory): sweep.csv
 // (one row per variant: parameter values, RMS per output and contributor;
-// deb/budget/sweep.h SweepCsv), sweep.md and sweep.html (sweep_documents.h),
+// deb/budget/sweep.h SweepCsv), sweep.md, sweep.html and sweep.pdf
+// (sweep_documents.h),
 // and plots/<output>_sweep.png (sweep_plots.h) when there are plots.
 #pragma once
 

@@ -4,6 +4,7 @@
 
 #include "deb/budget/sweep_ranking.h"
 #include "deb/core/error.h"
+#include "deb/version.h"
 
 namespace deb::report {
 namespace {
@@ -84,31 +85,19 @@ std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetRe
   return tables;
 }
 
-std::string SweepMarkdown(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
-                          const std::vector<Plot>& plots) {
-  std::ostringstream md;
-  md << "# Sweep: " << name << "\n\n" << Lead(spec, results.size()) << "\n\n";
-  for (const Table& t : SweepTables(spec, results)) md << "## " << t.title << "\n\n" << ToMarkdown(t) << "\n";
-  for (const Plot& p : plots) md << "![" << p.caption << "](plots/" << p.name << ".png)\n\n" << p.caption << "\n\n";
-  return md.str();
-}
-
-std::string SweepHtml(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
-                      const std::vector<Plot>& plots) {
-  std::ostringstream h;
-  const std::string title = "Sweep: " + name;
-  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << HtmlEscape(title)
-    << "</title>\n<style>body{font-family:'DejaVu Sans',sans-serif;max-width:1240px;margin:2rem auto;padding:0 1.5rem}"
-       "table{border-collapse:collapse;margin:.6rem 0 1.4rem;font-size:.92rem}th,td{border-bottom:1px solid #ddd;"
-       "padding:.2rem .6rem}td.num{text-align:right;font-variant-numeric:tabular-nums}img{max-width:100%}</style>\n"
-       "</head>\n<body>\n<h1>"
-    << HtmlEscape(title) << "</h1>\n<p>" << HtmlEscape(Lead(spec, results.size())) << "</p>\n";
-  for (const Table& t : SweepTables(spec, results)) h << ToHtml(t);
-  for (const Plot& p : plots)
-    h << "<figure><img src=\"plots/" << HtmlEscape(p.name) << ".png\" alt=\"" << HtmlEscape(p.caption)
-      << "\"><figcaption>" << HtmlEscape(p.caption) << "</figcaption></figure>\n";
-  h << "</body>\n</html>\n";
-  return h.str();
+StudyDocument SweepDocument(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
+                            const std::vector<Plot>& plots) {
+  StudyDocument d;
+  d.title = "Sweep: " + name;
+  d.lead = Lead(spec, results.size());
+  d.footer = std::string("deb ") + DEB_VERSION + " · sweep of " + name;
+  d.sections.push_back({"", "", SweepTables(spec, results), {}, {}, false});
+  if (!plots.empty()) {
+    StudySection figures{"Figures", "", {}, {}, {}, true};
+    for (const Plot& p : plots) figures.figures.push_back(&p);
+    d.sections.push_back(std::move(figures));
+  }
+  return d;
 }
 
 }  // namespace deb::report

@@ -1,8 +1,8 @@
 // Internal: not part of the public API.
-// The documents of `deb sweep`: sweep.md and sweep.html (one self-contained
-// page; the plots are files beside it under plots/). They lead with the best
-// variant of each output and how many variants pass, then list every
-// variant best first (RankVariants) with PASS/FAIL per output.
+// The documents of `deb sweep`: sweep.md, sweep.html and sweep.pdf
+// (study_document.h). They lead with the best variant of each output and how
+// many variants pass, then list every variant best first (RankVariants) with
+// PASS/FAIL per output, then the figures.
 #pragma once
 
 #include <string>
@@ -11,6 +11,7 @@
 #include "deb/budget/result.h"
 #include "deb/budget/sweep.h"
 #include "deb/report/budget/report_tables.h"
+#include "deb/report/compare/study_document.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {
@@ -27,9 +28,8 @@ std::string VariantSettings(const SweepSpec& spec, const std::vector<double>& ro
 // DEB_DEMANDs one result per variant of spec.
 std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetResult>& results);
 
-std::string SweepMarkdown(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
-                          const std::vector<Plot>& plots);
-std::string SweepHtml(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
-                      const std::vector<Plot>& plots);
+// The sweep of budget `name` as a document; `plots` outlive it.
+StudyDocument SweepDocument(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
+                            const std::vector<Plot>& plots);
 
 }  // namespace deb::report

@@ -58,8 +58,8 @@ TEST_CASE("the comparison directory holds compare.json, .csv, .md, .html and .pd
   WriteComparisonDirectory(cmp, {}, dir.string(), {}, 1);
   CHECK(ReadAll(dir / "compare.json") == ComparisonJson(cmp));
   CHECK(ReadAll(dir / "compare.csv") == ComparisonCsv(cmp));
-  CHECK(ReadAll(dir / "compare.md") == ComparisonMarkdown(cmp, {}));
-  CHECK(ReadAll(dir / "compare.html") == ComparisonHtml(cmp, {}));
+  CHECK(ReadAll(dir / "compare.md") == StudyMarkdown(ComparisonDocument(cmp, {})));
+  CHECK(ReadAll(dir / "compare.html") == StudyHtml(ComparisonDocument(cmp, {})));
   CHECK(fs::is_regular_file(dir / "compare.pdf"));
   CHECK(DefaultComparisonDirectory("a b", "c/d") ==
         "reports/compare_" + FileNameWord("a b") + "_vs_" + FileNameWord("c/d"));

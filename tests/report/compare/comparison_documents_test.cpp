@@ -70,12 +70,14 @@ TEST_CASE("the Markdown and HTML documents carry the title, tables, plots and wh
   Plot p;
   p.name = "z_overlay";
   p.caption = "z: A and B";
-  const std::string md = ComparisonMarkdown(Example(), {p});
+  const std::vector<Plot> plots = {p};
+  const StudyDocument doc = ComparisonDocument(Example(), plots);
+  const std::string md = StudyMarkdown(doc);
   CHECK(md.find("# Comparison: old<1> (A) vs new (B)\n\n") == 0);
   CHECK(md.find("## z [nm]") != std::string::npos);
   CHECK(md.find("![z: A and B](plots/z_overlay.png)") != std::string::npos);
   CHECK(md.find("## Not compared\n\n- output y only in B\n") != std::string::npos);
-  const std::string html = ComparisonHtml(Example(), {p});
+  const std::string html = StudyHtml(doc);
   CHECK(html.find("<!DOCTYPE html>") == 0);
   CHECK(html.find("<title>Comparison: old&lt;1&gt; (A) vs new (B)</title>") != std::string::npos);
   CHECK(Count(html, "old<1>") == 0);  // user text is escaped

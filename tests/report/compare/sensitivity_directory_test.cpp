@@ -50,25 +50,31 @@ TEST_CASE("sensitivity.csv has one row per term, with 10 significant digits") {
         "k,y,nm,a,3,2,0.6666666667\n");
 }
 
-TEST_CASE("sensitivity.md states the step and nominal parameters, then each output's ranked table and plot") {
+TEST_CASE("sensitivity.md and .html state the step and nominal parameters, then each output's ranked table and plot") {
   Plot p;
   p.name = "y_tornado";
   p.caption = "tornado of y";
   p.output = 0;
-  const std::string md = SensitivityMarkdown(Setting(), Study(), {p});
+  const std::vector<Plot> plots = {p};
+  const std::string md = StudyMarkdown(SensitivityDocument(Setting(), Study(), plots));
   CHECK(md.rfind("# Sensitivities of stage\n\n", 0) == 0);
   CHECK(md.find("1 ± 0.001") != std::string::npos);
   CHECK(md.find("50 (all 2)") != std::string::npos);
   CHECK(md.find("## y\n\nNominal RMS ") != std::string::npos);
   CHECK(md.find("![tornado of y](plots/y_tornado.png)") != std::string::npos);
+  const std::string html = StudyHtml(SensitivityDocument(Setting(), Study(), plots));
+  CHECK(html.find("<h2>y</h2>\n<p>Nominal RMS ") != std::string::npos);
+  CHECK(html.find("<img src=\"plots/y_tornado.png\" alt=\"tornado of y\">") != std::string::npos);
 }
 
-TEST_CASE("the sensitivity directory holds sensitivity.csv and sensitivity.md") {
+TEST_CASE("the sensitivity directory holds sensitivity.csv, .md, .html and .pdf") {
   const fs::path dir = test::TempDir("sensitivity_directory") / "out";
   const SensitivityStudy study = Study();
   WriteSensitivityDirectory(Setting(), study, {}, dir.string(), {}, 1);
   CHECK(ReadAll(dir / "sensitivity.csv") == SensitivityCsv(study.sensitivities));
-  CHECK(ReadAll(dir / "sensitivity.md") == SensitivityMarkdown(Setting(), study, {}));
+  CHECK(ReadAll(dir / "sensitivity.md") == StudyMarkdown(SensitivityDocument(Setting(), study, {})));
+  CHECK(ReadAll(dir / "sensitivity.html") == StudyHtml(SensitivityDocument(Setting(), study, {})));
+  CHECK(ReadAll(dir / "sensitivity.pdf").rfind("%PDF-", 0) == 0);
   CHECK_FALSE(fs::exists(dir / "plots"));
   CHECK(DefaultSensitivityDirectory("stage") == "reports/stage_sensitivity");
 }

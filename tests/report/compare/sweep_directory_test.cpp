@@ -27,15 +27,16 @@ BudgetResult Variant(double rms) {
 
 }  // namespace
 
-TEST_CASE("the sweep directory holds sweep.csv, sweep.md and sweep.html, and no plots/ without plots") {
+TEST_CASE("the sweep directory holds sweep.csv, sweep.md, sweep.html and sweep.pdf, and no plots/ without plots") {
   SweepSpec spec;
   spec.parameters = {SweepParameter{"paths[0].h", {0, -100}, {}, {}, {}, {}}};
   const std::vector<BudgetResult> results = {Variant(3.0), Variant(2.0)};
   const fs::path dir = test::TempDir("sweep_directory") / "out";
   WriteSweepDirectory("s", spec, results, {}, dir.string(), {}, 1);
   CHECK(ReadAll(dir / "sweep.csv") == SweepCsv(spec, results));
-  CHECK(ReadAll(dir / "sweep.md") == SweepMarkdown("s", spec, results, {}));
-  CHECK(ReadAll(dir / "sweep.html") == SweepHtml("s", spec, results, {}));
+  CHECK(ReadAll(dir / "sweep.md") == StudyMarkdown(SweepDocument("s", spec, results, {})));
+  CHECK(ReadAll(dir / "sweep.html") == StudyHtml(SweepDocument("s", spec, results, {})));
+  CHECK(ReadAll(dir / "sweep.pdf").rfind("%PDF-", 0) == 0);
   CHECK_FALSE(fs::exists(dir / "plots"));
 }
 

@@ -49,18 +49,35 @@ TEST_CASE("the sweep tables lead with each output's best variant, then every var
   CHECK_FALSE(all.emphasis[1].back());
 }
 
-TEST_CASE("sweep.md and sweep.html carry the tables and plots, user text escaped in HTML") {
+TEST_CASE("sweep.md, sweep.html and sweep.pdf carry the tables and plots, user text escaped in HTML") {
   const std::vector<BudgetResult> results = {Variant(12.0), Variant(4.0), Variant(8.0)};
   Plot p;
   p.name = "x_sweep";
   p.caption = "x against h";
-  const std::string md = SweepMarkdown("s", Spec(), results, {p});
+  const std::vector<Plot> plots = {p};
+  const StudyDocument doc = SweepDocument("s", Spec(), results, plots);
+  const std::string md = StudyMarkdown(doc);
   CHECK(md.find("# Sweep: s\n") == 0);
   CHECK(md.find("## Best variant per output") < md.find("## Variants, best first"));
   CHECK(md.find("![x against h](plots/x_sweep.png)") != std::string::npos);
-  const std::string html = SweepHtml("s", Spec(), results, {p});
+  const std::string html = StudyHtml(doc);
   CHECK(html.find("height &lt;h&gt; [mm]") != std::string::npos);
   CHECK(html.find("height <h>") == std::string::npos);
+  // The PDF says the same in the same order: the title, the two tables, the figure on a new page.
+  const PdfDocumentSpec pdf = StudyPdfSpec(doc, "figures", "2026-01-01T00:00:00Z");
+  std::vector<std::string> titles;
+  bool page_break = false;
+  for (const PdfBlock& b : pdf.blocks) {
+    if (b.kind == PdfBlockKind::kTable) titles.push_back(b.text);
+    if (b.kind == PdfBlockKind::kPageBreak) page_break = true;
+    if (b.kind == PdfBlockKind::kFigure) {
+      CHECK(page_break);
+      CHECK(b.svg_file == "figures/x_sweep.svg");
+      CHECK(b.text == "x against h");
+    }
+  }
+  CHECK(titles == std::vector<std::string>{"Best variant per output", "Variants, best first"});
+  CHECK(pdf.title == "Sweep: s");
 }
 
 }  // namespace deb::report

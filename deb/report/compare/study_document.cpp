@@ -1,0 +1,111 @@
+#include "deb/report/compare/study_document.h"
+
+#include <filesystem>
+#include <sstream>
+
+#include "deb/core/document_date.h"
+#include "deb/core/error.h"
+#include "deb/core/parallel.h"
+#include "deb/report/budget/report_pdf.h"
+#include "deb/report/figure/gnuplot_runner.h"
+
+namespace deb::report {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Where WriteStudyPdf draws the figures, inside the plots' directory.
+constexpr const char* kFigureDir = ".pdf_figures";
+
+constexpr const char* kStyle =
+    "body{font-family:'DejaVu Sans',sans-serif;max-width:1240px;margin:2rem auto;padding:0 1.5rem}"
+    "table{border-collapse:collapse;margin:.6rem 0 1.4rem;font-size:.92rem}th,td{border-bottom:1px solid #ddd;"
+    "padding:.2rem .6rem}td.num{text-align:right;font-variant-numeric:tabular-nums}img{max-width:100%}";
+
+}  // namespace
+
+std::string StudyMarkdown(const StudyDocument& doc) {
+  std::ostringstream md;
+  md << "# " << doc.title << "\n\n" << doc.lead << "\n\n";
+  for (const StudySection& s : doc.sections) {
+    if (!s.heading.empty()) md << "## " << s.heading << "\n\n";
+    if (!s.text.empty()) md << s.text << "\n\n";
+    for (const Table& t : s.tables) md << "## " << t.title << "\n\n" << ToMarkdown(t) << "\n";
+    for (const Plot* p : s.figures)
+      md << "![" << p->caption << "](plots/" << p->name << ".png)\n\n" << p->caption << "\n\n";
+    for (const std::string& b : s.bullets) md << "- " << b << "\n";
+    if (!s.bullets.empty()) md << "\n";
+  }
+  return md.str();
+}
+
+std::string StudyHtml(const StudyDocument& doc) {
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << HtmlEscape(doc.title)
+    << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n<h1>" << HtmlEscape(doc.title) << "</h1>\n<p>"
+    << HtmlEscape(doc.lead) << "</p>\n";
+  for (const StudySection& s : doc.sections) {
+    if (!s.heading.empty()) h << "<h2>" << HtmlEscape(s.heading) << "</h2>\n";
+    if (!s.text.empty()) h << "<p>" << HtmlEscape(s.text) << "</p>\n";
+    for (const Table& t : s.tables) h << ToHtml(t);  // its caption titles it
+    for (const Plot* p : s.figures)
+      h << "<figure><img src=\"plots/" << HtmlEscape(p->name) << ".png\" alt=\"" << HtmlEscape(p->caption)
+        << "\"><figcaption>" << HtmlEscape(p->caption) << "</figcaption></figure>\n";
+    if (!s.bullets.empty()) {
+      h << "<ul>\n";
+      for (const std::string& b : s.bullets) h << "<li>" << HtmlEscape(b) << "</li>\n";
+      h << "</ul>\n";
+    }
+  }
+  h << "</body>\n</html>\n";
+  return h.str();
+}
+
+PdfDocumentSpec StudyPdfSpec(const StudyDocument& doc, const std::string& figure_dir, const std::string& create_date) {
+  PdfDocumentSpec spec;
+  spec.title = doc.title;
+  spec.subject = doc.title;
+  spec.footer = doc.footer;
+  spec.create_date = create_date;
+  std::vector<PdfBlock>& b = spec.blocks;
+  b.push_back(Heading(0, doc.title));
+  b.push_back(Paragraph(doc.lead));
+  for (const StudySection& s : doc.sections) {
+    if (s.new_page) b.push_back(PageBreak());
+    if (!s.heading.empty()) b.push_back(Heading(1, s.heading));
+    if (!s.text.empty()) b.push_back(Paragraph(s.text));
+    for (const Table& t : s.tables) b.push_back(TableBlock(t.title, TypesetTable(t)));
+    for (const Plot* p : s.figures)
+      b.push_back(Figure((fs::path(figure_dir) / (p->name + ".svg")).string(), p->caption));
+    for (const std::string& text : s.bullets) b.push_back(Bullet(text));
+  }
+  return spec;
+}
+
+void WriteStudyPdf(const StudyDocument& doc, const std::string& plots_dir, const std::string& pdf_path, int threads) {
+  std::vector<const Plot*> figures;
+  for (const StudySection& s : doc.sections) figures.insert(figures.end(), s.figures.begin(), s.figures.end());
+  const fs::path figure_dir = fs::path(plots_dir) / kFigureDir;
+  if (!figures.empty()) {
+    std::error_code ec;
+    fs::create_directories(figure_dir, ec);
+    if (ec) throw WriteError("cannot create directory " + figure_dir.string() + ": " + ec.message());
+    const std::string gnuplot = FindGnuplot("");
+    ParallelForEach(
+        figures.size(),
+        [&](std::size_t i) {
+          const Plot& p = *figures[i];
+          RunGnuplot(gnuplot, plots_dir,
+                     PdfFigureTerminal(p.kind) + "set output " + QuoteFile(std::string(kFigureDir) + "/" + p.name +
+                                                                           ".svg") +
+                         "\nload " + QuoteFile(p.name + ".gp") + "\nunset output\n",
+                     "the figure " + p.name + " of " + fs::path(pdf_path).filename().string());
+        },
+        threads);
+  }
+  WritePdfDocument(StudyPdfSpec(doc, figure_dir.string(), UtcText(DocumentTime(), "%Y-%m-%dT%H:%M:%SZ")), pdf_path);
+  std::error_code ec;
+  fs::remove_all(figure_dir, ec);  // deb wrote it, inside the staged directory
+}
+
+}  // namespace deb::report
