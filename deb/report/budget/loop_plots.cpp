@@ -166,7 +166,8 @@ Plot BodePlot(const LoopFigures& lf) {
   bode.caption = "Loop gain L = -sign G K of plant " + r.plant + " and controller " + r.controller + " (closing " +
                  lf.paths + (same.empty() ? "" : "; the same loop as " + same) +
                  "): magnitude over unwrapped phase, each gain crossover marked with its "
-                 "phase margin and each phase crossover with its gain margin.";
+                 "phase margin and each phase crossover with its gain margin (in dB: 20 log10 of the factor by which "
+                 "the gain may grow, or shrink where negative, before the loop is unstable).";
   FigurePanel top, bottom;
   top.x = bottom.x = lf.x_axis;
   top.y.label = "|L|";
@@ -188,8 +189,7 @@ Plot BodePlot(const LoopFigures& lf) {
         Marker(c.f_hz, 1.0, "PM " + SigLabel(c.phase_margin_deg, digits) + "° at " + SigLabel(c.f_hz, digits) + " Hz"));
   for (const PhaseCrossover& c : r.margins.phase_crossovers)
     bottom.annotations.push_back(Marker(c.f_hz, At(lf.curves.f, lf.curves.phase, c.f_hz),
-                                        "GM " + SigLabel(c.gain_margin, digits) + " (" +
-                                            SigLabel(ToDecibel(c.gain_margin), digits) + " dB) at " +
+                                        "GM " + SigLabel(ToDecibel(c.gain_margin), digits) + " dB at " +
                                             SigLabel(c.f_hz, digits) + " Hz"));
   bode.figure.title = lf.name + ": loop gain";
   bode.figure.panels = {std::move(top), std::move(bottom)};

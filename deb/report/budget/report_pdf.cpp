@@ -109,7 +109,7 @@ std::string PdfFigureTerminal(PlotKind kind) {
   // overview's panels, with their rotated names, get most of one.
   const char* size = kind == PlotKind::kOverview ? "662,600" : "662,420";
   return std::string("set terminal svg enhanced size ") + size +
-         " font 'DejaVu Sans,11' linewidth 2.1 background '#ffffff'\n";
+         " font 'DejaVu Sans,11' linewidth 2.1 background '#ffffff'\n" + kPdfFigureVariable + " = 1\n";
 }
 
 PdfTable TypesetTable(const Table& table, std::size_t min_note_chars) {

@@ -218,9 +218,8 @@ void AddRequirement(FigurePanel& panel, const BudgetResult& result, const Output
   m.x0 = *cross;
   m.y0 = limit2 / scale;
   m.colour = kRequirementColour;
-  m.label = "RMS reaches " + Short(*out.rms_max) + " " + UnitLabel(unit) + " at " + SigLabel(*cross, digits) + " Hz";
-  m.label_dx = 1.0;
-  m.label_dy = 1.2;
+  // Named in the key: a label beside the point would lie over the stacked layers.
+  m.key = "RMS reaches " + Short(*out.rms_max) + " " + UnitLabel(unit) + " at " + SigLabel(*cross, digits) + " Hz";
   panel.annotations.push_back(m);
 }
 

@@ -27,9 +27,10 @@ struct FigureAnnotation {
   std::string dash = "solid";
   double width = 2.0;
   std::string label;  // enhanced text; markers and text
-  std::string key;    // lines: an entry in the key (enhanced text); empty: none
+  std::string key;    // lines, and markers: an entry in the key (enhanced text); empty: none
   int point_type = 7;  // markers
   double label_dx = 1.0, label_dy = 1.0;  // label offset from a marker, in characters
+  bool label_left = false;  // markers: the label ends left of the point (right-aligned); label_layout.h
   bool on_y2 = false;  // y in the y2 axis' coordinates
   bool behind = false;  // drawn under the data (lines and segments); else over it
   double point_size = 1.6;  // markers and key entries of a marker

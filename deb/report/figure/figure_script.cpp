@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "deb/core/error.h"
+#include "deb/report/figure/label_layout.h"
 #include "deb/report/figure/plot.h"
 #include "deb/report/figure/plot_style.h"
 
@@ -205,7 +206,39 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
 
 std::string Coord(bool y2) { return y2 ? "second " : "first "; }
 
-void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool last, double right_margin = kRightMargin) {
+// The characters a reader sees of enhanced text: UTF-8 code points less
+// the markup (braces, the escapes' backslashes, ^ and _ of super- and
+// subscripts, the font switches' /).
+std::size_t ShownLength(const std::string& enhanced) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < enhanced.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(enhanced[i]);
+    if ((c & 0xC0) == 0x80) continue;  // a continuation byte
+    if (c == '\\' && i + 1 < enhanced.size()) {
+      ++i;  // the escaped character counts once
+    } else if (c == '{' || c == '}' || c == '^' || c == '_' || c == '/' || c == '*') {
+      continue;
+    }
+    ++n;
+  }
+  return n;
+}
+
+// What gnuplot's `set key width` adds to a key column: gnuplot estimates an
+// entry's width as a fixed width per character, about a third more than
+// DejaVu Sans takes on average, which below the plot (report.pdf) gives
+// too few columns; the longest entry's excess, less a margin, is taken off.
+int KeyWidthIncrement(const FigurePanel& p) {
+  std::size_t longest = 0;
+  for (const FigureSeries& fs : p.series) longest = std::max(longest, ShownLength(fs.key));
+  for (const FigureAnnotation& a : p.annotations) longest = std::max(longest, ShownLength(a.key));
+  return -static_cast<int>(0.2 * static_cast<double>(longest));
+}
+
+void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool last,
+           double right_margin = kRightMargin) {
+  FigurePanel p = given;
+  PlaceMarkerLabels(p);
   s << "set title " << Label(p.title);
   if (!p.title_colour.empty()) s << " textcolor rgb " << Quote(p.title_colour);
   s << "\n";
@@ -222,7 +255,18 @@ void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool las
   }
   switch (p.key.placement) {
     case KeyPlacement::kNone: s << "unset key\n"; break;
-    case KeyPlacement::kOutsideRight: s << "set key outside right top Left reverse"; break;
+    case KeyPlacement::kOutsideRight:
+      // Beside the plot on the wide canvas of a PNG; below it, in up to three
+      // columns, on report.pdf's narrow one (kPdfFigureVariable), where a key
+      // beside it would leave the plot half the text width. (Panels of a
+      // multiplot keep it beside them: their margins are fixed.)
+      if (multiplot) {
+        s << "set key outside right top Left reverse";
+        break;
+      }
+      s << "if (exists(" << Quote(kPdfFigureVariable) << ")) {\n  set key below horizontal Left reverse maxcols 3 "
+        << "width " << KeyWidthIncrement(p) << "\n} else {\n  set key outside right top Left reverse\n}\nset key";
+      break;
     case KeyPlacement::kInsideTopRight: s << "set key inside right top Left reverse"; break;
     case KeyPlacement::kInsideTopLeft: s << "set key inside left top Left reverse"; break;
     case KeyPlacement::kBelow: s << "set key below Left reverse"; break;
@@ -279,7 +323,8 @@ void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool las
         break;
       case AnnotationKind::kMarker:
         s << "set label " << tag++ << " " << Quote(a.label) << " at first " << CsvNumber(a.x0) << ", " << y
-          << CsvNumber(a.y0) << " point pointtype " << a.point_type << " pointsize " << CsvNumber(a.point_size)
+          << CsvNumber(a.y0) << (a.label_left ? " right" : "") << " point pointtype " << a.point_type
+          << " pointsize " << CsvNumber(a.point_size)
           << " linecolor rgb "
           << Quote(a.colour) << " offset " << CsvNumber(a.label_dx) << "," << CsvNumber(a.label_dy)
           << " textcolor rgb " << Quote(a.colour) << " boxed front\n";
@@ -299,6 +344,9 @@ void Panel(std::ostringstream& s, const FigurePanel& p, bool multiplot, bool las
           << CsvNumber(a.y0) << " textcolor rgb " << Quote(a.colour) << " front\n";
         break;
     }
+    if (!a.key.empty() && a.kind == AnnotationKind::kMarker)  // its label, moved into the key (label_layout.h)
+      clauses.push_back("keyentry with points pointtype " + std::to_string(a.point_type) + " pointsize " +
+                        CsvNumber(a.point_size) + " linecolor rgb " + Quote(a.colour) + " title " + Quote(a.key));
     if (!a.key.empty() && a.kind != AnnotationKind::kMarker && a.kind != AnnotationKind::kText &&
         a.kind != AnnotationKind::kLabel && a.kind != AnnotationKind::kKeyEntry)
       clauses.push_back("keyentry with lines " + line + " title " + Quote(a.key));

@@ -19,6 +19,11 @@ namespace deb::report {
 // kBesideGrid: right of a grid of panels, once for all of them (the
 // panels leave it room); the other panels have none.
 // kBelowMap: one row under a map (splot), which keeps no room for a key of its own.
+// Set (to 1) before a figure's script is loaded for report.pdf: a key
+// placed kOutsideRight then goes below the plot (the figure's narrow canvas
+// there, PdfFigureTerminal).
+inline constexpr const char* kPdfFigureVariable = "deb_pdf_figure";
+
 enum class KeyPlacement { kNone, kOutsideRight, kInsideTopRight, kInsideTopLeft, kBelow, kAbove, kBesideGrid, kBelowMap };
 
 struct FigureKey {

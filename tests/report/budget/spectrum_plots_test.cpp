@@ -163,6 +163,9 @@ TEST_CASE("a failing output's CPS figure names its fail factor, stacks the large
   REQUIRE(marker != cps.annotations.end());
   CHECK(marker->x0 == doctest::Approx(*guide->overall->cps_crossing_hz));
   CHECK(marker->y0 == doctest::Approx(1.5 * 1.5));
+  // Its text is in the key, not over the stacked layers.
+  CHECK(marker->label.empty());
+  CHECK(marker->key.rfind("RMS reaches 1.5 ", 0) == 0);
   CHECK(cps.annotations[0].key == "requirement: 1.5 (FAIL)");
 
   // The PSD: the top-level items largest first, the total last, each band requirement

@@ -1,0 +1,88 @@
+#include "deb/report/figure/label_layout.h"
+
+#include <cmath>
+#include <string>
+
+namespace deb::report {
+namespace {
+
+// The fraction of `axis` at which `v` lies; none without an explicit range.
+std::optional<double> Fraction(const FigureAxis& axis, double v) {
+  if (!axis.min || !axis.max || !(*axis.max > *axis.min)) return std::nullopt;
+  if (axis.scale == AxisScale::kLog) {
+    if (!(v > 0.0 && *axis.min > 0.0)) return std::nullopt;
+    return std::log10(v / *axis.min) / std::log10(*axis.max / *axis.min);
+  }
+  return (v - *axis.min) / (*axis.max - *axis.min);
+}
+
+// The characters a reader sees of enhanced text (markup and escapes not
+// counted; a UTF-8 character once).
+std::size_t Shown(const std::string& enhanced) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < enhanced.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(enhanced[i]);
+    if ((c & 0xC0) == 0x80) continue;
+    if (c == '\\' && i + 1 < enhanced.size()) {
+      ++i;
+    } else if (c == '{' || c == '}' || c == '^' || c == '_' || c == '/' || c == '*') {
+      continue;
+    }
+    ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+std::optional<std::pair<double, double>> PlotFraction(const FigurePanel& panel, const FigureAnnotation& a) {
+  const auto x = Fraction(panel.x, a.x0);
+  const auto y = Fraction(a.on_y2 ? panel.y2 : panel.y, a.y0);
+  if (!x || !y) return std::nullopt;
+  return std::make_pair(*x, *y);
+}
+
+std::optional<LabelBox> LabelBoxOf(const FigurePanel& panel, const FigureAnnotation& a) {
+  const auto at = PlotFraction(panel, a);
+  if (!at || a.label.empty()) return std::nullopt;
+  const double width = static_cast<double>(Shown(a.label)) * kLabelCharWidth;
+  const double gap = std::fabs(a.label_dx) * kLabelCharWidth;
+  const double centre = at->second + a.label_dy * kLabelLineHeight;
+  LabelBox b;
+  b.x0 = a.label_left ? at->first - gap - width : at->first + gap;
+  b.x1 = b.x0 + width;
+  b.y0 = centre - 0.5 * kLabelLineHeight;
+  b.y1 = centre + 0.5 * kLabelLineHeight;
+  return b;
+}
+
+void PlaceMarkerLabels(FigurePanel& panel) {
+  std::vector<LabelBox> placed;
+  for (FigureAnnotation& a : panel.annotations) {
+    if (a.kind != AnnotationKind::kMarker || a.label.empty() || !PlotFraction(panel, a)) continue;
+    bool done = false;
+    for (const double dy : {1.0, -1.0, 2.0, -2.0})
+      for (const bool left : {false, true}) {
+        if (done) break;
+        a.label_left = left;
+        a.label_dx = left ? -1.0 : 1.0;
+        a.label_dy = dy;
+        const LabelBox b = *LabelBoxOf(panel, a);
+        bool free = b.Inside();
+        for (const LabelBox& other : placed) free = free && !b.Overlaps(other);
+        if (free) {
+          placed.push_back(b);
+          done = true;
+        }
+      }
+    if (!done) {  // nowhere beside its point: the key names it
+      a.key = a.label;
+      a.label.clear();
+      a.label_left = false;
+      a.label_dx = a.label_dy = 1.0;
+      if (panel.key.placement == KeyPlacement::kNone) panel.key.placement = KeyPlacement::kOutsideRight;
+    }
+  }
+}
+
+}  // namespace deb::report

@@ -1,0 +1,103 @@
+// deb/report/figure/label_layout.h: a marker's label lies inside the axes
+// and over no other label, or names the marker in the key. Checked on
+// constructed panels, and on every figure of the shipped budgets with
+// markers (the loops' margins, the CPS crossings).
+#include "deb/report/figure/label_layout.h"
+
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+#include "deb/budget/engine.h"
+#include "deb/load/budget_yaml.h"
+#include "deb/report/budget/loop_plots.h"
+#include "deb/report/budget/spectrum_plots.h"
+#include "deb/report/figure/report_options.h"
+#include "tests/support/cli_harness.h"
+
+namespace deb::report {
+namespace {
+
+FigurePanel LogPanel() {
+  FigurePanel p;
+  p.x.scale = AxisScale::kLog;
+  p.x.min = 0.1;
+  p.x.max = 1000.0;
+  p.y.min = 0.0;
+  p.y.max = 10.0;
+  return p;
+}
+
+FigureAnnotation Marker(double x, double y, const std::string& label) {
+  FigureAnnotation a;
+  a.kind = AnnotationKind::kMarker;
+  a.x0 = x;
+  a.y0 = y;
+  a.label = label;
+  return a;
+}
+
+// Every labelled marker's box inside the axes, no two overlapping.
+void CheckPlaced(const FigurePanel& p) {
+  std::vector<LabelBox> boxes;
+  for (const FigureAnnotation& a : p.annotations) {
+    if (a.kind != AnnotationKind::kMarker || a.label.empty()) continue;
+    const auto box = LabelBoxOf(p, a);
+    if (!box) continue;
+    CHECK_MESSAGE(box->Inside(), a.label);
+    for (const LabelBox& b : boxes) CHECK_MESSAGE(!box->Overlaps(b), a.label);
+    boxes.push_back(*box);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("labels go right of their point, left near the right edge, and apart from each other") {
+  FigurePanel p = LogPanel();
+  p.annotations = {Marker(1.0, 5.0, "PM 34.31° at 1 Hz"), Marker(900.0, 5.0, "GM 16.14 dB at 900 Hz"),
+                   Marker(1.2, 5.0, "GM -15.61 dB at 1.2 Hz")};
+  PlaceMarkerLabels(p);
+  CHECK_FALSE(p.annotations[0].label_left);
+  CHECK(p.annotations[0].label_dy == 1.0);
+  CHECK(p.annotations[1].label_left);  // right of 900 Hz would leave the axes
+  // The third would sit on the first: it goes below.
+  CHECK(p.annotations[2].label_dy < 0.0);
+  CheckPlaced(p);
+}
+
+TEST_CASE("a label that fits nowhere names its marker in the key, and a panel without a key gets one") {
+  FigurePanel p = LogPanel();
+  p.key.placement = KeyPlacement::kNone;
+  const std::string long_label(100, 'x');
+  p.annotations = {Marker(10.0, 5.0, long_label)};
+  PlaceMarkerLabels(p);
+  CHECK(p.annotations[0].label.empty());
+  CHECK(p.annotations[0].key == long_label);
+  CHECK(p.key.placement == KeyPlacement::kOutsideRight);
+  // Escapes and markup do not count: "a\_b^{2}" shows 4 characters.
+  FigureAnnotation a = Marker(1.0, 5.0, "a\\_b^{2}");
+  const auto box = LabelBoxOf(LogPanel(), a);
+  REQUIRE(box);
+  CHECK(box->x1 - box->x0 == doctest::Approx(4 * kLabelCharWidth));
+}
+
+TEST_CASE("every marker label of the shipped budgets' figures lies inside its axes and over no other") {
+  std::size_t labels = 0;
+  for (const char* name : {"wafer_stage.yaml", "guide/feedback_loop.yaml", "measured_stage.yaml"}) {
+    CAPTURE(name);
+    const BudgetResult result = Evaluate(LoadBudgetFile(test::ExampleBudget(name)));
+    std::vector<Plot> plots = LoopPlots(result);
+    for (std::size_t o = 0; o < result.outputs.size(); ++o)
+      for (Plot& p : SpectrumPlots(result, o, ReportOptions{})) plots.push_back(std::move(p));
+    for (const Plot& plot : plots)
+      for (FigurePanel panel : plot.figure.panels) {
+        PlaceMarkerLabels(panel);
+        CheckPlaced(panel);
+        for (const FigureAnnotation& a : panel.annotations) labels += a.kind == AnnotationKind::kMarker;
+      }
+  }
+  CHECK(labels >= 6);  // wafer_stage: a phase margin, three gain margins, |S|'s peak, CPS crossings
+}
+
+}  // namespace deb::report
