@@ -206,32 +206,14 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
 
 std::string Coord(bool y2) { return y2 ? "second " : "first "; }
 
-// The characters a reader sees of enhanced text: UTF-8 code points less
-// the markup (braces, the escapes' backslashes, ^ and _ of super- and
-// subscripts, the font switches' /).
-std::size_t ShownLength(const std::string& enhanced) {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < enhanced.size(); ++i) {
-    const unsigned char c = static_cast<unsigned char>(enhanced[i]);
-    if ((c & 0xC0) == 0x80) continue;  // a continuation byte
-    if (c == '\\' && i + 1 < enhanced.size()) {
-      ++i;  // the escaped character counts once
-    } else if (c == '{' || c == '}' || c == '^' || c == '_' || c == '/' || c == '*') {
-      continue;
-    }
-    ++n;
-  }
-  return n;
-}
-
 // What gnuplot's `set key width` adds to a key column: gnuplot estimates an
 // entry's width as a fixed width per character, about a third more than
 // DejaVu Sans takes on average, which below the plot (report.pdf) gives
 // too few columns; the longest entry's excess, less a margin, is taken off.
 int KeyWidthIncrement(const FigurePanel& p) {
   std::size_t longest = 0;
-  for (const FigureSeries& fs : p.series) longest = std::max(longest, ShownLength(fs.key));
-  for (const FigureAnnotation& a : p.annotations) longest = std::max(longest, ShownLength(a.key));
+  for (const FigureSeries& fs : p.series) longest = std::max(longest, ShownCharacters(fs.key));
+  for (const FigureAnnotation& a : p.annotations) longest = std::max(longest, ShownCharacters(a.key));
   return -static_cast<int>(0.2 * static_cast<double>(longest));
 }
 

@@ -16,9 +16,9 @@ std::optional<double> Fraction(const FigureAxis& axis, double v) {
   return (v - *axis.min) / (*axis.max - *axis.min);
 }
 
-// The characters a reader sees of enhanced text (markup and escapes not
-// counted; a UTF-8 character once).
-std::size_t Shown(const std::string& enhanced) {
+}  // namespace
+
+std::size_t ShownCharacters(const std::string& enhanced) {
   std::size_t n = 0;
   for (std::size_t i = 0; i < enhanced.size(); ++i) {
     const unsigned char c = static_cast<unsigned char>(enhanced[i]);
@@ -33,8 +33,6 @@ std::size_t Shown(const std::string& enhanced) {
   return n;
 }
 
-}  // namespace
-
 std::optional<std::pair<double, double>> PlotFraction(const FigurePanel& panel, const FigureAnnotation& a) {
   const auto x = Fraction(panel.x, a.x0);
   const auto y = Fraction(a.on_y2 ? panel.y2 : panel.y, a.y0);
@@ -45,7 +43,7 @@ std::optional<std::pair<double, double>> PlotFraction(const FigurePanel& panel, 
 std::optional<LabelBox> LabelBoxOf(const FigurePanel& panel, const FigureAnnotation& a) {
   const auto at = PlotFraction(panel, a);
   if (!at || a.label.empty()) return std::nullopt;
-  const double width = static_cast<double>(Shown(a.label)) * kLabelCharWidth;
+  const double width = static_cast<double>(ShownCharacters(a.label)) * kLabelCharWidth;
   const double gap = std::fabs(a.label_dx) * kLabelCharWidth;
   const double centre = at->second + a.label_dy * kLabelLineHeight;
   LabelBox b;

@@ -11,12 +11,19 @@
 // one beside it).
 #pragma once
 
+#include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "deb/report/figure/plot_figure.h"
 
 namespace deb::report {
+
+// The characters a reader sees of enhanced text: UTF-8 characters once,
+// without the markup (braces, ^ and _ of super- and subscripts, the font
+// switches' / and *) and the escapes' backslashes.
+std::size_t ShownCharacters(const std::string& enhanced);
 
 // The box of a label, in fractions of the plot area (0..1 inside the axes).
 struct LabelBox {
