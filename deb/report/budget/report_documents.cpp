@@ -26,6 +26,7 @@ caption { text-align: left; font-weight: bold; padding: 0.3rem 0; }
 th, td { border-bottom: 1px solid var(--line); padding: 0.25rem 0.7rem; text-align: left; vertical-align: top; }
 th { background: #f2f2f2; }
 .num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.notes { color: var(--muted); font-size: 0.85rem; padding-top: 0.3rem; }
 table.facts td:first-child { color: var(--muted); white-space: nowrap; }
 table.facts td { font-family: "DejaVu Sans Mono", monospace; font-size: 0.88rem; }
 strong.fail, td strong { color: inherit; }

@@ -11,20 +11,6 @@
 namespace deb::report {
 namespace {
 
-// Marks of merged notes: ¹ ² ³ ⁴ ... (superscript digits).
-std::string NoteMark(std::size_t k) {
-  static const char* const digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
-  std::string mark;
-  for (const char c : std::to_string(k)) mark += digits[c - '0'];
-  return mark;
-}
-
-std::size_t Characters(const std::string& s) {
-  std::size_t n = 0;
-  for (char c : s) n += (c & 0xC0) != 0x80;
-  return n;
-}
-
 bool Fails(const OutputResult& o) {
   bool fails = o.rms_max && !o.pass();
   for (const BandRequirementResult& b : o.band_requirements) fails = fails || !b.pass();
@@ -112,24 +98,14 @@ std::string PdfFigureTerminal(PlotKind kind) {
          " font 'DejaVu Sans,11' linewidth 2.1 background '#ffffff'\n" + kPdfFigureVariable + " = 1\n";
 }
 
-PdfTable TypesetTable(const Table& table, std::size_t min_note_chars) {
+PdfTable TypesetTable(const Table& given, std::size_t min_note_chars) {
+  // Long text said once, below the table (WithNotesBelow): the note column
+  // holds marks only and its width goes to the names and numbers rather
+  // than to rows five lines tall.
   PdfTable t;
+  const Table table = WithNotesBelow(given, &t.footnotes, min_note_chars);
   t.header = table.header;
   t.numeric = table.numeric;
-  // Long text of a text column that goes below the table, once: shared by
-  // several rows, or in the column headed "note" even if one row holds it
-  // ("grid holds 99.96 % of the exact variance"), so that the note column
-  // holds marks only and its width goes to the names and numbers rather than
-  // to rows five lines tall.
-  std::map<std::string, int> count;
-  std::set<std::string> below;
-  for (const auto& row : table.rows)
-    for (std::size_t c = 0; c < row.size(); ++c)
-      if (!(c < table.numeric.size() && table.numeric[c]) && Characters(row[c]) >= min_note_chars) {
-        const bool note_column = c < table.header.size() && table.header[c] == "note";
-        if (++count[row[c]] > 1 || note_column) below.insert(row[c]);
-      }
-  std::map<std::string, std::string> mark_of;
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     std::vector<PdfCell> cells;
     for (std::size_t c = 0; c < table.rows[r].size(); ++c) {
@@ -142,11 +118,6 @@ PdfTable TypesetTable(const Table& table, std::size_t min_note_chars) {
           cell.text = text.substr(0, comma) + "\n" + text.substr(comma + 2);
       cell.alert = text == "FAIL";
       cell.bold = cell.bold || cell.alert;
-      if (below.count(text) != 0) {
-        auto [it, added] = mark_of.emplace(text, NoteMark(mark_of.size() + 1));
-        if (added) t.footnotes.push_back(it->second + " " + text);
-        cell.text = it->second;
-      }
       cells.push_back(cell);
     }
     t.rows.push_back(std::move(cells));

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "deb/budget/allocation.h"
 #include "deb/budget/failure_guidance.h"
@@ -361,7 +363,41 @@ std::string HtmlEscape(const std::string& text) {
   return out;
 }
 
-std::string ToHtml(const Table& t) {
+Table WithNotesBelow(const Table& table, std::vector<std::string>* notes, std::size_t min_characters) {
+  const auto characters = [](const std::string& s) {
+    std::size_t n = 0;
+    for (char c : s) n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    return n;
+  };
+  const auto mark = [](std::size_t k) {  // superscript digits
+    static const char* const digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+    std::string m;
+    for (const char c : std::to_string(k)) m += digits[c - '0'];
+    return m;
+  };
+  std::map<std::string, int> count;
+  std::set<std::string> below;
+  for (const auto& row : table.rows)
+    for (std::size_t c = 0; c < row.size(); ++c)
+      if (!(c < table.numeric.size() && table.numeric[c]) && characters(row[c]) >= min_characters) {
+        const bool note_column = c < table.header.size() && table.header[c] == "note";
+        if (++count[row[c]] > 1 || note_column) below.insert(row[c]);
+      }
+  Table out = table;
+  std::map<std::string, std::string> mark_of;
+  for (auto& row : out.rows)
+    for (std::string& cell : row) {
+      if (below.count(cell) == 0) continue;
+      auto [it, added] = mark_of.emplace(cell, mark(mark_of.size() + 1));
+      if (added) notes->push_back(it->second + " " + cell);
+      cell = it->second;
+    }
+  return out;
+}
+
+std::string ToHtml(const Table& table) {
+  std::vector<std::string> notes;
+  const Table t = WithNotesBelow(table, &notes);
   std::string s = "<table>\n<caption>" + HtmlEscape(t.title) + "</caption>\n<thead><tr>";
   for (std::size_t c = 0; c < t.header.size(); ++c)
     s += std::string(t.numeric[c] ? "<th class=\"num\">" : "<th>") + HtmlEscape(t.header[c]) + "</th>";
@@ -377,7 +413,13 @@ std::string ToHtml(const Table& t) {
     }
     s += "</tr>\n";
   }
-  return s + "</tbody>\n</table>\n";
+  s += "</tbody>\n";
+  if (!notes.empty()) {
+    s += "<tfoot><tr><td class=\"notes\" colspan=\"" + std::to_string(t.header.size()) + "\">";
+    for (std::size_t i = 0; i < notes.size(); ++i) s += (i ? "<br>" : "") + HtmlEscape(notes[i]);
+    s += "</td></tr></tfoot>\n";
+  }
+  return s + "</table>\n";
 }
 
 std::string ToMarkdown(const Table& t) {

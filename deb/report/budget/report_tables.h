@@ -82,7 +82,14 @@ struct ReportFacts {
 ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file, const std::string& sha256,
                       const std::string& date, std::optional<double> seconds);
 
+// `table` with each long text said once: a text cell of at least
+// `min_characters` that several rows hold, or any in the column headed
+// "note", becomes a mark (¹ ² ...) and its text a note, in `notes` as
+// "¹ text" in the order the marks first appear.
+Table WithNotesBelow(const Table& table, std::vector<std::string>* notes, std::size_t min_characters = 24);
+
 std::string HtmlEscape(const std::string& text);
+// The table with its repeated notes below it (WithNotesBelow).
 std::string ToHtml(const Table& table);
 std::string ToMarkdown(const Table& table);
 // Aligned columns, a header line and a rule; cells longer than max_cell

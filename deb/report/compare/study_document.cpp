@@ -20,7 +20,8 @@ constexpr const char* kFigureDir = ".pdf_figures";
 constexpr const char* kStyle =
     "body{font-family:'DejaVu Sans',sans-serif;max-width:1240px;margin:2rem auto;padding:0 1.5rem}"
     "table{border-collapse:collapse;margin:.6rem 0 1.4rem;font-size:.92rem}th,td{border-bottom:1px solid #ddd;"
-    "padding:.2rem .6rem}td.num{text-align:right;font-variant-numeric:tabular-nums}img{max-width:100%}";
+    "padding:.2rem .6rem}td.num{text-align:right;font-variant-numeric:tabular-nums}"
+    "td.notes{color:#555;font-size:.85rem}img{max-width:100%}";
 
 }  // namespace
 

@@ -85,6 +85,30 @@ TEST_CASE("Markdown and HTML tables escape their cells and mark emphasis") {
   CHECK(HtmlEscape("<a & \"b\">") == "&lt;a &amp; &quot;b&quot;&gt;");
 }
 
+TEST_CASE("a long note several rows hold is said once: a mark in each row, the text below the table") {
+  Table t;
+  t.title = "contributors";
+  t.header = {"contributor", "RMS", "note"};
+  t.numeric = {false, true, false};
+  const std::string shared = "no exact variance: the path has measured data";
+  t.rows = {{"a", "1", shared}, {"b", "2", shared}, {"c", "3", "short"}, {"d", "4", "only this row's own long note"}};
+  std::vector<std::string> notes;
+  const Table merged = WithNotesBelow(t, &notes);
+  CHECK(merged.rows[0][2] == "¹");
+  CHECK(merged.rows[1][2] == "¹");
+  CHECK(merged.rows[2][2] == "short");  // short text stays in its cell
+  CHECK(merged.rows[3][2] == "²");      // the note column: below even when one row holds it
+  CHECK(notes == std::vector<std::string>{"¹ " + shared, "² only this row's own long note"});
+  const std::string html = ToHtml(t);
+  CHECK(html.find(shared) == html.rfind(shared));  // once
+  CHECK(html.find("<tfoot><tr><td class=\"notes\" colspan=\"3\">¹ " + shared + "<br>² only") != std::string::npos);
+  // A long name in a text column held by one row only stays.
+  Table names = t;
+  names.header[2] = "source";
+  notes.clear();
+  CHECK(WithNotesBelow(names, &notes).rows[3][2] == "only this row's own long note");
+}
+
 TEST_CASE("the band table lists contributors by share, emphasises the largest per band and ends with the total") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   const BudgetResult result = Evaluate(budget);
