@@ -375,13 +375,15 @@ Table WithNotesBelow(const Table& table, std::vector<std::string>* notes, std::s
     for (const char c : std::to_string(k)) m += digits[c - '0'];
     return m;
   };
-  std::map<std::string, int> count;
+  // Counted per column: a parameter named by its key path in two columns
+  // of one row is a name, not a note.
+  std::map<std::pair<std::size_t, std::string>, int> count;
   std::set<std::string> below;
   for (const auto& row : table.rows)
     for (std::size_t c = 0; c < row.size(); ++c)
       if (!(c < table.numeric.size() && table.numeric[c]) && characters(row[c]) >= min_characters) {
         const bool note_column = c < table.header.size() && table.header[c] == "note";
-        if (++count[row[c]] > 1 || note_column) below.insert(row[c]);
+        if (++count[{c, row[c]}] > 1 || note_column) below.insert(row[c]);
       }
   Table out = table;
   std::map<std::string, std::string> mark_of;

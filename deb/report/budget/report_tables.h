@@ -83,7 +83,7 @@ ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file
                       const std::string& date, std::optional<double> seconds);
 
 // `table` with each long text said once: a text cell of at least
-// `min_characters` that several rows hold, or any in the column headed
+// `min_characters` that several rows hold in one column, or any in the column headed
 // "note", becomes a mark (¹ ² ...) and its text a note, in `notes` as
 // "¹ text" in the order the marks first appear.
 Table WithNotesBelow(const Table& table, std::vector<std::string>* notes, std::size_t min_characters = 24);

@@ -52,7 +52,7 @@ Plot RatioPlot(const std::string& label_a, const BudgetResult& a, const OutputRe
   std::vector<Curve> curves;
   for (std::size_t c = 0; c < oa.contributors.size(); ++c)
     for (std::size_t d = 0; d < ob.contributors.size(); ++d)
-      if (ob.contributors[d].name == oa.contributors[c].name && (Shown(oa, c) || Shown(ob, d)))
+      if (ob.contributors[d].name == oa.contributors[c].name && Shown(oa, c) && Shown(ob, d))
         curves.push_back({oa.contributors[c].name, c, &oa.contributors[c].psd, &ob.contributors[d].psd,
                           std::sqrt(Ratio(ob.contributors[d].variance, oa.contributors[c].variance))});
   curves.push_back({"total", 0, &oa.total_psd, &ob.total_psd, std::sqrt(Ratio(ob.variance, oa.variance))});
@@ -82,7 +82,8 @@ Plot RatioPlot(const std::string& label_a, const BudgetResult& a, const OutputRe
   p.output = -1;
   p.caption = "Ratio of the power spectral densities of " + oa.name + ", B (" + label_b + ") over A (" + label_a +
               "), per contributor both have and in total (black): above 1 B is worse at that frequency. The key "
-              "gives the ratio of the RMS, B / A." +
+              "gives the ratio of the RMS, B / A; a contributor below 10^-6 of its output's variance in A or in B has "
+              "no ratio (the tables: from ≈0, to ≈0)." +
               RangeCaption(range);
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", compare, output " << oa.name << ": PSD of B (" << label_b << ") / PSD of A ("

@@ -23,7 +23,8 @@ double AtFrequency(const std::vector<double>& f_hz, const std::vector<double>& y
 // (B's values at A's frequencies by AtFrequency; exactly B's where the grids
 // are the same), over either result's display range; NaN where either PSD
 // is zero. A contributor is drawn when both results have it and it holds at
-// least kNegligibleShare of the variance in one of them. The y axis is
+// least kNegligibleShare of the variance in each (else it has no ratio, as
+// in the comparison's tables). The y axis is
 // linear while every ratio shown lies within [1/3, 3], else logarithmic.
 std::vector<Plot> RatioPlots(const std::string& label_a, const BudgetResult& a, const std::string& label_b,
                              const BudgetResult& b);

@@ -492,6 +492,10 @@ class Composer {
   // what is left in proportion to what each lacks (as browsers share a
   // table's width), so that a column of long notes is not squeezed to the
   // width of a column of names (long text wraps, never cut).
+  // A column at most this wide is not narrowed to fit a table that is too
+  // wide even at the smallest font.
+  static constexpr double kKeptWholePt = 28.0;
+
   static std::vector<double> ColumnWidths(const ColumnMeasures& m, double width, bool boxed) {
     const std::size_t columns = m.natural.size();
     std::vector<double> widths = m.natural;
@@ -526,10 +530,21 @@ class Composer {
         open = std::move(still);
       }
     }
-    // Still too wide at the smallest font: every column narrower alike (text
-    // wraps inside them; a long number may reach into its neighbour).
-    if (least > width)
-      for (double& w : widths) w *= width / least;
+    // Still too wide at the smallest font: the wide columns narrower, in
+    // proportion to their width beyond kKeptWholePt (text wraps inside them;
+    // a long number may reach into its neighbour), so that a narrow column,
+    // a rank or a short name, keeps its header whole; if that is not enough,
+    // every column narrower alike.
+    if (least > width) {
+      double reducible = 0.0;
+      for (double w : widths) reducible += std::max(0.0, w - kKeptWholePt);
+      const double excess = least - width;
+      if (reducible >= excess) {
+        for (double& w : widths) w -= excess * std::max(0.0, w - kKeptWholePt) / reducible;
+      } else {
+        for (double& w : widths) w *= width / least;
+      }
+    }
     if (boxed) {  // a box spans the text width: its last column takes what is left
       double used = 0.0;
       for (double w : widths) used += w;

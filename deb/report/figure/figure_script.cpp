@@ -217,10 +217,12 @@ int KeyWidthIncrement(const FigurePanel& p) {
   return -static_cast<int>(0.2 * static_cast<double>(longest));
 }
 
+// `share`: of the figure's height, for a stacked panel (its labels' lines
+// are taller in it).
 void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool last,
-           double right_margin = kRightMargin) {
+           double right_margin = kRightMargin, double share = 1.0) {
   FigurePanel p = given;
-  PlaceMarkerLabels(p);
+  PlaceMarkerLabels(p, share);
   s << "set title " << Label(p.title);
   if (!p.title_colour.empty()) s << " textcolor rgb " << Quote(p.title_colour);
   s << "\n";
@@ -235,6 +237,7 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
     s << "set lmargin " << kLeftMargin << "\nset rmargin " << right_margin << "\n";
     if (!last) s << "set format x ''\nunset xlabel\n";
   }
+  bool titled = false;  // the key's title set with its placement
   switch (p.key.placement) {
     case KeyPlacement::kNone: s << "unset key\n"; break;
     case KeyPlacement::kOutsideRight:
@@ -246,8 +249,12 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
         s << "set key outside right top Left reverse";
         break;
       }
+      // Below, the title goes a line down and the key is not opaque:
+      // gnuplot sets it too close under the axis' label otherwise.
       s << "if (exists(" << Quote(kPdfFigureVariable) << ")) {\n  set key below horizontal Left reverse maxcols 3 "
-        << "width " << KeyWidthIncrement(p) << "\n} else {\n  set key outside right top Left reverse\n}\nset key";
+        << "width " << KeyWidthIncrement(p) << " noopaque title (\"\\n\"." << Label(p.key.title)
+        << ")\n} else {\n  set key outside right top Left reverse title " << Label(p.key.title) << "\n}\nset key";
+      titled = true;
       break;
     case KeyPlacement::kInsideTopRight: s << "set key inside right top Left reverse"; break;
     case KeyPlacement::kInsideTopLeft: s << "set key inside left top Left reverse"; break;
@@ -259,7 +266,7 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
       break;
   }
   if (p.key.placement != KeyPlacement::kNone)
-    s << (p.key.invert ? " invert" : " noinvert") << " title " << Label(p.key.title) << "\n";
+    s << (p.key.invert ? " invert" : " noinvert") << (titled ? "" : " title " + Label(p.key.title)) << "\n";
   if (!p.note.empty()) s << "set label 1 " << Quote(p.note) << " at graph 0.5,0.5 center front\n";
 
   // A heat map: a surface seen from above, in the palette, under the rest.
@@ -378,7 +385,8 @@ std::string EmitFigure(const PlotFigure& figure) {
     const double h = (1.0 - kTitle) * figure.panels[i].height / total;
     s << "set size 1," << CsvNumber(h) << "\nset origin 0," << CsvNumber(top - h) << "\n";
     s << "set tmargin " << (i == 0 ? "1" : "0.5") << "\nset bmargin " << (i + 1 == n ? "5" : "0.5") << "\n";
-    Panel(s, figure.panels[i], true, i + 1 == n, figure.key_margin > 0.0 ? figure.key_margin : kRightMargin);
+    Panel(s, figure.panels[i], true, i + 1 == n, figure.key_margin > 0.0 ? figure.key_margin : kRightMargin,
+          figure.panels[i].height / total);
     top -= h;
   }
   s << "unset multiplot\n";

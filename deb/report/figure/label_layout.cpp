@@ -40,22 +40,32 @@ std::optional<std::pair<double, double>> PlotFraction(const FigurePanel& panel, 
   return std::make_pair(*x, *y);
 }
 
-std::optional<LabelBox> LabelBoxOf(const FigurePanel& panel, const FigureAnnotation& a) {
+std::optional<LabelBox> LabelBoxOf(const FigurePanel& panel, const FigureAnnotation& a, double share) {
   const auto at = PlotFraction(panel, a);
   if (!at || a.label.empty()) return std::nullopt;
+  const double line = kLabelLineHeight / share;
   const double width = static_cast<double>(ShownCharacters(a.label)) * kLabelCharWidth;
   const double gap = std::fabs(a.label_dx) * kLabelCharWidth;
-  const double centre = at->second + a.label_dy * kLabelLineHeight;
+  const double centre = at->second + a.label_dy * line;
   LabelBox b;
   b.x0 = a.label_left ? at->first - gap - width : at->first + gap;
   b.x1 = b.x0 + width;
-  b.y0 = centre - 0.5 * kLabelLineHeight;
-  b.y1 = centre + 0.5 * kLabelLineHeight;
+  b.y0 = centre - 0.5 * line;
+  b.y1 = centre + 0.5 * line;
   return b;
 }
 
-void PlaceMarkerLabels(FigurePanel& panel) {
+void PlaceMarkerLabels(FigurePanel& panel, double share) {
+  const double line = kLabelLineHeight / share;
   std::vector<LabelBox> placed;
+  // Every marker's point, a character wide and half a line tall: a label
+  // over another marker's point would read as that marker's.
+  std::vector<LabelBox> points;
+  for (const FigureAnnotation& a : panel.annotations)
+    if (a.kind == AnnotationKind::kMarker)
+      if (const auto at = PlotFraction(panel, a))
+        points.push_back({at->first - 0.5 * kLabelCharWidth, at->first + 0.5 * kLabelCharWidth,
+                          at->second - 0.25 * line, at->second + 0.25 * line});
   for (FigureAnnotation& a : panel.annotations) {
     if (a.kind != AnnotationKind::kMarker || a.label.empty() || !PlotFraction(panel, a)) continue;
     bool done = false;
@@ -65,9 +75,10 @@ void PlaceMarkerLabels(FigurePanel& panel) {
         a.label_left = left;
         a.label_dx = left ? -1.0 : 1.0;
         a.label_dy = dy;
-        const LabelBox b = *LabelBoxOf(panel, a);
+        const LabelBox b = *LabelBoxOf(panel, a, share);
         bool free = b.Inside();
         for (const LabelBox& other : placed) free = free && !b.Overlaps(other);
+        for (const LabelBox& point : points) free = free && !b.Overlaps(point);
         if (free) {
           placed.push_back(b);
           done = true;

@@ -6,7 +6,8 @@
 // figures, 662 px wide, PdfFigureTerminal), in fractions of the plot area;
 // it is tried above its point, then below, one and then two lines away,
 // each right of the point and then left, and the first place inside the
-// axes that meets no label placed before it is kept. A label that fits
+// axes that meets no label placed before it and no marker's point is
+// kept. A label that fits
 // nowhere becomes the marker's entry in the key (a panel without a key gets
 // one beside it).
 #pragma once
@@ -34,22 +35,23 @@ struct LabelBox {
 
 // A character's width and a line's height in fractions of the plot area of
 // report.pdf's figures (11 px DejaVu Sans: about 6.5 px a character; a plot
-// area of about 430 px by 150 px, the narrowest there, a panel of a Bode
-// plot beside its key).
+// area at least 430 px wide, a stacked panel's beside its key, and 250 px
+// tall, a panel of a stack its share of that).
 inline constexpr double kLabelCharWidth = 6.5 / 430.0;
-inline constexpr double kLabelLineHeight = 15.0 / 150.0;
+inline constexpr double kLabelLineHeight = 15.0 / 250.0;
 
 // Where `a` (a marker) sits in the panel, in fractions of the plot area; none
 // when an axis has no explicit range.
 std::optional<std::pair<double, double>> PlotFraction(const FigurePanel& panel, const FigureAnnotation& a);
 
-// The box of marker `a`'s label as placed (label_dx, label_dy, label_left).
-std::optional<LabelBox> LabelBoxOf(const FigurePanel& panel, const FigureAnnotation& a);
+// The box of marker `a`'s label as placed (label_dx, label_dy, label_left),
+// in a panel that has `share` of its figure's height.
+std::optional<LabelBox> LabelBoxOf(const FigurePanel& panel, const FigureAnnotation& a, double share = 1.0);
 
 // Places the labels of every marker of `panel` in its annotations' order:
 // sets label_dx, label_dy and label_left, or moves the label into `key`
 // (label emptied). A marker whose position is unknown keeps its label where
 // it is (right and above).
-void PlaceMarkerLabels(FigurePanel& panel);
+void PlaceMarkerLabels(FigurePanel& panel, double share = 1.0);
 
 }  // namespace deb::report

@@ -39,15 +39,20 @@ FigureAnnotation Marker(double x, double y, const std::string& label) {
 }
 
 // Every labelled marker's box inside the axes, no two overlapping.
-void CheckPlaced(const FigurePanel& p) {
+void CheckPlaced(const FigurePanel& p, double share = 1.0) {
   std::vector<LabelBox> boxes;
   for (const FigureAnnotation& a : p.annotations) {
     if (a.kind != AnnotationKind::kMarker || a.label.empty()) continue;
-    const auto box = LabelBoxOf(p, a);
+    const auto box = LabelBoxOf(p, a, share);
     if (!box) continue;
     CHECK_MESSAGE(box->Inside(), a.label);
     for (const LabelBox& b : boxes) CHECK_MESSAGE(!box->Overlaps(b), a.label);
     boxes.push_back(*box);
+    for (const FigureAnnotation& other : p.annotations)  // over no other marker's point
+      if (&other != &a && other.kind == AnnotationKind::kMarker)
+        if (const auto at = PlotFraction(p, other))
+          CHECK_MESSAGE(!(at->first > box->x0 && at->first < box->x1 && at->second > box->y0 && at->second < box->y1),
+                        a.label);
   }
 }
 
@@ -64,6 +69,16 @@ TEST_CASE("labels go right of their point, left near the right edge, and apart f
   // The third would sit on the first: it goes below.
   CHECK(p.annotations[2].label_dy < 0.0);
   CheckPlaced(p);
+  // No label lies over another marker's point.
+  for (const FigureAnnotation& a : p.annotations)
+    for (const FigureAnnotation& other : p.annotations) {
+      if (&a == &other || a.label.empty()) continue;
+      const auto box = LabelBoxOf(p, a);
+      const auto at = PlotFraction(p, other);
+      REQUIRE(box);
+      REQUIRE(at);
+      CHECK_FALSE((at->first > box->x0 && at->first < box->x1 && at->second > box->y0 && at->second < box->y1));
+    }
 }
 
 TEST_CASE("a label that fits nowhere names its marker in the key, and a panel without a key gets one") {
@@ -90,12 +105,16 @@ TEST_CASE("every marker label of the shipped budgets' figures lies inside its ax
     std::vector<Plot> plots = LoopPlots(result);
     for (std::size_t o = 0; o < result.outputs.size(); ++o)
       for (Plot& p : SpectrumPlots(result, o, ReportOptions{})) plots.push_back(std::move(p));
-    for (const Plot& plot : plots)
+    for (const Plot& plot : plots) {
+      double total = 0.0;
+      for (const FigurePanel& panel : plot.figure.panels) total += panel.height;
       for (FigurePanel panel : plot.figure.panels) {
-        PlaceMarkerLabels(panel);
-        CheckPlaced(panel);
+        const double share = plot.figure.panels.size() > 1 ? panel.height / total : 1.0;
+        PlaceMarkerLabels(panel, share);
+        CheckPlaced(panel, share);
         for (const FigureAnnotation& a : panel.annotations) labels += a.kind == AnnotationKind::kMarker;
       }
+    }
   }
   CHECK(labels >= 6);  // wafer_stage: a phase margin, three gain margins, |S|'s peak, CPS crossings
 }
