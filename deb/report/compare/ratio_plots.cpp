@@ -33,6 +33,61 @@ bool Shown(const OutputResult& o, std::size_t c) { return o.contributors[c].vari
 // B / A, or NaN where either is zero (or B is not defined there).
 double Ratio(double b, double a) { return a > 0.0 && b > 0.0 ? b / a : NAN; }
 
+// One curve of a ratio plot: a contributor's (or the total's) PSD in A and
+// in B, its style, and the ratio of its RMS.
+struct Curve {
+  std::string name;
+  std::size_t style;
+  const std::vector<double>* a;
+  const std::vector<double>* b;
+  double rms_ratio;
+};
+
+// The ratio plot's panel: the ratios in [lo, hi] over `range`, linear within
+// [1/3, 3]; `data` the plot's CSV (frequency, then a column per curve).
+FigurePanel RatioPanel(const OutputResult& oa, const std::string& label_a, const std::string& label_b,
+                       const FrequencyGrid& grid, const FrequencyRange& range, const std::vector<Curve>& curves,
+                       const std::string& data, double lo, double hi) {
+  const bool linear = lo >= 1.0 / 3.0 && hi <= 3.0;
+  FigurePanel panel;
+  panel.title = Enhanced(oa.name + ": PSD of B / PSD of A");
+  panel.x = FrequencyFigureAxis(range, grid);
+  panel.y.label = "B / A";
+  if (linear) {
+    const double span = std::max(hi - 1.0, 1.0 - lo);
+    const double pad = span > 0.0 ? 0.1 * span : 1e-3;
+    panel.y.min = std::max(0.0, lo - pad);
+    panel.y.max = hi + pad;
+    panel.y.format = "%g";
+  } else {
+    panel.y.scale = AxisScale::kLog;
+    panel.y.format = "10^{%L}";
+    panel.y.min = std::pow(10.0, std::floor(std::log10(std::max(lo, 1e-6))));
+    panel.y.max = std::pow(10.0, std::ceil(std::log10(std::min(hi, 1e6))));
+  }
+  panel.y2.shown = false;
+  panel.key.title = Enhanced("B: " + label_b) + "\nover " + Enhanced("A: " + label_a) + "\nRMS of B / A";
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    const bool total = i + 1 == curves.size();
+    FigureSeries s;
+    s.name = curves[i].name;
+    s.data = data;
+    s.y_columns = {i + 2};
+    s.key = Enhanced(curves[i].name) + " " + (std::isfinite(curves[i].rms_ratio) ? SigLabel(curves[i].rms_ratio, 4) : "–");
+    s.colour = total ? kTotalColour : ContributorStyle(curves[i].style).colour;
+    s.width = total ? 2.5 : 1.5;
+    panel.series.push_back(std::move(s));
+  }
+  FigureAnnotation same;
+  same.kind = AnnotationKind::kHorizontalLine;
+  same.y0 = 1.0;
+  same.colour = "#505050";
+  same.dash = "(6,4)";
+  same.key = "B = A";
+  panel.annotations.push_back(same);
+  return panel;
+}
+
 Plot RatioPlot(const std::string& label_a, const BudgetResult& a, const OutputResult& oa, const std::string& label_b,
                const BudgetResult& b, const OutputResult& ob) {
   const std::vector<double>& fa = a.grid.f_hz();
@@ -42,13 +97,6 @@ Plot RatioPlot(const std::string& label_a, const BudgetResult& a, const OutputRe
     return same_grid ? y[k] : AtFrequency(fb, y, fa[k]);
   };
   // The curves: the contributors both have (by name), then the total.
-  struct Curve {
-    std::string name;
-    std::size_t style;
-    const std::vector<double>* a;
-    const std::vector<double>* b;
-    double rms_ratio;
-  };
   std::vector<Curve> curves;
   for (std::size_t c = 0; c < oa.contributors.size(); ++c)
     for (std::size_t d = 0; d < ob.contributors.size(); ++d)
@@ -101,43 +149,7 @@ Plot RatioPlot(const std::string& label_a, const BudgetResult& a, const OutputRe
   }
   p.csv = csv.str();
 
-  FigurePanel panel;
-  panel.title = Enhanced(oa.name + ": PSD of B / PSD of A");
-  panel.x = FrequencyFigureAxis(range, a.grid);
-  panel.y.label = "B / A";
-  if (linear) {
-    const double span = std::max(hi - 1.0, 1.0 - lo);
-    const double pad = span > 0.0 ? 0.1 * span : 1e-3;
-    panel.y.min = std::max(0.0, lo - pad);
-    panel.y.max = hi + pad;
-    panel.y.format = "%g";
-  } else {
-    panel.y.scale = AxisScale::kLog;
-    panel.y.format = "10^{%L}";
-    panel.y.min = std::pow(10.0, std::floor(std::log10(std::max(lo, 1e-6))));
-    panel.y.max = std::pow(10.0, std::ceil(std::log10(std::min(hi, 1e6))));
-  }
-  panel.y2.shown = false;
-  panel.key.title = Enhanced("B: " + label_b) + "\nover " + Enhanced("A: " + label_a) + "\nRMS of B / A";
-  for (std::size_t i = 0; i < curves.size(); ++i) {
-    const bool total = i + 1 == curves.size();
-    FigureSeries s;
-    s.name = curves[i].name;
-    s.data = p.name + ".csv";
-    s.y_columns = {i + 2};
-    s.key = Enhanced(curves[i].name) + " " + (std::isfinite(curves[i].rms_ratio) ? SigLabel(curves[i].rms_ratio, 4) : "–");
-    s.colour = total ? kTotalColour : ContributorStyle(curves[i].style).colour;
-    s.width = total ? 2.5 : 1.5;
-    panel.series.push_back(std::move(s));
-  }
-  FigureAnnotation same;
-  same.kind = AnnotationKind::kHorizontalLine;
-  same.y0 = 1.0;
-  same.colour = "#505050";
-  same.dash = "(6,4)";
-  same.key = "B = A";
-  panel.annotations.push_back(same);
-  p.figure.panels.push_back(std::move(panel));
+  p.figure.panels.push_back(RatioPanel(oa, label_a, label_b, a.grid, range, curves, p.name + ".csv", lo, hi));
   p.script = EmitFigure(p.figure);
   return p;
 }

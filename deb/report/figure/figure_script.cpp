@@ -217,26 +217,8 @@ int KeyWidthIncrement(const FigurePanel& p) {
   return -static_cast<int>(0.2 * static_cast<double>(longest));
 }
 
-// `share`: of the figure's height, for a stacked panel (its labels' lines
-// are taller in it).
-void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool last,
-           double right_margin = kRightMargin, double share = 1.0) {
-  FigurePanel p = given;
-  PlaceMarkerLabels(p, share);
-  s << "set title " << Label(p.title);
-  if (!p.title_colour.empty()) s << " textcolor rgb " << Quote(p.title_colour);
-  s << "\n";
-  Axis(s, p.x, "x");
-  if (!p.x.minor_grid) s << "set grid nomxtics\n";
-  Axis(s, p.y, "y");
-  if (p.y2.shown) Axis(s, p.y2, "y2");
-  else s << "unset y2tics\nunset y2label\n";
-  if (p.equal_axes) s << "set size ratio -1\n";
-  if (p.bar_width > 0.0) s << "set boxwidth " << CsvNumber(p.bar_width) << " absolute\n";
-  if (multiplot) {
-    s << "set lmargin " << kLeftMargin << "\nset rmargin " << right_margin << "\n";
-    if (!last) s << "set format x ''\nunset xlabel\n";
-  }
+// The key's placement, layout and title.
+void Key(std::ostringstream& s, const FigurePanel& p, bool multiplot) {
   bool titled = false;  // the key's title set with its placement
   switch (p.key.placement) {
     case KeyPlacement::kNone: s << "unset key\n"; break;
@@ -267,6 +249,29 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
   }
   if (p.key.placement != KeyPlacement::kNone)
     s << (p.key.invert ? " invert" : " noinvert") << (titled ? "" : " title " + Label(p.key.title)) << "\n";
+}
+
+// `share`: of the figure's height, for a stacked panel (its labels' lines
+// are taller in it).
+void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool last,
+           double right_margin = kRightMargin, double share = 1.0) {
+  FigurePanel p = given;
+  PlaceMarkerLabels(p, share);
+  s << "set title " << Label(p.title);
+  if (!p.title_colour.empty()) s << " textcolor rgb " << Quote(p.title_colour);
+  s << "\n";
+  Axis(s, p.x, "x");
+  if (!p.x.minor_grid) s << "set grid nomxtics\n";
+  Axis(s, p.y, "y");
+  if (p.y2.shown) Axis(s, p.y2, "y2");
+  else s << "unset y2tics\nunset y2label\n";
+  if (p.equal_axes) s << "set size ratio -1\n";
+  if (p.bar_width > 0.0) s << "set boxwidth " << CsvNumber(p.bar_width) << " absolute\n";
+  if (multiplot) {
+    s << "set lmargin " << kLeftMargin << "\nset rmargin " << right_margin << "\n";
+    if (!last) s << "set format x ''\nunset xlabel\n";
+  }
+  Key(s, p, multiplot);
   if (!p.note.empty()) s << "set label 1 " << Quote(p.note) << " at graph 0.5,0.5 center front\n";
 
   // A heat map: a surface seen from above, in the palette, under the rest.
