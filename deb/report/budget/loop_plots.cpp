@@ -163,9 +163,9 @@ Plot BodePlot(const LoopFigures& lf) {
   bode.kind = PlotKind::kPath;
   bode.csv = lf.csv;
   const std::string same = SameLoopText(r);
-  bode.caption = "Loop gain L = -sign G K of plant " + r.plant + " and controller " + r.controller + " (closing " +
-                 lf.paths + (same.empty() ? "" : "; the same loop as " + same) +
-                 "): magnitude over unwrapped phase, each gain crossover marked with its "
+  bode.caption = "Loop gain L = -sign G K, G the plant (" + r.plant + "), K the controller (" + r.controller +
+                 "); the loop closes the paths " + lf.paths + (same.empty() ? "" : " and is the same loop as " + same) +
+                 ". Magnitude over unwrapped phase, each gain crossover marked with its "
                  "phase margin and each phase crossover with its gain margin (in dB: 20 log10 of the factor by which "
                  "the gain may grow, or shrink where negative, before the loop is unstable).";
   FigurePanel top, bottom;
@@ -206,8 +206,8 @@ Plot SensitivityPlot(const LoopFigures& lf) {
   st.name = lf.stem + "_sensitivity";
   st.kind = PlotKind::kPath;
   st.csv = lf.csv;
-  st.caption = "Sensitivity |S| = 1/|1 + L| and complementary sensitivity |T| = |L/(1 + L)| of the loop of " +
-               r.plant + " and " + r.controller + "; the peak of |S| is 1 / modulus margin.";
+  st.caption = "Sensitivity |S| = 1/|1 + L| and complementary sensitivity |T| = |L/(1 + L)| of the loop of plant " +
+               r.plant + " (G) and controller " + r.controller + " (K); the peak of |S| is 1 / modulus margin.";
   FigurePanel sp;
   sp.title = lf.name + ": sensitivity and complementary sensitivity";
   sp.x = lf.x_axis;
@@ -246,7 +246,7 @@ Plot NyquistPlot(const LoopFigures& lf) {
   ny.name = lf.stem + "_nyquist";
   ny.kind = PlotKind::kPath;
   ny.csv = lf.csv;
-  ny.caption = "Nyquist plot of L for the loop of " + r.plant + " and " + r.controller +
+  ny.caption = "Nyquist plot of L for the loop of plant " + r.plant + " (G) and controller " + r.controller + " (K)" +
                " near the critical point -1 (dashed: negative frequencies), the unit circle and the circle of "
                "radius modulus margin around -1 that the curve touches.";
   FigurePanel np;

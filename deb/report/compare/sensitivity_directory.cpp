@@ -68,12 +68,16 @@ StudyDocument SensitivityDocument(const SensitivitySetting& setting, const Sensi
     if (ranked.empty()) continue;
     Table t;
     t.title = out.name + ": the total first, then the contributors";
+    // The elasticity of each term's own variance, and its part of the
+    // total's elasticity ((d var_c / d ln p) / var, which the tornado chart
+    // draws and which sum over the contributors to the total's).
     t.header = {"parameter", "contributor", "variance [" + UnitText(VarianceUnit(ranked[0].unit)) + "]",
-                "d var / d ln p", "elasticity"};
-    t.numeric = {false, false, true, true, true};
+                "d var / d ln p", "elasticity", "part of the total's elasticity"};
+    t.numeric = {false, false, true, true, true, true};
     for (const auto& s : ranked)
       t.rows.push_back({setting.Label(s.parameter), s.contributor, Sig(s.variance, 4), Sig(s.d_variance_d_log_p, 4),
-                        Sig(s.elasticity, 4)});
+                        Sig(s.elasticity, 4),
+                        out.variance > 0.0 ? Sig(s.d_variance_d_log_p / out.variance, 4) : "–"});
     StudySection section{out.name, "Nominal RMS " + Sig(out.rms(), 4) + " " + UnitText(out.unit) + ".", {t}, {}, {},
                          false};
     for (const Plot& p : plots)

@@ -62,6 +62,9 @@ TEST_CASE("sensitivity.md and .html state the step and nominal parameters, then 
   CHECK(md.find("50 (all 2)") != std::string::npos);
   CHECK(md.find("## y\n\nNominal RMS ") != std::string::npos);
   CHECK(md.find("![tornado of y](plots/y_tornado.png)") != std::string::npos);
+  // Contributor a: its own elasticity 2/3, its part of the total's 2 / 4 = 0.5 (what the tornado draws).
+  CHECK(md.find("| k | a | 3.000 | 2.000 | 0.6667 | 0.5000 |") != std::string::npos);
+  CHECK(md.find("| k | total | 4.000 | 1.000 | 0.2500 | 0.2500 |") != std::string::npos);
   const std::string html = StudyHtml(SensitivityDocument(Setting(), Study(), plots));
   CHECK(html.find("<h2>y</h2>\n<p>Nominal RMS ") != std::string::npos);
   CHECK(html.find("<img src=\"plots/y_tornado.png\" alt=\"tornado of y\">") != std::string::npos);
