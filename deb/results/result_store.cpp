@@ -605,7 +605,8 @@ namespace {
 bool SameBits(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t r = 0; r < a.size(); ++r)
-    if (a[r].size() != b[r].size() || std::memcmp(a[r].data(), b[r].data(), a[r].size() * sizeof(double)) != 0)
+    if (a[r].size() != b[r].size() ||
+        (!a[r].empty() && std::memcmp(a[r].data(), b[r].data(), a[r].size() * sizeof(double)) != 0))
       return false;
   return true;
 }
