@@ -673,9 +673,18 @@ class Composer {
     Layout title = MakeLayout(b.text, 9.5, true, kTextWidthPt);
     const double title_h = b.text.empty() ? 0.0 : Size(title.get()).second;
     const double header_h = t.header.empty() ? 0.0 : RowHeight(run, run.header_cells, true);
-    const double first_row_h = t.rows.empty() ? 0.0 : RowHeight(run, t.rows.front(), false);
+    std::vector<double> row_h;
+    for (const auto& row : t.rows) row_h.push_back(RowHeight(run, row, false));
+    // A table starts where at least its first two rows fit; a short one
+    // (at most a third of a page) where all of it does.
+    double whole = 0.0;
+    for (double h : row_h) whole += h;
+    const double first_rows = whole <= (kBodyBottomPt - kMarginPt) / 3.0 ? whole
+                              : row_h.size() >= 2                        ? row_h[0] + row_h[1]
+                              : row_h.empty()                            ? 0.0
+                                                                         : row_h[0];
     if (y_ > kMarginPt) y_ += 4.0;
-    Need(title_h + 4.0 + header_h + first_row_h + 2.0 * inset);
+    Need(title_h + 4.0 + header_h + first_rows + 2.0 * inset);
     if (!b.text.empty()) {
       Show(title.get(), kMarginPt, y_, kInk);
       Place("table title", b.text, kMarginPt, y_, kTextWidthPt, title_h, kInk);
@@ -685,8 +694,15 @@ class Composer {
     y_ += inset;
     if (t.boxed && draw_) ShadeBox(run, header_h);
     if (!t.header.empty()) DrawRow(run, run.header_cells, true);
-    for (const auto& row : t.rows) {
-      if (y_ + RowHeight(run, row, false) + inset > kBodyBottomPt) {
+    std::size_t on_page = 0;  // rows drawn on this page
+    for (std::size_t r = 0; r < t.rows.size(); ++r) {
+      const auto& row = t.rows[r];
+      // A break before the last two rows rather than before the last one:
+      // no row alone on a page.
+      const bool last_alone = r + 2 == t.rows.size() && on_page >= 2 &&
+                              y_ + row_h[r] + row_h[r + 1] + inset > kBodyBottomPt;
+      if (y_ + row_h[r] + inset > kBodyBottomPt || last_alone) {
+        on_page = 0;
         CloseBox(run);
         NewPage();
         run.box_top = y_;
@@ -694,6 +710,7 @@ class Composer {
         if (!t.header.empty()) DrawRow(run, run.header_cells, true);
       }
       DrawRow(run, row, false);
+      ++on_page;
     }
     CloseBox(run);
     y_ += 3.0;

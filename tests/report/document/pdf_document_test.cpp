@@ -325,4 +325,38 @@ TEST_CASE("a figure's text keeps the space after a superscript, as gnuplot write
   fs::remove_all(dir);
 }
 
+TEST_CASE("no table row is alone on a page, and a short table is not split") {
+  // Tables of 30 to 90 rows after a paragraph: wherever the page breaks,
+  // every page that holds rows of the table holds at least two.
+  for (std::size_t n = 30; n <= 90; ++n) {
+    CAPTURE(n);
+    PdfDocumentSpec spec;
+    spec.create_date = "2026-01-01T00:00:00Z";
+    spec.blocks.push_back(Paragraph("A paragraph before the table."));
+    PdfTable t;
+    t.header = {"row", "value"};
+    t.numeric = {false, true};
+    for (std::size_t r = 0; r < n; ++r) t.rows.push_back({PdfCell("row " + std::to_string(r)), PdfCell("1.5")});
+    spec.blocks.push_back(TableBlock("rows", t));
+    const PdfLayout layout = WritePdfDocument(spec, "");
+    std::map<int, int> rows_on;
+    for (const PlacedBox& b : layout.boxes)
+      if (b.what == "table row") ++rows_on[b.page];
+    for (const auto& [page, rows] : rows_on) CHECK_MESSAGE(rows >= 2, "page " << page);
+  }
+  // Five rows that would start at the foot of a page start on the next, whole.
+  PdfDocumentSpec spec;
+  spec.create_date = "2026-01-01T00:00:00Z";
+  for (int i = 0; i < 48; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
+  PdfTable t;
+  t.header = {"row"};
+  t.numeric = {false};
+  for (int r = 0; r < 5; ++r) t.rows.push_back({PdfCell("row " + std::to_string(r))});
+  spec.blocks.push_back(TableBlock("five", t));
+  std::set<int> pages;
+  for (const PlacedBox& b : WritePdfDocument(spec, "").boxes)
+    if (b.what == "table row") pages.insert(b.page);
+  CHECK(pages.size() == 1);
+}
+
 }  // namespace deb::report
