@@ -400,6 +400,7 @@ bool AddToneMarkers(FigurePanel& panel, const BudgetResult& result, const PlotLe
     m.x0 = t.f_hz;
     m.y0 = has_data ? std::max(on_total, *panel.y.min) : 1.0;
     m.colour = level.styles[t.contributor].colour;
+    m.label_colour = "#202020";  // a light contributor colour would not read over the curves
     m.point_type = 9;  // a triangle
     if (i < kMaxToneLabels)
       m.label = Enhanced(out.contributors[t.contributor].name) + " " + Short(t.f_hz) + " Hz: " +

@@ -27,6 +27,7 @@ struct FigureAnnotation {
   std::string dash = "solid";
   double width = 2.0;
   std::string label;  // enhanced text; markers and text
+  std::string label_colour;  // markers: the label's colour; empty: `colour`
   std::string key;    // lines, and markers: an entry in the key (enhanced text); empty: none
   int point_type = 7;  // markers
   double label_dx = 1.0, label_dy = 1.0;  // label offset from a marker, in characters

@@ -321,7 +321,7 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
           << " pointsize " << CsvNumber(a.point_size)
           << " linecolor rgb "
           << Quote(a.colour) << " offset " << CsvNumber(a.label_dx) << "," << CsvNumber(a.label_dy)
-          << " textcolor rgb " << Quote(a.colour) << " boxed front\n";
+          << " textcolor rgb " << Quote(a.label_colour.empty() ? a.colour : a.label_colour) << " boxed front\n";
         break;
       case AnnotationKind::kLabel:
         s << "set label " << tag++ << " " << Quote(a.label) << " at first " << CsvNumber(a.x0) << ", " << y
