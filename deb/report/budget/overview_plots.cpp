@@ -107,9 +107,12 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
         limit.y0 = *out.rms_max;
         limit.colour = kRequirementColour;
         limit.dash = kRequirementDash;
+        // Under the bars and their value labels: drawn over them, the dashes
+        // struck through the labels of the bars that reach the limit.
+        limit.behind = true;
         panel.annotations.push_back(limit);
       }
-      FigureSeries values;  // last: over the requirement line
+      FigureSeries values;  // last: over the bars
       values.name = "values";
       values.kind = SeriesKind::kLabels;
       values.data = data;
