@@ -342,7 +342,7 @@ TEST_CASE("no table row is alone on a page, and a short table is not split") {
     std::map<int, int> rows_on;
     for (const PlacedBox& b : layout.boxes)
       if (b.what == "table row") ++rows_on[b.page];
-    for (const auto& [page, rows] : rows_on) CHECK_MESSAGE(rows >= 2, "page " << page);
+    for (const auto& page : rows_on) CHECK_MESSAGE(page.second >= 2, "page " << page.first);
   }
   // Five rows that would start at the foot of a page start on the next, whole.
   PdfDocumentSpec spec;
