@@ -59,8 +59,30 @@ void Axis(std::ostringstream& s, const FigureAxis& a, const std::string& name) {
   if (name == "x" || name == "y") s << "set grid " << (a.grid ? "" : "no") << name << "tics\n";
 }
 
+// A dash pattern "(10,5)" as "(10*deb_dash,5*deb_dash)": gnuplot's SVG
+// terminal scales a pattern by the line width, which report.pdf's figures
+// draw 1.75 times as wide on a canvas half as wide as a PNG's, so their
+// dashes came out three times as long (and a key sample, shorter than one
+// dash, looked solid); kDashScaleVariable shortens them there. Other dash
+// types ("solid") as they are.
+std::string Dash(const std::string& dash) {
+  if (dash.empty() || dash.front() != '(') return dash;
+  std::string out = "(";
+  std::string number;
+  for (std::size_t i = 1; i < dash.size(); ++i) {
+    const char c = dash[i];
+    if (c == ',' || c == ')') {
+      out += number + "*" + kDashScaleVariable + c;
+      number.clear();
+    } else if (c != ' ') {
+      number += c;
+    }
+  }
+  return out;
+}
+
 std::string LineStyle(const std::string& colour, const std::string& dash, double width) {
-  return "linecolor rgb " + Quote(colour) + " dashtype " + dash + " linewidth " + CsvNumber(width);
+  return "linecolor rgb " + Quote(colour) + " dashtype " + Dash(dash) + " linewidth " + CsvNumber(width);
 }
 
 std::string KeyOf(const std::string& key) { return key.empty() ? "notitle" : "title " + Quote(key); }
@@ -331,7 +353,7 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
       case AnnotationKind::kCircle:
         s << "set object " << tag++ << " circle at first " << CsvNumber(a.x0) << "," << CsvNumber(a.y0)
           << " size first " << CsvNumber(a.x1) << " fillstyle empty border linecolor rgb " << Quote(a.colour)
-          << " linewidth " << CsvNumber(a.width) << " dashtype " << a.dash << " front\n";
+          << " linewidth " << CsvNumber(a.width) << " dashtype " << Dash(a.dash) << " front\n";
         break;
       case AnnotationKind::kText:
         s << "set label " << tag++ << " " << Quote(a.label) << " at graph " << CsvNumber(a.x0) << ", graph "
@@ -359,6 +381,8 @@ std::string EmitFigure(const PlotFigure& figure) {
   DEB_DEMAND(!figure.panels.empty());
   std::ostringstream s;
   s << "reset\n" << StylePreamble();
+  // Dash patterns 0.4 times as long in report.pdf's figures (Dash).
+  s << kDashScaleVariable << " = exists(" << Quote(kPdfFigureVariable) << ") ? 0.4 : 1\n";
   // Marker labels sit on an opaque box: readable over a hatched layer.
   s << "set style textbox opaque margins 0.5,0.5 noborder\n";
   const std::size_t n = figure.panels.size();

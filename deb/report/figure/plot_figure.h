@@ -23,6 +23,9 @@ namespace deb::report {
 // placed kOutsideRight then goes below the plot (the figure's narrow canvas
 // there, PdfFigureTerminal).
 inline constexpr const char* kPdfFigureVariable = "deb_pdf_figure";
+// The factor of every dash pattern's lengths in a figure's script: 0.4 in
+// report.pdf's figures (kPdfFigureVariable set), else 1.
+inline constexpr const char* kDashScaleVariable = "deb_dash";
 
 enum class KeyPlacement { kNone, kOutsideRight, kInsideTopRight, kInsideTopLeft, kBelow, kAbove, kBesideGrid, kBelowMap };
 

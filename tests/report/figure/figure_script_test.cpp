@@ -48,6 +48,20 @@ TEST_CASE("the emitter quotes user text, so that no backquote or macro of a name
   CHECK(Count(script, "\nplot ") == 1);
 }
 
+TEST_CASE("dash patterns are scaled by deb_dash: 1 in a PNG, 0.4 in report.pdf's figures, where gnuplot draws lines wider") {
+  PlotFigure figure;
+  FigurePanel p = Panel("s");
+  p.series[0].dash = "(10,5)";
+  p.annotations[0].dash = "(16,4,4,4)";
+  figure.panels.push_back(p);
+  const std::string script = EmitFigure(figure);
+  CHECK(Count(script, "deb_dash = exists('deb_pdf_figure') ? 0.4 : 1\n") == 1);
+  CHECK(script.find("dashtype (10*deb_dash,5*deb_dash)") != std::string::npos);
+  CHECK(script.find("dashtype (16*deb_dash,4*deb_dash,4*deb_dash,4*deb_dash)") != std::string::npos);
+  CHECK(script.find("dashtype (10,5)") == std::string::npos);
+  CHECK(script.find("dashtype solid") != std::string::npos);  // the grid's, as it is
+}
+
 TEST_CASE("stacked panels are one multiplot whose panels share their margins and the bottom panel's x axis") {
   PlotFigure f;
   f.title = "two";
