@@ -52,8 +52,11 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
       const std::vector<std::size_t> order = ShareOrder(out);
       FigurePanel panel;
       std::string status = "RMS " + SigLabel(out.rms(), digits) + " " + UnitLabel(unit);
+      // Three panels or more to a row: the verdict on a line of its own (in
+      // report.pdf a panel is 220 px wide: one line ran into the next title).
       if (out.rms_max)
-        status += std::string(out.pass() ? ": PASS" : ": FAIL") + " (requirement " + Short(*out.rms_max) + ")";
+        status += std::string(cols >= 3 ? "\n" : ": ") + (out.pass() ? "PASS" : "FAIL") + " (requirement " +
+                  Short(*out.rms_max) + ")";
       panel.title = Enhanced(out.name) + "\n" + status;
       panel.title_colour = out.rms_max && !out.pass() ? kRequirementColour : "#202020";
       panel.key.placement = KeyPlacement::kNone;
