@@ -596,18 +596,15 @@ void CheckPanels(const Reading& in, const std::vector<double>& f_hz, const std::
   }
 }
 
-}  // namespace
-
-namespace {
-
 // Whether two rows of numbers hold the same bits (a store read back draws
 // exactly what the run drew, signs of zeros included).
+bool SameBits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
 bool SameBits(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t r = 0; r < a.size(); ++r)
-    if (a[r].size() != b[r].size() ||
-        (!a[r].empty() && std::memcmp(a[r].data(), b[r].data(), a[r].size() * sizeof(double)) != 0))
-      return false;
+    if (!SameBits(a[r], b[r])) return false;
   return true;
 }
 
@@ -620,7 +617,7 @@ std::optional<std::pair<std::size_t, std::size_t>> EarlierSameResponse(const Res
   for (std::size_t ec = 0; ec <= c; ++ec)
     for (std::size_t eo = 0; eo < traces.paths[ec].size() && (ec < c || eo < o); ++eo) {
       const PathResponse& e = traces.paths[ec][eo];
-      if (SameBits({e.f_hz}, {p.f_hz}) && SameBits(e.gain2, p.gain2) && SameBits(e.phase_rad, p.phase_rad))
+      if (SameBits(e.f_hz, p.f_hz) && SameBits(e.gain2, p.gain2) && SameBits(e.phase_rad, p.phase_rad))
         return std::make_pair(ec, eo);
     }
   return std::nullopt;

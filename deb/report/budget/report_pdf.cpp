@@ -98,6 +98,10 @@ std::string PdfFigureTerminal(PlotKind kind) {
          " font 'DejaVu Sans,11' linewidth 2.1 background '#ffffff'\n" + kPdfFigureVariable + " = 1\n";
 }
 
+std::string PdfFigureCommands(const Plot& p) {
+  return DrawCommands(PdfFigureTerminal(p.kind), std::string(kPdfFigureDir) + "/" + p.name + ".svg", p.name + ".gp");
+}
+
 PdfTable TypesetTable(const Table& given, std::size_t min_note_chars) {
   // Long text said once, below the table (WithNotesBelow): the note column
   // holds marks only and its width goes to the names and numbers rather

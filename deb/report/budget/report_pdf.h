@@ -40,6 +40,13 @@ bool DrawnInPdf(const Plot& p);
 // paper and the plots' base font at 8 pt.
 std::string PdfFigureTerminal(PlotKind kind);
 
+// The folder, inside a report's or study's plots/, where its PDF's figures
+// are drawn (and removed once the PDF is written).
+inline constexpr const char* kPdfFigureDir = ".pdf_figures";
+// The commands that draw plot `p`'s figure, kPdfFigureDir/<name>.svg, from
+// its script in the plots' folder (DrawCommands, PdfFigureTerminal).
+std::string PdfFigureCommands(const Plot& p);
+
 // A report table for typesetting: "FAIL" in red, emphasis in bold; a long
 // note (at least `min_note_chars` characters) that several rows share, or
 // any long note of the column headed "note", is printed once below the table

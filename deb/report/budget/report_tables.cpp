@@ -364,11 +364,6 @@ std::string HtmlEscape(const std::string& text) {
 }
 
 Table WithNotesBelow(const Table& table, std::vector<std::string>* notes, std::size_t min_characters) {
-  const auto characters = [](const std::string& s) {
-    std::size_t n = 0;
-    for (char c : s) n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-    return n;
-  };
   const auto mark = [](std::size_t k) {  // superscript digits
     static const char* const digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
     std::string m;
@@ -381,7 +376,7 @@ Table WithNotesBelow(const Table& table, std::vector<std::string>* notes, std::s
   std::set<std::string> below;
   for (const auto& row : table.rows)
     for (std::size_t c = 0; c < row.size(); ++c)
-      if (!(c < table.numeric.size() && table.numeric[c]) && characters(row[c]) >= min_characters) {
+      if (!(c < table.numeric.size() && table.numeric[c]) && Width(row[c]) >= min_characters) {
         const bool note_column = c < table.header.size() && table.header[c] == "note";
         if (++count[{c, row[c]}] > 1 || note_column) below.insert(row[c]);
       }

@@ -133,29 +133,23 @@ struct DrawJob {
   std::string script;
 };
 
-// report.pdf places each plot as an SVG drawn for it (PdfFigureTerminal)
-// in a folder removed once the document is written.
-const char* const kPdfFigures = ".pdf_figures";
-
 // The figures of report.pdf first (when `pdf`; their number in `pdf_jobs`),
 // then the PNG and SVG plots.
 std::vector<DrawJob> DrawJobs(const std::vector<Plot>& plots, const ReportOptions& options, bool pdf,
                               std::size_t* pdf_jobs) {
   std::vector<DrawJob> jobs;
-  const std::string pdf_figures = kPdfFigures;
+  // report.pdf places each plot as an SVG drawn for it, in a folder removed
+  // once the document is written.
   if (pdf)
     for (const Plot& p : plots)
       if (DrawnInPdf(p))
-        jobs.push_back({"plots/" + pdf_figures + "/" + p.name + ".svg",
-                        PdfFigureTerminal(p.kind) + "set output " + QuoteFile(pdf_figures + "/" + p.name + ".svg") +
-                            "\nload " + QuoteFile(p.name + ".gp") + "\nunset output\n"});
+        jobs.push_back({"plots/" + std::string(kPdfFigureDir) + "/" + p.name + ".svg", PdfFigureCommands(p)});
   *pdf_jobs = jobs.size();
   for (PlotFormat t : {PlotFormat::kPng, PlotFormat::kSvg}) {
     if (!options.Has(t)) continue;
     for (const Plot& p : plots) {
       const std::string file = p.name + "." + FileExtension(t);
-      jobs.push_back({"plots/" + file, TerminalCommand(t) + "set output " + QuoteFile(file) + "\nload " +
-                                           QuoteFile(p.name + ".gp") + "\nunset output\n"});
+      jobs.push_back({"plots/" + file, DrawCommands(TerminalCommand(t), file, p.name + ".gp")});
     }
   }
   return jobs;
@@ -194,8 +188,8 @@ void DrawReport(const BudgetResult& result, const std::vector<Plot>& plots, cons
   const std::string gnuplot = FindGnuplot(options.gnuplot);
   if (pdf) {
     std::error_code ec;
-    fs::create_directories(plots_dir / kPdfFigures, ec);
-    if (ec) throw WriteError("cannot create directory " + (plots_dir / kPdfFigures).string() + ": " + ec.message());
+    fs::create_directories(plots_dir / kPdfFigureDir, ec);
+    if (ec) throw WriteError("cannot create directory " + (plots_dir / kPdfFigureDir).string() + ": " + ec.message());
   }
   std::size_t pdf_jobs = 0;
   const std::vector<DrawJob> jobs = DrawJobs(plots, options, pdf, &pdf_jobs);
@@ -215,7 +209,7 @@ void DrawReport(const BudgetResult& result, const std::vector<Plot>& plots, cons
     in.sha256 = sha256;
     in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
     in.plots = &plots;
-    in.figure_dir = (plots_dir / kPdfFigures).string();
+    in.figure_dir = (plots_dir / kPdfFigureDir).string();
     in.digits = options.digits;
     layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
   };
@@ -239,7 +233,7 @@ void DrawReport(const BudgetResult& result, const std::vector<Plot>& plots, cons
   for (std::size_t i = pdf_jobs; i < jobs.size(); ++i) manifest.files.push_back(jobs[i].file);
   if (pdf) {
     std::error_code ec;
-    fs::remove_all(plots_dir / kPdfFigures, ec);
+    fs::remove_all(plots_dir / kPdfFigureDir, ec);
     manifest.files.push_back("report.pdf");
     manifest.title_pages = 1;
     manifest.pdf_pages = layout.pages;

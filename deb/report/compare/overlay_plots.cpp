@@ -20,9 +20,12 @@
 #include "deb/version.h"
 
 namespace deb::report {
-namespace {
 
-bool Shown(const OutputResult& o, std::size_t c) { return o.contributors[c].variance >= kNegligibleShare * o.variance; }
+bool ShownInComparison(const OutputResult& o, std::size_t c) {
+  return o.contributors[c].variance >= kNegligibleShare * o.variance;
+}
+
+namespace {
 
 // One data block per result (gnuplot `index`): frequency, then per
 // contributor and the total, PSD or CPS, at the points a reader can see in
@@ -138,9 +141,9 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
     };
     for (std::size_t c = 0; c < o.contributors.size(); ++c) {
       // Left out where negligible on both sides (a namesake on the other side counts).
-      bool shown = Shown(o, c);
+      bool shown = ShownInComparison(o, c);
       for (std::size_t d = 0; d < other.contributors.size(); ++d)
-        if (other.contributors[d].name == o.contributors[c].name && Shown(other, d)) shown = true;
+        if (other.contributors[d].name == o.contributors[c].name && ShownInComparison(other, d)) shown = true;
       if (!shown) continue;
       // B's contributors take the colour of A's namesake, else one of their own.
       std::size_t style = na + c;
@@ -201,9 +204,7 @@ void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_di
       plots.size(),
       [&](std::size_t i) {
         const Plot& p = plots[i];
-        RunGnuplot(gnuplot, plots_dir,
-                   TerminalCommand(PlotFormat::kPng) + "set output " + QuoteFile(p.name + ".png") + "\nload " +
-                       QuoteFile(p.name + ".gp") + "\nunset output\n",
+        RunGnuplot(gnuplot, plots_dir, DrawCommands(TerminalCommand(PlotFormat::kPng), p.name + ".png", p.name + ".gp"),
                    "plot " + p.name);
       },
       threads);

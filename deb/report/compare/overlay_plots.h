@@ -16,6 +16,10 @@ namespace deb::report {
 // Depth of the PSD overlay's axis below its peak, as in the run's PSD plot.
 inline constexpr double kOverlayPsdDecades = 10.0;
 
+// Whether contributor c of `o` holds at least kNegligibleShare of its
+// variance: drawn in a comparison's figures.
+bool ShownInComparison(const OutputResult& o, std::size_t c);
+
 // Two plots (PSD, CPS) per output name found in both a and b with the same
 // unit, drawn on the axis rules of `deb run`: the frequencies of either
 // result's DisplayRange, a PSD axis at most kOverlayPsdDecades deep, a linear

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "deb/budget/comparison.h"
 #include "deb/core/error.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "deb/report/compare/overlay_plots.h"
@@ -27,9 +26,6 @@ double AtFrequency(const std::vector<double>& f_hz, const std::vector<double>& y
 
 namespace {
 
-// A contributor of output o at index c holds a visible share of it.
-bool Shown(const OutputResult& o, std::size_t c) { return o.contributors[c].variance >= kNegligibleShare * o.variance; }
-
 // B / A, or NaN where either is zero (or B is not defined there).
 double Ratio(double b, double a) { return a > 0.0 && b > 0.0 ? b / a : NAN; }
 
@@ -43,12 +39,11 @@ struct Curve {
   double rms_ratio;
 };
 
-// The ratio plot's panel: the ratios in [lo, hi] over `range`, linear within
-// [1/3, 3]; `data` the plot's CSV (frequency, then a column per curve).
+// The ratio plot's panel: the ratios in [lo, hi] over `range` on a linear
+// or log axis; `data` the plot's CSV (frequency, then a column per curve).
 FigurePanel RatioPanel(const OutputResult& oa, const std::string& label_a, const std::string& label_b,
                        const FrequencyGrid& grid, const FrequencyRange& range, const std::vector<Curve>& curves,
-                       const std::string& data, double lo, double hi) {
-  const bool linear = lo >= 1.0 / 3.0 && hi <= 3.0;
+                       const std::string& data, double lo, double hi, bool linear) {
   FigurePanel panel;
   panel.title = Enhanced(oa.name + ": PSD of B / PSD of A");
   panel.x = FrequencyFigureAxis(range, grid);
@@ -100,7 +95,7 @@ Plot RatioPlot(const std::string& label_a, const BudgetResult& a, const OutputRe
   std::vector<Curve> curves;
   for (std::size_t c = 0; c < oa.contributors.size(); ++c)
     for (std::size_t d = 0; d < ob.contributors.size(); ++d)
-      if (ob.contributors[d].name == oa.contributors[c].name && Shown(oa, c) && Shown(ob, d))
+      if (ob.contributors[d].name == oa.contributors[c].name && ShownInComparison(oa, c) && ShownInComparison(ob, d))
         curves.push_back({oa.contributors[c].name, c, &oa.contributors[c].psd, &ob.contributors[d].psd,
                           std::sqrt(Ratio(ob.contributors[d].variance, oa.contributors[c].variance))});
   curves.push_back({"total", 0, &oa.total_psd, &ob.total_psd, std::sqrt(Ratio(ob.variance, oa.variance))});
@@ -149,7 +144,7 @@ Plot RatioPlot(const std::string& label_a, const BudgetResult& a, const OutputRe
   }
   p.csv = csv.str();
 
-  p.figure.panels.push_back(RatioPanel(oa, label_a, label_b, a.grid, range, curves, p.name + ".csv", lo, hi));
+  p.figure.panels.push_back(RatioPanel(oa, label_a, label_b, a.grid, range, curves, p.name + ".csv", lo, hi, linear));
   p.script = EmitFigure(p.figure);
   return p;
 }

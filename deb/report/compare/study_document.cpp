@@ -14,9 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Where WriteStudyPdf draws the figures, inside the plots' directory.
-constexpr const char* kFigureDir = ".pdf_figures";
-
 constexpr const char* kStyle =
     "body{font-family:'DejaVu Sans',sans-serif;max-width:1240px;margin:2rem auto;padding:0 1.5rem}"
     "table{border-collapse:collapse;margin:.6rem 0 1.4rem;font-size:.92rem}th,td{border-bottom:1px solid #ddd;"
@@ -86,7 +83,7 @@ PdfDocumentSpec StudyPdfSpec(const StudyDocument& doc, const std::string& figure
 void WriteStudyPdf(const StudyDocument& doc, const std::string& plots_dir, const std::string& pdf_path, int threads) {
   std::vector<const Plot*> figures;
   for (const StudySection& s : doc.sections) figures.insert(figures.end(), s.figures.begin(), s.figures.end());
-  const fs::path figure_dir = fs::path(plots_dir) / kFigureDir;
+  const fs::path figure_dir = fs::path(plots_dir) / kPdfFigureDir;
   if (!figures.empty()) {
     std::error_code ec;
     fs::create_directories(figure_dir, ec);
@@ -96,10 +93,7 @@ void WriteStudyPdf(const StudyDocument& doc, const std::string& plots_dir, const
         figures.size(),
         [&](std::size_t i) {
           const Plot& p = *figures[i];
-          RunGnuplot(gnuplot, plots_dir,
-                     PdfFigureTerminal(p.kind) + "set output " + QuoteFile(std::string(kFigureDir) + "/" + p.name +
-                                                                           ".svg") +
-                         "\nload " + QuoteFile(p.name + ".gp") + "\nunset output\n",
+          RunGnuplot(gnuplot, plots_dir, PdfFigureCommands(p),
                      "the figure " + p.name + " of " + fs::path(pdf_path).filename().string());
         },
         threads);

@@ -56,6 +56,10 @@ std::string QuoteFile(const std::string& path) {
   return Quote(pipe_like ? "./" + path : path);
 }
 
+std::string DrawCommands(const std::string& terminal, const std::string& output_file, const std::string& script_file) {
+  return terminal + "set output " + QuoteFile(output_file) + "\nload " + QuoteFile(script_file) + "\nunset output\n";
+}
+
 std::string QuoteLines(const std::vector<std::string>& lines) {
   if (lines.empty()) return Quote("");
   std::string q = "(";

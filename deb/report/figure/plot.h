@@ -38,6 +38,10 @@ std::string Quote(const std::string& text);
 // "./" before a relative name that starts with '|', '<' or '!', which gnuplot
 // would take for a pipe to a shell or a command to read from.
 std::string QuoteFile(const std::string& path);
+// The commands that draw a plot's script `script_file` into `output_file`
+// with `terminal` (its "set terminal ..." line): set output, load, unset
+// output, both names quoted by QuoteFile.
+std::string DrawCommands(const std::string& terminal, const std::string& output_file, const std::string& script_file);
 // Several lines as one gnuplot string expression: single-quoted lines
 // joined by "\n", e.g. ('first'."\n".'second'); usable wherever a string is.
 std::string QuoteLines(const std::vector<std::string>& lines);
