@@ -28,7 +28,7 @@ bool SameLoopGain(const FeedbackLoop& a, const FeedbackLoop& b, const std::vecto
 
 // A part of a loop that is a constant gain (the 1 of "G K closed by 1").
 bool StaticGain(const FrequencyModel& m) {
-  if (m.HasData() || !m.IrrationalBlocks().empty()) return false;
+  if (m.HasData() || !m.IrrationalBlocks().empty() || !m.ModalParts().empty()) return false;
   for (const StateSpace& part : m.RationalParts())
     if (part.states() > 0) return false;
   return true;

@@ -45,6 +45,9 @@ Eigen::MatrixXcd FeedbackLoop::LoopGainAt(double f_hz) const {
 
 StateSpace Path::Rational() const { return modal ? ModalStateSpace(*modal) : system; }
 
-FrequencyModel Path::Model() const { return measured ? *measured : FrequencyModel(Rational()); }
+FrequencyModel Path::Model() const {
+  if (measured) return *measured;
+  return modal ? FrequencyModel(modal) : FrequencyModel(system);
+}
 
 }  // namespace deb

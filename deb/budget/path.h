@@ -37,12 +37,14 @@ struct Path {
   StateSpace system = StateSpace::Gain(Eigen::MatrixXd::Zero(0, 0));
   // Set when the path holds measured frequency data (type: frf) or a block
   // that is not rational in s (delay, discrete), or is a series, parallel or
-  // feedback path with such a part: H is evaluated frequency by frequency
-  // from it. With measured data `system` is only a zero gain of the path's
-  // size, carrying its dimensions (no poles, no Lyapunov variance); with
-  // delays and sampled blocks only, `system` is the path's rational
-  // approximation (SystemApproximates()), which gives the poles, stability
-  // and the exact variance, while H on the grid stays exact.
+  // feedback path with such a part or with a modal part: H is evaluated
+  // frequency by frequency from it. With measured data `system` is only a
+  // zero gain of the path's size, carrying its dimensions (no poles, no
+  // Lyapunov variance); otherwise `system` is the path's realisation
+  // (SystemApproximates()), which gives the poles, stability and the exact
+  // variance, while H on the grid is evaluated from the parts: exactly for
+  // delays and sampled blocks (the realisation holds their rational
+  // approximations), and at the cost of the modal form for modal parts.
   std::shared_ptr<const FrequencyModel> measured;
   // Set for a path of `type: modal`: it is evaluated in modal form
   // (path_analysis.h), and `system` is again only a zero gain of its size.
@@ -63,14 +65,15 @@ struct Path {
   int OutputIndex(const std::string& signal) const;
 
   bool HasMeasuredData() const { return measured && measured->HasData(); }
-  // H is evaluated per frequency from `measured`, and `system` approximates it.
+  // H is evaluated per frequency from `measured`, and `system` realises it
+  // (with rational approximations of its delays and sampled blocks).
   bool SystemApproximates() const { return measured && !measured->HasData(); }
   bool IsModal() const { return modal != nullptr; }
   // The rational transfer as a state space: `system`, or the realisation of
   // the modal model (2 states per mode; for joining it with other paths).
   StateSpace Rational() const;
-  // The path as a block diagram evaluated per frequency (measured, or the
-  // rational transfer wrapped); for interconnecting it with a measured path.
+  // The path as a block diagram evaluated per frequency (measured, the
+  // modal model, or the rational transfer wrapped); for interconnecting it.
   FrequencyModel Model() const;
 };
 

@@ -8,10 +8,12 @@
 #include "deb/core/limits.h"
 #include "deb/core/parallel.h"
 #include "deb/systems/axis_cancellation.h"
+#include "deb/systems/block_triangular.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/lyapunov.h"
 #include "deb/systems/modal_response.h"
+#include "deb/systems/real_block_diagonal.h"
 
 namespace deb {
 namespace {
@@ -44,6 +46,17 @@ std::vector<Mode> ModalModes(const ModalModel& model, Eigen::VectorXcd* poles) {
   return modes;
 }
 
+// The poles of a realisation; a large irreducible one (a loop around a modal
+// plant) from the block-diagonal form of its balanced A, which its exact
+// variance reduces too (OutputCovariance): one O(n^3) reduction for both.
+Eigen::VectorXcd RealisationPoles(const StateSpace& system) {
+  if (system.states() < kSharedFormStates) return system.Poles();
+  const StateSpace balanced = system.Balanced();
+  if (HasCoupledBlocks(balanced.A())) return system.Poles();
+  RequireWellScaled(balanced.A());
+  return SharedRealBlockDiagonal(balanced.A())->eigenvalues;
+}
+
 }  // namespace
 
 PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : path_(path) {
@@ -56,12 +69,17 @@ PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : pat
     modal_ = std::make_unique<ModalResponse>(*path.modal, rows_);
   } else if (path.measured) {
     measured_ = path.measured->SelectOutputs(rows_);
-    if (path.SystemApproximates()) {  // the rational approximation's poles (Pade's too)
-      poles = path.system.Poles();
+    if (path.SystemApproximates()) {  // the realisation's poles (Pade's too)
+      poles = RealisationPoles(path.system);
     } else {
       std::vector<std::complex<double>> all;
       for (const StateSpace& part : path.measured->RationalParts()) {
         const Eigen::VectorXcd p = part.Poles();
+        all.insert(all.end(), p.data(), p.data() + p.size());
+      }
+      for (const auto& part : path.measured->ModalParts()) {
+        Eigen::VectorXcd p;
+        ModalModes(*part, &p);
         all.insert(all.end(), p.data(), p.data() + p.size());
       }
       poles = Eigen::Map<const Eigen::VectorXcd>(all.data(), static_cast<Eigen::Index>(all.size()));

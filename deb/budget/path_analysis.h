@@ -9,9 +9,11 @@
 //     covariance in closed form, nothing of size 2n x 2n is formed;
 //   - measured (a block diagram with frequency data): evaluated per frequency
 //     (frequency_model.h); the poles are those of its rational blocks;
-//   - with delays or sampled blocks (and no data): evaluated exactly per
-//     frequency as a diagram; poles, stability and the exact variance are
-//     those of its rational approximation (Path::SystemApproximates).
+//   - with delays, sampled blocks or modal parts (and no data): evaluated
+//     per frequency as a diagram (delays exactly, modal parts in modal
+//     form); poles, stability and the exact variance are those of its
+//     realisation (Path::SystemApproximates), the rational approximation of
+//     its delays and sampled blocks.
 #pragma once
 
 #include <Eigen/Dense>

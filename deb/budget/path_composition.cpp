@@ -35,15 +35,16 @@ Eigen::MatrixXd ScaleBetween(const std::string& key_path, const std::vector<std:
 }
 
 // Sets p's transfer to the combination of a and b: in state space when both
-// are rational (poles and Lyapunov variances stay available), else as a
-// diagram evaluated per frequency, with as `system` the combination of the
-// parts' rational approximations where there are no measured data (delays
-// and sampled blocks: Path::SystemApproximates), or a zero gain of the
-// result's size. p may be a or b.
+// are rational (poles and Lyapunov variances stay available); as a diagram
+// evaluated per frequency when a part holds measured data, delays, sampled
+// blocks or modes (path.h), with as `system` the combination of the parts'
+// realisations where there are no measured data (Path::SystemApproximates),
+// or a zero gain of the result's size. p may be a or b.
 template <typename StateSpaceOp, typename ModelOp>
 void Combine(Path* p, const Path& a, const Path& b, StateSpaceOp rational, ModelOp diagram) {
   std::shared_ptr<const FrequencyModel> model;
-  if (a.measured || b.measured) model = std::make_shared<const FrequencyModel>(diagram(a.Model(), b.Model()));
+  if (a.measured || b.measured || a.modal || b.modal)
+    model = std::make_shared<const FrequencyModel>(diagram(a.Model(), b.Model()));
   StateSpace system = model && model->HasData()
                           ? StateSpace::Gain(Eigen::MatrixXd::Zero(model->outputs(), model->inputs()))
                           : rational(a.Rational(), b.Rational());

@@ -3,8 +3,10 @@
 // junction from um to nm is a gain of 1000; from um to um/s it is a time
 // derivative and is refused). Rational parts are joined in state space
 // (interconnect.h); a part with measured data makes the result a diagram
-// evaluated per frequency (frequency_model.h). A modal part is realised in
-// state space, 2 states per mode, up to limits::kMaxDenseStates states.
+// evaluated per frequency (frequency_model.h). A modal part makes it a
+// diagram too, for H (the modal form at each frequency), and is realised
+// in state space beside it, 2 states per mode, up to
+// limits::kMaxDenseStates states, for poles and the exact variance.
 //   series    H = H_n ... H_2 H_1
 //   parallel  H = H_1 + ... + H_n
 //   feedback  H = (I - sign G K)^-1 G   (sign = -1: negative feedback)

@@ -34,13 +34,17 @@ ResponseTraces ComputeResponseTraces(const Budget& budget, const BudgetResult& r
   const std::size_t n = budget.contributors.size();
   t.paths.resize(n);
   t.poles_hz.resize(n);
+  // Contributors on the threads, each path evaluated on one; with fewer
+  // contributors than threads, each path on all threads instead.
+  const int workers = threads > 0 ? threads : DefaultThreadCount();
+  const bool across = n >= static_cast<std::size_t>(workers);
   ParallelForEach(
       n,
       [&](std::size_t c) {
-        t.paths[c] = ComputePathResponses(budget, result, c, result.grid.f_hz(), 1);
+        t.paths[c] = ComputePathResponses(budget, result, c, result.grid.f_hz(), across ? 1 : workers);
         t.poles_hz[c] = PolesWithin(*result.paths.at(ContributorPathKey(budget.contributors[c])), result.grid);
       },
-      threads);
+      across ? workers : 1);
   for (const LoopResult& r : result.loops) {
     LoopTrace trace;
     const FeedbackLoop* loop = FindLoop(budget, r);

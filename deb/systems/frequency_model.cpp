@@ -7,17 +7,20 @@
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 #include "deb/systems/frequency_response.h"
+#include "deb/systems/modal_response.h"
 
 namespace deb {
 
 struct FrequencyModel::Node {
-  enum class Kind { kRational, kMeasured, kIrrational, kSeries, kParallel, kFeedback, kSelect };
+  enum class Kind { kRational, kMeasured, kIrrational, kModal, kSeries, kParallel, kFeedback, kSelect };
   Kind kind = Kind::kRational;
   int inputs = 0, outputs = 0;
   std::optional<StateSpace> rational;
   std::shared_ptr<const FrequencyResponse> response;  // of `rational`, reduced once
   std::optional<MeasuredResponse> measured;
   std::optional<IrrationalBlock> irrational;
+  std::shared_ptr<const ModalModel> modal;
+  std::shared_ptr<const ModalResponse> modal_response;  // of `modal`, every output row
   std::shared_ptr<const Node> a, b;  // series: first, second; feedback: plant, controller
   int sign = -1;
   std::vector<int> rows;  // kSelect
@@ -27,6 +30,7 @@ struct FrequencyModel::Node {
       case Kind::kRational: return response->At(f_hz);
       case Kind::kMeasured: return measured->At(f_hz);
       case Kind::kIrrational: return Eigen::MatrixXcd::Constant(1, 1, irrational->At(f_hz));
+      case Kind::kModal: return modal_response->At(f_hz);
       case Kind::kSeries: return b->At(f_hz) * a->At(f_hz);
       case Kind::kParallel: return a->At(f_hz) + b->At(f_hz);
       case Kind::kFeedback: {
@@ -54,13 +58,15 @@ struct FrequencyModel::Node {
   }
 
   void Collect(std::vector<StateSpace>* parts, std::vector<double>* f_hz, bool* loop_around_data,
-               std::vector<IrrationalBlock>* blocks = nullptr) const {
+               std::vector<IrrationalBlock>* blocks = nullptr,
+               std::vector<std::shared_ptr<const ModalModel>>* modal_parts = nullptr) const {
     if (rational && parts) parts->push_back(*rational);
+    if (modal && modal_parts) modal_parts->push_back(modal);
     if (irrational && blocks) blocks->push_back(*irrational);
     if (measured && f_hz) f_hz->insert(f_hz->end(), measured->f_hz().begin(), measured->f_hz().end());
     if (kind == Kind::kFeedback && loop_around_data && (a->HasData() || b->HasData())) *loop_around_data = true;
-    if (a) a->Collect(parts, f_hz, loop_around_data, blocks);
-    if (b) b->Collect(parts, f_hz, loop_around_data, blocks);
+    if (a) a->Collect(parts, f_hz, loop_around_data, blocks, modal_parts);
+    if (b) b->Collect(parts, f_hz, loop_around_data, blocks, modal_parts);
   }
 
   // Where every measured table whose extrapolation is an error is defined.
@@ -101,6 +107,19 @@ FrequencyModel::FrequencyModel(IrrationalBlock block) {
   n->inputs = 1;
   n->outputs = 1;
   n->irrational = std::move(block);
+  node_ = std::move(n);
+}
+
+FrequencyModel::FrequencyModel(std::shared_ptr<const ModalModel> modal) {
+  DEB_DEMAND(modal != nullptr);
+  auto n = std::make_shared<Node>();
+  n->kind = Node::Kind::kModal;
+  n->inputs = static_cast<int>(modal->phi_in.rows());
+  n->outputs = static_cast<int>(modal->phi_out.rows());
+  std::vector<int> rows(static_cast<std::size_t>(n->outputs));
+  for (int r = 0; r < n->outputs; ++r) rows[static_cast<std::size_t>(r)] = r;
+  n->modal_response = std::make_shared<const ModalResponse>(*modal, rows);
+  n->modal = std::move(modal);
   node_ = std::move(n);
 }
 
@@ -163,6 +182,12 @@ int FrequencyModel::outputs() const { return node_->outputs; }
 std::vector<StateSpace> FrequencyModel::RationalParts() const {
   std::vector<StateSpace> parts;
   node_->Collect(&parts, nullptr, nullptr);
+  return parts;
+}
+
+std::vector<std::shared_ptr<const ModalModel>> FrequencyModel::ModalParts() const {
+  std::vector<std::shared_ptr<const ModalModel>> parts;
+  node_->Collect(nullptr, nullptr, nullptr, nullptr, &parts);
   return parts;
 }
 

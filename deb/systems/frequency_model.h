@@ -1,10 +1,13 @@
 // A linear transfer evaluated frequency by frequency, for paths that hold
 // measured data or blocks that are not rational in s (a delay, a sampled
-// block: irrational_block.h). Rational models are joined in state space (interconnect.h),
-// where poles and Lyapunov variances stay available; a chain or loop with a
-// measured frequency response (measured_response.h) cannot be, so it is kept
-// as a block diagram and evaluated at each frequency by the same algebra as
-// interconnect.h:
+// block: irrational_block.h), or a modal model (modal_model.h). Rational
+// models are joined in state space (interconnect.h), where poles and
+// Lyapunov variances stay available; a chain or loop with a measured
+// frequency response (measured_response.h) cannot be, so it is kept as a
+// block diagram and evaluated at each frequency by the same algebra as
+// interconnect.h. A chain or loop with a modal part is kept as a diagram
+// too, beside its realisation: H of n modes costs O(n m p) per frequency
+// from the modal form, against a 2n-state realisation reduced first:
 //   series    H = H_second H_first
 //   parallel  H = H_a + H_b
 //   feedback  H = (I - sign G K)^-1 G   (sign = -1: negative feedback)
@@ -22,6 +25,7 @@
 #include "deb/core/frequency_interval.h"
 #include "deb/systems/irrational_block.h"
 #include "deb/systems/measured_response.h"
+#include "deb/systems/modal_model.h"
 #include "deb/systems/state_space.h"
 
 namespace deb {
@@ -32,6 +36,9 @@ class FrequencyModel {
   explicit FrequencyModel(MeasuredResponse measured);
   // A SISO delay or sampled block, evaluated exactly.
   explicit FrequencyModel(IrrationalBlock block);
+  // A modal model, evaluated in modal form (modal_response.h).
+  // @throws InputError as ModalModel::Validate.
+  explicit FrequencyModel(std::shared_ptr<const ModalModel> modal);
 
   // @throws InputError if the sizes do not fit (as interconnect.h).
   static FrequencyModel Series(const FrequencyModel& first, const FrequencyModel& second);
@@ -43,8 +50,10 @@ class FrequencyModel {
 
   int inputs() const;
   int outputs() const;
-  // The rational blocks of the diagram, whose poles shape H (for the grid).
+  // The rational blocks of the diagram, whose poles shape H (for the grid),
+  // and its modal blocks (whose poles are their modes').
   std::vector<StateSpace> RationalParts() const;
+  std::vector<std::shared_ptr<const ModalModel>> ModalParts() const;
   // The frequencies of every measured table in the diagram, sorted, unique.
   std::vector<double> DataFrequencies() const;
   // The frequencies outside which At() throws because a measured table may

@@ -1,5 +1,6 @@
 #include "deb/systems/lapack.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -89,6 +90,9 @@ Eigen::VectorXcd RealEigenvalues(const Eigen::MatrixXd& a) {
 
 namespace {
 
+// Sides from which a Sylvester equation is solved by dtrsyl3.
+constexpr lapack_int kBlockedSylvester = 64;
+
 // T1 X + isgn X op(T2) = C, op(T2) = T2^T ('T') or T2 ('N').
 SylvesterSolution SolveSylvester(const Eigen::MatrixXd& t1, const Eigen::MatrixXd& t2, const Eigen::MatrixXd& c,
                                  char trans2, lapack_int isgn) {
@@ -103,8 +107,14 @@ SylvesterSolution SolveSylvester(const Eigen::MatrixXd& t1, const Eigen::MatrixX
     return s;
   }
   double scale = 1.0;
-  const lapack_int info = LAPACKE_dtrsyl(LAPACK_COL_MAJOR, 'N', trans2, isgn, n1, n2, t1.data(), n1,
-                                         t2.data(), n2, s.x.data(), n1, &scale);
+  // dtrsyl3 (level 3) for large equations: dtrsyl's dot products make an
+  // n x n solve O(n^3) at memory speed (a 2000-state loop: minutes).
+  const bool blocked = std::min(n1, n2) >= kBlockedSylvester;
+  const lapack_int info =
+      blocked ? LAPACKE_dtrsyl3(LAPACK_COL_MAJOR, 'N', trans2, isgn, n1, n2, t1.data(), n1, t2.data(), n2,
+                                s.x.data(), n1, &scale)
+              : LAPACKE_dtrsyl(LAPACK_COL_MAJOR, 'N', trans2, isgn, n1, n2, t1.data(), n1, t2.data(), n2,
+                               s.x.data(), n1, &scale);
   if (info == LAPACK_WORK_MEMORY_ERROR || info == LAPACK_TRANSPOSE_MEMORY_ERROR)
     throw std::bad_alloc();
   DEB_DEMAND(info >= 0);

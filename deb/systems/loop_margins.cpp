@@ -6,6 +6,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/math_constants.h"
+#include "deb/core/parallel.h"
 
 namespace deb {
 
@@ -70,18 +71,24 @@ LoopMargins ComputeLoopMargins(const LoopGainAt& loop_gain, const std::vector<do
   DEB_DEMAND(f_hz.size() >= 2 && f_hz.front() > 0.0);
   for (std::size_t k = 1; k < f_hz.size(); ++k) DEB_DEMAND(f_hz[k] > f_hz[k - 1]);
   const std::size_t n = f_hz.size();
+  // L and the smallest singular value of I + L at every frequency, in
+  // chunks on all threads (an SVD per frequency: most of the work for a
+  // loop of many channels). A failing chunk throws what a serial loop would.
   std::vector<Eigen::MatrixXcd> l(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    l[k] = loop_gain(f_hz[k]);
-    DEB_DEMAND(l[k].rows() > 0 && l[k].rows() == l[k].cols() && l[k].allFinite());
-    DEB_DEMAND(l[k].rows() == l[0].rows());
-  }
+  std::vector<double> sigma(n);
+  constexpr std::size_t kChunk = 64;
+  ParallelForEach((n + kChunk - 1) / kChunk, [&](std::size_t c) {
+    for (std::size_t k = c * kChunk; k < std::min(n, (c + 1) * kChunk); ++k) {
+      l[k] = loop_gain(f_hz[k]);
+      DEB_DEMAND(l[k].rows() > 0 && l[k].rows() == l[k].cols() && l[k].allFinite());
+      sigma[k] = SmallestSingularValueOfIPlus(l[k]);
+    }
+  });
+  for (std::size_t k = 1; k < n; ++k) DEB_DEMAND(l[k].rows() == l[0].rows());
   LoopMargins m;
   m.channels = static_cast<int>(l[0].rows());
 
   // Modulus margin: the grid's smallest value, refined between its neighbours.
-  std::vector<double> sigma(n);
-  for (std::size_t k = 0; k < n; ++k) sigma[k] = SmallestSingularValueOfIPlus(l[k]);
   const std::size_t k_min = static_cast<std::size_t>(std::min_element(sigma.begin(), sigma.end()) - sigma.begin());
   m.modulus_margin = sigma[k_min];
   m.modulus_margin_f_hz = f_hz[k_min];

@@ -55,7 +55,8 @@ struct LoopMargins {
   double modulus_margin_f_hz = 0.0;
 };
 
-// L(j 2 pi f_hz): channels x channels, square.
+// L(j 2 pi f_hz): channels x channels, square. Called concurrently for
+// distinct frequencies (ComputeLoopMargins evaluates the grid on all threads).
 using LoopGainAt = std::function<Eigen::MatrixXcd(double f_hz)>;
 
 // The margins of the loop over the grid `f_hz` (ascending, > 0, at least 2

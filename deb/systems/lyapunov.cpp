@@ -267,8 +267,12 @@ Eigen::MatrixXd SolveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q
 namespace {
 
 // Couplings of the block-diagonal form up to this condition number are used
-// for the exact variance of an irreducible A (a dense model, a loop).
-constexpr double kMaxBlockCondition = 1e2;
+// for the exact variance of an irreducible A (a dense model, a loop): the
+// bound up to which the form is built at all (real_block_diagonal.h's
+// coupling bound, and the response's check, frequency_response.h). Within
+// it the solution is accepted only if its own error estimate, which grows
+// with cond(Y), is below 1e-6 of each variance (BlockDiagonalCovariance).
+constexpr double kMaxBlockCondition = 1e6;
 
 // X with D_i X + X D_j^T + Q = 0 for two diagonal blocks of a real Schur
 // form (1x1 or 2x2 each: the Kronecker system, at most 4x4; larger groups

@@ -1,0 +1,193 @@
+// Loops and chains around a modal path (a finite-element plant with a
+// controller or a sensor model): H is evaluated from the parts, the modal
+// form and the small controller closed at each frequency (path.h), while
+// poles, stability and the exact variance come from the realisation. Each
+// is checked against the dense realisation solved by other means: H by the
+// backward-stable Hessenberg solve, the variance by the Bartels-Stewart
+// solve of the whole Lyapunov equation.
+#include "deb/budget/path_analysis.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "deb/budget/path_composition.h"
+#include "deb/systems/frequency_response.h"
+#include "deb/systems/lyapunov.h"
+
+namespace deb {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+// `modes` modes log-uniform in 1-500 Hz, zeta log-uniform in 2e-3..3e-2,
+// three force inputs and three displacement outputs, the first two outputs
+// collocated with the first two inputs (the same shapes): a loop closed
+// through them by a PD controller is stable.
+Path ModalPlant(int modes, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), shape(-1.0, 1.0);
+  auto m = std::make_shared<ModalModel>();
+  for (int k = 0; k < modes; ++k) {
+    m->f_hz.push_back(std::pow(500.0, unit(rng)));
+    m->zeta.push_back(2e-3 * std::pow(15.0, unit(rng)));
+  }
+  m->phi_in.resize(3, modes);
+  m->phi_out.resize(3, modes);
+  for (int k = 0; k < modes; ++k)
+    for (int i = 0; i < 3; ++i) {
+      m->phi_in(i, k) = shape(rng);
+      m->phi_out(i, k) = i < 2 ? m->phi_in(i, k) : shape(rng);
+    }
+  m->input_names = {"f1", "f2", "f3"};
+  m->output_names = {"x1", "x2", "x3"};
+  Path p;
+  p.name = "plant";
+  p.modal = m;
+  p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(3, 3));
+  p.input_names = m->input_names;
+  p.output_names = m->output_names;
+  p.input_units = {"N", "N", "N"};
+  p.output_units = {"m", "m", "m"};
+  return p;
+}
+
+// Diagonal lead kp (1 + s/w_z)/(1 + s/w_p) on channels 1 and 2, nothing on
+// channel 3, from um (converted from the plant's m at the junction) to N,
+// f_z = 5 Hz, f_p = 80 Hz, with |K G_11| = 1 at 20 Hz.
+Path Controller(const ModalModel& plant) {
+  const double wz = kTwoPi * 5.0, wp = kTwoPi * 80.0, wc = kTwoPi * 20.0;
+  std::complex<double> g = 0.0;  // G_11(j wc) in m/N
+  for (int k = 0; k < plant.modes(); ++k) {
+    const double wk = kTwoPi * plant.f_hz[k];
+    g += plant.phi_in(0, k) * plant.phi_out(0, k) / std::complex<double>(wk * wk - wc * wc, 2.0 * plant.zeta[k] * wk * wc);
+  }
+  const std::complex<double> s(0.0, wc);
+  const double kp = 1.0 / (std::abs(g) * 1e6 * std::abs((1.0 + s / wz) / (1.0 + s / wp)));  // N/um
+  // (1 + s/wz)/(1 + s/wp) = wp/wz + (1 - wp/wz) wp/(s + wp): one state.
+  Eigen::MatrixXd a = -wp * Eigen::MatrixXd::Identity(2, 2), b = Eigen::MatrixXd::Zero(2, 3),
+                  c = Eigen::MatrixXd::Zero(3, 2), d = Eigen::MatrixXd::Zero(3, 3);
+  for (int i = 0; i < 2; ++i) {
+    b(i, i) = 1.0;
+    c(i, i) = kp * (1.0 - wp / wz) * wp;
+    d(i, i) = kp * wp / wz;
+  }
+  Path k;
+  k.name = "controller";
+  k.system = StateSpace(a, b, c, d);
+  k.input_names = {"e1", "e2", "e3"};
+  k.output_names = {"u1", "u2", "u3"};
+  k.input_units = {"um", "um", "um"};
+  k.output_units = {"N", "N", "N"};
+  return k;
+}
+
+// The largest relative difference (Frobenius) of H from the diagram and from
+// the dense realisation's Hessenberg solve, at and around the damped
+// frequency of every pole of the realisation and at a log sweep.
+double WorstAgainstRealisation(const Path& p) {
+  const FrequencyResponse dense(p.system, FrequencyResponse::Method::kHessenberg);
+  std::vector<double> f;
+  for (Eigen::Index k = 0; k < dense.poles().size(); ++k) {
+    const std::complex<double> pole = dense.poles()(k);
+    if (pole.imag() <= 0.0) continue;
+    const double zeta = -pole.real() / std::abs(pole);
+    for (const double x : {1.0 - zeta, 1.0, 1.0 + zeta}) f.push_back(x * pole.imag() / kTwoPi);
+  }
+  for (int i = 0; i <= 60; ++i) f.push_back(0.1 * std::pow(1e4, i / 60.0));
+  double worst = 0.0;
+  for (const double x : f) {
+    const Eigen::MatrixXcd want = dense.At(x), got = p.Model().At(x);
+    worst = std::max(worst, (got - want).norm() / want.norm());
+  }
+  return worst;
+}
+
+TEST_CASE("a loop closed around a modal path is evaluated from its parts and matches its dense realisation") {
+  const Path plant = ModalPlant(60, 7u);
+  const Path controller = Controller(*plant.modal);
+  const Path loop = FeedbackOfPaths({&plant, "plant"}, {&controller, "controller"});
+  REQUIRE(loop.measured != nullptr);  // the diagram
+  CHECK(!loop.HasMeasuredData());
+  CHECK(loop.SystemApproximates());
+  CHECK(loop.system.states() == 2 * 60 + 2);  // the realisation
+  CHECK(loop.measured->ModalParts().size() == 1);
+  const double worst = WorstAgainstRealisation(loop);
+  MESSAGE("loop around 60 modes: H from the parts within " << worst << " of the realisation's Hessenberg solve");
+  CHECK(worst <= 1e-9);
+
+  // The loop's own model is the modal plant, not a realisation of it.
+  REQUIRE(loop.loops.size() == 1);
+  CHECK(loop.loops[0].plant_model->ModalParts().size() == 1);
+  CHECK(loop.loops[0].plant_model->RationalParts().empty());
+
+  // A chain with a modal part: plant, then a first-order sensor.
+  Path sensor;
+  sensor.name = "sensor";
+  sensor.system = StateSpace((Eigen::MatrixXd(1, 1) << -kTwoPi * 300.0).finished(),
+                             (Eigen::MatrixXd(1, 3) << 1.0, 0.0, 0.0).finished(),
+                             (Eigen::MatrixXd(1, 1) << kTwoPi * 300.0).finished(), Eigen::MatrixXd::Zero(1, 3));
+  sensor.input_names = {"x1", "x2", "x3"};
+  sensor.output_names = {"reading"};
+  sensor.input_units = {"m", "m", "m"};
+  sensor.output_units = {"nm"};
+  const Path chain = SeriesOfPaths({{&plant, "of[0]"}, {&sensor, "of[1]"}});
+  REQUIRE(chain.measured != nullptr);
+  CHECK(chain.system.states() == 2 * 60 + 1);
+  CHECK(WorstAgainstRealisation(chain) <= 1e-9);
+}
+
+TEST_CASE("a loop around a modal path: poles, stability and exact variance from its realisation") {
+  const Path plant = ModalPlant(120, 11u);
+  const Path controller = Controller(*plant.modal);
+  const Path loop = FeedbackOfPaths({&plant, "plant"}, {&controller, "controller"});
+  const PathAnalysis analysis(loop, {0, 1, 2});
+  CHECK(analysis.unstable_poles().empty());
+  CHECK(analysis.marginal_poles().empty());
+  CHECK(analysis.modes().size() >= 120);  // every pair once, the controller's real poles
+  // Every pole of the realisation (Eigen's own eigenvalue solver) is among
+  // the analysis' modes.
+  const Eigen::VectorXcd eig = Eigen::EigenSolver<Eigen::MatrixXd>(loop.system.A()).eigenvalues();
+  int pairs = 0;
+  double worst_pole = 0.0;
+  for (Eigen::Index k = 0; k < eig.size(); ++k) {
+    if (eig(k).imag() <= 0.0) continue;
+    ++pairs;
+    double nearest = HUGE_VAL;
+    for (const Mode& m : analysis.modes()) nearest = std::min(nearest, std::abs(m.pole_rad_s - eig(k)));
+    worst_pole = std::max(worst_pole, nearest / std::abs(eig(k)));
+  }
+  CHECK(pairs >= 119);
+  CHECK(worst_pole <= 1e-9);
+
+  // H on a grid, on all threads, equals the realisation's.
+  std::vector<double> f;
+  for (int i = 0; i <= 400; ++i) f.push_back(0.5 * std::pow(2000.0, i / 400.0));
+  const FrequencyResponse dense(loop.system, FrequencyResponse::Method::kHessenberg);
+  std::vector<double> error(f.size());
+  analysis.ForEachResponse(f, [&](std::size_t k, const Eigen::MatrixXcd& h) {
+    const Eigen::MatrixXcd want = dense.At(f[k]);
+    error[k] = (h - want).norm() / want.norm();
+  });
+  CHECK(*std::max_element(error.begin(), error.end()) <= 1e-9);
+
+  // The exact variance of each row under white forces: against the whole
+  // Bartels-Stewart solve of the same realisation.
+  const Eigen::MatrixXd w = Eigen::Vector3d(1.0, 0.5, 2.0).asDiagonal();
+  const StateSpace& s = loop.system;
+  const Eigen::MatrixXd reference = s.C() * SolveLyapunov(s.A(), s.B() * w * s.B().transpose()) * s.C().transpose();
+  double worst = 0.0;
+  for (int row = 0; row < 3; ++row)
+    worst = std::max(worst, std::abs(analysis.Exact(row, w, nullptr).variance - reference(row, row)) / reference(row, row));
+  MESSAGE("loop around 120 modes (" << s.states() << " states): exact variances within " << worst
+                                    << " of the whole Bartels-Stewart solve");
+  CHECK(worst <= 1e-9);
+}
+
+}  // namespace
+}  // namespace deb
