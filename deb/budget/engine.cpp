@@ -58,6 +58,8 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
     r.metric = budget.outputs[o].metric;
   }
 
+  // Each contributor's path responses, from its propagation (response traces).
+  std::vector<std::vector<PathResponse>> recorded(budget.contributors.size());
   for (std::size_t ci = 0; ci < budget.contributors.size(); ++ci) {
     const Contributor& c = budget.contributors[ci];
     const Source& source = budget.FindSource(c.source);
@@ -67,8 +69,12 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
     const OutputFactor output_factor{setup.out_conv, weighting_gain2, f};
     const InputSpectrum input(*source.spectrum, setup.in_conv);
     std::vector<std::vector<std::vector<double>>> channel_psd;
-    std::vector<std::vector<double>> psd = Propagate(budget, ci, analysis, input, setup, f, output_factor,
-                                                     options.threads, c.breakdown_channels ? &channel_psd : nullptr);
+    std::optional<PathResponseRecorder> recorder;
+    if (options.response_traces) recorder.emplace(budget, analysis, ci, f, options.threads);
+    std::vector<std::vector<double>> psd =
+        Propagate(budget, ci, analysis, input, setup, f, output_factor, options.threads,
+                  c.breakdown_channels ? &channel_psd : nullptr, recorder ? &*recorder : nullptr);
+    if (recorder) recorded[ci] = recorder->Take();
     const std::vector<std::vector<ContributorResult::Tone>> tones =
         PropagateTones(budget, ci, analysis, source.spectrum->Lines(), setup);
     const bool purely_tonal = IsPurelyTonal(source);
@@ -118,7 +124,8 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
   }
   // The traces first: the covariance reads the paths' responses from them.
   if (options.response_traces)
-    result.traces = std::make_shared<const ResponseTraces>(ComputeResponseTraces(budget, result, options.threads));
+    result.traces =
+        std::make_shared<const ResponseTraces>(ComputeResponseTraces(budget, result, options.threads, std::move(recorded)));
   if (!budget.covariance.empty()) result.covariance = ComputeOutputCovariance(budget, result, options.threads);
   return result;
 }

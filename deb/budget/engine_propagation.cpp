@@ -71,7 +71,8 @@ std::vector<std::vector<double>> Propagate(const Budget& budget, std::size_t ci,
                                            const InputSpectrum& input, const ContributorSetup& setup,
                                            const std::vector<double>& f,
                                            const OutputFactor& output_factor, int threads,
-                                           std::vector<std::vector<std::vector<double>>>* channel_psd) {
+                                           std::vector<std::vector<std::vector<double>>>* channel_psd,
+                                           PathResponseRecorder* recorder) {
   const Contributor& c = budget.contributors[ci];
   const std::size_t n = f.size();
   std::vector<std::vector<double>> psd(budget.outputs.size(), std::vector<double>(n, 0.0));
@@ -83,6 +84,7 @@ std::vector<std::vector<double>> Propagate(const Budget& budget, std::size_t ci,
     analysis.ForEachResponse(
         f,
         [&](std::size_t k, const Eigen::MatrixXcd& h) {
+          if (recorder) recorder->Record(k, h);
           // Allocates only where the spectrum must be evaluated per frequency.
           Eigen::VectorXd diag_scratch;
           Eigen::MatrixXcd full_scratch;

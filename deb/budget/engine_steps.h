@@ -20,6 +20,7 @@
 #include "deb/budget/budget.h"
 #include "deb/budget/engine.h"
 #include "deb/budget/path_analysis.h"
+#include "deb/budget/path_response.h"
 #include "deb/budget/result.h"
 #include "deb/core/error.h"
 #include "deb/core/math_constants.h"
@@ -148,12 +149,14 @@ std::string ExactRefusal(const Contributor& c, const Source& source, const Path&
 // The one-sided PSD of contributor ci on every output (rows: outputs),
 // S_y = h S_u h^H with the output's unit and weighting factors.
 // With `channel_psd`, also each source channel's part |H_rj|^2 S_jj,
-// (*channel_psd)[output][channel][frequency].
+// (*channel_psd)[output][channel][frequency]; with `recorder`, the path's
+// responses at every f from the same evaluation of H.
 std::vector<std::vector<double>> Propagate(const Budget& budget, std::size_t ci, const PathAnalysis& analysis,
                                            const InputSpectrum& input, const ContributorSetup& setup,
                                            const std::vector<double>& f,
                                            const OutputFactor& output_factor, int threads,
-                                           std::vector<std::vector<std::vector<double>>>* channel_psd = nullptr);
+                                           std::vector<std::vector<std::vector<double>>>* channel_psd = nullptr,
+                                           PathResponseRecorder* recorder = nullptr);
 
 // Per output, the variance of each of the source's tones through the
 // contributor's path: y = W(f0) u_out(f0) H_row(f0) (u_in(f0) .* a), with

@@ -50,60 +50,67 @@ std::vector<double> WeightingGain2(const Output& output, const std::vector<doubl
   return g;
 }
 
-std::vector<PathResponse> ComputePathResponses(const Budget& budget, const BudgetResult& result,
-                                               std::size_t contributor, const std::vector<double>& f_hz,
-                                               int threads) {
+PathResponseRecorder::PathResponseRecorder(const Budget& budget, const PathAnalysis& analysis,
+                                           std::size_t contributor, const std::vector<double>& f_hz, int threads)
+    : f_hz_(f_hz) {
   DEB_DEMAND(contributor < budget.contributors.size());
   const Contributor& c = budget.contributors[contributor];
   const Source& source = budget.FindSource(c.source);
-  const auto analysis = result.paths.find(ContributorPathKey(c));
-  DEB_DEMAND(analysis != result.paths.end());
-  const Path& path = analysis->second->path();
+  const Path& path = analysis.path();
   const int m = path.system.inputs();
-  const std::vector<UnitConversion> in_conv = InputConversions(source, path);
-
+  in_conv_ = InputConversions(source, path);
   const std::size_t outputs = budget.outputs.size();
-  std::vector<PathResponse> r(outputs);
-  std::vector<int> position(outputs);
-  std::vector<UnitConversion> out_conv(outputs);
-  std::vector<std::vector<double>> w2(outputs);
-  std::vector<std::vector<std::complex<double>>> w(outputs);  // the weighting's response, for the phase
+  r_.resize(outputs);
+  position_.resize(outputs);
+  out_conv_.resize(outputs);
+  w2_.resize(outputs);
+  w_.resize(outputs);
   for (std::size_t o = 0; o < outputs; ++o) {
     const Output& out = budget.outputs[o];
     const int row = path.OutputIndex(out.signal);
     DEB_DEMAND(row >= 0);
-    position[o] = analysis->second->Position(row);
-    DEB_DEMAND(position[o] >= 0);
-    out_conv[o] = OutputConversion(path, row, out);
-    w2[o] = WeightingGain2(out, f_hz, threads);
+    position_[o] = analysis.Position(row);
+    DEB_DEMAND(position_[o] >= 0);
+    out_conv_[o] = OutputConversion(path, row, out);
+    w2_[o] = WeightingGain2(out, f_hz, threads);
     if (out.weighting) {
-      w[o].resize(f_hz.size());
+      w_[o].resize(f_hz.size());
       FrequencyResponse(out.weighting->system)
-          .ForEach(f_hz, [&](std::size_t i, const Eigen::MatrixXcd& h) { w[o][i] = h(0, 0); }, threads);
+          .ForEach(f_hz, [&](std::size_t i, const Eigen::MatrixXcd& h) { w_[o][i] = h(0, 0); }, threads);
     }
-    r[o].contributor = c.name;
-    r[o].output = out.name;
-    r[o].channels = source.channel_names;
-    r[o].unit = Grouped(out.unit) + "/" + Grouped(source.unit);
-    r[o].gain2.assign(m, std::vector<double>(f_hz.size(), 0.0));
-    r[o].phase_rad.assign(m, std::vector<double>(f_hz.size(), 0.0));
+    r_[o].contributor = c.name;
+    r_[o].output = out.name;
+    r_[o].channels = source.channel_names;
+    r_[o].unit = Grouped(out.unit) + "/" + Grouped(source.unit);
+    r_[o].gain2.assign(m, std::vector<double>(f_hz.size(), 0.0));
+    r_[o].phase_rad.assign(m, std::vector<double>(f_hz.size(), 0.0));
   }
+}
+
+void PathResponseRecorder::Record(std::size_t i, const Eigen::MatrixXcd& h) {
+  const double f = f_hz_[i];
+  for (std::size_t o = 0; o < r_.size(); ++o) {
+    const double common = out_conv_[o].PsdFactor(f) * (w2_[o].empty() ? 1.0 : w2_[o][i]);
+    const std::complex<double> outer =
+        out_conv_[o].ResponseFactor(f) * (w_[o].empty() ? std::complex<double>(1.0) : w_[o][i]);
+    for (std::size_t k = 0; k < in_conv_.size(); ++k) {
+      const std::complex<double> hk = h(position_[o], static_cast<Eigen::Index>(k)) * in_conv_[k].ResponseFactor(f);
+      r_[o].gain2[k][i] = std::norm(hk) * common;
+      r_[o].phase_rad[k][i] = std::arg(hk * outer);
+    }
+  }
+}
+
+std::vector<PathResponse> ComputePathResponses(const Budget& budget, const BudgetResult& result,
+                                               std::size_t contributor, const std::vector<double>& f_hz,
+                                               int threads) {
+  DEB_DEMAND(contributor < budget.contributors.size());
+  const auto analysis = result.paths.find(ContributorPathKey(budget.contributors[contributor]));
+  DEB_DEMAND(analysis != result.paths.end());
+  PathResponseRecorder recorder(budget, *analysis->second, contributor, f_hz, threads);
   analysis->second->ForEachResponse(
-      f_hz,
-      [&](std::size_t i, const Eigen::MatrixXcd& h) {
-        for (std::size_t o = 0; o < outputs; ++o) {
-          const double common = out_conv[o].PsdFactor(f_hz[i]) * (w2[o].empty() ? 1.0 : w2[o][i]);
-          const std::complex<double> outer =
-              out_conv[o].ResponseFactor(f_hz[i]) * (w[o].empty() ? std::complex<double>(1.0) : w[o][i]);
-          for (int k = 0; k < m; ++k) {
-            const std::complex<double> hk = h(position[o], k) * in_conv[k].ResponseFactor(f_hz[i]);
-            r[o].gain2[k][i] = std::norm(hk) * common;
-            r[o].phase_rad[k][i] = std::arg(hk * outer);
-          }
-        }
-      },
-      threads);
-  return r;
+      f_hz, [&](std::size_t i, const Eigen::MatrixXcd& h) { recorder.Record(i, h); }, threads);
+  return recorder.Take();
 }
 
 PathResponse ComputePathResponse(const Budget& budget, const BudgetResult& result, std::size_t contributor,

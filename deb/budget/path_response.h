@@ -10,11 +10,13 @@
 // magnitudes use exactly the factors behind the budget's numbers.
 #pragma once
 
+#include <complex>
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include "deb/budget/budget.h"
+#include "deb/budget/path_analysis.h"
 #include "deb/budget/result.h"
 #include "deb/units/unit.h"
 
@@ -58,6 +60,32 @@ struct PathResponse {
   // phase_rad[k][i] = arg h_k(f_i) in (-pi, pi], the weighting's phase
   // included (a moving-average metric only scales the PSD).
   std::vector<std::vector<double>> phase_rad;
+};
+
+// Fills a contributor's PathResponses (one per output, budget order) from
+// the evaluated rows of its path's H at each frequency, wherever H is
+// evaluated: the engine's propagation records them in the same pass
+// (Evaluate), ComputePathResponses in a pass of its own.
+class PathResponseRecorder {
+ public:
+  // DEB_DEMANDs a valid contributor of a validated budget whose every
+  // output's signal `analysis` evaluates.
+  // @throws InputError as the engine does for units and weightings.
+  PathResponseRecorder(const Budget& budget, const PathAnalysis& analysis, std::size_t contributor,
+                       const std::vector<double>& f_hz, int threads = 0);
+  // Frequency i from H_rows(j 2 pi f_hz[i]) (PathAnalysis::ForEachResponse);
+  // concurrent calls with distinct i are safe.
+  void Record(std::size_t i, const Eigen::MatrixXcd& h_rows);
+  // The responses, once every frequency is recorded.
+  std::vector<PathResponse> Take() { return std::move(r_); }
+
+ private:
+  const std::vector<double>& f_hz_;
+  std::vector<UnitConversion> in_conv_, out_conv_;
+  std::vector<int> position_;
+  std::vector<std::vector<double>> w2_;
+  std::vector<std::vector<std::complex<double>>> w_;  // the weighting's response, for the phase
+  std::vector<PathResponse> r_;
 };
 
 // |h_k(f)|^2 for contributor `contributor` (index into budget.contributors)

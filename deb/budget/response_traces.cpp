@@ -29,20 +29,26 @@ std::optional<std::pair<double, double>> PolesWithin(const PathAnalysis& path, c
 
 }  // namespace
 
-ResponseTraces ComputeResponseTraces(const Budget& budget, const BudgetResult& result, int threads) {
+ResponseTraces ComputeResponseTraces(const Budget& budget, const BudgetResult& result, int threads,
+                                     std::vector<std::vector<PathResponse>> recorded) {
   ResponseTraces t;
   const std::size_t n = budget.contributors.size();
   t.paths.resize(n);
   t.poles_hz.resize(n);
+  std::vector<std::size_t> missing;  // contributors whose paths were not recorded
+  for (std::size_t c = 0; c < n; ++c) {
+    t.poles_hz[c] = PolesWithin(*result.paths.at(ContributorPathKey(budget.contributors[c])), result.grid);
+    if (c < recorded.size() && !recorded[c].empty()) t.paths[c] = std::move(recorded[c]);
+    else missing.push_back(c);
+  }
   // Contributors on the threads, each path evaluated on one; with fewer
   // contributors than threads, each path on all threads instead.
   const int workers = threads > 0 ? threads : DefaultThreadCount();
-  const bool across = n >= static_cast<std::size_t>(workers);
+  const bool across = missing.size() >= static_cast<std::size_t>(workers);
   ParallelForEach(
-      n,
-      [&](std::size_t c) {
-        t.paths[c] = ComputePathResponses(budget, result, c, result.grid.f_hz(), across ? 1 : workers);
-        t.poles_hz[c] = PolesWithin(*result.paths.at(ContributorPathKey(budget.contributors[c])), result.grid);
+      missing.size(),
+      [&](std::size_t i) {
+        t.paths[missing[i]] = ComputePathResponses(budget, result, missing[i], result.grid.f_hz(), across ? 1 : workers);
       },
       across ? workers : 1);
   for (const LoopResult& r : result.loops) {

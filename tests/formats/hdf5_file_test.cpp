@@ -119,6 +119,13 @@ TEST_CASE("an HDF5 reader refuses what it was not asked for, naming the file and
   CHECK(Contains(ErrorOf([&] { formats::Hdf5Reader none(dir.File("absent.h5")); }), "absent.h5"));
 }
 
+// Rows one after the other.
+std::vector<double> Flat(const std::vector<std::vector<double>>& rows) {
+  std::vector<double> flat;
+  for (const std::vector<double>& r : rows) flat.insert(flat.end(), r.begin(), r.end());
+  return flat;
+}
+
 TEST_CASE("numbers are written compressed in chunks and read back exactly, whatever the chunks' edges") {
   const TempDir dir;
   const std::string file = dir.File("compressed.h5");
@@ -142,21 +149,28 @@ TEST_CASE("numbers are written compressed in chunks and read back exactly, whate
     w.Close();
   }
   const std::uintmax_t raw = (spectrum.size() + 3 * 40000 + 5000 * 7) * sizeof(double);
-  CHECK(fs::file_size(file) < raw * 2 / 3);
+  CHECK(fs::file_size(file) < raw * 7 / 10);  // deflate level 1: 0.67 of it
   MESSAGE("compressed " << raw << " bytes of doubles into a file of " << fs::file_size(file));
   const formats::Hdf5Reader r(file);
   CHECK(r.Numbers("a/spectrum", formats::AtMost(200000)) == spectrum);
   CHECK(r.Rows("a/wide", formats::AtMost(3), 40000) == wide);
   CHECK(r.Rows("a/tall", formats::AtMost(5000), 7) == tall);
   CHECK(r.Numbers("a/few", formats::AtMost(3)) == few);
-  // Each compressed dataset is chunked, shuffled and deflated, as h5py sees it.
+  // Each compressed dataset is chunked, shuffled and deflated, as h5py sees
+  // it, and HDF5's own filters give back every value (deb compresses the
+  // chunks itself, edge chunks padded: hdf5_file.cpp).
   const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   REQUIRE(f >= 0);
-  for (const char* name : {"a/spectrum", "a/wide", "a/tall"}) {
+  const std::vector<std::pair<const char*, std::vector<double>>> expected = {
+      {"a/spectrum", spectrum}, {"a/wide", Flat(wide)}, {"a/tall", Flat(tall)}};
+  for (const auto& [name, values] : expected) {
     const hid_t set = H5Dopen2(f, name, H5P_DEFAULT);
     const hid_t create = H5Dget_create_plist(set);
     CHECK(H5Pget_layout(create) == H5D_CHUNKED);
     CHECK(H5Pget_nfilters(create) == 2);
+    std::vector<double> read(values.size());
+    CHECK(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, read.data()) >= 0);
+    CHECK(read == values);
     H5Pclose(create);
     H5Dclose(set);
   }
