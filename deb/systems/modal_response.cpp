@@ -224,35 +224,57 @@ ModalCovariance SolveModalCovariance(const ModalModel& model, const std::vector<
   Eigen::MatrixXd a(n, p);  // a.row(k): mode k at every row
   for (Eigen::Index i = 0; i < p; ++i) a.col(i) = model.phi_out.row(rows[i]).transpose();
   const Eigen::MatrixXd w_phi = w_two_sided * model.phi_in;  // m x n
+  // Rows k in fixed blocks of kCovarianceRows on all threads, each block
+  // summing into its own share, rounding and cross terms; the blocks are
+  // added in order, so the sums do not depend on the thread count.
+  constexpr int kCovarianceRows = 256;
+  const int blocks = (n + kCovarianceRows - 1) / kCovarianceRows;
+  struct Partial {
+    Eigen::MatrixXd share, cross;
+    Eigen::VectorXd rounding;
+  };
+  std::vector<Partial> partial(static_cast<std::size_t>(blocks));
+  ParallelForEach(static_cast<std::size_t>(blocks), [&](std::size_t block) {
+    Partial& part = partial[block];
+    part.share = Eigen::MatrixXd::Zero(n, p);
+    part.rounding = Eigen::VectorXd::Zero(p);
+    if (cross) part.cross = Eigen::MatrixXd::Zero(n, p);
+    const int k0 = static_cast<int>(block) * kCovarianceRows, k1 = std::min(n, k0 + kCovarianceRows);
+    for (int k = k0; k < k1; ++k) {
+      const Complex ak[2] = {pole[k], std::conj(pole[k])}, rk[2] = {res_pole[k], res_conj[k]};
+      for (int l = 0; l <= k; ++l) {
+        const double force = model.phi_in.col(k).dot(w_phi.col(l));
+        if (force == 0.0) continue;
+        const Complex bl[2] = {pole[l], std::conj(pole[l])}, rl[2] = {res_pole[l], res_conj[l]};
+        Complex sum = 0.0;
+        double abs_sum = 0.0;  // |re| + |im| of each term: at most sqrt 2 times its modulus, no hypot
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < 2; ++j) {
+            const Complex t = -rk[i] * std::conj(rl[j]) / (ak[i] + std::conj(bl[j]));
+            sum += t;
+            abs_sum += std::abs(t.real()) + std::abs(t.imag());
+          }
+        const double c = force * sum.real(), b = (k == l ? 1.0 : 2.0) * std::abs(force) * abs_sum;
+        for (Eigen::Index r = 0; r < p; ++r) {
+          const double t = a(k, r) * a(l, r) * c;
+          part.share(k, r) += t;
+          if (k != l) part.share(l, r) += t;
+          part.rounding(r) += std::abs(a(k, r) * a(l, r)) * b;
+        }
+        if (cross) {  // M_kl = M_lk = c
+          part.cross.row(k) += c * a.row(l);
+          if (k != l) part.cross.row(l) += c * a.row(k);
+        }
+      }
+    }
+  });
   Eigen::MatrixXd share = Eigen::MatrixXd::Zero(n, p);
   Eigen::VectorXd rounding = Eigen::VectorXd::Zero(p);
   if (cross) *cross = Eigen::MatrixXd::Zero(n, p);
-  for (int k = 0; k < n; ++k) {
-    const Complex ak[2] = {pole[k], std::conj(pole[k])}, rk[2] = {res_pole[k], res_conj[k]};
-    for (int l = 0; l <= k; ++l) {
-      const double force = model.phi_in.col(k).dot(w_phi.col(l));
-      if (force == 0.0) continue;
-      const Complex bl[2] = {pole[l], std::conj(pole[l])}, rl[2] = {res_pole[l], res_conj[l]};
-      Complex sum = 0.0;
-      double abs_sum = 0.0;
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) {
-          const Complex t = -rk[i] * std::conj(rl[j]) / (ak[i] + std::conj(bl[j]));
-          sum += t;
-          abs_sum += std::abs(t);
-        }
-      const double c = force * sum.real(), b = (k == l ? 1.0 : 2.0) * std::abs(force) * abs_sum;
-      for (Eigen::Index r = 0; r < p; ++r) {
-        const double t = a(k, r) * a(l, r) * c;
-        share(k, r) += t;
-        if (k != l) share(l, r) += t;
-        rounding(r) += std::abs(a(k, r) * a(l, r)) * b;
-      }
-      if (cross) {  // M_kl = M_lk = c
-        cross->row(k) += c * a.row(l);
-        if (k != l) cross->row(l) += c * a.row(k);
-      }
-    }
+  for (const Partial& part : partial) {
+    share += part.share;
+    rounding += part.rounding;
+    if (cross) *cross += part.cross;
   }
   ModalCovariance result;
   result.share = share.transpose();
