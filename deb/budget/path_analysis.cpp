@@ -71,6 +71,7 @@ PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : pat
     measured_ = path.measured->SelectOutputs(rows_);
     if (path.SystemApproximates()) {  // the realisation's poles (Pade's too)
       poles = RealisationPoles(path.system);
+      realisation_poles_ = poles;
     } else {
       std::vector<std::complex<double>> all;
       for (const StateSpace& part : path.measured->RationalParts()) {
@@ -124,9 +125,21 @@ std::vector<Resonance> PathAnalysis::Resonances() const {
   return r;
 }
 
-std::string PathAnalysis::ResponseForm() const { return rational_ ? rational_->Describe() : ""; }
+std::string PathAnalysis::ResponseForm() const {
+  if (rational_) return rational_->Describe();
+  // A diagram of delays and sampled blocks says so on its own line (its
+  // approximations); one with modal parts says what H costs here.
+  if (!path_.SystemApproximates()) return "";
+  int modes = 0;
+  for (const auto& part : path_.measured->ModalParts()) modes += part->modes();
+  if (modes == 0) return "";
+  return "its parts at each frequency (the modal form of " + std::to_string(modes) +
+         " mode(s)); poles and exact variance by its " + std::to_string(path_.system.states()) + "-state realisation";
+}
 
-Eigen::VectorXcd PathAnalysis::StateSpacePoles() const { return rational_ ? rational_->poles() : Eigen::VectorXcd(); }
+Eigen::VectorXcd PathAnalysis::StateSpacePoles() const {
+  return rational_ ? rational_->poles() : realisation_poles_;
+}
 
 void PathAnalysis::ForEachResponse(const std::vector<double>& f_hz, const FrequencyModel::Visitor& fn,
                                    int threads) const {

@@ -58,10 +58,12 @@ class PathAnalysis {
   const std::vector<std::complex<double>>& unstable_poles() const { return unstable_; }
   const std::vector<std::complex<double>>& marginal_poles() const { return marginal_; }
   // How H of a state-space path is evaluated and why (FrequencyResponse::
-  // Describe); "" for modal paths and block diagrams with measured data.
+  // Describe), or of a diagram with modal parts (from its parts); "" for
+  // modal paths, other diagrams and block diagrams with measured data.
   std::string ResponseForm() const;
-  // The poles of a state-space path as its response found them (empty for
-  // modal paths and block diagrams with measured data).
+  // The poles of a state-space path as its response found them, or of a
+  // diagram's realisation (empty for modal paths and block diagrams with
+  // measured data).
   Eigen::VectorXcd StateSpacePoles() const;
   // A loop closed around measured data: its stability is not known.
   bool loop_around_data() const { return path_.measured && path_.measured->HasLoopAroundData(); }
@@ -129,6 +131,7 @@ class PathAnalysis {
   std::unique_ptr<FrequencyResponse> rational_;
   std::unique_ptr<ModalResponse> modal_;
   std::optional<FrequencyModel> measured_;
+  Eigen::VectorXcd realisation_poles_;  // of a diagram's realisation (Path::SystemApproximates)
   // All evaluated rows under the last W asked for (no weighting).
   struct Cached {
     Eigen::MatrixXd w;

@@ -147,6 +147,10 @@ TEST_CASE("a loop around a modal path: poles, stability and exact variance from 
   const Path controller = Controller(*plant.modal);
   const Path loop = FeedbackOfPaths({&plant, "plant"}, {&controller, "controller"});
   const PathAnalysis analysis(loop, {0, 1, 2});
+  CHECK(analysis.ResponseForm() ==
+        "its parts at each frequency (the modal form of 120 mode(s)); poles and exact variance by its "
+        "242-state realisation");
+  CHECK(analysis.StateSpacePoles().size() == 242);  // for deb check's stability line
   CHECK(analysis.unstable_poles().empty());
   CHECK(analysis.marginal_poles().empty());
   CHECK(analysis.modes().size() >= 120);  // every pair once, the controller's real poles
@@ -187,6 +191,31 @@ TEST_CASE("a loop around a modal path: poles, stability and exact variance from 
   MESSAGE("loop around 120 modes (" << s.states() << " states): exact variances within " << worst
                                     << " of the whole Bartels-Stewart solve");
   CHECK(worst <= 1e-9);
+}
+
+TEST_CASE("a chain of a modal path and measured data takes its poles from the modes") {
+  const Path plant = ModalPlant(8, 3u);
+  Path frf;
+  frf.name = "amplifier";
+  frf.measured = std::make_shared<const FrequencyModel>(
+      MeasuredResponse({0.1, 1e4}, {Eigen::MatrixXcd::Identity(3, 3) * 2.0, Eigen::MatrixXcd::Identity(3, 3) * 2.0}));
+  frf.system = StateSpace::Gain(Eigen::MatrixXd::Zero(3, 3));
+  frf.input_names = {"a1", "a2", "a3"};
+  frf.output_names = {"b1", "b2", "b3"};
+  frf.input_units = {"N", "N", "N"};
+  frf.output_units = {"N", "N", "N"};
+  const Path chain = SeriesOfPaths({{&frf, "of[0]"}, {&plant, "of[1]"}});
+  REQUIRE(chain.HasMeasuredData());
+  const PathAnalysis analysis(chain, {0});
+  REQUIRE(analysis.modes().size() == 8);
+  for (std::size_t k = 0; k < 8; ++k) {
+    double nearest = HUGE_VAL;
+    for (const double f : plant.modal->f_hz) nearest = std::min(nearest, std::abs(analysis.modes()[k].f_n_hz / f - 1.0));
+    CHECK(nearest <= 1e-12);
+  }
+  // H: 2 (the data, flat) times the modal plant.
+  const Eigen::MatrixXcd h = chain.Model().At(3.0), g = plant.Model().At(3.0);
+  CHECK((h - 2.0 * g).norm() <= 1e-14 * g.norm());
 }
 
 }  // namespace
