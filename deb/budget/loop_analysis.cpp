@@ -112,13 +112,16 @@ std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<dou
       continue;
     }
     try {
+      std::vector<Eigen::MatrixXcd> on_grid = loop.LoopGains(f);
+      for (std::size_t k = 0; k < f.size(); ++k)
+        if (!on_grid[k].allFinite()) throw InputError("the loop gain is not finite at " + std::to_string(f[k]) + " Hz");
       loops[i].margins = ComputeLoopMargins(
           [&](double x) {
             Eigen::MatrixXcd l = loop.LoopGainAt(x);
             if (!l.allFinite()) throw InputError("the loop gain is not finite at " + std::to_string(x) + " Hz");
             return l;
           },
-          f);
+          f, std::move(on_grid));
       loops[i].evaluated = true;
       const LoopMargins& m = loops[i].margins;
       const double at_hz = m.phase_margin ? m.phase_margin->f_hz : m.modulus_margin_f_hz;

@@ -43,6 +43,14 @@ Eigen::MatrixXcd FeedbackLoop::LoopGainAt(double f_hz) const {
   return -static_cast<double>(sign) * (plant_model->At(f_hz) * controller_model->At(f_hz));
 }
 
+std::vector<Eigen::MatrixXcd> FeedbackLoop::LoopGains(const std::vector<double>& f_hz) const {
+  std::vector<Eigen::MatrixXcd> l(f_hz.size());
+  plant_model->ForEach(f_hz, [&](std::size_t k, const Eigen::MatrixXcd& g) {
+    l[k] = -static_cast<double>(sign) * (g * controller_model->At(f_hz[k]));
+  });
+  return l;
+}
+
 StateSpace Path::Rational() const { return modal ? ModalStateSpace(*modal) : system; }
 
 FrequencyModel Path::Model() const {

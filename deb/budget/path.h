@@ -29,6 +29,10 @@ struct FeedbackLoop {
   // channels() x channels().
   // @throws InputError as FrequencyModel::At.
   Eigen::MatrixXcd LoopGainAt(double f_hz) const;
+  // LoopGainAt at every f_hz, the plant in blocks of frequencies where its
+  // model allows (FrequencyModel::ForEach), on worker threads.
+  // @throws InputError as FrequencyModel::At.
+  std::vector<Eigen::MatrixXcd> LoopGains(const std::vector<double>& f_hz) const;
 };
 
 struct Path {

@@ -218,6 +218,8 @@ std::vector<IrrationalBlock> FrequencyModel::IrrationalBlocks() const {
 Eigen::MatrixXcd FrequencyModel::At(double f_hz) const { return node_->At(f_hz); }
 
 void FrequencyModel::ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads) const {
+  // A modal model alone in blocks of frequencies (one matrix product each).
+  if (node_->kind == Node::Kind::kModal) return node_->modal_response->ForEach(f_hz, fn, threads);
   ParallelFor(
       f_hz.size(),
       [&](std::size_t begin, std::size_t end) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "deb/core/error.h"
 #include "deb/core/math_constants.h"
@@ -56,30 +57,58 @@ double GoldenMinimum(const std::function<double(double)>& g, double f_lo, double
   return g(*at_hz);
 }
 
+// sigma_min(I + L). Where only r columns J of L are nonzero (a controller
+// acting on r of the loop's channels: L = U E_J^T, U = L(:, J)) and 2r < n,
+// I + L is the identity on the complement of W = span(U, E_J) and maps W
+// (as does its adjoint) into itself, so its singular values are ones and
+// those of Q^H (I + L) Q for an orthonormal basis Q of a space holding W
+// (the 2r columns of the Householder QR of [U, E_J]): an SVD of 2r x 2r
+// instead of n x n, the same value.
 double SmallestSingularValueOfIPlus(const Eigen::MatrixXcd& l) {
-  const Eigen::MatrixXcd m = Eigen::MatrixXcd::Identity(l.rows(), l.cols()) + l;
-  DEB_DEMAND(m.allFinite());
-  if (m.rows() == 1) return std::abs(m(0, 0));
-  return Eigen::JacobiSVD<Eigen::MatrixXcd>(m).singularValues().minCoeff();
+  const Eigen::Index n = l.rows();
+  DEB_DEMAND(l.allFinite());
+  if (n == 1) return std::abs(1.0 + l(0, 0));
+  std::vector<Eigen::Index> used;
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (!l.col(j).isZero(0.0)) used.push_back(j);
+  const Eigen::Index r = static_cast<Eigen::Index>(used.size());
+  if (2 * r >= n) {
+    const Eigen::MatrixXcd m = Eigen::MatrixXcd::Identity(n, n) + l;
+    return Eigen::JacobiSVD<Eigen::MatrixXcd>(m).singularValues().minCoeff();
+  }
+  if (r == 0) return 1.0;
+  Eigen::MatrixXcd basis = Eigen::MatrixXcd::Zero(n, 2 * r);
+  for (Eigen::Index i = 0; i < r; ++i) {
+    basis.col(i) = l.col(used[static_cast<std::size_t>(i)]);
+    basis(used[static_cast<std::size_t>(i)], r + i) = 1.0;
+  }
+  const Eigen::MatrixXcd q =
+      Eigen::HouseholderQR<Eigen::MatrixXcd>(basis).householderQ() * Eigen::MatrixXcd::Identity(n, 2 * r);
+  const Eigen::MatrixXcd reduced = Eigen::MatrixXcd::Identity(2 * r, 2 * r) + q.adjoint() * l * q;
+  return std::min(1.0, Eigen::JacobiSVD<Eigen::MatrixXcd>(reduced).singularValues().minCoeff());
 }
 
 }  // namespace
 
 double ToDecibel(double factor) { return 20.0 * std::log10(factor); }
 
-LoopMargins ComputeLoopMargins(const LoopGainAt& loop_gain, const std::vector<double>& f_hz) {
+LoopMargins ComputeLoopMargins(const LoopGainAt& loop_gain, const std::vector<double>& f_hz,
+                               std::vector<Eigen::MatrixXcd> on_grid) {
   DEB_DEMAND(f_hz.size() >= 2 && f_hz.front() > 0.0);
   for (std::size_t k = 1; k < f_hz.size(); ++k) DEB_DEMAND(f_hz[k] > f_hz[k - 1]);
   const std::size_t n = f_hz.size();
   // L and the smallest singular value of I + L at every frequency, in
   // chunks on all threads (an SVD per frequency: most of the work for a
   // loop of many channels). A failing chunk throws what a serial loop would.
-  std::vector<Eigen::MatrixXcd> l(n);
+  DEB_DEMAND(on_grid.empty() || on_grid.size() == n);
+  std::vector<Eigen::MatrixXcd> l = std::move(on_grid);
+  const bool given = !l.empty();
+  l.resize(n);
   std::vector<double> sigma(n);
   constexpr std::size_t kChunk = 64;
   ParallelForEach((n + kChunk - 1) / kChunk, [&](std::size_t c) {
     for (std::size_t k = c * kChunk; k < std::min(n, (c + 1) * kChunk); ++k) {
-      l[k] = loop_gain(f_hz[k]);
+      if (!given) l[k] = loop_gain(f_hz[k]);
       DEB_DEMAND(l[k].rows() > 0 && l[k].rows() == l[k].cols() && l[k].allFinite());
       sigma[k] = SmallestSingularValueOfIPlus(l[k]);
     }

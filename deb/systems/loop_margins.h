@@ -61,7 +61,11 @@ using LoopGainAt = std::function<Eigen::MatrixXcd(double f_hz)>;
 
 // The margins of the loop over the grid `f_hz` (ascending, > 0, at least 2
 // points). DEB_DEMANDs a valid grid and a square, non-empty, finite L.
-LoopMargins ComputeLoopMargins(const LoopGainAt& loop_gain, const std::vector<double>& f_hz);
+// `on_grid`, if given, holds L at every f_hz already (evaluated in blocks of
+// frequencies by the caller); loop_gain then serves only the refinements
+// between grid points.
+LoopMargins ComputeLoopMargins(const LoopGainAt& loop_gain, const std::vector<double>& f_hz,
+                               std::vector<Eigen::MatrixXcd> on_grid = {});
 
 // 20 log10(x): a gain margin in dB.
 double ToDecibel(double factor);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <complex>
+#include <random>
 #include <vector>
 
 namespace deb {
@@ -132,6 +133,36 @@ TEST_CASE("two decoupled channels: the modulus margin is the smaller channel's, 
   CHECK(both.gain_crossovers.empty());
   CHECK(both.phase_crossovers.empty());
   CHECK_FALSE(both.phase_margin);
+}
+
+TEST_CASE("a loop closed on 2 of 12 channels: the modulus margin as the full SVD of a rotated copy gives it") {
+  // L = G K with K acting on channels 3 and 8 only: columns of L are zero
+  // elsewhere, and sigma_min(I + L) comes from a 4 x 4 problem. P L P^H
+  // (P a random unitary) has the same singular values of I + L and no zero
+  // column, so it takes the 12 x 12 SVD.
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::MatrixXcd a = Eigen::MatrixXcd::Zero(12, 12), x(12, 12);
+  for (Eigen::Index i = 0; i < 12; ++i)
+    for (Eigen::Index j = 0; j < 12; ++j) {
+      x(i, j) = cd(normal(rng), normal(rng));
+      if (j == 2 || j == 7) a(i, j) = cd(normal(rng), normal(rng));
+    }
+  const Eigen::MatrixXcd p = Eigen::HouseholderQR<Eigen::MatrixXcd>(x).householderQ();
+  const auto l = [&](double f) -> Eigen::MatrixXcd {
+    const cd s(0.0, kTwoPi * f);
+    return a * (3.0 / (s * (s + 1.0)));
+  };
+  const std::vector<double> f = LogGrid(0.01, 100.0, 300);
+  const LoopMargins reduced = ComputeLoopMargins(l, f);
+  const LoopMargins full = ComputeLoopMargins([&](double fz) { return Eigen::MatrixXcd(p * l(fz) * p.adjoint()); }, f);
+  CHECK(reduced.channels == 12);
+  CHECK(reduced.modulus_margin < 1.0);
+  CHECK(std::abs(reduced.modulus_margin - full.modulus_margin) <= 1e-12);
+  CHECK(std::abs(reduced.modulus_margin_f_hz / full.modulus_margin_f_hz - 1.0) <= 1e-6);
+  // No loop at all: I + 0, every singular value 1.
+  const LoopMargins none = ComputeLoopMargins([](double) { return Eigen::MatrixXcd(Eigen::MatrixXcd::Zero(4, 4)); }, f);
+  CHECK(none.modulus_margin == 1.0);
 }
 
 TEST_CASE("a crossover exactly on a grid frequency is counted once") {
