@@ -12,7 +12,8 @@ of `deb run --export csv`). Flat uncorrelated forces of 1 N^2/Hz (one-sided)
 on every input, as the cases' budgets say. It prints one line of JSON: the
 seconds (wall and CPU) of its own work, and for every output the grid
 variance (trapezoid of the PSD) and the exact variance (modal closed form, or
-scipy's solve_continuous_lyapunov), in nm^2.
+scipy's solve_continuous_lyapunov, and for those also the closed form by A's
+eigenvectors, a second method, whose seconds it prints apart), in nm^2.
 
 Needs Debian's python3-scipy (numpy, scipy); deb itself never does.
 """
@@ -76,6 +77,27 @@ def modal_exact(w, z, pin, pout):
     return np.einsum("ok,kl,ol->o", pout, m, pout) * NM2
 
 
+CHECK_SECONDS = [0.0, 0.0]  # wall, CPU of the second method: not the peer's work
+
+
+def eigen_exact(a, b, c):
+    """The exact variances by A's eigenvectors, a second method beside the
+    Lyapunov solve: X = V (B~ B~^H W / -(l_i + conj l_j)) V^H, B~ = V^-1 B."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    try:
+        return eigen_exact_untimed(a, b, c)
+    finally:
+        CHECK_SECONDS[0] += time.perf_counter() - wall
+        CHECK_SECONDS[1] += time.process_time() - cpu
+
+
+def eigen_exact_untimed(a, b, c):
+    lam, v = np.linalg.eig(a)
+    bt, ct = np.linalg.solve(v, b), c @ v
+    x = (bt @ bt.conj().T * S0 / 2) / (-(lam[:, None] + lam[None, :].conj()))
+    return np.real(np.einsum("ik,kl,il->i", ct, x, ct.conj(), optimize=True)) * NM2
+
+
 def psd_and_variance(h_of_block, f, outputs):
     psd = np.zeros((len(f), outputs))
     for s in range(0, len(f), 64):
@@ -107,6 +129,7 @@ def main():
         grid_var = psd_and_variance(h, f, c.shape[0])
         x = scipy.linalg.solve_continuous_lyapunov(a, -b @ b.T * S0 / 2)
         exact = np.diag(c @ x @ c.T) * NM2
+        by_eigenvectors = eigen_exact(a, b, c)
     else:
         w, z, pin, pout = modal_case(d)
         if "type: feedback" in text:  # the PID on y1, y2 -> F1, F2, closed per frequency and in state space
@@ -137,11 +160,15 @@ def main():
             ccl = np.hstack([cp, np.zeros((cp.shape[0], 2 * nk))])
             x = scipy.linalg.solve_continuous_lyapunov(acl, -bcl @ bcl.T * S0 / 2)
             exact = np.diag(ccl @ x @ ccl.T) * NM2
+            by_eigenvectors = eigen_exact(acl, bcl, ccl)
         else:
             grid_var = psd_and_variance(lambda om: modal_h(w, z, pin, pout, om), f, pout.shape[0])
             exact = modal_exact(w, z, pin, pout)
+            by_eigenvectors = exact  # the modal closed form is the eigenvector form
     print(json.dumps({"wall_s": time.perf_counter() - wall, "cpu_s": time.process_time() - cpu, "points": len(f),
-                      "grid_variance_nm2": list(grid_var), "exact_variance_nm2": list(exact)}))
+                      "check_wall_s": CHECK_SECONDS[0], "check_cpu_s": CHECK_SECONDS[1],
+                      "grid_variance_nm2": list(grid_var), "exact_variance_nm2": list(exact),
+                      "eigenvector_variance_nm2": list(by_eigenvectors)}))
 
 
 if __name__ == "__main__":
