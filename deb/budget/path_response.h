@@ -69,7 +69,8 @@ struct PathResponse {
 class PathResponseRecorder {
  public:
   // DEB_DEMANDs a valid contributor of a validated budget whose every
-  // output's signal `analysis` evaluates.
+  // output's signal `analysis` evaluates. f_hz is kept by reference: it must
+  // outlive the recorder.
   // @throws InputError as the engine does for units and weightings.
   PathResponseRecorder(const Budget& budget, const PathAnalysis& analysis, std::size_t contributor,
                        const std::vector<double>& f_hz, int threads = 0);

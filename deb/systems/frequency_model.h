@@ -73,7 +73,9 @@ class FrequencyModel {
   Eigen::MatrixXcd At(double f_hz) const;
 
   // fn(k, H(f_hz[k])) for every k, on worker threads (threads <= 0: the
-  // default count); fn is called concurrently with distinct k.
+  // default count); fn is called concurrently with distinct k. A modal
+  // model alone is evaluated in blocks of frequencies (ModalResponse::
+  // ForEach: equal to At() to rounding), a diagram frequency by frequency.
   using Visitor = std::function<void(std::size_t k, const Eigen::MatrixXcd& h)>;
   void ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads = 0) const;
 
