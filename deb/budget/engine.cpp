@@ -124,8 +124,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
   }
   // The traces first: the covariance reads the paths' responses from them.
   if (options.response_traces)
-    result.traces =
-        std::make_shared<const ResponseTraces>(ComputeResponseTraces(budget, result, options.threads, std::move(recorded)));
+    result.traces = std::make_shared<const ResponseTraces>(ComputeResponseTraces(budget, result, std::move(recorded)));
   if (!budget.covariance.empty()) result.covariance = ComputeOutputCovariance(budget, result, options.threads);
   return result;
 }

@@ -112,13 +112,15 @@ std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<dou
       continue;
     }
     try {
+      const auto finite = [](const Eigen::MatrixXcd& l, double x) {
+        if (!l.allFinite()) throw InputError("the loop gain is not finite at " + std::to_string(x) + " Hz");
+      };
       std::vector<Eigen::MatrixXcd> on_grid = loop.LoopGains(f);
-      for (std::size_t k = 0; k < f.size(); ++k)
-        if (!on_grid[k].allFinite()) throw InputError("the loop gain is not finite at " + std::to_string(f[k]) + " Hz");
+      for (std::size_t k = 0; k < f.size(); ++k) finite(on_grid[k], f[k]);
       loops[i].margins = ComputeLoopMargins(
           [&](double x) {
             Eigen::MatrixXcd l = loop.LoopGainAt(x);
-            if (!l.allFinite()) throw InputError("the loop gain is not finite at " + std::to_string(x) + " Hz");
+            finite(l, x);
             return l;
           },
           f, std::move(on_grid));

@@ -39,16 +39,16 @@ int Path::OutputIndex(const std::string& signal) const {
   return -1;
 }
 
-Eigen::MatrixXcd FeedbackLoop::LoopGainAt(double f_hz) const {
-  return -static_cast<double>(sign) * (plant_model->At(f_hz) * controller_model->At(f_hz));
-}
+Eigen::MatrixXcd FeedbackLoop::LoopGainAt(double f_hz) const { return LoopGainOf(plant_model->At(f_hz), f_hz); }
 
 std::vector<Eigen::MatrixXcd> FeedbackLoop::LoopGains(const std::vector<double>& f_hz) const {
   std::vector<Eigen::MatrixXcd> l(f_hz.size());
-  plant_model->ForEach(f_hz, [&](std::size_t k, const Eigen::MatrixXcd& g) {
-    l[k] = -static_cast<double>(sign) * (g * controller_model->At(f_hz[k]));
-  });
+  plant_model->ForEach(f_hz, [&](std::size_t k, const Eigen::MatrixXcd& g) { l[k] = LoopGainOf(g, f_hz[k]); });
   return l;
+}
+
+Eigen::MatrixXcd FeedbackLoop::LoopGainOf(const Eigen::MatrixXcd& g, double f_hz) const {
+  return -static_cast<double>(sign) * (g * controller_model->At(f_hz));
 }
 
 StateSpace Path::Rational() const { return modal ? ModalStateSpace(*modal) : system; }

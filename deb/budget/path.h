@@ -33,6 +33,10 @@ struct FeedbackLoop {
   // model allows (FrequencyModel::ForEach), on worker threads.
   // @throws InputError as FrequencyModel::At.
   std::vector<Eigen::MatrixXcd> LoopGains(const std::vector<double>& f_hz) const;
+
+ private:
+  // -sign G K at f_hz from the plant's G there.
+  Eigen::MatrixXcd LoopGainOf(const Eigen::MatrixXcd& g, double f_hz) const;
 };
 
 struct Path {

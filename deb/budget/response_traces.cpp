@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "deb/core/parallel.h"
+#include "deb/core/error.h"
 
 namespace deb {
 namespace {
@@ -29,28 +29,15 @@ std::optional<std::pair<double, double>> PolesWithin(const PathAnalysis& path, c
 
 }  // namespace
 
-ResponseTraces ComputeResponseTraces(const Budget& budget, const BudgetResult& result, int threads,
+ResponseTraces ComputeResponseTraces(const Budget& budget, const BudgetResult& result,
                                      std::vector<std::vector<PathResponse>> recorded) {
   ResponseTraces t;
   const std::size_t n = budget.contributors.size();
-  t.paths.resize(n);
+  DEB_DEMAND(recorded.size() == n);
+  t.paths = std::move(recorded);
   t.poles_hz.resize(n);
-  std::vector<std::size_t> missing;  // contributors whose paths were not recorded
-  for (std::size_t c = 0; c < n; ++c) {
+  for (std::size_t c = 0; c < n; ++c)
     t.poles_hz[c] = PolesWithin(*result.paths.at(ContributorPathKey(budget.contributors[c])), result.grid);
-    if (c < recorded.size() && !recorded[c].empty()) t.paths[c] = std::move(recorded[c]);
-    else missing.push_back(c);
-  }
-  // Contributors on the threads, each path evaluated on one; with fewer
-  // contributors than threads, each path on all threads instead.
-  const int workers = threads > 0 ? threads : DefaultThreadCount();
-  const bool across = missing.size() >= static_cast<std::size_t>(workers);
-  ParallelForEach(
-      missing.size(),
-      [&](std::size_t i) {
-        t.paths[missing[i]] = ComputePathResponses(budget, result, missing[i], result.grid.f_hz(), across ? 1 : workers);
-      },
-      across ? workers : 1);
   for (const LoopResult& r : result.loops) {
     LoopTrace trace;
     const FeedbackLoop* loop = FindLoop(budget, r);

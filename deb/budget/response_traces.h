@@ -38,11 +38,11 @@ struct ResponseTraces {
 };
 
 // The traces of an evaluated budget (`result` from Evaluate of `budget`,
-// with its path analyses). recorded[c], where given and not empty, is
-// contributor c's paths as its propagation recorded them
-// (PathResponseRecorder); the others are evaluated here.
-// @throws InputError as ComputePathResponses.
-ResponseTraces ComputeResponseTraces(const Budget& budget, const BudgetResult& result, int threads = 0,
-                                     std::vector<std::vector<PathResponse>> recorded = {});
+// with its path analyses): recorded[c] is contributor c's paths as its
+// propagation recorded them (PathResponseRecorder), one per contributor;
+// the loops' gains are evaluated here.
+// @throws InputError where a loop's data are not defined on the grid.
+ResponseTraces ComputeResponseTraces(const Budget& budget, const BudgetResult& result,
+                                     std::vector<std::vector<PathResponse>> recorded);
 
 }  // namespace deb

@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "deb/core/error.h"
+
 namespace deb {
 namespace {
 
@@ -150,6 +152,13 @@ void ParallelFor(std::size_t n, const std::function<void(std::size_t, std::size_
   batch.blocks = blocks;
   Pool::Instance().Run(batch);
   if (batch.failure) std::rethrow_exception(batch.failure);
+}
+
+void ParallelForBlocks(std::size_t n, std::size_t block,
+                       const std::function<void(std::size_t begin, std::size_t end)>& body, int threads) {
+  DEB_DEMAND(block > 0);
+  ParallelForEach(
+      (n + block - 1) / block, [&](std::size_t b) { body(b * block, std::min(n, (b + 1) * block)); }, threads);
 }
 
 void ParallelForEach(std::size_t n, const std::function<void(std::size_t)>& job, int threads) {

@@ -40,4 +40,11 @@ void ParallelFor(std::size_t n, const std::function<void(std::size_t, std::size_
 // failing index is rethrown: the one a serial loop would have thrown.
 void ParallelForEach(std::size_t n, const std::function<void(std::size_t)>& job, int threads = 0);
 
+// body(begin, end) for the blocks [0, block), [block, 2 block), ... covering
+// [0, n) (the last one shorter), as ParallelForEach jobs. The blocks do not
+// depend on the thread count, so neither does a result summed block by
+// block (a matrix product over column blocks, partial sums added in order).
+void ParallelForBlocks(std::size_t n, std::size_t block,
+                       const std::function<void(std::size_t begin, std::size_t end)>& body, int threads = 0);
+
 }  // namespace deb

@@ -105,9 +105,8 @@ LoopMargins ComputeLoopMargins(const LoopGainAt& loop_gain, const std::vector<do
   const bool given = !l.empty();
   l.resize(n);
   std::vector<double> sigma(n);
-  constexpr std::size_t kChunk = 64;
-  ParallelForEach((n + kChunk - 1) / kChunk, [&](std::size_t c) {
-    for (std::size_t k = c * kChunk; k < std::min(n, (c + 1) * kChunk); ++k) {
+  ParallelForBlocks(n, 64, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
       if (!given) l[k] = loop_gain(f_hz[k]);
       DEB_DEMAND(l[k].rows() > 0 && l[k].rows() == l[k].cols() && l[k].allFinite());
       sigma[k] = SmallestSingularValueOfIPlus(l[k]);

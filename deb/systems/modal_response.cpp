@@ -227,20 +227,18 @@ ModalCovariance SolveModalCovariance(const ModalModel& model, const std::vector<
   // Rows k in fixed blocks of kCovarianceRows on all threads, each block
   // summing into its own share, rounding and cross terms; the blocks are
   // added in order, so the sums do not depend on the thread count.
-  constexpr int kCovarianceRows = 256;
-  const int blocks = (n + kCovarianceRows - 1) / kCovarianceRows;
+  constexpr std::size_t kCovarianceRows = 256;
   struct Partial {
     Eigen::MatrixXd share, cross;
     Eigen::VectorXd rounding;
   };
-  std::vector<Partial> partial(static_cast<std::size_t>(blocks));
-  ParallelForEach(static_cast<std::size_t>(blocks), [&](std::size_t block) {
-    Partial& part = partial[block];
+  std::vector<Partial> partial((static_cast<std::size_t>(n) + kCovarianceRows - 1) / kCovarianceRows);
+  ParallelForBlocks(static_cast<std::size_t>(n), kCovarianceRows, [&](std::size_t k0, std::size_t k1) {
+    Partial& part = partial[k0 / kCovarianceRows];
     part.share = Eigen::MatrixXd::Zero(n, p);
     part.rounding = Eigen::VectorXd::Zero(p);
     if (cross) part.cross = Eigen::MatrixXd::Zero(n, p);
-    const int k0 = static_cast<int>(block) * kCovarianceRows, k1 = std::min(n, k0 + kCovarianceRows);
-    for (int k = k0; k < k1; ++k) {
+    for (int k = static_cast<int>(k0); k < static_cast<int>(k1); ++k) {
       const Complex ak[2] = {pole[k], std::conj(pole[k])}, rk[2] = {res_pole[k], res_conj[k]};
       for (int l = 0; l <= k; ++l) {
         const double force = model.phi_in.col(k).dot(w_phi.col(l));

@@ -1,6 +1,5 @@
 #include "deb/systems/parallel_product.h"
 
-#include <algorithm>
 #include <cstddef>
 
 #include "deb/core/error.h"
@@ -10,11 +9,10 @@ namespace deb {
 
 void ForColumnBlocks(Eigen::Index cols, const std::function<void(Eigen::Index first, Eigen::Index count)>& fn) {
   DEB_DEMAND(cols >= 0);
-  const std::size_t blocks = static_cast<std::size_t>((cols + kProductColumns - 1) / kProductColumns);
-  ParallelForEach(blocks, [&](std::size_t b) {
-    const Eigen::Index first = static_cast<Eigen::Index>(b) * kProductColumns;
-    fn(first, std::min(kProductColumns, cols - first));
-  });
+  ParallelForBlocks(static_cast<std::size_t>(cols), static_cast<std::size_t>(kProductColumns),
+                    [&](std::size_t begin, std::size_t end) {
+                      fn(static_cast<Eigen::Index>(begin), static_cast<Eigen::Index>(end - begin));
+                    });
 }
 
 Eigen::MatrixXd ParallelProduct(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {

@@ -9,9 +9,9 @@
 
 namespace deb {
 
-// fn(first, count) for consecutive blocks of columns covering [0, cols), on
-// worker threads (ParallelForEach: an exception is rethrown as a serial loop
-// would). Blocks of kProductColumns columns, the last one shorter.
+// fn(first, count) for consecutive blocks of kProductColumns columns
+// covering [0, cols), the last one shorter, on worker threads
+// (ParallelForBlocks).
 inline constexpr Eigen::Index kProductColumns = 128;
 void ForColumnBlocks(Eigen::Index cols, const std::function<void(Eigen::Index first, Eigen::Index count)>& fn);
 
