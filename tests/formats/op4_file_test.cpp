@@ -1,4 +1,5 @@
-// Nastran OUTPUT4 files (deb/formats/op4_file.h). The fixtures in tests/data/nastran were written by Nastran
+// Nastran OUTPUT4 files (deb/formats/op4_file.h) and the state_space paths
+// that read them. The fixtures in tests/data/nastran were written by Nastran
 // for pyNastran's tests (BSD-3, LICENSE-pyNastran.md there): the same nine
 // matrices, real and complex, single and double precision, in text
 // (mat_t_*) and binary (mat_b_*: little-endian, 4-byte words), each dense
@@ -23,10 +24,14 @@
 #include <utility>
 #include <vector>
 
+#include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
 #include "deb/formats/op4_file.h"
+#include "deb/load/budget_yaml.h"
+#include "tests/support/budget_errors.h"
 #include "tests/support/contains.h"
+#include "tests/support/contributor_of.h"
 #include "tests/support/file_bytes.h"
 #include "tests/support/text_edit.h"
 
@@ -504,6 +509,141 @@ TEST_CASE("a matrix's size is checked against the bound before it is allocated")
   CHECK(test::InputErrorOf([&] { f.Matrix("BIG"); }) ==
         path + ": matrix 'BIG' is 100000x100000, 10000000000 values, more than the " +
             std::to_string(limits::kMaxMatElements) + " deb reads of one matrix");
+}
+
+// ---------------------------------------------------------------------------
+// Budgets: a state_space path from an OP4 file.
+
+using test::CheckLocated;
+using test::ErrorOfBudget;
+using test::MatrixYaml;
+
+// Two resonances (12 Hz, 70 Hz), two force inputs, one displacement output:
+// the plant of tests/formats/mat_file_test.cpp.
+struct Plant {
+  Eigen::MatrixXd a, b, c, d;
+  Plant() : a(4, 4), b(4, 2), c(1, 4), d(1, 2) {
+    constexpr double kTwoPi = 6.283185307179586476925286766559;
+    const double w1 = kTwoPi * 12, w2 = kTwoPi * 70;
+    a << 0, 1, 0, 0, -w1 * w1, -2 * 0.03 * w1, 0, 0, 0, 0, 0, 1, 0, 0, -w2 * w2, -2 * 0.01 * w2;
+    b << 0, 0, 1.3, 0.2, 0, 0, -0.4, 0.9;
+    c << 0.8, 0, 0.5, 0.001;
+    d << 0, 0;  // white forces: a feedthrough would make the variance infinite
+  }
+  Matrices Named(bool with_d = true) const {
+    Matrices m = {{"AMAT", a}, {"BMAT", b}, {"CMAT", c}};
+    if (with_d) m.push_back({"DMAT", d});
+    return m;
+  }
+};
+
+const char* kBudget = R"(name: ss
+grid: {type: auto, min_hz: 0.01, max_hz: 10000}
+sources:
+  - {name: force, unit: N, channels: [F1, F2], spectrum: {type: flat, level: 2.5}}
+paths:
+  - name: inline
+    type: state_space
+    A: AAA
+    B: BBB
+    C: CCC
+    D: DDD
+    inputs: [F1, F2]
+    outputs: [z]
+    input_unit: N
+    output_unit: m
+  - name: op4
+    type: state_space
+    file: plant.dat
+    matrices: {A: AMAT, B: BMAT, C: CMAT, D: DMAT}
+    inputs: [F1, F2]
+    outputs: [z]
+    input_unit: N
+    output_unit: m
+contributors:
+  - {name: inline, source: force, path: inline, exact: required}
+  - {name: op4, source: force, path: op4, exact: required}
+outputs:
+  - {name: z, signal: z, unit: um}
+)";
+
+std::string BudgetText(const Plant& p) {
+  std::string text = Replace(kBudget, "AAA", MatrixYaml(p.a));
+  text = Replace(text, "BBB", MatrixYaml(p.b));
+  text = Replace(text, "CCC", MatrixYaml(p.c));
+  return Replace(text, "DDD", MatrixYaml(p.d));
+}
+
+TEST_CASE("state_space from an OP4 file, text or binary, found by its content: the RMS of the same matrices inline") {
+  const TempDir dir;
+  const Plant plant;
+  const std::string budget = dir.Write("b.yaml", BudgetText(plant));
+  const std::pair<const char*, std::string> files[] = {
+      {"text", TextOp4(plant.Named())},
+      {"binary little-endian", BinaryWriter(true, 4).File(plant.Named())},
+      {"binary big-endian, 8-byte words", BinaryWriter(false, 8).File(plant.Named())}};
+  for (const auto& file : files) {
+    CAPTURE(file.first);
+    dir.Write("plant.dat", file.second);  // not named .op4: found by its content
+    const Budget b = LoadBudgetFile(budget);
+    const Path& op4 = b.FindPath("op4");
+    CHECK(op4.system.A() == plant.a);  // 17 digits in text: exact
+    CHECK(op4.system.B() == plant.b);
+    CHECK(op4.system.C() == plant.c);
+    CHECK(op4.system.D() == plant.d);
+    const BudgetResult r = Evaluate(b);
+    const ContributorResult& inline_c = test::ContributorOf(r.outputs[0], "inline");
+    const ContributorResult& op4_c = test::ContributorOf(r.outputs[0], "op4");
+    REQUIRE(inline_c.variance > 0);
+    CHECK(op4_c.variance == inline_c.variance);
+    REQUIRE(op4_c.exact_variance.has_value());
+    CHECK(*op4_c.exact_variance == *inline_c.exact_variance);
+  }
+  SUBCASE("D not mapped: zeros; no 'matrices': the names A, B, C and D") {
+    dir.Write("plant.dat", TextOp4(plant.Named()));
+    dir.Write("b.yaml", Replace(BudgetText(plant), ", D: DMAT}", "}"));
+    CHECK(LoadBudgetFile(budget).FindPath("op4").system.D() == Eigen::MatrixXd::Zero(1, 2));
+    dir.Write("plant.dat", TextOp4({{"A", plant.a}, {"B", plant.b}, {"C", plant.c}}));
+    dir.Write("b.yaml", Replace(BudgetText(plant), "    matrices: {A: AMAT, B: BMAT, C: CMAT, D: DMAT}\n", ""));
+    const Budget b = LoadBudgetFile(budget);
+    CHECK(b.FindPath("op4").system.A() == plant.a);
+    CHECK(b.FindPath("op4").system.D() == Eigen::MatrixXd::Zero(1, 2));
+  }
+}
+
+TEST_CASE("state_space OP4 errors: a missing name lists those present, at its key; shapes with the file's names") {
+  const TempDir dir;
+  const Plant plant;
+  const std::string budget = dir.Write("b.yaml", BudgetText(plant));
+  const std::string op4 = dir.Write("plant.dat", TextOp4(plant.Named()));
+  SUBCASE("a name the file does not hold") {
+    dir.Write("b.yaml", Replace(BudgetText(plant), "B: BMAT", "B: BHH"));
+    CheckLocated(ErrorOfBudget(budget), "paths[1].matrices.B",
+                 op4 + ": no matrix 'BHH' in the OP4 file (it holds AMAT, BMAT, CMAT, DMAT)");
+  }
+  SUBCASE("without 'matrices', a file without A") {
+    dir.Write("b.yaml", Replace(BudgetText(plant), "    matrices: {A: AMAT, B: BMAT, C: CMAT, D: DMAT}\n", ""));
+    CheckLocated(ErrorOfBudget(budget), "paths[1].file",
+                 op4 + ": no matrix 'A' in the OP4 file (it holds AMAT, BMAT, CMAT, DMAT)");
+  }
+  SUBCASE("shapes: the message names deb's matrix and the file's") {
+    dir.Write("b.yaml", Replace(BudgetText(plant), "B: BMAT", "B: CMAT"));
+    CheckLocated(ErrorOfBudget(budget), "paths[1].file", op4 + ": B ('CMAT') is 1x4 but A ('AMAT') is 4x4: B needs 4 rows");
+  }
+  SUBCASE("a complex matrix, a damaged file") {
+    const std::string fixture = Fixture("t", "dn");
+    dir.Write("b.yaml", Replace(Replace(BudgetText(plant), "file: plant.dat", "file: " + fixture), "A: AMAT", "A: RND1CD"));
+    CheckLocated(ErrorOfBudget(budget), "paths[1].matrices.A",
+                 fixture + ": matrix 'RND1CD' is complex (type 4, complex double precision); a real matrix is expected");
+    dir.Write("plant.dat", Replace(TextOp4(plant.Named()), "       2AMAT", "       9AMAT"));
+    CheckLocated(ErrorOfBudget(budget), "paths[1].file", op4 + ":1:1: matrix 1's header: unknown type 9");
+  }
+  SUBCASE("'matrices' without 'file', with a key other than A, B, C, D") {
+    dir.Write("b.yaml", Replace(BudgetText(plant), "    A: AAA\n", "    matrices: {A: AMAT}\n    A: AAA\n"));
+    CheckLocated(ErrorOfBudget(budget), "paths[0].matrices", "'matrices' names the matrices of a 'file'");
+    dir.Write("b.yaml", Replace(BudgetText(plant), "D: DMAT}", "E: DMAT}"));
+    CheckLocated(ErrorOfBudget(budget), "paths[1].matrices.E", "unknown key 'E'");
+  }
 }
 
 }  // namespace
