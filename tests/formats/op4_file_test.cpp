@@ -635,11 +635,12 @@ TEST_CASE("state_space OP4 errors: a missing name lists those present, at its ke
     dir.Write("b.yaml", Replace(Replace(BudgetText(plant), "file: plant.dat", "file: " + fixture), "A: AMAT", "A: RND1CD"));
     CheckLocated(ErrorOfBudget(budget), "paths[1].matrices.A",
                  fixture + ": matrix 'RND1CD' is complex (type 4, complex double precision); a real matrix is expected");
+    dir.Write("b.yaml", BudgetText(plant));
     dir.Write("plant.dat", Replace(TextOp4(plant.Named()), "       2AMAT", "       9AMAT"));
     CheckLocated(ErrorOfBudget(budget), "paths[1].file", op4 + ":1:1: matrix 1's header: unknown type 9");
   }
   SUBCASE("'matrices' without 'file', with a key other than A, B, C, D") {
-    dir.Write("b.yaml", Replace(BudgetText(plant), "    A: AAA\n", "    matrices: {A: AMAT}\n    A: AAA\n"));
+    dir.Write("b.yaml", Replace(BudgetText(plant), "    type: state_space\n    A: ", "    type: state_space\n    matrices: {A: AMAT}\n    A: "));
     CheckLocated(ErrorOfBudget(budget), "paths[0].matrices", "'matrices' names the matrices of a 'file'");
     dir.Write("b.yaml", Replace(BudgetText(plant), "D: DMAT}", "E: DMAT}"));
     CheckLocated(ErrorOfBudget(budget), "paths[1].matrices.E", "unknown key 'E'");
