@@ -117,10 +117,11 @@ std::string NameProblem(const std::string& name) {
   return "";
 }
 
-// Where a matrix's values go: nowhere while the file is checked.
+// Where a matrix's values go: a real matrix, a complex one, or nowhere
+// while the file is checked.
 struct Target {
-  Eigen::MatrixXd* re = nullptr;
-  Eigen::MatrixXd* im = nullptr;
+  Eigen::MatrixXd* real = nullptr;
+  Eigen::MatrixXcd* complex = nullptr;
 };
 
 // One run of numbers (a dense column, or a string of a sparse one) down
@@ -132,12 +133,13 @@ class Run {
       : into_(into), complex_(complex), row_(static_cast<Eigen::Index>(row)), col_(static_cast<Eigen::Index>(col)) {}
   void Add(double v) {
     if (complex_ && imaginary_) {
-      if (into_.im) (*into_.im)(row_, col_) = v;
+      if (into_.complex) (*into_.complex)(row_, col_).imag(v);
       imaginary_ = false;
       ++row_;
       return;
     }
-    if (into_.re) (*into_.re)(row_, col_) = v;
+    if (into_.real) (*into_.real)(row_, col_) = v;
+    if (into_.complex) (*into_.complex)(row_, col_).real(v);
     if (complex_) imaginary_ = true;
     else ++row_;
   }
@@ -675,21 +677,21 @@ std::size_t Op4File::IndexOf(const std::string& name) const {
   return found.front();
 }
 
-void Op4File::Read(std::size_t index, Eigen::MatrixXd* re, Eigen::MatrixXd* im) const {
+void Op4File::Read(std::size_t index, Eigen::MatrixXd* real, Eigen::MatrixXcd* complex) const {
   const Op4Matrix& m = matrices_[index];
   const std::uint64_t values = static_cast<std::uint64_t>(m.rows) * static_cast<std::uint64_t>(m.cols);
   if (values > limits::kMaxMatElements)
     throw InputError(path_ + ": matrix " + Quoted(m.name) + " is " + std::to_string(m.rows) + "x" +
                      std::to_string(m.cols) + ", " + std::to_string(values) + " values, more than the " +
                      std::to_string(limits::kMaxMatElements) + " deb reads of one matrix");
-  re->setZero(m.rows, m.cols);
-  if (im) im->setZero(m.rows, m.cols);
+  if (real) real->setZero(m.rows, m.cols);
+  if (complex) complex->setZero(m.rows, m.cols);
   const auto read = [&](auto& reader) {
     Op4Matrix header;
     for (std::size_t i = 0; i <= index; ++i) {
       const bool found = reader.Header(i + 1, header);
       DEB_DEMAND(found);  // the file was checked when it was opened
-      reader.Body(header, i == index ? Target{re, im} : Target{});
+      reader.Body(header, i == index ? Target{real, complex} : Target{});
     }
   };
   if (encoding_ == Encoding::kBinary) {
@@ -707,18 +709,14 @@ Eigen::MatrixXd Op4File::Matrix(const std::string& name) const {
   if (m.complex())
     throw InputError(path_ + ": matrix " + Quoted(m.name) + " is complex (type " + std::to_string(m.type) + ", " +
                      Op4TypeText(m.type) + "); a real matrix is expected here");
-  Eigen::MatrixXd re;
-  Read(index, &re, nullptr);
-  return re;
+  Eigen::MatrixXd real;
+  Read(index, &real, nullptr);
+  return real;
 }
 
 Eigen::MatrixXcd Op4File::ComplexMatrix(const std::string& name) const {
-  const std::size_t index = IndexOf(name);
-  Eigen::MatrixXd re, im;
-  Read(index, &re, &im);
-  Eigen::MatrixXcd z(re.rows(), re.cols());
-  z.real() = re;
-  z.imag() = im;
+  Eigen::MatrixXcd z;
+  Read(IndexOf(name), nullptr, &z);
   return z;
 }
 

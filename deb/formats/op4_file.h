@@ -93,7 +93,8 @@ class Op4File {
 
  private:
   std::size_t IndexOf(const std::string& name) const;
-  void Read(std::size_t index, Eigen::MatrixXd* re, Eigen::MatrixXd* im) const;
+  // Matrix `index` into `real` or `complex` (the other null).
+  void Read(std::size_t index, Eigen::MatrixXd* real, Eigen::MatrixXcd* complex) const;
 
   std::string path_;
   std::string content_;
