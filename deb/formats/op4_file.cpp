@@ -679,11 +679,15 @@ std::size_t Op4File::IndexOf(const std::string& name) const {
 
 void Op4File::Read(std::size_t index, Eigen::MatrixXd* real, Eigen::MatrixXcd* complex) const {
   const Op4Matrix& m = matrices_[index];
+  // A complex value is two numbers: the bound is on memory.
   const std::uint64_t values = static_cast<std::uint64_t>(m.rows) * static_cast<std::uint64_t>(m.cols);
-  if (values > limits::kMaxMatElements)
+  const std::uint64_t numbers = complex ? 2 * values : values;
+  if (numbers > limits::kMaxMatElements)
     throw InputError(path_ + ": matrix " + Quoted(m.name) + " is " + std::to_string(m.rows) + "x" +
-                     std::to_string(m.cols) + ", " + std::to_string(values) + " values, more than the " +
-                     std::to_string(limits::kMaxMatElements) + " deb reads of one matrix");
+                     std::to_string(m.cols) + ", " +
+                     (complex ? std::to_string(values) + " complex values, " + std::to_string(numbers) + " numbers"
+                              : std::to_string(values) + " values") +
+                     ", more than the " + std::to_string(limits::kMaxMatElements) + " deb reads of one matrix");
   if (real) real->setZero(m.rows, m.cols);
   if (complex) complex->setZero(m.rows, m.cols);
   const auto read = [&](auto& reader) {

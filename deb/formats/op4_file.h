@@ -38,7 +38,8 @@
 // record complete and framed, columns increasing and within ncol, strings in
 // order and within nrow, word counts that add up, every number finite), at
 // most limits::kMaxOp4Matrices matrices; a matrix's size is checked against
-// limits::kMaxMatElements before it is allocated. Every error names the
+// limits::kMaxMatElements numbers (a complex value is two) before it is
+// allocated. Every error names the
 // file, the line (text) or byte offset (binary), the matrix and the rule.
 #pragma once
 
@@ -88,7 +89,8 @@ class Op4File {
   //         file holds), a name given to two matrices, a complex matrix, or
   //         more than limits::kMaxMatElements values.
   Eigen::MatrixXd Matrix(const std::string& name) const;
-  // The same for a matrix of any type (a real one has zero imaginary parts).
+  // The same for a matrix of any type (a real one has zero imaginary
+  // parts); here a value is two numbers of the bound.
   Eigen::MatrixXcd ComplexMatrix(const std::string& name) const;
 
  private:
