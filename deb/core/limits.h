@@ -57,6 +57,10 @@ inline constexpr std::uintmax_t kMaxBudgetFileBytes = 64ull << 20;  // 64 MiB
 inline constexpr std::uintmax_t kMaxTextFileBytes = 1ull << 30;     // 1 GiB: spectra, FRF, CSV recordings, summaries
 inline constexpr std::uintmax_t kMaxRawFileBytes = 8ull << 30;      // 8 GiB: raw binary recordings
 inline constexpr std::uintmax_t kMaxMatFileBytes = 2ull << 30;      // 2 GiB: MATLAB .mat files (models, FE results)
+// Nastran result files (OP2, punch): read as a stream, keeping only the
+// eigenvalues and the named grids' rows, so a large model's file costs a pass,
+// not its size in memory.
+inline constexpr std::uintmax_t kMaxSolverFileBytes = 64ull << 30;  // 64 GiB
 inline constexpr std::size_t kMaxMatVariables = 100'000;            // variables of one .mat file
 inline constexpr std::size_t kMaxLineBytes = 4u << 20;              // 4 MiB: one line of a text table
 // Seconds one gnuplot run may take before it is stopped (DEB_GNUPLOT_TIMEOUT overrides).

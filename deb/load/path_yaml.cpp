@@ -43,10 +43,14 @@ StateSpace InPathUnits(const YamlNode& node, const Path& p, const std::string& s
   return StateSpace(s.A(), s.B(), s.C() * factor, s.D() * factor);
 }
 
-// A model built in SI units, channel by channel (`si_in[j]` to
-// `si_out[i]`), scaled to the path's units: each must be the same quantity.
-StateSpace InChannelUnits(const YamlNode& node, const Path& p, const std::vector<std::string>& si_in,
-                          const std::vector<std::string>& si_out) {
+// The factors that scale a model in units `si_in[j]` to `si_out[i]`,
+// channel by channel, to the path's units: H_path = diag(out) H diag(in).
+// Each must be the same quantity.
+struct ChannelScales {
+  Eigen::VectorXd in, out;
+};
+ChannelScales ChannelScalesTo(const YamlNode& node, const Path& p, const std::vector<std::string>& si_in,
+                              const std::vector<std::string>& si_out) {
   const auto scale = [&](const std::string& user, const std::string& si, const char* one, const char* many,
                          bool output, const std::string& channel) {
     const YamlNode at = node.Has(one) ? node.Required(one) : node.Has(many) ? node.Required(many) : node;
@@ -61,14 +65,22 @@ StateSpace InChannelUnits(const YamlNode& node, const Path& p, const std::vector
     if (!c->IsPureScale()) at.Fail(what);
     return c->scale;
   };
-  Eigen::VectorXd in(p.system.inputs()), out(p.system.outputs());
+  ChannelScales c{Eigen::VectorXd(p.system.inputs()), Eigen::VectorXd(p.system.outputs())};
   for (int j = 0; j < p.system.inputs(); ++j)
-    in(j) = scale(p.input_units[j], si_in[j], "input_unit", "input_units", false, p.input_names[j]);
+    c.in(j) = scale(p.input_units[j], si_in[j], "input_unit", "input_units", false, p.input_names[j]);
   for (int i = 0; i < p.system.outputs(); ++i)
-    out(i) = scale(p.output_units[i], si_out[i], "output_unit", "output_units", true, p.output_names[i]);
+    c.out(i) = scale(p.output_units[i], si_out[i], "output_unit", "output_units", true, p.output_names[i]);
+  return c;
+}
+
+// A model built in SI units, channel by channel, scaled to the path's units
+// (ChannelScalesTo).
+StateSpace InChannelUnits(const YamlNode& node, const Path& p, const std::vector<std::string>& si_in,
+                          const std::vector<std::string>& si_out) {
+  const ChannelScales c = ChannelScalesTo(node, p, si_in, si_out);
   const StateSpace& s = p.system;
-  return StateSpace(s.A(), s.B() * in.asDiagonal(), out.asDiagonal() * s.C(),
-                    out.asDiagonal() * s.D() * in.asDiagonal());
+  return StateSpace(s.A(), s.B() * c.in.asDiagonal(), c.out.asDiagonal() * s.C(),
+                    c.out.asDiagonal() * s.D() * c.in.asDiagonal());
 }
 
 std::set<std::string> With(std::set<std::string> keys, std::initializer_list<std::string> more) {
@@ -271,17 +283,27 @@ ChannelSource ParseModalPath(const YamlNode& node, const std::string& base_dir, 
                                 "output_units"};
   keys.insert(std::begin(kModalKeys), std::end(kModalKeys));
   node.AllowOnly(keys);
-  const ModalModel model = ParseModalModel(node, base_dir);
+  ModalFileUnits file_units;
+  ModalModel model = ParseModalModel(node, base_dir, file_units);
   AtNode(node, [&] { model.Validate(); });
   p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(model.phi_out.rows(), model.phi_in.rows()));
-  p.modal = std::make_shared<const ModalModel>(model);
   p.input_names = model.input_names;
   p.output_names = model.output_names;
   p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
   p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+  if (!file_units.inputs.empty()) {
+    // Shapes in the file's units, scaled to the path's (output_unit names
+    // the displacement's unit).
+    const ChannelScales c = ChannelScalesTo(node, p, file_units.inputs, file_units.outputs);
+    model.phi_in = c.in.asDiagonal() * model.phi_in;
+    model.phi_out = c.out.asDiagonal() * model.phi_out;
+    if (model.residual.size() > 0) model.residual = c.out.asDiagonal() * model.residual * c.in.asDiagonal();
+  }
+  p.modal = std::make_shared<const ModalModel>(model);
   const YamlNode unit_node = node.Required(node.Has("output_unit") ? "output_unit" : "output_units");
   for (std::string& u : p.output_units) u = AtNode(unit_node, [&] { return ModalOutputUnit(u, model.quantity); });
-  return ChannelSource::kComposed;
+  // From a Nastran file, `inputs` and `outputs` name the DOFs and the channels.
+  return file_units.inputs.empty() ? ChannelSource::kComposed : ChannelSource::kOwn;
 }
 
 ChannelSource ParseLumpedMassesPath(const YamlNode& node, Path& p) {
