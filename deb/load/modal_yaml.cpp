@@ -181,7 +181,11 @@ ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir, Mo
   ModalModel model;
   const auto file = node.Optional("file");
   const std::string file_path = file ? Resolve(base_dir, file->AsString()) : "";
-  if (file && !AtNode(*file, [&] { return formats::NastranFormatOf(file_path); }).empty()) {
+  bool nastran_keys = false;
+  for (const char* key : kNastranModalKeys) nastran_keys = nastran_keys || node.Has(key);
+  // A Nastran file by its content, or by the keys only such a path has (the
+  // file's reader then says why it is not one).
+  if (file && (nastran_keys || !AtNode(*file, [&] { return formats::NastranFormatOf(file_path); }).empty())) {
     for (const char* key : {"frequencies_hz", "input_shapes", "output_shapes", "max_frequency_hz"})
       if (node.Has(key))
         node.Required(key).Fail(std::string("not with a Nastran file (") + file->AsString() + "): " +
