@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string_view>
+#include <system_error>
 
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
@@ -659,6 +661,8 @@ bool LooksLikeUff(const std::string& bytes) {
 }
 
 bool FileLooksLikeUff(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;  // a FIFO would block
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
   std::string head(4096, '\0');

@@ -160,7 +160,8 @@ std::vector<Uff58Record> ParseUff58(const std::string& bytes, const std::string&
 // blank is the delimiter "-1" and the next one a dataset number ("58",
 // "58b", "2411", ...). Used to tell a .uff file from a text table.
 bool LooksLikeUff(const std::string& bytes);
-// The same for the first bytes of the file at `path`; false if it cannot be read.
+// The same for the first bytes of the file at `path`; false if it is not a
+// regular file or cannot be read (its reader then says why).
 bool FileLooksLikeUff(const std::string& path);
 
 // A units label of records 8-11 as deb's unit layer (UDUNITS-2 syntax,
