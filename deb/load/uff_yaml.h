@@ -13,8 +13,9 @@
 // Each entry's unit (record 9 over record 10) is converted to the path's
 // output unit over its input unit, by a scale and up to two time
 // derivatives or integrals (accelerance m/s^2/N to compliance um/N:
-// 1e6 / (j 2 pi f)^2); without output_unit / input_unit the path takes the
-// file's numerator and denominator units.
+// 1e6 / (j 2 pi f)^2); an entry without a unit (NONE) is taken in the
+// path's units. Without output_unit / input_unit the path takes the file's
+// numerator and denominator units.
 //
 // A source takes PSDs (function type 9) and auto spectra (2) whose unit is a
 // density: X^2/Hz (a PSD) or X/sqrt(Hz) (an ASD, squared); an auto spectrum
