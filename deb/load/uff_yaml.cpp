@@ -263,6 +263,7 @@ std::shared_ptr<const Spectrum> ParseUffSpectrum(const YamlNode& node, const Yam
   if (unit_node) s->unit = unit_node->AsString();
   Eigen::MatrixXd psd(static_cast<Eigen::Index>(f_hz.size()), static_cast<Eigen::Index>(chosen.size()));
   std::vector<std::optional<UnitConversion>> conversions;
+  std::vector<std::string> table_units;  // the unit of each dataset's values (a PSD in its square per Hz)
   for (std::size_t c = 0; c < chosen.size(); ++c) {
     const Uff58Record& r = *chosen[c];
     const std::optional<formats::UffDensityUnit> density = formats::UffDensity(r);
@@ -289,6 +290,7 @@ std::shared_ptr<const Spectrum> ParseUffSpectrum(const YamlNode& node, const Yam
       s->notes.push_back("dataset " + r.Describe() + " of " + path + " gives no unit: its values are read as a PSD in " +
                          PsdUnitLabel(s->unit));
       conversions.emplace_back();
+      table_units.push_back(s->unit);
       continue;
     }
     if (!unit_node) {
@@ -299,12 +301,12 @@ std::shared_ptr<const Spectrum> ParseUffSpectrum(const YamlNode& node, const Yam
     }
     const YamlNode at = unit_node ? *unit_node : node;
     conversions.push_back(AtNode(at, [&] { return ConvertUnit(density->signal_unit, s->unit); }));
+    table_units.push_back(density->signal_unit);
   }
   // One channel per dataset, the conversion of its unit applied.
   MeasuredSpectrumOptions options;
   if (auto e = spec.Optional("extrapolation"))
     options.extrapolation = AtNode(*e, [&] { return ParseExtrapolation(e->AsString()); });
-  options.unit = s->unit;
   options.origin = path;
   std::vector<std::string> names;
   for (const Uff58Record* r : chosen) {
@@ -317,6 +319,7 @@ std::shared_ptr<const Spectrum> ParseUffSpectrum(const YamlNode& node, const Yam
   for (std::size_t c = 0; c < chosen.size(); ++c) {
     MeasuredSpectrumOptions one = options;
     one.channel_names = {names[c]};
+    one.unit = table_units[c];
     std::shared_ptr<const Spectrum> m = AtNode(file, [&] {
       return std::make_shared<MeasuredSpectrum>(f_hz, Eigen::MatrixXd(psd.col(static_cast<Eigen::Index>(c))), one);
     });

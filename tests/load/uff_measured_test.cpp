@@ -94,6 +94,9 @@ TEST_CASE("a PSD dataset in g^2/Hz is a measured source, converted to the source
   const Budget b = LoadBudgetFile(dir.Write("b.yaml", kSourceBudget));
   const Source& s = b.FindSource("table");
   CHECK(s.unit == "m/s^2");
+  // The table is in the file's unit, the source in the budget's.
+  CHECK_MESSAGE(Contains(s.spectrum->Describe(), "96.17038422249999 x [measured"), s.spectrum->Describe());
+  CHECK_MESSAGE(Contains(s.spectrum->Describe(), "PSD in (gravity)^2/Hz]"), s.spectrum->Describe());
   CHECK(s.channel_names == std::vector<std::string>{"Pilot 1"});
   // Data lines 1 and 87 of the file: 1 Hz 1.255863E-06, 172 Hz 1.236371E-04 (g^2/Hz).
   const double g2 = kGravity * kGravity;
