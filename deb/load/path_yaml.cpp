@@ -12,6 +12,8 @@
 #include "deb/load/lumped_masses_yaml.h"
 #include "deb/formats/mat_file.h"
 #include "deb/load/modal_yaml.h"
+#include "deb/load/uff_yaml.h"
+#include "deb/formats/uff58_file.h"
 #include "deb/systems/frf_csv.h"
 #include "deb/systems/transfer_function.h"
 #include "deb/units/unit.h"
@@ -255,12 +257,22 @@ ChannelSource ParseStateSpacePath(const YamlNode& node, const std::string& base_
   return ChannelSource::kEntry;
 }
 
-// Names and units from the file.
+// Names and units from the file: a table (deb/systems/frf_csv.h) or a
+// universal file (deb/load/uff_yaml.h), told apart by its content.
 ChannelSource ParseFrfPath(const YamlNode& node, const std::string& base_dir, Path& p) {
-  node.AllowOnly(With(kCommonKeys, {"file", "extrapolation"}));
   const YamlNode file = node.Required("file");
   std::filesystem::path f(file.AsString());
   if (f.is_relative()) f = std::filesystem::path(base_dir) / f;
+  if (formats::FileLooksLikeUff(f.lexically_normal().string())) {
+    node.AllowOnly(With(kCommonKeys, {"file", "extrapolation", kUffPathKeys[0], kUffPathKeys[1]}));
+    ParseUffFrfPath(node, f.lexically_normal().string(), p);
+    return ChannelSource::kComposed;
+  }
+  for (const char* key : kUffPathKeys)
+    if (node.Has(key))
+      node.Required(key).Fail(std::string("'") + key + "' chooses datasets of a universal file (UFF 58); " +
+                              f.lexically_normal().string() + " is a table: name its entries with outputs and inputs");
+  node.AllowOnly(With(kCommonKeys, {"file", "extrapolation"}));
   const Extrapolation extrapolation =
       node.Has("extrapolation")
           ? AtNode(node.Required("extrapolation"), [&] { return ParseExtrapolation(node.Required("extrapolation").AsString()); })

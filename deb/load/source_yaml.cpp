@@ -6,6 +6,8 @@
 
 #include "deb/core/limits.h"
 #include "deb/core/math_constants.h"
+#include "deb/formats/uff58_file.h"
+#include "deb/load/uff_yaml.h"
 #include "deb/signal/recording.h"
 #include "deb/spectra/channel_set.h"
 #include "deb/spectra/converted_spectrum.h"
@@ -277,16 +279,27 @@ static std::shared_ptr<const Spectrum> VcSource(const YamlNode& node, const Yaml
   return Repeat(one, s->channel_names.size());
 }
 
-// A measured spectrum read from a CSV file (relative to `base_dir`), its columns picked by name.
+// A measured spectrum read from a CSV file (relative to `base_dir`), its
+// columns picked by name, or from a universal file (deb/load/uff_yaml.h).
 static std::shared_ptr<const Spectrum> MeasuredSource(const YamlNode& node, const YamlNode& spec,
                                                       const std::string& base_dir, Source* s) {
   const auto unit_node = node.Optional("unit");
-  spec.AllowOnly({"type", "file", "columns", "extrapolation"});
-  if (node.Has("convention"))
-    node.Required("convention").Fail("a measured spectrum declares its convention in the file ('# sides: one|two')");
   const YamlNode file = spec.Required("file");
   std::filesystem::path p(file.AsString());
   if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  if (formats::FileLooksLikeUff(p.string())) {
+    spec.AllowOnly({"type", "file", "columns", "extrapolation", kUffSourceKeys[0], kUffSourceKeys[1]});
+    if (node.Has("convention"))
+      node.Required("convention").Fail("a universal file's PSDs are one-sided; remove 'convention'");
+    return ParseUffSpectrum(node, spec, p.string(), s);
+  }
+  for (const char* key : kUffSourceKeys)
+    if (spec.Has(key))
+      spec.Required(key).Fail(std::string("'") + key + "' chooses datasets of a universal file (UFF 58); " +
+                              p.string() + " is a table: choose its columns with 'columns'");
+  spec.AllowOnly({"type", "file", "columns", "extrapolation"});
+  if (node.Has("convention"))
+    node.Required("convention").Fail("a measured spectrum declares its convention in the file ('# sides: one|two')");
   SpectrumCsv csv = AtNode(file, [&] { return ReadSpectrumCsv(p.string()); });
   if (auto cols = spec.Optional("columns")) {
     const auto wanted = cols->AsStrings();
