@@ -86,7 +86,9 @@ class PunchModes final : public NastranModeFile::Reader {
           if (eq == std::string::npos) fail("$SUBCASE without '= n'");
           const std::vector<std::string> v = Fields(body.substr(eq + 1));
           if (v.empty()) fail("$SUBCASE without a number");
-          subcase = static_cast<long long>(number(v[0], "the subcase"));
+          const auto r = std::from_chars(v[0].data(), v[0].data() + v[0].size(), subcase);
+          if (r.ec != std::errc() || r.ptr != v[0].data() + v[0].size())
+            fail("subcase '" + Excerpt(v[0]) + "' is not an integer");
           continue;
         }
         if (head == "$EIGENVALUE") {

@@ -109,11 +109,22 @@ std::vector<std::string> DeclaredUnits(const YamlNode& node, const std::string& 
   return units;
 }
 
+// The file's datasets; an error in the file is reported at the budget's
+// `file:` key, the file's own line (or byte) kept in the message, as for
+// every data file a budget names.
+std::vector<Uff58Record> ReadAtKey(const YamlNode& file, const std::string& path) {
+  try {
+    return formats::ReadUff58(path);
+  } catch (const InputError& e) {
+    file.Fail(e.what());
+  }
+}
+
 }  // namespace
 
 void ParseUffFrfPath(const YamlNode& node, const std::string& path, Path& p) {
   const YamlNode file = node.Required("file");
-  const std::vector<Uff58Record> records = AtNode(file, [&] { return formats::ReadUff58(path); });
+  const std::vector<Uff58Record> records = ReadAtKey(file, path);
   std::vector<const Uff58Record*> frfs;
   for (const Uff58Record& r : records)
     if (r.function == UffFunction::kFrf || r.function == UffFunction::kTransmissibility) frfs.push_back(&r);
@@ -213,7 +224,7 @@ std::shared_ptr<const Spectrum> ParseUffSpectrum(const YamlNode& node, const Yam
     spec.Required("columns").Fail("a universal file has no columns: choose its datasets with 'responses' (DOFs) or 'datasets' (numbers)");
   const auto responses_node = spec.Optional("responses"), datasets_node = spec.Optional("datasets");
   if (responses_node && datasets_node) datasets_node->Fail("give 'responses' or 'datasets', not both");
-  const std::vector<Uff58Record> records = AtNode(file, [&] { return formats::ReadUff58(path); });
+  const std::vector<Uff58Record> records = ReadAtKey(file, path);
   std::vector<const Uff58Record*> spectra;
   for (const Uff58Record& r : records)
     if (r.function == UffFunction::kPsd || r.function == UffFunction::kAutoSpectrum) spectra.push_back(&r);

@@ -334,6 +334,13 @@ TEST_CASE("bad files: a located error naming the byte or line, the table and wha
   std::filesystem::remove(path);
 }
 
+TEST_CASE("the files the fuzzer found: refused with their line") {
+  const std::string corpus = std::string(DEB_SOURCE_DIR) + "/tests/fuzz/corpus/nastran_modes/";
+  // A subcase number of 130 digits (converted to an integer out of range).
+  CHECK_THROWS_WITH_AS(NastranModeFile(corpus + "subcase_overflow.pch"),
+                       doctest::Contains("subcase_overflow.pch:2: subcase '4444"), InputError);
+}
+
 TEST_CASE("DOF names: GRID:COMPONENT") {
   CHECK(NastranDofText(ParseNastranDof("101:T3")) == "101:T3");
   CHECK(NastranDofText(ParseNastranDof("7:r2")) == "7:R2");
