@@ -169,7 +169,15 @@ ModalModel ParseNastranModal(const YamlNode& node, const std::string& path, Moda
   // The modes the selection keeps (and, with residual: static, every used
   // one, for the correction of the dropped).
   std::size_t kept = used.size();
-  if (count > 0) kept = std::min<std::size_t>(used.size(), static_cast<std::size_t>(count));
+  if (count > 0) {
+    if (static_cast<std::size_t>(count) > used.size())
+      selection->Required("count").Fail(
+          "count " + std::to_string(count) + ", but " + name + " holds " + std::to_string(used.size()) + " mode(s)" +
+          (exclude_rigid && rigid > 0 ? " besides its " + std::to_string(rigid) + " rigid-body mode(s)" : "") + " (" +
+          SignificantText(all[static_cast<std::size_t>(used.front())].f_hz, 5) + "-" +
+          SignificantText(all[static_cast<std::size_t>(used.back())].f_hz, 5) + " Hz)");
+    kept = static_cast<std::size_t>(count);
+  }
   if (max_hz > 0.0) {
     kept = 0;
     while (kept < used.size() && all[static_cast<std::size_t>(used[kept])].f_hz <= max_hz) ++kept;

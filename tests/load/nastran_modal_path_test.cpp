@@ -360,6 +360,8 @@ TEST_CASE("bad keys of a Nastran modal path: located errors naming the rule and 
                "2 damping ratio(s) for the 10 mode(s) kept");
   CheckLocated(error("damping: 0.005", "damping: 0.005\n    modes: {count: 0}"), "paths[0].modes.count",
                "count must be at least 1");
+  CheckLocated(error("damping: 0.005", "damping: 0.005\n    modes: {count: 11}"), "paths[0].modes.count",
+               "count 11, but beam.op2 holds 10 mode(s) (456.66-11112 Hz)");
   CheckLocated(error("damping: 0.005", "damping: 0.005\n    modes: modes.csv"), "paths[0].modes",
                "with a Nastran file, 'modes' chooses the modes: {max_hz: F} or {count: N}");
   CheckLocated(error("damping: 0.005", "damping: 0.005\n    max_frequency_hz: 100"), "paths[0].max_frequency_hz",
