@@ -27,6 +27,7 @@
 #include "tests/support/contains.h"
 #include "tests/support/file_bytes.h"
 #include "tests/support/op2_writer.h"
+#include "tests/support/punch_writer.h"
 
 namespace deb::formats {
 namespace {
@@ -186,31 +187,9 @@ TEST_CASE("an OP2 file in either byte order and word size reads back the values 
 TEST_CASE("a punch file of the f06's eigenvectors reads as printed; complex ones are refused with their line") {
   const F06 f06 = ReadF06(kData + "beam_modes.f06");
   const std::string path = (std::filesystem::temp_directory_path() / "deb_beam_modes.pch").string();
-  {
-    std::ofstream out(path);
-    int line = 0;
-    char buffer[128];
-    const auto put = [&](const std::string& text) {
-      std::snprintf(buffer, sizeof(buffer), "%-72s%8d\n", text.c_str(), ++line);
-      out << buffer;
-    };
-    for (std::size_t k = 0; k < f06.table.size(); ++k) {
-      put("$TITLE   = SIMPLE BEAM EXAMPLE");
-      put("$SUBTITLE= MODES");
-      put("$LABEL   =");
-      put("$EIGENVECTOR");
-      put("$REAL OUTPUT");
-      put("$SUBCASE ID =           1");
-      std::snprintf(buffer, sizeof(buffer), "$EIGENVALUE = %14.7E  MODE = %5d", f06.table[k][2], static_cast<int>(k + 1));
-      put(buffer);
-      for (const auto& [g, v] : f06.vectors[k]) {
-        std::snprintf(buffer, sizeof(buffer), "%10lld       G     %13.6E     %13.6E     %13.6E", g, v[0], v[1], v[2]);
-        put(buffer);
-        std::snprintf(buffer, sizeof(buffer), "-CONT-                 %13.6E     %13.6E     %13.6E", v[3], v[4], v[5]);
-        put(buffer);
-      }
-    }
-  }
+  std::vector<double> eigenvalues;
+  for (const auto& row : f06.table) eigenvalues.push_back(row[2]);
+  test::WritePunchModes(path, eigenvalues, f06.vectors);
   const NastranModeFile file(path);
   CHECK(file.format() == "punch");
   CHECK(file.shape_table() == "$EIGENVECTOR");

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <unistd.h>
 
@@ -19,6 +20,7 @@
 #include "deb/load/budget_yaml.h"
 #include "tests/support/contributor_of.h"
 #include "tests/support/op2_writer.h"
+#include "tests/support/punch_writer.h"
 #include "tests/support/text_edit.h"
 
 namespace deb {
@@ -155,30 +157,13 @@ TEST_CASE("the beam through its OP2 file, CSV tables of the same modes and a pun
     }
     REQUIRE(eig.size() == 10);
     REQUIRE(tip.size() == 10);
-    std::ofstream pch(dir.Path("beam.pch"));
-    int seq = 0;
-    char line[128], text[100];
-    const auto put = [&](const char* t) {
-      std::snprintf(line, sizeof(line), "%-72s%8d\n", t, ++seq);
-      pch << line;
-    };
+    // Of grid 11 only, mass-normalised.
+    std::vector<std::map<long long, std::vector<double>>> shapes(10);
     for (std::size_t k = 0; k < 10; ++k) {
-      put("$TITLE   = SIMPLE BEAM EXAMPLE");
-      put("$SUBTITLE= MODES");
-      put("$LABEL   =");
-      put("$EIGENVECTOR");
-      put("$REAL OUTPUT");
-      put("$SUBCASE ID =           1");
-      std::snprintf(text, sizeof(text), "$EIGENVALUE = %14.7E  MODE = %5zu", eig[k], k + 1);
-      put(text);
-      const double s = 1.0 / std::sqrt(gm[k]);
-      std::snprintf(text, sizeof(text), "%10d       G     %13.6E     %13.6E     %13.6E", 11, tip[k][0] * s,
-                    tip[k][1] * s, tip[k][2] * s);
-      put(text);
-      std::snprintf(text, sizeof(text), "-CONT-                 %13.6E     %13.6E     %13.6E", tip[k][3] * s,
-                    tip[k][4] * s, tip[k][5] * s);
-      put(text);
+      shapes[k][11] = tip[k];
+      for (double& v : shapes[k][11]) v /= std::sqrt(gm[k]);
     }
+    test::WritePunchModes(dir.Path("beam.pch"), eig, shapes);
   }
   std::string punch_path = BeamWithPath(R"(  - name: arm
     type: modal
