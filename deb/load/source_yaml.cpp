@@ -80,7 +80,7 @@ CrossSpectra ParseCrossSpectra(const std::string& text) {
 std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const YamlNode& spec,
                                                    const std::string& base_dir, Source* s) {
   spec.AllowOnly({"type", "file", "format", "rate_hz", "file_channels", "columns", "window", "segment_length",
-                  "overlap", "detrend", "averaging", "extrapolation", "cross_spectra"});
+                  "overlap", "detrend", "averaging", "extrapolation", "cross_spectra", "responses", "datasets"});
   CrossSpectra cross = CrossSpectra::kFull;
   if (auto c = spec.Optional("cross_spectra"))
     cross = AtNode(*c, [&] { return ParseCrossSpectra(c->AsString()); });
@@ -89,12 +89,20 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
   const YamlNode file = spec.Required("file");
   std::filesystem::path p(file.AsString());
   if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  const bool uff = formats::FileLooksLikeUff(p.string());
+  if (!uff)
+    for (const char* key : {"responses", "datasets"})
+      if (spec.Has(key))
+        spec.Required(key).Fail(std::string("'") + key + "' chooses the datasets of a universal file (UFF 58); " +
+                                p.string() + " is none");
   RecordingSpec recording;
   recording.file = p.string();
   const std::string format = spec.Optional("format") ? spec.Required("format").AsString() : "csv";
   const auto rate = spec.Optional("rate_hz");
   const auto unit_node = node.Optional("unit");
-  if (format == "csv") {
+  if (uff) {
+    // A universal file gives its sample rate and channels (ReadUffRecording).
+  } else if (format == "csv") {
     if (spec.Has("file_channels"))
       spec.Required("file_channels").Fail("file_channels is for raw files; a CSV names its columns in its header");
     if (rate) recording.rate_hz = rate->AsPositive();
@@ -115,7 +123,7 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
       recording.file_channel_names = channels.AsStrings();
     }
   }
-  TimeSeries series = AtNode(file, [&] { return ReadRecording(recording); });
+  TimeSeries series = uff ? ReadUffRecording(spec, p.string()) : AtNode(file, [&] { return ReadRecording(recording); });
   if (auto cols = spec.Optional("columns")) series = AtNode(*cols, [&] { return series.Select(cols->AsStrings()); });
 
   RecordingSpectrumOptions options;
@@ -147,7 +155,8 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
   }
   RecordingSpectrum estimate = AtNodes(node, located, [&] { return SpectrumFromRecording(series, options); });
   if (!unit_node && series.unit().empty())
-    node.Fail("missing 'unit': neither the budget nor " + p.string() + " ('# unit:') gives one");
+    node.Fail("missing 'unit': neither the budget nor " + p.string() +
+              (uff ? " (records 9 and 10)" : " ('# unit:')") + " gives one");
   s->unit = estimate.unit;
   const std::shared_ptr<const Spectrum> m = estimate.spectrum;
   const std::vector<std::string>& estimate_names = estimate.channel_names;

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <optional>
 
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
+#include "deb/core/number_text.h"
 #include "deb/formats/uff58_file.h"
 #include "deb/spectra/channel_set.h"
 #include "deb/spectra/converted_spectrum.h"
@@ -120,6 +122,60 @@ std::vector<Uff58Record> ReadAtKey(const YamlNode& file, const std::string& path
   }
 }
 
+// What a source may take from a universal file: the candidates' kind, in
+// messages.
+struct DatasetKind {
+  std::string one, many, rule;  // "time response", "time responses", "no time response (function type 1)"
+};
+
+// The datasets a source's `responses:` (DOFs) or `datasets:` (positions)
+// choose among `candidates`, or the one candidate when it gives neither.
+std::vector<const Uff58Record*> Choose(const YamlNode& spec, const YamlNode& file, const std::string& path,
+                                       const std::vector<Uff58Record>& records,
+                                       const std::vector<const Uff58Record*>& candidates, const DatasetKind& kind) {
+  const auto responses_node = spec.Optional("responses"), datasets_node = spec.Optional("datasets");
+  if (responses_node && datasets_node) datasets_node->Fail("give 'responses' or 'datasets', not both");
+  std::vector<const Uff58Record*> chosen;
+  if (datasets_node) {
+    for (const YamlNode& e : datasets_node->Elements()) {
+      const int k = e.AsInt();
+      const auto it = std::find_if(records.begin(), records.end(), [&](const Uff58Record& r) { return r.index == k; });
+      if (it == records.end())
+        e.Fail(path + " has no dataset 58 #" + std::to_string(k) + "; its datasets 58: " + AllListed(records));
+      if (std::find(candidates.begin(), candidates.end(), &*it) == candidates.end())
+        e.Fail("dataset " + it->Describe() + " of " + path + " is " + kind.rule);
+      chosen.push_back(&*it);
+    }
+    if (chosen.empty()) datasets_node->Fail("list at least one dataset number");
+  } else if (responses_node) {
+    for (const YamlNode& e : responses_node->Elements()) {
+      const UffDof dof = AtNode(e, [&] { return formats::ParseUffDof(e.AsString()); });
+      const Uff58Record* found = nullptr;
+      for (const Uff58Record* r : candidates) {
+        if (!(r->response == dof)) continue;
+        if (found)
+          e.Fail(path + ": datasets " + found->Describe() + " and " + r->Describe() + " both hold a " + kind.one +
+                 " of " + formats::ToString(dof) + ": choose one with 'datasets' (numbers)");
+        found = r;
+      }
+      if (!found)
+        e.Fail(path + " holds no " + kind.one + " of response " + formats::ToString(dof) + "; its " + kind.many +
+               ": " + Listed(candidates));
+      chosen.push_back(found);
+    }
+    if (chosen.empty()) responses_node->Fail("list at least one DOF NODE:DIRECTION");
+  } else {
+    if (candidates.size() != 1)
+      file.Fail(path + " holds " + std::to_string(candidates.size()) + " " + kind.many +
+                "; choose with 'responses' (DOFs) or 'datasets' (numbers): " + Listed(candidates));
+    chosen = candidates;
+  }
+  if (chosen.size() > static_cast<std::size_t>(limits::kMaxChannels))
+    file.Fail(std::to_string(chosen.size()) + " datasets are more than the " + std::to_string(limits::kMaxChannels) +
+              " channels a source may have");
+  return chosen;
+}
+
 }  // namespace
 
 void ParseUffFrfPath(const YamlNode& node, const std::string& path, Path& p) {
@@ -222,52 +278,14 @@ std::shared_ptr<const Spectrum> ParseUffSpectrum(const YamlNode& node, const Yam
   const YamlNode file = spec.Required("file");
   if (spec.Has("columns"))
     spec.Required("columns").Fail("a universal file has no columns: choose its datasets with 'responses' (DOFs) or 'datasets' (numbers)");
-  const auto responses_node = spec.Optional("responses"), datasets_node = spec.Optional("datasets");
-  if (responses_node && datasets_node) datasets_node->Fail("give 'responses' or 'datasets', not both");
   const std::vector<Uff58Record> records = ReadAtKey(file, path);
   std::vector<const Uff58Record*> spectra;
   for (const Uff58Record& r : records)
     if (r.function == UffFunction::kPsd || r.function == UffFunction::kAutoSpectrum) spectra.push_back(&r);
 
-  std::vector<const Uff58Record*> chosen;
-  if (datasets_node) {
-    for (const YamlNode& e : datasets_node->Elements()) {
-      const int k = e.AsInt();
-      const auto it = std::find_if(records.begin(), records.end(), [&](const Uff58Record& r) { return r.index == k; });
-      if (it == records.end())
-        e.Fail(path + " has no dataset 58 #" + std::to_string(k) + "; its datasets 58: " + AllListed(records));
-      if (std::find(spectra.begin(), spectra.end(), &*it) == spectra.end())
-        e.Fail("dataset " + it->Describe() + " of " + path + " is no PSD (function type 9) or auto spectrum (2)");
-      chosen.push_back(&*it);
-    }
-    if (chosen.empty()) datasets_node->Fail("list at least one dataset number");
-  } else if (responses_node) {
-    for (const YamlNode& e : responses_node->Elements()) {
-      const UffDof dof = AtNode(e, [&] { return formats::ParseUffDof(e.AsString()); });
-      const Uff58Record* found = nullptr;
-      for (const Uff58Record* r : spectra) {
-        if (!(r->response == dof)) continue;
-        if (found)
-          e.Fail(path + ": datasets " + found->Describe() + " and " + r->Describe() + " both hold a spectrum of " +
-                 formats::ToString(dof) + ": choose one with 'datasets' (numbers)");
-        found = r;
-      }
-      if (!found)
-        e.Fail(path + " holds no PSD or auto spectrum of response " + formats::ToString(dof) + "; its spectra: " +
-               Listed(spectra));
-      chosen.push_back(found);
-    }
-    if (chosen.empty()) responses_node->Fail("list at least one DOF NODE:DIRECTION");
-  } else {
-    if (spectra.size() != 1)
-      file.Fail(path + " holds " + std::to_string(spectra.size()) +
-                " PSDs and auto spectra; choose with 'responses' (DOFs) or 'datasets' (numbers): " + Listed(spectra));
-    chosen = spectra;
-  }
-  if (chosen.size() > static_cast<std::size_t>(limits::kMaxChannels))
-    file.Fail(std::to_string(chosen.size()) + " datasets are more than the " + std::to_string(limits::kMaxChannels) +
-              " channels a source may have");
-
+  const std::vector<const Uff58Record*> chosen =
+      Choose(spec, file, path, records, spectra, {"PSD or auto spectrum", "PSDs and auto spectra",
+                                                  "no PSD (function type 9) or auto spectrum (2)"});
   const std::vector<double> f_hz = SharedFrequencies(file, path, chosen);
   const std::size_t from = chosen.front()->points() - f_hz.size();
   const auto unit_node = node.Optional("unit");
@@ -350,6 +368,57 @@ std::shared_ptr<const Spectrum> ParseUffSpectrum(const YamlNode& node, const Yam
   }
   if (channels.size() == 1) return channels.front();
   return std::make_shared<IndependentChannels>(std::move(channels));
+}
+
+TimeSeries ReadUffRecording(const YamlNode& spec, const std::string& path) {
+  const YamlNode file = spec.Required("file");
+  for (const char* key : {"format", "rate_hz", "file_channels", "columns"})
+    if (spec.Has(key))
+      spec.Required(key).Fail(std::string("not with a universal file, which gives its sample rate (record 7) and ") +
+                              "its channels (datasets): choose them with 'responses' (DOFs) or 'datasets' (numbers)");
+  const std::vector<Uff58Record> records = ReadAtKey(file, path);
+  std::vector<const Uff58Record*> responses;
+  for (const Uff58Record& r : records)
+    if (r.function == UffFunction::kTimeResponse) responses.push_back(&r);
+  const std::vector<const Uff58Record*> chosen =
+      Choose(spec, file, path, records, responses,
+             {"time response", "time responses", "no time response (function type 1)"});
+  const Uff58Record& first = *chosen.front();
+  // The time step in seconds: the abscissa's unit, or seconds for the data type time (17) without one.
+  const auto step_s = [&](const Uff58Record& r) {
+    const std::string at = path + ": dataset " + r.Describe() + ": ";
+    const std::optional<std::string> x_unit = formats::UffUnitText(r.abscissa.units);
+    if (x_unit ? !AtNode(file, [&] { return UnitsCommensurate(*x_unit, "s"); }) : r.abscissa.data_type != 17)
+      file.Fail(at + "its abscissa is in '" + r.abscissa.units + "' (record 8), not in time");
+    const double dt = x_unit ? r.abscissa_increment * AtNode(file, [&] { return ConvertUnit(*x_unit, "s"); }).scale
+                             : r.abscissa_increment;
+    if (!(dt > 0.0) || !std::isfinite(1.0 / dt))
+      file.Fail(at + "a time step of " + NumberText(dt) + " s (record 7): it must be > 0");
+    return dt;
+  };
+  const double dt_s = step_s(first);
+  const std::optional<std::string> unit = formats::UffOrdinateUnit(first);
+  std::vector<std::string> names;
+  for (const Uff58Record* r : chosen) {
+    const std::string at = path + ": dataset " + r->Describe() + ": ";
+    if (r->is_complex()) file.Fail(at + "complex values; a time response is real");
+    if (!r->even_spacing) file.Fail(at + "uneven spacing; a recording is sampled at one rate");
+    if (step_s(*r) != dt_s || r->points() != first.points())
+      file.Fail(at + std::to_string(r->points()) + " samples every " + NumberText(step_s(*r)) + " s, but dataset " +
+                first.Describe() + " has " + std::to_string(first.points()) + " every " + NumberText(dt_s) +
+                " s: the channels of one recording share them");
+    if (formats::UffOrdinateUnit(*r) != unit)
+      file.Fail(at + "in '" + formats::UffOrdinateUnit(*r).value_or("NONE") + "', dataset " + first.Describe() +
+                " in '" + unit.value_or("NONE") + "': the channels of one recording share a unit");
+    std::string name = formats::ToString(r->response);
+    if (std::find(names.begin(), names.end(), name) != names.end()) name += " #" + std::to_string(r->index);
+    names.push_back(name);
+  }
+  Eigen::MatrixXd samples(static_cast<Eigen::Index>(first.points()), static_cast<Eigen::Index>(chosen.size()));
+  for (std::size_t c = 0; c < chosen.size(); ++c)
+    for (std::size_t n = 0; n < first.points(); ++n)
+      samples(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(c)) = chosen[c]->y[n].real();
+  return AtNode(file, [&] { return TimeSeries(1.0 / dt_s, std::move(samples), names, unit.value_or(""), path); });
 }
 
 }  // namespace deb::load

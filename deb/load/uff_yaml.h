@@ -36,13 +36,14 @@
 #include "deb/budget/path.h"
 #include "deb/budget/source.h"
 #include "deb/load/yaml_reader.h"
+#include "deb/signal/time_series.h"
 #include "deb/spectra/spectrum.h"
 
 namespace deb::load {
 
 // The keys a universal file adds to a `type: frf` path and a measured source's spectrum.
 inline constexpr const char* kUffPathKeys[] = {"responses", "references"};
-inline constexpr const char* kUffSourceKeys[] = {"responses", "datasets"};
+inline constexpr const char* kUffSourceKeys[] = {"responses", "datasets"};  // a spectrum's and a recording's
 
 // Fills p.system (zero gains of the right size), p.measured, names and units
 // from the universal file at `path` (`node`: the path's entry).
@@ -52,5 +53,12 @@ void ParseUffFrfPath(const YamlNode& node, const std::string& path, Path& p);
 // universal file at `path`; sets s->unit, s->channel_names and notes.
 std::shared_ptr<const Spectrum> ParseUffSpectrum(const YamlNode& node, const YamlNode& spec, const std::string& path,
                                                  Source* s);
+
+// The recording of a `type: timeseries` source (`spec`) whose file is the
+// universal file at `path`: its time responses (function type 1, real,
+// evenly spaced, abscissa in time) chosen by `responses:` or `datasets:` as
+// for a spectrum, one channel each (named by its DOF), sharing their time
+// step, length and unit (records 9 over 10; "" when NONE).
+TimeSeries ReadUffRecording(const YamlNode& spec, const std::string& path);
 
 }  // namespace deb::load

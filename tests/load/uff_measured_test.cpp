@@ -168,7 +168,7 @@ TEST_CASE("a source's datasets are chosen by response DOF or number, and a missi
   CHECK(by_number.FindSource("table").spectrum->channels() == 2);
   const std::string missing = ErrorOf(dir.Write("m.yaml", Replace(kSourceBudget, "file: psd.uff}", "file: psd.uff, responses: ['7:-Z']}")));
   CHECK_MESSAGE(Contains(missing, "m.yaml:6:"), missing);
-  CHECK_MESSAGE(Contains(missing, "holds no PSD or auto spectrum of response 7:-Z; its spectra: #1 (PSD, response 'Pilot 1'"), missing);
+  CHECK_MESSAGE(Contains(missing, "holds no PSD or auto spectrum of response 7:-Z; its PSDs and auto spectra: #1 (PSD, response 'Pilot 1'"), missing);
   const std::string table = ErrorOf(dir.Write("t.yaml", Replace(kSourceBudget, "file: psd.uff}", "file: psd.uff, columns: [x]}")));
   CHECK_MESSAGE(Contains(table, "a universal file has no columns"), table);
 }
