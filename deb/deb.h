@@ -109,6 +109,8 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/results/comparison_files.h"
 #include "deb/formats/mat_file.h"
+#include "deb/formats/nastran_modes.h"
+#include "deb/formats/uff58_file.h"
 #include "deb/formats/op4_file.h"
 #include "deb/results/result_exports.h"
 #include "deb/results/result_mat.h"

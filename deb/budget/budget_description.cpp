@@ -49,6 +49,7 @@ void AddPath(std::string& text, const Path& p, const EvaluationPlan& plan) {
     AppendFormatted(text, "  %-20s %d input(s) -> %d output(s), %d mode(s), %g-%g Hz, %s\n", p.name.c_str(),
                     p.system.inputs(), p.system.outputs(), m.modes(), *lo, *hi,
                     *lo > 0.0 ? "stable" : "rigid-body mode(s) at 0 Hz");
+    for (const std::string& note : m.notes) AppendFormatted(text, "  %-20s %s\n", "", note.c_str());
     return;
   }
   std::string approximated;

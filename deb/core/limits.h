@@ -58,10 +58,19 @@ inline constexpr std::uintmax_t kMaxBudgetFileBytes = 64ull << 20;  // 64 MiB
 inline constexpr std::uintmax_t kMaxTextFileBytes = 1ull << 30;     // 1 GiB: spectra, FRF, CSV recordings, summaries
 inline constexpr std::uintmax_t kMaxRawFileBytes = 8ull << 30;      // 8 GiB: raw binary recordings
 inline constexpr std::uintmax_t kMaxMatFileBytes = 2ull << 30;      // 2 GiB: MATLAB .mat files (models, FE results)
+// Nastran result files (OP2, punch): read as a stream, keeping only the
+// eigenvalues and the named grids' rows, so a large model's file costs a pass,
+// not its size in memory.
+inline constexpr std::uintmax_t kMaxSolverFileBytes = 64ull << 30;  // 64 GiB
 inline constexpr std::size_t kMaxMatVariables = 100'000;            // variables of one .mat file
 inline constexpr std::uintmax_t kMaxOp4FileBytes = 2ull << 30;      // 2 GiB: Nastran OUTPUT4 (.op4) files
 inline constexpr std::size_t kMaxOp4Matrices = 100'000;             // matrices of one .op4 file
 inline constexpr std::size_t kMaxLineBytes = 4u << 20;              // 4 MiB: one line of a text table
+// Datasets of one universal file (deb/formats/uff58_file.h), and the points
+// of all its datasets 58 together (as complex values with their abscissae,
+// 1.2 GB in memory; a test of 1000 FRFs of 6400 lines has 6.4 million).
+inline constexpr std::size_t kMaxUffDatasets = 100'000;
+inline constexpr std::size_t kMaxUffFilePoints = 50'000'000;
 // Seconds one gnuplot run may take before it is stopped (DEB_GNUPLOT_TIMEOUT overrides).
 inline constexpr int kGnuplotTimeoutSeconds = 300;
 

@@ -6,15 +6,17 @@
 #include "deb/core/limits.h"
 #include "deb/core/number_text.h"
 #include "deb/formats/mat_file.h"
+#include "deb/formats/nastran_modes.h"
 #include "deb/systems/modal_csv.h"
 #include "deb/units/unit.h"
 
 namespace deb::load {
 using formats::MatFile;
 
-const char* const kModalKeys[9] = {"file",          "modes",           "frequencies_hz",  "damping",
+const char* const kModalKeys[14] = {"file",          "modes",           "frequencies_hz",  "damping",
                                    "input_shapes",  "output_shapes",   "output_quantity", "max_frequency_hz",
-                                   "residual"};
+                                   "residual",      "inputs",          "outputs",         "length_unit",
+                                   "force_unit",    "rigid_modes"};
 
 namespace {
 
@@ -175,15 +177,33 @@ bool IsPlainUnit(const std::string& u) {
 
 }  // namespace
 
-ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir) {
+ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir, ModalFileUnits& units) {
   ModalModel model;
-  if (const auto file = node.Optional("file")) {
+  const auto file = node.Optional("file");
+  const std::string file_path = file ? Resolve(base_dir, file->AsString()) : "";
+  bool nastran_keys = false;
+  for (const char* key : kNastranModalKeys) nastran_keys = nastran_keys || node.Has(key);
+  // A Nastran file by its content, or by the keys only such a path has (the
+  // file's reader then says why it is not one).
+  if (file && (nastran_keys || !AtNode(*file, [&] { return formats::NastranFormatOf(file_path); }).empty())) {
+    for (const char* key : {"frequencies_hz", "input_shapes", "output_shapes", "max_frequency_hz"})
+      if (node.Has(key))
+        node.Required(key).Fail(std::string("not with a Nastran file (") + file->AsString() + "): " +
+                                (std::string(key) == "max_frequency_hz"
+                                     ? "choose the modes with modes: {max_hz: F}"
+                                     : "its modes and shapes come from the file; name the DOFs with inputs and outputs"));
+    return ParseNastranModal(node, file_path, units);
+  }
+  for (const char* key : kNastranModalKeys)
+    if (node.Has(key))
+      node.Required(key).Fail(std::string("'") + key + "' belongs to a modal path from a Nastran file (file: a .op2 or "
+                                                       ".pch); here the DOFs come from the shapes' names");
+  if (file) {
     for (const char* key : {"modes", "frequencies_hz", "damping", "input_shapes", "output_shapes"})
       if (node.Has(key))
         node.Required(key).Fail("give 'file' (a MAT-file with f_hz, zeta, phi_in and phi_out) or '" +
                                 std::string(key) + "', not both");
-    const std::string path = Resolve(base_dir, file->AsString());
-    model = AtNode(*file, [&] { return ReadModalMat(path); });
+    model = AtNode(*file, [&] { return ReadModalMat(file_path); });
   } else {
     const Modes modes = ParseModes(node, base_dir);
     model.f_hz = modes.table.f_hz;

@@ -13,26 +13,31 @@
 //   output_quantity: displacement | velocity | acceleration   (default displacement)
 //   max_frequency_hz: F          (optional: keep the modes at or below F)
 //   residual: static | none      (with max_frequency_hz: the dropped modes' static compliance as a feedthrough)
+// or from a Nastran result file (OP2 or punch: deb/load/nastran_modal_yaml.h
+// lists its keys).
 // Units are the caller's (path_yaml.cpp): output_unit names the displacement
 // unit, and ModalOutputUnit gives the path's output unit from it.
 #pragma once
 
 #include <string>
 
+#include "deb/load/nastran_modal_yaml.h"
 #include "deb/load/yaml_reader.h"
 #include "deb/systems/modal_model.h"
 
 namespace deb::load {
 
 // The keys above (besides the common ones of every path).
-extern const char* const kModalKeys[9];
+extern const char* const kModalKeys[14];
 
 // @throws InputError located at the key (and, for a file, at its
 //   file:line:col, or the MAT-file variable and index) for every rule of
 //   ModalModel::Validate and modal_csv.h, a shape count other than the mode
 //   count, `file` together with another source of modes or shapes, an unknown
 //   output_quantity, a max_frequency_hz that leaves no mode.
-ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir);
+// `units` gets the units of the shapes when the file states them (a Nastran
+// file: deb/load/nastran_modal_yaml.h), for the caller to convert.
+ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir, ModalFileUnits& units);
 
 // The unit of the path's output when `displacement_unit` is differentiated
 // for `q`: "um" -> "um" | "um/s" | "um/s^2"; a compound unit is

@@ -15,6 +15,8 @@
 #include "deb/formats/mat_file.h"
 #include "deb/formats/op4_file.h"
 #include "deb/load/modal_yaml.h"
+#include "deb/load/uff_yaml.h"
+#include "deb/formats/uff58_file.h"
 #include "deb/systems/frf_csv.h"
 #include "deb/systems/transfer_function.h"
 #include "deb/units/unit.h"
@@ -47,10 +49,14 @@ StateSpace InPathUnits(const YamlNode& node, const Path& p, const std::string& s
   return StateSpace(s.A(), s.B(), s.C() * factor, s.D() * factor);
 }
 
-// A model built in SI units, channel by channel (`si_in[j]` to
-// `si_out[i]`), scaled to the path's units: each must be the same quantity.
-StateSpace InChannelUnits(const YamlNode& node, const Path& p, const std::vector<std::string>& si_in,
-                          const std::vector<std::string>& si_out) {
+// The factors that scale a model in units `si_in[j]` to `si_out[i]`,
+// channel by channel, to the path's units: H_path = diag(out) H diag(in).
+// Each must be the same quantity.
+struct ChannelScales {
+  Eigen::VectorXd in, out;
+};
+ChannelScales ChannelScalesTo(const YamlNode& node, const Path& p, const std::vector<std::string>& si_in,
+                              const std::vector<std::string>& si_out) {
   const auto scale = [&](const std::string& user, const std::string& si, const char* one, const char* many,
                          bool output, const std::string& channel) {
     const YamlNode at = node.Has(one) ? node.Required(one) : node.Has(many) ? node.Required(many) : node;
@@ -65,14 +71,22 @@ StateSpace InChannelUnits(const YamlNode& node, const Path& p, const std::vector
     if (!c->IsPureScale()) at.Fail(what);
     return c->scale;
   };
-  Eigen::VectorXd in(p.system.inputs()), out(p.system.outputs());
+  ChannelScales c{Eigen::VectorXd(p.system.inputs()), Eigen::VectorXd(p.system.outputs())};
   for (int j = 0; j < p.system.inputs(); ++j)
-    in(j) = scale(p.input_units[j], si_in[j], "input_unit", "input_units", false, p.input_names[j]);
+    c.in(j) = scale(p.input_units[j], si_in[j], "input_unit", "input_units", false, p.input_names[j]);
   for (int i = 0; i < p.system.outputs(); ++i)
-    out(i) = scale(p.output_units[i], si_out[i], "output_unit", "output_units", true, p.output_names[i]);
+    c.out(i) = scale(p.output_units[i], si_out[i], "output_unit", "output_units", true, p.output_names[i]);
+  return c;
+}
+
+// A model built in SI units, channel by channel, scaled to the path's units
+// (ChannelScalesTo).
+StateSpace InChannelUnits(const YamlNode& node, const Path& p, const std::vector<std::string>& si_in,
+                          const std::vector<std::string>& si_out) {
+  const ChannelScales c = ChannelScalesTo(node, p, si_in, si_out);
   const StateSpace& s = p.system;
-  return StateSpace(s.A(), s.B() * in.asDiagonal(), out.asDiagonal() * s.C(),
-                    out.asDiagonal() * s.D() * in.asDiagonal());
+  return StateSpace(s.A(), s.B() * c.in.asDiagonal(), c.out.asDiagonal() * s.C(),
+                    c.out.asDiagonal() * s.D() * c.in.asDiagonal());
 }
 
 std::set<std::string> With(std::set<std::string> keys, std::initializer_list<std::string> more) {
@@ -284,12 +298,22 @@ ChannelSource ParseStateSpacePath(const YamlNode& node, const std::string& base_
   return ChannelSource::kEntry;
 }
 
-// Names and units from the file.
+// Names and units from the file: a table (deb/systems/frf_csv.h) or a
+// universal file (deb/load/uff_yaml.h), told apart by its content.
 ChannelSource ParseFrfPath(const YamlNode& node, const std::string& base_dir, Path& p) {
-  node.AllowOnly(With(kCommonKeys, {"file", "extrapolation"}));
   const YamlNode file = node.Required("file");
   std::filesystem::path f(file.AsString());
   if (f.is_relative()) f = std::filesystem::path(base_dir) / f;
+  if (formats::FileLooksLikeUff(f.lexically_normal().string())) {
+    node.AllowOnly(With(kCommonKeys, {"file", "extrapolation", kUffPathKeys[0], kUffPathKeys[1]}));
+    ParseUffFrfPath(node, f.lexically_normal().string(), p);
+    return ChannelSource::kComposed;
+  }
+  for (const char* key : kUffPathKeys)
+    if (node.Has(key))
+      node.Required(key).Fail(std::string("'") + key + "' chooses datasets of a universal file (UFF 58); " +
+                              f.lexically_normal().string() + " is a table: name its entries with outputs and inputs");
+  node.AllowOnly(With(kCommonKeys, {"file", "extrapolation"}));
   const Extrapolation extrapolation =
       node.Has("extrapolation")
           ? AtNode(node.Required("extrapolation"), [&] { return ParseExtrapolation(node.Required("extrapolation").AsString()); })
@@ -312,17 +336,27 @@ ChannelSource ParseModalPath(const YamlNode& node, const std::string& base_dir, 
                                 "output_units"};
   keys.insert(std::begin(kModalKeys), std::end(kModalKeys));
   node.AllowOnly(keys);
-  const ModalModel model = ParseModalModel(node, base_dir);
+  ModalFileUnits file_units;
+  ModalModel model = ParseModalModel(node, base_dir, file_units);
   AtNode(node, [&] { model.Validate(); });
   p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(model.phi_out.rows(), model.phi_in.rows()));
-  p.modal = std::make_shared<const ModalModel>(model);
   p.input_names = model.input_names;
   p.output_names = model.output_names;
   p.input_units = Units(node, "input_unit", "input_units", p.system.inputs());
   p.output_units = Units(node, "output_unit", "output_units", p.system.outputs());
+  if (!file_units.inputs.empty()) {
+    // Shapes in the file's units, scaled to the path's (output_unit names
+    // the displacement's unit).
+    const ChannelScales c = ChannelScalesTo(node, p, file_units.inputs, file_units.outputs);
+    model.phi_in = c.in.asDiagonal() * model.phi_in;
+    model.phi_out = c.out.asDiagonal() * model.phi_out;
+    if (model.residual.size() > 0) model.residual = c.out.asDiagonal() * model.residual * c.in.asDiagonal();
+  }
+  p.modal = std::make_shared<const ModalModel>(model);
   const YamlNode unit_node = node.Required(node.Has("output_unit") ? "output_unit" : "output_units");
   for (std::string& u : p.output_units) u = AtNode(unit_node, [&] { return ModalOutputUnit(u, model.quantity); });
-  return ChannelSource::kComposed;
+  // From a Nastran file, `inputs` and `outputs` name the DOFs and the channels.
+  return file_units.inputs.empty() ? ChannelSource::kComposed : ChannelSource::kOwn;
 }
 
 ChannelSource ParseLumpedMassesPath(const YamlNode& node, Path& p) {

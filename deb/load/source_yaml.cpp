@@ -6,6 +6,8 @@
 
 #include "deb/core/limits.h"
 #include "deb/core/math_constants.h"
+#include "deb/formats/uff58_file.h"
+#include "deb/load/uff_yaml.h"
 #include "deb/signal/recording.h"
 #include "deb/spectra/channel_set.h"
 #include "deb/spectra/converted_spectrum.h"
@@ -78,7 +80,7 @@ CrossSpectra ParseCrossSpectra(const std::string& text) {
 std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const YamlNode& spec,
                                                    const std::string& base_dir, Source* s) {
   spec.AllowOnly({"type", "file", "format", "rate_hz", "file_channels", "columns", "window", "segment_length",
-                  "overlap", "detrend", "averaging", "extrapolation", "cross_spectra"});
+                  "overlap", "detrend", "averaging", "extrapolation", "cross_spectra", "responses", "datasets"});
   CrossSpectra cross = CrossSpectra::kFull;
   if (auto c = spec.Optional("cross_spectra"))
     cross = AtNode(*c, [&] { return ParseCrossSpectra(c->AsString()); });
@@ -87,12 +89,20 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
   const YamlNode file = spec.Required("file");
   std::filesystem::path p(file.AsString());
   if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  const bool uff = formats::FileLooksLikeUff(p.string());
+  if (!uff)
+    for (const char* key : {"responses", "datasets"})
+      if (spec.Has(key))
+        spec.Required(key).Fail(std::string("'") + key + "' chooses the datasets of a universal file (UFF 58); " +
+                                p.string() + " is none");
   RecordingSpec recording;
   recording.file = p.string();
   const std::string format = spec.Optional("format") ? spec.Required("format").AsString() : "csv";
   const auto rate = spec.Optional("rate_hz");
   const auto unit_node = node.Optional("unit");
-  if (format == "csv") {
+  if (uff) {
+    // A universal file gives its sample rate and channels (ReadUffRecording).
+  } else if (format == "csv") {
     if (spec.Has("file_channels"))
       spec.Required("file_channels").Fail("file_channels is for raw files; a CSV names its columns in its header");
     if (rate) recording.rate_hz = rate->AsPositive();
@@ -113,7 +123,7 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
       recording.file_channel_names = channels.AsStrings();
     }
   }
-  TimeSeries series = AtNode(file, [&] { return ReadRecording(recording); });
+  TimeSeries series = uff ? ReadUffRecording(spec, p.string()) : AtNode(file, [&] { return ReadRecording(recording); });
   if (auto cols = spec.Optional("columns")) series = AtNode(*cols, [&] { return series.Select(cols->AsStrings()); });
 
   RecordingSpectrumOptions options;
@@ -145,7 +155,8 @@ std::shared_ptr<const Spectrum> TimeSeriesSpectrum(const YamlNode& node, const Y
   }
   RecordingSpectrum estimate = AtNodes(node, located, [&] { return SpectrumFromRecording(series, options); });
   if (!unit_node && series.unit().empty())
-    node.Fail("missing 'unit': neither the budget nor " + p.string() + " ('# unit:') gives one");
+    node.Fail("missing 'unit': neither the budget nor " + p.string() +
+              (uff ? " (records 9 and 10)" : " ('# unit:')") + " gives one");
   s->unit = estimate.unit;
   const std::shared_ptr<const Spectrum> m = estimate.spectrum;
   const std::vector<std::string>& estimate_names = estimate.channel_names;
@@ -277,16 +288,27 @@ static std::shared_ptr<const Spectrum> VcSource(const YamlNode& node, const Yaml
   return Repeat(one, s->channel_names.size());
 }
 
-// A measured spectrum read from a CSV file (relative to `base_dir`), its columns picked by name.
+// A measured spectrum read from a CSV file (relative to `base_dir`), its
+// columns picked by name, or from a universal file (deb/load/uff_yaml.h).
 static std::shared_ptr<const Spectrum> MeasuredSource(const YamlNode& node, const YamlNode& spec,
                                                       const std::string& base_dir, Source* s) {
   const auto unit_node = node.Optional("unit");
-  spec.AllowOnly({"type", "file", "columns", "extrapolation"});
-  if (node.Has("convention"))
-    node.Required("convention").Fail("a measured spectrum declares its convention in the file ('# sides: one|two')");
   const YamlNode file = spec.Required("file");
   std::filesystem::path p(file.AsString());
   if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  if (formats::FileLooksLikeUff(p.string())) {
+    spec.AllowOnly({"type", "file", "columns", "extrapolation", kUffSourceKeys[0], kUffSourceKeys[1]});
+    if (node.Has("convention"))
+      node.Required("convention").Fail("a universal file's PSDs are one-sided; remove 'convention'");
+    return ParseUffSpectrum(node, spec, p.string(), s);
+  }
+  for (const char* key : kUffSourceKeys)
+    if (spec.Has(key))
+      spec.Required(key).Fail(std::string("'") + key + "' chooses datasets of a universal file (UFF 58); " +
+                              p.string() + " is a table: choose its columns with 'columns'");
+  spec.AllowOnly({"type", "file", "columns", "extrapolation"});
+  if (node.Has("convention"))
+    node.Required("convention").Fail("a measured spectrum declares its convention in the file ('# sides: one|two')");
   SpectrumCsv csv = AtNode(file, [&] { return ReadSpectrumCsv(p.string()); });
   if (auto cols = spec.Optional("columns")) {
     const auto wanted = cols->AsStrings();

@@ -93,6 +93,18 @@ void ModalModel::Validate() const {
 }
 
 ModalModel ModalModel::Truncated(double max_hz, bool static_residual) const {
+  std::vector<bool> keep(f_hz.size());
+  for (std::size_t k = 0; k < f_hz.size(); ++k) keep[k] = f_hz[k] <= max_hz;
+  return Kept(keep, static_residual);
+}
+
+ModalModel ModalModel::FirstModes(int count, bool static_residual) const {
+  std::vector<bool> keep(f_hz.size());
+  for (std::size_t k = 0; k < f_hz.size(); ++k) keep[k] = static_cast<int>(k) < count;
+  return Kept(keep, static_residual);
+}
+
+ModalModel ModalModel::Kept(const std::vector<bool>& keep_mode, bool static_residual) const {
   if (static_residual && quantity != ModalQuantity::kDisplacement)
     throw InputError("residual: static needs output_quantity: displacement (the static correction of a " +
                      ToString(quantity) + " output is not a constant)");
@@ -101,17 +113,21 @@ ModalModel ModalModel::Truncated(double max_hz, bool static_residual) const {
   t.output_names = output_names;
   t.quantity = quantity;
   t.residual = residual;
+  t.notes = notes;
   if (static_residual) {
     if (t.residual.size() == 0) t.residual = Eigen::MatrixXd::Zero(phi_out.rows(), phi_in.rows());
     for (int k = 0; k < modes(); ++k) {
-      if (f_hz[k] <= max_hz) continue;
+      if (keep_mode[static_cast<std::size_t>(k)]) continue;
+      if (f_hz[k] == 0.0)
+        throw InputError("residual: static cannot correct for a rigid-body mode (mode " + std::to_string(k + 1) +
+                         ", 0 Hz: its static compliance is infinite); keep it");
       const double w = kTwoPi * f_hz[k];
       t.residual += phi_out.col(k) * phi_in.col(k).transpose() / (w * w);
     }
   }
   std::vector<Eigen::Index> keep;
   for (int k = 0; k < modes(); ++k)
-    if (f_hz[k] <= max_hz) keep.push_back(k);
+    if (keep_mode[static_cast<std::size_t>(k)]) keep.push_back(k);
   t.phi_in.resize(phi_in.rows(), static_cast<Eigen::Index>(keep.size()));
   t.phi_out.resize(phi_out.rows(), static_cast<Eigen::Index>(keep.size()));
   for (std::size_t j = 0; j < keep.size(); ++j) {

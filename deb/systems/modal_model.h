@@ -57,6 +57,10 @@ struct ModalModel {
   // truncated model keeps the full model's static response (displacement
   // outputs only).
   Eigen::MatrixXd residual;
+  // What was done to the modes on loading them (normalised, modes dropped,
+  // rigid-body modes kept or left out, units converted), one sentence each,
+  // for `deb check`.
+  std::vector<std::string> notes;
 
   int modes() const { return static_cast<int>(f_hz.size()); }
 
@@ -77,6 +81,14 @@ struct ModalModel {
   // @throws InputError if static_residual is asked for a velocity or
   //   acceleration output (the correction would not be a constant).
   ModalModel Truncated(double max_hz, bool static_residual = false) const;
+  // The first `count` modes (all if count >= modes()), in order, with the
+  // same static correction of the dropped ones as Truncated.
+  // @throws InputError as Truncated.
+  ModalModel FirstModes(int count, bool static_residual = false) const;
+
+ private:
+  // The modes keep[k] says yes to.
+  ModalModel Kept(const std::vector<bool>& keep, bool static_residual) const;
 };
 
 // The realisation with 2 n states x = [q_1, q_1', q_2, q_2', ...]:

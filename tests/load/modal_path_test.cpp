@@ -266,7 +266,7 @@ TEST_CASE("bad inline modes are errors at their key") {
                "give 'modes' (a mode table file) or 'frequencies_hz' and 'damping', not both");
   CheckLocated(error("output_quantity: displacement", "output_quantity: jerk"), "paths[1].output_quantity",
                "unknown output quantity 'jerk'; allowed: displacement, velocity, acceleration");
-  CheckLocated(error("output_quantity: displacement", "outputs: [y]"), "paths[1].outputs", "unknown key 'outputs'");
+  CheckLocated(error("output_quantity: displacement", "outputs: [y]"), "paths[1].outputs", "'outputs' belongs to a modal path from a Nastran file");
   CheckLocated(error("    output_unit: m\n  - {name: only_F", "    output_unit: furlong_x\n  - {name: only_F"),
                "paths[1].output_unit", "furlong_x");
 }
