@@ -111,6 +111,7 @@
 #include "deb/formats/mat_file.h"
 #include "deb/formats/nastran_modes.h"
 #include "deb/formats/uff58_file.h"
+#include "deb/formats/op4_file.h"
 #include "deb/results/result_exports.h"
 #include "deb/results/result_mat.h"
 #include "deb/results/result_writer.h"

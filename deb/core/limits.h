@@ -38,7 +38,8 @@ inline constexpr int kMaxDenseStates = 2'000;
 // a rotated finite-element model of 2000 states runs in about 20 s
 // (bench/bench_dense --fe 1000); before it, 2000 states took 36 minutes.
 inline constexpr int kMaxStates = 2'000;
-// Values of one variable of a MATLAB .mat file (deb/formats/mat_file.h), checked
+// Values of one variable of a MATLAB .mat file (deb/formats/mat_file.h), or
+// of one matrix of a Nastran .op4 file (deb/formats/op4_file.h), checked
 // from its header before its data is read: a mode-shape matrix of the most
 // modes at the most channels (400 MB of doubles).
 inline constexpr std::size_t kMaxMatElements =
@@ -62,6 +63,8 @@ inline constexpr std::uintmax_t kMaxMatFileBytes = 2ull << 30;      // 2 GiB: MA
 // not its size in memory.
 inline constexpr std::uintmax_t kMaxSolverFileBytes = 64ull << 30;  // 64 GiB
 inline constexpr std::size_t kMaxMatVariables = 100'000;            // variables of one .mat file
+inline constexpr std::uintmax_t kMaxOp4FileBytes = 2ull << 30;      // 2 GiB: Nastran OUTPUT4 (.op4) files
+inline constexpr std::size_t kMaxOp4Matrices = 100'000;             // matrices of one .op4 file
 inline constexpr std::size_t kMaxLineBytes = 4u << 20;              // 4 MiB: one line of a text table
 // Datasets of one universal file (deb/formats/uff58_file.h), and the points
 // of all its datasets 58 together (as complex values with their abscissae,

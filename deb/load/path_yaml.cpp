@@ -1,16 +1,19 @@
 #include "deb/load/path_yaml.h"
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 
 #include "deb/budget/path_composition.h"
+#include "deb/core/input_file.h"
 #include "deb/core/limits.h"
 #include "deb/core/suggest.h"
 #include "deb/load/block_yaml.h"
 #include "deb/load/isolation_yaml.h"
 #include "deb/load/lumped_masses_yaml.h"
 #include "deb/formats/mat_file.h"
+#include "deb/formats/op4_file.h"
 #include "deb/load/modal_yaml.h"
 #include "deb/load/uff_yaml.h"
 #include "deb/formats/uff58_file.h"
@@ -20,6 +23,7 @@
 
 namespace deb::load {
 using formats::MatFile;
+using formats::Op4File;
 namespace {
 
 const std::set<std::string> kCommonKeys = {"name", "description", "type", "inputs", "outputs",
@@ -132,15 +136,16 @@ std::string TooManyStates(Eigen::Index states, const std::string& what) {
          " a state_space or transfer_function path may have (its analysis costs O(n^3) operations)";
 }
 
-// A state-space model saved in MATLAB (save plant.mat A B C D): A, B, C, an
-// optional D (zeros when absent) and optional input_names / output_names.
-struct StateSpaceMat {
+// A state-space model from a file: a MAT-file (save plant.mat A B C D), or
+// an OP4 file from Nastran. A, B, C and an optional D (zeros when absent);
+// a MAT-file may add input_names / output_names.
+struct StateSpaceFile {
   StateSpace system;
   std::vector<std::string> input_names, output_names;  // empty when the file has none
 };
 
-// The names in variable `var` of `f`, one per channel, none repeated; {} if
-// the file has no such variable.
+// The names of a MAT-file's variable `var`, one per channel, none repeated;
+// {} if the file has no such variable.
 std::vector<std::string> ChannelNames(const MatFile& f, const std::string& var, Eigen::Index count,
                                       const std::string& count_from) {
   if (!f.Has(var)) return {};
@@ -154,37 +159,70 @@ std::vector<std::string> ChannelNames(const MatFile& f, const std::string& var, 
   return names;
 }
 
-StateSpaceMat ReadStateSpaceMat(const std::string& path) {
-  const MatFile f(path);
-  const Eigen::MatrixXd a = f.Matrix("A");
+// A, B, C and D of a file, by the names `matrices:` maps them to (D
+// optional: zeros when not mapped), or else A, B, C and D (zeros when the
+// file has no D). A mapped name's matrix is read located at its key; the
+// shapes are checked with the file's names in the messages.
+template <typename File>
+StateSpace ReadStateMatrices(const File& f, const std::optional<YamlNode>& matrices) {
+  const std::string& path = f.path();
+  std::map<std::string, std::string> label;
+  const auto read = [&](const char* key) -> Eigen::MatrixXd {
+    if (!matrices) {
+      label[key] = key;
+      return f.Matrix(key);
+    }
+    const YamlNode name = matrices->Required(key);
+    const std::string in_file = name.AsString();
+    label[key] = in_file == key ? std::string(key) : std::string(key) + " ('" + Excerpt(in_file) + "')";
+    return AtNode(name, [&] { return f.Matrix(in_file); });
+  };
+  if (matrices) matrices->AllowOnly({"A", "B", "C", "D"});
+  const Eigen::MatrixXd a = read("A");
   const std::string n = std::to_string(a.rows());
-  if (a.rows() != a.cols()) throw InputError(path + ": A is " + SizeText(a) + "; the state matrix A must be square");
-  if (const std::string why = TooManyStates(a.rows(), "A is " + SizeText(a) + ":"); !why.empty())
+  const std::string& la = label["A"];
+  if (a.rows() != a.cols()) throw InputError(path + ": " + la + " is " + SizeText(a) + "; the state matrix A must be square");
+  if (const std::string why = TooManyStates(a.rows(), la + " is " + SizeText(a) + ":"); !why.empty())
     throw InputError(path + ": " + why);
-  const Eigen::MatrixXd b = f.Matrix("B");
+  const Eigen::MatrixXd b = read("B");
+  const std::string& lb = label["B"];
   if (b.rows() != a.rows())
-    throw InputError(path + ": B is " + SizeText(b) + " but A is " + SizeText(a) + ": B needs " + n + " rows");
-  const Eigen::MatrixXd c = f.Matrix("C");
+    throw InputError(path + ": " + lb + " is " + SizeText(b) + " but " + la + " is " + SizeText(a) + ": B needs " + n +
+                     " rows");
+  const Eigen::MatrixXd c = read("C");
+  const std::string& lc = label["C"];
   if (c.cols() != a.rows())
-    throw InputError(path + ": C is " + SizeText(c) + " but A is " + SizeText(a) + ": C needs " + n + " columns");
-  if (b.cols() == 0) throw InputError(path + ": B is " + SizeText(b) + ": the model needs at least one input");
-  if (c.rows() == 0) throw InputError(path + ": C is " + SizeText(c) + ": the model needs at least one output");
+    throw InputError(path + ": " + lc + " is " + SizeText(c) + " but " + la + " is " + SizeText(a) + ": C needs " + n +
+                     " columns");
+  if (b.cols() == 0) throw InputError(path + ": " + lb + " is " + SizeText(b) + ": the model needs at least one input");
+  if (c.rows() == 0) throw InputError(path + ": " + lc + " is " + SizeText(c) + ": the model needs at least one output");
   const std::string at_most = "; at most " + std::to_string(limits::kMaxChannels) + " are allowed";
   if (b.cols() > limits::kMaxChannels)
-    throw InputError(path + ": B is " + SizeText(b) + ": " + std::to_string(b.cols()) + " inputs" + at_most);
+    throw InputError(path + ": " + lb + " is " + SizeText(b) + ": " + std::to_string(b.cols()) + " inputs" + at_most);
   if (c.rows() > limits::kMaxChannels)
-    throw InputError(path + ": C is " + SizeText(c) + ": " + std::to_string(c.rows()) + " outputs" + at_most);
+    throw InputError(path + ": " + lc + " is " + SizeText(c) + ": " + std::to_string(c.rows()) + " outputs" + at_most);
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(c.rows(), b.cols());
-  if (f.Has("D")) {
-    d = f.Matrix("D");
+  if (matrices ? matrices->Has("D") : f.Has("D")) {
+    d = read("D");
     if (d.rows() != c.rows() || d.cols() != b.cols())
-      throw InputError(path + ": D is " + SizeText(d) + " but B is " + SizeText(b) + " and C is " + SizeText(c) +
-                       ": D needs to be " + std::to_string(c.rows()) + "x" + std::to_string(b.cols()) +
-                       " (outputs x inputs)");
+      throw InputError(path + ": " + label["D"] + " is " + SizeText(d) + " but " + lb + " is " + SizeText(b) +
+                       " and " + lc + " is " + SizeText(c) + ": D needs to be " + std::to_string(c.rows()) + "x" +
+                       std::to_string(b.cols()) + " (outputs x inputs)");
   }
-  StateSpaceMat m{StateSpace(a, b, c, d), {}, {}};
-  m.input_names = ChannelNames(f, "input_names", b.cols(), "B has " + std::to_string(b.cols()) + " column(s) (inputs)");
-  m.output_names = ChannelNames(f, "output_names", c.rows(), "C has " + std::to_string(c.rows()) + " row(s) (outputs)");
+  return StateSpace(a, b, c, d);
+}
+
+// An OP4 file by its content (whatever its name), else a MAT-file.
+StateSpaceFile ReadStateSpaceFile(const std::string& path, const std::optional<YamlNode>& matrices) {
+  if (formats::LooksLikeOp4File(path)) {
+    const Op4File f(path);
+    return {ReadStateMatrices(f, matrices), {}, {}};
+  }
+  const MatFile f(path);
+  StateSpaceFile m{ReadStateMatrices(f, matrices), {}, {}};
+  const Eigen::Index inputs = m.system.inputs(), outputs = m.system.outputs();
+  m.input_names = ChannelNames(f, "input_names", inputs, "B has " + std::to_string(inputs) + " column(s) (inputs)");
+  m.output_names = ChannelNames(f, "output_names", outputs, "C has " + std::to_string(outputs) + " row(s) (outputs)");
   return m;
 }
 
@@ -237,17 +275,20 @@ ChannelSource ParseTransferFunctionPath(const YamlNode& node, Path& p) {
 
 // A MAT-file's channel names become the path's default names.
 ChannelSource ParseStateSpacePath(const YamlNode& node, const std::string& base_dir, Path& p) {
-  node.AllowOnly(With(kCommonKeys, {"A", "B", "C", "D", "file"}));
+  node.AllowOnly(With(kCommonKeys, {"A", "B", "C", "D", "file", "matrices"}));
   if (const auto file = node.Optional("file")) {
     for (const char* m : {"A", "B", "C", "D"})
-      if (node.Has(m)) node.Required(m).Fail("give 'file' (a MAT-file with A, B, C and D) or the matrices inline, not both");
+      if (node.Has(m))
+        node.Required(m).Fail("give 'file' (a MAT-file or an OP4 file with A, B, C and D) or the matrices inline, not both");
     const std::string path = Resolve(base_dir, file->AsString());
-    StateSpaceMat m = AtNode(*file, [&] { return ReadStateSpaceMat(path); });
+    StateSpaceFile m = AtNode(*file, [&] { return ReadStateSpaceFile(path, node.Optional("matrices")); });
     p.system = std::move(m.system);
     p.input_names = std::move(m.input_names);
     p.output_names = std::move(m.output_names);
     return ChannelSource::kEntry;
   }
+  if (node.Has("matrices"))
+    node.Required("matrices").Fail("'matrices' names the matrices of a 'file' (a MAT-file or an OP4 file); give 'file' too");
   const Eigen::MatrixXd a = node.Required("A").AsMatrix();
   if (const std::string why = TooManyStates(a.rows(), "A is " + SizeText(a) + ":"); !why.empty())
     node.Required("A").Fail(why);

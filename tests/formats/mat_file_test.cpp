@@ -27,6 +27,7 @@
 #include "deb/core/number_text.h"
 #include "deb/load/budget_yaml.h"
 #include "deb/formats/mat_file.h"
+#include "tests/support/budget_errors.h"
 #include "tests/support/contains.h"
 #include "tests/support/text_edit.h"
 #include "tests/support/contributor_of.h"
@@ -451,17 +452,6 @@ TEST_CASE("the files the fuzzer found: refused before matio or libhdf5 allocates
 
 using test::Replace;
 
-// YAML for m: [[a, b], [c, d]] with the shortest text that reads back exactly.
-std::string Yaml(const Eigen::MatrixXd& m) {
-  std::string s = "[";
-  for (Eigen::Index r = 0; r < m.rows(); ++r) {
-    s += r ? ", [" : "[";
-    for (Eigen::Index c = 0; c < m.cols(); ++c) s += (c ? ", " : "") + NumberText(m(r, c));
-    s += "]";
-  }
-  return s + "]";
-}
-
 // A budget of one path (a flow mapping) with two force inputs and the output `signal`.
 std::string OnePathBudget(const std::string& path, const std::string& signal) {
   return "name: one\ngrid: {type: log, min_hz: 1, max_hz: 100, points: 10}\nsources:\n"
@@ -470,29 +460,9 @@ std::string OnePathBudget(const std::string& path, const std::string& signal) {
          ", unit: um}\n";
 }
 
-std::string ErrorOfBudget(const std::string& file) {
-  Budget b;
-  try {
-    b = LoadBudgetFile(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  try {
-    Evaluate(b);
-  } catch (const InputError& e) {
-    return e.what();  // located by the budget loaded
-  }
-  return "(no InputError)";
-}
-
-// "…/b.yaml:LINE:COL: KEY: …" and the rest of the message.
-void CheckLocated(const std::string& message, const std::string& key, const std::string& part) {
-  CAPTURE(message);
-  CHECK(std::regex_search(message, std::regex("b\\.yaml:[0-9]+:[0-9]+: " +
-                                              std::regex_replace(key, std::regex("[\\[\\].]"), "\\$&") + ": ")));
-  CHECK(Contains(message, part));
-}
-
+using test::CheckLocated;
+using test::ErrorOfBudget;
+using test::MatrixYaml;
 using test::ContributorOf;
 
 // Two resonances (12 Hz, 70 Hz), two force inputs, one displacement output.
@@ -536,10 +506,10 @@ outputs:
 )";
 
 std::string StateSpaceBudget(const Plant& p) {
-  std::string text = Replace(kStateSpaceBudget, "AAA", Yaml(p.a));
-  text = Replace(text, "BBB", Yaml(p.b));
-  text = Replace(text, "CCC", Yaml(p.c));
-  return Replace(text, "DDD", Yaml(p.d));
+  std::string text = Replace(kStateSpaceBudget, "AAA", MatrixYaml(p.a));
+  text = Replace(text, "BBB", MatrixYaml(p.b));
+  text = Replace(text, "CCC", MatrixYaml(p.c));
+  return Replace(text, "DDD", MatrixYaml(p.d));
 }
 
 void WritePlant(const std::string& path, const Format& format, const Plant& p, bool with_names = true) {
@@ -593,6 +563,30 @@ TEST_CASE("state_space from a .mat: the RMS of the same matrices inline, names f
     CHECK(named.FindPath("p").output_names == std::vector<std::string>{"q"});
     CHECK(named.FindPath("p").input_names == std::vector<std::string>{"F1", "F2"});
   }
+}
+
+TEST_CASE("state_space from a .mat with 'matrices': deb's A, B, C (and D) by the file's variable names") {
+  const TempDir dir;
+  const Plant plant;
+  {
+    MatWriter w(dir.Path("plant.mat"), kFormats[1]);
+    w.Matrix("Ahat", plant.a);
+    w.Matrix("Bhat", plant.b);
+    w.Matrix("Chat", plant.c);
+    w.Matrix("D", Eigen::MatrixXd::Ones(1, 2));  // not mapped: not read
+  }
+  const std::string path = "{name: p, type: state_space, file: plant.mat, matrices: {A: Ahat, B: Bhat, C: Chat}, "
+                           "input_unit: N, output_unit: m}";
+  const Budget b = LoadBudgetText(OnePathBudget(path, "y"), "b.yaml", dir.Path(""));
+  CHECK(b.FindPath("p").system.A() == plant.a);
+  CHECK(b.FindPath("p").system.B() == plant.b);
+  CHECK(b.FindPath("p").system.C() == plant.c);
+  CHECK(b.FindPath("p").system.D() == Eigen::MatrixXd::Zero(1, 2));
+  CHECK(Contains(test::InputErrorOf([&] {
+                   LoadBudgetText(OnePathBudget(Replace(path, "B: Bhat", "B: B"), "y"), "b.yaml", dir.Path(""));
+                 }),
+                 "paths[0].matrices.B: " + dir.Path("plant.mat") + ": no variable 'B' in the MAT-file (it holds Ahat, "
+                 "Bhat, Chat, D)"));
 }
 
 TEST_CASE("state_space .mat errors are located at file: and name the variable and its size") {
@@ -687,7 +681,7 @@ TEST_CASE("state_space .mat errors are located at file: and name the variable an
   SUBCASE("file: together with A") {
     WritePlant(mat, kFormats[0], plant);
     dir.WriteText("b.yaml", Replace(StateSpaceBudget(plant), "file: plant.mat\n", "file: plant.mat\n    A: [[1]]\n"));
-    CheckLocated(ErrorOfBudget(budget), "paths[1].A", "give 'file' (a MAT-file with A, B, C and D) or the matrices inline, not both");
+    CheckLocated(ErrorOfBudget(budget), "paths[1].A", "give 'file' (a MAT-file or an OP4 file with A, B, C and D) or the matrices inline, not both");
   }
 }
 
