@@ -11,13 +11,13 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <unistd.h>
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/formats/nastran_modes.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/budget_errors.h"
 #include "tests/support/contributor_of.h"
 #include "tests/support/op2_writer.h"
 #include "tests/support/punch_writer.h"
@@ -48,21 +48,8 @@ class Dir {
   std::filesystem::path dir_;
 };
 
-std::string ErrorOf(const std::string& file) {
-  try {
-    Evaluate(LoadBudgetFile(file));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
-
-void CheckLocated(const std::string& message, const std::string& key, const std::string& part) {
-  CAPTURE(message);
-  CHECK(std::regex_search(message, std::regex("b\\.yaml:[0-9]+:[0-9]+: " +
-                                              std::regex_replace(key, std::regex("[\\[\\].]"), "\\$&") + ": ")));
-  CHECK(message.find(part) != std::string::npos);
-}
+using test::CheckLocated;
+std::string ErrorOf(const std::string& file) { return test::ErrorOfBudget(file); }
 
 // The beam budget with its path replaced by `path` (YAML of one path entry
 // named arm).
