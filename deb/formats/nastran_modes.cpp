@@ -20,10 +20,6 @@ namespace {
 
 const char* const kComponents[6] = {"T1", "T2", "T3", "R1", "R2", "R3"};
 
-std::uint32_t Swapped(std::uint32_t v) {
-  return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
-}
-
 }  // namespace
 
 NastranDof ParseNastranDof(const std::string& text) {
@@ -108,11 +104,11 @@ std::string NastranFormatOf(const std::string& path) {
     std::uint32_t first, after4, after8;
     std::memcpy(&first, head, 4);
     for (bool swap : {false, true}) {
-      const std::uint32_t len = swap ? Swapped(first) : first;
+      const std::uint32_t len = swap ? Swapped32(first) : first;
       if (len != 4 && len != 8) continue;
       if (static_cast<std::size_t>(n) < 8 + len) continue;
       std::memcpy(&after4, head + 4 + len, 4);
-      after8 = swap ? Swapped(after4) : after4;
+      after8 = swap ? Swapped32(after4) : after4;
       if (after8 == len) return "OP2";
     }
   }

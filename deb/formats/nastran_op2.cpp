@@ -195,35 +195,27 @@ class Op2File {
   }
 
   long long Int(const unsigned char* p) const {
+    const std::uint64_t bits = Bits(p);
     if (word_ == 4) {
-      std::uint32_t v;
-      std::memcpy(&v, p, 4);
-      if (swap_) v = Swapped32(v);
       std::int32_t s;
+      const std::uint32_t v = static_cast<std::uint32_t>(bits);
       std::memcpy(&s, &v, 4);
       return s;
     }
-    std::uint64_t v;
-    std::memcpy(&v, p, 8);
-    if (swap_) v = Swapped64(v);
     std::int64_t s;
-    std::memcpy(&s, &v, 8);
+    std::memcpy(&s, &bits, 8);
     return s;
   }
   double Real(const unsigned char* p) const {
+    const std::uint64_t bits = Bits(p);
     if (word_ == 4) {
-      std::uint32_t v;
-      std::memcpy(&v, p, 4);
-      if (swap_) v = Swapped32(v);
       float f;
+      const std::uint32_t v = static_cast<std::uint32_t>(bits);
       std::memcpy(&f, &v, 4);
       return f;
     }
-    std::uint64_t v;
-    std::memcpy(&v, p, 8);
-    if (swap_) v = Swapped64(v);
     double d;
-    std::memcpy(&d, &v, 8);
+    std::memcpy(&d, &bits, 8);
     return d;
   }
 
@@ -238,12 +230,16 @@ class Op2File {
     std::memcpy(&b, &one, 1);
     return b == 1;
   }
-  static std::uint32_t Swapped32(std::uint32_t v) {
-    return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
-  }
-  static std::uint64_t Swapped64(std::uint64_t v) {
-    return (static_cast<std::uint64_t>(Swapped32(static_cast<std::uint32_t>(v))) << 32) |
-           Swapped32(static_cast<std::uint32_t>(v >> 32));
+  // The word at `p` in the host's byte order (a 4-byte word in the low bits).
+  std::uint64_t Bits(const unsigned char* p) const {
+    if (word_ == 4) {
+      std::uint32_t v;
+      std::memcpy(&v, p, 4);
+      return swap_ ? Swapped32(v) : v;
+    }
+    std::uint64_t v;
+    std::memcpy(&v, p, 8);
+    return swap_ ? Swapped64(v) : v;
   }
 
   void ReadAt(std::uint64_t offset, unsigned char* out, std::uint64_t bytes, const std::string& what) const {

@@ -3,6 +3,7 @@
 // NastranModeFile (deb/formats/nastran_modes.h), and the helpers they share.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,15 @@ std::string GridListText(std::vector<long long> grids);
 
 // The message for a DOF whose grid is not in `table` (holding `grids`).
 std::string MissingGridText(const NastranDof& dof, const std::string& table, const std::vector<long long>& grids);
+
+// `v` with its bytes in the other order.
+inline std::uint32_t Swapped32(std::uint32_t v) {
+  return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
+}
+inline std::uint64_t Swapped64(std::uint64_t v) {
+  return (static_cast<std::uint64_t>(Swapped32(static_cast<std::uint32_t>(v))) << 32) |
+         Swapped32(static_cast<std::uint32_t>(v >> 32));
+}
 
 // A mode table's count bound: modes of one file deb reads the eigenvalues of
 // (a path keeps at most limits::kMaxModes of them).

@@ -195,8 +195,13 @@ ModalModel ParseNastranModal(const YamlNode& node, const std::string& path, Moda
                                    " modes of the file; at most " + std::to_string(2 * limits::kMaxModes) +
                                    " are read for it");
   const int last = read == 0 ? 0 : used[read - 1] + 1;  // shapes of the file's modes [0, last)
-  const Eigen::MatrixXd in_all = AtNode(file_node, [&] { return file.Shapes(inputs.dofs, last); });
-  const Eigen::MatrixXd out_all = AtNode(file_node, [&] { return file.Shapes(outputs.dofs, last); });
+  // One pass over the eigenvectors for both sides: inputs, then outputs.
+  std::vector<NastranDof> dofs = inputs.dofs;
+  dofs.insert(dofs.end(), outputs.dofs.begin(), outputs.dofs.end());
+  const Eigen::MatrixXd both = AtNode(file_node, [&] { return file.Shapes(dofs, last); });
+  const auto n_in = static_cast<Eigen::Index>(inputs.dofs.size());
+  const Eigen::MatrixXd in_all = both.topRows(n_in);
+  const Eigen::MatrixXd out_all = both.bottomRows(both.rows() - n_in);
 
   ModalModel model;
   model.input_names = inputs.names;
