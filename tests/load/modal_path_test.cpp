@@ -6,12 +6,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <unistd.h>
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
 #include "deb/load/budget_yaml.h"
+#include "tests/support/budget_errors.h"
 #include "tests/support/text_edit.h"
 #include "tests/support/contributor_of.h"
 
@@ -86,29 +86,11 @@ using test::Replace;
 
 // The message as the CLI prints it: an engine error (a key path, no
 // position) located in the budget file.
-std::string ErrorOf(const std::string& file) {
-  Budget b;
-  try {
-    b = LoadBudgetFile(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  try {
-    Evaluate(b);
-  } catch (const InputError& e) {
-    return e.what();  // located by the budget loaded
-  }
-  return "(no InputError)";
-}
+std::string ErrorOf(const std::string& file) { return test::ErrorOfBudget(file); }
 
 using test::ContributorOf;
 
-// "…/b.yaml:LINE:COL: KEY: …" and the rest of the message.
-void CheckLocated(const std::string& message, const std::string& key, const std::string& part) {
-  CAPTURE(message);
-  CHECK(std::regex_search(message, std::regex("b\\.yaml:[0-9]+:[0-9]+: " + std::regex_replace(key, std::regex("[\\[\\].]"), "\\$&") + ": ")));
-  CHECK(message.find(part) != std::string::npos);
-}
+using test::CheckLocated;
 
 TEST_CASE("one mode from tables and inline: RMS and exact variance equal the closed form") {
   const ModalDir dir;
