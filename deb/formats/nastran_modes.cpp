@@ -13,6 +13,7 @@
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
 #include "deb/formats/nastran_reader.h"
+#include "deb/formats/op4_file.h"
 
 namespace deb::formats {
 
@@ -77,6 +78,11 @@ NastranModeFile::NastranModeFile(const std::string& path) : path_(path) {
     throw InputError(path + ": neither a Nastran OP2 file (Fortran records of 4- or 8-byte words) nor a punch file "
                             "(text starting with $ lines)");
   if (reader_->modes.empty()) throw InputError(path + ": the file holds no modes");
+}
+
+NastranModeFile::NastranModeFile(const Op4File& file, const Op4ModeMatrices& matrices)
+    : path_(file.path()), reader_(OpenOp4Modes(file, matrices)) {
+  if (reader_->modes.empty()) throw InputError(path_ + ": the file holds no modes");
 }
 
 NastranModeFile::~NastranModeFile() = default;

@@ -18,6 +18,14 @@
 //    generalised masses (generalized_mass is NaN): its eigenvectors are
 //    what the solver normalised them to (EIGRL NORM=MASS is the default).
 //
+//  - OP4 matrices (OUTPUT4; deb/formats/op4_file.h reads the file): the
+//    eigenvectors as a matrix of one column per mode (PHIG: a row per DOF
+//    of the g-set), the eigenvalues omega^2 as a column, a row or a
+//    diagonal matrix (LAMA, or KHH of mass-normalised modes), optionally
+//    the generalised masses the same way (MHH). An OP4 file does not name
+//    its rows: the budget gives the DOF of each row (Op4ModeMatrices).
+//    Modes are sorted by frequency when the file's order is not.
+//
 // Complex eigenvectors (a damped or fluid-structure eigenproblem), SORT2
 // tables and several subcases are refused: deb reads one set of real modes.
 // Every rule broken is an InputError naming the file and the byte offset
@@ -54,6 +62,17 @@ struct NastranMode {
   double generalized_stiffness = 0.0;
 };
 
+class Op4File;
+
+// Which matrices of an OP4 file hold the modes, and the DOF of each of the
+// eigenvectors' rows.
+struct Op4ModeMatrices {
+  std::string phi;     // eigenvectors: a row per DOF, a column per mode
+  std::string lambda;  // eigenvalues omega^2 [(rad/s)^2], one per mode
+  std::string mass;    // generalised masses, one per mode; "" when the modes are mass-normalised
+  std::vector<NastranDof> rows;  // phi's rows, in order
+};
+
 class NastranModeFile {
  public:
   // Opens the file and reads its eigenvalue table (and, for punch, which
@@ -62,14 +81,22 @@ class NastranModeFile {
   //   truncated or damaged, holds no modes or no eigenvectors, complex
   //   eigenvectors, SORT2 output or several subcases.
   explicit NastranModeFile(const std::string& path);
+  // The modes of OP4 matrices (format() "OP4, text", ...).
+  // @throws InputError "<path>: ..." naming a matrix the file lacks (and
+  //   those it holds), a complex one, shapes that disagree (`rows` count
+  //   against phi's rows, an eigenvalue or mass count against phi's
+  //   columns, a square lambda or mass that is not diagonal), a DOF given
+  //   twice in `rows`, a generalised mass that is not > 0.
+  NastranModeFile(const Op4File& file, const Op4ModeMatrices& matrices);
   ~NastranModeFile();
   NastranModeFile(const NastranModeFile&) = delete;
   NastranModeFile& operator=(const NastranModeFile&) = delete;
 
   const std::string& path() const { return path_; }
-  // "OP2, little-endian, 32-bit words", "punch".
+  // "OP2, little-endian, 32-bit words", "punch", "OP4, text".
   const std::string& format() const;
-  // The table the eigenvectors come from: "OUGV1", "BOUGV1", "$EIGENVECTOR".
+  // The table the eigenvectors come from: "OUGV1", "BOUGV1", "$EIGENVECTOR",
+  // "matrix PHIG".
   const std::string& shape_table() const;
   // In the file's order (ascending frequency, as the solver writes them).
   const std::vector<NastranMode>& modes() const;

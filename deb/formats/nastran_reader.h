@@ -25,6 +25,7 @@ class NastranModeFile::Reader {
 
 std::unique_ptr<NastranModeFile::Reader> OpenOp2Modes(const std::string& path);
 std::unique_ptr<NastranModeFile::Reader> OpenPunchModes(const std::string& path);
+std::unique_ptr<NastranModeFile::Reader> OpenOp4Modes(const Op4File& file, const Op4ModeMatrices& matrices);
 
 // Sorted, distinct grid ids as a message quotes them: "12 grid(s): 1-12",
 // "3 grid(s): 101, 102, 2001", at most a few ranges then "...".

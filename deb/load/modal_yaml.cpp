@@ -7,16 +7,17 @@
 #include "deb/core/number_text.h"
 #include "deb/formats/mat_file.h"
 #include "deb/formats/nastran_modes.h"
+#include "deb/formats/op4_file.h"
 #include "deb/systems/modal_csv.h"
 #include "deb/units/unit.h"
 
 namespace deb::load {
 using formats::MatFile;
 
-const char* const kModalKeys[14] = {"file",          "modes",           "frequencies_hz",  "damping",
+const char* const kModalKeys[16] = {"file",          "modes",           "frequencies_hz",  "damping",
                                    "input_shapes",  "output_shapes",   "output_quantity", "max_frequency_hz",
                                    "residual",      "inputs",          "outputs",         "length_unit",
-                                   "force_unit",    "rigid_modes"};
+                                   "force_unit",    "rigid_modes",     "matrices",        "rows"};
 
 namespace {
 
@@ -185,7 +186,8 @@ ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir, Mo
   for (const char* key : kNastranModalKeys) nastran_keys = nastran_keys || node.Has(key);
   // A Nastran file by its content, or by the keys only such a path has (the
   // file's reader then says why it is not one).
-  if (file && (nastran_keys || !AtNode(*file, [&] { return formats::NastranFormatOf(file_path); }).empty())) {
+  if (file && (nastran_keys || formats::LooksLikeOp4File(file_path) ||
+               !AtNode(*file, [&] { return formats::NastranFormatOf(file_path); }).empty())) {
     for (const char* key : {"frequencies_hz", "input_shapes", "output_shapes", "max_frequency_hz"})
       if (node.Has(key))
         node.Required(key).Fail(std::string("not with a Nastran file (") + file->AsString() + "): " +
@@ -196,8 +198,8 @@ ModalModel ParseModalModel(const YamlNode& node, const std::string& base_dir, Mo
   }
   for (const char* key : kNastranModalKeys)
     if (node.Has(key))
-      node.Required(key).Fail(std::string("'") + key + "' belongs to a modal path from a Nastran file (file: a .op2 or "
-                                                       ".pch); here the DOFs come from the shapes' names");
+      node.Required(key).Fail(std::string("'") + key + "' belongs to a modal path from a Nastran file (file: a .op2, "
+                                                       ".pch or .op4); here the DOFs come from the shapes' names");
   if (file) {
     for (const char* key : {"modes", "frequencies_hz", "damping", "input_shapes", "output_shapes"})
       if (node.Has(key))

@@ -13,8 +13,8 @@
 //   output_quantity: displacement | velocity | acceleration   (default displacement)
 //   max_frequency_hz: F          (optional: keep the modes at or below F)
 //   residual: static | none      (with max_frequency_hz: the dropped modes' static compliance as a feedthrough)
-// or from a Nastran result file (OP2 or punch: deb/load/nastran_modal_yaml.h
-// lists its keys).
+// or from a Nastran file (OP2, punch or OP4 matrices:
+// deb/load/nastran_modal_yaml.h lists its keys).
 // Units are the caller's (path_yaml.cpp): output_unit names the displacement
 // unit, and ModalOutputUnit gives the path's output unit from it.
 #pragma once
@@ -28,7 +28,7 @@
 namespace deb::load {
 
 // The keys above (besides the common ones of every path).
-extern const char* const kModalKeys[14];
+extern const char* const kModalKeys[16];
 
 // @throws InputError located at the key (and, for a file, at its
 //   file:line:col, or the MAT-file variable and index) for every rule of

@@ -1,20 +1,24 @@
 #include "deb/load/nastran_modal_yaml.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "deb/core/limits.h"
 #include "deb/core/number_text.h"
 #include "deb/formats/nastran_modes.h"
+#include "deb/formats/op4_file.h"
 #include "deb/units/unit.h"
 
 namespace deb::load {
 using formats::NastranDof;
 using formats::NastranModeFile;
 
-const char* const kNastranModalKeys[5] = {"inputs", "outputs", "length_unit", "force_unit", "rigid_modes"};
+const char* const kNastranModalKeys[7] = {"inputs",     "outputs",     "length_unit", "force_unit",
+                                         "rigid_modes", "matrices", "rows"};
 
 namespace {
 
@@ -93,6 +97,60 @@ std::vector<double> ParseDamping(const YamlNode& node, const std::vector<double>
   return out;
 }
 
+// The DOF of each row of an OP4 file's eigenvectors: a grid id stands for
+// its 6 rows T1..R3, GRID:COMPONENT for one row.
+std::vector<NastranDof> ParseRows(const YamlNode& node) {
+  if (!node.Has("rows"))
+    node.Fail("missing 'rows': the DOF of each row of the eigenvectors, in order, for an OP4 file does not name "
+              "them: e.g. rows: [1, 2, 3] for the g-set of grids 1-3 (6 rows each)");
+  const YamlNode rows = node.Required("rows");
+  if (!rows.IsSequence() || rows.size() == 0)
+    rows.Fail("expected a list of the eigenvector rows' DOFs, in order: a grid id for its 6 rows T1..R3 "
+              "(e.g. [1, 2, 3]), GRID:COMPONENT for one row (\"7:T1\" for a scalar point)");
+  std::vector<NastranDof> dofs;
+  for (const YamlNode& item : rows.Elements()) {
+    const std::string text = item.AsString();
+    if (text.find(':') != std::string::npos) {
+      dofs.push_back(AtNode(item, [&] { return formats::ParseNastranDof(text); }));
+      continue;
+    }
+    long long grid = 0;
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), grid);
+    if (r.ec != std::errc() || r.ptr != text.data() + text.size() || grid <= 0)
+      item.Fail("'" + text + "' is neither a grid id (a positive integer: its 6 rows T1..R3) nor a DOF "
+                "GRID:COMPONENT (one row)");
+    for (int c = 1; c <= 6; ++c) dofs.push_back({grid, c});
+  }
+  return dofs;
+}
+
+// The modes of the file at `path`: a Nastran result file (OP2, punch) or, with
+// `matrices` and `rows`, the matrices of an OP4 file.
+std::unique_ptr<NastranModeFile> OpenModes(const YamlNode& node, const std::string& path) {
+  const YamlNode file_node = node.Required("file");
+  const std::string name = std::filesystem::path(path).filename().string();
+  if (!formats::LooksLikeOp4File(path)) {
+    for (const char* key : {"matrices", "rows"})
+      if (node.Has(key))
+        node.Required(key).Fail(std::string("'") + key + "' names the matrices of an OP4 file, and " + name +
+                                " is not one: an OP2 or punch file names its own tables and grids");
+    return AtNode(file_node, [&] { return std::make_unique<NastranModeFile>(path); });
+  }
+  const auto matrices = node.Optional("matrices");
+  if (!matrices)
+    node.Fail("missing 'matrices': which matrices of the OP4 file " + name +
+              " hold the modes, e.g. matrices: {phi: PHIG, lambda: LAMA} (and mass: MHH unless the modes are "
+              "mass-normalised)");
+  matrices->AllowOnly({"phi", "lambda", "mass"});
+  formats::Op4ModeMatrices m;
+  m.phi = matrices->Required("phi").AsString();
+  m.lambda = matrices->Required("lambda").AsString();
+  if (const auto mass = matrices->Optional("mass")) m.mass = mass->AsString();
+  m.rows = ParseRows(node);
+  const formats::Op4File file = AtNode(file_node, [&] { return formats::Op4File(path); });
+  return AtNode(*matrices, [&] { return std::make_unique<NastranModeFile>(file, m); });
+}
+
 std::string RangeText(double lo, double hi) {
   return lo == hi ? SignificantText(lo) : SignificantText(lo) + " to " + SignificantText(hi);
 }
@@ -145,7 +203,8 @@ ModalModel ParseNastranModal(const YamlNode& node, const std::string& path, Moda
     node.Required("residual").Fail("residual: static corrects for the modes that 'modes' leaves out; give modes: "
                                    "{max_hz: F} or {count: N}");
 
-  const NastranModeFile file = AtNode(file_node, [&] { return NastranModeFile(path); });
+  const std::unique_ptr<NastranModeFile> opened = OpenModes(node, path);
+  const NastranModeFile& file = *opened;
   const std::vector<formats::NastranMode>& all = file.modes();
 
   // Which of the file's modes are used, in order: rigid-body ones first
@@ -246,7 +305,9 @@ ModalModel ParseNastranModal(const YamlNode& node, const std::string& path, Moda
     model.notes.push_back("mass-normalised: each eigenvector divided by the square root of its generalised mass (" +
                           RangeText(gm_lo, gm_hi) + " in the model's units)");
   else if (gm_hi == 0.0)
-    model.notes.push_back("the file holds no generalised masses: its eigenvectors are taken as mass-normalised");
+    model.notes.push_back(std::string("the file holds no generalised masses") +
+                          (node.Has("matrices") ? " (matrices: gives no mass)" : "") +
+                          ": its eigenvectors are taken as mass-normalised");
   if (rigid > 0)
     model.notes.push_back(std::to_string(rigid) + " rigid-body mode(s) (below " + NumberText(kRigidModeHz) +
                           " Hz) " +

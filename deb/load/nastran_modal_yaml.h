@@ -1,7 +1,13 @@
 // Internal: not part of the public API.
-// YAML -> a modal model from a Nastran result file (deb/formats/nastran_modes.h):
-// the keys of a `type: modal` path whose `file` is an OP2 or punch file.
-//   file: FILE                     .op2 or .pch, told apart by content
+// YAML -> a modal model from a Nastran file (deb/formats/nastran_modes.h):
+// the keys of a `type: modal` path whose `file` is an OP2, punch or OP4 file.
+//   file: FILE                     .op2, .pch or .op4, told apart by content
+//   matrices: {phi: P, lambda: L, mass: M}   (OP4 only) the matrices of the
+//                                  eigenvectors (a row per DOF, a column per mode),
+//                                  the eigenvalues omega^2 and (optional: else the
+//                                  modes are mass-normalised) the generalised masses
+//   rows: [GRID | GRID:COMP, ...]  (OP4 only) the DOF of each of phi's rows, in
+//                                  order: a grid id stands for its 6 rows T1..R3
 //   inputs:  [GRID:COMP, ...]      or {name: GRID:COMP, ...}; components T1 T2 T3 R1 R2 R3
 //   outputs: [GRID:COMP, ...]      (the list form names each channel by its DOF)
 //   modes: {max_hz: F} | {count: N}   which modes (default: all); residual: static as for other modal paths
@@ -25,7 +31,7 @@
 namespace deb::load {
 
 // The keys above that only a Nastran file allows.
-extern const char* const kNastranModalKeys[5];
+extern const char* const kNastranModalKeys[7];
 
 // Below this frequency a mode is a rigid-body mode: the solver's numerical
 // zeros of a free structure fall between 1e-5 and 1e-2 Hz.

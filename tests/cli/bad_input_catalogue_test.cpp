@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "tests/support/cli_harness.h"
+#include "tests/support/op4_writer.h"
 
 namespace fs = std::filesystem;
 
@@ -282,6 +283,20 @@ Files Op2(const std::string& bytes, const std::string& budget = kNastran) { retu
 // The OP2 with its bytes [at, at + with.size()) replaced.
 std::string Op2With(std::size_t at, const std::string& with) { return BeamOp2().replace(at, with.size(), with); }
 Where AtOp2File() { return At("file: |beam.op2", "paths[0].file"); }
+
+// The base budget's plant as one mode from OP4 matrices (a mass of 1 kg on
+// 100 N/m: the base's 1 / (s^2 + 2 s + 100) with 10 % damping).
+const std::string kOp4Modal =
+    Sub(kBase, "type: transfer_function\n    num: [1]\n    den: [1, 2, 100]\n    inputs: [u]\n    outputs: [y]\n",
+        "type: modal\n    file: m.op4\n    matrices: {phi: PHIG, lambda: LAMA}\n    rows: [\"1:T1\"]\n"
+        "    inputs: {u: \"1:T1\"}\n    outputs: {y: \"1:T1\"}\n    damping: 0.1\n    length_unit: m\n");
+std::string ModesOp4() {
+  return deb::test::TextOp4({{"PHIG", Eigen::MatrixXd::Ones(1, 1)}, {"LAMA", Eigen::MatrixXd::Constant(1, 1, 100.0)}});
+}
+Files Op4Modal(const std::string& bytes, const std::string& budget = kOp4Modal) {
+  return {{"b.yaml", budget}, {"m.op4", bytes}};
+}
+Where AtOp4Matrices() { return At("matrices: |{phi", "paths[0].matrices"); }
 
 // The base budget's source as the PSD of a universal file a vibration
 // controller wrote (tests/data/uff: g^2/Hz, 0-3200 Hz), in m/s^2 through the plant.
@@ -1281,6 +1296,18 @@ const std::vector<Case>& Catalogue() {
        20},
       {"N11+", "OP2 of zeros (no Fortran records)", Op2(std::string(4096, '\0')), kRun, 3, AtOp2File(),
        {"neither a Nastran OP2 file"}},
+
+      // ---- P: modes as OP4 matrices ---------------------------------------------
+      {"P00+", "one mode from OP4 matrices (baseline)", Op4Modal(ModesOp4()), kRun, 0, Ok()},
+      {"P01+", "a matrix the file has not", Op4Modal(ModesOp4(), Sub(kOp4Modal, "lambda: LAMA", "lambda: KHH")), kRun,
+       3, AtOp4Matrices(), {"m.op4: no matrix 'KHH' in the OP4 file", "PHIG, LAMA"}},
+      {"P02+", "more rows named than the eigenvectors have",
+       Op4Modal(ModesOp4(), Sub(kOp4Modal, "rows: [\"1:T1\"]", "rows: [1]")), kRun, 3, AtOp4Matrices(),
+       {"6 row DOF(s) given (rows:) but 'PHIG' has 1 rows"}},
+      {"P03+", "an OP4 file cut inside a column", Op4Modal(ModesOp4().substr(0, 100)), kRun, 3,
+       At("file: |m.op4", "paths[0].file"), {"m.op4:"}},
+      {"P04+", "no rows: the OP4 file does not name them", Op4Modal(ModesOp4(), Sub(kOp4Modal, "    rows: [\"1:T1\"]\n", "")),
+       kRun, 3, At("- |name: plant", "paths[0]"), {"missing 'rows'"}},
 
       // ---- U: universal files (UFF dataset 58) ----------------------------------
       {"U00+", "a PSD from a universal file (baseline)", Uff(PsdUff()), kRun, 0, Ok()},
