@@ -104,6 +104,12 @@
 #include "deb/budget/sweep.h"
 #include "deb/budget/sweep_ranking.h"
 
+// Uncertainty studies: parameters' distributions, sample designs, statistics.
+#include "deb/uncertainty/distribution.h"
+#include "deb/uncertainty/sample_design.h"
+#include "deb/uncertainty/sample_statistics.h"
+#include "deb/uncertainty/uncertainty_study.h"
+
 // Budget files in (LoadBudgetFile), result directories out
 // (WriteResultDirectory: summary.json and a CSV per output).
 #include "deb/load/budget_yaml.h"
@@ -116,6 +122,8 @@
 #include "deb/results/result_mat.h"
 #include "deb/results/result_writer.h"
 #include "deb/results/result_xlsx.h"
+#include "deb/results/uncertainty_files.h"
+#include "deb/load/uncertainty_yaml.h"
 #include "deb/load/sweep_yaml.h"
 
 // The report of `deb run` (WriteReportDirectory; gnuplot draws the plots).

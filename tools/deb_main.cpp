@@ -37,6 +37,7 @@
 #include "tools/sensitivity_command.h"
 #include "tools/spectrum_command.h"
 #include "tools/sweep_command.h"
+#include "tools/uncertainty_command.h"
 
 namespace {
 
@@ -114,6 +115,8 @@ int main(int argc, char** argv) {
   CLI::App* sweep = sweep_command.Register(app);
   deb::tools::SensitivityCommand sensitivity_command;
   CLI::App* sensitivity = sensitivity_command.Register(app);
+  deb::tools::UncertaintyCommand uncertainty_command;
+  CLI::App* uncertainty = uncertainty_command.Register(app);
 
   return RunMapped(app, [&] {
     // A first word that is no command: say so, and offer the nearest one
@@ -141,6 +144,7 @@ int main(int argc, char** argv) {
     if (*compare) return compare_command.Run();
     if (*sweep) return sweep_command.Run();
     if (*sensitivity) return sensitivity_command.Run();
+    if (*uncertainty) return uncertainty_command.Run();
     return kExitUsage;
   });
 }

@@ -11,6 +11,7 @@
 #include "deb/load/budget_extends.h"
 #include "deb/load/budget_overrides.h"
 #include "deb/load/parameters_yaml.h"
+#include "deb/load/distributions_yaml.h"
 #include "deb/load/path_yaml.h"
 #include "deb/load/source_yaml.h"
 #include "deb/load/yaml_reader.h"
@@ -174,9 +175,12 @@ Band ParseBand(const YamlNode& node) {
 Budget Load(YamlReader reader, const std::string& base_dir) {
   const YamlNode root = reader.Root();
   // sweep: read by deb sweep (deb/load/sweep_yaml.h); a run evaluates the budget as written.
-  root.AllowOnly({"name", "description", "parameters", "grid", "sources", "paths", "contributors", "outputs", "bands",
-                  "covariance", "sweep"});
+  // correlations and the parameters' distributions: read by deb uncertainty
+  // (deb/load/distributions_yaml.h), checked here; a run uses the values.
+  root.AllowOnly({"name", "description", "parameters", "correlations", "grid", "sources", "paths", "contributors",
+                  "outputs", "bands", "covariance", "sweep"});
   if (auto parameters = root.Optional("parameters")) reader.SetParameters(load::ParseParameters(*parameters));
+  load::ParseUncertainty(root, reader.parameters());
   Budget b;
   b.parameters = reader.parameters().parameters();
   b.source_file = reader.name();

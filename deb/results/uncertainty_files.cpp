@@ -1,0 +1,119 @@
+#include "deb/results/uncertainty_files.h"
+
+#include <nlohmann/json.hpp>
+
+#include "deb/core/number_text.h"
+#include "deb/version.h"
+
+namespace deb {
+
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+// A parameter's value in its unit.
+double Shown(const UncertainParameter& p, double si) { return si / p.unit_si; }
+
+Json ParameterJson(const UncertainParameter& p) {
+  Json j;
+  j["name"] = p.name;
+  j["unit"] = p.unit;
+  j["nominal"] = Shown(p, p.nominal);
+  j["distribution"] = p.distribution.Text() + (p.unit.empty() ? "" : " (SI)");
+  j["mean"] = Shown(p, p.distribution.Mean());
+  j["sd"] = Shown(p, p.distribution.StandardDeviation());
+  j["box"] = {Shown(p, p.distribution.BoxLow()), Shown(p, p.distribution.BoxHigh())};
+  return j;
+}
+
+Json MetricJson(const UncertaintyResult& r, const StudyMetric& m) {
+  Json j;
+  j["name"] = m.Name();
+  j["output"] = m.output;
+  if (!m.contributor.empty()) j["contributor"] = m.contributor;
+  if (!m.band.empty()) j["band"] = m.band;
+  j["unit"] = m.unit;
+  j["nominal_rms"] = m.nominal;
+  j["mean"] = m.moments.mean;
+  j["sd"] = m.moments.sd;
+  j["fosm_sd"] = m.fosm_sd;
+  j["p5"] = m.p5;
+  j["p50"] = m.p50;
+  j["p95"] = m.p95;
+  j["p99"] = m.p99;
+  if (m.limit) {
+    j["rms_max"] = *m.limit;
+    j["met"] = m.met;
+    j["p_meet"] = static_cast<double>(m.met) / static_cast<double>(r.samples);
+    j["p_meet_95"] = {m.p_meet.low, m.p_meet.high};
+  }
+  Json drivers = Json::array();
+  for (std::size_t i = 0; i < r.spec.parameters.size(); ++i) {
+    Json d;
+    d["parameter"] = r.spec.parameters[i].name;
+    d["spearman"] = m.spearman[i];
+    d["gradient"] = m.gradient[i] * r.spec.parameters[i].unit_si;  // per unit of the parameter
+    if (!m.sobol.empty()) {
+      d["sobol_first"] = m.sobol[i].first;
+      d["sobol_total"] = m.sobol[i].total;
+    }
+    drivers.push_back(d);
+  }
+  j["drivers"] = drivers;
+  Json corner;
+  for (std::size_t i = 0; i < r.spec.parameters.size(); ++i)
+    corner[r.spec.parameters[i].name] = Shown(r.spec.parameters[i], m.worst_corner[i]);
+  j["worst_corner"] = {{"rms", m.worst_corner_value}, {"values", corner}};
+  return j;
+}
+
+}  // namespace
+
+std::string UncertaintySummaryJson(const std::string& budget_name, const UncertaintyResult& r) {
+  Json j;
+  j["deb_version"] = DEB_VERSION;
+  j["study"] = "uncertainty";
+  j["budget"] = budget_name;
+  j["method"] = ToString(r.options.method);
+  j["seed"] = r.options.seed;
+  j["samples"] = r.samples;
+  j["evaluations"] = r.evaluations;
+  Json parameters = Json::array();
+  for (const UncertainParameter& p : r.spec.parameters) parameters.push_back(ParameterJson(p));
+  j["parameters"] = parameters;
+  if (r.spec.Correlated()) {
+    Json c = Json::array();
+    for (Eigen::Index a = 0; a < r.spec.correlation.rows(); ++a) {
+      Json row = Json::array();
+      for (Eigen::Index b = 0; b < r.spec.correlation.cols(); ++b) row.push_back(r.spec.correlation(a, b));
+      c.push_back(row);
+    }
+    j["correlation"] = c;
+  }
+  j["all_requirements_met"] = {{"met", r.all_met},
+                               {"p_meet", static_cast<double>(r.all_met) / static_cast<double>(r.samples)},
+                               {"p_meet_95", {r.p_all_met.low, r.p_all_met.high}}};
+  j["worst_corner_method"] = r.corner_method;
+  Json metrics = Json::array();
+  for (const StudyMetric& m : r.metrics) metrics.push_back(MetricJson(r, m));
+  j["metrics"] = metrics;
+  j["notes"] = r.notes;
+  return j.dump(2) + "\n";
+}
+
+std::string UncertaintySamplesCsv(const UncertaintyResult& r) {
+  std::string csv = "sample";
+  for (const UncertainParameter& p : r.spec.parameters) csv += "," + p.name + (p.unit.empty() ? "" : " [" + p.unit + "]");
+  for (const StudyMetric& m : r.metrics) csv += "," + m.Name() + " rms [" + m.unit + "]";
+  csv += "\n";
+  for (std::size_t s = 0; s < r.samples; ++s) {
+    csv += std::to_string(s + 1);
+    for (std::size_t i = 0; i < r.spec.parameters.size(); ++i)
+      csv += "," + NumberText(Shown(r.spec.parameters[i], r.parameter_values[i][s]));
+    for (const StudyMetric& m : r.metrics) csv += "," + NumberText(m.values[s]);
+    csv += "\n";
+  }
+  return csv;
+}
+
+}  // namespace deb

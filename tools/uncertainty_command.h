@@ -1,0 +1,35 @@
+// `deb uncertainty BUDGET.yaml`: samples the budget's uncertain parameters
+// (their `distribution:` and the budget's `correlations:`,
+// deb/load/uncertainty_yaml.h), evaluates every sample's budget in parallel
+// (deb/uncertainty/uncertainty_study.h), prints per output the RMS's
+// distribution, P(meet) of each requirement with its 95 % Wilson interval,
+// the drivers and the worst corner, and writes summary.json and samples.csv
+// atomically into reports/<budget-name>_uncertainty/ (or --out).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+
+namespace deb::tools {
+
+class UncertaintyCommand {
+ public:
+  UncertaintyCommand();
+  ~UncertaintyCommand();
+  UncertaintyCommand(const UncertaintyCommand&) = delete;
+  UncertaintyCommand& operator=(const UncertaintyCommand&) = delete;
+
+  // Registers `uncertainty` on app.
+  CLI::App* Register(CLI::App& app);
+  // Runs it, after parsing; returns the exit code.
+  // @throws InputError for bad input, WriteError for output that cannot be written.
+  int Run() const;
+
+  struct Options;
+
+ private:
+  std::unique_ptr<Options> options_;
+};
+
+}  // namespace deb::tools
