@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -11,7 +10,8 @@
 #include "deb/core/number_text.h"
 #include "deb/core/output_dir.h"
 #include "deb/load/uncertainty_yaml.h"
-#include "deb/results/uncertainty_files.h"
+#include "deb/report/compare/uncertainty_directory.h"
+#include "deb/report/compare/uncertainty_plots.h"
 #include "tools/budget_overrides_option.h"
 
 namespace deb::tools {
@@ -91,7 +91,7 @@ CLI::App* UncertaintyCommand::Register(CLI::App& app) {
   c->add_option("--threads,-j", s.threads, "Budgets evaluated at once (default: all cores)")->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
-  c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Draw no plots (none are drawn yet)");
+  c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write summary.json, samples.csv and the documents without figures; gnuplot is not needed");
   return c;
 }
 
@@ -112,23 +112,14 @@ int UncertaintyCommand::Run() const {
         if (progress) std::fprintf(stderr, "\rdeb: uncertainty %zu/%zu budgets", done, total);
       });
   if (progress) std::fprintf(stderr, "\n");
-  const std::string dir = s.out_dir.empty()
-                              ? (std::filesystem::path("reports") / (budget.name + "_uncertainty")).string()
-                              : s.out_dir;
+  const std::string dir = s.out_dir.empty() ? report::DefaultUncertaintyDirectory(budget.name) : s.out_dir;
   ReplaceOptions replace;
   replace.force = s.force;
-  const std::string json = UncertaintySummaryJson(budget.name, result);
-  const std::string csv = UncertaintySamplesCsv(result);
-  ReplaceDirectory(
-      dir,
-      [&](const std::string& tmp) {
-        WriteTextFile((std::filesystem::path(tmp) / "summary.json").string(), json);
-        WriteTextFile((std::filesystem::path(tmp) / "samples.csv").string(), csv);
-      },
-      replace);
+  const std::vector<report::Plot> plots = s.plots ? report::UncertaintyPlots(result) : std::vector<report::Plot>{};
+  report::WriteUncertaintyDirectory(budget.name, result, plots, dir, replace, s.threads);
   if (!s.quiet) {
     Print(budget.name, result);
-    std::printf("results: %s/summary.json, %s/samples.csv\n", dir.c_str(), dir.c_str());
+    std::printf("report: %s/uncertainty.html\n", dir.c_str());
   }
   return 0;
 }

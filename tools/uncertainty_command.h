@@ -3,8 +3,9 @@
 // deb/load/uncertainty_yaml.h), evaluates every sample's budget in parallel
 // (deb/uncertainty/uncertainty_study.h), prints per output the RMS's
 // distribution, P(meet) of each requirement with its 95 % Wilson interval,
-// the drivers and the worst corner, and writes summary.json and samples.csv
-// atomically into reports/<budget-name>_uncertainty/ (or --out).
+// the drivers and the worst corner, and writes summary.json, samples.csv,
+// uncertainty.md/.html/.pdf and plots/ atomically into
+// reports/<budget-name>_uncertainty/ (or --out).
 #pragma once
 
 #include <CLI/CLI.hpp>

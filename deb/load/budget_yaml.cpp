@@ -11,6 +11,7 @@
 #include "deb/load/budget_extends.h"
 #include "deb/load/budget_overrides.h"
 #include "deb/load/parameters_yaml.h"
+#include "deb/load/budget_variant.h"
 #include "deb/load/distributions_yaml.h"
 #include "deb/load/path_yaml.h"
 #include "deb/load/source_yaml.h"
@@ -243,6 +244,19 @@ Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const Ke
     return b;
   } catch (const InputError& e) {
     // Located in the written-out copy, whose positions mean nothing to the user.
+    if (e.key_path().empty()) throw;
+    throw original->Located(InputError(e.key_path(), e.message()), note);
+  }
+}
+
+Budget LoadBudgetVariantNode(const YAML::Node& root, const std::shared_ptr<const KeyPositions>& original,
+                             const std::string& note, const std::string& base_dir) {
+  const YamlReader reader = YamlReader::FromChecked(root, original->file() + " (" + note + ")");
+  try {
+    Budget b = Load(reader, base_dir);
+    b.positions = original;
+    return b;
+  } catch (const InputError& e) {
     if (e.key_path().empty()) throw;
     throw original->Located(InputError(e.key_path(), e.message()), note);
   }

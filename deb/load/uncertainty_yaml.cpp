@@ -4,11 +4,13 @@
 
 #include <filesystem>
 #include <memory>
+#include <mutex>
 
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
 #include "deb/load/budget_extends.h"
 #include "deb/load/budget_overrides.h"
+#include "deb/load/budget_variant.h"
 #include "deb/load/distributions_yaml.h"
 #include "deb/load/key_path.h"
 #include "deb/load/parameters_yaml.h"
@@ -22,14 +24,28 @@ namespace {
 // parameter's key path, loaded as any budget is.
 class UncertaintyVariants {
  public:
-  UncertaintyVariants(std::string text, std::shared_ptr<const KeyPositions> positions, std::string base_dir,
+  UncertaintyVariants(const std::string& text, std::shared_ptr<const KeyPositions> positions, std::string base_dir,
                       UncertaintySpec spec, std::vector<load::KeyPath> steps, std::string note)
-      : text_(std::move(text)), positions_(std::move(positions)), base_dir_(std::move(base_dir)),
-        spec_(std::move(spec)), steps_(std::move(steps)), note_(std::move(note)) {}
+      : document_(YAML::Load(text)), positions_(std::move(positions)), base_dir_(std::move(base_dir)),
+        spec_(std::move(spec)), steps_(std::move(steps)), note_(std::move(note)) {
+    // A sample is a point: its parameters' distributions (checked once, at
+    // the nominal values) and correlations are not part of it.
+    document_.remove("correlations");
+    for (const UncertainParameter& p : spec_.parameters)
+      if (YAML::Node entry = document_["parameters"][p.name]; entry.IsMap()) entry.remove("distribution");
+  }
 
+  // A copy of the parsed document (cheaper than parsing the text again),
+  // the values written in as text with their units, loaded as any budget.
   Budget Variant(const std::vector<double>& values) const {
     DEB_DEMAND(values.size() == steps_.size());
-    YAML::Node v = YAML::Load(text_);
+    YAML::Node v;
+    {
+      // yaml-cpp does not promise that reading one node from several
+      // threads is safe; the copy is a small part of a sample's cost.
+      const std::lock_guard<std::mutex> lock(mutex_);
+      v = YAML::Clone(document_);
+    }
     std::string note = note_;
     for (std::size_t k = 0; k < steps_.size(); ++k) {
       const UncertainParameter& p = spec_.parameters[k];
@@ -38,18 +54,17 @@ class UncertaintyVariants {
       DEB_DEMAND(why.empty());
       note += (k ? ", " : " ") + p.name + " = " + text;
     }
-    YAML::Emitter emitter;
-    emitter << v;
-    return LoadBudgetVariant(emitter.c_str(), positions_, note + ":", base_dir_);
+    return LoadBudgetVariantNode(v, positions_, note, base_dir_);
   }
 
  private:
-  std::string text_;
+  YAML::Node document_;
   std::shared_ptr<const KeyPositions> positions_;
   std::string base_dir_;
   UncertaintySpec spec_;
   std::vector<load::KeyPath> steps_;
   std::string note_;
+  mutable std::mutex mutex_;
 };
 
 }  // namespace

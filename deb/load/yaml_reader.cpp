@@ -324,6 +324,12 @@ YamlReader YamlReader::FromAssembled(const std::string& text, const std::string&
   return reader;
 }
 
+YamlReader YamlReader::FromChecked(YAML::Node root, const std::string& name) {
+  YamlReader reader(std::move(root), name, "", std::make_shared<KeyPositions>(name));
+  reader.assembled_ = true;
+  return reader;
+}
+
 YamlNode YamlReader::Root() const {
   if (!root_.IsMap()) throw InputError(InputLocation{name_, 0, 0, ""}, "the budget must be a YAML map (key: value pairs)");
   return YamlNode(this, root_, "");

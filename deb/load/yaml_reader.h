@@ -93,6 +93,11 @@ class YamlReader {
   // key path in the file that gave it.
   static YamlReader FromAssembled(const std::string& text, const std::string& name,
                                   std::shared_ptr<const KeyPositions> positions);
+  // A document already parsed and checked (by FromFile or FromString) and
+  // then changed by deb only (a sample of an uncertainty study): neither
+  // parsed nor checked again; its errors are located by key path only, as
+  // an assembled document's. Its text() is empty.
+  static YamlReader FromChecked(YAML::Node root, const std::string& name);
 
   YamlNode Root() const;
   // True when the document is a map with key `field` (no error otherwise).

@@ -72,7 +72,10 @@ std::vector<double> EvaluateAt(const VariantLoader& variant, const UncertaintySp
     options.response_traces = false;
     return MetricValues(Evaluate(b, options));
   } catch (const InputError& e) {
-    throw InputError(what + " (" + ValuesText(spec, values) + "): " + e.what());
+    // A loader's message names the values; the engine's may not.
+    const std::string message = e.what();
+    if (message.find(spec.parameters.front().name + " = ") != std::string::npos) throw InputError(what + ": " + message);
+    throw InputError(what + " (" + ValuesText(spec, values) + "): " + message);
   }
 }
 

@@ -292,6 +292,9 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
   if (multiplot) {
     s << "set lmargin " << kLeftMargin << "\nset rmargin " << right_margin << "\n";
     if (!last) s << "set format x ''\nunset xlabel\n";
+    // The last panel's tics are labelled again (gnuplot's default format)
+    // unless its axis has a format of its own.
+    else if (p.x.format.empty()) s << "set format x '% h'\n";
   }
   Key(s, p, multiplot);
   if (!p.note.empty()) s << "set label 1 " << Quote(p.note) << " at graph 0.5,0.5 center front\n";

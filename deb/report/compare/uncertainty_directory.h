@@ -1,0 +1,25 @@
+// Internal: not part of the public API.
+// The directory `deb uncertainty` writes, atomically (deb/core/output_dir.h):
+// summary.json and samples.csv (deb/results/uncertainty_files.h),
+// uncertainty.md, uncertainty.html and uncertainty.pdf
+// (uncertainty_documents.h) and plots/ (uncertainty_plots.h: PNG, CSV and
+// gnuplot script of each figure; none with --no-plots).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/core/output_dir.h"
+#include "deb/report/figure/plot.h"
+#include "deb/uncertainty/uncertainty_study.h"
+
+namespace deb::report {
+
+// reports/<budget name>_uncertainty
+std::string DefaultUncertaintyDirectory(const std::string& budget_name);
+
+void WriteUncertaintyDirectory(const std::string& budget_name, const UncertaintyResult& result,
+                               const std::vector<Plot>& plots, const std::string& out_dir,
+                               const ReplaceOptions& replace, int threads);
+
+}  // namespace deb::report

@@ -1,0 +1,27 @@
+// Internal: not part of the public API.
+// The figures of `deb uncertainty`, per output (its total RMS):
+//  - <output>_uncertainty: the distribution of the RMS over the samples,
+//    a histogram over its empirical CDF on one RMS axis, the requirement a
+//    dashed red line (the ECDF's height there is P(meet), named in the
+//    title with its 95 % interval) and the nominal design a dotted line;
+//  - <output>_drivers: the parameters' rank correlations with the RMS
+//    (largest magnitude on top), and with --method sobol the first-order
+//    and total Sobol indices beside them;
+//  - <output>_scatter: the RMS of each sample against its two strongest
+//    drivers, the requirement a dashed red line.
+#pragma once
+
+#include <vector>
+
+#include "deb/report/figure/plot.h"
+#include "deb/uncertainty/uncertainty_study.h"
+
+namespace deb::report {
+
+// The parameters of metric `m` by the magnitude of their rank correlation,
+// largest first.
+std::vector<std::size_t> DriverOrder(const StudyMetric& m);
+
+std::vector<Plot> UncertaintyPlots(const UncertaintyResult& result);
+
+}  // namespace deb::report
