@@ -298,6 +298,13 @@ Files Op4Modal(const std::string& bytes, const std::string& budget = kOp4Modal) 
 }
 Where AtOp4Matrices() { return At("matrices: |{phi", "paths[0].matrices"); }
 
+// The base budget with its source's level an uncertain parameter.
+const std::string kUncertain =
+    Sub(Sub(kBase, "description: bad-input catalogue base budget\n",
+            "description: bad-input catalogue base budget\nparameters:\n"
+            "  lvl: {value: 1, distribution: {uniform: {min: 0.5, max: 2}}}\n"),
+        "level: 1.0e-6", "level: lvl * 1.0e-6");
+
 // The base budget's source as the PSD of a universal file a vibration
 // controller wrote (tests/data/uff: g^2/Hz, 0-3200 Hz), in m/s^2 through the plant.
 const std::string kUff =
@@ -1308,6 +1315,25 @@ const std::vector<Case>& Catalogue() {
        At("file: |m.op4", "paths[0].file"), {"m.op4:"}},
       {"P04+", "no rows: the OP4 file does not name them", Op4Modal(ModesOp4(), Sub(kOp4Modal, "    rows: [\"1:T1\"]\n", "")),
        kRun, 3, At("- |name: plant", "paths[0]"), {"missing 'rows'"}},
+
+      // ---- Q: uncertainty studies ---------------------------------------------------
+      {"Q00", "an uncertainty study (baseline)", Budget(kUncertain), "uncertainty b.yaml -n 20 --no-plots", 0, Ok()},
+      {"Q01", "sigma below zero", Budget(Sub(kUncertain, "{uniform: {min: 0.5, max: 2}}", "{normal: {sigma: -1}}")),
+       "uncertainty b.yaml -n 20 --no-plots", 3, At("normal: |{sigma: -1}", "parameters.lvl.distribution.normal"),
+       {"sigma -1 must be finite and > 0"}},
+      {"Q02", "min above max", Budget(Sub(kUncertain, "min: 0.5, max: 2", "min: 2, max: 0.5")), kRun, 3,
+       At("uniform: |{min: 2", "parameters.lvl.distribution.uniform"), {"min 2 must be below max 0.5"}},
+      {"Q03", "--samples 0", Budget(kUncertain), "uncertainty b.yaml -n 0", 2, Usage()},
+      {"Q04", "--samples above the limit", Budget(kUncertain), "uncertainty b.yaml -n 1000001", 2, Usage()},
+      {"Q05", "--method unknown", Budget(kUncertain), "uncertainty b.yaml --method quasi", 2, Usage()},
+      {"Q06", "a budget without distributions", Budget(kBase), "uncertainty b.yaml -n 20", 3, Names("b.yaml"),
+       {"no parameter has a distribution"}},
+      {"Q07", "a correlation of a parameter without a distribution",
+       Budget(Sub(kUncertain, "grid:", "correlations: [{between: [lvl, k], rho: 0.5}]\ngrid:")), kRun, 3,
+       At("lvl, |k]", "correlations[0].between[1]"), {"'k' is not a parameter with a distribution"}},
+      {"Q08", "a sample whose budget is invalid (a negative PSD level)",
+       Budget(Sub(kUncertain, "{uniform: {min: 0.5, max: 2}}", "{normal: {sigma: 2}}")),
+       "uncertainty b.yaml -n 50 --no-plots", 3, Names("sample "), {"lvl = -"}},
 
       // ---- U: universal files (UFF dataset 58) ----------------------------------
       {"U00+", "a PSD from a universal file (baseline)", Uff(PsdUff()), kRun, 0, Ok()},
