@@ -26,7 +26,7 @@ endforeach()
 install(FILES ${PROJECT_BINARY_DIR}/generated/deb/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/deb)
 
 set(deb_config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/deb)
-install(TARGETS deb_core deb_units deb_parameters deb_spectra deb_signal deb_systems deb_models deb_budget deb_uncertainty deb_formats deb_load deb_results deb_report_figure
+install(TARGETS deb_core deb_units deb_parameters deb_spectra deb_signal deb_systems deb_models deb_budget deb_uncertainty deb_optimise deb_formats deb_load deb_results deb_report_figure
                 deb_report_document deb_report_budget deb_report_measurement deb_report_compare deb_report
                 deb_lib
         EXPORT debTargets

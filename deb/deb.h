@@ -110,6 +110,9 @@
 #include "deb/uncertainty/sample_statistics.h"
 #include "deb/uncertainty/uncertainty_study.h"
 
+// Design optimisation: parameters within bounds chosen by NLopt.
+#include "deb/optimise/optimiser.h"
+
 // Budget files in (LoadBudgetFile), result directories out
 // (WriteResultDirectory: summary.json and a CSV per output).
 #include "deb/load/budget_yaml.h"
@@ -123,7 +126,9 @@
 #include "deb/results/result_writer.h"
 #include "deb/results/result_xlsx.h"
 #include "deb/results/uncertainty_files.h"
+#include "deb/results/optimise_files.h"
 #include "deb/load/uncertainty_yaml.h"
+#include "deb/load/optimise_yaml.h"
 #include "deb/load/sweep_yaml.h"
 
 // The report of `deb run` (WriteReportDirectory; gnuplot draws the plots).

@@ -12,6 +12,7 @@
 #include "deb/load/budget_overrides.h"
 #include "deb/load/parameters_yaml.h"
 #include "deb/load/budget_variant.h"
+#include "deb/load/design_bounds_yaml.h"
 #include "deb/load/distributions_yaml.h"
 #include "deb/load/path_yaml.h"
 #include "deb/load/source_yaml.h"
@@ -176,12 +177,14 @@ Band ParseBand(const YamlNode& node) {
 Budget Load(YamlReader reader, const std::string& base_dir) {
   const YamlNode root = reader.Root();
   // sweep: read by deb sweep (deb/load/sweep_yaml.h); a run evaluates the budget as written.
-  // correlations and the parameters' distributions: read by deb uncertainty
-  // (deb/load/distributions_yaml.h), checked here; a run uses the values.
+  // correlations and the parameters' distributions and bounds: read by deb
+  // uncertainty and deb optimise (deb/load/distributions_yaml.h,
+  // design_bounds_yaml.h), checked here; a run uses the values.
   root.AllowOnly({"name", "description", "parameters", "correlations", "grid", "sources", "paths", "contributors",
                   "outputs", "bands", "covariance", "sweep"});
   if (auto parameters = root.Optional("parameters")) reader.SetParameters(load::ParseParameters(*parameters));
   load::ParseUncertainty(root, reader.parameters());
+  load::ParseDesignBounds(root, reader.parameters());
   Budget b;
   b.parameters = reader.parameters().parameters();
   b.source_file = reader.name();

@@ -23,11 +23,10 @@ namespace {
 // Phi^-1(0.95): a log-normal's p95 is its median times exp(1.645 sigma_log).
 constexpr double kZ95 = 1.6448536269514722;
 
-// A value of parameter `p`'s distribution, in SI: a quantity of its
-// dimension, a plain number in its unit, or (`percent_of` given) a
-// percentage of |nominal|.
-double ValueOf(const YamlNode& node, const Parameter& p, double unit_si, const ParameterSet& parameters,
-               bool percent) {
+}  // namespace
+
+double ParameterValueOf(const YamlNode& node, const Parameter& p, double unit_si, const ParameterSet& parameters,
+                        bool percent) {
   if (!node.IsScalar()) node.Fail("expected a number, with the parameter's unit or none");
   std::string text = node.AsString();
   while (!text.empty() && text.back() == ' ') text.pop_back();
@@ -48,6 +47,8 @@ double ValueOf(const YamlNode& node, const Parameter& p, double unit_si, const P
   return q.value;
 }
 
+namespace {
+
 Distribution ParseDistribution(const YamlNode& node, const Parameter& p, double unit_si,
                                const ParameterSet& parameters) {
   if (!node.IsMap() || node.size() != 1)
@@ -57,7 +58,7 @@ Distribution ParseDistribution(const YamlNode& node, const Parameter& p, double 
   const std::string kind = node.Keys().front();
   const YamlNode d = node.Required(kind);
   const auto value = [&](const char* key, bool percent = false) {
-    return ValueOf(d.Required(key), p, unit_si, parameters, percent);
+    return ParameterValueOf(d.Required(key), p, unit_si, parameters, percent);
   };
   Distribution out;
   const double nominal = p.value.value;
@@ -105,7 +106,7 @@ Distribution ParseDistribution(const YamlNode& node, const Parameter& p, double 
     d.AllowOnly({"values", "p"});
     out.kind = DistributionKind::kDiscrete;
     for (const YamlNode& v : d.Required("values").Elements())
-      out.values.push_back(ValueOf(v, p, unit_si, parameters, false));
+      out.values.push_back(ParameterValueOf(v, p, unit_si, parameters, false));
     out.probabilities = d.Required("p").AsDoubles();
     if (out.values.size() > 10000) d.Required("values").Fail("more than 10000 values");
   } else {

@@ -29,4 +29,11 @@ namespace deb::load {
 // twice, |rho| > 1, or a correlation matrix that is not positive definite.
 UncertaintySpec ParseUncertainty(const YamlNode& root, const ParameterSet& parameters);
 
+// A number given for parameter `p` (a distribution's sigma, a bound), in SI:
+// a quantity of its dimension, a plain number in its unit (one unit is
+// unit_si), or with `percent` a percentage of |p's value|.
+// @throws InputError located at `node`.
+double ParameterValueOf(const YamlNode& node, const Parameter& p, double unit_si, const ParameterSet& parameters,
+                        bool percent);
+
 }  // namespace deb::load

@@ -17,7 +17,8 @@ std::shared_ptr<const ParameterSet> ParseParameters(const YamlNode& node) {
     d.name = name;
     d.key_path = entry.key();
     if (entry.IsMap()) {
-      entry.AllowOnly({"value", "description", "unit", "distribution"});  // distribution: distributions_yaml.h
+      // distribution: distributions_yaml.h; min, max: design_bounds_yaml.h
+      entry.AllowOnly({"value", "description", "unit", "distribution", "min", "max"});
       values.push_back(entry.Required("value"));
       if (auto text = entry.Optional("description")) d.description = text->AsString();
       units.push_back(entry.Optional("unit"));

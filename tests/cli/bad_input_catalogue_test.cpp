@@ -305,6 +305,13 @@ const std::string kUncertain =
             "  lvl: {value: 1, distribution: {uniform: {min: 0.5, max: 2}}}\n"),
         "level: 1.0e-6", "level: lvl * 1.0e-6");
 
+// The base budget with its plant's stiffness a design variable (den 1, 2, k).
+const std::string kOptimise =
+    Sub(Sub(kBase, "description: bad-input catalogue base budget\n",
+            "description: bad-input catalogue base budget\nparameters:\n"
+            "  k: {value: 100, min: 50, max: 400}\n  c: 2\n"),
+        "den: [1, 2, 100]", "den: [1, c, k]");
+
 // The base budget's source as the PSD of a universal file a vibration
 // controller wrote (tests/data/uff: g^2/Hz, 0-3200 Hz), in m/s^2 through the plant.
 const std::string kUff =
@@ -1334,6 +1341,21 @@ const std::vector<Case>& Catalogue() {
       {"Q08", "a sample whose budget is invalid (a negative PSD level)",
        Budget(Sub(kUncertain, "{uniform: {min: 0.5, max: 2}}", "{normal: {sigma: 2}}")),
        "uncertainty b.yaml -n 50 --no-plots", 3, Names("sample "), {"lvl = -"}},
+
+      // ---- O: design optimisation ------------------------------------------------
+      {"O00", "an optimisation (baseline)", Budget(kOptimise), "optimise b.yaml --vary k --no-plots", 0, Ok()},
+      {"O01", "--vary a parameter that is not one", Budget(kOptimise), "optimise b.yaml --vary kk --no-plots", 3,
+       Names("b.yaml"), {"--vary kk: no parameter of that name (did you mean 'k'?)"}},
+      {"O02", "--vary a parameter without bounds", Budget(kOptimise), "optimise b.yaml --vary c --no-plots", 3,
+       Names("b.yaml"), {"--vary c: the parameter has no bounds"}},
+      {"O03", "min above max", Budget(Sub(kOptimise, "min: 50, max: 400", "min: 400, max: 50")), kRun, 3,
+       At("max: |50}", "parameters.k.max"), {"max 50 must be above min 400"}},
+      {"O04", "a value outside its bounds", Budget(Sub(kOptimise, "min: 50, max: 400", "min: 150, max: 400")), kRun, 3,
+       At("value: |100", "parameters.k.value"), {"lies outside [min, max]"}},
+      {"O05", "--objective an output the budget has not", Budget(kOptimise),
+       "optimise b.yaml --vary k --objective q --no-plots", 3, Names("--objective q"), {"no output of that name"}},
+      {"O06", "--vary missing", Budget(kOptimise), "optimise b.yaml", 2, Usage()},
+      {"O07", "--starts 0", Budget(kOptimise), "optimise b.yaml --vary k --starts 0", 2, Usage()},
 
       // ---- U: universal files (UFF dataset 58) ----------------------------------
       {"U00+", "a PSD from a universal file (baseline)", Uff(PsdUff()), kRun, 0, Ok()},

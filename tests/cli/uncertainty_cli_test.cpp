@@ -47,3 +47,42 @@ TEST_CASE("deb uncertainty: the same seed gives the same files for 1 and 2 threa
     CHECK_MESSAGE(deb::test::ReadAll(dir / "1" / f) == deb::test::ReadAll(dir / "2" / f), f);
   fs::remove_all(dir);
 }
+
+TEST_CASE("deb optimise: the optimum, its budget and its report; exit 5 when no design meets the requirements") {
+  const fs::path dir = deb::test::TempDir("optimise_cli");
+  deb::test::WriteFile(dir / "b.yaml", R"(name: opt
+parameters:
+  kv: {value: 5, min: 0.5, max: 10}
+grid: {type: log, min_hz: 1, max_hz: 100, points: 50}
+sources:
+  - {name: a, unit: N, spectrum: {type: flat, level: 1.0e-6}}
+  - {name: b, unit: N, spectrum: {type: flat, level: 16.0e-6}}
+paths:
+  - {name: pa, type: gain, gain: [[kv], [kv]], outputs: [y, w], input_unit: N, output_unit: um}
+  - {name: pb, type: gain, gain: [[1/kv], [0]], outputs: [y, w], input_unit: N, output_unit: um}
+contributors:
+  - {name: ca, source: a, path: pa}
+  - {name: cb, source: b, path: pb}
+outputs:
+  - {name: z, signal: y, unit: um}
+  - {name: w, signal: w, unit: um, rms_max: 0.0149248}
+)");
+  const deb::test::Command c = deb::test::RunDebIn(dir, "optimise b.yaml --vary kv --objective z --no-plots --out o");
+  REQUIRE(c.exit_code == 0);
+  CHECK(c.out.find("optimise opt: the RMS of z over 1 parameter(s), cobyla") != std::string::npos);
+  CHECK(c.out.find("kv = 1.5") != std::string::npos);
+  CHECK(c.out.find("w: RMS 0.014925 of 0.014925 (100 %), active") != std::string::npos);
+  for (const char* f : {"summary.json", "history.csv", "optimum.yaml", "report/summary.json"})
+    CHECK_MESSAGE(fs::exists(dir / "o" / f), f);
+  CHECK(deb::test::ReadAll(dir / "o" / "optimum.yaml").find("extends: '../b.yaml'") != std::string::npos);
+  // The optimum is a budget deb runs.
+  CHECK(deb::test::RunDebIn(dir, "run o/optimum.yaml --no-plots -q --out r").exit_code == 0);
+  // A requirement no design within the bounds meets.
+  const deb::test::Command none = deb::test::RunDebIn(
+      dir, "optimise b.yaml --vary kv --objective z --no-plots -q --set outputs[1].rms_max=0.001 --out n");
+  CHECK(none.exit_code == 5);
+  CHECK(none.err.find("no design within the bounds meets every requirement; the least violating: kv = 0.5") !=
+        std::string::npos);
+  CHECK(fs::exists(dir / "n" / "optimum.yaml"));
+  fs::remove_all(dir);
+}

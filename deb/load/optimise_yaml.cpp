@@ -1,0 +1,45 @@
+#include "deb/load/optimise_yaml.h"
+
+#include <algorithm>
+
+#include "deb/core/error.h"
+#include "deb/core/suggest.h"
+#include "deb/load/design_bounds_yaml.h"
+#include "deb/load/parameter_variants.h"
+
+namespace deb {
+
+OptimiseBudget LoadOptimiseFile(const std::string& path, const std::vector<std::string>& vary,
+                                const std::vector<BudgetOverride>& overrides) {
+  const load::StudyBudget budget = load::ReadStudyBudget(path, overrides);
+  const std::vector<DesignVariable> bounded = load::ParseDesignBounds(budget.reader->Root(), *budget.parameters);
+  OptimiseBudget out;
+  out.name = budget.checked.name;
+  if (vary.empty()) throw InputError(path + ": --vary: name the parameters to optimise (e.g. --vary Kv,h)");
+  std::vector<std::string> with_bounds;
+  for (const DesignVariable& v : bounded) with_bounds.push_back(v.name);
+  for (const std::string& name : vary) {
+    if (std::count(vary.begin(), vary.end(), name) > 1) throw InputError(path + ": --vary " + name + ": named twice");
+    const auto it = std::find_if(bounded.begin(), bounded.end(), [&](const DesignVariable& v) { return v.name == name; });
+    if (it != bounded.end()) {
+      out.variables.push_back(*it);
+      continue;
+    }
+    if (budget.parameters->Find(name) != nullptr)
+      throw InputError(path + ": --vary " + name + ": the parameter has no bounds; give them in the budget, e.g. " +
+                       name + ": {value: ..., min: ..., max: ...}" +
+                       (with_bounds.empty() ? "" : " (parameters with bounds: " + [&] {
+                         std::string list;
+                         for (const std::string& s : with_bounds) list += (list.empty() ? "" : ", ") + s;
+                         return list;
+                       }() + ")"));
+    throw InputError(path + ": --vary " + name + ": no parameter of that name" +
+                     DidYouMean(name, budget.parameters->Names()));
+  }
+  std::vector<load::VariedParameter> varied;
+  for (const DesignVariable& v : out.variables) varied.push_back({v.name, v.unit, v.unit_si});
+  out.loader = load::ParameterVariants(budget, path, overrides, varied, "design");
+  return out;
+}
+
+}  // namespace deb

@@ -1,0 +1,28 @@
+// Budgets whose parameters are design variables (their `min` and `max`,
+// deb/load/design_bounds_yaml.h; docs/budget_reference.md, "Design
+// variables"), for a design optimisation (deb/optimise/optimiser.h): the
+// variables `--vary` names, and the budget at any of their values, loaded as
+// any budget is.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/load/budget_yaml.h"
+#include "deb/optimise/optimiser.h"
+
+namespace deb {
+
+struct OptimiseBudget {
+  std::string name;  // the budget's name as written
+  std::vector<DesignVariable> variables;  // in the order named
+  DesignLoader loader;
+};
+
+// @throws InputError "<file>: --vary NAME: ..." for a name that is no
+//   parameter (the nearest suggested), a parameter without bounds, a name
+//   given twice or none at all; and the budget's own errors.
+OptimiseBudget LoadOptimiseFile(const std::string& path, const std::vector<std::string>& vary,
+                                const std::vector<BudgetOverride>& overrides = {});
+
+}  // namespace deb

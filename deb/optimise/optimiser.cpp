@@ -1,0 +1,342 @@
+#include "deb/optimise/optimiser.h"
+
+#include <nlopt.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <mutex>
+
+#include "deb/budget/engine.h"
+#include "deb/core/error.h"
+#include "deb/core/number_text.h"
+#include "deb/core/parallel.h"
+#include "deb/uncertainty/sample_design.h"
+
+namespace deb {
+
+namespace {
+
+// The objective's value where the budget does not evaluate (relative to the
+// nominal objective): far above any design that does.
+constexpr double kFailedObjective = 1e3;
+// A requirement within this of its limit at the optimum is active.
+constexpr double kActive = 1e-3;
+
+struct Evaluated {
+  double objective = 0.0;  // unscaled; +inf when the budget failed
+  std::vector<RequirementRatio> requirements;
+  double worst = 0.0;
+  std::string error;
+};
+
+Evaluated EvaluateDesign(const DesignLoader& loader, const OptimiseObjective& objective,
+                         const std::vector<double>& values) {
+  Evaluated e;
+  try {
+    const Budget b = loader(values);
+    EngineOptions options;
+    options.threads = 1;
+    options.response_traces = false;
+    const BudgetResult r = Evaluate(b, options);
+    e.requirements = RequirementRatios(r);
+    for (const RequirementRatio& q : e.requirements) e.worst = std::max(e.worst, q.ratio());
+    if (objective.max_ratio) {
+      e.objective = e.worst;
+    } else {
+      for (const OutputResult& o : r.outputs)
+        if (o.name == objective.output) e.objective = o.rms();
+    }
+  } catch (const InputError& error) {
+    e.objective = std::numeric_limits<double>::infinity();
+    e.worst = std::numeric_limits<double>::infinity();
+    e.error = error.what();
+  }
+  return e;
+}
+
+std::string StopText(nlopt::result r) {
+  switch (r) {
+    case nlopt::SUCCESS: return "converged";
+    case nlopt::STOPVAL_REACHED: return "objective reached its stop value";
+    case nlopt::FTOL_REACHED: return "converged (objective tolerance)";
+    case nlopt::XTOL_REACHED: return "converged (variables' tolerance)";
+    case nlopt::MAXEVAL_REACHED: return "evaluation limit reached";
+    case nlopt::MAXTIME_REACHED: return "time limit reached";
+    case nlopt::ROUNDOFF_LIMITED: return "stopped by rounding (the optimum as good as rounding allows)";
+    case nlopt::FORCED_STOP: return "stopped";
+    default: return "failed (" + std::to_string(static_cast<int>(r)) + ")";
+  }
+}
+
+// One start's search, in the variables scaled to [0, 1].
+class Search {
+ public:
+  Search(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
+         const OptimiseOptions& options, const DesignLoader& loader, int start, double nominal_objective,
+         std::size_t requirements)
+      : variables_(variables), objective_(objective), options_(options), loader_(loader), start_(start),
+        f0_(nominal_objective), m_(requirements) {}
+
+  std::vector<double> Values(const std::vector<double>& x) const {
+    std::vector<double> v(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i)
+      v[i] = variables_[i].min + std::clamp(x[i], 0.0, 1.0) * (variables_[i].max - variables_[i].min);
+    return v;
+  }
+
+  const Evaluated& At(const std::vector<double>& x) {
+    const auto it = cache_.find(x);
+    if (it != cache_.end()) return it->second;
+    return Store(x, EvaluateDesign(loader_, objective_, Values(x)));
+  }
+
+  // The objective and the constraints' gradients at x by central differences
+  // (one-sided at a bound), their 2n budgets evaluated in parallel.
+  void Gradients(const std::vector<double>& x, std::vector<double>* df, std::vector<std::vector<double>>* dg) {
+    const std::size_t n = x.size();
+    const double h = std::max(1e-6, 10.0 * options_.tolerance);
+    std::vector<std::vector<double>> points(2 * n, x);
+    std::vector<double> step(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double up = std::min(1.0, x[i] + h), down = std::max(0.0, x[i] - h);
+      points[2 * i][i] = up;
+      points[2 * i + 1][i] = down;
+      step[i] = up - down;
+    }
+    std::vector<Evaluated> results(2 * n);
+    std::vector<bool> cached(2 * n);
+    for (std::size_t k = 0; k < 2 * n; ++k) cached[k] = cache_.count(points[k]) > 0;
+    ParallelForEach(
+        2 * n,
+        [&](std::size_t k) {
+          if (!cached[k]) results[k] = EvaluateDesign(loader_, objective_, Values(points[k]));
+        },
+        options_.threads);
+    for (std::size_t k = 0; k < 2 * n; ++k) results[k] = cached[k] ? cache_.at(points[k]) : Store(points[k], results[k]);
+    df->assign(n, 0.0);
+    dg->assign(m_, std::vector<double>(n, 0.0));
+    for (std::size_t i = 0; i < n; ++i) {
+      const Evaluated &a = results[2 * i], &b = results[2 * i + 1];
+      (*df)[i] = (Scaled(a) - Scaled(b)) / step[i];
+      for (std::size_t j = 0; j < m_; ++j) (*dg)[j][i] = (Ratio(a, j) - Ratio(b, j)) / step[i];
+    }
+  }
+
+  double Scaled(const Evaluated& e) const {
+    return std::isfinite(e.objective) ? e.objective / f0_ : kFailedObjective;
+  }
+  double Ratio(const Evaluated& e, std::size_t j) const {
+    return e.error.empty() && j < e.requirements.size() ? e.requirements[j].ratio() : kFailedObjective;
+  }
+
+  std::vector<DesignEvaluation> history;
+
+ private:
+  const Evaluated& Store(const std::vector<double>& x, Evaluated e) {
+    DesignEvaluation d;
+    d.start = start_;
+    d.values = Values(x);
+    d.objective = e.objective;
+    d.worst_ratio = e.worst;
+    d.error = e.error;
+    history.push_back(d);
+    return cache_.emplace(x, std::move(e)).first->second;
+  }
+
+  const std::vector<DesignVariable>& variables_;
+  const OptimiseObjective& objective_;
+  const OptimiseOptions& options_;
+  const DesignLoader& loader_;
+  int start_;
+  double f0_;
+  std::size_t m_;
+  std::map<std::vector<double>, Evaluated> cache_;
+};
+
+double Objective(unsigned n, const double* x, double* grad, void* data) {
+  auto* s = static_cast<Search*>(data);
+  const std::vector<double> v(x, x + n);
+  const double f = s->Scaled(s->At(v));
+  if (grad) {
+    std::vector<double> df;
+    std::vector<std::vector<double>> dg;
+    s->Gradients(v, &df, &dg);
+    std::copy(df.begin(), df.end(), grad);
+  }
+  return f;
+}
+
+void Constraints(unsigned m, double* result, unsigned n, const double* x, double* grad, void* data) {
+  auto* s = static_cast<Search*>(data);
+  const std::vector<double> v(x, x + n);
+  const Evaluated& e = s->At(v);
+  for (unsigned j = 0; j < m; ++j) result[j] = s->Ratio(e, j) - 1.0;
+  if (grad) {
+    std::vector<double> df;
+    std::vector<std::vector<double>> dg;
+    s->Gradients(v, &df, &dg);
+    for (unsigned j = 0; j < m; ++j)
+      for (unsigned i = 0; i < n; ++i) grad[j * n + i] = dg[j][i];
+  }
+}
+
+nlopt::algorithm AlgorithmOf(OptimiseMethod m) {
+  switch (m) {
+    case OptimiseMethod::kAuto:
+    case OptimiseMethod::kCobyla: return nlopt::LN_COBYLA;
+    case OptimiseMethod::kBobyqa: return nlopt::LN_BOBYQA;
+    case OptimiseMethod::kSlsqp: return nlopt::LD_SLSQP;
+    case OptimiseMethod::kMma: return nlopt::LD_MMA;
+  }
+  return nlopt::LN_COBYLA;
+}
+
+}  // namespace
+
+std::string OptimiseObjective::Text() const {
+  return max_ratio ? "the largest RMS / requirement" : "the RMS of " + output;
+}
+
+std::vector<RequirementRatio> RequirementRatios(const BudgetResult& result) {
+  std::vector<RequirementRatio> out;
+  for (const OutputResult& o : result.outputs) {
+    if (o.rms_max) out.push_back({o.name, o.rms(), *o.rms_max});
+    for (const BandRequirementResult& b : o.band_requirements)
+      out.push_back({o.name + "[" + SignificantText(b.requirement.lo_hz) + "-" + SignificantText(b.requirement.hi_hz) +
+                         " Hz]",
+                     b.rms(), b.requirement.rms_max});
+  }
+  return out;
+}
+
+OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
+                           const OptimiseOptions& options, const DesignLoader& loader) {
+  const std::size_t n = variables.size();
+  DEB_DEMAND(n >= 1 && options.starts >= 1 && options.max_evaluations >= 1);
+  for (const DesignVariable& v : variables) DEB_DEMAND(v.min < v.max);
+  OptimiseResult result;
+  result.variables = variables;
+  result.objective = objective;
+  result.options = options;
+
+  // The nominal design: it must evaluate, and it fixes the requirements.
+  std::vector<double> nominal(n);
+  for (std::size_t i = 0; i < n; ++i) nominal[i] = variables[i].nominal;
+  const Budget nominal_budget = loader(nominal);
+  EngineOptions engine;
+  engine.threads = 1;
+  engine.response_traces = false;
+  const BudgetResult nominal_result = Evaluate(nominal_budget, engine);
+  result.nominal_requirements = RequirementRatios(nominal_result);
+  const std::size_t m = objective.max_ratio ? 0 : result.nominal_requirements.size();
+  if (objective.max_ratio && result.nominal_requirements.empty())
+    throw InputError("the objective max-ratio needs requirements (rms_max or band requirements), and " +
+                     nominal_budget.name + " has none");
+  if (!objective.max_ratio) {
+    bool found = false;
+    std::vector<std::string> names;
+    for (const OutputResult& o : nominal_result.outputs) {
+      names.push_back(o.name);
+      if (o.name == objective.output) {
+        found = true;
+        result.nominal_objective = o.rms();
+      }
+    }
+    if (!found) {
+      std::string list;
+      for (const std::string& s : names) list += (list.empty() ? "" : ", ") + s;
+      throw InputError("--objective " + objective.output + ": no output of that name (the outputs: " + list +
+                       "; or max-ratio)");
+    }
+  } else {
+    for (const RequirementRatio& q : result.nominal_requirements)
+      result.nominal_objective = std::max(result.nominal_objective, q.ratio());
+  }
+  result.method = options.method != OptimiseMethod::kAuto ? options.method
+                  : m > 0                                  ? OptimiseMethod::kCobyla
+                                                           : OptimiseMethod::kBobyqa;
+  if (m > 0 && options.method == OptimiseMethod::kBobyqa)
+    throw InputError("--method bobyqa handles bounds only, and the budget has " + std::to_string(m) +
+                     " requirement(s) to meet: use cobyla, slsqp or mma (or --objective max-ratio)");
+  const double f0 = result.nominal_objective > 0.0 ? result.nominal_objective : 1.0;
+
+  // The starts: the nominal design, then Sobol points of the box.
+  const auto count = static_cast<std::size_t>(options.starts);
+  const SampleDesign design(SamplingMethod::kSobol, options.seed, count + 1, n);
+  std::vector<std::vector<double>> from(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    std::vector<double> x(n);
+    for (std::size_t i = 0; i < n; ++i)
+      x[i] = k == 0 ? std::clamp((nominal[i] - variables[i].min) / (variables[i].max - variables[i].min), 0.0, 1.0)
+                    : design.Point(k)[i];
+    from[k] = x;
+  }
+  std::vector<OptimiseStart> starts(count);
+  std::vector<std::vector<DesignEvaluation>> histories(count);
+  std::vector<std::vector<RequirementRatio>> final_requirements(count);
+  ParallelForEach(
+      count,
+      [&](std::size_t k) {
+        Search search(variables, objective, options, loader, static_cast<int>(k), f0, m);
+        nlopt::opt opt(AlgorithmOf(result.method), static_cast<unsigned>(n));
+        opt.set_lower_bounds(std::vector<double>(n, 0.0));
+        opt.set_upper_bounds(std::vector<double>(n, 1.0));
+        opt.set_min_objective(Objective, &search);
+        if (m > 0) opt.add_inequality_mconstraint(Constraints, &search, std::vector<double>(m, 1e-9));
+        opt.set_xtol_abs(options.tolerance);
+        opt.set_maxeval(options.max_evaluations);
+        if (result.method == OptimiseMethod::kCobyla || result.method == OptimiseMethod::kBobyqa)
+          opt.set_initial_step(0.1);
+        std::vector<double> x = from[k];
+        double f = 0.0;
+        std::string stop;
+        try {
+          stop = StopText(opt.optimize(x, f));
+        } catch (const nlopt::roundoff_limited&) {
+          stop = StopText(nlopt::ROUNDOFF_LIMITED);
+        } catch (const std::runtime_error& e) {
+          stop = std::string("NLopt failed: ") + e.what();
+        }
+        const Evaluated& at = search.At(x);
+        OptimiseStart& s = starts[k];
+        s.from = search.Values(from[k]);
+        s.values = search.Values(x);
+        s.objective = at.objective;
+        s.worst_ratio = at.worst;
+        s.feasible = at.error.empty() && (m == 0 || at.worst <= 1.0 + 1e-6);
+        s.stop = stop;
+        final_requirements[k] = at.requirements;
+        histories[k] = std::move(search.history);
+        s.evaluations = static_cast<int>(histories[k].size());
+      },
+      options.threads);
+
+  // The best start: the lowest objective among the feasible, else the least
+  // violating (ties: the earlier start).
+  std::size_t best = 0;
+  bool any = false;
+  for (std::size_t k = 0; k < count; ++k) {
+    const OptimiseStart& s = starts[k];
+    if (s.feasible && (!any || s.objective < starts[best].objective)) {
+      best = k;
+      any = true;
+    }
+  }
+  if (!any)
+    for (std::size_t k = 1; k < count; ++k)
+      if (starts[k].worst_ratio < starts[best].worst_ratio) best = k;
+  result.starts = starts;
+  result.best = best;
+  result.feasible = any;
+  result.requirements = final_requirements[best];
+  for (RequirementRatio& q : result.requirements) q.active = q.ratio() >= 1.0 - kActive;
+  for (auto& h : histories) {
+    result.evaluations += static_cast<int>(h.size());
+    result.history.insert(result.history.end(), h.begin(), h.end());
+  }
+  return result;
+}
+
+}  // namespace deb

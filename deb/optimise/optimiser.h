@@ -1,0 +1,115 @@
+// Design optimisation of a budget (deb optimise): the parameters named as
+// design variables, each within its [min, max], chosen to minimise an
+// objective (an output's RMS, or the largest ratio of an RMS to its
+// requirement) subject to every requirement (an output's rms_max and each
+// band requirement: RMS <= limit) and to the budget evaluating at all (a
+// closed loop that is unstable there is a design that fails). NLopt does
+// the search: COBYLA (derivative-free, with constraints; the default),
+// BOBYQA (derivative-free, bounds only), SLSQP or MMA (with gradients by
+// central differences, evaluated in parallel); several starts from Sobol
+// points of the box (the first the nominal design), run in parallel, the
+// best feasible one kept (OptimiseResult::method says which ran). The variables are searched scaled to [0, 1] over
+// their bounds, the objective relative to its nominal value.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "deb/budget/budget.h"
+#include "deb/core/enum_names.h"
+
+namespace deb {
+
+struct DesignVariable {
+  std::string name;      // the budget parameter's
+  std::string unit;      // the unit it is written in ("" for a plain number)
+  double unit_si = 1.0;  // one `unit` in SI
+  double nominal = 0.0;  // SI
+  double min = 0.0, max = 0.0;  // SI
+};
+
+// kAuto: BOBYQA without requirements to meet (it converges in far fewer
+// evaluations on bounds alone), COBYLA with them.
+enum class OptimiseMethod { kAuto, kCobyla, kBobyqa, kSlsqp, kMma };
+inline constexpr EnumName<OptimiseMethod> kOptimiseMethodNames[] = {{OptimiseMethod::kAuto, "auto"},
+                                                                    {OptimiseMethod::kCobyla, "cobyla"},
+                                                                    {OptimiseMethod::kBobyqa, "bobyqa"},
+                                                                    {OptimiseMethod::kSlsqp, "slsqp"},
+                                                                    {OptimiseMethod::kMma, "mma"}};
+constexpr EnumNames<OptimiseMethod> NamesOf(OptimiseMethod) { return kOptimiseMethodNames; }
+
+// What is minimised: the RMS of `output`, or (max_ratio) the largest
+// RMS / limit over the requirements.
+struct OptimiseObjective {
+  bool max_ratio = false;
+  std::string output;
+  std::string Text() const;  // "RMS of z", "the largest RMS / requirement"
+};
+
+struct OptimiseOptions {
+  OptimiseMethod method = OptimiseMethod::kAuto;
+  int starts = 1;                // the nominal design, then Sobol points of the box
+  int max_evaluations = 200;     // per start (gradient steps included)
+  double tolerance = 1e-8;       // of each variable, relative to its range
+  std::uint64_t seed = 1;        // of the Sobol points' shift
+  int threads = 0;
+};
+
+// A requirement at a design: "z" (rms_max) or "z[10-100 Hz]" (a band's).
+struct RequirementRatio {
+  std::string name;
+  double rms = 0.0, limit = 0.0;
+  double ratio() const { return rms / limit; }
+  bool active = false;  // at the optimum: within 1e-3 of its limit
+};
+
+struct DesignEvaluation {
+  int start = 0;
+  std::vector<double> values;  // SI
+  double objective = 0.0;      // unscaled (RMS or ratio); +inf when the budget failed
+  double worst_ratio = 0.0;    // the largest RMS / limit (0 without requirements)
+  std::string error;           // why the budget failed, or ""
+};
+
+struct OptimiseStart {
+  std::vector<double> from, values;  // SI
+  double objective = 0.0;
+  double worst_ratio = 0.0;
+  bool feasible = false;
+  int evaluations = 0;
+  std::string stop;  // NLopt's reason
+};
+
+struct OptimiseResult {
+  std::vector<DesignVariable> variables;
+  OptimiseObjective objective;
+  OptimiseOptions options;
+  OptimiseMethod method = OptimiseMethod::kCobyla;  // the one that ran (never kAuto)
+  double nominal_objective = 0.0;
+  std::vector<RequirementRatio> nominal_requirements;
+  std::vector<OptimiseStart> starts;
+  std::size_t best = 0;  // the start whose result is the optimum
+  bool feasible = false;  // some start met every requirement
+  std::vector<RequirementRatio> requirements;  // at the optimum
+  std::vector<DesignEvaluation> history;        // start by start, in order
+  int evaluations = 0;
+};
+
+// The budget at the variables' values (SI, in order); may be called from
+// several threads at once.
+using DesignLoader = std::function<Budget(const std::vector<double>& values)>;
+
+// The requirement lines of a result: every output's rms_max, then its band
+// requirements.
+std::vector<RequirementRatio> RequirementRatios(const struct BudgetResult& result);
+
+// @throws InputError for an objective output the budget has not, max_ratio
+//   or constraints with no requirement to meet, BOBYQA with requirements to
+//   meet, and the nominal budget's own errors.
+OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
+                           const OptimiseOptions& options, const DesignLoader& loader);
+
+}  // namespace deb

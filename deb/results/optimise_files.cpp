@@ -1,0 +1,132 @@
+#include "deb/results/optimise_files.h"
+
+#include <nlohmann/json.hpp>
+
+#include "deb/core/number_text.h"
+#include "deb/version.h"
+
+namespace deb {
+
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+double Shown(const DesignVariable& v, double si) { return si / v.unit_si; }
+
+std::string ValueText(const DesignVariable& v, double si) {
+  return NumberText(Shown(v, si)) + (v.unit.empty() ? "" : " " + v.unit);
+}
+
+Json Values(const OptimiseResult& r, const std::vector<double>& si) {
+  Json j;
+  for (std::size_t i = 0; i < r.variables.size(); ++i) j[r.variables[i].name] = Shown(r.variables[i], si[i]);
+  return j;
+}
+
+Json Requirements(const std::vector<RequirementRatio>& list, bool active) {
+  Json a = Json::array();
+  for (const RequirementRatio& q : list) {
+    Json j = {{"name", q.name}, {"rms", q.rms}, {"limit", q.limit}, {"ratio", q.ratio()}};
+    if (active) j["active"] = q.active;
+    a.push_back(j);
+  }
+  return a;
+}
+
+}  // namespace
+
+std::string OptimumText(const OptimiseResult& r) {
+  std::string s;
+  const OptimiseStart& best = r.starts[r.best];
+  for (std::size_t i = 0; i < r.variables.size(); ++i)
+    s += (i ? ", " : "") + r.variables[i].name + " = " + SignificantText(Shown(r.variables[i], best.values[i]), 6) +
+         (r.variables[i].unit.empty() ? "" : " " + r.variables[i].unit);
+  return s;
+}
+
+std::string OptimiseSummaryJson(const std::string& budget_name, const OptimiseResult& r) {
+  Json j;
+  j["deb_version"] = DEB_VERSION;
+  j["study"] = "optimise";
+  j["budget"] = budget_name;
+  j["objective"] = r.objective.Text();
+  j["method"] = ToString(r.method);
+  j["starts"] = r.options.starts;
+  j["evaluations"] = r.evaluations;
+  Json variables = Json::array();
+  for (const DesignVariable& v : r.variables)
+    variables.push_back({{"name", v.name},
+                         {"unit", v.unit},
+                         {"nominal", Shown(v, v.nominal)},
+                         {"min", Shown(v, v.min)},
+                         {"max", Shown(v, v.max)}});
+  j["variables"] = variables;
+  std::vector<double> nominal;
+  for (const DesignVariable& v : r.variables) nominal.push_back(v.nominal);
+  j["nominal"] = {{"values", Values(r, nominal)},
+                  {"objective", r.nominal_objective},
+                  {"requirements", Requirements(r.nominal_requirements, false)}};
+  const OptimiseStart& best = r.starts[r.best];
+  j["optimum"] = {{"feasible", r.feasible},
+                  {"start", r.best + 1},
+                  {"values", Values(r, best.values)},
+                  {"objective", best.objective},
+                  {"requirements", Requirements(r.requirements, true)}};
+  Json starts = Json::array();
+  for (std::size_t k = 0; k < r.starts.size(); ++k) {
+    const OptimiseStart& s = r.starts[k];
+    starts.push_back({{"start", k + 1},
+                      {"from", Values(r, s.from)},
+                      {"values", Values(r, s.values)},
+                      {"objective", s.objective},
+                      {"worst_ratio", s.worst_ratio},
+                      {"feasible", s.feasible},
+                      {"evaluations", s.evaluations},
+                      {"stop", s.stop}});
+  }
+  j["starts_run"] = starts;
+  return j.dump(2) + "\n";
+}
+
+std::string OptimiseHistoryCsv(const OptimiseResult& r) {
+  std::string csv = "evaluation,start";
+  for (const DesignVariable& v : r.variables) csv += "," + v.name + (v.unit.empty() ? "" : " [" + v.unit + "]");
+  csv += ",objective,worst_ratio,error\n";
+  for (std::size_t e = 0; e < r.history.size(); ++e) {
+    const DesignEvaluation& d = r.history[e];
+    csv += std::to_string(e + 1) + "," + std::to_string(d.start + 1);
+    for (std::size_t i = 0; i < r.variables.size(); ++i) csv += "," + NumberText(Shown(r.variables[i], d.values[i]));
+    csv += "," + NumberText(d.objective) + "," + NumberText(d.worst_ratio) + ",";
+    if (!d.error.empty()) {
+      std::string quoted = "\"";
+      for (char c : d.error) quoted += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+      csv += quoted + "\"";
+    }
+    csv += "\n";
+  }
+  return csv;
+}
+
+std::string OptimumYaml(const std::string& extends, const std::string& budget_name, const OptimiseResult& r,
+                        const std::vector<std::string>& overrides) {
+  const OptimiseStart& best = r.starts[r.best];
+  std::string y = "# The optimum of deb optimise (deb " + std::string(DEB_VERSION) + "): " + r.objective.Text() +
+                  " minimised over " + std::to_string(r.variables.size()) + " parameter(s) in " +
+                  std::to_string(r.evaluations) + " evaluations (" + ToString(r.method) + ", " +
+                  std::to_string(r.options.starts) + " start(s)); " +
+                  (r.feasible ? "every requirement met." : "NO design met every requirement: the least violating.") +
+                  "\n";
+  if (!overrides.empty()) {
+    y += "# The study ran with";
+    for (const std::string& o : overrides) y += " --set '" + o + "'";
+    y += "; run this budget with them too.\n";
+  }
+  std::string quoted;
+  for (char c : extends) quoted += c == '\'' ? std::string("''") : std::string(1, c);
+  y += "extends: '" + quoted + "'\nname: " + budget_name + "_optimum\nparameters:\n";
+  for (std::size_t i = 0; i < r.variables.size(); ++i)
+    y += "  " + r.variables[i].name + ": " + ValueText(r.variables[i], best.values[i]) + "\n";
+  return y;
+}
+
+}  // namespace deb

@@ -1,0 +1,26 @@
+// The files of a design optimisation (deb optimise): summary.json for
+// scripts (the variables and their bounds, the objective, the nominal and
+// the optimal design, every requirement at the optimum with whether it is
+// active, each start), history.csv (every budget evaluated, start by
+// start) and optimum.yaml (the optimum as a budget: `extends:` the
+// original, only the variables changed, each `name: value unit`).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deb/optimise/optimiser.h"
+
+namespace deb {
+
+std::string OptimiseSummaryJson(const std::string& budget_name, const OptimiseResult& result);
+std::string OptimiseHistoryCsv(const OptimiseResult& result);
+// `extends` is the original budget's path as optimum.yaml will reach it
+// (relative to the directory it is written to); `overrides` (--set
+// KEY=VALUE) are named in a comment, as the optimum assumes them.
+std::string OptimumYaml(const std::string& extends, const std::string& budget_name, const OptimiseResult& result,
+                        const std::vector<std::string>& overrides);
+// "Kv = 61.3, h = 182 mm": the optimum's values in their units.
+std::string OptimumText(const OptimiseResult& result);
+
+}  // namespace deb

@@ -1,0 +1,198 @@
+// Design optimisation (deb/optimise/optimiser.h) of budgets loaded from YAML
+// (deb/load/optimise_yaml.h), against closed forms: two flat force sources
+// of levels a and b through the gains kv and 1/kv give the variance
+// (a kv^2 + b / kv^2) (f_max - f_min), least at kv* = (b/a)^(1/4) = 2 here;
+// a requirement on a second output w that reads a through kv alone (RMS
+// proportional to kv) that allows kv <= 1.5 moves the optimum onto it, an active
+// constraint; one that allows kv <= 0.25, below the bound 0.5, leaves no
+// feasible design, and the least violating is the bound. Every rule of the
+// bounds and of --vary as an error.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "deb/core/error.h"
+#include "deb/load/optimise_yaml.h"
+#include "deb/results/optimise_files.h"
+#include "tests/support/budget_errors.h"
+#include "tests/support/text_edit.h"
+
+namespace deb {
+namespace {
+
+class Dir {
+ public:
+  Dir() : dir_(std::filesystem::temp_directory_path() / ("deb_optimise_" + std::to_string(::getpid()))) {
+    std::filesystem::create_directories(dir_);
+  }
+  ~Dir() { std::filesystem::remove_all(dir_); }
+  std::string Write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+
+ private:
+  std::filesystem::path dir_;
+};
+
+const std::string kBudget = R"(name: opt
+parameters:
+  kv: {value: 5, min: 0.5, max: 10}
+grid: {type: log, min_hz: 1, max_hz: 100, points: 50}
+sources:
+  - {name: a, unit: N, spectrum: {type: flat, level: 1.0e-6}}
+  - {name: b, unit: N, spectrum: {type: flat, level: 16.0e-6}}
+paths:
+  - {name: pa, type: gain, gain: [[kv], [kv]], outputs: [y, w], input_unit: N, output_unit: um}
+  - {name: pb, type: gain, gain: [[1/kv], [0]], outputs: [y, w], input_unit: N, output_unit: um}
+contributors:
+  - {name: ca, source: a, path: pa}
+  - {name: cb, source: b, path: pb}
+outputs:
+  - {name: z, signal: y, unit: um}
+  - {name: w, signal: w, unit: um}
+)";
+
+// w's RMS is kv sqrt(1e-6 * 99) um.
+std::string WithLimit(double kv_max) {
+  char limit[64];
+  std::snprintf(limit, sizeof limit, "%.17g", kv_max * std::sqrt(99e-6));
+  return test::Replace(kBudget, "{name: w, signal: w, unit: um}",
+                       "{name: w, signal: w, unit: um, rms_max: " + std::string(limit) + "}");
+}
+
+OptimiseResult Optimise(const std::string& file, OptimiseMethod method, int starts = 1, int threads = 0) {
+  const OptimiseBudget b = LoadOptimiseFile(file, {"kv"});
+  OptimiseObjective objective;
+  objective.output = "z";
+  OptimiseOptions o;
+  o.method = method;
+  o.starts = starts;
+  o.threads = threads;
+  return RunOptimise(b.variables, objective, o, b.loader);
+}
+
+TEST_CASE("a kv^2 + b / kv^2: kv* = (b/a)^(1/4) = 2 to 1e-6 by every method") {
+  const Dir dir;
+  const std::string file = dir.Write("b.yaml", kBudget);
+  for (OptimiseMethod m : {OptimiseMethod::kAuto, OptimiseMethod::kCobyla, OptimiseMethod::kBobyqa,
+                           OptimiseMethod::kSlsqp, OptimiseMethod::kMma}) {
+    CAPTURE(ToString(m));
+    const OptimiseResult r = Optimise(file, m);
+    REQUIRE(r.feasible);
+    const double kv = r.starts[r.best].values[0];
+    MESSAGE(ToString(r.method) << ": kv* " << kv << " (relative error " << std::abs(kv - 2.0) / 2.0 << ") in "
+                               << r.evaluations << " evaluations");
+    CHECK(std::abs(kv - 2.0) <= 1e-6 * 2.0);
+    // The least variance: (2 sqrt(a b)) * 99 um^2.
+    CHECK(r.starts[r.best].objective == doctest::Approx(std::sqrt(2 * std::sqrt(16e-12) * 99)).epsilon(1e-10));
+    CHECK(r.nominal_objective == doctest::Approx(std::sqrt((25e-6 + 16e-6 / 25) * 99)).epsilon(1e-12));
+  }
+  CHECK(Optimise(file, OptimiseMethod::kAuto).method == OptimiseMethod::kBobyqa);
+}
+
+TEST_CASE("a requirement that allows kv <= 1.5: the optimum on it, reported active") {
+  const Dir dir;
+  const std::string file = dir.Write("b.yaml", WithLimit(1.5));
+  for (OptimiseMethod m : {OptimiseMethod::kAuto, OptimiseMethod::kSlsqp, OptimiseMethod::kMma}) {
+    CAPTURE(ToString(m));
+    const OptimiseResult r = Optimise(file, m);
+    REQUIRE(r.feasible);
+    const double kv = r.starts[r.best].values[0];
+    MESSAGE(ToString(r.method) << ": kv* " << kv << " in " << r.evaluations << " evaluations");
+    CHECK(std::abs(kv - 1.5) <= 1e-6 * 1.5);
+    REQUIRE(r.requirements.size() == 1);
+    CHECK(r.requirements[0].name == "w");
+    CHECK(r.requirements[0].active);
+  }
+  CHECK(Optimise(file, OptimiseMethod::kAuto).method == OptimiseMethod::kCobyla);
+  // Without the requirement binding (kv <= 3 allows the optimum 2), it is not active.
+  const OptimiseResult loose = Optimise(dir.Write("b.yaml", WithLimit(3.0)), OptimiseMethod::kCobyla);
+  CHECK(std::abs(loose.starts[loose.best].values[0] - 2.0) <= 1e-6 * 2.0);
+  CHECK_FALSE(loose.requirements[0].active);
+}
+
+TEST_CASE("no feasible design: the least violating, at the bound") {
+  const Dir dir;
+  const OptimiseResult r = Optimise(dir.Write("b.yaml", WithLimit(0.25)), OptimiseMethod::kCobyla);
+  CHECK_FALSE(r.feasible);
+  CHECK(r.starts[r.best].values[0] == doctest::Approx(0.5).epsilon(1e-6));
+  CHECK(r.starts[r.best].worst_ratio == doctest::Approx(2.0).epsilon(1e-5));
+}
+
+TEST_CASE("several starts: the same result and files for 1 and 2 threads") {
+  const Dir dir;
+  const std::string file = dir.Write("b.yaml", WithLimit(1.5));
+  const OptimiseResult one = Optimise(file, OptimiseMethod::kCobyla, 3, 1);
+  const OptimiseResult two = Optimise(file, OptimiseMethod::kCobyla, 3, 2);
+  REQUIRE(one.starts.size() == 3);
+  CHECK(OptimiseSummaryJson("opt", one) == OptimiseSummaryJson("opt", two));
+  CHECK(OptimiseHistoryCsv(one) == OptimiseHistoryCsv(two));
+  const std::string yaml = OptimumYaml("../b.yaml", "opt", one, {"grid.points=60"});
+  CHECK(yaml.find("extends: '../b.yaml'\nname: opt_optimum\nparameters:\n  kv: 1.5") != std::string::npos);
+  CHECK(yaml.find("--set 'grid.points=60'") != std::string::npos);
+}
+
+TEST_CASE("the optimum.yaml loads as a budget with the optimum's values") {
+  const Dir dir;
+  const std::string file = dir.Write("b.yaml", kBudget);
+  const OptimiseResult r = Optimise(file, OptimiseMethod::kBobyqa);
+  std::filesystem::create_directories(std::filesystem::path(file).parent_path() / "out");
+  const std::string optimum = dir.Write("out/optimum.yaml", OptimumYaml("../b.yaml", "opt", r, {}));
+  const Budget b = LoadBudgetFile(optimum);
+  CHECK(b.name == "opt_optimum");
+  const BudgetResult result = Evaluate(b);
+  CHECK(result.outputs[0].rms() == doctest::Approx(r.starts[r.best].objective).epsilon(1e-12));
+}
+
+TEST_CASE("bad bounds and --vary: errors naming the rule") {
+  const Dir dir;
+  using test::CheckLocated;
+  const auto error = [&](const std::string& from, const std::string& to) {
+    return test::ErrorOfBudget(dir.Write("b.yaml", test::Replace(kBudget, from, to)));
+  };
+  CheckLocated(error("min: 0.5, max: 10", "min: 10, max: 0.5"), "parameters.kv.max", "max 0.5 must be above min 10");
+  CheckLocated(error("min: 0.5, max: 10", "min: 0.5, max: 4"), "parameters.kv.value",
+               "the value 5 lies outside [min, max] = [0.5, 4]");
+  CheckLocated(error("min: 0.5, max: 10", "min: 0.5"), "parameters.kv", "a design variable has both bounds: give max");
+  CheckLocated(error("min: 0.5, max: 10", "min: 0.5 m, max: 10"), "parameters.kv.min", "'0.5 m' is not the quantity of kv");
+  const std::string file = dir.Write("b.yaml", test::Replace(kBudget, "  kv: {value: 5, min: 0.5, max: 10}\n",
+                                                             "  kv: {value: 5, min: 0.5, max: 10}\n  g: 3\n"));
+  const auto vary = [&](const std::vector<std::string>& names) -> std::string {
+    try {
+      LoadOptimiseFile(file, names);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(no InputError)";
+  };
+  CHECK(vary({"kw"}).find("--vary kw: no parameter of that name (did you mean 'kv'?)") != std::string::npos);
+  CHECK(vary({"g"}).find("--vary g: the parameter has no bounds; give them in the budget") != std::string::npos);
+  CHECK(vary({"kv", "kv"}).find("--vary kv: named twice") != std::string::npos);
+  CHECK(vary({}).find("--vary: name the parameters to optimise") != std::string::npos);
+  // BOBYQA with a requirement to meet; max-ratio without requirements; an unknown objective.
+  const OptimiseBudget constrained = LoadOptimiseFile(dir.Write("c.yaml", WithLimit(1.5)), {"kv"});
+  OptimiseObjective z;
+  z.output = "z";
+  OptimiseOptions bobyqa;
+  bobyqa.method = OptimiseMethod::kBobyqa;
+  CHECK_THROWS_WITH_AS(RunOptimise(constrained.variables, z, bobyqa, constrained.loader),
+                       doctest::Contains("--method bobyqa handles bounds only"), InputError);
+  const OptimiseBudget free = LoadOptimiseFile(dir.Write("d.yaml", kBudget), {"kv"});
+  OptimiseObjective ratio;
+  ratio.max_ratio = true;
+  CHECK_THROWS_WITH_AS(RunOptimise(free.variables, ratio, {}, free.loader),
+                       doctest::Contains("the objective max-ratio needs requirements"), InputError);
+  OptimiseObjective unknown;
+  unknown.output = "q";
+  CHECK_THROWS_WITH_AS(RunOptimise(free.variables, unknown, {}, free.loader),
+                       doctest::Contains("--objective q: no output of that name (the outputs: z, w; or max-ratio)"),
+                       InputError);
+}
+
+}  // namespace
+}  // namespace deb

@@ -1,0 +1,152 @@
+#include "tools/optimise_command.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "deb/budget/engine.h"
+#include "deb/core/error.h"
+#include "deb/core/number_text.h"
+#include "deb/core/output_dir.h"
+#include "deb/load/optimise_yaml.h"
+#include "deb/report/budget/report_writer.h"
+#include "deb/results/optimise_files.h"
+#include "tools/budget_overrides_option.h"
+#include "tools/run_command.h"
+
+namespace deb::tools {
+
+namespace fs = std::filesystem;
+
+struct OptimiseCommand::Options {
+  std::string budget_file;
+  std::vector<BudgetOverride> overrides;  // --set
+  std::vector<std::string> vary;
+  std::string objective;  // an output, or max-ratio; "" : the only output, else max-ratio
+  std::string method = "auto";
+  int starts = 1;
+  int max_evaluations = 200;
+  double tolerance = 1e-8;
+  unsigned long long seed = 1;
+  std::string out_dir;
+  int threads = 0;
+  bool quiet = false;
+  bool force = false;
+  bool plots = true;
+};
+
+OptimiseCommand::OptimiseCommand() : options_(std::make_unique<Options>()) {}
+OptimiseCommand::~OptimiseCommand() = default;
+
+CLI::App* OptimiseCommand::Register(CLI::App& app) {
+  Options& s = *options_;
+  CLI::App* c = app.add_subcommand("optimise", "Choose parameters within their bounds: minimise an RMS, meet every requirement");
+  c->add_option("budget", s.budget_file, "Budget YAML file whose parameters have min and max")
+      ->required()
+      ->check(CLI::ExistingFile);
+  c->add_option("--vary", s.vary, "The parameters to choose, comma-separated (each with min and max in the budget)")
+      ->required()
+      ->delimiter(',');
+  c->add_option("--objective", s.objective,
+                "An output whose RMS is minimised, or max-ratio (the largest RMS / requirement); default: the only "
+                "output, else max-ratio");
+  c->add_option("--method", s.method, "auto (default: bobyqa without requirements, else cobyla), cobyla, bobyqa (bounds only), slsqp or mma (with gradients)")
+      ->check(CLI::IsMember({"auto", "cobyla", "bobyqa", "slsqp", "mma"}));
+  c->add_option("--starts", s.starts, "Starts: the nominal design, then Sobol points of the bounds (default 1)")
+      ->check(CLI::Range(1, 1000));
+  c->add_option("--max-evaluations", s.max_evaluations, "Budgets evaluated per start, at most (default 200)")
+      ->check(CLI::Range(1, 100000));
+  c->add_option("--tolerance", s.tolerance, "Of each variable, relative to its range (default 1e-8)")
+      ->check(CLI::Range(1e-12, 0.1));
+  c->add_option("--seed", s.seed, "Seed of the starts' Sobol points (default 1)");
+  AddOverridesOption(c, &s.overrides, "--set", "the budget");
+  c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_optimum)");
+  c->add_option("--threads,-j", s.threads, "Budgets evaluated at once (default: all cores)")->check(CLI::NonNegativeNumber);
+  c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
+  c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
+  c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "The optimum's report without plots; gnuplot is not needed");
+  return c;
+}
+
+int OptimiseCommand::Run() const {
+  const Options& s = *options_;
+  const OptimiseBudget budget = LoadOptimiseFile(s.budget_file, s.vary, s.overrides);
+  OptimiseObjective objective;
+  if (s.objective == "max-ratio") {
+    objective.max_ratio = true;
+  } else if (!s.objective.empty()) {
+    objective.output = s.objective;
+  } else {
+    std::vector<double> nominal;
+    for (const DesignVariable& v : budget.variables) nominal.push_back(v.nominal);
+    const Budget b = budget.loader(nominal);
+    if (b.outputs.size() == 1) objective.output = b.outputs.front().name;
+    else objective.max_ratio = true;
+  }
+  OptimiseOptions options;
+  options.method = ParseEnum<OptimiseMethod>(s.method, "optimisation method");
+  options.starts = s.starts;
+  options.max_evaluations = s.max_evaluations;
+  options.tolerance = s.tolerance;
+  options.seed = s.seed;
+  options.threads = s.threads;
+  const OptimiseResult result = RunOptimise(budget.variables, objective, options, budget.loader);
+
+  const std::string dir =
+      s.out_dir.empty() ? (fs::path("reports") / (budget.name + "_optimum")).string() : s.out_dir;
+  // optimum.yaml extends the original by its path from the directory.
+  const std::string extends =
+      fs::absolute(s.budget_file).lexically_normal().lexically_relative(fs::absolute(dir).lexically_normal()).string();
+  std::vector<std::string> overrides;
+  for (const BudgetOverride& o : s.overrides) overrides.push_back(o.key_path + "=" + o.value);
+  EngineOptions engine;
+  engine.threads = s.threads;
+  const BudgetResult optimum = Evaluate(budget.loader(result.starts[result.best].values), engine);
+  ReplaceOptions replace;
+  replace.force = s.force;
+  ReplaceDirectory(
+      dir,
+      [&](const std::string& tmp) {
+        WriteTextFile((fs::path(tmp) / "summary.json").string(), OptimiseSummaryJson(budget.name, result));
+        WriteTextFile((fs::path(tmp) / "history.csv").string(), OptimiseHistoryCsv(result));
+        WriteTextFile((fs::path(tmp) / "optimum.yaml").string(),
+                      OptimumYaml(extends, budget.name, result, overrides));
+        ReportOptions report;
+        report.plots = s.plots;
+        RunInfo info;
+        info.budget_file = s.budget_file;
+        info.threads = s.threads;
+        WriteReportDirectory(optimum, info, report, (fs::path(tmp) / "report").string());
+      },
+      replace);
+
+  if (!s.quiet) {
+    const OptimiseStart& best = result.starts[result.best];
+    std::printf("optimise %s: %s over %zu parameter(s), %s, %d start(s), %d budgets evaluated\n", budget.name.c_str(),
+                objective.Text().c_str(), budget.variables.size(), ToString(result.method).c_str(), options.starts,
+                result.evaluations);
+    std::printf("nominal: %s = %s\n", objective.max_ratio ? "largest RMS / requirement" : ("RMS of " + objective.output).c_str(),
+                SignificantText(result.nominal_objective, 6).c_str());
+    std::printf("optimum (start %zu, %s): %s\n", result.best + 1, best.stop.c_str(), OptimumText(result).c_str());
+    std::printf("  %s = %s\n", objective.max_ratio ? "largest RMS / requirement" : ("RMS of " + objective.output).c_str(),
+                SignificantText(best.objective, 6).c_str());
+    for (const RequirementRatio& q : result.requirements)
+      std::printf("  %s: RMS %s of %s (%s)%s\n", q.name.c_str(), SignificantText(q.rms, 5).c_str(),
+                  SignificantText(q.limit, 5).c_str(), (SignificantText(100.0 * q.ratio(), 4) + " %").c_str(),
+                  q.active ? ", active" : "");
+    std::printf("results: %s/summary.json, optimum.yaml; the optimum's report: %s/report/\n", dir.c_str(), dir.c_str());
+  }
+  if (!result.feasible) {
+    std::fprintf(stderr,
+                 "deb: no design within the bounds meets every requirement; the least violating: %s (largest RMS / "
+                 "requirement %s)\n",
+                 OptimumText(result).c_str(), SignificantText(result.starts[result.best].worst_ratio, 5).c_str());
+    return RunCommand::kExitRequirement;
+  }
+  return 0;
+}
+
+}  // namespace deb::tools
