@@ -53,7 +53,7 @@ CLI::App* OptimiseCommand::Register(CLI::App& app) {
   c->add_option("--objective", s.objective,
                 "An output whose RMS is minimised, or max-ratio (the largest RMS / requirement); default: the only "
                 "output, else max-ratio");
-  c->add_option("--method", s.method, "auto (default: bobyqa without requirements, else cobyla), cobyla, bobyqa (bounds only), slsqp or mma (with gradients)")
+  c->add_option("--method", s.method, "auto (default: bobyqa without requirements, else slsqp), cobyla, bobyqa (bounds only), slsqp or mma (with gradients)")
       ->check(CLI::IsMember({"auto", "cobyla", "bobyqa", "slsqp", "mma"}));
   c->add_option("--starts", s.starts, "Starts: the nominal design, then Sobol points of the bounds (default 1)")
       ->check(CLI::Range(1, 1000));

@@ -255,7 +255,7 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
       result.nominal_objective = std::max(result.nominal_objective, q.ratio());
   }
   result.method = options.method != OptimiseMethod::kAuto ? options.method
-                  : m > 0                                  ? OptimiseMethod::kCobyla
+                  : m > 0                                  ? OptimiseMethod::kSlsqp
                                                            : OptimiseMethod::kBobyqa;
   if (m > 0 && options.method == OptimiseMethod::kBobyqa)
     throw InputError("--method bobyqa handles bounds only, and the budget has " + std::to_string(m) +

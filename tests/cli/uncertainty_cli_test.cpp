@@ -69,7 +69,7 @@ outputs:
 )");
   const deb::test::Command c = deb::test::RunDebIn(dir, "optimise b.yaml --vary kv --objective z --no-plots --out o");
   REQUIRE(c.exit_code == 0);
-  CHECK(c.out.find("optimise opt: the RMS of z over 1 parameter(s), cobyla") != std::string::npos);
+  CHECK(c.out.find("optimise opt: the RMS of z over 1 parameter(s), slsqp") != std::string::npos);
   CHECK(c.out.find("kv = 1.5") != std::string::npos);
   CHECK(c.out.find("w: RMS 0.014925 of 0.014925 (100 %), active") != std::string::npos);
   for (const char* f : {"summary.json", "history.csv", "optimum.yaml", "report/summary.json"})

@@ -40,7 +40,7 @@ void MarkRequirement(FigurePanel& panel, const StudyMetric& m, bool key, bool ve
   panel.annotations.push_back(n);
 }
 
-Plot Distribution(const UncertaintyResult& r, const StudyMetric& m, int output) {
+Plot Distribution(const StudyMetric& m, int output) {
   Plot p;
   p.name = FileStem(m.output) + "_uncertainty";
   p.kind = PlotKind::kOverview;
@@ -270,7 +270,7 @@ std::vector<Plot> UncertaintyPlots(const UncertaintyResult& result) {
   for (const StudyMetric& m : result.metrics) {
     if (!m.contributor.empty() || !m.band.empty()) continue;
     ++output;
-    plots.push_back(Distribution(result, m, output));
+    plots.push_back(Distribution(m, output));
     plots.push_back(Drivers(result, m, output));
     plots.push_back(Scatter(result, m, output));
   }
