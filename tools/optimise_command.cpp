@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "deb/core/output_dir.h"
 #include "deb/load/optimise_yaml.h"
 #include "deb/report/budget/report_writer.h"
+#include "deb/report/compare/optimise_plots.h"
+#include "deb/report/compare/overlay_plots.h"
 #include "deb/results/optimise_files.h"
 #include "tools/budget_overrides_option.h"
 #include "tools/run_command.h"
@@ -105,6 +108,13 @@ int OptimiseCommand::Run() const {
   EngineOptions engine;
   engine.threads = s.threads;
   const BudgetResult optimum = Evaluate(budget.loader(result.starts[result.best].values), engine);
+  // The figures: the history, and for two variables the objective's map.
+  std::vector<report::Plot> plots;
+  if (s.plots) {
+    std::optional<DesignMap> map;
+    if (budget.variables.size() == 2) map = MapDesigns(budget.variables, objective, budget.loader, 21, s.threads);
+    plots = report::OptimisePlots(result, map);
+  }
   ReplaceOptions replace;
   replace.force = s.force;
   ReplaceDirectory(
@@ -120,6 +130,11 @@ int OptimiseCommand::Run() const {
         info.budget_file = s.budget_file;
         info.threads = s.threads;
         WriteReportDirectory(optimum, info, report, (fs::path(tmp) / "report").string());
+        if (!plots.empty()) {
+          const std::string plots_dir = (fs::path(tmp) / "plots").string();
+          fs::create_directories(plots_dir);
+          report::WritePlotsAsPng(plots, plots_dir, s.threads);
+        }
       },
       replace);
 

@@ -3,8 +3,9 @@
 // the largest RMS / requirement) while meeting every requirement
 // (deb/optimise/optimiser.h), prints the optimum and which requirements are
 // active, and writes summary.json, history.csv, optimum.yaml (the optimum as
-// a budget that extends the original) and the optimum's full report
-// (report/) atomically into reports/<budget-name>_optimum/ (or --out).
+// a budget that extends the original), the optimum's full report (report/)
+// and plots/ (the history; for two variables the objective's map over a
+// 21 x 21 grid of the bounds) atomically into reports/<budget-name>_optimum/ (or --out).
 // Exit code 5 when no design within the bounds meets every requirement (the
 // least violating one is written).
 #pragma once

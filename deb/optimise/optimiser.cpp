@@ -211,6 +211,31 @@ std::vector<RequirementRatio> RequirementRatios(const BudgetResult& result) {
   return out;
 }
 
+DesignMap MapDesigns(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
+                     const DesignLoader& loader, int n, int threads) {
+  DEB_DEMAND(variables.size() == 2 && n >= 2);
+  DesignMap map;
+  const auto count = static_cast<std::size_t>(n);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double t = static_cast<double>(k) / static_cast<double>(n - 1);
+    map.x.push_back(variables[0].min + t * (variables[0].max - variables[0].min));
+    map.y.push_back(variables[1].min + t * (variables[1].max - variables[1].min));
+  }
+  map.objective.assign(count, std::vector<double>(count));
+  map.worst_ratio.assign(count, std::vector<double>(count));
+  ParallelForEach(
+      count * count,
+      [&](std::size_t k) {
+        const std::size_t i = k / count, j = k % count;
+        const Evaluated e = EvaluateDesign(loader, objective, {map.x[i], map.y[j]});
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        map.objective[i][j] = e.error.empty() ? e.objective : nan;
+        map.worst_ratio[i][j] = e.error.empty() ? e.worst : nan;
+      },
+      threads);
+  return map;
+}
+
 OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
                            const OptimiseOptions& options, const DesignLoader& loader) {
   const std::size_t n = variables.size();

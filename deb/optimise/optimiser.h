@@ -108,6 +108,18 @@ using DesignLoader = std::function<Budget(const std::vector<double>& values)>;
 // requirements.
 std::vector<RequirementRatio> RequirementRatios(const struct BudgetResult& result);
 
+// The objective and the largest RMS / requirement over a grid of two
+// variables' box (n x n designs, evaluated in parallel): the map a reader
+// checks the optimum on. NaN where the budget fails.
+struct DesignMap {
+  std::vector<double> x, y;                    // SI, ascending
+  std::vector<std::vector<double>> objective;  // [i][j] at (x[i], y[j])
+  std::vector<std::vector<double>> worst_ratio;
+};
+// DEB_DEMANDs two variables and n >= 2.
+DesignMap MapDesigns(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
+                     const DesignLoader& loader, int n, int threads);
+
 // @throws InputError for an objective output the budget has not, max_ratio
 //   or constraints with no requirement to meet, BOBYQA with requirements to
 //   meet, and the nominal budget's own errors.
