@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -17,6 +19,8 @@
 #include "deb/report/compare/optimise_plots.h"
 #include "deb/report/compare/overlay_plots.h"
 #include "deb/results/optimise_files.h"
+#include "deb/uncertainty/sample_design.h"
+#include "deb/uncertainty/uncertainty_study.h"
 #include "tools/budget_overrides_option.h"
 #include "tools/run_command.h"
 
@@ -39,7 +43,21 @@ struct OptimiseCommand::Options {
   bool quiet = false;
   bool force = false;
   bool plots = true;
+  std::string robust;  // "P95": the percentile under the tolerances
+  int robust_samples = 64;
 };
+
+namespace {
+
+// "P95" -> 95; NaN unless it is P (or p) and a number in (0, 100).
+double PercentileOf(const std::string& text) {
+  if (text.size() < 2 || (text[0] != 'P' && text[0] != 'p')) return std::nan("");
+  char* end = nullptr;
+  const double p = std::strtod(text.c_str() + 1, &end);
+  return end != nullptr && *end == '\0' && p > 0.0 && p < 100.0 ? p : std::nan("");
+}
+
+}  // namespace
 
 OptimiseCommand::OptimiseCommand() : options_(std::make_unique<Options>()) {}
 OptimiseCommand::~OptimiseCommand() = default;
@@ -64,7 +82,17 @@ CLI::App* OptimiseCommand::Register(CLI::App& app) {
       ->check(CLI::Range(1, 100000));
   c->add_option("--tolerance", s.tolerance, "Of each variable, relative to its range (default 1e-8)")
       ->check(CLI::Range(1e-12, 0.1));
-  c->add_option("--seed", s.seed, "Seed of the starts' Sobol points (default 1)");
+  c->add_option("--seed", s.seed, "Seed of the starts' Sobol points and the robust samples (default 1)");
+  c->add_option("--robust", s.robust,
+                "Pxx: minimise the xx-th percentile under the tolerances of the other parameters (their "
+                "distributions), each requirement's Pxx within its limit (e.g. P95)")
+      ->check([](const std::string& v) {
+        return std::isnan(PercentileOf(v)) ? "give a percentile as Pxx, 0 < xx < 100 (e.g. P95), not '" + v + "'"
+                                           : std::string();
+      });
+  c->add_option("--robust-samples", s.robust_samples,
+                "Latin hypercube samples of the tolerances at each design (default 64; the same at every design)")
+      ->check(CLI::Range(2, 100000));
   AddOverridesOption(c, &s.overrides, "--set", "the budget");
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_optimum)");
   c->add_option("--threads,-j", s.threads, "Budgets evaluated at once (default: all cores)")->check(CLI::NonNegativeNumber);
@@ -76,8 +104,19 @@ CLI::App* OptimiseCommand::Register(CLI::App& app) {
 
 int OptimiseCommand::Run() const {
   const Options& s = *options_;
-  const OptimiseBudget budget = LoadOptimiseFile(s.budget_file, s.vary, s.overrides);
+  std::optional<double> quantile;
+  if (!s.robust.empty()) quantile = PercentileOf(s.robust) / 100.0;
+  const OptimiseBudget budget = LoadOptimiseFile(s.budget_file, s.vary, s.overrides, quantile.has_value());
   OptimiseObjective objective;
+  if (quantile) {
+    // The same Latin hypercube of the tolerances at every design.
+    objective.quantile = quantile;
+    const std::size_t p = budget.uncertain.parameters.size();
+    const SampleDesign design(SamplingMethod::kLatinHypercube, s.seed, static_cast<std::size_t>(s.robust_samples), p);
+    const Eigen::LLT<Eigen::MatrixXd> copula(budget.uncertain.correlation);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(s.robust_samples); ++k)
+      objective.samples.push_back(SampleValues(budget.uncertain, copula, design.Point(k)));
+  }
   if (s.objective == "max-ratio") {
     objective.max_ratio = true;
   } else if (!s.objective.empty()) {
@@ -85,6 +124,7 @@ int OptimiseCommand::Run() const {
   } else {
     std::vector<double> nominal;
     for (const DesignVariable& v : budget.variables) nominal.push_back(v.nominal);
+    for (const UncertainParameter& p : budget.uncertain.parameters) nominal.push_back(p.nominal);
     const Budget b = budget.loader(nominal);
     if (b.outputs.size() == 1) objective.output = b.outputs.front().name;
     else objective.max_ratio = true;
@@ -107,7 +147,10 @@ int OptimiseCommand::Run() const {
   for (const BudgetOverride& o : s.overrides) overrides.push_back(o.key_path + "=" + o.value);
   EngineOptions engine;
   engine.threads = s.threads;
-  const BudgetResult optimum = Evaluate(budget.loader(result.starts[result.best].values), engine);
+  // The optimum's report: at the tolerances' nominal values.
+  std::vector<double> at = result.starts[result.best].values;
+  for (const UncertainParameter& p : budget.uncertain.parameters) at.push_back(p.nominal);
+  const BudgetResult optimum = Evaluate(budget.loader(at), engine);
   // The figures: the history, and for two variables the objective's map.
   std::vector<report::Plot> plots;
   if (s.plots) {
@@ -140,16 +183,17 @@ int OptimiseCommand::Run() const {
 
   if (!s.quiet) {
     const OptimiseStart& best = result.starts[result.best];
-    std::printf("optimise %s: %s over %zu parameter(s), %s, %d start(s), %d budgets evaluated\n", budget.name.c_str(),
-                objective.Text().c_str(), budget.variables.size(), ToString(result.method).c_str(), options.starts,
-                result.evaluations);
-    std::printf("nominal: %s = %s\n", objective.max_ratio ? "largest RMS / requirement" : ("RMS of " + objective.output).c_str(),
-                SignificantText(result.nominal_objective, 6).c_str());
+    const std::string what = objective.Text();
+    std::printf("optimise %s: %s over %zu parameter(s), %s, %d start(s), %d designs evaluated%s\n",
+                budget.name.c_str(), what.c_str(), budget.variables.size(), ToString(result.method).c_str(),
+                options.starts, result.evaluations,
+                quantile ? (" (" + std::to_string(objective.samples.size()) + " budgets each)").c_str() : "");
+    std::printf("nominal: %s = %s\n", what.c_str(), SignificantText(result.nominal_objective, 6).c_str());
     std::printf("optimum (start %zu, %s): %s\n", result.best + 1, best.stop.c_str(), OptimumText(result).c_str());
-    std::printf("  %s = %s\n", objective.max_ratio ? "largest RMS / requirement" : ("RMS of " + objective.output).c_str(),
-                SignificantText(best.objective, 6).c_str());
+    std::printf("  %s = %s\n", what.c_str(), SignificantText(best.objective, 6).c_str());
     for (const RequirementRatio& q : result.requirements)
-      std::printf("  %s: RMS %s of %s (%s)%s\n", q.name.c_str(), SignificantText(q.rms, 5).c_str(),
+      std::printf("  %s: %sRMS %s of %s (%s)%s\n", q.name.c_str(), quantile ? ("P" + s.robust.substr(1) + " ").c_str() : "",
+                  SignificantText(q.rms, 5).c_str(),
                   SignificantText(q.limit, 5).c_str(), (SignificantText(100.0 * q.ratio(), 4) + " %").c_str(),
                   q.active ? ", active" : "");
     std::printf("results: %s/summary.json, optimum.yaml; the optimum's report: %s/report/\n", dir.c_str(), dir.c_str());

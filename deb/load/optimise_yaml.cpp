@@ -5,12 +5,13 @@
 #include "deb/core/error.h"
 #include "deb/core/suggest.h"
 #include "deb/load/design_bounds_yaml.h"
+#include "deb/load/distributions_yaml.h"
 #include "deb/load/parameter_variants.h"
 
 namespace deb {
 
 OptimiseBudget LoadOptimiseFile(const std::string& path, const std::vector<std::string>& vary,
-                                const std::vector<BudgetOverride>& overrides) {
+                                const std::vector<BudgetOverride>& overrides, bool robust) {
   const load::StudyBudget budget = load::ReadStudyBudget(path, overrides);
   const std::vector<DesignVariable> bounded = load::ParseDesignBounds(budget.reader->Root(), *budget.parameters);
   OptimiseBudget out;
@@ -38,6 +39,26 @@ OptimiseBudget LoadOptimiseFile(const std::string& path, const std::vector<std::
   }
   std::vector<load::VariedParameter> varied;
   for (const DesignVariable& v : out.variables) varied.push_back({v.name, v.unit, v.unit_si});
+  if (robust) {
+    // The tolerances of the other parameters: a variable's own distribution
+    // belongs to its nominal value, which the optimiser moves.
+    const UncertaintySpec all = load::ParseUncertainty(budget.reader->Root(), *budget.parameters);
+    std::vector<std::size_t> kept;
+    for (std::size_t i = 0; i < all.parameters.size(); ++i)
+      if (std::find(vary.begin(), vary.end(), all.parameters[i].name) == vary.end()) kept.push_back(i);
+    if (kept.empty())
+      throw InputError(path + ": --robust: no parameter besides those of --vary has a distribution (the tolerances "
+                       "the design must be robust to)");
+    const auto k = static_cast<Eigen::Index>(kept.size());
+    out.uncertain.correlation.resize(k, k);
+    for (Eigen::Index a = 0; a < k; ++a) {
+      out.uncertain.parameters.push_back(all.parameters[kept[static_cast<std::size_t>(a)]]);
+      for (Eigen::Index b = 0; b < k; ++b)
+        out.uncertain.correlation(a, b) = all.correlation(static_cast<Eigen::Index>(kept[static_cast<std::size_t>(a)]),
+                                                          static_cast<Eigen::Index>(kept[static_cast<std::size_t>(b)]));
+    }
+    for (const UncertainParameter& p : out.uncertain.parameters) varied.push_back({p.name, p.unit, p.unit_si});
+  }
   out.loader = load::ParameterVariants(budget, path, overrides, varied, "design");
   return out;
 }

@@ -10,19 +10,25 @@
 
 #include "deb/load/budget_yaml.h"
 #include "deb/optimise/optimiser.h"
+#include "deb/uncertainty/uncertainty_study.h"
 
 namespace deb {
 
 struct OptimiseBudget {
   std::string name;  // the budget's name as written
   std::vector<DesignVariable> variables;  // in the order named
+  // With `robust`: the budget's uncertain parameters other than the
+  // variables (their distributions and correlations), whose values the
+  // loader takes after the variables'.
+  UncertaintySpec uncertain;
   DesignLoader loader;
 };
 
 // @throws InputError "<file>: --vary NAME: ..." for a name that is no
 //   parameter (the nearest suggested), a parameter without bounds, a name
-//   given twice or none at all; and the budget's own errors.
+//   given twice or none at all; with `robust`, a budget with no uncertain
+//   parameter besides the variables; and the budget's own errors.
 OptimiseBudget LoadOptimiseFile(const std::string& path, const std::vector<std::string>& vary,
-                                const std::vector<BudgetOverride>& overrides = {});
+                                const std::vector<BudgetOverride>& overrides = {}, bool robust = false);
 
 }  // namespace deb

@@ -13,6 +13,7 @@
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
 #include "deb/uncertainty/sample_design.h"
+#include "deb/uncertainty/sample_statistics.h"
 
 namespace deb {
 
@@ -31,8 +32,9 @@ struct Evaluated {
   std::string error;
 };
 
-Evaluated EvaluateDesign(const DesignLoader& loader, const OptimiseObjective& objective,
-                         const std::vector<double>& values) {
+// The budget's figures at one point (design values, then a sample's).
+Evaluated EvaluatePoint(const DesignLoader& loader, const OptimiseObjective& objective,
+                        const std::vector<double>& values) {
   Evaluated e;
   try {
     const Budget b = loader(values);
@@ -52,6 +54,43 @@ Evaluated EvaluateDesign(const DesignLoader& loader, const OptimiseObjective& ob
     e.objective = std::numeric_limits<double>::infinity();
     e.worst = std::numeric_limits<double>::infinity();
     e.error = error.what();
+  }
+  return e;
+}
+
+// At a design: its figures, or (robust) their quantiles over the samples,
+// the samples evaluated in parallel.
+Evaluated EvaluateDesign(const DesignLoader& loader, const OptimiseObjective& objective,
+                         const std::vector<double>& values, int threads = 1) {
+  if (!objective.quantile) return EvaluatePoint(loader, objective, values);
+  const std::size_t n = objective.samples.size();
+  DEB_DEMAND(n >= 1);
+  std::vector<Evaluated> at(n);
+  ParallelForEach(
+      n,
+      [&](std::size_t s) {
+        std::vector<double> v = values;
+        v.insert(v.end(), objective.samples[s].begin(), objective.samples[s].end());
+        at[s] = EvaluatePoint(loader, objective, v);
+      },
+      threads);
+  for (const Evaluated& a : at)
+    if (!a.error.empty()) return a;
+  const double q = *objective.quantile;
+  Evaluated e;
+  e.requirements = at[0].requirements;
+  for (std::size_t j = 0; j < e.requirements.size(); ++j) {
+    std::vector<double> rms;
+    for (const Evaluated& a : at) rms.push_back(a.requirements[j].rms);
+    e.requirements[j].rms = Percentile(rms, q);
+    e.worst = std::max(e.worst, e.requirements[j].ratio());
+  }
+  if (objective.max_ratio) {
+    e.objective = e.worst;
+  } else {
+    std::vector<double> f;
+    for (const Evaluated& a : at) f.push_back(a.objective);
+    e.objective = Percentile(f, q);
   }
   return e;
 }
@@ -89,7 +128,7 @@ class Search {
   const Evaluated& At(const std::vector<double>& x) {
     const auto it = cache_.find(x);
     if (it != cache_.end()) return it->second;
-    return Store(x, EvaluateDesign(loader_, objective_, Values(x)));
+    return Store(x, EvaluateDesign(loader_, objective_, Values(x), options_.threads));
   }
 
   // The objective and the constraints' gradients at x by central differences
@@ -196,7 +235,10 @@ nlopt::algorithm AlgorithmOf(OptimiseMethod m) {
 }  // namespace
 
 std::string OptimiseObjective::Text() const {
-  return max_ratio ? "the largest RMS / requirement" : "the RMS of " + output;
+  const std::string what = max_ratio ? "the largest RMS / requirement" : "the RMS of " + output;
+  if (!quantile) return what;
+  return "the P" + SignificantText(100.0 * *quantile, 4) + " of " + what + " under the tolerances (" +
+         std::to_string(samples.size()) + " samples)";
 }
 
 std::vector<RequirementRatio> RequirementRatios(const BudgetResult& result) {
@@ -249,7 +291,12 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
   // The nominal design: it must evaluate, and it fixes the requirements.
   std::vector<double> nominal(n);
   for (std::size_t i = 0; i < n; ++i) nominal[i] = variables[i].nominal;
-  const Budget nominal_budget = loader(nominal);
+  std::vector<double> nominal_point = nominal;
+  if (objective.quantile) {
+    DEB_DEMAND(!objective.samples.empty() && *objective.quantile > 0.0 && *objective.quantile < 1.0);
+    nominal_point.insert(nominal_point.end(), objective.samples[0].begin(), objective.samples[0].end());
+  }
+  const Budget nominal_budget = loader(nominal_point);
   EngineOptions engine;
   engine.threads = 1;
   engine.response_traces = false;
@@ -278,6 +325,13 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
   } else {
     for (const RequirementRatio& q : result.nominal_requirements)
       result.nominal_objective = std::max(result.nominal_objective, q.ratio());
+  }
+  if (objective.quantile) {
+    // The nominal design under the tolerances: the robust objective's scale.
+    const Evaluated e = EvaluateDesign(loader, objective, nominal, options.threads);
+    if (!e.error.empty()) throw InputError("the nominal design under the tolerances: " + e.error);
+    result.nominal_objective = e.objective;
+    result.nominal_requirements = e.requirements;
   }
   result.method = options.method != OptimiseMethod::kAuto ? options.method
                   : m > 0                                  ? OptimiseMethod::kSlsqp

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,11 +45,17 @@ inline constexpr EnumName<OptimiseMethod> kOptimiseMethodNames[] = {{OptimiseMet
 constexpr EnumNames<OptimiseMethod> NamesOf(OptimiseMethod) { return kOptimiseMethodNames; }
 
 // What is minimised: the RMS of `output`, or (max_ratio) the largest
-// RMS / limit over the requirements.
+// RMS / limit over the requirements. Robust (`quantile` set): at each
+// design, the budget is evaluated at every sample of the other uncertain
+// parameters (`samples`, the same for every design: common random
+// numbers), and the objective and each requirement's RMS are their
+// `quantile` over the samples (P95 of the RMS <= the limit).
 struct OptimiseObjective {
   bool max_ratio = false;
   std::string output;
-  std::string Text() const;  // "RMS of z", "the largest RMS / requirement"
+  std::optional<double> quantile;              // in (0, 1)
+  std::vector<std::vector<double>> samples;    // per sample, the uncertain parameters' values (SI)
+  std::string Text() const;  // "the RMS of z", "the largest RMS / requirement", "the P95 of the RMS of z"
 };
 
 struct OptimiseOptions {
@@ -100,8 +107,9 @@ struct OptimiseResult {
   int evaluations = 0;
 };
 
-// The budget at the variables' values (SI, in order); may be called from
-// several threads at once.
+// The budget at the variables' values (SI, in order), followed (robust) by a
+// sample's values of the uncertain parameters; may be called from several
+// threads at once.
 using DesignLoader = std::function<Budget(const std::vector<double>& values)>;
 
 // The requirement lines of a result: every output's rms_max, then its band

@@ -195,6 +195,35 @@ TEST_CASE("the thesis' Kv and h: BOBYQA within 60 evaluations, no worse than any
   CHECK(best.objective <= line_best);
 }
 
+TEST_CASE("robust: the P95 over a's tolerance moves kv* to (b / a_P95)^(1/4)") {
+  // a uncertain: at a fixed kv the RMS rises with a, so its P95 over the
+  // samples is the RMS at the samples' P95 of a; with 21 samples that is
+  // exactly the 20th smallest (numpy's percentile: h = 0.95 x 20 = 19).
+  const Dir dir;
+  const std::string file = dir.Write(
+      "b.yaml", test::Replace(test::Replace(kBudget, "  kv: {value: 5, min: 0.5, max: 10}\n",
+                                            "  kv: {value: 5, min: 0.5, max: 10}\n"
+                                            "  a: {value: 1, distribution: {uniform: {min: 0.5, max: 1.5}}}\n"),
+                              "level: 1.0e-6}", "level: a * 1.0e-6}"));
+  const OptimiseBudget b = LoadOptimiseFile(file, {"kv"}, {}, true);
+  REQUIRE(b.uncertain.parameters.size() == 1);
+  OptimiseObjective z;
+  z.output = "z";
+  z.quantile = 0.95;
+  for (int k = 20; k >= 0; --k) z.samples.push_back({0.5 + k / 20.0});  // any order
+  OptimiseOptions o;
+  o.method = OptimiseMethod::kBobyqa;
+  const OptimiseResult r = RunOptimise(b.variables, z, o, b.loader);
+  const double expected = std::pow(16.0 / 1.45, 0.25);
+  MESSAGE("robust kv* " << r.starts[r.best].values[0] << ", closed form " << expected);
+  CHECK(r.starts[r.best].values[0] == doctest::Approx(expected).epsilon(1e-6));
+  CHECK(z.Text() == "the P95 of the RMS of z under the tolerances (21 samples)");
+  // A budget with no tolerance besides the variables: --robust has nothing to sample.
+  CHECK_THROWS_WITH_AS(LoadOptimiseFile(dir.Write("c.yaml", kBudget), {"kv"}, {}, true),
+                       doctest::Contains("--robust: no parameter besides those of --vary has a distribution"),
+                       InputError);
+}
+
 TEST_CASE("bad bounds and --vary: errors naming the rule") {
   const Dir dir;
   using test::CheckLocated;
