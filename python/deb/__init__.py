@@ -1,0 +1,29 @@
+"""deb: dynamic error budgeting for precision machines, from Python.
+
+    import deb
+    b = deb.load("budgets/single_axis_isolator.yaml", set={"sources[1].spectrum.level": 0.02})
+    r = deb.evaluate(b)
+    out = r.output("z_velocity")
+    out.rms, out.psd, out.cps, r.f          # floats; numpy arrays over r.f (Hz)
+
+A thin layer over deb's C++ library (deb._deb); docs/python.md documents
+every function.
+"""
+
+from . import _deb
+from ._builders import budget, flat_source, modal, state_space, transfer_function
+from ._deb import Band, Budget, Comparison, Contributor, Output, Requirement, Result, SweepResult
+from ._errors import InputError, WriteError
+from ._load import load
+from ._studies import compare, evaluate, frequency_response, sweep, to_dict, write_report
+
+__version__ = _deb.__version__
+
+Result.to_dict = to_dict
+Result.to_dict.__doc__ = "summary.json of this result as a dict (the text deb run writes, parsed)"
+
+__all__ = [
+    "Band", "Budget", "Comparison", "Contributor", "InputError", "Output", "Requirement", "Result", "SweepResult",
+    "WriteError", "budget", "compare", "evaluate", "flat_source", "frequency_response", "load", "modal",
+    "state_space", "sweep", "to_dict", "transfer_function", "write_report",
+]
