@@ -11,7 +11,8 @@ every function.
 """
 
 from . import _deb
-from ._builders import budget, flat_source, modal, state_space, transfer_function
+from ._builders import (budget, flat_source, frf_path, measured_source, modal, state_space, transfer_function,
+                        write_frf, write_spectrum, zpk)
 from ._deb import Band, Budget, Comparison, Contributor, Output, Requirement, Result, SweepResult
 from ._errors import InputError, WriteError
 from ._load import load
@@ -24,6 +25,7 @@ Result.to_dict.__doc__ = "summary.json of this result as a dict (the text deb ru
 
 __all__ = [
     "Band", "Budget", "Comparison", "Contributor", "InputError", "Output", "Requirement", "Result", "SweepResult",
-    "WriteError", "budget", "compare", "evaluate", "flat_source", "frequency_response", "load", "modal",
-    "state_space", "sweep", "to_dict", "transfer_function", "write_report",
+    "WriteError", "budget", "compare", "evaluate", "flat_source", "frequency_response", "frf_path", "load",
+    "measured_source", "modal", "state_space", "sweep", "to_dict", "transfer_function", "write_frf", "write_report",
+    "write_spectrum", "zpk",
 ]

@@ -91,6 +91,47 @@ def transfer_function(num, den, *, name, input_unit, output_unit, inputs=None, o
     return _common(entry, name, description, input_unit, output_unit)
 
 
+def _zpk_roots(roots, argument):
+    """Roots of s (rad/s) as deb's zpk entries: a real root r is f_hz = -r/(2 pi)
+    (the factor s + 2 pi f), a conjugate pair {f_hz, zeta} (the factor
+    s^2 + 2 zeta w s + w^2, w = |root|, zeta = -Re(root)/w)."""
+    try:
+        r = np.atleast_1d(np.asarray(roots, dtype=np.complex128))
+    except (TypeError, ValueError) as e:
+        raise argument_error(argument, f"not an array of numbers ({e})") from None
+    if r.ndim != 1:
+        raise argument_error(argument, f"expected a 1-D array, got shape {r.shape}")
+    if not np.all(np.isfinite(r)):
+        raise argument_error(argument, "every root must be finite")
+    out, upper, lower = [], [], []
+    for root in r:
+        if root.imag == 0.0:
+            out.append(float(-root.real / (2 * np.pi)))
+        else:
+            (upper if root.imag > 0 else lower).append(root)
+    for root in upper:
+        match = [k for k, c in enumerate(lower) if abs(c - root.conjugate()) <= 1e-12 * abs(root)]
+        if not match:
+            raise argument_error(argument, f"the complex root {root} has no conjugate")
+        lower.pop(match[0])
+        w = abs(root)
+        out.append({"f_hz": float(w / (2 * np.pi)), "zeta": float(-root.real / w)})
+    if lower:
+        raise argument_error(argument, f"the complex root {lower[0]} has no conjugate")
+    return out
+
+
+def zpk(zeros, poles, gain, *, name, input_unit, output_unit, inputs=None, outputs=None, description=None):
+    """A SISO path gain * prod(s - zeros) / prod(s - poles) (`type: zpk`),
+    the roots of s in rad/s as scipy.signal's zpk form takes them (complex
+    ones in conjugate pairs, each pair written as {f_hz, zeta})."""
+    entry = {"type": "zpk", "zeros": _zpk_roots(zeros, "zeros"), "poles": _zpk_roots(poles, "poles"),
+             "gain": float(real_array(gain, "gain", 1)[0])}
+    entry["inputs"] = _names(inputs, 1, "inputs", "u")
+    entry["outputs"] = _names(outputs, 1, "outputs", "y")
+    return _common(entry, name, description, input_unit, output_unit)
+
+
 def modal(f_hz, zeta, phi_in, phi_out, *, name, input_names, output_names, input_unit, output_unit,
           output_quantity="displacement", description=None):
     """A path of mass-normalised modes (`type: modal`):
@@ -161,3 +202,110 @@ def budget(name, *, sources, paths, contributors, outputs, bands=None, grid=None
     if bands is not None:
         out["bands"] = [list(b) if isinstance(b, tuple) else b for b in bands]
     return out
+
+
+# Measured data from arrays. A budget reads measured spectra and frequency
+# responses from files (docs/data_files.md); these write such a file, every
+# number with 17 significant digits (the library's own writers keep 10 for a
+# PSD), for measured_source() and frf_path() to name.
+
+def _names_row(names, argument):
+    for n in names:
+        if not n or any(ch in n for ch in ", \t#\n/"):
+            raise argument_error(argument, f"{n!r} cannot name a column (no commas, blanks, '#' or '/')")
+    return names
+
+
+def write_spectrum(path, f_hz, psd, *, unit, quantity="psd", channels=None, bins=False):
+    """Writes a spectrum file (docs/data_files.md, "Spectrum files"): f_hz
+    (n,) in Hz, increasing and > 0; psd (n,) or (n, channels), one-sided
+    PSDs in unit^2/Hz (quantity="asd": ASDs in unit/sqrt(Hz)); channels: the
+    column names (default ch1, ...); bins=True: the rows are the bins of a
+    spectral estimate (held constant over each bin), else read log-log.
+    Returns the path, as a str."""
+    f = real_array(f_hz, "f_hz", 1)
+    s = np.asarray(psd)
+    s = real_array(s, "psd", 1 if s.ndim <= 1 else 2)
+    if s.ndim == 1:
+        s = s[:, None]
+    if s.shape[0] != f.size:
+        raise argument_error("psd", f"expected {f.size} rows (one per frequency), got shape {s.shape}")
+    names = _names_row(_names(channels, s.shape[1], "channels", "ch") if channels is not None
+                       else [f"ch{i + 1}" for i in range(s.shape[1])], "channels")
+    lines = [f"# unit: {unit}", f"# quantity: {quantity}", "# sides: one"]
+    if bins:
+        lines.append("# interpolation: bins")
+    lines.append(", ".join(["f_hz", *names]))
+    lines += [", ".join(repr(float(x)) for x in (f[k], *s[k])) for k in range(f.size)]
+    with open(path, "w", encoding="utf-8") as out:
+        out.write("\n".join(lines) + "\n")
+    return str(path)
+
+
+def write_frf(path, f_hz, h, *, outputs, inputs):
+    """Writes a frequency response table (docs/data_files.md): f_hz (n,) in
+    Hz, increasing and > 0; h (n, outputs, inputs), complex, as
+    frequency_response() returns it; the entries' real and imaginary parts
+    as columns OUTPUT/INPUT.re, .im. Returns the path, as a str."""
+    f = real_array(f_hz, "f_hz", 1)
+    try:
+        hc = np.asarray(h)
+    except (TypeError, ValueError) as e:
+        raise argument_error("h", f"not an array of numbers ({e})") from None
+    if hc.dtype.kind not in "fiuc":
+        raise argument_error("h", f"expected complex or real numbers, got dtype {hc.dtype}")
+    hc = hc.astype(np.complex128)
+    outputs = _names_row([str(n) for n in outputs], "outputs")
+    inputs = _names_row([str(n) for n in inputs], "inputs")
+    if hc.shape != (f.size, len(outputs), len(inputs)):
+        raise argument_error("h", f"expected shape ({f.size}, {len(outputs)}, {len(inputs)}) "
+                                  f"(frequencies, outputs, inputs), got {hc.shape}")
+    bad = np.argwhere(~np.isfinite(hc))
+    if bad.size:
+        raise argument_error("h", f"element {tuple(int(i) for i in bad[0])} is {hc[tuple(bad[0])]}; "
+                                  "every value must be finite")
+    header = ["f_hz"] + [f"{o}/{i}.{part}" for o in outputs for i in inputs for part in ("re", "im")]
+    rows = []
+    for k in range(f.size):
+        cells = [repr(float(f[k]))]
+        for a in range(len(outputs)):
+            for b in range(len(inputs)):
+                cells += [repr(float(hc[k, a, b].real)), repr(float(hc[k, a, b].imag))]
+        rows.append(", ".join(cells))
+    with open(path, "w", encoding="utf-8") as out:
+        out.write(", ".join(header) + "\n" + "\n".join(rows) + "\n")
+    return str(path)
+
+
+def measured_source(name, file, *, unit=None, channels=None, columns=None, extrapolation=None, description=None):
+    """A source read from a spectrum file (`type: measured`), e.g. one
+    write_spectrum() wrote; extrapolation outside the data: "error"
+    (default), "zero" or "hold"."""
+    spectrum = {"type": "measured", "file": str(file)}
+    if columns is not None:
+        spectrum["columns"] = list(columns)
+    if extrapolation is not None:
+        spectrum["extrapolation"] = extrapolation
+    entry = {"name": name, "spectrum": spectrum}
+    if unit is not None:
+        entry["unit"] = unit
+    if channels is not None:
+        entry["channels"] = list(channels)
+    if description is not None:
+        entry["description"] = description
+    return entry
+
+
+def frf_path(name, file, *, input_unit, output_unit, inputs=None, outputs=None, extrapolation=None,
+             description=None):
+    """A path read from a frequency response table (`type: frf`), e.g. one
+    write_frf() wrote; inputs/outputs: the names (and order) the file must
+    hold (default: all, in the file's order)."""
+    entry = {"type": "frf", "file": str(file)}
+    if inputs is not None:
+        entry["inputs"] = list(inputs)
+    if outputs is not None:
+        entry["outputs"] = list(outputs)
+    if extrapolation is not None:
+        entry["extrapolation"] = extrapolation
+    return _common(entry, name, description, input_unit, output_unit)

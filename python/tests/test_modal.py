@@ -108,6 +108,14 @@ def test_a_state_space_path_from_arrays_equals_the_modal_one():
     assert exact == pytest.approx(closed_form_variance(), rel=1e-12, abs=0)
     f = np.array([1.0, 20.0, 200.0])
     np.testing.assert_allclose(deb.frequency_response(deb.load(b), "mode", f)[:, 0, 0], h_closed_form(f), rtol=1e-12)
+    # As zeros, poles and gain: no zeros, the roots of m s^2 + c s + k, gain 1/m.
+    b["paths"] = [deb.zpk([], np.roots([MASS, c, STIFFNESS]), 1.0 / MASS, name="mode", outputs=["x"],
+                          input_unit="N", output_unit="m")]
+    assert b["paths"][0]["poles"][0]["zeta"] == pytest.approx(ZETA, rel=1e-12, abs=0)
+    np.testing.assert_allclose(deb.frequency_response(deb.load(b), "mode", f)[:, 0, 0], h_closed_form(f), rtol=1e-12)
+    with pytest.raises(deb.InputError) as e:
+        deb.zpk([], [-1 + 2j], 1.0, name="p", input_unit="N", output_unit="m")
+    assert e.value.key_path == "poles" and "conjugate" in e.value.message
     # As a transfer function 1 / (m s^2 + c s + k).
     b["paths"] = [deb.transfer_function([1.0], [MASS, c, STIFFNESS], name="mode", outputs=["x"], input_unit="N",
                                         output_unit="m")]
