@@ -22,6 +22,15 @@ __version__ = _deb.__version__
 
 Result.to_dict = to_dict
 Result.to_dict.__doc__ = "summary.json of this result as a dict (the text deb run writes, parsed)"
+# What summary.json holds beyond the traces, read from it rather than bound
+# twice: the feedback loops with their margins, the output covariance, and
+# per failing output what would fix it.
+Result.loops = property(lambda self: to_dict(self).get("loops", []),
+                        doc="The feedback loops with their margins (summary.json's loops), a dict each")
+Result.covariance = property(lambda self: to_dict(self).get("covariance"),
+                             doc="The output covariance the budget asks for (summary.json's covariance), or None")
+Result.guidance = property(lambda self: {o["name"]: o.get("guidance") for o in to_dict(self)["outputs"]},
+                           doc="{output: what would fix it (summary.json's guidance), or None when it passes}")
 
 __all__ = [
     "Band", "Budget", "Comparison", "Contributor", "InputError", "Output", "Requirement", "Result", "SweepResult",

@@ -7,8 +7,7 @@ import numpy as np
 import pytest
 
 import deb
-from conftest import BUDGETS
-from test_modal import MASS, STIFFNESS, single_mode_budget
+from test_modal import single_mode_budget
 
 
 def test_a_negative_damping_is_located_at_its_key_and_line():

@@ -1,6 +1,5 @@
 """deb.load: a file, a text and a dict load the same budget; set= overrides."""
 
-import pathlib
 
 import numpy as np
 import pytest

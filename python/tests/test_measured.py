@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import deb
-from test_modal import MASS, STIFFNESS, ZETA, h_closed_form, single_mode_budget
+from test_modal import MASS, STIFFNESS, h_closed_form, single_mode_budget
 
 
 def test_a_measured_source_from_arrays_integrates_exactly(tmp_path):

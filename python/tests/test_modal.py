@@ -135,3 +135,18 @@ def test_threads_do_not_change_the_numbers():
             for ca, cb in zip(a.contributors, b.contributors):
                 np.testing.assert_array_equal(ca.cps, cb.cps)
                 assert ca.exact_variance == cb.exact_variance
+
+
+def test_python_threads_evaluate_one_budget_at_once():
+    # The GIL is released while evaluating: two Python threads evaluate the same
+    # deb.Budget concurrently and get the numbers of a lone evaluation.
+    from concurrent.futures import ThreadPoolExecutor
+
+    from conftest import SOURCE_DIR
+    b = deb.load(SOURCE_DIR / "budgets" / "wafer_stage.yaml")
+    alone = deb.evaluate(b, threads=1)
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        results = list(pool.map(lambda _: deb.evaluate(b, threads=1), range(4)))
+    for r in results:
+        for a, o in zip(alone.outputs, r.outputs, strict=True):
+            np.testing.assert_array_equal(a.psd, o.psd)

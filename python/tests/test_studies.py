@@ -1,11 +1,8 @@
 """deb.sweep, deb.compare and deb.write_report against the CLI's sweep, compare and run."""
 
-import csv
-import io
 import json
 import subprocess
 
-import numpy as np
 import pytest
 
 import deb
@@ -73,3 +70,15 @@ def test_write_report_equals_deb_run(tmp_path):
     with pytest.raises(deb.WriteError):
         deb.write_report(r, tmp_path / "not_deb", plots=False)
     assert (tmp_path / "not_deb" / "mine.txt").read_text() == "keep"
+
+
+def test_loops_covariance_and_guidance_are_summary_json_s():
+    r = deb.evaluate(BUDGETS / "wafer_stage.yaml")
+    d = r.to_dict()
+    assert r.loops == d["loops"] and r.loops[0]["controller"] == "controller"
+    assert r.loops[0]["phase_margin"]["deg"] > 0
+    assert r.guidance["position"]["sentence"].startswith("position fails by")
+    assert r.covariance is None
+    thesis = deb.evaluate(BUDGETS / "nizamoglu2015_h210.yaml")
+    assert thesis.covariance is not None and thesis.covariance == thesis.to_dict()["covariance"]
+    assert deb.evaluate(BUDGETS / "guide" / "first_budget.yaml").loops == []
