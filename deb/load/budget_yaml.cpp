@@ -269,4 +269,14 @@ Budget LoadBudgetText(const std::string& text, const std::string& name, const st
   return Load(YamlReader::FromString(text, name), base_dir);
 }
 
+Budget LoadBudgetText(const std::string& text, const std::string& name, const std::string& base_dir,
+                      const std::vector<BudgetOverride>& overrides) {
+  if (overrides.empty()) return LoadBudgetText(text, name, base_dir);
+  // Parsed first, so that the overrides meet a valid document and their
+  // errors are located in the text as given.
+  const YamlReader reader = YamlReader::FromString(text, name);
+  return LoadBudgetVariant(load::OverriddenText(reader.text(), overrides, reader.name()), reader.positions(),
+                           load::OverridesNote(overrides), base_dir);
+}
+
 }  // namespace deb

@@ -39,6 +39,10 @@ Budget LoadBudgetFile(const std::string& path, const std::vector<BudgetOverride>
 // Same from text; `name` stands for the file in messages, `base_dir` resolves
 // relative data-file paths.
 Budget LoadBudgetText(const std::string& text, const std::string& name, const std::string& base_dir = ".");
+// LoadBudgetText with overrides applied in order, located and named as
+// LoadBudgetFile's (the Python module's deb.load(text, set=...)).
+Budget LoadBudgetText(const std::string& text, const std::string& name, const std::string& base_dir,
+                      const std::vector<BudgetOverride>& overrides);
 
 // An error found after loading (by the engine, which knows key paths, not
 // positions) is located by the loaded budget itself: Budget::Locate.

@@ -259,8 +259,9 @@ Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string&
   return LoadBudgetVariant(emitter.c_str(), reader.positions(), note.str(), dir.empty() ? "." : dir);
 }
 
-SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir) {
-  return Load(YamlReader::FromString(text, name), base_dir, {});
+SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir,
+                          const std::vector<BudgetOverride>& overrides) {
+  return Load(YamlReader::FromString(text, name), base_dir, overrides);
 }
 
 std::vector<Budget> LoadSweepVariants(const SweepBudget& sweep, int threads) {

@@ -44,7 +44,8 @@ struct SweepBudget {
 // With overrides (--set), every variant starts from the overridden budget;
 // an override may not change the sweep section itself.
 SweepBudget LoadSweepFile(const std::string& path, const std::vector<BudgetOverride>& overrides = {});
-SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir = ".");
+SweepBudget LoadSweepText(const std::string& text, const std::string& name, const std::string& base_dir = ".",
+                          const std::vector<BudgetOverride>& overrides = {});
 
 // Every variant, in order, loaded `threads` at a time (<= 0: the default
 // count). @throws InputError of the first variant that fails to load.

@@ -13,6 +13,7 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/load/key_path.h"
 #include "deb/load/sweep_yaml.h"
+#include "tests/support/file_bytes.h"
 
 namespace deb {
 namespace {
@@ -153,6 +154,27 @@ TEST_CASE("a bad override is an error naming it: a missing key, a value the load
   // Later overrides see earlier ones.
   CHECK(ErrorOf(kIsolator, {{"sources[1].spectrum", "{type: flat, level: 1}"}, {"sources[1].spectrum.level", "2"}}) ==
         "(no error)");
+}
+
+TEST_CASE("LoadBudgetText with overrides equals LoadBudgetFile with them, and locates its errors in the text") {
+  // The Python module's deb.load(text, set=...): the same budget as the file's, the same rule at the same place.
+  const std::string text = test::ReadAll(kIsolator);
+  const std::vector<BudgetOverride> overrides{{"sources[1].spectrum.level", "0.03"}};
+  const BudgetResult from_file = Evaluate(LoadBudgetFile(kIsolator, overrides));
+  const BudgetResult from_text = Evaluate(LoadBudgetText(text, "isolator.yaml", DEB_SOURCE_DIR "/budgets", overrides));
+  REQUIRE(from_text.outputs.size() == from_file.outputs.size());
+  for (std::size_t o = 0; o < from_file.outputs.size(); ++o)
+    CHECK(from_text.outputs[o].variance == from_file.outputs[o].variance);
+  CHECK(from_text.outputs[0].variance != Evaluate(LoadBudgetFile(kIsolator)).outputs[0].variance);
+  try {
+    LoadBudgetText(text, "isolator.yaml", ".", {{"sources[1].spectrum.level", "-1"}});
+    FAIL("a negative level was accepted");
+  } catch (const InputError& e) {
+    CHECK(e.file() == "isolator.yaml");
+    CHECK(e.line() == 39);
+    CHECK(e.key_path() == "sources[1].spectrum.level");
+    CHECK(Contains(e.what(), "--set sources[1].spectrum.level=-1"));
+  }
 }
 
 }  // namespace deb

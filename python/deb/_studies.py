@@ -1,0 +1,116 @@
+"""deb.evaluate, deb.frequency_response and the studies over results:
+deb.sweep, deb.compare, deb.write_report."""
+
+import json
+import os
+import re
+from collections.abc import Mapping
+
+from . import _deb, _yaml
+from ._errors import argument_error
+from ._load import budget_of, is_text, overrides, source_text
+
+
+def evaluate(budget, threads=None, *, set=None):
+    """A deb.Result: budget (a deb.Budget, or what deb.load takes) evaluated as
+    `deb run` evaluates it, on `threads` worker threads (None: every core;
+    the numbers are the same for any count). The GIL is released meanwhile."""
+    return _deb.evaluate(budget_of(budget, set), threads=threads)
+
+
+def frequency_response(budget, path, f, *, threads=None):
+    """H(j 2 pi f) of the budget's path named `path` at the frequencies f (Hz,
+    1-D): a complex array of shape (len(f), outputs, inputs), in the path's
+    output unit per input unit (the path's own channels, before any
+    contributor's or output's unit conversion)."""
+    return _deb.frequency_response(budget_of(budget), path, f, threads=threads)
+
+
+def _sweep_section(parameters, mode):
+    """The YAML text of a sweep: section; parameters is {key path: values} or
+    a list of entries as in the file ({path, values | linear | log, label, unit})."""
+    if isinstance(parameters, Mapping):
+        entries = [{"path": str(k), "values": [v] if isinstance(v, str) else list(v)}
+                   for k, v in parameters.items()]
+    else:
+        entries = list(parameters)
+    return _yaml.dump({"sweep": {"mode": mode, "parameters": entries}})
+
+
+def sweep(budget, set=None, *, parameters=None, mode="grid", threads=None):
+    """Every variant of a sweep, evaluated (deb.SweepResult: .parameters,
+    .values (variants x parameters), .results (deb.Result each), .csv()).
+
+    budget      a file, a YAML text, a dict or a deb.Budget (its file or text)
+    parameters  None: the budget's own `sweep:` section; else the section
+                from Python: {key path or parameter name: [values]}, or a
+                list of entries as in the file
+    mode        "grid" (every combination) or "zip", with parameters
+    set         overrides of the budget under every variant (not the sweep)
+    threads     variants evaluated at a time (None: every core)
+    """
+    if isinstance(budget, _deb.Budget):
+        budget = budget.file if budget.file is not None else budget.text
+    pairs = overrides(set)
+    if parameters is None:
+        text = source_text(budget)
+        if text is None:
+            return _deb.sweep_file(os.fspath(budget), pairs, threads)
+        return _deb.sweep_text(text[0], text[1], text[2], pairs, threads)
+    if isinstance(budget, Mapping):
+        if "sweep" in budget:
+            raise argument_error("parameters", "the budget has a sweep section already")
+        text, name, base_dir = _yaml.dump(budget), "<dict>", "."
+    elif isinstance(budget, str) and is_text(budget):
+        text, name, base_dir = budget, "<text>", "."
+    elif isinstance(budget, (str, os.PathLike)):
+        name = os.fspath(budget)
+        try:
+            with open(name, encoding="utf-8") as f:
+                text = f.read()
+        except OSError as e:
+            raise argument_error("budget", f"cannot read {name}: {e.strerror}") from None
+        base_dir = os.path.dirname(name) or "."
+    else:
+        raise argument_error("budget", f"expected a file name, a YAML text, a dict or a deb.Budget, "
+                                       f"got {type(budget).__name__}")
+    if re.search(r"^sweep\s*:", text, re.MULTILINE):
+        raise argument_error("parameters", "the budget has a sweep section already")
+    # Appended after the budget's last line: its own lines keep their numbers in messages.
+    text = text.rstrip("\n") + "\n" + _sweep_section(parameters, mode)
+    return _deb.sweep_text(text, name, base_dir, pairs, threads)
+
+
+def _result_of(value, threads=None):
+    return value if isinstance(value, _deb.Result) else evaluate(value, threads)
+
+
+def compare(a, b, *, label_a=None, label_b=None, tolerance=None, threads=None):
+    """A deb.Comparison of two results (deb.Result, or budgets evaluated here):
+    per output, contributor and band the RMS of each, B - A and B / A
+    (.figures, .largest_changes(), .moved(rel), .json(), .csv()), as deb
+    compare; labels default to the budgets' names, tolerance is deb compare
+    --tolerance's (recorded in .json(); .moved(tolerance) lists what moved)."""
+    ra, rb = _result_of(a, threads), _result_of(b, threads)
+    return _deb.compare(ra, rb, label_a or ra.name, label_b or rb.name, tolerance)
+
+
+def write_report(budget_or_result, directory, *, set=None, plots=True, formats=("png", "pdf"), asd=False,
+                 reverse_cps=False, digits=4, force=False, exports=(), threads=None):
+    """The report directory of `deb run` (summary.json, result.h5, index.html,
+    report.md, report.pdf, plots/) for a deb.Result, or for a budget (a
+    deb.Budget, a file, a text or a dict) evaluated first. Options as deb
+    run's: plots=False is --no-plots (gnuplot is not needed), formats
+    --format, exports --export ("csv", "mat", "xlsx"), force --force.
+    Replaces `directory` atomically, only if deb wrote it (unless force).
+    Returns {"files": [...], "plots": [...], "pdf_pages": n}."""
+    result = budget_or_result if isinstance(budget_or_result, _deb.Result) else evaluate(budget_or_result, threads,
+                                                                                          set=set)
+    return _deb.write_report(result, os.fspath(directory), plots, list(formats), asd, reverse_cps, digits, force,
+                             list(exports), threads)
+
+
+def to_dict(result):
+    """summary.json of the result as a dict: the text deb run writes
+    (deb::SummaryJson), parsed."""
+    return json.loads(result.summary_json())
