@@ -1,5 +1,6 @@
 """deb.evaluate, deb.frequency_response and the studies over results:
-deb.sweep, deb.compare, deb.write_report."""
+deb.sweep, deb.compare, deb.write_report; the design studies over a budget
+file: deb.uncertainty, deb.optimise."""
 
 import json
 import os
@@ -114,3 +115,58 @@ def to_dict(result):
     """summary.json of the result as a dict: the text deb run writes
     (deb::SummaryJson), parsed."""
     return json.loads(result.summary_json())
+
+
+def _budget_file(budget):
+    """The file of a budget given as a path or a deb.Budget loaded from one."""
+    if isinstance(budget, _deb.Budget):
+        if budget.file is None:
+            raise argument_error("budget", "uncertainty and optimise read a budget file; this one was loaded "
+                                           "from a text or a dict")
+        return budget.file
+    if isinstance(budget, (str, os.PathLike)) and not (isinstance(budget, str) and is_text(budget)):
+        return os.fspath(budget)
+    raise argument_error("budget", f"expected a budget file name or a deb.Budget loaded from one, "
+                                   f"got {type(budget).__name__}")
+
+
+def uncertainty(budget, *, samples=1000, method="mc", seed=1, threads=None, set=None):
+    """The uncertainty study of `deb uncertainty` (docs/uncertainty.md): the
+    budget's parameters with a distribution sampled (method "mc", "lhs" or
+    "sobol"), every sample's budget evaluated (the GIL released).
+
+    Returns the summary.json dict deb uncertainty writes (parameters,
+    metrics with mean, sd, percentiles, P(meet) and its 95 % Wilson
+    interval, drivers, worst corners), plus "sample_parameters" (samples x
+    parameters, in their units), "sample_metric_names" and "sample_metrics"
+    (samples x metrics, each an RMS): numpy arrays of every sample.
+    The same seed gives the same numbers for any thread count."""
+    summary, parameters, names, metrics = _deb.uncertainty_file(_budget_file(budget), overrides(set), int(samples),
+                                                                str(method), int(seed), threads)
+    out = json.loads(summary)
+    out["sample_parameters"] = parameters
+    out["sample_metric_names"] = names
+    out["sample_metrics"] = metrics
+    return out
+
+
+def optimise(budget, vary, *, objective=None, method="auto", starts=1, max_evaluations=200, tolerance=1e-8,
+             seed=1, robust=None, robust_samples=64, threads=None, set=None):
+    """The design optimisation of `deb optimise` (docs/optimise.md): the
+    parameters `vary` (names, each with min and max in the budget) chosen to
+    minimise `objective` (an output's name or "max-ratio"; None: the only
+    output, else max-ratio) with every requirement met. robust=95 minimises
+    the 95th percentile under the other parameters' tolerances.
+
+    Returns the summary.json dict deb optimise writes ("optimum": values,
+    objective, requirements with "active"; "starts_run"; ...), plus "history"
+    (history.csv's text: every evaluation)."""
+    if isinstance(vary, str):
+        vary = [v.strip() for v in vary.split(",")]
+    summary, history = _deb.optimise_file(_budget_file(budget), [str(v) for v in vary], overrides(set),
+                                          None if objective is None else str(objective), str(method), int(starts),
+                                          int(max_evaluations), float(tolerance), int(seed),
+                                          None if robust is None else float(robust), int(robust_samples), threads)
+    out = json.loads(summary)
+    out["history"] = history
+    return out

@@ -45,5 +45,6 @@ void BindBudget(py::module_& m);    // Budget, load_file, load_text
 void BindResult(py::module_& m);    // evaluate, Result, Output, Contributor, bands, requirements
 void BindResponse(py::module_& m);  // frequency_response
 void BindStudies(py::module_& m);   // sweep, compare, write_report
+void BindDesignStudies(py::module_& m);  // uncertainty_file, optimise_file
 
 }  // namespace deb::python

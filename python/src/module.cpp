@@ -12,4 +12,5 @@ PYBIND11_MODULE(_deb, m) {
   deb::python::BindResult(m);
   deb::python::BindResponse(m);
   deb::python::BindStudies(m);
+  deb::python::BindDesignStudies(m);
 }
