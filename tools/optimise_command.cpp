@@ -19,8 +19,6 @@
 #include "deb/report/compare/optimise_plots.h"
 #include "deb/report/compare/overlay_plots.h"
 #include "deb/results/optimise_files.h"
-#include "deb/uncertainty/sample_design.h"
-#include "deb/uncertainty/uncertainty_study.h"
 #include "tools/budget_overrides_option.h"
 #include "tools/run_command.h"
 
@@ -104,31 +102,11 @@ CLI::App* OptimiseCommand::Register(CLI::App& app) {
 
 int OptimiseCommand::Run() const {
   const Options& s = *options_;
-  std::optional<double> quantile;
-  if (!s.robust.empty()) quantile = PercentileOf(s.robust) / 100.0;
-  const OptimiseBudget budget = LoadOptimiseFile(s.budget_file, s.vary, s.overrides, quantile.has_value());
-  OptimiseObjective objective;
-  if (quantile) {
-    // The same Latin hypercube of the tolerances at every design.
-    objective.quantile = quantile;
-    const std::size_t p = budget.uncertain.parameters.size();
-    const SampleDesign design(SamplingMethod::kLatinHypercube, s.seed, static_cast<std::size_t>(s.robust_samples), p);
-    const Eigen::LLT<Eigen::MatrixXd> copula(budget.uncertain.correlation);
-    for (std::size_t k = 0; k < static_cast<std::size_t>(s.robust_samples); ++k)
-      objective.samples.push_back(SampleValues(budget.uncertain, copula, design.Point(k)));
-  }
-  if (s.objective == "max-ratio") {
-    objective.max_ratio = true;
-  } else if (!s.objective.empty()) {
-    objective.output = s.objective;
-  } else {
-    std::vector<double> nominal;
-    for (const DesignVariable& v : budget.variables) nominal.push_back(v.nominal);
-    for (const UncertainParameter& p : budget.uncertain.parameters) nominal.push_back(p.nominal);
-    const Budget b = budget.loader(nominal);
-    if (b.outputs.size() == 1) objective.output = b.outputs.front().name;
-    else objective.max_ratio = true;
-  }
+  std::optional<double> percentile;
+  if (!s.robust.empty()) percentile = PercentileOf(s.robust);
+  const OptimiseBudget budget = LoadOptimiseFile(s.budget_file, s.vary, s.overrides, percentile.has_value());
+  const OptimiseObjective objective =
+      budget.Objective(s.objective, percentile, static_cast<std::size_t>(s.robust_samples), s.seed);
   OptimiseOptions options;
   options.method = ParseEnum<OptimiseMethod>(s.method, "optimisation method");
   options.starts = s.starts;
@@ -148,9 +126,7 @@ int OptimiseCommand::Run() const {
   EngineOptions engine;
   engine.threads = s.threads;
   // The optimum's report: at the tolerances' nominal values.
-  std::vector<double> at = result.starts[result.best].values;
-  for (const UncertainParameter& p : budget.uncertain.parameters) at.push_back(p.nominal);
-  const BudgetResult optimum = Evaluate(budget.loader(at), engine);
+  const BudgetResult optimum = Evaluate(budget.loader(budget.Point(result.starts[result.best].values)), engine);
   // The figures: the history, and for two variables the objective's map.
   std::vector<report::Plot> plots;
   if (s.plots) {
@@ -187,12 +163,12 @@ int OptimiseCommand::Run() const {
     std::printf("optimise %s: %s over %zu parameter(s), %s, %d start(s), %d designs evaluated%s\n",
                 budget.name.c_str(), what.c_str(), budget.variables.size(), ToString(result.method).c_str(),
                 options.starts, result.evaluations,
-                quantile ? (" (" + std::to_string(objective.samples.size()) + " budgets each)").c_str() : "");
+                objective.quantile ? (" (" + std::to_string(objective.samples.size()) + " budgets each)").c_str() : "");
     std::printf("nominal: %s = %s\n", what.c_str(), SignificantText(result.nominal_objective, 6).c_str());
     std::printf("optimum (start %zu, %s): %s\n", result.best + 1, best.stop.c_str(), OptimumText(result).c_str());
     std::printf("  %s = %s\n", what.c_str(), SignificantText(best.objective, 6).c_str());
     for (const RequirementRatio& q : result.requirements)
-      std::printf("  %s: %sRMS %s of %s (%s)%s\n", q.name.c_str(), quantile ? ("P" + s.robust.substr(1) + " ").c_str() : "",
+      std::printf("  %s: %sRMS %s of %s (%s)%s\n", q.name.c_str(), objective.quantile ? ("P" + s.robust.substr(1) + " ").c_str() : "",
                   SignificantText(q.rms, 5).c_str(),
                   SignificantText(q.limit, 5).c_str(), (SignificantText(100.0 * q.ratio(), 4) + " %").c_str(),
                   q.active ? ", active" : "");

@@ -238,9 +238,11 @@ Budget LoadBudgetFile(const std::string& path, const std::vector<BudgetOverride>
                            load::OverridesNote(overrides), dir.empty() ? "." : dir);
 }
 
-Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const KeyPositions>& original,
-                         const std::string& note, const std::string& base_dir) {
-  const YamlReader reader = YamlReader::FromString(text, original->file() + " (" + note + ")");
+namespace {
+
+// A variant read by `reader`: its errors located by the original's positions.
+Budget LoadVariant(const YamlReader& reader, const std::shared_ptr<const KeyPositions>& original,
+                   const std::string& note, const std::string& base_dir) {
   try {
     Budget b = Load(reader, base_dir);
     b.positions = original;
@@ -252,17 +254,16 @@ Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const Ke
   }
 }
 
+}  // namespace
+
+Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const KeyPositions>& original,
+                         const std::string& note, const std::string& base_dir) {
+  return LoadVariant(YamlReader::FromString(text, original->file() + " (" + note + ")"), original, note, base_dir);
+}
+
 Budget LoadBudgetVariantNode(const YAML::Node& root, const std::shared_ptr<const KeyPositions>& original,
                              const std::string& note, const std::string& base_dir) {
-  const YamlReader reader = YamlReader::FromChecked(root, original->file() + " (" + note + ")");
-  try {
-    Budget b = Load(reader, base_dir);
-    b.positions = original;
-    return b;
-  } catch (const InputError& e) {
-    if (e.key_path().empty()) throw;
-    throw original->Located(InputError(e.key_path(), e.message()), note);
-  }
+  return LoadVariant(YamlReader::FromChecked(root, original->file() + " (" + note + ")"), original, note, base_dir);
 }
 
 Budget LoadBudgetText(const std::string& text, const std::string& name, const std::string& base_dir) {

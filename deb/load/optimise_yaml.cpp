@@ -10,6 +10,34 @@
 
 namespace deb {
 
+std::vector<double> OptimiseBudget::Point(const std::vector<double>& design) const {
+  std::vector<double> v = design;
+  for (const UncertainParameter& p : uncertain.parameters) v.push_back(p.nominal);
+  return v;
+}
+
+OptimiseObjective OptimiseBudget::Objective(const std::string& text, std::optional<double> percentile,
+                                            std::size_t samples, std::uint64_t seed) const {
+  OptimiseObjective o;
+  if (text == "max-ratio") {
+    o.max_ratio = true;
+  } else if (!text.empty()) {
+    o.output = text;
+  } else {
+    std::vector<double> nominal;
+    for (const DesignVariable& v : variables) nominal.push_back(v.nominal);
+    const Budget b = loader(Point(nominal));
+    if (b.outputs.size() == 1) o.output = b.outputs.front().name;
+    else o.max_ratio = true;
+  }
+  if (percentile) {
+    DEB_DEMAND(*percentile > 0.0 && *percentile < 100.0 && !uncertain.parameters.empty());
+    o.quantile = *percentile / 100.0;
+    o.samples = LatinHypercubeValues(uncertain, samples, seed);
+  }
+  return o;
+}
+
 OptimiseBudget LoadOptimiseFile(const std::string& path, const std::vector<std::string>& vary,
                                 const std::vector<BudgetOverride>& overrides, bool robust) {
   const load::StudyBudget budget = load::ReadStudyBudget(path, overrides);

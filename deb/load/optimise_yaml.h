@@ -5,6 +5,8 @@
 // any budget is.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,16 @@ struct OptimiseBudget {
   // loader takes after the variables'.
   UncertaintySpec uncertain;
   DesignLoader loader;
+
+  // What the loader takes for `design` (the variables' values, SI): those,
+  // then the uncertain parameters' nominal values.
+  std::vector<double> Point(const std::vector<double>& design) const;
+  // The objective `text` names: an output, "max-ratio", or "" for the
+  // budget's only output (max-ratio when it has several); robust
+  // (`percentile` in (0, 100)) over `samples` Latin-hypercube samples of
+  // the tolerances drawn from `seed`.
+  OptimiseObjective Objective(const std::string& text, std::optional<double> percentile = std::nullopt,
+                              std::size_t samples = 64, std::uint64_t seed = 1) const;
 };
 
 // @throws InputError "<file>: --vary NAME: ..." for a name that is no

@@ -107,6 +107,17 @@ std::vector<double> SampleValues(const UncertaintySpec& spec, const Eigen::LLT<E
   return values;
 }
 
+std::vector<std::vector<double>> LatinHypercubeValues(const UncertaintySpec& spec, std::size_t n, std::uint64_t seed) {
+  const std::size_t p = spec.parameters.size();
+  DEB_DEMAND(n >= 1 && p >= 1);
+  const SampleDesign design(SamplingMethod::kLatinHypercube, seed, n, p);
+  const Eigen::LLT<Eigen::MatrixXd> copula(spec.correlation.size() ? spec.correlation
+                                                                   : Eigen::MatrixXd::Identity(p, p).eval());
+  std::vector<std::vector<double>> values;
+  for (std::size_t k = 0; k < n; ++k) values.push_back(SampleValues(spec, copula, design.Point(k)));
+  return values;
+}
+
 UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyOptions& options,
                                  const VariantLoader& variant,
                                  const std::function<void(std::size_t, std::size_t)>& progress) {

@@ -104,6 +104,11 @@ using VariantLoader = std::function<Budget(const std::vector<double>& values)>;
 std::vector<double> SampleValues(const UncertaintySpec& spec, const Eigen::LLT<Eigen::MatrixXd>& copula,
                                  const std::vector<double>& u);
 
+// n Latin-hypercube samples of the spec's parameters (SI, in spec order;
+// sample k's from (seed, k) as SampleDesign's): the tolerances a robust
+// optimisation evaluates every design at.
+std::vector<std::vector<double>> LatinHypercubeValues(const UncertaintySpec& spec, std::size_t n, std::uint64_t seed);
+
 // Runs the study. progress(done, total) as EvaluateSweep's.
 // @throws InputError naming the sample and its values for a sample whose
 //   budget fails to load or evaluate.

@@ -81,27 +81,8 @@ void BindDesignStudies(py::module_& m) {
                            "starts and max_evaluations must be >= 1, tolerance > 0, robust a percentile in (0, 100) "
                            "and robust_samples >= 2");
         const OptimiseBudget budget = LoadOptimiseFile(path, vary, ToOverrides(overrides), robust.has_value());
-        OptimiseObjective o;
-        if (objective && *objective == "max-ratio") {
-          o.max_ratio = true;
-        } else if (objective) {
-          o.output = *objective;
-        } else {
-          std::vector<double> nominal;
-          for (const DesignVariable& v : budget.variables) nominal.push_back(v.nominal);
-          for (const UncertainParameter& q : budget.uncertain.parameters) nominal.push_back(q.nominal);
-          const Budget b = budget.loader(nominal);
-          if (b.outputs.size() == 1) o.output = b.outputs.front().name;
-          else o.max_ratio = true;
-        }
-        if (robust) {
-          o.quantile = *robust / 100.0;
-          const SampleDesign design(SamplingMethod::kLatinHypercube, seed, static_cast<std::size_t>(robust_samples),
-                                    budget.uncertain.parameters.size());
-          const Eigen::LLT<Eigen::MatrixXd> copula(budget.uncertain.correlation);
-          for (std::size_t s = 0; s < static_cast<std::size_t>(robust_samples); ++s)
-            o.samples.push_back(SampleValues(budget.uncertain, copula, design.Point(s)));
-        }
+        const OptimiseObjective o = budget.Objective(objective.value_or(""), robust,
+                                                     static_cast<std::size_t>(robust_samples), seed);
         OptimiseOptions options;
         options.method = ParseEnum<OptimiseMethod>(method, "optimisation method");
         options.starts = starts;
