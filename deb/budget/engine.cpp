@@ -125,7 +125,8 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
   // The traces first: the covariance reads the paths' responses from them.
   if (options.response_traces)
     result.traces = std::make_shared<const ResponseTraces>(ComputeResponseTraces(budget, result, std::move(recorded)));
-  if (!budget.covariance.empty()) result.covariance = ComputeOutputCovariance(budget, result, options.threads);
+  if (options.covariance && !budget.covariance.empty())
+    result.covariance = ComputeOutputCovariance(budget, result, options.threads);
   return result;
 }
 

@@ -31,6 +31,11 @@ struct EngineOptions {
   // Also evaluate the transfers a report draws (BudgetResult::traces): off
   // for results that are only compared or summed (sweeps, sensitivities).
   bool response_traces = true;
+  // Also evaluate the outputs' covariance the budget asks for
+  // (BudgetResult::covariance): off for results whose variances alone are
+  // read (an uncertainty study's samples, an optimiser's designs), where it
+  // would cost as much as the rest of the evaluation.
+  bool covariance = true;
 
   // False, with the option, its value and the rule in *error, unless
   // exact_tolerance is finite and > 0. Evaluate throws an InputError with it.

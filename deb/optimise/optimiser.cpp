@@ -41,6 +41,7 @@ Evaluated EvaluatePoint(const DesignLoader& loader, const OptimiseObjective& obj
     EngineOptions options;
     options.threads = 1;
     options.response_traces = false;
+    options.covariance = false;
     const BudgetResult r = Evaluate(b, options);
     e.requirements = RequirementRatios(r);
     for (const RequirementRatio& q : e.requirements) e.worst = std::max(e.worst, q.ratio());
@@ -300,6 +301,7 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
   EngineOptions engine;
   engine.threads = 1;
   engine.response_traces = false;
+    engine.covariance = false;
   const BudgetResult nominal_result = Evaluate(nominal_budget, engine);
   result.nominal_requirements = RequirementRatios(nominal_result);
   const std::size_t m = objective.max_ratio ? 0 : result.nominal_requirements.size();

@@ -70,6 +70,7 @@ std::vector<double> EvaluateAt(const VariantLoader& variant, const UncertaintySp
     EngineOptions options;
     options.threads = 1;  // the study runs budgets in parallel, each on one thread
     options.response_traces = false;
+    options.covariance = false;
     return MetricValues(Evaluate(b, options));
   } catch (const InputError& e) {
     // A loader's message names the values; the engine's may not.
@@ -192,6 +193,7 @@ UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyO
     EngineOptions engine;
     engine.threads = 1;
     engine.response_traces = false;
+    engine.covariance = false;
     const BudgetResult r = Evaluate(b, engine);
     result.metrics = MetricsOf(r);
     outputs[0] = MetricValues(r);
