@@ -2,7 +2,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <cstdint>
+
 #include "deb/core/number_text.h"
+#include "deb/formats/hdf5_file.h"
 #include "deb/version.h"
 
 namespace deb {
@@ -114,6 +118,93 @@ std::string UncertaintySamplesCsv(const UncertaintyResult& r) {
     csv += "\n";
   }
   return csv;
+}
+
+void WriteUncertaintyStore(const std::string& path, const std::string& budget_name, const UncertaintyResult& r) {
+  formats::Hdf5Writer h(path);
+  const double nan = std::nan("");
+  const std::size_t p = r.spec.parameters.size();
+  h.Text("uncertainty/budget", budget_name);
+  h.Text("uncertainty/deb_version", DEB_VERSION);
+  h.Text("uncertainty/method", ToString(r.options.method));
+  h.Integer("uncertainty/seed", static_cast<std::int64_t>(r.options.seed));
+  h.Integer("uncertainty/samples", static_cast<std::int64_t>(r.samples));
+  h.Integer("uncertainty/evaluations", static_cast<std::int64_t>(r.evaluations));
+  std::vector<std::string> names, units;
+  std::vector<double> nominal;
+  for (const UncertainParameter& q : r.spec.parameters) {
+    names.push_back(q.name);
+    units.push_back(q.unit);
+    nominal.push_back(Shown(q, q.nominal));
+  }
+  h.Texts("uncertainty/parameters/names", names);
+  h.Texts("uncertainty/parameters/units", units);
+  h.Numbers("uncertainty/parameters/nominal", nominal);
+  std::vector<std::vector<double>> values(r.samples, std::vector<double>(p));
+  for (std::size_t s = 0; s < r.samples; ++s)
+    for (std::size_t i = 0; i < p; ++i) values[s][i] = Shown(r.spec.parameters[i], r.parameter_values[i][s]);
+  h.Rows("uncertainty/parameters/values", values);
+
+  std::vector<std::string> metric_names, metric_units;
+  std::vector<double> limit, nominal_rms, mean, sd, fosm, p5, p50, p95, p99, p_meet, low, high, corner_rms;
+  std::vector<std::vector<double>> rms(r.samples, std::vector<double>(r.metrics.size())), spearman, first, total,
+      corner;
+  for (std::size_t k = 0; k < r.metrics.size(); ++k) {
+    const StudyMetric& m = r.metrics[k];
+    metric_names.push_back(m.Name());
+    metric_units.push_back(m.unit);
+    limit.push_back(m.limit ? *m.limit : nan);
+    nominal_rms.push_back(m.nominal);
+    mean.push_back(m.moments.mean);
+    sd.push_back(m.moments.sd);
+    fosm.push_back(m.fosm_sd);
+    p5.push_back(m.p5);
+    p50.push_back(m.p50);
+    p95.push_back(m.p95);
+    p99.push_back(m.p99);
+    p_meet.push_back(m.limit ? static_cast<double>(m.met) / static_cast<double>(r.samples) : nan);
+    low.push_back(m.limit ? m.p_meet.low : nan);
+    high.push_back(m.limit ? m.p_meet.high : nan);
+    corner_rms.push_back(m.worst_corner_value);
+    for (std::size_t s = 0; s < r.samples; ++s) rms[s][k] = m.values[s];
+    spearman.push_back(m.spearman);
+    std::vector<double> f, t, c;
+    for (std::size_t i = 0; i < p; ++i) {
+      if (!m.sobol.empty()) {
+        f.push_back(m.sobol[i].first);
+        t.push_back(m.sobol[i].total);
+      }
+      c.push_back(Shown(r.spec.parameters[i], m.worst_corner[i]));
+    }
+    if (!m.sobol.empty()) {
+      first.push_back(f);
+      total.push_back(t);
+    }
+    corner.push_back(c);
+  }
+  h.Texts("uncertainty/metrics/names", metric_names);
+  h.Texts("uncertainty/metrics/units", metric_units);
+  h.Numbers("uncertainty/metrics/limit", limit);
+  h.Numbers("uncertainty/metrics/nominal", nominal_rms);
+  h.Rows("uncertainty/metrics/rms", rms);
+  h.Numbers("uncertainty/metrics/mean", mean);
+  h.Numbers("uncertainty/metrics/sd", sd);
+  h.Numbers("uncertainty/metrics/fosm_sd", fosm);
+  h.Numbers("uncertainty/metrics/p5", p5);
+  h.Numbers("uncertainty/metrics/p50", p50);
+  h.Numbers("uncertainty/metrics/p95", p95);
+  h.Numbers("uncertainty/metrics/p99", p99);
+  h.Numbers("uncertainty/metrics/p_meet", p_meet);
+  h.Numbers("uncertainty/metrics/p_meet_low", low);
+  h.Numbers("uncertainty/metrics/p_meet_high", high);
+  h.Rows("uncertainty/metrics/spearman", spearman);
+  if (!first.empty()) {
+    h.Rows("uncertainty/metrics/sobol_first", first);
+    h.Rows("uncertainty/metrics/sobol_total", total);
+  }
+  h.Numbers("uncertainty/metrics/worst_corner_rms", corner_rms);
+  h.Rows("uncertainty/metrics/worst_corner", corner);
+  h.Close();
 }
 
 }  // namespace deb

@@ -15,4 +15,13 @@ namespace deb {
 std::string UncertaintySummaryJson(const std::string& budget_name, const UncertaintyResult& result);
 std::string UncertaintySamplesCsv(const UncertaintyResult& result);
 
+// result.h5 of a study (docs/uncertainty.md lists its objects): under
+// /uncertainty the settings, the parameters (names, units, nominal values,
+// every sample's values in their units), and per metric its name, unit,
+// limit (NaN without one), every sample's RMS, the statistics, P(meet)
+// with its interval (NaN without a limit), the first-order sd, the rank
+// correlations and Sobol indices (metrics x parameters) and the worst
+// corner. @throws WriteError as Hdf5Writer.
+void WriteUncertaintyStore(const std::string& path, const std::string& budget_name, const UncertaintyResult& result);
+
 }  // namespace deb

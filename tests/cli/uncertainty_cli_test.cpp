@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "deb/formats/hdf5_file.h"
 #include "tests/support/cli_harness.h"
 
 namespace fs = std::filesystem;
@@ -33,6 +34,15 @@ TEST_CASE("deb uncertainty on the thesis with tolerances: console, summary.json,
   CHECK(j["metrics"][0]["name"] == "z_velocity");
   CHECK(j["metrics"][0]["rms_max"] == 13.0);
   CHECK(deb::test::PdfPages(dir / "a" / "uncertainty.pdf") >= 4);
+  // result.h5 holds the same figures and every sample.
+  const deb::formats::Hdf5Reader h((dir / "a" / "result.h5").string());
+  CHECK(h.Integer("uncertainty/samples") == 120);
+  CHECK(h.Text("uncertainty/method") == "lhs");
+  const std::vector<double> mean = h.Numbers("uncertainty/metrics/mean", deb::formats::AtMost{1000});
+  REQUIRE(mean.size() == j["metrics"].size());
+  CHECK(mean[0] == j["metrics"][0]["mean"].get<double>());
+  const std::vector<double> p = h.Numbers("uncertainty/metrics/p_meet", deb::formats::AtMost{1000}, true);
+  CHECK(p[0] == j["metrics"][0]["p_meet"].get<double>());
   fs::remove_all(dir);
 }
 
@@ -43,7 +53,7 @@ TEST_CASE("deb uncertainty: the same seed gives the same files for 1 and 2 threa
     REQUIRE(deb::test::RunDeb("uncertainty " + budget + " -n 60 --method sobol -q --no-plots -j " + j + " --out \"" +
                               (dir / j).string() + "\"")
                 .exit_code == 0);
-  for (const char* f : {"summary.json", "samples.csv", "uncertainty.md", "uncertainty.html"})
+  for (const char* f : {"summary.json", "samples.csv", "result.h5", "uncertainty.md", "uncertainty.html"})
     CHECK_MESSAGE(deb::test::ReadAll(dir / "1" / f) == deb::test::ReadAll(dir / "2" / f), f);
   fs::remove_all(dir);
 }

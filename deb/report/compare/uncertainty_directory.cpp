@@ -24,6 +24,7 @@ void WriteUncertaintyDirectory(const std::string& budget_name, const Uncertainty
       [&](const std::string& tmp) {
         WriteTextFile((fs::path(tmp) / "summary.json").string(), json);
         WriteTextFile((fs::path(tmp) / "samples.csv").string(), csv);
+        WriteUncertaintyStore((fs::path(tmp) / "result.h5").string(), budget_name, result);
         const StudyDocument doc = UncertaintyDocument(budget_name, result, plots);
         WriteTextFile((fs::path(tmp) / "uncertainty.md").string(), StudyMarkdown(doc));
         WriteTextFile((fs::path(tmp) / "uncertainty.html").string(), StudyHtml(doc));

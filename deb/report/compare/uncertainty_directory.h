@@ -1,6 +1,6 @@
 // Internal: not part of the public API.
 // The directory `deb uncertainty` writes, atomically (deb/core/output_dir.h):
-// summary.json and samples.csv (deb/results/uncertainty_files.h),
+// summary.json, samples.csv and result.h5 (deb/results/uncertainty_files.h),
 // uncertainty.md, uncertainty.html and uncertainty.pdf
 // (uncertainty_documents.h) and plots/ (uncertainty_plots.h: PNG, CSV and
 // gnuplot script of each figure; none with --no-plots).
