@@ -8,9 +8,30 @@ Here only the arrays are checked: numbers, finite, and of the documented
 shape, else deb.InputError naming the argument.
 """
 
+import atexit
+import itertools
+import os
+import shutil
+import tempfile
+
 import numpy as np
 
 from ._errors import argument_error
+
+_data_dir = None
+_data_names = itertools.count(1)
+
+
+def _data_file(stem):
+    """A fresh file name in this process's own temporary directory (removed
+    when the interpreter exits): where measured_source and frf_path put the
+    arrays they are given, since a budget reads measured data from files. A
+    budget reads them when it is loaded; the names are never reused."""
+    global _data_dir
+    if _data_dir is None:
+        _data_dir = tempfile.mkdtemp(prefix="deb_python_")
+        atexit.register(shutil.rmtree, _data_dir, True)
+    return os.path.join(_data_dir, f"{next(_data_names)}_{stem}.csv")
 
 
 def real_array(value, argument, ndim):
@@ -277,10 +298,21 @@ def write_frf(path, f_hz, h, *, outputs, inputs):
     return str(path)
 
 
-def measured_source(name, file, *, unit=None, channels=None, columns=None, extrapolation=None, description=None):
+def measured_source(name, file=None, *, f_hz=None, psd=None, quantity="psd", unit=None, channels=None,
+                    columns=None, extrapolation=None, description=None):
     """A source read from a spectrum file (`type: measured`), e.g. one
-    write_spectrum() wrote; extrapolation outside the data: "error"
-    (default), "zero" or "hold"."""
+    write_spectrum() wrote; or, without a file, from the arrays f_hz (n,)
+    and psd (n,) or (n, channels) as write_spectrum() takes them (unit
+    required). extrapolation outside the data: "error" (default), "zero"
+    or "hold"."""
+    if file is None:
+        if f_hz is None or psd is None:
+            raise argument_error("file", "give a spectrum file, or the arrays f_hz and psd")
+        if unit is None:
+            raise argument_error("unit", "the unit of the measured arrays is required")
+        file = write_spectrum(_data_file("source"), f_hz, psd, unit=unit, quantity=quantity, channels=channels)
+    elif f_hz is not None or psd is not None:
+        raise argument_error("file", "give a file or the arrays f_hz and psd, not both")
     spectrum = {"type": "measured", "file": str(file)}
     if columns is not None:
         spectrum["columns"] = list(columns)
@@ -296,11 +328,24 @@ def measured_source(name, file, *, unit=None, channels=None, columns=None, extra
     return entry
 
 
-def frf_path(name, file, *, input_unit, output_unit, inputs=None, outputs=None, extrapolation=None,
-             description=None):
+def frf_path(name, file=None, *, f_hz=None, h=None, input_unit, output_unit, inputs=None, outputs=None,
+             extrapolation=None, description=None):
     """A path read from a frequency response table (`type: frf`), e.g. one
-    write_frf() wrote; inputs/outputs: the names (and order) the file must
-    hold (default: all, in the file's order)."""
+    write_frf() wrote; or, without a file, from the arrays f_hz (n,) and h
+    (n, outputs, inputs) as write_frf() takes them (inputs and outputs then
+    name the channels, default u1.. and y1..). inputs/outputs: the names (and
+    order) the file must hold (default: all, in the file's order)."""
+    if file is None:
+        if f_hz is None or h is None:
+            raise argument_error("file", "give a frequency response file, or the arrays f_hz and h")
+        shape = np.shape(h)
+        if len(shape) != 3:
+            raise argument_error("h", f"expected (n, outputs, inputs), got shape {shape}")
+        outputs = list(outputs) if outputs is not None else [f"y{i + 1}" for i in range(shape[1])]
+        inputs = list(inputs) if inputs is not None else [f"u{j + 1}" for j in range(shape[2])]
+        file = write_frf(_data_file("path"), f_hz, h, outputs=outputs, inputs=inputs)
+    elif f_hz is not None or h is not None:
+        raise argument_error("file", "give a file or the arrays f_hz and h, not both")
     entry = {"type": "frf", "file": str(file)}
     if inputs is not None:
         entry["inputs"] = list(inputs)

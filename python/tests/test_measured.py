@@ -36,6 +36,28 @@ def test_a_measured_source_from_arrays_integrates_exactly(tmp_path):
     assert e.value.file is not None and "bad.csv" in str(e.value) and e.value.line is not None
 
 
+def test_measured_data_from_arrays_without_a_file():
+    # The same constant PSD as above, given as arrays: the budget needs no file of the caller's.
+    s0 = 2.5e-3
+    f = np.logspace(0, 3, 31)
+    b = deb.budget("measured", sources=[deb.measured_source("floor", f_hz=f, psd=np.full(f.size, s0), unit="um/s")],
+                   paths=[{"name": "gain", "type": "gain", "gain": [[1.0]], "input_unit": "um/s",
+                           "output_unit": "um/s"}],
+                   contributors=[("floor", "floor", "gain")], outputs=[("x", "y", "um/s")])
+    assert deb.evaluate(b).output("x").variance == pytest.approx(s0 * 999, rel=1e-12, abs=0)
+    # An FRF as arrays: H of one mass, read back at its points.
+    w = 2 * np.pi * f
+    h = (1.0 / (1e4 - 2.0 * w ** 2 + 1j * 5.0 * w)).reshape(-1, 1, 1)
+    p = deb.frf_path("m", f_hz=f, h=h, input_unit="N", output_unit="m")
+    b2 = deb.budget("frf", sources=[deb.flat_source("force", 1e-4, unit="N", channels=["u1"])], paths=[p],
+                    contributors=[("force", "force", "m")], outputs=[("x", "y1", "m")])
+    got = deb.frequency_response(b2, "m", f[5:8])
+    assert np.allclose(got[:, 0, 0], h[5:8, 0, 0], rtol=1e-15, atol=0)
+    with pytest.raises(deb.InputError) as e:
+        deb.measured_source("floor", f_hz=f, psd=np.full(f.size, s0))
+    assert e.value.key_path == "unit"
+
+
 def test_an_frf_path_from_arrays_equals_the_model_it_was_sampled_from(tmp_path):
     # The single mode's H sampled at 3000 frequencies, written, read back as a measured path:
     # at the data's frequencies H is the data, to every digit written.
