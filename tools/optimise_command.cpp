@@ -167,11 +167,18 @@ int OptimiseCommand::Run() const {
     std::printf("nominal: %s = %s\n", what.c_str(), SignificantText(result.nominal_objective, 6).c_str());
     std::printf("optimum (start %zu, %s): %s\n", result.best + 1, best.stop.c_str(), OptimumText(result).c_str());
     std::printf("  %s = %s\n", what.c_str(), SignificantText(best.objective, 6).c_str());
-    for (const RequirementRatio& q : result.requirements)
+    for (const RequirementRatio& q : result.requirements) {
+      if (q.margin) {
+        std::printf("  %s: %s, required %s%s\n", q.name.c_str(),
+                    std::isinf(q.rms) ? "infinite" : SignificantText(q.rms, 5).c_str(),
+                    SignificantText(q.limit, 5).c_str(), q.active ? ", active" : "");
+        continue;
+      }
       std::printf("  %s: %sRMS %s of %s (%s)%s\n", q.name.c_str(), objective.quantile ? ("P" + s.robust.substr(1) + " ").c_str() : "",
                   SignificantText(q.rms, 5).c_str(),
                   SignificantText(q.limit, 5).c_str(), (SignificantText(100.0 * q.ratio(), 4) + " %").c_str(),
                   q.active ? ", active" : "");
+    }
     std::printf("results: %s/summary.json, optimum.yaml; the optimum's report: %s/report/\n", dir.c_str(), dir.c_str());
   }
   if (!result.feasible) {

@@ -156,6 +156,8 @@ std::string DescribeBudget(const Budget& budget, const EvaluationPlan& plan) {
     if (const std::string same = SameLoopText(loop); !same.empty())
       AppendFormatted(text, "    the same loop as %s\n", same.c_str());
     AppendFormatted(text, "    %s\n", MarginsText(loop).c_str());
+    if (const std::string checks = MarginChecksText(loop); !checks.empty())
+      AppendFormatted(text, "    required: %s\n", checks.c_str());
   }
   AddContributors(text, budget, plan);
   AddOutputs(text, budget);

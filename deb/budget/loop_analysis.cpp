@@ -1,7 +1,9 @@
 #include "deb/budget/loop_analysis.h"
 
 #include <algorithm>
+#include <cmath>
 #include <complex>
+#include <limits>
 #include <set>
 
 #include "deb/core/error.h"
@@ -60,6 +62,7 @@ void MergeSameLoops(std::vector<LoopResult>& loops, std::vector<const FeedbackLo
       for (const LoopForm& f : forms)
         if (!(f.plant == merged.plant && f.controller == merged.controller && f.sign == merged.sign))
           merged.same_loop.push_back(f);
+      if (merged.required.empty()) merged.required = swap ? loops[i].required : loops[j].required;
       merged.paths = loops[i].paths;
       for (const std::string& p : loops[j].paths)
         if (std::find(merged.paths.begin(), merged.paths.end(), p) == merged.paths.end()) merged.paths.push_back(p);
@@ -75,6 +78,44 @@ void MergeSameLoops(std::vector<LoopResult>& loops, std::vector<const FeedbackLo
 }
 
 }  // namespace
+
+double MarginCheck::ratio() const {
+  if (std::isnan(actual) || actual <= 0.0) return std::numeric_limits<double>::infinity();
+  return std::isinf(actual) ? 0.0 : required / actual;
+}
+
+std::vector<MarginCheck> MarginChecks(const LoopResult& loop) {
+  std::vector<MarginCheck> out;
+  const MarginRequirement& q = loop.required;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const LoopMargins& m = loop.margins;
+  if (q.gain_db) {
+    double actual = nan;
+    if (loop.evaluated && m.channels == 1)
+      actual = m.upper_gain_margin ? 20.0 * std::log10(m.upper_gain_margin->gain_margin) : inf;
+    out.push_back({"gain margin", "dB", *q.gain_db, actual});
+  }
+  if (q.phase_deg) {
+    double actual = nan;
+    if (loop.evaluated && m.channels == 1) actual = m.phase_margin ? m.phase_margin->phase_margin_deg : inf;
+    out.push_back({"phase margin", "deg", *q.phase_deg, actual});
+  }
+  if (q.modulus) out.push_back({"modulus margin", "", *q.modulus, loop.evaluated ? m.modulus_margin : nan});
+  return out;
+}
+
+std::string MarginChecksText(const LoopResult& loop) {
+  std::string text;
+  for (const MarginCheck& c : MarginChecks(loop)) {
+    const std::string unit = c.unit.empty() ? "" : " " + c.unit;
+    const std::string actual = std::isnan(c.actual) ? "not evaluated"
+                               : std::isinf(c.actual) ? "infinite"
+                                                      : SignificantText(c.actual, 4) + unit;
+    text += (text.empty() ? "" : "; ") + c.what + " " + actual + " >= " + SignificantText(c.required, 4) + unit + ": " +
+            (c.pass() ? "PASS" : "FAIL");
+  }
+  return text;
+}
 
 std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<double>& f_hz) {
   std::vector<LoopResult> loops;
@@ -98,6 +139,7 @@ std::vector<LoopResult> AnalyseLoops(const Budget& budget, const std::vector<dou
       }
       if (std::find(same->paths.begin(), same->paths.end(), path.name) == same->paths.end())
         same->paths.push_back(path.name);
+      if (same->required.empty()) same->required = loop.required;
     }
   }
   std::vector<std::vector<double>> f_of(loops.size());  // the frequencies each loop is evaluated on

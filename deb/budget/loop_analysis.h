@@ -50,7 +50,24 @@ struct LoopResult {
   std::string note;
   LoopMargins margins;
   std::vector<LoopApproximation> approximations;  // evaluated loops only
+  MarginRequirement required;  // of the first path that gives one
 };
+
+// One required margin of a loop against the loop's: `actual` is +inf where
+// the loop has no such crossover (no gain crossover: no phase margin to
+// lose), NaN where it was not evaluated (which fails).
+struct MarginCheck {
+  std::string what;  // "gain margin", "phase margin", "modulus margin"
+  std::string unit;  // "dB", "deg", ""
+  double required = 0.0, actual = 0.0;
+  bool pass() const { return actual >= required; }
+  // required / actual: <= 1 where it passes (0 for an infinite margin).
+  double ratio() const;
+};
+std::vector<MarginCheck> MarginChecks(const LoopResult& loop);
+// "phase margin 38.2 deg >= 30 deg: PASS; modulus margin 0.41 >= 0.5: FAIL";
+// "" when the loop requires none.
+std::string MarginChecksText(const LoopResult& loop);
 
 // Every distinct loop of the paths that contributors use (one-channel loops
 // with the same loop gain merged into the first), with its margins

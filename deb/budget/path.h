@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,10 +20,19 @@ namespace deb {
 // H = (I - sign G K)^-1 G. Kept so that the loop itself can be analysed
 // (loop gain, margins: deb/systems/loop_margins.h), which the closed
 // path's H no longer shows.
+// The stability margins a loop must keep (`margins:` on a feedback path):
+// a gain margin in dB, a phase margin in degrees (one-channel loops), a
+// modulus margin min |1 + L| (min sigma_min(I + L) for several channels).
+struct MarginRequirement {
+  std::optional<double> gain_db, phase_deg, modulus;
+  bool empty() const { return !gain_db && !phase_deg && !modulus; }
+};
+
 struct FeedbackLoop {
   std::string plant, controller;  // the names of the paths it closes
   int sign = -1;
   std::shared_ptr<const FrequencyModel> plant_model, controller_model;
+  MarginRequirement required;
 
   int channels() const { return plant_model->outputs(); }
   // The loop gain broken at the plant's outputs, L = -sign G K (j 2 pi f_hz):

@@ -8,6 +8,7 @@
 #include "deb/budget/path_composition.h"
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
+#include "deb/core/number_text.h"
 #include "deb/core/suggest.h"
 #include "deb/load/block_yaml.h"
 #include "deb/load/isolation_yaml.h"
@@ -415,6 +416,31 @@ void NameChannels(const YamlNode& node, const std::string& type, ChannelSource f
   if (type == "mass_spring_damper") p.system = InPathUnits(node, p, "N", "m");
 }
 
+// `margins: {gain_db: G, phase_deg: P, modulus: M}` of a feedback path:
+// gain and phase margins only for a loop of one channel.
+MarginRequirement ParseMargins(const YamlNode& node, const FeedbackLoop& loop) {
+  if (!node.IsMap()) node.Fail("expected {gain_db: G, phase_deg: P, modulus: M} (any of them)");
+  node.AllowOnly({"gain_db", "phase_deg", "modulus"});
+  MarginRequirement m;
+  if (auto g = node.Optional("gain_db")) m.gain_db = g->AsPositive();
+  if (auto p = node.Optional("phase_deg")) {
+    m.phase_deg = p->AsPositive();
+    if (*m.phase_deg >= 180.0) p->Fail("a phase margin is below 180 deg, got " + NumberText(*m.phase_deg));
+  }
+  if (auto q = node.Optional("modulus")) {
+    m.modulus = q->AsPositive();
+    if (*m.modulus > 1.0)
+      q->Fail("a modulus margin min |1 + L| is at most 1 for a loop whose gain falls off, got " +
+              NumberText(*m.modulus));
+  }
+  if (m.empty()) node.Fail("no margin: give gain_db, phase_deg or modulus");
+  if ((m.gain_db || m.phase_deg) && loop.channels() != 1)
+    node.Required(m.gain_db ? "gain_db" : "phase_deg")
+        .Fail("gain and phase margins are those of a one-channel loop, and this one has " +
+              std::to_string(loop.channels()) + " channels: give its modulus margin");
+  return m;
+}
+
 }  // namespace
 
 const Path& PathContext::Lookup(const YamlNode& name_node) const {
@@ -431,7 +457,7 @@ const Path& PathContext::Lookup(const YamlNode& name_node) const {
 // A path made of paths parsed before: series, parallel or feedback.
 Path PathContext::Compose(const YamlNode& node, const std::string& type, const Path& entry) const {
   if (type == "feedback") {
-    node.AllowOnly({"name", "description", "type", "inputs", "outputs", "plant", "controller", "sign"});
+    node.AllowOnly({"name", "description", "type", "inputs", "outputs", "plant", "controller", "sign", "margins"});
     const YamlNode plant = node.Required("plant"), controller = node.Required("controller");
     const PathPart g{&Lookup(plant), plant.key()}, k{&Lookup(controller), controller.key()};
     int sign = -1;
@@ -439,7 +465,9 @@ Path PathContext::Compose(const YamlNode& node, const std::string& type, const P
       sign = s->AsInt();
       AtNode(*s, [&] { CheckFeedbackSign(sign); });
     }
-    return Named(entry, AtNodes(node, {plant, controller}, [&] { return FeedbackOfPaths(g, k, sign); }));
+    Path p = Named(entry, AtNodes(node, {plant, controller}, [&] { return FeedbackOfPaths(g, k, sign); }));
+    if (auto margins = node.Optional("margins")) p.loops.back().required = ParseMargins(*margins, p.loops.back());
+    return p;
   }
   node.AllowOnly({"name", "description", "type", "inputs", "outputs", "of"});
   const YamlNode of = node.Required("of");

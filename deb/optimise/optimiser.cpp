@@ -83,7 +83,8 @@ Evaluated EvaluateDesign(const DesignLoader& loader, const OptimiseObjective& ob
   for (std::size_t j = 0; j < e.requirements.size(); ++j) {
     std::vector<double> rms;
     for (const Evaluated& a : at) rms.push_back(a.requirements[j].rms);
-    e.requirements[j].rms = Percentile(rms, q);
+    // A margin's bad tail is its low end: its (1 - q) quantile.
+    e.requirements[j].rms = Percentile(rms, e.requirements[j].margin ? 1.0 - q : q);
     e.worst = std::max(e.worst, e.requirements[j].ratio());
   }
   if (objective.max_ratio) {
@@ -242,6 +243,12 @@ std::string OptimiseObjective::Text() const {
          std::to_string(samples.size()) + " samples)";
 }
 
+double RequirementRatio::ratio() const {
+  if (!margin) return rms / limit;
+  if (std::isnan(rms) || rms <= 0.0) return std::numeric_limits<double>::infinity();
+  return std::isinf(rms) ? 0.0 : limit / rms;
+}
+
 std::vector<RequirementRatio> RequirementRatios(const BudgetResult& result) {
   std::vector<RequirementRatio> out;
   for (const OutputResult& o : result.outputs) {
@@ -251,6 +258,15 @@ std::vector<RequirementRatio> RequirementRatios(const BudgetResult& result) {
                          " Hz]",
                      b.rms(), b.requirement.rms_max});
   }
+  for (const LoopResult& loop : result.loops)
+    for (const MarginCheck& c : MarginChecks(loop)) {
+      RequirementRatio q;
+      q.name = "loop " + loop.plant + "/" + loop.controller + " " + c.what;
+      q.rms = c.actual;
+      q.limit = c.required;
+      q.margin = true;
+      out.push_back(q);
+    }
   return out;
 }
 

@@ -67,11 +67,16 @@ struct OptimiseOptions {
   int threads = 0;
 };
 
-// A requirement at a design: "z" (rms_max) or "z[10-100 Hz]" (a band's).
+// A requirement at a design: "z" (rms_max), "z[10-100 Hz]" (a band's), or
+// a loop's required margin ("loop G/K phase margin": `margin`, `rms` the
+// loop's margin, `limit` the required one; infinite where the loop has no
+// such crossover, NaN where it was not evaluated).
 struct RequirementRatio {
   std::string name;
   double rms = 0.0, limit = 0.0;
-  double ratio() const { return rms / limit; }
+  bool margin = false;
+  // RMS / limit, or for a margin required / actual: at most 1 where it is met.
+  double ratio() const;
   bool active = false;  // at the optimum: within 1e-3 of its limit
 };
 
@@ -113,7 +118,7 @@ struct OptimiseResult {
 using DesignLoader = std::function<Budget(const std::vector<double>& values)>;
 
 // The requirement lines of a result: every output's rms_max, then its band
-// requirements.
+// requirements; then every loop's required margins.
 std::vector<RequirementRatio> RequirementRatios(const struct BudgetResult& result);
 
 // The objective and the largest RMS / requirement over a grid of two

@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+
 #include "deb/core/number_text.h"
 #include "deb/version.h"
 
@@ -26,7 +28,9 @@ Json Values(const OptimiseResult& r, const std::vector<double>& si) {
 Json Requirements(const std::vector<RequirementRatio>& list, bool active) {
   Json a = Json::array();
   for (const RequirementRatio& q : list) {
-    Json j = {{"name", q.name}, {"rms", q.rms}, {"limit", q.limit}, {"ratio", q.ratio()}};
+    const auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+    Json j = q.margin ? Json{{"name", q.name}, {"margin", number(q.rms)}, {"required", q.limit}, {"ratio", number(q.ratio())}}
+                      : Json{{"name", q.name}, {"rms", q.rms}, {"limit", q.limit}, {"ratio", q.ratio()}};
     if (active) j["active"] = q.active;
     a.push_back(j);
   }

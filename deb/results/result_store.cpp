@@ -198,6 +198,11 @@ void WriteLoop(Hdf5Writer& w, const std::string& at, const LoopResult& r, const 
     w.Texts(at + "/same_loop/controllers", controllers);
     w.Numbers(at + "/same_loop/signs", signs);
   }
+  if (!r.required.empty()) {  // only loops with `margins:`: gain dB, phase deg, modulus; NaN where not given
+    const double nan = std::nan("");
+    w.Numbers(at + "/required_margins", {r.required.gain_db.value_or(nan), r.required.phase_deg.value_or(nan),
+                                         r.required.modulus.value_or(nan)});
+  }
   const LoopMargins& m = r.margins;
   w.Integer(at + "/margins/channels", m.channels);
   std::vector<std::vector<double>> gain, phase;
@@ -514,6 +519,15 @@ void ReadLoop(const Reading& in, const std::string& at, std::size_t n, LoopResul
       if (signs[i] != -1.0 && signs[i] != 1.0) in.Fail(at + "/same_loop/signs", "holds a sign other than -1 or +1");
       r->same_loop.push_back({plants[i], controllers[i], signs[i] < 0 ? -1 : 1});
     }
+  }
+  if (h.Has(at + "/required_margins")) {
+    const std::vector<double> q = h.Numbers(at + "/required_margins", AtMost(3), true);
+    if (q.size() != 3) in.Fail(at + "/required_margins", "holds " + std::to_string(q.size()) + " values, not 3");
+    for (double v : q)
+      if (!std::isnan(v) && !(v > 0.0)) in.Fail(at + "/required_margins", "holds a margin that is not > 0");
+    if (!std::isnan(q[0])) r->required.gain_db = q[0];
+    if (!std::isnan(q[1])) r->required.phase_deg = q[1];
+    if (!std::isnan(q[2])) r->required.modulus = q[2];
   }
   LoopMargins& m = r->margins;
   m.channels = in.Whole(at + "/margins/channels", h.Integer(at + "/margins/channels"), 0, limits::kMaxChannels);

@@ -77,6 +77,12 @@ nlohmann::json LoopsJson(const std::vector<LoopResult>& loops) {
                          {"evaluated", l.evaluated}};
     for (const LoopForm& f : l.same_loop)  // only a loop built in several ways
       jl["same_loop_as"].push_back({{"plant", f.plant}, {"controller", f.controller}, {"sign", f.sign}});
+    for (const MarginCheck& c : MarginChecks(l))  // only a loop with `margins:`
+      jl["requirements"].push_back({{"margin", c.what},
+                                    {"unit", c.unit},
+                                    {"required", c.required},
+                                    {"actual", std::isfinite(c.actual) ? nlohmann::json(c.actual) : nlohmann::json(nullptr)},
+                                    {"pass", c.pass()}});
     if (!l.evaluated) {
       jl["note"] = l.note;
       out.push_back(jl);

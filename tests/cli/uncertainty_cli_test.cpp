@@ -96,3 +96,41 @@ outputs:
   CHECK(fs::exists(dir / "n" / "optimum.yaml"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("a loop's required margins: deb check and deb run say PASS or FAIL, summary.json and result.h5 keep them") {
+  const fs::path dir = deb::test::TempDir("margins_cli");
+  const std::string budget = R"(name: pm
+parameters:
+  k: {value: 0.5, min: 0.1, max: 10}
+grid: {type: log, min_hz: 0.001, max_hz: 100, points: 400}
+sources:
+  - {name: d, unit: N, spectrum: {type: flat, level: 1}}
+paths:
+  - {name: G, type: transfer_function, num: [1], den: [1, 1, 0], input_unit: N, output_unit: m}
+  - {name: K, type: gain, gain: [[k]], input_unit: m, output_unit: N}
+  - {name: PS, type: feedback, plant: G, controller: K, margins: {phase_deg: 45, modulus: 0.5}}
+contributors:
+  - {name: c, source: d, path: PS}
+outputs:
+  - {name: x, signal: y, unit: m}
+)";
+  deb::test::WriteFile(dir / "b.yaml", budget);
+  const deb::test::Command check = deb::test::RunDebIn(dir, "check b.yaml");
+  REQUIRE(check.exit_code == 0);
+  CHECK(check.out.find("required: phase margin 65.53 deg >= 45 deg: PASS; modulus margin 0.7862 >= 0.5: PASS") !=
+        std::string::npos);
+  // k = 4: the phase margin 90 - atan(w_c) deg falls below 45 (w_c = 1.87 rad/s: 28 deg).
+  const deb::test::Command run =
+      deb::test::RunDebIn(dir, "run b.yaml --set k=4 --no-plots --out a", "SOURCE_DATE_EPOCH=1");
+  REQUIRE(run.exit_code == 0);
+  CHECK(run.out.find("loop G closed by K: phase margin 28.") != std::string::npos);
+  CHECK(run.out.find(" >= 45 deg: FAIL") != std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(deb::test::ReadAll(dir / "a" / "summary.json"));
+  REQUIRE(j["loops"][0]["requirements"].size() == 2);
+  CHECK(j["loops"][0]["requirements"][0]["margin"] == "phase margin");
+  CHECK(j["loops"][0]["requirements"][0]["pass"] == false);
+  // Redrawn from result.h5: the same summary.json.
+  REQUIRE(deb::test::RunDebIn(dir, "report a --no-plots --out b", "SOURCE_DATE_EPOCH=1").exit_code == 0);
+  CHECK(deb::test::ReadAll(dir / "a" / "summary.json") == deb::test::ReadAll(dir / "b" / "summary.json"));
+  fs::remove_all(dir);
+}

@@ -224,6 +224,55 @@ TEST_CASE("robust: the P95 over a's tolerance moves kv* to (b / a_P95)^(1/4)") {
                        InputError);
 }
 
+TEST_CASE("a required phase margin: L = k / (s (s + 1)) keeps 45 deg up to k = sqrt(2)") {
+  // The process sensitivity 1 / (s^2 + s + k) of a white force has the
+  // variance S0 / (2 k) (its RMS falls as k rises), and the phase margin
+  // 90 deg - atan(w_c) with k = w_c sqrt(1 + w_c^2): 45 deg at w_c = 1 rad/s,
+  // k = sqrt(2). The optimum lies on the margin, which is active.
+  const Dir dir;
+  const std::string budget = R"(name: pm
+parameters:
+  k: {value: 0.5, min: 0.1, max: 10}
+grid: {type: log, min_hz: 0.001, max_hz: 100, points: 400}
+sources:
+  - {name: d, unit: N, spectrum: {type: flat, level: 1}}
+paths:
+  - {name: G, type: transfer_function, num: [1], den: [1, 1, 0], input_unit: N, output_unit: m}
+  - {name: K, type: gain, gain: [[k]], input_unit: m, output_unit: N}
+  - {name: PS, type: feedback, plant: G, controller: K, margins: {phase_deg: 45}}
+contributors:
+  - {name: c, source: d, path: PS}
+outputs:
+  - {name: x, signal: y, unit: m}
+)";
+  const OptimiseBudget b = LoadOptimiseFile(dir.Write("pm.yaml", budget), {"k"});
+  OptimiseObjective x;
+  x.output = "x";
+  for (OptimiseMethod m : {OptimiseMethod::kSlsqp, OptimiseMethod::kCobyla}) {
+    OptimiseOptions o;
+    o.method = m;
+    const OptimiseResult r = RunOptimise(b.variables, x, o, b.loader);
+    CAPTURE(ToString(m));
+    REQUIRE(r.feasible);
+    MESSAGE(ToString(m) << ": k* " << r.starts[r.best].values[0] << " in " << r.evaluations << " evaluations");
+    CHECK(r.starts[r.best].values[0] == doctest::Approx(std::sqrt(2.0)).epsilon(1e-6));
+    REQUIRE(r.requirements.size() == 1);
+    CHECK(r.requirements[0].name == "loop G/K phase margin");
+    CHECK(r.requirements[0].margin);
+    CHECK(r.requirements[0].active);
+  }
+  // The margin rules: located errors.
+  using test::CheckLocated;
+  const auto error = [&](const std::string& to) {
+    return test::ErrorOfBudget(dir.Write("b.yaml", test::Replace(budget, "margins: {phase_deg: 45}", to)));
+  };
+  CheckLocated(error("margins: {phase_deg: 200}"), "paths[2].margins.phase_deg", "a phase margin is below 180 deg");
+  CheckLocated(error("margins: {modulus: 1.5}"), "paths[2].margins.modulus", "is at most 1");
+  CheckLocated(error("margins: {}"), "paths[2].margins", "no margin: give gain_db, phase_deg or modulus");
+  CheckLocated(error("margins: {phase: 45}"), "paths[2].margins.phase", "unknown key 'phase'");
+  CheckLocated(error("margins: {gain_db: -6}"), "paths[2].margins.gain_db", "-6");
+}
+
 TEST_CASE("bad bounds and --vary: errors naming the rule") {
   const Dir dir;
   using test::CheckLocated;

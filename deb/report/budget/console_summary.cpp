@@ -103,6 +103,9 @@ std::string ConsoleSummary(const BudgetResult& r, std::optional<double> evaluati
   AppendFormatted(text, "\n");
   for (const OutputResult& o : r.outputs) AddOutput(text, o, r.grid, digits);
   if (r.covariance) AddCorrelation(text, *r.covariance);
+  for (const LoopResult& loop : r.loops)
+    if (const std::string checks = MarginChecksText(loop); !checks.empty())
+      AppendFormatted(text, "loop %s closed by %s: %s\n", loop.plant.c_str(), loop.controller.c_str(), checks.c_str());
   return text;
 }
 
