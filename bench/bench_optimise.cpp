@@ -53,10 +53,7 @@ int main(int argc, char** argv) {
   deb::ParallelForEach(rms.size(), [&](std::size_t k) {
     const double kv = v[0].min + (v[0].max - v[0].min) * static_cast<double>(k / g) / (g - 1);
     const double h = v[1].min + (v[1].max - v[1].min) * static_cast<double>(k % g) / (g - 1);
-    deb::EngineOptions e;
-    e.threads = 1;
-    e.response_traces = false;
-    rms[k] = deb::Evaluate(budget.loader({kv, h}), e).outputs[0].rms();
+    rms[k] = deb::Evaluate(budget.loader({kv, h}), deb::EngineOptions::VariancesOnly()).outputs[0].rms();
   });
   std::size_t best = 0;
   for (std::size_t k = 1; k < rms.size(); ++k)

@@ -35,11 +35,8 @@ int main(int argc, char** argv) {
     auto t0 = std::chrono::steady_clock::now();
     const deb::Budget b = budget.variant(nominal);
     load = std::min(load, Seconds(t0));
-    deb::EngineOptions o;
-    o.threads = 1;
-    o.response_traces = false;
     t0 = std::chrono::steady_clock::now();
-    deb::Evaluate(b, o);
+    deb::Evaluate(b, deb::EngineOptions::VariancesOnly());  // as the study evaluates a sample
     evaluate = std::min(evaluate, Seconds(t0));
   }
   std::printf("%s: %zu uncertain parameters\n", file.c_str(), budget.spec.parameters.size());

@@ -37,6 +37,17 @@ struct EngineOptions {
   // would cost as much as the rest of the evaluation.
   bool covariance = true;
 
+  // One thread, variances only (no traces, no covariance): for studies that
+  // evaluate many budgets in parallel and read their variances (an
+  // uncertainty study's samples, an optimiser's designs).
+  static EngineOptions VariancesOnly() {
+    EngineOptions o;
+    o.threads = 1;
+    o.response_traces = false;
+    o.covariance = false;
+    return o;
+  }
+
   // False, with the option, its value and the rule in *error, unless
   // exact_tolerance is finite and > 0. Evaluate throws an InputError with it.
   bool IsValid(std::string* error) const;

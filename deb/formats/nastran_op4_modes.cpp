@@ -8,6 +8,8 @@
 #include <utility>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
+#include "deb/core/matrix_size_text.h"
 #include "deb/core/number_text.h"
 #include "deb/formats/nastran_reader.h"
 #include "deb/formats/op4_file.h"
@@ -15,10 +17,6 @@
 namespace deb::formats {
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-
-std::string SizeText(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
 
 // One value per mode from matrix `name` (a column, a row or a diagonal
 // matrix of `modes` values), for `what` ("eigenvalues").

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "deb/core/limits.h"
+#include "deb/core/matrix_size_text.h"
 #include "deb/core/number_text.h"
 #include "deb/formats/mat_file.h"
 #include "deb/formats/nastran_modes.h"
@@ -99,8 +100,6 @@ ShapeTable ParseShapes(const YamlNode& node, const char* key, const Modes& modes
   }
   return s;
 }
-
-std::string SizeText(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
 
 // The DOF names in variable `var`, or u1, u2, ... (`stem` alone for one DOF)
 // when the file has none, as for the channels of other paths.

@@ -8,6 +8,7 @@
 #include "deb/budget/path_composition.h"
 #include "deb/core/input_file.h"
 #include "deb/core/limits.h"
+#include "deb/core/matrix_size_text.h"
 #include "deb/core/number_text.h"
 #include "deb/core/suggest.h"
 #include "deb/load/block_yaml.h"
@@ -127,8 +128,6 @@ std::string Resolve(const std::string& base_dir, const std::string& file) {
   if (f.is_relative()) f = std::filesystem::path(base_dir) / f;
   return f.lexically_normal().string();
 }
-
-std::string SizeText(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
 
 // The rule of limits::kMaxStates, for `states` states that `what` gives.
 std::string TooManyStates(Eigen::Index states, const std::string& what) {

@@ -37,12 +37,7 @@ Evaluated EvaluatePoint(const DesignLoader& loader, const OptimiseObjective& obj
                         const std::vector<double>& values) {
   Evaluated e;
   try {
-    const Budget b = loader(values);
-    EngineOptions options;
-    options.threads = 1;
-    options.response_traces = false;
-    options.covariance = false;
-    const BudgetResult r = Evaluate(b, options);
+    const BudgetResult r = Evaluate(loader(values), EngineOptions::VariancesOnly());
     e.requirements = RequirementRatios(r);
     for (const RequirementRatio& q : e.requirements) e.worst = std::max(e.worst, q.ratio());
     if (objective.max_ratio) {
@@ -314,11 +309,7 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
     nominal_point.insert(nominal_point.end(), objective.samples[0].begin(), objective.samples[0].end());
   }
   const Budget nominal_budget = loader(nominal_point);
-  EngineOptions engine;
-  engine.threads = 1;
-  engine.response_traces = false;
-    engine.covariance = false;
-  const BudgetResult nominal_result = Evaluate(nominal_budget, engine);
+  const BudgetResult nominal_result = Evaluate(nominal_budget, EngineOptions::VariancesOnly());
   result.nominal_requirements = RequirementRatios(nominal_result);
   const std::size_t m = objective.max_ratio ? 0 : result.nominal_requirements.size();
   if (objective.max_ratio && result.nominal_requirements.empty())

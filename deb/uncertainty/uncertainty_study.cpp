@@ -66,12 +66,8 @@ std::string ValuesText(const UncertaintySpec& spec, const std::vector<double>& v
 std::vector<double> EvaluateAt(const VariantLoader& variant, const UncertaintySpec& spec,
                                const std::vector<double>& values, const std::string& what) {
   try {
-    const Budget b = variant(values);
-    EngineOptions options;
-    options.threads = 1;  // the study runs budgets in parallel, each on one thread
-    options.response_traces = false;
-    options.covariance = false;
-    return MetricValues(Evaluate(b, options));
+    // The study runs budgets in parallel, each on one thread.
+    return MetricValues(Evaluate(variant(values), EngineOptions::VariancesOnly()));
   } catch (const InputError& e) {
     // A loader's message names the values; the engine's may not.
     const std::string message = e.what();
@@ -189,12 +185,7 @@ UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyO
   {
     // The nominal budget first: it fixes the metrics every sample gives.
     inputs[0] = nominal;
-    const Budget b = variant(nominal);
-    EngineOptions engine;
-    engine.threads = 1;
-    engine.response_traces = false;
-    engine.covariance = false;
-    const BudgetResult r = Evaluate(b, engine);
+    const BudgetResult r = Evaluate(variant(nominal), EngineOptions::VariancesOnly());
     result.metrics = MetricsOf(r);
     outputs[0] = MetricValues(r);
   }

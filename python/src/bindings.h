@@ -10,9 +10,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "deb/budget/budget.h"
 #include "deb/budget/result.h"
+#include "deb/load/budget_yaml.h"
 #include "deb/results/result_writer.h"
 
 namespace deb::python {
@@ -32,6 +35,10 @@ struct EvaluatedBudget {
   std::shared_ptr<const BudgetResult> result;
   RunInfo info;
 };
+
+// set= as the loader takes it: (key path, value text) pairs -> overrides.
+// @throws InputError as ParseBudgetOverride.
+std::vector<BudgetOverride> ToOverrides(const std::vector<std::pair<std::string, std::string>>& pairs);
 
 // threads=None: every core (0 for the library); otherwise >= 1.
 // @throws InputError naming `threads` for a count below 1.

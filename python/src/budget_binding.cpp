@@ -10,13 +10,14 @@
 #include "python/src/bindings.h"
 
 namespace deb::python {
-namespace {
 
-std::vector<BudgetOverride> Overrides(const std::vector<std::pair<std::string, std::string>>& pairs) {
+std::vector<BudgetOverride> ToOverrides(const std::vector<std::pair<std::string, std::string>>& pairs) {
   std::vector<BudgetOverride> out;
   for (const auto& [key_path, value] : pairs) out.push_back(ParseBudgetOverride(key_path + "=" + value));
   return out;
 }
+
+namespace {
 
 template <typename T>
 std::vector<std::string> NamesOf(const std::vector<T>& items) {
@@ -58,7 +59,7 @@ void BindBudget(py::module_& m) {
   m.def(
       "load_file",
       [](const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides) {
-        const std::vector<BudgetOverride> o = Overrides(overrides);
+        const std::vector<BudgetOverride> o = ToOverrides(overrides);
         py::gil_scoped_release release;
         return LoadedBudget{std::make_shared<const Budget>(LoadBudgetFile(path, o)), path, std::nullopt};
       },
@@ -67,7 +68,7 @@ void BindBudget(py::module_& m) {
       "load_text",
       [](const std::string& text, const std::string& name, const std::string& base_dir,
          const std::vector<std::pair<std::string, std::string>>& overrides) {
-        const std::vector<BudgetOverride> o = Overrides(overrides);
+        const std::vector<BudgetOverride> o = ToOverrides(overrides);
         py::gil_scoped_release release;
         return LoadedBudget{std::make_shared<const Budget>(LoadBudgetText(text, name, base_dir, o)), "", text};
       },

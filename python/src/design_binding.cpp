@@ -24,12 +24,6 @@ namespace {
 
 using Overrides = std::vector<std::pair<std::string, std::string>>;
 
-std::vector<BudgetOverride> ToOverrides(const Overrides& pairs) {
-  std::vector<BudgetOverride> out;
-  for (const auto& [key_path, value] : pairs) out.push_back(ParseBudgetOverride(key_path + "=" + value));
-  return out;
-}
-
 }  // namespace
 
 void BindDesignStudies(py::module_& m) {

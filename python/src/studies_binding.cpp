@@ -33,12 +33,6 @@ struct SweepOutcome {
 
 using Overrides = std::vector<std::pair<std::string, std::string>>;
 
-std::vector<BudgetOverride> ToOverrides(const Overrides& pairs) {
-  std::vector<BudgetOverride> out;
-  for (const auto& [key_path, value] : pairs) out.push_back(ParseBudgetOverride(key_path + "=" + value));
-  return out;
-}
-
 SweepOutcome RunSweep(const SweepBudget& sweep, const RunInfo& info, int threads) {
   SweepOutcome out;
   out.spec = sweep.spec;

@@ -17,6 +17,7 @@
 #include "deb/formats/nastran_modes.h"
 #include "deb/load/budget_yaml.h"
 #include "tests/support/budget_errors.h"
+#include "tests/support/scratch_dir.h"
 #include "tests/support/contains.h"
 #include "tests/support/contributor_of.h"
 #include "tests/support/op4_writer.h"
@@ -30,20 +31,10 @@ const std::string kSource = DEB_SOURCE_DIR;
 const std::string kBeam = kSource + "/budgets/nastran_beam.yaml";
 const std::string kOp2 = kSource + "/budgets/nastran_beam/beam_modes_m1.op2";
 
-class Dir {
+// Each test's files, removed when it ends.
+class Dir : public test::ScratchDir {
  public:
-  Dir() : dir_(std::filesystem::temp_directory_path() / ("deb_op4_modal_" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(dir_);
-  }
-  ~Dir() { std::filesystem::remove_all(dir_); }
-  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string Write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(dir_ / name, std::ios::binary) << bytes;
-    return Path(name);
-  }
-
- private:
-  std::filesystem::path dir_;
+  Dir() : ScratchDir("op4_modal") {}
 };
 
 // The beam budget with its path's file and its OP4 keys in place of the OP2.

@@ -20,24 +20,16 @@
 #include "deb/load/optimise_yaml.h"
 #include "deb/results/optimise_files.h"
 #include "tests/support/budget_errors.h"
+#include "tests/support/scratch_dir.h"
 #include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
 
-class Dir {
+// Each test's files, removed when it ends.
+class Dir : public test::ScratchDir {
  public:
-  Dir() : dir_(std::filesystem::temp_directory_path() / ("deb_optimise_" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(dir_);
-  }
-  ~Dir() { std::filesystem::remove_all(dir_); }
-  std::string Write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
-
- private:
-  std::filesystem::path dir_;
+  Dir() : ScratchDir("optimise") {}
 };
 
 const std::string kBudget = R"(name: opt
@@ -142,7 +134,6 @@ TEST_CASE("the optimum.yaml loads as a budget with the optimum's values") {
   const Dir dir;
   const std::string file = dir.Write("b.yaml", kBudget);
   const OptimiseResult r = Optimise(file, OptimiseMethod::kBobyqa);
-  std::filesystem::create_directories(std::filesystem::path(file).parent_path() / "out");
   const std::string optimum = dir.Write("out/optimum.yaml", OptimumYaml("../b.yaml", "opt", r, {}));
   const Budget b = LoadBudgetFile(optimum);
   CHECK(b.name == "opt_optimum");
@@ -173,10 +164,9 @@ TEST_CASE("the thesis' Kv and h: BOBYQA within 60 evaluations, no worse than any
   // (the bound 400 mm) with spacing 0.25: none lower, and the line's best
   // within its spacing of the optimum.
   const std::vector<DesignVariable>& v = b.variables;
-  EngineOptions e;
-  e.threads = 1;
-  e.response_traces = false;
-  const auto rms = [&](double kv, double h) { return Evaluate(b.loader({kv, h}), e).outputs[0].rms(); };
+  const auto rms = [&](double kv, double h) {
+    return Evaluate(b.loader({kv, h}), EngineOptions::VariancesOnly()).outputs[0].rms();
+  };
   double grid_best = 1e300;
   for (int i = 0; i < 15; ++i)
     for (int j = 0; j < 15; ++j)

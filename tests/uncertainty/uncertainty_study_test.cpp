@@ -19,24 +19,16 @@
 #include "deb/load/uncertainty_yaml.h"
 #include "deb/results/uncertainty_files.h"
 #include "tests/support/budget_errors.h"
+#include "tests/support/scratch_dir.h"
 #include "tests/support/text_edit.h"
 
 namespace deb {
 namespace {
 
-class Dir {
+// Each test's files, removed when it ends.
+class Dir : public test::ScratchDir {
  public:
-  Dir() : dir_(std::filesystem::temp_directory_path() / ("deb_uncertainty_" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(dir_);
-  }
-  ~Dir() { std::filesystem::remove_all(dir_); }
-  std::string Write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
-
- private:
-  std::filesystem::path dir_;
+  Dir() : ScratchDir("uncertainty") {}
 };
 
 const std::string kBudget = R"(name: lin

@@ -115,7 +115,7 @@ Plot Map(const OptimiseResult& r, const DesignMap& m) {
   panel.y.max = y.back();
   panel.x.grid = panel.y.grid = panel.x.minor_grid = panel.y.minor_grid = false;
   panel.y2.shown = false;
-  panel.palette = {"#fde725", "#5ec962", "#21918c", "#3b528b", "#440154"};
+  panel.palette = kMapPalette;
   panel.colour_axis.label = Enhanced(r.objective.Text());
   panel.key.placement = KeyPlacement::kBelowMap;
   const std::string file = p.name + ".csv";

@@ -260,8 +260,7 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
   if (py.texts.empty()) panel.y.min = y.front(), panel.y.max = y.back();
   panel.x.grid = panel.y.grid = panel.x.minor_grid = panel.y.minor_grid = false;
   panel.y2.shown = false;
-  // Perceptually ordered, light where the RMS is low (viridis reversed).
-  panel.palette = {"#fde725", "#5ec962", "#21918c", "#3b528b", "#440154"};
+  panel.palette = kMapPalette;
   panel.colour_axis.label = "total RMS [" + UnitLabel(out0.unit) + "]";
   if (lo > 0.0 && hi / lo > 5.0) LogColourBar(panel.colour_axis, lo, hi, p.caption);  // a bad corner would wash out the rest
   // The key below the map, never over it.

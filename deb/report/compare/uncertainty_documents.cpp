@@ -7,8 +7,6 @@ namespace deb::report {
 
 namespace {
 
-std::string Percent(double p) { return Sig(100.0 * p, 3) + " %"; }
-
 std::string Shown(const UncertainParameter& p, double si) {
   return Sig(si / p.unit_si, 4) + (p.unit.empty() ? "" : " " + UnitText(p.unit));
 }
@@ -36,8 +34,8 @@ Table StatisticsTable(const UncertaintyResult& r, const std::string& output) {
     t.rows.push_back({name, Sig(m.nominal, 4), Sig(m.moments.mean, 4),
                       Sig(m.moments.sd, 3) + " (" + Sig(m.fosm_sd, 3) + ")", Sig(m.p5, 4), Sig(m.p50, 4),
                       Sig(m.p95, 4), Sig(m.p99, 4),
-                      m.limit ? Percent(static_cast<double>(m.met) / static_cast<double>(r.samples)) + " of ≤ " +
-                                    Short(*m.limit) + " (" + Percent(m.p_meet.low) + " to " + Percent(m.p_meet.high) +
+                      m.limit ? ProbabilityText(static_cast<double>(m.met) / static_cast<double>(r.samples)) + " of ≤ " +
+                                    Short(*m.limit) + " (" + ProbabilityText(m.p_meet.low) + " to " + ProbabilityText(m.p_meet.high) +
                                     ")"
                               : "–"});
   }
@@ -74,8 +72,8 @@ StudyDocument UncertaintyDocument(const std::string& budget_name, const Uncertai
              std::to_string(r.options.seed) + "), " + std::to_string(r.evaluations) +
              " budgets evaluated in all (the nominal design, the gradient's steps and the tolerance box's corners "
              "besides the samples). All requirements met in " +
-             Percent(static_cast<double>(r.all_met) / static_cast<double>(r.samples)) + " of the samples (95 %: " +
-             Percent(r.p_all_met.low) + " to " + Percent(r.p_all_met.high) +
+             ProbabilityText(static_cast<double>(r.all_met) / static_cast<double>(r.samples)) + " of the samples (95 %: " +
+             ProbabilityText(r.p_all_met.low) + " to " + ProbabilityText(r.p_all_met.high) +
              "). The first-order sd is the gradient's estimate: where it is close to the sampled sd, the RMS is "
              "about linear in the tolerances.";
   StudySection parameters;
@@ -92,8 +90,8 @@ StudyDocument UncertaintyDocument(const std::string& budget_name, const Uncertai
     s.text = "Nominal RMS " + Sig(m.nominal, 4) + ", over the samples " + Sig(m.p50, 4) + " (median), " +
              Sig(m.p95, 4) + " (P95); worst corner " + Sig(m.worst_corner_value, 4) + "." +
              (m.limit ? " P(RMS ≤ " + Short(*m.limit) + ") = " +
-                            Percent(static_cast<double>(m.met) / static_cast<double>(r.samples)) + " (95 %: " +
-                            Percent(m.p_meet.low) + " to " + Percent(m.p_meet.high) + ")."
+                            ProbabilityText(static_cast<double>(m.met) / static_cast<double>(r.samples)) + " (95 %: " +
+                            ProbabilityText(m.p_meet.low) + " to " + ProbabilityText(m.p_meet.high) + ")."
                       : "");
     s.tables.push_back(StatisticsTable(r, m.output));
     s.tables.push_back(DriverTable(r, m));

@@ -16,8 +16,6 @@ namespace {
 constexpr const char* kSampleColour = "#2166ac";
 constexpr const char* kNominalColour = "#404040";
 
-std::string Percent(double p) { return Sig(100.0 * p, 3) + " %"; }
-
 // The requirement (dashed red) and the nominal design (dotted grey) as
 // vertical lines at their RMS.
 void MarkRequirement(FigurePanel& panel, const StudyMetric& m, bool key, bool vertical) {
@@ -77,8 +75,8 @@ Plot Distribution(const StudyMetric& m, int output) {
   const std::string file = p.name + ".csv";
   std::string title = m.output + ": RMS over " + std::to_string(n) + " samples";
   if (m.limit)
-    title += "\nP(RMS ≤ " + Short(*m.limit) + ") = " + Percent(static_cast<double>(m.met) / static_cast<double>(n)) +
-             " (95 %: " + Percent(m.p_meet.low) + " to " + Percent(m.p_meet.high) + ")";
+    title += "\nP(RMS ≤ " + Short(*m.limit) + ") = " + ProbabilityText(static_cast<double>(m.met) / static_cast<double>(n)) +
+             " (95 %: " + ProbabilityText(m.p_meet.low) + " to " + ProbabilityText(m.p_meet.high) + ")";
   p.figure.title = Enhanced(title);
   p.caption = "Distribution of the RMS of " + m.output + " over the " + std::to_string(n) +
               " samples: histogram (top) and empirical CDF (bottom)" +
@@ -255,6 +253,8 @@ Plot Scatter(const UncertaintyResult& r, const StudyMetric& m, int output) {
 }
 
 }  // namespace
+
+std::string ProbabilityText(double p) { return Sig(100.0 * p, 3) + " %"; }
 
 std::vector<std::size_t> DriverOrder(const StudyMetric& m) {
   std::vector<std::size_t> order(m.spearman.size());

@@ -11,12 +11,16 @@
 //    drivers, the requirement a dashed red line.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "deb/report/figure/plot.h"
 #include "deb/uncertainty/uncertainty_study.h"
 
 namespace deb::report {
+
+// A probability as the study's documents and figures print it: "73.2 %".
+std::string ProbabilityText(double p);
 
 // The parameters of metric `m` by the magnitude of their rank correlation,
 // largest first.

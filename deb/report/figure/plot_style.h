@@ -70,6 +70,9 @@ double GreyLightness(const std::string& colour);
 
 // Sum of all contributors; the requirement line.
 inline constexpr const char* kTotalColour = "#000000";
+// The palette of a map of an RMS over two parameters, low end first:
+// perceptually ordered, light where the RMS is low (viridis reversed).
+inline const std::vector<std::string> kMapPalette = {"#fde725", "#5ec962", "#21918c", "#3b528b", "#440154"};
 inline constexpr const char* kRequirementColour = "#b2182b";
 inline constexpr const char* kRequirementDash = "(14,6)";
 // A measured reference (drawn, never summed).
