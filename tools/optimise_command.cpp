@@ -75,9 +75,9 @@ CLI::App* OptimiseCommand::Register(CLI::App& app) {
   c->add_option("--method", s.method, "auto (default: bobyqa without requirements, else slsqp), cobyla, bobyqa (bounds only), slsqp or mma (with gradients)")
       ->check(CLI::IsMember({"auto", "cobyla", "bobyqa", "slsqp", "mma"}));
   c->add_option("--starts", s.starts, "Starts: the nominal design, then Sobol points of the bounds (default 1)")
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(1, kMaxOptimiseStarts));
   c->add_option("--max-evaluations", s.max_evaluations, "Budgets evaluated per start, at most (default 200)")
-      ->check(CLI::Range(1, 100000));
+      ->check(CLI::Range(1, kMaxEvaluationsPerStart));
   c->add_option("--tolerance", s.tolerance, "Of each variable, relative to its range (default 1e-8)")
       ->check(CLI::Range(1e-12, 0.1));
   c->add_option("--seed", s.seed, "Seed of the starts' Sobol points and the robust samples (default 1)");
@@ -90,7 +90,7 @@ CLI::App* OptimiseCommand::Register(CLI::App& app) {
       });
   c->add_option("--robust-samples", s.robust_samples,
                 "Latin hypercube samples of the tolerances at each design (default 64; the same at every design)")
-      ->check(CLI::Range(2, 100000));
+      ->check(CLI::Range(2, kMaxRobustSamples));
   AddOverridesOption(c, &s.overrides, "--set", "the budget");
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_optimum)");
   c->add_option("--threads,-j", s.threads, "Budgets evaluated at once (default: all cores)")->check(CLI::NonNegativeNumber);

@@ -58,6 +58,11 @@ struct OptimiseObjective {
   std::string Text() const;  // "the RMS of z", "the largest RMS / requirement", "the P95 of the RMS of z"
 };
 
+// The most starts, evaluations per start and robust samples a study takes.
+inline constexpr int kMaxOptimiseStarts = 1000;
+inline constexpr int kMaxEvaluationsPerStart = 100000;
+inline constexpr int kMaxRobustSamples = 100000;
+
 struct OptimiseOptions {
   OptimiseMethod method = OptimiseMethod::kAuto;
   int starts = 1;                // the nominal design, then Sobol points of the box

@@ -69,11 +69,14 @@ void BindDesignStudies(py::module_& m) {
          const std::optional<std::string>& objective, const std::string& method, int starts, int max_evaluations,
          double tolerance, unsigned long long seed, std::optional<double> robust, int robust_samples,
          std::optional<int> threads) {
-        if (starts < 1 || max_evaluations < 1 || !(tolerance > 0.0) || (robust && !(*robust > 0.0 && *robust < 100.0)) ||
-            robust_samples < 2)
-          throw InputError("arguments",
-                           "starts and max_evaluations must be >= 1, tolerance > 0, robust a percentile in (0, 100) "
-                           "and robust_samples >= 2");
+        if (starts < 1 || starts > kMaxOptimiseStarts || max_evaluations < 1 ||
+            max_evaluations > kMaxEvaluationsPerStart || !(tolerance > 0.0 && tolerance <= 0.1) ||
+            (robust && !(*robust > 0.0 && *robust < 100.0)) || robust_samples < 2 ||
+            robust_samples > kMaxRobustSamples)
+          throw InputError("arguments", "starts must be 1 to " + std::to_string(kMaxOptimiseStarts) +
+                                            ", max_evaluations 1 to " + std::to_string(kMaxEvaluationsPerStart) +
+                                            ", tolerance in (0, 0.1], robust a percentile in (0, 100) and "
+                                            "robust_samples 2 to " + std::to_string(kMaxRobustSamples));
         const OptimiseBudget budget = LoadOptimiseFile(path, vary, ToOverrides(overrides), robust.has_value());
         const OptimiseObjective o = budget.Objective(objective.value_or(""), robust,
                                                      static_cast<std::size_t>(robust_samples), seed);

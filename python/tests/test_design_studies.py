@@ -79,6 +79,9 @@ def test_design_studies_raise_input_errors(tmp_path):
     assert "--vary kw: no parameter of that name" in str(e.value)
     with pytest.raises(deb.InputError):
         deb.uncertainty(f, samples=0)
+    with pytest.raises(deb.InputError) as e:
+        deb.optimise(f, "kv", starts=1001)
+    assert "starts must be 1 to 1000" in str(e.value)
     g = tmp_path / "c.yaml"
     g.write_text(KV_BUDGET.replace("{value: 1, distribution: {uniform: {min: 0.5, max: 1.5}}}",
                                    "{value: 1, distribution: {uniform: {min: 1.5, max: 0.5}}}"))
