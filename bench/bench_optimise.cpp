@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
                       << "  h: {value: 210 mm, min: -300 mm, max: 400 mm}\n";
   const deb::OptimiseBudget budget = deb::LoadOptimiseFile(file, {"Kv", "h"});
   deb::OptimiseObjective objective;
-  objective.output = "z_velocity";
+  objective.terms = {{"z_velocity", 1.0}};
   for (deb::OptimiseMethod m : {deb::OptimiseMethod::kBobyqa, deb::OptimiseMethod::kCobyla,
                                 deb::OptimiseMethod::kSlsqp, deb::OptimiseMethod::kMma}) {
     deb::OptimiseOptions o;

@@ -70,8 +70,8 @@ CLI::App* OptimiseCommand::Register(CLI::App& app) {
       ->required()
       ->delimiter(',');
   c->add_option("--objective", s.objective,
-                "An output whose RMS is minimised, or max-ratio (the largest RMS / requirement); default: the only "
-                "output, else max-ratio");
+                "An output whose RMS is minimised, a weighted sum of outputs' RMS ('z + 0.5*x', each RMS in its "
+                "output's unit), or max-ratio (the largest RMS / requirement); default: the only output, else max-ratio");
   c->add_option("--method", s.method, "auto (default: bobyqa without requirements, else slsqp), cobyla, bobyqa (bounds only), slsqp or mma (with gradients)")
       ->check(CLI::IsMember({"auto", "cobyla", "bobyqa", "slsqp", "mma"}));
   c->add_option("--starts", s.starts, "Starts: the nominal design, then Sobol points of the bounds (default 1)")

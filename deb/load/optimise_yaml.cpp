@@ -1,14 +1,63 @@
 #include "deb/load/optimise_yaml.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
 #include "deb/core/suggest.h"
 #include "deb/load/design_bounds_yaml.h"
 #include "deb/load/distributions_yaml.h"
 #include "deb/load/parameter_variants.h"
 
 namespace deb {
+
+namespace {
+
+std::string Trimmed(const std::string& s) {
+  const std::size_t a = s.find_first_not_of(" \t");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
+}
+
+// "z_velocity + 0.5*x_velocity": terms split at '+', each OUTPUT or
+// WEIGHT*OUTPUT with a finite weight > 0; the names are checked against the
+// budget's outputs when it is evaluated (RunOptimise).
+std::vector<ObjectiveTerm> ObjectiveTerms(const std::string& text) {
+  const auto fail = [&](const std::string& term, const std::string& why) {
+    return InputError("--objective '" + Excerpt(text) + "': term '" + Excerpt(term) + "': " + why +
+                      " (give OUTPUT, or a weighted sum such as 'z + 0.5*x')");
+  };
+  std::vector<ObjectiveTerm> terms;
+  std::size_t from = 0;
+  while (true) {
+    const std::size_t plus = text.find('+', from);
+    const std::string term = Trimmed(text.substr(from, plus == std::string::npos ? std::string::npos : plus - from));
+    ObjectiveTerm t;
+    const std::size_t star = term.find('*');
+    t.output = Trimmed(star == std::string::npos ? term : term.substr(star + 1));
+    if (star != std::string::npos) {
+      const std::string w = Trimmed(term.substr(0, star));
+      char* end = nullptr;
+      t.weight = std::strtod(w.c_str(), &end);
+      if (w.empty() || end != w.c_str() + w.size()) throw fail(term, "weight '" + Excerpt(w) + "' is not a number");
+      if (!(t.weight > 0.0) || !std::isfinite(t.weight))
+        throw fail(term, "weight " + Excerpt(w) + " must be a finite number > 0");
+    }
+    if (t.output.empty()) throw fail(term, "no output named");
+    if (t.output.find_first_of(" \t*") != std::string::npos) throw fail(term, "'" + Excerpt(t.output) + "' is not an output's name");
+    for (const ObjectiveTerm& u : terms)
+      if (u.output == t.output) throw fail(term, "output " + t.output + " appears twice; give it one weight");
+    terms.push_back(t);
+    if (terms.size() > kMaxObjectiveTerms) throw fail(term, "more than " + std::to_string(kMaxObjectiveTerms) + " terms");
+    if (plus == std::string::npos) break;
+    from = plus + 1;
+  }
+  return terms;
+}
+
+}  // namespace
 
 std::vector<double> OptimiseBudget::Point(const std::vector<double>& design) const {
   std::vector<double> v = design;
@@ -22,12 +71,12 @@ OptimiseObjective OptimiseBudget::Objective(const std::string& text, std::option
   if (text == "max-ratio") {
     o.max_ratio = true;
   } else if (!text.empty()) {
-    o.output = text;
+    o.terms = ObjectiveTerms(text);
   } else {
     std::vector<double> nominal;
     for (const DesignVariable& v : variables) nominal.push_back(v.nominal);
     const Budget b = loader(Point(nominal));
-    if (b.outputs.size() == 1) o.output = b.outputs.front().name;
+    if (b.outputs.size() == 1) o.terms = {{b.outputs.front().name, 1.0}};
     else o.max_ratio = true;
   }
   if (percentile) {

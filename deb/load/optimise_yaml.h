@@ -28,10 +28,13 @@ struct OptimiseBudget {
   // What the loader takes for `design` (the variables' values, SI): those,
   // then the uncertain parameters' nominal values.
   std::vector<double> Point(const std::vector<double>& design) const;
-  // The objective `text` names: an output, "max-ratio", or "" for the
+  // The objective `text` names: an output, a weighted sum of outputs
+  // ("z + 0.5*x"), "max-ratio", or "" for the
   // budget's only output (max-ratio when it has several); robust
   // (`percentile` in (0, 100)) over `samples` Latin-hypercube samples of
   // the tolerances drawn from `seed`.
+  // @throws InputError for a term that is not OUTPUT or WEIGHT*OUTPUT with a
+  //   finite weight > 0, or an output named twice.
   OptimiseObjective Objective(const std::string& text, std::optional<double> percentile = std::nullopt,
                               std::size_t samples = 64, std::uint64_t seed = 1) const;
 };

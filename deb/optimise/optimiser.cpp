@@ -12,6 +12,7 @@
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
+#include "deb/core/suggest.h"
 #include "deb/uncertainty/sample_design.h"
 #include "deb/uncertainty/sample_statistics.h"
 
@@ -40,12 +41,7 @@ Evaluated EvaluatePoint(const DesignLoader& loader, const OptimiseObjective& obj
     const BudgetResult r = Evaluate(loader(values), EngineOptions::VariancesOnly());
     e.requirements = RequirementRatios(r);
     for (const RequirementRatio& q : e.requirements) e.worst = std::max(e.worst, q.ratio());
-    if (objective.max_ratio) {
-      e.objective = e.worst;
-    } else {
-      for (const OutputResult& o : r.outputs)
-        if (o.name == objective.output) e.objective = o.rms();
-    }
+    e.objective = objective.max_ratio ? e.worst : objective.Of(r);
   } catch (const InputError& error) {
     e.objective = std::numeric_limits<double>::infinity();
     e.worst = std::numeric_limits<double>::infinity();
@@ -232,10 +228,31 @@ nlopt::algorithm AlgorithmOf(OptimiseMethod m) {
 }  // namespace
 
 std::string OptimiseObjective::Text() const {
-  const std::string what = max_ratio ? "the largest RMS / requirement" : "the RMS of " + output;
+  std::string what;
+  if (max_ratio) {
+    what = "the largest RMS / requirement";
+  } else if (terms.size() == 1 && terms[0].weight == 1.0) {
+    what = "the RMS of " + terms[0].output;
+  } else {
+    what = "the weighted sum";
+    for (std::size_t i = 0; i < terms.size(); ++i)
+      what += (i == 0 ? " " : " + ") + (terms[i].weight == 1.0 ? "" : SignificantText(terms[i].weight, 6) + " ") +
+              "RMS(" + terms[i].output + ")";
+  }
   if (!quantile) return what;
   return "the P" + SignificantText(100.0 * *quantile, 4) + " of " + what + " under the tolerances (" +
          std::to_string(samples.size()) + " samples)";
+}
+
+double OptimiseObjective::Of(const BudgetResult& result) const {
+  double sum = 0.0;
+  for (const ObjectiveTerm& t : terms) {
+    const auto o = std::find_if(result.outputs.begin(), result.outputs.end(),
+                                [&](const OutputResult& out) { return out.name == t.output; });
+    if (o == result.outputs.end()) return std::numeric_limits<double>::quiet_NaN();
+    sum += t.weight * o->rms();
+  }
+  return sum;
 }
 
 double RequirementRatio::ratio() const {
@@ -316,21 +333,19 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
     throw InputError("the objective max-ratio needs requirements (rms_max or band requirements), and " +
                      nominal_budget.name + " has none");
   if (!objective.max_ratio) {
-    bool found = false;
+    DEB_DEMAND(!objective.terms.empty());
     std::vector<std::string> names;
-    for (const OutputResult& o : nominal_result.outputs) {
-      names.push_back(o.name);
-      if (o.name == objective.output) {
-        found = true;
-        result.nominal_objective = o.rms();
+    for (const OutputResult& o : nominal_result.outputs) names.push_back(o.name);
+    for (const ObjectiveTerm& t : objective.terms) {
+      DEB_DEMAND(t.weight > 0.0 && std::isfinite(t.weight));
+      if (std::find(names.begin(), names.end(), t.output) == names.end()) {
+        std::string list;
+        for (const std::string& s : names) list += (list.empty() ? "" : ", ") + s;
+        throw InputError("--objective " + t.output + ": no output of that name (the outputs: " + list +
+                         "; or max-ratio)" + DidYouMean(t.output, names));
       }
     }
-    if (!found) {
-      std::string list;
-      for (const std::string& s : names) list += (list.empty() ? "" : ", ") + s;
-      throw InputError("--objective " + objective.output + ": no output of that name (the outputs: " + list +
-                       "; or max-ratio)");
-    }
+    result.nominal_objective = objective.Of(nominal_result);
   } else {
     for (const RequirementRatio& q : result.nominal_requirements)
       result.nominal_objective = std::max(result.nominal_objective, q.ratio());

@@ -44,24 +44,38 @@ inline constexpr EnumName<OptimiseMethod> kOptimiseMethodNames[] = {{OptimiseMet
                                                                     {OptimiseMethod::kMma, "mma"}};
 constexpr EnumNames<OptimiseMethod> NamesOf(OptimiseMethod) { return kOptimiseMethodNames; }
 
-// What is minimised: the RMS of `output`, or (max_ratio) the largest
-// RMS / limit over the requirements. Robust (`quantile` set): at each
+// One output's share of a weighted-sum objective: weight x its RMS, in the
+// output's own unit.
+struct ObjectiveTerm {
+  std::string output;
+  double weight = 1.0;  // > 0
+};
+
+// What is minimised: the RMS of one output, a weighted sum of outputs'
+// RMS (`terms`; each RMS in its output's unit, so a weight carries the
+// inverse of that unit), or (max_ratio) the largest RMS / limit over the
+// requirements. Robust (`quantile` set): at each
 // design, the budget is evaluated at every sample of the other uncertain
 // parameters (`samples`, the same for every design: common random
 // numbers), and the objective and each requirement's RMS are their
 // `quantile` over the samples (P95 of the RMS <= the limit).
 struct OptimiseObjective {
   bool max_ratio = false;
-  std::string output;
+  std::vector<ObjectiveTerm> terms;  // {output, 1}: that output's RMS
   std::optional<double> quantile;              // in (0, 1)
   std::vector<std::vector<double>> samples;    // per sample, the uncertain parameters' values (SI)
-  std::string Text() const;  // "the RMS of z", "the largest RMS / requirement", "the P95 of the RMS of z"
+  // "the RMS of z", "the weighted sum 2 RMS(z) + RMS(x)", "the largest RMS /
+  // requirement", "the P95 of the RMS of z ..."
+  std::string Text() const;
+  // The objective's value for a result: NaN when an output named is not in it.
+  double Of(const struct BudgetResult& result) const;
 };
 
 // The most starts, evaluations per start and robust samples a study takes.
 inline constexpr int kMaxOptimiseStarts = 1000;
 inline constexpr int kMaxEvaluationsPerStart = 100000;
 inline constexpr int kMaxRobustSamples = 100000;
+inline constexpr std::size_t kMaxObjectiveTerms = 1000;
 
 struct OptimiseOptions {
   OptimiseMethod method = OptimiseMethod::kAuto;

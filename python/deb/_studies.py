@@ -154,7 +154,8 @@ def optimise(budget, vary, *, objective=None, method="auto", starts=1, max_evalu
              seed=1, robust=None, robust_samples=64, threads=None, set=None):
     """The design optimisation of `deb optimise` (docs/optimise.md): the
     parameters `vary` (names, each with min and max in the budget) chosen to
-    minimise `objective` (an output's name or "max-ratio"; None: the only
+    minimise `objective` (an output's name, a weighted sum such as
+    "z + 0.5*x", or "max-ratio"; None: the only
     output, else max-ratio) with every requirement met. robust=95 minimises
     the 95th percentile under the other parameters' tolerances.
 

@@ -1356,6 +1356,9 @@ const std::vector<Case>& Catalogue() {
        "optimise b.yaml --vary k --objective q --no-plots", 3, Names("--objective q"), {"no output of that name"}},
       {"O06", "--vary missing", Budget(kOptimise), "optimise b.yaml", 2, Usage()},
       {"O07", "--starts 0", Budget(kOptimise), "optimise b.yaml --vary k --starts 0", 2, Usage()},
+      {"O08", "a weighted-sum objective with a weight that is not > 0", Budget(kOptimise),
+       "optimise b.yaml --vary k --objective 'y + -2*y' --no-plots", 3, Names("--objective 'y + -2*y'"),
+       {"weight -2 must be a finite number > 0"}},
 
       // ---- U: universal files (UFF dataset 58) ----------------------------------
       {"U00+", "a PSD from a universal file (baseline)", Uff(PsdUff()), kRun, 0, Ok()},

@@ -61,7 +61,7 @@ std::string WithLimit(double kv_max) {
 OptimiseResult Optimise(const std::string& file, OptimiseMethod method, int starts = 1, int threads = 0) {
   const OptimiseBudget b = LoadOptimiseFile(file, {"kv"});
   OptimiseObjective objective;
-  objective.output = "z";
+  objective.terms = {{"z", 1.0}};
   OptimiseOptions o;
   o.method = method;
   o.starts = starts;
@@ -86,6 +86,44 @@ TEST_CASE("a kv^2 + b / kv^2: kv* = (b/a)^(1/4) = 2 to 1e-6 by every method") {
     CHECK(r.nominal_objective == doctest::Approx(std::sqrt((25e-6 + 16e-6 / 25) * 99)).epsilon(1e-12));
   }
   CHECK(Optimise(file, OptimiseMethod::kAuto).method == OptimiseMethod::kBobyqa);
+}
+
+TEST_CASE("a weighted sum RMS(z) + 0.5 RMS(w): the kv where its derivative vanishes, found by bisection") {
+  // RMS(z) = sqrt(99e-6 (kv^2 + 16 / kv^2)), RMS(w) = kv sqrt(99e-6): the
+  // sum's derivative is proportional to (kv - 16/kv^3) / sqrt(kv^2 + 16/kv^2) + 0.5,
+  // negative at 0.5 and positive at 2.
+  const auto slope = [](double kv) { return (kv - 16.0 / std::pow(kv, 3)) / std::sqrt(kv * kv + 16.0 / (kv * kv)) + 0.5; };
+  double lo = 0.5, hi = 2.0;
+  REQUIRE(slope(lo) < 0.0);
+  REQUIRE(slope(hi) > 0.0);
+  for (int i = 0; i < 200; ++i) (slope(0.5 * (lo + hi)) < 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  const double kv_star = 0.5 * (lo + hi);
+  const auto sum = [](double kv) { return std::sqrt(99e-6 * (kv * kv + 16.0 / (kv * kv))) + 0.5 * kv * std::sqrt(99e-6); };
+
+  const Dir dir;
+  const std::string file = dir.Write("b.yaml", kBudget);
+  const OptimiseBudget b = LoadOptimiseFile(file, {"kv"});
+  const OptimiseObjective objective = b.Objective(" z + 0.5 * w ");
+  REQUIRE(objective.terms.size() == 2);
+  CHECK(objective.Text() == "the weighted sum RMS(z) + 0.5 RMS(w)");
+  for (OptimiseMethod m : {OptimiseMethod::kBobyqa, OptimiseMethod::kSlsqp}) {
+    CAPTURE(ToString(m));
+    OptimiseOptions o;
+    o.method = m;
+    const OptimiseResult r = RunOptimise(b.variables, objective, o, b.loader);
+    const double kv = r.starts[r.best].values[0];
+    MESSAGE(ToString(r.method) << ": kv* " << kv << " against " << kv_star);
+    CHECK(std::abs(kv - kv_star) <= 1e-6 * kv_star);
+    CHECK(r.starts[r.best].objective == doctest::Approx(sum(kv_star)).epsilon(1e-10));
+    CHECK(r.nominal_objective == doctest::Approx(sum(5.0)).epsilon(1e-12));
+  }
+  // Every rule of the terms, and an output that is not there.
+  for (const char* bad : {"z + ", "2*", "-1*z", "0*z", "x*z", "inf*z", "z + z", "z w"}) {
+    CAPTURE(bad);
+    CHECK_THROWS_WITH_AS(b.Objective(bad), doctest::Contains("--objective"), InputError);
+  }
+  CHECK_THROWS_WITH_AS(RunOptimise(b.variables, b.Objective("z + 2*zz"), {}, b.loader),
+                       doctest::Contains("--objective zz: no output of that name"), InputError);
 }
 
 TEST_CASE("a requirement that allows kv <= 1.5: the optimum on it, reported active") {
@@ -150,7 +188,7 @@ TEST_CASE("the thesis' Kv and h: BOBYQA within 60 evaluations, no worse than any
                                                         "  h: {value: 210 mm, min: -300 mm, max: 400 mm}\n");
   const OptimiseBudget b = LoadOptimiseFile(file, {"Kv", "h"});
   OptimiseObjective z;
-  z.output = "z_velocity";
+  z.terms = {{"z_velocity", 1.0}};
   OptimiseOptions o;
   o.method = OptimiseMethod::kBobyqa;
   o.max_evaluations = 60;
@@ -198,7 +236,7 @@ TEST_CASE("robust: the P95 over a's tolerance moves kv* to (b / a_P95)^(1/4)") {
   const OptimiseBudget b = LoadOptimiseFile(file, {"kv"}, {}, true);
   REQUIRE(b.uncertain.parameters.size() == 1);
   OptimiseObjective z;
-  z.output = "z";
+  z.terms = {{"z", 1.0}};
   z.quantile = 0.95;
   for (int k = 20; k >= 0; --k) z.samples.push_back({0.5 + k / 20.0});  // any order
   OptimiseOptions o;
@@ -237,7 +275,7 @@ outputs:
 )";
   const OptimiseBudget b = LoadOptimiseFile(dir.Write("pm.yaml", budget), {"k"});
   OptimiseObjective x;
-  x.output = "x";
+  x.terms = {{"x", 1.0}};
   for (OptimiseMethod m : {OptimiseMethod::kSlsqp, OptimiseMethod::kCobyla}) {
     OptimiseOptions o;
     o.method = m;
@@ -291,7 +329,7 @@ TEST_CASE("bad bounds and --vary: errors naming the rule") {
   // BOBYQA with a requirement to meet; max-ratio without requirements; an unknown objective.
   const OptimiseBudget constrained = LoadOptimiseFile(dir.Write("c.yaml", WithLimit(1.5)), {"kv"});
   OptimiseObjective z;
-  z.output = "z";
+  z.terms = {{"z", 1.0}};
   OptimiseOptions bobyqa;
   bobyqa.method = OptimiseMethod::kBobyqa;
   CHECK_THROWS_WITH_AS(RunOptimise(constrained.variables, z, bobyqa, constrained.loader),
@@ -302,7 +340,7 @@ TEST_CASE("bad bounds and --vary: errors naming the rule") {
   CHECK_THROWS_WITH_AS(RunOptimise(free.variables, ratio, {}, free.loader),
                        doctest::Contains("the objective max-ratio needs requirements"), InputError);
   OptimiseObjective unknown;
-  unknown.output = "q";
+  unknown.terms = {{"q", 1.0}};
   CHECK_THROWS_WITH_AS(RunOptimise(free.variables, unknown, {}, free.loader),
                        doctest::Contains("--objective q: no output of that name (the outputs: z, w; or max-ratio)"),
                        InputError);
