@@ -15,6 +15,13 @@
 
 namespace deb {
 
+// A variant is a point: the budget's study sections (sweep, correlations)
+// and its parameters' study keys (distribution, min, max) are removed from
+// its document, having been checked once with the budget. Otherwise a
+// changed value would meet rules of the nominal one (a bound it now
+// crosses, a distribution on what is now an expression).
+void RemoveStudyKeys(YAML::Node& root);
+
 Budget LoadBudgetVariantNode(const YAML::Node& root, const std::shared_ptr<const KeyPositions>& original,
                              const std::string& note, const std::string& base_dir);
 

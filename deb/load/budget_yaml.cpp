@@ -256,6 +256,15 @@ Budget LoadVariant(const YamlReader& reader, const std::shared_ptr<const KeyPosi
 
 }  // namespace
 
+void RemoveStudyKeys(YAML::Node& root) {
+  if (!root.IsMap()) return;
+  for (const char* key : {"sweep", "correlations"}) root.remove(key);
+  if (YAML::Node parameters = root["parameters"]; parameters.IsMap())
+    for (auto entry : parameters)
+      if (entry.second.IsMap())
+        for (const char* key : {"distribution", "min", "max"}) entry.second.remove(key);
+}
+
 Budget LoadBudgetVariant(const std::string& text, const std::shared_ptr<const KeyPositions>& original,
                          const std::string& note, const std::string& base_dir) {
   return LoadVariant(YamlReader::FromString(text, original->file() + " (" + note + ")"), original, note, base_dir);

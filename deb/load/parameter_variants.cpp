@@ -23,11 +23,7 @@ class Variants {
            std::vector<VariedParameter> varied, std::string note)
       : document_(YAML::Load(text)), positions_(std::move(positions)), base_dir_(std::move(base_dir)),
         varied_(std::move(varied)), note_(std::move(note)) {
-    document_.remove("correlations");
-    if (YAML::Node parameters = document_["parameters"]; parameters.IsMap())
-      for (auto entry : parameters)
-        if (entry.second.IsMap())
-          for (const char* key : {"distribution", "min", "max"}) entry.second.remove(key);
+    RemoveStudyKeys(document_);
     for (const VariedParameter& p : varied_)
       steps_.push_back(ResolveParameterName(document_, ParseKeyPath(p.name)));
   }

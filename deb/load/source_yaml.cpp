@@ -267,9 +267,11 @@ static std::shared_ptr<const Spectrum> FlatSource(const YamlNode& node, const Ya
 // A vibration-criteria curve, in its velocity unit or one the budget converts it to.
 static std::shared_ptr<const Spectrum> VcSource(const YamlNode& node, const YamlNode& spec, Source* s) {
   const auto unit_node = node.Optional("unit");
-  spec.AllowOnly({"type", "class", "lowest_band_hz", "highest_band_hz", "low_frequency_extension", "series"});
-  const YamlNode cls = spec.Required("class");
-  const VcClass vc_class = AtNode(cls, [&] { return ParseVcClass(cls.AsString()); });
+  spec.AllowOnly(
+      {"type", "class", "velocity", "lowest_band_hz", "highest_band_hz", "low_frequency_extension", "series"});
+  if (spec.Has("class") == spec.Has("velocity"))
+    spec.Fail(std::string(spec.Has("class") ? "both 'class' and 'velocity'" : "neither 'class' nor 'velocity'") +
+              ": give the criterion as a class (class: VC-D) or as its band RMS velocity (velocity: 6.25 um/s)");
   VcOptions options;
   if (auto v = spec.Optional("lowest_band_hz")) options.lowest_band_hz = v->AsPositive();
   if (auto v = spec.Optional("highest_band_hz")) options.highest_band_hz = v->AsPositive();
@@ -281,7 +283,15 @@ static std::shared_ptr<const Spectrum> VcSource(const YamlNode& node, const Yaml
       AtNode(unit_node ? *unit_node : node, [&] { return ConvertUnit(VcSpectrum::kUnit, s->unit); });
   if (!conv.IsPureScale())
     unit_node->Fail("a VC curve is a velocity; unit '" + s->unit + "' is not a velocity unit");
-  std::shared_ptr<const Spectrum> one = AtNode(spec, [&] { return std::make_shared<VcSpectrum>(vc_class, options); });
+  std::shared_ptr<const Spectrum> one;
+  if (auto cls = spec.Optional("class")) {
+    const VcClass vc_class = AtNode(*cls, [&] { return ParseVcClass(cls->AsString()); });
+    one = AtNode(spec, [&] { return std::make_shared<VcSpectrum>(vc_class, options); });
+  } else {
+    // In the source's unit when a plain number (as the curve's), then in um/s.
+    const double velocity_um_s = spec.Required("velocity").AsPositiveIn(s->unit) / conv.scale;
+    one = AtNode(spec, [&] { return std::make_shared<VcSpectrum>(velocity_um_s, options); });
+  }
   const double factor = conv.scale * conv.scale * ConventionFactor(node);
   if (factor != 1.0) one = std::make_shared<ScaledSpectrum>(one, factor);
   s->channel_names = ChannelNames(node, s->name, 1);

@@ -21,6 +21,7 @@
 #include "deb/core/suggest.h"
 #include "deb/load/budget_extends.h"
 #include "deb/load/budget_overrides.h"
+#include "deb/load/budget_variant.h"
 #include "deb/load/budget_yaml.h"
 #include "deb/load/key_path.h"
 #include "deb/load/parameters_yaml.h"
@@ -99,12 +100,12 @@ class VariantLoader {
         spec_(std::move(spec)), steps_(std::move(steps)), rows_(spec_.Variants()),
         overrides_note_(std::move(overrides_note)) {}
 
-  // The budget with nothing assigned and its sweep section removed. Each
+  // The budget with nothing assigned and its study keys removed. Each
   // variant starts from a fresh parse of the text, not a YAML::Clone: a
   // clone loses the nodes' positions, which Reached tells aliases apart by.
   YAML::Node BaseCopy() const {
     YAML::Node copy = YAML::Load(text_);
-    copy.remove("sweep");
+    RemoveStudyKeys(copy);
     return copy;
   }
 
@@ -247,7 +248,7 @@ Budget LoadBudgetWithScaledParameter(const std::string& path, const std::string&
   YAML::Node raw = reader.LoadCopy();
   load::ApplyOverrides(raw, overrides, reader.name());
   const KeyPath steps = load::ResolveParameterName(raw, load::ParseKeyPath(key_path));
-  if (raw.IsMap()) raw.remove("sweep");
+  RemoveStudyKeys(raw);
   const std::string why = load::MultiplyValuesAt(raw, steps, factor);
   if (!why.empty()) throw InputError("key path '" + key_path + "' does not reach a number in " + path + ": " + why);
   YAML::Emitter emitter;

@@ -18,10 +18,25 @@ VcOptions VcOptions::ThesisModified() {
 }
 
 VcSpectrum::VcSpectrum(VcClass vc_class, const VcOptions& options)
-    : vc_class_(vc_class), options_(options) {
-  const VcCriterion& row = VcCriterionOf(vc_class);
-  velocity_um_s_ = row.velocity_um_s;
-  const std::string where = std::string(row.name) + ": ";
+    : vc_class_(vc_class), options_(options), velocity_um_s_(VcCriterionOf(vc_class).velocity_um_s) {
+  Build(VcCriterionOf(vc_class));
+}
+
+VcSpectrum::VcSpectrum(double velocity_um_s, const VcOptions& options)
+    : vc_class_(VcClass::kA), named_(false), options_(options), velocity_um_s_(velocity_um_s) {
+  DEB_DEMAND(std::isfinite(velocity_um_s) && velocity_um_s > 0.0);
+  for (const VcCriterion& row : VcCriteria())
+    if (std::abs(row.velocity_um_s - velocity_um_s) <= 1e-9 * row.velocity_um_s) {
+      vc_class_ = row.vc_class;
+      named_ = true;
+    }
+  // Every class has the same constant-velocity range (spectra/vc_curves.csv).
+  Build(VcCriterionOf(vc_class_));
+}
+
+void VcSpectrum::Build(const VcCriterion& row) {
+  const VcOptions& options = options_;
+  const std::string where = named_ ? std::string(row.name) + ": " : "VC curve of " + NumberText(velocity_um_s_) + " um/s: ";
   const ThirdOctaveBand range_lo = ThirdOctaveBandNear(row.lowest_band_hz, options.series);
   const ThirdOctaveBand range_hi = ThirdOctaveBandNear(row.highest_band_hz, options.series);
   const ThirdOctaveBand lowest = ThirdOctaveBandNear(options.lowest_band_hz, options.series);
@@ -69,7 +84,8 @@ Eigen::VectorXd VcSpectrum::Psd(double f_hz) const { return Eigen::VectorXd::Con
 std::vector<double> VcSpectrum::BreakpointsHz() const { return edges_hz_; }
 
 std::string VcSpectrum::Describe() const {
-  std::string text = ToString(vc_class_) + " (" + NumberText(velocity_um_s_) + " um/s RMS per band), " +
+  std::string text = (named_ ? ToString(vc_class_) : std::string("VC curve")) + " (" + NumberText(velocity_um_s_) +
+                     " um/s RMS per band), " +
                      std::to_string(bands_.size()) + " one-third-octave bands " +
                      NumberText(options_.lowest_band_hz) + "-" + NumberText(options_.highest_band_hz) +
                      " Hz (" + ToString(options_.series) + " centres)";

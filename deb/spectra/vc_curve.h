@@ -69,7 +69,14 @@ class VcSpectrum final : public Spectrum {
   //   highest band is above the class' range, the lowest band is below it
   //   without low_frequency_extension, or lowest > highest.
   explicit VcSpectrum(VcClass vc_class, const VcOptions& options = {});
+  // A criterion of any band RMS velocity (> 0, finite), on the bands every
+  // class shares (8-80 Hz, extended as above): a tolerance study's or an
+  // optimiser's floor level. Named after a class whose velocity it is
+  // (to 1e-9), as that class' curve; the same errors.
+  VcSpectrum(double velocity_um_s, const VcOptions& options);
 
+  // The class named, or for a velocity the class whose velocity it is
+  // (else the band range's class, VC-A).
   VcClass vc_class() const { return vc_class_; }
   double velocity_um_s() const { return velocity_um_s_; }
   const VcOptions& options() const { return options_; }
@@ -90,7 +97,10 @@ class VcSpectrum final : public Spectrum {
   // upper band, and the top edge itself is outside.
   double PsdAt(double f_hz) const;
 
+  void Build(const VcCriterion& range);
+
   VcClass vc_class_;
+  bool named_ = true;  // a class's curve, not a velocity that is none
   VcOptions options_;
   double velocity_um_s_;
   std::vector<ThirdOctaveBand> bands_;

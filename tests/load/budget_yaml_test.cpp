@@ -163,6 +163,31 @@ TEST_CASE("an unknown enum value lists the allowed values") {
             "allowed: auto, required, off") != std::string::npos);
 }
 
+TEST_CASE("a VC source by its band velocity: a class' velocity in any velocity unit is that class") {
+  const auto rms = [](const std::string& spectrum, const std::string& unit) {
+    const std::string text = Replace(Replace(kBudget, "{type: flat, level: 2}", spectrum), "unit: um/s\n    spectrum",
+                                     "unit: " + unit + "\n    spectrum");
+    // The path in the source's unit both sides (a unit gain); the output in um/s.
+    const std::string path = Replace(Replace(text, "input_unit: um/s", "input_unit: " + unit), "output_unit: um/s",
+                                     "output_unit: " + unit);
+    return Evaluate(LoadBudgetText(path, "b.yaml")).outputs[0].rms();
+  };
+  const double by_class = rms("{type: vc, class: VC-C}", "um/s");
+  CHECK(rms("{type: vc, velocity: 12.5 um/s}", "um/s") == by_class);
+  CHECK(rms("{type: vc, velocity: 12.5}", "um/s") == by_class);  // a plain number in the source's unit
+  CHECK(rms("{type: vc, velocity: 0.0125}", "mm/s") == doctest::Approx(by_class).epsilon(1e-14));
+  CHECK(rms("{type: vc, velocity: 25 um/s}", "um/s") == doctest::Approx(2 * by_class).epsilon(1e-14));
+  CHECK(ErrorOf(Replace(kBudget, "{type: flat, level: 2}", "{type: vc, class: VC-C, velocity: 12.5}")) ==
+        "b.yaml:6:15: sources[0].spectrum: both 'class' and 'velocity': give the criterion as a class (class: VC-D) "
+        "or as its band RMS velocity (velocity: 6.25 um/s)");
+  CHECK(ErrorOf(Replace(kBudget, "{type: flat, level: 2}", "{type: vc}")).find("neither 'class' nor 'velocity'") !=
+        std::string::npos);
+  CHECK(ErrorOf(Replace(kBudget, "{type: flat, level: 2}", "{type: vc, velocity: -1}"))
+            .find("sources[0].spectrum.velocity") != std::string::npos);
+  CHECK(ErrorOf(Replace(kBudget, "{type: flat, level: 2}", "{type: vc, velocity: 2 N}"))
+            .find("sources[0].spectrum.velocity") != std::string::npos);
+}
+
 TEST_CASE("series paths chain units and scale between them") {
   auto text = Replace(kBudget, "contributors:", R"(  - name: to_mm
     type: gain

@@ -182,3 +182,30 @@ TEST_CASE("spectra/vc_curves.csv matches the compiled VC table exactly and cites
 
 }  // namespace
 }  // namespace deb
+
+namespace deb {
+namespace {
+
+TEST_CASE("a VC curve of a velocity: a class' velocity gives that class' curve; any other scales it") {
+  for (const VcCriterion& row : VcCriteria()) {
+    CAPTURE(row.name);
+    const VcSpectrum by_class(row.vc_class, VcOptions::ThesisModified());
+    const VcSpectrum by_velocity(row.velocity_um_s, VcOptions::ThesisModified());
+    CHECK(by_velocity.vc_class() == row.vc_class);
+    CHECK(by_velocity.Describe() == by_class.Describe());
+    CHECK(by_velocity.band_psd() == by_class.band_psd());
+  }
+  const VcSpectrum ten(10.0, VcOptions{});
+  CHECK(ten.Describe().rfind("VC curve (10 um/s RMS per band), 11 one-third-octave bands 8-80 Hz", 0) == 0);
+  const VcSpectrum c(VcClass::kC);
+  for (std::size_t i = 0; i < ten.bands().size(); ++i) {
+    // Each band holds v^2: 100 (um/s)^2.
+    CHECK(ten.band_psd()[i] * ten.bands()[i].BandwidthHz() == doctest::Approx(100.0).epsilon(1e-14));
+    CHECK(ten.band_psd()[i] / c.band_psd()[i] == doctest::Approx(100.0 / (12.5 * 12.5)).epsilon(1e-14));
+  }
+  CHECK_THROWS_WITH_AS(VcSpectrum(10.0, VcOptions{2.0, 80.0, false, ThirdOctaveSeries::kBase2From1Hz}),
+                       doctest::Contains("VC curve of 10 um/s: lowest band 2 Hz is below"), InputError);
+}
+
+}  // namespace
+}  // namespace deb

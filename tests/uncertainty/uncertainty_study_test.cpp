@@ -133,6 +133,46 @@ TEST_CASE("first-order sigma, the worst corner, and the same result for any thre
   CHECK(one.corner_method == "all 4 vertices of the tolerance box");
 }
 
+TEST_CASE("a discrete choice of floor class, VC-C or VC-D: P(meet) is the probability of the class that meets") {
+  // The floor as a VC curve of band velocity floor_v (8-80 Hz, 11 bands)
+  // through a unit path: the RMS is v sqrt(11) (to the grid's integration
+  // of the band edges, 0.2 % here), VC-C's 12.5 um/s or VC-D's 6.25 um/s
+  // with probabilities 0.7 and 0.3, VC-D's exactly half VC-C's; a
+  // requirement between them is met with probability 0.3.
+  const std::string text = R"(name: floor_class
+parameters:
+  floor_v:
+    value: 12.5 um/s
+    description: floor class, VC-C or VC-D
+    distribution: {discrete: {values: [12.5 um/s, 6.25 um/s], p: [0.7, 0.3]}}
+grid: {type: log, min_hz: 1, max_hz: 200, points: 400}
+sources:
+  - {name: floor, unit: um/s, spectrum: {type: vc, velocity: floor_v}}
+paths:
+  - {name: unit, type: gain, gain: [[1]], input_unit: um/s, output_unit: um/s}
+contributors:
+  - {name: c, source: floor, path: unit}
+outputs:
+  - {name: v, signal: y, unit: um/s, rms_max: 30}
+)";
+  const Dir dir;
+  const std::string file = dir.Write("b.yaml", text);
+  for (SamplingMethod method : {SamplingMethod::kMonteCarlo, SamplingMethod::kLatinHypercube}) {
+    CAPTURE(ToString(method));
+    const UncertaintyResult r = Study(file, method, 10000);
+    const StudyMetric& v = r.metrics[0];
+    MESSAGE("nominal " << v.nominal << ", closed form " << 12.5 * std::sqrt(11.0));
+    CHECK(v.nominal == doctest::Approx(12.5 * std::sqrt(11.0)).epsilon(2e-3));
+    const double rms_c = v.nominal, rms_d = v.nominal / 2;
+    for (double x : v.values) CHECK((std::abs(x - rms_c) <= 1e-12 * rms_c || std::abs(x - rms_d) <= 1e-12 * rms_d));
+    MESSAGE(ToString(method) << ": P(meet) " << static_cast<double>(v.met) / r.samples << " in [" << v.p_meet.low
+                             << ", " << v.p_meet.high << "], exact 0.3");
+    CHECK(v.p_meet.low <= 0.3);
+    CHECK(0.3 <= v.p_meet.high);
+    CHECK(v.worst_corner_value == doctest::Approx(rms_c).epsilon(1e-12));
+  }
+}
+
 TEST_CASE("a Gaussian copula: normal parameters correlated as given") {
   const Dir dir;
   const std::string text = test::Replace(
