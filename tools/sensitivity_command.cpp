@@ -71,7 +71,7 @@ CLI::App* SensitivityCommand::Register(CLI::App& app) {
   CLI::App* c = app.add_subcommand(
       "sensitivity", "Derivatives of every output's variance with respect to parameters (by key path), ranked");
   c->add_option("budget", s.budget_file, "Budget YAML file")->required()->check(CLI::ExistingFile);
-  c->add_option("--parameter,-p", s.parameters, "Key path of a numeric parameter, e.g. paths[0].control.gains")
+  c->add_option("--parameter,-p", s.parameters, "A parameter by name (k_iso) or the key path of a number, e.g. paths[0].control.gains")
       ->required();
   c->add_option("--label", s.labels,
                 "A parameter's name on the tables and charts, KEY.PATH=TEXT (the KEY.PATH of a -p); repeatable");

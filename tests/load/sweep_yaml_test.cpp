@@ -134,6 +134,29 @@ TEST_CASE("a scaled parameter multiplies every number its key path reaches; a ba
                        doctest::Contains("has no key 'levle' (did you mean 'level'?)"), InputError);
 }
 
+TEST_CASE("a parameter with a distribution and bounds scales by its name: the variant is a point") {
+  // The thesis budget with tolerances: k_h carries a truncated normal and
+  // Kv bounds; scaled by 1.001 each is a plain value (no study keys left to
+  // refuse it), and the variance of the geophone noise, linear in s_geo,
+  // scales with it.
+  const std::string file = std::string(DEB_SOURCE_DIR) + "/budgets/nizamoglu2015_tolerances.yaml";
+  const BudgetResult nominal = Evaluate(LoadBudgetFile(file));
+  for (const char* name : {"k_h", "Kv", "h", "c_iso"}) {
+    CAPTURE(name);
+    CHECK_NOTHROW(LoadBudgetWithScaledParameter(file, name, 1.001));
+  }
+  const BudgetResult noisier = Evaluate(LoadBudgetWithScaledParameter(file, "s_geo", 1.25));
+  const auto variance = [](const BudgetResult& r, const std::string& contributor) {
+    for (const ContributorResult& c : r.outputs[0].contributors)
+      if (c.name == contributor) return c.variance;
+    FAIL("no contributor " << contributor);
+    return 0.0;
+  };
+  CHECK(variance(noisier, "sensor_noise") == doctest::Approx(1.25 * variance(nominal, "sensor_noise")).epsilon(1e-12));
+  CHECK(variance(noisier, "floor") == variance(nominal, "floor"));
+  CHECK(ParameterValues(file, "k_h") == std::vector<double>{12.0});
+}
+
 TEST_CASE("a variant that breaks a rule is reported at the swept value's position in the user's file") {
   const std::string e = ErrorOf(Replace(kSweep, "values: [1, 4]", "values: [1, -4]"));
   CHECK(e.rfind("s.yaml:6:35: sources[0].spectrum.level: sweep variant 4: sources[0].spectrum.level = -4, "
