@@ -33,7 +33,7 @@ int ModelCommand::Run() const {
     std::printf("budget %s has no physical model (no path of type isolation_system)\n", budget.name.c_str());
     return 0;
   }
-  for (const auto& m : budget.models) std::printf("%s\n", m.report.c_str());
+  for (const auto& m : budget.models) std::printf("%s\n", m.report().c_str());
   std::printf("paths from the model(s):\n");
   for (const auto& p : budget.paths) {
     if (p.description.empty()) continue;

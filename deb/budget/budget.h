@@ -5,6 +5,7 @@
 // reference and unit, naming the key path of the offending entry.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -119,7 +120,9 @@ struct Band {
 // A physical model behind some of the paths, described for `deb model`.
 struct ModelReport {
   std::string name;
-  std::string report;  // plain text: natural frequencies, mode shapes, pre-stress
+  // Plain text: natural frequencies, mode shapes, pre-stress; computed when
+  // asked (an eigen-analysis a study's thousands of variants do not need).
+  std::function<std::string()> report;
 };
 
 struct Budget {

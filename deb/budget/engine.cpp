@@ -66,6 +66,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
     const PathAnalysis& analysis = *result.paths.at(ContributorPathKey(c));
     const Path& path = analysis.path();
     const ContributorSetup& setup = full.setups[ci];
+    const bool breakdown = c.breakdown_channels && options.channel_breakdown;
     const OutputFactor output_factor{setup.out_conv, weighting_gain2, f};
     const InputSpectrum input(*source.spectrum, setup.in_conv);
     std::vector<std::vector<std::vector<double>>> channel_psd;
@@ -73,7 +74,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
     if (options.response_traces) recorder.emplace(budget, analysis, ci, f, options.threads);
     std::vector<std::vector<double>> psd =
         Propagate(budget, ci, analysis, input, setup, f, output_factor, options.threads,
-                  c.breakdown_channels ? &channel_psd : nullptr, recorder ? &*recorder : nullptr);
+                  breakdown ? &channel_psd : nullptr, recorder ? &*recorder : nullptr);
     if (recorder) recorded[ci] = recorder->Take();
     const std::vector<std::vector<ContributorResult::Tone>> tones =
         PropagateTones(budget, ci, analysis, source.spectrum->Lines(), setup);
@@ -100,7 +101,7 @@ BudgetResult EvaluateUnlocated(const Budget& budget, const EngineOptions& option
         if (purely_tonal) cr.exact_variance = tonal;  // |H(f0) a|^2 is the exact variance of a sinusoid
       }
       cr.variance = cr.cps.back();
-      if (c.breakdown_channels)
+      if (breakdown)
         BreakDownChannels(source, result.grid, channel_psd[o], ChannelTones(analysis, source.spectrum->Lines(), setup, o),
                           &cr);
       if (!purely_tonal)

@@ -36,8 +36,13 @@ struct EngineOptions {
   // read (an uncertainty study's samples, an optimiser's designs), where it
   // would cost as much as the rest of the evaluation.
   bool covariance = true;
+  // Also break contributors down by source channel where the budget asks
+  // (Contributor::breakdown_channels; ContributorResult::channels): off
+  // where only the contributors' variances are read.
+  bool channel_breakdown = true;
 
-  // One thread, variances only (no traces, no covariance): for studies that
+  // One thread, variances only (no traces, covariance or channel
+  // breakdown): for studies that
   // evaluate many budgets in parallel and read their variances (an
   // uncertainty study's samples, an optimiser's designs).
   static EngineOptions VariancesOnly() {
@@ -45,6 +50,7 @@ struct EngineOptions {
     o.threads = 1;
     o.response_traces = false;
     o.covariance = false;
+    o.channel_breakdown = false;
     return o;
   }
 

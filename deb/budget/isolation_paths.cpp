@@ -1,6 +1,7 @@
 #include "deb/budget/isolation_paths.h"
 
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "deb/core/at_key_path.h"
@@ -57,8 +58,11 @@ IsolationPaths MakeIsolationPaths(const IsolationPathsSpec& spec) {
                                model.ActuatorToCog(Loop::kClosed), actuator_names, force));
     });
   }
-  out.report = "model " + spec.name + " (units: length " + spec.units.length + ", mass " + spec.units.mass +
-               ", force " + force + ")\n" + model.Summary().Report();
+  const auto shared = std::make_shared<const IsolationModel>(model);
+  out.report = [shared, heading = "model " + spec.name + " (units: length " + spec.units.length + ", mass " +
+                                  spec.units.mass + ", force " + force + ")\n"] {
+    return heading + shared->Summary().Report();
+  };
   return out;
 }
 

@@ -6,6 +6,7 @@
 // as outputs, in length/s and rad/s.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,9 @@ struct IsolationPathsSpec {
 
 struct IsolationPaths {
   std::vector<Path> paths;
-  std::string report;  // natural frequencies, mode shapes, pre-stress (plain text)
+  // Natural frequencies, mode shapes, pre-stress (plain text), computed
+  // when called.
+  std::function<std::string()> report;
 };
 
 // @throws InputError at spec.key_path if the model cannot be built (IsolationSystem::Validate and

@@ -129,7 +129,9 @@ int DefaultThreadCount() {
     } catch (const std::exception&) {
     }
   }
-  const unsigned hw = std::thread::hardware_concurrency();
+  // Asked once: glibc reads /sys/devices/system/cpu/online each time, and a
+  // study asks for every budget it evaluates.
+  static const unsigned hw = std::thread::hardware_concurrency();
   return hw == 0 ? 1 : static_cast<int>(hw);
 }
 

@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <mutex>
 
@@ -30,13 +32,19 @@ class Variants {
 
   Budget At(const std::vector<double>& values) const {
     DEB_DEMAND(values.size() == steps_.size());
-    YAML::Node v;
-    {
-      // yaml-cpp does not promise that reading one node from several
-      // threads is safe; the copy is a small part of a variant's cost.
+    // Each thread loads from its own copy of the document, made once and
+    // then reused: a variant writes the same keys every time, and loading
+    // only reads (YamlNode reads through const nodes, which add nothing).
+    // The copy is made under a lock: yaml-cpp does not promise that reading
+    // one node from several threads is safe.
+    thread_local std::uint64_t copy_of = 0;
+    thread_local YAML::Node copy;
+    if (copy_of != id_) {
       const std::lock_guard<std::mutex> lock(mutex_);
-      v = YAML::Clone(document_);
+      copy = YAML::Clone(document_);
+      copy_of = id_;
     }
+    YAML::Node& v = copy;
     std::string note = note_;
     for (std::size_t k = 0; k < steps_.size(); ++k) {
       const VariedParameter& p = varied_[k];
@@ -56,6 +64,9 @@ class Variants {
   std::vector<KeyPath> steps_;
   std::string note_;
   mutable std::mutex mutex_;
+  // Tells this document's copies from another Variants' (never 0).
+  const std::uint64_t id_ = next_id_.fetch_add(1) + 1;
+  static inline std::atomic<std::uint64_t> next_id_{0};
 };
 
 }  // namespace

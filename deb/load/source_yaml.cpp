@@ -3,6 +3,7 @@
 #include <cmath>
 #include <complex>
 #include <filesystem>
+#include <optional>
 
 #include "deb/core/limits.h"
 #include "deb/core/math_constants.h"
@@ -272,6 +273,8 @@ static std::shared_ptr<const Spectrum> VcSource(const YamlNode& node, const Yaml
   if (spec.Has("class") == spec.Has("velocity"))
     spec.Fail(std::string(spec.Has("class") ? "both 'class' and 'velocity'" : "neither 'class' nor 'velocity'") +
               ": give the criterion as a class (class: VC-D) or as its band RMS velocity (velocity: 6.25 um/s)");
+  std::optional<VcClass> vc_class;
+  if (auto cls = spec.Optional("class")) vc_class = AtNode(*cls, [&] { return ParseVcClass(cls->AsString()); });
   VcOptions options;
   if (auto v = spec.Optional("lowest_band_hz")) options.lowest_band_hz = v->AsPositive();
   if (auto v = spec.Optional("highest_band_hz")) options.highest_band_hz = v->AsPositive();
@@ -284,9 +287,8 @@ static std::shared_ptr<const Spectrum> VcSource(const YamlNode& node, const Yaml
   if (!conv.IsPureScale())
     unit_node->Fail("a VC curve is a velocity; unit '" + s->unit + "' is not a velocity unit");
   std::shared_ptr<const Spectrum> one;
-  if (auto cls = spec.Optional("class")) {
-    const VcClass vc_class = AtNode(*cls, [&] { return ParseVcClass(cls->AsString()); });
-    one = AtNode(spec, [&] { return std::make_shared<VcSpectrum>(vc_class, options); });
+  if (vc_class) {
+    one = AtNode(spec, [&] { return std::make_shared<VcSpectrum>(*vc_class, options); });
   } else {
     // In the source's unit when a plain number (as the curve's), then in um/s.
     const double velocity_um_s = spec.Required("velocity").AsPositiveIn(s->unit) / conv.scale;

@@ -36,7 +36,7 @@ TEST_CASE("the thesis model yields open- and closed-loop paths with the model's 
   CHECK(noise.input_units == std::vector<std::string>(noise.input_names.size(), "mm/s"));
   CHECK(noise.output_units == std::vector<std::string>{"mm/s", "mm/s", "mm/s", "rad/s", "rad/s", "rad/s"});
   CHECK(built.paths[4].input_units.front() == "N");
-  CHECK(built.report.find("model avis (units: length mm, mass t, force N)\n") == 0);
+  CHECK(built.report().find("model avis (units: length mm, mass t, force N)\n") == 0);
   // The paths are the model's transfers themselves.
   const IsolationModel model(ThesisCaseStudy());
   const StateSpace floor = model.FloorToCog(IsolationModel::Loop::kClosed);

@@ -794,6 +794,8 @@ const std::vector<Case>& Catalogue() {
        At("channels: |2000000000", "sources[0].channels"), {}, {}, "", "", 30},
       {"Y69", "vc class bogus", B("{type: flat, level: 1.0e-6}", "{type: vc, class: VC-Z}"), kRun, 3,
        At("VC-Z", "sources[0].spectrum.class")},
+      {"Y69b", "vc with both class and velocity", B("{type: flat, level: 1.0e-6}", "{type: vc, class: VC-C, velocity: 12.5}"),
+       kRun, 3, At("{type: vc", "sources[0].spectrum"), {"both 'class' and 'velocity'"}},
       {"Y70", "vc lowest_band_hz > highest_band_hz",
        Budget(Sub(Sub(Sub(kBase, "{type: flat, level: 1.0e-6}", "{type: vc, class: VC-D, lowest_band_hz: 80, highest_band_hz: 2}"),
                       "    unit: N\n", "    unit: um/s\n"), "input_unit: N", "input_unit: um/s")), kRun, 3,

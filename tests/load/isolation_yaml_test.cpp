@@ -41,7 +41,7 @@ TEST_CASE("an isolation_system entry yields the floor, noise and actuator paths,
   CHECK(noise.output_units[3] == "rad/s");
   CHECK(b.FindPath("avis.actuator").input_units[0] == "N");
   REQUIRE(b.models.size() == 1);
-  CHECK(b.models[0].report.find("Static pre-stress") != std::string::npos);
+  CHECK(b.models[0].report().find("Static pre-stress") != std::string::npos);
 }
 
 TEST_CASE("the model's numbers take quantities in any unit, converted to the model's; the literal twin is identical") {

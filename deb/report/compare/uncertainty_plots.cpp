@@ -68,7 +68,12 @@ Plot Distribution(const StudyMetric& m, int output) {
         << CsvNumber(static_cast<double>(count[b]) / static_cast<double>(n)) << '\n';
   csv << "\n\n# block 1: empirical CDF (RMS, fraction of the samples at or below it)\nrms,cdf\n";
   csv << CsvNumber(x_lo) << ",0\n";
-  for (std::size_t i = 0; i < n; ++i) csv << CsvNumber(v[i]) << ',' << CsvNumber(static_cast<double>(i + 1) / n) << '\n';
+  // At most about kMaxEcdfSteps steps (every stride-th order statistic and
+  // the last): a step of 1/kMaxEcdfSteps is below what a figure resolves.
+  const std::size_t stride = (n + kMaxEcdfSteps - 1) / kMaxEcdfSteps;
+  for (std::size_t i = stride - 1; i < n; i += stride)
+    csv << CsvNumber(v[i]) << ',' << CsvNumber(static_cast<double>(i + 1) / n) << '\n';
+  if (n % stride != 0) csv << CsvNumber(v[n - 1]) << ",1\n";
   csv << CsvNumber(x_hi) << ",1\n";
   p.csv = csv.str();
 
@@ -201,6 +206,13 @@ Plot Drivers(const UncertaintyResult& r, const StudyMetric& m, int output) {
   return p;
 }
 
+// "2nd", "5th", "21st".
+std::string OrdinalText(std::size_t k) {
+  const std::size_t tens = k % 100, ones = k % 10;
+  const char* suffix = (tens >= 11 && tens <= 13) ? "th" : ones == 1 ? "st" : ones == 2 ? "nd" : ones == 3 ? "rd" : "th";
+  return std::to_string(k) + suffix;
+}
+
 Plot Scatter(const UncertaintyResult& r, const StudyMetric& m, int output) {
   Plot p;
   p.name = FileStem(m.output) + "_scatter";
@@ -213,7 +225,13 @@ Plot Scatter(const UncertaintyResult& r, const StudyMetric& m, int output) {
       << " against its strongest drivers, one row per sample\nrms";
   for (std::size_t j = 0; j < shown; ++j) csv << ',' << CsvField(r.spec.parameters[order[j]].name);
   csv << '\n';
-  for (std::size_t s = 0; s < m.values.size(); ++s) {
+  // At most kMaxScatterPoints, every stride-th sample: more points only
+  // blacken the cloud, and cost the PDF seconds and megabytes.
+  const std::size_t n = m.values.size();
+  const std::size_t stride = (n + kMaxScatterPoints - 1) / kMaxScatterPoints;
+  std::size_t drawn = 0;
+  for (std::size_t s = 0; s < n; s += stride) {
+    ++drawn;
     csv << CsvNumber(m.values[s]);
     for (std::size_t j = 0; j < shown; ++j) {
       const UncertainParameter& q = r.spec.parameters[order[j]];
@@ -223,7 +241,10 @@ Plot Scatter(const UncertaintyResult& r, const StudyMetric& m, int output) {
   }
   p.csv = csv.str();
   p.caption = "The RMS of " + m.output + " of each sample against its " + (shown == 2 ? "two strongest drivers" : "driver") +
-              (m.limit ? "; the requirement dashed red" : "") + ".";
+              (m.limit ? "; the requirement dashed red" : "") + "." +
+              (stride > 1 ? " Every " + OrdinalText(stride) + " sample is drawn, " + std::to_string(drawn) + " of " +
+                                std::to_string(n) + "; the statistics take them all."
+                          : "");
   p.figure.title = Enhanced(m.output + ": RMS against its strongest drivers");
   p.figure.columns = shown;
   const std::string file = p.name + ".csv";
