@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
@@ -115,96 +116,107 @@ std::vector<std::vector<double>> LatinHypercubeValues(const UncertaintySpec& spe
   return values;
 }
 
-UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyOptions& options,
-                                 const VariantLoader& variant,
-                                 const std::function<void(std::size_t, std::size_t)>& progress) {
-  const std::size_t p = spec.parameters.size();
-  DEB_DEMAND(p >= 1 && options.samples >= 1 && options.samples <= kMaxUncertaintySamples);
-  const Eigen::LLT<Eigen::MatrixXd> copula(spec.correlation.size() ? spec.correlation
-                                                                   : Eigen::MatrixXd::Identity(p, p).eval());
-  DEB_DEMAND(copula.info() == Eigen::Success);
-  const bool sobol = options.method == SamplingMethod::kSobol;
-  const std::size_t n = options.samples;
-  const SampleDesign design(options.method, options.seed, n, sobol ? 2 * p : p);
+namespace {
 
-  // The nominal budget and the gradient (central differences of 1 % of
-  // each parameter's sigma), then the samples, then the corners: one list
-  // of evaluations, run in parallel, stored by index.
-  std::vector<double> nominal(p);
-  for (std::size_t i = 0; i < p; ++i) nominal[i] = spec.parameters[i].nominal;
-  std::vector<double> step(p);
-  for (std::size_t i = 0; i < p; ++i) {
-    const double sd = spec.parameters[i].distribution.StandardDeviation();
-    step[i] = sd > 0.0 ? 0.01 * sd : 1e-6 * std::max(1.0, std::abs(nominal[i]));
+// The study's evaluations, by index e: 0 the nominal budget, 1..2p the
+// gradient's steps (central differences of 1 % of each parameter's sigma),
+// then the samples (per_base budgets each), then the corners; each one's
+// parameter values a function of (spec, options, e) alone.
+class StudyPlan {
+ public:
+  StudyPlan(const UncertaintySpec& spec, const UncertaintyOptions& options)
+      : spec_(spec), p_(spec.parameters.size()),
+        copula_(spec.correlation.size() ? spec.correlation : Eigen::MatrixXd::Identity(p_, p_).eval()),
+        sobol_(options.method == SamplingMethod::kSobol), n_(options.samples),
+        design_(options.method, options.seed, n_, sobol_ ? 2 * p_ : p_) {
+    DEB_DEMAND(p_ >= 1 && n_ >= 1 && n_ <= kMaxUncertaintySamples);
+    DEB_DEMAND(copula_.info() == Eigen::Success);
+    nominal_.resize(p_);
+    step_.resize(p_);
+    low_.resize(p_);
+    high_.resize(p_);
+    for (std::size_t i = 0; i < p_; ++i) {
+      const Distribution& d = spec.parameters[i].distribution;
+      nominal_[i] = spec.parameters[i].nominal;
+      const double sd = d.StandardDeviation();
+      step_[i] = sd > 0.0 ? 0.01 * sd : 1e-6 * std::max(1.0, std::abs(nominal_[i]));
+      low_[i] = d.BoxLow();
+      high_[i] = d.BoxHigh();
+    }
+    per_base_ = sobol_ ? p_ + 2 : 1;
+    all_corners_ = p_ <= kMaxCornerParameters;
+    corners_ = all_corners_ ? (std::size_t{1} << p_) : 0;
+    first_sample_ = 1 + 2 * p_;
+    first_corner_ = first_sample_ + n_ * per_base_;
+    total_ = first_corner_ + corners_;
   }
-  const std::size_t per_base = sobol ? p + 2 : 1;
-  const std::size_t sampled = n * per_base;
-  const bool all_corners = p <= kMaxCornerParameters;
-  const std::size_t corners = all_corners ? (std::size_t{1} << p) : 0;
-  const std::size_t first_sample = 1 + 2 * p, first_corner = first_sample + sampled;
-  const std::size_t total = first_corner + corners;
 
-  std::vector<std::vector<double>> inputs(total), outputs(total);
-  std::vector<double> low(p), high(p);
-  for (std::size_t i = 0; i < p; ++i) {
-    low[i] = spec.parameters[i].distribution.BoxLow();
-    high[i] = spec.parameters[i].distribution.BoxHigh();
-  }
-  const auto input_of = [&](std::size_t e) -> std::vector<double> {
-    if (e == 0) return nominal;
-    if (e < first_sample) {
-      std::vector<double> v = nominal;
+  std::size_t total() const { return total_; }
+
+  std::vector<double> Input(std::size_t e) const {
+    if (e == 0) return nominal_;
+    if (e < first_sample_) {
+      std::vector<double> v = nominal_;
       const std::size_t i = (e - 1) / 2;
-      v[i] += (e - 1) % 2 == 0 ? step[i] : -step[i];
+      v[i] += (e - 1) % 2 == 0 ? step_[i] : -step_[i];
       return v;
     }
-    if (e < first_corner) {
-      const std::size_t j = (e - first_sample) / per_base, r = (e - first_sample) % per_base;
-      const std::vector<double> u = design.Point(j);
-      if (!sobol) return SampleValues(spec, copula, u);
-      std::vector<double> a(u.begin(), u.begin() + static_cast<long>(p)), b(u.begin() + static_cast<long>(p), u.end());
-      if (r == 1) return SampleValues(spec, copula, b);
+    if (e < first_corner_) {
+      const std::size_t j = (e - first_sample_) / per_base_, r = (e - first_sample_) % per_base_;
+      const std::vector<double> u = design_.Point(j);
+      if (!sobol_) return SampleValues(spec_, copula_, u);
+      std::vector<double> a(u.begin(), u.begin() + static_cast<long>(p_)), b(u.begin() + static_cast<long>(p_), u.end());
+      if (r == 1) return SampleValues(spec_, copula_, b);
       if (r >= 2) a[r - 2] = b[r - 2];
-      return SampleValues(spec, copula, a);
+      return SampleValues(spec_, copula_, a);
     }
-    const std::size_t vertex = e - first_corner;
-    std::vector<double> v(p);
-    for (std::size_t i = 0; i < p; ++i) v[i] = (vertex >> i) & 1 ? high[i] : low[i];
+    const std::size_t vertex = e - first_corner_;
+    std::vector<double> v(p_);
+    for (std::size_t i = 0; i < p_; ++i) v[i] = (vertex >> i) & 1 ? high_[i] : low_[i];
     return v;
-  };
-  const auto what_of = [&](std::size_t e) -> std::string {
+  }
+
+  std::string What(std::size_t e) const {
     if (e == 0) return "the nominal budget";
-    if (e < first_sample) return "the gradient's step of " + spec.parameters[(e - 1) / 2].name;
-    if (e < first_corner) return "sample " + std::to_string((e - first_sample) / per_base + 1);
-    return "corner " + std::to_string(e - first_corner + 1) + " of the tolerance box";
-  };
+    if (e < first_sample_) return "the gradient's step of " + spec_.parameters[(e - 1) / 2].name;
+    if (e < first_corner_) return "sample " + std::to_string((e - first_sample_) / per_base_ + 1);
+    return "corner " + std::to_string(e - first_corner_ + 1) + " of the tolerance box";
+  }
+
+  // The statistics of the evaluations' metric values (outputs[e], every e),
+  // the metrics named by the nominal budget's result.
+  UncertaintyResult Summarise(const UncertaintyOptions& options, const VariantLoader& variant,
+                              const BudgetResult& nominal_result, const std::vector<std::vector<double>>& outputs) const;
+
+ private:
+  const UncertaintySpec& spec_;
+  std::size_t p_;
+  Eigen::LLT<Eigen::MatrixXd> copula_;
+  bool sobol_;
+  std::size_t n_;
+  SampleDesign design_;
+  std::vector<double> nominal_, step_, low_, high_;
+  std::size_t per_base_ = 1, corners_ = 0, first_sample_ = 0, first_corner_ = 0, total_ = 0;
+  bool all_corners_ = true;
+};
+
+UncertaintyResult StudyPlan::Summarise(const UncertaintyOptions& options, const VariantLoader& variant,
+                                       const BudgetResult& nominal_result,
+                                       const std::vector<std::vector<double>>& outputs) const {
+  const UncertaintySpec& spec = spec_;
+  const std::size_t p = p_, n = n_, per_base = per_base_, first_sample = first_sample_, first_corner = first_corner_;
+  const std::size_t total = total_;
+  const bool sobol = sobol_;
+  DEB_DEMAND(outputs.size() == total);
   UncertaintyResult result;
   result.spec = spec;
   result.options = options;
   result.evaluations = total;
-  {
-    // The nominal budget first: it fixes the metrics every sample gives.
-    inputs[0] = nominal;
-    const BudgetResult r = Evaluate(variant(nominal), EngineOptions::VariancesOnly());
-    result.metrics = MetricsOf(r);
-    outputs[0] = MetricValues(r);
-  }
-  std::atomic<std::size_t> done{1};
-  ParallelForEach(
-      total - 1,
-      [&](std::size_t j) {
-        const std::size_t e = j + 1;
-        inputs[e] = input_of(e);
-        outputs[e] = EvaluateAt(variant, spec, inputs[e], what_of(e));
-        const std::size_t d = ++done;
-        if (progress) progress(d, total);
-      },
-      options.threads);
-
+  result.metrics = MetricsOf(nominal_result);
   const std::size_t m = result.metrics.size();
   for (std::size_t e = 0; e < total; ++e)
     if (outputs[e].size() != m)
-      throw InputError(what_of(e) + " has " + std::to_string(outputs[e].size()) + " results where the nominal has " +
+      throw InputError(What(e) + " has " + std::to_string(outputs[e].size()) + " results where the nominal has " +
                        std::to_string(m));
 
   // The samples of the statistics: every one (mc, lhs); A and B (sobol).
@@ -215,8 +227,10 @@ UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyO
   }
   result.samples = stat.size();
   result.parameter_values.assign(p, {});
-  for (std::size_t i = 0; i < p; ++i)
-    for (std::size_t e : stat) result.parameter_values[i].push_back(inputs[e][i]);
+  for (std::size_t e : stat) {
+    const std::vector<double> input = Input(e);
+    for (std::size_t i = 0; i < p; ++i) result.parameter_values[i].push_back(input[i]);
+  }
 
   std::vector<double> sd(p);
   for (std::size_t i = 0; i < p; ++i) sd[i] = spec.parameters[i].distribution.StandardDeviation();
@@ -241,7 +255,7 @@ UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyO
     // First order: sigma^2 = g^T C g, C the parameters' covariance.
     double variance = 0.0;
     for (std::size_t i = 0; i < p; ++i)
-      metric.gradient.push_back((outputs[1 + 2 * i][k] - outputs[2 + 2 * i][k]) / (2.0 * step[i]));
+      metric.gradient.push_back((outputs[1 + 2 * i][k] - outputs[2 + 2 * i][k]) / (2.0 * step_[i]));
     for (std::size_t i = 0; i < p; ++i)
       for (std::size_t j = 0; j < p; ++j) {
         const double rho = spec.correlation.size() ? spec.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))
@@ -269,13 +283,13 @@ UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyO
 
   // The worst corner of each metric: over every vertex (p <= 12), else the
   // vertex each parameter's rank correlation points to, evaluated here.
-  if (all_corners) {
-    result.corner_method = "all " + std::to_string(corners) + " vertices of the tolerance box";
+  if (all_corners_) {
+    result.corner_method = "all " + std::to_string(corners_) + " vertices of the tolerance box";
     for (std::size_t k = 0; k < m; ++k) {
       std::size_t worst = first_corner;
       for (std::size_t e = first_corner; e < total; ++e)
         if (outputs[e][k] > outputs[worst][k]) worst = e;
-      result.metrics[k].worst_corner = inputs[worst];
+      result.metrics[k].worst_corner = Input(worst);
       result.metrics[k].worst_corner_value = outputs[worst][k];
     }
   } else {
@@ -283,7 +297,7 @@ UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyO
                            std::to_string(p) + " parameters: 2^p vertices are too many to try)";
     std::vector<std::vector<double>> vertex(m, std::vector<double>(p));
     for (std::size_t k = 0; k < m; ++k)
-      for (std::size_t i = 0; i < p; ++i) vertex[k][i] = result.metrics[k].spearman[i] >= 0.0 ? high[i] : low[i];
+      for (std::size_t i = 0; i < p; ++i) vertex[k][i] = result.metrics[k].spearman[i] >= 0.0 ? high_[i] : low_[i];
     std::vector<std::vector<double>> values(m);
     ParallelForEach(
         m, [&](std::size_t k) { values[k] = EvaluateAt(variant, spec, vertex[k], "the worst corner of " + result.metrics[k].Name()); },
@@ -298,6 +312,73 @@ UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyO
     result.notes.push_back("Sobol indices assume independent parameters; with correlated ones they are not a "
                            "decomposition of the variance (read the rank correlations instead)");
   return result;
+}
+
+// Evaluates e in [begin, end) into out[e - begin], in parallel, but for
+// those already there (the nominal, which RunUncertainty evaluates first).
+void EvaluateRange(const StudyPlan& plan, const UncertaintySpec& spec, const VariantLoader& variant,
+                   std::size_t begin, std::size_t end, int threads, std::vector<std::vector<double>>* out,
+                   const std::function<void(std::size_t, std::size_t)>& progress, std::size_t done_before) {
+  std::atomic<std::size_t> done{done_before};
+  const std::size_t all = end - begin;  // the progress' total, the ones done before included
+  ParallelForEach(
+      end - begin,
+      [&](std::size_t j) {
+        if (!(*out)[j].empty()) return;
+        const std::size_t e = begin + j;
+        (*out)[j] = EvaluateAt(variant, spec, plan.Input(e), plan.What(e));
+        const std::size_t d = ++done;
+        if (progress) progress(d, all);
+      },
+      threads);
+}
+
+}  // namespace
+
+std::size_t UncertaintyEvaluationCount(const UncertaintySpec& spec, const UncertaintyOptions& options) {
+  return StudyPlan(spec, options).total();
+}
+
+std::pair<std::size_t, std::size_t> StudyShard::Range(std::size_t total) const {
+  DEB_DEMAND(count >= 1 && index >= 1 && index <= count);
+  // Contiguous blocks, sizes differing by at most one.
+  const auto edge = [&](std::size_t k) {
+    return static_cast<std::size_t>(static_cast<std::uint64_t>(total) * k / count);
+  };
+  return {edge(index - 1), edge(index)};
+}
+
+UncertaintyPart EvaluateUncertaintyPart(const UncertaintySpec& spec, const UncertaintyOptions& options,
+                                        const VariantLoader& variant, const StudyShard& shard,
+                                        const std::function<void(std::size_t, std::size_t)>& progress) {
+  const StudyPlan plan(spec, options);
+  UncertaintyPart part;
+  part.total = plan.total();
+  std::tie(part.begin, part.end) = shard.Range(part.total);
+  part.values.assign(part.end - part.begin, {});
+  EvaluateRange(plan, spec, variant, part.begin, part.end, options.threads, &part.values, progress, 0);
+  return part;
+}
+
+UncertaintyResult SummariseUncertainty(const UncertaintySpec& spec, const UncertaintyOptions& options,
+                                       const VariantLoader& variant, const std::vector<std::vector<double>>& values) {
+  const StudyPlan plan(spec, options);
+  DEB_DEMAND(values.size() == plan.total());
+  const BudgetResult nominal = Evaluate(variant(plan.Input(0)), EngineOptions::VariancesOnly());
+  return plan.Summarise(options, variant, nominal, values);
+}
+
+UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyOptions& options,
+                                 const VariantLoader& variant,
+                                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  const StudyPlan plan(spec, options);
+  const std::size_t total = plan.total();
+  std::vector<std::vector<double>> outputs(total);
+  // The nominal budget first: it fixes the metrics every sample gives.
+  const BudgetResult nominal = Evaluate(variant(plan.Input(0)), EngineOptions::VariancesOnly());
+  outputs[0] = MetricValues(nominal);
+  EvaluateRange(plan, spec, variant, 0, total, options.threads, &outputs, progress, 1);
+  return plan.Summarise(options, variant, nominal, outputs);
 }
 
 }  // namespace deb

@@ -20,6 +20,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "deb/budget/result.h"
@@ -108,6 +109,43 @@ std::vector<double> SampleValues(const UncertaintySpec& spec, const Eigen::LLT<E
 // sample k's from (seed, k) as SampleDesign's): the tolerances a robust
 // optimisation evaluates every design at.
 std::vector<std::vector<double>> LatinHypercubeValues(const UncertaintySpec& spec, std::size_t n, std::uint64_t seed);
+
+// A share of a study's evaluations, for a run split over processes or
+// machines (deb uncertainty --shard K/N, deb merge): shard `index` of
+// `count` (1-based) holds a contiguous block of the evaluation indices,
+// the blocks' sizes differing by at most one.
+struct StudyShard {
+  std::size_t index = 1, count = 1;
+  // [begin, end) of `total` evaluations. DEB_DEMANDs 1 <= index <= count.
+  std::pair<std::size_t, std::size_t> Range(std::size_t total) const;
+};
+inline constexpr std::size_t kMaxShards = 100000;
+
+// The evaluations a shard made: the metric values (StudyMetric order) of
+// evaluations [begin, end) of the study's `total`.
+struct UncertaintyPart {
+  std::size_t total = 0, begin = 0, end = 0;
+  std::vector<std::vector<double>> values;  // [e - begin][metric]
+};
+
+// How many budgets the study evaluates (before the worst corners of a
+// study of more than kMaxCornerParameters parameters, found after).
+std::size_t UncertaintyEvaluationCount(const UncertaintySpec& spec, const UncertaintyOptions& options);
+
+// Evaluates the shard's share of the study. progress as RunUncertainty's,
+// over the share. @throws InputError as RunUncertainty.
+UncertaintyPart EvaluateUncertaintyPart(const UncertaintySpec& spec, const UncertaintyOptions& options,
+                                        const VariantLoader& variant, const StudyShard& shard,
+                                        const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// The study from every evaluation's metric values (`values[e]`, e < the
+// evaluation count, as the parts hold them): the same result, bit for bit,
+// as RunUncertainty's with the same spec and options. Evaluates the nominal
+// budget again (for its metrics' names) and, for many parameters, the worst
+// corners. @throws InputError for values of the wrong size, naming the
+// evaluation.
+UncertaintyResult SummariseUncertainty(const UncertaintySpec& spec, const UncertaintyOptions& options,
+                                       const VariantLoader& variant, const std::vector<std::vector<double>>& values);
 
 // Runs the study. progress(done, total) as EvaluateSweep's.
 // @throws InputError naming the sample and its values for a sample whose
