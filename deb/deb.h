@@ -125,6 +125,7 @@
 #include "deb/results/result_mat.h"
 #include "deb/results/result_writer.h"
 #include "deb/results/result_xlsx.h"
+#include "deb/results/study_part.h"
 #include "deb/results/uncertainty_files.h"
 #include "deb/results/optimise_files.h"
 #include "deb/load/uncertainty_yaml.h"

@@ -38,6 +38,7 @@
 #include "tools/spectrum_command.h"
 #include "tools/sweep_command.h"
 #include "tools/uncertainty_command.h"
+#include "tools/merge_command.h"
 #include "tools/optimise_command.h"
 
 namespace {
@@ -120,6 +121,8 @@ int main(int argc, char** argv) {
   CLI::App* uncertainty = uncertainty_command.Register(app);
   deb::tools::OptimiseCommand optimise_command;
   CLI::App* optimise = optimise_command.Register(app);
+  deb::tools::MergeCommand merge_command;
+  CLI::App* merge = merge_command.Register(app);
 
   return RunMapped(app, [&] {
     // A first word that is no command: say so, and offer the nearest one
@@ -149,6 +152,7 @@ int main(int argc, char** argv) {
     if (*sensitivity) return sensitivity_command.Run();
     if (*uncertainty) return uncertainty_command.Run();
     if (*optimise) return optimise_command.Run();
+    if (*merge) return merge_command.Run();
     return kExitUsage;
   });
 }

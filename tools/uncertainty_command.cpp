@@ -3,15 +3,22 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
 #include "deb/core/number_text.h"
 #include "deb/core/output_dir.h"
 #include "deb/load/uncertainty_yaml.h"
 #include "deb/report/compare/uncertainty_directory.h"
+#include "deb/report/budget/file_digest.h"
 #include "deb/report/compare/uncertainty_plots.h"
+#include "deb/results/study_part.h"
+#include "deb/version.h"
 #include "tools/budget_overrides_option.h"
 
 namespace deb::tools {
@@ -27,6 +34,7 @@ struct UncertaintyCommand::Options {
   bool quiet = false;
   bool force = false;
   bool plots = true;
+  std::string shard;  // --shard K/N
 };
 
 namespace {
@@ -68,7 +76,69 @@ void Print(const std::string& name, const UncertaintyResult& r) {
   for (const std::string& note : r.notes) std::printf("note: %s\n", note.c_str());
 }
 
+// "K/N" with 1 <= K <= N <= kMaxShards, or "" when it is one.
+std::string ShardProblem(const std::string& text, StudyShard* shard) {
+  const std::size_t slash = text.find('/');
+  const auto number = [](const std::string& t, std::size_t* out) {
+    if (t.empty() || t.size() > 6 || t.find_first_not_of("0123456789") != std::string::npos) return false;
+    *out = std::stoul(t);
+    return true;
+  };
+  StudyShard s;
+  if (slash == std::string::npos || !number(text.substr(0, slash), &s.index) || !number(text.substr(slash + 1), &s.count))
+    return "--shard '" + Excerpt(text) + "': give K/N, this process's shard K of N (e.g. 2/8)";
+  if (s.count < 1 || s.count > kMaxShards || s.index < 1 || s.index > s.count)
+    return "--shard " + text + ": K/N needs 1 <= K <= N <= " + std::to_string(kMaxShards);
+  if (shard) *shard = s;
+  return "";
+}
+
+// The shard from --shard, else from a Slurm job array (SLURM_ARRAY_TASK_ID
+// counted from SLURM_ARRAY_TASK_MIN, of SLURM_ARRAY_TASK_COUNT), else none.
+std::optional<StudyShard> ShardOf(const std::string& option) {
+  StudyShard s;
+  if (!option.empty()) {
+    if (const std::string why = ShardProblem(option, &s); !why.empty()) throw InputError(why);
+    return s;
+  }
+  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+  if (!id || !count) return std::nullopt;
+  const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+  const auto number = [](const char* name, const char* t) {
+    const std::string text = t;
+    if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError(std::string(name) + "='" + Excerpt(text) + "' is not a whole number (a Slurm array job sets it)");
+    return std::stoul(text);
+  };
+  const unsigned long k = number("SLURM_ARRAY_TASK_ID", id), n = number("SLURM_ARRAY_TASK_COUNT", count);
+  const unsigned long first = min ? number("SLURM_ARRAY_TASK_MIN", min) : 0;
+  const std::string text = std::to_string(k + 1 - std::min(first, k + 1)) + "/" + std::to_string(n);
+  if (k < first || !ShardProblem(text, &s).empty())
+    throw InputError("the Slurm array task " + std::to_string(k) + " (from " + std::to_string(first) + ", " +
+                     std::to_string(n) + " tasks) is no shard K/N with 1 <= K <= N <= " + std::to_string(kMaxShards) +
+                     "; give --shard K/N, or run an array of consecutive indices");
+  return s;
+}
+
 }  // namespace
+
+std::string UncertaintyDigest(const std::string& budget_text, const UncertaintyOptions& options) {
+  return report::Sha256(budget_text + "\n--- deb " + DEB_VERSION + " uncertainty: method " + ToString(options.method) +
+                        ", seed " + std::to_string(options.seed) + ", samples " + std::to_string(options.samples) + "\n");
+}
+
+void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result, const StudyOutput& output) {
+  const std::string dir = output.out_dir.empty() ? report::DefaultUncertaintyDirectory(budget_name) : output.out_dir;
+  ReplaceOptions replace;
+  replace.force = output.force;
+  const std::vector<report::Plot> plots = output.plots ? report::UncertaintyPlots(result) : std::vector<report::Plot>{};
+  report::WriteUncertaintyDirectory(budget_name, result, plots, dir, replace, output.threads);
+  if (!output.quiet) {
+    Print(budget_name, result);
+    std::printf("report: %s/uncertainty.html\n", dir.c_str());
+  }
+}
 
 UncertaintyCommand::UncertaintyCommand() : options_(std::make_unique<Options>()) {}
 UncertaintyCommand::~UncertaintyCommand() = default;
@@ -92,6 +162,10 @@ CLI::App* UncertaintyCommand::Register(CLI::App& app) {
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write summary.json, samples.csv and the documents without figures; gnuplot is not needed");
+  c->add_option("--shard", s.shard,
+                "Evaluate only shard K of N of the study and write it as a part for deb merge (default: from "
+                "SLURM_ARRAY_TASK_ID/_COUNT in a Slurm array job, else the whole study)")
+      ->check(CLI::Validator([](std::string& t) { return ShardProblem(t, nullptr); }, "K/N"));
   return c;
 }
 
@@ -107,20 +181,43 @@ int UncertaintyCommand::Run() const {
     throw InputError(s.budget_file + ": " + std::to_string(budget.spec.parameters.size()) +
                      " uncertain parameters; --method sobol takes at most " + std::to_string(MaxSobolDimensions() / 2));
   const bool progress = !s.quiet && ::isatty(STDERR_FILENO);
-  const UncertaintyResult result =
-      RunUncertainty(budget.spec, options, budget.variant, [&](std::size_t done, std::size_t total) {
-        if (progress) std::fprintf(stderr, "\rdeb: uncertainty %zu/%zu budgets", done, total);
-      });
-  if (progress) std::fprintf(stderr, "\n");
-  const std::string dir = s.out_dir.empty() ? report::DefaultUncertaintyDirectory(budget.name) : s.out_dir;
-  ReplaceOptions replace;
-  replace.force = s.force;
-  const std::vector<report::Plot> plots = s.plots ? report::UncertaintyPlots(result) : std::vector<report::Plot>{};
-  report::WriteUncertaintyDirectory(budget.name, result, plots, dir, replace, s.threads);
-  if (!s.quiet) {
-    Print(budget.name, result);
-    std::printf("report: %s/uncertainty.html\n", dir.c_str());
+  const auto report_progress = [&](std::size_t done, std::size_t total) {
+    if (progress) std::fprintf(stderr, "\rdeb: uncertainty %zu/%zu budgets", done, total);
+  };
+  if (const std::optional<StudyShard> shard = ShardOf(s.shard)) {
+    const UncertaintyPart part = EvaluateUncertaintyPart(budget.spec, options, budget.variant, *shard, report_progress);
+    if (progress) std::fprintf(stderr, "\n");
+    StudyPartHeader header;
+    header.digest = UncertaintyDigest(budget.text, options);
+    header.budget = std::filesystem::absolute(s.budget_file).lexically_normal().string();
+    for (const BudgetOverride& o : s.overrides) header.overrides.push_back(o.key_path + "=" + o.value);
+    header.method = s.method;
+    header.seed = options.seed;
+    header.samples = options.samples;
+    header.shard = *shard;
+    const std::string tag = std::to_string(shard->index) + "of" + std::to_string(shard->count);
+    const std::string dir =
+        s.out_dir.empty() ? report::DefaultUncertaintyDirectory(budget.name) + "_part" + tag : s.out_dir;
+    ReplaceOptions replace;
+    replace.force = s.force;
+    const std::string json = UncertaintyPartJson(header, part);
+    ReplaceDirectory(dir, [&](const std::string& tmp) { WriteTextFile((std::filesystem::path(tmp) / "part.json").string(), json); },
+                     replace);
+    if (!s.quiet)
+      std::printf("uncertainty of %s, shard %zu/%zu: evaluations %zu to %zu of %zu in %s/part.json; join the parts "
+                  "with deb merge\n",
+                  budget.name.c_str(), shard->index, shard->count, part.begin + 1, part.end, part.total, dir.c_str());
+    return 0;
   }
+  const UncertaintyResult result = RunUncertainty(budget.spec, options, budget.variant, report_progress);
+  if (progress) std::fprintf(stderr, "\n");
+  StudyOutput output;
+  output.out_dir = s.out_dir;
+  output.force = s.force;
+  output.plots = s.plots;
+  output.quiet = s.quiet;
+  output.threads = s.threads;
+  WriteUncertaintyStudy(budget.name, result, output);
   return 0;
 }
 

@@ -11,8 +11,27 @@
 #include <CLI/CLI.hpp>
 
 #include <memory>
+#include <string>
+
+#include "deb/load/budget_yaml.h"
+#include "deb/uncertainty/uncertainty_study.h"
 
 namespace deb::tools {
+
+// The digest that ties a sharded study's parts together: SHA-256 of the
+// budget document (extends resolved, --set applied), the method, seed and
+// samples, and deb's version.
+std::string UncertaintyDigest(const std::string& budget_text, const UncertaintyOptions& options);
+
+// How a study's directory is written (deb uncertainty, deb merge).
+struct StudyOutput {
+  std::string out_dir;  // "": reports/<budget-name>_uncertainty
+  bool force = false, plots = true, quiet = false;
+  int threads = 0;
+};
+// Writes the study's directory atomically and, unless quiet, prints the
+// study's summary and where its report is.
+void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result, const StudyOutput& output);
 
 class UncertaintyCommand {
  public:

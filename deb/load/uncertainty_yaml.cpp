@@ -10,6 +10,7 @@ UncertaintyBudget LoadUncertaintyFile(const std::string& path, const std::vector
   const load::YamlNode root = budget.reader->Root();
   UncertaintyBudget out;
   out.name = budget.checked.name;
+  out.text = budget.text;
   out.spec = load::ParseUncertainty(root, *budget.parameters);
   if (out.spec.parameters.empty())
     root.Fail("no parameter has a distribution: give one, e.g. parameters: {k: {value: 5.2e4 N/m, distribution: "

@@ -15,6 +15,9 @@ namespace deb {
 
 struct UncertaintyBudget {
   std::string name;  // the budget's name as written
+  // The budget document as read (its extends: resolved, --set applied):
+  // what a sharded study's parts must all have been made from.
+  std::string text;
   UncertaintySpec spec;
   // The budget with the uncertain parameters at the given values (SI, spec
   // order); may be called from several threads at once. Its errors are

@@ -134,3 +134,53 @@ outputs:
   CHECK(deb::test::ReadAll(dir / "a" / "summary.json") == deb::test::ReadAll(dir / "b" / "summary.json"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("deb uncertainty --shard K/N and deb merge: the parts joined give the unsharded directory byte for byte") {
+  const fs::path dir = deb::test::TempDir("uncertainty_shards");
+  const std::string budget = deb::test::ExampleBudget("nizamoglu2015_tolerances.yaml");
+  const std::string env = "SOURCE_DATE_EPOCH=1700000000";
+  const std::string study = "uncertainty " + budget + " -n 90 --method sobol --seed 5 -q";
+  REQUIRE(deb::test::RunDebIn(dir, study + " -j 2 --out serial", env).exit_code == 0);
+  for (int k = 1; k <= 4; ++k) {
+    // Shard 3 from a Slurm array job's variables (indices 0..3), the others from --shard.
+    const deb::test::Command c =
+        k == 3 ? deb::test::RunDebIn(dir, study + " -j 1 --out p3",
+                                     env + " SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=4 SLURM_ARRAY_TASK_MIN=0")
+               : deb::test::RunDebIn(dir, study + " -j 1 --shard " + std::to_string(k) + "/4 --out p" + std::to_string(k), env);
+    REQUIRE(c.exit_code == 0);
+    CHECK(fs::exists(dir / ("p" + std::to_string(k)) / "part.json"));
+  }
+  const deb::test::Command m = deb::test::RunDebIn(dir, "merge p4 p2 p1 p3 --out merged", env);
+  REQUIRE(m.exit_code == 0);
+  CHECK(m.out.find("uncertainty of nizamoglu2015_tolerances: 180 samples (sobol, seed 5)") != std::string::npos);
+  std::size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "serial")) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path rel = fs::relative(entry.path(), dir / "serial");
+    CHECK_MESSAGE(deb::test::ReadAll(entry.path()) == deb::test::ReadAll(dir / "merged" / rel), rel.string());
+    ++files;
+  }
+  CHECK(files > 20);  // the documents, the data and every figure
+
+  // A missing, a duplicated and a foreign part; a directory that is no part.
+  const auto merge_error = [&](const std::string& parts) {
+    const deb::test::Command c = deb::test::RunDebIn(dir, "merge " + parts + " --out bad --no-plots", env);
+    CHECK(c.exit_code == 3);
+    CHECK_FALSE(fs::exists(dir / "bad"));
+    return c.err;
+  };
+  CHECK(merge_error("p1 p2 p4").find("shard 3 of 4 is missing") != std::string::npos);
+  CHECK(merge_error("p1 p2 p2 p3 p4").find("p2 and p2 are both shard 2/4") != std::string::npos);
+  REQUIRE(deb::test::RunDebIn(dir, "uncertainty " + budget + " -n 90 --method sobol --seed 6 -q --shard 2/4 --out other", env)
+              .exit_code == 0);
+  CHECK(merge_error("p1 other p3 p4").find("other is a part of another study than p1") != std::string::npos);
+  CHECK(merge_error("p1 serial p3 p4").find("serial: no part.json: not a part of a sharded study") != std::string::npos);
+  // Bad shards are usage errors.
+  for (const char* bad : {"0/4", "5/4", "a/b", "3"}) {
+    CAPTURE(bad);
+    const deb::test::Command c = deb::test::RunDebIn(dir, study + " --shard " + bad + " --out x");
+    CHECK(c.exit_code == 2);
+    CHECK(c.err.find("--shard") != std::string::npos);
+  }
+  fs::remove_all(dir);
+}

@@ -1,0 +1,44 @@
+// The part of a study that one shard evaluated (deb uncertainty --shard
+// K/N), and what deb merge checks before it joins the parts: part.json in
+// the shard's directory holds which study it belongs to (the digest of the
+// budget document and the study's settings, the budget file and its --set
+// changes, the method, seed and samples), which shard it is, the block of
+// evaluation indices it holds, and each evaluation's metric values, written
+// so that they read back bit for bit.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "deb/uncertainty/uncertainty_study.h"
+
+namespace deb {
+
+struct StudyPartHeader {
+  std::string digest;                  // of the study: equal in every part of one
+  std::string budget;                  // the budget file, as an absolute path
+  std::vector<std::string> overrides;  // its --set changes, KEY.PATH=VALUE
+  std::string method;                  // mc, lhs, sobol
+  std::uint64_t seed = 1;
+  std::size_t samples = 0;
+  StudyShard shard;
+};
+
+// The most bytes deb merge reads of one part.json.
+inline constexpr std::uintmax_t kMaxPartBytes = std::uintmax_t{4} << 30;
+
+std::string UncertaintyPartJson(const StudyPartHeader& header, const UncertaintyPart& part);
+
+struct UncertaintyPartFile {
+  StudyPartHeader header;
+  UncertaintyPart part;
+};
+
+// Reads DIR/part.json. @throws InputError naming the file for one that is
+// missing, not deb's part of an uncertainty study, or breaks a rule (a
+// shard outside 1..N, a block that is not the shard's, values not finite
+// numbers or of unequal counts).
+UncertaintyPartFile ReadUncertaintyPart(const std::string& dir);
+
+}  // namespace deb
