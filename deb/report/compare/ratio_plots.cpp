@@ -50,7 +50,10 @@ FigurePanel RatioPanel(const OutputResult& oa, const std::string& label_a, const
   panel.y.label = "B / A";
   if (linear) {
     const double span = std::max(hi - 1.0, 1.0 - lo);
-    const double pad = span > 0.0 ? 0.1 * span : 1e-3;
+    // At least +-1e-3 around the data: ratios within rounding of 1 (an
+    // output the change does not touch) would otherwise give an axis of no
+    // height, which gnuplot refuses ("empty y range").
+    const double pad = std::max(0.1 * span, 1e-3);
     panel.y.min = std::max(0.0, lo - pad);
     panel.y.max = hi + pad;
     panel.y.format = "%g";

@@ -80,4 +80,20 @@ TEST_CASE("a ratio plot gives B / A per shared contributor and in total; four ti
   CHECK(RatioPlots("a", a, "a", a)[0].figure.panels[0].y.scale == AxisScale::kLinear);
 }
 
+TEST_CASE("ratios within rounding of 1 (an output the change does not touch) get an axis of height, +-1e-3") {
+  // Comparing the thesis with the same thesis with tolerances, whose tilt
+  // velocity differs by rounding only, made gnuplot refuse "set yrange [1:1]".
+  const BudgetResult a = Evaluate(LoadBudgetFile(test::ExampleBudget()));
+  BudgetResult b = a;
+  for (double& v : b.outputs[0].total_psd) v *= 1.0 + 1e-15;
+  for (ContributorResult& c : b.outputs[0].contributors)
+    for (double& v : c.psd) v *= 1.0 - 1e-15;
+  const FigurePanel& panel = RatioPlots("a", a, "b", b)[0].figure.panels[0];
+  REQUIRE(panel.y.scale == AxisScale::kLinear);
+  REQUIRE(panel.y.min.has_value());
+  REQUIRE(panel.y.max.has_value());
+  CHECK(*panel.y.min <= 1.0 - 1e-3);
+  CHECK(*panel.y.max >= 1.0 + 1e-3);
+}
+
 }  // namespace deb::report
