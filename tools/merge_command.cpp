@@ -8,6 +8,8 @@
 #include "deb/load/uncertainty_yaml.h"
 #include "deb/results/study_part.h"
 #include "deb/uncertainty/sample_design.h"
+#include "deb/load/sweep_yaml.h"
+#include "tools/sweep_command.h"
 #include "tools/uncertainty_command.h"
 
 namespace deb::tools {
@@ -27,7 +29,7 @@ MergeCommand::~MergeCommand() = default;
 CLI::App* MergeCommand::Register(CLI::App& app) {
   Options& s = *options_;
   CLI::App* c = app.add_subcommand(
-      "merge", "Join the parts of a sharded uncertainty study (deb uncertainty --shard K/N) into its report");
+      "merge", "Join the parts of a sharded study (deb uncertainty|sweep --shard K/N) into its report");
   c->add_option("parts", s.parts, "The parts' directories, every shard 1..N once")->required()->check(CLI::ExistingDirectory);
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_uncertainty, as the unsharded study)");
   c->add_option("--threads,-j", s.threads, "Threads for the report (default: all cores)")->check(CLI::NonNegativeNumber);
@@ -37,17 +39,18 @@ CLI::App* MergeCommand::Register(CLI::App& app) {
   return c;
 }
 
-int MergeCommand::Run() const {
-  const Options& s = *options_;
-  std::vector<UncertaintyPartFile> parts;
-  for (const std::string& dir : s.parts) parts.push_back(ReadUncertaintyPart(dir));
-  const StudyPartHeader& first = parts.front().header;
-  // One study: the same digest (budget document and settings) and shard count.
-  for (std::size_t i = 1; i < parts.size(); ++i) {
-    const StudyPartHeader& h = parts[i].header;
+namespace {
+
+// The parts' headers make one study: the same digest, budget, --set and
+// shard count, every shard 1..N once. Returns the index of shard k's part
+// at [k - 1]. @throws InputError naming the parts that do not.
+std::vector<std::size_t> CheckOneStudy(const std::vector<StudyPartHeader>& headers, const std::vector<std::string>& dirs) {
+  const StudyPartHeader& first = headers.front();
+  for (std::size_t i = 1; i < headers.size(); ++i) {
+    const StudyPartHeader& h = headers[i];
     if (h.digest != first.digest || h.shard.count != first.shard.count || h.budget != first.budget ||
         h.overrides != first.overrides)
-      throw InputError(s.parts[i] + " is a part of another study than " + s.parts[0] + " (" +
+      throw InputError(dirs[i] + " is a part of another study than " + dirs[0] + " (" +
                        (h.budget != first.budget         ? "budget " + h.budget + ", not " + first.budget
                         : h.shard.count != first.shard.count ? "of " + std::to_string(h.shard.count) + " shards, not " +
                                                                  std::to_string(first.shard.count)
@@ -55,11 +58,11 @@ int MergeCommand::Run() const {
                        ")");
   }
   const std::size_t n = first.shard.count;
-  std::map<std::size_t, std::size_t> by_shard;  // K -> index in parts
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    const std::size_t k = parts[i].header.shard.index;
+  std::map<std::size_t, std::size_t> by_shard;  // K -> index in headers
+  for (std::size_t i = 0; i < headers.size(); ++i) {
+    const std::size_t k = headers[i].shard.index;
     if (const auto at = by_shard.find(k); at != by_shard.end())
-      throw InputError(s.parts[at->second] + " and " + s.parts[i] + " are both shard " + std::to_string(k) + "/" +
+      throw InputError(dirs[at->second] + " and " + dirs[i] + " are both shard " + std::to_string(k) + "/" +
                        std::to_string(n) + ": give each shard once");
     by_shard[k] = i;
   }
@@ -72,23 +75,74 @@ int MergeCommand::Run() const {
                      std::to_string(n) + (count > 1 ? " are" : " is") + " missing: every shard 1.." + std::to_string(n) +
                      " must be given once");
   }
+  std::vector<std::size_t> order;
+  for (std::size_t k = 1; k <= n; ++k) order.push_back(by_shard[k]);
+  return order;
+}
 
-  // The budget as the parts read it: the same document, else the parts are stale.
+std::vector<BudgetOverride> Overrides(const StudyPartHeader& h) {
   std::vector<BudgetOverride> overrides;
-  for (const std::string& o : first.overrides) overrides.push_back(ParseBudgetOverride(o));
-  const UncertaintyBudget budget = LoadUncertaintyFile(first.budget, overrides);
+  for (const std::string& o : h.overrides) overrides.push_back(ParseBudgetOverride(o));
+  return overrides;
+}
+
+[[noreturn]] void Stale(const StudyPartHeader& h) {
+  throw InputError(h.budget + " (with the parts' --set) is not the budget the parts were made from: it changed "
+                   "since; run the shards again");
+}
+
+}  // namespace
+
+int MergeCommand::Run() const {
+  const Options& s = *options_;
+  std::vector<std::string> kinds;
+  for (const std::string& dir : s.parts) kinds.push_back(StudyPartKind(dir));
+  for (std::size_t i = 1; i < kinds.size(); ++i)
+    if (kinds[i] != kinds[0])
+      throw InputError(s.parts[i] + " is a part of " + (kinds[i] == "sweep" ? "a sweep" : "an uncertainty study") + ", " +
+                       s.parts[0] + " of " + (kinds[0] == "sweep" ? "a sweep" : "an uncertainty study") +
+                       ": give the parts of one study");
+
+  if (kinds[0] == "sweep") {
+    std::vector<SweepPartFile> parts;
+    std::vector<StudyPartHeader> headers;
+    for (const std::string& dir : s.parts) {
+      parts.push_back(ReadSweepPart(dir));
+      headers.push_back(parts.back().header);
+    }
+    const std::vector<std::size_t> order = CheckOneStudy(headers, s.parts);
+    const SweepBudget sweep = LoadSweepFile(headers[0].budget, Overrides(headers[0]));
+    if (SweepDigest(sweep.text) != headers[0].digest) Stale(headers[0]);
+    std::vector<BudgetResult> results;
+    for (std::size_t i : order) {
+      if (parts[i].total != sweep.variant_count)
+        throw InputError(s.parts[i] + ": " + std::to_string(parts[i].total) + " variants where the sweep has " +
+                         std::to_string(sweep.variant_count));
+      for (BudgetResult& r : parts[i].results) results.push_back(std::move(r));
+    }
+    WriteSweepStudy(sweep.name, sweep.spec, results, s.out_dir, s.force, s.plots, s.quiet, s.threads);
+    return 0;
+  }
+
+  std::vector<UncertaintyPartFile> parts;
+  std::vector<StudyPartHeader> headers;
+  for (const std::string& dir : s.parts) {
+    parts.push_back(ReadUncertaintyPart(dir));
+    headers.push_back(parts.back().header);
+  }
+  const std::vector<std::size_t> order = CheckOneStudy(headers, s.parts);
+  const StudyPartHeader& first = headers[0];
+  // The budget as the parts read it: the same document, else the parts are stale.
+  const UncertaintyBudget budget = LoadUncertaintyFile(first.budget, Overrides(first));
   UncertaintyOptions options;
   options.method = ParseSamplingMethod(first.method);
   options.seed = first.seed;
   options.samples = first.samples;
   options.threads = s.threads;
-  if (UncertaintyDigest(budget.text, options) != first.digest)
-    throw InputError(first.budget + " (with the parts' --set) is not the budget the parts were made from: it changed "
-                     "since; run the shards again");
+  if (UncertaintyDigest(budget.text, options) != first.digest) Stale(first);
   const std::size_t total = UncertaintyEvaluationCount(budget.spec, options);
   std::vector<std::vector<double>> values(total);
-  for (std::size_t k = 1; k <= n; ++k) {
-    const std::size_t i = by_shard[k];
+  for (std::size_t i : order) {
     const UncertaintyPart& part = parts[i].part;
     if (part.total != total)
       throw InputError(s.parts[i] + ": " + std::to_string(part.total) + " evaluations where the study has " +

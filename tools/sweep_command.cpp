@@ -3,7 +3,10 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "deb/budget/sweep.h"
@@ -15,7 +18,11 @@
 #include "deb/report/compare/sweep_documents.h"
 #include "deb/report/compare/sweep_plots.h"
 #include "deb/report/figure/plot.h"
+#include "deb/report/budget/file_digest.h"
+#include "deb/results/study_part.h"
+#include "deb/version.h"
 #include "tools/budget_overrides_option.h"
+#include "tools/shard_option.h"
 
 namespace deb::tools {
 
@@ -27,6 +34,7 @@ struct SweepCommand::Options {
   bool quiet = false;
   bool force = false;  // --force: replace an output directory deb did not write
   bool plots = true;
+  std::string shard;  // --shard K/N
 };
 
 namespace {
@@ -51,6 +59,24 @@ void PrintTopThree(const SweepSpec& spec, const std::vector<BudgetResult>& resul
 
 }  // namespace
 
+std::string SweepDigest(const std::string& budget_text) {
+  return report::Sha256(budget_text + "\n--- deb " + DEB_VERSION + " sweep\n");
+}
+
+void WriteSweepStudy(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
+                     const std::string& out_dir, bool force, bool plots, bool quiet, int threads) {
+  const std::string dir = out_dir.empty() ? report::DefaultSweepDirectory(name) : out_dir;
+  ReplaceOptions replace;
+  replace.force = force;
+  const std::vector<report::Plot> drawn = plots ? report::SweepPlots(spec, results) : std::vector<report::Plot>{};
+  report::WriteSweepDirectory(name, spec, results, drawn, dir, replace, threads);
+  if (!quiet) {
+    std::printf("sweep of %s: %zu variants\n", name.c_str(), results.size());
+    PrintTopThree(spec, results);
+    std::printf("report: %s/sweep.html\n", dir.c_str());
+  }
+}
+
 SweepCommand::SweepCommand() : options_(std::make_unique<Options>()) {}
 SweepCommand::~SweepCommand() = default;
 
@@ -65,6 +91,7 @@ CLI::App* SweepCommand::Register(CLI::App& app) {
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write sweep.csv only; gnuplot is not needed");
+  AddShardOption(c, &s.shard);
   return c;
 }
 
@@ -72,20 +99,40 @@ int SweepCommand::Run() const {
   const Options& s = *options_;
   const SweepBudget sweep = LoadSweepFile(s.budget_file, s.overrides);
   const bool progress = !s.quiet && ::isatty(STDERR_FILENO);
-  const auto results = EvaluateSweep(sweep.spec, sweep.variant, s.threads, [&](std::size_t done, std::size_t total) {
+  const auto report_progress = [&](std::size_t done, std::size_t total) {
     if (progress) std::fprintf(stderr, "\rdeb: sweep %zu/%zu variants", done, total);
-  });
-  if (progress) std::fprintf(stderr, "\n");
-  const std::string dir = s.out_dir.empty() ? report::DefaultSweepDirectory(sweep.name) : s.out_dir;
-  ReplaceOptions replace;
-  replace.force = s.force;
-  const std::vector<report::Plot> plots = s.plots ? report::SweepPlots(sweep.spec, results) : std::vector<report::Plot>{};
-  report::WriteSweepDirectory(sweep.name, sweep.spec, results, plots, dir, replace, s.threads);
-  if (!s.quiet) {
-    std::printf("sweep of %s: %zu variants\n", sweep.name.c_str(), results.size());
-    PrintTopThree(sweep.spec, results);
-    std::printf("report: %s/sweep.html\n", dir.c_str());
+  };
+  if (const std::optional<StudyShard> shard = ShardOf(s.shard)) {
+    SweepPartFile part;
+    part.total = sweep.variant_count;
+    std::tie(part.begin, part.end) = shard->Range(part.total);
+    for (const BudgetResult& r : EvaluateSweepPart(sweep.spec, sweep.variant, *shard, s.threads, report_progress))
+      part.results.push_back(SweepResultFields(r));
+    if (progress) std::fprintf(stderr, "\n");
+    part.header.digest = SweepDigest(sweep.text);
+    part.header.budget = std::filesystem::absolute(s.budget_file).lexically_normal().string();
+    for (const BudgetOverride& o : s.overrides) part.header.overrides.push_back(o.key_path + "=" + o.value);
+    part.header.method = "sweep";
+    part.header.samples = part.total;
+    part.header.shard = *shard;
+    const std::string dir = s.out_dir.empty() ? report::DefaultSweepDirectory(sweep.name) + "_part" +
+                                                    std::to_string(shard->index) + "of" + std::to_string(shard->count)
+                                              : s.out_dir;
+    ReplaceOptions replace;
+    replace.force = s.force;
+    const std::string json = SweepPartJson(part);
+    ReplaceDirectory(
+        dir, [&](const std::string& tmp) { WriteTextFile((std::filesystem::path(tmp) / "part.json").string(), json); },
+        replace);
+    if (!s.quiet)
+      std::printf("sweep of %s, shard %zu/%zu: variants %zu to %zu of %zu in %s/part.json; join the parts with deb "
+                  "merge\n",
+                  sweep.name.c_str(), shard->index, shard->count, part.begin + 1, part.end, part.total, dir.c_str());
+    return 0;
   }
+  const auto results = EvaluateSweep(sweep.spec, sweep.variant, s.threads, report_progress);
+  if (progress) std::fprintf(stderr, "\n");
+  WriteSweepStudy(sweep.name, sweep.spec, results, s.out_dir, s.force, s.plots, s.quiet, s.threads);
   return 0;
 }
 

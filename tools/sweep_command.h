@@ -8,8 +8,22 @@
 #include <CLI/CLI.hpp>
 
 #include <memory>
+#include <string>
+#include <vector>
+
+#include "deb/budget/result.h"
+#include "deb/budget/sweep.h"
 
 namespace deb::tools {
+
+// The digest that ties a sharded sweep's parts together: SHA-256 of the
+// budget document (extends resolved, --set applied) and deb's version.
+std::string SweepDigest(const std::string& budget_text);
+
+// Writes the sweep's directory atomically (out_dir "": reports/<name>_sweep)
+// and, unless quiet, prints the best variants and where the report is.
+void WriteSweepStudy(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
+                     const std::string& out_dir, bool force, bool plots, bool quiet, int threads);
 
 // The command's options are members, bound by Register(); the object must
 // outlive the parse of the app it is registered on.

@@ -20,6 +20,7 @@
 #include "deb/results/study_part.h"
 #include "deb/version.h"
 #include "tools/budget_overrides_option.h"
+#include "tools/shard_option.h"
 
 namespace deb::tools {
 
@@ -76,51 +77,6 @@ void Print(const std::string& name, const UncertaintyResult& r) {
   for (const std::string& note : r.notes) std::printf("note: %s\n", note.c_str());
 }
 
-// "K/N" with 1 <= K <= N <= kMaxShards, or "" when it is one.
-std::string ShardProblem(const std::string& text, StudyShard* shard) {
-  const std::size_t slash = text.find('/');
-  const auto number = [](const std::string& t, std::size_t* out) {
-    if (t.empty() || t.size() > 6 || t.find_first_not_of("0123456789") != std::string::npos) return false;
-    *out = std::stoul(t);
-    return true;
-  };
-  StudyShard s;
-  if (slash == std::string::npos || !number(text.substr(0, slash), &s.index) || !number(text.substr(slash + 1), &s.count))
-    return "--shard '" + Excerpt(text) + "': give K/N, this process's shard K of N (e.g. 2/8)";
-  if (s.count < 1 || s.count > kMaxShards || s.index < 1 || s.index > s.count)
-    return "--shard " + text + ": K/N needs 1 <= K <= N <= " + std::to_string(kMaxShards);
-  if (shard) *shard = s;
-  return "";
-}
-
-// The shard from --shard, else from a Slurm job array (SLURM_ARRAY_TASK_ID
-// counted from SLURM_ARRAY_TASK_MIN, of SLURM_ARRAY_TASK_COUNT), else none.
-std::optional<StudyShard> ShardOf(const std::string& option) {
-  StudyShard s;
-  if (!option.empty()) {
-    if (const std::string why = ShardProblem(option, &s); !why.empty()) throw InputError(why);
-    return s;
-  }
-  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
-  const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
-  if (!id || !count) return std::nullopt;
-  const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
-  const auto number = [](const char* name, const char* t) {
-    const std::string text = t;
-    if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos)
-      throw InputError(std::string(name) + "='" + Excerpt(text) + "' is not a whole number (a Slurm array job sets it)");
-    return std::stoul(text);
-  };
-  const unsigned long k = number("SLURM_ARRAY_TASK_ID", id), n = number("SLURM_ARRAY_TASK_COUNT", count);
-  const unsigned long first = min ? number("SLURM_ARRAY_TASK_MIN", min) : 0;
-  const std::string text = std::to_string(k + 1 - std::min(first, k + 1)) + "/" + std::to_string(n);
-  if (k < first || !ShardProblem(text, &s).empty())
-    throw InputError("the Slurm array task " + std::to_string(k) + " (from " + std::to_string(first) + ", " +
-                     std::to_string(n) + " tasks) is no shard K/N with 1 <= K <= N <= " + std::to_string(kMaxShards) +
-                     "; give --shard K/N, or run an array of consecutive indices");
-  return s;
-}
-
 }  // namespace
 
 std::string UncertaintyDigest(const std::string& budget_text, const UncertaintyOptions& options) {
@@ -162,10 +118,7 @@ CLI::App* UncertaintyCommand::Register(CLI::App& app) {
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write summary.json, samples.csv and the documents without figures; gnuplot is not needed");
-  c->add_option("--shard", s.shard,
-                "Evaluate only shard K of N of the study and write it as a part for deb merge (default: from "
-                "SLURM_ARRAY_TASK_ID/_COUNT in a Slurm array job, else the whole study)")
-      ->check(CLI::Validator([](std::string& t) { return ShardProblem(t, nullptr); }, "K/N"));
+  AddShardOption(c, &s.shard);
   return c;
 }
 

@@ -103,11 +103,12 @@ std::vector<double> LogRange(double from, double to, int count) {
   return v;
 }
 
-std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
-                                        int threads,
-                                        const std::function<void(std::size_t, std::size_t)>& progress) {
+std::vector<BudgetResult> EvaluateSweepPart(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
+                                            const StudyShard& shard, int threads,
+                                            const std::function<void(std::size_t, std::size_t)>& progress) {
   const auto values = spec.Variants();
-  std::vector<BudgetResult> results(values.size());
+  const auto [begin, end] = shard.Range(values.size());
+  std::vector<BudgetResult> results(end - begin);
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
   EngineOptions options;
@@ -116,11 +117,12 @@ std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::functi
   // Variants differ in cost (grid refinement): each thread takes the next
   // variant not yet started. Each result lands at its variant's index.
   ParallelForEach(
-      values.size(),
-      [&](std::size_t i) {
+      end - begin,
+      [&](std::size_t j) {
+        const std::size_t i = begin + j;
         const Budget budget = variant(i);  // its errors name the variant already
         try {
-          results[i] = Evaluate(budget, options);
+          results[j] = Evaluate(budget, options);
         } catch (const InputError& e) {
           std::ostringstream os;
           os << "sweep variant " << i + 1 << " (";
@@ -132,11 +134,17 @@ std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::functi
         const std::size_t n = ++done;
         if (progress) {
           const std::lock_guard<std::mutex> lock(progress_mutex);
-          progress(n, values.size());
+          progress(n, end - begin);
         }
       },
       threads);
   return results;
+}
+
+std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
+                                        int threads,
+                                        const std::function<void(std::size_t, std::size_t)>& progress) {
+  return EvaluateSweepPart(spec, variant, StudyShard{}, threads, progress);
 }
 
 std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector<Budget>& variants, int threads,

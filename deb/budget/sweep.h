@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "deb/budget/result.h"
+#include "deb/core/study_shard.h"
 #include "deb/core/enum_names.h"
 
 namespace deb {
@@ -83,6 +84,11 @@ std::vector<double> LogRange(double from, double to, int count);
 std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
                                         int threads,
                                         const std::function<void(std::size_t, std::size_t)>& progress = {});
+// The variants of one shard of the sweep (its block of spec.Variants()'s
+// rows), as EvaluateSweep evaluates them; progress over the block.
+std::vector<BudgetResult> EvaluateSweepPart(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
+                                            const StudyShard& shard, int threads,
+                                            const std::function<void(std::size_t, std::size_t)>& progress = {});
 // The same for variants already loaded.
 std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector<Budget>& variants, int threads,
                                         const std::function<void(std::size_t, std::size_t)>& progress = {});

@@ -144,6 +144,7 @@ SweepBudget Load(const YamlReader& reader, const std::string& base_dir, const st
   const YamlNode sweep = root.Required("sweep");
   sweep.AllowOnly({"mode", "parameters"});
   SweepBudget out;
+  out.text = load::OverriddenText(reader.text(), overrides, reader.name());
   if (auto m = sweep.Optional("mode")) out.spec.mode = load::AtNode(*m, [&] { return ParseSweepMode(m->AsString()); });
   const YamlNode params = sweep.Required("parameters");
   std::vector<KeyPath> steps;

@@ -28,6 +28,9 @@ namespace deb {
 
 struct SweepBudget {
   std::string name;  // the budget's name as written
+  // The budget document as read (extends resolved, --set applied): what a
+  // sharded sweep's parts must all have been made from.
+  std::string text;
   SweepSpec spec;
   std::size_t variant_count = 0;  // spec.Variants().size()
   // Loads variant i (row i of spec.Variants()); may be called from several

@@ -16,20 +16,192 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 constexpr const char* kKind = "deb uncertainty part";
+constexpr const char* kSweepKind = "deb sweep part";
+
+std::string PartPath(const std::string& dir) {
+  const std::string path = (std::filesystem::path(dir) / "part.json").string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(dir + ": no part.json: not a part of a sharded study (deb uncertainty|sweep --shard K/N writes one)");
+  return path;
+}
+
+Json ReadPartJson(const std::string& path) {
+  const std::string text = ReadInputFile(path, "a study's part", kMaxPartBytes);
+  try {
+    Json j = Json::parse(text);
+    if (!j.is_object()) throw InputError(path + ": not a part of a sharded study");
+    return j;
+  } catch (const Json::exception& e) {
+    throw InputError(path + ": not JSON: " + e.what());
+  }
+}
+
+void HeaderToJson(const StudyPartHeader& h, Json* j) {
+  (*j)["deb_version"] = DEB_VERSION;
+  (*j)["digest"] = h.digest;
+  (*j)["budget"] = h.budget;
+  (*j)["overrides"] = h.overrides;
+  (*j)["method"] = h.method;
+  (*j)["seed"] = h.seed;
+  (*j)["samples"] = h.samples;
+  (*j)["shard"] = {h.shard.index, h.shard.count};
+}
+
+// The header and the block [begin, end) of total; checks the shard and the block.
+StudyPartHeader HeaderFromJson(const Json& j, const std::string& path, std::size_t* total, std::size_t* begin,
+                               std::size_t* end) {
+  const auto fail = [&](const std::string& why) { return InputError(path + ": " + why); };
+  StudyPartHeader h;
+  h.digest = j.at("digest").get<std::string>();
+  h.budget = j.at("budget").get<std::string>();
+  h.overrides = j.at("overrides").get<std::vector<std::string>>();
+  h.method = j.at("method").get<std::string>();
+  h.seed = j.at("seed").get<std::uint64_t>();
+  h.samples = j.at("samples").get<std::size_t>();
+  const auto shard = j.at("shard").get<std::vector<std::size_t>>();
+  if (shard.size() != 2) throw fail("shard must be [K, N]");
+  h.shard = {shard[0], shard[1]};
+  *total = j.at("evaluations").get<std::size_t>();
+  *begin = j.at("begin").get<std::size_t>();
+  *end = j.at("end").get<std::size_t>();
+  const StudyShard& s = h.shard;
+  if (s.count < 1 || s.count > kMaxShards || s.index < 1 || s.index > s.count)
+    throw fail("shard " + std::to_string(s.index) + "/" + std::to_string(s.count) + " is not K/N with 1 <= K <= N <= " +
+               std::to_string(kMaxShards));
+  if (std::make_pair(*begin, *end) != s.Range(*total))
+    throw fail("evaluations " + std::to_string(*begin) + " to " + std::to_string(*end) + " are not shard " +
+               std::to_string(s.index) + "/" + std::to_string(s.count) + "'s");
+  return h;
+}
+
+double FiniteNumber(const Json& x, const std::string& path) {
+  if (!x.is_number()) throw InputError(path + ": a figure is not a number");
+  const double v = x.get<double>();
+  if (!std::isfinite(v)) throw InputError(path + ": a figure is not finite");
+  return v;
+}
 
 }  // namespace
+
+std::string StudyPartKind(const std::string& dir) {
+  const std::string path = PartPath(dir);
+  const Json j = ReadPartJson(path);
+  const std::string kind = j.value("kind", "");
+  if (kind == kKind) return "uncertainty";
+  if (kind == kSweepKind) return "sweep";
+  throw InputError(path + ": not the part of a sharded study (deb uncertainty|sweep --shard K/N writes one)");
+}
+
+BudgetResult SweepResultFields(const BudgetResult& r) {
+  BudgetResult out;
+  for (const OutputResult& o : r.outputs) {
+    OutputResult p;
+    p.name = o.name;
+    p.signal = o.signal;
+    p.unit = o.unit;
+    p.variance = o.variance;
+    p.rms_max = o.rms_max;
+    for (const ContributorResult& c : o.contributors) {
+      ContributorResult q;
+      q.name = c.name;
+      q.source = c.source;
+      q.path = c.path;
+      q.group = c.group;
+      q.variance = c.variance;
+      p.contributors.push_back(std::move(q));
+    }
+    for (const BandRequirementResult& b : o.band_requirements) p.band_requirements.push_back({b.requirement, b.variance});
+    out.outputs.push_back(std::move(p));
+  }
+  return out;
+}
+
+std::string SweepPartJson(const SweepPartFile& part) {
+  Json j;
+  j["kind"] = kSweepKind;
+  HeaderToJson(part.header, &j);
+  j["evaluations"] = part.total;
+  j["begin"] = part.begin;
+  j["end"] = part.end;
+  Json results = Json::array();
+  for (const BudgetResult& r : part.results) {
+    Json outputs = Json::array();
+    for (const OutputResult& o : r.outputs) {
+      Json jo;
+      jo["name"] = o.name;
+      jo["signal"] = o.signal;
+      jo["unit"] = o.unit;
+      jo["variance"] = o.variance;
+      jo["rms_max"] = o.rms_max ? Json(*o.rms_max) : Json(nullptr);
+      Json cs = Json::array();
+      for (const ContributorResult& c : o.contributors)
+        cs.push_back({{"name", c.name}, {"source", c.source}, {"path", c.path}, {"group", c.group}, {"variance", c.variance}});
+      jo["contributors"] = cs;
+      Json bs = Json::array();
+      for (const BandRequirementResult& b : o.band_requirements)
+        bs.push_back({{"lo_hz", b.requirement.lo_hz}, {"hi_hz", b.requirement.hi_hz}, {"rms_max", b.requirement.rms_max},
+                      {"variance", b.variance}});
+      jo["band_requirements"] = bs;
+      outputs.push_back(jo);
+    }
+    results.push_back({{"outputs", outputs}});
+  }
+  j["results"] = results;
+  return j.dump() + "\n";
+}
+
+SweepPartFile ReadSweepPart(const std::string& dir) {
+  const std::string path = PartPath(dir);
+  const Json j = ReadPartJson(path);
+  if (j.value("kind", "") != kSweepKind)
+    throw InputError(path + ": not the part of a sharded sweep (deb sweep --shard K/N writes one)");
+  SweepPartFile f;
+  try {
+    f.header = HeaderFromJson(j, path, &f.total, &f.begin, &f.end);
+    for (const Json& jr : j.at("results")) {
+      BudgetResult r;
+      for (const Json& jo : jr.at("outputs")) {
+        OutputResult o;
+        o.name = jo.at("name").get<std::string>();
+        o.signal = jo.at("signal").get<std::string>();
+        o.unit = jo.at("unit").get<std::string>();
+        o.variance = FiniteNumber(jo.at("variance"), path);
+        if (!jo.at("rms_max").is_null()) o.rms_max = FiniteNumber(jo.at("rms_max"), path);
+        for (const Json& jc : jo.at("contributors")) {
+          ContributorResult c;
+          c.name = jc.at("name").get<std::string>();
+          c.source = jc.at("source").get<std::string>();
+          c.path = jc.at("path").get<std::string>();
+          c.group = jc.at("group").get<std::string>();
+          c.variance = FiniteNumber(jc.at("variance"), path);
+          o.contributors.push_back(std::move(c));
+        }
+        for (const Json& jb : jo.at("band_requirements")) {
+          BandRequirementResult b;
+          b.requirement.lo_hz = FiniteNumber(jb.at("lo_hz"), path);
+          b.requirement.hi_hz = FiniteNumber(jb.at("hi_hz"), path);
+          b.requirement.rms_max = FiniteNumber(jb.at("rms_max"), path);
+          b.variance = FiniteNumber(jb.at("variance"), path);
+          o.band_requirements.push_back(b);
+        }
+        r.outputs.push_back(std::move(o));
+      }
+      f.results.push_back(std::move(r));
+    }
+  } catch (const Json::exception& e) {
+    throw InputError(path + ": a key is missing or of the wrong type: " + e.what());
+  }
+  if (f.results.size() != f.end - f.begin)
+    throw InputError(path + ": " + std::to_string(f.results.size()) + " results for " +
+                     std::to_string(f.end - f.begin) + " variants");
+  return f;
+}
 
 std::string UncertaintyPartJson(const StudyPartHeader& h, const UncertaintyPart& part) {
   Json j;
   j["kind"] = kKind;
-  j["deb_version"] = DEB_VERSION;
-  j["digest"] = h.digest;
-  j["budget"] = h.budget;
-  j["overrides"] = h.overrides;
-  j["method"] = h.method;
-  j["seed"] = h.seed;
-  j["samples"] = h.samples;
-  j["shard"] = {h.shard.index, h.shard.count};
+  HeaderToJson(h, &j);
   j["evaluations"] = part.total;
   j["begin"] = part.begin;
   j["end"] = part.end;
@@ -39,56 +211,25 @@ std::string UncertaintyPartJson(const StudyPartHeader& h, const UncertaintyPart&
 }
 
 UncertaintyPartFile ReadUncertaintyPart(const std::string& dir) {
-  const std::string path = (std::filesystem::path(dir) / "part.json").string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(dir + ": no part.json: not a part of a sharded study (deb uncertainty --shard K/N writes one)");
-  const std::string text = ReadInputFile(path, "a study's part", kMaxPartBytes);
+  const std::string path = PartPath(dir);
+  const Json j = ReadPartJson(path);
   const auto fail = [&](const std::string& why) { return InputError(path + ": " + why); };
-  Json j;
-  try {
-    j = Json::parse(text);
-  } catch (const Json::exception& e) {
-    throw fail(std::string("not JSON: ") + e.what());
-  }
-  if (!j.is_object() || j.value("kind", "") != kKind)
+  if (j.value("kind", "") != kKind)
     throw fail("not the part of a sharded uncertainty study (deb uncertainty --shard K/N writes one)");
   UncertaintyPartFile f;
   try {
-    f.header.digest = j.at("digest").get<std::string>();
-    f.header.budget = j.at("budget").get<std::string>();
-    f.header.overrides = j.at("overrides").get<std::vector<std::string>>();
-    f.header.method = j.at("method").get<std::string>();
-    f.header.seed = j.at("seed").get<std::uint64_t>();
-    f.header.samples = j.at("samples").get<std::size_t>();
-    const auto shard = j.at("shard").get<std::vector<std::size_t>>();
-    if (shard.size() != 2) throw fail("shard must be [K, N]");
-    f.header.shard = {shard[0], shard[1]};
-    f.part.total = j.at("evaluations").get<std::size_t>();
-    f.part.begin = j.at("begin").get<std::size_t>();
-    f.part.end = j.at("end").get<std::size_t>();
+    f.header = HeaderFromJson(j, path, &f.part.total, &f.part.begin, &f.part.end);
     const Json& values = j.at("values");
     if (!values.is_array()) throw fail("values must be a list");
     for (const Json& row : values) {
       if (!row.is_array()) throw fail("values must be a list of lists of numbers");
       std::vector<double> v;
-      for (const Json& x : row) {
-        if (!x.is_number()) throw fail("values hold something that is not a number");
-        v.push_back(x.get<double>());
-        if (!std::isfinite(v.back())) throw fail("values hold a number that is not finite");
-      }
+      for (const Json& x : row) v.push_back(FiniteNumber(x, path));
       f.part.values.push_back(std::move(v));
     }
   } catch (const Json::exception& e) {
     throw fail(std::string("a key is missing or of the wrong type: ") + e.what());
   }
-  const StudyShard& s = f.header.shard;
-  if (s.count < 1 || s.count > kMaxShards || s.index < 1 || s.index > s.count)
-    throw fail("shard " + std::to_string(s.index) + "/" + std::to_string(s.count) + " is not K/N with 1 <= K <= N <= " +
-               std::to_string(kMaxShards));
-  if (std::make_pair(f.part.begin, f.part.end) != s.Range(f.part.total))
-    throw fail("evaluations " + std::to_string(f.part.begin) + " to " + std::to_string(f.part.end) +
-               " are not shard " + std::to_string(s.index) + "/" + std::to_string(s.count) + "'s");
   if (f.part.values.size() != f.part.end - f.part.begin)
     throw fail(std::to_string(f.part.values.size()) + " rows of values for " +
                std::to_string(f.part.end - f.part.begin) + " evaluations");

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "deb/budget/result.h"
+#include "deb/core/study_shard.h"
 #include "deb/uncertainty/uncertainty_study.h"
 
 namespace deb {
@@ -40,5 +42,27 @@ struct UncertaintyPartFile {
 // shard outside 1..N, a block that is not the shard's, values not finite
 // numbers or of unequal counts).
 UncertaintyPartFile ReadUncertaintyPart(const std::string& dir);
+
+// A shard of a sweep (deb sweep --shard K/N): the figures of its variants
+// [begin, end) of `total` that the sweep's report reads (SweepResultFields),
+// nothing of their spectra.
+struct SweepPartFile {
+  StudyPartHeader header;  // method "sweep"; seed and samples unused
+  std::size_t total = 0, begin = 0, end = 0;
+  std::vector<BudgetResult> results;  // only SweepResultFields filled
+};
+std::string SweepPartJson(const SweepPartFile& part);
+// @throws InputError as ReadUncertaintyPart.
+SweepPartFile ReadSweepPart(const std::string& dir);
+
+// The fields of a result a sweep's report and CSV read: per output its
+// name, signal, unit, variance and rms_max; per contributor its name,
+// source, path, group and variance; per band requirement its band, limit
+// and variance. The rest is left empty.
+BudgetResult SweepResultFields(const BudgetResult& r);
+
+// The kind of part in DIR ("uncertainty" or "sweep").
+// @throws InputError as ReadUncertaintyPart.
+std::string StudyPartKind(const std::string& dir);
 
 }  // namespace deb

@@ -339,15 +339,6 @@ std::size_t UncertaintyEvaluationCount(const UncertaintySpec& spec, const Uncert
   return StudyPlan(spec, options).total();
 }
 
-std::pair<std::size_t, std::size_t> StudyShard::Range(std::size_t total) const {
-  DEB_DEMAND(count >= 1 && index >= 1 && index <= count);
-  // Contiguous blocks, sizes differing by at most one.
-  const auto edge = [&](std::size_t k) {
-    return static_cast<std::size_t>(static_cast<std::uint64_t>(total) * k / count);
-  };
-  return {edge(index - 1), edge(index)};
-}
-
 UncertaintyPart EvaluateUncertaintyPart(const UncertaintySpec& spec, const UncertaintyOptions& options,
                                         const VariantLoader& variant, const StudyShard& shard,
                                         const std::function<void(std::size_t, std::size_t)>& progress) {

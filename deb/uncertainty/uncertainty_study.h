@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "deb/budget/result.h"
+#include "deb/core/study_shard.h"
 #include "deb/uncertainty/distribution.h"
 #include "deb/uncertainty/sample_design.h"
 #include "deb/uncertainty/sample_statistics.h"
@@ -109,17 +110,6 @@ std::vector<double> SampleValues(const UncertaintySpec& spec, const Eigen::LLT<E
 // sample k's from (seed, k) as SampleDesign's): the tolerances a robust
 // optimisation evaluates every design at.
 std::vector<std::vector<double>> LatinHypercubeValues(const UncertaintySpec& spec, std::size_t n, std::uint64_t seed);
-
-// A share of a study's evaluations, for a run split over processes or
-// machines (deb uncertainty --shard K/N, deb merge): shard `index` of
-// `count` (1-based) holds a contiguous block of the evaluation indices,
-// the blocks' sizes differing by at most one.
-struct StudyShard {
-  std::size_t index = 1, count = 1;
-  // [begin, end) of `total` evaluations. DEB_DEMANDs 1 <= index <= count.
-  std::pair<std::size_t, std::size_t> Range(std::size_t total) const;
-};
-inline constexpr std::size_t kMaxShards = 100000;
 
 // The evaluations a shard made: the metric values (StudyMetric order) of
 // evaluations [begin, end) of the study's `total`.

@@ -67,3 +67,39 @@ TEST_CASE("deb sweep prints the three best variants by label and unit and writes
         std::string::npos);
   fs::remove_all(dir);
 }
+
+TEST_CASE("deb sweep --shard K/N and deb merge: the parts joined give the unsharded sweep byte for byte") {
+  const fs::path dir = deb::test::TempDir("sweep_shards");
+  const std::string budget = deb::test::ExampleBudget("nizamoglu2015_sweep.yaml");
+  const std::string env = "SOURCE_DATE_EPOCH=1700000000";
+  REQUIRE(deb::test::RunDebIn(dir, "sweep " + budget + " -q --out serial", env).exit_code == 0);
+  for (int k = 1; k <= 3; ++k)
+    REQUIRE(deb::test::RunDebIn(dir, "sweep " + budget + " -q -j 1 --shard " + std::to_string(k) + "/3 --out p" +
+                                         std::to_string(k),
+                                env)
+                .exit_code == 0);
+  const deb::test::Command m = deb::test::RunDebIn(dir, "merge p3 p1 p2 --out merged", env);
+  REQUIRE(m.exit_code == 0);
+  CHECK(m.out.find("sweep of nizamoglu2015_sweep:") != std::string::npos);
+  std::size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "serial")) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path rel = fs::relative(entry.path(), dir / "serial");
+    CHECK_MESSAGE(deb::test::ReadAll(entry.path()) == deb::test::ReadAll(dir / "merged" / rel), rel.string());
+    ++files;
+  }
+  CHECK(files > 5);
+  // A sweep's part and an uncertainty study's do not mix; a shard missing.
+  REQUIRE(deb::test::RunDebIn(dir, "uncertainty " + deb::test::ExampleBudget("nizamoglu2015_tolerances.yaml") +
+                                       " -n 10 -q --no-plots --shard 2/3 --out u2",
+                              env)
+              .exit_code == 0);
+  const deb::test::Command mixed = deb::test::RunDebIn(dir, "merge p1 u2 p3 --out bad", env);
+  CHECK(mixed.exit_code == 3);
+  CHECK(mixed.err.find("u2 is a part of an uncertainty study, p1 of a sweep") != std::string::npos);
+  const deb::test::Command missing = deb::test::RunDebIn(dir, "merge p1 p3 --out bad", env);
+  CHECK(missing.exit_code == 3);
+  CHECK(missing.err.find("shard 2 of 3 is missing") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "bad"));
+  fs::remove_all(dir);
+}
