@@ -257,5 +257,40 @@ TEST_CASE("the shipped example: the thesis with tolerances") {
   CHECK(z.worst_corner_value > z.p99);
 }
 
+TEST_CASE("the shipped example: the metrology frame with an uncertain floor class and datasheet noise") {
+  const std::string dir = std::string(DEB_SOURCE_DIR) + "/budgets/";
+  const UncertaintyResult r = Study(dir + "metrology_frame_tolerances.yaml", SamplingMethod::kMonteCarlo, 40);
+  // The nominal design is the frame's, to the last bit (VC-D by its velocity).
+  const BudgetResult frame = Evaluate(LoadBudgetFile(dir + "metrology_frame.yaml"));
+  REQUIRE(r.metrics[0].output == "head_z");
+  CHECK(r.metrics[0].nominal == frame.outputs[0].rms());
+  // The floor's contributor scales with the class's velocity: every sample's
+  // is the nominal's times 2 (VC-C), 1 (VC-D) or 3.12 / 6.25 (VC-E), and the
+  // floor_v parameter is one of those velocities.
+  const StudyMetric* floor = nullptr;
+  for (const StudyMetric& m : r.metrics)
+    if (m.output == "head_z" && m.contributor == "floor") floor = &m;
+  REQUIRE(floor);
+  std::size_t classes[3] = {0, 0, 0};
+  for (std::size_t s = 0; s < floor->values.size(); ++s) {
+    const double v = r.parameter_values[0][s] * 1e6;  // um/s
+    const double ratio = floor->values[s] / floor->nominal;
+    CAPTURE(v);
+    if (v == doctest::Approx(12.5).epsilon(1e-12)) {
+      CHECK(ratio == doctest::Approx(2.0).epsilon(1e-12));
+      ++classes[0];
+    } else if (v == doctest::Approx(6.25).epsilon(1e-12)) {
+      CHECK(ratio == doctest::Approx(1.0).epsilon(1e-12));
+      ++classes[1];
+    } else {
+      CHECK(v == doctest::Approx(3.12).epsilon(1e-12));
+      CHECK(ratio == doctest::Approx(3.12 / 6.25).epsilon(1e-12));
+      ++classes[2];
+    }
+  }
+  CHECK(classes[0] + classes[1] + classes[2] == 40);
+  CHECK(classes[1] > classes[0]);  // VC-D the likeliest
+}
+
 }  // namespace
 }  // namespace deb
