@@ -6,6 +6,8 @@
 // (oversubscribed): the figure then says what the split costs, not what
 // it gains. Also prints the merge alone (the serial part: reading the
 // parts, the statistics and the report) and the bytes of the parts.
+// With MPI (DEB_MPI), the same study under mpirun with 1, 2 and 4
+// evaluating ranks.
 // Usage: bench_shards [BUDGET.yaml SAMPLES]   (default: the thesis with
 // tolerances, 10000 samples; then the metrology frame's, 500 samples)
 #include <chrono>
@@ -65,6 +67,21 @@ void Study(const std::string& budget, int samples, const fs::path& work) {
                 p > 2 ? ", oversubscribed on 2 cores" : "", static_cast<double>(bytes) / 1e6,
                 same ? "identical" : "DIFFERS");
     for (int k = 1; k <= p; ++k) fs::remove_all(work / ("part" + std::to_string(k)));
+  }
+  // Under mpirun: P evaluating ranks and rank 0, which hands out the blocks.
+  const std::string mpiexec = DEB_MPIEXEC;
+  if (mpiexec.empty()) {
+    std::printf("  (deb built without MPI: no mpirun figures)\n");
+    return;
+  }
+  for (int p : {1, 2, 4}) {
+    const std::string root = ::geteuid() == 0 ? " --allow-run-as-root" : "";
+    const double t = Timed("'" + mpiexec + "' --oversubscribe" + root + " -n " + std::to_string(p + 1) + " " + study +
+                           " -j 1 --out '" + (work / "ranks").string() + "'");
+    const bool same = std::system(("cmp -s '" + (work / "two" / "summary.json").string() + "' '" +
+                                   (work / "ranks" / "summary.json").string() + "'").c_str()) == 0;
+    std::printf("  mpirun, %d evaluating rank(s) + rank 0: %6.2f s (efficiency %.2f%s); summary.json %s\n", p, t,
+                one / (p * t), p > 2 ? ", oversubscribed" : "", same ? "identical" : "DIFFERS");
   }
 }
 

@@ -38,6 +38,9 @@
 #include "tools/spectrum_command.h"
 #include "tools/sweep_command.h"
 #include "tools/uncertainty_command.h"
+#ifdef DEB_MPI
+#include "deb/distributed/mpi_queue.h"
+#endif
 #include "tools/merge_command.h"
 #include "tools/optimise_command.h"
 
@@ -88,6 +91,10 @@ int RunMapped(CLI::App& app, F&& parse_and_run) {
 
 int main(int argc, char** argv) {
   deb::KeepHeapForLargeBlocks();
+#ifdef DEB_MPI
+  // Started by mpirun: one MPI session for the run, ended at exit.
+  const deb::MpiSession mpi(&argc, &argv);
+#endif
   // A file-size limit (ulimit -f) makes a write fail (EFBIG): reported as a
   // write error, exit 4, with nothing left behind, instead of death by
   // SIGXFSZ halfway through a report.

@@ -13,6 +13,9 @@
 #include "deb/core/input_file.h"
 #include "deb/core/number_text.h"
 #include "deb/core/output_dir.h"
+#ifdef DEB_MPI
+#include "deb/distributed/mpi_queue.h"
+#endif
 #include "deb/load/uncertainty_yaml.h"
 #include "deb/report/compare/uncertainty_directory.h"
 #include "deb/report/budget/file_digest.h"
@@ -36,6 +39,7 @@ struct UncertaintyCommand::Options {
   bool force = false;
   bool plots = true;
   std::string shard;  // --shard K/N
+  double timeout_s = 0.0;  // --timeout, under mpirun
 };
 
 namespace {
@@ -119,6 +123,10 @@ CLI::App* UncertaintyCommand::Register(CLI::App& app) {
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write summary.json, samples.csv and the documents without figures; gnuplot is not needed");
   AddShardOption(c, &s.shard);
+  c->add_option("--timeout", s.timeout_s,
+                "Under mpirun: end the run when a rank holds a block of budgets longer than this many seconds "
+                "(default 0: no limit)")
+      ->check(CLI::NonNegativeNumber);
   return c;
 }
 
@@ -137,6 +145,27 @@ int UncertaintyCommand::Run() const {
   const auto report_progress = [&](std::size_t done, std::size_t total) {
     if (progress) std::fprintf(stderr, "\rdeb: uncertainty %zu/%zu budgets", done, total);
   };
+#ifdef DEB_MPI
+  if (MpiSession::Size() > 1) {
+    // Under mpirun: the ranks evaluate blocks, rank 0 alone summarises and writes.
+    if (!s.shard.empty()) throw InputError("--shard under mpirun: the ranks share the study already; give one or the other");
+    const std::vector<std::vector<double>> values = DistributeBlocks(
+        UncertaintyEvaluationCount(budget.spec, options),
+        [&](std::size_t begin, std::size_t end) {
+          return EvaluateUncertaintyRange(budget.spec, options, budget.variant, begin, end);
+        },
+        s.timeout_s);
+    if (MpiSession::Rank() != 0) return 0;
+    StudyOutput output;
+    output.out_dir = s.out_dir;
+    output.force = s.force;
+    output.plots = s.plots;
+    output.quiet = s.quiet;
+    output.threads = s.threads;
+    WriteUncertaintyStudy(budget.name, SummariseUncertainty(budget.spec, options, budget.variant, values), output);
+    return 0;
+  }
+#endif
   if (const std::optional<StudyShard> shard = ShardOf(s.shard)) {
     const UncertaintyPart part = EvaluateUncertaintyPart(budget.spec, options, budget.variant, *shard, report_progress);
     if (progress) std::fprintf(stderr, "\n");

@@ -339,6 +339,16 @@ std::size_t UncertaintyEvaluationCount(const UncertaintySpec& spec, const Uncert
   return StudyPlan(spec, options).total();
 }
 
+std::vector<std::vector<double>> EvaluateUncertaintyRange(const UncertaintySpec& spec, const UncertaintyOptions& options,
+                                                          const VariantLoader& variant, std::size_t begin,
+                                                          std::size_t end) {
+  const StudyPlan plan(spec, options);
+  DEB_DEMAND(begin < end && end <= plan.total());
+  std::vector<std::vector<double>> values(end - begin);
+  EvaluateRange(plan, spec, variant, begin, end, options.threads, &values, {}, 0);
+  return values;
+}
+
 UncertaintyPart EvaluateUncertaintyPart(const UncertaintySpec& spec, const UncertaintyOptions& options,
                                         const VariantLoader& variant, const StudyShard& shard,
                                         const std::function<void(std::size_t, std::size_t)>& progress) {

@@ -122,6 +122,13 @@ struct UncertaintyPart {
 // study of more than kMaxCornerParameters parameters, found after).
 std::size_t UncertaintyEvaluationCount(const UncertaintySpec& spec, const UncertaintyOptions& options);
 
+// The metric values of evaluations [begin, end) of the study (begin < end
+// <= UncertaintyEvaluationCount), in parallel on options.threads: a block of
+// a distributed run's work queue. @throws InputError as RunUncertainty.
+std::vector<std::vector<double>> EvaluateUncertaintyRange(const UncertaintySpec& spec, const UncertaintyOptions& options,
+                                                          const VariantLoader& variant, std::size_t begin,
+                                                          std::size_t end);
+
 // Evaluates the shard's share of the study. progress as RunUncertainty's,
 // over the share. @throws InputError as RunUncertainty.
 UncertaintyPart EvaluateUncertaintyPart(const UncertaintySpec& spec, const UncertaintyOptions& options,

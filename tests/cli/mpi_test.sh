@@ -1,0 +1,51 @@
+#!/bin/bash
+# deb under mpirun (DEB_MPI): a study spread over 3 ranks (oversubscribed,
+# on loopback) writes the directory a single process writes, byte for byte;
+# a rank that meets a sample whose budget fails ends the run with that
+# sample's error, a non-zero exit and no directory; --shard under mpirun is
+# refused. Skipped (77), with the reason, when deb was built without MPI.
+# Usage: mpi_test.sh DEB MPIEXEC BUDGET
+set -u
+deb=$1 mpiexec=$2 budget=$3
+if [ -z "$mpiexec" ]; then
+  echo "mpi: skipped: deb was built without OpenMPI (install libopenmpi-dev and openmpi-bin, then configure again)"
+  exit 77
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+export SOURCE_DATE_EPOCH=1700000000
+run_mpi=("$mpiexec" --oversubscribe -n 3)
+[ "$(id -u)" = 0 ] && run_mpi+=(--allow-run-as-root)
+fail() { echo "mpi: FAILED: $*"; exit 1; }
+
+"$deb" uncertainty "$budget" -n 200 --method lhs --seed 4 -q -j 2 --out serial || fail "the serial run"
+"${run_mpi[@]}" "$deb" uncertainty "$budget" -n 200 --method lhs --seed 4 -q -j 1 --out ranks > ranks.log 2>&1 ||
+  { cat ranks.log; fail "the run on 3 ranks"; }
+diff -r serial ranks > diff.log || { cat diff.log; fail "3 ranks wrote other files than 1 process"; }
+files=$(find ranks -type f | wc -l)
+echo "mpi: 3 ranks and 1 process wrote the same $files files, byte for byte"
+
+# s uniform on [-1, 3]: a sample with s < 0 is a negative PSD level.
+cat > bad.yaml <<'YAML'
+name: bad
+parameters:
+  s: {value: 2, distribution: {uniform: {min: -1, max: 3}}}
+grid: {type: log, min_hz: 1, max_hz: 100, points: 50}
+sources:
+  - {name: noise, unit: N, spectrum: {type: flat, level: s * 1e-6}}
+paths:
+  - {name: plant, type: gain, gain: [[1]], input_unit: N, output_unit: um}
+contributors:
+  - {name: c1, source: noise, path: plant}
+outputs:
+  - {name: z, signal: y, unit: um}
+YAML
+"${run_mpi[@]}" "$deb" uncertainty bad.yaml -n 50 -q -j 1 --out bad_out > bad.log 2>&1 && { cat bad.log; fail "a failing sample did not fail the run"; }
+grep -q "uncertainty sample" bad.log || { cat bad.log; fail "the error does not name the sample"; }
+[ -e bad_out ] && fail "a failed run left a directory"
+echo "mpi: a failing sample ends the run: $(grep -m1 'error' bad.log | cut -c1-160)"
+
+"${run_mpi[@]}" "$deb" uncertainty "$budget" -n 20 -q --shard 1/2 --out x > shard.log 2>&1 && fail "--shard under mpirun was accepted"
+grep -q "give one or the other" shard.log || { cat shard.log; fail "--shard under mpirun: no clear error"; }
+echo "mpi: --shard under mpirun refused"
