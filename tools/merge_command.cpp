@@ -150,13 +150,7 @@ int MergeCommand::Run() const {
     for (std::size_t e = part.begin; e < part.end; ++e) values[e] = part.values[e - part.begin];
   }
   const UncertaintyResult result = SummariseUncertainty(budget.spec, options, budget.variant, values);
-  StudyOutput output;
-  output.out_dir = s.out_dir;
-  output.force = s.force;
-  output.plots = s.plots;
-  output.quiet = s.quiet;
-  output.threads = s.threads;
-  WriteUncertaintyStudy(budget.name, result, output);
+  WriteUncertaintyStudy(budget.name, result, s.out_dir, s.force, s.plots, s.quiet, s.threads);
   return 0;
 }
 

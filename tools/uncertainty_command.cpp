@@ -88,13 +88,14 @@ std::string UncertaintyDigest(const std::string& budget_text, const UncertaintyO
                         ", seed " + std::to_string(options.seed) + ", samples " + std::to_string(options.samples) + "\n");
 }
 
-void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result, const StudyOutput& output) {
-  const std::string dir = output.out_dir.empty() ? report::DefaultUncertaintyDirectory(budget_name) : output.out_dir;
+void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result, const std::string& out_dir,
+                           bool force, bool plots, bool quiet, int threads) {
+  const std::string dir = out_dir.empty() ? report::DefaultUncertaintyDirectory(budget_name) : out_dir;
   ReplaceOptions replace;
-  replace.force = output.force;
-  const std::vector<report::Plot> plots = output.plots ? report::UncertaintyPlots(result) : std::vector<report::Plot>{};
-  report::WriteUncertaintyDirectory(budget_name, result, plots, dir, replace, output.threads);
-  if (!output.quiet) {
+  replace.force = force;
+  const std::vector<report::Plot> drawn = plots ? report::UncertaintyPlots(result) : std::vector<report::Plot>{};
+  report::WriteUncertaintyDirectory(budget_name, result, drawn, dir, replace, threads);
+  if (!quiet) {
     Print(budget_name, result);
     std::printf("report: %s/uncertainty.html\n", dir.c_str());
   }
@@ -156,13 +157,8 @@ int UncertaintyCommand::Run() const {
         },
         s.timeout_s);
     if (MpiSession::Rank() != 0) return 0;
-    StudyOutput output;
-    output.out_dir = s.out_dir;
-    output.force = s.force;
-    output.plots = s.plots;
-    output.quiet = s.quiet;
-    output.threads = s.threads;
-    WriteUncertaintyStudy(budget.name, SummariseUncertainty(budget.spec, options, budget.variant, values), output);
+    const UncertaintyResult result = SummariseUncertainty(budget.spec, options, budget.variant, values);
+    WriteUncertaintyStudy(budget.name, result, s.out_dir, s.force, s.plots, s.quiet, s.threads);
     return 0;
   }
 #endif
@@ -193,13 +189,7 @@ int UncertaintyCommand::Run() const {
   }
   const UncertaintyResult result = RunUncertainty(budget.spec, options, budget.variant, report_progress);
   if (progress) std::fprintf(stderr, "\n");
-  StudyOutput output;
-  output.out_dir = s.out_dir;
-  output.force = s.force;
-  output.plots = s.plots;
-  output.quiet = s.quiet;
-  output.threads = s.threads;
-  WriteUncertaintyStudy(budget.name, result, output);
+  WriteUncertaintyStudy(budget.name, result, s.out_dir, s.force, s.plots, s.quiet, s.threads);
   return 0;
 }
 

@@ -23,15 +23,11 @@ namespace deb::tools {
 // samples, and deb's version.
 std::string UncertaintyDigest(const std::string& budget_text, const UncertaintyOptions& options);
 
-// How a study's directory is written (deb uncertainty, deb merge).
-struct StudyOutput {
-  std::string out_dir;  // "": reports/<budget-name>_uncertainty
-  bool force = false, plots = true, quiet = false;
-  int threads = 0;
-};
-// Writes the study's directory atomically and, unless quiet, prints the
-// study's summary and where its report is.
-void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result, const StudyOutput& output);
+// Writes the study's directory atomically (out_dir "":
+// reports/<name>_uncertainty) and, unless quiet, prints the study's summary
+// and where its report is (deb uncertainty, deb merge).
+void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result, const std::string& out_dir,
+                           bool force, bool plots, bool quiet, int threads);
 
 class UncertaintyCommand {
  public:

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/support/file_bytes.h"
 
@@ -88,6 +89,20 @@ inline int CountWithPrefix(const fs::path& dir, const std::string& prefix) {
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().filename().string().rfind(prefix, 0) == 0) ++n;
   return n;
+}
+
+// The files of directory `a` (recursively) whose bytes differ in `b`, or
+// that `b` lacks; *count the files of `a`.
+inline std::vector<std::string> FilesDiffering(const fs::path& a, const fs::path& b, std::size_t* count) {
+  std::vector<std::string> differ;
+  *count = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(a)) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path rel = fs::relative(entry.path(), a);
+    if (!fs::exists(b / rel) || ReadAll(entry.path()) != ReadAll(b / rel)) differ.push_back(rel.string());
+    ++*count;
+  }
+  return differ;
 }
 
 }  // namespace deb::test
