@@ -107,7 +107,9 @@ std::vector<BudgetResult> EvaluateSweepPart(const SweepSpec& spec, const std::fu
                                             const StudyShard& shard, int threads,
                                             const std::function<void(std::size_t, std::size_t)>& progress) {
   const auto values = spec.Variants();
-  const auto [begin, end] = shard.Range(values.size());
+  // Not a structured binding: C++17 lambdas may not capture one (clang refuses).
+  const std::pair<std::size_t, std::size_t> range = shard.Range(values.size());
+  const std::size_t begin = range.first, end = range.second;
   std::vector<BudgetResult> results(end - begin);
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
