@@ -88,7 +88,8 @@ TEST_CASE("ratios within rounding of 1 (an output the change does not touch) get
   for (double& v : b.outputs[0].total_psd) v *= 1.0 + 1e-15;
   for (ContributorResult& c : b.outputs[0].contributors)
     for (double& v : c.psd) v *= 1.0 - 1e-15;
-  const FigurePanel& panel = RatioPlots("a", a, "b", b)[0].figure.panels[0];
+  const std::vector<Plot> plots = RatioPlots("a", a, "b", b);
+  const FigurePanel& panel = plots[0].figure.panels[0];
   REQUIRE(panel.y.scale == AxisScale::kLinear);
   REQUIRE(panel.y.min.has_value());
   REQUIRE(panel.y.max.has_value());
