@@ -13,6 +13,9 @@
 #include "deb/budget/sweep_ranking.h"
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
+#ifdef DEB_MPI
+#include "deb/distributed/mpi_queue.h"
+#endif
 #include "deb/load/sweep_yaml.h"
 #include "deb/report/compare/sweep_directory.h"
 #include "deb/report/compare/sweep_documents.h"
@@ -35,6 +38,7 @@ struct SweepCommand::Options {
   bool force = false;  // --force: replace an output directory deb did not write
   bool plots = true;
   std::string shard;  // --shard K/N
+  double timeout_s = 0.0;  // --timeout, under mpirun
 };
 
 namespace {
@@ -92,6 +96,10 @@ CLI::App* SweepCommand::Register(CLI::App& app) {
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write sweep.csv only; gnuplot is not needed");
   AddShardOption(c, &s.shard);
+  c->add_option("--timeout", s.timeout_s,
+                "Under mpirun: end the run when a rank holds a block of variants longer than this many seconds "
+                "(default 0: no limit)")
+      ->check(CLI::NonNegativeNumber);
   return c;
 }
 
@@ -102,6 +110,26 @@ int SweepCommand::Run() const {
   const auto report_progress = [&](std::size_t done, std::size_t total) {
     if (progress) std::fprintf(stderr, "\rdeb: sweep %zu/%zu variants", done, total);
   };
+#ifdef DEB_MPI
+  if (MpiSession::Size() > 1) {
+    // Under mpirun: the ranks evaluate blocks of variants, rank 0 alone writes.
+    if (!s.shard.empty()) throw InputError("--shard under mpirun: the ranks share the sweep already; give one or the other");
+    const std::vector<std::string> texts = DistributeBlocks(
+        sweep.variant_count,
+        [&](std::size_t begin, std::size_t end) {
+          std::vector<std::string> out;
+          for (const BudgetResult& r : EvaluateSweepRange(sweep.spec, sweep.variant, begin, end, s.threads))
+            out.push_back(SweepResultText(r));
+          return out;
+        },
+        s.timeout_s);
+    if (MpiSession::Rank() != 0) return 0;
+    std::vector<BudgetResult> results;
+    for (const std::string& t : texts) results.push_back(SweepResultFromText(t));
+    WriteSweepStudy(sweep.name, sweep.spec, results, s.out_dir, s.force, s.plots, s.quiet, s.threads);
+    return 0;
+  }
+#endif
   if (const std::optional<StudyShard> shard = ShardOf(s.shard)) {
     SweepPartFile part;
     part.total = sweep.variant_count;

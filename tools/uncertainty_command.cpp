@@ -150,13 +150,18 @@ int UncertaintyCommand::Run() const {
   if (MpiSession::Size() > 1) {
     // Under mpirun: the ranks evaluate blocks, rank 0 alone summarises and writes.
     if (!s.shard.empty()) throw InputError("--shard under mpirun: the ranks share the study already; give one or the other");
-    const std::vector<std::vector<double>> values = DistributeBlocks(
+    const std::vector<std::string> bytes = DistributeBlocks(
         UncertaintyEvaluationCount(budget.spec, options),
         [&](std::size_t begin, std::size_t end) {
-          return EvaluateUncertaintyRange(budget.spec, options, budget.variant, begin, end);
+          std::vector<std::string> out;
+          for (const std::vector<double>& v : EvaluateUncertaintyRange(budget.spec, options, budget.variant, begin, end))
+            out.push_back(DoublesToBytes(v));
+          return out;
         },
         s.timeout_s);
     if (MpiSession::Rank() != 0) return 0;
+    std::vector<std::vector<double>> values;
+    for (const std::string& b : bytes) values.push_back(DoublesFromBytes(b));
     const UncertaintyResult result = SummariseUncertainty(budget.spec, options, budget.variant, values);
     WriteUncertaintyStudy(budget.name, result, s.out_dir, s.force, s.plots, s.quiet, s.threads);
     return 0;

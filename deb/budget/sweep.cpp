@@ -106,10 +106,15 @@ std::vector<double> LogRange(double from, double to, int count) {
 std::vector<BudgetResult> EvaluateSweepPart(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
                                             const StudyShard& shard, int threads,
                                             const std::function<void(std::size_t, std::size_t)>& progress) {
+  const std::pair<std::size_t, std::size_t> range = shard.Range(spec.Variants().size());
+  return EvaluateSweepRange(spec, variant, range.first, range.second, threads, progress);
+}
+
+std::vector<BudgetResult> EvaluateSweepRange(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
+                                             std::size_t begin, std::size_t end, int threads,
+                                             const std::function<void(std::size_t, std::size_t)>& progress) {
   const auto values = spec.Variants();
-  // Not a structured binding: C++17 lambdas may not capture one (clang refuses).
-  const std::pair<std::size_t, std::size_t> range = shard.Range(values.size());
-  const std::size_t begin = range.first, end = range.second;
+  DEB_DEMAND(begin <= end && end <= values.size());
   std::vector<BudgetResult> results(end - begin);
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;

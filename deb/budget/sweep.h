@@ -89,6 +89,11 @@ std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::functi
 std::vector<BudgetResult> EvaluateSweepPart(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
                                             const StudyShard& shard, int threads,
                                             const std::function<void(std::size_t, std::size_t)>& progress = {});
+// Variants [begin, end) of spec.Variants(), as EvaluateSweep evaluates them:
+// a block of a distributed sweep.
+std::vector<BudgetResult> EvaluateSweepRange(const SweepSpec& spec, const std::function<Budget(std::size_t)>& variant,
+                                             std::size_t begin, std::size_t end, int threads,
+                                             const std::function<void(std::size_t, std::size_t)>& progress = {});
 // The same for variants already loaded.
 std::vector<BudgetResult> EvaluateSweep(const SweepSpec& spec, const std::vector<Budget>& variants, int threads,
                                         const std::function<void(std::size_t, std::size_t)>& progress = {});

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <thread>
 
@@ -50,7 +51,18 @@ int MpiSession::Size() {
   return s;
 }
 
-std::vector<std::vector<double>> DistributeBlocks(std::size_t total, const BlockEvaluator& evaluate, double timeout_s) {
+std::string DoublesToBytes(const std::vector<double>& v) {
+  return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+}
+
+std::vector<double> DoublesFromBytes(const std::string& bytes) {
+  DEB_DEMAND(bytes.size() % sizeof(double) == 0);
+  std::vector<double> v(bytes.size() / sizeof(double));
+  std::memcpy(v.data(), bytes.data(), bytes.size());
+  return v;
+}
+
+std::vector<std::string> DistributeBlocks(std::size_t total, const BlockEvaluator& evaluate, double timeout_s) {
   const int size = MpiSession::Size(), rank = MpiSession::Rank();
   DEB_DEMAND(size >= 2);
   if (rank != 0) {
@@ -62,15 +74,15 @@ std::vector<std::vector<double>> DistributeBlocks(std::size_t total, const Block
       MPI_Recv(block, 2, MPI_UINT64_T, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
       if (status.MPI_TAG == kStop) return {};
       try {
-        const std::vector<std::vector<double>> values =
+        // [begin, end, the results' sizes], then the results' bytes.
+        const std::vector<std::string> results =
             evaluate(static_cast<std::size_t>(block[0]), static_cast<std::size_t>(block[1]));
-        std::vector<double> message = {static_cast<double>(block[0]), static_cast<double>(block[1]),
-                                       static_cast<double>(values.empty() ? 0 : values[0].size())};
-        for (const std::vector<double>& v : values) {
-          if (v.size() != static_cast<std::size_t>(message[2])) throw InputError("unequal counts of values in a block");
-          message.insert(message.end(), v.begin(), v.end());
-        }
-        MPI_Send(message.data(), static_cast<int>(message.size()), MPI_DOUBLE, 0, kResult, MPI_COMM_WORLD);
+        DEB_DEMAND(results.size() == block[1] - block[0]);
+        std::vector<std::uint64_t> head = {block[0], block[1]};
+        for (const std::string& r : results) head.push_back(r.size());
+        std::string message(reinterpret_cast<const char*>(head.data()), head.size() * sizeof(std::uint64_t));
+        for (const std::string& r : results) message += r;
+        MPI_Send(message.data(), static_cast<int>(message.size()), MPI_BYTE, 0, kResult, MPI_COMM_WORLD);
       } catch (const InputError& e) {
         const std::string what = e.what();
         MPI_Send(what.data(), static_cast<int>(what.size()), MPI_CHAR, 0, kError, MPI_COMM_WORLD);
@@ -82,7 +94,7 @@ std::vector<std::vector<double>> DistributeBlocks(std::size_t total, const Block
   // that a slow block leaves the others work to do.
   const std::size_t workers = static_cast<std::size_t>(size - 1);
   const std::size_t chunk = std::clamp<std::size_t>(total / (8 * workers), 1, 256);
-  std::vector<std::vector<double>> values(total);
+  std::vector<std::string> values(total);
   std::size_t next = 0, stopped = 0;
   std::string error;
   std::vector<Clock::time_point> since(static_cast<std::size_t>(size));
@@ -131,15 +143,24 @@ std::vector<std::vector<double>> DistributeBlocks(std::size_t total, const Block
       if (error.empty()) error = text;
     } else {
       int n = 0;
-      MPI_Get_count(&status, MPI_DOUBLE, &n);
-      std::vector<double> message(static_cast<std::size_t>(n));
-      MPI_Recv(message.data(), n, MPI_DOUBLE, from, kResult, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      const auto begin = static_cast<std::size_t>(message[0]), end = static_cast<std::size_t>(message[1]);
-      const auto m = static_cast<std::size_t>(message[2]);
-      DEB_DEMAND(end <= total && begin < end && message.size() == 3 + (end - begin) * m);
-      for (std::size_t e = begin; e < end; ++e)
-        values[e].assign(message.begin() + static_cast<long>(3 + (e - begin) * m),
-                         message.begin() + static_cast<long>(3 + (e - begin + 1) * m));
+      MPI_Get_count(&status, MPI_BYTE, &n);
+      std::string message(static_cast<std::size_t>(n), '\0');
+      MPI_Recv(message.data(), n, MPI_BYTE, from, kResult, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      const auto word = [&](std::size_t i) {
+        std::uint64_t w = 0;
+        DEB_DEMAND((i + 1) * sizeof w <= message.size());
+        std::memcpy(&w, message.data() + i * sizeof w, sizeof w);
+        return static_cast<std::size_t>(w);
+      };
+      const std::size_t begin = word(0), end = word(1);
+      DEB_DEMAND(begin < end && end <= total);
+      std::size_t at = (2 + end - begin) * sizeof(std::uint64_t);
+      for (std::size_t e = begin; e < end; ++e) {
+        const std::size_t length = word(2 + e - begin);
+        DEB_DEMAND(at + length <= message.size());
+        values[e] = message.substr(at, length);
+        at += length;
+      }
     }
     give(from);
   }

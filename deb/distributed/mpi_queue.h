@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace deb {
@@ -34,15 +35,20 @@ class MpiSession {
   bool active_ = false;
 };
 
-// Evaluates indices [begin, end): one vector of values per index.
-using BlockEvaluator = std::function<std::vector<std::vector<double>>(std::size_t begin, std::size_t end)>;
+// Evaluates indices [begin, end): one byte string per index (its result,
+// encoded; the ranks are assumed to share one byte order and type sizes).
+using BlockEvaluator = std::function<std::vector<std::string>(std::size_t begin, std::size_t end)>;
 
-// Collective over MPI_COMM_WORLD (Size() >= 2). On rank 0: the values of
+// Collective over MPI_COMM_WORLD (Size() >= 2). On rank 0: the results of
 // every index in [0, total), evaluated by the other ranks. Elsewhere: empty.
 // @throws InputError on rank 0 with the first error a rank reported
 //   (evaluate's message); the other ranks then return empty. A rank that
 //   holds a block longer than timeout_s seconds (> 0; 0: no limit) ends the
 //   run: rank 0 prints which and calls MPI_Abort.
-std::vector<std::vector<double>> DistributeBlocks(std::size_t total, const BlockEvaluator& evaluate, double timeout_s);
+std::vector<std::string> DistributeBlocks(std::size_t total, const BlockEvaluator& evaluate, double timeout_s);
+
+// A vector of doubles as bytes and back (a study's metric values).
+std::string DoublesToBytes(const std::vector<double>& v);
+std::vector<double> DoublesFromBytes(const std::string& bytes);
 
 }  // namespace deb

@@ -82,7 +82,73 @@ double FiniteNumber(const Json& x, const std::string& path) {
   return v;
 }
 
+Json SweepResultToJson(const BudgetResult& r) {
+  Json outputs = Json::array();
+  for (const OutputResult& o : r.outputs) {
+    Json jo;
+    jo["name"] = o.name;
+    jo["signal"] = o.signal;
+    jo["unit"] = o.unit;
+    jo["variance"] = o.variance;
+    jo["rms_max"] = o.rms_max ? Json(*o.rms_max) : Json(nullptr);
+    Json cs = Json::array();
+    for (const ContributorResult& c : o.contributors)
+      cs.push_back({{"name", c.name}, {"source", c.source}, {"path", c.path}, {"group", c.group}, {"variance", c.variance}});
+    jo["contributors"] = cs;
+    Json bs = Json::array();
+    for (const BandRequirementResult& b : o.band_requirements)
+      bs.push_back({{"lo_hz", b.requirement.lo_hz}, {"hi_hz", b.requirement.hi_hz}, {"rms_max", b.requirement.rms_max},
+                    {"variance", b.variance}});
+    jo["band_requirements"] = bs;
+    outputs.push_back(jo);
+  }
+  return {{"outputs", outputs}};
+}
+
+// @throws Json::exception for a missing key or a wrong type; InputError for
+//   a figure that is not a finite number.
+BudgetResult SweepResultFromJson(const Json& jr, const std::string& path) {
+  BudgetResult r;
+  for (const Json& jo : jr.at("outputs")) {
+    OutputResult o;
+    o.name = jo.at("name").get<std::string>();
+    o.signal = jo.at("signal").get<std::string>();
+    o.unit = jo.at("unit").get<std::string>();
+    o.variance = FiniteNumber(jo.at("variance"), path);
+    if (!jo.at("rms_max").is_null()) o.rms_max = FiniteNumber(jo.at("rms_max"), path);
+    for (const Json& jc : jo.at("contributors")) {
+      ContributorResult c;
+      c.name = jc.at("name").get<std::string>();
+      c.source = jc.at("source").get<std::string>();
+      c.path = jc.at("path").get<std::string>();
+      c.group = jc.at("group").get<std::string>();
+      c.variance = FiniteNumber(jc.at("variance"), path);
+      o.contributors.push_back(std::move(c));
+    }
+    for (const Json& jb : jo.at("band_requirements")) {
+      BandRequirementResult b;
+      b.requirement.lo_hz = FiniteNumber(jb.at("lo_hz"), path);
+      b.requirement.hi_hz = FiniteNumber(jb.at("hi_hz"), path);
+      b.requirement.rms_max = FiniteNumber(jb.at("rms_max"), path);
+      b.variance = FiniteNumber(jb.at("variance"), path);
+      o.band_requirements.push_back(b);
+    }
+    r.outputs.push_back(std::move(o));
+  }
+  return r;
+}
+
 }  // namespace
+
+std::string SweepResultText(const BudgetResult& r) { return SweepResultToJson(SweepResultFields(r)).dump(); }
+
+BudgetResult SweepResultFromText(const std::string& text) {
+  try {
+    return SweepResultFromJson(Json::parse(text), "a sweep variant's result");
+  } catch (const Json::exception& e) {
+    throw InputError(std::string("a sweep variant's result: ") + e.what());
+  }
+}
 
 std::string StudyPartKind(const std::string& dir) {
   const std::string path = PartPath(dir);
@@ -125,28 +191,7 @@ std::string SweepPartJson(const SweepPartFile& part) {
   j["begin"] = part.begin;
   j["end"] = part.end;
   Json results = Json::array();
-  for (const BudgetResult& r : part.results) {
-    Json outputs = Json::array();
-    for (const OutputResult& o : r.outputs) {
-      Json jo;
-      jo["name"] = o.name;
-      jo["signal"] = o.signal;
-      jo["unit"] = o.unit;
-      jo["variance"] = o.variance;
-      jo["rms_max"] = o.rms_max ? Json(*o.rms_max) : Json(nullptr);
-      Json cs = Json::array();
-      for (const ContributorResult& c : o.contributors)
-        cs.push_back({{"name", c.name}, {"source", c.source}, {"path", c.path}, {"group", c.group}, {"variance", c.variance}});
-      jo["contributors"] = cs;
-      Json bs = Json::array();
-      for (const BandRequirementResult& b : o.band_requirements)
-        bs.push_back({{"lo_hz", b.requirement.lo_hz}, {"hi_hz", b.requirement.hi_hz}, {"rms_max", b.requirement.rms_max},
-                      {"variance", b.variance}});
-      jo["band_requirements"] = bs;
-      outputs.push_back(jo);
-    }
-    results.push_back({{"outputs", outputs}});
-  }
+  for (const BudgetResult& r : part.results) results.push_back(SweepResultToJson(r));
   j["results"] = results;
   return j.dump() + "\n";
 }
@@ -159,36 +204,7 @@ SweepPartFile ReadSweepPart(const std::string& dir) {
   SweepPartFile f;
   try {
     f.header = HeaderFromJson(j, path, &f.total, &f.begin, &f.end);
-    for (const Json& jr : j.at("results")) {
-      BudgetResult r;
-      for (const Json& jo : jr.at("outputs")) {
-        OutputResult o;
-        o.name = jo.at("name").get<std::string>();
-        o.signal = jo.at("signal").get<std::string>();
-        o.unit = jo.at("unit").get<std::string>();
-        o.variance = FiniteNumber(jo.at("variance"), path);
-        if (!jo.at("rms_max").is_null()) o.rms_max = FiniteNumber(jo.at("rms_max"), path);
-        for (const Json& jc : jo.at("contributors")) {
-          ContributorResult c;
-          c.name = jc.at("name").get<std::string>();
-          c.source = jc.at("source").get<std::string>();
-          c.path = jc.at("path").get<std::string>();
-          c.group = jc.at("group").get<std::string>();
-          c.variance = FiniteNumber(jc.at("variance"), path);
-          o.contributors.push_back(std::move(c));
-        }
-        for (const Json& jb : jo.at("band_requirements")) {
-          BandRequirementResult b;
-          b.requirement.lo_hz = FiniteNumber(jb.at("lo_hz"), path);
-          b.requirement.hi_hz = FiniteNumber(jb.at("hi_hz"), path);
-          b.requirement.rms_max = FiniteNumber(jb.at("rms_max"), path);
-          b.variance = FiniteNumber(jb.at("variance"), path);
-          o.band_requirements.push_back(b);
-        }
-        r.outputs.push_back(std::move(o));
-      }
-      f.results.push_back(std::move(r));
-    }
+    for (const Json& jr : j.at("results")) f.results.push_back(SweepResultFromJson(jr, path));
   } catch (const Json::exception& e) {
     throw InputError(path + ": a key is missing or of the wrong type: " + e.what());
   }

@@ -61,6 +61,11 @@ SweepPartFile ReadSweepPart(const std::string& dir);
 // and variance. The rest is left empty.
 BudgetResult SweepResultFields(const BudgetResult& r);
 
+// One variant's SweepResultFields as text and back (a distributed sweep's
+// messages). @throws InputError for text that is not one.
+std::string SweepResultText(const BudgetResult& r);
+BudgetResult SweepResultFromText(const std::string& text);
+
 // The kind of part in DIR ("uncertainty" or "sweep").
 // @throws InputError as ReadUncertaintyPart.
 std::string StudyPartKind(const std::string& dir);

@@ -1,12 +1,13 @@
 #!/bin/bash
-# deb under mpirun (DEB_MPI): a study spread over 3 ranks (oversubscribed,
-# on loopback) writes the directory a single process writes, byte for byte;
+# deb under mpirun (DEB_MPI): an uncertainty study and a sweep spread over 3
+# ranks (oversubscribed, on loopback) write the directories a single process
+# writes, byte for byte;
 # a rank that meets a sample whose budget fails ends the run with that
 # sample's error, a non-zero exit and no directory; --shard under mpirun is
 # refused. Skipped (77), with the reason, when deb was built without MPI.
-# Usage: mpi_test.sh DEB MPIEXEC BUDGET
+# Usage: mpi_test.sh DEB MPIEXEC BUDGET SWEEP_BUDGET
 set -u
-deb=$1 mpiexec=$2 budget=$3
+deb=$1 mpiexec=$2 budget=$3 sweep=$4
 if [ -z "$mpiexec" ]; then
   echo "mpi: skipped: deb was built without OpenMPI (install libopenmpi-dev and openmpi-bin, then configure again)"
   exit 77
@@ -25,6 +26,11 @@ fail() { echo "mpi: FAILED: $*"; exit 1; }
 diff -r serial ranks > diff.log || { cat diff.log; fail "3 ranks wrote other files than 1 process"; }
 files=$(find ranks -type f | wc -l)
 echo "mpi: 3 ranks and 1 process wrote the same $files files, byte for byte"
+
+"$deb" sweep "$sweep" -q --out sweep_serial || fail "the serial sweep"
+"${run_mpi[@]}" "$deb" sweep "$sweep" -q -j 1 --out sweep_ranks > sweep.log 2>&1 || { cat sweep.log; fail "the sweep on 3 ranks"; }
+diff -r sweep_serial sweep_ranks > diff.log || { cat diff.log; fail "a sweep on 3 ranks wrote other files than 1 process"; }
+echo "mpi: a sweep on 3 ranks and in 1 process wrote the same $(find sweep_ranks -type f | wc -l) files"
 
 # s uniform on [-1, 3]: a sample with s < 0 is a negative PSD level.
 cat > bad.yaml <<'YAML'
