@@ -1,10 +1,10 @@
 #!/bin/bash
 # deb under mpirun (DEB_MPI): an uncertainty study and a sweep spread over 3
 # ranks (oversubscribed, on loopback) write the directories a single process
-# writes, byte for byte;
-# a rank that meets a sample whose budget fails ends the run with that
-# sample's error, a non-zero exit and no directory; --shard under mpirun is
-# refused. Skipped (77), with the reason, when deb was built without MPI.
+# writes, byte for byte; a rank that meets a sample whose budget fails ends
+# the run with that sample's error, a non-zero exit and no directory, and so
+# does a rank past --timeout; --shard under mpirun is refused. Skipped (77),
+# with the reason, when deb was built without MPI.
 # Usage: mpi_test.sh DEB MPIEXEC BUDGET SWEEP_BUDGET
 set -u
 deb=$1 mpiexec=$2 budget=$3 sweep=$4
@@ -51,6 +51,14 @@ YAML
 grep -q "uncertainty sample" bad.log || { cat bad.log; fail "the error does not name the sample"; }
 [ -e bad_out ] && fail "a failed run left a directory"
 echo "mpi: a failing sample ends the run: $(grep -m1 'error' bad.log | cut -c1-160)"
+
+# A rank that holds its block past --timeout (a microsecond: every block does)
+# ends the run: rank 0 says which, MPI_Abort stops every rank, nothing written.
+"${run_mpi[@]}" "$deb" uncertainty "$budget" -n 200 -q -j 1 --timeout 0.000001 --out late > late.log 2>&1 &&
+  { cat late.log; fail "a rank past --timeout did not end the run"; }
+grep -q "has not returned evaluations" late.log || { cat late.log; fail "--timeout: no clear error"; }
+[ -e late ] && fail "a run ended by --timeout left a directory"
+echo "mpi: --timeout ends the run: $(grep -m1 'has not returned' late.log | cut -c1-120)"
 
 "${run_mpi[@]}" "$deb" uncertainty "$budget" -n 20 -q --shard 1/2 --out x > shard.log 2>&1 && fail "--shard under mpirun was accepted"
 grep -q "give one or the other" shard.log || { cat shard.log; fail "--shard under mpirun: no clear error"; }
