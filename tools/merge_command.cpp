@@ -2,13 +2,15 @@
 
 #include <map>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/load/sweep_yaml.h"
 #include "deb/load/uncertainty_yaml.h"
 #include "deb/results/study_part.h"
 #include "deb/uncertainty/sample_design.h"
-#include "deb/load/sweep_yaml.h"
 #include "tools/sweep_command.h"
 #include "tools/uncertainty_command.h"
 
@@ -31,11 +33,11 @@ CLI::App* MergeCommand::Register(CLI::App& app) {
   CLI::App* c = app.add_subcommand(
       "merge", "Join the parts of a sharded study (deb uncertainty|sweep --shard K/N) into its report");
   c->add_option("parts", s.parts, "The parts' directories, every shard 1..N once")->required()->check(CLI::ExistingDirectory);
-  c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_uncertainty, as the unsharded study)");
+  c->add_option("--out,-o", s.out_dir, "Directory (default: the unsharded study's, reports/<budget-name>_uncertainty or _sweep)");
   c->add_option("--threads,-j", s.threads, "Threads for the report (default: all cores)")->check(CLI::NonNegativeNumber);
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
-  c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "As deb uncertainty --no-plots");
+  c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "As deb uncertainty|sweep --no-plots");
   return c;
 }
 
@@ -95,19 +97,22 @@ std::vector<BudgetOverride> Overrides(const StudyPartHeader& h) {
 
 int MergeCommand::Run() const {
   const Options& s = *options_;
-  std::vector<std::string> kinds;
-  for (const std::string& dir : s.parts) kinds.push_back(StudyPartKind(dir));
-  for (std::size_t i = 1; i < kinds.size(); ++i)
-    if (kinds[i] != kinds[0])
-      throw InputError(s.parts[i] + " is a part of " + (kinds[i] == "sweep" ? "a sweep" : "an uncertainty study") + ", " +
-                       s.parts[0] + " of " + (kinds[0] == "sweep" ? "a sweep" : "an uncertainty study") +
+  // Every part read once; all of one kind.
+  std::vector<std::variant<UncertaintyPartFile, SweepPartFile>> read;
+  for (const std::string& dir : s.parts) read.push_back(ReadStudyPart(dir));
+  const auto kind = [](const auto& part) {
+    return std::holds_alternative<SweepPartFile>(part) ? "a sweep" : "an uncertainty study";
+  };
+  for (std::size_t i = 1; i < read.size(); ++i)
+    if (read[i].index() != read[0].index())
+      throw InputError(s.parts[i] + " is a part of " + kind(read[i]) + ", " + s.parts[0] + " of " + kind(read[0]) +
                        ": give the parts of one study");
 
-  if (kinds[0] == "sweep") {
+  if (std::holds_alternative<SweepPartFile>(read[0])) {
     std::vector<SweepPartFile> parts;
     std::vector<StudyPartHeader> headers;
-    for (const std::string& dir : s.parts) {
-      parts.push_back(ReadSweepPart(dir));
+    for (auto& r : read) {
+      parts.push_back(std::move(std::get<SweepPartFile>(r)));
       headers.push_back(parts.back().header);
     }
     const std::vector<std::size_t> order = CheckOneStudy(headers, s.parts);
@@ -126,8 +131,8 @@ int MergeCommand::Run() const {
 
   std::vector<UncertaintyPartFile> parts;
   std::vector<StudyPartHeader> headers;
-  for (const std::string& dir : s.parts) {
-    parts.push_back(ReadUncertaintyPart(dir));
+  for (auto& r : read) {
+    parts.push_back(std::move(std::get<UncertaintyPartFile>(r)));
     headers.push_back(parts.back().header);
   }
   const std::vector<std::size_t> order = CheckOneStudy(headers, s.parts);

@@ -1,16 +1,22 @@
 // The --shard K/N option of the studies that can be split (deb uncertainty,
-// deb sweep), and the shard a Slurm job array gives instead.
+// deb sweep), the shard a Slurm job array gives instead, and the part a
+// shard writes.
 #pragma once
 
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
+#include "deb/core/output_dir.h"
 #include "deb/core/study_shard.h"
+#include "deb/load/budget_yaml.h"
+#include "deb/results/study_part.h"
 
 namespace deb::tools {
 
@@ -26,7 +32,7 @@ inline std::string ShardProblem(const std::string& text, StudyShard* shard) {
   StudyShard s;
   if (slash == std::string::npos || !number(text.substr(0, slash), &s.index) || !number(text.substr(slash + 1), &s.count))
     return "--shard '" + Excerpt(text) + "': give K/N, this process's shard K of N (e.g. 2/8)";
-  if (s.count < 1 || s.count > kMaxShards || s.index < 1 || s.index > s.count)
+  if (!s.Valid())
     return "--shard " + text + ": K/N needs 1 <= K <= N <= " + std::to_string(kMaxShards);
   if (shard) *shard = s;
   return "";
@@ -68,6 +74,32 @@ inline CLI::Option* AddShardOption(CLI::App* app, std::string* shard) {
                    "Evaluate only shard K of N and write it as a part for deb merge (default: from "
                    "SLURM_ARRAY_TASK_ID/_COUNT in a Slurm array job, else the whole study)")
       ->check(CLI::Validator([](std::string& t) { return ShardProblem(t, nullptr); }, "K/N"));
+}
+
+// The part of `shard` a study writes: its header's budget (absolute path),
+// --set changes and shard filled, the rest the study's own.
+inline StudyPartHeader ShardPartHeader(const std::string& budget_file, const std::vector<BudgetOverride>& overrides,
+                                       const StudyShard& shard) {
+  StudyPartHeader h;
+  h.budget = std::filesystem::absolute(budget_file).lexically_normal().string();
+  for (const BudgetOverride& o : overrides) h.overrides.push_back(o.key_path + "=" + o.value);
+  h.shard = shard;
+  return h;
+}
+
+// Writes part.json (`json`) atomically into out_dir, or when it is empty into
+// <study_dir>_part<K>of<N>; returns the directory.
+inline std::string WriteShardPart(const std::string& study_dir, const std::string& out_dir, const StudyShard& shard,
+                                  const std::string& json, bool force) {
+  const std::string dir = out_dir.empty() ? study_dir + "_part" + std::to_string(shard.index) + "of" +
+                                                std::to_string(shard.count)
+                                          : out_dir;
+  ReplaceOptions replace;
+  replace.force = force;
+  ReplaceDirectory(
+      dir, [&](const std::string& tmp) { WriteTextFile((std::filesystem::path(tmp) / "part.json").string(), json); },
+      replace);
+  return dir;
 }
 
 }  // namespace deb::tools

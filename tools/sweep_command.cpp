@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -134,24 +133,14 @@ int SweepCommand::Run() const {
     SweepPartFile part;
     part.total = sweep.variant_count;
     std::tie(part.begin, part.end) = shard->Range(part.total);
-    for (const BudgetResult& r : EvaluateSweepPart(sweep.spec, sweep.variant, *shard, s.threads, report_progress))
-      part.results.push_back(SweepResultFields(r));
+    part.results = EvaluateSweepPart(sweep.spec, sweep.variant, *shard, s.threads, report_progress);
     if (progress) std::fprintf(stderr, "\n");
+    part.header = ShardPartHeader(s.budget_file, s.overrides, *shard);
     part.header.digest = SweepDigest(sweep.text);
-    part.header.budget = std::filesystem::absolute(s.budget_file).lexically_normal().string();
-    for (const BudgetOverride& o : s.overrides) part.header.overrides.push_back(o.key_path + "=" + o.value);
     part.header.method = "sweep";
     part.header.samples = part.total;
-    part.header.shard = *shard;
-    const std::string dir = s.out_dir.empty() ? report::DefaultSweepDirectory(sweep.name) + "_part" +
-                                                    std::to_string(shard->index) + "of" + std::to_string(shard->count)
-                                              : s.out_dir;
-    ReplaceOptions replace;
-    replace.force = s.force;
-    const std::string json = SweepPartJson(part);
-    ReplaceDirectory(
-        dir, [&](const std::string& tmp) { WriteTextFile((std::filesystem::path(tmp) / "part.json").string(), json); },
-        replace);
+    const std::string dir =
+        WriteShardPart(report::DefaultSweepDirectory(sweep.name), s.out_dir, *shard, SweepPartJson(part), s.force);
     if (!s.quiet)
       std::printf("sweep of %s, shard %zu/%zu: variants %zu to %zu of %zu in %s/part.json; join the parts with deb "
                   "merge\n",

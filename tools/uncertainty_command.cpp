@@ -4,13 +4,11 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "deb/core/error.h"
-#include "deb/core/input_file.h"
 #include "deb/core/number_text.h"
 #include "deb/core/output_dir.h"
 #ifdef DEB_MPI
@@ -170,22 +168,13 @@ int UncertaintyCommand::Run() const {
   if (const std::optional<StudyShard> shard = ShardOf(s.shard)) {
     const UncertaintyPart part = EvaluateUncertaintyPart(budget.spec, options, budget.variant, *shard, report_progress);
     if (progress) std::fprintf(stderr, "\n");
-    StudyPartHeader header;
+    StudyPartHeader header = ShardPartHeader(s.budget_file, s.overrides, *shard);
     header.digest = UncertaintyDigest(budget.text, options);
-    header.budget = std::filesystem::absolute(s.budget_file).lexically_normal().string();
-    for (const BudgetOverride& o : s.overrides) header.overrides.push_back(o.key_path + "=" + o.value);
     header.method = s.method;
     header.seed = options.seed;
     header.samples = options.samples;
-    header.shard = *shard;
-    const std::string tag = std::to_string(shard->index) + "of" + std::to_string(shard->count);
-    const std::string dir =
-        s.out_dir.empty() ? report::DefaultUncertaintyDirectory(budget.name) + "_part" + tag : s.out_dir;
-    ReplaceOptions replace;
-    replace.force = s.force;
-    const std::string json = UncertaintyPartJson(header, part);
-    ReplaceDirectory(dir, [&](const std::string& tmp) { WriteTextFile((std::filesystem::path(tmp) / "part.json").string(), json); },
-                     replace);
+    const std::string dir = WriteShardPart(report::DefaultUncertaintyDirectory(budget.name), s.out_dir, *shard,
+                                           UncertaintyPartJson(header, part), s.force);
     if (!s.quiet)
       std::printf("uncertainty of %s, shard %zu/%zu: evaluations %zu to %zu of %zu in %s/part.json; join the parts "
                   "with deb merge\n",

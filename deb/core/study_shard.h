@@ -12,8 +12,12 @@
 
 namespace deb {
 
+inline constexpr std::size_t kMaxShards = 100000;
+
 struct StudyShard {
   std::size_t index = 1, count = 1;
+  // 1 <= index <= count <= kMaxShards.
+  bool Valid() const { return count >= 1 && count <= kMaxShards && index >= 1 && index <= count; }
   // [begin, end) of `total` evaluations. DEB_DEMANDs 1 <= index <= count.
   std::pair<std::size_t, std::size_t> Range(std::size_t total) const {
     DEB_DEMAND(count >= 1 && index >= 1 && index <= count);
@@ -23,6 +27,5 @@ struct StudyShard {
     return {edge(index - 1), edge(index)};
   }
 };
-inline constexpr std::size_t kMaxShards = 100000;
 
 }  // namespace deb

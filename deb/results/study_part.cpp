@@ -66,7 +66,7 @@ StudyPartHeader HeaderFromJson(const Json& j, const std::string& path, std::size
   *begin = j.at("begin").get<std::size_t>();
   *end = j.at("end").get<std::size_t>();
   const StudyShard& s = h.shard;
-  if (s.count < 1 || s.count > kMaxShards || s.index < 1 || s.index > s.count)
+  if (!s.Valid())
     throw fail("shard " + std::to_string(s.index) + "/" + std::to_string(s.count) + " is not K/N with 1 <= K <= N <= " +
                std::to_string(kMaxShards));
   if (std::make_pair(*begin, *end) != s.Range(*total))
@@ -138,69 +138,7 @@ BudgetResult SweepResultFromJson(const Json& jr, const std::string& path) {
   return r;
 }
 
-}  // namespace
-
-std::string SweepResultText(const BudgetResult& r) { return SweepResultToJson(SweepResultFields(r)).dump(); }
-
-BudgetResult SweepResultFromText(const std::string& text) {
-  try {
-    return SweepResultFromJson(Json::parse(text), "a sweep variant's result");
-  } catch (const Json::exception& e) {
-    throw InputError(std::string("a sweep variant's result: ") + e.what());
-  }
-}
-
-std::string StudyPartKind(const std::string& dir) {
-  const std::string path = PartPath(dir);
-  const Json j = ReadPartJson(path);
-  const std::string kind = j.value("kind", "");
-  if (kind == kKind) return "uncertainty";
-  if (kind == kSweepKind) return "sweep";
-  throw InputError(path + ": not the part of a sharded study (deb uncertainty|sweep --shard K/N writes one)");
-}
-
-BudgetResult SweepResultFields(const BudgetResult& r) {
-  BudgetResult out;
-  for (const OutputResult& o : r.outputs) {
-    OutputResult p;
-    p.name = o.name;
-    p.signal = o.signal;
-    p.unit = o.unit;
-    p.variance = o.variance;
-    p.rms_max = o.rms_max;
-    for (const ContributorResult& c : o.contributors) {
-      ContributorResult q;
-      q.name = c.name;
-      q.source = c.source;
-      q.path = c.path;
-      q.group = c.group;
-      q.variance = c.variance;
-      p.contributors.push_back(std::move(q));
-    }
-    for (const BandRequirementResult& b : o.band_requirements) p.band_requirements.push_back({b.requirement, b.variance});
-    out.outputs.push_back(std::move(p));
-  }
-  return out;
-}
-
-std::string SweepPartJson(const SweepPartFile& part) {
-  Json j;
-  j["kind"] = kSweepKind;
-  HeaderToJson(part.header, &j);
-  j["evaluations"] = part.total;
-  j["begin"] = part.begin;
-  j["end"] = part.end;
-  Json results = Json::array();
-  for (const BudgetResult& r : part.results) results.push_back(SweepResultToJson(r));
-  j["results"] = results;
-  return j.dump() + "\n";
-}
-
-SweepPartFile ReadSweepPart(const std::string& dir) {
-  const std::string path = PartPath(dir);
-  const Json j = ReadPartJson(path);
-  if (j.value("kind", "") != kSweepKind)
-    throw InputError(path + ": not the part of a sharded sweep (deb sweep --shard K/N writes one)");
+SweepPartFile SweepPartFromJson(const Json& j, const std::string& path) {
   SweepPartFile f;
   try {
     f.header = HeaderFromJson(j, path, &f.total, &f.begin, &f.end);
@@ -214,24 +152,8 @@ SweepPartFile ReadSweepPart(const std::string& dir) {
   return f;
 }
 
-std::string UncertaintyPartJson(const StudyPartHeader& h, const UncertaintyPart& part) {
-  Json j;
-  j["kind"] = kKind;
-  HeaderToJson(h, &j);
-  j["evaluations"] = part.total;
-  j["begin"] = part.begin;
-  j["end"] = part.end;
-  // nlohmann writes a double with the digits that read back to it exactly.
-  j["values"] = part.values;
-  return j.dump() + "\n";
-}
-
-UncertaintyPartFile ReadUncertaintyPart(const std::string& dir) {
-  const std::string path = PartPath(dir);
-  const Json j = ReadPartJson(path);
+UncertaintyPartFile UncertaintyPartFromJson(const Json& j, const std::string& path) {
   const auto fail = [&](const std::string& why) { return InputError(path + ": " + why); };
-  if (j.value("kind", "") != kKind)
-    throw fail("not the part of a sharded uncertainty study (deb uncertainty --shard K/N writes one)");
   UncertaintyPartFile f;
   try {
     f.header = HeaderFromJson(j, path, &f.part.total, &f.part.begin, &f.part.end);
@@ -250,6 +172,52 @@ UncertaintyPartFile ReadUncertaintyPart(const std::string& dir) {
     throw fail(std::to_string(f.part.values.size()) + " rows of values for " +
                std::to_string(f.part.end - f.part.begin) + " evaluations");
   return f;
+}
+
+}  // namespace
+
+std::string SweepResultText(const BudgetResult& r) { return SweepResultToJson(r).dump(); }
+
+BudgetResult SweepResultFromText(const std::string& text) {
+  try {
+    return SweepResultFromJson(Json::parse(text), "a sweep variant's result");
+  } catch (const Json::exception& e) {
+    throw InputError(std::string("a sweep variant's result: ") + e.what());
+  }
+}
+
+std::string SweepPartJson(const SweepPartFile& part) {
+  Json j;
+  j["kind"] = kSweepKind;
+  HeaderToJson(part.header, &j);
+  j["evaluations"] = part.total;
+  j["begin"] = part.begin;
+  j["end"] = part.end;
+  Json results = Json::array();
+  for (const BudgetResult& r : part.results) results.push_back(SweepResultToJson(r));
+  j["results"] = results;
+  return j.dump() + "\n";
+}
+
+std::string UncertaintyPartJson(const StudyPartHeader& h, const UncertaintyPart& part) {
+  Json j;
+  j["kind"] = kKind;
+  HeaderToJson(h, &j);
+  j["evaluations"] = part.total;
+  j["begin"] = part.begin;
+  j["end"] = part.end;
+  // nlohmann writes a double with the digits that read back to it exactly.
+  j["values"] = part.values;
+  return j.dump() + "\n";
+}
+
+std::variant<UncertaintyPartFile, SweepPartFile> ReadStudyPart(const std::string& dir) {
+  const std::string path = PartPath(dir);
+  const Json j = ReadPartJson(path);
+  const std::string kind = j.value("kind", "");
+  if (kind == kKind) return UncertaintyPartFromJson(j, path);
+  if (kind == kSweepKind) return SweepPartFromJson(j, path);
+  throw InputError(path + ": not the part of a sharded study (deb uncertainty|sweep --shard K/N writes one)");
 }
 
 }  // namespace deb

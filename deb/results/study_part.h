@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "deb/budget/result.h"
@@ -37,37 +38,28 @@ struct UncertaintyPartFile {
   UncertaintyPart part;
 };
 
-// Reads DIR/part.json. @throws InputError naming the file for one that is
-// missing, not deb's part of an uncertainty study, or breaks a rule (a
-// shard outside 1..N, a block that is not the shard's, values not finite
-// numbers or of unequal counts).
-UncertaintyPartFile ReadUncertaintyPart(const std::string& dir);
-
-// A shard of a sweep (deb sweep --shard K/N): the figures of its variants
-// [begin, end) of `total` that the sweep's report reads (SweepResultFields),
-// nothing of their spectra.
+// A shard of a sweep (deb sweep --shard K/N): its variants [begin, end) of
+// `total`, of whose results the part keeps the fields the sweep's report
+// and CSV read (SweepResultText), nothing of their spectra.
 struct SweepPartFile {
   StudyPartHeader header;  // method "sweep"; seed and samples unused
   std::size_t total = 0, begin = 0, end = 0;
-  std::vector<BudgetResult> results;  // only SweepResultFields filled
+  std::vector<BudgetResult> results;  // read back: only those fields filled
 };
 std::string SweepPartJson(const SweepPartFile& part);
-// @throws InputError as ReadUncertaintyPart.
-SweepPartFile ReadSweepPart(const std::string& dir);
 
-// The fields of a result a sweep's report and CSV read: per output its
-// name, signal, unit, variance and rms_max; per contributor its name,
-// source, path, group and variance; per band requirement its band, limit
-// and variance. The rest is left empty.
-BudgetResult SweepResultFields(const BudgetResult& r);
+// DIR/part.json, read once, as the part of an uncertainty study or of a
+// sweep. @throws InputError naming the file for one that is missing, not
+// deb's part of either, or breaks a rule (a shard outside 1..N, a block
+// that is not the shard's, figures not finite numbers or of unequal counts).
+std::variant<UncertaintyPartFile, SweepPartFile> ReadStudyPart(const std::string& dir);
 
-// One variant's SweepResultFields as text and back (a distributed sweep's
-// messages). @throws InputError for text that is not one.
+// One variant's result as text and back (a distributed sweep's messages):
+// the fields a sweep's report and CSV read, per output its name, signal,
+// unit, variance and rms_max; per contributor its name, source, path, group
+// and variance; per band requirement its band, limit and variance. Read
+// back, the rest is empty. @throws InputError for text that is not one.
 std::string SweepResultText(const BudgetResult& r);
 BudgetResult SweepResultFromText(const std::string& text);
-
-// The kind of part in DIR ("uncertainty" or "sweep").
-// @throws InputError as ReadUncertaintyPart.
-std::string StudyPartKind(const std::string& dir);
 
 }  // namespace deb
