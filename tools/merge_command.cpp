@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
 #include "deb/load/sweep_yaml.h"
 #include "deb/load/uncertainty_yaml.h"
 #include "deb/results/study_part.h"
@@ -88,6 +89,26 @@ std::vector<BudgetOverride> Overrides(const StudyPartHeader& h) {
   return overrides;
 }
 
+// Why result b has not a's outputs, contributors and band requirements
+// (names and counts), or "": a sweep's report reads every variant's by the
+// first one's layout, and a part is a file deb does not trust.
+std::string OtherShape(const BudgetResult& a, const BudgetResult& b) {
+  if (a.outputs.size() != b.outputs.size())
+    return std::to_string(b.outputs.size()) + " outputs, not " + std::to_string(a.outputs.size());
+  for (std::size_t o = 0; o < a.outputs.size(); ++o) {
+    const OutputResult &x = a.outputs[o], &y = b.outputs[o];
+    if (x.name != y.name || x.unit != y.unit) return "output " + Excerpt(y.name) + " where " + x.name + " stands";
+    if (x.band_requirements.size() != y.band_requirements.size())
+      return "output " + x.name + " with other band requirements";
+    if (x.contributors.size() != y.contributors.size()) return "output " + x.name + " with other contributors";
+    for (std::size_t c = 0; c < x.contributors.size(); ++c)
+      if (x.contributors[c].name != y.contributors[c].name)
+        return "contributor " + Excerpt(y.contributors[c].name) + " of " + x.name + " where " + x.contributors[c].name +
+               " stands";
+  }
+  return "";
+}
+
 [[noreturn]] void Stale(const StudyPartHeader& h) {
   throw InputError(h.budget + " (with the parts' --set) is not the budget the parts were made from: it changed "
                    "since; run the shards again");
@@ -123,7 +144,13 @@ int MergeCommand::Run() const {
       if (parts[i].total != sweep.variant_count)
         throw InputError(s.parts[i] + ": " + std::to_string(parts[i].total) + " variants where the sweep has " +
                          std::to_string(sweep.variant_count));
-      for (BudgetResult& r : parts[i].results) results.push_back(std::move(r));
+      for (BudgetResult& r : parts[i].results) {
+        if (!results.empty())
+          if (const std::string why = OtherShape(results.front(), r); !why.empty())
+            throw InputError(s.parts[i] + ": variant " + std::to_string(results.size() + 1) + " has " + why +
+                             " (variant 1's): not what deb wrote");
+        results.push_back(std::move(r));
+      }
     }
     WriteSweepStudy(sweep.name, sweep.spec, results, s.out_dir, s.force, s.plots, s.quiet, s.threads);
     return 0;

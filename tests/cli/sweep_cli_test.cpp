@@ -95,6 +95,19 @@ TEST_CASE("deb sweep --shard K/N and deb merge: the parts joined give the unshar
   const deb::test::Command missing = deb::test::RunDebIn(dir, "merge p1 p3 --out bad", env);
   CHECK(missing.exit_code == 3);
   CHECK(missing.err.find("shard 2 of 3 is missing") != std::string::npos);
+  // A part whose variants are not laid out as the others' (an edited file):
+  // refused before the report reads it.
+  fs::create_directories(dir / "edited");
+  std::string text = deb::test::ReadAll(dir / "p2" / "part.json");
+  const std::string name = "\"name\":\"z_velocity\"";
+  const std::size_t at = text.find(name);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, name.size(), "\"name\":\"q_velocity\"");
+  deb::test::WriteFile(dir / "edited" / "part.json", text);
+  const deb::test::Command edited = deb::test::RunDebIn(dir, "merge p1 edited p3 --out bad", env);
+  CHECK(edited.exit_code == 3);
+  CHECK(edited.err.find("edited: variant") != std::string::npos);
+  CHECK(edited.err.find("not what deb wrote") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "bad"));
   fs::remove_all(dir);
 }
