@@ -7,6 +7,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/input_file.h"
+#include "deb/uncertainty/sample_design.h"
 #include "deb/version.h"
 
 namespace deb {
@@ -157,6 +158,14 @@ UncertaintyPartFile UncertaintyPartFromJson(const Json& j, const std::string& pa
   UncertaintyPartFile f;
   try {
     f.header = HeaderFromJson(j, path, &f.part.total, &f.part.begin, &f.part.end);
+    if (f.header.samples < 1 || f.header.samples > kMaxUncertaintySamples)
+      throw fail("samples " + std::to_string(f.header.samples) + " outside 1 to " +
+                 std::to_string(kMaxUncertaintySamples));
+    try {
+      ParseSamplingMethod(f.header.method);
+    } catch (const InputError& e) {
+      throw fail("method: " + e.message());
+    }
     const Json& values = j.at("values");
     if (!values.is_array()) throw fail("values must be a list");
     for (const Json& row : values) {

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <tuple>
 
 #include "deb/formats/hdf5_file.h"
 #include "tests/support/cli_harness.h"
@@ -170,6 +171,19 @@ TEST_CASE("deb uncertainty --shard K/N and deb merge: the parts joined give the 
               .exit_code == 0);
   CHECK(merge_error("p1 other p3 p4").find("other is a part of another study than p1") != std::string::npos);
   CHECK(merge_error("p1 serial p3 p4").find("serial: no part.json: not a part of a sharded study") != std::string::npos);
+  // Edited parts: samples beyond the limit, a method deb does not know.
+  const std::string part1 = deb::test::ReadAll(dir / "p1" / "part.json");
+  for (const auto& [from, to, why] :
+       {std::make_tuple("\"samples\":90", "\"samples\":9000000", "samples 9000000 outside 1 to 1000000"),
+        std::make_tuple("\"method\":\"sobol\"", "\"method\":\"xx\"", "method: unknown sampling method 'xx'")}) {
+    std::string text = part1;
+    const std::size_t at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, std::string(from).size(), to);
+    fs::create_directories(dir / "edited");
+    deb::test::WriteFile(dir / "edited" / "part.json", text);
+    CHECK(merge_error("edited p2 p3 p4").find(why) != std::string::npos);
+  }
   // Bad shards are usage errors.
   for (const char* bad : {"0/4", "5/4", "a/b", "3"}) {
     CAPTURE(bad);
