@@ -61,6 +61,7 @@ struct SensitivityCommand::Options {
   bool quiet = false;
   bool force = false;  // --force: replace an output directory deb did not write
   bool plots = true;
+  bool central_differences = false;  // --central-differences: for every parameter
 };
 
 SensitivityCommand::SensitivityCommand() : options_(std::make_unique<Options>()) {}
@@ -75,7 +76,7 @@ CLI::App* SensitivityCommand::Register(CLI::App& app) {
       ->required();
   c->add_option("--label", s.labels,
                 "A parameter's name on the tables and charts, KEY.PATH=TEXT (the KEY.PATH of a -p); repeatable");
-  c->add_option("--step", s.step, "Relative step h of the central difference (default 1e-3)")
+  c->add_option("--step", s.step, "Relative step h of the central difference, and of the realisation's derivative where it is exact (default 1e-3)")
       ->check(CLI::Validator(
           [](std::string& text) -> std::string {
             double h = 0.0;
@@ -91,6 +92,8 @@ CLI::App* SensitivityCommand::Register(CLI::App& app) {
             return "";
           },
           "H in [1e-8, 0.5]"));
+  c->add_flag("--central-differences", s.central_differences,
+              "Central differences for every parameter, also where the realisation's derivative is exact");
   AddOverridesOption(c, &s.overrides);
   c->add_option("--out,-o", s.out_dir, "Directory (default: reports/<budget-name>_sensitivity)");
   c->add_option("--threads,-j", s.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
@@ -113,7 +116,7 @@ int SensitivityCommand::Run() const {
       [&s](const std::string& key, double factor) {
         return LoadBudgetWithScaledParameter(s.budget_file, key, factor, s.overrides);
       },
-      options);
+      options, s.central_differences ? SensitivityMode::kCentralDifferences : SensitivityMode::kExactWherePossible);
   const BudgetResult& nominal = study.nominal;
   report::SensitivitySetting setting;
   setting.name = budget.name;
@@ -130,6 +133,8 @@ int SensitivityCommand::Run() const {
   if (!s.quiet) {
     for (const auto& [key, values] : setting.parameters)
       std::printf("nominal %s = %s\n", setting.Label(key).c_str(), report::NominalText(values).c_str());
+    for (const SensitivityMethod& m : study.methods)
+      std::printf("%s: %s\n", setting.Label(m.parameter).c_str(), m.note.c_str());
     for (const OutputResult& out : nominal.outputs) {
       const std::string& o = out.name;
       std::printf("output %s: nominal rms %.6g %s; variance per relative change of the parameter, total first\n",

@@ -1,8 +1,10 @@
 #include "deb/budget/sensitivity.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
+#include "deb/budget/realisation_gradient.h"
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
 
@@ -38,6 +40,39 @@ std::vector<Sensitivity> Sensitivities(const std::string& parameter, double rela
   return out;
 }
 
+namespace {
+
+// The entries of Sensitivities() from exact derivatives.
+std::vector<Sensitivity> ExactSensitivities(const std::string& parameter, const BudgetResult& nominal,
+                                            const RealisationGradient& g) {
+  DEB_DEMAND(g.exact && g.d_variance_d_log_p.size() == nominal.outputs.size());
+  std::vector<Sensitivity> out;
+  auto add = [&](const OutputResult& o, const std::string& contributor, double v0, double d) {
+    Sensitivity s;
+    s.parameter = parameter;
+    s.output = o.name;
+    s.unit = o.unit;
+    s.contributor = contributor;
+    s.variance = v0;
+    s.d_variance_d_log_p = d;
+    s.elasticity = v0 > 0.0 ? d / v0 : 0.0;
+    s.exact = true;
+    out.push_back(s);
+  };
+  for (std::size_t o = 0; o < nominal.outputs.size(); ++o) {
+    const OutputResult& n = nominal.outputs[o];
+    const std::vector<double>& d = g.d_variance_d_log_p[o];
+    DEB_DEMAND(d.size() == n.contributors.size());
+    double total = 0.0;  // the output's variance is the sum of its contributors'
+    for (double x : d) total += x;
+    add(n, "total", n.variance, total);
+    for (std::size_t c = 0; c < n.contributors.size(); ++c) add(n, n.contributors[c].name, n.contributors[c].variance, d[c]);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<Sensitivity> RankedForOutput(const std::vector<Sensitivity>& all, const std::string& output) {
   std::vector<Sensitivity> r;
   for (const auto& s : all)
@@ -51,27 +86,45 @@ std::vector<Sensitivity> RankedForOutput(const std::vector<Sensitivity>& all, co
 }
 
 SensitivityStudy ComputeSensitivities(const Budget& budget, const std::vector<std::string>& parameters,
-                                      double relative_step, const ScaledBudget& scaled, const EngineOptions& options) {
+                                      double relative_step, const ScaledBudget& scaled, const EngineOptions& options,
+                                      SensitivityMode mode) {
   SensitivityStudy study;
   study.nominal = Evaluate(budget, options);
-  // Job 2k is parameter k scaled by 1 + h, job 2k + 1 by 1 - h.
-  std::vector<BudgetResult> perturbed(2 * parameters.size());
+  const double h = relative_step;
+  const bool try_exact = mode == SensitivityMode::kExactWherePossible;
+  std::vector<std::vector<Sensitivity>> parts(parameters.size());
+  study.methods.resize(parameters.size());
   ParallelForEach(
-      perturbed.size(),
-      [&](std::size_t job) {
-        Budget b = scaled(parameters[job / 2], job % 2 == 0 ? 1.0 + relative_step : 1.0 - relative_step);
-        b.grid = GridSpec();
-        b.grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
-        b.grid.f_hz = study.nominal.grid.f_hz();
-        b.grid.panel_starts = study.nominal.grid.panel_starts();
-        if (b.bands.empty()) b.bands = budget.bands;
-        perturbed[job] = Evaluate(b, options);
+      parameters.size(),
+      [&](std::size_t k) {
+        const std::array<double, 4> factors = {1.0 + h, 1.0 - h, 1.0 + 0.5 * h, 1.0 - 0.5 * h};
+        std::array<Budget, 4> b;
+        for (std::size_t j = 0; j < (try_exact ? 4 : 2); ++j) {
+          b[j] = scaled(parameters[k], factors[j]);
+          b[j].grid = GridSpec();
+          b[j].grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
+          b[j].grid.f_hz = study.nominal.grid.f_hz();
+          b[j].grid.panel_starts = study.nominal.grid.panel_starts();
+          if (b[j].bands.empty()) b[j].bands = budget.bands;
+        }
+        SensitivityMethod& method = study.methods[k];
+        method.parameter = parameters[k];
+        if (try_exact) {
+          const RealisationGradient g = ComputeRealisationGradient(budget, study.nominal, b, h, options);
+          if (g.exact) {
+            method.exact = true;
+            method.note = g.note;
+            parts[k] = ExactSensitivities(parameters[k], study.nominal, g);
+            return;
+          }
+          method.note = "central differences: " + g.note;
+        } else {
+          method.note = "central differences (asked for)";
+        }
+        parts[k] = Sensitivities(parameters[k], h, study.nominal, Evaluate(b[0], options), Evaluate(b[1], options));
       },
       options.threads);
-  for (std::size_t k = 0; k < parameters.size(); ++k) {
-    const auto part = Sensitivities(parameters[k], relative_step, study.nominal, perturbed[2 * k], perturbed[2 * k + 1]);
-    study.sensitivities.insert(study.sensitivities.end(), part.begin(), part.end());
-  }
+  for (const auto& part : parts) study.sensitivities.insert(study.sensitivities.end(), part.begin(), part.end());
   return study;
 }
 

@@ -1,8 +1,11 @@
-// Sensitivity of a budget's variances to one parameter, by central finite
-// differences in the parameter's logarithm: the parameter is multiplied by
-// (1 + h) and by (1 - h), both perturbed budgets are evaluated on the
-// nominal frequency grid (a grid refined around moving poles would add
-// discretisation noise to the difference), and
+// Sensitivity of a budget's variances to one parameter: d var / d ln p of
+// every output and contributor on the nominal frequency grid, exact where
+// the parameter acts only through rational paths' realisations
+// (realisation_gradient.h: the derivative of H propagated through the grid's
+// integral), else by central differences in the parameter's logarithm: the
+// parameter is multiplied by (1 + h) and by (1 - h), both perturbed budgets
+// are evaluated on the nominal grid (a grid refined around moving poles
+// would add discretisation noise to the difference), and
 //   d var / d ln p ~ (var(p (1 + h)) - var(p (1 - h))) / (ln(1 + h) - ln(1 - h)),
 // with an O(h^2) truncation error. The elasticity (d var / var) / (dp / p)
 // says how many percent the variance moves per percent of the parameter;
@@ -25,6 +28,14 @@ struct Sensitivity {
   double variance = 0.0;    // nominal
   double d_variance_d_log_p = 0.0;
   double elasticity = 0.0;  // d ln var / d ln p; 0 where the variance is 0
+  bool exact = false;       // from the realisation's derivative, not central differences
+};
+
+// How one parameter's derivatives were computed.
+struct SensitivityMethod {
+  std::string parameter;
+  bool exact = false;
+  std::string note;  // the method, and for central differences why not exact
 };
 
 // One entry per output and per contributor (and the total), in the order of
@@ -39,18 +50,27 @@ using ScaledBudget = std::function<Budget(const std::string& parameter, double f
 struct SensitivityStudy {
   BudgetResult nominal;
   std::vector<Sensitivity> sensitivities;  // parameter after parameter, each as Sensitivities()
+  std::vector<SensitivityMethod> methods;  // per parameter, in order
 };
 
-// Evaluates `budget`, then for each parameter the budgets scaled(parameter,
-// 1 + h) and scaled(parameter, 1 - h) on the nominal grid (and with the
-// nominal bands when they have none), and differences them. Each perturbed
-// budget is one job of ParallelForEach on options.threads threads, so
-// `scaled` is called from several threads at once; the result is the same for
-// any thread count.
+// How ComputeSensitivities differentiates.
+enum class SensitivityMode {
+  kExactWherePossible,  // the realisation's derivative where it applies, else central differences
+  kCentralDifferences,  // central differences for every parameter
+};
+
+// Evaluates `budget`, then for each parameter loads scaled(parameter, f) for
+// f = 1 + h, 1 - h, 1 + h/2, 1 - h/2 on the nominal grid (and with the
+// nominal bands when they have none) and differentiates exactly where it can
+// (ComputeRealisationGradient), else evaluates the first two and differences
+// them. Each parameter is one job of ParallelForEach on options.threads
+// threads, so `scaled` is called from several threads at once; the result is
+// the same for any thread count.
 // @throws InputError as scaled() and Evaluate() (a serial loop's first).
 SensitivityStudy ComputeSensitivities(const Budget& budget, const std::vector<std::string>& parameters,
                                       double relative_step, const ScaledBudget& scaled,
-                                      const EngineOptions& options = {});
+                                      const EngineOptions& options = {},
+                                      SensitivityMode mode = SensitivityMode::kExactWherePossible);
 
 // Entries of one output: the total's (one per parameter) first, then the
 // contributors'; each part ranked by |d variance / d ln p|, largest first.

@@ -116,6 +116,51 @@ std::vector<double> LinearQuadratureWeights(const FrequencyGrid& grid) {
   return weight;
 }
 
+namespace {
+
+// (exp(e) - 1 - e) / e^2, by its series where the quotient would cancel.
+double ExpRemainderQuotient(double e) {
+  if (std::abs(e) < 1e-3) return 0.5 + e * (1.0 / 6.0 + e * (1.0 / 24.0 + e / 120.0));
+  return (std::expm1(e) / e - 1.0) / e;
+}
+
+}  // namespace
+
+std::vector<double> IntegralGradientWeights(const FrequencyGrid& grid, const std::vector<double>& s) {
+  const std::vector<double>& f = grid.f_hz();
+  DEB_DEMAND(f.size() == s.size());
+  constexpr int q = FrequencyGrid::kPanelNodes;
+  const std::vector<double>& lobatto = FrequencyGrid::LobattoCumulativeWeights()[q - 1];
+  std::vector<double> weight(f.size(), 0.0);
+  const std::vector<std::size_t>& panels = grid.panel_starts();
+  std::size_t next_panel = 0;
+  for (std::size_t i = 0; i + 1 < f.size();) {
+    if (next_panel < panels.size() && panels[next_panel] == i) {
+      const double half = 0.5 * (f[i + q - 1] - f[i]);
+      for (int k = 0; k < q; ++k) weight[i + k] += half * lobatto[k];
+      i += q - 1;
+      ++next_panel;
+      continue;
+    }
+    DEB_DEMAND(s[i] >= 0.0 && s[i + 1] >= 0.0);
+    if (s[i] == 0.0 || s[i + 1] == 0.0) {
+      const double half = 0.5 * (f[i + 1] - f[i]);
+      weight[i] += half;
+      weight[i + 1] += half;
+    } else {
+      // I = L (y - x) / ln(y / x) with x = s1 f1, y = s2 f2, L = ln(f2 / f1):
+      // dI/ds1 = L f1 g(e), dI/ds2 = L f2 g(-e), e = ln(y / x),
+      // g(e) = (exp(e) - 1 - e) / e^2.
+      const double log_ratio_f = std::log(f[i + 1] / f[i]);
+      const double e = std::log(s[i + 1] / s[i]) + log_ratio_f;
+      weight[i] += log_ratio_f * f[i] * ExpRemainderQuotient(e);
+      weight[i + 1] += log_ratio_f * f[i + 1] * ExpRemainderQuotient(-e);
+    }
+    ++i;
+  }
+  return weight;
+}
+
 double IntegralBetween(const FrequencyGrid& grid, const std::vector<double>& s,
                        const std::vector<double>& cumulative, double lo_hz, double hi_hz) {
   const std::vector<double>& f = grid.f_hz();

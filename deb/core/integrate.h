@@ -45,6 +45,14 @@ std::vector<double> CumulativeIntegral(const FrequencyGrid& grid, const std::vec
 // into parts that add up (the modes of a path, mode_shares.h).
 std::vector<double> LinearQuadratureWeights(const FrequencyGrid& grid);
 
+// q with q[i] = d (CumulativeIntegral(grid, s).back()) / d s[i]: the
+// derivative of the grid's integral with respect to each sample, at s. On
+// panels the Lobatto weights; on the other intervals the partial derivatives
+// of PowerLawIntervalIntegral (the trapezoid's where an end is zero, as the
+// integral itself). So that the derivative of a variance follows from the
+// derivative of its PSD, sum_i q[i] ds[i], without differencing integrals.
+std::vector<double> IntegralGradientWeights(const FrequencyGrid& grid, const std::vector<double>& s);
+
 // Integral over [lo_hz, hi_hz] within the grid (FrequencyGrid::Covers: an edge
 // within its tolerance of an end is that end) from its cumulative integral:
 // at a grid point the cumulative value, between two points the power law

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "deb/core/integrate.h"
+#include "deb/core/math_constants.h"
 #include "deb/spectra/flat_spectrum.h"
 #include "deb/systems/transfer_function.h"
 
@@ -77,10 +79,15 @@ TEST_CASE("the sensitivity driver differences budgets scaled about the nominal: 
     asked.push_back({key, factor});
     return key == "level" ? LowPass(s0 * factor, tau) : LowPass(s0, tau * factor);
   };
-  const SensitivityStudy study = ComputeSensitivities(LowPass(s0, tau), {"level", "tau"}, h, scaled);
+  EngineOptions serial;
+  serial.threads = 1;  // `asked` is not guarded
+  const SensitivityStudy study =
+      ComputeSensitivities(LowPass(s0, tau), {"level", "tau"}, h, scaled, serial, SensitivityMode::kCentralDifferences);
   CHECK(asked == std::vector<std::pair<std::string, double>>{{"level", 1 + h}, {"level", 1 - h}, {"tau", 1 + h},
                                                              {"tau", 1 - h}});
   REQUIRE(study.sensitivities.size() == 4);  // per parameter: total and the one contributor
+  REQUIRE(study.methods.size() == 2);
+  CHECK_FALSE(study.methods[1].exact);
   const double var = study.nominal.outputs[0].variance;
   CHECK(var == doctest::Approx(s0 / (4.0 * tau)).epsilon(1e-4));
   for (int i : {0, 1}) {
@@ -101,6 +108,43 @@ TEST_CASE("the sensitivity driver differences budgets scaled about the nominal: 
   }
   const auto direct = Sensitivities("tau", h, study.nominal, Evaluate(up), Evaluate(down));
   CHECK(study.sensitivities[3].d_variance_d_log_p == direct[1].d_variance_d_log_p);
+}
+
+TEST_CASE("a parameter of the realisation alone is differentiated exactly; one of the source by central differences") {
+  // d var / d ln tau of the grid's variance: against the grid's own integral
+  // of the closed-form dS/d ln tau = -2 S0 (omega tau)^2 / (1 + (omega tau)^2)^2
+  // (the same grid and rule, so to rounding), and against the closed form
+  // -S0 / (4 tau) to what lies outside the grid.
+  const double s0 = 2.0, tau = 0.01, h = 1e-3;
+  const ScaledBudget scaled = [&](const std::string& key, double factor) {
+    return key == "level" ? LowPass(s0 * factor, tau) : LowPass(s0, tau * factor);
+  };
+  const SensitivityStudy study = ComputeSensitivities(LowPass(s0, tau), {"level", "tau"}, h, scaled);
+  REQUIRE(study.methods.size() == 2);
+  CHECK_FALSE(study.methods[0].exact);
+  CHECK(study.methods[0].note.find("source") != std::string::npos);
+  CHECK(study.methods[1].exact);
+  CHECK(study.methods[1].note.find("'lag'") != std::string::npos);
+  REQUIRE(study.sensitivities.size() == 4);
+  const Sensitivity& exact = study.sensitivities[3];
+  CHECK(exact.exact);
+  CHECK(exact.contributor == "c");
+  const FrequencyGrid& grid = study.nominal.grid;
+  const std::vector<double>& psd = study.nominal.outputs[0].contributors[0].psd;
+  const std::vector<double> q = IntegralGradientWeights(grid, psd);
+  double reference = 0.0;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const double wt = 2.0 * kPi * grid.f_hz()[k] * tau;
+    // um: the path's output is in um and the output too; S0 one-sided in N^2/Hz.
+    reference += q[k] * (-2.0 * psd[k] * wt * wt / (1.0 + wt * wt));
+  }
+  CHECK(exact.d_variance_d_log_p == doctest::Approx(reference).epsilon(1e-12));
+  CHECK(exact.d_variance_d_log_p == doctest::Approx(-s0 / (4.0 * tau)).epsilon(2e-4));
+  CHECK(study.sensitivities[2].d_variance_d_log_p == exact.d_variance_d_log_p);  // the total: one contributor
+  // The central difference agrees to its truncation, O(h^2).
+  const SensitivityStudy cd =
+      ComputeSensitivities(LowPass(s0, tau), {"tau"}, h, scaled, {}, SensitivityMode::kCentralDifferences);
+  CHECK(cd.sensitivities[1].d_variance_d_log_p == doctest::Approx(reference).epsilon(2e-6));
 }
 
 }  // namespace deb

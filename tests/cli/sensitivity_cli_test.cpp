@@ -21,10 +21,12 @@ TEST_CASE("deb sensitivity ranks the derivatives: an ASD level has elasticity 2 
   std::ifstream in(dir / "out" / "sensitivity.csv");
   std::string line;
   std::getline(in, line);
-  CHECK(line == "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity");
+  CHECK(line == "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity,method");
   int checked = 0;
   while (std::getline(in, line)) {
-    const double elasticity = std::stod(line.substr(line.rfind(',') + 1));
+    const std::string numbers = line.substr(0, line.rfind(','));  // the method last
+    CHECK(line.substr(line.rfind(',') + 1) == "central_difference");  // a source's level
+    const double elasticity = std::stod(numbers.substr(numbers.rfind(',') + 1));
     if (line.find(",sensor_noise,") != std::string::npos) {
       CHECK(std::abs(elasticity - 2.0) < 3e-6);  // PSD = level^2; O(h^2) = 1e-6 difference error
       ++checked;

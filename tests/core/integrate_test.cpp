@@ -87,3 +87,52 @@ TEST_CASE("the linear quadrature weights: the Lobatto rule on panels, the trapez
 }
 
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("the integral's derivative weights: Lobatto on panels, the power law's partial derivatives elsewhere") {
+  // Panels on [1, 2] and [2, 5], then power-law intervals 5-6-8-8.0001-9 and
+  // an interval with a zero end.
+  const std::vector<double>& x = FrequencyGrid::LobattoNodes();
+  std::vector<double> f;
+  const auto panel = [&](double a, double b) {
+    for (std::size_t j = f.empty() ? 0 : 1; j < x.size(); ++j) f.push_back(a + 0.5 * (b - a) * (x[j] + 1.0));
+  };
+  panel(1.0, 2.0);
+  panel(2.0, 5.0);
+  for (double v : {6.0, 8.0, 9.0, 10.0}) f.push_back(v);
+  const FrequencyGrid grid(f, {0, 5});
+  std::vector<double> s(f.size());
+  for (std::size_t i = 0; i < s.size(); ++i) s[i] = 3.0 / (1.0 + f[i]);
+  // f: 0-10 the panels (6 nodes each, sharing 2 Hz), 11: 6 Hz, 12: 8, 13: 9, 14: 10.
+  REQUIRE(f.size() == 15);
+  s[13] = s[12] * 8.0 / 9.0;  // s f equal at 8 and 9 Hz: the series branch (e = 0)
+  s.back() = 0.0;             // the trapezoid's interval
+  const std::vector<double> q = IntegralGradientWeights(grid, s);
+  const std::vector<double> lin = LinearQuadratureWeights(grid);
+  for (std::size_t i = 0; i < 10; ++i) CHECK(q[i] == lin[i]);  // panels: linear in s
+  // The integral is homogeneous of degree 1 in s (Euler): sum q_i s_i = I.
+  double euler = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) euler += q[i] * s[i];
+  CHECK(euler == doctest::Approx(CumulativeIntegral(grid, s).back()).epsilon(1e-14));
+  // Each weight against a central difference of the integral (step 1e-4
+  // relative, truncation ~1e-9 relative of the weight). Not at a zero: the
+  // power law is not differentiable there (a PSD's derivative is zero
+  // where the PSD is: dS = 2 Re(h S_u dh^H) with h S_u^(1/2) = 0).
+  for (std::size_t i = 0; i + 1 < s.size(); ++i) {
+    const double ds = 1e-4 * s[i];
+    std::vector<double> up = s, down = s;
+    up[i] += ds;
+    down[i] -= ds;
+    const double cd = (CumulativeIntegral(grid, up).back() - CumulativeIntegral(grid, down).back()) / (up[i] - down[i]);
+    CHECK(q[i] == doctest::Approx(cd).epsilon(1e-7));
+  }
+  // The closed form on one interval, 6-8 Hz: dI/ds1 = L f1 g(e), g(e) = (e^e - 1 - e)/e^2.
+  const double L = std::log(8.0 / 6.0), e = std::log(s[12] * 8.0 / (s[11] * 6.0));
+  const double from_6_to_8 = L * 6.0 * (std::exp(e) - 1.0 - e) / (e * e);
+  const double from_5_to_6 = q[11] - from_6_to_8;  // 6 Hz's weight is the sum of both intervals'
+  const double L0 = std::log(6.0 / 5.0), e0 = std::log(s[11] * 6.0 / (s[10] * 5.0));
+  CHECK(from_5_to_6 == doctest::Approx(L0 * 6.0 * (std::exp(-e0) - 1.0 + e0) / (e0 * e0)).epsilon(1e-12));
+}
+
+}  // namespace deb

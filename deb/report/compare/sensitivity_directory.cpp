@@ -31,10 +31,11 @@ std::string NominalText(const std::vector<double>& values) {
 std::string SensitivityCsv(const std::vector<Sensitivity>& all) {
   std::ostringstream os;
   os.precision(10);
-  os << "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity\n";
+  os << "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity,method\n";
   for (const auto& s : all)
     os << CsvField(s.parameter) << ',' << CsvField(s.output) << ',' << CsvField(s.unit) << ','
-       << CsvField(s.contributor) << ',' << s.variance << ',' << s.d_variance_d_log_p << ',' << s.elasticity << '\n';
+       << CsvField(s.contributor) << ',' << s.variance << ',' << s.d_variance_d_log_p << ',' << s.elasticity << ','
+       << (s.exact ? "exact" : "central_difference") << '\n';
   return os.str();
 }
 
@@ -49,18 +50,25 @@ StudyDocument SensitivityDocument(const SensitivitySetting& setting, const Sensi
   StudyDocument d;
   d.title = "Sensitivities of " + setting.name;
   std::ostringstream lead;
-  lead << "Central differences with the parameter multiplied by 1 ± " << setting.step
-       << " (every number its key path reaches), on the nominal frequency grid. d var / d ln p is the change of "
-          "variance per relative change of the parameter (divide by p for d var / dp); the elasticity is "
+  lead << "d var / d ln p on the nominal frequency grid: exact where the parameter acts only through rational "
+          "paths' realisations (the derivative of each realisation, propagated through H and the grid's integral), "
+          "else central differences with the parameter multiplied by 1 ± "
+       << setting.step
+       << " (every number its key path reaches); the table of parameters says which. d var / d ln p is the change "
+          "of variance per relative change of the parameter (divide by p for d var / dp); the elasticity is "
           "(d var / var) / (dp / p).";
   d.lead = lead.str();
   d.footer = std::string("deb ") + DEB_VERSION + " · sensitivities of " + setting.name;
   Table nominal_table;
   nominal_table.title = "Nominal parameters";
-  nominal_table.header = {"parameter", "key path", "nominal value(s)"};
-  nominal_table.numeric = {false, false, false};
-  for (const auto& [key, values] : setting.parameters)
-    nominal_table.rows.push_back({setting.Label(key), key, NominalText(values)});
+  nominal_table.header = {"parameter", "key path", "nominal value(s)", "derivative"};
+  nominal_table.numeric = {false, false, false, false};
+  for (const auto& [key, values] : setting.parameters) {
+    std::string method = "–";
+    for (const SensitivityMethod& m : study.methods)
+      if (m.parameter == key) method = m.note;
+    nominal_table.rows.push_back({setting.Label(key), key, NominalText(values), method});
+  }
   d.sections.push_back({"", "", {nominal_table}, {}, {}, false});
   for (std::size_t o = 0; o < nominal.outputs.size(); ++o) {
     const OutputResult& out = nominal.outputs[o];

@@ -41,8 +41,8 @@ struct SensitivitySetting {
 // "–" for none.
 std::string NominalText(const std::vector<double>& values);
 
-// parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity;
-// 10 significant digits.
+// parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity,method
+// (exact | central_difference); 10 significant digits.
 std::string SensitivityCsv(const std::vector<Sensitivity>& sensitivities);
 
 // The study as a document, each output's tornado charts (Plot::output) in

@@ -45,9 +45,9 @@ TEST_CASE("nominal values read as one value, one value for all, or the list") {
 
 TEST_CASE("sensitivity.csv has one row per term, with 10 significant digits") {
   CHECK(SensitivityCsv(Study().sensitivities) ==
-        "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity\n"
-        "k,y,nm,total,4,1,0.25\n"
-        "k,y,nm,a,3,2,0.6666666667\n");
+        "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity,method\n"
+        "k,y,nm,total,4,1,0.25,central_difference\n"
+        "k,y,nm,a,3,2,0.6666666667,central_difference\n");
 }
 
 TEST_CASE("sensitivity.md and .html state the step and nominal parameters, then each output's ranked table and plot") {
