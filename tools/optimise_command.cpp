@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +22,10 @@
 #include "deb/results/optimise_files.h"
 #include "tools/budget_overrides_option.h"
 #include "tools/run_command.h"
+
+#ifdef DEB_MPI
+#include "deb/distributed/mpi_queue.h"
+#endif
 
 namespace deb::tools {
 
@@ -43,6 +48,7 @@ struct OptimiseCommand::Options {
   bool plots = true;
   std::string robust;  // "P95": the percentile under the tolerances
   int robust_samples = 64;
+  double timeout_s = 0.0;  // --timeout, under mpirun
 };
 
 namespace {
@@ -97,6 +103,10 @@ CLI::App* OptimiseCommand::Register(CLI::App& app) {
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "The optimum's report without plots; gnuplot is not needed");
+  c->add_option("--timeout", s.timeout_s,
+                "Under mpirun: end the run when a rank runs one start longer than this many seconds "
+                "(default 0: no limit)")
+      ->check(CLI::NonNegativeNumber);
   return c;
 }
 
@@ -114,7 +124,27 @@ int OptimiseCommand::Run() const {
   options.tolerance = s.tolerance;
   options.seed = s.seed;
   options.threads = s.threads;
-  const OptimiseResult result = RunOptimise(budget.variables, objective, options, budget.loader);
+  StartRunner runner;  // on threads
+#ifdef DEB_MPI
+  if (MpiSession::Size() > 1) {
+    // Under mpirun: the ranks run the starts, one at a time each; rank 0 alone writes.
+    runner = [&s](std::size_t count, const std::function<StartOutcome(std::size_t)>& run) {
+      const std::vector<std::string> bytes = DistributeBlocks(
+          count,
+          [&run](std::size_t begin, std::size_t end) {
+            std::vector<std::string> out;
+            for (std::size_t k = begin; k < end; ++k) out.push_back(StartOutcomeToBytes(run(k)));
+            return out;
+          },
+          s.timeout_s, 1);
+      std::vector<StartOutcome> outcomes;
+      for (const std::string& b : bytes) outcomes.push_back(StartOutcomeFromBytes(b));
+      return outcomes;
+    };
+  }
+#endif
+  const OptimiseResult result = RunOptimise(budget.variables, objective, options, budget.loader, runner);
+  if (result.starts.empty()) return 0;  // a rank of mpirun other than 0: rank 0 writes
 
   const std::string dir =
       s.out_dir.empty() ? (fs::path("reports") / (budget.name + "_optimum")).string() : s.out_dir;

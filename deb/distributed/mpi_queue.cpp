@@ -62,9 +62,10 @@ std::vector<double> DoublesFromBytes(const std::string& bytes) {
   return v;
 }
 
-std::vector<std::string> DistributeBlocks(std::size_t total, const BlockEvaluator& evaluate, double timeout_s) {
+std::vector<std::string> DistributeBlocks(std::size_t total, const BlockEvaluator& evaluate, double timeout_s,
+                                          std::size_t max_block) {
   const int size = MpiSession::Size(), rank = MpiSession::Rank();
-  DEB_DEMAND(size >= 2);
+  DEB_DEMAND(size >= 2 && max_block >= 1);
   if (rank != 0) {
     // Ask, evaluate, send back (the result is the next request), until told to stop.
     MPI_Send(nullptr, 0, MPI_DOUBLE, 0, kRequest, MPI_COMM_WORLD);
@@ -90,10 +91,10 @@ std::vector<std::string> DistributeBlocks(std::size_t total, const BlockEvaluato
     }
   }
 
-  // Rank 0: blocks of about total / (8 workers), at most 256 indices, so
-  // that a slow block leaves the others work to do.
+  // Rank 0: blocks of about total / (8 workers), at most max_block indices,
+  // so that a slow block leaves the others work to do.
   const std::size_t workers = static_cast<std::size_t>(size - 1);
-  const std::size_t chunk = std::clamp<std::size_t>(total / (8 * workers), 1, 256);
+  const std::size_t chunk = std::clamp<std::size_t>(total / (8 * workers), 1, max_block);
   std::vector<std::string> values(total);
   std::size_t next = 0, stopped = 0;
   std::string error;

@@ -45,7 +45,10 @@ using BlockEvaluator = std::function<std::vector<std::string>(std::size_t begin,
 //   (evaluate's message); the other ranks then return empty. A rank that
 //   holds a block longer than timeout_s seconds (> 0; 0: no limit) ends the
 //   run: rank 0 prints which and calls MPI_Abort.
-std::vector<std::string> DistributeBlocks(std::size_t total, const BlockEvaluator& evaluate, double timeout_s);
+// Blocks hold about total / (8 workers) indices, at most max_block (>= 1):
+// 1 for jobs as long and uneven as an optimiser's starts.
+std::vector<std::string> DistributeBlocks(std::size_t total, const BlockEvaluator& evaluate, double timeout_s,
+                                          std::size_t max_block = 256);
 
 // A vector of doubles as bytes and back (a study's metric values).
 std::string DoublesToBytes(const std::vector<double>& v);

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "deb/budget/engine.h"
+#include "deb/core/byte_record.h"
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
 #include "deb/core/parallel.h"
@@ -308,7 +309,7 @@ DesignMap MapDesigns(const std::vector<DesignVariable>& variables, const Optimis
 }
 
 OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
-                           const OptimiseOptions& options, const DesignLoader& loader) {
+                           const OptimiseOptions& options, const DesignLoader& loader, const StartRunner& runner) {
   const std::size_t n = variables.size();
   DEB_DEMAND(n >= 1 && options.starts >= 1 && options.max_evaluations >= 1);
   for (const DesignVariable& v : variables) DEB_DEMAND(v.min < v.max);
@@ -376,45 +377,52 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
                     : design.Point(k)[i];
     from[k] = x;
   }
+  const auto run = [&](std::size_t k) {
+    Search search(variables, objective, options, loader, static_cast<int>(k), f0, m);
+    nlopt::opt opt(AlgorithmOf(result.method), static_cast<unsigned>(n));
+    opt.set_lower_bounds(std::vector<double>(n, 0.0));
+    opt.set_upper_bounds(std::vector<double>(n, 1.0));
+    opt.set_min_objective(Objective, &search);
+    if (m > 0) opt.add_inequality_mconstraint(Constraints, &search, std::vector<double>(m, 1e-9));
+    opt.set_xtol_abs(options.tolerance);
+    opt.set_maxeval(options.max_evaluations);
+    if (result.method == OptimiseMethod::kCobyla || result.method == OptimiseMethod::kBobyqa)
+      opt.set_initial_step(0.1);
+    std::vector<double> x = from[k];
+    double f = 0.0;
+    std::string stop;
+    try {
+      stop = StopText(opt.optimize(x, f));
+    } catch (const nlopt::roundoff_limited&) {
+      stop = StopText(nlopt::ROUNDOFF_LIMITED);
+    } catch (const std::runtime_error& e) {
+      stop = std::string("NLopt failed: ") + e.what();
+    }
+    const Evaluated& at = search.At(x);
+    StartOutcome out;
+    OptimiseStart& s = out.start;
+    s.from = search.Values(from[k]);
+    s.values = search.Values(x);
+    s.objective = at.objective;
+    s.worst_ratio = at.worst;
+    s.feasible = at.error.empty() && (m == 0 || at.worst <= 1.0 + 1e-6);
+    s.stop = stop;
+    out.requirements = at.requirements;
+    out.history = std::move(search.history);
+    s.evaluations = static_cast<int>(out.history.size());
+    return out;
+  };
+  std::vector<StartOutcome> outcomes;
+  if (runner) {
+    outcomes = runner(count, run);
+    if (outcomes.empty()) return result;  // a rank that does not write
+    DEB_DEMAND(outcomes.size() == count);
+  } else {
+    outcomes.resize(count);
+    ParallelForEach(count, [&](std::size_t k) { outcomes[k] = run(k); }, options.threads);
+  }
   std::vector<OptimiseStart> starts(count);
-  std::vector<std::vector<DesignEvaluation>> histories(count);
-  std::vector<std::vector<RequirementRatio>> final_requirements(count);
-  ParallelForEach(
-      count,
-      [&](std::size_t k) {
-        Search search(variables, objective, options, loader, static_cast<int>(k), f0, m);
-        nlopt::opt opt(AlgorithmOf(result.method), static_cast<unsigned>(n));
-        opt.set_lower_bounds(std::vector<double>(n, 0.0));
-        opt.set_upper_bounds(std::vector<double>(n, 1.0));
-        opt.set_min_objective(Objective, &search);
-        if (m > 0) opt.add_inequality_mconstraint(Constraints, &search, std::vector<double>(m, 1e-9));
-        opt.set_xtol_abs(options.tolerance);
-        opt.set_maxeval(options.max_evaluations);
-        if (result.method == OptimiseMethod::kCobyla || result.method == OptimiseMethod::kBobyqa)
-          opt.set_initial_step(0.1);
-        std::vector<double> x = from[k];
-        double f = 0.0;
-        std::string stop;
-        try {
-          stop = StopText(opt.optimize(x, f));
-        } catch (const nlopt::roundoff_limited&) {
-          stop = StopText(nlopt::ROUNDOFF_LIMITED);
-        } catch (const std::runtime_error& e) {
-          stop = std::string("NLopt failed: ") + e.what();
-        }
-        const Evaluated& at = search.At(x);
-        OptimiseStart& s = starts[k];
-        s.from = search.Values(from[k]);
-        s.values = search.Values(x);
-        s.objective = at.objective;
-        s.worst_ratio = at.worst;
-        s.feasible = at.error.empty() && (m == 0 || at.worst <= 1.0 + 1e-6);
-        s.stop = stop;
-        final_requirements[k] = at.requirements;
-        histories[k] = std::move(search.history);
-        s.evaluations = static_cast<int>(histories[k].size());
-      },
-      options.threads);
+  for (std::size_t k = 0; k < count; ++k) starts[k] = outcomes[k].start;
 
   // The best start: the lowest objective among the feasible, else the least
   // violating (ties: the earlier start).
@@ -433,13 +441,90 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
   result.starts = starts;
   result.best = best;
   result.feasible = any;
-  result.requirements = final_requirements[best];
+  result.requirements = outcomes[best].requirements;
   for (RequirementRatio& q : result.requirements) q.active = q.ratio() >= 1.0 - kActive;
-  for (auto& h : histories) {
-    result.evaluations += static_cast<int>(h.size());
-    result.history.insert(result.history.end(), h.begin(), h.end());
+  for (const StartOutcome& o : outcomes) {
+    result.evaluations += static_cast<int>(o.history.size());
+    result.history.insert(result.history.end(), o.history.begin(), o.history.end());
   }
   return result;
+}
+
+namespace {
+
+void PutRequirements(const std::vector<RequirementRatio>& list, ByteWriter* w) {
+  w->Int(static_cast<std::int64_t>(list.size()));
+  for (const RequirementRatio& q : list) {
+    w->Text(q.name);
+    w->Double(q.rms);
+    w->Double(q.limit);
+    w->Int(q.margin);
+    w->Int(q.active);
+  }
+}
+
+std::vector<RequirementRatio> GetRequirements(ByteReader* r, std::size_t record_bytes) {
+  const std::int64_t n = r->Int();
+  DEB_DEMAND(n >= 0 && static_cast<std::size_t>(n) <= record_bytes);  // each entry takes bytes
+  std::vector<RequirementRatio> list(static_cast<std::size_t>(n));
+  for (RequirementRatio& q : list) {
+    q.name = r->Text();
+    q.rms = r->Double();
+    q.limit = r->Double();
+    q.margin = r->Int() != 0;
+    q.active = r->Int() != 0;
+  }
+  return list;
+}
+
+}  // namespace
+
+std::string StartOutcomeToBytes(const StartOutcome& outcome) {
+  ByteWriter w;
+  const OptimiseStart& s = outcome.start;
+  w.Doubles(s.from);
+  w.Doubles(s.values);
+  w.Double(s.objective);
+  w.Double(s.worst_ratio);
+  w.Int(s.feasible);
+  w.Int(s.evaluations);
+  w.Text(s.stop);
+  w.Int(static_cast<std::int64_t>(outcome.history.size()));
+  for (const DesignEvaluation& d : outcome.history) {
+    w.Int(d.start);
+    w.Doubles(d.values);
+    w.Double(d.objective);
+    w.Double(d.worst_ratio);
+    w.Text(d.error);
+  }
+  PutRequirements(outcome.requirements, &w);
+  return w.bytes();
+}
+
+StartOutcome StartOutcomeFromBytes(const std::string& bytes) {
+  ByteReader r(bytes);
+  StartOutcome outcome;
+  OptimiseStart& s = outcome.start;
+  s.from = r.Doubles();
+  s.values = r.Doubles();
+  s.objective = r.Double();
+  s.worst_ratio = r.Double();
+  s.feasible = r.Int() != 0;
+  s.evaluations = static_cast<int>(r.Int());
+  s.stop = r.Text();
+  const std::int64_t n = r.Int();
+  DEB_DEMAND(n >= 0 && static_cast<std::size_t>(n) <= bytes.size());  // each entry takes bytes
+  outcome.history.resize(static_cast<std::size_t>(n));
+  for (DesignEvaluation& d : outcome.history) {
+    d.start = static_cast<int>(r.Int());
+    d.values = r.Doubles();
+    d.objective = r.Double();
+    d.worst_ratio = r.Double();
+    d.error = r.Text();
+  }
+  outcome.requirements = GetRequirements(&r, bytes.size());
+  DEB_DEMAND(r.AtEnd());
+  return outcome;
 }
 
 }  // namespace deb

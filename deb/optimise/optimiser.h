@@ -131,6 +131,27 @@ struct OptimiseResult {
   int evaluations = 0;
 };
 
+// One start's outcome: the start, every design it evaluated (in order) and
+// the requirement lines where it ended.
+struct StartOutcome {
+  OptimiseStart start;
+  std::vector<DesignEvaluation> history;
+  std::vector<RequirementRatio> requirements;
+};
+
+// An outcome as bytes and back, exactly (for the ranks of one run).
+std::string StartOutcomeToBytes(const StartOutcome& outcome);
+StartOutcome StartOutcomeFromBytes(const std::string& bytes);
+
+// Runs starts 0..count-1, each by run(k) (which may be called from several
+// threads or processes at once), and returns their outcomes in start order.
+// RunOptimise's default runs them on options.threads threads; under mpirun
+// the CLI passes one that spreads them over the ranks, one start per rank
+// at a time, and returns them on rank 0 only: on the other ranks it returns
+// none, and so does RunOptimise (a result without starts).
+using StartRunner =
+    std::function<std::vector<StartOutcome>(std::size_t count, const std::function<StartOutcome(std::size_t)>& run)>;
+
 // The budget at the variables' values (SI, in order), followed (robust) by a
 // sample's values of the uncertain parameters; may be called from several
 // threads at once.
@@ -155,7 +176,10 @@ DesignMap MapDesigns(const std::vector<DesignVariable>& variables, const Optimis
 // @throws InputError for an objective output the budget has not, max_ratio
 //   or constraints with no requirement to meet, BOBYQA with requirements to
 //   meet, and the nominal budget's own errors.
+// The starts run through `runner` (empty: on threads); its result is the
+// same, bit for bit, whichever runs them.
 OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
-                           const OptimiseOptions& options, const DesignLoader& loader);
+                           const OptimiseOptions& options, const DesignLoader& loader,
+                           const StartRunner& runner = {});
 
 }  // namespace deb

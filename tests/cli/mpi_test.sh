@@ -1,7 +1,7 @@
 #!/bin/bash
-# deb under mpirun (DEB_MPI): an uncertainty study and a sweep spread over 3
-# ranks (oversubscribed, on loopback) write the directories a single process
-# writes, byte for byte; a rank that meets a sample whose budget fails ends
+# deb under mpirun (DEB_MPI): an uncertainty study, a sweep and an
+# optimiser's starts spread over 3 ranks (oversubscribed, on loopback) write
+# the directories a single process writes, byte for byte; a rank that meets a sample whose budget fails ends
 # the run with that sample's error, a non-zero exit and no directory, and so
 # does a rank past --timeout; --shard under mpirun is refused. Skipped (77),
 # with the reason, when deb was built without MPI.
@@ -31,6 +31,13 @@ echo "mpi: 3 ranks and 1 process wrote the same $files files, byte for byte"
 "${run_mpi[@]}" "$deb" sweep "$sweep" -q -j 1 --out sweep_ranks > sweep.log 2>&1 || { cat sweep.log; fail "the sweep on 3 ranks"; }
 diff -r sweep_serial sweep_ranks > diff.log || { cat diff.log; fail "a sweep on 3 ranks wrote other files than 1 process"; }
 echo "mpi: a sweep on 3 ranks and in 1 process wrote the same $(find sweep_ranks -type f | wc -l) files"
+
+# The optimiser's starts, one per rank at a time: the same optimum, history and report.
+opt=(optimise "$budget" --vary Kv,h --objective z_velocity --starts 4 --max-evaluations 25 --no-plots -q)
+"$deb" "${opt[@]}" -j 2 --out opt_serial || fail "the serial optimisation"
+"${run_mpi[@]}" "$deb" "${opt[@]}" -j 1 --out opt_ranks > opt.log 2>&1 || { cat opt.log; fail "the optimisation on 3 ranks"; }
+diff -r opt_serial opt_ranks > diff.log || { cat diff.log; fail "an optimisation on 3 ranks wrote other files than 1 process"; }
+echo "mpi: 4 optimiser starts on 3 ranks and in 1 process wrote the same $(find opt_ranks -type f | wc -l) files"
 
 # s uniform on [-1, 3]: a sample with s < 0 is a negative PSD level.
 cat > bad.yaml <<'YAML'

@@ -13,6 +13,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
+#include <vector>
 #include <unistd.h>
 
 #include "deb/budget/engine.h"
@@ -166,6 +169,55 @@ TEST_CASE("several starts: the same result and files for 1 and 2 threads") {
   const std::string yaml = OptimumYaml("../b.yaml", "opt", one, {"grid.points=60"});
   CHECK(yaml.find("extends: '../b.yaml'\nname: opt_optimum\nparameters:\n  kv: 1.5") != std::string::npos);
   CHECK(yaml.find("--set 'grid.points=60'") != std::string::npos);
+}
+
+TEST_CASE("starts run elsewhere and sent back as bytes: the same result, bit for bit") {
+  // What mpirun does: each start run apart (here in reverse order, one at a
+  // time), its outcome sent as bytes and read back, the outcomes in start order.
+  const Dir dir;
+  const std::string file = dir.Write("b.yaml", WithLimit(1.5));
+  const OptimiseBudget b = LoadOptimiseFile(file, {"kv"});
+  OptimiseObjective objective;
+  objective.terms = {{"z", 1.0}};
+  OptimiseOptions o;
+  o.method = OptimiseMethod::kSlsqp;
+  o.starts = 3;
+  const OptimiseResult threads = RunOptimise(b.variables, objective, o, b.loader);
+  std::vector<std::size_t> order;
+  const StartRunner apart = [&](std::size_t count, const std::function<StartOutcome(std::size_t)>& run) {
+    std::vector<std::string> bytes(count);
+    for (std::size_t k = count; k-- > 0;) {
+      order.push_back(k);
+      bytes[k] = StartOutcomeToBytes(run(k));
+    }
+    std::vector<StartOutcome> out;
+    for (const std::string& x : bytes) out.push_back(StartOutcomeFromBytes(x));
+    return out;
+  };
+  const OptimiseResult sent = RunOptimise(b.variables, objective, o, b.loader, apart);
+  CHECK(order == std::vector<std::size_t>{2, 1, 0});
+  REQUIRE(sent.starts.size() == 3);
+  CHECK(OptimiseSummaryJson("opt", sent) == OptimiseSummaryJson("opt", threads));
+  CHECK(OptimiseHistoryCsv(sent) == OptimiseHistoryCsv(threads));
+  CHECK(sent.requirements.size() == threads.requirements.size());
+  CHECK(sent.requirements[0].active);  // the limit kv <= 1.5 holds the optimum
+  // A rank that does not write gets no outcomes back, and no result.
+  const StartRunner elsewhere = [](std::size_t, const std::function<StartOutcome(std::size_t)>&) {
+    return std::vector<StartOutcome>{};
+  };
+  CHECK(RunOptimise(b.variables, objective, o, b.loader, elsewhere).starts.empty());
+  // Bytes carry an infinite objective (a design that failed) and text exactly.
+  StartOutcome failed;
+  failed.start.objective = std::numeric_limits<double>::infinity();
+  failed.start.stop = "NLopt failed: ''\n";
+  failed.history.push_back({2, {0.1, 0.30000000000000004}, std::numeric_limits<double>::infinity(), 1e300, "unstable"});
+  const StartOutcome back = StartOutcomeFromBytes(StartOutcomeToBytes(failed));
+  CHECK(std::isinf(back.start.objective));
+  CHECK(back.start.stop == failed.start.stop);
+  REQUIRE(back.history.size() == 1);
+  CHECK(back.history[0].values == failed.history[0].values);
+  CHECK(back.history[0].error == "unstable");
+  CHECK(back.history[0].start == 2);
 }
 
 TEST_CASE("the optimum.yaml loads as a budget with the optimum's values") {
