@@ -137,9 +137,6 @@ int UncertaintyCommand::Run() const {
   options.method = ParseSamplingMethod(s.method);
   options.seed = s.seed;
   options.threads = s.threads;
-  if (options.method == SamplingMethod::kSobol && 2 * budget.spec.parameters.size() > MaxSobolDimensions())
-    throw InputError(s.budget_file + ": " + std::to_string(budget.spec.parameters.size()) +
-                     " uncertain parameters; --method sobol takes at most " + std::to_string(MaxSobolDimensions() / 2));
   const bool progress = !s.quiet && ::isatty(STDERR_FILENO);
   const auto report_progress = [&](std::size_t done, std::size_t total) {
     if (progress) std::fprintf(stderr, "\rdeb: uncertainty %zu/%zu budgets", done, total);

@@ -124,11 +124,22 @@ namespace {
 // parameter values a function of (spec, options, e) alone.
 class StudyPlan {
  public:
+  // The sample design's dimensions: p, or 2 p for sobol (the A and B
+  // matrices). @throws InputError where Boost's Sobol table has too few.
+  static std::size_t DesignDimensions(const UncertaintySpec& spec, const UncertaintyOptions& options) {
+    const std::size_t p = spec.parameters.size();
+    if (options.method != SamplingMethod::kSobol) return p;
+    if (2 * p > MaxSobolDimensions())
+      throw InputError(std::to_string(p) + " uncertain parameters; --method sobol takes at most " +
+                       std::to_string(MaxSobolDimensions() / 2));
+    return 2 * p;
+  }
+
   StudyPlan(const UncertaintySpec& spec, const UncertaintyOptions& options)
       : spec_(spec), p_(spec.parameters.size()),
         copula_(spec.correlation.size() ? spec.correlation : Eigen::MatrixXd::Identity(p_, p_).eval()),
         sobol_(options.method == SamplingMethod::kSobol), n_(options.samples),
-        design_(options.method, options.seed, n_, sobol_ ? 2 * p_ : p_) {
+        design_(options.method, options.seed, n_, DesignDimensions(spec, options)) {
     DEB_DEMAND(p_ >= 1 && n_ >= 1 && n_ <= kMaxUncertaintySamples);
     DEB_DEMAND(copula_.info() == Eigen::Success);
     nominal_.resize(p_);

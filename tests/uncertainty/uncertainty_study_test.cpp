@@ -18,6 +18,7 @@
 #include "deb/core/error.h"
 #include "deb/load/uncertainty_yaml.h"
 #include "deb/results/uncertainty_files.h"
+#include "deb/uncertainty/sample_design.h"
 #include "tests/support/budget_errors.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/text_edit.h"
@@ -290,6 +291,31 @@ TEST_CASE("the shipped example: the metrology frame with an uncertain floor clas
   }
   CHECK(classes[0] + classes[1] + classes[2] == 40);
   CHECK(classes[1] > classes[0]);  // VC-D the likeliest
+}
+
+TEST_CASE("more parameters than Boost's Sobol table holds: an error for every caller, not an assertion") {
+  // The run, a shard, a merge and the Python module all plan the study
+  // through UncertaintyEvaluationCount's plan.
+  UncertaintySpec spec;
+  UncertainParameter p;
+  p.name = "x";
+  p.nominal = 1.0;
+  p.distribution.kind = DistributionKind::kUniform;
+  p.distribution.min = 0.5;
+  p.distribution.max = 1.5;
+  spec.parameters.assign(MaxSobolDimensions() / 2 + 1, p);
+  spec.correlation = Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(spec.parameters.size()),
+                                               static_cast<Eigen::Index>(spec.parameters.size()));
+  UncertaintyOptions options;
+  options.method = SamplingMethod::kSobol;
+  options.samples = 4;
+  CHECK_THROWS_WITH_AS(UncertaintyEvaluationCount(spec, options),
+                       (std::to_string(spec.parameters.size()) + " uncertain parameters; --method sobol takes at most " +
+                        std::to_string(MaxSobolDimensions() / 2))
+                           .c_str(),
+                       InputError);
+  options.method = SamplingMethod::kLatinHypercube;  // any number of dimensions
+  CHECK(UncertaintyEvaluationCount(spec, options) > 4);
 }
 
 }  // namespace
