@@ -194,6 +194,7 @@ int OptimiseCommand::Run() const {
                 budget.name.c_str(), what.c_str(), budget.variables.size(), ToString(result.method).c_str(),
                 options.starts, result.evaluations,
                 objective.quantile ? (" (" + std::to_string(objective.samples.size()) + " budgets each)").c_str() : "");
+    std::printf("gradients: %s\n", result.gradients.c_str());
     std::printf("nominal: %s = %s\n", what.c_str(), SignificantText(result.nominal_objective, 6).c_str());
     std::printf("optimum (start %zu, %s): %s\n", result.best + 1, best.stop.c_str(), OptimumText(result).c_str());
     std::printf("  %s = %s\n", what.c_str(), SignificantText(best.objective, 6).c_str());

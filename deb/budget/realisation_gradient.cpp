@@ -91,11 +91,11 @@ EngineOptions VariancesOf(const EngineOptions& options) {
 }  // namespace
 
 RealisationGradient ComputeRealisationGradient(const Budget& budget, const BudgetResult& nominal,
-                                               const std::array<Budget, 4>& scaled, double relative_step,
-                                               const EngineOptions& options) {
+                                               const std::array<Budget, 4>& scaled, double step,
+                                               const EngineOptions& options, bool verify) {
   RealisationGradient g;
-  const double h = relative_step;
-  DEB_DEMAND(h > 0.0 && h < 1.0);
+  const double h = step;
+  DEB_DEMAND(h > 0.0 && std::isfinite(h));
   // Which rational paths the parameter changes, and their derivatives.
   std::vector<std::optional<RealisationDerivative>> derivative(budget.paths.size());
   std::vector<std::string> changed;
@@ -133,7 +133,7 @@ RealisationGradient ComputeRealisationGradient(const Budget& budget, const Budge
   }
   const EngineOptions variances = VariancesOf(options);
   // Nothing else may move: p (1 + h) with the rational paths put back.
-  {
+  if (verify) {
     Budget check = scaled[0];
     for (std::size_t i = 0; i < budget.paths.size(); ++i)
       if (IsRational(budget.paths[i])) check.paths[i] = budget.paths[i];
@@ -146,9 +146,9 @@ RealisationGradient ComputeRealisationGradient(const Budget& budget, const Budge
     }
   }
   g.exact = true;
-  g.d_variance_d_log_p.resize(nominal.outputs.size());
+  g.d_variance.resize(nominal.outputs.size());
   for (std::size_t o = 0; o < nominal.outputs.size(); ++o)
-    g.d_variance_d_log_p[o].assign(nominal.outputs[o].contributors.size(), 0.0);
+    g.d_variance[o].assign(nominal.outputs[o].contributors.size(), 0.0);
   if (changed.empty()) {
     g.note = "exact: it changes no path's realisation (the variances do not depend on it)";
     return g;
@@ -178,7 +178,7 @@ RealisationGradient ComputeRealisationGradient(const Budget& budget, const Budge
       double dv = 0.0;
       for (std::size_t k = 0; k < q.size(); ++k) dv += q[k] * (0.5 * (plus.psd[k] - minus.psd[k]));
       for (std::size_t t = 0; t < cr.tones.size(); ++t) dv += 0.5 * (plus.tones[t].variance - minus.tones[t].variance);
-      g.d_variance_d_log_p[o][c] = dv;
+      g.d_variance[o][c] = dv;
     }
   }
   g.note = "exact: the derivative of the realisation of " + QuotedList(changed) +

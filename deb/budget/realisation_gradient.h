@@ -41,17 +41,22 @@ namespace deb {
 struct RealisationGradient {
   bool exact = false;
   std::string note;  // how it was computed, or why it was not
-  // d variance / d ln p per output, per contributor (the nominal's order);
-  // the output's total is their sum. Empty unless exact.
-  std::vector<std::vector<double>> d_variance_d_log_p;
+  // d variance / d ln p (or / dp: see below) per output, per contributor
+  // (the nominal's order); the output's total is their sum. Empty unless
+  // exact.
+  std::vector<std::vector<double>> d_variance;
 };
 
 // `scaled` holds the budget with the parameter multiplied by 1 + h, 1 - h,
 // 1 + h/2 and 1 - h/2, each on the nominal's grid and bands (as a
-// sensitivity's perturbed budgets). `nominal` is `budget` evaluated.
+// sensitivity's perturbed budgets), for d var / d ln p; or with h added and
+// subtracted (p + h, p - h, p + h/2, p - h/2), for d var / dp. `nominal` is
+// `budget` evaluated. `verify` evaluates scaled[0] with the rational paths
+// put back (the refusal above); a caller that verified the parameter once
+// (an optimiser, at the nominal design) may skip it at other designs.
 // @throws InputError as Evaluate (of the budgets it evaluates).
 RealisationGradient ComputeRealisationGradient(const Budget& budget, const BudgetResult& nominal,
-                                               const std::array<Budget, 4>& scaled, double relative_step,
-                                               const EngineOptions& options);
+                                               const std::array<Budget, 4>& scaled, double step,
+                                               const EngineOptions& options, bool verify = true);
 
 }  // namespace deb

@@ -45,7 +45,7 @@ namespace {
 // The entries of Sensitivities() from exact derivatives.
 std::vector<Sensitivity> ExactSensitivities(const std::string& parameter, const BudgetResult& nominal,
                                             const RealisationGradient& g) {
-  DEB_DEMAND(g.exact && g.d_variance_d_log_p.size() == nominal.outputs.size());
+  DEB_DEMAND(g.exact && g.d_variance.size() == nominal.outputs.size());
   std::vector<Sensitivity> out;
   auto add = [&](const OutputResult& o, const std::string& contributor, double v0, double d) {
     Sensitivity s;
@@ -61,7 +61,7 @@ std::vector<Sensitivity> ExactSensitivities(const std::string& parameter, const 
   };
   for (std::size_t o = 0; o < nominal.outputs.size(); ++o) {
     const OutputResult& n = nominal.outputs[o];
-    const std::vector<double>& d = g.d_variance_d_log_p[o];
+    const std::vector<double>& d = g.d_variance[o];
     DEB_DEMAND(d.size() == n.contributors.size());
     double total = 0.0;  // the output's variance is the sum of its contributors'
     for (double x : d) total += x;

@@ -3,12 +3,14 @@
 #include <nlopt.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <mutex>
 
 #include "deb/budget/engine.h"
+#include "deb/budget/realisation_gradient.h"
 #include "deb/core/byte_record.h"
 #include "deb/core/error.h"
 #include "deb/core/number_text.h"
@@ -103,14 +105,96 @@ std::string StopText(nlopt::result r) {
   }
 }
 
+// Where the gradients are exact (deb/budget/realisation_gradient.h): the
+// objective is outputs' RMS at the designs themselves (not robust, not
+// max-ratio), every requirement is an output's rms_max, and every variable
+// acts on the budget only through rational paths' realisations (verified
+// once, at the nominal design).
+struct ExactGradientPlan {
+  bool usable = false;
+  std::string note;                          // the gradients' method, or why not exact
+  std::vector<std::size_t> requirement_output;  // per requirement: its output
+};
+
+// Each variable's step of the realisation's derivative: 1e-3 of its range.
+double RealisationStep(const DesignVariable& v) { return 1e-3 * (v.max - v.min); }
+
+// The budgets at values with variable i moved by +h, -h, +h/2, -h/2, on the
+// grid and bands of `at`.
+std::array<Budget, 4> Stepped(const DesignLoader& loader, const std::vector<double>& values, std::size_t i, double h,
+                              const BudgetResult& at, const Budget& budget) {
+  const std::array<double, 4> steps = {h, -h, 0.5 * h, -0.5 * h};
+  std::array<Budget, 4> out;
+  for (std::size_t k = 0; k < 4; ++k) {
+    std::vector<double> v = values;
+    v[i] += steps[k];
+    out[k] = loader(v);
+    out[k].grid = GridSpec();
+    out[k].grid.kind = GridKind::kExplicit;
+    out[k].grid.f_hz = at.grid.f_hz();
+    out[k].grid.panel_starts = at.grid.panel_starts();
+    if (out[k].bands.empty()) out[k].bands = budget.bands;
+  }
+  return out;
+}
+
+ExactGradientPlan PlanExactGradients(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
+                                     const DesignLoader& loader, const Budget& nominal_budget,
+                                     const BudgetResult& nominal_result, int threads) {
+  ExactGradientPlan plan;
+  if (objective.quantile || objective.max_ratio) {
+    plan.note = std::string("central differences: the objective is ") +
+                (objective.quantile ? "a percentile under the tolerances" : "the largest requirement ratio");
+    return plan;
+  }
+  for (std::size_t o = 0; o < nominal_result.outputs.size(); ++o) {
+    const OutputResult& out = nominal_result.outputs[o];
+    if (!out.band_requirements.empty()) {
+      plan.note = "central differences: output " + out.name + " has band requirements";
+      return plan;
+    }
+    if (out.rms_max) plan.requirement_output.push_back(o);
+  }
+  if (plan.requirement_output.size() != RequirementRatios(nominal_result).size()) {
+    plan.note = "central differences: a loop's margin is required";
+    return plan;
+  }
+  std::vector<double> nominal(variables.size());
+  for (std::size_t i = 0; i < variables.size(); ++i) nominal[i] = variables[i].nominal;
+  std::vector<std::string> refused(variables.size());
+  ParallelForEach(
+      variables.size(),
+      [&](std::size_t i) {
+        try {
+          const RealisationGradient g =
+              ComputeRealisationGradient(nominal_budget, nominal_result,
+                                         Stepped(loader, nominal, i, RealisationStep(variables[i]), nominal_result,
+                                                 nominal_budget),
+                                         RealisationStep(variables[i]), EngineOptions::VariancesOnly());
+          if (!g.exact) refused[i] = variables[i].name + ": " + g.note;
+        } catch (const InputError& e) {
+          refused[i] = variables[i].name + ": the budget fails a step away (" + e.what() + ")";
+        }
+      },
+      threads);
+  for (const std::string& why : refused)
+    if (!why.empty()) {
+      plan.note = "central differences: " + why;
+      return plan;
+    }
+  plan.usable = true;
+  plan.note = "exact: the derivative of the paths' realisations, propagated through H and the grid's integral";
+  return plan;
+}
+
 // One start's search, in the variables scaled to [0, 1].
 class Search {
  public:
   Search(const std::vector<DesignVariable>& variables, const OptimiseObjective& objective,
          const OptimiseOptions& options, const DesignLoader& loader, int start, double nominal_objective,
-         std::size_t requirements)
+         std::size_t requirements, const ExactGradientPlan& exact)
       : variables_(variables), objective_(objective), options_(options), loader_(loader), start_(start),
-        f0_(nominal_objective), m_(requirements) {}
+        f0_(nominal_objective), m_(requirements), exact_(exact) {}
 
   std::vector<double> Values(const std::vector<double>& x) const {
     std::vector<double> v(x.size());
@@ -125,9 +209,80 @@ class Search {
     return Store(x, EvaluateDesign(loader_, objective_, Values(x), options_.threads));
   }
 
-  // The objective and the constraints' gradients at x by central differences
-  // (one-sided at a bound), their 2n budgets evaluated in parallel.
+  // The objective and the constraints' gradients at x: exact where the plan
+  // allows and the design and its steps evaluate, else by central
+  // differences (one-sided at a bound), their 2n budgets evaluated in
+  // parallel.
   void Gradients(const std::vector<double>& x, std::vector<double>* df, std::vector<std::vector<double>>* dg) {
+    const auto it = gradients_.find(x);
+    if (it != gradients_.end()) {
+      *df = it->second.first;
+      *dg = it->second.second;
+      return;
+    }
+    if (!(exact_.usable && ExactGradients(x, df, dg))) CentralDifferences(x, df, dg);
+    gradients_.emplace(x, std::make_pair(*df, *dg));
+  }
+
+  // d var / dv of every output from the realisations' derivatives, chained
+  // to the scaled objective and the requirement ratios. False where the
+  // design, a step of it, or a realisation's derivative fails.
+  bool ExactGradients(const std::vector<double>& x, std::vector<double>* df, std::vector<std::vector<double>>* dg) {
+    const std::size_t n = x.size();
+    const std::vector<double> v = Values(x);
+    Budget budget;
+    BudgetResult at;
+    try {
+      budget = loader_(v);
+      at = Evaluate(budget, EngineOptions::VariancesOnly());
+    } catch (const InputError&) {
+      return false;
+    }
+    // d var_o / dv_i, per variable.
+    std::vector<std::vector<double>> dvar(n);
+    std::vector<bool> ok(n, false);
+    ParallelForEach(
+        n,
+        [&](std::size_t i) {
+          try {
+            const double h = RealisationStep(variables_[i]);
+            const RealisationGradient g = ComputeRealisationGradient(
+                budget, at, Stepped(loader_, v, i, h, at, budget), h, EngineOptions::VariancesOnly(), false);
+            if (!g.exact) return;
+            for (const std::vector<double>& per_contributor : g.d_variance) {
+              double sum = 0.0;
+              for (double d : per_contributor) sum += d;
+              dvar[i].push_back(sum);
+            }
+            ok[i] = true;
+          } catch (const InputError&) {
+          }
+        },
+        options_.threads);
+    for (bool b : ok)
+      if (!b) return false;
+    // d RMS / dx_i = d var / dv_i (max - min) / (2 RMS).
+    const auto d_rms = [&](std::size_t o, std::size_t i) {
+      const double rms = at.outputs[o].rms();
+      return rms > 0.0 ? dvar[i][o] * (variables_[i].max - variables_[i].min) / (2.0 * rms) : 0.0;
+    };
+    std::vector<double> f(n, 0.0);
+    std::vector<std::vector<double>> g(m_, std::vector<double>(n, 0.0));
+    for (std::size_t i = 0; i < n; ++i) {
+      for (const ObjectiveTerm& t : objective_.terms)
+        for (std::size_t o = 0; o < at.outputs.size(); ++o)
+          if (at.outputs[o].name == t.output) f[i] += t.weight * d_rms(o, i) / f0_;
+      for (std::size_t j = 0; j < m_; ++j) {
+        const std::size_t o = exact_.requirement_output[j];
+        g[j][i] = d_rms(o, i) / *at.outputs[o].rms_max;
+      }
+    }
+    *df = std::move(f);
+    *dg = std::move(g);
+    return true;
+  }
+
+  void CentralDifferences(const std::vector<double>& x, std::vector<double>* df, std::vector<std::vector<double>>* dg) {
     const std::size_t n = x.size();
     const double h = std::max(1e-6, 10.0 * options_.tolerance);
     std::vector<std::vector<double>> points(2 * n, x);
@@ -185,7 +340,9 @@ class Search {
   int start_;
   double f0_;
   std::size_t m_;
+  const ExactGradientPlan& exact_;
   std::map<std::vector<double>, Evaluated> cache_;
+  std::map<std::vector<double>, std::pair<std::vector<double>, std::vector<std::vector<double>>>> gradients_;
 };
 
 double Objective(unsigned n, const double* x, double* grad, void* data) {
@@ -365,6 +522,13 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
     throw InputError("--method bobyqa handles bounds only, and the budget has " + std::to_string(m) +
                      " requirement(s) to meet: use cobyla, slsqp or mma (or --objective max-ratio)");
   const double f0 = result.nominal_objective > 0.0 ? result.nominal_objective : 1.0;
+  ExactGradientPlan exact;
+  if (result.method == OptimiseMethod::kSlsqp || result.method == OptimiseMethod::kMma) {
+    exact = PlanExactGradients(variables, objective, loader, nominal_budget, nominal_result, options.threads);
+    result.gradients = exact.note;
+  } else {
+    result.gradients = "none (a derivative-free method)";
+  }
 
   // The starts: the nominal design, then Sobol points of the box.
   const auto count = static_cast<std::size_t>(options.starts);
@@ -378,7 +542,7 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
     from[k] = x;
   }
   const auto run = [&](std::size_t k) {
-    Search search(variables, objective, options, loader, static_cast<int>(k), f0, m);
+    Search search(variables, objective, options, loader, static_cast<int>(k), f0, m, exact);
     nlopt::opt opt(AlgorithmOf(result.method), static_cast<unsigned>(n));
     opt.set_lower_bounds(std::vector<double>(n, 0.0));
     opt.set_upper_bounds(std::vector<double>(n, 1.0));

@@ -5,8 +5,10 @@
 // band requirement: RMS <= limit) and to the budget evaluating at all (a
 // closed loop that is unstable there is a design that fails). NLopt does
 // the search: BOBYQA (derivative-free, bounds only), COBYLA
-// (derivative-free, with constraints), SLSQP or MMA (with gradients by
-// central differences, evaluated in parallel); several starts from Sobol
+// (derivative-free, with constraints), SLSQP or MMA (with exact gradients
+// where every variable acts only through rational paths' realisations and
+// the objective and requirements are outputs' RMS, else by central
+// differences, evaluated in parallel); several starts from Sobol
 // points of the box (the first the nominal design), run in parallel, the
 // best feasible one kept (OptimiseResult::method says which ran). The variables are searched scaled to [0, 1] over
 // their bounds, the objective relative to its nominal value.
@@ -121,6 +123,10 @@ struct OptimiseResult {
   OptimiseObjective objective;
   OptimiseOptions options;
   OptimiseMethod method = OptimiseMethod::kCobyla;  // the one that ran (never kAuto)
+  // How SLSQP and MMA got their gradients: "exact: ..." (the realisations'
+  // derivatives, deb/budget/realisation_gradient.h) or "central
+  // differences: <why not exact>"; for the derivative-free methods, none.
+  std::string gradients;
   double nominal_objective = 0.0;
   std::vector<RequirementRatio> nominal_requirements;
   std::vector<OptimiseStart> starts;

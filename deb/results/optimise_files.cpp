@@ -55,6 +55,7 @@ std::string OptimiseSummaryJson(const std::string& budget_name, const OptimiseRe
   j["budget"] = budget_name;
   j["objective"] = r.objective.Text();
   j["method"] = ToString(r.method);
+  j["gradients"] = r.gradients;
   j["starts"] = r.options.starts;
   j["evaluations"] = r.evaluations;
   Json variables = Json::array();

@@ -80,6 +80,11 @@ TEST_CASE("a kv^2 + b / kv^2: kv* = (b/a)^(1/4) = 2 to 1e-6 by every method") {
     CAPTURE(ToString(m));
     const OptimiseResult r = Optimise(file, m);
     REQUIRE(r.feasible);
+    // The gains are the paths' D: SLSQP and MMA get exact gradients.
+    if (m == OptimiseMethod::kSlsqp || m == OptimiseMethod::kMma)
+      CHECK(r.gradients.rfind("exact: ", 0) == 0);
+    else if (m != OptimiseMethod::kAuto)
+      CHECK(r.gradients == "none (a derivative-free method)");
     const double kv = r.starts[r.best].values[0];
     MESSAGE(ToString(r.method) << ": kv* " << kv << " (relative error " << std::abs(kv - 2.0) / 2.0 << ") in "
                                << r.evaluations << " evaluations");
@@ -136,6 +141,11 @@ TEST_CASE("a requirement that allows kv <= 1.5: the optimum on it, reported acti
     CAPTURE(ToString(m));
     const OptimiseResult r = Optimise(file, m);
     REQUIRE(r.feasible);
+    // The gains are the paths' D: SLSQP and MMA get exact gradients.
+    if (m == OptimiseMethod::kSlsqp || m == OptimiseMethod::kMma)
+      CHECK(r.gradients.rfind("exact: ", 0) == 0);
+    else if (m != OptimiseMethod::kAuto)
+      CHECK(r.gradients == "none (a derivative-free method)");
     const double kv = r.starts[r.best].values[0];
     MESSAGE(ToString(r.method) << ": kv* " << kv << " in " << r.evaluations << " evaluations");
     CHECK(std::abs(kv - 1.5) <= 1e-6 * 1.5);
@@ -298,6 +308,11 @@ TEST_CASE("robust: the P95 over a's tolerance moves kv* to (b / a_P95)^(1/4)") {
   MESSAGE("robust kv* " << r.starts[r.best].values[0] << ", closed form " << expected);
   CHECK(r.starts[r.best].values[0] == doctest::Approx(expected).epsilon(1e-6));
   CHECK(z.Text() == "the P95 of the RMS of z under the tolerances (21 samples)");
+  // With gradients: central differences of the percentile, saying so.
+  o.method = OptimiseMethod::kSlsqp;
+  const OptimiseResult slsqp = RunOptimise(b.variables, z, o, b.loader);
+  CHECK(slsqp.gradients == "central differences: the objective is a percentile under the tolerances");
+  CHECK(slsqp.starts[slsqp.best].values[0] == doctest::Approx(expected).epsilon(1e-5));
   // A budget with no tolerance besides the variables: --robust has nothing to sample.
   CHECK_THROWS_WITH_AS(LoadOptimiseFile(dir.Write("c.yaml", kBudget), {"kv"}, {}, true),
                        doctest::Contains("--robust: no parameter besides those of --vary has a distribution"),
