@@ -131,6 +131,26 @@ void WriteTextFile(const std::string& path, const std::string& text) {
   }
 }
 
+void WriteTextFileFrom(const std::string& path, const std::function<void(const TextSink&)>& produce) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw WriteError("cannot write " + path + ": " + Reason(errno));
+  int write_error = 0;
+  try {
+    produce([&](const std::string& piece) {
+      if (write_error == 0 && std::fwrite(piece.data(), 1, piece.size(), f) != piece.size()) write_error = errno;
+    });
+  } catch (...) {
+    std::fclose(f);
+    std::remove(path.c_str());
+    throw;
+  }
+  const int close_error = std::fclose(f) == 0 ? 0 : errno;
+  if (write_error || close_error) {
+    std::remove(path.c_str());
+    throw WriteError("cannot write " + path + ": " + Reason(write_error ? write_error : close_error));
+  }
+}
+
 void ReplaceDirectory(const std::string& out_dir, const std::function<void(const std::string&)>& fill,
                       const ReplaceOptions& options) {
   const fs::path target = ResolveTarget(out_dir);

@@ -47,4 +47,10 @@ bool IsDeadProcess(long pid);
 // @throws WriteError "cannot write PATH: <reason>" (e.g. No space left on device).
 void WriteTextFile(const std::string& path, const std::string& text);
 
+// Writes the text `produce` hands to its sink, piece by piece, to `path`: a
+// large table (an uncertainty study's samples.csv) without holding it whole.
+// @throws WriteError as WriteTextFile (the file removed); what produce throws.
+using TextSink = std::function<void(const std::string& piece)>;
+void WriteTextFileFrom(const std::string& path, const std::function<void(const TextSink&)>& produce);
+
 }  // namespace deb

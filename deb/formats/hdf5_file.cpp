@@ -370,9 +370,14 @@ void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<d
     DEB_DEMAND(r.size() == columns);
     data.insert(data.end(), r.begin(), r.end());
   }
+  Matrix(object, rows.size(), rows.empty() ? 0 : columns, data);
+}
+
+void Hdf5Writer::Matrix(const std::string& object, std::size_t rows, std::size_t columns,
+                        const std::vector<double>& row_major) {
+  DEB_DEMAND(row_major.size() == rows * columns);
   const Locked lock;
-  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-               {rows.size(), rows.empty() ? 0 : columns}, data.data(), true);
+  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {rows, columns}, row_major.data(), true);
 }
 
 // ---------------------------------------------------------------- reading

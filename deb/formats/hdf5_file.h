@@ -87,6 +87,9 @@ class Hdf5Writer {
   void Texts(const std::string& object, const std::vector<std::string>& values);
   // @pre every row has the same length (DEB_DEMAND); no rows: a 0 x 0 matrix.
   void Rows(const std::string& object, const std::vector<std::vector<double>>& rows);
+  // A rows x columns matrix from its entries row after row (no copy of a
+  // large table). @pre row_major.size() == rows * columns (DEB_DEMAND).
+  void Matrix(const std::string& object, std::size_t rows, std::size_t columns, const std::vector<double>& row_major);
 
   // Flushes and closes the file.
   // @throws WriteError if it cannot be completed.

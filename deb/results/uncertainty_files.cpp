@@ -105,18 +105,23 @@ std::string UncertaintySummaryJson(const std::string& budget_name, const Uncerta
   return j.dump(2) + "\n";
 }
 
-std::string UncertaintySamplesCsv(const UncertaintyResult& r) {
-  std::string csv = "sample";
-  for (const UncertainParameter& p : r.spec.parameters) csv += "," + p.name + (p.unit.empty() ? "" : " [" + p.unit + "]");
-  for (const StudyMetric& m : r.metrics) csv += "," + m.Name() + " rms [" + m.unit + "]";
-  csv += "\n";
+void UncertaintySamplesCsv(const UncertaintyResult& r, const TextSink& put) {
+  std::string line = "sample";
+  for (const UncertainParameter& p : r.spec.parameters) line += "," + p.name + (p.unit.empty() ? "" : " [" + p.unit + "]");
+  for (const StudyMetric& m : r.metrics) line += "," + m.Name() + " rms [" + m.unit + "]";
+  put(line + "\n");
   for (std::size_t s = 0; s < r.samples; ++s) {
-    csv += std::to_string(s + 1);
+    line = std::to_string(s + 1);
     for (std::size_t i = 0; i < r.spec.parameters.size(); ++i)
-      csv += "," + NumberText(Shown(r.spec.parameters[i], r.parameter_values[i][s]));
-    for (const StudyMetric& m : r.metrics) csv += "," + NumberText(m.values[s]);
-    csv += "\n";
+      line += "," + NumberText(Shown(r.spec.parameters[i], r.parameter_values[i][s]));
+    for (const StudyMetric& m : r.metrics) line += "," + NumberText(m.values[s]);
+    put(line + "\n");
   }
+}
+
+std::string UncertaintySamplesCsv(const UncertaintyResult& r) {
+  std::string csv;
+  UncertaintySamplesCsv(r, [&csv](const std::string& piece) { csv += piece; });
   return csv;
 }
 
@@ -140,15 +145,18 @@ void WriteUncertaintyStore(const std::string& path, const std::string& budget_na
   h.Texts("uncertainty/parameters/names", names);
   h.Texts("uncertainty/parameters/units", units);
   h.Numbers("uncertainty/parameters/nominal", nominal);
-  std::vector<std::vector<double>> values(r.samples, std::vector<double>(p));
-  for (std::size_t s = 0; s < r.samples; ++s)
-    for (std::size_t i = 0; i < p; ++i) values[s][i] = Shown(r.spec.parameters[i], r.parameter_values[i][s]);
-  h.Rows("uncertainty/parameters/values", values);
+  {  // the samples' table, row by row, without a row's vector each
+    std::vector<double> values(r.samples * p);
+    for (std::size_t s = 0; s < r.samples; ++s)
+      for (std::size_t i = 0; i < p; ++i) values[s * p + i] = Shown(r.spec.parameters[i], r.parameter_values[i][s]);
+    h.Matrix("uncertainty/parameters/values", r.samples, p, values);
+  }
 
   std::vector<std::string> metric_names, metric_units;
   std::vector<double> limit, nominal_rms, mean, sd, fosm, p5, p50, p95, p99, p_meet, low, high, corner_rms;
-  std::vector<std::vector<double>> rms(r.samples, std::vector<double>(r.metrics.size())), spearman, first, total,
-      corner;
+  const std::size_t metrics = r.metrics.size();
+  std::vector<double> rms(r.samples * metrics);  // row-major, samples x metrics
+  std::vector<std::vector<double>> spearman, first, total, corner;
   for (std::size_t k = 0; k < r.metrics.size(); ++k) {
     const StudyMetric& m = r.metrics[k];
     metric_names.push_back(m.Name());
@@ -166,7 +174,7 @@ void WriteUncertaintyStore(const std::string& path, const std::string& budget_na
     low.push_back(m.limit ? m.p_meet.low : nan);
     high.push_back(m.limit ? m.p_meet.high : nan);
     corner_rms.push_back(m.worst_corner_value);
-    for (std::size_t s = 0; s < r.samples; ++s) rms[s][k] = m.values[s];
+    for (std::size_t s = 0; s < r.samples; ++s) rms[s * metrics + k] = m.values[s];
     spearman.push_back(m.spearman);
     std::vector<double> f, t, c;
     for (std::size_t i = 0; i < p; ++i) {
@@ -186,7 +194,7 @@ void WriteUncertaintyStore(const std::string& path, const std::string& budget_na
   h.Texts("uncertainty/metrics/units", metric_units);
   h.Numbers("uncertainty/metrics/limit", limit);
   h.Numbers("uncertainty/metrics/nominal", nominal_rms);
-  h.Rows("uncertainty/metrics/rms", rms);
+  h.Matrix("uncertainty/metrics/rms", r.samples, metrics, rms);
   h.Numbers("uncertainty/metrics/mean", mean);
   h.Numbers("uncertainty/metrics/sd", sd);
   h.Numbers("uncertainty/metrics/fosm_sd", fosm);

@@ -8,12 +8,15 @@
 
 #include <string>
 
+#include "deb/core/output_dir.h"
 #include "deb/uncertainty/uncertainty_study.h"
 
 namespace deb {
 
 std::string UncertaintySummaryJson(const std::string& budget_name, const UncertaintyResult& result);
 std::string UncertaintySamplesCsv(const UncertaintyResult& result);
+// The same, line by line into `put` (samples.csv written without holding it whole).
+void UncertaintySamplesCsv(const UncertaintyResult& result, const TextSink& put);
 
 // result.h5 of a study (docs/uncertainty.md lists its objects): under
 // /uncertainty the settings, the parameters (names, units, nominal values,

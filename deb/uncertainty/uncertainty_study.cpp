@@ -63,6 +63,26 @@ std::string ValuesText(const UncertaintySpec& spec, const std::vector<double>& v
   return s;
 }
 
+// Every evaluation's metric values in one block, evaluation after
+// evaluation: 8 bytes a value, not a vector (and its heap block) per
+// evaluation, whose freed blocks a long study's later allocations could not
+// reuse.
+class MetricTable {
+ public:
+  MetricTable(std::size_t rows, std::size_t columns) : columns_(columns), values_(rows * columns) {}
+  std::size_t rows() const { return columns_ ? values_.size() / columns_ : 0; }
+  std::size_t columns() const { return columns_; }
+  double operator()(std::size_t e, std::size_t k) const { return values_[e * columns_ + k]; }
+  void SetRow(std::size_t e, const std::vector<double>& row) {
+    DEB_DEMAND(row.size() == columns_ && (e + 1) * columns_ <= values_.size());
+    std::copy(row.begin(), row.end(), values_.begin() + static_cast<std::ptrdiff_t>(e * columns_));
+  }
+
+ private:
+  std::size_t columns_;
+  std::vector<double> values_;
+};
+
 // The metric values of the budget at `values`; errors name `what`.
 std::vector<double> EvaluateAt(const VariantLoader& variant, const UncertaintySpec& spec,
                                const std::vector<double>& values, const std::string& what) {
@@ -194,10 +214,19 @@ class StudyPlan {
     return "corner " + std::to_string(e - first_corner_ + 1) + " of the tolerance box";
   }
 
-  // The statistics of the evaluations' metric values (outputs[e], every e),
+  // The statistics of the evaluations' metric values (outputs(e, k), every e),
   // the metrics named by the nominal budget's result.
   UncertaintyResult Summarise(const UncertaintyOptions& options, const VariantLoader& variant,
-                              const BudgetResult& nominal_result, const std::vector<std::vector<double>>& outputs) const;
+                              const BudgetResult& nominal_result, const MetricTable& outputs) const;
+
+  // Evaluation e's values into `table`. @throws InputError naming the
+  // evaluation where they are not the table's columns (a part's file edited).
+  void Store(std::size_t e, const std::vector<double>& values, MetricTable* table) const {
+    if (values.size() != table->columns())
+      throw InputError(What(e) + " has " + std::to_string(values.size()) + " results where the nominal has " +
+                       std::to_string(table->columns()));
+    table->SetRow(e, values);
+  }
 
  private:
   const UncertaintySpec& spec_;
@@ -213,22 +242,19 @@ class StudyPlan {
 
 UncertaintyResult StudyPlan::Summarise(const UncertaintyOptions& options, const VariantLoader& variant,
                                        const BudgetResult& nominal_result,
-                                       const std::vector<std::vector<double>>& outputs) const {
+                                       const MetricTable& outputs) const {
   const UncertaintySpec& spec = spec_;
   const std::size_t p = p_, n = n_, per_base = per_base_, first_sample = first_sample_, first_corner = first_corner_;
   const std::size_t total = total_;
   const bool sobol = sobol_;
-  DEB_DEMAND(outputs.size() == total);
+  DEB_DEMAND(outputs.rows() == total);
   UncertaintyResult result;
   result.spec = spec;
   result.options = options;
   result.evaluations = total;
   result.metrics = MetricsOf(nominal_result);
   const std::size_t m = result.metrics.size();
-  for (std::size_t e = 0; e < total; ++e)
-    if (outputs[e].size() != m)
-      throw InputError(What(e) + " has " + std::to_string(outputs[e].size()) + " results where the nominal has " +
-                       std::to_string(m));
+  DEB_DEMAND(outputs.columns() == m);
 
   // The samples of the statistics: every one (mc, lhs); A and B (sobol).
   std::vector<std::size_t> stat;
@@ -238,6 +264,7 @@ UncertaintyResult StudyPlan::Summarise(const UncertaintyOptions& options, const 
   }
   result.samples = stat.size();
   result.parameter_values.assign(p, {});
+  for (std::vector<double>& v : result.parameter_values) v.reserve(stat.size());
   for (std::size_t e : stat) {
     const std::vector<double> input = Input(e);
     for (std::size_t i = 0; i < p; ++i) result.parameter_values[i].push_back(input[i]);
@@ -248,8 +275,9 @@ UncertaintyResult StudyPlan::Summarise(const UncertaintyOptions& options, const 
   std::vector<bool> all_met(stat.size(), true);
   for (std::size_t k = 0; k < m; ++k) {
     StudyMetric& metric = result.metrics[k];
-    metric.nominal = outputs[0][k];
-    for (std::size_t e : stat) metric.values.push_back(outputs[e][k]);
+    metric.nominal = outputs(0, k);
+    metric.values.reserve(stat.size());  // exactly: a study of 10^5 samples keeps these
+    for (std::size_t e : stat) metric.values.push_back(outputs(e, k));
     metric.moments = MeanAndSd(metric.values);
     metric.p5 = Percentile(metric.values, 0.05);
     metric.p50 = Percentile(metric.values, 0.50);
@@ -266,7 +294,7 @@ UncertaintyResult StudyPlan::Summarise(const UncertaintyOptions& options, const 
     // First order: sigma^2 = g^T C g, C the parameters' covariance.
     double variance = 0.0;
     for (std::size_t i = 0; i < p; ++i)
-      metric.gradient.push_back((outputs[1 + 2 * i][k] - outputs[2 + 2 * i][k]) / (2.0 * step_[i]));
+      metric.gradient.push_back((outputs(1 + 2 * i, k) - outputs(2 + 2 * i, k)) / (2.0 * step_[i]));
     for (std::size_t i = 0; i < p; ++i)
       for (std::size_t j = 0; j < p; ++j) {
         const double rho = spec.correlation.size() ? spec.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))
@@ -279,12 +307,12 @@ UncertaintyResult StudyPlan::Summarise(const UncertaintyOptions& options, const 
     if (sobol) {
       std::vector<double> fa, fb;
       for (std::size_t j = 0; j < n; ++j) {
-        fa.push_back(outputs[first_sample + j * per_base][k]);
-        fb.push_back(outputs[first_sample + j * per_base + 1][k]);
+        fa.push_back(outputs(first_sample + j * per_base, k));
+        fb.push_back(outputs(first_sample + j * per_base + 1, k));
       }
       for (std::size_t i = 0; i < p; ++i) {
         std::vector<double> fab;
-        for (std::size_t j = 0; j < n; ++j) fab.push_back(outputs[first_sample + j * per_base + 2 + i][k]);
+        for (std::size_t j = 0; j < n; ++j) fab.push_back(outputs(first_sample + j * per_base + 2 + i, k));
         metric.sobol.push_back(SobolIndicesOf(fa, fb, fab));
       }
     }
@@ -299,9 +327,9 @@ UncertaintyResult StudyPlan::Summarise(const UncertaintyOptions& options, const 
     for (std::size_t k = 0; k < m; ++k) {
       std::size_t worst = first_corner;
       for (std::size_t e = first_corner; e < total; ++e)
-        if (outputs[e][k] > outputs[worst][k]) worst = e;
+        if (outputs(e, k) > outputs(worst, k)) worst = e;
       result.metrics[k].worst_corner = Input(worst);
-      result.metrics[k].worst_corner_value = outputs[worst][k];
+      result.metrics[k].worst_corner_value = outputs(worst, k);
     }
   } else {
     result.corner_method = "the vertex of the tolerance box each parameter's rank correlation points to (" +
@@ -325,19 +353,20 @@ UncertaintyResult StudyPlan::Summarise(const UncertaintyOptions& options, const 
   return result;
 }
 
-// Evaluates e in [begin, end) into out[e - begin], in parallel, but for
-// those already there (the nominal, which RunUncertainty evaluates first).
+// Evaluates e in [begin, end), but for those below `from` (the nominal,
+// which RunUncertainty evaluates first), in parallel, each handed to
+// store(e, values).
 void EvaluateRange(const StudyPlan& plan, const UncertaintySpec& spec, const VariantLoader& variant,
-                   std::size_t begin, std::size_t end, int threads, std::vector<std::vector<double>>* out,
-                   const std::function<void(std::size_t, std::size_t)>& progress, std::size_t done_before) {
-  std::atomic<std::size_t> done{done_before};
+                   std::size_t begin, std::size_t end, std::size_t from, int threads,
+                   const std::function<void(std::size_t, const std::vector<double>&)>& store,
+                   const std::function<void(std::size_t, std::size_t)>& progress) {
+  std::atomic<std::size_t> done{from - begin};
   const std::size_t all = end - begin;  // the progress' total, the ones done before included
   ParallelForEach(
-      end - begin,
+      end - from,
       [&](std::size_t j) {
-        if (!(*out)[j].empty()) return;
-        const std::size_t e = begin + j;
-        (*out)[j] = EvaluateAt(variant, spec, plan.Input(e), plan.What(e));
+        const std::size_t e = from + j;
+        store(e, EvaluateAt(variant, spec, plan.Input(e), plan.What(e)));
         const std::size_t d = ++done;
         if (progress) progress(d, all);
       },
@@ -356,7 +385,9 @@ std::vector<std::vector<double>> EvaluateUncertaintyRange(const UncertaintySpec&
   const StudyPlan plan(spec, options);
   DEB_DEMAND(begin < end && end <= plan.total());
   std::vector<std::vector<double>> values(end - begin);
-  EvaluateRange(plan, spec, variant, begin, end, options.threads, &values, {}, 0);
+  EvaluateRange(
+      plan, spec, variant, begin, end, begin, options.threads,
+      [&](std::size_t e, const std::vector<double>& v) { values[e - begin] = v; }, {});
   return values;
 }
 
@@ -368,7 +399,9 @@ UncertaintyPart EvaluateUncertaintyPart(const UncertaintySpec& spec, const Uncer
   part.total = plan.total();
   std::tie(part.begin, part.end) = shard.Range(part.total);
   part.values.assign(part.end - part.begin, {});
-  EvaluateRange(plan, spec, variant, part.begin, part.end, options.threads, &part.values, progress, 0);
+  EvaluateRange(
+      plan, spec, variant, part.begin, part.end, part.begin, options.threads,
+      [&](std::size_t e, const std::vector<double>& v) { part.values[e - part.begin] = v; }, progress);
   return part;
 }
 
@@ -377,7 +410,9 @@ UncertaintyResult SummariseUncertainty(const UncertaintySpec& spec, const Uncert
   const StudyPlan plan(spec, options);
   DEB_DEMAND(values.size() == plan.total());
   const BudgetResult nominal = Evaluate(variant(plan.Input(0)), EngineOptions::VariancesOnly());
-  return plan.Summarise(options, variant, nominal, values);
+  MetricTable table(values.size(), MetricValues(nominal).size());
+  for (std::size_t e = 0; e < values.size(); ++e) plan.Store(e, values[e], &table);
+  return plan.Summarise(options, variant, nominal, table);
 }
 
 UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyOptions& options,
@@ -385,11 +420,14 @@ UncertaintyResult RunUncertainty(const UncertaintySpec& spec, const UncertaintyO
                                  const std::function<void(std::size_t, std::size_t)>& progress) {
   const StudyPlan plan(spec, options);
   const std::size_t total = plan.total();
-  std::vector<std::vector<double>> outputs(total);
   // The nominal budget first: it fixes the metrics every sample gives.
   const BudgetResult nominal = Evaluate(variant(plan.Input(0)), EngineOptions::VariancesOnly());
-  outputs[0] = MetricValues(nominal);
-  EvaluateRange(plan, spec, variant, 0, total, options.threads, &outputs, progress, 1);
+  const std::vector<double> nominal_values = MetricValues(nominal);
+  MetricTable outputs(total, nominal_values.size());
+  outputs.SetRow(0, nominal_values);
+  EvaluateRange(
+      plan, spec, variant, 0, total, 1, options.threads,
+      [&](std::size_t e, const std::vector<double>& v) { plan.Store(e, v, &outputs); }, progress);
   return plan.Summarise(options, variant, nominal, outputs);
 }
 

@@ -18,12 +18,12 @@ void WriteUncertaintyDirectory(const std::string& budget_name, const Uncertainty
                                const std::vector<Plot>& plots, const std::string& out_dir,
                                const ReplaceOptions& replace, int threads) {
   const std::string json = UncertaintySummaryJson(budget_name, result);
-  const std::string csv = UncertaintySamplesCsv(result);
   ReplaceDirectory(
       out_dir,
       [&](const std::string& tmp) {
         WriteTextFile((fs::path(tmp) / "summary.json").string(), json);
-        WriteTextFile((fs::path(tmp) / "samples.csv").string(), csv);
+        WriteTextFileFrom((fs::path(tmp) / "samples.csv").string(),
+                          [&](const TextSink& put) { UncertaintySamplesCsv(result, put); });
         WriteUncertaintyStore((fs::path(tmp) / "result.h5").string(), budget_name, result);
         const StudyDocument doc = UncertaintyDocument(budget_name, result, plots);
         WriteTextFile((fs::path(tmp) / "uncertainty.md").string(), StudyMarkdown(doc));
