@@ -10,32 +10,40 @@
 
 namespace deb {
 
+namespace {
+
+// One entry: the nominal variance v0 and its derivative d.
+Sensitivity Entry(const std::string& parameter, const OutputResult& o, const std::string& contributor, double v0,
+                  double d, bool exact) {
+  Sensitivity s;
+  s.parameter = parameter;
+  s.output = o.name;
+  s.unit = o.unit;
+  s.contributor = contributor;
+  s.variance = v0;
+  s.d_variance_d_log_p = d;
+  s.elasticity = v0 > 0.0 ? d / v0 : 0.0;
+  s.exact = exact;
+  return s;
+}
+
+}  // namespace
+
 std::vector<Sensitivity> Sensitivities(const std::string& parameter, double relative_step, const BudgetResult& nominal,
                                        const BudgetResult& up, const BudgetResult& down) {
   DEB_DEMAND(relative_step > 0.0 && relative_step < 1.0);
   DEB_DEMAND(up.outputs.size() == nominal.outputs.size() && down.outputs.size() == nominal.outputs.size());
   const double dlog = std::log1p(relative_step) - std::log1p(-relative_step);
   std::vector<Sensitivity> out;
-  auto add = [&](const OutputResult& o, const std::string& contributor, double v0, double vu, double vd) {
-    Sensitivity s;
-    s.parameter = parameter;
-    s.output = o.name;
-    s.unit = o.unit;
-    s.contributor = contributor;
-    s.variance = v0;
-    s.d_variance_d_log_p = (vu - vd) / dlog;
-    s.elasticity = v0 > 0.0 ? s.d_variance_d_log_p / v0 : 0.0;
-    out.push_back(s);
-  };
   for (std::size_t o = 0; o < nominal.outputs.size(); ++o) {
     const OutputResult& n = nominal.outputs[o];
     const OutputResult& u = up.outputs[o];
     const OutputResult& d = down.outputs[o];
     DEB_DEMAND(u.contributors.size() == n.contributors.size() && d.contributors.size() == n.contributors.size());
-    add(n, "total", n.variance, u.variance, d.variance);
+    out.push_back(Entry(parameter, n, "total", n.variance, (u.variance - d.variance) / dlog, false));
     for (std::size_t c = 0; c < n.contributors.size(); ++c)
-      add(n, n.contributors[c].name, n.contributors[c].variance, u.contributors[c].variance,
-          d.contributors[c].variance);
+      out.push_back(Entry(parameter, n, n.contributors[c].name, n.contributors[c].variance,
+                          (u.contributors[c].variance - d.contributors[c].variance) / dlog, false));
   }
   return out;
 }
@@ -47,26 +55,15 @@ std::vector<Sensitivity> ExactSensitivities(const std::string& parameter, const 
                                             const RealisationGradient& g) {
   DEB_DEMAND(g.exact && g.d_variance.size() == nominal.outputs.size());
   std::vector<Sensitivity> out;
-  auto add = [&](const OutputResult& o, const std::string& contributor, double v0, double d) {
-    Sensitivity s;
-    s.parameter = parameter;
-    s.output = o.name;
-    s.unit = o.unit;
-    s.contributor = contributor;
-    s.variance = v0;
-    s.d_variance_d_log_p = d;
-    s.elasticity = v0 > 0.0 ? d / v0 : 0.0;
-    s.exact = true;
-    out.push_back(s);
-  };
   for (std::size_t o = 0; o < nominal.outputs.size(); ++o) {
     const OutputResult& n = nominal.outputs[o];
     const std::vector<double>& d = g.d_variance[o];
     DEB_DEMAND(d.size() == n.contributors.size());
     double total = 0.0;  // the output's variance is the sum of its contributors'
     for (double x : d) total += x;
-    add(n, "total", n.variance, total);
-    for (std::size_t c = 0; c < n.contributors.size(); ++c) add(n, n.contributors[c].name, n.contributors[c].variance, d[c]);
+    out.push_back(Entry(parameter, n, "total", n.variance, total, true));
+    for (std::size_t c = 0; c < n.contributors.size(); ++c)
+      out.push_back(Entry(parameter, n, n.contributors[c].name, n.contributors[c].variance, d[c], true));
   }
   return out;
 }

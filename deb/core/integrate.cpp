@@ -61,62 +61,65 @@ double IntegralBetween(const std::vector<double>& f_hz, const std::vector<double
   return total;
 }
 
+namespace {
+
+// Walks the grid in order: panel(i) for a panel of kPanelNodes points
+// starting at point i, interval(i) for a plain interval [f_i, f_i+1].
+template <class Panel, class Interval>
+void WalkGrid(const FrequencyGrid& grid, Panel panel, Interval interval) {
+  const std::size_t n = grid.f_hz().size();
+  constexpr int q = FrequencyGrid::kPanelNodes;
+  const std::vector<std::size_t>& panels = grid.panel_starts();
+  std::size_t next_panel = 0;
+  for (std::size_t i = 0; i + 1 < n;) {
+    if (next_panel < panels.size() && panels[next_panel] == i) {
+      panel(i);
+      i += q - 1;
+      ++next_panel;
+    } else {
+      interval(i);
+      ++i;
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<double> CumulativeIntegral(const FrequencyGrid& grid, const std::vector<double>& s) {
   const std::vector<double>& f = grid.f_hz();
   DEB_DEMAND(f.size() == s.size());
   constexpr int q = FrequencyGrid::kPanelNodes;
   const std::vector<std::vector<double>>& w = FrequencyGrid::LobattoCumulativeWeights();
   std::vector<double> c(f.size(), 0.0);
-  const std::vector<std::size_t>& panels = grid.panel_starts();
-  std::size_t next_panel = 0;
-  for (std::size_t i = 0; i + 1 < f.size();) {
-    if (next_panel < panels.size() && panels[next_panel] == i) {
-      const double half = 0.5 * (f[i + q - 1] - f[i]);
-      double end = 0.0;
-      for (int k = 0; k < q; ++k) end += w[q - 1][k] * s[i + k];
-      end = c[i] + half * end;  // Lobatto weights are positive: end >= c[i]
-      double running = c[i];
-      for (int j = 1; j + 1 < q; ++j) {
-        double v = 0.0;
-        for (int k = 0; k < q; ++k) v += w[j][k] * s[i + k];
-        running = std::max(running, std::min(c[i] + half * v, end));
-        c[i + j] = running;
-      }
-      c[i + q - 1] = end;
-      i += q - 1;
-      ++next_panel;
-    } else {
-      c[i + 1] = c[i] + PowerLawIntervalIntegral(f[i], f[i + 1], s[i], s[i + 1]);
-      ++i;
-    }
-  }
+  WalkGrid(
+      grid,
+      [&](std::size_t i) {
+        const double half = 0.5 * (f[i + q - 1] - f[i]);
+        double end = 0.0;
+        for (int k = 0; k < q; ++k) end += w[q - 1][k] * s[i + k];
+        end = c[i] + half * end;  // Lobatto weights are positive: end >= c[i]
+        double running = c[i];
+        for (int j = 1; j + 1 < q; ++j) {
+          double v = 0.0;
+          for (int k = 0; k < q; ++k) v += w[j][k] * s[i + k];
+          running = std::max(running, std::min(c[i] + half * v, end));
+          c[i + j] = running;
+        }
+        c[i + q - 1] = end;
+      },
+      [&](std::size_t i) { c[i + 1] = c[i] + PowerLawIntervalIntegral(f[i], f[i + 1], s[i], s[i + 1]); });
   return c;
 }
 
-std::vector<double> LinearQuadratureWeights(const FrequencyGrid& grid) {
-  const std::vector<double>& f = grid.f_hz();
+namespace {
+
+// Adds the Lobatto weights of the panel starting at point i to `weight`.
+void AddPanelWeights(const std::vector<double>& f, std::size_t i, std::vector<double>* weight) {
   constexpr int q = FrequencyGrid::kPanelNodes;
   const std::vector<double>& lobatto = FrequencyGrid::LobattoCumulativeWeights()[q - 1];
-  std::vector<double> weight(f.size(), 0.0);
-  const std::vector<std::size_t>& panels = grid.panel_starts();
-  std::size_t next_panel = 0;
-  for (std::size_t i = 0; i + 1 < f.size();) {
-    if (next_panel < panels.size() && panels[next_panel] == i) {
-      const double half = 0.5 * (f[i + q - 1] - f[i]);
-      for (int k = 0; k < q; ++k) weight[i + k] += half * lobatto[k];
-      i += q - 1;
-      ++next_panel;
-    } else {
-      const double half = 0.5 * (f[i + 1] - f[i]);
-      weight[i] += half;
-      weight[i + 1] += half;
-      ++i;
-    }
-  }
-  return weight;
+  const double half = 0.5 * (f[i + q - 1] - f[i]);
+  for (int k = 0; k < q; ++k) (*weight)[i + k] += half * lobatto[k];
 }
-
-namespace {
 
 // (exp(e) - 1 - e) / e^2, by its series where the quotient would cancel.
 double ExpRemainderQuotient(double e) {
@@ -126,38 +129,41 @@ double ExpRemainderQuotient(double e) {
 
 }  // namespace
 
+std::vector<double> LinearQuadratureWeights(const FrequencyGrid& grid) {
+  const std::vector<double>& f = grid.f_hz();
+  std::vector<double> weight(f.size(), 0.0);
+  WalkGrid(
+      grid, [&](std::size_t i) { AddPanelWeights(f, i, &weight); },
+      [&](std::size_t i) {
+        const double half = 0.5 * (f[i + 1] - f[i]);
+        weight[i] += half;
+        weight[i + 1] += half;
+      });
+  return weight;
+}
+
 std::vector<double> IntegralGradientWeights(const FrequencyGrid& grid, const std::vector<double>& s) {
   const std::vector<double>& f = grid.f_hz();
   DEB_DEMAND(f.size() == s.size());
-  constexpr int q = FrequencyGrid::kPanelNodes;
-  const std::vector<double>& lobatto = FrequencyGrid::LobattoCumulativeWeights()[q - 1];
   std::vector<double> weight(f.size(), 0.0);
-  const std::vector<std::size_t>& panels = grid.panel_starts();
-  std::size_t next_panel = 0;
-  for (std::size_t i = 0; i + 1 < f.size();) {
-    if (next_panel < panels.size() && panels[next_panel] == i) {
-      const double half = 0.5 * (f[i + q - 1] - f[i]);
-      for (int k = 0; k < q; ++k) weight[i + k] += half * lobatto[k];
-      i += q - 1;
-      ++next_panel;
-      continue;
-    }
-    DEB_DEMAND(s[i] >= 0.0 && s[i + 1] >= 0.0);
-    if (s[i] == 0.0 || s[i + 1] == 0.0) {
-      const double half = 0.5 * (f[i + 1] - f[i]);
-      weight[i] += half;
-      weight[i + 1] += half;
-    } else {
-      // I = L (y - x) / ln(y / x) with x = s1 f1, y = s2 f2, L = ln(f2 / f1):
-      // dI/ds1 = L f1 g(e), dI/ds2 = L f2 g(-e), e = ln(y / x),
-      // g(e) = (exp(e) - 1 - e) / e^2.
-      const double log_ratio_f = std::log(f[i + 1] / f[i]);
-      const double e = std::log(s[i + 1] / s[i]) + log_ratio_f;
-      weight[i] += log_ratio_f * f[i] * ExpRemainderQuotient(e);
-      weight[i + 1] += log_ratio_f * f[i + 1] * ExpRemainderQuotient(-e);
-    }
-    ++i;
-  }
+  WalkGrid(
+      grid, [&](std::size_t i) { AddPanelWeights(f, i, &weight); },
+      [&](std::size_t i) {
+        DEB_DEMAND(s[i] >= 0.0 && s[i + 1] >= 0.0);
+        if (s[i] == 0.0 || s[i + 1] == 0.0) {  // the trapezoid, as the integral
+          const double half = 0.5 * (f[i + 1] - f[i]);
+          weight[i] += half;
+          weight[i + 1] += half;
+          return;
+        }
+        // I = L (y - x) / ln(y / x) with x = s1 f1, y = s2 f2, L = ln(f2 / f1):
+        // dI/ds1 = L f1 g(e), dI/ds2 = L f2 g(-e), e = ln(y / x),
+        // g(e) = (exp(e) - 1 - e) / e^2.
+        const double log_ratio_f = std::log(f[i + 1] / f[i]);
+        const double e = std::log(s[i + 1] / s[i]) + log_ratio_f;
+        weight[i] += log_ratio_f * f[i] * ExpRemainderQuotient(e);
+        weight[i + 1] += log_ratio_f * f[i + 1] * ExpRemainderQuotient(-e);
+      });
   return weight;
 }
 

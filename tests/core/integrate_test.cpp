@@ -3,10 +3,27 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "deb/core/frequency_grid.h"
 
 namespace deb {
+
+namespace {
+
+// The Lobatto panels [1, 2] and [2, 5] (kPanelNodes points each, sharing
+// 2 Hz), then the points `after` (> 5 Hz): panel starts {0, kPanelNodes - 1}.
+std::vector<double> PanelsThen(const std::vector<double>& after) {
+  const std::vector<double>& x = FrequencyGrid::LobattoNodes();
+  std::vector<double> f;
+  for (const auto& [a, b] : {std::pair<double, double>{1.0, 2.0}, {2.0, 5.0}})
+    for (std::size_t j = f.empty() ? 0 : 1; j < x.size(); ++j) f.push_back(a + 0.5 * (b - a) * (x[j] + 1.0));
+  f.insert(f.end(), after.begin(), after.end());
+  return f;
+}
+
+}  // namespace
 
 TEST_CASE("a power law is integrated exactly whatever the grid spacing") {
   // s = 3 f^-2 on [1, 100] has integral 3 (1 - 1/100) = 2.97.
@@ -53,15 +70,7 @@ TEST_CASE("a flat spectrum's band integral is level times bandwidth") {
 
 TEST_CASE("the linear quadrature weights: the Lobatto rule on panels, the trapezoid between them") {
   // Panels on [1, 2] and [2, 5], then plain intervals 5-6-8.
-  const std::vector<double>& x = FrequencyGrid::LobattoNodes();
-  std::vector<double> f;
-  const auto panel = [&](double a, double b) {
-    for (std::size_t j = f.empty() ? 0 : 1; j < x.size(); ++j) f.push_back(a + 0.5 * (b - a) * (x[j] + 1.0));
-  };
-  panel(1.0, 2.0);
-  panel(2.0, 5.0);
-  f.push_back(6.0);
-  f.push_back(8.0);
+  const std::vector<double> f = PanelsThen({6.0, 8.0});
   const FrequencyGrid grid(f, {0, 5});
   const std::vector<double> q = LinearQuadratureWeights(grid);
   REQUIRE(q.size() == f.size());
@@ -91,16 +100,9 @@ TEST_CASE("the linear quadrature weights: the Lobatto rule on panels, the trapez
 namespace deb {
 
 TEST_CASE("the integral's derivative weights: Lobatto on panels, the power law's partial derivatives elsewhere") {
-  // Panels on [1, 2] and [2, 5], then power-law intervals 5-6-8-8.0001-9 and
-  // an interval with a zero end.
-  const std::vector<double>& x = FrequencyGrid::LobattoNodes();
-  std::vector<double> f;
-  const auto panel = [&](double a, double b) {
-    for (std::size_t j = f.empty() ? 0 : 1; j < x.size(); ++j) f.push_back(a + 0.5 * (b - a) * (x[j] + 1.0));
-  };
-  panel(1.0, 2.0);
-  panel(2.0, 5.0);
-  for (double v : {6.0, 8.0, 9.0, 10.0}) f.push_back(v);
+  // Panels on [1, 2] and [2, 5], then power-law intervals 5-6-8-9 and an
+  // interval with a zero end, 9-10.
+  const std::vector<double> f = PanelsThen({6.0, 8.0, 9.0, 10.0});
   const FrequencyGrid grid(f, {0, 5});
   std::vector<double> s(f.size());
   for (std::size_t i = 0; i < s.size(); ++i) s[i] = 3.0 / (1.0 + f[i]);

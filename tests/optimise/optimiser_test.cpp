@@ -186,13 +186,13 @@ TEST_CASE("starts run elsewhere and sent back as bytes: the same result, bit for
   // time), its outcome sent as bytes and read back, the outcomes in start order.
   const Dir dir;
   const std::string file = dir.Write("b.yaml", WithLimit(1.5));
+  const OptimiseResult threads = Optimise(file, OptimiseMethod::kSlsqp, 3);
   const OptimiseBudget b = LoadOptimiseFile(file, {"kv"});
   OptimiseObjective objective;
   objective.terms = {{"z", 1.0}};
   OptimiseOptions o;
   o.method = OptimiseMethod::kSlsqp;
   o.starts = 3;
-  const OptimiseResult threads = RunOptimise(b.variables, objective, o, b.loader);
   std::vector<std::size_t> order;
   const StartRunner apart = [&](std::size_t count, const std::function<StartOutcome(std::size_t)>& run) {
     std::vector<std::string> bytes(count);
