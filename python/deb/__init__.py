@@ -16,7 +16,8 @@ from ._builders import (budget, flat_source, frf_path, measured_source, modal, s
 from ._deb import Band, Budget, Comparison, Contributor, Output, Requirement, Result, SweepResult
 from ._errors import InputError, WriteError
 from ._load import load
-from ._studies import compare, evaluate, frequency_response, optimise, sweep, to_dict, uncertainty, write_report
+from ._studies import (compare, evaluate, frequency_response, optimise, sensitivity, sweep, to_dict, uncertainty,
+                       write_report)
 
 __version__ = _deb.__version__
 
@@ -35,6 +36,6 @@ Result.guidance = property(lambda self: {o["name"]: o.get("guidance") for o in t
 __all__ = [
     "Band", "Budget", "Comparison", "Contributor", "InputError", "Output", "Requirement", "Result", "SweepResult",
     "WriteError", "budget", "compare", "evaluate", "flat_source", "frequency_response", "frf_path", "load",
-    "measured_source", "modal", "optimise", "state_space", "sweep", "to_dict", "transfer_function", "uncertainty",
-    "write_frf", "write_report", "write_spectrum", "zpk",
+    "measured_source", "modal", "optimise", "sensitivity", "state_space", "sweep", "to_dict", "transfer_function",
+    "uncertainty", "write_frf", "write_report", "write_spectrum", "zpk",
 ]

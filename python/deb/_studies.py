@@ -1,6 +1,6 @@
 """deb.evaluate, deb.frequency_response and the studies over results:
 deb.sweep, deb.compare, deb.write_report; the design studies over a budget
-file: deb.uncertainty, deb.optimise."""
+file: deb.uncertainty, deb.optimise, deb.sensitivity."""
 
 import json
 import os
@@ -121,8 +121,8 @@ def _budget_file(budget):
     """The file of a budget given as a path or a deb.Budget loaded from one."""
     if isinstance(budget, _deb.Budget):
         if budget.file is None:
-            raise argument_error("budget", "uncertainty and optimise read a budget file; this one was loaded "
-                                           "from a text or a dict")
+            raise argument_error("budget", "uncertainty, optimise and sensitivity read a budget file; this one "
+                                           "was loaded from a text or a dict")
         return budget.file
     if isinstance(budget, (str, os.PathLike)) and not (isinstance(budget, str) and is_text(budget)):
         return os.fspath(budget)
@@ -171,3 +171,22 @@ def optimise(budget, vary, *, objective=None, method="auto", starts=1, max_evalu
     out = json.loads(summary)
     out["history"] = history
     return out
+
+
+def sensitivity(budget, parameters, *, step=1e-3, central_differences=False, threads=None, set=None):
+    """The derivatives of `deb sensitivity` (docs/cli.md): d var / d ln p of
+    every output's total and contributors for each parameter (a name from
+    `parameters:` or a key path), on the nominal grid: exact where the
+    parameter acts only through rational paths' realisations, else by
+    central differences of relative step `step` (central_differences=True:
+    for every parameter).
+
+    Returns {"sensitivities": [{parameter, output, unit, contributor,
+    variance, d_variance_d_log_p, elasticity, method}, ...] in the order of
+    sensitivity.csv, "methods": {parameter: {"exact": bool, "note": str}}}."""
+    if isinstance(parameters, str):
+        parameters = [parameters]
+    rows, methods = _deb.sensitivity_file(_budget_file(budget), [str(p) for p in parameters], overrides(set),
+                                          float(step), bool(central_differences), threads)
+    return {"sensitivities": list(rows),
+            "methods": {m["parameter"]: {"exact": m["exact"], "note": m["note"]} for m in methods}}

@@ -1,6 +1,7 @@
 // The design studies over a budget file: deb.uncertainty (the tolerances'
-// distributions sampled, RunUncertainty) and deb.optimise (parameters within
-// their bounds chosen, RunOptimise). Each returns the summary.json text the
+// distributions sampled, RunUncertainty), deb.optimise (parameters within
+// their bounds chosen, RunOptimise) and deb.sensitivity (every variance's
+// derivatives, ComputeSensitivities). Each returns the summary.json text the
 // CLI writes (parsed in python/deb/_studies.py) and the per-sample or
 // per-evaluation tables as numpy arrays; the GIL is released while budgets
 // are evaluated.
@@ -12,8 +13,10 @@
 #include <utility>
 #include <vector>
 
+#include "deb/budget/sensitivity.h"
 #include "deb/core/error.h"
 #include "deb/load/optimise_yaml.h"
+#include "deb/load/sweep_yaml.h"
 #include "deb/load/uncertainty_yaml.h"
 #include "deb/results/optimise_files.h"
 #include "deb/results/uncertainty_files.h"
@@ -97,6 +100,44 @@ void BindDesignStudies(py::module_& m) {
       py::arg("path"), py::arg("vary"), py::arg("overrides"), py::arg("objective"), py::arg("method"),
       py::arg("starts"), py::arg("max_evaluations"), py::arg("tolerance"), py::arg("seed"), py::arg("robust"),
       py::arg("robust_samples"), py::arg("threads"));
+
+  m.def(
+      "sensitivity_file",
+      [](const std::string& path, const std::vector<std::string>& parameters, const Overrides& overrides, double step,
+         bool central_differences, std::optional<int> threads) {
+        if (parameters.empty()) throw InputError("parameters", "name at least one parameter (or key path)");
+        if (!(step >= 1e-8 && step <= 0.5))
+          throw InputError("step", "must be a relative step in [1e-8, 0.5], got " + std::to_string(step));
+        const std::vector<BudgetOverride> set = ToOverrides(overrides);
+        const Budget budget = LoadBudgetFile(path, set);
+        EngineOptions options;
+        options.threads = ThreadCount(threads);
+        options.response_traces = false;
+        SensitivityStudy study;
+        {
+          py::gil_scoped_release release;
+          study = ComputeSensitivities(
+              budget, parameters, step,
+              [&](const std::string& key, double factor) {
+                return LoadBudgetWithScaledParameter(path, key, factor, set);
+              },
+              options,
+              central_differences ? SensitivityMode::kCentralDifferences : SensitivityMode::kExactWherePossible);
+        }
+        py::list rows, methods;
+        for (const Sensitivity& x : study.sensitivities)
+          rows.append(py::dict(py::arg("parameter") = x.parameter, py::arg("output") = x.output,
+                               py::arg("unit") = x.unit, py::arg("contributor") = x.contributor,
+                               py::arg("variance") = x.variance, py::arg("d_variance_d_log_p") = x.d_variance_d_log_p,
+                               py::arg("elasticity") = x.elasticity,
+                               py::arg("method") = x.exact ? "exact" : "central_difference"));
+        for (const SensitivityMethod& x : study.methods)
+          methods.append(py::dict(py::arg("parameter") = x.parameter, py::arg("exact") = x.exact,
+                                  py::arg("note") = x.note));
+        return py::make_tuple(rows, methods);
+      },
+      py::arg("path"), py::arg("parameters"), py::arg("overrides"), py::arg("step"), py::arg("central_differences"),
+      py::arg("threads"));
 }
 
 }  // namespace deb::python

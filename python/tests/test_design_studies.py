@@ -89,3 +89,36 @@ def test_design_studies_raise_input_errors(tmp_path):
         deb.uncertainty(g, samples=10)
     assert e.value.key_path == "parameters.a.distribution.uniform"
     assert e.value.line == 4
+
+
+def test_sensitivity_equals_deb_sensitivity_and_the_closed_form(tmp_path):
+    # var = (a kv^2 + b / kv^2) x 99 um^2: d var / d ln kv = 2 (a kv^2 - b / kv^2) x 99, exactly through the
+    # gains (the paths' D); the level a is a source's, by central differences: d var / d ln a = var_a.
+    f = tmp_path / "b.yaml"
+    f.write_text(KV_BUDGET)
+    s = deb.sensitivity(f, ["kv", "a"])
+    assert s["methods"]["kv"]["exact"] and s["methods"]["kv"]["note"].startswith("exact: ")
+    assert not s["methods"]["a"]["exact"] and "'ca'" in s["methods"]["a"]["note"]
+    rows = {(r["parameter"], r["contributor"]): r for r in s["sensitivities"]}
+    kv, a, b = 5.0, 1e-6, 16e-6
+    assert rows[("kv", "total")]["method"] == "exact"
+    assert rows[("kv", "total")]["d_variance_d_log_p"] == pytest.approx(2 * (a * kv**2 - b / kv**2) * 99, rel=1e-9)
+    assert rows[("kv", "ca")]["elasticity"] == pytest.approx(2.0, rel=1e-9)
+    assert rows[("kv", "cb")]["elasticity"] == pytest.approx(-2.0, rel=1e-9)
+    assert rows[("a", "ca")]["elasticity"] == pytest.approx(1.0, rel=1e-6)  # the ln-step difference: 1 - h^2/3
+    assert rows[("a", "cb")]["d_variance_d_log_p"] == 0.0
+    # The CLI's sensitivity.csv, row for row.
+    subprocess.run([deb_binary(), "sensitivity", str(f), "-p", "kv", "-p", "a", "-q", "--no-plots",
+                    "--out", str(tmp_path / "s")], check=True)
+    lines = (tmp_path / "s" / "sensitivity.csv").read_text().splitlines()
+    assert lines[0] == "parameter,output,unit,contributor,variance,d_variance_d_log_p,elasticity,method"
+    assert len(lines) - 1 == len(s["sensitivities"])
+    for line, r in zip(lines[1:], s["sensitivities"]):
+        fields = line.split(",")
+        assert fields[0] == r["parameter"] and fields[3] == r["contributor"] and fields[7] == r["method"]
+        assert float(fields[5]) == pytest.approx(r["d_variance_d_log_p"], rel=1e-9, abs=1e-300)
+    everything = deb.sensitivity(f, "kv", central_differences=True)
+    assert not everything["methods"]["kv"]["exact"]
+    with pytest.raises(deb.InputError) as e:
+        deb.sensitivity(f, ["kv"], step=0.9)
+    assert "step" in str(e.value)
