@@ -49,6 +49,13 @@ void HeaderToJson(const StudyPartHeader& h, Json* j) {
   (*j)["shard"] = {h.shard.index, h.shard.count};
 }
 
+// A whole number >= 0 as the JSON writes one (not a float, which converted
+// to an integer out of range is undefined, nor a negative number).
+std::uint64_t Count(const Json& x, const std::string& what, const std::string& path) {
+  if (!x.is_number_unsigned()) throw InputError(path + ": " + what + " must be a whole number >= 0, not " + x.dump());
+  return x.get<std::uint64_t>();
+}
+
 // The header and the block [begin, end) of total; checks the shard and the block.
 StudyPartHeader HeaderFromJson(const Json& j, const std::string& path, std::size_t* total, std::size_t* begin,
                                std::size_t* end) {
@@ -58,14 +65,14 @@ StudyPartHeader HeaderFromJson(const Json& j, const std::string& path, std::size
   h.budget = j.at("budget").get<std::string>();
   h.overrides = j.at("overrides").get<std::vector<std::string>>();
   h.method = j.at("method").get<std::string>();
-  h.seed = j.at("seed").get<std::uint64_t>();
-  h.samples = j.at("samples").get<std::size_t>();
-  const auto shard = j.at("shard").get<std::vector<std::size_t>>();
-  if (shard.size() != 2) throw fail("shard must be [K, N]");
-  h.shard = {shard[0], shard[1]};
-  *total = j.at("evaluations").get<std::size_t>();
-  *begin = j.at("begin").get<std::size_t>();
-  *end = j.at("end").get<std::size_t>();
+  h.seed = Count(j.at("seed"), "seed", path);
+  h.samples = Count(j.at("samples"), "samples", path);
+  const Json& shard = j.at("shard");
+  if (!shard.is_array() || shard.size() != 2) throw fail("shard must be [K, N]");
+  h.shard = {Count(shard[0], "shard", path), Count(shard[1], "shard", path)};
+  *total = Count(j.at("evaluations"), "evaluations", path);
+  *begin = Count(j.at("begin"), "begin", path);
+  *end = Count(j.at("end"), "end", path);
   const StudyShard& s = h.shard;
   if (!s.Valid())
     throw fail("shard " + std::to_string(s.index) + "/" + std::to_string(s.count) + " is not K/N with 1 <= K <= N <= " +
@@ -223,7 +230,8 @@ std::string UncertaintyPartJson(const StudyPartHeader& h, const UncertaintyPart&
 std::variant<UncertaintyPartFile, SweepPartFile> ReadStudyPart(const std::string& dir) {
   const std::string path = PartPath(dir);
   const Json j = ReadPartJson(path);
-  const std::string kind = j.value("kind", "");
+  const auto at = j.find("kind");
+  const std::string kind = at != j.end() && at->is_string() ? at->get<std::string>() : "";
   if (kind == kKind) return UncertaintyPartFromJson(j, path);
   if (kind == kSweepKind) return SweepPartFromJson(j, path);
   throw InputError(path + ": not the part of a sharded study (deb uncertainty|sweep --shard K/N writes one)");

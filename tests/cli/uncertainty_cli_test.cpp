@@ -175,7 +175,12 @@ TEST_CASE("deb uncertainty --shard K/N and deb merge: the parts joined give the 
   const std::string part1 = deb::test::ReadAll(dir / "p1" / "part.json");
   for (const auto& [from, to, why] :
        {std::make_tuple("\"samples\":90", "\"samples\":9000000", "samples 9000000 outside 1 to 1000000"),
-        std::make_tuple("\"method\":\"sobol\"", "\"method\":\"xx\"", "method: unknown sampling method 'xx'")}) {
+        std::make_tuple("\"method\":\"sobol\"", "\"method\":\"xx\"", "method: unknown sampling method 'xx'"),
+        // a kind that is not text (found by fuzz_study_part: it escaped as a JSON type error)
+        std::make_tuple("\"kind\":\"deb uncertainty part\"", "\"kind\":1", "not the part of a sharded study"),
+        // a count as a float far out of range (undefined converted to an integer: fuzz_study_part's find)
+        std::make_tuple("\"begin\":0", "\"begin\":3.3e99", "begin must be a whole number >= 0, not 3.3e+99"),
+        std::make_tuple("\"seed\":5", "\"seed\":-5", "seed must be a whole number >= 0, not -5")}) {
     std::string text = part1;
     const std::size_t at = text.find(from);
     REQUIRE(at != std::string::npos);
