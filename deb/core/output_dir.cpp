@@ -119,6 +119,17 @@ bool IsDeadProcess(long pid) {
   return pid > 0 && pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
 }
 
+namespace {
+
+// What a failed write leaves: the partial file, if it is one (never a
+// device or anything else the path may name, such as /dev/full).
+void RemovePartialFile(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_regular_file(fs::symlink_status(path, ec))) fs::remove(path, ec);
+}
+
+}  // namespace
+
 void WriteTextFile(const std::string& path, const std::string& text) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) throw WriteError("cannot write " + path + ": " + Reason(errno));
@@ -126,7 +137,7 @@ void WriteTextFile(const std::string& path, const std::string& text) {
   const int write_error = written == text.size() ? 0 : errno;
   const int close_error = std::fclose(f) == 0 ? 0 : errno;
   if (write_error || close_error) {
-    std::remove(path.c_str());
+    RemovePartialFile(path);
     throw WriteError("cannot write " + path + ": " + Reason(write_error ? write_error : close_error));
   }
 }
@@ -141,12 +152,12 @@ void WriteTextFileFrom(const std::string& path, const std::function<void(const T
     });
   } catch (...) {
     std::fclose(f);
-    std::remove(path.c_str());
+    RemovePartialFile(path);
     throw;
   }
   const int close_error = std::fclose(f) == 0 ? 0 : errno;
   if (write_error || close_error) {
-    std::remove(path.c_str());
+    RemovePartialFile(path);
     throw WriteError("cannot write " + path + ": " + Reason(write_error ? write_error : close_error));
   }
 }

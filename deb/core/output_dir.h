@@ -44,7 +44,9 @@ long PidOf(const std::string& text);
 bool IsDeadProcess(long pid);
 
 // Writes `text` to `path`: open, write, close, and check each.
-// @throws WriteError "cannot write PATH: <reason>" (e.g. No space left on device).
+// @throws WriteError "cannot write PATH: <reason>" (e.g. No space left on
+//   device), the partial file removed if it is a regular file (a device
+//   such as /dev/full is left alone).
 void WriteTextFile(const std::string& path, const std::string& text);
 
 // Writes the text `produce` hands to its sink, piece by piece, to `path`: a

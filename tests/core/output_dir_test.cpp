@@ -42,4 +42,16 @@ TEST_CASE("a text file written piece by piece holds the pieces in order; a faili
   }
 }
 
+TEST_CASE("a write that fails on a device leaves the device: only a partial regular file is removed") {
+  // /dev/full takes the open and fails every write with ENOSPC. An earlier
+  // WriteTextFile removed whatever path it had failed on, device nodes too.
+  if (!std::filesystem::exists("/dev/full")) return;
+  CHECK_THROWS_WITH_AS(WriteTextFile("/dev/full", std::string(1 << 16, 'x')),
+                       doctest::Contains("No space left on device"), WriteError);
+  CHECK(std::filesystem::exists("/dev/full"));
+  CHECK_THROWS_AS(WriteTextFileFrom("/dev/full", [](const TextSink& put) { put(std::string(1 << 16, 'x')); }),
+                  WriteError);
+  CHECK(std::filesystem::exists("/dev/full"));
+}
+
 }  // namespace deb
