@@ -150,7 +150,7 @@ RealisationGradient ComputeRealisationGradient(const Budget& budget, const Budge
   for (std::size_t o = 0; o < nominal.outputs.size(); ++o)
     g.d_variance[o].assign(nominal.outputs[o].contributors.size(), 0.0);
   if (changed.empty()) {
-    g.note = "exact: it changes no path's realisation (the variances do not depend on it)";
+    g.note = "exact, zero: it changes no path's realisation";
     return g;
   }
   std::array<BudgetResult, 2> probe;  // H + dH, H - dH
@@ -181,8 +181,7 @@ RealisationGradient ComputeRealisationGradient(const Budget& budget, const Budge
       g.d_variance[o][c] = dv;
     }
   }
-  g.note = "exact: the derivative of the realisation of " + QuotedList(changed) +
-           " (fourth-order difference of its matrices), propagated through H and the grid's integral";
+  g.note = "exact, through the realisation of " + QuotedList(changed);
   return g;
 }
 

@@ -97,7 +97,7 @@ def test_sensitivity_equals_deb_sensitivity_and_the_closed_form(tmp_path):
     f = tmp_path / "b.yaml"
     f.write_text(KV_BUDGET)
     s = deb.sensitivity(f, ["kv", "a"])
-    assert s["methods"]["kv"]["exact"] and s["methods"]["kv"]["note"].startswith("exact: ")
+    assert s["methods"]["kv"]["exact"] and s["methods"]["kv"]["note"] == "exact, through the realisation of 'pa', 'pb'"
     assert not s["methods"]["a"]["exact"] and "'ca'" in s["methods"]["a"]["note"]
     rows = {(r["parameter"], r["contributor"]): r for r in s["sensitivities"]}
     kv, a, b = 5.0, 1e-6, 16e-6
