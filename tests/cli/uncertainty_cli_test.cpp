@@ -10,6 +10,7 @@
 
 #include "deb/formats/hdf5_file.h"
 #include "tests/support/cli_harness.h"
+#include "tests/support/linear_level_budget.h"
 
 namespace fs = std::filesystem;
 
@@ -201,19 +202,7 @@ TEST_CASE("deb uncertainty --shard K/N and deb merge: the parts joined give the 
 
 TEST_CASE("deb merge refuses parts of a budget that changed since they were made") {
   const fs::path dir = deb::test::TempDir("uncertainty_stale");
-  const std::string budget = R"(name: lin
-parameters:
-  s: {value: 2, distribution: {uniform: {min: 1, max: 3}}}
-grid: {type: log, min_hz: 1, max_hz: 100, points: 50}
-sources:
-  - {name: noise, unit: N, spectrum: {type: flat, level: s * 1e-6}}
-paths:
-  - {name: plant, type: gain, gain: [[1]], input_unit: N, output_unit: um}
-contributors:
-  - {name: c1, source: noise, path: plant}
-outputs:
-  - {name: z, signal: y, unit: um, rms_max: 0.014}
-)";
+  const std::string& budget = deb::test::kLinearLevelBudget;
   deb::test::WriteFile(dir / "b.yaml", budget);
   for (const char* k : {"1", "2"})
     REQUIRE(deb::test::RunDebIn(dir, std::string("uncertainty b.yaml -n 50 -q --shard ") + k + "/2 --out p" + k).exit_code == 0);

@@ -20,6 +20,7 @@
 #include "deb/results/uncertainty_files.h"
 #include "deb/uncertainty/sample_design.h"
 #include "tests/support/budget_errors.h"
+#include "tests/support/linear_level_budget.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/text_edit.h"
 
@@ -32,21 +33,7 @@ class Dir : public test::ScratchDir {
   Dir() : ScratchDir("uncertainty") {}
 };
 
-const std::string kBudget = R"(name: lin
-parameters:
-  s: {value: 2, distribution: {uniform: {min: 1, max: 3}}}
-  d: {value: 5 mm, distribution: {normal: {sigma: 10 %}}}
-  two_s: 2 * s
-grid: {type: log, min_hz: 1, max_hz: 100, points: 50}
-sources:
-  - {name: noise, unit: N, spectrum: {type: flat, level: s * 1e-6}}
-paths:
-  - {name: plant, type: gain, gain: [[1]], input_unit: N, output_unit: um}
-contributors:
-  - {name: c1, source: noise, path: plant}
-outputs:
-  - {name: z, signal: y, unit: um, rms_max: 0.014}
-)";
+const std::string& kBudget = test::kLinearLevelBudget;
 
 constexpr double kLimit = 0.014;
 const double kPMeet = (kLimit * kLimit / 99e-6 - 1.0) / 2.0;
