@@ -53,6 +53,14 @@ void AtKey(const std::string& key, F&& f) {
 
 }  // namespace
 
+GridSpec ExplicitGrid(const FrequencyGrid& grid) {
+  GridSpec spec;
+  spec.kind = GridKind::kExplicit;
+  spec.f_hz = grid.f_hz();
+  spec.panel_starts = grid.panel_starts();
+  return spec;
+}
+
 InputError Budget::Locate(const InputError& e) const { return positions ? positions->Located(e) : e; }
 
 namespace {

@@ -44,6 +44,11 @@ struct GridSpec {
   std::vector<std::size_t> panel_starts;
 };
 
+// The spec of `grid` itself, points and panels: a variant evaluated on it
+// integrates on exactly the nominal's rule (no refinement around moving
+// poles to add noise to a difference).
+GridSpec ExplicitGrid(const FrequencyGrid& grid);
+
 // A SISO filter applied to a signal to form an output, e.g. the thesis'
 // leaky integrator 1/(s + 0.02 pi) that turns a velocity into a "position".
 struct Weighting {

@@ -80,14 +80,6 @@ std::string QuotedList(const std::vector<std::string>& names) {
   return list;
 }
 
-EngineOptions VariancesOf(const EngineOptions& options) {
-  EngineOptions o = options;
-  o.response_traces = false;
-  o.covariance = false;
-  o.channel_breakdown = false;
-  return o;
-}
-
 }  // namespace
 
 RealisationGradient ComputeRealisationGradient(const Budget& budget, const BudgetResult& nominal,
@@ -131,7 +123,9 @@ RealisationGradient ComputeRealisationGradient(const Budget& budget, const Budge
     derivative[i] = RealisationDerivative{*da, *db, *dc, *dd};
     changed.push_back(p.name);
   }
-  const EngineOptions variances = VariancesOf(options);
+  EngineOptions variances = EngineOptions::VariancesOnly();
+  variances.threads = options.threads;
+  variances.exact_tolerance = options.exact_tolerance;
   // Nothing else may move: p (1 + h) with the rational paths put back.
   if (verify) {
     Budget check = scaled[0];
@@ -156,11 +150,7 @@ RealisationGradient ComputeRealisationGradient(const Budget& budget, const Budge
   std::array<BudgetResult, 2> probe;  // H + dH, H - dH
   for (int k = 0; k < 2; ++k) {
     Budget b = budget;
-    b.grid = GridSpec();
-    b.grid.kind = GridKind::kExplicit;
-    b.grid.f_hz = nominal.grid.f_hz();
-    b.grid.panel_starts = nominal.grid.panel_starts();
-    if (b.bands.empty()) b.bands = scaled[0].bands;
+    b.grid = ExplicitGrid(nominal.grid);
     for (std::size_t i = 0; i < b.paths.size(); ++i)
       if (derivative[i]) b.paths[i].system = Probe(budget.paths[i].system, *derivative[i], k == 0 ? 1.0 : -1.0);
     probe[k] = Evaluate(b, variances);

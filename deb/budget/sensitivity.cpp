@@ -98,10 +98,7 @@ SensitivityStudy ComputeSensitivities(const Budget& budget, const std::vector<st
         std::array<Budget, 4> b;
         for (std::size_t j = 0; j < (try_exact ? 4 : 2); ++j) {
           b[j] = scaled(parameters[k], factors[j]);
-          b[j].grid = GridSpec();
-          b[j].grid.kind = GridKind::kExplicit;  // the nominal grid: no refinement noise in the difference
-          b[j].grid.f_hz = study.nominal.grid.f_hz();
-          b[j].grid.panel_starts = study.nominal.grid.panel_starts();
+          b[j].grid = ExplicitGrid(study.nominal.grid);
           if (b[j].bands.empty()) b[j].bands = budget.bands;
         }
         SensitivityMethod& method = study.methods[k];

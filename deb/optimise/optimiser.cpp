@@ -129,10 +129,7 @@ std::array<Budget, 4> Stepped(const DesignLoader& loader, const std::vector<doub
     std::vector<double> v = values;
     v[i] += steps[k];
     out[k] = loader(v);
-    out[k].grid = GridSpec();
-    out[k].grid.kind = GridKind::kExplicit;
-    out[k].grid.f_hz = at.grid.f_hz();
-    out[k].grid.panel_starts = at.grid.panel_starts();
+    out[k].grid = ExplicitGrid(at.grid);
     if (out[k].bands.empty()) out[k].bands = budget.bands;
   }
   return out;
