@@ -130,18 +130,6 @@ void RemovePartialFile(const std::string& path) {
 
 }  // namespace
 
-void WriteTextFile(const std::string& path, const std::string& text) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) throw WriteError("cannot write " + path + ": " + Reason(errno));
-  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
-  const int write_error = written == text.size() ? 0 : errno;
-  const int close_error = std::fclose(f) == 0 ? 0 : errno;
-  if (write_error || close_error) {
-    RemovePartialFile(path);
-    throw WriteError("cannot write " + path + ": " + Reason(write_error ? write_error : close_error));
-  }
-}
-
 void WriteTextFileFrom(const std::string& path, const std::function<void(const TextSink&)>& produce) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) throw WriteError("cannot write " + path + ": " + Reason(errno));
@@ -160,6 +148,10 @@ void WriteTextFileFrom(const std::string& path, const std::function<void(const T
     RemovePartialFile(path);
     throw WriteError("cannot write " + path + ": " + Reason(write_error ? write_error : close_error));
   }
+}
+
+void WriteTextFile(const std::string& path, const std::string& text) {
+  WriteTextFileFrom(path, [&text](const TextSink& put) { put(text); });
 }
 
 void ReplaceDirectory(const std::string& out_dir, const std::function<void(const std::string&)>& fill,
