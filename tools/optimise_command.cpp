@@ -21,6 +21,7 @@
 #include "deb/report/compare/overlay_plots.h"
 #include "deb/results/optimise_files.h"
 #include "tools/budget_overrides_option.h"
+#include "tools/mpi_timeout_option.h"
 #include "tools/run_command.h"
 
 #ifdef DEB_MPI
@@ -103,10 +104,7 @@ CLI::App* OptimiseCommand::Register(CLI::App& app) {
   c->add_flag("--quiet,-q", s.quiet, "Print nothing but errors");
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "The optimum's report without plots; gnuplot is not needed");
-  c->add_option("--timeout", s.timeout_s,
-                "Under mpirun: end the run when a rank runs one start longer than this many seconds "
-                "(default 0: no limit)")
-      ->check(CLI::NonNegativeNumber);
+  AddMpiTimeoutOption(c, &s.timeout_s, "one start");
   return c;
 }
 

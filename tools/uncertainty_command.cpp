@@ -21,6 +21,7 @@
 #include "deb/results/study_part.h"
 #include "deb/version.h"
 #include "tools/budget_overrides_option.h"
+#include "tools/mpi_timeout_option.h"
 #include "tools/shard_option.h"
 
 namespace deb::tools {
@@ -122,10 +123,7 @@ CLI::App* UncertaintyCommand::Register(CLI::App& app) {
   c->add_flag("--force", s.force, "Replace --out even if it is not a directory deb wrote");
   c->add_flag_callback("--no-plots", [&s] { s.plots = false; }, "Write summary.json, samples.csv and the documents without figures; gnuplot is not needed");
   AddShardOption(c, &s.shard);
-  c->add_option("--timeout", s.timeout_s,
-                "Under mpirun: end the run when a rank holds a block of budgets longer than this many seconds "
-                "(default 0: no limit)")
-      ->check(CLI::NonNegativeNumber);
+  AddMpiTimeoutOption(c, &s.timeout_s, "a block of budgets");
   return c;
 }
 

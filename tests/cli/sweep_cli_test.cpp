@@ -111,3 +111,19 @@ TEST_CASE("deb sweep --shard K/N and deb merge: the parts joined give the unshar
   CHECK_FALSE(fs::exists(dir / "bad"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("--timeout of sweep, uncertainty and optimise: seconds, finite and >= 0, else a usage error saying so") {
+  const std::string tolerances = deb::test::ExampleBudget("nizamoglu2015_tolerances.yaml");
+  for (const std::string& study :
+       {"sweep " + deb::test::ExampleBudget("nizamoglu2015_sweep.yaml"), "uncertainty " + tolerances,
+        "optimise " + tolerances + " --vary Kv"})
+    for (const char* bad : {"-1", "inf", "nan", "abc"}) {
+      CAPTURE(study);
+      CAPTURE(bad);
+      const deb::test::Command c = deb::test::RunDeb(study + " -q --timeout " + bad + " --out never_written");
+      CHECK(c.exit_code == 2);
+      CHECK(c.err.find("--timeout: '" + std::string(bad) + "': give seconds, a finite number >= 0 (0: no limit)") !=
+            std::string::npos);
+      CHECK_FALSE(fs::exists("never_written"));
+    }
+}
