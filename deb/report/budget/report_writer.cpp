@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <functional>
 #include <future>
 #include <mutex>
@@ -126,10 +127,12 @@ std::vector<Plot> ReportPlots(const BudgetResult& result, const ReportOptions& o
   return plots;
 }
 
-// One file gnuplot draws: its path relative to the report directory and the
-// commands that draw it from the plot's script.
+// One file gnuplot draws: its path relative to the report directory, its
+// format and the commands that draw it from the plot's script (into
+// GnuplotOutputFile: a PNG's SVG source).
 struct DrawJob {
   std::string file;
+  PlotFormat format = PlotFormat::kSvg;
   std::string script;
 };
 
@@ -143,23 +146,23 @@ std::vector<DrawJob> DrawJobs(const std::vector<Plot>& plots, const ReportOption
   if (pdf)
     for (const Plot& p : plots)
       if (DrawnInPdf(p))
-        jobs.push_back({"plots/" + std::string(kPdfFigureDir) + "/" + p.name + ".svg", PdfFigureCommands(p)});
+        jobs.push_back(
+            {"plots/" + std::string(kPdfFigureDir) + "/" + p.name + ".svg", PlotFormat::kSvg, PdfFigureCommands(p)});
   *pdf_jobs = jobs.size();
   for (PlotFormat t : {PlotFormat::kPng, PlotFormat::kSvg}) {
     if (!options.Has(t)) continue;
     for (const Plot& p : plots) {
       const std::string file = p.name + "." + FileExtension(t);
-      jobs.push_back({"plots/" + file, DrawCommands(TerminalCommand(t), file, p.name + ".gp")});
+      jobs.push_back({"plots/" + file, t, DrawCommands(TerminalCommand(t), GnuplotOutputFile(t, file), p.name + ".gp")});
     }
   }
   return jobs;
 }
 
-// gnuplot starts fast but each process pays again for fonts and cairo: the
-// files are drawn in a few batches, one process each (when `pdf`, the first
-// `pdf_jobs`, the figures of report.pdf, in one batch whose worker then
-// typesets the document, while the others draw the plots split evenly over
-// `workers`), which halves the drawing time of a report with dozens of plots.
+// gnuplot starts fast but each process pays again for fonts: the files are
+// drawn in a few batches, one process each: when `pdf`, the first
+// `pdf_jobs` (the figures of report.pdf) in one batch and the others in
+// `workers` - 1, else all in `workers`.
 std::vector<std::vector<std::size_t>> DrawBatches(bool pdf, std::size_t pdf_jobs, std::size_t jobs,
                                                   std::size_t workers) {
   std::vector<std::vector<std::size_t>> batches;
@@ -168,7 +171,7 @@ std::vector<std::vector<std::size_t>> DrawBatches(bool pdf, std::size_t pdf_jobs
     for (std::size_t i = 0; i < pdf_jobs; ++i) batches.back().push_back(i);
   }
   const std::size_t plot_jobs = jobs - pdf_jobs;
-  const std::size_t plot_batches = std::min(workers, plot_jobs);
+  const std::size_t plot_batches = std::min(std::max<std::size_t>(1, workers - batches.size()), plot_jobs);
   for (std::size_t b = 0; b < plot_batches; ++b) {
     std::vector<std::size_t> batch;
     for (std::size_t i = pdf_jobs + b * plot_jobs / plot_batches; i < pdf_jobs + (b + 1) * plot_jobs / plot_batches;
@@ -180,7 +183,12 @@ std::vector<std::vector<std::size_t>> DrawBatches(bool pdf, std::size_t pdf_jobs
 }
 
 // Draws every plot file and, when `pdf`, typesets report.pdf from the
-// figures drawn for it; lists what it wrote in `manifest`.
+// figures drawn for it; lists what it wrote in `manifest`. gnuplot writes
+// SVG only, a fraction of the time: the work is report.pdf's typesetting
+// and the PNGs' rasterising (FinishPlotFile), run as jobs of their own on
+// the workers: report.pdf's batch typesets the document when it is drawn,
+// while the other workers draw the plots' batches and then take the PNGs,
+// one job each, which wait for their batch.
 void DrawReport(const BudgetResult& result, const std::vector<Plot>& plots, const ReportFacts& facts,
                 const std::string& sha256, std::time_t when, const ReportOptions& options, bool pdf,
                 const fs::path& root, ReportManifest& manifest) {
@@ -199,8 +207,36 @@ void DrawReport(const BudgetResult& result, const std::vector<Plot>& plots, cons
   const auto what_of = [&](std::size_t i) {
     return (i < pdf_jobs ? "the figure of report.pdf " : "plot ") + fs::path(jobs[i].file).filename().string();
   };
-  Progress progress(options.progress, static_cast<int>(jobs.size()) + (pdf ? 1 : 0));
+  // The batch that draws each job, and whether it is done.
+  std::vector<std::size_t> batch_of(jobs.size());
+  for (std::size_t b = 0; b < batches.size(); ++b)
+    for (std::size_t i : batches[b]) batch_of[i] = b;
+  std::vector<std::promise<void>> drawn(batches.size());
+  std::vector<std::shared_future<void>> drawn_batch;
+  for (std::promise<void>& p : drawn) drawn_batch.push_back(p.get_future().share());
+
+  Progress progress(options.progress, static_cast<int>(jobs.size() - pdf_jobs) + (pdf ? 1 : 0));
   PdfLayout layout;
+  const auto draw_batch = [&](std::size_t b) {
+    const std::vector<std::size_t>& batch = batches[b];
+    std::string script;
+    for (std::size_t i : batch) script += jobs[i].script;
+    try {
+      if (!batch.empty()) try {
+        RunGnuplot(gnuplot, plots_dir.string(), script, batch.size() == 1 ? what_of(batch[0]) : "the plots");
+      } catch (const WriteError&) {
+        // Name the plot that failed: draw the batch's files one at a time.
+        if (batch.size() == 1) throw;
+        for (std::size_t i : batch) RunGnuplot(gnuplot, plots_dir.string(), jobs[i].script, what_of(i));
+        throw;
+      }
+      for (std::size_t i : batch) RequireFile(root / GnuplotOutputFile(jobs[i].format, jobs[i].file), what_of(i));
+    } catch (...) {
+      drawn[b].set_exception(std::current_exception());
+      throw;
+    }
+    drawn[b].set_value();
+  };
   const auto typeset = [&] {
     progress.Step("report.pdf");
     ReportPdfInputs in;
@@ -213,22 +249,17 @@ void DrawReport(const BudgetResult& result, const std::vector<Plot>& plots, cons
     in.digits = options.digits;
     layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
   };
-  ParallelForEach(batches.size(), [&](std::size_t b) {
-    const std::vector<std::size_t>& batch = batches[b];
-    std::string script;
-    for (std::size_t i : batch) script += jobs[i].script;
-    progress.Step(batch.size() == 1 ? jobs[batch[0]].file : jobs[batch[0]].file + " ...",
-                  static_cast<int>(batch.size()));
-    try {
-      RunGnuplot(gnuplot, plots_dir.string(), script, batch.size() == 1 ? what_of(batch[0]) : "the plots");
-    } catch (const WriteError&) {
-      // Name the plot that failed: draw the batch's files one at a time.
-      if (batch.size() == 1) throw;
-      for (std::size_t i : batch) RunGnuplot(gnuplot, plots_dir.string(), jobs[i].script, what_of(i));
-      throw;
+  // Jobs: the batches in order (report.pdf's first), then one per plot file.
+  ParallelForEach(batches.size() + jobs.size() - pdf_jobs, [&](std::size_t k) {
+    if (k < batches.size()) {
+      draw_batch(k);
+      if (pdf && k == 0) typeset();
+      return;
     }
-    for (std::size_t i : batch) RequireFile(root / jobs[i].file, what_of(i));
-    if (pdf && b == 0) typeset();
+    const std::size_t i = pdf_jobs + (k - batches.size());
+    drawn_batch[batch_of[i]].get();  // started before this job: no wait on a job not yet taken
+    progress.Step(jobs[i].file);
+    FinishPlotFile(jobs[i].format, (root / jobs[i].file).string());
   }, options.threads);
   for (std::size_t i = pdf_jobs; i < jobs.size(); ++i) manifest.files.push_back(jobs[i].file);
   if (pdf) {

@@ -204,8 +204,12 @@ void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_di
       plots.size(),
       [&](std::size_t i) {
         const Plot& p = plots[i];
-        RunGnuplot(gnuplot, plots_dir, DrawCommands(TerminalCommand(PlotFormat::kPng), p.name + ".png", p.name + ".gp"),
+        const std::string png = p.name + ".png";
+        RunGnuplot(gnuplot, plots_dir,
+                   DrawCommands(TerminalCommand(PlotFormat::kPng), GnuplotOutputFile(PlotFormat::kPng, png),
+                                p.name + ".gp"),
                    "plot " + p.name);
+        FinishPlotFile(PlotFormat::kPng, (std::filesystem::path(plots_dir) / png).string());
       },
       threads);
 }

@@ -2,18 +2,16 @@
 
 #include <cairo-pdf.h>
 #include <cairo.h>
-#include <librsvg/rsvg.h>
 #include <pango/pangocairo.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <memory>
 #include <utility>
 
 #include "deb/core/error.h"
+#include "deb/report/document/svg_figure.h"
 
 namespace deb::report {
 
@@ -100,55 +98,17 @@ struct LayoutDeleter {
 };
 using Layout = std::unique_ptr<PangoLayout, LayoutDeleter>;
 
-// A figure's SVG, parsed once for both passes.
-struct Svg {
-  RsvgHandle* handle = nullptr;
-  double width = 0, height = 0;
-};
-
+// Each figure's SVG, parsed once for both passes.
 class SvgCache {
  public:
-  SvgCache() = default;
-  SvgCache(const SvgCache&) = delete;
-  SvgCache& operator=(const SvgCache&) = delete;
-  ~SvgCache() {
-    for (auto& [file, svg] : svgs_) g_object_unref(svg.handle);
-  }
-  const Svg& Get(const std::string& file) {
+  const SvgFigure& Get(const std::string& file) {
     auto it = svgs_.find(file);
-    if (it != svgs_.end()) return it->second;
-    // gnuplot writes a superscript's following text as a tspan that starts
-    // with its space ("10</tspan><tspan>-3</tspan><tspan> of"), and librsvg
-    // drops a tspan's leading space under SVG's default white-space
-    // handling ("10^-3of"): the figure is parsed with xml:space="preserve"
-    // on its root (gnuplot puts no other white space inside its texts).
-    std::string svg_text;
-    {
-      std::ifstream in(file, std::ios::binary);
-      if (!in) throw WriteError("cannot read figure " + file);
-      svg_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
-    if (const std::size_t root = svg_text.find("<svg"); root != std::string::npos)
-      svg_text.insert(root + 4, " xml:space=\"preserve\"");
-    GError* error = nullptr;
-    RsvgHandle* handle = rsvg_handle_new_from_data(reinterpret_cast<const guint8*>(svg_text.data()),
-                                                   svg_text.size(), &error);
-    if (!handle) {
-      const std::string why = error ? error->message : "unknown error";
-      if (error) g_error_free(error);
-      throw WriteError("cannot read figure " + file + ": " + why);
-    }
-    Svg svg{handle, 0, 0};
-    gboolean has_size = rsvg_handle_get_intrinsic_size_in_pixels(handle, &svg.width, &svg.height);
-    if (!has_size || svg.width <= 0 || svg.height <= 0) {
-      g_object_unref(handle);
-      throw WriteError("cannot read figure " + file + ": the SVG has no size");
-    }
-    return svgs_.emplace(file, svg).first->second;
+    if (it == svgs_.end()) it = svgs_.emplace(file, std::make_unique<SvgFigure>(file)).first;
+    return *it->second;
   }
 
  private:
-  std::map<std::string, Svg> svgs_;
+  std::map<std::string, std::unique_ptr<SvgFigure>> svgs_;
 };
 
 // Where a heading landed in the first pass: the target of its bookmark and
@@ -259,8 +219,8 @@ class Composer {
   double StartHeight(const PdfBlock& b) {
     switch (b.kind) {
       case PdfBlockKind::kFigure: {
-        const Svg& svg = svgs_->Get(b.svg_file);
-        return 6.0 + kMinFigureScale * kTextWidthPt * svg.height / svg.width + 30.0;
+        const SvgFigure& svg = svgs_->Get(b.svg_file);
+        return 6.0 + kMinFigureScale * kTextWidthPt * svg.height() / svg.width() + 30.0;
       }
       case PdfBlockKind::kParagraph: {
         Layout l = MakeLayout(b.text, b.size_pt, b.bold, kTextWidthPt);
@@ -332,8 +292,8 @@ class Composer {
   }
 
   void DoFigure(const PdfBlock& b) {
-    const Svg& svg = svgs_->Get(b.svg_file);
-    double w = kTextWidthPt, h = w * svg.height / svg.width;
+    const SvgFigure& svg = svgs_->Get(b.svg_file);
+    double w = kTextWidthPt, h = w * svg.height() / svg.width();
     ++figures_;
     const std::string caption = "Figure " + std::to_string(figures_) + ". " + b.text;
     Layout cap = MakeLayout(caption, 8.5, false, kTextWidthPt, true);
@@ -345,18 +305,7 @@ class Composer {
     }
     Need(h + 4.0 + cap_h);
     const double x = kMarginPt + 0.5 * (kTextWidthPt - w);
-    if (draw_) {
-      cairo_save(cr_);
-      RsvgRectangle viewport{x, y_, w, h};
-      GError* error = nullptr;
-      const gboolean ok = rsvg_handle_render_document(svg.handle, cr_, &viewport, &error);
-      cairo_restore(cr_);
-      if (!ok) {
-        const std::string why = error ? error->message : "unknown error";
-        if (error) g_error_free(error);
-        throw WriteError("cannot draw figure " + b.svg_file + ": " + why);
-      }
-    }
+    if (draw_) svg.Draw(cr_, x, y_, w, h);
     Place("figure", b.svg_file, x, y_, w, h);
     y_ += h + 4.0;
     Show(cap.get(), kMarginPt, y_, kInk);

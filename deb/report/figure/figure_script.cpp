@@ -63,8 +63,9 @@ void Axis(std::ostringstream& s, const FigureAxis& a, const std::string& name) {
 // terminal scales a pattern by the line width, which report.pdf's figures
 // draw 1.75 times as wide on a canvas half as wide as a PNG's, so their
 // dashes came out three times as long (and a key sample, shorter than one
-// dash, looked solid); kDashScaleVariable shortens them there. Other dash
-// types ("solid") as they are.
+// dash, looked solid); kDashScaleVariable shortens them there, and in a
+// PNG's SVG source, whose lines are 1.2 px per unit. Other dash types
+// ("solid") as they are.
 std::string Dash(const std::string& dash) {
   if (dash.empty() || dash.front() != '(') return dash;
   std::string out = "(";
@@ -228,16 +229,25 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
 
 std::string Coord(bool y2) { return y2 ? "second " : "first "; }
 
+// The characters of a panel's longest key entry, as shown.
+std::size_t LongestKeyEntry(const FigurePanel& p) {
+  std::size_t longest = 0;
+  for (const FigureSeries& fs : p.series) longest = std::max(longest, ShownCharacters(fs.key));
+  for (const FigureAnnotation& a : p.annotations) longest = std::max(longest, ShownCharacters(a.key));
+  return longest;
+}
+
 // What gnuplot's `set key width` adds to a key column: gnuplot estimates an
 // entry's width as a fixed width per character, about a third more than
 // DejaVu Sans takes on average, which below the plot (report.pdf) gives
 // too few columns; the longest entry's excess, less a margin, is taken off.
-int KeyWidthIncrement(const FigurePanel& p) {
-  std::size_t longest = 0;
-  for (const FigureSeries& fs : p.series) longest = std::max(longest, ShownCharacters(fs.key));
-  for (const FigureAnnotation& a : p.annotations) longest = std::max(longest, ShownCharacters(a.key));
-  return -static_cast<int>(0.2 * static_cast<double>(longest));
-}
+int KeyWidthIncrement(const FigurePanel& p) { return -static_cast<int>(0.2 * static_cast<double>(LongestKeyEntry(p))); }
+
+// What a key beside the plot adds to its column in a PNG's SVG source
+// (kPngSourceVariable): the SVG terminal estimates an entry at about a fifth
+// less than DejaVu Sans takes there, which would push the longest entries
+// past the canvas' edge.
+int KeyWidenedInSvg(const FigurePanel& p) { return static_cast<int>(0.2 * static_cast<double>(LongestKeyEntry(p))); }
 
 // The key's placement, layout and title.
 void Key(std::ostringstream& s, const FigurePanel& p, bool multiplot) {
@@ -257,7 +267,8 @@ void Key(std::ostringstream& s, const FigurePanel& p, bool multiplot) {
       // gnuplot sets it too close under the axis' label otherwise.
       s << "if (exists(" << Quote(kPdfFigureVariable) << ")) {\n  set key below horizontal Left reverse maxcols 3 "
         << "width " << KeyWidthIncrement(p) << " noopaque title (\"\\n\"." << Label(p.key.title)
-        << ")\n} else {\n  set key outside right top Left reverse title " << Label(p.key.title) << "\n}\nset key";
+        << ")\n} else {\n  set key outside right top Left reverse width (exists(" << Quote(kPngSourceVariable)
+        << ") ? " << KeyWidenedInSvg(p) << " : 0) title " << Label(p.key.title) << "\n}\nset key";
       titled = true;
       break;
     case KeyPlacement::kInsideTopRight: s << "set key inside right top Left reverse"; break;
@@ -384,8 +395,10 @@ std::string EmitFigure(const PlotFigure& figure) {
   DEB_DEMAND(!figure.panels.empty());
   std::ostringstream s;
   s << "reset\n" << StylePreamble();
-  // Dash patterns 0.4 times as long in report.pdf's figures (Dash).
-  s << kDashScaleVariable << " = exists(" << Quote(kPdfFigureVariable) << ") ? 0.4 : 1\n";
+  // Dash patterns 0.4 times as long in report.pdf's figures and in a PNG's
+  // SVG source (Dash).
+  s << kDashScaleVariable << " = exists(" << Quote(kPdfFigureVariable) << ") || exists(" << Quote(kPngSourceVariable)
+    << ") ? 0.4 : 1\n";
   // Marker labels sit on an opaque box: readable over a hatched layer.
   s << "set style textbox opaque margins 0.5,0.5 noborder\n";
   const std::size_t n = figure.panels.size();

@@ -23,8 +23,14 @@ namespace deb::report {
 // placed kOutsideRight then goes below the plot (the figure's narrow canvas
 // there, PdfFigureTerminal).
 inline constexpr const char* kPdfFigureVariable = "deb_pdf_figure";
+// Set (to 1) by the terminal that draws a PNG's SVG source (TerminalCommand,
+// plot_style.h), and undefined by the others: gnuplot's SVG terminal
+// estimates text narrower than the cairo one does, so a key beside the plot
+// is widened there.
+inline constexpr const char* kPngSourceVariable = "deb_png";
 // The factor of every dash pattern's lengths in a figure's script: 0.4 in
-// report.pdf's figures (kPdfFigureVariable set), else 1.
+// report.pdf's figures (kPdfFigureVariable set), 0.4 in a PNG's SVG
+// (kPngSourceVariable), else 1.
 inline constexpr const char* kDashScaleVariable = "deb_dash";
 
 enum class KeyPlacement { kNone, kOutsideRight, kInsideTopRight, kInsideTopLeft, kBelow, kAbove, kBesideGrid, kBelowMap };

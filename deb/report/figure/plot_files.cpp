@@ -61,6 +61,7 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
     const std::string executable = FindGnuplot(gnuplot);
     struct Draw {
       std::string dir, script, file, what;
+      PlotFormat format;
     };
     std::vector<Draw> draws;
     for (const StandalonePlot& p : plots) {
@@ -76,9 +77,8 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
       for (PlotFormat t : formats) {
         const std::string file = p.plot.name + "." + FileExtension(t);
         // One gnuplot per file: a PDF of one page, a PNG or an SVG.
-        draws.push_back({dir.string(),
-                         DrawCommands(TerminalCommand(t), file, p.plot.name + ".gp"),
-                         file, "plot " + (p.directory.empty() ? file : (fs::path(p.directory) / file).string())});
+        draws.push_back({dir.string(), DrawCommands(TerminalCommand(t), GnuplotOutputFile(t, file), p.plot.name + ".gp"),
+                         file, "plot " + (p.directory.empty() ? file : (fs::path(p.directory) / file).string()), t});
       }
       for (std::size_t i = 0; i < names.size(); ++i) moves_.push_back({(dir / names[i]).string(), paths[i]});
     }
@@ -87,8 +87,11 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
         [&](std::size_t i) {
           const Draw& d = draws[i];
           RunGnuplot(executable, d.dir, d.script, d.what);
-          std::error_code ec;
           const fs::path made = fs::path(d.dir) / d.file;
+          std::error_code ec;
+          if (!fs::is_regular_file(fs::path(d.dir) / GnuplotOutputFile(d.format, d.file), ec))
+            throw WriteError("cannot draw " + d.what + ": gnuplot reported success but wrote no " + d.file);
+          FinishPlotFile(d.format, made.string());
           if (!fs::is_regular_file(made, ec) || fs::file_size(made, ec) == 0)
             throw WriteError("cannot draw " + d.what + ": gnuplot reported success but wrote no " + d.file);
         },

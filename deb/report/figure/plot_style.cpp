@@ -4,12 +4,14 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "deb/core/error.h"
 #include "deb/core/math_constants.h"
+#include "deb/report/document/svg_figure.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {
@@ -201,13 +203,30 @@ std::string TerminalCommand(PlotFormat format) {
   const std::string font = std::string(" font '") + kFont + ",";
   switch (format) {
     case PlotFormat::kPng:
-      return "set terminal pngcairo enhanced size 1200,720 background '#ffffff'" + font + "11' linewidth 1.2\n";
+      // 11 pt at 96 dpi: 14.7 px.
+      return "set terminal svg enhanced size " + std::to_string(kPngWidthPx) + "," + std::to_string(kPngHeightPx) +
+             " background '#ffffff'" + font + "11' fontscale 1.3333 linewidth 1.2\n" + kPngSourceVariable + " = 1\n";
     case PlotFormat::kSvg:
-      return "set terminal svg enhanced size 1200,720 background '#ffffff'" + font + "13' linewidth 1.2\n";
+      return "set terminal svg enhanced size 1200,720 background '#ffffff'" + font + "13' linewidth 1.2\nundefine " +
+             kPngSourceVariable + "\n";
     case PlotFormat::kPdf:
-      return "set terminal pdfcairo enhanced size 29.7cm,21cm background '#ffffff'" + font + "11' linewidth 1.5\n";
+      return "set terminal pdfcairo enhanced size 29.7cm,21cm background '#ffffff'" + font +
+             "11' linewidth 1.5\nundefine " + kPngSourceVariable + "\n";
   }
   return "";
+}
+
+std::string GnuplotOutputFile(PlotFormat format, const std::string& file) {
+  return format == PlotFormat::kPng ? file + ".svg" : file;
+}
+
+void FinishPlotFile(PlotFormat format, const std::string& path) {
+  if (format != PlotFormat::kPng) return;
+  const std::string source = GnuplotOutputFile(format, path);
+  RasteriseSvg(source, path, kPngWidthPx, kPngHeightPx);
+  std::error_code ec;
+  std::filesystem::remove(source, ec);
+  if (ec) throw WriteError("cannot remove " + source + ": " + ec.message());
 }
 
 std::string FileExtension(PlotFormat format) {

@@ -85,8 +85,23 @@ inline constexpr const char* kMonoFont = "DejaVu Sans Mono";
 // Terminal settings for one output file. PNG and SVG pages are 1200 x 720
 // pixels; PDF pages are A4 landscape. Data lines are drawn at linewidth >= 2,
 // which is >= 1.5 pt in PDF (0.75 pt per unit) and SVG (1.2 px per unit).
+// A PNG is drawn by gnuplot as SVG (this terminal: the PNG's pixels, fonts
+// at 96 dpi as gnuplot's cairo PNG terminal sets them, kPngSourceVariable
+// set) into GnuplotOutputFile, and rasterised by FinishPlotFile: gnuplot
+// writes SVG in a tenth of the time its PNG terminal takes, and deb's
+// threads share the rasterising out evenly.
 std::string TerminalCommand(PlotFormat format);
 std::string FileExtension(PlotFormat format);  // "png", "svg", "pdf"
+// The PNG's size in pixels.
+inline constexpr int kPngWidthPx = 1200, kPngHeightPx = 720;
+// The file gnuplot writes to draw `file` in `format`: `file`, except for a
+// PNG, whose SVG source is "<file>.svg".
+std::string GnuplotOutputFile(PlotFormat format, const std::string& file);
+// What follows gnuplot's drawing of GnuplotOutputFile(format, path): a PNG
+// is rasterised from its SVG (report/document/svg_figure.h), which is then
+// removed; other formats are done.
+// @throws WriteError naming the file that cannot be read or written.
+void FinishPlotFile(PlotFormat format, const std::string& path);
 
 // Settings every plot script starts with (after `reset`): encoding, CSV
 // input, grid, borders, fonts of titles and keys.

@@ -203,7 +203,7 @@ TEST_CASE("plots are drawn in batches, yet a failing plot is named in the error 
   const fs::path parent = TempDir("batch_error");
   // The real gnuplot, except that it fails on the script that draws z_velocity_psd.png.
   const fs::path exe = WriteFile(parent / "picky-gnuplot",
-                                 "#!/bin/sh\nscript=$(cat)\ncase \"$script\" in *\"set output 'z_velocity_psd.png'\"*)\n"
+                                 "#!/bin/sh\nscript=$(cat)\ncase \"$script\" in *\"set output 'z_velocity_psd.png.svg'\"*)\n"
                                  "  echo 'line 3: picky gnuplot refuses this plot' >&2; exit 1;;\nesac\n"
                                  "printf '%s\\n' \"$script\" | exec '" + report::FindGnuplot("") + "' \"$@\"\n");
   ::chmod(exe.c_str(), 0755);

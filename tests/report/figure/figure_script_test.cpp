@@ -1,9 +1,14 @@
 #include "deb/report/figure/figure_script.h"
 
+#include <cairo.h>
 #include <doctest/doctest.h>
+
+#include <cstdint>
 
 #include "deb/report/figure/gnuplot_runner.h"
 #include "deb/report/figure/plot.h"
+#include "deb/report/figure/plot_style.h"
+#include "tests/support/scratch_dir.h"
 
 namespace deb::report {
 namespace {
@@ -48,14 +53,14 @@ TEST_CASE("the emitter quotes user text, so that no backquote or macro of a name
   CHECK(Count(script, "\nplot ") == 1);
 }
 
-TEST_CASE("dash patterns are scaled by deb_dash: 1 in a PNG, 0.4 in report.pdf's figures, where gnuplot draws lines wider") {
+TEST_CASE("dash patterns are scaled by deb_dash: 0.4 in report.pdf's figures and a PNG's SVG, where gnuplot draws lines wider") {
   PlotFigure figure;
   FigurePanel p = Panel("s");
   p.series[0].dash = "(10,5)";
   p.annotations[0].dash = "(16,4,4,4)";
   figure.panels.push_back(p);
   const std::string script = EmitFigure(figure);
-  CHECK(Count(script, "deb_dash = exists('deb_pdf_figure') ? 0.4 : 1\n") == 1);
+  CHECK(Count(script, "deb_dash = exists('deb_pdf_figure') || exists('deb_png') ? 0.4 : 1\n") == 1);
   CHECK(script.find("dashtype (10*deb_dash,5*deb_dash)") != std::string::npos);
   CHECK(script.find("dashtype (16*deb_dash,4*deb_dash,4*deb_dash,4*deb_dash)") != std::string::npos);
   CHECK(script.find("dashtype (10,5)") == std::string::npos);
@@ -133,6 +138,43 @@ TEST_CASE("horizontal bars run from 0 to x; their values stand beside the ends; 
   CHECK(script.find("using (column(2) < 0 ? column(2) : NaN):((column(1))):(sprintf('%.3g', column(2))) with labels "
                     "right") != std::string::npos);
   CHECK(ScriptOffence(script).empty());
+}
+
+TEST_CASE("a key beside the plot stays inside a PNG: widened where gnuplot's SVG terminal measures text too narrow") {
+  const test::ScratchDir dir("png_key");
+  dir.Write("d.csv", "1,1,1\n10,2,2\n100,3,3\n");
+  PlotFigure figure;
+  FigurePanel p = Panel("measured 0.201–1925 Hz: 3.270 (12.34 %), 5678.90 (98.76 %)");
+  p.key.placement = KeyPlacement::kOutsideRight;
+  p.key.title = "RMS [nm] (share)";
+  figure.panels.push_back(p);
+  dir.Write("f.gp", EmitFigure(figure));
+  const std::string png = dir.Path("f.png");
+  // The PNG's last columns: the number of pixels drawn there (not white).
+  const auto drawn_at_right_edge = [&](const std::string& terminal) {
+    RunGnuplot(FindGnuplot(""), dir.Path(""), DrawCommands(terminal, GnuplotOutputFile(PlotFormat::kPng, "f.png"), "f.gp"),
+               "f.png");
+    FinishPlotFile(PlotFormat::kPng, png);
+    cairo_surface_t* s = cairo_image_surface_create_from_png(png.c_str());
+    REQUIRE(cairo_surface_status(s) == CAIRO_STATUS_SUCCESS);
+    REQUIRE(cairo_image_surface_get_width(s) == kPngWidthPx);
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    int edge = 0, key = 0;
+    for (int y = 0; y < kPngHeightPx; ++y)
+      for (int x = kPngWidthPx - 400; x < kPngWidthPx; ++x) {
+        const std::uint32_t v = *reinterpret_cast<const std::uint32_t*>(data + y * stride + 4 * x) & 0xffffffu;
+        if (v == 0xffffffu) continue;
+        ++key;
+        if (x >= kPngWidthPx - 4) ++edge;
+      }
+    cairo_surface_destroy(s);
+    CHECK(key > 500);  // the key is drawn in the right part
+    return edge;
+  };
+  CHECK(drawn_at_right_edge(TerminalCommand(PlotFormat::kPng)) == 0);
+  // The same without the widening runs past the edge.
+  CHECK(drawn_at_right_edge(TerminalCommand(PlotFormat::kPng) + "undefine " + kPngSourceVariable + "\n") > 0);
 }
 
 }  // namespace deb::report

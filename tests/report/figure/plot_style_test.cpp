@@ -238,11 +238,18 @@ TEST_CASE("a contributor's colour follows its index in the budget, not its share
   CHECK(ReadAll(dir / "plots" / "z_cps.gp").find("'" + ContributorStyle(1).colour + "' title 'major") != std::string::npos);
 }
 
-TEST_CASE("every terminal is headless cairo or SVG") {
-  CHECK(TerminalCommand(PlotFormat::kPng).find("pngcairo") != std::string::npos);
+TEST_CASE("every terminal is headless cairo or SVG; a PNG is gnuplot's SVG at its size, rasterised by deb") {
+  CHECK(TerminalCommand(PlotFormat::kPng).find("terminal svg enhanced size 1200,720") != std::string::npos);
+  CHECK(TerminalCommand(PlotFormat::kPng).find("\ndeb_png = 1\n") != std::string::npos);
   CHECK(TerminalCommand(PlotFormat::kPdf).find("pdfcairo") != std::string::npos);
   CHECK(TerminalCommand(PlotFormat::kSvg).find("terminal svg") != std::string::npos);
+  // The others clear the PNG's variable, which a batch's earlier PNG set.
+  CHECK(TerminalCommand(PlotFormat::kSvg).find("undefine deb_png") != std::string::npos);
+  CHECK(TerminalCommand(PlotFormat::kPdf).find("undefine deb_png") != std::string::npos);
   CHECK(FileExtension(PlotFormat::kPdf) == "pdf");
+  CHECK(GnuplotOutputFile(PlotFormat::kPng, "a.png") == "a.png.svg");
+  CHECK(GnuplotOutputFile(PlotFormat::kSvg, "a.svg") == "a.svg");
+  CHECK(GnuplotOutputFile(PlotFormat::kPdf, "a.pdf") == "a.pdf");
 }
 
 }  // namespace deb::report
