@@ -147,7 +147,7 @@ std::string LoopCsv(const LoopResult& r, const LoopCurves& c, const std::string&
   return csv.str();
 }
 
-// The phase axis in whole steps of 45° · 2^k (at most 8 of them), reaching -180.
+// The phase axis in whole steps of 45° · 2^k (at most 5 of them), reaching -180.
 void PhaseAxis(FigurePanel& panel, const std::vector<double>& phase) {
   const auto [lo, hi] = std::minmax_element(phase.begin(), phase.end());
   SetPhaseAxis(panel.y, std::min(*lo, -180.0), std::max(*hi, -180.0));

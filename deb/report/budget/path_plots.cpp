@@ -230,7 +230,7 @@ Plot PathPlot(const BudgetResult& result, const std::vector<std::size_t>& users,
         phase_hi = std::max(phase_hi, phase_deg[k][i]);
       }
   }
-  if (phase_hi >= phase_lo) {  // whole steps of 45° · 2^k, at most 8 of them, at least 90° tall
+  if (phase_hi >= phase_lo) {  // whole steps of 45° · 2^k, at most 5 of them, at least 90° tall
     SetPhaseAxis(phase.y, phase_lo, phase_hi, 90.0);
   }
   p.figure.title = "path " + Enhanced(through) + " → " + Enhanced(output.name) +

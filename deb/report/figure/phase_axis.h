@@ -8,9 +8,11 @@
 namespace deb::report {
 
 // The tick step for a phase span: 45° · 2^k, the smallest that divides the
-// span into at most kMaxPhaseIntervals steps (45° up to 360°, 90° up to
-// 720°, ... 5760° over 46 080°).
-inline constexpr int kMaxPhaseIntervals = 8;
+// span into at most kMaxPhaseIntervals steps (45° up to 225°, 90° up to
+// 450°, ... 1440° up to 7200°). Five: a phase panel is the lower third of a
+// Bode figure, about 120 pt tall in report.pdf, where more labels run
+// together.
+inline constexpr int kMaxPhaseIntervals = 5;
 double PhaseStepDeg(double span_deg);
 
 // Sets `y` to [lo_deg, hi_deg] widened outward to whole steps, at least

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <filesystem>
 #include <mutex>
 #include <string>
@@ -31,8 +32,8 @@ constexpr double kGoldenAngleDeg = 137.50776405;
 // Hues (CIE LCh) of the first 8 contributors, a qualitative palette matched
 // to their lightness (kLightness): dark blue, orange, light yellow, purple,
 // sky blue, crimson, light green, dark olive. Hues closer than 45° differ by
-// >= 25 in lightness. Contributors 8.. take the same hues turned by 22.5°,
-// then by -22.5°, 11.25°.
+// >= 25 in lightness. Contributors 8-23 choose theirs (ContributorHue);
+// 24.. take the same hues turned by 22.5°, then by -22.5°, 11.25°.
 constexpr std::array<double, 8> kFirstHues = {255, 40, 95, 300, 210, 345, 140, 75};
 constexpr std::array<double, 4> kHueTurns = {0.0, 22.5, -22.5, 11.25};
 constexpr double kFirstHueDeg = kFirstHues[0];
@@ -99,10 +100,54 @@ std::string PrintableColour(double l, double c, double h_deg) {
   return LchColour(l, 0.0, 0.0);  // grey: both are l
 }
 
+// CIE L*a*b* of "#rrggbb".
+std::array<double, 3> LabOf(const std::string& colour) {
+  const auto c = Components(colour);
+  const double r = Decode(c[0]), g = Decode(c[1]), b = Decode(c[2]);
+  const double x = (0.4124564 * r + 0.3575761 * g + 0.1804375 * b) / 0.95047;
+  const double y = 0.2126729 * r + 0.7151522 * g + 0.0721750 * b;
+  const double z = (0.0193339 * r + 0.1191920 * g + 0.9503041 * b) / 1.08883;
+  const auto f = [](double t) {
+    constexpr double d = 6.0 / 29.0;
+    return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
+  };
+  return {116.0 * f(y) - 16.0, 500.0 * (f(x) - f(y)), 200.0 * (f(y) - f(z))};
+}
+
+// CIE76 ΔE.
+double DeltaE(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// Contributors 8-23 (those a report holds in its table of styles): the
+// colour at their lightness level whose hue, in steps of 7.5°, lies
+// farthest (CIE76 ΔE) from the 11 contributors before them, which share a
+// chart's bars with them. (Turning the palette's hues by a fixed angle gave
+// two browns and two greens among 12 bars.) Later ones turn the palette.
+constexpr std::size_t kChosenHues = 24;
+// Returns the hue (degrees) of contributor `index` at `lightness`.
+double ContributorHue(std::size_t index, double lightness) {
+  if (index < 8 || index >= kChosenHues)
+    return std::fmod(kFirstHues[index % 8] + kHueTurns[(index / 8) % 4] + 360.0, 360.0);
+  std::vector<std::array<double, 3>> before;
+  for (std::size_t j = index >= 11 ? index - 11 : 0; j < index; ++j) before.push_back(LabOf(ContributorStyle(j).colour));
+  double best = 0.0, best_distance = -1.0;
+  for (int step = 0; step < 48; ++step) {
+    const std::array<double, 3> lab = LabOf(PrintableColour(lightness, kChroma, 7.5 * step));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& other : before) nearest = std::min(nearest, DeltaE(lab, other));
+    if (nearest > best_distance + 1e-9) {
+      best = 7.5 * step;
+      best_distance = nearest;
+    }
+  }
+  return best;
+}
+
 SeriesStyle MakeContributorStyle(std::size_t index) {
   SeriesStyle s;
-  const double hue = std::fmod(kFirstHues[index % 8] + kHueTurns[(index / 8) % 4] + 360.0, 360.0);
   s.lightness = kLightness[index % kLightness.size()];
+  const double hue = ContributorHue(index, s.lightness);
   s.colour = PrintableColour(s.lightness, kChroma, hue);
   s.edge_colour = LchColour(std::max(s.lightness - 28.0, 12.0), kChroma, hue);
   s.dash = kDashes[index % kDashes.size()];

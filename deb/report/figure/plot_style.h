@@ -4,7 +4,8 @@
 // (not by their share, which differs per output). Colours are built in CIE
 // L*C*h: the first 8 form a qualitative palette (hues
 // chosen per lightness level, so that no two read alike in colour or in
-// grey), the next 8 the same hues turned by 22.5°, and lightness runs through a ladder of 12 levels (25..80, alternating
+// grey), the next 16 each the hue farthest in colour (CIE76 ΔE) from the 11
+// before them (any 12 in a row at least ΔE 28 apart), and lightness runs through a ladder of 12 levels (25..80, alternating
 // dark and light), so that a greyscale print still tells layers and lines
 // apart. The level is met both by the colour's L* and by the grey a printer
 // makes of it (Rec. 601 luma), within 3; greens and cyans lose chroma for it.

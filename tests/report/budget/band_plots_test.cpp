@@ -12,7 +12,7 @@
 
 namespace deb::report {
 
-TEST_CASE("the bands figure draws each band requirement as a limit segment across its own group and marks failures") {
+TEST_CASE("the bands figure draws each band requirement as a limit segment behind its own group and marks failures") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
   const BudgetResult result = Evaluate(budget);
   const OutputResult& out = result.outputs[0];  // position: decades 0.1..1e4 Hz; requirements 0.1-10 (fails), 10-100, 100-1e4
@@ -38,6 +38,8 @@ TEST_CASE("the bands figure draws each band requirement as a limit segment acros
   CHECK(limits[1]->x0 < 6.0);
   CHECK(limits[1]->x1 > 6.0);
   CHECK(limits[1]->y0 == doctest::Approx(0.8));
+  // Behind the bars: a bar that passes its limit covers it.
+  for (const FigureAnnotation* a : limits) CHECK(a->behind);
   // The failing group's total is in the failing_total column; passing ones hold 0 there.
   std::istringstream lines(p.csv);
   std::string line;

@@ -172,6 +172,22 @@ TEST_CASE("the first 8 contributor colours are a qualitative palette: distinct h
     }
 }
 
+TEST_CASE("any 12 consecutive contributors, which share a chart's bars, differ clearly in colour") {
+  // Contributors 8-23 take the hue farthest from the 11 before them: turning
+  // the palette by a fixed angle gave air_turbulence and y_crosstalk two
+  // browns, motor_ripple and frame_thermal two greens: the nearest pair was
+  // ΔE 15; now 30.
+  double nearest = 1e9;
+  for (std::size_t i = 0; i < 24; ++i)
+    for (std::size_t j = i >= 11 ? i - 11 : 0; j < i; ++j) {
+      const auto a = Lab(ContributorStyle(i).colour), b = Lab(ContributorStyle(j).colour);
+      const double delta_e = std::sqrt(std::pow(a[0] - b[0], 2) + std::pow(a[1] - b[1], 2) + std::pow(a[2] - b[2], 2));
+      nearest = std::min(nearest, delta_e);
+      CHECK_MESSAGE(delta_e >= 28.0, i, " ", j, " ", ContributorStyle(i).colour, " ", ContributorStyle(j).colour);
+    }
+  MESSAGE("nearest pair: ΔE ", nearest);
+}
+
 TEST_CASE("source channels have a style family of their own: distinct markers, none of the contributor colours") {
   std::set<std::string> colours, contributor_colours;
   std::set<int> markers;
