@@ -180,7 +180,7 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
     failing.y_columns = {5};
     failing.colour = kTotalColour;
     failing.edge_colour = kRequirementColour;
-    failing.edge_width = 4.0;
+    failing.edge_width = 2.0;  // the black bar still shows inside it in report.pdf
     panel.series.insert(panel.series.begin() + 1, failing);
   }
   p.figure.panels.push_back(std::move(panel));
