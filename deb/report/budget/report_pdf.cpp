@@ -108,6 +108,7 @@ PdfTable TypesetTable(const Table& given, std::size_t min_note_chars) {
   // than to rows five lines tall.
   PdfTable t;
   const Table table = WithNotesBelow(given, &t.footnotes, min_note_chars);
+  t.footnotes.insert(t.footnotes.end(), given.notes.begin(), given.notes.end());
   t.header = table.header;
   t.numeric = table.numeric;
   for (std::size_t r = 0; r < table.rows.size(); ++r) {

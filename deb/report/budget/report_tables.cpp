@@ -239,14 +239,31 @@ Table CovarianceTable(const CovarianceResult& cov, int digits) {
   }
   t.header.push_back("largest contributor (its part)");
   t.numeric.push_back(false);
-  const auto correlation = [](const Eigen::MatrixXd& m, Eigen::Index a, Eigen::Index b) {
+  // A correlation below kRoundingCorrelation is the rounding of a pair the
+  // model leaves uncorrelated (by symmetry, or disjoint contributors): shown
+  // as such, not as data (a 1e-18 correlation with a "largest contributor").
+  bool rounding = false, cancels = false;
+  const auto correlation = [&rounding](const Eigen::MatrixXd& m, Eigen::Index a, Eigen::Index b) {
     const double d = std::sqrt(m(a, a) * m(b, b));
-    return d > 0.0 ? Sig(m(a, b) / d, 3) : std::string("–");
+    if (!(d > 0.0)) return std::string("–");
+    const double rho = m(a, b) / d;
+    if (rho != 0.0 && std::abs(rho) < kRoundingCorrelation) {
+      rounding = true;
+      return std::string("≈ 0");
+    }
+    return Sig(rho, 3);
+  };
+  const auto negligible = [&cov](Eigen::Index a, Eigen::Index b) {
+    const double d = std::sqrt(cov.matrix(a, a) * cov.matrix(b, b));
+    return d > 0.0 && cov.matrix(a, b) != 0.0 && std::abs(cov.matrix(a, b)) < kRoundingCorrelation * d;
   };
   const Eigen::Index n = cov.matrix.rows();
   for (Eigen::Index a = 0; a < n; ++a)
     for (Eigen::Index b = a + 1; b < n; ++b) {
       const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+      const std::string unit = cov.units[ia] == cov.units[ib]
+                                   ? UnitText(VarianceUnit(cov.units[ia]))
+                                   : UnitText(cov.units[ia]) + "·" + UnitText(cov.units[ib]);
       std::string largest = "–";
       double part = 0.0;
       for (const ContributorCovariance& c : cov.contributors)
@@ -254,16 +271,27 @@ Table CovarianceTable(const CovarianceResult& cov, int digits) {
           part = c.matrix(a, b);
           largest = c.name;
         }
-      if (part != 0.0 && cov.matrix(a, b) != 0.0) largest += " (" + Sig(100.0 * part / cov.matrix(a, b), 3) + " %)";
-      std::vector<std::string> row = {
-          cov.outputs[ia], cov.outputs[ib], correlation(cov.matrix, a, b),
-          Sig(cov.matrix(a, b), digits) + " " +
-              (cov.units[ia] == cov.units[ib] ? UnitText(VarianceUnit(cov.units[ia]))
-                                              : UnitText(cov.units[ia]) + "·" + UnitText(cov.units[ib]))};
+      const bool zero = negligible(a, b);
+      if (zero) {
+        largest = "–";
+      } else if (part != 0.0 && cov.matrix(a, b) != 0.0) {
+        const double percent = 100.0 * part / cov.matrix(a, b);
+        largest += " (" + Sig(percent, 3) + " %)";
+        cancels = cancels || percent > 100.0 || percent < 0.0;
+      }
+      std::vector<std::string> row = {cov.outputs[ia], cov.outputs[ib], correlation(cov.matrix, a, b),
+                                      (zero ? std::string("≈ 0") : Sig(cov.matrix(a, b), digits)) + " " + unit};
       if (exact) row.push_back(correlation(*cov.exact_matrix, a, b));
       row.push_back(largest);
       t.rows.push_back(std::move(row));
     }
+  if (rounding)
+    t.notes.push_back("≈ 0: a correlation below " + Sig(kRoundingCorrelation, 1) +
+                      " in size, the rounding of a pair the model leaves uncorrelated (summary.json keeps the "
+                      "computed value).");
+  if (cancels)
+    t.notes.push_back("A part above 100 % (or below 0): contributors of opposite sign partly cancel in that "
+                      "covariance.");
   return t;
 }
 
@@ -395,6 +423,7 @@ Table WithNotesBelow(const Table& table, std::vector<std::string>* notes, std::s
 std::string ToHtml(const Table& table) {
   std::vector<std::string> notes;
   const Table t = WithNotesBelow(table, &notes);
+  notes.insert(notes.end(), table.notes.begin(), table.notes.end());
   std::string s = "<table>\n<caption>" + HtmlEscape(t.title) + "</caption>\n<thead><tr>";
   for (std::size_t c = 0; c < t.header.size(); ++c)
     s += std::string(t.numeric[c] ? "<th class=\"num\">" : "<th>") + HtmlEscape(t.header[c]) + "</th>";
@@ -434,6 +463,11 @@ std::string ToMarkdown(const Table& t) {
     }
     s.pop_back();
     s += "\n";
+  }
+  if (!t.notes.empty()) {
+    s += "\n";
+    for (const std::string& note : t.notes) s += MarkdownEscape(note) + "\n\n";
+    s.pop_back();
   }
   return s;
 }

@@ -20,6 +20,7 @@ struct Table {
   std::vector<bool> numeric;  // per column: right-aligned
   std::vector<std::vector<std::string>> rows;
   std::vector<std::vector<bool>> emphasis;  // per cell (may be empty): bold
+  std::vector<std::string> notes;  // sentences set below the table, each its own line
 };
 
 // The budget's parameters: name, value, unit, expression (for a derived
@@ -72,6 +73,10 @@ Table ReferenceTable(const OutputResult& output, int digits = 4);
 // exact matrix), and the
 // contributor with the largest |part| of the covariance, with its part in
 // percent (parts may be negative: a contributor may anti-correlate the pair).
+// A pair whose |correlation| is below kRoundingCorrelation reads "≈ 0" with
+// no contributor, and a note says why; another note explains parts above
+// 100 % or below 0.
+inline constexpr double kRoundingCorrelation = 1e-9;
 Table CovarianceTable(const CovarianceResult& covariance, int digits = 4);
 
 // Facts about the run for the head of every document, as (label, value).

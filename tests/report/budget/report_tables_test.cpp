@@ -178,10 +178,30 @@ TEST_CASE("the covariance table: one row per pair, correlations from the matrice
   CHECK(t.rows[0] == std::vector<std::string>{"x", "y", "0.500", "4.000 nm^2", "stage (75.0 %)"});
   CHECK(t.rows[1] == std::vector<std::string>{"x", "rz", "-0.125", "-1.000 nm·nrad", "floor (200 %)"});
   CHECK(t.rows[2] == std::vector<std::string>{"y", "rz", "0", "0 nm·nrad", "–"});  // no contributor correlates them
+  // floor's 200 % is explained below the table.
+  REQUIRE(t.notes.size() == 1);
+  CHECK(t.notes[0].find("above 100 %") != std::string::npos);
   cov.exact_matrix = 2.0 * cov.matrix;
   t = CovarianceTable(cov, 4);
   CHECK(t.header[4] == "exact correlation");
   CHECK(t.rows[0][4] == "0.500");
+  // The rounding of an uncorrelated pair (correlation 1e-18, nizamoglu2015's
+  // x and alpha velocities): "≈ 0", no contributor, and a note.
+  cov.exact_matrix.reset();
+  cov.contributors[0].matrix(1, 2) = cov.contributors[0].matrix(2, 1) = 8e-18;
+  cov.contributors[1].matrix(1, 2) = cov.contributors[1].matrix(2, 1) = -3e-18;
+  cov.matrix = cov.contributors[0].matrix + cov.contributors[1].matrix;
+  t = CovarianceTable(cov, 4);
+  CHECK(t.rows[2] == std::vector<std::string>{"y", "rz", "≈ 0", "≈ 0 nm·nrad", "–"});
+  REQUIRE(t.notes.size() == 2);
+  CHECK(t.notes[0].find("≈ 0: a correlation below 1e-09") == 0);
+  // Above the bound it is data.
+  cov.matrix(1, 2) = cov.matrix(2, 1) = 8e-8;
+  CHECK(CovarianceTable(cov, 4).rows[2][2] == "1.00e-08");
+  const std::string md = ToMarkdown(t), html = ToHtml(t);
+  CHECK(md.find("\n\n≈ 0: a correlation") != std::string::npos);
+  CHECK(html.find("<tfoot>") != std::string::npos);
+  CHECK(html.find("partly cancel") != std::string::npos);
 }
 
 }  // namespace deb::report
