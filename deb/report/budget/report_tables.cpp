@@ -113,8 +113,11 @@ Table ContributorTable(const OutputResult& o, int digits) {
     const bool tones_only = !cr.tones.empty() && tone_variance >= cr.variance * (1.0 - 1e-12);
     if (cr.exact_variance && *cr.exact_variance > 0.0 && !tones_only)
       note = "grid holds " + Sig(100.0 * cr.variance / *cr.exact_variance, digits) + " % of the exact variance";
-    std::vector<std::string> row = {cr.name, cr.source, cr.path, Sig(std::sqrt(cr.variance), digits),
-                                    Share(cr.variance, o.variance),
+    // A contributor the model does not couple to the output (by symmetry)
+    // computes as rounding: 0, as in the channel table.
+    const double variance = RoundingZero(cr.variance, o.variance) ? 0.0 : cr.variance;
+    std::vector<std::string> row = {cr.name, cr.source, cr.path, Sig(std::sqrt(variance), digits),
+                                    Share(variance, o.variance),
                                     cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), digits) : "–"};
     if (fails) {
       const Allocation a = AllocationFactor(o, c);
@@ -314,10 +317,12 @@ Table BandTable(const OutputResult& o, int digits) {
     std::vector<std::string> row = {o.contributors[c].name};
     std::vector<bool> bold = {false};
     for (std::size_t b = 0; b < o.bands.size(); ++b) {
-      row.push_back(Sig(std::sqrt(o.bands[b].contributor_variance[c]), digits));
+      const double v = o.bands[b].contributor_variance[c];
+      row.push_back(Sig(std::sqrt(RoundingZero(v, o.bands[b].variance) ? 0.0 : v), digits));
       bold.push_back(largest[b] == c && o.bands[b].variance > 0.0);
     }
-    row.push_back(Sig(std::sqrt(o.contributors[c].variance), digits));
+    row.push_back(Sig(std::sqrt(RoundingZero(o.contributors[c].variance, o.variance) ? 0.0 : o.contributors[c].variance),
+                      digits));
     bold.push_back(false);
     t.rows.push_back(row);
     t.emphasis.push_back(bold);

@@ -253,3 +253,32 @@ TEST_CASE("a contributor of tones alone gets no 'grid holds' note: its variance 
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a contributor the model leaves uncoupled, computed as rounding, reads 0 in the contributor and band tables") {
+  // nizamoglu2015_h0: the floor reaches beta_velocity only through rounding
+  // (RMS 6.1e-13 of 22 µrad/s); a part at most 1e-24 of the whole is 0.
+  OutputResult o = test::FlatOutput({4.0, 3e-25, 1e-20}, std::nullopt, "um");
+  BandResult band;
+  band.band = {1.0, 2.0};
+  band.variance = o.variance;
+  band.contributor_variance = {4.0, 3e-25, 1e-20};
+  o.bands = {band};
+  const Table t = ContributorTable(o, 4);
+  const auto row_of = [&](const Table& table, const std::string& name) {
+    for (const auto& row : table.rows)
+      if (row[0] == name) return row;
+    FAIL("no row " << name);
+    return std::vector<std::string>{};
+  };
+  CHECK(row_of(t, "b")[3] == "0");
+  CHECK(row_of(t, "b")[4] == "0 %");
+  CHECK(row_of(t, "c")[3] == "1.000e-10");  // above the bound: data
+  const Table bands = BandTable(o, 4);
+  CHECK(row_of(bands, "b")[1] == "0");
+  CHECK(row_of(bands, "b")[2] == "0");
+  CHECK(row_of(bands, "c")[1] == "1.000e-10");
+}
+
+}  // namespace deb::report
