@@ -210,8 +210,11 @@ void AddRequirement(FigurePanel& panel, const BudgetResult& result, const Output
   v.kind = AnnotationKind::kVerticalLine;
   v.x0 = *cross;
   v.colour = kRequirementColour;
-  v.dash = "(4,4)";
-  v.width = 2.0;
+  // Dotted, told from the dashed requirement line; thinner than it too,
+  // which makes gnuplot's SVG terminal start a path of its own (at one
+  // width it kept the requirement line's dashes for both).
+  v.dash = "(4,6)";
+  v.width = 1.6;
   panel.annotations.push_back(v);
   FigureAnnotation m;
   m.kind = AnnotationKind::kMarker;

@@ -45,7 +45,11 @@ void Axis(std::ostringstream& s, const FigureAxis& a, const std::string& name) {
   if (a.min || a.max)
     s << "set " << name << "range [" << (a.min ? CsvNumber(*a.min) : "*") << ":" << (a.max ? CsvNumber(*a.max) : "*")
       << "]\n";
-  s << "set " << name << "label " << Label(a.label) << "\n";
+  s << "set " << name << "label " << Label(a.label);
+  // A PNG's SVG source measures the right axis' numbers narrower than they
+  // are: its label moves a character further out.
+  if (name == "y2") s << " offset (exists(" << Quote(kPngSourceVariable) << ") ? 1 : 0),0";
+  s << "\n";
   const std::string rotate =
       a.tic_rotation_deg ? " rotate by " + std::to_string(a.tic_rotation_deg) + " right" : std::string(" norotate");
   if (!a.tics.empty()) {
@@ -58,6 +62,11 @@ void Axis(std::ostringstream& s, const FigureAxis& a, const std::string& name) {
   }
   if (name == "x" || name == "y") s << "set grid " << (a.grid ? "" : "no") << name << "tics\n";
 }
+
+// A point size as "1.2*deb_point": gnuplot's SVG terminal draws points
+// about twice as large as its cairo terminals; a PNG's SVG source
+// (kPngSourceVariable) scales them back (kPointScaleVariable).
+std::string PointSize(const std::string& size) { return size + "*" + kPointScaleVariable; }
 
 // A dash pattern "(10,5)" as "(10*deb_dash,5*deb_dash)": gnuplot's SVG
 // terminal scales a pattern by the line width, which report.pdf's figures
@@ -121,7 +130,7 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
         return;
       case SeriesKind::kPoints:
         out.push_back(data + y + z + " with points pointtype " + std::to_string(s.point_type ? s.point_type : 7) +
-                      " pointsize " + (size.empty() ? "1.2" : size) + " linewidth " + CsvNumber(s.width) +
+                      " pointsize " + PointSize(size.empty() ? "1.2" : size) + " linewidth " + CsvNumber(s.width) +
                       " linecolor rgb " + Quote(s.colour) + " " + KeyOf(s.key));
         return;
       case SeriesKind::kSegments:
@@ -144,7 +153,7 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
       // Markers at every n-th row, staggered between curves; the key shows
       // line and marker together.
       const std::string marker =
-          "pointtype " + std::to_string(s.point_type) + " pointsize " + (size.empty() ? "1.1" : size);
+          "pointtype " + std::to_string(s.point_type) + " pointsize " + PointSize(size.empty() ? "1.1" : size);
       out.push_back(data + y + " with " + with + " " + line + " notitle");
       out.push_back(data + y + " every " + std::to_string(s.marker_every) + "::" + std::to_string(s.marker_first) +
                     " with points " + marker + " linewidth " + CsvNumber(s.width) + " linecolor rgb " +
@@ -173,7 +182,7 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
     }
     case SeriesKind::kPoints:
       out.push_back(data + y + " with points pointtype " + std::to_string(s.point_type ? s.point_type : 7) +
-                    " pointsize " + (size.empty() ? "1.2" : size) + " linewidth " + CsvNumber(s.width) +
+                    " pointsize " + PointSize(size.empty() ? "1.2" : size) + " linewidth " + CsvNumber(s.width) +
                     " linecolor rgb " + Quote(s.colour) + " " + KeyOf(s.key));
       return;
     case SeriesKind::kHorizontalBars: {
@@ -246,8 +255,12 @@ int KeyWidthIncrement(const FigurePanel& p) { return -static_cast<int>(0.2 * sta
 // What a key beside the plot adds to its column in a PNG's SVG source
 // (kPngSourceVariable): the SVG terminal estimates an entry at about a fifth
 // less than DejaVu Sans takes there, which would push the longest entries
-// past the canvas' edge.
-int KeyWidenedInSvg(const FigurePanel& p) { return static_cast<int>(0.2 * static_cast<double>(LongestKeyEntry(p))); }
+// past the canvas' edge; three characters more keep a margin.
+int KeyWidenedInSvg(const FigurePanel& p) {
+  // The title too: gnuplot centres it over the entries, however narrow.
+  const std::size_t longest = std::max(LongestKeyEntry(p), ShownCharacters(p.key.title));
+  return 3 + static_cast<int>(0.2 * static_cast<double>(longest));
+}
 
 // The key's placement, layout and title.
 void Key(std::ostringstream& s, const FigurePanel& p, bool multiplot) {
@@ -260,7 +273,11 @@ void Key(std::ostringstream& s, const FigurePanel& p, bool multiplot) {
       // beside it would leave the plot half the text width. (Panels of a
       // multiplot keep it beside them: their margins are fixed.)
       if (multiplot) {
-        s << "set key outside right top Left reverse";
+        // The title from the key's left edge, as its entries: centred over
+        // entries narrower than itself, it ran past the canvas' edge.
+        s << "set key outside right top Left reverse width (exists(" << Quote(kPngSourceVariable) << ") ? "
+          << KeyWidenedInSvg(p) << " : 0) title " << Label(p.key.title) << " left";
+        titled = true;
         break;
       }
       // Below, the title goes a line down and the key is not opaque:
@@ -346,7 +363,7 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
                             " fillstyle solid 0.6 noborder title " + Quote(a.key));
         else if (a.point_type > 0)
           clauses.push_back("keyentry with points pointtype " + std::to_string(a.point_type) + " pointsize " +
-                            CsvNumber(a.point_size) + " linewidth " + CsvNumber(a.width) + " linecolor rgb " +
+                            PointSize(CsvNumber(a.point_size)) + " linewidth " + CsvNumber(a.width) + " linecolor rgb " +
                             Quote(a.colour) + " title " + Quote(a.key));
         else
           clauses.push_back("keyentry with lines " + line + " title " + Quote(a.key));
@@ -354,7 +371,7 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
       case AnnotationKind::kMarker:
         s << "set label " << tag++ << " " << Quote(a.label) << " at first " << CsvNumber(a.x0) << ", " << y
           << CsvNumber(a.y0) << (a.label_left ? " right" : "") << " point pointtype " << a.point_type
-          << " pointsize " << CsvNumber(a.point_size)
+          << " pointsize " << PointSize(CsvNumber(a.point_size))
           << " linecolor rgb "
           << Quote(a.colour) << " offset " << CsvNumber(a.label_dx) << "," << CsvNumber(a.label_dy)
           << " textcolor rgb " << Quote(a.label_colour.empty() ? a.colour : a.label_colour) << " boxed front\n";
@@ -376,7 +393,7 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
     }
     if (!a.key.empty() && a.kind == AnnotationKind::kMarker)  // its label, moved into the key (label_layout.h)
       clauses.push_back("keyentry with points pointtype " + std::to_string(a.point_type) + " pointsize " +
-                        CsvNumber(a.point_size) + " linecolor rgb " + Quote(a.colour) + " title " + Quote(a.key));
+                        PointSize(CsvNumber(a.point_size)) + " linecolor rgb " + Quote(a.colour) + " title " + Quote(a.key));
     if (!a.key.empty() && a.kind != AnnotationKind::kMarker && a.kind != AnnotationKind::kText &&
         a.kind != AnnotationKind::kLabel && a.kind != AnnotationKind::kKeyEntry)
       clauses.push_back("keyentry with lines " + line + " title " + Quote(a.key));
@@ -399,6 +416,8 @@ std::string EmitFigure(const PlotFigure& figure) {
   // SVG source (Dash).
   s << kDashScaleVariable << " = exists(" << Quote(kPdfFigureVariable) << ") || exists(" << Quote(kPngSourceVariable)
     << ") ? 0.4 : 1\n";
+  // Points 0.6 times as large in a PNG's SVG source (PointSize).
+  s << kPointScaleVariable << " = exists(" << Quote(kPngSourceVariable) << ") ? 0.6 : 1\n";
   // Marker labels sit on an opaque box: readable over a hatched layer.
   s << "set style textbox opaque margins 0.5,0.5 noborder\n";
   const std::size_t n = figure.panels.size();

@@ -25,8 +25,10 @@ namespace {
 // 12 distinct greys. The first two, in most reports, are 30 apart.
 constexpr std::array<double, 12> kLightness = {30, 60, 80, 50, 70, 40, 65, 35, 55, 25, 45, 75};
 constexpr std::array<const char*, 6> kDashes = {"solid", "(10,5)", "(12,4,2,4)", "(4,4)", "(2,3)", "(16,4,4,4,4,4)"};
-// gnuplot fill patterns (cairo): 4, 5 and 6, 7 diagonals of two slopes, 1 and 2 crosshatches.
-constexpr std::array<int, 6> kPatterns = {4, 5, 1, 6, 7, 2};
+// gnuplot fill patterns as its SVG terminal draws them (the PNGs and
+// report.pdf's figures): 4 and 7 fall to the right, 5 and 6 rise, 6 and 7
+// steeper and denser; 1 and 2 crosshatches. Hatched neighbours alternate.
+constexpr std::array<int, 6> kPatterns = {4, 5, 1, 7, 6, 2};
 constexpr double kGreyTolerance = 3.0;  // L*, between the level and the colour's two greys
 constexpr double kGoldenAngleDeg = 137.50776405;
 // Hues (CIE LCh) of the first 8 contributors, a qualitative palette matched
