@@ -55,8 +55,10 @@ void PrintTopThree(const SweepSpec& spec, const std::vector<BudgetResult>& resul
                 s.failing);
     if (s.worst_utilisation > 0.0) std::printf(", worst RMS / requirement %.3g", s.worst_utilisation);
     std::printf("\n    ");
-    for (const OutputResult& o : results[s.variant].outputs)
-      std::printf("%s %s; ", o.name.c_str(), report::VariantCell(o).c_str());
+    const std::vector<OutputResult>& outputs = results[s.variant].outputs;
+    for (std::size_t o = 0; o < outputs.size(); ++o)
+      std::printf("%s %s; ", outputs[o].name.c_str(),
+                  report::VariantCell(outputs[o], report::LargestVariance(results, o)).c_str());
     std::printf("\n");
   }
 }

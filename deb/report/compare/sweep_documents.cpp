@@ -19,10 +19,23 @@ std::string Lead(const SweepSpec& spec, std::size_t variants) {
 
 }  // namespace
 
-std::string VariantCell(const OutputResult& output) {
+std::string VariantCell(const OutputResult& output, double largest_variance, bool* rounding) {
   const bool has_requirement = output.rms_max || !output.band_requirements.empty();
-  return Sig(output.rms(), 4) + (has_requirement ? (output.AllPass() ? " PASS" : " FAIL") : "");
+  const bool zero = output.variance > 0.0 && RoundingZero(output.variance, largest_variance);
+  if (zero && rounding) *rounding = true;
+  return (zero ? std::string("≈ 0") : Sig(output.rms(), 4)) +
+         (has_requirement ? (output.AllPass() ? " PASS" : " FAIL") : "");
 }
+
+double LargestVariance(const std::vector<BudgetResult>& results, std::size_t o) {
+  double v = 0.0;
+  for (const BudgetResult& r : results) v = std::max(v, r.outputs[o].variance);
+  return v;
+}
+
+constexpr const char* kRoundingNote =
+    "≈ 0: at most 1e-12 of the output's largest RMS over the variants, the rounding of a variant the model leaves "
+    "unexcited (sweep.csv keeps the computed value).";
 
 std::string VariantSettings(const SweepSpec& spec, const std::vector<double>& row) {
   std::string s;
@@ -42,6 +55,7 @@ std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetRe
   best.title = "Best variant per output";
   best.header = {"output", "best variant", "RMS", "requirement", "variants that pass"};
   best.numeric = {false, false, true, true, true};
+  bool best_rounding = false;
   for (std::size_t o = 0; o < outputs.size(); ++o) {
     const std::size_t b = BestVariant(results, o);
     std::size_t passing = 0;
@@ -49,9 +63,10 @@ std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetRe
     const OutputResult& out = results[b].outputs[o];
     const bool has_requirement = out.rms_max || !out.band_requirements.empty();
     best.rows.push_back({out.name + " [" + UnitText(out.unit) + "]", VariantSettings(spec, rows[b]),
-                         VariantCell(out), out.rms_max ? Short(*out.rms_max) : (has_requirement ? "bands" : "–"),
+                         VariantCell(out, LargestVariance(results, o), &best_rounding), out.rms_max ? Short(*out.rms_max) : (has_requirement ? "bands" : "–"),
                          has_requirement ? std::to_string(passing) + " of " + std::to_string(results.size()) : "–"});
   }
+  if (best_rounding) best.notes.push_back(kRoundingNote);
   tables.push_back(best);
 
   Table all;
@@ -67,7 +82,12 @@ std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetRe
     all.numeric.push_back(true);
   }
   std::vector<std::size_t> best_of(outputs.size());
-  for (std::size_t o = 0; o < outputs.size(); ++o) best_of[o] = BestVariant(results, o);
+  std::vector<double> largest(outputs.size());
+  for (std::size_t o = 0; o < outputs.size(); ++o) {
+    best_of[o] = BestVariant(results, o);
+    largest[o] = LargestVariance(results, o);
+  }
+  bool all_rounding = false;
   int rank = 0;
   for (const VariantScore& s : RankVariants(results)) {
     std::vector<std::string> row = {std::to_string(++rank)};
@@ -75,12 +95,13 @@ std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetRe
     for (std::size_t k = 0; k < spec.parameters.size(); ++k)
       row.push_back(spec.parameters[k].ShortText(rows[s.variant][k]));
     for (std::size_t o = 0; o < outputs.size(); ++o) {
-      row.push_back(VariantCell(results[s.variant].outputs[o]));
+      row.push_back(VariantCell(results[s.variant].outputs[o], largest[o], &all_rounding));
       bold.push_back(best_of[o] == s.variant);  // the output's best variant
     }
     all.rows.push_back(row);
     all.emphasis.push_back(bold);
   }
+  if (all_rounding) all.notes.push_back(kRoundingNote);
   tables.push_back(all);
   return tables;
 }

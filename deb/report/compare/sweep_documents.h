@@ -17,8 +17,13 @@
 namespace deb::report {
 
 // "11.3 PASS", "87.6 FAIL" (any requirement of the output, band included)
-// or "11.3" (none).
-std::string VariantCell(const OutputResult& output);
+// or "11.3" (none); "≈ 0" where the variance is at most 1e-24 of
+// `largest_variance` (the output's largest over the variants,
+// LargestVariance; RoundingZero): a variant the model leaves unexcited, by
+// symmetry, computed as rounding (then *rounding, if given, is set).
+std::string VariantCell(const OutputResult& output, double largest_variance, bool* rounding = nullptr);
+// The largest variance of output `o` over the variants.
+double LargestVariance(const std::vector<BudgetResult>& results, std::size_t o);
 
 // The settings of variant `row` (one value per parameter), "K_v = 25 N/(mm/s), h = -210 mm".
 std::string VariantSettings(const SweepSpec& spec, const std::vector<double>& row);

@@ -280,7 +280,7 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
   FigureSeries variants = layer("variants", SeriesKind::kPoints, 0);
   variants.key = "variants";
   variants.point_type = 7;
-  variants.point_size = 0.5;
+  variants.point_size = 0.8;  // seen in the PNG and in sweep.pdf, both drawn from SVG
   variants.colour = "#404040";
   panel.series.push_back(variants);
   if (out0.rms_max) {
@@ -304,7 +304,10 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
     panel.series.push_back(contour);
   }
   FigureSeries ring = layer("best", SeriesKind::kPoints, 1);
-  ring.key = "best: " + SigLabel(results[best].outputs[o].rms());
+  // A best of rounding (a variant the model leaves unexcited) says so.
+  const double best_rms = results[best].outputs[o].rms();
+  ring.key = "best: " + (best_rms > 0.0 && RoundingZero(best_rms * best_rms, hi * hi) ? std::string("≈ 0 (rounding)")
+                                                                                         : SigLabel(best_rms));
   ring.point_type = 6;
   ring.point_size = 3.0;
   ring.width = 2.5;

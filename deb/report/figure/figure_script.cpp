@@ -336,6 +336,8 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
     for (std::size_t i = 0; i < p.palette.size(); ++i) s << (i ? ", " : "") << i << " " << Quote(p.palette[i]);
     s << ")\n";
     Axis(s, p.colour_axis, "cb");
+    // gnuplot's SVG terminal leaves a map's y label over its numbers.
+    s << "set ylabel offset (exists(" << Quote(kPngSourceVariable) << ") ? -2 : 0),0\n";
   }
 
   std::vector<std::string> clauses;
@@ -416,8 +418,8 @@ std::string EmitFigure(const PlotFigure& figure) {
   // SVG source (Dash).
   s << kDashScaleVariable << " = exists(" << Quote(kPdfFigureVariable) << ") || exists(" << Quote(kPngSourceVariable)
     << ") ? 0.4 : 1\n";
-  // Points 0.6 times as large in a PNG's SVG source (PointSize).
-  s << kPointScaleVariable << " = exists(" << Quote(kPngSourceVariable) << ") ? 0.6 : 1\n";
+  // Points 0.75 times as large in a PNG's SVG source (PointSize).
+  s << kPointScaleVariable << " = exists(" << Quote(kPngSourceVariable) << ") ? 0.75 : 1\n";
   // Marker labels sit on an opaque box: readable over a hatched layer.
   s << "set style textbox opaque margins 0.5,0.5 noborder\n";
   const std::size_t n = figure.panels.size();

@@ -32,7 +32,7 @@ inline constexpr const char* kPngSourceVariable = "deb_png";
 // report.pdf's figures (kPdfFigureVariable set), 0.4 in a PNG's SVG
 // (kPngSourceVariable), else 1.
 inline constexpr const char* kDashScaleVariable = "deb_dash";
-// The factor of every point size in a figure's script: 0.6 in a PNG's SVG
+// The factor of every point size in a figure's script: 0.75 in a PNG's SVG
 // source (kPngSourceVariable), where gnuplot's SVG points are larger than
 // its PNG terminal's, else 1.
 inline constexpr const char* kPointScaleVariable = "deb_point";

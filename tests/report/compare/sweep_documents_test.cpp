@@ -49,6 +49,26 @@ TEST_CASE("the sweep tables lead with each output's best variant, then every var
   CHECK_FALSE(all.emphasis[1].back());
 }
 
+TEST_CASE("a variant the model leaves unexcited, computed as rounding, reads ≈ 0 with a note, not as the best number") {
+  // nizamoglu2015_sweep: beta_velocity at K_v = 0, h = 0 computes as 4.2e-11
+  // µrad/s against up to 82 µrad/s elsewhere.
+  const std::vector<BudgetResult> results = {Variant(82.0), Variant(4.2e-11), Variant(8.0)};
+  CHECK(LargestVariance(results, 0) == 82.0 * 82.0);
+  const std::vector<Table> tables = SweepTables(Spec(), results);
+  REQUIRE(tables.size() == 2);
+  CHECK(tables[0].rows[0][2] == "≈ 0 PASS");
+  REQUIRE(tables[0].notes.size() == 1);
+  CHECK(tables[0].notes[0].find("≈ 0: at most 1e-12 of the output's largest RMS") == 0);
+  CHECK(tables[1].rows[0][2] == "≈ 0 PASS");
+  CHECK(tables[1].notes.size() == 1);
+  // 1e-9 of the largest is data.
+  bool rounding = false;
+  CHECK(VariantCell(Variant(82e-9).outputs[0], 82.0 * 82.0, &rounding) == Sig(82e-9, 4) + " PASS");
+  CHECK_FALSE(rounding);
+  CHECK(VariantCell(Variant(82e-13).outputs[0], 82.0 * 82.0, &rounding) == "≈ 0 PASS");
+  CHECK(rounding);
+}
+
 TEST_CASE("sweep.md, sweep.html and sweep.pdf carry the tables and plots, user text escaped in HTML") {
   const std::vector<BudgetResult> results = {Variant(12.0), Variant(4.0), Variant(8.0)};
   Plot p;
