@@ -27,6 +27,10 @@ bool ShownInComparison(const OutputResult& o, std::size_t c) {
 
 namespace {
 
+// How far A's curves are mixed with white: pale enough for B's dashes to
+// read over them, dark enough to read on their own.
+constexpr double kPaleShare = 0.55;
+
 // One data block per result (gnuplot `index`): frequency, then per
 // contributor and the total, PSD or CPS, at the points a reader can see in
 // `range` (PlotPoints; the run's CSVs hold the whole grid).
@@ -74,7 +78,8 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
   p.name = FileStem(oa.name) + (cps ? "_cps_overlay" : "_psd_overlay");
   p.kind = cps ? PlotKind::kCps : PlotKind::kSpectrum;
   p.caption = std::string(cps ? "Cumulative power spectrum" : "Power spectral density") + " of " + oa.name + ": A (" +
-              label_a + ") solid, B (" + label_b + ") dashed; total in black; contributors below " +
+              label_a + ") wide and pale, B (" + label_b + ") dashed over it, so that both show where they "
+              "coincide; total in black; contributors below " +
               "10^-6 of the variance in both are left out." + RangeCaption(range);
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", compare, output " << oa.name << ": " << (cps ? "CPS in " : "PSD in ")
@@ -121,7 +126,7 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
     panel.y2.shown = false;
   }
   // Who A and B are heads the key (labels are user text).
-  panel.key.title = Enhanced("A: " + label_a) + " (solid)\n" + Enhanced("B: " + label_b) + " (dashed)\nRMS [" +
+  panel.key.title = Enhanced("A: " + label_a) + " (wide, pale)\n" + Enhanced("B: " + label_b) + " (dashed)\nRMS [" +
                     UnitLabel(unit) + "]";
   const std::string file = p.name + ".csv";
   const std::size_t na = oa.contributors.size();
@@ -152,14 +157,16 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
       if (block == 0) style = c;
       FigureSeries s = curve(o.contributors[c].name, c + 2);
       s.key = side + ": " + Enhanced(o.contributors[c].name) + " " + SigLabel(std::sqrt(o.contributors[c].variance));
-      s.colour = ContributorStyle(style).colour;
-      s.width = 1.5;
+      // A wide and pale under B, dashed in full colour: where the two
+      // coincide, B's dashes lie on A's band instead of vanishing in it.
+      s.colour = block == 0 ? Tint(ContributorStyle(style).colour, kPaleShare) : ContributorStyle(style).colour;
+      s.width = block == 0 ? 4.0 : 1.5;
       panel.series.push_back(std::move(s));
     }
     FigureSeries t = curve("total", o.contributors.size() + 2);
     t.key = side + ": total " + SigLabel(std::sqrt(o.variance));
-    t.colour = kTotalColour;
-    t.width = 2.5;
+    t.colour = block == 0 ? Tint(kTotalColour, kPaleShare) : kTotalColour;
+    t.width = block == 0 ? 5.0 : 2.0;
     panel.series.push_back(std::move(t));
   }
   if (cps && req) {

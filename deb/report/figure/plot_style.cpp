@@ -192,6 +192,15 @@ std::string LchColour(double l, double c, double h_deg) {
   return text;
 }
 
+std::string Tint(const std::string& colour, double white_share) {
+  DEB_DEMAND(white_share >= 0.0 && white_share <= 1.0);
+  const auto c = Components(colour);
+  char text[8];
+  const auto mix = [&](int v) { return static_cast<int>(std::lround(v + white_share * (255 - v))); };
+  std::snprintf(text, sizeof(text), "#%02x%02x%02x", mix(c[0]), mix(c[1]), mix(c[2]));
+  return text;
+}
+
 SeriesStyle ContributorStyle(std::size_t index) {
   // The colour search costs ~500 colour conversions a style and reports ask
   // often: each of the first 24 is made once, when it is first asked for

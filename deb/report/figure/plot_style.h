@@ -111,5 +111,9 @@ std::string StylePreamble();
 // sRGB colour "#rrggbb" of CIE L*C*h (D65) lightness l, chroma c and hue
 // h_deg; the chroma is reduced until the colour lies inside the sRGB gamut.
 std::string LchColour(double l, double c, double h_deg);
+// "#rrggbb" mixed with white: each sRGB component moved `white_share`
+// (0..1) of the way to 255. A pale copy of a colour, for a curve drawn
+// wide under another.
+std::string Tint(const std::string& colour, double white_share);
 
 }  // namespace deb::report

@@ -62,11 +62,18 @@ TEST_CASE("overlay plots give PSD and CPS per shared output, A and B as two data
   CHECK(total_b->block == 1);
   CHECK(total_a->dash == "solid");
   CHECK(total_b->dash == "(8,5)");
-  CHECK(total_a->colour == kTotalColour);
+  // A wide and pale, B dashed over it in full colour: both show where they coincide.
+  CHECK(total_a->colour == Tint(kTotalColour, 0.55));
+  CHECK(total_b->colour == kTotalColour);
+  CHECK(total_a->width > 2.0 * total_b->width);
   CHECK(total_a->y_columns == std::vector<std::size_t>{a.outputs[0].contributors.size() + 2});
   const FigureSeries* floor_b = FindSeries(cps, "B: " + a.outputs[0].contributors[0].name);
   REQUIRE(floor_b);
   CHECK(floor_b->colour == ContributorStyle(0).colour);
+  const FigureSeries* floor_a = FindSeries(cps, "A: " + a.outputs[0].contributors[0].name);
+  REQUIRE(floor_a);
+  CHECK(floor_a->colour == Tint(ContributorStyle(0).colour, 0.55));
+  CHECK(floor_a->width > 2.0 * floor_b->width);
   CHECK(&panel.series.back() == total_b);  // B drawn after A
   // The frequency axis clipped to the run's display range.
   REQUIRE(panel.x.min);

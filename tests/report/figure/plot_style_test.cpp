@@ -188,6 +188,13 @@ TEST_CASE("any 12 consecutive contributors, which share a chart's bars, differ c
   MESSAGE("nearest pair: ΔE ", nearest);
 }
 
+TEST_CASE("a tint mixes a colour with white, component by component") {
+  CHECK(Tint("#000000", 0.5) == "#808080");  // 127.5 rounds up
+  CHECK(Tint("#ff0000", 0.0) == "#ff0000");
+  CHECK(Tint("#0e5274", 1.0) == "#ffffff");
+  CHECK(Tint("#204060", 0.25) == "#587088");  // 32 + 0.25 (255 - 32) = 87.75
+}
+
 TEST_CASE("source channels have a style family of their own: distinct markers, none of the contributor colours") {
   std::set<std::string> colours, contributor_colours;
   std::set<int> markers;
