@@ -1,5 +1,6 @@
 #include "deb/report/figure/label_layout.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -66,6 +67,17 @@ void PlaceMarkerLabels(FigurePanel& panel, double share) {
       if (const auto at = PlotFraction(panel, a))
         points.push_back({at->first - 0.5 * kLabelCharWidth, at->first + 0.5 * kLabelCharWidth,
                           at->second - 0.25 * line, at->second + 0.25 * line});
+  // Every horizontal line (a requirement, a band's limit), a third of a
+  // line tall: a label across it is struck through.
+  for (const FigureAnnotation& a : panel.annotations) {
+    const bool across = a.kind == AnnotationKind::kHorizontalLine;
+    if (!across && !(a.kind == AnnotationKind::kSegment && a.y0 == a.y1)) continue;
+    const auto y = Fraction(a.on_y2 ? panel.y2 : panel.y, a.y0);
+    const auto x0 = across ? std::optional<double>(0.0) : Fraction(panel.x, a.x0);
+    const auto x1 = across ? std::optional<double>(1.0) : Fraction(panel.x, a.x1);
+    if (y && x0 && x1)
+      points.push_back({std::min(*x0, *x1), std::max(*x0, *x1), *y - line / 6.0, *y + line / 6.0});
+  }
   for (FigureAnnotation& a : panel.annotations) {
     if (a.kind != AnnotationKind::kMarker || a.label.empty() || !PlotFraction(panel, a)) continue;
     bool done = false;

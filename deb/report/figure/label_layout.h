@@ -6,8 +6,8 @@
 // figures, 662 px wide, PdfFigureTerminal), in fractions of the plot area;
 // it is tried above its point, then below, one and then two lines away,
 // each right of the point and then left, and the first place inside the
-// axes that meets no label placed before it and no marker's point is
-// kept. A label that fits
+// axes that meets no label placed before it, no marker's point and no
+// horizontal line (a requirement or a band's limit) is kept. A label that fits
 // nowhere becomes the marker's entry in the key (a panel without a key gets
 // one beside it).
 #pragma once

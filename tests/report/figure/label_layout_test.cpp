@@ -81,6 +81,30 @@ TEST_CASE("labels go right of their point, left near the right edge, and apart f
     }
 }
 
+TEST_CASE("a label is not struck through by a horizontal line: a requirement or a band's limit") {
+  FigurePanel p = LogPanel();
+  // A line one label-line above the point (where the label would go first),
+  // as optical_table's band limit ran through its 50 Hz tone's label.
+  const double line = kLabelLineHeight * 10.0;  // in y units of [0, 10]
+  FigureAnnotation limit;
+  limit.kind = AnnotationKind::kSegment;
+  limit.x0 = 1.0;
+  limit.x1 = 100.0;
+  limit.y0 = limit.y1 = 5.0 + line;
+  p.annotations.push_back(limit);
+  p.annotations.push_back(Marker(10.0, 5.0, "tone 50 Hz: 0.3470 nm RMS"));
+  PlaceMarkerLabels(p);
+  const FigureAnnotation& m = p.annotations.back();
+  REQUIRE_FALSE(m.label.empty());
+  CHECK(m.label_dy == -1.0);  // below, where no line runs
+  const LabelBox box = *LabelBoxOf(p, m);
+  CHECK_FALSE((box.y0 < 0.5 + kLabelLineHeight && box.y1 > 0.5 + kLabelLineHeight));
+  // The same without the line goes above.
+  p.annotations.erase(p.annotations.begin());
+  PlaceMarkerLabels(p);
+  CHECK(p.annotations.back().label_dy == 1.0);
+}
+
 TEST_CASE("a label that fits nowhere names its marker in the key, and a panel without a key gets one") {
   FigurePanel p = LogPanel();
   p.key.placement = KeyPlacement::kNone;
