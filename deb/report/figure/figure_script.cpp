@@ -46,9 +46,9 @@ void Axis(std::ostringstream& s, const FigureAxis& a, const std::string& name) {
     s << "set " << name << "range [" << (a.min ? CsvNumber(*a.min) : "*") << ":" << (a.max ? CsvNumber(*a.max) : "*")
       << "]\n";
   s << "set " << name << "label " << Label(a.label);
-  // A PNG's SVG source measures the right axis' numbers narrower than they
-  // are: its label moves a character further out.
-  if (name == "y2") s << " offset (exists(" << Quote(kPngSourceVariable) << ") ? 1 : 0),0";
+  // A PNG's SVG source measures the right axis' and the colour bar's
+  // numbers narrower than they are: their label moves 1.5 characters out.
+  if (name == "y2" || name == "cb") s << " offset (exists(" << Quote(kPngSourceVariable) << ") ? 1.5 : 0),0";
   s << "\n";
   const std::string rotate =
       a.tic_rotation_deg ? " rotate by " + std::to_string(a.tic_rotation_deg) + " right" : std::string(" norotate");
@@ -257,9 +257,11 @@ int KeyWidthIncrement(const FigurePanel& p) { return -static_cast<int>(0.2 * sta
 // less than DejaVu Sans takes there, which would push the longest entries
 // past the canvas' edge; three characters more keep a margin.
 int KeyWidenedInSvg(const FigurePanel& p) {
-  // The title too: gnuplot centres it over the entries, however narrow.
-  const std::size_t longest = std::max(LongestKeyEntry(p), ShownCharacters(p.key.title));
-  return 3 + static_cast<int>(0.2 * static_cast<double>(longest));
+  // A title longer than every entry widens the key by the difference:
+  // gnuplot sizes the key by its entries alone.
+  const std::size_t entries = LongestKeyEntry(p), title = ShownCharacters(p.key.title);
+  const std::size_t longest = std::max(entries, title);
+  return 3 + static_cast<int>(0.2 * static_cast<double>(longest)) + static_cast<int>(longest - entries);
 }
 
 // The key's placement, layout and title.

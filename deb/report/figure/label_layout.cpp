@@ -17,6 +17,11 @@ std::optional<double> Fraction(const FigureAxis& axis, double v) {
   return (v - *axis.min) / (*axis.max - *axis.min);
 }
 
+// A character's width and a line's height in a panel with `share` of its
+// figure's height (< 1: one of a stack).
+double CharWidth(double share) { return share < 1.0 ? kStackedLabelCharWidth : kLabelCharWidth; }
+double LineHeight(double share) { return (share < 1.0 ? kStackedLabelLineHeight : kLabelLineHeight) / share; }
+
 }  // namespace
 
 std::size_t ShownCharacters(const std::string& enhanced) {
@@ -44,9 +49,9 @@ std::optional<std::pair<double, double>> PlotFraction(const FigurePanel& panel, 
 std::optional<LabelBox> LabelBoxOf(const FigurePanel& panel, const FigureAnnotation& a, double share) {
   const auto at = PlotFraction(panel, a);
   if (!at || a.label.empty()) return std::nullopt;
-  const double line = kLabelLineHeight / share;
-  const double width = static_cast<double>(ShownCharacters(a.label)) * kLabelCharWidth;
-  const double gap = std::fabs(a.label_dx) * kLabelCharWidth;
+  const double line = LineHeight(share);
+  const double width = static_cast<double>(ShownCharacters(a.label)) * CharWidth(share);
+  const double gap = std::fabs(a.label_dx) * CharWidth(share);
   const double centre = at->second + a.label_dy * line;
   LabelBox b;
   b.x0 = a.label_left ? at->first - gap - width : at->first + gap;
@@ -57,7 +62,7 @@ std::optional<LabelBox> LabelBoxOf(const FigurePanel& panel, const FigureAnnotat
 }
 
 void PlaceMarkerLabels(FigurePanel& panel, double share) {
-  const double line = kLabelLineHeight / share;
+  const double line = LineHeight(share), char_width = CharWidth(share);
   std::vector<LabelBox> placed;
   // Every marker's point, a character wide and half a line tall: a label
   // over another marker's point would read as that marker's.
@@ -65,7 +70,7 @@ void PlaceMarkerLabels(FigurePanel& panel, double share) {
   for (const FigureAnnotation& a : panel.annotations)
     if (a.kind == AnnotationKind::kMarker)
       if (const auto at = PlotFraction(panel, a))
-        points.push_back({at->first - 0.5 * kLabelCharWidth, at->first + 0.5 * kLabelCharWidth,
+        points.push_back({at->first - 0.5 * char_width, at->first + 0.5 * char_width,
                           at->second - 0.25 * line, at->second + 0.25 * line});
   // Every horizontal line (a requirement, a band's limit), a third of a
   // line tall: a label across it is struck through.

@@ -39,6 +39,11 @@ struct LabelBox {
 // tall, a panel of a stack its share of that).
 inline constexpr double kLabelCharWidth = 6.5 / 430.0;
 inline constexpr double kLabelLineHeight = 15.0 / 250.0;
+// The same in a stack of panels (a Bode figure: `share` < 1), whose key
+// beside it leaves the plot 310 px wide, and 195 px tall in all (report.pdf,
+// measured on wafer_stage's loop gain).
+inline constexpr double kStackedLabelCharWidth = 6.5 / 310.0;
+inline constexpr double kStackedLabelLineHeight = 15.0 / 195.0;
 
 // Where `a` (a marker) sits in the panel, in fractions of the plot area; none
 // when an axis has no explicit range.

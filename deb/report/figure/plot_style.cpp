@@ -231,8 +231,10 @@ std::vector<std::string> FillClauses(const SeriesStyle& style, const std::string
 }
 
 SeriesStyle ChannelStyle(std::size_t index) {
-  // Open markers first: they keep the curve beneath visible.
-  constexpr std::array<int, 12> kPoints = {6, 4, 8, 12, 10, 2, 1, 3, 7, 5, 9, 13};
+  // Filled markers first: gnuplot's SVG terminal (the PNGs, report.pdf)
+  // strokes an open one with a hairline that reads faintly on a dense curve;
+  // the markers are sparse, so a filled one hides little of it.
+  constexpr std::array<int, 12> kPoints = {7, 5, 9, 13, 11, 6, 4, 8, 12, 10, 1, 2};
   constexpr std::array<double, 4> kChannelLightness = {38, 58, 48, 66};
   constexpr double kFirstChannelHueDeg = 75.0, kAvoidDeg = 25.0;
   const auto hue_distance = [](double a, double b) {

@@ -43,3 +43,26 @@ TEST_CASE("the overview has a panel per output: bars largest first, the total la
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("an overview bar of a contributor the model leaves uncoupled, computed as rounding, reads 0") {
+  // nizamoglu2015_h0: the floor reaches beta_velocity as 6.1e-13 µrad/s of 22.
+  const BudgetResult result = Evaluate(LoadBudgetFile(test::ExampleBudget("nizamoglu2015_h0.yaml")));
+  std::size_t beta = result.outputs.size();
+  for (std::size_t o = 0; o < result.outputs.size(); ++o)
+    if (result.outputs[o].name == "beta_velocity") beta = o;
+  REQUIRE(beta < result.outputs.size());
+  bool floor_seen = false;
+  for (const ContributorResult& c : result.outputs[beta].contributors)
+    if (c.name == "floor") {
+      floor_seen = true;
+      REQUIRE(c.variance > 0.0);  // rounding, not an exact zero
+      CHECK(c.variance < 1e-24 * result.outputs[beta].variance);
+    }
+  REQUIRE(floor_seen);
+  const std::string csv = OverviewFigures(result)[0].csv;
+  CHECK(csv.find(",beta_velocity,urad/s,floor,0,") != std::string::npos);
+}
+
+}  // namespace deb::report
