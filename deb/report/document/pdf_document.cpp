@@ -320,16 +320,20 @@ class Composer {
     std::vector<const PdfBlock*> headings;
     for (const PdfBlock& b : spec_.blocks)
       if (b.kind == PdfBlockKind::kHeading && b.level >= 1) headings.push_back(&b);
+    std::size_t sections = 0, listed = 0;
+    for (const PdfBlock* b : headings) sections += b->level == 1 ? 1 : 0;
     for (std::size_t k = 0; k < headings.size(); ++k) {
       const PdfBlock& b = *headings[k];
       if (b.level >= 2) continue;
+      ++listed;
       const double indent = b.level >= 2 ? 14.0 : 0.0, size = b.level >= 2 ? 9.0 : 10.0;
       const Target t = k < targets_.size() ? targets_[k] : Target{};
       Layout number = MakeLayout(std::to_string(t.page), size, b.level == 1, 0);
       const double number_w = Size(number.get()).first;
       Layout text = MakeLayout(b.text, size, b.level == 1, kTextWidthPt - indent - 40.0);
       const double h = Size(text.get()).second;
-      Need(h);
+      // The last line never alone on a page: the one before it takes it along.
+      Need(listed + 1 == sections ? 2.0 * (h + 3.0) : h);
       if (b.level == 1) y_ += 3.0;
       if (draw_) cairo_tag_begin(cr_, CAIRO_TAG_LINK, Link(t).c_str());
       Show(text.get(), kMarginPt + indent, y_, kInk);

@@ -27,11 +27,13 @@ TEST_CASE("the RMS axis puts each label r at the variance r squared, thinned nea
   const std::string tics = RmsTics(1e4);
   CHECK(tics.find("'20' 400") != std::string::npos);
   CHECK(tics.find("'100' 10000") != std::string::npos);
-  // The total gets its own tic; regular ones too close to it give way.
-  CHECK(RmsTics(420.0, 1.0, {{14.03, "14.0"}}) == "set y2tics nomirror ('0' 0, '5' 25, '10' 100, '14.0' 196.8409, '15' 225, '20' 400)");
+  // The total gets its own tic; regular ones within 8 % of the axis give
+  // way (15 at 225 is 6.7 % from 14.03 at 196.8: in report.pdf's short CPS
+  // figures the two labels touched, as wafer_stage's 2.173 and 2).
+  CHECK(RmsTics(420.0, 1.0, {{14.03, "14.0"}}) == "set y2tics nomirror ('0' 0, '5' 25, '10' 100, '14.0' 196.8409, '20' 400)");
   CHECK(RmsTics(420.0, 1.0, {{19.9, "19.9"}}).find("'20' 400") == std::string::npos);
   // Total and requirement both marked; a requirement crowding the total gives way.
-  CHECK(RmsTics(420.0, 1.0, {{14.03, "14.0"}, {20, "20"}}).find("'14.0' 196.8409, '15' 225, '20' 400") != std::string::npos);
+  CHECK(RmsTics(420.0, 1.0, {{14.03, "14.0"}, {20, "20"}}).find("'14.0' 196.8409, '20' 400") != std::string::npos);
   CHECK(RmsTics(420.0, 1.0, {{14.03, "14.0"}, {14.2, "14.2"}}).find("14.2") == std::string::npos);
 }
 
