@@ -19,8 +19,10 @@ namespace {
 
 
 // "floor: 12.3 (78.1 %)" for a key whose title names the unit; a
-// contributor that is zero on this output (by symmetry) reads "floor: 0 (0 %)".
+// contributor that is zero on this output (by symmetry), or computes as
+// rounding there (RoundingZero), reads "floor: 0 (0 %)", as in the tables.
 std::string Entry(const std::string& name, double variance, double total_variance, int digits) {
+  if (total_variance > 0.0 && RoundingZero(variance, total_variance)) variance = 0.0;
   std::string s = Enhanced(name) + ": " + (variance > 0.0 ? SigLabel(std::sqrt(variance), digits) : "0");
   if (total_variance > 0.0) s += " (" + (variance > 0.0 ? Share(variance, total_variance) : std::string("0 %")) + ")";
   return s;

@@ -209,13 +209,22 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
   std::vector<std::vector<double>> z(nx, std::vector<double>(ny));
   for (std::size_t i = 0; i < nx; ++i) x[i] = px.values[ix[i]];
   for (std::size_t j = 0; j < ny; ++j) y[j] = py.values[iy[j]];
-  double lo = HUGE_VAL, hi = 0.0;
+  double hi = 0.0;
   for (std::size_t i = 0; i < nx; ++i)
     for (std::size_t j = 0; j < ny; ++j) {
       z[i][j] = results[ix[i] * ny + iy[j]].outputs[o].rms();
-      lo = std::min(lo, z[i][j]);
       hi = std::max(hi, z[i][j]);
     }
+  // The colours span the values that are not rounding (a variant the model
+  // leaves unexcited, RoundingZero): such a variant takes the lightest.
+  double lo = HUGE_VAL;
+  bool rounding = false;
+  for (const auto& column : z)
+    for (const double v : column) {
+      if (v > 0.0 && RoundingZero(v * v, hi * hi)) rounding = true;
+      else lo = std::min(lo, v);
+    }
+  if (!(lo < HUGE_VAL)) lo = 0.0;
   const std::size_t best = BestVariant(results, o);
 
   Plot p;
@@ -263,6 +272,11 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
   panel.palette = kMapPalette;
   panel.colour_axis.label = "total RMS [" + UnitLabel(out0.unit) + "]";
   if (lo > 0.0 && hi / lo > 5.0) LogColourBar(panel.colour_axis, lo, hi, p.caption);  // a bad corner would wash out the rest
+  if (rounding) {
+    if (!panel.colour_axis.min) panel.colour_axis.min = lo;
+    p.caption += " A variant computed as rounding (≈ 0: the model leaves the output unexcited there) takes the "
+                 "lightest colour and does not set the scale.";
+  }
   // The key below the map, never over it.
   panel.key.placement = KeyPlacement::kBelowMap;
   const std::string file = p.name + ".csv";

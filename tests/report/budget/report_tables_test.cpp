@@ -282,3 +282,18 @@ TEST_CASE("a contributor the model leaves uncoupled, computed as rounding, reads
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a mode the output does not see, computed as rounding, has a share of 0 %; a small real share stays") {
+  // nastran_beam listed 8.73e-34 % beside shares of order 10 %.
+  OutputResult o = test::FlatOutput({4.0}, std::nullopt, "um");
+  o.contributors[0].top_modes = {{1, 12.0, 0.02, 3.6, 0.9}, {2, 40.0, 0.02, 3.5e-36, 8.73e-36}, {3, 80.0, 0.02, -7e-6, -1.76e-6}};
+  const Table t = ModeTable(o);
+  REQUIRE(t.rows.size() == 3);
+  CHECK(t.rows[0][4] == "90.0 %");
+  CHECK(t.rows[1][4] == "0 %");
+  CHECK(t.rows[2][4] == Sig(-1.76e-4, 3) + " %");  // a mode that cancels others: data
+}
+
+}  // namespace deb::report

@@ -217,6 +217,17 @@ TEST_CASE("the map of a two-parameter grid holds the grid by scan lines, the bes
   CHECK(bar.tics.size() <= 12);  // 3 decades of 1, 2, 5 and the ends
   for (const auto& [v, label] : bar.tics) CHECK(v >= *bar.min * 0.999);
   CHECK(clipped.caption.find("Colours span 3 decades") != std::string::npos);
+  // Rounding (at most 1e-12 of the highest RMS: nizamoglu2015_sweep's beta_velocity at K_v = h = 0, 4.2e-11 of
+  // 82) does not set the scale at all: the colours span the other variants, and the caption says so.
+  zeroed[0].outputs[0].variance = 1e-13 * 1e-13;
+  const Plot rounded = SweepPlots(spec, zeroed)[1];
+  const FigureAxis& rounded_bar = rounded.figure.panels.at(0).colour_axis;
+  REQUIRE(rounded_bar.min);
+  double lowest_other = HUGE_VAL;
+  for (std::size_t v = 1; v < zeroed.size(); ++v) lowest_other = std::min(lowest_other, zeroed[v].outputs[0].rms());
+  CHECK(*rounded_bar.min == doctest::Approx(lowest_other));
+  CHECK(rounded.caption.find("computed as rounding") != std::string::npos);
+  CHECK(rounded.caption.find("Colours span 3 decades") == std::string::npos);
   // Zipped, or one parameter: no map.
   spec.mode = SweepMode::kZip;
   spec.parameters[1].values = {10, 20};
