@@ -153,8 +153,12 @@ int OptimiseCommand::Run() const {
   for (const BudgetOverride& o : s.overrides) overrides.push_back(o.key_path + "=" + o.value);
   EngineOptions engine;
   engine.threads = s.threads;
-  // The optimum's report: at the tolerances' nominal values.
-  const BudgetResult optimum = Evaluate(budget.loader(budget.Point(result.starts[result.best].values)), engine);
+  // The optimum's report: at the tolerances' nominal values. It says that it
+  // is the optimum, and of what: its name and description are optimum.yaml's
+  // (the budget's own description speaks of the nominal design).
+  BudgetResult optimum = Evaluate(budget.loader(budget.Point(result.starts[result.best].values)), engine);
+  optimum.outline.name = budget.name + "_optimum";
+  optimum.outline.description = OptimumDescription(result, optimum.outline.description);
   // The figures: the history, and for two variables the objective's map.
   std::vector<report::Plot> plots;
   if (s.plots) {

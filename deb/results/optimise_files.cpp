@@ -112,6 +112,15 @@ std::string OptimiseHistoryCsv(const OptimiseResult& r) {
   return csv;
 }
 
+std::string OptimumDescription(const OptimiseResult& r, const std::string& budget_description) {
+  const OptimiseStart& best = r.starts[r.best];
+  std::string d = "The optimum of deb optimise: " + OptimumText(r) + " (" + r.objective.Text() + " minimised: " +
+                  SignificantText(best.objective, 4) + ", nominal " + SignificantText(r.nominal_objective, 4) + "); " +
+                  (r.feasible ? "every requirement met." : "NO design met every requirement: the least violating.");
+  if (!budget_description.empty()) d += " The budget: " + budget_description;
+  return d;
+}
+
 std::string OptimumYaml(const std::string& extends, const std::string& budget_name, const OptimiseResult& r,
                         const std::vector<std::string>& overrides) {
   const OptimiseStart& best = r.starts[r.best];
@@ -128,7 +137,10 @@ std::string OptimumYaml(const std::string& extends, const std::string& budget_na
   }
   std::string quoted;
   for (char c : extends) quoted += c == '\'' ? std::string("''") : std::string(1, c);
-  y += "extends: '" + quoted + "'\nname: " + budget_name + "_optimum\nparameters:\n";
+  std::string description;
+  for (char c : OptimumDescription(r, "")) description += c == '\'' ? std::string("''") : std::string(1, c);
+  y += "extends: '" + quoted + "'\nname: " + budget_name + "_optimum\ndescription: '" + description +
+       "'\nparameters:\n";
   for (std::size_t i = 0; i < r.variables.size(); ++i)
     y += "  " + r.variables[i].name + ": " + ValueText(r.variables[i], best.values[i]) + "\n";
   return y;

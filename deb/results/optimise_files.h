@@ -22,5 +22,10 @@ std::string OptimumYaml(const std::string& extends, const std::string& budget_na
                         const std::vector<std::string>& overrides);
 // "Kv = 61.3, h = 182 mm": the optimum's values in their units.
 std::string OptimumText(const OptimiseResult& result);
+// The optimum's description, for optimum.yaml and its report: "The optimum
+// of deb optimise: Kv = 61.3, h = 182 mm (z_velocity RMS minimised: 11.2,
+// nominal 12.1); every requirement met." then "The budget: " and
+// `budget_description` (which speaks of the nominal design), if any.
+std::string OptimumDescription(const OptimiseResult& result, const std::string& budget_description);
 
 }  // namespace deb

@@ -177,7 +177,9 @@ TEST_CASE("several starts: the same result and files for 1 and 2 threads") {
   CHECK(OptimiseSummaryJson("opt", one) == OptimiseSummaryJson("opt", two));
   CHECK(OptimiseHistoryCsv(one) == OptimiseHistoryCsv(two));
   const std::string yaml = OptimumYaml("../b.yaml", "opt", one, {"grid.points=60"});
-  CHECK(yaml.find("extends: '../b.yaml'\nname: opt_optimum\nparameters:\n  kv: 1.5") != std::string::npos);
+  CHECK(yaml.find("extends: '../b.yaml'\nname: opt_optimum\ndescription: 'The optimum of deb optimise: kv = 1.5") !=
+        std::string::npos);
+  CHECK(yaml.find("'\nparameters:\n  kv: 1.5") != std::string::npos);
   CHECK(yaml.find("--set 'grid.points=60'") != std::string::npos);
 }
 
@@ -237,6 +239,9 @@ TEST_CASE("the optimum.yaml loads as a budget with the optimum's values") {
   const std::string optimum = dir.Write("out/optimum.yaml", OptimumYaml("../b.yaml", "opt", r, {}));
   const Budget b = LoadBudgetFile(optimum);
   CHECK(b.name == "opt_optimum");
+  // It says what it is (its report shows it), and of what.
+  CHECK(b.description.rfind("The optimum of deb optimise: ", 0) == 0);
+  CHECK(b.description.find(r.objective.Text() + " minimised") != std::string::npos);
   const BudgetResult result = Evaluate(b);
   CHECK(result.outputs[0].rms() == doctest::Approx(r.starts[r.best].objective).epsilon(1e-12));
 }
