@@ -135,7 +135,7 @@ class Composer {
       const PdfBlock& b = spec_.blocks[i];
       switch (b.kind) {
         case PdfBlockKind::kHeading:
-          DoHeading(b, i + 1 < spec_.blocks.size() ? StartHeight(spec_.blocks[i + 1]) : 0.0);
+          DoHeading(b, KeepAfterHeading(i));
           break;
         case PdfBlockKind::kParagraph: DoParagraph(b); break;
         case PdfBlockKind::kTable: DoTable(b); break;
@@ -216,6 +216,20 @@ class Composer {
 
   // The height of what must follow a heading on its page: a figure with its
   // caption, a table's title and first rows, a paragraph.
+  // What heading i keeps on its page: the start of the block after it, and
+  // where that is a short paragraph (a line saying what follows, such as a
+  // nominal value) the start of the block after that too, so that a
+  // heading and its one line are never all of a page's bottom.
+  double KeepAfterHeading(std::size_t i) {
+    const auto& blocks = spec_.blocks;
+    if (i + 1 >= blocks.size()) return 0.0;
+    double keep = StartHeight(blocks[i + 1]);
+    if (blocks[i + 1].kind == PdfBlockKind::kParagraph && keep < 40.0 && i + 2 < blocks.size() &&
+        blocks[i + 2].kind != PdfBlockKind::kHeading && blocks[i + 2].kind != PdfBlockKind::kPageBreak)
+      keep += 6.0 + StartHeight(blocks[i + 2]);
+    return keep;
+  }
+
   double StartHeight(const PdfBlock& b) {
     switch (b.kind) {
       case PdfBlockKind::kFigure: {
@@ -226,6 +240,14 @@ class Composer {
         Layout l = MakeLayout(b.text, b.size_pt, b.bold, kTextWidthPt);
         return Size(l.get()).second;
       }
+      case PdfBlockKind::kTable: {
+        // As DoTable starts it: all of a short table (a third of a page),
+        // else its first two rows; rows of one line (about 13 pt) assumed,
+        // with the title and the header.
+        const double whole = 13.0 * static_cast<double>(b.table.rows.size());
+        const double first = whole <= (kBodyBottomPt - kMarginPt) / 3.0 ? whole : 26.0;
+        return 40.0 + first;
+      }
       default: return 80.0;
     }
   }
@@ -235,7 +257,9 @@ class Composer {
     Layout l = MakeLayout(b.text, size, true, kTextWidthPt);
     const double h = Size(l.get()).second;
     if (y_ > kMarginPt) y_ += b.level <= 1 ? 10.0 : 6.0;
-    Need(h + 10.0 + std::min(keep_pt, 300.0));  // a heading stays with what follows it
+    // A heading stays with what follows it (up to 480 pt: a tall figure at
+    // its smallest scale; 300 left sensitivity.pdf's tornado charts behind).
+    Need(h + 10.0 + std::min(keep_pt, 480.0));
     Show(l.get(), kMarginPt, y_, kInk);
     Place("heading", b.text, kMarginPt, y_, kTextWidthPt, h, kInk);
     if (b.level >= 1) {

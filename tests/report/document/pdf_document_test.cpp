@@ -360,3 +360,32 @@ TEST_CASE("no table row is alone on a page, and a short table is not split") {
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a heading and a one-line paragraph are never all of a page's bottom: they go with the table after them") {
+  // sensitivity.pdf left "x_velocity" and "Nominal RMS 11.28 µm/s." alone at
+  // a page's foot, their table of 15 rows on the next. Wherever the filler
+  // ends, the heading's page holds the table's first row.
+  for (int filler = 30; filler <= 56; ++filler) {
+    CAPTURE(filler);
+    PdfDocumentSpec spec;
+    spec.create_date = "2026-01-01T00:00:00Z";
+    for (int i = 0; i < filler; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
+    spec.blocks.push_back(Heading(2, "x_velocity"));
+    spec.blocks.push_back(Paragraph("Nominal RMS 11.28 um/s."));
+    PdfTable t;
+    t.header = {"parameter", "value"};
+    t.numeric = {false, true};
+    for (int r = 0; r < 15; ++r) t.rows.push_back({PdfCell("p" + std::to_string(r)), PdfCell("1.5")});
+    spec.blocks.push_back(TableBlock("x_velocity: the total first", t));
+    int heading_page = -1, first_row_page = -1;
+    for (const PlacedBox& b : WritePdfDocument(spec, "").boxes) {
+      if (b.what == "heading" && b.text == "x_velocity") heading_page = b.page;
+      if (b.what == "table row" && first_row_page < 0) first_row_page = b.page;
+    }
+    CHECK(heading_page == first_row_page);
+  }
+}
+
+}  // namespace deb::report
