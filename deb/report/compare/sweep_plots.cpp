@@ -103,7 +103,9 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
   p.csv = csv.str();
 
   const std::size_t cols = panels <= 3 ? panels : panels <= 4 ? 2 : panels <= 9 ? 3 : 4;
-  const std::string title = Enhanced(out0.name + ": RMS against " + first.Name());
+  // The unit in the title too: report.pdf's narrow canvas has no room left
+  // of a multiplot's fixed margin for the y label, which the PNG shows.
+  const std::string title = Enhanced(out0.name) + ": RMS [" + UnitLabel(out0.unit) + "] against " + Enhanced(first.Name());
   p.figure.title = title;
   p.figure.columns = cols;
   const std::string file = p.name + ".csv";

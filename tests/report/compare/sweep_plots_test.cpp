@@ -84,6 +84,9 @@ TEST_CASE("small multiples: one panel per value of the other parameters, one RMS
   REQUIRE(figure.panels.size() == 3);
   CHECK(figure.columns == 3);
   CHECK(figure.panels[2].title == "noise = 30");
+  // The unit in the figure's title as well (report.pdf has no room for the y label).
+  CHECK(figure.title.find(": RMS [") != std::string::npos);
+  CHECK(figure.title.find("] against stiffness") != std::string::npos);
   CHECK(figure.panels[0].x.label == "stiffness [N/m]");  // no key path on the axis
   CHECK(plots[0].script.find("paths[0]") == std::string::npos);
   // The key once, beside the panels; one RMS axis shared by every panel, labelled on the left.
