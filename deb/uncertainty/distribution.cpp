@@ -5,6 +5,7 @@
 #include <boost/math/distributions/triangular.hpp>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 #include "deb/core/error.h"
@@ -169,23 +170,31 @@ std::string Distribution::Problem() const {
   return "";
 }
 
-std::string Distribution::Text() const {
+std::string Distribution::Text() const { return Texts(NumberText, NumberText); }
+
+std::string Distribution::Text(double unit_si) const {
+  return Texts([unit_si](double v) { return SignificantText(v / unit_si, 4); },
+               [](double v) { return SignificantText(v, 4); });
+}
+
+std::string Distribution::Texts(const std::function<std::string(double)>& value,
+                                const std::function<std::string(double)>& pure) const {
   switch (kind) {
     case DistributionKind::kNormal:
-      return "normal(mean " + NumberText(mean) + ", sigma " + NumberText(sigma) + ")";
+      return "normal(mean " + value(mean) + ", sigma " + value(sigma) + ")";
     case DistributionKind::kUniform:
-      return "uniform(" + NumberText(min) + ", " + NumberText(max) + ")";
+      return "uniform(" + value(min) + ", " + value(max) + ")";
     case DistributionKind::kLogNormal:
-      return "lognormal(median " + NumberText(mean) + ", sigma of log " + NumberText(sigma) + ")";
+      return "lognormal(median " + value(mean) + ", sigma of log " + pure(sigma) + ")";
     case DistributionKind::kTruncatedNormal:
-      return "truncated normal(mean " + NumberText(mean) + ", sigma " + NumberText(sigma) + ", within [" +
-             NumberText(min) + ", " + NumberText(max) + "])";
+      return "truncated normal(mean " + value(mean) + ", sigma " + value(sigma) + ", within [" +
+             value(min) + ", " + value(max) + "])";
     case DistributionKind::kTriangular:
-      return "triangular(" + NumberText(min) + ", mode " + NumberText(mode) + ", " + NumberText(max) + ")";
+      return "triangular(" + value(min) + ", mode " + value(mode) + ", " + value(max) + ")";
     case DistributionKind::kDiscrete: {
       std::string s = "discrete(";
       for (std::size_t i = 0; i < values.size(); ++i)
-        s += (i ? ", " : "") + NumberText(values[i]) + " p " + NumberText(probabilities[i]);
+        s += (i ? ", " : "") + value(values[i]) + " p " + pure(probabilities[i]);
       return s + ")";
     }
   }

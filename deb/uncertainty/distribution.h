@@ -6,6 +6,7 @@
 // one function. Quantiles come from Boost.Math.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,16 @@ struct Distribution {
   std::string Problem() const;
   // "normal(mean 5.2e+04, sigma 2600)", values in SI.
   std::string Text() const;
+  // The same for a reader: values divided by `unit_si` (SI per display
+  // unit, as UncertainParameter::unit_si) and set to 4 significant digits
+  // ("uniform(0.07, 0.13)" for N s/m shown in N s/mm); a lognormal's sigma
+  // of log and a discrete one's probabilities are dimensionless, not scaled.
+  std::string Text(double unit_si) const;
+
+ private:
+  // Text with `value` formatting the values, `pure` the dimensionless numbers.
+  std::string Texts(const std::function<std::string(double)>& value,
+                    const std::function<std::string(double)>& pure) const;
 };
 
 // The quantile of the standard normal distribution at u in (0, 1), and its CDF.

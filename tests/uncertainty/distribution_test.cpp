@@ -153,3 +153,23 @@ TEST_CASE("problems: each rule named") {
 
 }  // namespace
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("a distribution's text for a reader is in the parameter's unit, to 4 digits; a sigma of log is not scaled") {
+  Distribution u;
+  u.kind = DistributionKind::kUniform;
+  u.min = 70.0;  // N s/m
+  u.max = 130.0;
+  CHECK(u.Text() == "uniform(70, 130)");
+  CHECK(u.Text(1000.0) == "uniform(0.07, 0.13)");  // in N s/mm
+  Distribution l;
+  l.kind = DistributionKind::kLogNormal;
+  l.mean = 20.0;
+  l.sigma = 0.2465052825762026;
+  CHECK(l.Text() == "lognormal(median 20, sigma of log 0.2465052825762026)");  // exact, for summary.json
+  CHECK(l.Text(1.0) == "lognormal(median 20, sigma of log 0.2465)");
+  CHECK(l.Text(1e-3) == "lognormal(median 2e+04, sigma of log 0.2465)");
+}
+
+}  // namespace deb

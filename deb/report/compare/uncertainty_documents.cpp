@@ -17,7 +17,8 @@ Table ParameterTable(const UncertaintyResult& r) {
   t.header = {"parameter", "nominal", "distribution", "mean", "sd", "tolerance box"};
   t.numeric = {false, true, false, true, true, false};
   for (const UncertainParameter& p : r.spec.parameters)
-    t.rows.push_back({p.name, Shown(p, p.nominal), p.distribution.Text() + (p.unit.empty() ? "" : " (SI)"),
+    t.rows.push_back({p.name, Shown(p, p.nominal),
+                      p.distribution.Text(p.unit_si) + (p.unit.empty() ? "" : " " + UnitText(p.unit)),
                       Shown(p, p.distribution.Mean()), Shown(p, p.distribution.StandardDeviation()),
                       Shown(p, p.distribution.BoxLow()) + " to " + Shown(p, p.distribution.BoxHigh())});
   return t;
