@@ -63,7 +63,7 @@ void AddContributor(std::string& text, const OutputResult& o, const ContributorR
   std::stable_sort(parts.begin(), parts.end(), [](const auto* a, const auto* b) { return a->variance > b->variance; });
   for (const auto* p : parts) {
     const std::string label = "  channel " + p->channel;
-    const double v = RoundingZero(p->variance, c.variance) ? 0.0 : std::max(p->variance, 0.0);
+    const double v = std::max(WithoutRounding(p->variance, c.variance), 0.0);
     AppendFormatted(text, "  %-24s %14s %7.2f%%\n", label.c_str(), v > 0.0 ? Sig(std::sqrt(v), digits).c_str() : "0",
                     o.variance > 0 ? 100.0 * v / o.variance : 0.0);
   }

@@ -77,8 +77,7 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
         const std::size_t c = total ? n : order[i];
         const double position = total ? static_cast<double>(n) + 1.3 : static_cast<double>(i + 1);
         // An uncoupled contributor computed as rounding reads 0, as in the tables.
-        const double raw = total ? out.variance : out.contributors[c].variance;
-        const double var = !total && RoundingZero(raw, out.variance) ? 0.0 : raw;
+        const double var = total ? out.variance : WithoutRounding(out.contributors[c].variance, out.variance);
         ++row;
         csv << panel_index << ',' << CsvNumber(position) << ',' << CsvNumber(std::sqrt(var)) << ','
             << Sig(std::sqrt(var), digits) << ',' << CsvField(out.name) << ',' << CsvField(unit) << ','

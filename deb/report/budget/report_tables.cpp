@@ -115,7 +115,7 @@ Table ContributorTable(const OutputResult& o, int digits) {
       note = "grid holds " + Sig(100.0 * cr.variance / *cr.exact_variance, digits) + " % of the exact variance";
     // A contributor the model does not couple to the output (by symmetry)
     // computes as rounding: 0, as in the channel table.
-    const double variance = RoundingZero(cr.variance, o.variance) ? 0.0 : cr.variance;
+    const double variance = WithoutRounding(cr.variance, o.variance);
     std::vector<std::string> row = {cr.name, cr.source, cr.path, Sig(std::sqrt(variance), digits),
                                     Share(variance, o.variance),
                                     cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), digits) : "–"};
@@ -178,7 +178,7 @@ Table ChannelTable(const OutputResult& o, int digits) {
     for (const ContributorResult::ChannelPart& p : cr.channels) parts.push_back(&p);
     std::stable_sort(parts.begin(), parts.end(), [](const auto* a, const auto* b) { return a->variance > b->variance; });
     for (const ContributorResult::ChannelPart* p : parts) {
-      const double v = RoundingZero(p->variance, cr.variance) ? 0.0 : p->variance;
+      const double v = WithoutRounding(p->variance, cr.variance);
       t.rows.push_back({cr.name, p->channel, v > 0.0 ? Sig(std::sqrt(v), digits) : "0", Share(v, o.variance),
                         Share(v, cr.variance)});
     }
@@ -319,12 +319,10 @@ Table BandTable(const OutputResult& o, int digits) {
     std::vector<std::string> row = {o.contributors[c].name};
     std::vector<bool> bold = {false};
     for (std::size_t b = 0; b < o.bands.size(); ++b) {
-      const double v = o.bands[b].contributor_variance[c];
-      row.push_back(Sig(std::sqrt(RoundingZero(v, o.bands[b].variance) ? 0.0 : v), digits));
+      row.push_back(Sig(std::sqrt(WithoutRounding(o.bands[b].contributor_variance[c], o.bands[b].variance)), digits));
       bold.push_back(largest[b] == c && o.bands[b].variance > 0.0);
     }
-    row.push_back(Sig(std::sqrt(RoundingZero(o.contributors[c].variance, o.variance) ? 0.0 : o.contributors[c].variance),
-                      digits));
+    row.push_back(Sig(std::sqrt(WithoutRounding(o.contributors[c].variance, o.variance)), digits));
     bold.push_back(false);
     t.rows.push_back(row);
     t.emphasis.push_back(bold);

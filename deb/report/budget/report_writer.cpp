@@ -153,7 +153,7 @@ std::vector<DrawJob> DrawJobs(const std::vector<Plot>& plots, const ReportOption
     if (!options.Has(t)) continue;
     for (const Plot& p : plots) {
       const std::string file = p.name + "." + FileExtension(t);
-      jobs.push_back({"plots/" + file, t, DrawCommands(TerminalCommand(t), GnuplotOutputFile(t, file), p.name + ".gp")});
+      jobs.push_back({"plots/" + file, t, FormatDrawCommands(t, file, p.name + ".gp")});
     }
   }
   return jobs;

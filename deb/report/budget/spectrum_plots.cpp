@@ -22,7 +22,7 @@ namespace {
 // contributor that is zero on this output (by symmetry), or computes as
 // rounding there (RoundingZero), reads "floor: 0 (0 %)", as in the tables.
 std::string Entry(const std::string& name, double variance, double total_variance, int digits) {
-  if (total_variance > 0.0 && RoundingZero(variance, total_variance)) variance = 0.0;
+  if (total_variance > 0.0) variance = WithoutRounding(variance, total_variance);
   std::string s = Enhanced(name) + ": " + (variance > 0.0 ? SigLabel(std::sqrt(variance), digits) : "0");
   if (total_variance > 0.0) s += " (" + (variance > 0.0 ? Share(variance, total_variance) : std::string("0 %")) + ")";
   return s;
@@ -740,7 +740,7 @@ PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, st
     layer.path = c.path;
     layer.psd = part.psd;
     layer.cps = part.cps;
-    layer.variance = RoundingZero(part.variance, c.variance) ? 0.0 : part.variance;
+    layer.variance = WithoutRounding(part.variance, c.variance);
     out.contributors.push_back(std::move(layer));
     level.styles.push_back(ChannelStyle(k));
   }

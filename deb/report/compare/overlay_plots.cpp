@@ -212,10 +212,7 @@ void WritePlotsAsPng(const std::vector<Plot>& plots, const std::string& plots_di
       [&](std::size_t i) {
         const Plot& p = plots[i];
         const std::string png = p.name + ".png";
-        RunGnuplot(gnuplot, plots_dir,
-                   DrawCommands(TerminalCommand(PlotFormat::kPng), GnuplotOutputFile(PlotFormat::kPng, png),
-                                p.name + ".gp"),
-                   "plot " + p.name);
+        RunGnuplot(gnuplot, plots_dir, FormatDrawCommands(PlotFormat::kPng, png, p.name + ".gp"), "plot " + p.name);
         FinishPlotFile(PlotFormat::kPng, (std::filesystem::path(plots_dir) / png).string());
       },
       threads);

@@ -50,6 +50,8 @@ std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetRe
   std::vector<Table> tables;
   if (results.empty()) return tables;
   const std::vector<OutputResult>& outputs = results.front().outputs;
+  std::vector<double> largest(outputs.size());
+  for (std::size_t o = 0; o < outputs.size(); ++o) largest[o] = LargestVariance(results, o);
 
   Table best;
   best.title = "Best variant per output";
@@ -63,7 +65,7 @@ std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetRe
     const OutputResult& out = results[b].outputs[o];
     const bool has_requirement = out.rms_max || !out.band_requirements.empty();
     best.rows.push_back({out.name + " [" + UnitText(out.unit) + "]", VariantSettings(spec, rows[b]),
-                         VariantCell(out, LargestVariance(results, o), &best_rounding), out.rms_max ? Short(*out.rms_max) : (has_requirement ? "bands" : "–"),
+                         VariantCell(out, largest[o], &best_rounding), out.rms_max ? Short(*out.rms_max) : (has_requirement ? "bands" : "–"),
                          has_requirement ? std::to_string(passing) + " of " + std::to_string(results.size()) : "–"});
   }
   if (best_rounding) best.notes.push_back(kRoundingNote);
@@ -82,11 +84,7 @@ std::vector<Table> SweepTables(const SweepSpec& spec, const std::vector<BudgetRe
     all.numeric.push_back(true);
   }
   std::vector<std::size_t> best_of(outputs.size());
-  std::vector<double> largest(outputs.size());
-  for (std::size_t o = 0; o < outputs.size(); ++o) {
-    best_of[o] = BestVariant(results, o);
-    largest[o] = LargestVariance(results, o);
-  }
+  for (std::size_t o = 0; o < outputs.size(); ++o) best_of[o] = BestVariant(results, o);
   bool all_rounding = false;
   int rank = 0;
   for (const VariantScore& s : RankVariants(results)) {

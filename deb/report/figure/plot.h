@@ -86,6 +86,10 @@ std::string Share(double part, double whole);
 inline bool RoundingZero(double part_variance, double whole_variance) {
   return part_variance <= 1e-24 * whole_variance;
 }
+// The part as tables, keys and bars show it: 0 where RoundingZero.
+inline double WithoutRounding(double part_variance, double whole_variance) {
+  return RoundingZero(part_variance, whole_variance) ? 0.0 : part_variance;
+}
 
 // A frequency for an enhanced-mode label: powers of ten from 10^4 up or
 // 10^-4 down as "10^{8}", anything else as Short.

@@ -77,7 +77,7 @@ StagedPlots::StagedPlots(const std::vector<StandalonePlot>& plots, const std::ve
       for (PlotFormat t : formats) {
         const std::string file = p.plot.name + "." + FileExtension(t);
         // One gnuplot per file: a PDF of one page, a PNG or an SVG.
-        draws.push_back({dir.string(), DrawCommands(TerminalCommand(t), GnuplotOutputFile(t, file), p.plot.name + ".gp"),
+        draws.push_back({dir.string(), FormatDrawCommands(t, file, p.plot.name + ".gp"),
                          file, "plot " + (p.directory.empty() ? file : (fs::path(p.directory) / file).string()), t});
       }
       for (std::size_t i = 0; i < names.size(); ++i) moves_.push_back({(dir / names[i]).string(), paths[i]});

@@ -278,6 +278,10 @@ std::string GnuplotOutputFile(PlotFormat format, const std::string& file) {
   return format == PlotFormat::kPng ? file + ".svg" : file;
 }
 
+std::string FormatDrawCommands(PlotFormat format, const std::string& file, const std::string& script_file) {
+  return DrawCommands(TerminalCommand(format), GnuplotOutputFile(format, file), script_file);
+}
+
 void FinishPlotFile(PlotFormat format, const std::string& path) {
   if (format != PlotFormat::kPng) return;
   const std::string source = GnuplotOutputFile(format, path);

@@ -98,6 +98,10 @@ inline constexpr int kPngWidthPx = 1200, kPngHeightPx = 720;
 // The file gnuplot writes to draw `file` in `format`: `file`, except for a
 // PNG, whose SVG source is "<file>.svg".
 std::string GnuplotOutputFile(PlotFormat format, const std::string& file);
+// The commands that draw the script `script_file` as `file` in `format`
+// (DrawCommands with TerminalCommand into GnuplotOutputFile); FinishPlotFile
+// completes the file.
+std::string FormatDrawCommands(PlotFormat format, const std::string& file, const std::string& script_file);
 // What follows gnuplot's drawing of GnuplotOutputFile(format, path): a PNG
 // is rasterised from its SVG (report/document/svg_figure.h), which is then
 // removed; other formats are done.
