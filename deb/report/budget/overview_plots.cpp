@@ -40,10 +40,12 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
         << ": RMS per output and contributor (position: bar position in the panel; row: the bar)\n";
     csv << "panel,position,rms,rms_label,output,unit,contributor,share_percent,rms_max,pass,row\n";
     std::size_t row = 0;
-    const std::size_t cols = panels <= 2 ? panels : panels <= 4 ? 2 : panels <= 6 ? 3 : 4;
+    // Names beside horizontal bars need a panel's width: two panels to a row,
+    // three from five outputs up.
+    const std::size_t cols = panels <= 4 ? 2 : 3;
     p.figure.title = "RMS per output and contributor" +
                      std::string(pages > 1 ? " (" + std::to_string(page + 1) + "/" + std::to_string(pages) + ")" : "");
-    p.figure.columns = std::max<std::size_t>(cols, 2);  // a grid, also for one output
+    p.figure.columns = cols;
     const std::string data = p.name + ".csv";
     for (std::size_t o = first; o < last; ++o) {
       const OutputResult& out = result.outputs[o];
@@ -60,22 +62,24 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
       panel.title = Enhanced(out.name) + "\n" + status;
       panel.title_colour = out.rms_max && !out.pass() ? kRequirementColour : "#202020";
       panel.key.placement = KeyPlacement::kNone;
-      panel.x.min = 0.4;
-      panel.x.max = static_cast<double>(n) + 1.9;
-      panel.x.grid = panel.x.minor_grid = false;
-      const bool crowded = 1200.0 / static_cast<double>(cols) / static_cast<double>(n + 2) < 60.0;  // px per bar
-      panel.x.tic_rotation_deg = crowded ? 50 : (n > 3 || panels > 2) ? 30 : 0;
+      // Horizontal bars, largest at the top and the total at the foot: the
+      // names read across on the y axis and each value beside its bar's end
+      // (upright labels over 12 vertical bars were 4 pt in report.pdf).
+      panel.y.min = 0.4;
+      panel.y.max = static_cast<double>(n) + 1.9;
+      panel.y.grid = panel.y.minor_grid = false;
       const double top = std::max(out.rms(), out.rms_max.value_or(0.0));
-      panel.y.min = 0.0;
-      panel.y.max = top > 0 ? top * (crowded ? 1.45 : 1.2) : 1.0;  // room for the values above the bars
-      panel.y.label = "RMS [" + UnitLabel(unit) + "]";
-      panel.y.format = "%g";
+      panel.x.min = 0.0;
+      panel.x.max = top > 0 ? top * 1.4 : 1.0;  // room for the values beside the bars
+      panel.x.minor_grid = false;
+      panel.x.label = "RMS [" + UnitLabel(unit) + "]";
+      panel.x.format = "%g";
       panel.y2.shown = false;
-      panel.bar_width = 0.7;
       for (std::size_t i = 0; i <= n; ++i) {
         const bool total = i == n;
         const std::size_t c = total ? n : order[i];
-        const double position = total ? static_cast<double>(n) + 1.3 : static_cast<double>(i + 1);
+        // Top to bottom: the largest contributor at n + 1.3, the total at 1.
+        const double position = total ? 1.0 : static_cast<double>(n - i) + 1.3;
         // An uncoupled contributor computed as rounding reads 0, as in the tables.
         const double var = total ? out.variance : WithoutRounding(out.contributors[c].variance, out.variance);
         ++row;
@@ -85,13 +89,14 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
             << CsvNumber(out.variance > 0 ? 100.0 * var / out.variance : 0.0) << ','
             << (out.rms_max ? CsvNumber(*out.rms_max) : "") << ','
             << (out.rms_max ? (out.pass() ? "pass" : "FAIL") : "") << ',' << row << '\n';
-        panel.x.tics.push_back({position, total ? "total" : Enhanced(out.contributors[c].name)});
+        panel.y.tics.push_back({position, total ? "total" : Enhanced(out.contributors[c].name)});
         FigureSeries bar;
         bar.name = total ? "total" : out.contributors[c].name;
-        bar.kind = SeriesKind::kBars;
+        bar.kind = SeriesKind::kHorizontalBars;
         bar.data = data;
-        bar.x_column = 2;
-        bar.y_columns = {3};
+        bar.x_column = 3;
+        bar.y_columns = {2};
+        bar.bar_height = 0.7;
         bar.where_column = 11;
         bar.where_value = static_cast<double>(row);
         bar.edge_colour = kBarEdge;
@@ -107,12 +112,12 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
       }
       if (out.rms_max) {
         FigureAnnotation limit;
-        limit.kind = AnnotationKind::kHorizontalLine;
-        limit.y0 = *out.rms_max;
+        limit.kind = AnnotationKind::kVerticalLine;
+        limit.x0 = *out.rms_max;
         limit.colour = kRequirementColour;
         limit.dash = kRequirementDash;
         // Under the bars and their value labels: drawn over them, the dashes
-        // struck through the labels of the bars that reach the limit.
+        // struck through the bars and the values that reach the limit.
         limit.behind = true;
         panel.annotations.push_back(limit);
       }
@@ -120,13 +125,13 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
       values.name = "values";
       values.kind = SeriesKind::kLabels;
       values.data = data;
-      values.x_column = 2;
-      values.y_columns = {3};
+      values.x_column = 3;
+      values.y_columns = {2};
       values.where_column = 1;
       values.where_value = static_cast<double>(panel_index);
       values.label_column = 4;
       values.colour = "#202020";
-      values.labels_upright = crowded;
+      values.labels_beside_end = true;
       panel.series.push_back(values);
       p.figure.panels.push_back(std::move(panel));
     }

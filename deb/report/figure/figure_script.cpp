@@ -170,9 +170,9 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
         const std::string at = QuoteFile(s.data) + (s.block >= 0 ? " index " + std::to_string(s.block) : std::string()) +
                                " using (" + x;
         out.push_back(at + " >= 0 ? " + x + " : NaN):" + y + ":" + label +
-                      " with labels left offset 0.6,0 font ',10' textcolor rgb " + Quote(s.colour) + " notitle");
+                      " with labels left offset 0.6,0 boxed font ',10' textcolor rgb " + Quote(s.colour) + " notitle");
         out.push_back(at + " < 0 ? " + x + " : NaN):" + y + ":" + label +
-                      " with labels right offset -0.6,0 font ',10' textcolor rgb " + Quote(s.colour) + " notitle");
+                      " with labels right offset -0.6,0 boxed font ',10' textcolor rgb " + Quote(s.colour) + " notitle");
         return;
       }
       out.push_back(data + y + ":" + label +
@@ -185,16 +185,6 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
                     " pointsize " + PointSize(size.empty() ? "1.2" : size) + " linewidth " + CsvNumber(s.width) +
                     " linecolor rgb " + Quote(s.colour) + " " + KeyOf(s.key));
       return;
-    case SeriesKind::kHorizontalBars: {
-      // A box centred on half the value, half the value wide (boxxyerror: x:y:dx:dy).
-      const std::string x = Col(s.x_column) + (s.x_offset == 0.0 ? "" : "+" + CsvNumber(s.x_offset));
-      out.push_back(QuoteFile(s.data) + (s.block >= 0 ? " index " + std::to_string(s.block) : std::string()) + " using ((" +
-                    x + ") / 2):" + y + ":(abs(" + x + ") / 2):(" + CsvNumber(s.bar_height / 2.0) +
-                    ") with boxxyerror fillstyle solid 1.0" +
-                    (s.edge_colour.empty() ? " noborder" : " border linecolor rgb " + Quote(s.edge_colour)) +
-                    " fillcolor rgb " + Quote(s.colour) + " linecolor rgb " + Quote(s.colour) + " " + KeyOf(s.key));
-      return;
-    }
     case SeriesKind::kSegments:
       out.push_back(data + y + ":" + std::to_string(s.dx_column) + ":" + std::to_string(s.dy_column) +
                     " with vectors nohead " + LineStyle(s.colour, s.dash, s.width) + " " + KeyOf(s.key));
@@ -203,12 +193,19 @@ void Clauses(const FigureSeries& s, bool log_y, bool map, std::vector<std::strin
       DEB_DEMAND(false);  // only with `map`, above
       return;
     case SeriesKind::kFilled:
-    case SeriesKind::kBars: {
-      const bool bars = s.kind == SeriesKind::kBars;
+    case SeriesKind::kBars:
+    case SeriesKind::kHorizontalBars: {
+      const bool horizontal = s.kind == SeriesKind::kHorizontalBars;
+      const bool bars = s.kind == SeriesKind::kBars || horizontal;
       std::string low = "((" + Sum(s.low_columns) + ")" + div + ")";
       if (log_y) low = "(" + low + " > 0 ? " + low + " : NaN)";
-      const std::string source = bars ? data + y : data + low + ":" + y;
-      const std::string with = bars ? "boxes" : "filledcurves";
+      std::string source = bars ? data + y : data + low + ":" + y;
+      if (horizontal) {  // a box centred on half the value, half the value wide (boxxyerror: x:y:dx:dy)
+        const std::string x = Col(s.x_column) + (s.x_offset == 0.0 ? "" : "+" + CsvNumber(s.x_offset));
+        source = QuoteFile(s.data) + (s.block >= 0 ? " index " + std::to_string(s.block) : std::string()) +
+                 " using ((" + x + ") / 2):" + y + ":(abs(" + x + ") / 2):(" + CsvNumber(s.bar_height / 2.0) + ")";
+      }
+      const std::string with = horizontal ? "boxxyerror" : bars ? "boxes" : "filledcurves";
       if (!bars && s.fill_opacity < 1.0) {  // transparent: what lies under it shows through
         out.push_back(source + " with filledcurves fillcolor rgb " + Quote(s.colour) + " fillstyle transparent solid " +
                       CsvNumber(s.fill_opacity) + " noborder " + KeyOf(s.key));

@@ -49,7 +49,8 @@ struct FigureSeries {
   std::size_t label_column = 0;          // kLabels
   bool labels_upright = false;           // kLabels: turned by 90°, reading upwards from the point
   // kLabels: beside x, right of it where x >= 0 and left where x < 0 (the
-  // ends of horizontal bars), unboxed; else over the point.
+  // ends of horizontal bars); else over the point. Boxed either way: a
+  // line behind the labels (a requirement) stops at their text.
   bool labels_beside_end = false;
   std::string label_format;              // kLabels: printf format of the column's number; empty: its text
 

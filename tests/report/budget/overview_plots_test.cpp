@@ -10,7 +10,7 @@
 
 namespace deb::report {
 
-TEST_CASE("the overview has a panel per output: bars largest first, the total last, the requirement and the verdict") {
+TEST_CASE("the overview has a panel per output: horizontal bars largest first from the top, the total at the foot, the requirement and the verdict") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
   const BudgetResult result = Evaluate(budget);
   const std::vector<Plot> plots = OverviewFigures(result);
@@ -26,16 +26,21 @@ TEST_CASE("the overview has a panel per output: bars largest first, the total la
     for (std::size_t i = 0; i < order.size(); ++i) {
       CHECK(panel.series[i].name == out.contributors[order[i]].name);
       CHECK(panel.series[i].colour == ContributorStyle(order[i]).colour);
-      CHECK(panel.x.tics[i].first == doctest::Approx(i + 1.0));
+      CHECK(panel.series[i].kind == SeriesKind::kHorizontalBars);
+      CHECK(panel.y.tics[i].first == doctest::Approx(static_cast<double>(order.size() - i) + 1.3));
     }
+    CHECK(panel.y.tics.back().first == doctest::Approx(1.0));  // the total, below the smallest
+    CHECK(panel.x.tics.empty());
     CHECK(panel.series[order.size()].name == "total");
     CHECK(panel.series.back().kind == SeriesKind::kLabels);
+    CHECK(panel.series.back().labels_beside_end);
     REQUIRE(out.rms_max);
     REQUIRE(panel.annotations.size() == 1);
-    CHECK(panel.annotations[0].y0 == *out.rms_max);
+    CHECK(panel.annotations[0].kind == AnnotationKind::kVerticalLine);
+    CHECK(panel.annotations[0].x0 == *out.rms_max);
     CHECK(panel.title.find(out.pass() ? ": PASS" : ": FAIL") != std::string::npos);
     CHECK(panel.title_colour == (out.pass() ? "#202020" : kRequirementColour));
-    CHECK(*panel.y.max > std::max(out.rms(), *out.rms_max));
+    CHECK(*panel.x.max > std::max(out.rms(), *out.rms_max));
   }
   // Each bar reads its own row of the CSV: the row id is unique.
   CHECK(fig.panels[0].series[0].where_column == 11);
