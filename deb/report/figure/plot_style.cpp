@@ -126,18 +126,37 @@ double DeltaE(const std::array<double, 3>& a, const std::array<double, 3>& b) {
 // farthest (CIE76 ΔE) from the 11 contributors before them, which share a
 // chart's bars with them. (Turning the palette's hues by a fixed angle gave
 // two browns and two greens among 12 bars.) Later ones turn the palette.
+// Between two hatched fills the distance counts lightness at half weight:
+// their hatch lines mix light and dark strokes, so that a hue is what tells
+// them apart (at full weight three greens of L* 35, 45 and 65 were chosen
+// for wafer_stage's hatched bars, alike in report.pdf's band charts).
 constexpr std::size_t kChosenHues = 24;
+constexpr double kHatchedLightnessWeight = 0.5;
+
+// Whether contributor `index` is drawn hatched: indices 6-11 of every 12, and
+// 0-5 of every other 12, so that 24 contributors differ in grey level or in
+// hatching.
+bool Hatched(std::size_t index) { return (index % 12 >= 6) != ((index / 12) % 2 == 1); }
+
 // Returns the hue (degrees) of contributor `index` at `lightness`.
 double ContributorHue(std::size_t index, double lightness) {
   if (index < 8 || index >= kChosenHues)
     return std::fmod(kFirstHues[index % 8] + kHueTurns[(index / 8) % 4] + 360.0, 360.0);
   std::vector<std::array<double, 3>> before;
-  for (std::size_t j = index >= 11 ? index - 11 : 0; j < index; ++j) before.push_back(LabOf(ContributorStyle(j).colour));
+  std::vector<double> lightness_weight;
+  for (std::size_t j = index >= 11 ? index - 11 : 0; j < index; ++j) {
+    before.push_back(LabOf(ContributorStyle(j).colour));
+    lightness_weight.push_back(Hatched(j) && Hatched(index) ? kHatchedLightnessWeight : 1.0);
+  }
   double best = 0.0, best_distance = -1.0;
   for (int step = 0; step < 48; ++step) {
     const std::array<double, 3> lab = LabOf(PrintableColour(lightness, kChroma, 7.5 * step));
     double nearest = std::numeric_limits<double>::infinity();
-    for (const auto& other : before) nearest = std::min(nearest, DeltaE(lab, other));
+    for (std::size_t k = 0; k < before.size(); ++k) {
+      std::array<double, 3> other = before[k];
+      other[0] = lab[0] + lightness_weight[k] * (other[0] - lab[0]);
+      nearest = std::min(nearest, DeltaE(lab, other));
+    }
     if (nearest > best_distance + 1e-9) {
       best = 7.5 * step;
       best_distance = nearest;
@@ -153,9 +172,7 @@ SeriesStyle MakeContributorStyle(std::size_t index) {
   s.colour = PrintableColour(s.lightness, kChroma, hue);
   s.edge_colour = LchColour(std::max(s.lightness - 28.0, 12.0), kChroma, hue);
   s.dash = kDashes[index % kDashes.size()];
-  // Hatched: indices 6-11 of every 12, and 0-5 of every other 12, so that
-  // 24 contributors differ in grey level or in hatching.
-  if ((index % 12 >= 6) != ((index / 12) % 2 == 1)) {
+  if (Hatched(index)) {
     s.fill_pattern = kPatterns[index % kPatterns.size()];
     // Dark lines on light fills, light lines on dark ones; either shows on the key's white.
     s.hatch_colour =
