@@ -132,6 +132,7 @@ double DeltaE(const std::array<double, 3>& a, const std::array<double, 3>& b) {
 // for wafer_stage's hatched bars, alike in report.pdf's band charts).
 constexpr std::size_t kChosenHues = 24;
 constexpr double kHatchedLightnessWeight = 0.5;
+constexpr double kLeastDeltaE = 6.0;  // from every earlier contributor
 
 // Whether contributor `index` is drawn hatched: indices 6-11 of every 12, and
 // 0-5 of every other 12, so that 24 contributors differ in grey level or in
@@ -142,15 +143,21 @@ bool Hatched(std::size_t index) { return (index % 12 >= 6) != ((index / 12) % 2 
 double ContributorHue(std::size_t index, double lightness) {
   if (index < 8 || index >= kChosenHues)
     return std::fmod(kFirstHues[index % 8] + kHueTurns[(index / 8) % 4] + 360.0, 360.0);
-  std::vector<std::array<double, 3>> before;
+  std::vector<std::array<double, 3>> before, earlier;
   std::vector<double> lightness_weight;
   for (std::size_t j = index >= 11 ? index - 11 : 0; j < index; ++j) {
     before.push_back(LabOf(ContributorStyle(j).colour));
     lightness_weight.push_back(Hatched(j) && Hatched(index) ? kHatchedLightnessWeight : 1.0);
   }
+  for (std::size_t j = 0; j + 11 < index; ++j) earlier.push_back(LabOf(ContributorStyle(j).colour));
   double best = 0.0, best_distance = -1.0;
   for (int step = 0; step < 48; ++step) {
     const std::array<double, 3> lab = LabOf(PrintableColour(lightness, kChroma, 7.5 * step));
+    // Never the colour of an earlier contributor (one of the same lightness
+    // twelve places back), which shares no chart's bars with it but does
+    // share the table of styles and the key of a drill-down.
+    if (std::any_of(earlier.begin(), earlier.end(), [&](const auto& e) { return DeltaE(lab, e) < kLeastDeltaE; }))
+      continue;
     double nearest = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < before.size(); ++k) {
       std::array<double, 3> other = before[k];
