@@ -85,21 +85,22 @@ void AddCovarianceTable(const BudgetResult& result, int digits, std::vector<PdfB
 
 }  // namespace
 
-std::string PdfFigureTerminal(PlotKind kind) {
+std::string PdfFigureTerminal(const Plot& p) {
   // Placed across the text width (A4 less two 18 mm margins, 481 pt), a
   // 662 px wide SVG is scaled by 0.727: the plots' base font of 11 px is set
   // at 8 pt and their titles (14 px) at 10 pt; the fonts the plot scripts ask
   // for keep their proportions to each other and to the canvas. linewidth
   // 2.1 puts a line of width 1 at 1.53 pt on paper (the thinnest data line,
   // 1.1, at 1.68 pt; only the grid is lighter). Two fit on a page; the
-  // overview's panels, with their rotated names, get most of one.
-  const char* size = kind == PlotKind::kOverview ? "662,600" : "662,420";
-  return std::string("set terminal svg enhanced size ") + size +
-         " font 'DejaVu Sans,11' linewidth 2.1 background '#ffffff'\n" + kPdfFigureVariable + " = 1\n";
+  // overview's panels get most of one, unless the plot asks for its height.
+  const int height = p.pdf_height_px > 0 ? p.pdf_height_px : p.kind == PlotKind::kOverview ? 600 : 420;
+  return "set terminal svg enhanced size 662," + std::to_string(height) +
+         " font 'DejaVu Sans,11' linewidth 2.1 background '#ffffff'\n" + kPdfFigureVariable + " = 1\n" +
+         kPdfHeightVariable + " = " + std::to_string(height) + "\n";
 }
 
 std::string PdfFigureCommands(const Plot& p) {
-  return DrawCommands(PdfFigureTerminal(p.kind), std::string(kPdfFigureDir) + "/" + p.name + ".svg", p.name + ".gp");
+  return DrawCommands(PdfFigureTerminal(p), std::string(kPdfFigureDir) + "/" + p.name + ".svg", p.name + ".gp");
 }
 
 PdfTable TypesetTable(const Table& given, std::size_t min_note_chars) {

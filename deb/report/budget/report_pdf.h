@@ -38,7 +38,7 @@ bool DrawnInPdf(const Plot& p);
 // gnuplot's terminal for a figure of report.pdf: an SVG that, placed across
 // the text width, sets a line of width 1 in a plot script at >= 1.5 pt on
 // paper and the plots' base font at 8 pt.
-std::string PdfFigureTerminal(PlotKind kind);
+std::string PdfFigureTerminal(const Plot& p);
 
 // The folder, inside a report's or study's plots/, where its PDF's figures
 // are drawn (and removed once the PDF is written).

@@ -70,6 +70,9 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
   Plot p;
   p.name = FileStem(out0.name) + "_sweep";
   p.kind = PlotKind::kOverview;
+  // Up to four panels at a run's figure height: with the map beside it, two
+  // figures to a page of sweep.pdf (at the overview's height each took one).
+  if (panels <= 4) p.pdf_height_px = 420;
   p.output = static_cast<int>(o);
   p.caption = "RMS of " + out0.name + " against " + first.Name() +
               (groups.order.size() > 1 ? ", one panel per value of the other parameters" : "") +
@@ -232,6 +235,7 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
   Plot p;
   p.name = FileStem(out0.name) + "_map";
   p.kind = PlotKind::kOverview;
+  p.pdf_height_px = 420;  // with the small multiples, two figures to a page
   p.output = static_cast<int>(o);
   p.caption = "Total RMS of " + out0.name + " over " + px.Name() + " and " + py.Name() +
               ", interpolated between the variants (dots); the best variant (lowest RMS) ringed" +

@@ -430,8 +430,15 @@ std::string EmitFigure(const PlotFigure& figure) {
     const std::size_t rows = (n + figure.columns - 1) / figure.columns;
     bool shared_key = false;
     for (const FigurePanel& p : figure.panels) shared_key = shared_key || p.key.placement == KeyPlacement::kBesideGrid;
+    // The right sixth: the key. The vertical room for titles and labels is
+    // fixed in px at a PDF canvas' 600 (deb_grid_v scales the fractions up
+    // on a lower one); the PNG's 720 px keep the fractions.
+    if (shared_key)
+      s << "deb_grid_v = exists(" << Quote(kPdfHeightVariable) << ") ? 600.0 / " << kPdfHeightVariable << " : 1\n";
     s << "set multiplot layout " << rows << "," << figure.columns << " title " << Label(figure.title) << " font ',15'"
-      << (shared_key ? " margins 0.07,0.83,0.09,0.9 spacing 0.07,0.13" : "") << "\n";  // the right sixth: the key
+      << (shared_key ? " margins 0.07,0.83,(0.09 * deb_grid_v),(1 - 0.1 * deb_grid_v) spacing 0.07,(0.13 * deb_grid_v)"
+                     : "")
+      << "\n";
     if (shared_key) s << "set title font ',12'\n";  // small multiples: titles below the page's
     for (std::size_t i = 0; i < n; ++i) {
       Panel(s, figure.panels[i], false, true);

@@ -21,6 +21,9 @@ struct Plot {
   std::string caption;  // one sentence for index.html and report.md
   std::string label;    // a line naming what it shows, for a list of figures ("" for the caption)
   PlotKind kind = PlotKind::kCps;
+  // Height of its figure in report.pdf or a study's PDF, on a canvas 662 px
+  // wide (PdfFigureTerminal); 0: by its kind.
+  int pdf_height_px = 0;
   int output = -1;      // index of the output it belongs to, -1 for none
   std::string csv;      // the data, written as plots/<name>.csv
   std::string script;   // gnuplot commands; the working directory is plots/

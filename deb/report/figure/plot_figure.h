@@ -23,6 +23,10 @@ namespace deb::report {
 // placed kOutsideRight then goes below the plot (the figure's narrow canvas
 // there, PdfFigureTerminal).
 inline constexpr const char* kPdfFigureVariable = "deb_pdf_figure";
+// The canvas' height in px of a PDF figure (662 px wide), set with
+// kPdfFigureVariable: a grid of small multiples keeps its titles' and
+// labels' room in px on a canvas lower than the overview's 600.
+inline constexpr const char* kPdfHeightVariable = "deb_pdf_height";
 // Set (to 1) by the terminal that draws a PNG's SVG source (TerminalCommand,
 // plot_style.h), and undefined by the others: gnuplot's SVG terminal
 // estimates text narrower than the cairo one does, so a key beside the plot
