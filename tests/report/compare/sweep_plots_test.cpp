@@ -8,6 +8,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/load/budget_yaml.h"
+#include "deb/report/budget/report_pdf.h"
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_style.h"
 #include "tests/support/cli_harness.h"
@@ -235,6 +236,37 @@ TEST_CASE("the map of a two-parameter grid holds the grid by scan lines, the bes
   spec.mode = SweepMode::kZip;
   spec.parameters[1].values = {10, 20};
   CHECK(SweepPlots(spec, std::vector<BudgetResult>(2, base)).size() == base.outputs.size());
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("sweep.pdf sets two figures to a page: small multiples of up to four panels and the map at a run figure's height") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  SweepSpec spec;
+  spec.parameters = {{"paths[0].num[1]", {1, 2}, {}, {}, {}, {}}, {"sources[1].spectrum.level", {10, 20, 30}, {}, {}, {}, {}}};
+  const auto plots = SweepPlots(spec, std::vector<BudgetResult>(6, Evaluate(budget)));
+  REQUIRE(plots.size() >= 2);
+  REQUIRE(plots[0].figure.panels.size() == 3);
+  CHECK(plots[0].pdf_height_px == 420);
+  CHECK(plots[1].name.find("_map") != std::string::npos);
+  CHECK(plots[1].pdf_height_px == 420);
+  const std::string terminal = PdfFigureTerminal(plots[0]);
+  CHECK(terminal.find("size 662,420 ") != std::string::npos);
+  CHECK(terminal.find(std::string(kPdfHeightVariable) + " = 420\n") != std::string::npos);
+  // The grid's vertical room scales with the canvas: 600 / 420 on this one.
+  CHECK(plots[0].script.find("deb_grid_v = exists('deb_pdf_height') ? 600.0 / deb_pdf_height : 1") !=
+        std::string::npos);
+  CHECK(plots[0].script.find("spacing 0.07,(0.13 * deb_grid_v)") != std::string::npos);
+  // Five panels or more keep the overview's height.
+  SweepSpec many;
+  many.parameters = {{"paths[0].num[1]", {1, 2}, {}, {}, {}, {}},
+                     {"sources[1].spectrum.level", {10, 20, 30, 40, 50}, {}, {}, {}, {}}};
+  const auto tall = SweepPlots(many, std::vector<BudgetResult>(10, Evaluate(budget)));
+  REQUIRE(tall[0].figure.panels.size() == 5);
+  CHECK(tall[0].pdf_height_px == 0);
+  CHECK(PdfFigureTerminal(tall[0]).find("size 662,600 ") != std::string::npos);
 }
 
 }  // namespace deb::report
