@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "deb/core/number_text.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_style.h"
@@ -40,9 +41,18 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
         << ": RMS per output and contributor (position: bar position in the panel; row: the bar)\n";
     csv << "panel,position,rms,rms_label,output,unit,contributor,share_percent,rms_max,pass,row\n";
     std::size_t row = 0;
-    // Names beside horizontal bars need a panel's width: two panels to a row,
-    // three from five outputs up.
-    const std::size_t cols = panels <= 4 ? 2 : 3;
+    // Names beside horizontal bars need a panel's width: one output across
+    // the figure, two panels to a row, three from five outputs up.
+    const std::size_t cols = panels == 1 ? 1 : panels <= 4 ? 2 : 3;
+    // In a PDF, as tall as its rows of bars need (a title; per row two title
+    // lines and an axis, 110 px, and 17 px a bar, at least 70 px of plot),
+    // within the overview's 600 px: one output with six contributors got
+    // bars 50 px thick.
+    std::size_t most_bars = 0;
+    for (std::size_t o = first; o < last; ++o) most_bars = std::max(most_bars, result.outputs[o].contributors.size() + 1);
+    const double rows = std::ceil(static_cast<double>(panels) / static_cast<double>(cols));
+    p.pdf_height_px = static_cast<int>(
+        std::min(30.0 + rows * (110.0 + std::max(70.0, 17.0 * (static_cast<double>(most_bars) + 0.5))), 600.0));
     p.figure.title = "RMS per output and contributor" +
                      std::string(pages > 1 ? " (" + std::to_string(page + 1) + "/" + std::to_string(pages) + ")" : "");
     p.figure.columns = cols;
@@ -74,6 +84,12 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
       panel.x.minor_grid = false;
       panel.x.label = "RMS [" + UnitLabel(unit) + "]";
       panel.x.format = "%g";
+      // At most 4 steps (3 panels to a row: gnuplot's own ran together).
+      if (top > 0) {
+        const double step = NiceStep(*panel.x.max / (cols >= 3 ? 3.0 : 5.0));
+        for (int k = 0; k * step <= *panel.x.max * (1 + 1e-12); ++k)
+          panel.x.tics.push_back({k * step, SignificantText(k * step)});
+      }
       panel.y2.shown = false;
       for (std::size_t i = 0; i <= n; ++i) {
         const bool total = i == n;

@@ -66,14 +66,6 @@ std::string WeightingCaption(const BudgetResult& result, std::size_t o, const Ou
   return s;
 }
 
-// Smallest "nice" step (1, 2, 2.5, 5 x 10^n) not below x.
-double NiceStep(double x) {
-  const double p = std::pow(10.0, std::floor(std::log10(x)));
-  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
-    if (m * p >= x * (1 - 1e-12)) return m * p;
-  return 10.0 * p;
-}
-
 // The stacked CPS's data: frequency, each item's and the total's (reverse)
 // cumulative variance, then each reference's (NaN outside what it covers),
 // thinned for a linear variance axis over the shown range.
@@ -532,6 +524,13 @@ std::string RangeCaption(const FrequencyRange& range) {
                        : "";
 }
 
+
+double NiceStep(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * p >= x * (1 - 1e-12)) return m * p;
+  return 10.0 * p;
+}
 
 std::string CpsTitle(const OutputResult& output, int digits) {
   const std::string unit = UnitLabel(DisplayUnit(output.unit));

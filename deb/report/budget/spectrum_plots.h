@@ -101,6 +101,9 @@ std::string RmsTics(double variance_max, double scale = 1.0,
 std::vector<std::pair<double, std::string>> RmsTicList(double variance_max, double scale = 1.0,
                                                        const std::vector<std::pair<double, std::string>>& marked_rms = {});
 
+// Smallest "nice" step (1, 2, 2.5, 5 x 10^n) not below x > 0.
+double NiceStep(double x);
+
 // Title of an output's CPS plot: "position: 7.121 nm RMS, FAIL 7.121× over
 // 1 nm", "…, pass (limit 20 µm/s)", or the RMS alone without a requirement.
 std::string CpsTitle(const OutputResult& output, int digits = 4);

@@ -30,7 +30,11 @@ TEST_CASE("the overview has a panel per output: horizontal bars largest first fr
       CHECK(panel.y.tics[i].first == doctest::Approx(static_cast<double>(order.size() - i) + 1.3));
     }
     CHECK(panel.y.tics.back().first == doctest::Approx(1.0));  // the total, below the smallest
-    CHECK(panel.x.tics.empty());
+    // RMS tics on a nice step from 0, at most six of them (two panels to a row).
+    REQUIRE(panel.x.tics.size() >= 3);
+    CHECK(panel.x.tics.size() <= 6);
+    CHECK(panel.x.tics[0].first == 0.0);
+    CHECK(panel.x.tics.back().first <= *panel.x.max);
     CHECK(panel.series[order.size()].name == "total");
     CHECK(panel.series.back().kind == SeriesKind::kLabels);
     CHECK(panel.series.back().labels_beside_end);
@@ -42,6 +46,8 @@ TEST_CASE("the overview has a panel per output: horizontal bars largest first fr
     CHECK(panel.title_colour == (out.pass() ? "#202020" : kRequirementColour));
     CHECK(*panel.x.max > std::max(out.rms(), *out.rms_max));
   }
+  // As tall in report.pdf as its two rows of twelve bars need, within 600 px.
+  CHECK(plots[0].pdf_height_px == 600);
   // Each bar reads its own row of the CSV: the row id is unique.
   CHECK(fig.panels[0].series[0].where_column == 11);
   CHECK(fig.panels[0].series[0].where_value != fig.panels[0].series[1].where_value);
@@ -68,6 +74,27 @@ TEST_CASE("an overview bar of a contributor the model leaves uncoupled, computed
   REQUIRE(floor_seen);
   const std::string csv = OverviewFigures(result)[0].csv;
   CHECK(csv.find(",beta_velocity,urad/s,floor,0,") != std::string::npos);
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("the overview of one output spans the figure, as tall in report.pdf as its bars need") {
+  // optical_table: one output, five contributors.
+  const BudgetResult result = Evaluate(LoadBudgetFile(test::ExampleBudget("optical_table.yaml")));
+  REQUIRE(result.outputs.size() == 1);
+  const std::vector<Plot> plots = OverviewFigures(result);
+  REQUIRE(plots.size() == 1);
+  CHECK(plots[0].figure.columns == 1);
+  const double bars = static_cast<double>(result.outputs[0].contributors.size() + 1);
+  CHECK(plots[0].pdf_height_px == static_cast<int>(30.0 + 110.0 + std::max(70.0, 17.0 * (bars + 0.5))));
+  CHECK(plots[0].pdf_height_px < 300);
+  // nizamoglu2015_h0: seven outputs, three to a row, at most four RMS steps each.
+  const std::vector<Plot> seven = OverviewFigures(Evaluate(LoadBudgetFile(test::ExampleBudget("nizamoglu2015_h0.yaml"))));
+  REQUIRE(seven.size() == 1);
+  CHECK(seven[0].figure.columns == 3);
+  for (const FigurePanel& panel : seven[0].figure.panels) CHECK(panel.x.tics.size() <= 5);
 }
 
 }  // namespace deb::report
