@@ -36,6 +36,9 @@ TEST_CASE("deb uncertainty on the thesis with tolerances: console, summary.json,
   CHECK(j["metrics"][0]["name"] == "z_velocity");
   CHECK(j["metrics"][0]["rms_max"] == 13.0);
   CHECK(deb::test::PdfPages(dir / "a" / "uncertainty.pdf") >= 4);
+  // Each output's drivers (four bars, 330 px) and scatter plots (420 px)
+  // share a page: 7 pages, 10 when both were drawn at the overview's 600 px.
+  CHECK(deb::test::PdfPages(dir / "a" / "uncertainty.pdf") <= 7);
   // result.h5 holds the same figures and every sample.
   const deb::formats::Hdf5Reader h((dir / "a" / "result.h5").string());
   CHECK(h.Integer("uncertainty/samples") == 120);

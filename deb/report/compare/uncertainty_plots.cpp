@@ -142,6 +142,10 @@ Plot Drivers(const UncertaintyResult& r, const StudyMetric& m, int output) {
   const std::vector<std::size_t> order = DriverOrder(m);
   const bool sobol = !m.sobol.empty();
   const std::size_t k = order.size();
+  // In the PDF as tall as its bars need (45 px a parameter): at the
+  // overview's 600 px, four bars took a page and left the scatter plots the
+  // next one.
+  p.pdf_height_px = static_cast<int>(std::min<std::size_t>(600, 150 + 45 * k));
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", uncertainty, output " << m.output
       << ": each parameter's rank correlation with the RMS" << (sobol ? ", first-order and total Sobol indices" : "")
@@ -219,6 +223,7 @@ Plot Scatter(const UncertaintyResult& r, const StudyMetric& m, int output) {
   Plot p;
   p.name = FileStem(m.output) + "_scatter";
   p.kind = PlotKind::kOverview;
+  p.pdf_height_px = 420;  // two panels side by side, at a run figure's height
   p.output = output;
   const std::vector<std::size_t> order = DriverOrder(m);
   const std::size_t shown = std::min<std::size_t>(2, order.size());
