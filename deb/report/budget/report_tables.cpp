@@ -160,7 +160,7 @@ Table ModeTable(const OutputResult& o) {
     for (const ModeShare& m : c.top_modes)
       t.rows.push_back({c.name, std::to_string(m.mode), Sig(m.f_hz, 4), Sig(m.zeta, 2),
                         // a mode the output does not see, computed as rounding (1e-36): 0
-                        (RoundingZero(std::abs(m.share), 1.0) ? std::string("0") : Sig(100.0 * m.share, 3)) + " %",
+                        RoundingZero(std::abs(m.share), 1.0) ? std::string("0 %") : Share(m.share, 1.0),
                         c.top_modes_of == ModeSplit::kExactVariance ? "exact variance" : "grid variance"});
   return t;
 }

@@ -163,6 +163,7 @@ std::string Share(double part, double whole) {
   if (!(whole > 0.0)) return "–";
   const double percent = 100.0 * part / whole;
   if (percent > 0.0 && percent < 0.01) return "< 0.01 %";
+  if (percent < 0.0 && percent > -0.01) return "> −0.01 %";  // a mode's cross term that takes a little away
   return Sig(percent, 3) + " %";
 }
 
