@@ -4,6 +4,6 @@
 
 namespace deb::report {
 
-std::string BandText(double lo_hz, double hi_hz) { return Short(lo_hz) + "–" + Short(hi_hz) + " Hz"; }
+std::string BandText(double lo_hz, double hi_hz) { return HzText(lo_hz) + "–" + HzText(hi_hz) + " Hz"; }
 
 }  // namespace deb::report

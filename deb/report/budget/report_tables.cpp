@@ -361,7 +361,7 @@ ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file
       {"date", date},
       {"deb version", DEB_VERSION},
       {"grid", ToString(result.outline.grid_kind) + ", " + std::to_string(result.grid.size()) + " frequencies, " +
-                   Short(result.grid.min_hz()) + "–" + Short(result.grid.max_hz()) + " Hz"},
+                   HzText(result.grid.min_hz()) + "–" + HzText(result.grid.max_hz()) + " Hz"},
       {"bands", result.outline.bands.empty() ? "decades of the grid" : "as the budget defines them"},
       {"evaluation", seconds ? Sig(*seconds, 3) + " s" : "not recorded (reproducible report: SOURCE_DATE_EPOCH)"},
       {"requirements", required == 0 ? "none given"

@@ -154,6 +154,15 @@ std::string HzLabel(double f_hz) {
   return Short(f_hz);
 }
 
+std::string HzText(double f_hz) {
+  const double e = std::round(std::log10(f_hz));
+  if (!(std::fabs(e) >= 4 && std::fabs(f_hz / std::pow(10.0, e) - 1.0) < 1e-9)) return Short(f_hz);
+  static const char* const kSuperscript[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string text = e < 0 ? "10⁻" : "10";
+  for (const char digit : std::to_string(static_cast<int>(std::fabs(e)))) text += kSuperscript[digit - '0'];
+  return text;
+}
+
 std::string Squared(std::string unit) {
   for (std::size_t at = unit.find("^2"); at != std::string::npos; at = unit.find("^2", at)) unit.replace(at, 2, "²");
   return unit;

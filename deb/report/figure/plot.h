@@ -98,6 +98,9 @@ inline double WithoutRounding(double part_variance, double whole_variance) {
 // A frequency for an enhanced-mode label: powers of ten from 10^4 up or
 // 10^-4 down as "10^{8}", anything else as Short.
 std::string HzLabel(double f_hz);
+// The same for text (tables, captions, pages): "10⁸" in superscript digits
+// rather than "1e+08"; other values as Short.
+std::string HzText(double f_hz);
 
 // A name as a file stem: characters outside [A-Za-z0-9_.-] become '_'; a
 // stem longer than 100 characters keeps its first 80 and a hash of the

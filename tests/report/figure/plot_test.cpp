@@ -55,6 +55,10 @@ TEST_CASE("numbers keep their significant digits in fixed notation over a readab
   CHECK(Short(0.1) == "0.1");
   CHECK(Share(1.0, 4.0) == "25.0 %");
   CHECK(Share(1e-6, 1.0) == "< 0.01 %");
+  CHECK(HzText(1e8) == "10⁸");  // nizamoglu2015_h0's grid and last band read "1e+08 Hz"
+  CHECK(HzText(1e-12) == "10⁻¹²");
+  CHECK(HzText(1000.0) == "1000");
+  CHECK(HzText(2.5e6) == "2.5e+06");
   CHECK(Share(-1.76e-6, 1.0) == "> −0.01 %");  // metrology_frame's mode 16 read "-1.76e-04 %"
   CHECK(Share(-0.25, 1.0) == "-25.0 %");
   CHECK(Share(1.0, 0.0) == "–");
