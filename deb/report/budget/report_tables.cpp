@@ -214,7 +214,7 @@ Table GroupTable(const OutputResult& o, int digits) {
 Table ReferenceTable(const OutputResult& o, int digits) {
   Table t;
   t.title = "Does the budget explain the measurement? " + o.name + " [" + UnitText(o.unit) +
-            "]: measured against budget RMS; unexplained = sqrt(max(measured^2 - budget^2, 0))";
+            "]: measured against budget RMS; unexplained = √max(measured² − budget², 0)";
   t.header = {"reference", "band", "budget RMS", "measured RMS", "measured / budget", "unexplained RMS"};
   t.numeric = {false, false, true, true, true, true};
   const auto row = [&](const std::string& ref, const std::string& band, double budget, double measured) {
@@ -267,7 +267,7 @@ Table CovarianceTable(const CovarianceResult& cov, int digits) {
     for (Eigen::Index b = a + 1; b < n; ++b) {
       const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
       const std::string unit = cov.units[ia] == cov.units[ib]
-                                   ? UnitText(VarianceUnit(cov.units[ia]))
+                                   ? Squared(UnitText(VarianceUnit(cov.units[ia])))
                                    : UnitText(cov.units[ia]) + "·" + UnitText(cov.units[ib]);
       std::string largest = "–";
       double part = 0.0;

@@ -425,7 +425,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
               WeightingCaption(result, o, out) + RangeCaption(shown);
   if (!out.band_requirements.empty())
     p.caption += std::string(" Each red segment is a band requirement drawn as the flat ") + quantity +
-                 " that would use the band's whole allowance (rms_max^2 spread evenly over the band" +
+                 " that would use the band's whole allowance (rms_max² spread evenly over the band" +
                  (asd ? ", square-rooted" : "") + "): a curve above it over the whole band fails that band.";
   LogRange range;
   p.csv = SpectrumCsv(result, out, shown, asd, range);

@@ -175,7 +175,7 @@ TEST_CASE("the covariance table: one row per pair, correlations from the matrice
   Table t = CovarianceTable(cov, 4);
   REQUIRE(t.rows.size() == 3);
   CHECK(t.header.size() == 5);  // no exact matrix: no exact column
-  CHECK(t.rows[0] == std::vector<std::string>{"x", "y", "0.500", "4.000 nm^2", "stage (75.0 %)"});
+  CHECK(t.rows[0] == std::vector<std::string>{"x", "y", "0.500", "4.000 nm²", "stage (75.0 %)"});
   CHECK(t.rows[1] == std::vector<std::string>{"x", "rz", "-0.125", "-1.000 nm·nrad", "floor (200 %)"});
   CHECK(t.rows[2] == std::vector<std::string>{"y", "rz", "0", "0 nm·nrad", "–"});  // no contributor correlates them
   // floor's 200 % is explained below the table.
