@@ -137,7 +137,7 @@ class Composer {
         case PdfBlockKind::kHeading:
           DoHeading(b, KeepAfterHeading(i));
           break;
-        case PdfBlockKind::kParagraph: DoParagraph(b); break;
+        case PdfBlockKind::kParagraph: DoParagraph(b, KeepAfterItem(i)); break;
         case PdfBlockKind::kTable: DoTable(b); break;
         case PdfBlockKind::kFigure: DoFigure(b); break;
         case PdfBlockKind::kContents: DoContents(); break;
@@ -230,6 +230,18 @@ class Composer {
     return keep;
   }
 
+  // What list item i keeps on its page: the list's last item where that
+  // comes next, so that it never stands alone at the top of a page (the
+  // tolerances report's last Conventions bullet did).
+  double KeepAfterItem(std::size_t i) {
+    const auto& blocks = spec_.blocks;
+    const auto item = [&](std::size_t k) {
+      return k < blocks.size() && blocks[k].kind == PdfBlockKind::kParagraph && blocks[k].bullet;
+    };
+    if (!item(i) || !item(i + 1) || item(i + 2)) return 0.0;
+    return 0.45 * blocks[i].size_pt + StartHeight(blocks[i + 1]);
+  }
+
   double StartHeight(const PdfBlock& b) {
     switch (b.kind) {
       case PdfBlockKind::kFigure: {
@@ -295,7 +307,7 @@ class Composer {
     return text;
   }
 
-  void DoParagraph(const PdfBlock& b) {
+  void DoParagraph(const PdfBlock& b, double keep_pt) {
     // A bullet hangs left of its item's lines.
     const double indent = b.bullet ? 1.2 * b.size_pt : 0.0;
     const std::string text = b.bullet ? "•\t" + b.text : b.text;
@@ -308,7 +320,7 @@ class Composer {
       pango_tab_array_free(tabs);
     }
     const double h = Size(l.get()).second;
-    Need(h);
+    Need(h + keep_pt);
     const std::string colour = b.alert ? kAlert : b.good ? kGood : kInk;
     Show(l.get(), kMarginPt + indent, y_, colour);
     Place("paragraph", text, kMarginPt, y_, kTextWidthPt, h, colour);

@@ -389,3 +389,31 @@ TEST_CASE("a heading and a one-line paragraph are never all of a page's bottom: 
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a list's last item never stands alone at the top of a page") {
+  // The tolerances report's last page held only the last Conventions bullet.
+  // Wherever the filler ends, the last item shares its page with the one
+  // before it; and with room for both, the list does not move.
+  int moved = 0;
+  for (int filler = 30; filler <= 110; ++filler) {
+    CAPTURE(filler);
+    PdfDocumentSpec spec;
+    spec.create_date = "2026-01-01T00:00:00Z";
+    for (int i = 0; i < filler; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
+    for (int i = 0; i < 4; ++i)
+      spec.blocks.push_back(Bullet("Item " + std::to_string(i) + ": a convention said in one line or two."));
+    std::map<std::string, int> page;
+    for (const PlacedBox& b : WritePdfDocument(spec, "").boxes)
+      if (b.what == "paragraph") page[b.text] = b.page;
+    REQUIRE(page.size() == static_cast<std::size_t>(filler) + 4);
+    const int last = page["•\tItem 3: a convention said in one line or two."];
+    const int before = page["•\tItem 2: a convention said in one line or two."];
+    CHECK(last == before);
+    if (page["•\tItem 1: a convention said in one line or two."] == before - 1) ++moved;
+  }
+  CHECK(moved >= 1);  // the case the rule exists for arose
+}
+
+}  // namespace deb::report
