@@ -5,6 +5,7 @@
 #include <pango/pangocairo.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -14,6 +15,21 @@
 #include "deb/report/document/svg_figure.h"
 
 namespace deb::report {
+
+std::string NumbersKeptWithUnits(const std::string& text) {
+  std::string out;
+  out.reserve(text.size() + 8);
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const bool after_digit = i > 0 && std::isdigit(static_cast<unsigned char>(text[i - 1]));
+    const unsigned char next = i + 1 < text.size() ? static_cast<unsigned char>(text[i + 1]) : 0;
+    if (text[i] == ' ' && after_digit && (std::isalpha(next) || next >= 0x80 || next == '%' || next == '(')) {
+      out += "\u00a0";
+      continue;
+    }
+    out += text[i];
+  }
+  return out;
+}
 
 PdfBlock Heading(int level, std::string text) {
   PdfBlock b;
@@ -165,7 +181,8 @@ class Composer {
       pango_layout_set_width(l.get(), static_cast<int>(width_pt * PANGO_SCALE));
       pango_layout_set_wrap(l.get(), PANGO_WRAP_WORD_CHAR);
     }
-    pango_layout_set_text(l.get(), text.c_str(), -1);
+    const std::string kept = NumbersKeptWithUnits(text);
+    pango_layout_set_text(l.get(), kept.c_str(), -1);
     return l;
   }
   static std::pair<double, double> Size(PangoLayout* l) {

@@ -98,4 +98,9 @@ struct PdfLayout {
 // @throws WriteError if the file or a figure's SVG cannot be read or written.
 PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path);
 
+// `text` with the space between a number and the word after it (a unit,
+// "%", "Hz", "outputs") no-breaking (U+00A0): every text the document sets
+// goes through it, so that a line break never parts "1.5" from "nm".
+std::string NumbersKeptWithUnits(const std::string& text);
+
 }  // namespace deb::report

@@ -417,3 +417,18 @@ TEST_CASE("a list's last item never stands alone at the top of a page") {
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a number keeps its unit on its line: the space between them does not break") {
+  const std::string nbsp = "\u00a0";
+  CHECK(NumbersKeptWithUnits("RMS reaches 1.5 nm at 20.31 Hz") == "RMS reaches 1.5" + nbsp + "nm at 20.31" + nbsp + "Hz");
+  CHECK(NumbersKeptWithUnits("12.07 µm/s, 81.1 %, 3 (two-sided)") ==
+        "12.07" + nbsp + "µm/s, 81.1" + nbsp + "%, 3" + nbsp + "(two-sided)");
+  // Words and numbers that follow words break as before; so does a number before a number or a sign.
+  CHECK(NumbersKeptWithUnits("in 2 of 3 - 4 5") == "in 2" + nbsp + "of 3 - 4 5");
+  CHECK(NumbersKeptWithUnits("no digits here") == "no digits here");
+  CHECK(NumbersKeptWithUnits("ends with 7 ") == "ends with 7 ");
+}
+
+}  // namespace deb::report
