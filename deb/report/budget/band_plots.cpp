@@ -59,7 +59,7 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
   p.output = static_cast<int>(o);
   p.caption = "RMS of " + out.name + " per frequency band: the band's total, then each contributor, largest first.";
   if (!out.band_requirements.empty())
-    p.caption += " Each band requirement is a red limit segment behind the bars of its range (a group of its own "
+    p.caption += " Each band requirement is a red bracket behind the bars of its range (a group of its own "
                  "where the range is not one of the bands); a failing total has a red outline and reads FAIL.";
 
   std::ostringstream csv;
@@ -160,6 +160,7 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
     limit.dash = kRequirementDash;
     limit.width = 3.0;
     limit.behind = true;  // the bars it limits in front of it: a bar over it is seen to pass it
+    limit.bracket = true;
     if (panel.annotations.empty()) limit.key = "band requirement";  // one key entry for all
     panel.annotations.push_back(limit);
     FigureAnnotation text;

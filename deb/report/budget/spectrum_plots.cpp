@@ -359,6 +359,7 @@ void AddBandLimits(FigurePanel& panel, const OutputResult& out, const FrequencyR
     a.colour = kRequirementColour;
     a.dash = kRequirementDash;
     a.width = 2.5;
+    a.bracket = true;  // its band's edges: unlike a group's dashed curve in a similar red
     a.key = "band limit " + HzLabel(r.lo_hz) + "–" + HzLabel(r.hi_hz) + " Hz: " + Short(r.rms_max) +
             (b.pass() ? " (pass)" : " (FAIL)");
     if (!(a.x1 > a.x0)) continue;
@@ -424,7 +425,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
               out.name + " per " + level.item + ", largest first in the key, and in total (the thin black line over them)." +
               WeightingCaption(result, o, out) + RangeCaption(shown);
   if (!out.band_requirements.empty())
-    p.caption += std::string(" Each red segment is a band requirement drawn as the flat ") + quantity +
+    p.caption += std::string(" Each red bracket, spanning its band, is a band requirement drawn as the flat ") + quantity +
                  " that would use the band's whole allowance (rms_max² spread evenly over the band" +
                  (asd ? ", square-rooted" : "") + "): a curve above it over the whole band fails that band.";
   LogRange range;

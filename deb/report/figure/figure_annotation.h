@@ -34,6 +34,9 @@ struct FigureAnnotation {
   bool label_left = false;  // markers: the label ends left of the point (right-aligned); label_layout.h
   bool on_y2 = false;  // y in the y2 axis' coordinates
   bool behind = false;  // drawn under the data (lines and segments); else over it
+  // kSegment: a bar across each end, in its key sample too: a band's limit,
+  // which a dashed curve of a similar colour (a group's) is not.
+  bool bracket = false;
   double point_size = 1.6;  // markers and key entries of a marker
   bool fill_sample = false;  // kKeyEntry: a fill of `colour` (semi-transparent), not a line
 };

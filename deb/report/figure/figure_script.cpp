@@ -21,6 +21,8 @@ namespace {
 // Left and right margins of every panel of a multiplot, in characters, so
 // that their x axes line up whatever their tic labels are.
 constexpr double kLeftMargin = 12.0, kRightMargin = 34.0;
+// The ends of a bracket (FigureAnnotation::bracket): arrow heads at 90°.
+constexpr const char* kBracketEnds = " heads size screen 0.008,90 ";
 
 std::string Label(const std::string& text) {
   return text.find('\n') == std::string::npos ? Quote(text) : QuoteLines(text);
@@ -356,7 +358,8 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
         break;
       case AnnotationKind::kSegment:
         s << "set arrow " << tag++ << " from first " << CsvNumber(a.x0) << ", " << y << CsvNumber(a.y0)
-          << " to first " << CsvNumber(a.x1) << ", " << y << CsvNumber(a.y1) << layer << line << "\n";
+          << " to first " << CsvNumber(a.x1) << ", " << y << CsvNumber(a.y1)
+          << (a.bracket ? std::string(a.behind ? " back" : " front") + kBracketEnds : layer) << line << "\n";
         break;
       case AnnotationKind::kKeyEntry:
         if (a.fill_sample)
@@ -397,7 +400,8 @@ void Panel(std::ostringstream& s, const FigurePanel& given, bool multiplot, bool
                         PointSize(CsvNumber(a.point_size)) + " linecolor rgb " + Quote(a.colour) + " title " + Quote(a.key));
     if (!a.key.empty() && a.kind != AnnotationKind::kMarker && a.kind != AnnotationKind::kText &&
         a.kind != AnnotationKind::kLabel && a.kind != AnnotationKind::kKeyEntry)
-      clauses.push_back("keyentry with lines " + line + " title " + Quote(a.key));
+      clauses.push_back(std::string("keyentry with ") + (a.bracket ? std::string("vectors") + kBracketEnds : "lines ") +
+                        line + " title " + Quote(a.key));
   }
   std::vector<std::string> series;
   for (const FigureSeries& fs : p.series) Clauses(fs, p.y.scale == AxisScale::kLog, map, series);

@@ -29,6 +29,7 @@ TEST_CASE("the bands figure draws each band requirement as a limit segment behin
   for (const FigureAnnotation& a : panel.annotations)
     if (a.kind == AnnotationKind::kSegment) limits.push_back(&a);
   REQUIRE(limits.size() == 3);
+  for (const FigureAnnotation* l : limits) CHECK(l->bracket);
   // 10-100 Hz is a band: its segment spans that group (x = 3), at 2 nm.
   CHECK(limits[0]->x0 < 3.0);
   CHECK(limits[0]->x1 > 3.0);

@@ -181,6 +181,10 @@ TEST_CASE("a failing output's CPS figure names its fail factor, stacks the large
   CHECK(psd.series.back().width < psd.series.front().width);
   REQUIRE(psd.annotations.size() == 3);
   CHECK(psd.annotations[0].kind == AnnotationKind::kSegment);
+  // A bracket, ends and key sample: a group's dashed curve in a similar red is not one.
+  CHECK(psd.annotations[0].bracket);
+  CHECK(plots[1].script.find("heads size screen 0.008,90") != std::string::npos);
+  CHECK(plots[1].script.find("keyentry with vectors heads size screen 0.008,90") != std::string::npos);
   CHECK(psd.annotations[0].y0 == doctest::Approx(0.8 * 0.8 / (10 - 0.1)));
   CHECK(psd.annotations[1].y0 == doctest::Approx(2.0 * 2.0 / (100 - 10)));
   CHECK(psd.annotations[0].key.find("(FAIL)") != std::string::npos);
