@@ -454,9 +454,19 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
     panel.y.max = 10.0;
     panel.note = "every contributor is zero on this output";
   }
-  if (AddToneMarkers(panel, result, level, shown, asd, range.top > 0.0, digits))
+  if (AddToneMarkers(panel, result, level, shown, asd, range.top > 0.0, digits)) {
     p.caption += " Triangles mark tones (sinusoids, no density): each at its frequency on the total, labelled with "
                  "its RMS; the CPS steps there by its variance.";
+    // Their labels keep off the curves, as the CSV draws them.
+    const std::vector<double>& f = result.grid.f_hz();
+    std::vector<const std::vector<double>*> drawn = {&out.total_psd};
+    for (const auto& c : out.contributors) drawn.push_back(&c.psd);
+    const std::vector<std::size_t> rows = PlotPoints(f, drawn, shown.lo_hz, shown.hi_hz);
+    for (const std::vector<double>* psd : drawn) {
+      auto& curve = panel.label_obstacles.emplace_back();
+      for (std::size_t k : rows) curve.push_back({f[k], asd ? std::sqrt((*psd)[k]) : (*psd)[k]});
+    }
+  }
   panel.key.title = "RMS [" + UnitLabel(unit) + "] (share)";
   const std::string data = p.name + ".csv";
   for (std::size_t c : ShareOrder(out)) {

@@ -17,6 +17,22 @@ std::optional<double> Fraction(const FigureAxis& axis, double v) {
   return (v - *axis.min) / (*axis.max - *axis.min);
 }
 
+// Whether the segment a-b (plot fractions) meets box `b` (Liang-Barsky
+// clipping of the segment to the box).
+bool SegmentMeets(std::pair<double, double> a, std::pair<double, double> e, const LabelBox& box) {
+  const double dx = e.first - a.first, dy = e.second - a.second;
+  double lo = 0.0, hi = 1.0;
+  const auto clip = [&](double p, double q) {  // p t <= q
+    if (p == 0.0) return q >= 0.0;
+    const double t = q / p;
+    if (p < 0.0) lo = std::max(lo, t);
+    else hi = std::min(hi, t);
+    return lo <= hi;
+  };
+  return clip(-dx, a.first - box.x0) && clip(dx, box.x1 - a.first) && clip(-dy, a.second - box.y0) &&
+         clip(dy, box.y1 - a.second);
+}
+
 // A character's width and a line's height in a panel with `share` of its
 // figure's height (< 1: one of a stack).
 double CharWidth(double share) { return share < 1.0 ? kStackedLabelCharWidth : kLabelCharWidth; }
@@ -83,24 +99,51 @@ void PlaceMarkerLabels(FigurePanel& panel, double share) {
     if (y && x0 && x1)
       points.push_back({std::min(*x0, *x1), std::max(*x0, *x1), *y - line / 6.0, *y + line / 6.0});
   }
+  // The curves in plot fractions, each cut where a point is off its axes.
+  std::vector<std::vector<std::pair<double, double>>> curves;
+  for (const auto& curve : panel.label_obstacles) {
+    curves.emplace_back();
+    for (const auto& [x, y] : curve) {
+      const auto fx = Fraction(panel.x, x), fy = Fraction(panel.y, y);
+      if (fx && fy) curves.back().push_back({*fx, *fy});
+      else if (!curves.back().empty()) curves.emplace_back();
+    }
+  }
+  // A curve is drawn wide (up to 4 px of report.pdf's 250 px tall plot) and
+  // the box is an estimate: it keeps a third of a line and a character clear.
+  const auto on_curve = [&](LabelBox b) {
+    b.x0 -= char_width;
+    b.x1 += char_width;
+    b.y0 -= line / 3.0;
+    b.y1 += line / 3.0;
+    for (const auto& c : curves)
+      for (std::size_t i = 0; i + 1 < c.size(); ++i)
+        if (SegmentMeets(c[i], c[i + 1], b)) return true;
+    return false;
+  };
   for (FigureAnnotation& a : panel.annotations) {
     if (a.kind != AnnotationKind::kMarker || a.label.empty() || !PlotFraction(panel, a)) continue;
     bool done = false;
-    for (const double dy : {1.0, -1.0, 2.0, -2.0})
-      for (const bool left : {false, true}) {
-        if (done) break;
-        a.label_left = left;
-        a.label_dx = left ? -1.0 : 1.0;
-        a.label_dy = dy;
-        const LabelBox b = *LabelBoxOf(panel, a, share);
-        bool free = b.Inside();
-        for (const LabelBox& other : placed) free = free && !b.Overlaps(other);
-        for (const LabelBox& point : points) free = free && !b.Overlaps(point);
-        if (free) {
-          placed.push_back(b);
-          done = true;
+    // Off the curves where a place allows, up to three lines away; else
+    // the nearest place that meets no label, point or line.
+    for (const bool off_curves : {true, false})
+      for (const double dy : {1.0, -1.0, 2.0, -2.0, 3.0, -3.0})
+        for (const bool left : {false, true}) {
+          if (done || (!off_curves && std::fabs(dy) > 2.0) || (off_curves && curves.empty() && std::fabs(dy) > 2.0))
+            break;
+          a.label_left = left;
+          a.label_dx = left ? -1.0 : 1.0;
+          a.label_dy = dy;
+          const LabelBox b = *LabelBoxOf(panel, a, share);
+          bool free = b.Inside();
+          for (const LabelBox& other : placed) free = free && !b.Overlaps(other);
+          for (const LabelBox& point : points) free = free && !b.Overlaps(point);
+          if (free && off_curves) free = !on_curve(b);
+          if (free) {
+            placed.push_back(b);
+            done = true;
+          }
         }
-      }
     if (!done) {  // nowhere beside its point: the key names it
       a.key = a.label;
       a.label.clear();

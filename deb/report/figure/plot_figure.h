@@ -57,6 +57,10 @@ struct FigurePanel {
   FigureAxis x, y, y2;
   std::vector<FigureSeries> series;  // drawn in this order: the last on top
   std::vector<FigureAnnotation> annotations;
+  // Curves as drawn (x, y in the axes' coordinates; a point outside a log
+  // axis' range breaks the curve) that markers' labels keep off where any
+  // place beside their point allows (label_layout.h).
+  std::vector<std::vector<std::pair<double, double>>> label_obstacles;
   FigureKey key;
   std::string note;         // centred text when there is nothing to draw
   double height = 1.0;      // share of the page, relative to the other panels

@@ -144,3 +144,37 @@ TEST_CASE("every marker label of the shipped budgets' figures lies inside its ax
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a marker's label keeps off the curves where a place beside its point allows") {
+  // A curve rising through the point from bottom left to top right, as a
+  // tone's marker on a rising PSD (measured_stage's 50 Hz label lay over
+  // the curves): right-above and left-below meet it, so the label goes
+  // left-above (the next place tried) or right-below, clear of it.
+  FigurePanel p = LogPanel();
+  std::vector<std::pair<double, double>> curve;
+  for (double x = 0.1; x <= 1000.0; x *= 1.2) curve.push_back({x, 2.5 + 1.25 * std::log10(x)});  // 1.25 .. 6.25
+  p.label_obstacles.push_back(curve);
+  p.annotations.push_back(Marker(10.0, 3.75, "tone 10 Hz: 0.5 nm RMS"));
+  PlaceMarkerLabels(p);
+  const FigureAnnotation& a = p.annotations[0];
+  REQUIRE_FALSE(a.label.empty());
+  const LabelBox box = *LabelBoxOf(p, a);
+  // Clear of the curve: at the box's left and right ends the curve is above
+  // or below the whole box.
+  const auto curve_at = [](double fx) { return (2.5 + 1.25 * (fx * 4.0 - 1.0)) / 10.0; };  // fraction of y at fraction x
+  const bool above = curve_at(box.x0) > box.y1 && curve_at(box.x1) > box.y1;
+  const bool below = curve_at(box.x0) < box.y0 && curve_at(box.x1) < box.y0;
+  CHECK((above || below));
+  CHECK(a.label_left == (a.label_dy > 0.0));  // left-above or right-below: the sides the curve leaves free
+  CHECK(a.label_left);
+  // Without the curve the first place is right and above, as before.
+  FigurePanel q = LogPanel();
+  q.annotations.push_back(Marker(10.0, 3.75, "tone 10 Hz: 0.5 nm RMS"));
+  PlaceMarkerLabels(q);
+  CHECK_FALSE(q.annotations[0].label_left);
+  CHECK(q.annotations[0].label_dy == 1.0);
+}
+
+}  // namespace deb::report
