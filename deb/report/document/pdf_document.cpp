@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <memory>
 #include <utility>
 
@@ -96,6 +97,8 @@ constexpr double kLongestWordPt = 75.0;  // a longer word may break inside a nar
 // at this fraction of it or more is set that much smaller (centred) rather
 // than moved to the next page, leaving the rest of this one empty.
 constexpr double kMinFigureScale = 0.85;
+// A bulleted list up to this height is kept whole on one page, with its heading.
+constexpr double kShortListPt = 220.0;
 const char* const kInk = "#1a1a1a";
 const char* const kAlert = "#c00000";
 const char* const kGood = "#1b7837";  // a met requirement
@@ -240,6 +243,8 @@ class Composer {
   double KeepAfterHeading(std::size_t i) {
     const auto& blocks = spec_.blocks;
     if (i + 1 >= blocks.size()) return 0.0;
+    // A short list goes whole with its heading.
+    if (const std::optional<double> list = ShortListHeight(i + 1)) return *list;
     double keep = StartHeight(blocks[i + 1]);
     if (blocks[i + 1].kind == PdfBlockKind::kParagraph && keep < 40.0 && i + 2 < blocks.size() &&
         blocks[i + 2].kind != PdfBlockKind::kHeading && blocks[i + 2].kind != PdfBlockKind::kPageBreak)
@@ -247,16 +252,30 @@ class Composer {
     return keep;
   }
 
-  // What list item i keeps on its page: the list's last item where that
-  // comes next, so that it never stands alone at the top of a page (the
-  // tolerances report's last Conventions bullet did).
+  bool IsItem(std::size_t k) const {
+    return k < spec_.blocks.size() && spec_.blocks[k].kind == PdfBlockKind::kParagraph && spec_.blocks[k].bullet;
+  }
+  // The height of the list starting at item i, if it is short enough to be
+  // kept whole on a page (kShortListPt: a report's Conventions), else none.
+  std::optional<double> ShortListHeight(std::size_t i) {
+    if (!IsItem(i) || (i > 0 && IsItem(i - 1))) return std::nullopt;
+    double h = 0.0;
+    for (std::size_t k = i; IsItem(k); ++k) {
+      h += StartHeight(spec_.blocks[k]) + 0.45 * spec_.blocks[k].size_pt;
+      if (h > kShortListPt) return std::nullopt;
+    }
+    return h;
+  }
+  // What list item i keeps on its page: the rest of a short list from its
+  // first item (a page holding the last two Conventions bullets alone read
+  // as an afterthought); in a longer one, the list's last item where that
+  // comes next, so that it never stands alone at the top of a page.
   double KeepAfterItem(std::size_t i) {
-    const auto& blocks = spec_.blocks;
-    const auto item = [&](std::size_t k) {
-      return k < blocks.size() && blocks[k].kind == PdfBlockKind::kParagraph && blocks[k].bullet;
-    };
-    if (!item(i) || !item(i + 1) || item(i + 2)) return 0.0;
-    return 0.45 * blocks[i].size_pt + StartHeight(blocks[i + 1]);
+    if (!IsItem(i)) return 0.0;
+    if (const std::optional<double> whole = ShortListHeight(i))
+      return *whole - StartHeight(spec_.blocks[i]) - 0.45 * spec_.blocks[i].size_pt;
+    if (!IsItem(i + 1) || IsItem(i + 2)) return 0.0;
+    return 0.45 * spec_.blocks[i].size_pt + StartHeight(spec_.blocks[i + 1]);
   }
 
   double StartHeight(const PdfBlock& b) {

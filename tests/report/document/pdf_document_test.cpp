@@ -392,26 +392,40 @@ TEST_CASE("a heading and a one-line paragraph are never all of a page's bottom: 
 
 namespace deb::report {
 
-TEST_CASE("a list's last item never stands alone at the top of a page") {
-  // The tolerances report's last page held only the last Conventions bullet.
-  // Wherever the filler ends, the last item shares its page with the one
-  // before it; and with room for both, the list does not move.
-  int moved = 0;
+TEST_CASE("a short list stays whole with its heading; a long one's last item never stands alone at a page's top") {
+  // The tolerances report's last page held only the last Conventions
+  // bullet, then, with that rule alone, its last two. Wherever the filler
+  // ends, a heading and its 6 items share one page.
+  const std::string item = ": a convention said in one line or two.";
   for (int filler = 30; filler <= 110; ++filler) {
     CAPTURE(filler);
     PdfDocumentSpec spec;
     spec.create_date = "2026-01-01T00:00:00Z";
     for (int i = 0; i < filler; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
-    for (int i = 0; i < 4; ++i)
-      spec.blocks.push_back(Bullet("Item " + std::to_string(i) + ": a convention said in one line or two."));
+    spec.blocks.push_back(Heading(1, "Conventions"));
+    for (int i = 0; i < 6; ++i) spec.blocks.push_back(Bullet("Item " + std::to_string(i) + item));
+    std::set<int> pages;
+    for (const PlacedBox& b : WritePdfDocument(spec, "").boxes)
+      if ((b.what == "paragraph" && b.text.rfind("•", 0) == 0) || (b.what == "heading" && b.text == "Conventions"))
+        pages.insert(b.page);
+    CHECK(pages.size() == 1);
+  }
+  // A list of 40 items (taller than a third of a page) breaks across pages,
+  // but its last item goes with the one before it.
+  int moved = 0;
+  for (int filler = 0; filler <= 48; ++filler) {
+    CAPTURE(filler);
+    PdfDocumentSpec spec;
+    spec.create_date = "2026-01-01T00:00:00Z";
+    for (int i = 0; i < filler; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
+    for (int i = 0; i < 40; ++i) spec.blocks.push_back(Bullet("Item " + std::to_string(i) + item));
     std::map<std::string, int> page;
     for (const PlacedBox& b : WritePdfDocument(spec, "").boxes)
       if (b.what == "paragraph") page[b.text] = b.page;
-    REQUIRE(page.size() == static_cast<std::size_t>(filler) + 4);
-    const int last = page["•\tItem 3: a convention said in one line or two."];
-    const int before = page["•\tItem 2: a convention said in one line or two."];
+    REQUIRE(page.size() == static_cast<std::size_t>(filler) + 40);
+    const int last = page["•\tItem 39" + item], before = page["•\tItem 38" + item];
     CHECK(last == before);
-    if (page["•\tItem 1: a convention said in one line or two."] == before - 1) ++moved;
+    if (page["•\tItem 37" + item] == before - 1) ++moved;
   }
   CHECK(moved >= 1);  // the case the rule exists for arose
 }
