@@ -17,6 +17,39 @@
 
 namespace deb::report {
 
+std::string TypesetExponents(const std::string& text) {
+  static const char* const kSuperscript[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  const auto digit = [&](std::size_t k) { return k < text.size() && std::isdigit(static_cast<unsigned char>(text[k])); };
+  std::string out;
+  out.reserve(text.size() + 16);
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    // "3.590e-04": a number (digits and a point, not part of a name), 'e',
+    // a sign or none, digits, and no letter or digit after them.
+    std::size_t start = i;
+    while (start > 0 && (digit(start - 1) || text[start - 1] == '.')) --start;
+    const bool named = start > 0 && (std::isalpha(static_cast<unsigned char>(text[start - 1])) || text[start - 1] == '_');
+    if (text[i] == 'e' && i > 0 && digit(i - 1) && !named) {
+      std::size_t k = i + 1;
+      const bool negative = k < text.size() && text[k] == '-';
+      if (k < text.size() && (text[k] == '-' || text[k] == '+')) ++k;
+      const std::size_t first = k;
+      while (digit(k)) ++k;
+      const bool ends = k >= text.size() || !(std::isalnum(static_cast<unsigned char>(text[k])) || text[k] == '_');
+      if (k > first && ends) {
+        std::size_t lead = first;
+        while (lead + 1 < k && text[lead] == '0') ++lead;
+        out += "·10";
+        if (negative) out += "⁻";
+        for (std::size_t d = lead; d < k; ++d) out += kSuperscript[text[d] - '0'];
+        i = k - 1;
+        continue;
+      }
+    }
+    out += text[i];
+  }
+  return out;
+}
+
 std::string NumbersKeptWithUnits(const std::string& text) {
   std::string out;
   out.reserve(text.size() + 8);
@@ -184,7 +217,7 @@ class Composer {
       pango_layout_set_width(l.get(), static_cast<int>(width_pt * PANGO_SCALE));
       pango_layout_set_wrap(l.get(), PANGO_WRAP_WORD_CHAR);
     }
-    const std::string kept = NumbersKeptWithUnits(text);
+    const std::string kept = NumbersKeptWithUnits(TypesetExponents(text));
     pango_layout_set_text(l.get(), kept.c_str(), -1);
     return l;
   }

@@ -102,5 +102,8 @@ PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path)
 // "%", "Hz", "outputs") no-breaking (U+00A0): every text the document sets
 // goes through it, so that a line break never parts "1.5" from "nm".
 std::string NumbersKeptWithUnits(const std::string& text);
+// `text` with a number's e-notation set as a power of ten, "3.590e-04" as
+// "3.590·10⁻⁴", as every text the document sets (tables of small RMS values).
+std::string TypesetExponents(const std::string& text);
 
 }  // namespace deb::report

@@ -446,3 +446,18 @@ TEST_CASE("a number keeps its unit on its line: the space between them does not 
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("numbers in e-notation are set as powers of ten on the page") {
+  CHECK(TypesetExponents("3.590e-04") == "3.590·10⁻⁴");  // wafer_stage's band table
+  CHECK(TypesetExponents("k = 2.84245e+06 N/m") == "k = 2.84245·10⁶ N/m");
+  CHECK(TypesetExponents("1e-12 and 6.144e-13 %") == "1·10⁻¹² and 6.144·10⁻¹³ %");
+  CHECK(TypesetExponents("2e10") == "2·10¹⁰");
+  CHECK(TypesetExponents("1.0e+00") == "1.0·10⁰");
+  // Not numbers: identifiers, words, a bare 'e'.
+  CHECK(TypesetExponents("path_1e3x, line e-4, 3e, 2e+, 5e-3b, mode_1e3, x2e-5") ==
+        "path_1e3x, line e-4, 3e, 2e+, 5e-3b, mode_1e3, x2e-5");
+}
+
+}  // namespace deb::report
