@@ -181,9 +181,15 @@ SeriesStyle MakeContributorStyle(std::size_t index) {
   s.dash = kDashes[index % kDashes.size()];
   if (Hatched(index)) {
     s.fill_pattern = kPatterns[index % kPatterns.size()];
-    // Dark lines on light fills, light lines on dark ones; either shows on the key's white.
-    s.hatch_colour =
-        PrintableColour(s.lightness >= 50.0 ? std::max(s.lightness - 42.0, 12.0) : s.lightness + 30.0, 40.0, hue);
+    // Dark lines on light fills, light lines on dark ones; either shows on the
+    // key's white. The dense crosshatch (2) covers most of its area: its
+    // lines nearer the fill's lightness, or the area reads in the hatch's
+    // colour and the key's small sample in the fill's (wafer_stage's
+    // environment/, pink in the key and plum in the plot).
+    const bool dense = s.fill_pattern == 2;
+    s.hatch_colour = PrintableColour(s.lightness >= 50.0 ? std::max(s.lightness - (dense ? 28.0 : 42.0), 12.0)
+                                                         : s.lightness + (dense ? 28.0 : 30.0),
+                                     40.0, hue);
   }
   return s;
 }
