@@ -178,3 +178,36 @@ TEST_CASE("a marker's label keeps off the curves where a place beside its point 
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a label that cannot keep off the curves stays next to its point, never two lines away") {
+  // Curves every 0.4 of the y axis (of 10) leave no place clear: the label
+  // goes over one, a line from its point, where it reads as that marker's
+  // (two lines up, wafer_stage's "GM 74.63 dB at 4153 Hz" sat by another
+  // marker).
+  FigurePanel p = LogPanel();
+  for (double y = 0.2; y < 10.0; y += 0.4) p.label_obstacles.push_back({{0.1, y}, {1000.0, y}});
+  p.annotations.push_back(Marker(10.0, 5.0, "GM 16.14 dB at 313.0 Hz"));
+  PlaceMarkerLabels(p);
+  const FigureAnnotation& a = p.annotations[0];
+  REQUIRE_FALSE(a.label.empty());
+  CHECK(std::fabs(a.label_dy) == 1.0);
+  // Horizontal lines a line above and below the point (requirements) take
+  // its adjacent places: the label goes into the key, not two lines away.
+  FigurePanel q = LogPanel();
+  for (double y = 0.2; y < 10.0; y += 0.4) q.label_obstacles.push_back({{0.1, y}, {1000.0, y}});
+  for (const double y : {5.6, 4.4}) {
+    FigureAnnotation line;
+    line.kind = AnnotationKind::kHorizontalLine;
+    line.y0 = y;
+    q.annotations.push_back(line);
+  }
+  q.annotations.push_back(Marker(10.0, 5.0, "GM 74.63 dB at 4153 Hz"));
+  PlaceMarkerLabels(q);
+  const FigureAnnotation& b = q.annotations.back();
+  CHECK(b.label.empty());
+  CHECK(b.key == "GM 74.63 dB at 4153 Hz");
+}
+
+}  // namespace deb::report
