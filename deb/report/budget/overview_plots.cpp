@@ -35,24 +35,31 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
                 "there is one" +
                 std::string(pages == 1 ? "." : " (outputs " + std::to_string(first + 1) + "–" + std::to_string(last) + ").");
 
-    // Columns: 1 panel, 2 position, 3 rms, 4 label, descriptive text, 11 row (the bar's own id).
+    // Columns: 1 panel, 2 position, 3 rms, 4 label, descriptive text, 11 row (the bar's own id), 12 where the
+    // label goes.
     std::ostringstream csv;
     csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name
-        << ": RMS per output and contributor (position: bar position in the panel; row: the bar)\n";
-    csv << "panel,position,rms,rms_label,output,unit,contributor,share_percent,rms_max,pass,row\n";
+        << ": RMS per output and contributor (position: bar position in the panel; row: the bar; label_at: where "
+           "its value is written)\n";
+    csv << "panel,position,rms,rms_label,output,unit,contributor,share_percent,rms_max,pass,row,label_at\n";
     std::size_t row = 0;
     // Names beside horizontal bars need a panel's width: one output across
     // the figure, two panels to a row, three from five outputs up.
     const std::size_t cols = panels == 1 ? 1 : panels <= 4 ? 2 : 3;
-    // In a PDF, as tall as its rows of bars need (a title; per row two title
-    // lines and an axis, 110 px, and 17 px a bar, at least 70 px of plot),
-    // within the overview's 600 px: one output with six contributors got
-    // bars 50 px thick.
+    // In a PDF, as tall as its rows of bars need (a title; per row its title
+    // lines, 20 px each, and an axis, 90 px; 17 px a bar, at least 80 px of
+    // plot), within the overview's 600 px: one output with six contributors
+    // got bars 50 px thick.
     std::size_t most_bars = 0;
-    for (std::size_t o = first; o < last; ++o) most_bars = std::max(most_bars, result.outputs[o].contributors.size() + 1);
+    bool verdict_line = false;  // a third title line: the verdict below the RMS
+    for (std::size_t o = first; o < last; ++o) {
+      most_bars = std::max(most_bars, result.outputs[o].contributors.size() + 1);
+      verdict_line = verdict_line || (cols >= 3 && result.outputs[o].rms_max);
+    }
     const double rows = std::ceil(static_cast<double>(panels) / static_cast<double>(cols));
-    p.pdf_height_px = static_cast<int>(
-        std::min(30.0 + rows * (110.0 + std::max(70.0, 17.0 * (static_cast<double>(most_bars) + 0.5))), 600.0));
+    const double row_px = 90.0 + 20.0 * (verdict_line ? 3.0 : 2.0) +
+                          std::max(80.0, 17.0 * (static_cast<double>(most_bars) + 0.5));
+    p.pdf_height_px = static_cast<int>(std::min(30.0 + rows * row_px, 600.0));
     p.figure.title = "RMS per output and contributor" +
                      std::string(pages > 1 ? " (" + std::to_string(page + 1) + "/" + std::to_string(pages) + ")" : "");
     p.figure.columns = cols;
@@ -80,13 +87,33 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
       panel.y.grid = panel.y.minor_grid = false;
       const double top = std::max(out.rms(), out.rms_max.value_or(0.0));
       panel.x.min = 0.0;
-      panel.x.max = top > 0 ? top * 1.4 : 1.0;  // room for the values beside the bars
+      // A value's text beside its bar, as a fraction of the axis: a character
+      // is about 1.4 % of report.pdf's plot across the figure, 2.8 % of a
+      // panel of two to a row and 7 % of one of three (whose names take
+      // half of it), the gap and box 1.5 characters more.
+      const double char_share = cols >= 3 ? 0.07 : cols == 2 ? 0.028 : 0.014;
+      const auto text_share = [&](double rms) {
+        return (static_cast<double>(Sig(rms, digits).size()) + 1.5) * char_share;
+      };
+      double widest = 0.0;
+      for (std::size_t c = 0; c <= n; ++c)
+        widest = std::max(widest, text_share(std::sqrt(c == n ? out.variance : out.contributors[c].variance)));
+      // Room for the values beside the bars, and past the requirement's line.
+      panel.x.max = top > 0 ? top * std::max(1.4, 1.0 / (1.0 - std::min(widest, 0.6))) : 1.0;
+      // A value whose text would reach the requirement's line is written
+      // past it (its box covered the line, which then seemed to stop at it).
+      const auto LabelAt = [&](double rms) {
+        return out.rms_max && rms < *out.rms_max && *out.rms_max - rms < text_share(rms) * *panel.x.max ? *out.rms_max
+                                                                                                          : rms;
+      };
       panel.x.minor_grid = false;
       panel.x.label = "RMS [" + UnitLabel(unit) + "]";
       panel.x.format = "%g";
-      // At most 4 steps (3 panels to a row: gnuplot's own ran together).
+      // At most 5 steps, 3 with three panels to a row, 2 there for labels
+      // of four digits or more (gnuplot's own, then "10002000", ran together).
       if (top > 0) {
-        const double step = NiceStep(*panel.x.max / (cols >= 3 ? 3.0 : 5.0));
+        const double wide = *panel.x.max >= 999.5 || *panel.x.max < 0.01;
+        const double step = NiceStep(*panel.x.max / (cols >= 3 ? (wide ? 2.0 : 3.0) : 5.0));
         for (int k = 0; k * step <= *panel.x.max * (1 + 1e-12); ++k)
           panel.x.tics.push_back({k * step, SignificantText(k * step)});
       }
@@ -104,7 +131,8 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
             << (total ? "total" : CsvField(out.contributors[c].name)) << ','
             << CsvNumber(out.variance > 0 ? 100.0 * var / out.variance : 0.0) << ','
             << (out.rms_max ? CsvNumber(*out.rms_max) : "") << ','
-            << (out.rms_max ? (out.pass() ? "pass" : "FAIL") : "") << ',' << row << '\n';
+            << (out.rms_max ? (out.pass() ? "pass" : "FAIL") : "") << ',' << row << ',' << CsvNumber(LabelAt(std::sqrt(var)))
+            << '\n';
         panel.y.tics.push_back({position, total ? "total" : Enhanced(out.contributors[c].name)});
         FigureSeries bar;
         bar.name = total ? "total" : out.contributors[c].name;
@@ -141,7 +169,7 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
       values.name = "values";
       values.kind = SeriesKind::kLabels;
       values.data = data;
-      values.x_column = 3;
+      values.x_column = 12;
       values.y_columns = {2};
       values.where_column = 1;
       values.where_value = static_cast<double>(panel_index);

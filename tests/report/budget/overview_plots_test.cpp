@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include <sstream>
+
 #include "deb/budget/engine.h"
 #include "deb/load/budget_yaml.h"
 #include "deb/report/budget/spectrum_plots.h"
@@ -88,13 +90,44 @@ TEST_CASE("the overview of one output spans the figure, as tall in report.pdf as
   REQUIRE(plots.size() == 1);
   CHECK(plots[0].figure.columns == 1);
   const double bars = static_cast<double>(result.outputs[0].contributors.size() + 1);
-  CHECK(plots[0].pdf_height_px == static_cast<int>(30.0 + 110.0 + std::max(70.0, 17.0 * (bars + 0.5))));
+  CHECK(plots[0].pdf_height_px == static_cast<int>(30.0 + 90.0 + 2.0 * 20.0 + std::max(80.0, 17.0 * (bars + 0.5))));
   CHECK(plots[0].pdf_height_px < 300);
   // nizamoglu2015_h0: seven outputs, three to a row, at most four RMS steps each.
   const std::vector<Plot> seven = OverviewFigures(Evaluate(LoadBudgetFile(test::ExampleBudget("nizamoglu2015_h0.yaml"))));
   REQUIRE(seven.size() == 1);
   CHECK(seven[0].figure.columns == 3);
   for (const FigurePanel& panel : seven[0].figure.panels) CHECK(panel.x.tics.size() <= 5);
+  // avis_case_study: six outputs, three to a row, RMS in the thousands: at
+  // most two steps ("10002000" ran together), and a value that would reach
+  // the requirement's line written past it.
+  const BudgetResult avis = Evaluate(LoadBudgetFile(test::ExampleBudget("avis_case_study.yaml")));
+  const std::vector<Plot> six = OverviewFigures(avis);
+  REQUIRE(six.size() == 1);
+  CHECK(six[0].figure.columns == 3);
+  CHECK(six[0].figure.panels[0].x.tics.size() <= 3);
+  std::size_t past_line = 0;
+  std::istringstream csv(six[0].csv);
+  std::string line;
+  while (std::getline(csv, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("panel,", 0) == 0) continue;
+    std::vector<std::string> f;
+    std::string field;
+    std::istringstream fields(line);
+    while (std::getline(fields, field, ',')) f.push_back(field);
+    REQUIRE(f.size() == 12);
+    const double rms = std::stod(f[2]), label_at = std::stod(f[11]);
+    if (f[8].empty()) {
+      CHECK(label_at == rms);
+      continue;
+    }
+    const double rms_max = std::stod(f[8]);
+    CHECK(label_at >= rms);
+    if (label_at > rms) {
+      CHECK(label_at == rms_max);
+      ++past_line;
+    }
+  }
+  CHECK(past_line >= 3);  // the three displacement totals, 1759 to 1855 nm against 2000
 }
 
 }  // namespace deb::report
