@@ -75,7 +75,7 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
       // report.pdf a panel is 220 px wide: one line ran into the next title).
       if (out.rms_max)
         status += std::string(cols >= 3 ? "\n" : ": ") + (out.pass() ? "PASS" : "FAIL") + " (requirement " +
-                  Short(*out.rms_max) + ")";
+                  Short(*out.rms_max) + " " + UnitLabel(unit) + ")";
       panel.title = Enhanced(out.name) + "\n" + status;
       panel.title_colour = out.rms_max && !out.pass() ? kRequirementColour : "#202020";
       panel.key.placement = KeyPlacement::kNone;

@@ -226,7 +226,9 @@ Table ReferenceTable(const OutputResult& o, int digits) {
     for (std::size_t b = 0; b < o.bands.size(); ++b)
       if (r.band_variance[b]) row(r.name, BandText(o.bands[b].band.lo_hz, o.bands[b].band.hi_hz), o.bands[b].variance,
                                   *r.band_variance[b]);
-    row(r.name, "covered " + BandText(r.covered_lo_hz, r.covered_hi_hz), r.budget_variance, r.variance);
+    // The measured data's own span, to 4 digits (0.201183–1925.04 Hz was more than a reader needs).
+    row(r.name, "covered " + Sig(r.covered_lo_hz, 4) + "–" + Sig(r.covered_hi_hz, 4) + " Hz", r.budget_variance,
+        r.variance);
   }
   return t;
 }

@@ -23,6 +23,20 @@ std::string TypesetExponents(const std::string& text) {
   std::string out;
   out.reserve(text.size() + 16);
   for (std::size_t i = 0; i < text.size(); ++i) {
+    // "(µm/s)^2", "10^-6": a power after a base (not a space) as superscript.
+    if (text[i] == '^' && i > 0 && text[i - 1] != ' ') {
+      std::size_t k = i + 1;
+      const bool negative = k < text.size() && text[k] == '-';
+      if (negative) ++k;
+      const std::size_t first = k;
+      while (digit(k)) ++k;
+      if (k > first && (k >= text.size() || !std::isalnum(static_cast<unsigned char>(text[k])))) {
+        if (negative) out += "⁻";
+        for (std::size_t d = first; d < k; ++d) out += kSuperscript[text[d] - '0'];
+        i = k - 1;
+        continue;
+      }
+    }
     // "3.590e-04": a number (digits and a point, not part of a name), 'e',
     // a sign or none, digits, and no letter or digit after them.
     std::size_t start = i;
@@ -130,6 +144,8 @@ constexpr double kLongestWordPt = 75.0;  // a longer word may break inside a nar
 // at this fraction of it or more is set that much smaller (centred) rather
 // than moved to the next page, leaving the rest of this one empty.
 constexpr double kMinFigureScale = 0.85;
+// Contents of up to this many lines are kept whole on one page.
+constexpr std::size_t kWholeContentsLines = 30;
 // A bulleted list up to this height is kept whole on one page, with its heading.
 constexpr double kShortListPt = 220.0;
 const char* const kInk = "#1a1a1a";
@@ -437,8 +453,13 @@ class Composer {
       const double number_w = Size(number.get()).first;
       Layout text = MakeLayout(b.text, size, b.level == 1, kTextWidthPt - indent - 40.0);
       const double h = Size(text.get()).second;
-      // The last line never alone on a page: the one before it takes it along.
-      Need(listed + 1 == sections ? 2.0 * (h + 3.0) : h);
+      // Up to 30 lines the contents stay whole on one page (wafer_stage's
+      // last two stood at the top of page 2); a longer one never leaves its
+      // last line alone: the one before it takes it along.
+      if (listed == 1 && sections <= kWholeContentsLines)
+        Need(static_cast<double>(sections) * (h + 5.0));  // each line: 3 pt above, 2 below
+      else
+        Need(listed + 1 == sections ? 2.0 * (h + 3.0) : h);
       if (b.level == 1) y_ += 3.0;
       if (draw_) cairo_tag_begin(cr_, CAIRO_TAG_LINK, Link(t).c_str());
       Show(text.get(), kMarginPt + indent, y_, kInk);

@@ -103,7 +103,8 @@ PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path)
 // goes through it, so that a line break never parts "1.5" from "nm".
 std::string NumbersKeptWithUnits(const std::string& text);
 // `text` with a number's e-notation set as a power of ten, "3.590e-04" as
-// "3.590·10⁻⁴", as every text the document sets (tables of small RMS values).
+// "3.590·10⁻⁴", and a caret's power as superscript, "(µm/s)^2" as "(µm/s)²",
+// "10^-6" as "10⁻⁶", as every text the document sets.
 std::string TypesetExponents(const std::string& text);
 
 }  // namespace deb::report

@@ -454,10 +454,37 @@ TEST_CASE("numbers in e-notation are set as powers of ten on the page") {
   CHECK(TypesetExponents("k = 2.84245e+06 N/m") == "k = 2.84245·10⁶ N/m");
   CHECK(TypesetExponents("1e-12 and 6.144e-13 %") == "1·10⁻¹² and 6.144·10⁻¹³ %");
   CHECK(TypesetExponents("2e10") == "2·10¹⁰");
+  // Powers after a caret (sensitivity.pdf's "variance [(µm/s)^2]", compare.pdf's "below 10^-6").
+  CHECK(TypesetExponents("variance [(µm/s)^2], below 10^-6, |sinc(pi f T)|^2") ==
+        "variance [(µm/s)²], below 10⁻⁶, |sinc(pi f T)|²");
+  CHECK(TypesetExponents("a ^2, x^y, 2^3a") == "a ^2, x^y, 2^3a");
   CHECK(TypesetExponents("1.0e+00") == "1.0·10⁰");
   // Not numbers: identifiers, words, a bare 'e'.
   CHECK(TypesetExponents("path_1e3x, line e-4, 3e, 2e+, 5e-3b, mode_1e3, x2e-5") ==
         "path_1e3x, line e-4, 3e, 2e+, 5e-3b, mode_1e3, x2e-5");
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("contents of up to 30 lines stay whole on one page") {
+  // wafer_stage's last two contents lines stood alone at the top of page 2.
+  for (int filler = 20; filler <= 60; ++filler) {
+    CAPTURE(filler);
+    PdfDocumentSpec spec;
+    spec.create_date = "2026-01-01T00:00:00Z";
+    for (int i = 0; i < filler; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
+    spec.blocks.push_back(Contents());
+    for (int s = 0; s < 10; ++s) {
+      spec.blocks.push_back(Heading(1, "Section " + std::to_string(s)));
+      spec.blocks.push_back(Paragraph("Text."));
+    }
+    std::set<int> pages;
+    for (const PlacedBox& b : WritePdfDocument(spec, "").boxes)
+      if (b.what == "contents") pages.insert(b.page);
+    CHECK(pages.size() == 1);
+  }
 }
 
 }  // namespace deb::report
