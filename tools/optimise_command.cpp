@@ -159,6 +159,7 @@ int OptimiseCommand::Run() const {
   BudgetResult optimum = Evaluate(budget.loader(budget.Point(result.starts[result.best].values)), engine);
   optimum.outline.name = budget.name + "_optimum";
   optimum.outline.description = OptimumDescription(result, optimum.outline.description);
+  if (const std::string bounds = BoundsText(result); !bounds.empty()) optimum.warnings.push_back(bounds);
   // The figures: the history, and for two variables the objective's map.
   std::vector<report::Plot> plots;
   if (s.plots) {

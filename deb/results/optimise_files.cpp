@@ -48,6 +48,29 @@ std::string OptimumText(const OptimiseResult& r) {
   return s;
 }
 
+std::vector<std::size_t> VariablesAtBound(const OptimiseResult& r) {
+  std::vector<std::size_t> at;
+  const OptimiseStart& best = r.starts[r.best];
+  for (std::size_t i = 0; i < r.variables.size(); ++i) {
+    const DesignVariable& v = r.variables[i];
+    const double tolerance = 1e-6 * (v.max - v.min);
+    if (best.values[i] <= v.min + tolerance || best.values[i] >= v.max - tolerance) at.push_back(i);
+  }
+  return at;
+}
+
+std::string BoundsText(const OptimiseResult& r) {
+  const std::vector<std::size_t> at = VariablesAtBound(r);
+  if (at.empty()) return "";
+  std::string s = "On a bound: ";
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    const DesignVariable& v = r.variables[at[k]];
+    const bool upper = r.starts[r.best].values[at[k]] >= 0.5 * (v.min + v.max);
+    s += (k ? ", " : "") + v.name + " at its " + (upper ? "maximum " : "minimum ") + ValueText(v, upper ? v.max : v.min);
+  }
+  return s + ": the range given, not the budget, limits the optimum there (widen it to see further).";
+}
+
 std::string OptimiseSummaryJson(const std::string& budget_name, const OptimiseResult& r) {
   Json j;
   j["deb_version"] = DEB_VERSION;
@@ -77,6 +100,9 @@ std::string OptimiseSummaryJson(const std::string& budget_name, const OptimiseRe
                   {"values", Values(r, best.values)},
                   {"objective", best.objective},
                   {"requirements", Requirements(r.requirements, true)}};
+  Json at_bound = Json::array();  // variables whose optimum is their range's bound
+  for (std::size_t i : VariablesAtBound(r)) at_bound.push_back(r.variables[i].name);
+  j["optimum"]["at_bound"] = at_bound;
   Json starts = Json::array();
   for (std::size_t k = 0; k < r.starts.size(); ++k) {
     const OptimiseStart& s = r.starts[k];
@@ -117,6 +143,7 @@ std::string OptimumDescription(const OptimiseResult& r, const std::string& budge
   std::string d = "The optimum of deb optimise: " + OptimumText(r) + " (" + r.objective.Text() + " minimised: " +
                   SignificantText(best.objective, 4) + ", nominal " + SignificantText(r.nominal_objective, 4) + "); " +
                   (r.feasible ? "every requirement met." : "NO design met every requirement: the least violating.");
+  if (const std::string bounds = BoundsText(r); !bounds.empty()) d += " " + bounds;
   if (!budget_description.empty()) d += " The budget: " + budget_description;
   return d;
 }

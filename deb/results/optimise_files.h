@@ -20,6 +20,12 @@ std::string OptimiseHistoryCsv(const OptimiseResult& result);
 // KEY=VALUE) are named in a comment, as the optimum assumes them.
 std::string OptimumYaml(const std::string& extends, const std::string& budget_name, const OptimiseResult& result,
                         const std::vector<std::string>& overrides);
+// The variables whose optimum lies on their range's bound (within 1e-6 of
+// the range), by index.
+std::vector<std::size_t> VariablesAtBound(const OptimiseResult& result);
+// "On a bound: h at its maximum 400 mm: the range given, not the budget,
+// limits the optimum there (widen it to see further)."; "" when none is.
+std::string BoundsText(const OptimiseResult& result);
 // "Kv = 61.3, h = 182 mm": the optimum's values in their units.
 std::string OptimumText(const OptimiseResult& result);
 // The optimum's description, for optimum.yaml and its report: "The optimum

@@ -288,6 +288,14 @@ TEST_CASE("the thesis' Kv and h: BOBYQA within 60 evaluations, no worse than any
   }
   CHECK(std::abs(best.values[0] - line_kv) <= 0.25);
   CHECK(best.objective <= line_best);
+  // The optimum's h is the range's bound, and its description says so (the
+  // report called 400 mm the optimum with no word of it); Kv is inside its range.
+  CHECK(VariablesAtBound(r) == std::vector<std::size_t>{1});
+  CHECK(BoundsText(r) ==
+        "On a bound: h at its maximum 400 mm: the range given, not the budget, limits the optimum there (widen it to "
+        "see further).");
+  CHECK(OptimumDescription(r, "").find(BoundsText(r)) != std::string::npos);
+  CHECK(OptimiseSummaryJson("thesis", r).find("\"at_bound\": [\n      \"h\"\n    ]") != std::string::npos);
 }
 
 TEST_CASE("robust: the P95 over a's tolerance moves kv* to (b / a_P95)^(1/4)") {
