@@ -15,6 +15,15 @@ namespace {
 
 using namespace deb::test;
 
+// A document that starts with `lines` one-line paragraphs: what follows
+// them starts anywhere down a page, as the filler's length moves it.
+deb::report::PdfDocumentSpec WithFiller(int lines) {
+  deb::report::PdfDocumentSpec spec;
+  spec.create_date = "2026-01-01T00:00:00Z";
+  for (int i = 0; i < lines; ++i) spec.blocks.push_back(deb::report::Paragraph("Filler line " + std::to_string(i) + "."));
+  return spec;
+}
+
 std::string Bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream s;
@@ -369,9 +378,7 @@ TEST_CASE("a heading and a one-line paragraph are never all of a page's bottom: 
   // ends, the heading's page holds the table's first row.
   for (int filler = 30; filler <= 56; ++filler) {
     CAPTURE(filler);
-    PdfDocumentSpec spec;
-    spec.create_date = "2026-01-01T00:00:00Z";
-    for (int i = 0; i < filler; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
+    PdfDocumentSpec spec = WithFiller(filler);
     spec.blocks.push_back(Heading(2, "x_velocity"));
     spec.blocks.push_back(Paragraph("Nominal RMS 11.28 um/s."));
     PdfTable t;
@@ -399,9 +406,7 @@ TEST_CASE("a short list stays whole with its heading; a long one's last item nev
   const std::string item = ": a convention said in one line or two.";
   for (int filler = 30; filler <= 110; ++filler) {
     CAPTURE(filler);
-    PdfDocumentSpec spec;
-    spec.create_date = "2026-01-01T00:00:00Z";
-    for (int i = 0; i < filler; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
+    PdfDocumentSpec spec = WithFiller(filler);
     spec.blocks.push_back(Heading(1, "Conventions"));
     for (int i = 0; i < 6; ++i) spec.blocks.push_back(Bullet("Item " + std::to_string(i) + item));
     std::set<int> pages;
@@ -415,9 +420,7 @@ TEST_CASE("a short list stays whole with its heading; a long one's last item nev
   int moved = 0;
   for (int filler = 0; filler <= 48; ++filler) {
     CAPTURE(filler);
-    PdfDocumentSpec spec;
-    spec.create_date = "2026-01-01T00:00:00Z";
-    for (int i = 0; i < filler; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
+    PdfDocumentSpec spec = WithFiller(filler);
     for (int i = 0; i < 40; ++i) spec.blocks.push_back(Bullet("Item " + std::to_string(i) + item));
     std::map<std::string, int> page;
     for (const PlacedBox& b : WritePdfDocument(spec, "").boxes)
@@ -472,9 +475,7 @@ TEST_CASE("contents of up to 30 lines stay whole on one page") {
   // wafer_stage's last two contents lines stood alone at the top of page 2.
   for (int filler = 20; filler <= 60; ++filler) {
     CAPTURE(filler);
-    PdfDocumentSpec spec;
-    spec.create_date = "2026-01-01T00:00:00Z";
-    for (int i = 0; i < filler; ++i) spec.blocks.push_back(Paragraph("Filler line " + std::to_string(i) + "."));
+    PdfDocumentSpec spec = WithFiller(filler);
     spec.blocks.push_back(Contents());
     for (int s = 0; s < 10; ++s) {
       spec.blocks.push_back(Heading(1, "Section " + std::to_string(s)));
