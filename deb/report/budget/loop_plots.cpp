@@ -177,7 +177,9 @@ Plot BodePlot(const LoopFigures& lf) {
   top.series.push_back(Line("|L|", "|L|", bode.name + ".csv", 2, kLoopColour));
   top.annotations.push_back(Level(1.0, "|L| = 1"));
   top.key.title = "loop gain";
-  top.height = 1.3;
+  // As tall as the magnitude: a phase of several turns and its margins
+  // were squeezed into 60 px of report.pdf beside a magnitude 1.3 times as tall.
+  top.height = 1.0;
   bottom.y.label = "arg L [°]";
   bottom.y.format = "%g";
   bottom.series.push_back(Line("arg L", "", bode.name + ".csv", 3, kLoopColour));
