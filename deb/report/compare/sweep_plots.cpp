@@ -82,9 +82,17 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
                  " combinations are drawn; sweep.csv holds all.";
 
   // One RMS axis for every panel: from 0 to the largest total or the requirement.
-  double top = out0.rms_max.value_or(0.0);
-  for (const BudgetResult& r : results) top = std::max(top, r.outputs[o].rms());
+  double top = out0.rms_max.value_or(0.0), lowest = HUGE_VAL;
+  for (const BudgetResult& r : results) {
+    top = std::max(top, r.outputs[o].rms());
+    if (r.outputs[o].rms() > 0.0) lowest = std::min(lowest, r.outputs[o].rms());
+  }
   if (!(top > 0.0)) top = 1.0;
+  // Totals more than 5x apart on a log axis: on a linear one, the
+  // nizamoglu2015 sweep's K_v = 0 (80-110 um/s) squeezed the 10-20 that
+  // matter into the bottom seventh of every panel.
+  const bool log_rms = lowest < HUGE_VAL && top / lowest > 5.0;
+  if (log_rms) p.caption += " RMS on a log axis: the totals span more than a factor 5.";
 
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", sweep, output " << out0.name << " RMS in " << out0.unit
@@ -118,8 +126,15 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
     panel.x = ParameterAxis(first, 0.5);
     if (LogAxis(first)) panel.x.scale = AxisScale::kLog;
     panel.y.label = panels == 1 || b % cols == 0 ? "RMS [" + UnitLabel(out0.unit) + "]" : "";  // the left column's
-    panel.y.min = 0.0;  // one RMS axis for every panel
-    panel.y.max = top * 1.08;
+    // One RMS axis for every panel.
+    if (log_rms) {
+      panel.y.scale = AxisScale::kLog;
+      panel.y.min = std::pow(10.0, std::floor(std::log10(lowest / 2.0)));
+      panel.y.max = top * 1.5;
+    } else {
+      panel.y.min = 0.0;
+      panel.y.max = top * 1.08;
+    }
     panel.y2.shown = false;
     // The key once, with the first panel, beside the panels.
     panel.key.placement =

@@ -270,3 +270,29 @@ TEST_CASE("sweep.pdf sets two figures to a page: small multiples of up to four p
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("small multiples put totals more than 5x apart on a log RMS axis") {
+  // The nizamoglu2015 sweep's K_v = 0 (80-110 um/s) squeezed the 10-20 that
+  // matter into the bottom seventh of a linear axis.
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  SweepSpec spec;
+  spec.parameters = {{"paths[0].num[1]", {1, 2, 3}, {}, {}, {}, {}}};
+  std::vector<BudgetResult> results(3, Evaluate(budget));
+  const double rms = results[0].outputs[0].rms();
+  REQUIRE(rms > 0.0);
+  const auto linear = SweepPlots(spec, results);
+  CHECK(linear[0].figure.panels[0].y.scale == AxisScale::kLinear);
+  CHECK(*linear[0].figure.panels[0].y.min == 0.0);
+  // One variant 8x the others: a log axis from the decade below half the lowest.
+  results[0].outputs[0].variance *= 64.0;
+  const auto spread = SweepPlots(spec, results);
+  const FigurePanel& panel = spread[0].figure.panels[0];
+  CHECK(panel.y.scale == AxisScale::kLog);
+  CHECK(*panel.y.min == doctest::Approx(std::pow(10.0, std::floor(std::log10(rms / 2.0)))));
+  CHECK(*panel.y.max >= 8.0 * rms);
+  CHECK(spread[0].caption.find("log axis") != std::string::npos);
+}
+
+}  // namespace deb::report
