@@ -25,6 +25,7 @@
 #include "deb/core/key_positions.h"
 #include "deb/core/limits.h"
 #include "deb/core/output_dir.h"
+#include "deb/core/rounding_zero.h"
 #include "deb/core/study_shard.h"
 
 #include "deb/units/dimension.h"

@@ -170,3 +170,25 @@ TEST_CASE("a band on one side only is listed as only in that side, whichever sid
 }
 
 }  // namespace deb
+
+namespace deb {
+
+TEST_CASE("a part computed as rounding compares as 0, as the run report shows it") {
+  // nizamoglu2015_h0's floor on beta_velocity is 6.1e-13 urad/s of 22
+  // (rounding: the model leaves it uncoupled); compare.pdf read 6.144e-13
+  // where the run report reads 0. Here a floor of 1e-26 of the total.
+  const Comparison cmp = Compare(Example(1e-26 / 4.0 * 1.0), Example(1.0));
+  const ComparedFigure* floor = nullptr;
+  for (const ComparedFigure& f : cmp.figures)
+    if (f.contributor == "floor" && f.band.empty()) floor = &f;
+  REQUIRE(floor != nullptr);
+  CHECK(floor->rms_a == 0.0);
+  CHECK(floor->rms_b == doctest::Approx(2.0));
+  CHECK(floor->difference == doctest::Approx(2.0));
+  // 1e-20 of the total is not rounding: it stays (as data, negligible).
+  const Comparison small = Compare(Example(1e-20 / 4.0 * 1.0), Example(1.0));
+  for (const ComparedFigure& f : small.figures)
+    if (f.contributor == "floor" && f.band.empty()) CHECK(f.rms_a == doctest::Approx(1e-10));
+}
+
+}  // namespace deb

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "deb/core/rounding_zero.h"
 #include "deb/report/figure/plot_figure.h"
 
 namespace deb::report {
@@ -83,17 +84,7 @@ std::string Short(double value);
 // share can be negative: a mode's cross-spectrum with the output).
 std::string Share(double part, double whole);
 
-// Whether a part of a variance is zero but for rounding: at most 1e-24 of its
-// whole (an RMS 1e-12 of the whole's), e.g. a source channel that a symmetric
-// model does not couple to the output, computed as 1e-16 of the others.
-// Tables and the console show it as 0.
-inline bool RoundingZero(double part_variance, double whole_variance) {
-  return part_variance <= 1e-24 * whole_variance;
-}
-// The part as tables, keys and bars show it: 0 where RoundingZero.
-inline double WithoutRounding(double part_variance, double whole_variance) {
-  return RoundingZero(part_variance, whole_variance) ? 0.0 : part_variance;
-}
+// RoundingZero and WithoutRounding: deb/core/rounding_zero.h.
 
 // A frequency for an enhanced-mode label: powers of ten from 10^4 up or
 // 10^-4 down as "10^{8}", anything else as Short.
