@@ -102,6 +102,7 @@ LoopCurves Curves(const LoopTrace& trace) {
 struct LoopFigures {
   const LoopResult& loop;
   LoopCurves curves;
+  std::vector<std::size_t> rows;  // of the curves, as the CSV holds them (LoopRows)
   std::string stem, name, paths, csv;
   FigureAxis x_axis;
   int digits;
@@ -132,7 +133,8 @@ std::vector<std::size_t> LoopRows(const LoopCurves& c) {
   return rows;
 }
 
-std::string LoopCsv(const LoopResult& r, const LoopCurves& c, const std::string& budget, const std::string& paths) {
+std::string LoopCsv(const LoopResult& r, const LoopCurves& c, const std::vector<std::size_t>& rows,
+                    const std::string& budget, const std::string& paths) {
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", budget " << budget << ": loop gain L = -sign G K of plant " << r.plant
       << " and controller " << r.controller << " (sign " << r.sign
@@ -140,7 +142,7 @@ std::string LoopCsv(const LoopResult& r, const LoopCurves& c, const std::string&
       << "; only the rows the figures need to draw every curve as the full grid would (magnitudes to 0.002 decade, "
          "the phase and L near -1 to 0.2 %)\n";
   csv << "frequency_hz,abs_L,phase_L_deg,abs_S,abs_T,re_L,im_L\n";
-  for (std::size_t i : LoopRows(c))
+  for (std::size_t i : rows)
     csv << CsvNumber(c.f[i]) << ',' << CsvNumber(c.mag[i]) << ',' << CsvNumber(c.phase[i]) << ','
         << CsvNumber(c.s_mag[i]) << ',' << CsvNumber(c.t_mag[i]) << ',' << CsvNumber(c.l[i].real()) << ','
         << CsvNumber(c.l[i].imag()) << '\n';
@@ -190,7 +192,7 @@ Plot BodePlot(const LoopFigures& lf) {
   // "GM 16.14 dB at 313.0 Hz" lay over the phase, beside another margin's marker).
   auto& magnitude = top.label_obstacles.emplace_back();
   auto& phase = bottom.label_obstacles.emplace_back();
-  for (std::size_t k : LoopRows(lf.curves)) {
+  for (std::size_t k : lf.rows) {
     magnitude.push_back({lf.curves.f[k], lf.curves.mag[k]});
     phase.push_back({lf.curves.f[k], lf.curves.phase[k]});
   }
@@ -319,9 +321,11 @@ std::vector<Plot> LoopPlots(const BudgetResult& result, int digits) {
     const FrequencyRange range{f.front(), f.back(),
                                f.front() > result.grid.min_hz() || f.back() < result.grid.max_hz()};
     const FigureAxis x_axis = FrequencyFigureAxis(range, result.grid, "where the loop's data are defined");
-    const std::string csv = LoopCsv(r, curves, result.outline.name, paths);
+    std::vector<std::size_t> rows = LoopRows(curves);
+    const std::string csv = LoopCsv(r, curves, rows, result.outline.name, paths);
     const LoopFigures lf{r,
                          std::move(curves),
+                         std::move(rows),
                          "loop_" + FileStem(r.plant) + "_" + FileStem(r.controller),
                          "loop " + Enhanced(r.plant) + " · " + Enhanced(r.controller),
                          paths,

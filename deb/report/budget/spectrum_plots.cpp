@@ -304,9 +304,9 @@ struct LogRange {
 // The PSD (or ASD) figure's data: frequency, each item's and the total's
 // density, then each reference's (NaN outside what it covers). `range`
 // takes the shown positive values: every item and reference for the bottom,
-// the total and the references for the top.
+// the total and the references for the top; `rows` the grid's rows it holds.
 std::string SpectrumCsv(const BudgetResult& result, const OutputResult& out, const FrequencyRange& shown_range, bool asd,
-                        LogRange& range) {
+                        LogRange& range, std::vector<std::size_t>& rows) {
   const std::vector<double>& f = result.grid.f_hz();
   const auto value = [&](double psd) { return asd ? std::sqrt(psd) : psd; };
   const std::string unit = DisplayUnit(out.unit);
@@ -322,7 +322,8 @@ std::string SpectrumCsv(const BudgetResult& result, const OutputResult& out, con
   std::vector<const std::vector<double>*> drawn = {&out.total_psd};
   for (const auto& c : out.contributors) drawn.push_back(&c.psd);
   for (const ReferenceResult& r : out.references) drawn.push_back(&r.psd);
-  for (std::size_t k : PlotPoints(f, drawn, shown_range.lo_hz, shown_range.hi_hz)) {
+  rows = PlotPoints(f, drawn, shown_range.lo_hz, shown_range.hi_hz);
+  for (std::size_t k : rows) {
     csv << CsvNumber(f[k]);
     const bool shown = f[k] >= shown_range.lo_hz && f[k] <= shown_range.hi_hz;
     for (const ContributorResult& c : out.contributors) {
@@ -429,7 +430,8 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
                  " that would use the band's whole allowance (rms_max² spread evenly over the band" +
                  (asd ? ", square-rooted" : "") + "): a curve above it over the whole band fails that band.";
   LogRange range;
-  p.csv = SpectrumCsv(result, out, shown, asd, range);
+  std::vector<std::size_t> rows;
+  p.csv = SpectrumCsv(result, out, shown, asd, range, rows);
   if (!out.references.empty())
     p.caption += " Grey dashed: the measured reference(s), never summed (the report's table compares them band by "
                  "band).";
@@ -457,11 +459,10 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
   if (AddToneMarkers(panel, result, level, shown, asd, range.top > 0.0, digits)) {
     p.caption += " Triangles mark tones (sinusoids, no density): each at its frequency on the total, labelled with "
                  "its RMS; the CPS steps there by its variance.";
-    // Their labels keep off the curves, as the CSV draws them.
+    // Their labels keep off the curves, on the CSV's rows.
     const std::vector<double>& f = result.grid.f_hz();
     std::vector<const std::vector<double>*> drawn = {&out.total_psd};
     for (const auto& c : out.contributors) drawn.push_back(&c.psd);
-    const std::vector<std::size_t> rows = PlotPoints(f, drawn, shown.lo_hz, shown.hi_hz);
     for (const std::vector<double>* psd : drawn) {
       auto& curve = panel.label_obstacles.emplace_back();
       for (std::size_t k : rows) curve.push_back({f[k], asd ? std::sqrt((*psd)[k]) : (*psd)[k]});
