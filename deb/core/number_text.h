@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 namespace deb {
 
@@ -30,6 +31,19 @@ inline std::string SignificantText(double value, int digits = 4) {
   char buffer[40];
   std::snprintf(buffer, sizeof(buffer), "%.*g", digits, value);
   return buffer;
+}
+
+// `text` with its digits and minus signs as superscripts ("-12" -> "⁻¹²"),
+// anything else as it is: exponents and note marks in a document's text.
+inline std::string SuperscriptText(std::string_view text) {
+  static const char* const kDigits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string out;
+  for (const char c : text) {
+    if (c >= '0' && c <= '9') out += kDigits[c - '0'];
+    else if (c == '-') out += "⁻";
+    else out += c;
+  }
+  return out;
 }
 
 }  // namespace deb

@@ -399,12 +399,7 @@ std::string HtmlEscape(const std::string& text) {
 }
 
 Table WithNotesBelow(const Table& table, std::vector<std::string>* notes, std::size_t min_characters) {
-  const auto mark = [](std::size_t k) {  // superscript digits
-    static const char* const digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
-    std::string m;
-    for (const char c : std::to_string(k)) m += digits[c - '0'];
-    return m;
-  };
+  const auto mark = [](std::size_t k) { return SuperscriptText(std::to_string(k)); };
   // Counted per column: a parameter named by its key path in two columns
   // of one row is a name, not a note.
   std::map<std::pair<std::size_t, std::string>, int> count;

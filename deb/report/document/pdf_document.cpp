@@ -8,17 +8,17 @@
 #include <cctype>
 #include <cstdio>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "deb/core/error.h"
+#include "deb/core/number_text.h"
 #include "deb/report/document/svg_figure.h"
 
 namespace deb::report {
 
 std::string TypesetExponents(const std::string& text) {
-  static const char* const kSuperscript[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
   const auto digit = [&](std::size_t k) { return k < text.size() && std::isdigit(static_cast<unsigned char>(text[k])); };
   std::string out;
   out.reserve(text.size() + 16);
@@ -31,8 +31,7 @@ std::string TypesetExponents(const std::string& text) {
       const std::size_t first = k;
       while (digit(k)) ++k;
       if (k > first && (k >= text.size() || !std::isalnum(static_cast<unsigned char>(text[k])))) {
-        if (negative) out += "⁻";
-        for (std::size_t d = first; d < k; ++d) out += kSuperscript[text[d] - '0'];
+        out += SuperscriptText(std::string_view(text).substr(i + 1, k - i - 1));  // the sign with the digits
         i = k - 1;
         continue;
       }
@@ -52,9 +51,7 @@ std::string TypesetExponents(const std::string& text) {
       if (k > first && ends) {
         std::size_t lead = first;
         while (lead + 1 < k && text[lead] == '0') ++lead;
-        out += "·10";
-        if (negative) out += "⁻";
-        for (std::size_t d = lead; d < k; ++d) out += kSuperscript[text[d] - '0'];
+        out += "·10" + SuperscriptText((negative ? "-" : "") + text.substr(lead, k - lead));
         i = k - 1;
         continue;
       }

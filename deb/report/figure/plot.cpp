@@ -6,9 +6,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <set>
 
 #include "deb/core/file_name.h"
+#include "deb/core/number_text.h"
 #include "deb/units/unit.h"
 
 namespace deb::report {
@@ -147,20 +149,26 @@ std::string Short(double value) {
   return text;
 }
 
-std::string HzLabel(double f_hz) {
+namespace {
+
+// The exponent of a frequency that is a power of ten from 10^4 up or 10^-4
+// down (HzLabel, HzText); none for anything else.
+std::optional<int> LargePowerOfTen(double f_hz) {
   const double e = std::round(std::log10(f_hz));
-  if (std::fabs(e) >= 4 && std::fabs(f_hz / std::pow(10.0, e) - 1.0) < 1e-9)
-    return "10^{" + std::to_string(static_cast<int>(e)) + "}";
+  if (std::fabs(e) >= 4 && std::fabs(f_hz / std::pow(10.0, e) - 1.0) < 1e-9) return static_cast<int>(e);
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string HzLabel(double f_hz) {
+  if (const std::optional<int> e = LargePowerOfTen(f_hz)) return "10^{" + std::to_string(*e) + "}";
   return Short(f_hz);
 }
 
 std::string HzText(double f_hz) {
-  const double e = std::round(std::log10(f_hz));
-  if (!(std::fabs(e) >= 4 && std::fabs(f_hz / std::pow(10.0, e) - 1.0) < 1e-9)) return Short(f_hz);
-  static const char* const kSuperscript[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
-  std::string text = e < 0 ? "10⁻" : "10";
-  for (const char digit : std::to_string(static_cast<int>(std::fabs(e)))) text += kSuperscript[digit - '0'];
-  return text;
+  if (const std::optional<int> e = LargePowerOfTen(f_hz)) return "10" + SuperscriptText(std::to_string(*e));
+  return Short(f_hz);
 }
 
 std::string Squared(std::string unit) {
