@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "deb/core/number_text.h"
 #include "deb/report/budget/spectrum_plots.h"
@@ -95,14 +96,17 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
       const auto text_share = [&](double rms) {
         return (static_cast<double>(Sig(rms, digits).size()) + 1.5) * char_share;
       };
+      // Each bar's variance as it is shown (index n: the total); an uncoupled
+      // contributor computed as rounding reads 0, as in the tables.
+      std::vector<double> shown(n + 1, out.variance);
+      for (std::size_t c = 0; c < n; ++c) shown[c] = WithoutRounding(out.contributors[c].variance, out.variance);
       double widest = 0.0;
-      for (std::size_t c = 0; c <= n; ++c)
-        widest = std::max(widest, text_share(std::sqrt(c == n ? out.variance : out.contributors[c].variance)));
+      for (const double v : shown) widest = std::max(widest, text_share(std::sqrt(v)));
       // Room for the values beside the bars, and past the requirement's line.
       panel.x.max = top > 0 ? top * std::max(1.4, 1.0 / (1.0 - std::min(widest, 0.6))) : 1.0;
       // A value whose text would reach the requirement's line is written
       // past it (its box covered the line, which then seemed to stop at it).
-      const auto LabelAt = [&](double rms) {
+      const auto label_at = [&](double rms) {
         return out.rms_max && rms < *out.rms_max && *out.rms_max - rms < text_share(rms) * *panel.x.max ? *out.rms_max
                                                                                                           : rms;
       };
@@ -123,15 +127,14 @@ std::vector<Plot> OverviewFigures(const BudgetResult& result, int digits) {
         const std::size_t c = total ? n : order[i];
         // Top to bottom: the largest contributor at n + 1.3, the total at 1.
         const double position = total ? 1.0 : static_cast<double>(n - i) + 1.3;
-        // An uncoupled contributor computed as rounding reads 0, as in the tables.
-        const double var = total ? out.variance : WithoutRounding(out.contributors[c].variance, out.variance);
+        const double var = shown[c];
         ++row;
         csv << panel_index << ',' << CsvNumber(position) << ',' << CsvNumber(std::sqrt(var)) << ','
             << Sig(std::sqrt(var), digits) << ',' << CsvField(out.name) << ',' << CsvField(unit) << ','
             << (total ? "total" : CsvField(out.contributors[c].name)) << ','
             << CsvNumber(out.variance > 0 ? 100.0 * var / out.variance : 0.0) << ','
             << (out.rms_max ? CsvNumber(*out.rms_max) : "") << ','
-            << (out.rms_max ? (out.pass() ? "pass" : "FAIL") : "") << ',' << row << ',' << CsvNumber(LabelAt(std::sqrt(var)))
+            << (out.rms_max ? (out.pass() ? "pass" : "FAIL") : "") << ',' << row << ',' << CsvNumber(label_at(std::sqrt(var)))
             << '\n';
         panel.y.tics.push_back({position, total ? "total" : Enhanced(out.contributors[c].name)});
         FigureSeries bar;
