@@ -121,30 +121,36 @@ void PlaceMarkerLabels(FigurePanel& panel, double share) {
         if (SegmentMeets(c[i], c[i + 1], b)) return true;
     return false;
   };
+  // Tries the places beside a's point, above then below, right then left,
+  // up to `farthest` lines away, and keeps the first inside the axes that
+  // meets no label placed, no point or line, and with `off_curves` no curve.
+  const auto place = [&](FigureAnnotation& a, bool off_curves, double farthest) {
+    for (const double dy : {1.0, -1.0, 2.0, -2.0}) {
+      if (std::fabs(dy) > farthest) break;
+      for (const bool left : {false, true}) {
+        a.label_left = left;
+        a.label_dx = left ? -1.0 : 1.0;
+        a.label_dy = dy;
+        const LabelBox b = *LabelBoxOf(panel, a, share);
+        bool free = b.Inside();
+        for (const LabelBox& other : placed) free = free && !b.Overlaps(other);
+        for (const LabelBox& point : points) free = free && !b.Overlaps(point);
+        if (free && off_curves) free = !on_curve(b);
+        if (free) {
+          placed.push_back(b);
+          return true;
+        }
+      }
+    }
+    return false;
+  };
   for (FigureAnnotation& a : panel.annotations) {
     if (a.kind != AnnotationKind::kMarker || a.label.empty() || !PlotFraction(panel, a)) continue;
-    bool done = false;
     // Off the curves where a place allows, up to two lines away (farther, a
     // label in a short panel read as the next marker's); else over a curve
     // but next to its point (two lines away and over a curve, wafer_stage's
     // "GM 74.63 dB at 4153 Hz" read as another marker's), else the key.
-    for (const bool off_curves : {true, false})
-      for (const double dy : {1.0, -1.0, 2.0, -2.0})
-        for (const bool left : {false, true}) {
-          if (done || (!off_curves && !curves.empty() && std::fabs(dy) > 1.0)) break;
-          a.label_left = left;
-          a.label_dx = left ? -1.0 : 1.0;
-          a.label_dy = dy;
-          const LabelBox b = *LabelBoxOf(panel, a, share);
-          bool free = b.Inside();
-          for (const LabelBox& other : placed) free = free && !b.Overlaps(other);
-          for (const LabelBox& point : points) free = free && !b.Overlaps(point);
-          if (free && off_curves) free = !on_curve(b);
-          if (free) {
-            placed.push_back(b);
-            done = true;
-          }
-        }
+    const bool done = place(a, true, 2.0) || place(a, false, curves.empty() ? 2.0 : 1.0);
     if (!done) {  // nowhere beside its point: the key names it
       a.key = a.label;
       a.label.clear();
