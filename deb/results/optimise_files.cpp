@@ -15,6 +15,13 @@ namespace {
 
 double Shown(const DesignVariable& v, double si) { return si / v.unit_si; }
 
+// A YAML single-quoted scalar: 'text', each ' doubled.
+std::string YamlSingleQuoted(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("''") : std::string(1, c);
+  return quoted + "'";
+}
+
 std::string ValueText(const DesignVariable& v, double si) {
   return NumberText(Shown(v, si)) + (v.unit.empty() ? "" : " " + v.unit);
 }
@@ -162,12 +169,8 @@ std::string OptimumYaml(const std::string& extends, const std::string& budget_na
     for (const std::string& o : overrides) y += " --set '" + o + "'";
     y += "; run this budget with them too.\n";
   }
-  std::string quoted;
-  for (char c : extends) quoted += c == '\'' ? std::string("''") : std::string(1, c);
-  std::string description;
-  for (char c : OptimumDescription(r, "")) description += c == '\'' ? std::string("''") : std::string(1, c);
-  y += "extends: '" + quoted + "'\nname: " + budget_name + "_optimum\ndescription: '" + description +
-       "'\nparameters:\n";
+  y += "extends: " + YamlSingleQuoted(extends) + "\nname: " + budget_name +
+       "_optimum\ndescription: " + YamlSingleQuoted(OptimumDescription(r, "")) + "\nparameters:\n";
   for (std::size_t i = 0; i < r.variables.size(); ++i)
     y += "  " + r.variables[i].name + ": " + ValueText(r.variables[i], best.values[i]) + "\n";
   return y;
