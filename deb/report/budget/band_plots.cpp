@@ -26,6 +26,55 @@ struct Group {
   std::optional<BandRequirementResult> requirement;
 };
 
+// A bar of every band: a contributor, a top-level group (summed from its
+// members) or the rest of them.
+struct BarItem {
+  std::string name;
+  SeriesStyle style;
+  std::vector<std::size_t> members;  // the output's contributors it sums
+  double variance = 0.0;             // over the whole grid: the order of the bars
+};
+
+// More bars than this in a band are a few pixels wide in report.pdf, their
+// hatching illegible.
+constexpr std::size_t kMostBarsPerBand = 8;
+constexpr const char* kRestColour = "#c8c8c8";
+
+// The bars of each band: the contributors; over kMostBarsPerBand of them, the
+// output's top level (GroupLevel "", as the stacked CPS shows it) where that
+// has fewer items; largest first; past kMostBarsPerBand items, the largest
+// kMostBarsPerBand − 1 and one bar for the rest.
+std::vector<BarItem> BarItems(const OutputResult& out, const FrequencyGrid& grid, std::string* what) {
+  PlotLevel level = GroupLevel(out, grid, "");
+  const bool grouped = out.contributors.size() > kMostBarsPerBand && level.out.contributors.size() < out.contributors.size();
+  if (!grouped) {  // the contributors themselves
+    level.out = out;
+    level.styles.clear();
+    level.members.clear();
+    for (std::size_t c = 0; c < out.contributors.size(); ++c) {
+      level.styles.push_back(ContributorStyle(c));
+      level.members.push_back({c});
+    }
+  }
+  *what = grouped ? "each top-level group (the sum of its members, \"name/\") and contributor in no group" : "each contributor";
+  std::vector<BarItem> items;
+  for (std::size_t i : ShareOrder(level.out))
+    items.push_back({level.out.contributors[i].name, level.styles[i], level.members[i], level.out.contributors[i].variance});
+  if (items.size() > kMostBarsPerBand) {
+    BarItem rest;
+    rest.name = "the other " + std::to_string(items.size() - (kMostBarsPerBand - 1));
+    rest.style.colour = kRestColour;
+    for (std::size_t i = kMostBarsPerBand - 1; i < items.size(); ++i) {
+      rest.members.insert(rest.members.end(), items[i].members.begin(), items[i].members.end());
+      rest.variance += items[i].variance;
+    }
+    items.resize(kMostBarsPerBand - 1);
+    items.push_back(std::move(rest));
+    *what += " (the " + std::to_string(kMostBarsPerBand - 1) + " largest, then the rest in one bar)";
+  }
+  return items;
+}
+
 bool SameBand(double lo_a, double hi_a, double lo_b, double hi_b) {
   return std::fabs(lo_a / lo_b - 1.0) < 1e-9 && std::fabs(hi_a / hi_b - 1.0) < 1e-9;
 }
@@ -35,8 +84,10 @@ bool SameBand(double lo_a, double hi_a, double lo_b, double hi_b) {
 Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
   DEB_DEMAND(o < result.outputs.size());
   const OutputResult& out = result.outputs[o];
-  const std::size_t n = out.contributors.size();
   const std::string unit = DisplayUnit(out.unit);
+  std::string what;
+  const std::vector<BarItem> items = BarItems(out, result.grid, &what);
+  const std::size_t n = items.size();
 
   std::vector<Group> groups;
   for (const BandResult& b : out.bands) groups.push_back({b.band.lo_hz, b.band.hi_hz, b.variance, b.contributor_variance, {}});
@@ -57,16 +108,16 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
   p.name = FileStem(out.name) + "_bands";
   p.kind = PlotKind::kBands;
   p.output = static_cast<int>(o);
-  p.caption = "RMS of " + out.name + " per frequency band: the band's total, then each contributor, largest first.";
+  p.caption = "RMS of " + out.name + " per frequency band: the band's total, then " + what + ", largest first.";
   if (!out.band_requirements.empty())
     p.caption += " Each band requirement is a red bracket behind the bars of its range (a group of its own "
                  "where the range is not one of the bands); a failing total has a red outline and reads FAIL.";
 
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << out.name << ": RMS in "
-      << unit << " per band, in total and per contributor; failing_total: the total where the band's requirement fails\n";
+      << unit << " per band, in total and per bar (" << what << "); failing_total: the total where the band's requirement fails\n";
   csv << "group,lo_hz,hi_hz,total,failing_total";
-  for (const auto& c : out.contributors) csv << ',' << CsvField(c.name);
+  for (const BarItem& item : items) csv << ',' << CsvField(item.name);
   csv << '\n';
   double top = 0.0, bottom = HUGE_VAL, smallest_total = HUGE_VAL;
   for (std::size_t b = 0; b < bands; ++b) {
@@ -78,8 +129,10 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
     top = std::max(top, total);
     if (g.requirement) top = std::max(top, g.requirement->requirement.rms_max);
     if (g.variance > 0.0) smallest_total = std::min(smallest_total, total);
-    for (std::size_t c = 0; c < n; ++c) {
-      const double rms = std::sqrt(g.contributor_variance[c]);
+    for (const BarItem& item : items) {
+      double variance = 0.0;
+      for (std::size_t c : item.members) variance += g.contributor_variance[c];
+      const double rms = std::sqrt(variance);
       csv << ',' << CsvNumber(rms);
       if (rms > 0.0) bottom = std::min(bottom, rms);
     }
@@ -130,17 +183,15 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
   total.colour = kTotalColour;
   total.edge_colour = kBarEdge;
   panel.series.push_back(total);
-  const std::vector<std::size_t> order = ShareOrder(out);
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const std::size_t c = order[i];
-    const SeriesStyle st = ContributorStyle(c);
+  for (std::size_t i = 0; i < n; ++i) {
+    const SeriesStyle& st = items[i].style;
     FigureSeries s;
-    s.name = out.contributors[c].name;
+    s.name = items[i].name;
     s.key = Enhanced(s.name);
     s.kind = SeriesKind::kBars;
     s.data = data;
     s.x_offset = offset(i + 1);
-    s.y_columns = {6 + c};
+    s.y_columns = {6 + i};
     s.colour = st.colour;
     s.fill_pattern = st.fill_pattern;
     s.hatch_colour = st.hatch_colour;

@@ -659,7 +659,10 @@ PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, cons
   level.range = DisplayRange(output, grid);
   if (groups.empty()) {
     level.out = output;
-    for (std::size_t c = 0; c < n; ++c) level.styles.push_back(ContributorStyle(c));
+    for (std::size_t c = 0; c < n; ++c) {
+      level.styles.push_back(ContributorStyle(c));
+      level.members.push_back({c});
+    }
     return level;
   }
   OutputResult& out = level.out;
@@ -687,6 +690,7 @@ PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, cons
     if (output.contributors[c].group == group) {
       out.contributors.push_back(output.contributors[c]);
       level.styles.push_back(ContributorStyle(c));
+      level.members.push_back({c});
     }
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const std::size_t cut = groups[g].path.rfind('/');
@@ -694,6 +698,7 @@ PlotLevel GroupLevel(const OutputResult& output, const FrequencyGrid& grid, cons
     if (parent != group) continue;
     out.contributors.push_back(summed(groups[g]));
     level.styles.push_back(GroupStyle(n, g));
+    level.members.push_back(groups[g].all_contributors);
   }
   if (group.empty()) {  // the whole output: its total, requirements and references stay
     level.items = "top-level groups (each the sum of its members, a layer \"name/\") and contributors in no group";
@@ -756,6 +761,7 @@ PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, st
     layer.variance = WithoutRounding(part.variance, c.variance);
     out.contributors.push_back(std::move(layer));
     level.styles.push_back(ChannelStyle(k));
+    level.members.emplace_back();
   }
   DrillDown(output, c, c.name, grid, &level);
   level.items = c.cross_variance != 0.0

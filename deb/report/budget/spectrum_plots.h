@@ -62,6 +62,10 @@ std::vector<std::size_t> ShareOrder(const OutputResult& output);
 struct PlotLevel {
   OutputResult out;
   std::vector<SeriesStyle> styles;  // per item of out.contributors
+  // Per item of out.contributors: the output's contributors it sums (one
+  // for a contributor, every member at any depth for a group; empty for a
+  // channel of ChannelLevel).
+  std::vector<std::vector<std::size_t>> members;
   FrequencyRange range;             // shown: the output's DisplayRange at the top level, else the level's
   std::string items = "contributors", item = "contributor";  // what the captions call them
 };

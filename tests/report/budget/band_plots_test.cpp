@@ -62,15 +62,59 @@ TEST_CASE("the bands figure draws each band requirement as a limit segment behin
   const FigureSeries* outline = FindSeries(p.figure, "failing total");
   REQUIRE(outline != nullptr);
   CHECK(outline->y_columns == std::vector<std::size_t>{5});
-  // Contributors follow the total, largest first.
-  const std::vector<std::size_t> order = ShareOrder(out);
+  // Eleven contributors would be bars a few pixels wide: the bars are the
+  // top-level groups, as the stacked CPS shows them, largest first, after the
+  // total (and the failing total's outline).
+  const PlotLevel top = GroupLevel(out, result.grid, "");
+  REQUIRE(top.out.contributors.size() == 4);
+  const std::vector<std::size_t> order = ShareOrder(top.out);
   CHECK(panel.series[0].name == "total");
-  CHECK(panel.series[2].name == out.contributors[order[0]].name);
-  CHECK(panel.series.back().name == out.contributors[order.back()].name);
+  REQUIRE(panel.series.size() == 2 + 4);
+  CHECK(panel.series[2].name == top.out.contributors[order[0]].name);
+  CHECK(panel.series.back().name == top.out.contributors[order.back()].name);
+  CHECK(p.caption.find("top-level group") != std::string::npos);
   // A FAIL label names the band's RMS.
   CHECK(std::any_of(panel.annotations.begin(), panel.annotations.end(), [](const FigureAnnotation& a) {
     return a.kind == AnnotationKind::kLabel && a.label.find("FAIL") != std::string::npos;
   }));
+}
+
+TEST_CASE("a band's bars are the groups past eight contributors, or the seven largest and the rest in one bar") {
+  const Budget budget = LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml"));
+  BudgetResult result = Evaluate(budget);
+  const OutputResult& out = result.outputs[0];
+  // Each row's bars hold every contributor once: their variances add up to
+  // the band's total (the contributors are uncorrelated), to rounding.
+  const auto bars_add_up = [](const Plot& p, std::size_t bars) {
+    std::istringstream lines(p.csv);
+    std::string line;
+    std::getline(lines, line);
+    std::getline(lines, line);
+    int rows = 0;
+    while (std::getline(lines, line)) {
+      std::vector<double> v;
+      std::istringstream fields(line);
+      for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+      REQUIRE(v.size() == 5 + bars);
+      double sum = 0.0;
+      for (std::size_t i = 5; i < v.size(); ++i) sum += v[i] * v[i];
+      CHECK(std::sqrt(sum) == doctest::Approx(v[3]).epsilon(1e-9));
+      ++rows;
+    }
+    return rows;
+  };
+  CHECK(bars_add_up(BandsPlot(result, 0), 4) == 7);
+  // Without groups: the seven largest contributors, then "the other 4".
+  for (ContributorResult& c : result.outputs[0].contributors) c.group.clear();
+  const Plot p = BandsPlot(result, 0);
+  const FigurePanel& panel = p.figure.panels.at(0);
+  REQUIRE(panel.series.size() == 2 + 8);
+  const std::vector<std::size_t> order = ShareOrder(out);
+  CHECK(panel.series[2].name == out.contributors[order[0]].name);
+  CHECK(panel.series[8].name == out.contributors[order[6]].name);
+  CHECK(panel.series[9].name == "the other 4");
+  CHECK(p.caption.find("the 7 largest, then the rest in one bar") != std::string::npos);
+  CHECK(bars_add_up(p, 8) == 7);
 }
 
 }  // namespace deb::report
