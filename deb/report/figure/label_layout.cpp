@@ -144,6 +144,7 @@ void PlaceMarkerLabels(FigurePanel& panel, double share) {
     }
     return false;
   };
+  int numbered = 0;
   for (FigureAnnotation& a : panel.annotations) {
     if (a.kind != AnnotationKind::kMarker || a.label.empty() || !PlotFraction(panel, a)) continue;
     // Off the curves where a place allows, up to two lines away (farther, a
@@ -151,11 +152,18 @@ void PlaceMarkerLabels(FigurePanel& panel, double share) {
     // but next to its point (two lines away and over a curve, wafer_stage's
     // "GM 74.63 dB at 4153 Hz" read as another marker's), else the key.
     const bool done = place(a, true, 2.0) || place(a, false, curves.empty() ? 2.0 : 1.0);
-    if (!done) {  // nowhere beside its point: the key names it
-      a.key = a.label;
-      a.label.clear();
-      a.label_left = false;
-      a.label_dx = a.label_dy = 1.0;
+    if (!done) {  // nowhere beside its point: the key names it, by a number beside the point where one fits
+      const std::string text = a.label;
+      a.label = "(" + std::to_string(numbered + 1) + ")";
+      if (place(a, true, 2.0) || place(a, false, 1.0)) {
+        ++numbered;
+        a.key = a.label + " " + text;
+      } else {
+        a.key = text;
+        a.label.clear();
+        a.label_left = false;
+        a.label_dx = a.label_dy = 1.0;
+      }
       if (panel.key.placement == KeyPlacement::kNone) panel.key.placement = KeyPlacement::kOutsideRight;
     }
   }

@@ -9,7 +9,9 @@
 // axes that meets no label placed before it, no marker's point and no
 // horizontal line (a requirement or a band's limit) is kept. A label that fits
 // nowhere becomes the marker's entry in the key (a panel without a key gets
-// one beside it).
+// one beside it), numbered "(1) ...", "(2) ..." with the number placed beside
+// the point as a label is, so that the key says which marker it names (the
+// number too fitting nowhere, the entry is the label alone).
 #pragma once
 
 #include <cstddef>

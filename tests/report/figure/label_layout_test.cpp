@@ -111,9 +111,16 @@ TEST_CASE("a label that fits nowhere names its marker in the key, and a panel wi
   const std::string long_label(100, 'x');
   p.annotations = {Marker(10.0, 5.0, long_label)};
   PlaceMarkerLabels(p);
-  CHECK(p.annotations[0].label.empty());
-  CHECK(p.annotations[0].key == long_label);
+  // The key names it by a number placed beside the point, as a label is.
+  CHECK(p.annotations[0].label == "(1)");
+  CHECK(p.annotations[0].label_dy == 1.0);
+  CHECK(p.annotations[0].key == "(1) " + long_label);
   CHECK(p.key.placement == KeyPlacement::kOutsideRight);
+  // A second such marker is (2).
+  p.annotations = {Marker(10.0, 5.0, long_label), Marker(100.0, 2.0, long_label)};
+  PlaceMarkerLabels(p);
+  CHECK(p.annotations[0].key == "(1) " + long_label);
+  CHECK(p.annotations[1].key == "(2) " + long_label);
   // Escapes and markup do not count: "a\_b^{2}" shows 4 characters.
   FigureAnnotation a = Marker(1.0, 5.0, "a\\_b^{2}");
   const auto box = LabelBoxOf(LogPanel(), a);
