@@ -29,6 +29,7 @@ BudgetOutline OutlineOf(const Budget& budget) {
   }
   outline.covariance = budget.covariance;
   outline.parameters = OutlineOf(budget.parameters);
+  outline.has_sweep = budget.has_sweep;
   return outline;
 }
 

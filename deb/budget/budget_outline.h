@@ -58,6 +58,7 @@ struct BudgetOutline {
   std::vector<OutputOutline> outputs;     // outputs[o] describes BudgetResult::outputs[o]
   std::vector<std::string> covariance;    // Budget::covariance
   std::vector<ParameterOutline> parameters;  // Budget::parameters, in order
+  bool has_sweep = false;                    // Budget::has_sweep: a run evaluates the budget as written only
 
   // The source a contributor of this outline names; aborts (DEB_DEMAND) if
   // the outline holds none of that name.

@@ -371,6 +371,9 @@ ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file
                                                     : std::to_string(failed) + " of " + std::to_string(required) +
                                                           " FAILED")},
   };
+  if (result.outline.has_sweep)  // the nominal case of a swept budget, which a reader may take for the sweep
+    f.items.insert(f.items.begin() + 2, {"sweep", "not run: this report is the budget as written (deb sweep "
+                                                  "evaluates its variants)"});
   f.conventions = {
       "Frequencies in Hz. PSDs are one-sided: variance = ∫ S(f) df over 0 < f < ∞, in unit²/Hz; ASD = √PSD.",
       "CPS(f) = ∫ S from the lowest grid frequency to f; RMS = √CPS(f_max); the reverse CPS integrates from f up.",
@@ -378,9 +381,21 @@ ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file
       "Exact RMS: Lyapunov A P + P Aᵀ + B W Bᵀ = 0, W = S₀/2, over 0 < f < ∞ (white sources only).",
       "A source declared two-sided (convention: two-sided) is converted once at load: S_one-sided = 2 S_two-sided.",
       "Share: a contributor's fraction of the output's variance (shares add to 100 %; RMS values do not add).",
-      "Allocation k = (rms_max² − (σ² − σ_c²)) / σ_c²: the factor on a contributor's source PSD that puts the "
-      "output at its limit, the others unchanged (k > 1: room to grow).",
   };
+  // What the contributor tables' last column holds: k where an output meets
+  // its limit, "must drop" where it fails (ContributorTable).
+  bool allocation = false, must_drop = false;
+  for (const OutputResult& o : result.outputs) {
+    allocation = allocation || (o.rms_max && o.pass());
+    must_drop = must_drop || (o.rms_max && !o.pass());
+  }
+  if (allocation)
+    f.conventions.push_back("Allocation k = (rms_max² − (σ² − σ_c²)) / σ_c²: the factor on a contributor's source PSD "
+                            "that puts the output at its limit, the others unchanged (k > 1: room to grow).");
+  if (must_drop)
+    f.conventions.push_back("Must drop (an output over its limit): the factor on a contributor's RMS that brings the "
+                            "output to its limit, the others unchanged, or where none can alone, the factor on each "
+                            "of the n largest together.");
   return f;
 }
 

@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 #include "deb/budget/engine.h"
 #include "deb/load/budget_yaml.h"
 #include "deb/report/figure/plot.h"
@@ -137,6 +139,27 @@ TEST_CASE("the summary table gives status and the largest contributor of every o
   const ReportFacts f = MakeFacts(result, "b.yaml", "abc", "today", 0.5);
   CHECK(f.items[0] == std::make_pair(std::string("budget"), std::string("single_axis_isolator")));
   CHECK(f.items.back().second == "all 2 met");
+  const auto named = [](const ReportFacts& facts, const std::string& key) {
+    return std::count_if(facts.items.begin(), facts.items.end(), [&](const auto& i) { return i.first == key; });
+  };
+  CHECK(named(f, "sweep") == 0);
+  // A budget with a sweep section: the report says it is the budget as written, not the sweep.
+  BudgetResult swept = result;
+  swept.outline.has_sweep = true;
+  const ReportFacts g = MakeFacts(swept, "b.yaml", "abc", "today", 0.5);
+  REQUIRE(named(g, "sweep") == 1);
+  CHECK(g.items[2].second.find("not run") == 0);
+  // The conventions explain the contributor tables' last column as it is: k where outputs pass, "must drop"
+  // where one fails (wafer_stage's position).
+  const auto explains = [](const ReportFacts& facts, const std::string& start) {
+    return std::any_of(facts.conventions.begin(), facts.conventions.end(),
+                       [&](const std::string& c) { return c.rfind(start, 0) == 0; });
+  };
+  CHECK(explains(f, "Allocation k"));
+  CHECK_FALSE(explains(f, "Must drop"));
+  const BudgetResult failing = Evaluate(LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml")));
+  REQUIRE_FALSE(failing.outputs[0].pass());
+  CHECK(explains(MakeFacts(failing, "w.yaml", "abc", "today", 0.5), "Must drop"));
 }
 
 TEST_CASE("the group table lists every group depth first, indented, with its members and the sums") {
