@@ -220,6 +220,12 @@ TEST_CASE("the map of a two-parameter grid holds the grid by scan lines, the bes
   CHECK(*bar.min == doctest::Approx(6e-3));
   CHECK(bar.tics.size() <= 12);  // 3 decades of 1, 2, 5 and the ends
   for (const auto& [v, label] : bar.tics) CHECK(v >= *bar.min * 0.999);
+  // No two labels closer than 8 % of the bar (a line of text in report.pdf's map).
+  for (const FigureAxis* a : {&panel.colour_axis, &bar}) {
+    const double span = std::log(a->tics.back().first / a->tics.front().first);
+    for (std::size_t k = 1; k < a->tics.size(); ++k)
+      CHECK(std::log(a->tics[k].first / a->tics[k - 1].first) >= 0.08 * span);
+  }
   CHECK(clipped.caption.find("Colours span 3 decades") != std::string::npos);
   // Rounding (at most 1e-12 of the highest RMS: nizamoglu2015_sweep's beta_velocity at K_v = h = 0, 4.2e-11 of
   // 82) does not set the scale at all: the colours span the other variants, and the caption says so.
