@@ -40,7 +40,9 @@ std::string TypesetExponents(const std::string& text) {
     // a sign or none, digits, and no letter or digit after them.
     std::size_t start = i;
     while (start > 0 && (digit(start - 1) || text[start - 1] == '.')) --start;
-    const bool named = start > 0 && (std::isalpha(static_cast<unsigned char>(text[start - 1])) || text[start - 1] == '_');
+    // (a name's part after a line-break chance, BreakableNames, is still in the name)
+    const bool named = start > 0 && (std::isalpha(static_cast<unsigned char>(text[start - 1])) || text[start - 1] == '_' ||
+                                     (start >= 3 && text.compare(start - 3, 3, "\u200b") == 0));
     if (text[i] == 'e' && i > 0 && digit(i - 1) && !named) {
       std::size_t k = i + 1;
       const bool negative = k < text.size() && text[k] == '-';
@@ -64,13 +66,26 @@ std::string TypesetExponents(const std::string& text) {
 std::string NumbersKeptWithUnits(const std::string& text) {
   std::string out;
   out.reserve(text.size() + 8);
+  std::size_t unit = std::string::npos;  // where the word after a number starts
   for (std::size_t i = 0; i < text.size(); ++i) {
     const bool after_digit = i > 0 && std::isdigit(static_cast<unsigned char>(text[i - 1]));
     const unsigned char next = i + 1 < text.size() ? static_cast<unsigned char>(text[i + 1]) : 0;
     if (text[i] == ' ' && after_digit && (std::isalpha(next) || next >= 0x80 || next == '%' || next == '(')) {
       out += "\u00a0";
+      unit = i + 1;
       continue;
     }
+    if (text[i] == ' ' && unit != std::string::npos && i - unit <= 4) {
+      // A unit of two factors, "50 N s/mm": a short symbol and a word with a
+      // '/' after it stay on the number's line.
+      const std::size_t end = std::min(text.find(' ', i + 1), text.size());
+      if (text.substr(i + 1, end - i - 1).find('/') != std::string::npos) {
+        out += "\u00a0";
+        unit = std::string::npos;
+        continue;
+      }
+    }
+    if (text[i] == ' ') unit = std::string::npos;
     out += text[i];
   }
   return out;
@@ -232,7 +247,32 @@ class Composer {
     }
     const std::string kept = NumbersKeptWithUnits(TypesetExponents(text));
     pango_layout_set_text(l.get(), kept.c_str(), -1);
+    if (width_pt > 0) KeepBracketsWhole(l.get(), kept);
     return l;
+  }
+  // A bracket without a space inside, "[N/(mm/s)]" or "(-h)", is not broken
+  // at its '/' or '-' (a unit split as "[N/(mm/" "s)]" in sweep.pdf's header).
+  static void KeepBracketsWhole(PangoLayout* l, const std::string& text) {
+    PangoAttrList* attrs = nullptr;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      if (text[i] != '(' && text[i] != '[') continue;
+      int depth = 0;
+      std::size_t end = i;
+      for (; end < text.size() && text[end] != ' '; ++end) {
+        if (text[end] == '(' || text[end] == '[') ++depth;
+        if ((text[end] == ')' || text[end] == ']') && --depth == 0) break;
+      }
+      if (end >= text.size() || text[end] == ' ') continue;  // no closing bracket before a space
+      if (!attrs) attrs = pango_attr_list_new();
+      PangoAttribute* a = pango_attr_allow_breaks_new(FALSE);
+      a->start_index = static_cast<guint>(i);
+      a->end_index = static_cast<guint>(end + 1);
+      pango_attr_list_insert(attrs, a);
+      i = end;
+    }
+    if (!attrs) return;
+    pango_layout_set_attributes(l, attrs);
+    pango_attr_list_unref(attrs);
   }
   static std::pair<double, double> Size(PangoLayout* l) {
     int w = 0, h = 0;
@@ -496,18 +536,38 @@ class Composer {
     end = s.find_first_not_of("0123456789", end);
     return end == std::string::npos ? Split{s, ""} : Split{s.substr(0, end), s.substr(end)};
   }
-  // The widest word of `text` (between spaces and line breaks).
-  double LongestWord(const std::string& text, bool bold) {
+  // The widest word of `text` (between spaces and line breaks); with
+  // `identifiers`, a name's parts count as words (each up to and with its
+  // underscore: BreakableNames lets a line break there).
+  double LongestWord(const std::string& text, bool bold, bool identifiers = true) {
     double widest = 0.0;
     std::size_t start = 0;
     while (start <= text.size()) {
-      const std::size_t end = std::min(text.find(' ', start), text.find('\n', start));
+      std::size_t end = std::min(text.find(' ', start), text.find('\n', start));
+      std::size_t next = end == std::string::npos ? end : end + 1;
+      if (identifiers) {
+        const std::size_t underscore = text.find('_', start);
+        if (underscore != std::string::npos && underscore + 1 < std::min(end, text.size())) end = next = underscore + 1;
+      }
       const std::size_t length = end == std::string::npos ? std::string::npos : end - start;
       widest = std::max(widest, Width(text.substr(start, length), bold));
-      if (end == std::string::npos) break;
-      start = end + 1;
+      if (next == std::string::npos) break;
+      start = next;
     }
     return widest;
+  }
+  // `text` as set in a cell `width` wide: where a word is wider than that, a
+  // line may break after each underscore of a name (a zero-width space), so
+  // that "measurement_to_position" wraps as "measurement_to_" "position", not
+  // hyphenated inside a word. Text that fits is left as written.
+  std::string BreakableNames(const std::string& text, bool bold, double width) {
+    if (text.find('_') == std::string::npos || LongestWord(text, bold, false) <= width) return text;
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      out += text[i];
+      if (text[i] == '_' && i + 1 < text.size() && text[i + 1] != ' ' && text[i + 1] != '_') out += "\u200b";
+    }
+    return out;
   }
   double Width(const std::string& text, bool bold) {
     if (text.empty()) return 0.0;
@@ -543,9 +603,15 @@ class Composer {
           m.shortest[c] = std::max(m.shortest[c], std::min(kLongestWordPt, LongestWord(row[c].text, row[c].bold)));
         }
       }
-      if (Numeric(t, c)) m.natural[c] = std::max(m.natural[c], m.left[c] + m.right[c]);
+      // A numeric column: its numbers whole, its header wrapped as text is
+      // (sweep.pdf's variants table was set at 5.5 pt to keep ten headers
+      // such as "gamma_velocity [µrad/s]" on one line each).
+      if (Numeric(t, c)) {
+        m.natural[c] = std::max(m.natural[c], m.left[c] + m.right[c]);
+        m.shortest[c] = std::max(m.shortest[c], m.left[c] + m.right[c]);
+      }
       m.natural[c] += 2.0 * kCellPadPt;
-      m.shortest[c] = Numeric(t, c) ? m.natural[c] : m.shortest[c] + 2.0 * kCellPadPt;
+      m.shortest[c] += 2.0 * kCellPadPt;
     }
     return m;
   }
@@ -647,7 +713,12 @@ class Composer {
     for (std::size_t c = 0; c < run.columns; ++c) {
       const PdfCell cell = c < cells.size() ? cells[c] : PdfCell{};
       const bool split = Numeric(run.block.table, c) && !header;
-      ls.push_back(MakeLayout(cell.text, table_font_, cell.bold || header, split ? 0 : run.widths[c] - 2 * kCellPadPt));
+      const double width = run.widths[c] - 2 * kCellPadPt;
+      ls.push_back(split ? MakeLayout(cell.text, table_font_, cell.bold || header, 0)
+                         : MakeLayout(BreakableNames(cell.text, cell.bold || header, width), table_font_,
+                                      cell.bold || header, width));
+      // A numeric column's header, wrapped or not, ends where its numbers do.
+      if (header && Numeric(run.block.table, c)) pango_layout_set_alignment(ls.back().get(), PANGO_ALIGN_RIGHT);
       h = std::max(h, Size(ls.back().get()).second);
     }
     return std::make_pair(std::move(ls), h + 2.0 * kRowPadPt);
@@ -682,8 +753,7 @@ class Composer {
       Show(r.get(), point_x, y_ + kRowPadPt, colour);
       return point_x;
     }
-    if (Numeric(run.block.table, c)) Show(layout, x + run.widths[c] - kCellPadPt - Size(layout).first, y_ + kRowPadPt, colour);
-    else Show(layout, x + kCellPadPt, y_ + kRowPadPt, colour);
+    Show(layout, x + kCellPadPt, y_ + kRowPadPt, colour);  // a numeric header: right-aligned in its layout
     return 0.0;
   }
 

@@ -100,7 +100,9 @@ PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path)
 
 // `text` with the space between a number and the word after it (a unit,
 // "%", "Hz", "outputs") no-breaking (U+00A0): every text the document sets
-// goes through it, so that a line break never parts "1.5" from "nm".
+// goes through it, so that a line break never parts "1.5" from "nm"; and
+// so is the space after a short symbol that follows a number when the word
+// after it holds a '/' (a unit of two factors: "50 N s/mm").
 std::string NumbersKeptWithUnits(const std::string& text);
 // `text` with a number's e-notation set as a power of ten, "3.590e-04" as
 // "3.590·10⁻⁴", and a caret's power as superscript, "(µm/s)^2" as "(µm/s)²",

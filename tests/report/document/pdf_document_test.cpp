@@ -446,6 +446,9 @@ TEST_CASE("a number keeps its unit on its line: the space between them does not 
   CHECK(NumbersKeptWithUnits("in 2 of 3 - 4 5") == "in 2" + nbsp + "of 3 - 4 5");
   CHECK(NumbersKeptWithUnits("no digits here") == "no digits here");
   CHECK(NumbersKeptWithUnits("ends with 7 ") == "ends with 7 ");
+  // A unit of two factors stays whole (uncertainty.pdf's "N s/mm" broke after "N").
+  CHECK(NumbersKeptWithUnits("c = 50 N s/mm and 2 µm s/K, 3 N m") ==
+        "c = 50" + nbsp + "N" + nbsp + "s/mm and 2" + nbsp + "µm" + nbsp + "s/K, 3" + nbsp + "N m");
 }
 
 }  // namespace deb::report
@@ -486,6 +489,39 @@ TEST_CASE("contents of up to 30 lines stay whole on one page") {
       if (b.what == "contents") pages.insert(b.page);
     CHECK(pages.size() == 1);
   }
+}
+
+}  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a name too wide for its column breaks after an underscore, never hyphenated inside a word") {
+  // sweep.pdf's variants table: a rank, two parameters and seven outputs
+  // whose names are wider than their columns ("gamma_veloci-ty" before).
+  PdfTable t;
+  t.header = {"rank", "skyhook gain K_v [N/(mm/s)]", "isolator z position (-h) [mm]"};
+  for (const char* name : {"x_velocity", "y_velocity", "z_velocity", "alpha_velocity", "beta_velocity",
+                           "gamma_velocity", "measurement_to_position"})
+    t.header.push_back(std::string(name) + " [µm/s]");
+  t.numeric.assign(t.header.size(), true);
+  for (int r = 0; r < 3; ++r) t.rows.push_back(std::vector<PdfCell>(t.header.size(), PdfCell("12.34")));
+  PdfDocumentSpec spec;
+  spec.create_date = "2026-01-01T00:00:00Z";
+  spec.blocks.push_back(TableBlock("Variants", t));
+  const fs::path dir = TempDir("pdf_names");
+  WritePdfDocument(spec, (dir / "t.pdf").string());
+  const Command text = Shell("pdftotext \"" + (dir / "t.pdf").string() + "\" -");
+  if (text.exit_code == 0) {  // poppler-utils present
+    // Each name's parts whole: broken, if at all, after an underscore.
+    for (const char* part : {"gamma_", "velocity", "measurement_", "position"})
+      CHECK_MESSAGE(text.out.find(part) != std::string::npos, part);
+    CHECK(text.out.find("veloci-") == std::string::npos);
+    CHECK(text.out.find("posi-") == std::string::npos);
+    // A bracket without a space is not broken at its '/' or '-' ("[N/(mm/" "s)]" before).
+    CHECK(text.out.find("[N/(mm/s)]") != std::string::npos);
+    CHECK(text.out.find("(-h)") != std::string::npos);
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace deb::report
