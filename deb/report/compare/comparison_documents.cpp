@@ -64,7 +64,7 @@ std::vector<Table> ComparisonTables(const Comparison& cmp) {
   largest.numeric = {false, false, true, true, true, true};
   for (const ComparedFigure& f : cmp.LargestChanges())
     largest.rows.push_back({f.output, f.contributor, Sig(f.rms_a, 4), Sig(f.rms_b, 4), RatioText(f),
-                            Sig(100.0 * f.variance_change_of_total, 3) + " %"});
+                            Share(f.variance_change_of_total, 1.0)});  // "< 0.01 %", not "4.57e-04 %"
   tables.push_back(largest);
   if (!cmp.parameters.empty()) {
     Table changed;

@@ -69,7 +69,7 @@ PdfDocumentSpec StudyPdfSpec(const StudyDocument& doc, const std::string& figure
   b.push_back(Heading(0, doc.title));
   b.push_back(Paragraph(doc.lead));
   for (const StudySection& s : doc.sections) {
-    if (s.new_page) b.push_back(PageBreak());
+    if (s.new_page) b.push_back(PageBreak(kStudySectionRoomPt));
     if (!s.heading.empty()) b.push_back(Heading(1, s.heading));
     if (!s.text.empty()) b.push_back(Paragraph(s.text));
     for (const Table& t : s.tables) b.push_back(TableBlock(t.title, TypesetTable(t)));

@@ -17,13 +17,18 @@
 
 namespace deb::report {
 
+inline constexpr double kStudySectionRoomPt = 200.0;
+
 struct StudySection {
   std::string heading;  // "" : none (the part under the title)
   std::string text;     // a paragraph, or ""
   std::vector<Table> tables;
   std::vector<const Plot*> figures;  // each with its caption; the plots outlive the document
   std::vector<std::string> bullets;
-  bool new_page = false;  // in the PDF, the section starts a page
+  // In the PDF, the section starts a page unless kStudySectionRoomPt are
+  // left (its heading then moves on with its first figure if that does not
+  // fit): compare.pdf's figures had left 60 % of a page empty.
+  bool new_page = false;
 };
 
 struct StudyDocument {

@@ -64,6 +64,12 @@ TEST_CASE("the comparison tables have one per output with the total emphasised, 
   CHECK(tables[1].title == "Contributors that changed most");
   REQUIRE(tables[1].rows.size() == 1);
   CHECK(tables[1].rows[0].back() == Sig(25.0, 3) + " %");
+  // A change too small to matter reads as such, not "4.57·10⁻⁴ %" (compare.pdf).
+  Comparison tiny = Example();
+  tiny.figures[1].variance_change_of_total = 4.57e-6;
+  const std::vector<Table> small = ComparisonTables(tiny);
+  REQUIRE(small[2].rows.size() == 1);
+  CHECK(small[2].rows[0].back() == "< 0.01 %");
 }
 
 TEST_CASE("the Markdown and HTML documents carry the title, tables, plots and what was not compared") {
