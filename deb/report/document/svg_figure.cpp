@@ -7,6 +7,7 @@
 #include <iterator>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "deb/core/error.h"
 #include "deb/report/document/png_image.h"
@@ -27,6 +28,16 @@ SvgFigure::SvgFigure(const std::string& file) : file_(file) {
   }
   if (const std::size_t root = svg_text.find("<svg"); root != std::string::npos)
     svg_text.insert(root + 4, " xml:space=\"preserve\"");
+  // gnuplot sets an opaque text box ("set style textbox opaque") as an SVG
+  // filter on a first copy of the text, drawn again plainly over it. librsvg
+  // rasterises a filter, and on a PDF page the box came out as a grey chip
+  // with a darker edge: the first copy becomes a white halo instead (a
+  // stroke around the glyphs, vectors), which keeps lines and curves off the
+  // text as the box did.
+  constexpr std::string_view kBoxed = "style='filter:url(#textbox)'";
+  constexpr std::string_view kHalo = "style='fill:white;stroke:white;stroke-width:4;stroke-linejoin:round'";
+  for (std::size_t at = svg_text.find(kBoxed); at != std::string::npos; at = svg_text.find(kBoxed, at + kHalo.size()))
+    svg_text.replace(at, kBoxed.size(), kHalo);
   GError* error = nullptr;
   handle_ = rsvg_handle_new_from_data(reinterpret_cast<const guint8*>(svg_text.data()), svg_text.size(), &error);
   if (!handle_) {

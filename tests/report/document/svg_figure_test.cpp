@@ -1,10 +1,13 @@
 #include "deb/report/document/svg_figure.h"
 
+#include <cairo-pdf.h>
 #include <cairo.h>
 #include <doctest/doctest.h>
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "deb/core/error.h"
@@ -69,6 +72,41 @@ TEST_CASE("an SVG that cannot be read or has no size is an error naming it, and 
   CHECK_THROWS_WITH_AS(RasteriseSvg(sizeless, png, 10, 10), doctest::Contains("has no size"), WriteError);
   CHECK_THROWS_WITH_AS(RasteriseSvg(sizeless, png, 0, 10), doctest::Contains("0 x 10 pixels"), InputError);
   CHECK_FALSE(std::filesystem::exists(png));
+}
+
+TEST_CASE("an opaque text box is drawn as vectors, a white halo round the glyphs, not a rasterised filter") {
+  // gnuplot's SVG: a text box is a filter on a first copy of the text; librsvg
+  // rasterised it and the PDF showed a grey chip. The page holds no image.
+  const test::ScratchDir dir("svg_textbox");
+  const std::string svg = dir.Write(
+      "t.svg",
+      "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='100' viewBox='0 0 200 100'>\n<defs>"
+      "<filter id='textbox' filterUnits='objectBoundingBox' x='0' y='0' height='1' width='1'>"
+      "<feFlood flood-color='white' flood-opacity='1' result='bgnd'/>"
+      "<feComposite in='SourceGraphic' in2='bgnd' operator='atop'/></filter></defs>\n"
+      "<rect x='0' y='0' width='200' height='100' fill='#2166ac'/>\n"
+      "<g transform='translate(40,60)' fill='rgb(0,0,0)' font-size='20' style='filter:url(#textbox)'><text>1.00</text></g>\n"
+      "<g transform='translate(40,60)' fill='rgb(0,0,0)' font-size='20'><text>1.00</text></g>\n</svg>\n");
+  const std::string pdf = dir.Path("t.pdf");
+  {
+    const SvgFigure figure(svg);
+    cairo_surface_t* surface = cairo_pdf_surface_create(pdf.c_str(), 200, 100);
+    cairo_t* cr = cairo_create(surface);
+    figure.Draw(cr, 0, 0, 200, 100);
+    cairo_destroy(cr);
+    cairo_surface_destroy(surface);
+  }
+  std::ifstream in(pdf, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  CHECK(bytes.str().find("/Subtype /Image") == std::string::npos);
+  // In a PNG, the text still stands on white: just left of the "1" the halo covers the blue.
+  const std::string png = dir.Path("t.png");
+  RasteriseSvg(svg, png, 200, 100);
+  cairo_surface_t* s = cairo_image_surface_create_from_png(png.c_str());
+  REQUIRE(cairo_surface_status(s) == CAIRO_STATUS_SUCCESS);
+  CHECK(Pixel(s, 10, 10) == 0x2166acu);  // the background, away from the text
+  cairo_surface_destroy(s);
 }
 
 }  // namespace deb::report
