@@ -295,7 +295,10 @@ Plot NyquistPlot(const LoopFigures& lf) {
   mm.dash = kRequirementDash;
   mm.width = 2.0;
   mm.key = "modulus margin " + SigLabel(r.margins.modulus_margin, lf.digits);
-  FigureAnnotation minus_one = Marker(-1.0, 0.0, "-1");
+  // Named in the key: the unit circle always passes through -1, and the
+  // modulus circle and L run close by it, so a label there sat on a curve.
+  FigureAnnotation minus_one = Marker(-1.0, 0.0, "");
+  minus_one.key = "critical point -1";
   minus_one.point_type = 2;  // a cross
   minus_one.colour = "#000000";
   np.annotations = {unit, mm, minus_one};

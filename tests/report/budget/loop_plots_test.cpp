@@ -80,6 +80,13 @@ TEST_CASE("every evaluated loop gets a Bode, an S/T and a Nyquist figure whose m
   CHECK(np.series.at(0).x_column == 6);
   CHECK(np.series.at(0).y_columns == std::vector<std::size_t>{7});
   CHECK(np.series.at(1).y_divisor == -1.0);
+  // -1 is named in the key, not by a label on the unit circle, which always passes through it.
+  const auto minus_one = std::find_if(np.annotations.begin(), np.annotations.end(),
+                                      [](const FigureAnnotation& a) { return a.kind == AnnotationKind::kMarker; });
+  REQUIRE(minus_one != np.annotations.end());
+  CHECK(minus_one->x0 == -1.0);
+  CHECK(minus_one->label.empty());
+  CHECK(minus_one->key == "critical point -1");
 }
 
 TEST_CASE("a loop's data keep only the rows its figures need, and every curve between them stays within tolerance") {
