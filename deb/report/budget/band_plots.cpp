@@ -17,6 +17,7 @@ namespace deb::report {
 namespace {
 
 constexpr const char* kBarEdge = "#303030";
+constexpr const char* kRestColour = "#c8c8c8";  // the bar of the contributors past the largest
 
 // One group of bars: a band, or a band requirement's range.
 struct Group {
@@ -26,25 +27,13 @@ struct Group {
   std::optional<BandRequirementResult> requirement;
 };
 
-// A bar of every band: a contributor, a top-level group (summed from its
-// members) or the rest of them.
-struct BarItem {
-  std::string name;
-  SeriesStyle style;
-  std::vector<std::size_t> members;  // the output's contributors it sums
-  double variance = 0.0;             // over the whole grid: the order of the bars
-};
+bool SameBand(double lo_a, double hi_a, double lo_b, double hi_b) {
+  return std::fabs(lo_a / lo_b - 1.0) < 1e-9 && std::fabs(hi_a / hi_b - 1.0) < 1e-9;
+}
 
-// More bars than this in a band are a few pixels wide in report.pdf, their
-// hatching illegible.
-constexpr std::size_t kMostBarsPerBand = 8;
-constexpr const char* kRestColour = "#c8c8c8";
+}  // namespace
 
-// The bars of each band: the contributors; over kMostBarsPerBand of them, the
-// output's top level (GroupLevel "", as the stacked CPS shows it) where that
-// has fewer items; largest first; past kMostBarsPerBand items, the largest
-// kMostBarsPerBand − 1 and one bar for the rest.
-std::vector<BarItem> BarItems(const OutputResult& out, const FrequencyGrid& grid, std::string* what) {
+std::vector<BandBar> BandBars(const OutputResult& out, const FrequencyGrid& grid, std::string* what) {
   PlotLevel level = GroupLevel(out, grid, "");
   const bool grouped = out.contributors.size() > kMostBarsPerBand && level.out.contributors.size() < out.contributors.size();
   if (!grouped) {  // the contributors themselves
@@ -56,37 +45,33 @@ std::vector<BarItem> BarItems(const OutputResult& out, const FrequencyGrid& grid
       level.members.push_back({c});
     }
   }
-  *what = grouped ? "each top-level group (the sum of its members, \"name/\") and contributor in no group" : "each contributor";
-  std::vector<BarItem> items;
+  std::string words = grouped ? "each top-level group (the sum of its members, \"name/\") and contributor in no group"
+                              : "each contributor";
+  std::vector<BandBar> bars;
   for (std::size_t i : ShareOrder(level.out))
-    items.push_back({level.out.contributors[i].name, level.styles[i], level.members[i], level.out.contributors[i].variance});
-  if (items.size() > kMostBarsPerBand) {
-    BarItem rest;
-    rest.name = "the other " + std::to_string(items.size() - (kMostBarsPerBand - 1));
+    bars.push_back({level.out.contributors[i].name, level.styles[i], level.members[i], level.out.contributors[i].variance});
+  if (bars.size() > kMostBarsPerBand) {
+    BandBar rest;
+    rest.name = "the other " + std::to_string(bars.size() - (kMostBarsPerBand - 1));
     rest.style.colour = kRestColour;
-    for (std::size_t i = kMostBarsPerBand - 1; i < items.size(); ++i) {
-      rest.members.insert(rest.members.end(), items[i].members.begin(), items[i].members.end());
-      rest.variance += items[i].variance;
+    for (std::size_t i = kMostBarsPerBand - 1; i < bars.size(); ++i) {
+      rest.members.insert(rest.members.end(), bars[i].members.begin(), bars[i].members.end());
+      rest.variance += bars[i].variance;
     }
-    items.resize(kMostBarsPerBand - 1);
-    items.push_back(std::move(rest));
-    *what += " (the " + std::to_string(kMostBarsPerBand - 1) + " largest, then the rest in one bar)";
+    bars.resize(kMostBarsPerBand - 1);
+    bars.push_back(std::move(rest));
+    words += " (the " + std::to_string(kMostBarsPerBand - 1) + " largest, then the rest in one bar)";
   }
-  return items;
+  if (what) *what = words;
+  return bars;
 }
-
-bool SameBand(double lo_a, double hi_a, double lo_b, double hi_b) {
-  return std::fabs(lo_a / lo_b - 1.0) < 1e-9 && std::fabs(hi_a / hi_b - 1.0) < 1e-9;
-}
-
-}  // namespace
 
 Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
   DEB_DEMAND(o < result.outputs.size());
   const OutputResult& out = result.outputs[o];
   const std::string unit = DisplayUnit(out.unit);
   std::string what;
-  const std::vector<BarItem> items = BarItems(out, result.grid, &what);
+  const std::vector<BandBar> items = BandBars(out, result.grid, &what);
   const std::size_t n = items.size();
 
   std::vector<Group> groups;
@@ -117,7 +102,7 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
   csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << out.name << ": RMS in "
       << unit << " per band, in total and per bar (" << what << "); failing_total: the total where the band's requirement fails\n";
   csv << "group,lo_hz,hi_hz,total,failing_total";
-  for (const BarItem& item : items) csv << ',' << CsvField(item.name);
+  for (const BandBar& item : items) csv << ',' << CsvField(item.name);
   csv << '\n';
   double top = 0.0, bottom = HUGE_VAL, smallest_total = HUGE_VAL;
   for (std::size_t b = 0; b < bands; ++b) {
@@ -129,7 +114,7 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
     top = std::max(top, total);
     if (g.requirement) top = std::max(top, g.requirement->requirement.rms_max);
     if (g.variance > 0.0) smallest_total = std::min(smallest_total, total);
-    for (const BarItem& item : items) {
+    for (const BandBar& item : items) {
       double variance = 0.0;
       for (std::size_t c : item.members) variance += g.contributor_variance[c];
       const double rms = std::sqrt(variance);

@@ -16,6 +16,7 @@
 #include "deb/budget/response_traces.h"
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
+#include "deb/report/budget/band_plots.h"
 #include "deb/report/budget/embedded_scripts.h"
 #include "deb/report/budget/path_plots.h"
 #include "deb/report/budget/report_tables.h"
@@ -64,12 +65,6 @@ json Frequencies(const std::vector<double>& f, const std::vector<std::size_t>& k
   return out;
 }
 
-std::size_t BudgetIndex(const BudgetOutline& budget, const std::string& contributor) {
-  for (std::size_t c = 0; c < budget.contributors.size(); ++c)
-    if (budget.contributors[c].name == contributor) return c;
-  return 0;
-}
-
 json OutputData(const BudgetResult& result, const OutputResult& out) {
   const std::vector<double>& f = result.grid.f_hz();
   // The CPS and PSD stack what the PNG and PDF figures stack: the top-level
@@ -111,12 +106,12 @@ json OutputData(const BudgetResult& result, const OutputResult& out) {
   o["colours"] = colours;
   o["psd"] = psds;
   o["cps"] = cpss;
-  // The band chart, as its PNG: each contributor.
-  const std::vector<std::size_t> order = ShareOrder(out);
+  // The band chart, as its PNG: the same bars (BandBars).
+  const std::vector<BandBar> bars = BandBars(out, result.grid);
   json band_names = json::array(), band_colours = json::array();
-  for (std::size_t k : order) {
-    band_names.push_back(out.contributors[k].name);
-    band_colours.push_back(ContributorStyle(BudgetIndex(result.outline, out.contributors[k].name)).colour);
+  for (const BandBar& bar : bars) {
+    band_names.push_back(bar.name);
+    band_colours.push_back(bar.style.colour);
   }
   o["band_contributors"] = band_names;
   o["band_colours"] = band_colours;
@@ -124,7 +119,11 @@ json OutputData(const BudgetResult& result, const OutputResult& out) {
   for (const BandResult& b : out.bands) {
     bands.push_back(Short(b.band.lo_hz) + "–" + Short(b.band.hi_hz));
     json per = json::array();
-    for (std::size_t k : order) per.push_back(Rounded(b.contributor_variance[k], 4));
+    for (const BandBar& bar : bars) {
+      double variance = 0.0;
+      for (std::size_t k : bar.members) variance += b.contributor_variance[k];
+      per.push_back(Rounded(variance, 4));
+    }
     band_variance.push_back(per);
   }
   o["bands"] = bands;

@@ -9,6 +9,7 @@
 #include "deb/budget/engine.h"
 #include "deb/budget/failure_guidance.h"
 #include "deb/load/budget_yaml.h"
+#include "deb/report/budget/band_plots.h"
 #include "deb/report/budget/report_documents.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "tests/support/cli_harness.h"
@@ -90,7 +91,10 @@ TEST_CASE("the figure data give every output's spectra by share, its bands and e
         CpsCrossingHz(e.result.grid.f_hz(), out.total_psd, out.total_cps, *out.rms_max * *out.rms_max);
     if (crossing) CHECK(d["crossing_hz"].get<double>() == *crossing);
     else CHECK(d["crossing_hz"].is_null());
-    REQUIRE(d["band_contributors"].size() == out.contributors.size());
+    // The band chart's bars as the PNG's (BandBars): the groups where there are more than 8 contributors.
+    const std::vector<BandBar> bars = BandBars(out, e.result.grid);
+    REQUIRE(d["band_contributors"].size() == bars.size());
+    for (std::size_t k = 0; k < bars.size(); ++k) CHECK(d["band_contributors"][k] == bars[k].name);
     double previous = HUGE_VAL, sum = 0.0;
     for (std::size_t k = 0; k < level.out.contributors.size(); ++k) {
       CHECK(d["psd"][k].size() == f.size());
