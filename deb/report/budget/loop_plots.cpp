@@ -165,8 +165,9 @@ Plot BodePlot(const LoopFigures& lf) {
   bode.kind = PlotKind::kPath;
   bode.csv = lf.csv;
   const std::string same = SameLoopText(r);
-  bode.caption = "Loop gain L = -sign G K, G the plant (" + r.plant + "), K the controller (" + r.controller +
-                 "); the loop closes the paths " + lf.paths + (same.empty() ? "" : " and is the same loop as " + same) +
+  bode.caption = "Loop gain L = -sign G K of the plant G = " + r.plant + " and the controller K = " + r.controller +
+                 "; the loop closes the paths " + lf.paths +
+                 (same.empty() ? "" : " (the budget writes the same loop also as: " + same + ")") +
                  ". Magnitude over unwrapped phase, each gain crossover marked with its "
                  "phase margin and each phase crossover with its gain margin (in dB: 20 log10 of the factor by which "
                  "the gain may grow, or shrink where negative, before the loop is unstable).";
@@ -185,8 +186,8 @@ Plot BodePlot(const LoopFigures& lf) {
   bottom.y.label = "arg L [°]";
   bottom.y.format = "%g";
   bottom.series.push_back(Line("arg L", "", bode.name + ".csv", 3, kLoopColour));
-  bottom.annotations.push_back(Level(-180.0, ""));
-  bottom.key.placement = KeyPlacement::kNone;
+  bottom.annotations.push_back(Level(-180.0, "arg L = -180°"));  // its own key entry: not the |L| = 1 line
+  bottom.key.placement = KeyPlacement::kOutsideRight;  // the -180° line named, as |L| = 1 is above
   PhaseAxis(bottom, lf.curves.phase);
   // The margins' labels keep off the curves where they can (wafer_stage's
   // "GM 16.14 dB at 313.0 Hz" lay over the phase, beside another margin's marker).
@@ -218,8 +219,8 @@ Plot SensitivityPlot(const LoopFigures& lf) {
   st.name = lf.stem + "_sensitivity";
   st.kind = PlotKind::kPath;
   st.csv = lf.csv;
-  st.caption = "Sensitivity |S| = 1/|1 + L| and complementary sensitivity |T| = |L/(1 + L)| of the loop of plant " +
-               r.plant + " (G) and controller " + r.controller + " (K); the peak of |S| is 1 / modulus margin.";
+  st.caption = "Sensitivity |S| = 1/|1 + L| and complementary sensitivity |T| = |L/(1 + L)| of the loop of G = " +
+               r.plant + " and K = " + r.controller + "; the peak of |S| is 1 / modulus margin.";
   FigurePanel sp;
   sp.title = lf.name + ": sensitivity and complementary sensitivity";
   sp.x = lf.x_axis;
@@ -258,7 +259,7 @@ Plot NyquistPlot(const LoopFigures& lf) {
   ny.name = lf.stem + "_nyquist";
   ny.kind = PlotKind::kPath;
   ny.csv = lf.csv;
-  ny.caption = "Nyquist plot of L for the loop of plant " + r.plant + " (G) and controller " + r.controller + " (K)" +
+  ny.caption = "Nyquist plot of L for the loop of G = " + r.plant + " and K = " + r.controller +
                " near the critical point -1 (dashed: negative frequencies), the unit circle and the circle of "
                "radius modulus margin around -1 that the curve touches.";
   FigurePanel np;

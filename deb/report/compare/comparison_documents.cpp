@@ -22,7 +22,7 @@ std::string Verdict(const ComparedFigure& total) {
 Table HeadlineTable(const Comparison& cmp) {
   Table t;
   t.title = "Headline: total RMS per output, A: " + cmp.label_a + ", B: " + cmp.label_b;
-  t.header = {"output", "A", "B", "B / A", "B is", "largest changes (variance change / total)"};
+  t.header = {"output", "A", "B", "B / A", "B is (unchanged: within 1 %)", "largest changes (variance change / total)"};
   t.numeric = {false, true, true, true, false, false};
   const std::vector<ComparedFigure> largest = cmp.LargestChanges();
   for (const ComparedFigure& f : cmp.figures) {

@@ -11,6 +11,7 @@
 #include "deb/core/error.h"
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
+#include "deb/core/rounding_zero.h"
 #include "deb/report/budget/spectrum_plots.h"
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/gnuplot_runner.h"
@@ -156,7 +157,9 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
         if (oa.contributors[d].name == o.contributors[c].name) style = d;
       if (block == 0) style = c;
       FigureSeries s = curve(o.contributors[c].name, c + 2);
-      s.key = side + ": " + Enhanced(o.contributors[c].name) + " " + SigLabel(std::sqrt(o.contributors[c].variance));
+      // As the tables give it: 4 digits (12.07 against 12.05 is what is compared), rounding as 0.
+      s.key = side + ": " + Enhanced(o.contributors[c].name) + " " +
+              SigLabel(std::sqrt(WithoutRounding(o.contributors[c].variance, o.variance)), 4);
       // A wide and pale under B, dashed in full colour: where the two
       // coincide, B's dashes lie on A's band instead of vanishing in it.
       s.colour = block == 0 ? Tint(ContributorStyle(style).colour, kPaleShare) : ContributorStyle(style).colour;
@@ -164,7 +167,7 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
       panel.series.push_back(std::move(s));
     }
     FigureSeries t = curve("total", o.contributors.size() + 2);
-    t.key = side + ": total " + SigLabel(std::sqrt(o.variance));
+    t.key = side + ": total " + SigLabel(std::sqrt(o.variance), 4);
     t.colour = block == 0 ? Tint(kTotalColour, kPaleShare) : kTotalColour;
     t.width = block == 0 ? 5.0 : 2.0;
     panel.series.push_back(std::move(t));

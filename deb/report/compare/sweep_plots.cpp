@@ -82,10 +82,18 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
                  " combinations are drawn; sweep.csv holds all.";
 
   // One RMS axis for every panel: from 0 to the largest total or the requirement.
-  double top = out0.rms_max.value_or(0.0), lowest = HUGE_VAL;
+  // A total computed as rounding (RoundingZero: an axis the variant leaves
+  // unexcited) does not set the axis: nizamoglu2015_sweep's beta_velocity at
+  // K_v = h = 0, 4e-11, stretched it over 12 decades; its line runs off the
+  // bottom.
+  double top = out0.rms_max.value_or(0.0), highest = 0.0, lowest = HUGE_VAL;
+  for (const BudgetResult& r : results) highest = std::max(highest, r.outputs[o].rms());
+  bool rounding = false;
   for (const BudgetResult& r : results) {
-    top = std::max(top, r.outputs[o].rms());
-    if (r.outputs[o].rms() > 0.0) lowest = std::min(lowest, r.outputs[o].rms());
+    const double rms = r.outputs[o].rms();
+    top = std::max(top, rms);
+    if (rms > 0.0 && RoundingZero(rms * rms, highest * highest)) rounding = true;
+    else if (rms > 0.0) lowest = std::min(lowest, rms);
   }
   if (!(top > 0.0)) top = 1.0;
   // Totals more than 5x apart on a log axis: on a linear one, the
@@ -93,6 +101,9 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
   // matter into the bottom seventh of every panel.
   const bool log_rms = lowest < HUGE_VAL && top / lowest > 5.0;
   if (log_rms) p.caption += " RMS on a log axis: the totals span more than a factor 5.";
+  if (rounding)
+    p.caption += " A variant computed as rounding (≈ 0: the model leaves the output unexcited there) runs off the "
+                 "bottom of the axis.";
 
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", sweep, output " << out0.name << " RMS in " << out0.unit

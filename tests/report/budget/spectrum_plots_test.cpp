@@ -183,6 +183,7 @@ TEST_CASE("a failing output's CPS figure names its fail factor, stacks the large
   CHECK(psd.annotations[0].kind == AnnotationKind::kSegment);
   // A bracket, ends and key sample: a group's dashed curve in a similar red is not one.
   CHECK(psd.annotations[0].bracket);
+  CHECK(psd.annotations[0].behind);  // a contributor at the limit's level stays visible over it
   CHECK(plots[1].script.find("heads size screen 0.008,90") != std::string::npos);
   CHECK(plots[1].script.find("keyentry with vectors heads size screen 0.008,90") != std::string::npos);
   CHECK(psd.annotations[0].y0 == doctest::Approx(0.8 * 0.8 / (10 - 0.1)));

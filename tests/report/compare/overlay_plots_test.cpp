@@ -121,6 +121,16 @@ TEST_CASE("an overlay leaves out a contributor negligible in both results, and k
   REQUIRE(sensor_a);
   CHECK(sensor_a->key.find("A: sensor\\_noise") == 0);  // the name as enhanced text
   CHECK(FindSeries(figure, "B: sensor_noise"));
+  // Keys as the tables: 4 digits, and a part computed as rounding reads 0 (compare.pdf had "6.14·10⁻¹³" where
+  // its table reads 0).
+  const FigureSeries* total_b = FindSeries(figure, "B: total");
+  REQUIRE(total_b);
+  CHECK(total_b->key == "B: total " + SigLabel(b.outputs[0].rms(), 4));
+  a.outputs[0].contributors[1].variance = 1e-30 * a.outputs[0].variance;
+  const PlotFigure with_rounding = OverlayPlots("A", a, "B", b)[0].figure;
+  const FigureSeries* rounded = FindSeries(with_rounding, "A: sensor_noise");
+  REQUIRE(rounded);
+  CHECK(rounded->key == "A: sensor\\_noise 0");
 }
 
 }  // namespace deb::report

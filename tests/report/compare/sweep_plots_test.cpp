@@ -299,6 +299,11 @@ TEST_CASE("small multiples put totals more than 5x apart on a log RMS axis") {
   CHECK(*panel.y.min == doctest::Approx(std::pow(10.0, std::floor(std::log10(rms / 2.0)))));
   CHECK(*panel.y.max >= 8.0 * rms);
   CHECK(spread[0].caption.find("log axis") != std::string::npos);
+  // A variant computed as rounding (4e-11 of 82 in nizamoglu2015_sweep's beta_velocity) does not set the axis.
+  results[1].outputs[0].variance = 1e-26 * results[0].outputs[0].variance;
+  const auto rounded = SweepPlots(spec, results);
+  CHECK(*rounded[0].figure.panels[0].y.min == doctest::Approx(std::pow(10.0, std::floor(std::log10(rms / 2.0)))));
+  CHECK(rounded[0].caption.find("computed as rounding") != std::string::npos);
 }
 
 }  // namespace deb::report
