@@ -134,6 +134,7 @@ std::string IndexHtml(const DocumentInputs& in) {
   s << "<h1>Dynamic error budget: " << HtmlEscape(budget.name) << "</h1>\n";
   if (!budget.description.empty()) s << "<p class=\"lead\">" << HtmlEscape(budget.description) << "</p>\n";
   s << VerdictBanner(result);
+  for (const std::string& w : MeasurementWarnings(result, in.digits)) s << "<p class=\"fail\">" << HtmlEscape(w) << "</p>\n";
   s << "<noscript><p class=\"noscript\">The figures of this page are drawn by the JavaScript it carries, which "
        "is disabled: the tables below hold the figures' numbers";
   if (in.pdf) s << ", and <a href=\"report.pdf\">report.pdf</a> every plot";
@@ -235,6 +236,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
   s << "## Summary\n\n| | |\n| --- | --- |\n";
   for (const auto& [key, value] : in.facts.items) s << "| " << key << " | `" << value << "` |\n";
   s << "\n" << ToMarkdown(SummaryTable(result, in.digits)) << "\n";
+  for (const std::string& w : MeasurementWarnings(result, in.digits)) s << "**" << w << "**\n\n";
   if (const Table parameters = ParametersTable(budget, in.digits); !parameters.rows.empty())
     s << "### " << parameters.title << "\n\n" << ToMarkdown(parameters) << "\n";
   if (result.covariance) {

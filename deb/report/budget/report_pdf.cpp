@@ -185,9 +185,14 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   if (!budget.description.empty()) b.push_back(Paragraph(budget.description, 10.5));
   PdfTable facts;
   facts.numeric = {false, false};
-  for (const auto& [label, value] : in.facts.items) facts.rows.push_back({{label, true, false}, {value}});
+  // Not what the page says anyway: the budget's name (the title), deb's
+  // version (every page's footer) and the requirements (the verdict box).
+  for (const auto& [label, value] : in.facts.items)
+    if (label != "budget" && label != "deb version" && label != "requirements")
+      facts.rows.push_back({{label, true, false}, {value}});
   b.push_back(TableBlock("", facts));
   b.push_back(TableBlock("Verdict", VerdictTable(result)));
+  for (const std::string& w : MeasurementWarnings(result, in.digits)) b.push_back(Paragraph(w, 9.5, true, true));
   if (const Table parameters = ParametersTable(budget, in.digits); !parameters.rows.empty())
     b.push_back(TableBlock(parameters.title, TypesetTable(parameters)));
   if (const std::size_t n = result.warnings.size(); n > 0)

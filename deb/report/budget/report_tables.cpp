@@ -233,6 +233,27 @@ Table ReferenceTable(const OutputResult& o, int digits) {
   return t;
 }
 
+std::vector<std::string> MeasurementWarnings(const BudgetResult& result, int digits) {
+  std::vector<std::string> out;
+  for (const OutputResult& o : result.outputs)
+    for (const ReferenceResult& r : o.references) {
+      if (!(r.budget_variance > 0.0) || !(r.variance > 0.0)) continue;
+      const double ratio = std::sqrt(r.variance / r.budget_variance);
+      if (ratio <= kReferenceMismatch && ratio >= 1.0 / kReferenceMismatch) continue;
+      const std::string unit = UnitText(o.unit);
+      const std::string span = Sig(r.covered_lo_hz, 4) + "–" + Sig(r.covered_hi_hz, 4) + " Hz";
+      const std::string head = "Measured " + o.name + " (" + r.name + "): " + Sig(ratio, 3) +
+                               "× the budget's RMS over " + span;
+      if (ratio > 1.0)
+        out.push_back(head + "; the budget explains " + Share(r.budget_variance, r.variance) +
+                      " of the measured variance (" + Sig(std::sqrt(r.variance - r.budget_variance), digits) + " " +
+                      unit + " RMS unexplained). The verdict covers the budget's contributors only.");
+      else
+        out.push_back(head + ": the budget is pessimistic there, and a failing verdict may overstate the problem.");
+    }
+  return out;
+}
+
 Table CovarianceTable(const CovarianceResult& cov, int digits) {
   Table t;
   t.title = "Covariance of outputs (each pair; the matrices are in summary.json)";

@@ -68,6 +68,16 @@ Table GroupTable(const OutputResult& output, int digits = 4);
 // without references.
 Table ReferenceTable(const OutputResult& output, int digits = 4);
 
+// Measured and budget RMS further apart than this factor over a
+// measurement's span: the verdict is said to rest on an incomplete (or
+// pessimistic) budget.
+inline constexpr double kReferenceMismatch = 1.2;
+// One sentence per measured reference whose RMS over its span differs from
+// the budget's by more than kReferenceMismatch, for the first page: how
+// much of the measured variance the budget explains and what that means for
+// the verdict; none where the budget and the measurements agree.
+std::vector<std::string> MeasurementWarnings(const BudgetResult& result, int digits = 4);
+
 // The budget's `covariance:` (output_covariance.h), one row per pair of
 // outputs: correlation, covariance, exact correlation (where there is an
 // exact matrix), and the

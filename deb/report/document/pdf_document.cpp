@@ -382,6 +382,14 @@ class Composer {
         const double first = whole <= (kBodyBottomPt - kMarginPt) / 3.0 ? whole : 26.0;
         return 40.0 + first;
       }
+      case PdfBlockKind::kContents: {
+        // As DoContents keeps it: whole up to kWholeContentsLines lines (its
+        // heading goes along: wafer_stage's stood alone at a page's foot).
+        const std::size_t sections = ListedSections();
+        Layout line = MakeLayout("Contents", 10.0, true, 0);
+        const double h = Size(line.get()).second + 5.0;
+        return sections <= kWholeContentsLines ? static_cast<double>(sections) * h : 2.0 * h;
+      }
       default: return 80.0;
     }
   }
@@ -471,6 +479,18 @@ class Composer {
     y_ += cap_h + 10.0;
   }
 
+  // Whether `heading` is the contents' own (the block after it): not listed in them.
+  bool HeadsContents(const PdfBlock& heading) const {
+    const PdfBlock* next = &heading + 1;
+    return next < spec_.blocks.data() + spec_.blocks.size() && next->kind == PdfBlockKind::kContents;
+  }
+  // The sections the contents list: level-1 headings but the contents' own.
+  std::size_t ListedSections() const {
+    std::size_t n = 0;
+    for (const PdfBlock& b : spec_.blocks) n += b.kind == PdfBlockKind::kHeading && b.level == 1 && !HeadsContents(b);
+    return n;
+  }
+
   void DoContents() {
     // One line per section (level-1 heading) of the document, linked to it;
     // subsections are in the PDF's bookmarks. The first pass lays out the
@@ -478,11 +498,11 @@ class Composer {
     std::vector<const PdfBlock*> headings;
     for (const PdfBlock& b : spec_.blocks)
       if (b.kind == PdfBlockKind::kHeading && b.level >= 1) headings.push_back(&b);
-    std::size_t sections = 0, listed = 0;
-    for (const PdfBlock* b : headings) sections += b->level == 1 ? 1 : 0;
+    const std::size_t sections = ListedSections();
+    std::size_t listed = 0;
     for (std::size_t k = 0; k < headings.size(); ++k) {
       const PdfBlock& b = *headings[k];
-      if (b.level >= 2) continue;
+      if (b.level >= 2 || HeadsContents(b)) continue;
       ++listed;
       const double indent = b.level >= 2 ? 14.0 : 0.0, size = b.level >= 2 ? 9.0 : 10.0;
       const Target t = k < targets_.size() ? targets_[k] : Target{};

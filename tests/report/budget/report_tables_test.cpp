@@ -322,3 +322,27 @@ TEST_CASE("a mode the output does not see, computed as rounding, has a share of 
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("a measurement the budget does not explain is said on the first page, with how much it explains") {
+  const BudgetResult r = Evaluate(LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml")));
+  const ReferenceResult& m = r.outputs[0].references.at(0);  // position: measured 1.51x the budget
+  const double ratio = std::sqrt(m.variance / m.budget_variance);
+  REQUIRE(ratio > kReferenceMismatch);
+  const std::vector<std::string> w = MeasurementWarnings(r);
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].find(Sig(ratio, 3) + "× the budget's RMS") != std::string::npos);
+  CHECK(w[0].find("explains " + Share(m.budget_variance, m.variance)) != std::string::npos);
+  CHECK(w[0].find(Sig(std::sqrt(m.variance - m.budget_variance), 4) + " nm RMS unexplained") != std::string::npos);
+  // Within the factor either way: nothing to say; a pessimistic budget is said as such.
+  BudgetResult agree = r;
+  agree.outputs[0].references[0].variance = 1.3 * m.budget_variance;
+  CHECK(MeasurementWarnings(agree).empty());
+  agree.outputs[0].references[0].variance = 0.5 * m.budget_variance;
+  REQUIRE(MeasurementWarnings(agree).size() == 1);
+  CHECK(MeasurementWarnings(agree)[0].find("pessimistic") != std::string::npos);
+  CHECK(MeasurementWarnings(Evaluate(LoadBudgetFile(test::ExampleBudget()))).empty());
+}
+
+}  // namespace deb::report
