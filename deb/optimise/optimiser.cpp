@@ -608,6 +608,19 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
     result.evaluations += static_cast<int>(o.history.size());
     result.history.insert(result.history.end(), o.history.begin(), o.history.end());
   }
+  // A variable on its bound: the optimum with it a quarter of its range in.
+  const std::vector<double>& optimum = starts[best].values;
+  for (std::size_t i = 0; i < n; ++i) {
+    const DesignVariable& v = variables[i];
+    const double span = v.max - v.min, tolerance = 1e-6 * span;
+    const bool at_min = optimum[i] <= v.min + tolerance, at_max = optimum[i] >= v.max - tolerance;
+    if (!at_min && !at_max) continue;
+    std::vector<double> moved = optimum;
+    moved[i] = at_max ? v.max - 0.25 * span : v.min + 0.25 * span;
+    const Evaluated e = EvaluateDesign(loader, objective, moved, options.threads);
+    result.bound_probes.push_back({-1, moved, e.objective, e.worst, e.error});
+    result.probed.push_back(i);
+  }
   return result;
 }
 

@@ -135,6 +135,12 @@ struct OptimiseResult {
   std::vector<RequirementRatio> requirements;  // at the optimum
   std::vector<DesignEvaluation> history;        // start by start, in order
   int evaluations = 0;
+  // Per variable whose optimum is on a bound of its range (within 1e-6 of
+  // the range): the design evaluated with that variable a quarter of its
+  // range from the bound and the others at the optimum, which says how much
+  // the bound decides (not counted in `evaluations`).
+  std::vector<DesignEvaluation> bound_probes;
+  std::vector<std::size_t> probed;  // the variable of each probe
 };
 
 // One start's outcome: the start, every design it evaluated (in order) and
