@@ -151,6 +151,7 @@ struct Budget {
   // written; the numbers above already hold their values.
   std::vector<Parameter> parameters;
   bool has_sweep = false;  // the file has a `sweep` section (read by deb sweep, checked by deb check)
+  std::size_t uncertain_parameters = 0;  // parameters with a `distribution:` (sampled by deb uncertainty)
 
   // Checks names, references, channel counts and units.
   // @throws InputError with the key path (e.g. "contributors[2].path").

@@ -30,6 +30,7 @@ BudgetOutline OutlineOf(const Budget& budget) {
   outline.covariance = budget.covariance;
   outline.parameters = OutlineOf(budget.parameters);
   outline.has_sweep = budget.has_sweep;
+  outline.uncertain_parameters = budget.uncertain_parameters;
   return outline;
 }
 

@@ -59,6 +59,7 @@ struct BudgetOutline {
   std::vector<std::string> covariance;    // Budget::covariance
   std::vector<ParameterOutline> parameters;  // Budget::parameters, in order
   bool has_sweep = false;                    // Budget::has_sweep: a run evaluates the budget as written only
+  std::size_t uncertain_parameters = 0;      // Budget::uncertain_parameters: a run takes their nominal values
 
   // The source a contributor of this outline names; aborts (DEB_DEMAND) if
   // the outline holds none of that name.

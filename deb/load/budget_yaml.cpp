@@ -183,9 +183,10 @@ Budget Load(YamlReader reader, const std::string& base_dir) {
   root.AllowOnly({"name", "description", "parameters", "correlations", "grid", "sources", "paths", "contributors",
                   "outputs", "bands", "covariance", "sweep"});
   if (auto parameters = root.Optional("parameters")) reader.SetParameters(load::ParseParameters(*parameters));
-  load::ParseUncertainty(root, reader.parameters());
+  const std::size_t uncertain = load::ParseUncertainty(root, reader.parameters()).parameters.size();
   load::ParseDesignBounds(root, reader.parameters());
   Budget b;
+  b.uncertain_parameters = uncertain;
   b.parameters = reader.parameters().parameters();
   b.source_file = reader.name();
   b.positions = reader.positions();

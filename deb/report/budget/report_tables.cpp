@@ -392,7 +392,12 @@ ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file
                                                     : std::to_string(failed) + " of " + std::to_string(required) +
                                                           " FAILED")},
   };
-  if (result.outline.has_sweep)  // the nominal case of a swept budget, which a reader may take for the sweep
+  // The nominal case of a swept or toleranced budget, which a reader may take for the study.
+  if (const std::size_t n = result.outline.uncertain_parameters; n > 0)
+    f.items.insert(f.items.begin() + 2,
+                   {"tolerances", "not sampled: this report is the nominal design (deb uncertainty samples the " +
+                                      std::to_string(n) + " uncertain parameter" + (n == 1 ? "" : "s") + ")"});
+  if (result.outline.has_sweep)
     f.items.insert(f.items.begin() + 2, {"sweep", "not run: this report is the budget as written (deb sweep "
                                                   "evaluates its variants)"});
   f.conventions = {

@@ -149,6 +149,14 @@ TEST_CASE("the summary table gives status and the largest contributor of every o
   const ReportFacts g = MakeFacts(swept, "b.yaml", "abc", "today", 0.5);
   REQUIRE(named(g, "sweep") == 1);
   CHECK(g.items[2].second.find("not run") == 0);
+  // A budget with tolerances: the report is the nominal design.
+  CHECK(named(f, "tolerances") == 0);
+  const BudgetResult toleranced = Evaluate(LoadBudgetFile(test::ExampleBudget("nizamoglu2015_tolerances.yaml")));
+  CHECK(toleranced.outline.uncertain_parameters == 4);
+  const ReportFacts nominal = MakeFacts(toleranced, "t.yaml", "abc", "today", 0.5);
+  REQUIRE(named(nominal, "tolerances") == 1);
+  CHECK(nominal.items[2].second == "not sampled: this report is the nominal design (deb uncertainty samples the 4 "
+                             "uncertain parameters)");
   // The conventions explain the contributor tables' last column as it is: k where outputs pass, "must drop"
   // where one fails (wafer_stage's position).
   const auto explains = [](const ReportFacts& facts, const std::string& start) {
