@@ -164,12 +164,15 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
     for (std::size_t c = 0; c < out0.contributors.size(); ++c) {
       FigureSeries s = curve(out0.contributors[c].name, c + 2);
       s.colour = ContributorStyle(c).colour;
-      s.width = 1.5;
+      s.width = 3.0;
       panel.series.push_back(std::move(s));
     }
+    // The total thin over contributors three times as wide, as in a run's
+    // PSD: a contributor that is all of the total (the sweep's sensor_noise
+    // from K_v = 25 on) still shows beside it.
     FigureSeries t = curve("total", out0.contributors.size() + 2);
     t.colour = kTotalColour;
-    t.width = 2.5;
+    t.width = 1.0;
     panel.series.push_back(std::move(t));
     if (out0.rms_max) {
       FigureAnnotation limit;

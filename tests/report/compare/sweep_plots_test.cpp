@@ -69,6 +69,11 @@ TEST_CASE("sweep plots hold one data block per combination of the other paramete
   // Panel b draws block b.
   REQUIRE(plots[0].figure.panels.size() == 2);
   CHECK(FindSeries(plots[0].figure, "total", 1)->block == 1);
+  // The total thin, drawn last, over contributors three times as wide: one that is all of it still shows.
+  const FigurePanel& panel = plots[0].figure.panels[0];
+  CHECK(panel.series.back().name == "total");
+  for (std::size_t k = 0; k + 1 < panel.series.size(); ++k)
+    CHECK(panel.series[k].width >= 3.0 * panel.series.back().width);
 }
 
 TEST_CASE("small multiples: one panel per value of the other parameters, one RMS axis, the key once") {
