@@ -386,7 +386,8 @@ ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file
       {"grid", ToString(result.outline.grid_kind) + ", " + std::to_string(result.grid.size()) + " frequencies, " +
                    HzText(result.grid.min_hz()) + "–" + HzText(result.grid.max_hz()) + " Hz"},
       {"bands", result.outline.bands.empty() ? "decades of the grid" : "as the budget defines them"},
-      {"evaluation", seconds ? Sig(*seconds, 3) + " s" : "not recorded (reproducible report: SOURCE_DATE_EPOCH)"},
+      {"evaluation", seconds ? Sig(*seconds, 3) + " s"
+                             : "not recorded: a reproducible report (the same bytes on every run) leaves the time out"},
       {"requirements", required == 0 ? "none given"
                                      : (failed == 0 ? "all " + std::to_string(required) + " met"
                                                     : std::to_string(failed) + " of " + std::to_string(required) +
