@@ -35,7 +35,8 @@ bool SameBand(double lo_a, double hi_a, double lo_b, double hi_b) {
 
 std::vector<BandBar> BandBars(const OutputResult& out, const FrequencyGrid& grid, std::string* what) {
   PlotLevel level = GroupLevel(out, grid, "");
-  const bool grouped = out.contributors.size() > kMostBarsPerBand && level.out.contributors.size() < out.contributors.size();
+  const bool grouped =
+      out.contributors.size() > kMostBarsPerBand && level.out.contributors.size() < out.contributors.size();
   if (!grouped) {  // the contributors themselves
     level.out = out;
     level.styles.clear();
@@ -49,7 +50,8 @@ std::vector<BandBar> BandBars(const OutputResult& out, const FrequencyGrid& grid
                               : "each contributor";
   std::vector<BandBar> bars;
   for (std::size_t i : ShareOrder(level.out))
-    bars.push_back({level.out.contributors[i].name, level.styles[i], level.members[i], level.out.contributors[i].variance});
+    bars.push_back(
+        {level.out.contributors[i].name, level.styles[i], level.members[i], level.out.contributors[i].variance});
   if (bars.size() > kMostBarsPerBand) {
     BandBar rest;
     rest.name = "the other " + std::to_string(bars.size() - (kMostBarsPerBand - 1));
@@ -100,7 +102,8 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
 
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", budget " << result.outline.name << ", output " << out.name << ": RMS in "
-      << unit << " per band, in total and per bar (" << what << "); failing_total: the total where the band's requirement fails\n";
+      << unit << " per band, in total and per bar (" << what
+      << "); failing_total: the total where the band's requirement fails\n";
   csv << "group,lo_hz,hi_hz,total,failing_total";
   for (const BandBar& item : items) csv << ',' << CsvField(item.name);
   csv << '\n';

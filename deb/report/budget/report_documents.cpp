@@ -134,7 +134,8 @@ std::string IndexHtml(const DocumentInputs& in) {
   s << "<h1>Dynamic error budget: " << HtmlEscape(budget.name) << "</h1>\n";
   if (!budget.description.empty()) s << "<p class=\"lead\">" << HtmlEscape(budget.description) << "</p>\n";
   s << VerdictBanner(result);
-  for (const std::string& w : MeasurementWarnings(result, in.digits)) s << "<p class=\"fail\">" << HtmlEscape(w) << "</p>\n";
+  for (const std::string& w : MeasurementWarnings(result, in.digits))
+    s << "<p class=\"fail\">" << HtmlEscape(w) << "</p>\n";
   s << "<noscript><p class=\"noscript\">The figures of this page are drawn by the JavaScript it carries, which "
        "is disabled: the tables below hold the figures' numbers";
   if (in.pdf) s << ", and <a href=\"report.pdf\">report.pdf</a> every plot";

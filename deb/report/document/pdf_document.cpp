@@ -41,8 +41,9 @@ std::string TypesetExponents(const std::string& text) {
     std::size_t start = i;
     while (start > 0 && (digit(start - 1) || text[start - 1] == '.')) --start;
     // (a name's part after a line-break chance, BreakableNames, is still in the name)
-    const bool named = start > 0 && (std::isalpha(static_cast<unsigned char>(text[start - 1])) || text[start - 1] == '_' ||
-                                     (start >= 3 && text.compare(start - 3, 3, "\u200b") == 0));
+    const bool named =
+        start > 0 && (std::isalpha(static_cast<unsigned char>(text[start - 1])) || text[start - 1] == '_' ||
+                      (start >= 3 && text.compare(start - 3, 3, "\u200b") == 0));
     if (text[i] == 'e' && i > 0 && digit(i - 1) && !named) {
       std::size_t k = i + 1;
       const bool negative = k < text.size() && text[k] == '-';
