@@ -31,8 +31,9 @@ Table HeadlineTable(const Comparison& cmp) {
     for (const ComparedFigure& c : largest) {
       if (c.output != f.output || c.variance_change_of_total == 0.0) continue;
       const double pct = 100.0 * c.variance_change_of_total;
-      changes += (changes.empty() ? "" : ", ") + c.contributor + " " + (pct > 0 ? "+" : "−") + Sig(std::abs(pct), 2) +
-                 " %";
+      // Below 0.01 % in size: "< 0.01 %" (compare.pdf had "+4.6·10⁻⁴ %").
+      changes += (changes.empty() ? "" : ", ") + c.contributor + " " +
+                 (std::abs(pct) < 0.01 ? std::string("< 0.01 %") : (pct > 0 ? "+" : "−") + Sig(std::abs(pct), 2) + " %");
     }
     t.rows.push_back({f.output + " [" + UnitText(f.unit) + "]", Sig(f.rms_a, 4), Sig(f.rms_b, 4), RatioText(f),
                       Verdict(f), changes.empty() ? "none" : changes});

@@ -33,6 +33,10 @@ TEST_CASE("the headline comes first: per output A, B, B / A, the verdict and the
   REQUIRE(h.rows.size() == 1);
   CHECK(h.rows[0] == std::vector<std::string>{"z [nm]", Sig(2.0, 4), Sig(3.0, 4), Sig(1.5, 4), "worse",
                                               "floor +25 %"});
+  // A change below 0.01 % in size reads as such, not in e-notation.
+  Comparison tiny = Example();
+  tiny.figures[1].variance_change_of_total = -4.6e-6;
+  CHECK(ComparisonTables(tiny).front().rows[0].back() == "floor < 0.01 %");
   ComparedFigure better{"z", "nm", "total", "", 3.0, 2.0, -1.0, 2.0 / 3.0, -0.2};
   CHECK(Verdict(better) == "better");
   better.ratio = 1.0001;
