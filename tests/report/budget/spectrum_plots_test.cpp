@@ -60,7 +60,7 @@ TEST_CASE("the display range holds all but a thousandth of every contributor's v
   // The note is a second line of the x label, so gnuplot makes room for it
   // below the tic labels instead of printing it over the frame (a label at screen coordinates).
   const std::string axis = FrequencyAxis(r, grid);
-  CHECK(axis.find("set xlabel ('frequency [Hz]'.\"\\n\".'{/*0.8 grid: 10^{-4} to 10^{8} Hz; shown: the decades holding "
+  CHECK(axis.find("set xlabel ('frequency [Hz]'.\"\\n\".'{/*0.9 grid: 10^{-4} to 10^{8} Hz; shown: the decades holding "
                   "all but 10^{-3} of every contributor''s variance}')") != std::string::npos);
   CHECK(axis.find("at screen") == std::string::npos);
   CHECK(FrequencyAxis(r, grid, "what is shown").find("shown: what is shown}") != std::string::npos);
