@@ -618,8 +618,7 @@ OptimiseResult RunOptimise(const std::vector<DesignVariable>& variables, const O
     std::vector<double> moved = optimum;
     moved[i] = at_max ? v.max - 0.25 * span : v.min + 0.25 * span;
     const Evaluated e = EvaluateDesign(loader, objective, moved, options.threads);
-    result.bound_probes.push_back({-1, moved, e.objective, e.worst, e.error});
-    result.probed.push_back(i);
+    result.bound_probes.push_back({i, {-1, moved, e.objective, e.worst, e.error}});
   }
   return result;
 }

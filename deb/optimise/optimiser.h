@@ -118,6 +118,14 @@ struct OptimiseStart {
   std::string stop;  // NLopt's reason
 };
 
+// A variable whose optimum is on a bound of its range (within 1e-6 of the
+// range), and the design evaluated with it a quarter of its range from the
+// bound and the others at the optimum: how much the bound decides.
+struct BoundProbe {
+  std::size_t variable = 0;
+  DesignEvaluation at;
+};
+
 struct OptimiseResult {
   std::vector<DesignVariable> variables;
   OptimiseObjective objective;
@@ -135,12 +143,8 @@ struct OptimiseResult {
   std::vector<RequirementRatio> requirements;  // at the optimum
   std::vector<DesignEvaluation> history;        // start by start, in order
   int evaluations = 0;
-  // Per variable whose optimum is on a bound of its range (within 1e-6 of
-  // the range): the design evaluated with that variable a quarter of its
-  // range from the bound and the others at the optimum, which says how much
-  // the bound decides (not counted in `evaluations`).
-  std::vector<DesignEvaluation> bound_probes;
-  std::vector<std::size_t> probed;  // the variable of each probe
+  // One per variable on its bound, in variable order (not counted in `evaluations`).
+  std::vector<BoundProbe> bound_probes;
 };
 
 // One start's outcome: the start, every design it evaluated (in order) and

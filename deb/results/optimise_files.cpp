@@ -57,43 +57,35 @@ std::string OptimumText(const OptimiseResult& r) {
 
 std::vector<std::size_t> VariablesAtBound(const OptimiseResult& r) {
   std::vector<std::size_t> at;
-  const OptimiseStart& best = r.starts[r.best];
-  for (std::size_t i = 0; i < r.variables.size(); ++i) {
-    const DesignVariable& v = r.variables[i];
-    const double tolerance = 1e-6 * (v.max - v.min);
-    if (best.values[i] <= v.min + tolerance || best.values[i] >= v.max - tolerance) at.push_back(i);
-  }
+  for (const BoundProbe& p : r.bound_probes) at.push_back(p.variable);
   return at;
 }
 
 std::string BoundsText(const OptimiseResult& r) {
-  const std::vector<std::size_t> at = VariablesAtBound(r);
-  if (at.empty()) return "";
+  if (r.bound_probes.empty()) return "";
   const OptimiseStart& best = r.starts[r.best];
   std::string s = "On a bound: ";
   bool all_flat = true;
-  for (std::size_t k = 0; k < at.size(); ++k) {
-    const DesignVariable& v = r.variables[at[k]];
-    const bool upper = best.values[at[k]] >= 0.5 * (v.min + v.max);
+  for (std::size_t k = 0; k < r.bound_probes.size(); ++k) {
+    const BoundProbe& p = r.bound_probes[k];
+    const DesignVariable& v = r.variables[p.variable];
+    const bool upper = best.values[p.variable] >= 0.5 * (v.min + v.max);
     s += (k ? ", " : "") + v.name + " at its " + (upper ? "maximum " : "minimum ") + ValueText(v, upper ? v.max : v.min);
     // How much the bound decides: the optimum with the variable a quarter
-    // of its range in (OptimiseResult::bound_probes). Within kFlatObjective
-    // and meeting every requirement, the objective is nearly flat there (the
-    // thesis' h: 0.2 % from 225 to 400 mm), and the bound is no reason to
-    // move the design to it.
-    bool flat = false;
-    for (std::size_t p = 0; p < r.bound_probes.size() && p < r.probed.size(); ++p) {
-      if (r.probed[p] != at[k]) continue;
-      const DesignEvaluation& e = r.bound_probes[p];
-      if (!std::isfinite(e.objective) || !(best.objective > 0.0)) continue;
-      const double worse = e.objective / best.objective - 1.0;
-      const bool meets = r.requirements.empty() || e.worst_ratio <= 1.0;
-      flat = meets && worse < kFlatObjective;
-      s += " (at " + SignificantText(Shown(v, e.values[at[k]]), 4) + (v.unit.empty() ? "" : " " + v.unit) +
-           ", the others as they are, the objective is " + SignificantText(100.0 * std::fabs(worse), 2) + " % " +
-           (worse >= 0.0 ? "worse" : "better") + (meets ? "" : " and a requirement fails") + ")";
+    // of its range in. Within kFlatObjective and meeting every requirement,
+    // the objective is nearly flat there (the thesis' h: 0.2 % from 225 to
+    // 400 mm), and the bound is no reason to move the design to it.
+    const DesignEvaluation& e = p.at;
+    if (!std::isfinite(e.objective) || !(best.objective > 0.0)) {
+      all_flat = false;
+      continue;
     }
-    all_flat = all_flat && flat;
+    const double worse = e.objective / best.objective - 1.0;
+    const bool meets = r.requirements.empty() || e.worst_ratio <= 1.0;
+    all_flat = all_flat && meets && worse < kFlatObjective;
+    s += " (at " + SignificantText(Shown(v, e.values[p.variable]), 4) + (v.unit.empty() ? "" : " " + v.unit) +
+         ", the others as they are, the objective is " + SignificantText(100.0 * std::fabs(worse), 2) + " % " +
+         (worse >= 0.0 ? "worse" : "better") + (meets ? "" : " and a requirement fails") + ")";
   }
   if (all_flat)
     return s + ": nearly flat there; the bound, not a clear optimum, decides the value.";

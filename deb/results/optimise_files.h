@@ -21,7 +21,7 @@ std::string OptimiseHistoryCsv(const OptimiseResult& result);
 std::string OptimumYaml(const std::string& extends, const std::string& budget_name, const OptimiseResult& result,
                         const std::vector<std::string>& overrides);
 // The variables whose optimum lies on their range's bound (within 1e-6 of
-// the range), by index.
+// the range), by index: those of OptimiseResult::bound_probes.
 std::vector<std::size_t> VariablesAtBound(const OptimiseResult& result);
 // "On a bound: h at its maximum 400 mm: the range given, not the budget,
 // limits the optimum there (widen it to see further)."; "" when none is.

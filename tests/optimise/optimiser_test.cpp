@@ -294,11 +294,11 @@ TEST_CASE("the thesis' Kv and h: BOBYQA within 60 evaluations, no worse than any
   // The objective is nearly flat in h near 400 mm: at 225 mm (a quarter of the range in), Kv as it is, it is
   // within 1 %, and the text says so rather than send the engineer to widen the range. The probe's figure is
   // the budget's own at that point.
-  REQUIRE(r.probed == std::vector<std::size_t>{1});
   REQUIRE(r.bound_probes.size() == 1);
-  CHECK(r.bound_probes[0].values[1] == doctest::Approx(0.225));
+  REQUIRE(r.bound_probes[0].variable == 1);
+  CHECK(r.bound_probes[0].at.values[1] == doctest::Approx(0.225));
   const double at_225 = rms(best.values[0], 0.225);
-  CHECK(r.bound_probes[0].objective == doctest::Approx(at_225).epsilon(1e-9));
+  CHECK(r.bound_probes[0].at.objective == doctest::Approx(at_225).epsilon(1e-9));
   CHECK(at_225 / best.objective - 1.0 < kFlatObjective);
   CHECK(BoundsText(r) == "On a bound: h at its maximum 400 mm (at 225 mm, the others as they are, the objective is " +
                              SignificantText(100.0 * (at_225 / best.objective - 1.0), 2) +
@@ -442,19 +442,18 @@ TEST_CASE("an optimum on a bound is nearly flat or limited by the range, as the 
   best.values = {31.5e3, 0.4};
   best.objective = 11.126;
   r.starts = {best};
-  r.probed = {1};
-  r.bound_probes = {{-1, {31.5e3, 0.31}, 11.14, 0.9, ""}};
+  r.bound_probes = {{1, {-1, {31.5e3, 0.31}, 11.14, 0.9, ""}}};
   CHECK(BoundsText(r) ==
         "On a bound: h at its maximum 400 mm (at 310 mm, the others as they are, the objective is 0.13 % worse): "
         "nearly flat there; the bound, not a clear optimum, decides the value.");
   // 5 % worse a quarter in: the bound matters.
-  r.bound_probes[0].objective = 11.7;
+  r.bound_probes[0].at.objective = 11.7;
   CHECK(BoundsText(r) ==
         "On a bound: h at its maximum 400 mm (at 310 mm, the others as they are, the objective is 5.2 % worse): the "
         "range given, not the budget, limits the optimum there (widen it to see further).");
   // Nearly as good but missing a requirement: not flat.
-  r.bound_probes[0].objective = 11.14;
-  r.bound_probes[0].worst_ratio = 1.5;
+  r.bound_probes[0].at.objective = 11.14;
+  r.bound_probes[0].at.worst_ratio = 1.5;
   r.requirements = {RequirementRatio{}};
   CHECK(BoundsText(r).find("0.13 % worse and a requirement fails): the range given") != std::string::npos);
 }

@@ -118,9 +118,7 @@ Plot BandsPlot(const BudgetResult& result, std::size_t o, int digits) {
     if (g.requirement) top = std::max(top, g.requirement->requirement.rms_max);
     if (g.variance > 0.0) smallest_total = std::min(smallest_total, total);
     for (const BandBar& item : items) {
-      double variance = 0.0;
-      for (std::size_t c : item.members) variance += g.contributor_variance[c];
-      const double rms = std::sqrt(variance);
+      const double rms = std::sqrt(item.Of(g.contributor_variance));
       csv << ',' << CsvNumber(rms);
       if (rms > 0.0) bottom = std::min(bottom, rms);
     }

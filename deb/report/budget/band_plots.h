@@ -25,6 +25,12 @@ struct BandBar {
   SeriesStyle style;
   std::vector<std::size_t> members;  // the output's contributors it sums
   double variance = 0.0;             // over the whole grid: the order of the bars
+  // Its part of a band: the sum of its members' (per contributor of the output).
+  double Of(const std::vector<double>& contributor_variance) const {
+    double sum = 0.0;
+    for (std::size_t c : members) sum += contributor_variance[c];
+    return sum;
+  }
 };
 // More bars than this in a band are a few pixels wide in report.pdf, their
 // hatching illegible.

@@ -119,11 +119,7 @@ json OutputData(const BudgetResult& result, const OutputResult& out) {
   for (const BandResult& b : out.bands) {
     bands.push_back(Short(b.band.lo_hz) + "–" + Short(b.band.hi_hz));
     json per = json::array();
-    for (const BandBar& bar : bars) {
-      double variance = 0.0;
-      for (std::size_t k : bar.members) variance += b.contributor_variance[k];
-      per.push_back(Rounded(variance, 4));
-    }
+    for (const BandBar& bar : bars) per.push_back(Rounded(bar.Of(b.contributor_variance), 4));
     band_variance.push_back(per);
   }
   o["bands"] = bands;

@@ -86,12 +86,12 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
   // unexcited) does not set the axis: nizamoglu2015_sweep's beta_velocity at
   // K_v = h = 0, 4e-11, stretched it over 12 decades; its line runs off the
   // bottom.
-  double top = out0.rms_max.value_or(0.0), highest = 0.0, lowest = HUGE_VAL;
+  double highest = 0.0, lowest = HUGE_VAL;
   for (const BudgetResult& r : results) highest = std::max(highest, r.outputs[o].rms());
+  double top = std::max(out0.rms_max.value_or(0.0), highest);
   bool rounding = false;
   for (const BudgetResult& r : results) {
     const double rms = r.outputs[o].rms();
-    top = std::max(top, rms);
     if (rms > 0.0 && RoundingZero(rms * rms, highest * highest)) rounding = true;
     else if (rms > 0.0) lowest = std::min(lowest, rms);
   }
