@@ -45,11 +45,8 @@ RequirementGuidance GuideRequirement(const OutputResult& o, const FrequencyGrid&
       most = b.contributor_variance[g.dominant];
       g.dominant_band = b.band;
     }
-  g.reduce.push_back(SmallestReduction(o));
+  g.reduce = Reductions(o);
   g.remove = g.reduce.front().contributors;
-  const std::size_t m = g.remove.size();
-  if (m < order.size() && o.contributors[order[m]].variance > 0.0)
-    g.reduce.push_back(Reduction(o, std::vector<std::size_t>(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(m + 1))));
   g.cps_crossing_hz = CpsCrossingHz(grid.f_hz(), o.total_psd, o.total_cps, *o.rms_max * *o.rms_max);
   return g;
 }
@@ -108,6 +105,15 @@ ContributorReduction SmallestReduction(const OutputResult& output) {
   std::size_t m = 0;
   while (m < order.size() && output.variance - removed > limit2) removed += output.contributors[order[m++]].variance;
   return Reduction(output, std::vector<std::size_t>(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(m)));
+}
+
+std::vector<ContributorReduction> Reductions(const OutputResult& output) {
+  std::vector<ContributorReduction> r = {SmallestReduction(output)};
+  const std::vector<std::size_t> order = ByVariance(output);
+  const std::size_t m = r.front().contributors.size();
+  if (m < order.size() && output.contributors[order[m]].variance > 0.0)
+    r.push_back(Reduction(output, std::vector<std::size_t>(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(m + 1))));
+  return r;
 }
 
 std::optional<double> CpsCrossingHz(const std::vector<double>& f_hz, const std::vector<double>& psd,

@@ -98,6 +98,12 @@ struct FailureGuidance {
 // DEB_DEMANDs an output with a requirement that fails.
 ContributorReduction SmallestReduction(const OutputResult& output);
 
+// SmallestReduction, then, where a larger set adds variance, the set one
+// contributor larger with its factor: the trade-off the guidance sentence
+// offers ("A must drop 6x, or A and B 3x each"); RequirementGuidance::reduce.
+// DEB_DEMANDs an output with a requirement that fails.
+std::vector<ContributorReduction> Reductions(const OutputResult& output);
+
 // Each contributor's variance within [lo_hz, hi_hz] (inside the grid), by the
 // engine's band integral: what a band requirement holds of each.
 std::vector<double> VarianceWithin(const OutputResult& output, const FrequencyGrid& grid, double lo_hz,

@@ -92,9 +92,11 @@ Table ContributorTable(const OutputResult& o, int digits) {
   // contributors that can (failure_guidance.h); else the factor k on the
   // source's PSD that puts the output at its limit.
   const bool fails = o.rms_max && !o.pass();
-  std::optional<ContributorReduction> least;
+  // The smallest set, and the set one larger where there is one (the
+  // guidance sentence's trade-off).
+  std::vector<ContributorReduction> reductions;
   if (fails) {
-    least = SmallestReduction(o);
+    reductions = Reductions(o);
     t.title += "; must drop: the factor on the contributor's RMS that meets the limit alone, or \"each of "
                "top n\" with the n largest";
   }
@@ -121,13 +123,19 @@ Table ContributorTable(const OutputResult& o, int digits) {
                                     cr.exact_variance ? Sig(std::sqrt(*cr.exact_variance), digits) : "–"};
     if (fails) {
       const Allocation a = AllocationFactor(o, c);
-      const auto in_least = std::find(least->contributors.begin(), least->contributors.end(), c);
+      const auto in = [c](const ContributorReduction& r) {
+        return std::find(r.contributors.begin(), r.contributors.end(), c) != r.contributors.end();
+      };
+      const ContributorReduction& least = reductions.front();
+      const std::string top = ", each of top ";
       if (a.factor && *a.factor > 0.0)
         row.push_back(Sig(1.0 / std::sqrt(*a.factor), digits) + "×");
-      else if (in_least != least->contributors.end() && least->rms_factor)
-        row.push_back(Sig(*least->rms_factor, digits) + "×, each of top " + std::to_string(least->contributors.size()));
-      else if (in_least != least->contributors.end())
-        row.push_back("remove, with top " + std::to_string(least->contributors.size()));
+      else if (in(least) && least.rms_factor)
+        row.push_back(Sig(*least.rms_factor, digits) + "×" + top + std::to_string(least.contributors.size()));
+      else if (in(least))
+        row.push_back("remove, with top " + std::to_string(least.contributors.size()));
+      else if (reductions.size() > 1 && in(reductions[1]) && reductions[1].rms_factor)
+        row.push_back(Sig(*reductions[1].rms_factor, digits) + "×" + top + std::to_string(reductions[1].contributors.size()));
       else
         row.push_back("–");
     } else if (o.rms_max) {

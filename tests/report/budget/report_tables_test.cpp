@@ -35,14 +35,17 @@ TEST_CASE("a failing output's contributor table gives the reduction of each RMS 
   const Table alone = ContributorTable(FlatOutput({80.0, 10.0, 10.0}, 6.0, "um"));
   REQUIRE(alone.header[6] == "must drop");
   CHECK(alone.rows[0][6] == "2.236×");
-  CHECK(alone.rows[1][6] == "–");
+  // b joins a in the trade-off the guidance sentence offers: 10 + 90 / r^2 = 36.
+  CHECK(alone.rows[1][6] == "1.861×, each of top 2");
   CHECK(alone.rows[2][6] == "–");
   CHECK(alone.rows[1][7].empty());  // no repeated "no allocation" note
   // 49 + 25 + 16 + 10: none alone; a and b together, 26 + 74 / r^2 = 36, r = sqrt(7.4).
   const Table pair = ContributorTable(FlatOutput({49.0, 25.0, 16.0, 10.0}, 6.0, "um"));
   CHECK(pair.rows[0][6] == "2.720×, each of top 2");
   CHECK(pair.rows[1][6] == "2.720×, each of top 2");
-  CHECK(pair.rows[2][6] == "–");
+  // One more, a, b and c: 10 + 90 / r^2 = 36; d is in neither set.
+  CHECK(pair.rows[2][6] == "1.861×, each of top 3");
+  CHECK(pair.rows[3][6] == "–");
   // A passing output keeps the allocation factor k on the PSD: (36 - 10) / 20.
   const Table passing = ContributorTable(FlatOutput({20.0, 10.0}, 6.0, "um"));
   CHECK(passing.header[6] == "allocation k");
