@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -31,14 +32,35 @@ inline fs::path WriteFile(const fs::path& path, const std::string& text) {
   return path;
 }
 
+// The directories TempDir made, removed when the test process exits (kept
+// when DEB_KEEP_TEST_DIRS is set, to look at after a failure).
+class TempDirs {
+ public:
+  void Add(const fs::path& d) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    dirs_.push_back(d);
+  }
+  ~TempDirs() {
+    if (std::getenv("DEB_KEEP_TEST_DIRS")) return;
+    std::error_code ec;
+    for (const fs::path& d : dirs_) fs::remove_all(d, ec);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<fs::path> dirs_;
+};
+
 // A fresh, empty directory: the process id and a counter make it unique to
 // this call, so concurrent test processes never share one.
 inline fs::path TempDir(const std::string& name) {
   static std::atomic<int> counter{0};
+  static TempDirs made;
   const fs::path d = fs::temp_directory_path() /
                      ("deb_test_" + name + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   fs::remove_all(d);
   fs::create_directories(d);
+  made.Add(d);
   return d;
 }
 

@@ -370,9 +370,15 @@ Table ParametersTable(const BudgetOutline& outline, int digits) {
   t.title = "Parameters";
   t.header = {"parameter", "value", "unit", "formula", "description"};
   t.numeric = {false, true, false, false, false};
-  for (const ParameterOutline& p : outline.parameters)
-    t.rows.push_back({p.name, SignificantText(p.value, std::max(digits, 6)), p.unit.empty() ? "–" : p.unit,
+  bool plain = false;
+  for (const ParameterOutline& p : outline.parameters) {
+    plain = plain || p.unit.empty();
+    t.rows.push_back({p.name, SignificantText(p.value, std::max(digits, 6)), p.unit.empty() ? "–" : UnitText(p.unit),
                       p.derived ? p.expression : "", p.description});
+  }
+  // A dimensionless parameter is a plain number in the units of the field
+  // that takes it (a gain, a spectrum level: docs/budget_reference.md).
+  if (plain) t.title += "; unit –: a plain number, in the units of the field that uses it";
   return t;
 }
 

@@ -357,3 +357,20 @@ TEST_CASE("a measurement the budget does not explain is said on the first page, 
 }
 
 }  // namespace deb::report
+
+namespace deb::report {
+
+TEST_CASE("the parameters table prints units as the figures do and says what a unit '–' means") {
+  BudgetOutline outline;
+  outline.parameters = {{"t_io", "100 us", "delay", false, 100.0, "us"}, {"v", "6.25 um/s", "", false, 6.25, "um/s"}};
+  const Table units = ParametersTable(outline, 4);
+  CHECK(units.title == "Parameters");
+  CHECK(units.rows[0][2] == "µs");
+  CHECK(units.rows[1][2] == "µm/s");
+  outline.parameters.push_back({"Kv", "50", "skyhook gain, N/(mm/s)", false, 50.0, ""});
+  const Table plain = ParametersTable(outline, 4);
+  CHECK(plain.rows[2][2] == "–");
+  CHECK(plain.title == "Parameters; unit –: a plain number, in the units of the field that uses it");
+}
+
+}  // namespace deb::report
