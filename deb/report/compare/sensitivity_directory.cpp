@@ -80,7 +80,7 @@ StudyDocument SensitivityDocument(const SensitivitySetting& setting, const Sensi
     // total's elasticity ((d var_c / d ln p) / var, which the tornado chart
     // draws and which sum over the contributors to the total's).
     t.header = {"parameter", "contributor", "variance [" + UnitText(VarianceUnit(ranked[0].unit)) + "]",
-                "d var / d ln p", "elasticity", "part of the total's elasticity"};
+                "d var / d ln p", "elasticity of its own variance", "share of the total's elasticity (charted)"};
     t.numeric = {false, false, true, true, true, true};
     for (const auto& s : ranked)
       t.rows.push_back({setting.Label(s.parameter), s.contributor, Sig(s.variance, 4), Sig(s.d_variance_d_log_p, 4),

@@ -54,6 +54,9 @@ std::vector<Plot> TornadoPlots(const std::vector<Sensitivity>& all, const Budget
     p.name = FileStem(out.name) + "_tornado";
     p.kind = PlotKind::kOverview;
     p.output = static_cast<int>(o);
+    // In the PDF as tall as its bars need (36 px a bar): at the overview's
+    // 600 px, five bars took a page each.
+    p.pdf_height_px = static_cast<int>(std::min<std::size_t>(600, 150 + 36 * bars.size()));
     p.caption = "Elasticity of the variance of " + out.name +
                 " (d var / var per dp / p) per parameter, largest on top (black), with each contributor's share "
                 "of it, (d var_c / d ln p) / var, in its colour.";
