@@ -482,7 +482,7 @@ Plot SpectrumPlot(const BudgetResult& result, std::size_t o, const PlotLevel& le
     s.y_columns = {2 + c};
     s.colour = st.colour;
     s.dash = st.dash;
-    s.width = 3.0;  // three times the total's width
+    s.width = 2.0;  // twice the total's width: thicker, the dashes of close curves ran together
     panel.series.push_back(std::move(s));
   }
   for (std::size_t i = 0; i < out.references.size(); ++i)
