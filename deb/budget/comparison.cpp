@@ -133,14 +133,19 @@ Comparison Compare(const ResultFigures& a, const ResultFigures& b) {
         cmp.unmatched.push_back("band " + label + " of output '" + oa.name + "' is only in " + a.label);
         continue;
       }
-      cmp.figures.push_back(Figure(oa, *ob, "total", label, ba.variance, bb->variance, ba.variance, bb->variance));
+      const auto in_band = [&](ComparedFigure f) {
+        f.band_lo_hz = ba.lo_hz;
+        f.band_hi_hz = ba.hi_hz;
+        return f;
+      };
+      cmp.figures.push_back(
+          in_band(Figure(oa, *ob, "total", label, ba.variance, bb->variance, ba.variance, bb->variance)));
       for (std::size_t c = 0; c < oa.contributors.size() && c < ba.contributor_variance.size(); ++c) {
         const std::string& name = oa.contributors[c].name;
         for (std::size_t d = 0; d < ob->contributors.size() && d < bb->contributor_variance.size(); ++d)
           if (ob->contributors[d].name == name)
-            cmp.figures.push_back(
-                Figure(oa, *ob, name, label, ba.contributor_variance[c], bb->contributor_variance[d], ba.variance,
-                       bb->variance));
+            cmp.figures.push_back(in_band(Figure(oa, *ob, name, label, ba.contributor_variance[c],
+                                                 bb->contributor_variance[d], ba.variance, bb->variance)));
       }
     }
     for (const auto& bb : ob->bands)

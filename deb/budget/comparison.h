@@ -65,7 +65,7 @@ struct ComparedFigure {
   std::string output;
   std::string unit;
   std::string contributor;
-  std::string band;  // "lo-hi Hz", or empty
+  std::string band;  // "lo-hi Hz", or empty (a key of compare.json and .csv)
   double rms_a = 0.0, rms_b = 0.0;
   double difference = 0.0;
   std::optional<double> ratio;
@@ -74,6 +74,7 @@ struct ComparedFigure {
   double variance_change_of_total = 0.0;
   // Below kNegligibleShare of its total's variance in A, in B.
   bool negligible_a = false, negligible_b = false;
+  double band_lo_hz = 0.0, band_hi_hz = 0.0;  // the band's edges, where band is not empty
 
   // |B - A| / A > rel, for a figure that is not negligible on both sides;
   // one that is negligible on one side only has moved by any rel.

@@ -118,6 +118,8 @@ TEST_CASE("a band's total is judged against itself, its contributors against the
   for (const ComparedFigure& f : cmp.figures)
     if (f.band == "10-100 Hz") {
       CAPTURE(f.contributor);
+      CHECK(f.band_lo_hz == 10.0);  // the edges, for documents to print as they print bands
+      CHECK(f.band_hi_hz == 100.0);
       CHECK_FALSE(f.negligible_a);
       CHECK(f.ratio.has_value());
     }

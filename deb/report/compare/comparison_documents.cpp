@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "deb/report/budget/band_text.h"
 #include "deb/version.h"
 
 namespace deb::report {
@@ -55,7 +56,7 @@ std::vector<Table> ComparisonTables(const Comparison& cmp) {
       tables.push_back(t);
     }
     Table& t = tables.back();
-    t.rows.push_back({f.contributor, f.band.empty() ? "whole grid" : f.band, Sig(f.rms_a, 4),
+    t.rows.push_back({f.contributor, f.band.empty() ? "whole grid" : BandText(f.band_lo_hz, f.band_hi_hz), Sig(f.rms_a, 4),
                       Sig(f.rms_b, 4), Sig(f.difference, 4), RatioText(f)});
     t.emphasis.push_back(std::vector<bool>(6, f.contributor == "total" && f.band.empty()));
   }
@@ -82,7 +83,7 @@ std::vector<Table> ComparisonTables(const Comparison& cmp) {
     moved.header = {"output", "contributor", "band", "A", "B", "B / A"};
     moved.numeric = {false, false, false, true, true, true};
     for (const ComparedFigure& f : cmp.Moved(*cmp.tolerance))
-      moved.rows.push_back({f.output, f.contributor, f.band.empty() ? "whole grid" : f.band, Sig(f.rms_a, 4),
+      moved.rows.push_back({f.output, f.contributor, f.band.empty() ? "whole grid" : BandText(f.band_lo_hz, f.band_hi_hz), Sig(f.rms_a, 4),
                             Sig(f.rms_b, 4), RatioText(f)});
     if (moved.rows.empty()) moved.rows.push_back({"none", "", "", "", "", ""});
     tables.push_back(moved);

@@ -65,6 +65,14 @@ TEST_CASE("the comparison tables have one per output with the total emphasised, 
   CHECK(tables[0].rows[1][5] == "from ≈0");
   CHECK(tables[0].emphasis[0][0]);
   CHECK_FALSE(tables[0].emphasis[1][0]);
+  // A band prints as the run report prints bands, not as its data key.
+  Comparison banded = Example();
+  ComparedFigure band = banded.figures[0];
+  band.band = "100-1e+08 Hz";
+  band.band_lo_hz = 100.0;
+  band.band_hi_hz = 1e8;
+  banded.figures.push_back(band);
+  CHECK(ComparisonTables(banded)[1].rows.back()[1] == "100–10⁸ Hz");
   CHECK(tables[1].title == "Contributors that changed most");
   REQUIRE(tables[1].rows.size() == 1);
   CHECK(tables[1].rows[0].back() == Sig(25.0, 3) + " %");
