@@ -754,8 +754,16 @@ PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, st
   OutputResult& out = level.out;
   out = output;
   out.contributors.clear();
+  // A channel the model does not couple to the output (by symmetry: h0's x
+  // and y geophones on z_velocity) adds nothing: named in the caption, not
+  // drawn or keyed. Each channel keeps its colour (ChannelStyle of its index).
+  std::string none;
   for (std::size_t k = 0; k < c.channels.size(); ++k) {
     const ContributorResult::ChannelPart& part = c.channels[k];
+    if (RoundingZero(part.variance, c.variance)) {
+      none += (none.empty() ? "" : ", ") + part.channel;
+      continue;
+    }
     ContributorResult layer;
     layer.name = "channel " + part.channel;
     layer.source = c.source;
@@ -773,6 +781,7 @@ PlotLevel ChannelLevel(const OutputResult& output, const FrequencyGrid& grid, st
                       "correlated channels, " +
                           Sig(c.cross_variance, 4) + " " + Squared(UnitText(VarianceUnit(output.unit))) + ")"
                     : "source channels (each |H|² S of one channel; independent channels: they add up to the total)";
+  if (!none.empty()) level.items += " (" + none + ": nothing of this output, not drawn)";
   level.item = "source channel";
   return level;
 }
