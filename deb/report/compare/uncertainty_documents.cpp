@@ -90,7 +90,7 @@ StudyDocument UncertaintyDocument(const std::string& budget_name, const Uncertai
     s.new_page = true;
     s.text = "Nominal RMS " + Sig(m.nominal, 4) + ", over the samples " + Sig(m.p50, 4) + " (median), " +
              Sig(m.p95, 4) + " (P95); worst corner " + Sig(m.worst_corner_value, 4) + "." +
-             (m.limit ? " P(RMS ≤ " + Short(*m.limit) + ") = " +
+             (m.limit ? " P(RMS ≤ " + Short(*m.limit) + (m.unit.empty() ? "" : " " + UnitText(m.unit)) + ") = " +
                             ProbabilityText(static_cast<double>(m.met) / static_cast<double>(r.samples)) + " (95 %: " +
                             ProbabilityText(m.p_meet.low) + " to " + ProbabilityText(m.p_meet.high) + ")."
                       : "");

@@ -14,18 +14,21 @@ namespace deb::report {
 namespace {
 
 constexpr const char* kSampleColour = "#2166ac";
-constexpr const char* kNominalColour = "#404040";
+// Orange reads over the samples' blue bars and points and on white (a dark
+// grey line vanished over the histogram's bars).
+constexpr const char* kNominalColour = "#e08214";
 
-// The requirement (dashed red) and the nominal design (dotted grey) as
-// vertical lines at their RMS.
+// The requirement (dashed red) and the nominal design (dotted orange) as
+// lines at their RMS, keyed with the output's unit.
 void MarkRequirement(FigurePanel& panel, const StudyMetric& m, bool key, bool vertical) {
+  const std::string unit = m.unit.empty() ? "" : " " + UnitLabel(m.unit);
   if (m.limit) {
     FigureAnnotation r;
     r.kind = vertical ? AnnotationKind::kVerticalLine : AnnotationKind::kHorizontalLine;
     (vertical ? r.x0 : r.y0) = *m.limit;
     r.colour = kRequirementColour;
     r.dash = kRequirementDash;
-    r.key = key ? "requirement " + Short(*m.limit) : "";
+    r.key = key ? "requirement " + Short(*m.limit) + unit : "";
     panel.annotations.push_back(r);
   }
   FigureAnnotation n;
@@ -33,8 +36,8 @@ void MarkRequirement(FigurePanel& panel, const StudyMetric& m, bool key, bool ve
   (vertical ? n.x0 : n.y0) = m.nominal;
   n.colour = kNominalColour;
   n.dash = "(3,4)";
-  n.width = 1.5;
-  n.key = key ? "nominal design " + Sig(m.nominal, 4) : "";
+  n.width = 2.0;
+  n.key = key ? "nominal design " + Sig(m.nominal, 4) + unit : "";
   panel.annotations.push_back(n);
 }
 
@@ -80,13 +83,13 @@ Plot Distribution(const StudyMetric& m, int output) {
   const std::string file = p.name + ".csv";
   std::string title = m.output + ": RMS over " + std::to_string(n) + " samples";
   if (m.limit)
-    title += "\nP(RMS ≤ " + Short(*m.limit) + ") = " + ProbabilityText(static_cast<double>(m.met) / static_cast<double>(n)) +
+    title += "\nP(RMS ≤ " + Short(*m.limit) + (m.unit.empty() ? "" : " " + UnitLabel(m.unit)) + ") = " + ProbabilityText(static_cast<double>(m.met) / static_cast<double>(n)) +
              " (95 %: " + ProbabilityText(m.p_meet.low) + " to " + ProbabilityText(m.p_meet.high) + ")";
   p.figure.title = Enhanced(title);
   p.caption = "Distribution of the RMS of " + m.output + " over the " + std::to_string(n) +
               " samples: histogram (top) and empirical CDF (bottom)" +
               (m.limit ? "; the requirement dashed red, where the CDF's height is P(meet)" : "") +
-              "; the nominal design dotted.";
+              "; the nominal design's RMS dotted orange.";
 
   FigurePanel hist;
   hist.x.label = "";
@@ -248,7 +251,7 @@ Plot Scatter(const UncertaintyResult& r, const StudyMetric& m, int output) {
   }
   p.csv = csv.str();
   p.caption = "The RMS of " + m.output + " of each sample against its " + (shown == 2 ? "two strongest drivers" : "driver") +
-              (m.limit ? "; the requirement dashed red" : "") + "." +
+              (m.limit ? "; the requirement dashed red" : "") + ", the nominal design's RMS dotted orange." +
               (stride > 1 ? " Every " + OrdinalText(stride) + " sample is drawn, " + std::to_string(drawn) + " of " +
                                 std::to_string(n) + "; the statistics take them all."
                           : "");

@@ -1,0 +1,93 @@
+#include "deb/report/compare/uncertainty_plots.h"
+
+#include <doctest/doctest.h>
+
+#include <cctype>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace deb::report {
+namespace {
+
+// Output z [um] over 10 samples 10, 11, ..., 19 (4 meet the limit 13);
+// parameter k (N/m) drives it, m barely.
+UncertaintyResult Study() {
+  UncertaintyResult r;
+  UncertainParameter k, m;
+  k.name = "k";
+  k.unit = "N/m";
+  m.name = "m";
+  r.spec.parameters = {k, m};
+  r.samples = 10;
+  StudyMetric z;
+  z.output = "z";
+  z.unit = "um";
+  z.limit = 13.0;
+  z.nominal = 12.0;
+  for (int s = 0; s < 10; ++s) z.values.push_back(10.0 + s);
+  z.met = 4;
+  z.spearman = {0.9, -0.2};
+  r.metrics = {z};
+  r.parameter_values = {std::vector<double>(10, 1.0), std::vector<double>(10, 2.0)};
+  return r;
+}
+
+// The numbers of CSV block `block` (blocks apart by two blank lines), column `column` (0-based).
+std::vector<double> Column(const std::string& csv, int block, int column) {
+  std::istringstream in(csv);
+  std::string line;
+  std::vector<double> v;
+  int at = 0, blank = 0;
+  while (std::getline(in, line)) {
+    if (line.empty()) {
+      if (++blank == 2) ++at;
+      continue;
+    }
+    blank = 0;
+    if (at != block || line[0] == '#' || !(std::isdigit(static_cast<unsigned char>(line[0])) || line[0] == '-')) continue;
+    std::istringstream fields(line);
+    std::string field;
+    for (int c = 0; std::getline(fields, field, ','); ++c)
+      if (c == column) v.push_back(std::stod(field));
+  }
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("the distribution figure: a histogram of fractions that sum to 1, an ECDF to 1, both lines keyed with the unit") {
+  const std::vector<Plot> plots = UncertaintyPlots(Study());
+  REQUIRE(plots.size() == 3);
+  const Plot& d = plots[0];
+  CHECK(d.name == "z_uncertainty");
+  double sum = 0.0;
+  for (double f : Column(d.csv, 0, 1)) sum += f;
+  CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));
+  const std::vector<double> cdf = Column(d.csv, 1, 1);
+  REQUIRE(cdf.size() >= 2);
+  CHECK(cdf.back() == 1.0);
+  // The title names P(meet) with the limit's unit: 4 of 10.
+  CHECK(d.figure.title.find("P(RMS ≤ 13 µm) = 40") != std::string::npos);
+  REQUIRE(d.figure.panels.size() == 2);
+  const std::vector<FigureAnnotation>& lines = d.figure.panels[0].annotations;
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[0].key == "requirement 13 µm");
+  CHECK(lines[1].key == "nominal design 12.00 µm");  // to 4 digits, as the tables
+  // The nominal line is drawn over the samples' bars: not in their colour,
+  // nor a dark grey that vanished on them.
+  CHECK(lines[1].colour != d.figure.panels[0].series[0].colour);
+  CHECK(lines[1].colour != "#404040");
+  CHECK(d.caption.find("nominal design's RMS dotted orange") != std::string::npos);
+}
+
+TEST_CASE("the scatter figure draws the two strongest drivers, each sample a row, and names both lines") {
+  const std::vector<Plot> plots = UncertaintyPlots(Study());
+  const Plot& s = plots[2];
+  CHECK(s.name == "z_scatter");
+  CHECK(Column(s.csv, 0, 0).size() == 10);
+  CHECK(s.figure.columns == 2);
+  CHECK(s.caption.find("the requirement dashed red, the nominal design's RMS dotted orange") != std::string::npos);
+}
+
+}  // namespace deb::report
