@@ -136,6 +136,9 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
     panel.title = panels > 1 ? Enhanced(RestLabel(spec, groups.order[b])) : title;
     panel.x = ParameterAxis(first, 0.5);
     if (LogAxis(first)) panel.x.scale = AxisScale::kLog;
+    // The axis named under the bottom panel of each column only: above it,
+    // the name ran into the title of the panel below.
+    if (b + cols < panels) panel.x.label = "";
     panel.y.label = panels == 1 || b % cols == 0 ? "RMS [" + UnitLabel(out0.unit) + "]" : "";  // the left column's
     // One RMS axis for every panel.
     if (log_rms) {

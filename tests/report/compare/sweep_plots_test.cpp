@@ -94,6 +94,17 @@ TEST_CASE("small multiples: one panel per value of the other parameters, one RMS
   CHECK(figure.title.find(": RMS [") != std::string::npos);
   CHECK(figure.title.find("] against stiffness") != std::string::npos);
   CHECK(figure.panels[0].x.label == "stiffness [N/m]");  // no key path on the axis
+  // In a grid, the axis is named under each column's bottom panel only (its
+  // name ran into the title of the panel below).
+  SweepSpec grid = spec;
+  grid.parameters[1].values = {10, 20, 30, 40};
+  const PlotFigure two_by_two = SweepPlots(grid, std::vector<BudgetResult>(8, Evaluate(budget)))[0].figure;
+  REQUIRE(two_by_two.columns == 2);
+  REQUIRE(two_by_two.panels.size() == 4);
+  CHECK(two_by_two.panels[0].x.label.empty());
+  CHECK(two_by_two.panels[1].x.label.empty());
+  CHECK(two_by_two.panels[2].x.label == "stiffness [N/m]");
+  CHECK(two_by_two.panels[3].x.label == "stiffness [N/m]");
   CHECK(plots[0].script.find("paths[0]") == std::string::npos);
   // The key once, beside the panels; one RMS axis shared by every panel, labelled on the left.
   CHECK(figure.panels[0].key.placement == KeyPlacement::kBesideGrid);
