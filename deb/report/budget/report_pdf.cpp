@@ -1,6 +1,7 @@
 #include "deb/report/budget/report_pdf.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <set>
 
@@ -9,6 +10,8 @@
 #include "deb/version.h"
 
 namespace deb::report {
+
+namespace fs = std::filesystem;
 namespace {
 
 bool Fails(const OutputResult& o) {
@@ -85,6 +88,28 @@ void AddCovarianceTable(const BudgetResult& result, int digits, std::vector<PdfB
 
 }  // namespace
 
+int PdfFigureHeightPx(const Plot& p) {
+  return p.pdf_height_px > 0 ? p.pdf_height_px : p.kind == PlotKind::kOverview ? 600 : 420;
+}
+
+PdfBlock FigureOfPlot(const Plot& p, const std::string& figure_dir) {
+  PdfBlock b = Figure((fs::path(figure_dir) / (p.name + ".svg")).string(), p.caption);
+  b.width_px = kPdfFigureWidthPx;
+  b.height_px = PdfFigureHeightPx(p);
+  return b;
+}
+
+std::map<std::string, int> FittedFigureHeights(PdfDocumentSpec spec) {
+  for (PdfBlock& b : spec.blocks)
+    if (b.kind == PdfBlockKind::kFigure) b.min_height_px = (2 * b.height_px + 2) / 3;
+  const std::vector<int> heights = FittedFigureHeightsPx(spec, WritePdfDocument(spec, ""));
+  std::map<std::string, int> by_name;
+  std::size_t i = 0;
+  for (const PdfBlock& b : spec.blocks)
+    if (b.kind == PdfBlockKind::kFigure) by_name[fs::path(b.svg_file).stem().string()] = heights[i++];
+  return by_name;
+}
+
 std::string PdfFigureTerminal(const Plot& p) {
   // Placed across the text width (A4 less two 18 mm margins, 481 pt), a
   // 662 px wide SVG is scaled by 0.727: the plots' base font of 11 px is set
@@ -93,8 +118,8 @@ std::string PdfFigureTerminal(const Plot& p) {
   // 2.1 puts a line of width 1 at 1.53 pt on paper (the thinnest data line,
   // 1.1, at 1.68 pt; only the grid is lighter). Two fit on a page; the
   // overview's panels get most of one, unless the plot asks for its height.
-  const int height = p.pdf_height_px > 0 ? p.pdf_height_px : p.kind == PlotKind::kOverview ? 600 : 420;
-  return "set terminal svg enhanced size 662," + std::to_string(height) +
+  const int height = PdfFigureHeightPx(p);
+  return "set terminal svg enhanced size " + std::to_string(kPdfFigureWidthPx) + "," + std::to_string(height) +
          " font 'DejaVu Sans,11' linewidth 2.1 background '#ffffff'\n" + kPdfFigureVariable + " = 1\n" +
          kPdfHeightVariable + " = " + std::to_string(height) + "\n";
 }
@@ -204,7 +229,7 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   b.push_back(Contents());
   b.push_back(PageBreak(kOutputSectionRoomPt));  // the overview below a short table of contents
 
-  const auto figure = [&](const Plot& p) { b.push_back(Figure(in.figure_dir + "/" + p.name + ".svg", p.caption)); };
+  const auto figure = [&](const Plot& p) { b.push_back(FigureOfPlot(p, in.figure_dir)); };
   const std::vector<Plot> none;
   const std::vector<Plot>& plots = in.plots ? *in.plots : none;
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,22 @@ bool DrawnInPdf(const Plot& p);
 // the text width, sets a line of width 1 in a plot script at >= 1.5 pt on
 // paper and the plots' base font at 8 pt.
 std::string PdfFigureTerminal(const Plot& p);
+
+// The width of a figure's canvas in report.pdf and the study PDFs: set
+// across the text width (PdfFigureTerminal).
+inline constexpr int kPdfFigureWidthPx = 662;
+// The height of plot `p`'s figure canvas in px: its pdf_height_px, else by
+// its kind.
+int PdfFigureHeightPx(const Plot& p);
+// Plot `p` as a figure block of a PDF, its SVG <name>.svg in `figure_dir`,
+// with its canvas (so that its layout can be planned before it is drawn).
+PdfBlock FigureOfPlot(const Plot& p, const std::string& figure_dir);
+// The layout of `spec` (its figures made by FigureOfPlot) with every
+// figure free to be drawn down to 2/3 of its height, across the text
+// width, rather than leave the rest of a page empty: the height in px each
+// is to be drawn at, by its SVG's file stem (the plot's name). Draw the
+// plots at these heights, then typeset.
+std::map<std::string, int> FittedFigureHeights(PdfDocumentSpec spec);
 
 // The folder, inside a report's or study's plots/, where its PDF's figures
 // are drawn (and removed once the PDF is written).

@@ -6,6 +6,7 @@
 #include <exception>
 #include <functional>
 #include <future>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <ctime>
@@ -182,6 +183,21 @@ std::vector<std::vector<std::size_t>> DrawBatches(bool pdf, std::size_t pdf_jobs
   return batches;
 }
 
+// What report.pdf is typeset from.
+ReportPdfInputs PdfInputs(const BudgetResult& result, const ReportFacts& facts, const std::string& sha256,
+                          std::time_t when, const std::vector<Plot>& plots, const fs::path& root,
+                          const ReportOptions& options) {
+  ReportPdfInputs in;
+  in.result = &result;
+  in.facts = facts;
+  in.sha256 = sha256;
+  in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
+  in.plots = &plots;
+  in.figure_dir = (root / "plots" / kPdfFigureDir).string();
+  in.digits = options.digits;
+  return in;
+}
+
 // Draws every plot file and, when `pdf`, typesets report.pdf from the
 // figures drawn for it; lists what it wrote in `manifest`. gnuplot writes
 // SVG only, a fraction of the time: the work is report.pdf's typesetting
@@ -239,15 +255,8 @@ void DrawReport(const BudgetResult& result, const std::vector<Plot>& plots, cons
   };
   const auto typeset = [&] {
     progress.Step("report.pdf");
-    ReportPdfInputs in;
-    in.result = &result;
-    in.facts = facts;
-    in.sha256 = sha256;
-    in.create_date = UtcText(when, "%Y-%m-%dT%H:%M:%SZ");
-    in.plots = &plots;
-    in.figure_dir = (plots_dir / kPdfFigureDir).string();
-    in.digits = options.digits;
-    layout = WritePdfDocument(ReportPdfSpec(in), (root / "report.pdf").string());
+    layout = WritePdfDocument(ReportPdfSpec(PdfInputs(result, facts, sha256, when, plots, root, options)),
+                              (root / "report.pdf").string());
   };
   // Jobs: the batches in order (report.pdf's first), then one per plot file.
   ParallelForEach(batches.size() + jobs.size() - pdf_jobs, [&](std::size_t k) {
@@ -304,6 +313,14 @@ ReportManifest WriteReport(const BudgetResult& result, const RunInfo& info, cons
     writer.Write("plots/colours.csv", ColoursCsv(result.outline));
   }
   const bool pdf = options.plots && options.Has(PlotFormat::kPdf);
+  if (pdf) {
+    // Each figure of report.pdf drawn at the height that keeps it on its
+    // page, where a little shorter does (FittedFigureHeights).
+    const std::map<std::string, int> fitted =
+        FittedFigureHeights(ReportPdfSpec(PdfInputs(result, facts, sha256, when, plots, root, options)));
+    for (Plot& p : plots)
+      if (const auto it = fitted.find(p.name); it != fitted.end()) p.pdf_height_px = it->second;
+  }
   if (options.plots) DrawReport(result, plots, facts, sha256, when, options, pdf, root, manifest);
 
   DocumentInputs doc;

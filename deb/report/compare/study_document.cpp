@@ -1,7 +1,9 @@
 #include "deb/report/compare/study_document.h"
 
 #include <filesystem>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include "deb/core/document_date.h"
 #include "deb/core/error.h"
@@ -73,17 +75,34 @@ PdfDocumentSpec StudyPdfSpec(const StudyDocument& doc, const std::string& figure
     if (!s.heading.empty()) b.push_back(Heading(1, s.heading));
     if (!s.text.empty()) b.push_back(Paragraph(s.text));
     for (const Table& t : s.tables) b.push_back(TableBlock(t.title, TypesetTable(t)));
-    for (const Plot* p : s.figures)
-      b.push_back(Figure((fs::path(figure_dir) / (p->name + ".svg")).string(), p->caption));
+    for (const Plot* p : s.figures) b.push_back(FigureOfPlot(*p, figure_dir));
     for (const std::string& text : s.bullets) b.push_back(Bullet(text));
   }
   return spec;
 }
 
-void WriteStudyPdf(const StudyDocument& doc, const std::string& plots_dir, const std::string& pdf_path, int threads) {
+void WriteStudyPdf(const StudyDocument& given, const std::string& plots_dir, const std::string& pdf_path,
+                   int threads) {
+  const fs::path figure_dir = fs::path(plots_dir) / kPdfFigureDir;
+  const std::string create_date = UtcText(DocumentTime(), "%Y-%m-%dT%H:%M:%SZ");
+  // Each figure drawn at the height that keeps it on its page, where a
+  // little shorter does (FittedFigureHeights): the document then points at
+  // copies of its plots with those heights.
+  const std::map<std::string, int> fitted =
+      FittedFigureHeights(StudyPdfSpec(given, figure_dir.string(), create_date));
+  StudyDocument doc = given;
+  std::size_t n = 0;
+  for (const StudySection& s : doc.sections) n += s.figures.size();
+  std::vector<Plot> copies;
+  copies.reserve(n);  // no reallocation: the sections point into it
+  for (StudySection& s : doc.sections)
+    for (const Plot*& p : s.figures) {
+      copies.push_back(*p);
+      if (const auto it = fitted.find(p->name); it != fitted.end()) copies.back().pdf_height_px = it->second;
+      p = &copies.back();
+    }
   std::vector<const Plot*> figures;
   for (const StudySection& s : doc.sections) figures.insert(figures.end(), s.figures.begin(), s.figures.end());
-  const fs::path figure_dir = fs::path(plots_dir) / kPdfFigureDir;
   if (!figures.empty()) {
     std::error_code ec;
     fs::create_directories(figure_dir, ec);
@@ -98,7 +117,7 @@ void WriteStudyPdf(const StudyDocument& doc, const std::string& plots_dir, const
         },
         threads);
   }
-  WritePdfDocument(StudyPdfSpec(doc, figure_dir.string(), UtcText(DocumentTime(), "%Y-%m-%dT%H:%M:%SZ")), pdf_path);
+  WritePdfDocument(StudyPdfSpec(doc, figure_dir.string(), create_date), pdf_path);
   std::error_code ec;
   fs::remove_all(figure_dir, ec);  // deb wrote it, inside the staged directory
 }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -220,7 +221,7 @@ class Composer {
           break;
         case PdfBlockKind::kParagraph: DoParagraph(b, KeepAfterItem(i)); break;
         case PdfBlockKind::kTable: DoTable(b); break;
-        case PdfBlockKind::kFigure: DoFigure(b); break;
+        case PdfBlockKind::kFigure: DoFigure(b, i + 1 < spec_.blocks.size() ? &spec_.blocks[i + 1] : nullptr); break;
         case PdfBlockKind::kContents: DoContents(); break;
         case PdfBlockKind::kPageBreak:
           if (y_ > kMarginPt && (b.unless_room_pt <= 0.0 || kBodyBottomPt - y_ < b.unless_room_pt)) NewPage();
@@ -368,8 +369,9 @@ class Composer {
   double StartHeight(const PdfBlock& b) {
     switch (b.kind) {
       case PdfBlockKind::kFigure: {
-        const SvgFigure& svg = svgs_->Get(b.svg_file);
-        return 6.0 + kMinFigureScale * kTextWidthPt * svg.height() / svg.width() + 30.0;
+        const double aspect = Aspect(b);
+        const double shortest = b.min_height_px > 0 ? std::min(aspect, b.min_height_px / CanvasWidth(b)) : aspect;
+        return 6.0 + kTextWidthPt * std::min(kMinFigureScale * aspect, shortest) + 30.0;
       }
       case PdfBlockKind::kParagraph: {
         Layout l = MakeLayout(b.text, b.size_pt, b.bold, kTextWidthPt);
@@ -458,21 +460,71 @@ class Composer {
     y_ += h + 0.45 * b.size_pt;
   }
 
-  void DoFigure(const PdfBlock& b) {
+  // A figure's canvas: planned (width_px, height_px) or its SVG's.
+  double CanvasWidth(const PdfBlock& b) {
+    return b.width_px > 0 ? b.width_px : svgs_->Get(b.svg_file).width();
+  }
+  double Aspect(const PdfBlock& b) {
+    if (b.width_px > 0 && b.height_px > 0) return static_cast<double>(b.height_px) / b.width_px;
     const SvgFigure& svg = svgs_->Get(b.svg_file);
-    double w = kTextWidthPt, h = w * svg.height() / svg.width();
+    return svg.height() / svg.width();
+  }
+
+  // The height of figure block b's caption, numbered `number`.
+  double CaptionHeight(const PdfBlock& b, int number) {
+    Layout cap = MakeLayout("Figure " + std::to_string(number) + ". " + b.text, 8.5, false, kTextWidthPt, true);
+    return Size(cap.get()).second;
+  }
+
+  // Figure `b` then figure `next` (both free to be drawn shorter): the
+  // fraction of their heights at which both fit below the cursor, where
+  // `b` fits whole but `next` would not fit after it, even at its least
+  // height, and so would leave the rest of this page empty; none otherwise.
+  std::optional<double> SharedScale(const PdfBlock& b, double cap_h, const PdfBlock* next) {
+    if (!next || next->kind != PdfBlockKind::kFigure || b.min_height_px <= 0 || next->min_height_px <= 0)
+      return std::nullopt;
+    const double h = kTextWidthPt * Aspect(b), h_next = kTextWidthPt * Aspect(*next);
+    const double cap_next = CaptionHeight(*next, figures_ + 1);
+    const double room = kBodyBottomPt - y_;
+    const double below_b = room - (h + 4.0 + cap_h + 10.0 + 6.0 + 4.0 + cap_next);
+    const double least_next = h_next * next->min_height_px / next->height_px;
+    if (h + 4.0 + cap_h > room || below_b >= least_next) return std::nullopt;
+    const double scale = (room - (4.0 + cap_h + 10.0 + 6.0 + 4.0 + cap_next)) / (h + h_next);
+    const double least = std::max(static_cast<double>(b.min_height_px) / b.height_px,
+                                  static_cast<double>(next->min_height_px) / next->height_px);
+    if (scale < least) return std::nullopt;
+    return std::min(1.0, scale);
+  }
+
+  void DoFigure(const PdfBlock& b, const PdfBlock* next) {
+    double w = kTextWidthPt, h = w * Aspect(b);
     ++figures_;
     const std::string caption = "Figure " + std::to_string(figures_) + ". " + b.text;
     Layout cap = MakeLayout(caption, 8.5, false, kTextWidthPt, true);
     const double cap_h = Size(cap.get()).second;
     if (y_ > kMarginPt) y_ += 6.0;
-    if (const double room = kBodyBottomPt - y_ - 4.0 - cap_h; y_ > kMarginPt && h > room && room >= kMinFigureScale * h) {
-      w *= room / h;
-      h = room;
+    const double px_per_pt = CanvasWidth(b) / kTextWidthPt;
+    const std::optional<double> shared = y_ > kMarginPt ? SharedScale(b, cap_h, next) : std::nullopt;
+    if (scale_next_) {
+      // The second of two figures set shorter together.
+      h = std::floor(*scale_next_ * h * px_per_pt) / px_per_pt;
+      scale_next_.reset();
+    } else if (shared) {
+      h = std::floor(*shared * h * px_per_pt) / px_per_pt;
+      scale_next_ = shared;
+    } else if (const double room = kBodyBottomPt - y_ - 4.0 - cap_h; y_ > kMarginPt && h > room) {
+      // Drawn shorter across the whole width where the caller allows it,
+      // else smaller, centred, down to kMinFigureScale.
+      if (b.min_height_px > 0 && room * px_per_pt >= b.min_height_px) {
+        h = std::floor(room * px_per_pt) / px_per_pt;
+      } else if (room >= kMinFigureScale * h) {
+        w *= room / h;
+        h = room;
+      }
     }
     Need(h + 4.0 + cap_h);
     const double x = kMarginPt + 0.5 * (kTextWidthPt - w);
-    if (draw_) svg.Draw(cr_, x, y_, w, h);
+    if (draw_) svgs_->Get(b.svg_file).Draw(cr_, x, y_, w, h);
     Place("figure", b.svg_file, x, y_, w, h);
     y_ += h + 4.0;
     Show(cap.get(), kMarginPt, y_, kInk);
@@ -893,6 +945,7 @@ class Composer {
   std::vector<Target> targets_, found_;
   int total_pages_;
   int page_ = 1, figures_ = 0, last_section_id_ = 0;
+  std::optional<double> scale_next_;  // the next figure's share of a SharedScale
   double table_font_ = kTableFontPt;  // of the table being set
   double y_ = kMarginPt;
   PdfLayout layout_;
@@ -908,6 +961,25 @@ void SetMetadata(cairo_surface_t* surface, const PdfDocumentSpec& spec) {
 }
 
 }  // namespace
+
+std::vector<int> FittedFigureHeightsPx(const PdfDocumentSpec& spec, const PdfLayout& layout) {
+  std::vector<const PdfBlock*> figures;
+  for (const PdfBlock& b : spec.blocks)
+    if (b.kind == PdfBlockKind::kFigure) figures.push_back(&b);
+  std::vector<int> heights;
+  for (const PlacedBox& box : layout.boxes) {
+    if (box.what != "figure") continue;
+    DEB_DEMAND(heights.size() < figures.size());
+    const PdfBlock& b = *figures[heights.size()];
+    DEB_DEMAND(b.width_px > 0 && b.height_px > 0);
+    // The placed height in px of the canvas, as DoFigure floored it; the
+    // 1e-6 absorbs the round trip through points.
+    const int placed = static_cast<int>(std::floor(box.height_pt * b.width_px / box.width_pt + 1e-6));
+    heights.push_back(std::min(b.height_px, placed));
+  }
+  DEB_DEMAND(heights.size() == figures.size());
+  return heights;
+}
 
 PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path) {
   struct SurfaceDeleter {

@@ -49,6 +49,15 @@ struct PdfBlock {
   bool bullet = false;               // paragraph: an item of a list, "• " and a hanging indent
   PdfTable table;
   std::string svg_file;  // figure: drawn as vectors across the text width
+  // figure: its canvas, when the layout is planned before the SVG is drawn
+  // (0: the SVG file's own size).
+  int width_px = 0, height_px = 0;
+  // figure: where it does not fit below the cursor, the least height (px of
+  // its canvas) it may be drawn at, across the text width, to stay on the
+  // page rather than leave the rest of it empty (0: never shorter). The
+  // layout places it as tall as the room left; the caller then draws it at
+  // that height (FittedFigureHeightsPx) and typesets the document again.
+  int min_height_px = 0;
   double unless_room_pt = 0.0;  // page break: none when at least this much of the page is left (0: always)
 };
 
@@ -97,6 +106,12 @@ struct PdfLayout {
 // Lays out `spec` and writes it as a PDF to `path` (empty: lay out only).
 // @throws WriteError if the file or a figure's SVG cannot be read or written.
 PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path);
+
+// After a layout of `spec` planned with figure canvases (width_px and
+// height_px set): per figure block, in order, the height in px it was
+// placed at (its height_px, or less where min_height_px let it stay on a
+// page), rounded down to a whole px so that the figure drawn at it fits.
+std::vector<int> FittedFigureHeightsPx(const PdfDocumentSpec& spec, const PdfLayout& layout);
 
 // `text` with the space between a number and the word after it (a unit,
 // "%", "Hz", "outputs") no-breaking (U+00A0): every text the document sets

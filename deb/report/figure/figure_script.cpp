@@ -282,9 +282,12 @@ void Key(std::ostringstream& s, const FigurePanel& p, bool multiplot) {
         break;
       }
       // Below, the title goes a line down and the key is not opaque:
-      // gnuplot sets it too close under the axis' label otherwise.
+      // gnuplot sets it too close under a one-line axis label otherwise;
+      // under a label with a note (a second line) it keeps a line's gap
+      // without (the blank line left two lines empty there).
       s << "if (exists(" << Quote(kPdfFigureVariable) << ")) {\n  set key below horizontal Left reverse maxcols 3 "
-        << "width " << KeyWidthIncrement(p) << " noopaque title (\"\\n\"." << Label(p.key.title)
+        << "width " << KeyWidthIncrement(p) << " noopaque title ("
+        << (p.x.label.find('\n') == std::string::npos ? "\"\\n\"." : "") << Label(p.key.title)
         << ")\n} else {\n  set key outside right top Left reverse width (exists(" << Quote(kPngSourceVariable)
         << ") ? " << KeyWidenedInSvg(p) << " : 0) title " << Label(p.key.title) << "\n}\nset key";
       titled = true;

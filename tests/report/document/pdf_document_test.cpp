@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
+
 #include <fstream>
 #include <map>
 #include <set>
@@ -263,6 +265,71 @@ TEST_CASE("a figure that fits at 85 % of the text width or more is set smaller r
   CHECK(figures[2].page == 2);
   CHECK(figures[2].width_pt == doctest::Approx(text_width));
   fs::remove_all(dir);
+}
+
+// A figure block planned on a canvas of 662 x height px (no SVG drawn yet),
+// free to be drawn down to `least` px high.
+PdfBlock Planned(int height_px, int least_px, const std::string& caption) {
+  PdfBlock b = Figure("planned.svg", caption);
+  b.width_px = 662;
+  b.height_px = height_px;
+  b.min_height_px = least_px;
+  return b;
+}
+
+std::vector<PlacedBox> Figures(const PdfLayout& layout) {
+  std::vector<PlacedBox> figures;
+  for (const PlacedBox& b : layout.boxes)
+    if (b.what == "figure") figures.push_back(b);
+  return figures;
+}
+
+TEST_CASE("a figure free to be shorter stays on its page across the text width, at the height of the room left") {
+  const double text_width = kPageWidthPt - 2.0 * kMarginPt;
+  // 600 px (437 pt) then 420 px (306 pt): about 240 pt are left for the
+  // second, 79 % of it: too little for the 85 % rule, enough at 2/3.
+  PdfDocumentSpec spec;
+  spec.blocks = {Planned(600, 0, "A."), Planned(420, 0, "B.")};
+  const std::vector<PlacedBox> fixed = Figures(WritePdfDocument(spec, ""));
+  REQUIRE(fixed.size() == 2);
+  CHECK(fixed[1].page == 2);
+  spec.blocks[1].min_height_px = 280;
+  const PdfLayout layout = WritePdfDocument(spec, "");
+  const std::vector<PlacedBox> shorter = Figures(layout);
+  REQUIRE(shorter.size() == 2);
+  CHECK(shorter[1].page == 1);
+  CHECK(shorter[1].width_pt == doctest::Approx(text_width));
+  CHECK(shorter[1].height_pt < 0.85 * 420.0 / 662.0 * text_width);
+  for (const PlacedBox& b : layout.boxes)
+    if (b.what == "caption" && b.page == 1) CHECK(b.y_pt + b.height_pt <= kPageHeightPt - kMarginPt - 9.0);
+  // The heights to draw: whole px, the placed height rounded down.
+  const std::vector<int> px = FittedFigureHeightsPx(spec, layout);
+  REQUIRE(px.size() == 2);
+  CHECK(px[0] == 600);
+  CHECK(px[1] >= 280);
+  CHECK(px[1] < 420);
+  CHECK(px[1] == static_cast<int>(std::floor(shorter[1].height_pt * 662.0 / text_width + 1e-6)));
+}
+
+TEST_CASE("two figures free to be shorter share one scale where the second would leave the page otherwise") {
+  // 300 px, then 420 and 420: the third fits neither whole nor at 2/3 after
+  // the second; both at about 70 % fill the page instead.
+  PdfDocumentSpec spec;
+  spec.blocks = {Planned(300, 0, "A."), Planned(420, 280, "B."), Planned(420, 280, "C.")};
+  const PdfLayout layout = WritePdfDocument(spec, "");
+  const std::vector<PlacedBox> f = Figures(layout);
+  REQUIRE(f.size() == 3);
+  CHECK(f[2].page == 1);
+  const double full = 420.0 / 662.0 * (kPageWidthPt - 2.0 * kMarginPt);
+  CHECK(f[1].height_pt == doctest::Approx(f[2].height_pt).epsilon(0.01));
+  CHECK(f[1].height_pt >= 2.0 / 3.0 * full);
+  CHECK(f[1].height_pt < full);
+  for (const PlacedBox& b : layout.boxes) CHECK(b.y_pt + b.height_pt <= kPageHeightPt - kMarginPt);
+  // Not at 3/4 at least: the third goes to the next page, the second whole.
+  for (int k : {1, 2}) spec.blocks[static_cast<std::size_t>(k)].min_height_px = 315;
+  const std::vector<PlacedBox> g = Figures(WritePdfDocument(spec, ""));
+  CHECK(g[1].height_pt == doctest::Approx(full));
+  CHECK(g[2].page == 2);
 }
 
 TEST_CASE("a page break with room to spare starts a new page only when less than that is left") {
