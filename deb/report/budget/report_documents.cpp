@@ -146,8 +146,8 @@ std::string IndexHtml(const DocumentInputs& in) {
   s << "<a href=\"#paths\">Paths</a><a href=\"#files\">Files</a></nav>\n";
 
   s << "<h2 id=\"summary\">Summary</h2>\n<table class=\"facts\">\n";
-  for (const auto& [key, value] : in.facts.items)
-    s << "<tr><td>" << HtmlEscape(key) << "</td><td>" << HtmlEscape(value) << "</td></tr>\n";
+  for (const ReportFact& f : in.facts.items)
+    s << "<tr><td>" << HtmlEscape(f.label) << "</td><td>" << HtmlEscape(f.value) << "</td></tr>\n";
   s << "</table>\n" << ToHtml(SummaryTable(result, in.digits));
   if (const Table parameters = ParametersTable(result.outline, in.digits); !parameters.rows.empty())
     s << ToHtml(parameters);
@@ -235,7 +235,7 @@ std::string ReportMarkdown(const DocumentInputs& in) {
   s << "# Dynamic error budget: " << budget.name << "\n\n";
   if (!budget.description.empty()) s << budget.description << "\n\n";
   s << "## Summary\n\n| | |\n| --- | --- |\n";
-  for (const auto& [key, value] : in.facts.items) s << "| " << key << " | `" << value << "` |\n";
+  for (const ReportFact& f : in.facts.items) s << "| " << f.label << " | `" << f.value << "` |\n";
   s << "\n" << ToMarkdown(SummaryTable(result, in.digits)) << "\n";
   for (const std::string& w : MeasurementWarnings(result, in.digits)) s << "**" << w << "**\n\n";
   if (const Table parameters = ParametersTable(budget, in.digits); !parameters.rows.empty())

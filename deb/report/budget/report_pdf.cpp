@@ -210,11 +210,8 @@ PdfDocumentSpec ReportPdfSpec(const ReportPdfInputs& in) {
   if (!budget.description.empty()) b.push_back(Paragraph(budget.description, 10.5));
   PdfTable facts;
   facts.numeric = {false, false};
-  // Not what the page says anyway: the budget's name (the title), deb's
-  // version (every page's footer) and the requirements (the verdict box).
-  for (const auto& [label, value] : in.facts.items)
-    if (label != "budget" && label != "deb version" && label != "requirements")
-      facts.rows.push_back({{label, true, false}, {value}});
+  for (const ReportFact& f : in.facts.items)
+    if (!f.shown_elsewhere_on_pdf_title_page) facts.rows.push_back({{f.label, true, false}, {f.value}});
   b.push_back(TableBlock("", facts));
   b.push_back(TableBlock("Verdict", VerdictTable(result)));
   for (const std::string& w : MeasurementWarnings(result, in.digits)) b.push_back(Paragraph(w, 9.5, true, true));

@@ -392,11 +392,11 @@ ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file
     for (const BandRequirementResult& r : o.band_requirements) failed += r.pass() ? 0 : 1;
   }
   f.items = {
-      {"budget", result.outline.name},
+      {"budget", result.outline.name, true},
       {"budget file", budget_file.empty() ? "–" : budget_file},
       {"SHA-256", sha256.empty() ? "–" : sha256},
       {"date", date},
-      {"deb version", DEB_VERSION},
+      {"deb version", DEB_VERSION, true},
       {"grid", ToString(result.outline.grid_kind) + ", " + std::to_string(result.grid.size()) + " frequencies, " +
                    HzText(result.grid.min_hz()) + "–" + HzText(result.grid.max_hz()) + " Hz"},
       {"bands", result.outline.bands.empty() ? "decades of the grid" : "as the budget defines them"},
@@ -405,16 +405,20 @@ ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file
       {"requirements", required == 0 ? "none given"
                                      : (failed == 0 ? "all " + std::to_string(required) + " met"
                                                     : std::to_string(failed) + " of " + std::to_string(required) +
-                                                          " FAILED")},
+                                                          " FAILED"),
+       true},
   };
   // The nominal case of a swept or toleranced budget, which a reader may take for the study.
   if (const std::size_t n = result.outline.uncertain_parameters; n > 0)
     f.items.insert(f.items.begin() + 2,
                    {"tolerances", "not sampled: this report is the nominal design (deb uncertainty samples the " +
-                                      std::to_string(n) + " uncertain parameter" + (n == 1 ? "" : "s") + ")"});
+                                      std::to_string(n) + " uncertain parameter" + (n == 1 ? "" : "s") + ")",
+                    false});
   if (result.outline.has_sweep)
-    f.items.insert(f.items.begin() + 2, {"sweep", "not run: this report is the budget as written (deb sweep "
-                                                  "evaluates its variants)"});
+    f.items.insert(f.items.begin() + 2, {"sweep",
+                                         "not run: this report is the budget as written (deb sweep evaluates its "
+                                         "variants)",
+                                         false});
   f.conventions = {
       "Frequencies in Hz. PSDs are one-sided: variance = ∫ S(f) df over 0 < f < ∞, in unit²/Hz; ASD = √PSD.",
       "CPS(f) = ∫ S from the lowest grid frequency to f; RMS = √CPS(f_max); the reverse CPS integrates from f up.",

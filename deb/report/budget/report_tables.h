@@ -89,9 +89,16 @@ std::vector<std::string> MeasurementWarnings(const BudgetResult& result, int dig
 inline constexpr double kRoundingCorrelation = 1e-9;
 Table CovarianceTable(const CovarianceResult& covariance, int digits = 4);
 
-// Facts about the run for the head of every document, as (label, value).
+// A fact about the run for the head of every document.
+struct ReportFact {
+  std::string label, value;
+  // What report.pdf's first page says anyway (the budget's name is its
+  // title, deb's version is in every footer, the requirements are the
+  // verdict box): left out of its facts there.
+  bool shown_elsewhere_on_pdf_title_page = false;
+};
 struct ReportFacts {
-  std::vector<std::pair<std::string, std::string>> items;
+  std::vector<ReportFact> items;
   std::vector<std::string> conventions;  // one sentence each
 };
 ReportFacts MakeFacts(const BudgetResult& result, const std::string& budget_file, const std::string& sha256,

@@ -140,10 +140,16 @@ TEST_CASE("the summary table gives status and the largest contributor of every o
   CHECK(t.rows[0][5] == "pass");
   CHECK(t.rows[0][6].rfind("floor (", 0) == 0);
   const ReportFacts f = MakeFacts(result, "b.yaml", "abc", "today", 0.5);
-  CHECK(f.items[0] == std::make_pair(std::string("budget"), std::string("single_axis_isolator")));
-  CHECK(f.items.back().second == "all 2 met");
+  CHECK(f.items[0].label == "budget");
+  CHECK(f.items[0].value == "single_axis_isolator");
+  CHECK(f.items.back().value == "all 2 met");
+  // report.pdf's first page leaves out what it says anyway: the title, the footer's version, the verdict box.
+  std::vector<std::string> elsewhere;
+  for (const ReportFact& i : f.items)
+    if (i.shown_elsewhere_on_pdf_title_page) elsewhere.push_back(i.label);
+  CHECK(elsewhere == std::vector<std::string>{"budget", "deb version", "requirements"});
   const auto named = [](const ReportFacts& facts, const std::string& key) {
-    return std::count_if(facts.items.begin(), facts.items.end(), [&](const auto& i) { return i.first == key; });
+    return std::count_if(facts.items.begin(), facts.items.end(), [&](const ReportFact& i) { return i.label == key; });
   };
   CHECK(named(f, "sweep") == 0);
   // A budget with a sweep section: the report says it is the budget as written, not the sweep.
@@ -151,14 +157,14 @@ TEST_CASE("the summary table gives status and the largest contributor of every o
   swept.outline.has_sweep = true;
   const ReportFacts g = MakeFacts(swept, "b.yaml", "abc", "today", 0.5);
   REQUIRE(named(g, "sweep") == 1);
-  CHECK(g.items[2].second.find("not run") == 0);
+  CHECK(g.items[2].value.find("not run") == 0);
   // A budget with tolerances: the report is the nominal design.
   CHECK(named(f, "tolerances") == 0);
   const BudgetResult toleranced = Evaluate(LoadBudgetFile(test::ExampleBudget("nizamoglu2015_tolerances.yaml")));
   CHECK(toleranced.outline.uncertain_parameters == 4);
   const ReportFacts nominal = MakeFacts(toleranced, "t.yaml", "abc", "today", 0.5);
   REQUIRE(named(nominal, "tolerances") == 1);
-  CHECK(nominal.items[2].second == "not sampled: this report is the nominal design (deb uncertainty samples the 4 "
+  CHECK(nominal.items[2].value == "not sampled: this report is the nominal design (deb uncertainty samples the 4 "
                              "uncertain parameters)");
   // The conventions explain the contributor tables' last column as it is: k where outputs pass, "must drop"
   // where one fails (wafer_stage's position).
