@@ -687,6 +687,9 @@ void WriteResultStore(const BudgetResult& result, const RunInfo& info, const std
   for (std::size_t o = 0; o < result.outputs.size(); ++o)
     WriteOutput(w, At("result/outputs", o), outline.outputs[o], result.outputs[o]);
   w.Texts("budget/covariance", outline.covariance);
+  // What the report says of studies the budget holds but this run is not.
+  w.Integer("budget/has_sweep", outline.has_sweep ? 1 : 0);
+  w.Integer("budget/uncertain_parameters", static_cast<std::int64_t>(outline.uncertain_parameters));
   if (!outline.parameters.empty()) {
     w.Texts("budget/parameters/names", Names(outline.parameters, kName));
     for (std::size_t i = 0; i < outline.parameters.size(); ++i) {
@@ -898,6 +901,15 @@ BudgetResult ReadResultStore(const std::string& file, RunInfo* info) {
   in.Unique("result/outputs", Names(res.outputs, kName), "output");
   b.covariance = in.Printables("budget/covariance", outputs);
   ReadParameters(in, &b);
+  // Stores written before they were kept: no sweep, no tolerances.
+  if (r.Has("budget/has_sweep")) b.has_sweep = r.Integer("budget/has_sweep") != 0;
+  if (r.Has("budget/uncertain_parameters")) {
+    const std::int64_t n = r.Integer("budget/uncertain_parameters");
+    if (n < 0 || n > static_cast<std::int64_t>(kMaxParameters))
+      in.Fail("budget/uncertain_parameters", "holds " + std::to_string(n) + ", not a count of parameters (0 to " +
+                                                 std::to_string(kMaxParameters) + ")");
+    b.uncertain_parameters = static_cast<std::size_t>(n);
+  }
   if (r.Integer("result/covariance/present") != 0)
     res.covariance = ReadCovariance(in, "result/covariance", outputs, contributors);
   res.traces = ReadTraces(in, b, &res);

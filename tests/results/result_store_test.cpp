@@ -278,6 +278,23 @@ outputs:
   CHECK(std::abs(s.outline.parameters[2].value - std::sqrt(4 * 5.2e4 / 2100.0) / (2 * M_PI)) <= 1e-15);
 }
 
+TEST_CASE("the studies a budget holds (a sweep, tolerances) are in its store, so that a redrawn report says so") {
+  const StoreDir dir;
+  RunInfo info;
+  WriteStore(std::string(DEB_SOURCE_DIR) + "/budgets/nizamoglu2015_sweep.yaml", dir.File("sweep.h5"));
+  const BudgetResult swept = ReadResultStore(dir.File("sweep.h5"), &info);
+  CHECK(swept.outline.has_sweep);
+  CHECK(swept.outline.uncertain_parameters == 0);
+  WriteStore(std::string(DEB_SOURCE_DIR) + "/budgets/nizamoglu2015_tolerances.yaml", dir.File("tolerances.h5"));
+  const BudgetResult toleranced = ReadResultStore(dir.File("tolerances.h5"));
+  CHECK_FALSE(toleranced.outline.has_sweep);
+  CHECK(toleranced.outline.uncertain_parameters == 4);
+  // A store written before they were kept reads as neither (feedback_loop has neither).
+  const BudgetResult v1 = ReadResultStore(std::string(DEB_SOURCE_DIR) + "/tests/results/data/feedback_loop_v1.h5");
+  CHECK_FALSE(v1.outline.has_sweep);
+  CHECK(v1.outline.uncertain_parameters == 0);
+}
+
 TEST_CASE("a loop around a delay keeps its approximation's error at the crossover in the store") {
   const StoreDir dir;
   const std::string budget = dir.File("d.yaml");
