@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "deb/core/number_text.h"
 #include "deb/version.h"
@@ -22,8 +24,13 @@ std::string YamlSingleQuoted(const std::string& text) {
   return quoted + "'";
 }
 
+// To 15 significant digits: the conversion from SI leaves the last of 17
+// noisy (the bound 0.4 m read "399.99999999999994 mm"); 15 keep the value to
+// 1e-15 of itself, below what any figure of a budget resolves.
 std::string ValueText(const DesignVariable& v, double si) {
-  return NumberText(Shown(v, si)) + (v.unit.empty() ? "" : " " + v.unit);
+  char text[40];
+  std::snprintf(text, sizeof(text), "%.15g", Shown(v, si));
+  return text + (v.unit.empty() ? std::string() : " " + v.unit);
 }
 
 Json Values(const OptimiseResult& r, const std::vector<double>& si) {

@@ -9,6 +9,8 @@
 // bounds and of --vary as an error.
 #include <doctest/doctest.h>
 
+#include <cctype>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -244,6 +246,16 @@ TEST_CASE("the optimum.yaml loads as a budget with the optimum's values") {
   CHECK(b.description.find(r.objective.Text() + " minimised") != std::string::npos);
   const BudgetResult result = Evaluate(b);
   CHECK(result.outputs[0].rms() == doctest::Approx(r.starts[r.best].objective).epsilon(1e-12));
+  // Values to at most 15 significant digits: the 17th of an SI value shown
+  // in mm was conversion noise ("399.99999999999994 mm").
+  const std::string text = OptimumYaml("../b.yaml", "opt", r, {});
+  const std::string values = text.substr(text.find("\nparameters:\n"));
+  std::size_t digits = 0, most = 0;
+  for (char c : values) {
+    digits = std::isdigit(static_cast<unsigned char>(c)) ? digits + 1 : c == '.' ? digits : 0;
+    most = std::max(most, digits);
+  }
+  CHECK(most <= 15);
 }
 
 TEST_CASE("the thesis' Kv and h: BOBYQA within 60 evaluations, no worse than any point of a grid over the box") {
