@@ -174,12 +174,15 @@ int OptimiseCommand::Run() const {
       [&](const std::string& tmp) {
         WriteTextFile((fs::path(tmp) / "summary.json").string(), OptimiseSummaryJson(budget.name, result));
         WriteTextFile((fs::path(tmp) / "history.csv").string(), OptimiseHistoryCsv(result));
-        WriteTextFile((fs::path(tmp) / "optimum.yaml").string(),
-                      OptimumYaml(extends, budget.name, result, overrides));
+        const std::string optimum_yaml = OptimumYaml(extends, budget.name, result, overrides);
+        WriteTextFile((fs::path(tmp) / "optimum.yaml").string(), optimum_yaml);
         ReportOptions report;
         report.plots = s.plots;
+        // The report is optimum.yaml's: its file, digest and text (the
+        // budget's own are another design, the nominal one).
         RunInfo info;
-        info.budget_file = s.budget_file;
+        info.budget_file = (fs::path(dir) / "optimum.yaml").string();
+        info.budget_text = optimum_yaml;
         info.threads = s.threads;
         WriteReportDirectory(optimum, info, report, (fs::path(tmp) / "report").string());
         if (!plots.empty()) {

@@ -67,10 +67,11 @@ std::string ExactRefusal(const Contributor& c, const Source& source, const Path&
   if (!source.spectrum->WhiteLevel())
     return "the source is not white (exact variance needs a flat spectrum without band limits)";
   if (!setup.inputs_pure_scale || !setup.out_conv[o].IsPureScale())
-    return "the units differ by a time derivative (a factor j 2 pi f is not a rational path)";
+    return "the units differ by a time derivative (a factor j 2 pi f, improper: no state-space form)";
   if (!analysis.marginal_poles().empty()) return "the path has poles on the imaginary axis";
   if (out.metric)
-    return "the " + ToString(out.metric->type) + " weighting |sinc(pi f T)|^2 is not rational in s: no Lyapunov form";
+    return "the " + ToString(out.metric->type) + " weighting " + out.metric->WeightingText() +
+           " is not rational in s: no Lyapunov form";
   return "";
 }
 

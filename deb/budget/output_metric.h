@@ -40,6 +40,10 @@ struct OutputMetric {
   // f_hz, with the lobe average beyond kResolvedLobes (above).
   double PsdFactor(double f_hz) const;
   std::string Describe() const;  // e.g. "moving average over 0.01 s"
+  // The weighting in words: "|sinc(pi f T)|^2" or "1 - |sinc(pi f T)|^2".
+  std::string WeightingText() const {
+    return type == MetricType::kMovingStd ? "1 - |sinc(pi f T)|^2" : "|sinc(pi f T)|^2";
+  }
 };
 
 }  // namespace deb

@@ -172,7 +172,7 @@ std::string OptimumDescription(const OptimiseResult& r, const std::string& budge
                   SignificantText(best.objective, 4) + ", nominal " + SignificantText(r.nominal_objective, 4) + "); " +
                   (r.feasible ? "every requirement met." : "NO design met every requirement: the least violating.");
   if (const std::string bounds = BoundsText(r); !bounds.empty()) d += " " + bounds;
-  if (!budget_description.empty()) d += " The budget: " + budget_description;
+  if (!budget_description.empty()) d += " The budget it varies, as written (its nominal values): " + budget_description;
   return d;
 }
 

@@ -37,7 +37,7 @@ std::string BoundsText(const OptimiseResult& result);
 std::string OptimumText(const OptimiseResult& result);
 // The optimum's description, for optimum.yaml and its report: "The optimum
 // of deb optimise: Kv = 61.3, h = 182 mm (z_velocity RMS minimised: 11.2,
-// nominal 12.1); every requirement met." then "The budget: " and
+// nominal 12.1); every requirement met." then "The budget it varies, as written (its nominal values): " and
 // `budget_description` (which speaks of the nominal design), if any.
 std::string OptimumDescription(const OptimiseResult& result, const std::string& budget_description);
 

@@ -215,6 +215,10 @@ TEST_CASE("an output metric loads its type and window, and a bad one names its p
   REQUIRE(b.outputs[0].metric.has_value());
   CHECK(b.outputs[0].metric->type == MetricType::kMovingStd);
   CHECK(b.outputs[0].metric->window_s == 0.02);
+  // No exact variance through the weighting, named as the moving std weights: 1 - sinc^2, not sinc^2.
+  const BudgetResult r = Evaluate(b);
+  CHECK(r.outputs[0].contributors[0].exact_note ==
+        "the moving_std weighting 1 - |sinc(pi f T)|^2 is not rational in s: no Lyapunov form");
   const std::string bad_type = ErrorOf(Replace(ma, "moving_std", "moving_median"));
   CHECK(bad_type.rfind("b.yaml:18:60: outputs[0].metric.type: ", 0) == 0);
   CHECK(bad_type.find("outputs[0].metric.type") != std::string::npos);
