@@ -57,6 +57,11 @@ std::vector<double> Ranks(const std::vector<double>& v) {
 
 }  // namespace
 
+double RankCorrelationNoise(std::size_t n, double z) {
+  DEB_DEMAND(n >= 2);
+  return z / std::sqrt(static_cast<double>(n - 1));
+}
+
 double SpearmanCorrelation(const std::vector<double>& x, const std::vector<double>& y) {
   DEB_DEMAND(x.size() == y.size() && x.size() >= 2);
   const std::vector<double> rx = Ranks(x), ry = Ranks(y);

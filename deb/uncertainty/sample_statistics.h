@@ -30,6 +30,12 @@ Interval WilsonInterval(std::size_t successes, std::size_t trials, double z = 1.
 // 0 when either is constant. DEB_DEMANDs equal sizes >= 2.
 double SpearmanCorrelation(const std::vector<double>& x, const std::vector<double>& y);
 
+// The bound a rank correlation of n independent samples stays within with
+// probability about 95 % (z = 1.96): z / sqrt(n - 1), Spearman's rho being
+// near normal with variance 1 / (n - 1) under independence. A correlation
+// within it says nothing of the sign of a parameter's effect. DEB_DEMANDs n >= 2.
+double RankCorrelationNoise(std::size_t n, double z = 1.959963984540054);
+
 // First-order and total Sobol indices of parameter i from the model's values
 // on the two independent designs A and B and on A with column i from B
 // (a_b): S_i = mean(f_B (f_AB - f_A)) / V (Saltelli 2010),

@@ -4,6 +4,10 @@
 // their analytic values.
 #include <doctest/doctest.h>
 
+#include <vector>
+
+#include <random>
+
 #include <cmath>
 
 #include "deb/uncertainty/sample_design.h"
@@ -32,6 +36,26 @@ TEST_CASE("Wilson interval: 8 of 10 and the edge cases") {
   CHECK(WilsonInterval(0, 100).low == 0.0);
   CHECK(WilsonInterval(100, 100).high == 1.0);
   CHECK(WilsonInterval(100, 100).low == doctest::Approx(0.96301).epsilon(1e-4));
+}
+
+TEST_CASE("the rank correlation of independent samples stays within its noise bound 95 % of the time") {
+  CHECK(RankCorrelationNoise(400) == doctest::Approx(1.959963984540054 / std::sqrt(399.0)));
+  // 2000 pairs of 400 independent draws (a fixed generator: the same on
+  // every machine; only ranks matter): about 5 % beyond the bound, within
+  // the binomial's 3 sigma, 0.5 %.
+  std::mt19937_64 draw(20261207);
+  const double bound = RankCorrelationNoise(400);
+  int beyond = 0;
+  const int trials = 2000;
+  for (int t = 0; t < trials; ++t) {
+    std::vector<double> x(400), y(400);
+    for (double& v : x) v = static_cast<double>(draw());
+    for (double& v : y) v = static_cast<double>(draw());
+    beyond += std::abs(SpearmanCorrelation(x, y)) > bound ? 1 : 0;
+  }
+  const double fraction = static_cast<double>(beyond) / trials;
+  MESSAGE("beyond the bound: " << fraction);
+  CHECK(std::abs(fraction - 0.05) < 3.0 * std::sqrt(0.05 * 0.95 / trials));
 }
 
 TEST_CASE("Spearman: monotone, reversed, ties, constant") {

@@ -1,6 +1,9 @@
 #include "deb/report/compare/uncertainty_documents.h"
 
+#include <cmath>
+
 #include "deb/report/compare/uncertainty_plots.h"
+#include "deb/uncertainty/sample_statistics.h"
 #include "deb/version.h"
 
 namespace deb::report {
@@ -13,7 +16,10 @@ std::string Shown(const UncertainParameter& p, double si) {
 
 Table ParameterTable(const UncertaintyResult& r) {
   Table t;
-  t.title = "Uncertain parameters";
+  // The box's ends of an unbounded distribution are quantiles: samples lie
+  // beyond them (s_geo's log-normal reached 42.8 beside a box to 41.9).
+  t.title = "Uncertain parameters; tolerance box: the bounds of a bounded distribution, else its 0.135 % and "
+            "99.865 % quantiles (a few samples lie beyond), where the worst corners are sought";
   t.header = {"parameter", "nominal", "distribution", "mean", "sd", "tolerance box"};
   t.numeric = {false, true, false, true, true, false};
   for (const UncertainParameter& p : r.spec.parameters)
@@ -45,7 +51,11 @@ Table StatisticsTable(const UncertaintyResult& r, const std::string& output) {
 
 Table DriverTable(const UncertaintyResult& r, const StudyMetric& m) {
   Table t;
-  t.title = "Drivers of the total RMS";
+  const double bound = RankCorrelationNoise(r.samples);
+  t.title = "Drivers of the total RMS; a rank correlation within ±" + Sig(bound, 2) +
+            " is marked 'noise': " + std::to_string(r.samples) +
+            " independent samples reach it by chance (95 %), so its sign says nothing (d RMS / d parameter is "
+            "the local slope)";
   const bool sobol = !m.sobol.empty();
   t.header = {"parameter", "rank correlation", "d RMS / d parameter", "worst corner"};
   if (sobol) t.header.insert(t.header.begin() + 2, {"Sobol S", "Sobol ST"});
@@ -53,7 +63,8 @@ Table DriverTable(const UncertaintyResult& r, const StudyMetric& m) {
   t.numeric[0] = false;
   for (std::size_t i : DriverOrder(m)) {
     const UncertainParameter& p = r.spec.parameters[i];
-    std::vector<std::string> row = {p.name, Sig(m.spearman[i], 2)};
+    std::vector<std::string> row = {p.name,
+                                    Sig(m.spearman[i], 2) + (std::abs(m.spearman[i]) < bound ? " noise" : "")};
     if (sobol) row.insert(row.end(), {Sig(m.sobol[i].first, 2), Sig(m.sobol[i].total, 2)});
     row.push_back(Sig(m.gradient[i] * p.unit_si, 3) + " " + UnitText(m.unit) + (p.unit.empty() ? "" : " per " + UnitText(p.unit)));
     row.push_back(Shown(p, m.worst_corner[i]));

@@ -7,6 +7,7 @@
 
 #include "deb/report/figure/figure_script.h"
 #include "deb/report/figure/plot_style.h"
+#include "deb/uncertainty/sample_statistics.h"
 #include "deb/version.h"
 
 namespace deb::report {
@@ -145,6 +146,7 @@ Plot Drivers(const UncertaintyResult& r, const StudyMetric& m, int output) {
   const std::vector<std::size_t> order = DriverOrder(m);
   const bool sobol = !m.sobol.empty();
   const std::size_t k = order.size();
+  const double bound = RankCorrelationNoise(r.samples);
   // In the PDF as tall as its bars need (45 px a parameter): at the
   // overview's 600 px, four bars took a page and left the scatter plots the
   // next one.
@@ -152,16 +154,22 @@ Plot Drivers(const UncertaintyResult& r, const StudyMetric& m, int output) {
   std::ostringstream csv;
   csv << "# deb " << DEB_VERSION << ", uncertainty, output " << m.output
       << ": each parameter's rank correlation with the RMS" << (sobol ? ", first-order and total Sobol indices" : "")
-      << "; top to bottom\nposition,spearman,sobol_first,sobol_total,parameter\n";
+      << "; top to bottom; the rank correlation again where beyond the sampling noise +-" << CsvNumber(bound)
+      << " (95 %), and where within it\nposition,spearman,sobol_first,sobol_total,parameter,spearman_beyond_noise,"
+         "spearman_within_noise\n";
   for (std::size_t j = 0; j < k; ++j) {
     const std::size_t i = order[j];
+    const bool noise = std::abs(m.spearman[i]) < bound;
     csv << (k - 1 - j) << ',' << CsvNumber(m.spearman[i]) << ',' << CsvNumber(sobol ? m.sobol[i].first : 0.0) << ','
-        << CsvNumber(sobol ? m.sobol[i].total : 0.0) << ',' << CsvField(r.spec.parameters[i].name) << '\n';
+        << CsvNumber(sobol ? m.sobol[i].total : 0.0) << ',' << CsvField(r.spec.parameters[i].name) << ','
+        << CsvNumber(noise ? 0.0 : m.spearman[i]) << ',' << CsvNumber(noise ? m.spearman[i] : 0.0) << '\n';
   }
   p.csv = csv.str();
   p.caption = "What drives the RMS of " + m.output + ": each parameter's Spearman rank correlation with it" +
               std::string(sobol ? ", and its first-order (S) and total (ST) Sobol index of the variance" : "") +
-              "; the strongest on top.";
+              "; the strongest on top. Grey, within the dotted lines at ±" + Sig(bound, 2) +
+              ": a correlation the sampling noise of " + std::to_string(r.samples) +
+              " independent samples reaches (95 %), whose sign says nothing.";
   FigurePanel panel;
   panel.title = Enhanced(m.output + ": drivers of the RMS");
   panel.x.label = sobol ? "rank correlation (blue); Sobol S (orange), ST (grey)" : "rank correlation with the RMS";
@@ -189,7 +197,8 @@ Plot Drivers(const UncertaintyResult& r, const StudyMetric& m, int output) {
     s.bar_height = height;
     return s;
   };
-  panel.series.push_back(bars("spearman", 2, kSampleColour, sobol ? 0.3 : 0.6));
+  panel.series.push_back(bars("spearman", 6, kSampleColour, sobol ? 0.3 : 0.6));
+  panel.series.push_back(bars("spearman_within_noise", 7, "#9e9e9e", sobol ? 0.3 : 0.6));
   if (sobol) {
     FigureSeries total = bars("sobol_total", 4, "#bdbdbd", 0.7);
     FigureSeries first = bars("sobol_first", 3, "#e08214", 0.5);
@@ -210,6 +219,16 @@ Plot Drivers(const UncertaintyResult& r, const StudyMetric& m, int output) {
   zero.colour = "#404040";
   zero.width = 1.0;
   panel.annotations.push_back(zero);
+  for (double x : {-bound, bound}) {
+    FigureAnnotation band;
+    band.kind = AnnotationKind::kVerticalLine;
+    band.x0 = x;
+    band.colour = "#707070";
+    band.dash = "(2,3)";
+    band.width = 1.0;
+    band.behind = true;  // under the bars and their values
+    panel.annotations.push_back(band);
+  }
   p.figure.panels.push_back(panel);
   p.script = EmitFigure(p.figure);
   return p;

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cctype>
+#include <cmath>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -79,6 +80,21 @@ TEST_CASE("the distribution figure: a histogram of fractions that sum to 1, an E
   CHECK(lines[1].colour != d.figure.panels[0].series[0].colour);
   CHECK(lines[1].colour != "#404040");
   CHECK(d.caption.find("nominal design's RMS dotted orange") != std::string::npos);
+}
+
+TEST_CASE("the drivers figure greys a rank correlation within the sampling noise and draws the noise band") {
+  // 10 samples: the band is 1.96 / 3 = 0.653; k at 0.9 is beyond it, m at -0.2 within.
+  const Plot& d = UncertaintyPlots(Study())[1];
+  CHECK(d.name == "z_drivers");
+  const std::vector<double> beyond = Column(d.csv, 0, 5), within = Column(d.csv, 0, 6);
+  REQUIRE(beyond.size() == 2);
+  CHECK(beyond == std::vector<double>{0.9, 0.0});  // the strongest on top: k, then m
+  CHECK(within == std::vector<double>{0.0, -0.2});
+  int band = 0;
+  for (const FigureAnnotation& a : d.figure.panels[0].annotations)
+    if (a.kind == AnnotationKind::kVerticalLine && std::abs(std::abs(a.x0) - 1.959963984540054 / 3.0) < 1e-12) ++band;
+  CHECK(band == 2);
+  CHECK(d.caption.find("within the dotted lines at ±0.65") != std::string::npos);
 }
 
 TEST_CASE("the scatter figure draws the two strongest drivers, each sample a row, and names both lines") {
