@@ -111,6 +111,7 @@ int CompareCommand::Run() const {
     Comparison cmp;
     std::vector<report::Plot> plots;
     std::string dir;
+    std::vector<report::StudySource> sources;  // A's and B's files as given
   };
   std::vector<Pending> reports;
   const report::ComparisonInput& la = loaded.front();
@@ -124,12 +125,13 @@ int CompareCommand::Run() const {
     if (s.plots && la.result && lb.result)
       r.plots = report::ComparisonPlots(a.label, *la.result, b.label, *lb.result);
     r.dir = s.out_dir.empty() ? report::DefaultComparisonDirectory(a.label, b.label) : s.out_dir;
+    r.sources = {{"A", s.inputs.front()}, {"B", s.inputs[i]}};
     reports.push_back(std::move(r));
   }
   ReplaceOptions replace;
   replace.force = s.force;
   for (const Pending& r : reports) {
-    report::WriteComparisonDirectory(r.cmp, r.plots, r.dir, replace, s.threads);
+    report::WriteComparisonDirectory(r.cmp, r.plots, r.dir, replace, s.threads, r.sources);
     if (s.quiet) continue;
     std::printf("%s (A) vs %s (B):\n", r.cmp.label_a.c_str(), r.cmp.label_b.c_str());
     for (const ComparedFigure& f : r.cmp.figures)

@@ -152,7 +152,8 @@ int MergeCommand::Run() const {
         results.push_back(std::move(r));
       }
     }
-    WriteSweepStudy(sweep.name, sweep.spec, results, s.out_dir, s.force, s.plots, s.quiet, s.threads);
+    WriteSweepStudy(sweep.name, sweep.spec, results, headers[0].budget, s.out_dir, s.force, s.plots, s.quiet,
+                    s.threads);
     return 0;
   }
 
@@ -182,7 +183,7 @@ int MergeCommand::Run() const {
     for (std::size_t e = part.begin; e < part.end; ++e) values[e] = part.values[e - part.begin];
   }
   const UncertaintyResult result = SummariseUncertainty(budget.spec, options, budget.variant, values);
-  WriteUncertaintyStudy(budget.name, result, s.out_dir, s.force, s.plots, s.quiet, s.threads);
+  WriteUncertaintyStudy(budget.name, result, first.budget, s.out_dir, s.force, s.plots, s.quiet, s.threads);
   return 0;
 }
 

@@ -129,7 +129,7 @@ int SensitivityCommand::Run() const {
   const std::string dir = s.out_dir.empty() ? report::DefaultSensitivityDirectory(budget.name) : s.out_dir;
   ReplaceOptions replace;
   replace.force = s.force;
-  report::WriteSensitivityDirectory(setting, study, plots, dir, replace, s.threads);
+  report::WriteSensitivityDirectory(setting, study, plots, dir, replace, s.threads, {{"budget", s.budget_file}});
   if (!s.quiet) {
     for (const auto& [key, values] : setting.parameters)
       std::printf("nominal %s = %s\n", setting.Label(key).c_str(), report::NominalText(values).c_str());

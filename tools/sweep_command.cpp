@@ -70,12 +70,13 @@ std::string SweepDigest(const std::string& budget_text) {
 }
 
 void WriteSweepStudy(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
-                     const std::string& out_dir, bool force, bool plots, bool quiet, int threads) {
+                     const std::string& budget_file, const std::string& out_dir, bool force, bool plots, bool quiet,
+                     int threads) {
   const std::string dir = out_dir.empty() ? report::DefaultSweepDirectory(name) : out_dir;
   ReplaceOptions replace;
   replace.force = force;
   const std::vector<report::Plot> drawn = plots ? report::SweepPlots(spec, results) : std::vector<report::Plot>{};
-  report::WriteSweepDirectory(name, spec, results, drawn, dir, replace, threads);
+  report::WriteSweepDirectory(name, spec, results, drawn, dir, replace, threads, {{"budget", budget_file}});
   if (!quiet) {
     std::printf("sweep of %s: %zu variants\n", name.c_str(), results.size());
     PrintTopThree(spec, results);
@@ -125,7 +126,7 @@ int SweepCommand::Run() const {
     if (MpiSession::Rank() != 0) return 0;
     std::vector<BudgetResult> results;
     for (const std::string& t : texts) results.push_back(SweepResultFromText(t));
-    WriteSweepStudy(sweep.name, sweep.spec, results, s.out_dir, s.force, s.plots, s.quiet, s.threads);
+    WriteSweepStudy(sweep.name, sweep.spec, results, s.budget_file, s.out_dir, s.force, s.plots, s.quiet, s.threads);
     return 0;
   }
 #endif
@@ -149,7 +150,7 @@ int SweepCommand::Run() const {
   }
   const auto results = EvaluateSweep(sweep.spec, sweep.variant, s.threads, report_progress);
   if (progress) std::fprintf(stderr, "\n");
-  WriteSweepStudy(sweep.name, sweep.spec, results, s.out_dir, s.force, s.plots, s.quiet, s.threads);
+  WriteSweepStudy(sweep.name, sweep.spec, results, s.budget_file, s.out_dir, s.force, s.plots, s.quiet, s.threads);
   return 0;
 }
 

@@ -22,8 +22,10 @@ std::string SweepDigest(const std::string& budget_text);
 
 // Writes the sweep's directory atomically (out_dir "": reports/<name>_sweep)
 // and, unless quiet, prints the best variants and where the report is.
+// `budget_file`: the budget as given, named in the documents with its digest.
 void WriteSweepStudy(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
-                     const std::string& out_dir, bool force, bool plots, bool quiet, int threads);
+                     const std::string& budget_file, const std::string& out_dir, bool force, bool plots, bool quiet,
+                     int threads);
 
 // The command's options are members, bound by Register(); the object must
 // outlive the parse of the app it is registered on.

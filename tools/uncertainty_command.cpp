@@ -87,13 +87,14 @@ std::string UncertaintyDigest(const std::string& budget_text, const UncertaintyO
                         ", seed " + std::to_string(options.seed) + ", samples " + std::to_string(options.samples) + "\n");
 }
 
-void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result, const std::string& out_dir,
-                           bool force, bool plots, bool quiet, int threads) {
+void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result,
+                           const std::string& budget_file, const std::string& out_dir, bool force, bool plots, bool quiet,
+                           int threads) {
   const std::string dir = out_dir.empty() ? report::DefaultUncertaintyDirectory(budget_name) : out_dir;
   ReplaceOptions replace;
   replace.force = force;
   const std::vector<report::Plot> drawn = plots ? report::UncertaintyPlots(result) : std::vector<report::Plot>{};
-  report::WriteUncertaintyDirectory(budget_name, result, drawn, dir, replace, threads);
+  report::WriteUncertaintyDirectory(budget_name, result, drawn, dir, replace, threads, {{"budget", budget_file}});
   if (!quiet) {
     Print(budget_name, result);
     std::printf("report: %s/uncertainty.html\n", dir.c_str());
@@ -156,7 +157,7 @@ int UncertaintyCommand::Run() const {
     std::vector<std::vector<double>> values;
     for (const std::string& b : bytes) values.push_back(DoublesFromBytes(b));
     const UncertaintyResult result = SummariseUncertainty(budget.spec, options, budget.variant, values);
-    WriteUncertaintyStudy(budget.name, result, s.out_dir, s.force, s.plots, s.quiet, s.threads);
+    WriteUncertaintyStudy(budget.name, result, s.budget_file, s.out_dir, s.force, s.plots, s.quiet, s.threads);
     return 0;
   }
 #endif
@@ -178,7 +179,7 @@ int UncertaintyCommand::Run() const {
   }
   const UncertaintyResult result = RunUncertainty(budget.spec, options, budget.variant, report_progress);
   if (progress) std::fprintf(stderr, "\n");
-  WriteUncertaintyStudy(budget.name, result, s.out_dir, s.force, s.plots, s.quiet, s.threads);
+  WriteUncertaintyStudy(budget.name, result, s.budget_file, s.out_dir, s.force, s.plots, s.quiet, s.threads);
   return 0;
 }
 

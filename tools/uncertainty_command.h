@@ -26,8 +26,10 @@ std::string UncertaintyDigest(const std::string& budget_text, const UncertaintyO
 // Writes the study's directory atomically (out_dir "":
 // reports/<name>_uncertainty) and, unless quiet, prints the study's summary
 // and where its report is (deb uncertainty, deb merge).
-void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result, const std::string& out_dir,
-                           bool force, bool plots, bool quiet, int threads);
+// `budget_file`: the budget as given, named in the documents with its digest.
+void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResult& result,
+                           const std::string& budget_file, const std::string& out_dir, bool force, bool plots, bool quiet,
+                           int threads);
 
 class UncertaintyCommand {
  public:

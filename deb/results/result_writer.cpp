@@ -361,6 +361,7 @@ std::string SummaryJson(const BudgetResult& result, const RunInfo& info) {
   j["budget"] = result.outline.name;
   j["description"] = result.outline.description;
   j["budget_file"] = info.budget_file;
+  j["budget_sha256"] = info.budget_sha256;  // "" when unknown: a budget built in code
   j["deb_version"] = DEB_VERSION;
   j["conventions"] = Conventions();
   j["grid"] = {{"type", ToString(result.outline.grid_kind)},

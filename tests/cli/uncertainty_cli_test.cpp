@@ -55,8 +55,10 @@ TEST_CASE("deb uncertainty: the same seed gives the same files for 1 and 2 threa
   const fs::path dir = deb::test::TempDir("uncertainty_cli_threads");
   const std::string budget = deb::test::ExampleBudget("nizamoglu2015_tolerances.yaml");
   for (const char* j : {"1", "2"})
+    // The documents carry their date: one date for both runs.
     REQUIRE(deb::test::RunDeb("uncertainty " + budget + " -n 60 --method sobol -q --no-plots -j " + j + " --out \"" +
-                              (dir / j).string() + "\"")
+                                  (dir / j).string() + "\"",
+                              "SOURCE_DATE_EPOCH=1700000000")
                 .exit_code == 0);
   for (const char* f : {"summary.json", "samples.csv", "result.h5", "uncertainty.md", "uncertainty.html"})
     CHECK_MESSAGE(deb::test::ReadAll(dir / "1" / f) == deb::test::ReadAll(dir / "2" / f), f);

@@ -511,11 +511,14 @@ std::string ToHtml(const Table& table) {
 }
 
 std::string ToMarkdown(const Table& t) {
+  // A table without a header (a study's sources) gets blank header cells:
+  // Markdown has no table without one.
+  const std::size_t columns = t.header.empty() ? t.numeric.size() : t.header.size();
   std::string s = "| ";
-  for (const auto& h : t.header) s += MarkdownEscape(h) + " | ";
+  for (std::size_t c = 0; c < columns; ++c) s += (t.header.empty() ? "" : MarkdownEscape(t.header[c])) + " | ";
   s.pop_back();
   s += "\n|";
-  for (std::size_t c = 0; c < t.header.size(); ++c) s += t.numeric[c] ? " ---: |" : " --- |";
+  for (std::size_t c = 0; c < columns; ++c) s += t.numeric[c] ? " ---: |" : " --- |";
   s += "\n";
   for (std::size_t r = 0; r < t.rows.size(); ++r) {
     s += "| ";

@@ -43,7 +43,7 @@ std::string DefaultComparisonDirectory(const std::string& label_a, const std::st
 }
 
 void WriteComparisonDirectory(const Comparison& cmp, const std::vector<Plot>& plots, const std::string& out_dir,
-                              const ReplaceOptions& replace, int threads) {
+                              const ReplaceOptions& replace, int threads, const std::vector<StudySource>& sources) {
   ReplaceDirectory(
       out_dir,
       [&](const std::string& dir) {
@@ -52,7 +52,8 @@ void WriteComparisonDirectory(const Comparison& cmp, const std::vector<Plot>& pl
           fs::create_directories(plots_dir);
           WritePlotsAsPng(plots, plots_dir, threads);
         }
-        const StudyDocument doc = ComparisonDocument(cmp, plots);
+        StudyDocument doc = ComparisonDocument(cmp, plots);
+        if (!sources.empty()) StampSources(&doc, sources);
         WriteStudyPdf(doc, plots_dir, (fs::path(dir) / "compare.pdf").string(), threads);
         const std::vector<std::pair<std::string, std::string>> files = {{"compare.json", ComparisonJson(cmp)},
                                                                         {"compare.md", StudyMarkdown(doc)},

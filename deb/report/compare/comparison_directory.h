@@ -15,6 +15,7 @@
 #include "deb/budget/comparison.h"
 #include "deb/budget/result.h"
 #include "deb/core/output_dir.h"
+#include "deb/report/compare/study_document.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {
@@ -45,7 +46,8 @@ std::string DefaultComparisonDirectory(const std::string& label_a, const std::st
 // time; none drawn when `plots` is empty).
 // @throws WriteError as ReplaceDirectory; InputError if gnuplot is missing
 //         or fails.
+// `sources`: what A and B were (StampSources).
 void WriteComparisonDirectory(const Comparison& comparison, const std::vector<Plot>& plots, const std::string& out_dir,
-                              const ReplaceOptions& replace, int threads);
+                              const ReplaceOptions& replace, int threads, const std::vector<StudySource>& sources = {});
 
 }  // namespace deb::report

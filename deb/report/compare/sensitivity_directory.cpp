@@ -101,12 +101,13 @@ std::string DefaultSensitivityDirectory(const std::string& budget_name) {
 
 void WriteSensitivityDirectory(const SensitivitySetting& setting, const SensitivityStudy& study,
                                const std::vector<Plot>& plots, const std::string& out_dir,
-                               const ReplaceOptions& replace, int threads) {
+                               const ReplaceOptions& replace, int threads, const std::vector<StudySource>& sources) {
   ReplaceDirectory(
       out_dir,
       [&](const std::string& tmp) {
         WriteTextFile((fs::path(tmp) / "sensitivity.csv").string(), SensitivityCsv(study.sensitivities));
-        const StudyDocument doc = SensitivityDocument(setting, study, plots);
+        StudyDocument doc = SensitivityDocument(setting, study, plots);
+        if (!sources.empty()) StampSources(&doc, sources);
         WriteTextFile((fs::path(tmp) / "sensitivity.md").string(), StudyMarkdown(doc));
         WriteTextFile((fs::path(tmp) / "sensitivity.html").string(), StudyHtml(doc));
         const std::string plots_dir = (fs::path(tmp) / "plots").string();

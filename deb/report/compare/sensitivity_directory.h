@@ -57,8 +57,10 @@ std::string DefaultSensitivityDirectory(const std::string& budget_name);
 // time (none when `plots` is empty).
 // @throws WriteError as ReplaceDirectory; InputError if gnuplot is missing
 //         or fails.
+// `sources`: the budget file (StampSources).
 void WriteSensitivityDirectory(const SensitivitySetting& setting, const SensitivityStudy& study,
                                const std::vector<Plot>& plots, const std::string& out_dir,
-                               const ReplaceOptions& replace, int threads);
+                               const ReplaceOptions& replace, int threads,
+                               const std::vector<StudySource>& sources = {});
 
 }  // namespace deb::report

@@ -5,9 +5,13 @@
 #include <sstream>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "deb/core/document_date.h"
 #include "deb/core/error.h"
+#include "deb/core/input_file.h"
 #include "deb/core/parallel.h"
+#include "deb/report/budget/file_digest.h"
 #include "deb/report/budget/report_pdf.h"
 #include "deb/report/figure/gnuplot_runner.h"
 
@@ -24,9 +28,36 @@ constexpr const char* kStyle =
 
 }  // namespace
 
+void StampSources(StudyDocument* doc, const std::vector<StudySource>& sources) {
+  Table& t = doc->sources;
+  t = Table();
+  t.numeric = {false, false};
+  std::string first;
+  for (const StudySource& s : sources) {
+    std::string digest = "–";
+    std::error_code ec;
+    if (fs::is_regular_file(s.path, ec)) {
+      digest = FileSha256(s.path);
+    } else if (const fs::path summary = fs::path(s.path) / "summary.json"; fs::is_regular_file(summary, ec)) {
+      try {
+        const nlohmann::json j = nlohmann::json::parse(ReadInputFile(summary.string(), "summary", 1 << 26));
+        if (j.contains("budget_sha256") && j["budget_sha256"].is_string()) digest = j["budget_sha256"].get<std::string>();
+      } catch (const std::exception&) {
+        // Not a summary this deb wrote: the digest stays unknown.
+      }
+    }
+    if (first.empty() && digest != "–") first = digest;
+    t.rows.push_back({s.role, s.path});
+    t.rows.push_back({"", "SHA-256 " + digest});
+  }
+  t.rows.push_back({"date", UtcText(DocumentTime(), "%Y-%m-%d %H:%M:%S UTC")});
+  if (!first.empty()) doc->footer += " · SHA-256 " + first.substr(0, 12);
+}
+
 std::string StudyMarkdown(const StudyDocument& doc) {
   std::ostringstream md;
   md << "# " << doc.title << "\n\n" << doc.lead << "\n\n";
+  if (!doc.sources.rows.empty()) md << ToMarkdown(doc.sources) << "\n";
   for (const StudySection& s : doc.sections) {
     if (!s.heading.empty()) md << "## " << s.heading << "\n\n";
     if (!s.text.empty()) md << s.text << "\n\n";
@@ -44,6 +75,7 @@ std::string StudyHtml(const StudyDocument& doc) {
   h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << HtmlEscape(doc.title)
     << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n<h1>" << HtmlEscape(doc.title) << "</h1>\n<p>"
     << HtmlEscape(doc.lead) << "</p>\n";
+  if (!doc.sources.rows.empty()) h << ToHtml(doc.sources);
   for (const StudySection& s : doc.sections) {
     if (!s.heading.empty()) h << "<h2>" << HtmlEscape(s.heading) << "</h2>\n";
     if (!s.text.empty()) h << "<p>" << HtmlEscape(s.text) << "</p>\n";
@@ -70,6 +102,7 @@ PdfDocumentSpec StudyPdfSpec(const StudyDocument& doc, const std::string& figure
   std::vector<PdfBlock>& b = spec.blocks;
   b.push_back(Heading(0, doc.title));
   b.push_back(Paragraph(doc.lead));
+  if (!doc.sources.rows.empty()) b.push_back(TableBlock("", TypesetTable(doc.sources)));
   for (const StudySection& s : doc.sections) {
     if (s.new_page) b.push_back(PageBreak(kStudySectionRoomPt));
     if (!s.heading.empty()) b.push_back(Heading(1, s.heading));

@@ -35,8 +35,21 @@ struct StudyDocument {
   std::string title;   // the page's and the PDF's title
   std::string lead;    // the paragraph under the title
   std::string footer;  // the PDF's page footer, left of "page n/N"
+  Table sources;       // under the lead, where rows: what the study was made from (StampSources)
   std::vector<StudySection> sections;
 };
+
+// What a study was made from: a budget file or result directory as given
+// to the command, under a role ("budget", "A", "B").
+struct StudySource {
+  std::string role, path;
+};
+// Sets doc's sources: each source with the SHA-256 of its file (of a result
+// directory's budget as its summary.json records it; "–" where unknown), and
+// the date the document is written (DocumentTime); the footer gains the
+// first file's digest, as a run report's does: the same study, the same
+// name on every page.
+void StampSources(StudyDocument* doc, const std::vector<StudySource>& sources);
 
 std::string StudyMarkdown(const StudyDocument& doc);
 std::string StudyHtml(const StudyDocument& doc);

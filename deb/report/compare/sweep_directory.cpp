@@ -15,13 +15,14 @@ std::string DefaultSweepDirectory(const std::string& budget_name) {
 
 void WriteSweepDirectory(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
                          const std::vector<Plot>& plots, const std::string& out_dir, const ReplaceOptions& replace,
-                         int threads) {
+                         int threads, const std::vector<StudySource>& sources) {
   const std::string csv = SweepCsv(spec, results);
   ReplaceDirectory(
       out_dir,
       [&](const std::string& tmp) {
         WriteTextFile((fs::path(tmp) / "sweep.csv").string(), csv);
-        const StudyDocument doc = SweepDocument(name, spec, results, plots);
+        StudyDocument doc = SweepDocument(name, spec, results, plots);
+        if (!sources.empty()) StampSources(&doc, sources);
         WriteTextFile((fs::path(tmp) / "sweep.md").string(), StudyMarkdown(doc));
         WriteTextFile((fs::path(tmp) / "sweep.html").string(), StudyHtml(doc));
         const std::string plots_dir = (fs::path(tmp) / "plots").string();

@@ -12,6 +12,7 @@
 #include "deb/budget/result.h"
 #include "deb/budget/sweep.h"
 #include "deb/core/output_dir.h"
+#include "deb/report/compare/study_document.h"
 #include "deb/report/figure/plot.h"
 
 namespace deb::report {
@@ -24,8 +25,9 @@ std::string DefaultSweepDirectory(const std::string& budget_name);
 // is empty).
 // @throws WriteError as ReplaceDirectory; InputError if gnuplot is missing
 //         or fails.
+// `sources`: the budget file (StampSources).
 void WriteSweepDirectory(const std::string& name, const SweepSpec& spec, const std::vector<BudgetResult>& results,
                          const std::vector<Plot>& plots, const std::string& out_dir, const ReplaceOptions& replace,
-                         int threads);
+                         int threads, const std::vector<StudySource>& sources = {});
 
 }  // namespace deb::report

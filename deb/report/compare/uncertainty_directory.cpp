@@ -16,7 +16,7 @@ std::string DefaultUncertaintyDirectory(const std::string& budget_name) {
 
 void WriteUncertaintyDirectory(const std::string& budget_name, const UncertaintyResult& result,
                                const std::vector<Plot>& plots, const std::string& out_dir,
-                               const ReplaceOptions& replace, int threads) {
+                               const ReplaceOptions& replace, int threads, const std::vector<StudySource>& sources) {
   const std::string json = UncertaintySummaryJson(budget_name, result);
   ReplaceDirectory(
       out_dir,
@@ -25,7 +25,8 @@ void WriteUncertaintyDirectory(const std::string& budget_name, const Uncertainty
         WriteTextFileFrom((fs::path(tmp) / "samples.csv").string(),
                           [&](const TextSink& put) { UncertaintySamplesCsv(result, put); });
         WriteUncertaintyStore((fs::path(tmp) / "result.h5").string(), budget_name, result);
-        const StudyDocument doc = UncertaintyDocument(budget_name, result, plots);
+        StudyDocument doc = UncertaintyDocument(budget_name, result, plots);
+        if (!sources.empty()) StampSources(&doc, sources);
         WriteTextFile((fs::path(tmp) / "uncertainty.md").string(), StudyMarkdown(doc));
         WriteTextFile((fs::path(tmp) / "uncertainty.html").string(), StudyHtml(doc));
         const std::string plots_dir = (fs::path(tmp) / "plots").string();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "deb/core/output_dir.h"
+#include "deb/report/compare/study_document.h"
 #include "deb/report/figure/plot.h"
 #include "deb/uncertainty/uncertainty_study.h"
 
@@ -18,8 +19,10 @@ namespace deb::report {
 // reports/<budget name>_uncertainty
 std::string DefaultUncertaintyDirectory(const std::string& budget_name);
 
+// `sources`: the budget file (StampSources).
 void WriteUncertaintyDirectory(const std::string& budget_name, const UncertaintyResult& result,
                                const std::vector<Plot>& plots, const std::string& out_dir,
-                               const ReplaceOptions& replace, int threads);
+                               const ReplaceOptions& replace, int threads,
+                               const std::vector<StudySource>& sources = {});
 
 }  // namespace deb::report
