@@ -67,7 +67,11 @@ StudyDocument SensitivityDocument(const SensitivitySetting& setting, const Sensi
     std::string method = "–";
     for (const SensitivityMethod& m : study.methods)
       if (m.parameter == key) method = m.note;
-    nominal_table.rows.push_back({setting.Label(key), key, NominalText(values), method});
+    // A budget parameter's value is in the unit it is written in: say which.
+    std::string unit;
+    for (const ParameterOutline& p : nominal.outline.parameters)
+      if (p.name == key && !p.unit.empty()) unit = " " + UnitText(p.unit);
+    nominal_table.rows.push_back({setting.Label(key), key, NominalText(values) + unit, method});
   }
   d.sections.push_back({"", "", {nominal_table}, {}, {}, false});
   for (std::size_t o = 0; o < nominal.outputs.size(); ++o) {
