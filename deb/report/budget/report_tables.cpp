@@ -161,15 +161,24 @@ std::string GuidanceText(const OutputResult& o, const FrequencyGrid& grid) {
 Table ModeTable(const OutputResult& o) {
   Table t;
   t.title = "Modes carrying the variance of " + o.name +
-            " (each mode's cross-spectrum with the output; the shares of all modes add up to 100 %)";
+            " (each mode's cross-spectrum with the output; with the other modes' row, a contributor's shares add "
+            "up to 100 %)";
   t.header = {"contributor", "mode", "f_n [Hz]", "zeta", "share", "of"};
   t.numeric = {false, true, true, true, true, false};
-  for (const ContributorResult& c : o.contributors)
-    for (const ModeShare& m : c.top_modes)
+  for (const ContributorResult& c : o.contributors) {
+    const std::string of = c.top_modes_of == ModeSplit::kExactVariance ? "exact variance" : "grid variance";
+    double listed = 0.0;
+    for (const ModeShare& m : c.top_modes) {
+      listed += m.share;
       t.rows.push_back({c.name, std::to_string(m.mode), Sig(m.f_hz, 4), Sig(m.zeta, 2),
                         // a mode the output does not see, computed as rounding (1e-36): 0
-                        RoundingZero(std::abs(m.share), 1.0) ? std::string("0 %") : Share(m.share, 1.0),
-                        c.top_modes_of == ModeSplit::kExactVariance ? "exact variance" : "grid variance"});
+                        RoundingZero(std::abs(m.share), 1.0) ? std::string("0 %") : Share(m.share, 1.0), of});
+    }
+    // The modes beyond the listed ones (summary.json's top_modes are the
+    // ten largest): what they hold together, where it shows.
+    if (!c.top_modes.empty() && std::abs(1.0 - listed) >= 5e-5)
+      t.rows.push_back({c.name, "the others", "", "", Share(1.0 - listed, 1.0), of});
+  }
   return t;
 }
 

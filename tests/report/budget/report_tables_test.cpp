@@ -330,12 +330,18 @@ TEST_CASE("a mode the output does not see, computed as rounding, has a share of 
   OutputResult o = test::FlatOutput({4.0}, std::nullopt, "um");
   o.contributors[0].top_modes = {{1, 12.0, 0.02, 3.6, 0.9}, {2, 40.0, 0.02, 3.5e-36, 8.73e-36}, {3, 80.0, 0.02, -7e-6, -1.76e-6}};
   const Table t = ModeTable(o);
-  REQUIRE(t.rows.size() == 3);
+  REQUIRE(t.rows.size() == 4);
   CHECK(t.rows[0][4] == "90.0 %");
   CHECK(t.rows[1][4] == "0 %");
   // A mode that cancels others a little: data, not rounding, but not in
   // e-notation either (metrology_frame read "-1.76e-04 %").
   CHECK(t.rows[2][4] == "> −0.01 %");
+  // The modes not listed hold the rest: 1 - 0.9 + 1.76e-6, so that the shares add up to 100 %.
+  CHECK(t.rows[3][1] == "the others");
+  CHECK(t.rows[3][4] == "10.0 %");
+  // Listed modes that hold it all get no such row.
+  o.contributors[0].top_modes = {{1, 12.0, 0.02, 3.0, 0.75}, {2, 40.0, 0.02, 1.0, 0.25}};
+  CHECK(ModeTable(o).rows.size() == 2);
 }
 
 }  // namespace deb::report
