@@ -100,6 +100,14 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
   // nizamoglu2015 sweep's K_v = 0 (80-110 um/s) squeezed the 10-20 that
   // matter into the bottom seventh of every panel.
   const bool log_rms = lowest < HUGE_VAL && top / lowest > 5.0;
+  // On a log axis, down to the smallest contributor too (the floor fell off
+  // nizamoglu2015_sweep's z_position from K_v = 55 on, the axis ending at
+  // its lowest total), but over three decades at most.
+  double bottom = lowest;
+  for (const BudgetResult& r : results)
+    for (const ContributorResult& c : r.outputs[o].contributors)
+      if (c.variance > 0.0 && !RoundingZero(c.variance, highest * highest)) bottom = std::min(bottom, std::sqrt(c.variance));
+  bottom = std::max(bottom, top * 1e-3);
   if (log_rms) p.caption += " RMS on a log axis: the totals span more than a factor 5.";
   if (rounding)
     p.caption += " A variant computed as rounding (≈ 0: the model leaves the output unexcited there) runs off the "
@@ -143,7 +151,7 @@ Plot SmallMultiples(const SweepSpec& spec, const std::vector<std::vector<double>
     // One RMS axis for every panel.
     if (log_rms) {
       panel.y.scale = AxisScale::kLog;
-      panel.y.min = std::pow(10.0, std::floor(std::log10(lowest / 2.0)));
+      panel.y.min = std::pow(10.0, std::floor(std::log10(bottom / 2.0)));
       panel.y.max = top * 1.5;
     } else {
       panel.y.min = 0.0;
@@ -340,8 +348,12 @@ Plot RequirementMap(const SweepSpec& spec, const std::vector<std::vector<double>
     FigureSeries contour = layer("requirement", SeriesKind::kSegments, 2);
     contour.dx_column = 4;
     contour.dy_column = 5;
-    contour.key = "requirement: " + Short(*out0.rms_max) +
-                  (segments ? "" : lo > *out0.rms_max ? " (every variant fails)" : " (every variant passes)");
+    // Short: the key is one row below the map, and gnuplot leaves out an
+    // entry that runs past the canvas (a long one took 'variants' with it).
+    contour.key = "requirement: " + Short(*out0.rms_max);
+    if (segments == 0)
+      p.caption += lo > *out0.rms_max ? " Every variant fails the requirement (" + Short(*out0.rms_max) + ")."
+                                      : " Every variant meets the requirement (" + Short(*out0.rms_max) + ").";
     contour.colour = kRequirementColour;
     contour.width = 3.0;
     if (segments == 0) {  // no piece to draw: the key names the requirement by a sample of its own

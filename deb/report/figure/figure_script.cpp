@@ -298,7 +298,15 @@ void Key(std::ostringstream& s, const FigurePanel& p, bool multiplot) {
     case KeyPlacement::kAbove: s << "set key outside top center horizontal Left reverse"; break;
     case KeyPlacement::kBesideGrid: s << "set key at screen 0.85,0.9 left top Left reverse"; break;
     case KeyPlacement::kBelowMap:
+      // No title, not even an empty one: its blank line took the key below
+      // the canvas' edge on report.pdf's 420 px canvas, and gnuplot then
+      // left the whole key out.
       s << "set bmargin 6\nset key at screen 0.45,0.06 center center horizontal maxrows 1 Left reverse";
+      titled = p.key.title.empty();
+      if (!titled) {
+        s << " title " << Label(p.key.title);
+        titled = true;
+      }
       break;
   }
   if (p.key.placement != KeyPlacement::kNone)

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <string>
 
@@ -10,6 +11,7 @@
 #include "deb/load/budget_yaml.h"
 #include "deb/report/budget/report_pdf.h"
 #include "deb/report/figure/figure_script.h"
+#include "deb/report/figure/gnuplot_runner.h"
 #include "deb/report/figure/plot_style.h"
 #include "tests/support/cli_harness.h"
 
@@ -166,6 +168,30 @@ TEST_CASE("the contour of a plane z = x + y at level 1 runs through the cells it
   CHECK(LevelSegments(x, y, z, 10.0).empty());  // every value below: no contour
 }
 
+TEST_CASE("the map's key below it is drawn in sweep.pdf's figure, not left out for want of room") {
+  // An empty key title took the key below the 420 px canvas' edge, and
+  // gnuplot then drew no key at all.
+  const Budget budget = LoadBudgetFile(test::ExampleBudget());
+  SweepSpec spec;
+  spec.parameters = {{"a", {1, 2}, {}, {}, {}, {}}, {"b", {10, 20}, {}, {}, {}, {}}};
+  const std::vector<Plot> plots = SweepPlots(spec, std::vector<BudgetResult>(4, Evaluate(budget)));
+  REQUIRE(plots.size() >= 2);
+  const Plot& map = plots[1];
+  REQUIRE(map.name.find("_map") != std::string::npos);
+  namespace fs = std::filesystem;
+  const fs::path dir = test::TempDir("sweep_map_key");
+  fs::create_directories(dir / kPdfFigureDir);
+  test::WriteFile(dir / (map.name + ".csv"), map.csv);
+  test::WriteFile(dir / (map.name + ".gp"), map.script);
+  RunGnuplot(FindGnuplot(""), dir.string(), PdfFigureCommands(map), map.name);
+  const std::string svg = test::ReadAll(dir / kPdfFigureDir / (map.name + ".svg"));
+  CHECK(svg.find("variants") != std::string::npos);
+  CHECK(svg.find("best: ") != std::string::npos);
+  CHECK(svg.find("requirement: ") != std::string::npos);
+  // Where every variant meets the requirement, the caption says so (the key has no room).
+  CHECK(map.caption.find("Every variant meets the requirement") != std::string::npos);
+}
+
 TEST_CASE("the map of a two-parameter grid holds the grid by scan lines, the best variant and the requirement") {
   const Budget budget = LoadBudgetFile(test::ExampleBudget());
   const BudgetResult base = Evaluate(budget);
@@ -307,18 +333,25 @@ TEST_CASE("small multiples put totals more than 5x apart on a log RMS axis") {
   const auto linear = SweepPlots(spec, results);
   CHECK(linear[0].figure.panels[0].y.scale == AxisScale::kLinear);
   CHECK(*linear[0].figure.panels[0].y.min == 0.0);
-  // One variant 8x the others: a log axis from the decade below half the lowest.
+  // One variant 8x the others: a log axis from the decade below half the
+  // lowest total or contributor, down to 10^-3 of the top at most.
   results[0].outputs[0].variance *= 64.0;
+  double smallest = rms;
+  for (const ContributorResult& c : results[1].outputs[0].contributors)
+    if (c.variance > 0.0) smallest = std::min(smallest, std::sqrt(c.variance));
+  const double top = std::max(results[0].outputs[0].rms_max.value_or(0.0), 8.0 * rms);
+  const double bottom = std::pow(10.0, std::floor(std::log10(std::max(smallest, 1e-3 * top) / 2.0)));
   const auto spread = SweepPlots(spec, results);
   const FigurePanel& panel = spread[0].figure.panels[0];
   CHECK(panel.y.scale == AxisScale::kLog);
-  CHECK(*panel.y.min == doctest::Approx(std::pow(10.0, std::floor(std::log10(rms / 2.0)))));
+  CHECK(*panel.y.min == doctest::Approx(bottom));
+  CHECK(*panel.y.min <= smallest);  // every contributor shows
   CHECK(*panel.y.max >= 8.0 * rms);
   CHECK(spread[0].caption.find("log axis") != std::string::npos);
   // A variant computed as rounding (4e-11 of 82 in nizamoglu2015_sweep's beta_velocity) does not set the axis.
   results[1].outputs[0].variance = 1e-26 * results[0].outputs[0].variance;
   const auto rounded = SweepPlots(spec, results);
-  CHECK(*rounded[0].figure.panels[0].y.min == doctest::Approx(std::pow(10.0, std::floor(std::log10(rms / 2.0)))));
+  CHECK(*rounded[0].figure.panels[0].y.min == doctest::Approx(bottom));
   CHECK(rounded[0].caption.find("computed as rounding") != std::string::npos);
 }
 
