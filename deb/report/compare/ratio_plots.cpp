@@ -73,14 +73,20 @@ FigurePanel RatioPanel(const OutputResult& oa, const std::string& label_a, const
     s.y_columns = {i + 2};
     s.key = Enhanced(curves[i].name) + " " + (std::isfinite(curves[i].rms_ratio) ? SigLabel(curves[i].rms_ratio, 4) : "–");
     s.colour = total ? kTotalColour : ContributorStyle(curves[i].style).colour;
-    s.width = total ? 2.5 : 1.5;
+    // As a run's PSD: contributors wide, the total thin over them, so that a
+    // contributor that is all of the total (h210's sensor_noise) shows on
+    // both sides of it; the line B = A thin and behind them all (it hid
+    // the total at 1).
+    s.width = total ? 1.0 : 2.5;
     panel.series.push_back(std::move(s));
   }
   FigureAnnotation same;
   same.kind = AnnotationKind::kHorizontalLine;
   same.y0 = 1.0;
-  same.colour = "#505050";
+  same.colour = "#808080";
   same.dash = "(6,4)";
+  same.width = 1.0;
+  same.behind = true;
   same.key = "B = A";
   panel.annotations.push_back(same);
   return panel;

@@ -76,6 +76,13 @@ TEST_CASE("a ratio plot gives B / A per shared contributor and in total; four ti
   REQUIRE(scaled);
   CHECK(scaled->key.find(" 2.000") != std::string::npos);
   CHECK(p.figure.panels[0].y.scale == AxisScale::kLog);
+  // The total thin over the contributors (a contributor that is all of it
+  // shows on both sides), the line B = A behind them all.
+  const FigureSeries* total = FindSeries(p.figure, "total");
+  REQUIRE(total);
+  CHECK(total->width * 2.0 <= scaled->width);
+  REQUIRE(p.figure.panels[0].annotations.size() == 1);
+  CHECK(p.figure.panels[0].annotations[0].behind);
   // A ratio of 1 everywhere is drawn on a linear axis around 1.
   CHECK(RatioPlots("a", a, "a", a)[0].figure.panels[0].y.scale == AxisScale::kLinear);
 }
