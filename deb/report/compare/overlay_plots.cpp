@@ -163,13 +163,16 @@ Plot Overlay(const std::string& label_a, const BudgetResult& a, const OutputResu
       // A wide and pale under B, dashed in full colour: where the two
       // coincide, B's dashes lie on A's band instead of vanishing in it.
       s.colour = block == 0 ? Tint(ContributorStyle(style).colour, kPaleShare) : ContributorStyle(style).colour;
-      s.width = block == 0 ? 4.0 : 1.5;
+      s.width = block == 0 ? 5.5 : 2.5;
       panel.series.push_back(std::move(s));
     }
     FigureSeries t = curve("total", o.contributors.size() + 2);
     t.key = side + ": total " + SigLabel(std::sqrt(o.variance), 4);
     t.colour = block == 0 ? Tint(kTotalColour, kPaleShare) : kTotalColour;
-    t.width = block == 0 ? 5.0 : 2.0;
+    // Each total thinner than its contributors, as in a run's PSD: a
+    // contributor that is all of it (h210's sensor_noise) shows on both
+    // sides instead of vanishing under it.
+    t.width = block == 0 ? 2.5 : 1.0;
     panel.series.push_back(std::move(t));
   }
   if (cps && req) {

@@ -74,6 +74,9 @@ TEST_CASE("overlay plots give PSD and CPS per shared output, A and B as two data
   REQUIRE(floor_a);
   CHECK(floor_a->colour == Tint(ContributorStyle(0).colour, 0.55));
   CHECK(floor_a->width > 2.0 * floor_b->width);
+  // Each side's total thinner than its contributors: one that is all of the total shows beside it.
+  CHECK(total_a->width < floor_a->width);
+  CHECK(total_b->width < floor_b->width);
   CHECK(&panel.series.back() == total_b);  // B drawn after A
   // The frequency axis clipped to the run's display range.
   REQUIRE(panel.x.min);
