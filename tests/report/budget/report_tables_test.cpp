@@ -348,6 +348,39 @@ TEST_CASE("a mode the output does not see, computed as rounding, has a share of 
 
 namespace deb::report {
 
+TEST_CASE("the measurement table's rows add up: the covered range outside the listed bands gets a row of its own") {
+  // Bands 0.1-1, 1-10, 10-100 Hz; measured over 0.2-50 Hz: only 1-10 Hz is
+  // covered whole; the rest, 0.2-1 and 10-50 Hz, is the covered row less it.
+  OutputResult o = test::FlatOutput({4.0}, std::nullopt, "nm");
+  o.bands.resize(3);
+  const double edges[] = {0.1, 1.0, 10.0, 100.0};
+  for (std::size_t b = 0; b < 3; ++b) {
+    o.bands[b].band = {edges[b], edges[b + 1]};
+    o.bands[b].variance = 1.0;
+  }
+  ReferenceResult m;
+  m.name = "measured";
+  m.covered_lo_hz = 0.2;
+  m.covered_hi_hz = 50.0;
+  m.variance = 9.0;
+  m.budget_variance = 2.5;
+  m.band_variance = {std::nullopt, 4.0, std::nullopt};
+  o.references = {m};
+  const Table t = ReferenceTable(o, 4);
+  REQUIRE(t.rows.size() == 3);
+  CHECK(t.rows[0][1] == "1–10 Hz");
+  CHECK(t.rows[1][1] == "rest: 0.2–1 Hz, 10–50 Hz");
+  CHECK(t.rows[1][2] == Sig(std::sqrt(1.5), 4));  // 2.5 - 1
+  CHECK(t.rows[1][3] == Sig(std::sqrt(5.0), 4));  // 9 - 4
+  CHECK(t.rows[2][1] == "covered 0.2–50 Hz");
+  // Covered bands that are the whole covered range leave no rest.
+  o.references[0].covered_lo_hz = 1.0;
+  o.references[0].covered_hi_hz = 10.0;
+  o.references[0].variance = 4.0;
+  o.references[0].budget_variance = 1.0;
+  CHECK(ReferenceTable(o, 4).rows.size() == 2);
+}
+
 TEST_CASE("a measurement the budget does not explain is said on the first page, with how much it explains") {
   const BudgetResult r = Evaluate(LoadBudgetFile(test::ExampleBudget("wafer_stage.yaml")));
   const ReferenceResult& m = r.outputs[0].references.at(0);  // position: measured 1.51x the budget
