@@ -178,8 +178,10 @@ void AddRequirement(FigurePanel& panel, const BudgetResult& result, const Output
     above.x0 = 0.02;
     above.y0 = 0.95;
     above.colour = kRequirementColour;
-    above.label = "↑ requirement " + Short(*out.rms_max) + " " + UnitLabel(unit) + " RMS, above the axis: the budget "
-                  "uses " + Share(out.variance, limit2) + " of its variance";
+    // Short, at the top left where a CPS is low: the share of the limit's
+    // variance used is in the caption (the longer text ran into optical_table's
+    // curve where it levels off near the top).
+    above.label = "↑ requirement " + Short(*out.rms_max) + " " + UnitLabel(unit) + " RMS, above the axis";
     panel.annotations.push_back(above);
     FigureAnnotation entry;
     entry.kind = AnnotationKind::kKeyEntry;
@@ -254,7 +256,8 @@ Plot StackedPlot(const BudgetResult& result, std::size_t o, const PlotLevel& lev
   const double y_max = fit.y_max;
   if (fit.limit_above)
     p.caption += " The requirement (" + Short(*out.rms_max) + " " + UnitText(out.unit) +
-                 ") lies above the axis, which fits the budget.";
+                 ") lies above the axis, which fits the budget: it uses " +
+                 Share(out.variance, *out.rms_max * *out.rms_max) + " of the requirement's variance.";
   if (fit.reference_above)
     p.caption += " A reference more than " + Short(kFarAbove) + "× the budget's variance runs off the top.";
   // Variance axis in units of 10^e where the numbers would be long.
