@@ -136,7 +136,7 @@ std::vector<std::size_t> LoopRows(const LoopCurves& c) {
 std::string LoopCsv(const LoopResult& r, const LoopCurves& c, const std::vector<std::size_t>& rows,
                     const std::string& budget, const std::string& paths) {
   std::ostringstream csv;
-  csv << "# deb " << DEB_VERSION << ", budget " << budget << ": loop gain L = -sign G K of plant " << r.plant
+  csv << "# deb " << DEB_VERSION << ", budget " << budget << ": loop gain L = -s G K (s the feedback's sign; negative feedback, s = -1: L = G K) of plant " << r.plant
       << " and controller " << r.controller << " (sign " << r.sign
       << "), S = 1/(1 + L), T = L/(1 + L); closing paths " << paths
       << "; only the rows the figures need to draw every curve as the full grid would (magnitudes to 0.002 decade, "
@@ -165,7 +165,8 @@ Plot BodePlot(const LoopFigures& lf) {
   bode.kind = PlotKind::kPath;
   bode.csv = lf.csv;
   const std::string same = SameLoopText(r);
-  bode.caption = "Loop gain L = -sign G K of the plant G = " + r.plant + " and the controller K = " + r.controller +
+  bode.caption = "Loop gain L = −s G K (s the feedback's sign: s = −1, negative feedback, gives L = G K) of the plant G = " +
+                 r.plant + " and the controller K = " + r.controller +
                  "; the loop closes the paths " + lf.paths +
                  (same.empty() ? "" : " (the budget writes the same loop also as: " + same + ")") +
                  ". Magnitude over unwrapped phase, each gain crossover marked with its "
