@@ -64,13 +64,14 @@ std::vector<Plot> TornadoPlots(const std::vector<Sensitivity>& all, const Budget
     std::ostringstream csv;
     csv << "# deb " << DEB_VERSION << ", sensitivity, output " << out.name
         << ": elasticity of the total variance, and each contributor's share of it; top to bottom\n";
-    csv << "position,value,parameter,contributor,colour_index\n";
+    csv << "position,value,parameter,contributor,colour_index,label\n";
     const std::size_t n = bars.size();
     for (std::size_t i = 0; i < n; ++i) {
       const TornadoBar& b = bars[i];
       m = std::max(m, std::abs(b.value));
       csv << (n - 1 - i) << ',' << CsvNumber(b.value) << ',' << CsvField(b.parameter) << ',' << CsvField(b.contributor)
-          << ',' << (b.contributor == "total" ? -1 : static_cast<long>(b.contributor_index)) << '\n';
+          << ',' << (b.contributor == "total" ? -1 : static_cast<long>(b.contributor_index)) << ','
+          << CsvField(SigLabel(b.value, 3)) << '\n';  // "-2.93·10^{-5}", as the tables print it (not "-2.93e-05")
     }
     p.csv = csv.str();
     if (!(m > 0.0)) m = 1.0;
@@ -117,8 +118,7 @@ std::vector<Plot> TornadoPlots(const std::vector<Sensitivity>& all, const Budget
     values.data = data;
     values.x_column = 2;
     values.y_columns = {1};
-    values.label_column = 2;
-    values.label_format = "%.3g";
+    values.label_column = 6;
     values.labels_beside_end = true;
     panel.series.push_back(values);
     FigureAnnotation zero;

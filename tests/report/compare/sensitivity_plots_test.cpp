@@ -93,8 +93,12 @@ TEST_CASE("the tornado chart names every bar on the y axis, largest on top, and 
   CHECK(panel.annotations[0].kind == AnnotationKind::kVerticalLine);
   CHECK(panel.annotations[0].x0 == 0.0);
   // The CSV row of a bar sits at its tic's position.
-  CHECK(p.csv.find("\n4,-1,m,total,-1\n") != std::string::npos);
-  CHECK(p.csv.find("\n0,-0.25,k,b,1\n") != std::string::npos);
+  // with its value labelled as the tables print numbers (SigLabel).
+  CHECK(p.csv.find("\n4,-1,m,total,-1,-1.00\n") != std::string::npos);
+  CHECK(p.csv.find("\n0,-0.25,k,b,1,-0.250\n") != std::string::npos);
+  CHECK(SigLabel(-2.927e-5, 3).find("10^{-5}") != std::string::npos);  // not "-2.93e-05"
+  CHECK(panel.series[3].label_column == 6);
+  CHECK(panel.series[3].label_format.empty());
 }
 
 }  // namespace deb::report
