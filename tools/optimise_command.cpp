@@ -178,10 +178,11 @@ int OptimiseCommand::Run() const {
         WriteTextFile((fs::path(tmp) / "optimum.yaml").string(), optimum_yaml);
         ReportOptions report;
         report.plots = s.plots;
-        // The report is optimum.yaml's: its file, digest and text (the
-        // budget's own are another design, the nominal one).
+        // The report is optimum.yaml's: its file (from the report's
+        // directory: the same files wherever the study is written), digest
+        // and text (the budget's own are another design, the nominal one).
         RunInfo info;
-        info.budget_file = (fs::path(dir) / "optimum.yaml").string();
+        info.budget_file = "../optimum.yaml";
         info.budget_text = optimum_yaml;
         info.threads = s.threads;
         WriteReportDirectory(optimum, info, report, (fs::path(tmp) / "report").string());

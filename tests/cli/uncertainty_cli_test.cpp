@@ -93,7 +93,7 @@ outputs:
     CHECK_MESSAGE(fs::exists(dir / "o" / f), f);
   CHECK(deb::test::ReadAll(dir / "o" / "optimum.yaml").find("extends: '../b.yaml'") != std::string::npos);
   // The optimum's report is optimum.yaml's, not the budget's (another design: the nominal one).
-  CHECK(deb::test::ReadAll(dir / "o" / "report" / "summary.json").find("\"budget_file\": \"o/optimum.yaml\"") !=
+  CHECK(deb::test::ReadAll(dir / "o" / "report" / "summary.json").find("\"budget_file\": \"../optimum.yaml\"") !=
         std::string::npos);
   // The optimum is a budget deb runs.
   CHECK(deb::test::RunDebIn(dir, "run o/optimum.yaml --no-plots -q --out r").exit_code == 0);
