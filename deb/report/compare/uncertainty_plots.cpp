@@ -280,7 +280,9 @@ Plot Scatter(const UncertaintyResult& r, const StudyMetric& m, int output) {
   for (std::size_t j = 0; j < shown; ++j) {
     const UncertainParameter& q = r.spec.parameters[order[j]];
     FigurePanel panel;
-    panel.title = Enhanced(q.name + " (rank correlation " + Sig(m.spearman[order[j]], 2) + ")");
+    // Marked as the drivers table marks it: a correlation within the sampling noise.
+    const bool noise = std::abs(m.spearman[order[j]]) < RankCorrelationNoise(r.samples);
+    panel.title = Enhanced(q.name + " (rank correlation " + Sig(m.spearman[order[j]], 2) + (noise ? ", noise" : "") + ")");
     panel.x.label = Enhanced(q.name) + (q.unit.empty() ? "" : " [" + UnitLabel(q.unit) + "]");
     panel.y.label = j == 0 ? "RMS [" + UnitLabel(m.unit) + "]" : "";
     panel.y2.shown = false;

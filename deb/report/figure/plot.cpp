@@ -179,8 +179,10 @@ std::string Squared(std::string unit) {
 std::string Share(double part, double whole) {
   if (!(whole > 0.0)) return "–";
   const double percent = 100.0 * part / whole;
-  if (percent > 0.0 && percent < 0.01) return "< 0.01 %";
-  if (percent < 0.0 && percent > -0.01) return "> −0.01 %";  // a mode's cross term that takes a little away
+  // Below 0.01 % in size, either sign (a mode's cross term that takes a
+  // little away, a variance that fell a little): "< 0.01 %", as compare's
+  // headline writes a change that small ("> −0.01 %" read as unclear).
+  if (percent != 0.0 && std::abs(percent) < 0.01) return "< 0.01 %";
   return Sig(percent, 3) + " %";
 }
 

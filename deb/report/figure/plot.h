@@ -80,7 +80,7 @@ std::string SigLabel(double value, int digits = 3);
 // at most 6 significant digits, no trailing zeros ("20", "0.1", "2.5e-07").
 std::string Short(double value);
 
-// A share of a variance in percent: "78.1 %", "< 0.01 %", "> −0.01 %" (a
+// A share of a variance in percent: "78.1 %", "< 0.01 %" (in size; a
 // share can be negative: a mode's cross-spectrum with the output).
 std::string Share(double part, double whole);
 

@@ -335,7 +335,7 @@ TEST_CASE("a mode the output does not see, computed as rounding, has a share of 
   CHECK(t.rows[1][4] == "0 %");
   // A mode that cancels others a little: data, not rounding, but not in
   // e-notation either (metrology_frame read "-1.76e-04 %").
-  CHECK(t.rows[2][4] == "> −0.01 %");
+  CHECK(t.rows[2][4] == "< 0.01 %");
   // The modes not listed hold the rest: 1 - 0.9 + 1.76e-6, so that the shares add up to 100 %.
   CHECK(t.rows[3][1] == "the others");
   CHECK(t.rows[3][4] == "10.0 %");

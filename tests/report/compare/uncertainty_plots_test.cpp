@@ -103,6 +103,10 @@ TEST_CASE("the scatter figure draws the two strongest drivers, each sample a row
   CHECK(s.name == "z_scatter");
   CHECK(Column(s.csv, 0, 0).size() == 10);
   CHECK(s.figure.columns == 2);
+  // The second driver, m at -0.2, is within the noise of 10 samples (0.65): its panel says so.
+  REQUIRE(s.figure.panels.size() == 2);
+  CHECK(s.figure.panels[0].title.find("noise") == std::string::npos);
+  CHECK(s.figure.panels[1].title.find(", noise)") != std::string::npos);
   CHECK(s.caption.find("the requirement dashed red, the nominal design's RMS dotted orange") != std::string::npos);
 }
 
