@@ -84,7 +84,8 @@ TEST_CASE("the distribution figure: a histogram of fractions that sum to 1, an E
 
 TEST_CASE("the drivers figure greys a rank correlation within the sampling noise and draws the noise band") {
   // 10 samples: the band is 1.96 / 3 = 0.653; k at 0.9 is beyond it, m at -0.2 within.
-  const Plot& d = UncertaintyPlots(Study())[1];
+  const std::vector<Plot> plots = UncertaintyPlots(Study());
+  const Plot& d = plots[1];
   CHECK(d.name == "z_drivers");
   const std::vector<double> beyond = Column(d.csv, 0, 5), within = Column(d.csv, 0, 6);
   REQUIRE(beyond.size() == 2);
