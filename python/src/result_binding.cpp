@@ -14,6 +14,7 @@
 
 #include "deb/budget/engine.h"
 #include "deb/core/error.h"
+#include "deb/report/budget/file_digest.h"
 #include "python/src/arrays.h"
 #include "python/src/bindings.h"
 
@@ -79,6 +80,9 @@ EvaluatedBudget EvaluateLoaded(const LoadedBudget& budget, int threads) {
   EvaluatedBudget out;
   out.info.budget_file = budget.file;
   out.info.budget_text = budget.text;
+  // The digest summary.json names the budget by, as deb run computes it.
+  if (budget.text) out.info.budget_sha256 = report::Sha256(*budget.text);
+  else if (!budget.file.empty()) out.info.budget_sha256 = report::FileSha256(budget.file);
   out.info.threads = threads;
   py::gil_scoped_release release;
   const auto t0 = std::chrono::steady_clock::now();
