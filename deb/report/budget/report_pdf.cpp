@@ -102,7 +102,7 @@ PdfBlock FigureOfPlot(const Plot& p, const std::string& figure_dir) {
 std::map<std::string, int> FittedFigureHeights(PdfDocumentSpec spec) {
   for (PdfBlock& b : spec.blocks)
     if (b.kind == PdfBlockKind::kFigure) b.min_height_px = (2 * b.height_px + 2) / 3;
-  const std::vector<int> heights = FittedFigureHeightsPx(spec, WritePdfDocument(spec, ""));
+  const std::vector<int> heights = FittedFigureHeightsPx(spec, PlanPdfDocument(spec));
   std::map<std::string, int> by_name;
   std::size_t i = 0;
   for (const PdfBlock& b : spec.blocks)

@@ -981,6 +981,14 @@ std::vector<int> FittedFigureHeightsPx(const PdfDocumentSpec& spec, const PdfLay
   return heights;
 }
 
+PdfLayout PlanPdfDocument(const PdfDocumentSpec& spec) {
+  const std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> scratch(
+      cairo_pdf_surface_create_for_stream(Discard, nullptr, kPageWidthPt, kPageHeightPt), &cairo_surface_destroy);
+  SvgCache svgs;
+  Composer measure(spec, scratch.get(), false, &svgs, {}, 0);
+  return measure.Run();
+}
+
 PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path) {
   struct SurfaceDeleter {
     void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }

@@ -107,6 +107,12 @@ struct PdfLayout {
 // @throws WriteError if the file or a figure's SVG cannot be read or written.
 PdfLayout WritePdfDocument(const PdfDocumentSpec& spec, const std::string& path);
 
+// The layout of `spec` in one pass, without the page numbers the table of
+// contents and the footers get (placeholders of the same height): where
+// every block lands, which is what planning the figures needs, at half
+// WritePdfDocument(spec, "")'s cost.
+PdfLayout PlanPdfDocument(const PdfDocumentSpec& spec);
+
 // After a layout of `spec` planned with figure canvases (width_px and
 // height_px set): per figure block, in order, the height in px it was
 // placed at (its height_px, or less where min_height_px let it stay on a
