@@ -32,7 +32,7 @@ void StampSources(StudyDocument* doc, const std::vector<StudySource>& sources) {
   Table& t = doc->sources;
   t = Table();
   t.numeric = {false, false};
-  std::string first;
+  std::vector<std::string> digests;  // each known one's first 12 digits, with its role where there are several
   for (const StudySource& s : sources) {
     std::string digest = "–";
     std::error_code ec;
@@ -46,12 +46,13 @@ void StampSources(StudyDocument* doc, const std::vector<StudySource>& sources) {
         // Not a summary this deb wrote: the digest stays unknown.
       }
     }
-    if (first.empty() && digest != "–") first = digest;
+    if (digest != "–") digests.push_back((sources.size() > 1 ? s.role + " " : "") + digest.substr(0, 12));
     t.rows.push_back({s.role, s.path});
     t.rows.push_back({"", "SHA-256 " + digest});
   }
   t.rows.push_back({"date", UtcText(DocumentTime(), "%Y-%m-%d %H:%M:%S UTC")});
-  if (!first.empty()) doc->footer += " · SHA-256 " + first.substr(0, 12);
+  // Every page names what the study was made from: compare's A and B both.
+  for (std::size_t i = 0; i < digests.size(); ++i) doc->footer += (i == 0 ? " · SHA-256 " : ", ") + digests[i];
 }
 
 std::string StudyMarkdown(const StudyDocument& doc) {

@@ -46,9 +46,9 @@ struct StudySource {
 };
 // Sets doc's sources: each source with the SHA-256 of its file (of a result
 // directory's budget as its summary.json records it; "–" where unknown), and
-// the date the document is written (DocumentTime); the footer gains the
-// first file's digest, as a run report's does: the same study, the same
-// name on every page.
+// the date the document is written (DocumentTime); the footer gains each
+// known digest's first 12 digits (with its role where there are several),
+// as a run report's does: the same study, the same name on every page.
 void StampSources(StudyDocument* doc, const std::vector<StudySource>& sources);
 
 std::string StudyMarkdown(const StudyDocument& doc);

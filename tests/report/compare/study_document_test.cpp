@@ -34,8 +34,12 @@ TEST_CASE("a study's sources: each file with its SHA-256, a result directory's f
   CHECK(t.rows[5][1] == "SHA-256 –");  // a directory deb did not write: unknown
   CHECK(t.rows[6][0] == "date");
   CHECK(t.rows[6][1].size() == std::string("2026-12-07 06:09:02 UTC").size());
-  // The footer names the first digest, as a run report's pages do.
-  CHECK(doc.footer == "deb · compare · SHA-256 " + Sha256("name: b\n").substr(0, 12));
+  // The footer names every known digest, as a run report's pages name theirs.
+  CHECK(doc.footer == "deb · compare · SHA-256 A " + Sha256("name: b\n").substr(0, 12) + ", B " + digest.substr(0, 12));
+  StudyDocument one;
+  one.footer = "deb · sweep";
+  StampSources(&one, {{"budget", budget.string()}});
+  CHECK(one.footer == "deb · sweep · SHA-256 " + Sha256("name: b\n").substr(0, 12));
   // Every format shows them.
   CHECK(StudyMarkdown(doc).find(Sha256("name: b\n")) != std::string::npos);
   CHECK(StudyHtml(doc).find(digest) != std::string::npos);
