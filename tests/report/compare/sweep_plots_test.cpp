@@ -14,6 +14,7 @@
 #include "deb/report/figure/gnuplot_runner.h"
 #include "deb/report/figure/plot_style.h"
 #include "tests/support/cli_harness.h"
+#include "tests/support/csv_blocks.h"
 
 namespace deb::report {
 namespace {
@@ -27,22 +28,9 @@ std::size_t Count(const std::string& text, const std::string& part) {
 // The rows of CSV block `index` (after its comment and header lines where present), as numbers.
 std::vector<std::vector<double>> Block(const std::string& csv, int index) {
   std::vector<std::vector<double>> rows;
-  std::istringstream in(csv);
-  std::string line;
-  int block = 0, blank = 0;
-  while (std::getline(in, line)) {
-    if (line.empty()) {
-      if (++blank == 2) ++block;
-      continue;
-    }
-    blank = 0;
-    if (block != index || line[0] == '#' || !(std::isdigit(static_cast<unsigned char>(line[0])) || line[0] == '-' ||
-                                              line[0] == 'N'))
-      continue;
+  for (const auto& fields : test::CsvBlockRows(csv, index)) {
     std::vector<double> row;
-    std::istringstream fields(line);
-    std::string f;
-    while (std::getline(fields, f, ',')) row.push_back(std::stod(f));
+    for (const std::string& f : fields) row.push_back(std::stod(f));
     rows.push_back(row);
   }
   return rows;

@@ -2,11 +2,11 @@
 
 #include <doctest/doctest.h>
 
-#include <cctype>
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "tests/support/csv_blocks.h"
 
 namespace deb::report {
 namespace {
@@ -34,27 +34,6 @@ UncertaintyResult Study() {
   return r;
 }
 
-// The numbers of CSV block `block` (blocks apart by two blank lines), column `column` (0-based).
-std::vector<double> Column(const std::string& csv, int block, int column) {
-  std::istringstream in(csv);
-  std::string line;
-  std::vector<double> v;
-  int at = 0, blank = 0;
-  while (std::getline(in, line)) {
-    if (line.empty()) {
-      if (++blank == 2) ++at;
-      continue;
-    }
-    blank = 0;
-    if (at != block || line[0] == '#' || !(std::isdigit(static_cast<unsigned char>(line[0])) || line[0] == '-')) continue;
-    std::istringstream fields(line);
-    std::string field;
-    for (int c = 0; std::getline(fields, field, ','); ++c)
-      if (c == column) v.push_back(std::stod(field));
-  }
-  return v;
-}
-
 }  // namespace
 
 TEST_CASE("the distribution figure: a histogram of fractions that sum to 1, an ECDF to 1, both lines keyed with the unit") {
@@ -63,9 +42,9 @@ TEST_CASE("the distribution figure: a histogram of fractions that sum to 1, an E
   const Plot& d = plots[0];
   CHECK(d.name == "z_uncertainty");
   double sum = 0.0;
-  for (double f : Column(d.csv, 0, 1)) sum += f;
+  for (double f : test::CsvBlockColumn(d.csv, 0, 1)) sum += f;
   CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));
-  const std::vector<double> cdf = Column(d.csv, 1, 1);
+  const std::vector<double> cdf = test::CsvBlockColumn(d.csv, 1, 1);
   REQUIRE(cdf.size() >= 2);
   CHECK(cdf.back() == 1.0);
   // The title names P(meet) with the limit's unit: 4 of 10.
@@ -87,7 +66,7 @@ TEST_CASE("the drivers figure greys a rank correlation within the sampling noise
   const std::vector<Plot> plots = UncertaintyPlots(Study());
   const Plot& d = plots[1];
   CHECK(d.name == "z_drivers");
-  const std::vector<double> beyond = Column(d.csv, 0, 5), within = Column(d.csv, 0, 6);
+  const std::vector<double> beyond = test::CsvBlockColumn(d.csv, 0, 5), within = test::CsvBlockColumn(d.csv, 0, 6);
   REQUIRE(beyond.size() == 2);
   CHECK(beyond == std::vector<double>{0.9, 0.0});  // the strongest on top: k, then m
   CHECK(within == std::vector<double>{0.0, -0.2});
@@ -102,7 +81,7 @@ TEST_CASE("the scatter figure draws the two strongest drivers, each sample a row
   const std::vector<Plot> plots = UncertaintyPlots(Study());
   const Plot& s = plots[2];
   CHECK(s.name == "z_scatter");
-  CHECK(Column(s.csv, 0, 0).size() == 10);
+  CHECK(test::CsvBlockColumn(s.csv, 0, 0).size() == 10);
   CHECK(s.figure.columns == 2);
   // The second driver, m at -0.2, is within the noise of 10 samples (0.65): its panel says so.
   REQUIRE(s.figure.panels.size() == 2);
