@@ -14,6 +14,7 @@
 #include "deb/core/output_dir.h"
 #include "deb/core/parallel.h"
 #include "deb/load/budget_yaml.h"
+#include "deb/report/budget/file_digest.h"
 #include "deb/report/compare/comparison_directory.h"
 #include "deb/report/compare/comparison_documents.h"
 #include "deb/report/compare/ratio_plots.h"
@@ -35,6 +36,7 @@ report::ComparisonInput Load(const std::string& input, const std::vector<BudgetO
   options.response_traces = false;
   BudgetResult result = Evaluate(budget, options);
   ResultFigures figures = FiguresOf(budget.name, result);
+  figures.budget_sha256 = report::FileSha256(input);
   return {std::move(figures), std::move(result)};
 }
 
@@ -125,7 +127,7 @@ int CompareCommand::Run() const {
     if (s.plots && la.result && lb.result)
       r.plots = report::ComparisonPlots(a.label, *la.result, b.label, *lb.result);
     r.dir = s.out_dir.empty() ? report::DefaultComparisonDirectory(a.label, b.label) : s.out_dir;
-    r.sources = {{"A", s.inputs.front()}, {"B", s.inputs[i]}};
+    r.sources = {{"A", s.inputs.front(), a.budget_sha256}, {"B", s.inputs[i], b.budget_sha256}};
     reports.push_back(std::move(r));
   }
   ReplaceOptions replace;

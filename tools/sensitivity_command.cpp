@@ -16,6 +16,7 @@
 #include "deb/core/suggest.h"
 #include "deb/load/budget_yaml.h"
 #include "deb/load/sweep_yaml.h"
+#include "deb/report/budget/file_digest.h"
 #include "deb/report/compare/sensitivity_directory.h"
 #include "deb/report/compare/sensitivity_plots.h"
 #include "deb/report/figure/plot.h"
@@ -129,7 +130,7 @@ int SensitivityCommand::Run() const {
   const std::string dir = s.out_dir.empty() ? report::DefaultSensitivityDirectory(budget.name) : s.out_dir;
   ReplaceOptions replace;
   replace.force = s.force;
-  report::WriteSensitivityDirectory(setting, study, plots, dir, replace, s.threads, {{"budget", s.budget_file}});
+  report::WriteSensitivityDirectory(setting, study, plots, dir, replace, s.threads, {{"budget", s.budget_file, report::FileSha256(s.budget_file)}});
   if (!s.quiet) {
     for (const auto& [key, values] : setting.parameters)
       std::printf("nominal %s = %s\n", setting.Label(key).c_str(), report::NominalText(values).c_str());

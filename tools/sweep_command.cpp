@@ -76,7 +76,7 @@ void WriteSweepStudy(const std::string& name, const SweepSpec& spec, const std::
   ReplaceOptions replace;
   replace.force = force;
   const std::vector<report::Plot> drawn = plots ? report::SweepPlots(spec, results) : std::vector<report::Plot>{};
-  report::WriteSweepDirectory(name, spec, results, drawn, dir, replace, threads, {{"budget", budget_file}});
+  report::WriteSweepDirectory(name, spec, results, drawn, dir, replace, threads, {{"budget", budget_file, report::FileSha256(budget_file)}});
   if (!quiet) {
     std::printf("sweep of %s: %zu variants\n", name.c_str(), results.size());
     PrintTopThree(spec, results);

@@ -94,7 +94,7 @@ void WriteUncertaintyStudy(const std::string& budget_name, const UncertaintyResu
   ReplaceOptions replace;
   replace.force = force;
   const std::vector<report::Plot> drawn = plots ? report::UncertaintyPlots(result) : std::vector<report::Plot>{};
-  report::WriteUncertaintyDirectory(budget_name, result, drawn, dir, replace, threads, {{"budget", budget_file}});
+  report::WriteUncertaintyDirectory(budget_name, result, drawn, dir, replace, threads, {{"budget", budget_file, report::FileSha256(budget_file)}});
   if (!quiet) {
     Print(budget_name, result);
     std::printf("report: %s/uncertainty.html\n", dir.c_str());

@@ -36,6 +36,9 @@ struct ResultFigures {
     std::vector<Band> bands;
   };
   std::string label;  // how the result is named in tables (budget name, directory)
+  // SHA-256 of the budget file the figures are of (64 hex digits; a result
+  // directory's from its summary.json), "" where unknown.
+  std::string budget_sha256;
   std::vector<Output> outputs;
   std::vector<ParameterOutline> parameters;  // the budget's, if it has any
 };

@@ -1,5 +1,7 @@
 #include "deb/results/comparison_files.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -96,6 +98,13 @@ ResultFigures ReadSummaryFigures(const std::string& file, const std::string& lab
   }
   ResultFigures r;
   r.label = label;
+  // The budget's digest, kept only when it is one (64 hex digits): a
+  // document prints it as the input's name.
+  if (j.contains("budget_sha256") && j["budget_sha256"].is_string()) {
+    const std::string sha = j["budget_sha256"].get<std::string>();
+    if (sha.size() == 64 && std::all_of(sha.begin(), sha.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); }))
+      r.budget_sha256 = sha;
+  }
   const json& outputs = List(j, "outputs", "", file);
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const json& o = outputs[i];

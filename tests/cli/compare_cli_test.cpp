@@ -57,6 +57,16 @@ TEST_CASE("deb compare of a budget with itself writes zero differences and ratio
   REQUIRE(RunDebIn(dir, "compare run_a " + budget + " -q --out cmp").exit_code == 0);
   const auto k = nlohmann::json::parse(ReadAll(dir / "cmp" / "compare.json"));
   CHECK(k["a"] == "run_a");
+  // Both name the budget by its digest: the directory's from its summary.json, the file's its own.
+  {
+    const std::string md = ReadAll(dir / "cmp" / "compare.md");
+    const std::string digest = nlohmann::json::parse(ReadAll(dir / "run_a" / "summary.json"))["budget_sha256"];
+    REQUIRE(digest.size() == 64);
+    const std::string sha = "SHA-256 " + digest;
+    const std::size_t first = md.find(sha);
+    REQUIRE(first != std::string::npos);
+    CHECK(md.find(sha, first + 1) != std::string::npos);
+  }
   for (const auto& f : k["figures"])
     if (!f["ratio"].is_null()) CHECK(f["ratio"].get<double>() == doctest::Approx(1.0).epsilon(1e-15));
   // Its result store draws the overlays as the budget does: the same data.

@@ -48,6 +48,22 @@ TEST_CASE("figures read back from summary.json equal those of the evaluation, an
   fs::remove(file);
 }
 
+TEST_CASE("a summary's budget digest is read where it is one: 64 hex digits, else unknown") {
+  const BudgetResult result = Evaluate(LoadBudgetFile(std::string(DEB_SOURCE_DIR) + "/budgets/single_axis_isolator.yaml"));
+  const fs::path file = Temp("digest.json");
+  RunInfo info("b.yaml");
+  info.budget_sha256 = std::string(63, 'a') + "F";
+  std::ofstream(file) << SummaryJson(result, info);
+  CHECK(ReadSummaryFigures(file.string(), "dir").budget_sha256 == info.budget_sha256);
+  // A summary deb did not write may hold anything there: a study document prints it.
+  for (const std::string& bad : {std::string(63, 'a'), std::string(63, 'a') + "g", std::string("")}) {
+    info.budget_sha256 = bad;
+    std::ofstream(file) << SummaryJson(result, info);
+    CHECK(ReadSummaryFigures(file.string(), "dir").budget_sha256.empty());
+  }
+  fs::remove(file);
+}
+
 TEST_CASE("a JSON file that is not a summary names the missing key") {
   const fs::path file = Temp("other.json");
   std::ofstream(file) << R"({"outputs": [{"name": "z", "unit": "nm"}]})";

@@ -5,13 +5,9 @@
 #include <sstream>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "deb/core/document_date.h"
 #include "deb/core/error.h"
-#include "deb/core/input_file.h"
 #include "deb/core/parallel.h"
-#include "deb/report/budget/file_digest.h"
 #include "deb/report/budget/report_pdf.h"
 #include "deb/report/figure/gnuplot_runner.h"
 
@@ -34,19 +30,8 @@ void StampSources(StudyDocument* doc, const std::vector<StudySource>& sources) {
   t.numeric = {false, false};
   std::vector<std::string> digests;  // each known one's first 12 digits, with its role where there are several
   for (const StudySource& s : sources) {
-    std::string digest = "–";
-    std::error_code ec;
-    if (fs::is_regular_file(s.path, ec)) {
-      digest = FileSha256(s.path);
-    } else if (const fs::path summary = fs::path(s.path) / "summary.json"; fs::is_regular_file(summary, ec)) {
-      try {
-        const nlohmann::json j = nlohmann::json::parse(ReadInputFile(summary.string(), "summary", 1 << 26));
-        if (j.contains("budget_sha256") && j["budget_sha256"].is_string()) digest = j["budget_sha256"].get<std::string>();
-      } catch (const std::exception&) {
-        // Not a summary this deb wrote: the digest stays unknown.
-      }
-    }
-    if (digest != "–") digests.push_back((sources.size() > 1 ? s.role + " " : "") + digest.substr(0, 12));
+    const std::string digest = s.sha256.empty() ? "–" : s.sha256;
+    if (!s.sha256.empty()) digests.push_back((sources.size() > 1 ? s.role + " " : "") + digest.substr(0, 12));
     t.rows.push_back({s.role, s.path});
     t.rows.push_back({"", "SHA-256 " + digest});
   }

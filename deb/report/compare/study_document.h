@@ -40,12 +40,13 @@ struct StudyDocument {
 };
 
 // What a study was made from: a budget file or result directory as given
-// to the command, under a role ("budget", "A", "B").
+// to the command, under a role ("budget", "A", "B"), with the SHA-256 of its
+// budget file (a result directory's as its summary.json records it; "" where
+// unknown).
 struct StudySource {
-  std::string role, path;
+  std::string role, path, sha256;
 };
-// Sets doc's sources: each source with the SHA-256 of its file (of a result
-// directory's budget as its summary.json records it; "–" where unknown), and
+// Sets doc's sources: each source with its digest ("–" where unknown), and
 // the date the document is written (DocumentTime); the footer gains each
 // known digest's first 12 digits (with its role where there are several),
 // as a run report's does: the same study, the same name on every page.
