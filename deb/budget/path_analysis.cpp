@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <optional>
+#include <sstream>
 
 #include "deb/core/error.h"
 #include "deb/core/limits.h"
 #include "deb/core/parallel.h"
 #include "deb/systems/axis_cancellation.h"
 #include "deb/systems/block_triangular.h"
+#include "deb/systems/coupled_spectrum.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/interconnect.h"
 #include "deb/systems/lyapunov.h"
@@ -57,6 +60,32 @@ Eigen::VectorXcd RealisationPoles(const StateSpace& system) {
   return SharedRealBlockDiagonal(balanced.A())->eigenvalues;
 }
 
+// A large diagram with modal parts as blocks and a low-rank coupling
+// (coupled_spectrum.h): its poles without reducing the dense realisation.
+// nullptr, with the reason, where it is not kept so or not solved so; a
+// loop with a pole on or right of the imaginary axis is left to the dense
+// realisation, whose verdict and messages are the reference.
+std::shared_ptr<const CoupledSpectrum> CoupledLoop(const Path& path, std::string* why) {
+  if (path.system.states() < kSharedFormStates || path.measured->ModalParts().empty()) return nullptr;
+  try {
+    const std::optional<CoupledRealisation> coupled = path.measured->Coupled(why);
+    if (!coupled) return nullptr;
+    CoupledSolve solved = SolveCoupled(*coupled);
+    if (!solved.spectrum) {
+      *why = solved.why_not;
+      return nullptr;
+    }
+    if (!(solved.spectrum->poles.real().maxCoeff() < 0.0)) {
+      *why = "a pole is not in the left half-plane";
+      return nullptr;
+    }
+    return std::make_shared<const CoupledSpectrum>(std::move(*solved.spectrum));
+  } catch (const InputError& e) {
+    *why = e.what();
+    return nullptr;
+  }
+}
+
 }  // namespace
 
 PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : path_(path) {
@@ -70,7 +99,8 @@ PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : pat
   } else if (path.measured) {
     measured_ = path.measured->SelectOutputs(rows_);
     if (path.SystemApproximates()) {  // the realisation's poles (Pade's too)
-      poles = RealisationPoles(path.system);
+      coupled_ = CoupledLoop(path, &coupled_why_);
+      poles = coupled_ ? coupled_->poles : RealisationPoles(path.system);
       realisation_poles_ = poles;
     } else {
       std::vector<std::complex<double>> all;
@@ -133,8 +163,18 @@ std::string PathAnalysis::ResponseForm() const {
   int modes = 0;
   for (const auto& part : path_.measured->ModalParts()) modes += part->modes();
   if (modes == 0) return "";
-  return "its parts at each frequency (the modal form of " + std::to_string(modes) +
-         " mode(s)); poles and exact variance by its " + std::to_string(path_.system.states()) + "-state realisation";
+  const std::string head = "its parts at each frequency (the modal form of " + std::to_string(modes) + " mode(s)); ";
+  const std::string states = std::to_string(path_.system.states());
+  if (coupled_) {
+    std::ostringstream os;
+    os << std::setprecision(2) << coupled_->eigenvalue_condition;
+    return head + "poles of its " + states + " states from " + std::to_string(coupled_->blocks) +
+           " block(s) coupled at rank " + std::to_string(coupled_->rank) +
+           " (no dense reduction), exact variance in closed form on their eigenvectors (eigenvalue condition up to " +
+           os.str() + ")";
+  }
+  return head + "poles and exact variance by its " + states + "-state realisation" +
+         (coupled_why_.empty() ? "" : " (not kept as coupled blocks: " + coupled_why_ + ")");
 }
 
 Eigen::VectorXcd PathAnalysis::StateSpacePoles() const {
@@ -221,6 +261,9 @@ const PathAnalysis::Cached& PathAnalysis::AllRows(const Eigen::MatrixXd& w_two_s
         return ExactVariance{one.variance(0), one.share.row(0).transpose()};
       });
     }
+  } else if (std::optional<Eigen::MatrixXd> cov = CoupledCovarianceOf(rows_, w_two_sided)) {
+    for (std::size_t i = 0; i < rows_.size(); ++i)
+      c.rows[i] = ExactVariance{(*cov)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), {}};
   } else if (rational_ || path_.SystemApproximates()) {
     try {
       const StateSpace all = Realisation();
@@ -263,6 +306,8 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
                      std::to_string(path_.modal->modes()) + " modes make " +
                      std::to_string(2 * path_.modal->modes()) + " states, more than the " +
                      std::to_string(limits::kMaxDenseStates) + " deb solves densely");
+  if (std::all_of(weightings.begin(), weightings.end(), [](const StateSpace* w) { return w == nullptr; }))
+    if (std::optional<Eigen::MatrixXd> cov = CoupledCovarianceOf(rows, w_two_sided)) return *cov;
   // The reduced realisation (its rows numbered as the evaluated rows) where
   // it holds every row asked for; else the path's own.
   const bool reduced =
@@ -275,6 +320,19 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
     stacked = stacked ? StackOutputs(*stacked, one) : one;
   }
   return OutputCovariance(*stacked, w_two_sided);
+}
+
+std::optional<Eigen::MatrixXd> PathAnalysis::CoupledCovarianceOf(const std::vector<int>& rows,
+                                                               const Eigen::MatrixXd& w_two_sided) const {
+  if (!coupled_ || reduced_) return std::nullopt;
+  // Feedthrough of white noise: the dense solve's message says so.
+  for (int r : rows)
+    if ((coupled_->d.row(r) * w_two_sided * coupled_->d.row(r).transpose())(0, 0) != 0.0) return std::nullopt;
+  const CoupledCovariance cov = CoupledOutputCovariance(*coupled_, rows, w_two_sided);
+  for (Eigen::Index i = 0; i < cov.relative_error.size(); ++i)
+    if (!(cov.relative_error(i) <= kCoupledVarianceTolerance) || !(cov.covariance(i, i) >= 0.0)) return std::nullopt;
+  if (!cov.covariance.allFinite()) return std::nullopt;
+  return cov.covariance;
 }
 
 }  // namespace deb

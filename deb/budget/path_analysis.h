@@ -32,6 +32,8 @@
 
 namespace deb {
 
+struct CoupledSpectrum;  // deb/systems/coupled_spectrum.h (internal)
+
 class FrequencyResponse;
 class ModalResponse;
 
@@ -132,6 +134,14 @@ class PathAnalysis {
   std::unique_ptr<ModalResponse> modal_;
   std::optional<FrequencyModel> measured_;
   Eigen::VectorXcd realisation_poles_;  // of a diagram's realisation (Path::SystemApproximates)
+  // A large diagram with modal parts solved as blocks and a low-rank coupling
+  // (coupled_spectrum.h), or why not.
+  std::shared_ptr<const CoupledSpectrum> coupled_;
+  std::string coupled_why_;
+  // The coupled form's covariance of `rows` where it holds (D W D^T = 0,
+  // every estimate within kCoupledVarianceTolerance), else nullopt.
+  std::optional<Eigen::MatrixXd> CoupledCovarianceOf(const std::vector<int>& rows,
+                                                     const Eigen::MatrixXd& w_two_sided) const;
   // All evaluated rows under the last W asked for (no weighting).
   struct Cached {
     Eigen::MatrixXd w;

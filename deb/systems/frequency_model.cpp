@@ -6,6 +6,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
+#include "deb/systems/coupled_realisation.h"
 #include "deb/systems/frequency_response.h"
 #include "deb/systems/modal_response.h"
 
@@ -80,6 +81,39 @@ struct FrequencyModel::Node {
   }
 
   bool HasData() const { return measured || (a && a->HasData()) || (b && b->HasData()); }
+
+  std::optional<CoupledRealisation> Coupled(std::string* why) const {
+    switch (kind) {
+      case Kind::kRational:
+        if (rational->states() > kMaxCoupledBlock) {
+          *why = "a rational part has " + std::to_string(rational->states()) + " states (more than " +
+                 std::to_string(kMaxCoupledBlock) + " are not kept as one block)";
+          return std::nullopt;
+        }
+        return CoupledOf(*rational);
+      case Kind::kModal: return CoupledOf(*modal);
+      case Kind::kMeasured: *why = "it holds measured data"; return std::nullopt;
+      case Kind::kIrrational: *why = "it holds a delay or a sampled block"; return std::nullopt;
+      case Kind::kSelect: {
+        std::optional<CoupledRealisation> x = a->Coupled(why);
+        if (!x) return x;
+        return CoupledSelectOutputs(*x, rows);
+      }
+      case Kind::kSeries:
+      case Kind::kParallel:
+      case Kind::kFeedback: {
+        std::optional<CoupledRealisation> x = a->Coupled(why);
+        if (!x) return x;
+        std::optional<CoupledRealisation> y = b->Coupled(why);
+        if (!y) return y;
+        if (kind == Kind::kSeries) return CoupledSeries(*x, *y);
+        if (kind == Kind::kParallel) return CoupledParallel(*x, *y);
+        return CoupledFeedback(*x, *y, sign);
+      }
+    }
+    DEB_DEMAND(false);
+    return std::nullopt;
+  }
 };
 
 FrequencyModel::FrequencyModel(const StateSpace& rational) {
@@ -214,6 +248,8 @@ std::vector<IrrationalBlock> FrequencyModel::IrrationalBlocks() const {
   node_->Collect(nullptr, nullptr, nullptr, &blocks);
   return blocks;
 }
+
+std::optional<CoupledRealisation> FrequencyModel::Coupled(std::string* why) const { return node_->Coupled(why); }
 
 Eigen::MatrixXcd FrequencyModel::At(double f_hz) const { return node_->At(f_hz); }
 

@@ -30,6 +30,8 @@
 
 namespace deb {
 
+struct CoupledRealisation;  // deb/systems/coupled_realisation.h (internal)
+
 class FrequencyModel {
  public:
   explicit FrequencyModel(const StateSpace& rational);
@@ -66,6 +68,14 @@ class FrequencyModel {
   bool HasData() const;
   // Every delay and sampled block of the diagram, in diagram order.
   std::vector<IrrationalBlock> IrrationalBlocks() const;
+
+  // The diagram as small blocks joined by a low-rank coupling
+  // (coupled_realisation.h): the same system as its dense realisation, for
+  // the poles and exact variance of a loop around a modal part. nullopt, with
+  // the reason in *why, for measured data, a delay or sampled block, or a
+  // rational part of more than kMaxCoupledBlock states.
+  // @throws InputError as CoupledFeedback (a singular algebraic loop).
+  std::optional<CoupledRealisation> Coupled(std::string* why) const;
 
   // H(j 2 pi f), outputs x inputs.
   // @throws InputError outside a table's range (Extrapolation::kError), on a

@@ -1,0 +1,360 @@
+#include "deb/systems/coupled_spectrum.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+#include "deb/core/error.h"
+#include "deb/core/parallel.h"
+#include "deb/systems/parallel_product.h"
+
+namespace deb {
+namespace {
+
+using cd = std::complex<double>;
+using Eigen::Index;
+using Eigen::MatrixXcd;
+using Eigen::MatrixXd;
+using Eigen::VectorXcd;
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// A ~ D + U V^T in the basis X that diagonalises each block; B and C with it.
+struct Diagonal {
+  VectorXcd d;
+  MatrixXcd u, v, b, c;
+  MatrixXd d_feed;
+};
+
+std::optional<Diagonal> Diagonalise(const CoupledRealisation& sys, std::string* why) {
+  const Index n = sys.states(), r = sys.rank();
+  Diagonal out;
+  out.d.resize(n);
+  out.u.resize(n, r);
+  out.v.resize(n, r);
+  out.b.resize(n, sys.inputs());
+  out.c.resize(sys.outputs(), n);
+  out.d_feed = sys.d;
+  Index at = 0;
+  for (const MatrixXd& blk : sys.blocks) {
+    const Index s = blk.rows();
+    MatrixXcd x;
+    VectorXcd ev;
+    if (s == 1) {
+      x = MatrixXcd::Identity(1, 1);
+      ev = VectorXcd::Constant(1, blk(0, 0));
+    } else {
+      const Eigen::EigenSolver<MatrixXd> es(blk, true);
+      if (es.info() != Eigen::Success) {
+        *why = "the eigenvalues of a part's " + std::to_string(s) + "-state block did not converge";
+        return std::nullopt;
+      }
+      ev = es.eigenvalues();
+      x = es.eigenvectors();
+    }
+    const Eigen::JacobiSVD<MatrixXcd> svd(x);
+    const double cond = svd.singularValues()(0) / svd.singularValues()(s - 1);
+    if (!(cond <= kMaxCoupledBlockCondition)) {
+      *why = "a part's block is not diagonalisable (a rigid-body mode's double integrator or a repeated pole)";
+      return std::nullopt;
+    }
+    const Eigen::PartialPivLU<MatrixXcd> lu(x);
+    out.d.segment(at, s) = ev;
+    out.u.middleRows(at, s) = lu.solve(sys.u.middleRows(at, s).cast<cd>());
+    out.v.middleRows(at, s) = x.transpose() * sys.v.middleRows(at, s).cast<cd>();
+    out.b.middleRows(at, s) = lu.solve(sys.b.middleRows(at, s).cast<cd>());
+    out.c.middleCols(at, s) = sys.c.middleCols(at, s).cast<cd>() * x;
+    at += s;
+  }
+  return out;
+}
+
+// a * b on all threads, b's columns in fixed blocks.
+MatrixXcd Product(const MatrixXcd& a, const MatrixXcd& b) {
+  MatrixXcd out(a.rows(), b.cols());
+  ForColumnBlocks(b.cols(), [&](Index first, Index count) {
+    out.middleCols(first, count).noalias() = a * b.middleCols(first, count);
+  });
+  return out;
+}
+MatrixXd Product(const MatrixXd& a, const MatrixXd& b) { return ParallelProduct(a, b); }
+
+// The secular matrices at points z: M(z) = I - V^T (z - D)^-1 U and
+// M'(z) = V^T (z - D)^-2 U, with sum_k 1 / (z - d_k).
+class Secular {
+ public:
+  explicit Secular(const Diagonal& dg) : dg_(dg), r_(dg.u.cols()) {
+    const Index n = dg.d.size();
+    ft_.resize(r_ * r_, n);  // row a + r b: V(k, a) U(k, b)
+    for (Index b = 0; b < r_; ++b)
+      for (Index a = 0; a < r_; ++a) ft_.row(a + r_ * b) = (dg.v.col(a).array() * dg.u.col(b).array()).transpose();
+  }
+  Index rank() const { return r_; }
+
+  // Columns: (z_j - d_k)^-1 for k down the rows.
+  MatrixXcd Resolvents(const cd* z, Index count) const {
+    const Index n = dg_.d.size();
+    MatrixXcd cz(n, count);
+    for (Index j = 0; j < count; ++j)
+      for (Index k = 0; k < n; ++k) cz(k, j) = 1.0 / (z[j] - dg_.d(k));
+    return cz;
+  }
+  // p'/p at each z.
+  void LogDerivatives(const cd* z, Index count, cd* out) const {
+    const MatrixXcd cz = Resolvents(z, count);
+    const MatrixXcd m = ft_ * cz;
+    const MatrixXcd m2 = ft_ * cz.array().square().matrix();
+    for (Index j = 0; j < count; ++j) {
+      cd s = cz.col(j).sum();
+      if (r_ > 0) {
+        const Eigen::Map<const MatrixXcd> vru(m.col(j).data(), r_, r_), dm(m2.col(j).data(), r_, r_);
+        const MatrixXcd mm = MatrixXcd::Identity(r_, r_) - vru;
+        s += Eigen::PartialPivLU<MatrixXcd>(mm).solve(dm).trace();
+      }
+      out[j] = s;
+    }
+  }
+  MatrixXcd M(const Eigen::Ref<const VectorXcd>& cz) const {
+    const VectorXcd m = ft_ * cz;
+    return MatrixXcd::Identity(r_, r_) - Eigen::Map<const MatrixXcd>(m.data(), r_, r_);
+  }
+
+ private:
+  const Diagonal& dg_;
+  Index r_;
+  MatrixXcd ft_;
+};
+
+bool Finite(cd z) { return std::isfinite(z.real()) && std::isfinite(z.imag()); }
+
+// Aberth-Ehrlich on p(z) = det(z - A), started at the blocks' poles moved a
+// little apart; nullopt if it does not converge.
+std::optional<VectorXcd> Aberth(const Diagonal& dg, const Secular& sec, int threads, int* sweeps) {
+  const Index n = dg.d.size();
+  double scale = dg.d.cwiseAbs().maxCoeff();
+  if (!(scale > 0.0)) scale = 1.0;
+  VectorXcd z(n);
+  constexpr double kGolden = 0.6180339887498949;
+  for (Index k = 0; k < n; ++k) {
+    const double angle = 2.0 * 3.141592653589793 * std::fmod(kGolden * static_cast<double>(k + 1), 1.0);
+    z(k) = dg.d(k) + 1e-6 * (std::abs(dg.d(k)) + 1e-3 * scale) * std::polar(1.0, angle);
+  }
+  std::vector<char> done(static_cast<std::size_t>(n), 0);
+  std::vector<double> last(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
+  for (int sweep = 1; sweep <= kMaxAberthSweeps; ++sweep) {
+    std::vector<Index> active;
+    for (Index k = 0; k < n; ++k)
+      if (!done[static_cast<std::size_t>(k)]) active.push_back(k);
+    if (active.empty()) {
+      *sweeps = sweep - 1;
+      return z;
+    }
+    std::vector<cd> step(active.size());
+    constexpr std::size_t kChunk = 64;
+    const std::size_t chunks = (active.size() + kChunk - 1) / kChunk;
+    ParallelFor(
+        chunks,
+        [&](std::size_t c0, std::size_t c1) {
+          for (std::size_t c = c0; c < c1; ++c) {
+            const std::size_t lo = c * kChunk, hi = std::min(active.size(), lo + kChunk);
+            std::vector<cd> pts(hi - lo), logd(hi - lo);
+            for (std::size_t i = lo; i < hi; ++i) pts[i - lo] = z(active[i]);
+            sec.LogDerivatives(pts.data(), static_cast<Index>(hi - lo), logd.data());
+            for (std::size_t i = lo; i < hi; ++i) {
+              const Index j = active[i];
+              const cd newton = 1.0 / logd[i - lo];
+              cd repel = 0.0;
+              for (Index k = 0; k < n; ++k)
+                if (k != j) repel += 1.0 / (z(j) - z(k));
+              step[i] = newton / (1.0 - newton * repel);
+            }
+          }
+        },
+        threads, 1);
+    for (std::size_t i = 0; i < active.size(); ++i) {
+      const Index j = active[i];
+      const cd w = step[i];
+      if (!Finite(w)) return std::nullopt;
+      z(j) -= w;
+      const double size = std::abs(w), tol = std::abs(z(j)) + 1e-3 * scale;
+      const std::size_t s = static_cast<std::size_t>(j);
+      // Converged, or stalled at the level of rounding.
+      if (size <= 4.0 * kEps * tol || (size <= 1e-12 * tol && size >= 0.5 * last[s])) done[s] = 1;
+      last[s] = size;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
+  CoupledSolve out;
+  std::optional<Diagonal> dg = Diagonalise(sys, &out.why_not);
+  if (!dg) return out;
+  const Index n = dg->d.size(), r = dg->u.cols();
+  if (n == 0) {
+    out.why_not = "no states";
+    return out;
+  }
+  const Secular sec(*dg);
+  CoupledSpectrum sp;
+  sp.blocks = static_cast<int>(sys.blocks.size());
+  sp.rank = static_cast<int>(r);
+  if (r == 0) {
+    sp.poles = dg->d;
+  } else {
+    std::optional<VectorXcd> z = Aberth(*dg, sec, threads, &sp.sweeps);
+    if (!z) {
+      out.why_not = "the poles' iteration did not converge in " + std::to_string(kMaxAberthSweeps) + " sweeps";
+      return out;
+    }
+    sp.poles = std::move(*z);
+  }
+  // Two invariants of A: a pole lost or found twice shows in them.
+  {
+    cd trace = dg->d.sum(), trace2 = dg->d.array().square().sum();
+    if (r > 0) {
+      const MatrixXcd vu = dg->v.transpose() * dg->u;
+      trace += vu.trace();
+      trace2 += 2.0 * (dg->d.array() * (dg->u.array() * dg->v.array()).rowwise().sum()).sum() + (vu * vu).trace();
+    }
+    const double size = sp.poles.cwiseAbs().sum(), size2 = sp.poles.cwiseAbs2().sum();
+    if (!(std::abs(sp.poles.sum() - trace) <= 1e-9 * size) ||
+        !(std::abs(sp.poles.array().square().sum() - trace2) <= 1e-9 * size2)) {
+      out.why_not = "the poles found do not reproduce tr A and tr A^2";
+      return out;
+    }
+  }
+  // Eigenvectors, in blocks of poles.
+  sp.right.resize(n, n);
+  sp.left.resize(n, n);
+  sp.y.resize(r, n);
+  sp.x.resize(r, n);
+  sp.rho.resize(r, n);
+  sp.sigma.resize(r, n);
+  std::vector<double> kappa(static_cast<std::size_t>(n), 0.0);
+  std::vector<char> bad(static_cast<std::size_t>(n), 0);
+  ParallelForBlocks(
+      static_cast<std::size_t>(n), 64,
+      [&](std::size_t lo, std::size_t hi) {
+        const MatrixXcd cz = sec.Resolvents(sp.poles.data() + lo, static_cast<Index>(hi - lo));
+        for (std::size_t i = lo; i < hi; ++i) {
+          const Index j = static_cast<Index>(i);
+          const auto czj = cz.col(static_cast<Index>(i - lo));
+          VectorXcd yj, xj;
+          MatrixXcd m;
+          if (r == 0) {
+            // D itself: the unit vector of the pole.
+            sp.right.col(j).setZero();
+            sp.right(j, j) = 1.0;
+            sp.left.row(j).setZero();
+            sp.left(j, j) = 1.0;
+            kappa[i] = 1.0;
+            continue;
+          }
+          m = sec.M(czj);
+          const Eigen::JacobiSVD<MatrixXcd> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+          yj = svd.matrixV().col(r - 1);
+          xj = svd.matrixU().col(r - 1);
+          VectorXcd v = czj.cwiseProduct(dg->u * yj);
+          const double norm = v.norm();
+          if (!(norm > 0.0) || !std::isfinite(norm)) {
+            bad[i] = 1;
+            continue;
+          }
+          v /= norm;
+          yj /= norm;
+          VectorXcd w = czj.cwiseProduct(dg->v * xj.conjugate());
+          const cd wv = (w.array() * v.array()).sum();
+          if (!(std::abs(wv) > 0.0) || !Finite(wv)) {
+            bad[i] = 1;
+            continue;
+          }
+          w /= wv;
+          xj /= std::conj(wv);
+          sp.right.col(j) = v;
+          sp.left.row(j) = w.transpose();
+          sp.y.col(j) = yj;
+          sp.x.col(j) = xj;
+          sp.rho.col(j) = -(m * yj);
+          sp.sigma.col(j) = -(m.adjoint() * xj);
+          kappa[i] = w.norm();
+        }
+      },
+      threads);
+  if (std::any_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) {
+    out.why_not = "a pole lies on a part's own pole (a mode the loop neither moves nor sees)";
+    return out;
+  }
+  sp.eigenvalue_condition = *std::max_element(kappa.begin(), kappa.end());
+  if (!std::isfinite(sp.eigenvalue_condition)) {
+    out.why_not = "an eigenvector is not finite";
+    return out;
+  }
+  sp.c = std::move(dg->c);
+  sp.b = std::move(dg->b);
+  sp.d = std::move(dg->d_feed);
+  sp.u = std::move(dg->u);
+  out.spectrum = std::move(sp);
+  return out;
+}
+
+CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::vector<int>& rows,
+                                          const Eigen::MatrixXd& w_two_sided) {
+  const Index n = sp.poles.size(), p = static_cast<Index>(rows.size()), r = sp.y.rows();
+  DEB_DEMAND(w_two_sided.rows() == sp.b.cols() && w_two_sided.cols() == sp.b.cols());
+  MatrixXcd cr(p, n);
+  for (Index i = 0; i < p; ++i) cr.row(i) = sp.c.row(rows[static_cast<std::size_t>(i)]);
+  const MatrixXcd w = w_two_sided.cast<cd>();
+  const MatrixXcd ch = Product(cr, sp.right);         // C~ (p x N)
+  const MatrixXcd bh = sp.left * sp.b;                // B~ (N x m)
+  const MatrixXcd bw = bh * w;
+  const MatrixXcd bh_adj = bh.adjoint();
+  MatrixXcd k = Product(bw, bh_adj);                  // B~ W B~^H
+  MatrixXcd g(n, n);
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i) g(i, j) = -1.0 / (sp.poles(i) + std::conj(sp.poles(j)));
+  MatrixXcd x = g.cwiseProduct(k);
+  const MatrixXcd ch_adj = ch.adjoint();
+  CoupledCovariance out;
+  const MatrixXcd cov = (ch * Product(x, ch_adj));
+  out.covariance = cov.real();
+
+  // The first-order correction L^-1(-R) of the residual R of the computed
+  // P, seen through C (coupled_spectrum.h).
+  MatrixXcd f = k;
+  if (r > 0) {
+    MatrixXcd delta = Product(MatrixXcd(-sp.x.adjoint()), sp.rho);  // -x_i^H rho_j
+    delta += Product(MatrixXcd(sp.sigma.adjoint()), sp.y);          // + sigma_i^H y_j
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i < n; ++i) delta(i, j) = i == j ? cd(0.0) : delta(i, j) / (sp.poles(j) - sp.poles(i));
+    const MatrixXcd zb = bh + Product(delta, bh);
+    f -= Product(MatrixXcd(zb * w), MatrixXcd(zb.adjoint()));
+    const MatrixXcd px = sp.rho * x;                                  // rho X (r x N)
+    const MatrixXcd pxz = px + Product(px, MatrixXcd(delta.adjoint()));
+    const MatrixXcd wu = sp.left * sp.u;                              // W^T U (N x r)
+    const MatrixXcd t = Product(wu, pxz);
+    f += t + t.adjoint();
+  } else {
+    f.setZero();
+  }
+  f = g.cwiseProduct(f);
+  const MatrixXcd correction = ch * Product(f, ch_adj);
+  // Rounding: the sums' absolute values.
+  const MatrixXd abs_c = Product(MatrixXd(cr.cwiseAbs()), MatrixXd(sp.right.cwiseAbs()));
+  const MatrixXd abs_b = MatrixXd(sp.left.cwiseAbs()) * MatrixXd(sp.b.cwiseAbs());
+  const MatrixXd abs_k = Product(MatrixXd(abs_b * w_two_sided.cwiseAbs()), MatrixXd(abs_b.transpose()));
+  const MatrixXd abs_x = g.cwiseAbs().cwiseProduct(abs_k);
+  const MatrixXd abs_cov = abs_c * Product(abs_x, MatrixXd(abs_c.transpose()));
+  const double rounding = 4.0 * kEps * std::sqrt(static_cast<double>(2 * n + w.rows()));
+  out.relative_error.resize(p);
+  for (Index i = 0; i < p; ++i) {
+    const double v = out.covariance(i, i);
+    const double e = std::abs(correction(i, i)) + std::abs(cov(i, i).imag()) + rounding * abs_cov(i, i);
+    out.relative_error(i) = v > 0.0 ? e / v : (e == 0.0 ? 0.0 : std::numeric_limits<double>::infinity());
+  }
+  return out;
+}
+
+}  // namespace deb
