@@ -79,6 +79,13 @@ MatrixXcd Product(const MatrixXcd& a, const MatrixXcd& b) {
 }
 MatrixXd Product(const MatrixXd& a, const MatrixXd& b) { return ParallelProduct(a, b); }
 
+// 1 / z without the library's care for infinities (__divdc3): a pole on a
+// block's own pole gives inf or nan here, which the callers test for.
+inline cd Reciprocal(cd z) {
+  const double n = z.real() * z.real() + z.imag() * z.imag();
+  return {z.real() / n, -z.imag() / n};
+}
+
 // The secular matrices at points z: M(z) = I - V^T (z - D)^-1 U and
 // M'(z) = V^T (z - D)^-2 U, with sum_k 1 / (z - d_k).
 class Secular {
@@ -96,7 +103,7 @@ class Secular {
     const Index n = dg_.d.size();
     MatrixXcd cz(n, count);
     for (Index j = 0; j < count; ++j)
-      for (Index k = 0; k < n; ++k) cz(k, j) = 1.0 / (z[j] - dg_.d(k));
+      for (Index k = 0; k < n; ++k) cz(k, j) = Reciprocal(z[j] - dg_.d(k));
     return cz;
   }
   // p'/p at each z.
@@ -165,7 +172,7 @@ std::optional<VectorXcd> Aberth(const Diagonal& dg, const Secular& sec, int thre
               const cd newton = 1.0 / logd[i - lo];
               cd repel = 0.0;
               for (Index k = 0; k < n; ++k)
-                if (k != j) repel += 1.0 / (z(j) - z(k));
+                if (k != j) repel += Reciprocal(z(j) - z(k));
               step[i] = newton / (1.0 - newton * repel);
             }
           }
@@ -197,20 +204,37 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
     out.why_not = "no states";
     return out;
   }
-  const Secular sec(*dg);
   CoupledSpectrum sp;
   sp.blocks = static_cast<int>(sys.blocks.size());
   sp.rank = static_cast<int>(r);
-  if (r == 0) {
-    sp.poles = dg->d;
-  } else {
-    std::optional<VectorXcd> z = Aberth(*dg, sec, threads, &sp.sweeps);
+  // A row of U or of V whose part of U V^T is at the level of rounding in A
+  // is made zero: the pole of a mode the loop does not drive (U) or does
+  // not see (V) is then exactly its block's, and stays out of the iteration.
+  const double size_u = dg->u.norm(), size_v = dg->v.norm();
+  const double floor = 8.0 * kEps * (dg->d.cwiseAbs().maxCoeff() + size_u * size_v);
+  std::vector<Index> free, fixed;
+  for (Index k = 0; k < n; ++k) {
+    if (dg->u.row(k).norm() * size_v <= floor) dg->u.row(k).setZero();
+    if (dg->v.row(k).norm() * size_u <= floor) dg->v.row(k).setZero();
+    (dg->u.row(k).squaredNorm() > 0.0 && dg->v.row(k).squaredNorm() > 0.0 ? free : fixed).push_back(k);
+  }
+  const Index nf = static_cast<Index>(free.size());
+  Diagonal sub;
+  sub.d = dg->d(free);
+  sub.u = dg->u(free, Eigen::all);
+  sub.v = dg->v(free, Eigen::all);
+  sp.poles.resize(n);
+  if (nf > 0) {
+    const Secular sec_free(sub);
+    std::optional<VectorXcd> z = Aberth(sub, sec_free, threads, &sp.sweeps);
     if (!z) {
       out.why_not = "the poles' iteration did not converge in " + std::to_string(kMaxAberthSweeps) + " sweeps";
       return out;
     }
-    sp.poles = std::move(*z);
+    sp.poles.head(nf) = *z;
   }
+  for (std::size_t i = 0; i < fixed.size(); ++i) sp.poles(nf + static_cast<Index>(i)) = dg->d(fixed[i]);
+  const Secular sec(*dg);
   // Two invariants of A: a pole lost or found twice shows in them.
   {
     cd trace = dg->d.sum(), trace2 = dg->d.array().square().sum();
@@ -227,36 +251,52 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
     }
   }
   // Eigenvectors, in blocks of poles.
-  sp.right.resize(n, n);
-  sp.left.resize(n, n);
-  sp.y.resize(r, n);
-  sp.x.resize(r, n);
-  sp.rho.resize(r, n);
-  sp.sigma.resize(r, n);
-  std::vector<double> kappa(static_cast<std::size_t>(n), 0.0);
+  sp.right = MatrixXcd::Zero(n, n);
+  sp.left = MatrixXcd::Zero(n, n);
+  sp.y = MatrixXcd::Zero(r, n);
+  sp.x = MatrixXcd::Zero(r, n);
+  sp.rho = MatrixXcd::Zero(r, n);
+  sp.sigma = MatrixXcd::Zero(r, n);
+  std::vector<double> kappa(static_cast<std::size_t>(n), 1.0);
   std::vector<char> bad(static_cast<std::size_t>(n), 0);
+  // A pole the loop does not move: with U_k = 0 its left eigenvector is e_k
+  // and its right one e_k + R~ U s, (I - V^T R~ U) s = V_k, R~ the resolvent
+  // at d_k without index k; with V_k = 0 the transposed case. Both
+  // satisfy w^T v = 1 as they stand.
+  for (std::size_t i = 0; i < fixed.size(); ++i) {
+    const Index k = fixed[i], j = nf + static_cast<Index>(i);
+    sp.right(k, j) = 1.0;
+    sp.left(j, k) = 1.0;
+    const bool driven = dg->u.row(k).squaredNorm() > 0.0, seen = dg->v.row(k).squaredNorm() > 0.0;
+    if (!driven && !seen) continue;
+    VectorXcd cz = sec.Resolvents(&dg->d(k), 1).col(0);
+    cz(k) = 0.0;
+    const MatrixXcd m = sec.M(cz);
+    const Eigen::PartialPivLU<MatrixXcd> lu(m);
+    if (seen) {
+      const VectorXcd s_k = lu.solve(VectorXcd(dg->v.row(k).transpose()));
+      VectorXcd v = cz.cwiseProduct(dg->u * s_k);
+      v(k) = 1.0;
+      sp.right.col(j) = v;
+    } else {
+      const VectorXcd t = lu.transpose().solve(VectorXcd(dg->u.row(k).transpose()));
+      VectorXcd w = cz.cwiseProduct(dg->v * t);
+      w(k) = 1.0;
+      sp.left.row(j) = w.transpose();
+    }
+    kappa[static_cast<std::size_t>(j)] = sp.right.col(j).norm() * sp.left.row(j).norm();
+    if (!std::isfinite(kappa[static_cast<std::size_t>(j)])) bad[static_cast<std::size_t>(j)] = 1;
+  }
   ParallelForBlocks(
-      static_cast<std::size_t>(n), 64,
+      static_cast<std::size_t>(nf), 64,
       [&](std::size_t lo, std::size_t hi) {
         const MatrixXcd cz = sec.Resolvents(sp.poles.data() + lo, static_cast<Index>(hi - lo));
         for (std::size_t i = lo; i < hi; ++i) {
           const Index j = static_cast<Index>(i);
           const auto czj = cz.col(static_cast<Index>(i - lo));
-          VectorXcd yj, xj;
-          MatrixXcd m;
-          if (r == 0) {
-            // D itself: the unit vector of the pole.
-            sp.right.col(j).setZero();
-            sp.right(j, j) = 1.0;
-            sp.left.row(j).setZero();
-            sp.left(j, j) = 1.0;
-            kappa[i] = 1.0;
-            continue;
-          }
-          m = sec.M(czj);
+          const MatrixXcd m = sec.M(czj);
           const Eigen::JacobiSVD<MatrixXcd> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
-          yj = svd.matrixV().col(r - 1);
-          xj = svd.matrixU().col(r - 1);
+          VectorXcd yj = svd.matrixV().col(r - 1), xj = svd.matrixU().col(r - 1);
           VectorXcd v = czj.cwiseProduct(dg->u * yj);
           const double norm = v.norm();
           if (!(norm > 0.0) || !std::isfinite(norm)) {
@@ -314,7 +354,7 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
   MatrixXcd k = Product(bw, bh_adj);                  // B~ W B~^H
   MatrixXcd g(n, n);
   for (Index j = 0; j < n; ++j)
-    for (Index i = 0; i < n; ++i) g(i, j) = -1.0 / (sp.poles(i) + std::conj(sp.poles(j)));
+    for (Index i = 0; i < n; ++i) g(i, j) = -Reciprocal(sp.poles(i) + std::conj(sp.poles(j)));
   MatrixXcd x = g.cwiseProduct(k);
   const MatrixXcd ch_adj = ch.adjoint();
   CoupledCovariance out;

@@ -137,5 +137,82 @@ TEST_CASE("coupled realisation: a PID loop around modes is the dense loop, poles
   }
 }
 
+// The loop of MakeLoop with mode `k`'s shapes at the loop's channels (inputs
+// and outputs 0 and 1) set to zero: at the inputs (`driven` false), at the
+// outputs (`seen` false), or both.
+Loop LoopMissingMode(int modes, unsigned seed, int k, bool driven, bool seen) {
+  Loop l;
+  l.plant = Plant(modes, 4, 3, seed);
+  if (!driven) l.plant->phi_in.block(0, k, 2, 1).setZero();
+  if (!seen) l.plant->phi_out.block(0, k, 2, 1).setZero();
+  const StateSpace c = Controller(*l.plant);
+  l.dense = Feedback(ModalStateSpace(*l.plant), c, -1);
+  l.diagram = FrequencyModel::Feedback(FrequencyModel(std::shared_ptr<const ModalModel>(l.plant)), FrequencyModel(c), -1);
+  return l;
+}
+
+TEST_CASE("coupled realisation: a mode the loop neither drives nor sees keeps its pole, and the variance holds") {
+  const Loop l = LoopMissingMode(40, 2, 7, false, false);
+  std::string why;
+  const CoupledSolve solved = SolveCoupled(*l.diagram.Coupled(&why));
+  INFO(solved.why_not);
+  REQUIRE(solved.spectrum);
+  const CoupledSpectrum& sp = *solved.spectrum;
+  const std::complex<double> own = ModalPole(l.plant->f_hz[7], l.plant->zeta[7]);
+  CHECK(PoleDistance(Eigen::VectorXcd::Constant(1, own), sp.poles) < 1e-14);
+  const Eigen::VectorXcd ref = l.dense.Balanced().Poles();
+  CHECK(PoleDistance(sp.poles, ref) < 1e-9);
+  CHECK(PoleDistance(ref, sp.poles) < 1e-9);
+  const Eigen::MatrixXd w = Eigen::MatrixXd::Identity(4, 4);
+  const Eigen::MatrixXd dense_cov = OutputCovariance(l.dense, w);
+  const CoupledCovariance cov = CoupledOutputCovariance(sp, {0, 1, 2}, w);
+  for (int i = 0; i < 3; ++i) CHECK(std::abs(cov.covariance(i, i) / dense_cov(i, i) - 1.0) < 1e-9);
+}
+
+TEST_CASE("coupled realisation: where it cannot be used it says why, and is never silently wrong") {
+  SUBCASE("a rigid-body mode is a double integrator, not diagonalisable") {
+    Loop l = MakeLoop(40, 2);
+    auto plant = std::make_shared<ModalModel>(*l.plant);
+    plant->f_hz[0] = 0.0;
+    std::string why;
+    const FrequencyModel diagram = FrequencyModel::Feedback(FrequencyModel(std::shared_ptr<const ModalModel>(plant)),
+                                                            FrequencyModel(Controller(*l.plant)), -1);
+    const CoupledSolve solved = SolveCoupled(*diagram.Coupled(&why));
+    CHECK_FALSE(solved.spectrum);
+    CHECK(testing::Contains(solved.why_not, "not diagonalisable"));
+  }
+  SUBCASE("a mode driven but not seen, or seen but not driven: its own pole stays, its eigenvectors solved") {
+    for (const bool driven : {true, false}) {
+      CAPTURE(driven);
+      const Loop l = LoopMissingMode(40, 2, 7, driven, !driven);
+      std::string why;
+      const CoupledSolve solved = SolveCoupled(*l.diagram.Coupled(&why));
+      INFO(solved.why_not);
+      REQUIRE(solved.spectrum);
+      const Eigen::VectorXcd ref = l.dense.Balanced().Poles();
+      CHECK(PoleDistance(solved.spectrum->poles, ref) < 1e-9);
+      const Eigen::MatrixXd w = Eigen::MatrixXd::Identity(4, 4);
+      const Eigen::MatrixXd dense_cov = OutputCovariance(l.dense, w);
+      const CoupledCovariance cov = CoupledOutputCovariance(*solved.spectrum, {0, 1, 2}, w);
+      for (int i = 0; i < 3; ++i) {
+        CHECK(cov.relative_error(i) <= kCoupledVarianceTolerance);
+        CHECK(std::abs(cov.covariance(i, i) / dense_cov(i, i) - 1.0) < 1e-9);
+      }
+    }
+  }
+  SUBCASE("a part too large for one block") {
+    const Loop l = MakeLoop(40, 2);
+    std::mt19937 rng(5);
+    testing::ModalSpec spec;
+    for (int k = 0; k < 20; ++k) spec.pairs.push_back({100.0 + 10.0 * k, 0.05});
+    const StateSpace big = testing::RandomSystem(spec, 4, 3, rng, false);
+    const FrequencyModel diagram =
+        FrequencyModel::Feedback(FrequencyModel(std::shared_ptr<const ModalModel>(l.plant)), FrequencyModel(big), -1);
+    std::string why;
+    CHECK_FALSE(diagram.Coupled(&why));
+    CHECK(testing::Contains(why, "40 states"));
+  }
+}
+
 }  // namespace
 }  // namespace deb
