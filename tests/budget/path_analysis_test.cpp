@@ -194,6 +194,9 @@ TEST_CASE("a loop around a modal path: poles, stability and exact variance from 
   MESSAGE("loop around 120 modes (" << s.states() << " states): exact variances within " << worst
                                     << " of the whole Bartels-Stewart solve");
   CHECK(worst <= 1e-9);
+  // The rows' whole covariance (deb's output covariance), off the diagonal too.
+  const Eigen::MatrixXd cov = analysis.ExactCovariance({0, 1, 2}, {nullptr, nullptr, nullptr}, w);
+  CHECK((cov - reference).norm() <= 1e-9 * reference.norm());
 }
 
 TEST_CASE("a chain of a modal path and measured data takes its poles from the modes") {
