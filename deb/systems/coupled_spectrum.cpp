@@ -26,6 +26,55 @@ struct Diagonal {
   MatrixXd d_feed;
 };
 
+double EigenvectorCondition(const MatrixXcd& x) {
+  const Eigen::JacobiSVD<MatrixXcd> svd(x);
+  return svd.singularValues()(0) / svd.singularValues()(x.rows() - 1);
+}
+
+// A block that is not diagonalisable well (a rigid-body mode's double
+// integrator [0 1; 0 0], a Jordan-like cluster) is split: its diagonal
+// stays as 1 x 1 blocks and the rest joins the coupling, at the rank of
+// its SVD (a double integrator adds 1).
+CoupledRealisation SplitDefectiveBlocks(const CoupledRealisation& sys) {
+  CoupledRealisation out = sys;
+  out.blocks.clear();
+  std::vector<MatrixXd> extra_u, extra_v;
+  Index at = 0;
+  for (const MatrixXd& blk : sys.blocks) {
+    const Index s = blk.rows();
+    bool split = false;
+    if (s > 1) {
+      const Eigen::EigenSolver<MatrixXd> es(blk, true);
+      split = es.info() != Eigen::Success || !(EigenvectorCondition(es.eigenvectors()) <= kMaxCoupledBlockCondition);
+    }
+    if (!split) {
+      out.blocks.push_back(blk);
+      at += s;
+      continue;
+    }
+    const MatrixXd rest = blk - MatrixXd(blk.diagonal().asDiagonal());
+    const Eigen::JacobiSVD<MatrixXd> svd(rest, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Index rank = 0;
+    while (rank < s && svd.singularValues()(rank) > 0.0) ++rank;
+    const Eigen::VectorXd root = svd.singularValues().head(rank).cwiseSqrt();
+    MatrixXd u = MatrixXd::Zero(sys.states(), rank), v = MatrixXd::Zero(sys.states(), rank);
+    u.middleRows(at, s) = svd.matrixU().leftCols(rank) * root.asDiagonal();
+    v.middleRows(at, s) = svd.matrixV().leftCols(rank) * root.asDiagonal();
+    extra_u.push_back(std::move(u));
+    extra_v.push_back(std::move(v));
+    for (Index i = 0; i < s; ++i) out.blocks.push_back(MatrixXd::Constant(1, 1, blk(i, i)));
+    at += s;
+  }
+  for (std::size_t i = 0; i < extra_u.size(); ++i) {
+    MatrixXd u(out.u.rows(), out.u.cols() + extra_u[i].cols()), v(out.v.rows(), out.v.cols() + extra_v[i].cols());
+    u << out.u, extra_u[i];
+    v << out.v, extra_v[i];
+    out.u = std::move(u);
+    out.v = std::move(v);
+  }
+  return out;
+}
+
 std::optional<Diagonal> Diagonalise(const CoupledRealisation& sys, std::string* why) {
   const Index n = sys.states(), r = sys.rank();
   Diagonal out;
@@ -52,9 +101,7 @@ std::optional<Diagonal> Diagonalise(const CoupledRealisation& sys, std::string* 
       ev = es.eigenvalues();
       x = es.eigenvectors();
     }
-    const Eigen::JacobiSVD<MatrixXcd> svd(x);
-    const double cond = svd.singularValues()(0) / svd.singularValues()(s - 1);
-    if (!(cond <= kMaxCoupledBlockCondition)) {
+    if (!(EigenvectorCondition(x) <= kMaxCoupledBlockCondition)) {
       *why = "a part's block is not diagonalisable (a rigid-body mode's double integrator or a repeated pole)";
       return std::nullopt;
     }
@@ -197,7 +244,7 @@ std::optional<VectorXcd> Aberth(const Diagonal& dg, const Secular& sec, int thre
 
 CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
   CoupledSolve out;
-  std::optional<Diagonal> dg = Diagonalise(sys, &out.why_not);
+  std::optional<Diagonal> dg = Diagonalise(SplitDefectiveBlocks(sys), &out.why_not);
   if (!dg) return out;
   const Index n = dg->d.size(), r = dg->u.cols();
   if (n == 0) {

@@ -37,8 +37,9 @@
 namespace deb {
 
 // Largest condition number of a block's eigenvector matrix: beyond it the
-// block (a rigid-body mode's double integrator, a repeated pole of a part)
-// is not diagonalisable well, and the coupled form is not used.
+// block (a rigid-body mode's double integrator, a Jordan-like cluster of a
+// part) is not diagonalisable well; its diagonal is then kept and the rest
+// of it joins the coupling (a double integrator adds 1 to the rank).
 inline constexpr double kMaxCoupledBlockCondition = 1e8;
 // Largest Aberth-Ehrlich sweeps before the coupled form gives up.
 inline constexpr int kMaxAberthSweeps = 200;
