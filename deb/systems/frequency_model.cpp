@@ -34,28 +34,62 @@ struct FrequencyModel::Node {
       case Kind::kModal: return modal_response->At(f_hz);
       case Kind::kSeries: return b->At(f_hz) * a->At(f_hz);
       case Kind::kParallel: return a->At(f_hz) + b->At(f_hz);
-      case Kind::kFeedback: {
-        const Eigen::MatrixXcd g = a->At(f_hz), k = b->At(f_hz);
-        const Eigen::MatrixXcd loop =
-            Eigen::MatrixXcd::Identity(g.rows(), g.rows()) - static_cast<double>(sign) * g * k;
-        const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(loop);
-        if (!(lu.rcond() > 1e-13)) {
-          std::ostringstream os;
-          os << "the feedback loop is singular at " << f_hz << " Hz: I - sign G K has reciprocal condition "
-             << lu.rcond() << " there";
-          throw InputError(os.str());
-        }
-        return lu.solve(g);
-      }
-      case Kind::kSelect: {
-        const Eigen::MatrixXcd h = a->At(f_hz);
-        Eigen::MatrixXcd s(static_cast<Eigen::Index>(rows.size()), h.cols());
-        for (std::size_t r = 0; r < rows.size(); ++r) s.row(static_cast<Eigen::Index>(r)) = h.row(rows[r]);
-        return s;
-      }
+      case Kind::kFeedback: return Close(a->At(f_hz), b->At(f_hz), f_hz);
+      case Kind::kSelect: return Rows(a->At(f_hz));
     }
     DEB_DEMAND(false);
     return {};
+  }
+
+  // H at each of a block of frequencies: as At(), with a modal part's
+  // responses computed together as matrix products (ModalResponse::ForEach)
+  // instead of one frequency at a time.
+  std::vector<Eigen::MatrixXcd> AtBlock(const std::vector<double>& f_hz) const {
+    std::vector<Eigen::MatrixXcd> h;
+    switch (kind) {
+      case Kind::kModal:
+        h.resize(f_hz.size());
+        modal_response->ForEach(f_hz, [&](std::size_t k, const Eigen::MatrixXcd& x) { h[k] = x; }, 1);
+        return h;
+      case Kind::kSeries:
+      case Kind::kParallel:
+      case Kind::kFeedback: {
+        h = a->AtBlock(f_hz);
+        const std::vector<Eigen::MatrixXcd> y = b->AtBlock(f_hz);
+        for (std::size_t k = 0; k < f_hz.size(); ++k) {
+          if (kind == Kind::kSeries) h[k] = y[k] * h[k];
+          else if (kind == Kind::kParallel) h[k] += y[k];
+          else h[k] = Close(h[k], y[k], f_hz[k]);
+        }
+        return h;
+      }
+      case Kind::kSelect:
+        h = a->AtBlock(f_hz);
+        for (Eigen::MatrixXcd& x : h) x = Rows(x);
+        return h;
+      default:
+        for (double f : f_hz) h.push_back(At(f));
+        return h;
+    }
+  }
+
+  // (I - sign G K)^-1 G at f_hz.
+  Eigen::MatrixXcd Close(const Eigen::MatrixXcd& g, const Eigen::MatrixXcd& k, double f_hz) const {
+    const Eigen::MatrixXcd loop = Eigen::MatrixXcd::Identity(g.rows(), g.rows()) - static_cast<double>(sign) * g * k;
+    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(loop);
+    if (!(lu.rcond() > 1e-13)) {
+      std::ostringstream os;
+      os << "the feedback loop is singular at " << f_hz << " Hz: I - sign G K has reciprocal condition " << lu.rcond()
+         << " there";
+      throw InputError(os.str());
+    }
+    return lu.solve(g);
+  }
+
+  Eigen::MatrixXcd Rows(const Eigen::MatrixXcd& h) const {
+    Eigen::MatrixXcd s(static_cast<Eigen::Index>(rows.size()), h.cols());
+    for (std::size_t r = 0; r < rows.size(); ++r) s.row(static_cast<Eigen::Index>(r)) = h.row(rows[r]);
+    return s;
   }
 
   void Collect(std::vector<StateSpace>* parts, std::vector<double>* f_hz, bool* loop_around_data,
@@ -256,12 +290,22 @@ Eigen::MatrixXcd FrequencyModel::At(double f_hz) const { return node_->At(f_hz);
 void FrequencyModel::ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads) const {
   // A modal model alone in blocks of frequencies (one matrix product each).
   if (node_->kind == Node::Kind::kModal) return node_->modal_response->ForEach(f_hz, fn, threads);
+  // A diagram in fixed blocks of frequencies (so that the last digits of a
+  // modal part's products do not depend on the thread count), its modal
+  // parts evaluated a block at a time.
+  constexpr std::size_t kBlock = 64;
+  const std::size_t blocks = (f_hz.size() + kBlock - 1) / kBlock;
   ParallelFor(
-      f_hz.size(),
-      [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) fn(k, node_->At(f_hz[k]));
+      blocks,
+      [&](std::size_t b0, std::size_t b1) {
+        for (std::size_t b = b0; b < b1; ++b) {
+          const std::size_t lo = b * kBlock, hi = std::min(f_hz.size(), lo + kBlock);
+          const std::vector<Eigen::MatrixXcd> h = node_->AtBlock(
+              std::vector<double>(f_hz.begin() + static_cast<std::ptrdiff_t>(lo), f_hz.begin() + static_cast<std::ptrdiff_t>(hi)));
+          for (std::size_t k = lo; k < hi; ++k) fn(k, h[k - lo]);
+        }
       },
-      threads);
+      threads, 1);
 }
 
 }  // namespace deb
