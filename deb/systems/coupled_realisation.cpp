@@ -14,8 +14,9 @@ using Eigen::MatrixXd;
 
 MatrixXd BlockDiag(const MatrixXd& a, const MatrixXd& b) {
   MatrixXd m = MatrixXd::Zero(a.rows() + b.rows(), a.cols() + b.cols());
-  m.topLeftCorner(a.rows(), a.cols()) = a;
-  m.bottomRightCorner(b.rows(), b.cols()) = b;
+  // (A block of an empty matrix is not taken: its data pointer is null.)
+  if (a.size() > 0) m.topLeftCorner(a.rows(), a.cols()) = a;
+  if (b.size() > 0) m.bottomRightCorner(b.rows(), b.cols()) = b;
   return m;
 }
 
