@@ -65,6 +65,32 @@ Rotated MakeRotated(int modes, unsigned seed, bool scaled = false) {
   return r;
 }
 
+// The largest relative error of `h` against the modal H at and around
+// every resonance (the damped frequency, +- zeta of it, an octave either side).
+double WorstAtResonances(const FrequencyResponse& h, const Rotated& r) {
+  const ModalResponse reference(r.modal, {0, 1, 2, 3});
+  double worst = 0.0;
+  for (int k = 0; k < r.modal.modes(); ++k) {
+    const double fd = r.modal.f_hz[k] * std::sqrt(1.0 - r.modal.zeta[k] * r.modal.zeta[k]);
+    for (const double x : {1.0 - r.modal.zeta[k], 1.0, 1.0 + r.modal.zeta[k], 0.5, 2.0}) {
+      const Eigen::MatrixXcd want = reference.At(fd * x);
+      worst = std::max(worst, (h.At(fd * x) - want).norm() / want.norm());
+    }
+  }
+  return worst;
+}
+
+// The largest relative error of the dense exact variances (white forces)
+// against the modal closed form.
+double WorstVariance(const Rotated& r) {
+  const Eigen::MatrixXd w = Eigen::MatrixXd::Identity(3, 3);
+  const Eigen::MatrixXd y = OutputCovariance(r.dense, w);
+  const ModalCovariance closed = ModalOutputCovariance(r.modal, {0, 1, 2, 3}, w);
+  double worst = 0.0;
+  for (int i = 0; i < 4; ++i) worst = std::max(worst, std::abs(y(i, i) - closed.variance(i)) / closed.variance(i));
+  return worst;
+}
+
 TEST_CASE("a rotated modal model through the dense path: H at every resonance and the exact variances") {
   for (const int modes : {50, 200}) {
     CAPTURE(modes);
@@ -72,24 +98,11 @@ TEST_CASE("a rotated modal model through the dense path: H at every resonance an
     const FrequencyResponse h(r.dense);
     CHECK(h.method() == FrequencyResponse::Method::kSchur);
     CHECK(h.largest_block() >= 4);  // the repeated modes are one group
-    const ModalResponse reference(r.modal, {0, 1, 2, 3});
     // The backward-stable solve on the same matrix: the accuracy the rotated
     // model itself allows (its rounding moves lightly damped poles).
     const FrequencyResponse hessenberg(r.dense, FrequencyResponse::Method::kHessenberg);
-    double worst_h = 0.0, worst_hessenberg = 0.0;
-    for (int k = 0; k < modes; ++k) {
-      const double fd = r.modal.f_hz[k] * std::sqrt(1.0 - r.modal.zeta[k] * r.modal.zeta[k]);
-      for (const double x : {1.0 - r.modal.zeta[k], 1.0, 1.0 + r.modal.zeta[k], 0.5, 2.0}) {
-        const Eigen::MatrixXcd want = reference.At(fd * x);
-        worst_h = std::max(worst_h, (h.At(fd * x) - want).norm() / want.norm());
-        worst_hessenberg = std::max(worst_hessenberg, (hessenberg.At(fd * x) - want).norm() / want.norm());
-      }
-    }
-    const Eigen::MatrixXd w = Eigen::MatrixXd::Identity(3, 3);
-    const Eigen::MatrixXd y = OutputCovariance(r.dense, w);
-    const ModalCovariance closed = ModalOutputCovariance(r.modal, {0, 1, 2, 3}, w);
-    double worst_v = 0.0;
-    for (int i = 0; i < 4; ++i) worst_v = std::max(worst_v, std::abs(y(i, i) - closed.variance(i)) / closed.variance(i));
+    const double worst_h = WorstAtResonances(h, r), worst_hessenberg = WorstAtResonances(hessenberg, r);
+    const double worst_v = WorstVariance(r);
     MESSAGE(modes << " modes (" << 2 * modes << " states, largest group " << h.largest_block() << ", cond(Y) "
                   << h.condition() << "): H within " << worst_h << " at and around every resonance (Hessenberg solve: "
                   << worst_hessenberg << "), variances within "
@@ -115,20 +128,7 @@ TEST_CASE("a rotated modal model in balanced coordinates through the dense path:
     const Rotated r = MakeRotated(modes, 17u + static_cast<unsigned>(modes), true);
     const FrequencyResponse h(r.dense);
     CHECK(h.method() == FrequencyResponse::Method::kSchur);
-    const ModalResponse reference(r.modal, {0, 1, 2, 3});
-    double worst_h = 0.0;
-    for (int k = 0; k < modes; ++k) {
-      const double fd = r.modal.f_hz[k] * std::sqrt(1.0 - r.modal.zeta[k] * r.modal.zeta[k]);
-      for (const double x : {1.0 - r.modal.zeta[k], 1.0, 1.0 + r.modal.zeta[k], 0.5, 2.0}) {
-        const Eigen::MatrixXcd want = reference.At(fd * x);
-        worst_h = std::max(worst_h, (h.At(fd * x) - want).norm() / want.norm());
-      }
-    }
-    const Eigen::MatrixXd w = Eigen::MatrixXd::Identity(3, 3);
-    const Eigen::MatrixXd y = OutputCovariance(r.dense, w);
-    const ModalCovariance closed = ModalOutputCovariance(r.modal, {0, 1, 2, 3}, w);
-    double worst_v = 0.0;
-    for (int i = 0; i < 4; ++i) worst_v = std::max(worst_v, std::abs(y(i, i) - closed.variance(i)) / closed.variance(i));
+    const double worst_h = WorstAtResonances(h, r), worst_v = WorstVariance(r);
     MESSAGE(modes << " modes, balanced coordinates: H within " << worst_h
                   << " at and around every resonance, variances within " << worst_v << " of the modal closed form");
     CHECK(worst_h <= 1e-9);
