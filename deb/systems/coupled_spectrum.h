@@ -16,6 +16,11 @@
 //   C P C^T = C~ (G o (B~ W B~^H)) C~^H,  G_ij = -1 / (mu_i + conj mu_j),
 // C~ = C V, B~ = W^T B, O(n^2 (m + p)).
 //
+// A mode the loop does not drive (its row of U is zero, after rows at the
+// level of rounding in A are made so) or does not see (V) keeps its block's
+// pole exactly; it stays out of the iteration, and its eigenvectors come
+// from one r x r solve at that pole.
+//
 // Accuracy is not assumed. The poles are checked against two invariants of
 // A (sum mu = tr A, sum mu^2 = tr A^2). The covariance carries an estimate
 // of its own error, from the computed eigenvectors' residuals: A v - mu v =
