@@ -138,7 +138,7 @@ CoupledSpectrum CheckAgainstDense(const Loop& l) {
 
 TEST_CASE("coupled realisation: a PID loop around modes is the dense loop, poles and exact variance to 1e-9") {
   // Seeds whose loops are stable (the dense poles say so).
-  for (const std::pair<int, unsigned> c : {std::pair<int, unsigned>{40, 2}, {150, 1}, {300, 3}}) {
+  for (const std::pair<int, unsigned>& c : {std::pair<int, unsigned>{40, 2}, {150, 1}, {300, 3}}) {
     const int modes = c.first;
     CAPTURE(modes);
     const CoupledSpectrum sp = CheckAgainstDense(MakeLoop(modes, c.second));
