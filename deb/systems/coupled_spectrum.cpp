@@ -409,18 +409,21 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
   out.covariance = cov.real();
 
   // The first-order correction L^-1(-R) of the residual R of the computed
-  // P, seen through C (coupled_spectrum.h).
-  MatrixXcd f = k;
+  // P, seen through C (coupled_spectrum.h). The n x n matrices are freed
+  // as soon as they are used (1000 modes: 64 MB each).
+  const MatrixXcd px = sp.rho * x;  // rho X (r x N)
+  x.resize(0, 0);
+  MatrixXcd f = std::move(k);
   if (r > 0) {
     MatrixXcd delta = Product(MatrixXcd(-sp.x.adjoint()), sp.rho);  // -x_i^H rho_j
     delta += Product(MatrixXcd(sp.sigma.adjoint()), sp.y);          // + sigma_i^H y_j
     for (Index j = 0; j < n; ++j)
       for (Index i = 0; i < n; ++i) delta(i, j) = i == j ? cd(0.0) : delta(i, j) / (sp.poles(j) - sp.poles(i));
     const MatrixXcd zb = bh + Product(delta, bh);
+    const MatrixXcd pxz = px + Product(delta, MatrixXcd(px.adjoint())).adjoint();  // rho X (I + delta)^H
+    delta.resize(0, 0);
     f -= Product(MatrixXcd(zb * w), MatrixXcd(zb.adjoint()));
-    const MatrixXcd px = sp.rho * x;                                  // rho X (r x N)
-    const MatrixXcd pxz = px + Product(px, MatrixXcd(delta.adjoint()));
-    const MatrixXcd wu = sp.left * sp.u;                              // W^T U (N x r)
+    const MatrixXcd wu = sp.left * sp.u;  // W^T U (N x r)
     const MatrixXcd t = Product(wu, pxz);
     f += t + t.adjoint();
   } else {
