@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "deb/core/error.h"
+#include "deb/core/math_constants.h"
 #include "deb/core/parallel.h"
 #include "deb/systems/parallel_product.h"
 
@@ -31,84 +32,61 @@ double EigenvectorCondition(const MatrixXcd& x) {
   return svd.singularValues()(0) / svd.singularValues()(x.rows() - 1);
 }
 
-// A block that is not diagonalisable well (a rigid-body mode's double
-// integrator [0 1; 0 0], a Jordan-like cluster) is split: its diagonal
-// stays as 1 x 1 blocks and the rest joins the coupling, at the rank of
-// its SVD (a double integrator adds 1).
-CoupledRealisation SplitDefectiveBlocks(const CoupledRealisation& sys) {
-  CoupledRealisation out = sys;
-  out.blocks.clear();
-  std::vector<MatrixXd> extra_u, extra_v;
+// Each block diagonalised, A ~ D + U V^T in the basis X that does so. A
+// block that is not diagonalisable well (its eigenvalues do not converge,
+// or its eigenvector matrix has a condition number over
+// kMaxCoupledBlockCondition: a rigid-body mode's double integrator
+// [0 1; 0 0], a Jordan-like cluster) keeps its diagonal (X = I) and the
+// rest of it joins the coupling, at the rank of its SVD (a double
+// integrator adds 1).
+Diagonal Diagonalise(const CoupledRealisation& sys) {
+  const Index n = sys.states();
+  MatrixXd u = sys.u, v = sys.v;
+  std::vector<MatrixXcd> xs;
+  std::vector<VectorXcd> evs;
   Index at = 0;
   for (const MatrixXd& blk : sys.blocks) {
     const Index s = blk.rows();
-    bool split = false;
-    if (s > 1) {
-      const Eigen::EigenSolver<MatrixXd> es(blk, true);
-      split = es.info() != Eigen::Success || !(EigenvectorCondition(es.eigenvectors()) <= kMaxCoupledBlockCondition);
+    if (s == 1) {
+      xs.push_back(MatrixXcd::Identity(1, 1));
+      evs.push_back(VectorXcd::Constant(1, blk(0, 0)));
+    } else if (const Eigen::EigenSolver<MatrixXd> es(blk, true);
+               es.info() == Eigen::Success && EigenvectorCondition(es.eigenvectors()) <= kMaxCoupledBlockCondition) {
+      xs.push_back(es.eigenvectors());
+      evs.push_back(es.eigenvalues());
+    } else {
+      const MatrixXd rest = blk - MatrixXd(blk.diagonal().asDiagonal());
+      const Eigen::JacobiSVD<MatrixXd> svd(rest, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      Index rank = 0;
+      while (rank < s && svd.singularValues()(rank) > 0.0) ++rank;
+      const Eigen::VectorXd root = svd.singularValues().head(rank).cwiseSqrt();
+      MatrixXd wider_u = MatrixXd::Zero(n, u.cols() + rank), wider_v = MatrixXd::Zero(n, v.cols() + rank);
+      wider_u.leftCols(u.cols()) = u;
+      wider_v.leftCols(v.cols()) = v;
+      wider_u.block(at, u.cols(), s, rank) = svd.matrixU().leftCols(rank) * root.asDiagonal();
+      wider_v.block(at, v.cols(), s, rank) = svd.matrixV().leftCols(rank) * root.asDiagonal();
+      u = std::move(wider_u);
+      v = std::move(wider_v);
+      xs.push_back(MatrixXcd::Identity(s, s));
+      evs.push_back(blk.diagonal().cast<cd>());
     }
-    if (!split) {
-      out.blocks.push_back(blk);
-      at += s;
-      continue;
-    }
-    const MatrixXd rest = blk - MatrixXd(blk.diagonal().asDiagonal());
-    const Eigen::JacobiSVD<MatrixXd> svd(rest, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Index rank = 0;
-    while (rank < s && svd.singularValues()(rank) > 0.0) ++rank;
-    const Eigen::VectorXd root = svd.singularValues().head(rank).cwiseSqrt();
-    MatrixXd u = MatrixXd::Zero(sys.states(), rank), v = MatrixXd::Zero(sys.states(), rank);
-    u.middleRows(at, s) = svd.matrixU().leftCols(rank) * root.asDiagonal();
-    v.middleRows(at, s) = svd.matrixV().leftCols(rank) * root.asDiagonal();
-    extra_u.push_back(std::move(u));
-    extra_v.push_back(std::move(v));
-    for (Index i = 0; i < s; ++i) out.blocks.push_back(MatrixXd::Constant(1, 1, blk(i, i)));
     at += s;
   }
-  for (std::size_t i = 0; i < extra_u.size(); ++i) {
-    MatrixXd u(out.u.rows(), out.u.cols() + extra_u[i].cols()), v(out.v.rows(), out.v.cols() + extra_v[i].cols());
-    u << out.u, extra_u[i];
-    v << out.v, extra_v[i];
-    out.u = std::move(u);
-    out.v = std::move(v);
-  }
-  return out;
-}
-
-std::optional<Diagonal> Diagonalise(const CoupledRealisation& sys, std::string* why) {
-  const Index n = sys.states(), r = sys.rank();
   Diagonal out;
   out.d.resize(n);
-  out.u.resize(n, r);
-  out.v.resize(n, r);
+  out.u.resize(n, u.cols());
+  out.v.resize(n, v.cols());
   out.b.resize(n, sys.inputs());
   out.c.resize(sys.outputs(), n);
   out.d_feed = sys.d;
-  Index at = 0;
-  for (const MatrixXd& blk : sys.blocks) {
-    const Index s = blk.rows();
-    MatrixXcd x;
-    VectorXcd ev;
-    if (s == 1) {
-      x = MatrixXcd::Identity(1, 1);
-      ev = VectorXcd::Constant(1, blk(0, 0));
-    } else {
-      const Eigen::EigenSolver<MatrixXd> es(blk, true);
-      if (es.info() != Eigen::Success) {
-        *why = "the eigenvalues of a part's " + std::to_string(s) + "-state block did not converge";
-        return std::nullopt;
-      }
-      ev = es.eigenvalues();
-      x = es.eigenvectors();
-    }
-    if (!(EigenvectorCondition(x) <= kMaxCoupledBlockCondition)) {
-      *why = "a part's block is not diagonalisable (a rigid-body mode's double integrator or a repeated pole)";
-      return std::nullopt;
-    }
+  at = 0;
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const MatrixXcd& x = xs[i];
+    const Index s = x.rows();
     const Eigen::PartialPivLU<MatrixXcd> lu(x);
-    out.d.segment(at, s) = ev;
-    out.u.middleRows(at, s) = lu.solve(sys.u.middleRows(at, s).cast<cd>());
-    out.v.middleRows(at, s) = x.transpose() * sys.v.middleRows(at, s).cast<cd>();
+    out.d.segment(at, s) = evs[i];
+    out.u.middleRows(at, s) = lu.solve(u.middleRows(at, s).cast<cd>());
+    out.v.middleRows(at, s) = x.transpose() * v.middleRows(at, s).cast<cd>();
     out.b.middleRows(at, s) = lu.solve(sys.b.middleRows(at, s).cast<cd>());
     out.c.middleCols(at, s) = sys.c.middleCols(at, s).cast<cd>() * x;
     at += s;
@@ -143,7 +121,6 @@ class Secular {
     for (Index b = 0; b < r_; ++b)
       for (Index a = 0; a < r_; ++a) ft_.row(a + r_ * b) = (dg.v.col(a).array() * dg.u.col(b).array()).transpose();
   }
-  Index rank() const { return r_; }
 
   // Columns: (z_j - d_k)^-1 for k down the rows.
   MatrixXcd Resolvents(const cd* z, Index count) const {
@@ -190,7 +167,7 @@ std::optional<VectorXcd> Aberth(const Diagonal& dg, const Secular& sec, int thre
   VectorXcd z(n);
   constexpr double kGolden = 0.6180339887498949;
   for (Index k = 0; k < n; ++k) {
-    const double angle = 2.0 * 3.141592653589793 * std::fmod(kGolden * static_cast<double>(k + 1), 1.0);
+    const double angle = kTwoPi * std::fmod(kGolden * static_cast<double>(k + 1), 1.0);
     z(k) = dg.d(k) + 1e-6 * (std::abs(dg.d(k)) + 1e-3 * scale) * std::polar(1.0, angle);
   }
   std::vector<char> done(static_cast<std::size_t>(n), 0);
@@ -204,27 +181,22 @@ std::optional<VectorXcd> Aberth(const Diagonal& dg, const Secular& sec, int thre
       return z;
     }
     std::vector<cd> step(active.size());
-    constexpr std::size_t kChunk = 64;
-    const std::size_t chunks = (active.size() + kChunk - 1) / kChunk;
-    ParallelFor(
-        chunks,
-        [&](std::size_t c0, std::size_t c1) {
-          for (std::size_t c = c0; c < c1; ++c) {
-            const std::size_t lo = c * kChunk, hi = std::min(active.size(), lo + kChunk);
-            std::vector<cd> pts(hi - lo), logd(hi - lo);
-            for (std::size_t i = lo; i < hi; ++i) pts[i - lo] = z(active[i]);
-            sec.LogDerivatives(pts.data(), static_cast<Index>(hi - lo), logd.data());
-            for (std::size_t i = lo; i < hi; ++i) {
-              const Index j = active[i];
-              const cd newton = 1.0 / logd[i - lo];
-              cd repel = 0.0;
-              for (Index k = 0; k < n; ++k)
-                if (k != j) repel += Reciprocal(z(j) - z(k));
-              step[i] = newton / (1.0 - newton * repel);
-            }
+    ParallelForBlocks(
+        active.size(), 64,
+        [&](std::size_t lo, std::size_t hi) {
+          std::vector<cd> pts(hi - lo), logd(hi - lo);
+          for (std::size_t i = lo; i < hi; ++i) pts[i - lo] = z(active[i]);
+          sec.LogDerivatives(pts.data(), static_cast<Index>(hi - lo), logd.data());
+          for (std::size_t i = lo; i < hi; ++i) {
+            const Index j = active[i];
+            const cd newton = 1.0 / logd[i - lo];
+            cd repel = 0.0;
+            for (Index k = 0; k < n; ++k)
+              if (k != j) repel += Reciprocal(z(j) - z(k));
+            step[i] = newton / (1.0 - newton * repel);
           }
         },
-        threads, 1);
+        threads);
     for (std::size_t i = 0; i < active.size(); ++i) {
       const Index j = active[i];
       const cd w = step[i];
@@ -244,9 +216,8 @@ std::optional<VectorXcd> Aberth(const Diagonal& dg, const Secular& sec, int thre
 
 CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
   CoupledSolve out;
-  std::optional<Diagonal> dg = Diagonalise(SplitDefectiveBlocks(sys), &out.why_not);
-  if (!dg) return out;
-  const Index n = dg->d.size(), r = dg->u.cols();
+  Diagonal dg = Diagonalise(sys);
+  const Index n = dg.d.size(), r = dg.u.cols();
   if (n == 0) {
     out.why_not = "no states";
     return out;
@@ -257,19 +228,19 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
   // A row of U or of V whose part of U V^T is at the level of rounding in A
   // is made zero: the pole of a mode the loop does not drive (U) or does
   // not see (V) is then exactly its block's, and stays out of the iteration.
-  const double size_u = dg->u.norm(), size_v = dg->v.norm();
-  const double floor = 8.0 * kEps * (dg->d.cwiseAbs().maxCoeff() + size_u * size_v);
+  const double size_u = dg.u.norm(), size_v = dg.v.norm();
+  const double floor = 8.0 * kEps * (dg.d.cwiseAbs().maxCoeff() + size_u * size_v);
   std::vector<Index> free, fixed;
   for (Index k = 0; k < n; ++k) {
-    if (dg->u.row(k).norm() * size_v <= floor) dg->u.row(k).setZero();
-    if (dg->v.row(k).norm() * size_u <= floor) dg->v.row(k).setZero();
-    (dg->u.row(k).squaredNorm() > 0.0 && dg->v.row(k).squaredNorm() > 0.0 ? free : fixed).push_back(k);
+    if (dg.u.row(k).norm() * size_v <= floor) dg.u.row(k).setZero();
+    if (dg.v.row(k).norm() * size_u <= floor) dg.v.row(k).setZero();
+    (dg.u.row(k).squaredNorm() > 0.0 && dg.v.row(k).squaredNorm() > 0.0 ? free : fixed).push_back(k);
   }
   const Index nf = static_cast<Index>(free.size());
   Diagonal sub;
-  sub.d = dg->d(free);
-  sub.u = dg->u(free, Eigen::all);
-  sub.v = dg->v(free, Eigen::all);
+  sub.d = dg.d(free);
+  sub.u = dg.u(free, Eigen::all);
+  sub.v = dg.v(free, Eigen::all);
   sp.poles.resize(n);
   if (nf > 0) {
     const Secular sec_free(sub);
@@ -280,15 +251,15 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
     }
     sp.poles.head(nf) = *z;
   }
-  for (std::size_t i = 0; i < fixed.size(); ++i) sp.poles(nf + static_cast<Index>(i)) = dg->d(fixed[i]);
-  const Secular sec(*dg);
+  for (std::size_t i = 0; i < fixed.size(); ++i) sp.poles(nf + static_cast<Index>(i)) = dg.d(fixed[i]);
+  const Secular sec(dg);
   // Two invariants of A: a pole lost or found twice shows in them.
   {
-    cd trace = dg->d.sum(), trace2 = dg->d.array().square().sum();
+    cd trace = dg.d.sum(), trace2 = dg.d.array().square().sum();
     if (r > 0) {
-      const MatrixXcd vu = dg->v.transpose() * dg->u;
+      const MatrixXcd vu = dg.v.transpose() * dg.u;
       trace += vu.trace();
-      trace2 += 2.0 * (dg->d.array() * (dg->u.array() * dg->v.array()).rowwise().sum()).sum() + (vu * vu).trace();
+      trace2 += 2.0 * (dg.d.array() * (dg.u.array() * dg.v.array()).rowwise().sum()).sum() + (vu * vu).trace();
     }
     const double size = sp.poles.cwiseAbs().sum(), size2 = sp.poles.cwiseAbs2().sum();
     if (!(std::abs(sp.poles.sum() - trace) <= 1e-9 * size) ||
@@ -314,20 +285,20 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
     const Index k = fixed[i], j = nf + static_cast<Index>(i);
     sp.right(k, j) = 1.0;
     sp.left(j, k) = 1.0;
-    const bool driven = dg->u.row(k).squaredNorm() > 0.0, seen = dg->v.row(k).squaredNorm() > 0.0;
+    const bool driven = dg.u.row(k).squaredNorm() > 0.0, seen = dg.v.row(k).squaredNorm() > 0.0;
     if (!driven && !seen) continue;
-    VectorXcd cz = sec.Resolvents(&dg->d(k), 1).col(0);
+    VectorXcd cz = sec.Resolvents(&dg.d(k), 1).col(0);
     cz(k) = 0.0;
     const MatrixXcd m = sec.M(cz);
     const Eigen::PartialPivLU<MatrixXcd> lu(m);
     if (seen) {
-      const VectorXcd s_k = lu.solve(VectorXcd(dg->v.row(k).transpose()));
-      VectorXcd v = cz.cwiseProduct(dg->u * s_k);
+      const VectorXcd s_k = lu.solve(VectorXcd(dg.v.row(k).transpose()));
+      VectorXcd v = cz.cwiseProduct(dg.u * s_k);
       v(k) = 1.0;
       sp.right.col(j) = v;
     } else {
-      const VectorXcd t = lu.transpose().solve(VectorXcd(dg->u.row(k).transpose()));
-      VectorXcd w = cz.cwiseProduct(dg->v * t);
+      const VectorXcd t = lu.transpose().solve(VectorXcd(dg.u.row(k).transpose()));
+      VectorXcd w = cz.cwiseProduct(dg.v * t);
       w(k) = 1.0;
       sp.left.row(j) = w.transpose();
     }
@@ -344,7 +315,7 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
           const MatrixXcd m = sec.M(czj);
           const Eigen::JacobiSVD<MatrixXcd> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
           VectorXcd yj = svd.matrixV().col(r - 1), xj = svd.matrixU().col(r - 1);
-          VectorXcd v = czj.cwiseProduct(dg->u * yj);
+          VectorXcd v = czj.cwiseProduct(dg.u * yj);
           const double norm = v.norm();
           if (!(norm > 0.0) || !std::isfinite(norm)) {
             bad[i] = 1;
@@ -352,7 +323,7 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
           }
           v /= norm;
           yj /= norm;
-          VectorXcd w = czj.cwiseProduct(dg->v * xj.conjugate());
+          VectorXcd w = czj.cwiseProduct(dg.v * xj.conjugate());
           const cd wv = (w.array() * v.array()).sum();
           if (!(std::abs(wv) > 0.0) || !Finite(wv)) {
             bad[i] = 1;
@@ -371,7 +342,7 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
       },
       threads);
   if (std::any_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) {
-    out.why_not = "a pole lies on a part's own pole (a mode the loop neither moves nor sees)";
+    out.why_not = "a pole found lies on a block's own pole, where its eigenvectors are not finite";
     return out;
   }
   sp.eigenvalue_condition = *std::max_element(kappa.begin(), kappa.end());
@@ -379,10 +350,10 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
     out.why_not = "an eigenvector is not finite";
     return out;
   }
-  sp.c = std::move(dg->c);
-  sp.b = std::move(dg->b);
-  sp.d = std::move(dg->d_feed);
-  sp.u = std::move(dg->u);
+  sp.c = std::move(dg.c);
+  sp.b = std::move(dg.b);
+  sp.d = std::move(dg.d_feed);
+  sp.u = std::move(dg.u);
   out.spectrum = std::move(sp);
   return out;
 }

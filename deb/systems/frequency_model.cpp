@@ -293,19 +293,14 @@ void FrequencyModel::ForEach(const std::vector<double>& f_hz, const Visitor& fn,
   // A diagram in fixed blocks of frequencies (so that the last digits of a
   // modal part's products do not depend on the thread count), its modal
   // parts evaluated a block at a time.
-  constexpr std::size_t kBlock = 64;
-  const std::size_t blocks = (f_hz.size() + kBlock - 1) / kBlock;
-  ParallelFor(
-      blocks,
-      [&](std::size_t b0, std::size_t b1) {
-        for (std::size_t b = b0; b < b1; ++b) {
-          const std::size_t lo = b * kBlock, hi = std::min(f_hz.size(), lo + kBlock);
-          const std::vector<Eigen::MatrixXcd> h = node_->AtBlock(
-              std::vector<double>(f_hz.begin() + static_cast<std::ptrdiff_t>(lo), f_hz.begin() + static_cast<std::ptrdiff_t>(hi)));
-          for (std::size_t k = lo; k < hi; ++k) fn(k, h[k - lo]);
-        }
+  ParallelForBlocks(
+      f_hz.size(), 64,
+      [&](std::size_t lo, std::size_t hi) {
+        const std::vector<Eigen::MatrixXcd> h = node_->AtBlock(
+            std::vector<double>(f_hz.begin() + static_cast<std::ptrdiff_t>(lo), f_hz.begin() + static_cast<std::ptrdiff_t>(hi)));
+        for (std::size_t k = lo; k < hi; ++k) fn(k, h[k - lo]);
       },
-      threads, 1);
+      threads);
 }
 
 }  // namespace deb
