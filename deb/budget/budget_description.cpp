@@ -65,9 +65,11 @@ void AddPath(std::string& text, const Path& p, const EvaluationPlan& plan) {
       analysis = a.get();
       break;
     }
+  // A diagram kept as parts has its poles from a contributor's analysis only.
+  const std::string stability = p.KeptAsParts() && !analysis ? "poles not computed (no contributor uses it)"
+                                                             : Stability(p.system, analysis);
   AppendFormatted(text, "  %-20s %d input(s) -> %d output(s), %d state(s)%s, %s\n", p.name.c_str(), p.system.inputs(),
-                  p.system.outputs(), p.system.states(), approximated.c_str(),
-                  Stability(p.system, analysis).c_str());
+                  p.system.outputs(), p.States(), approximated.c_str(), stability.c_str());
   // How its H is evaluated.
   if (analysis)
     AppendFormatted(text, "  %-20s H by %s\n", "", analysis->ResponseForm().c_str());

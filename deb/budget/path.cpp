@@ -51,7 +51,15 @@ Eigen::MatrixXcd FeedbackLoop::LoopGainOf(const Eigen::MatrixXcd& g, double f_hz
   return -static_cast<double>(sign) * (g * controller_model->At(f_hz));
 }
 
-StateSpace Path::Rational() const { return modal ? ModalStateSpace(*modal) : system; }
+int Path::States() const {
+  if (unrealised_states > 0) return unrealised_states;
+  return modal ? 2 * modal->modes() : system.states();
+}
+
+StateSpace Path::Rational() const {
+  DEB_DEMAND(!KeptAsParts());
+  return modal ? ModalStateSpace(*modal) : system;
+}
 
 FrequencyModel Path::Model() const {
   if (measured) return *measured;

@@ -67,6 +67,13 @@ struct Path {
   // Set for a path of `type: modal`: it is evaluated in modal form
   // (path_analysis.h), and `system` is again only a zero gain of its size.
   std::shared_ptr<const ModalModel> modal;
+  // States of a diagram too large to realise densely: a series, parallel or
+  // feedback path with modal parts and more than limits::kMaxDenseStates
+  // states (a loop around a large modal plant). `system` is then again only
+  // a zero gain of its size; its poles and exact variance come from its
+  // parts kept as blocks and a low-rank coupling (path_analysis.h). 0: the
+  // path is realised (or needs no realisation).
+  int unrealised_states = 0;
   std::vector<std::string> input_names;   // one per input column
   std::vector<std::string> output_names;  // one per output row ("signals")
   std::vector<std::string> input_units;   // one per input column
@@ -85,10 +92,17 @@ struct Path {
   bool HasMeasuredData() const { return measured && measured->HasData(); }
   // H is evaluated per frequency from `measured`, and `system` realises it
   // (with rational approximations of its delays and sampled blocks).
-  bool SystemApproximates() const { return measured && !measured->HasData(); }
+  bool SystemApproximates() const { return measured && !measured->HasData() && unrealised_states == 0; }
+  // A diagram evaluated from its parts with no dense realisation at all
+  // (unrealised_states).
+  bool KeptAsParts() const { return unrealised_states > 0; }
   bool IsModal() const { return modal != nullptr; }
+  // States of the path's rational transfer: `system`'s, 2 per mode of a
+  // modal model, or unrealised_states.
+  int States() const;
   // The rational transfer as a state space: `system`, or the realisation of
   // the modal model (2 states per mode; for joining it with other paths).
+  // The caller checks !KeptAsParts() first.
   StateSpace Rational() const;
   // The path as a block diagram evaluated per frequency (measured, the
   // modal model, or the rational transfer wrapped); for interconnecting it.

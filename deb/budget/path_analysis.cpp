@@ -62,11 +62,13 @@ Eigen::VectorXcd RealisationPoles(const StateSpace& system) {
 
 // A large diagram with modal parts as blocks and a low-rank coupling
 // (coupled_spectrum.h): its poles without reducing the dense realisation.
-// nullptr, with the reason, where it is not kept so or not solved so; a
-// loop with a pole on or right of the imaginary axis is left to the dense
-// realisation, whose verdict and messages are the reference.
+// nullptr, with the reason, where it is not kept so or not solved so. A
+// realised loop with a pole on or right of the imaginary axis is left to
+// the dense realisation, whose verdict and messages are the reference; a
+// loop kept as parts has no other, and keeps its poles.
 std::shared_ptr<const CoupledSpectrum> CoupledLoop(const Path& path, std::string* why) {
-  if (path.system.states() < kSharedFormStates || path.measured->ModalParts().empty()) return nullptr;
+  if (!path.KeptAsParts() && (path.system.states() < kSharedFormStates || path.measured->ModalParts().empty()))
+    return nullptr;
   try {
     const std::optional<CoupledRealisation> coupled = path.measured->Coupled(why);
     if (!coupled) return nullptr;
@@ -75,7 +77,7 @@ std::shared_ptr<const CoupledSpectrum> CoupledLoop(const Path& path, std::string
       *why = solved.why_not;
       return nullptr;
     }
-    if (!(solved.spectrum->poles.real().maxCoeff() < 0.0)) {
+    if (!path.KeptAsParts() && !(solved.spectrum->poles.real().maxCoeff() < 0.0)) {
       *why = "a pole is not in the left half-plane";
       return nullptr;
     }
@@ -84,6 +86,12 @@ std::shared_ptr<const CoupledSpectrum> CoupledLoop(const Path& path, std::string
     *why = e.what();
     return nullptr;
   }
+}
+
+// "its 2004 states are more than the 2000 deb realises densely"
+std::string TooManyToRealise(const Path& path) {
+  return "its " + std::to_string(path.States()) + " states are more than the " +
+         std::to_string(limits::kMaxDenseStates) + " deb realises densely";
 }
 
 }  // namespace
@@ -98,7 +106,14 @@ PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : pat
     modal_ = std::make_unique<ModalResponse>(*path.modal, rows_);
   } else if (path.measured) {
     measured_ = path.measured->SelectOutputs(rows_);
-    if (path.SystemApproximates()) {  // the realisation's poles (Pade's too)
+    if (path.KeptAsParts()) {
+      coupled_ = CoupledLoop(path, &coupled_why_);
+      if (!coupled_)
+        throw InputError(TooManyToRealise(path) + ", and its parts do not hold as coupled blocks (" + coupled_why_ +
+                         "): no poles, stability or exact variance");
+      poles = coupled_->poles;
+      realisation_poles_ = poles;
+    } else if (path.SystemApproximates()) {  // the realisation's poles (Pade's too)
       coupled_ = CoupledLoop(path, &coupled_why_);
       poles = coupled_ ? coupled_->poles : RealisationPoles(path.system);
       realisation_poles_ = poles;
@@ -138,6 +153,7 @@ PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : pat
 }
 
 StateSpace PathAnalysis::Realisation() const {
+  DEB_DEMAND(!path_.KeptAsParts());
   return reduced_ ? *reduced_ : path_.system.SelectOutputs(rows_);
 }
 
@@ -159,18 +175,20 @@ std::string PathAnalysis::ResponseForm() const {
   if (rational_) return rational_->Describe();
   // A diagram of delays and sampled blocks says so on its own line (its
   // approximations); one with modal parts says what H costs here.
-  if (!path_.SystemApproximates()) return "";
+  if (!path_.SystemApproximates() && !path_.KeptAsParts()) return "";
   int modes = 0;
   for (const auto& part : path_.measured->ModalParts()) modes += part->modes();
   if (modes == 0) return "";
   const std::string head = "its parts at each frequency (the modal form of " + std::to_string(modes) + " mode(s)); ";
-  const std::string states = std::to_string(path_.system.states());
+  const std::string states = std::to_string(path_.States());
   if (coupled_) {
     std::ostringstream os;
     os << std::setprecision(2) << coupled_->eigenvalue_condition;
     return head + "poles of its " + states + " states from " + std::to_string(coupled_->blocks) +
            " block(s) coupled at rank " + std::to_string(coupled_->rank) +
-           " (no dense reduction), exact variance in closed form on their eigenvectors (eigenvalue condition up to " +
+           (path_.KeptAsParts() ? " (no dense realisation: more than " + std::to_string(limits::kMaxDenseStates) + " states)"
+                                : " (no dense reduction)") +
+           ", exact variance in closed form on their eigenvectors (eigenvalue condition up to " +
            os.str() + ")";
   }
   return head + "poles and exact variance by its " + states + "-state realisation" +
@@ -261,9 +279,10 @@ const PathAnalysis::Cached& PathAnalysis::AllRows(const Eigen::MatrixXd& w_two_s
         return ExactVariance{one.variance(0), one.share.row(0).transpose()};
       });
     }
-  } else if (std::optional<Eigen::MatrixXd> cov = CoupledCovarianceOf(rows_, w_two_sided)) {
-    for (std::size_t i = 0; i < rows_.size(); ++i)
-      c.rows[i] = ExactVariance{(*cov)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), {}};
+  } else if (std::vector<std::string> why_rows;
+             coupled_ && CoupledCovarianceHolds(c, CoupledCovarianceRows(rows_, w_two_sided, &why_rows), why_rows)) {
+    // c holds the rows whose estimate holds; a path kept as parts has no
+    // other solve for the rest, and a realised one solves them all densely.
   } else if (rational_ || path_.SystemApproximates()) {
     try {
       const StateSpace all = Realisation();
@@ -296,7 +315,7 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
                                               const std::vector<const StateSpace*>& weightings,
                                               const Eigen::MatrixXd& w_two_sided) const {
   DEB_DEMAND(!rows.empty() && rows.size() == weightings.size());
-  if (measured_ && !path_.SystemApproximates()) throw InputError("the path holds measured frequency data (no state-space model for a Lyapunov solution)");
+  if (measured_ && !path_.SystemApproximates() && !path_.KeptAsParts()) throw InputError("the path holds measured frequency data (no state-space model for a Lyapunov solution)");
   // Unweighted rows of a modal path: the modal covariance's closed form, as
   // their variances (AllRows), O(n^2 p) instead of a 2n-state Lyapunov solve.
   if (modal_ && std::all_of(weightings.begin(), weightings.end(), [](const StateSpace* w) { return w == nullptr; }))
@@ -306,8 +325,12 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
                      std::to_string(path_.modal->modes()) + " modes make " +
                      std::to_string(2 * path_.modal->modes()) + " states, more than the " +
                      std::to_string(limits::kMaxDenseStates) + " deb solves densely");
-  if (std::all_of(weightings.begin(), weightings.end(), [](const StateSpace* w) { return w == nullptr; }))
-    if (std::optional<Eigen::MatrixXd> cov = CoupledCovarianceOf(rows, w_two_sided)) return *cov;
+  const bool unweighted =
+      std::all_of(weightings.begin(), weightings.end(), [](const StateSpace* w) { return w == nullptr; });
+  std::string why = "an output weighting is solved in state space with the path's realisation";
+  if (unweighted)
+    if (std::optional<Eigen::MatrixXd> cov = CoupledCovarianceOf(rows, w_two_sided, &why)) return *cov;
+  if (path_.KeptAsParts()) RefuseKeptVariance(why);
   // The reduced realisation (its rows numbered as the evaluated rows) where
   // it holds every row asked for; else the path's own.
   const bool reduced =
@@ -322,17 +345,65 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
   return OutputCovariance(*stacked, w_two_sided);
 }
 
-std::optional<Eigen::MatrixXd> PathAnalysis::CoupledCovarianceOf(const std::vector<int>& rows,
-                                                               const Eigen::MatrixXd& w_two_sided) const {
-  if (!coupled_ || reduced_) return std::nullopt;
+bool PathAnalysis::CoupledCovarianceHolds(Cached& c, const std::optional<CoupledCovariance>& cov,
+                                          const std::vector<std::string>& why_rows) const {
+  const bool every = cov && std::all_of(why_rows.begin(), why_rows.end(), [](const std::string& w) { return w.empty(); });
+  if (!every && !path_.KeptAsParts()) return false;
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    if (cov && why_rows[i].empty()) {
+      c.rows[i] = ExactVariance{cov->covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), {}};
+      continue;
+    }
+    try {
+      RefuseKeptVariance(why_rows[i]);
+    } catch (const InputError& e) {
+      c.errors[i] = e.what();
+    }
+  }
+  return true;
+}
+
+std::optional<CoupledCovariance> PathAnalysis::CoupledCovarianceRows(const std::vector<int>& rows,
+                                                                   const Eigen::MatrixXd& w_two_sided,
+                                                                   std::vector<std::string>* why) const {
+  why->assign(rows.size(), "");
+  const auto all = [&](const std::string& reason) {
+    why->assign(rows.size(), reason);
+    return std::nullopt;
+  };
+  if (!coupled_ || reduced_) return all("the path is not kept as coupled blocks");
   // Feedthrough of white noise: the dense solve's message says so.
   for (int r : rows)
-    if ((coupled_->d.row(r) * w_two_sided * coupled_->d.row(r).transpose())(0, 0) != 0.0) return std::nullopt;
-  const CoupledCovariance cov = CoupledOutputCovariance(*coupled_, rows, w_two_sided);
+    if ((coupled_->d.row(r) * w_two_sided * coupled_->d.row(r).transpose())(0, 0) != 0.0)
+      return all("white noise passes straight through (D W D^T is not 0): the variance is infinite");
+  if (!(coupled_->poles.real().maxCoeff() < 0.0)) return all("a pole is not in the left half-plane");
+  CoupledCovariance cov = CoupledOutputCovariance(*coupled_, rows, w_two_sided);
+  if (!cov.covariance.allFinite()) return all("the coupled form's covariance is not finite");
   for (Eigen::Index i = 0; i < cov.relative_error.size(); ++i)
-    if (!(cov.relative_error(i) <= kCoupledVarianceTolerance) || !(cov.covariance(i, i) >= 0.0)) return std::nullopt;
-  if (!cov.covariance.allFinite()) return std::nullopt;
-  return cov.covariance;
+    if (!(cov.relative_error(i) <= kCoupledVarianceTolerance) || !(cov.covariance(i, i) >= 0.0)) {
+      std::ostringstream os;
+      os << std::setprecision(2) << "the coupled form's variance is uncertain to " << cov.relative_error(i)
+         << " relative, more than " << kCoupledVarianceTolerance;
+      (*why)[static_cast<std::size_t>(i)] = os.str();
+    }
+  return cov;
+}
+
+std::optional<Eigen::MatrixXd> PathAnalysis::CoupledCovarianceOf(const std::vector<int>& rows,
+                                                               const Eigen::MatrixXd& w_two_sided,
+                                                               std::string* why) const {
+  std::vector<std::string> why_rows;
+  std::optional<CoupledCovariance> cov = CoupledCovarianceRows(rows, w_two_sided, &why_rows);
+  for (const std::string& reason : why_rows)
+    if (!reason.empty()) {
+      if (why) *why = reason;
+      return std::nullopt;
+    }
+  return std::move(cov->covariance);
+}
+
+void PathAnalysis::RefuseKeptVariance(const std::string& why) const {
+  throw InputError(TooManyToRealise(path_) + " for a Lyapunov solve, and " + why);
 }
 
 }  // namespace deb

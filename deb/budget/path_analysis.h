@@ -13,7 +13,12 @@
 //     per frequency as a diagram (delays exactly, modal parts in modal
 //     form); poles, stability and the exact variance are those of its
 //     realisation (Path::SystemApproximates), the rational approximation of
-//     its delays and sampled blocks.
+//     its delays and sampled blocks;
+//   - a loop around modal parts of more than limits::kMaxDenseStates states
+//     (Path::KeptAsParts) is never realised densely: its poles, stability
+//     and exact variance come from its parts kept as blocks and a low-rank
+//     coupling (coupled_spectrum.h), which must hold, or the analysis
+//     refuses the path.
 #pragma once
 
 #include <Eigen/Dense>
@@ -32,7 +37,8 @@
 
 namespace deb {
 
-struct CoupledSpectrum;  // deb/systems/coupled_spectrum.h (internal)
+struct CoupledSpectrum;    // deb/systems/coupled_spectrum.h (internal)
+struct CoupledCovariance;  // deb/systems/coupled_spectrum.h (internal)
 
 class FrequencyResponse;
 class ModalResponse;
@@ -41,6 +47,8 @@ class PathAnalysis {
  public:
   // `rows`: the path's output rows to evaluate (each budget output reads one;
   // repeats are kept once). Reduces the model.
+  // @throws InputError for a path kept as parts whose coupled form does not
+  //   hold (the reason: a part too large, a delay, no convergence).
   PathAnalysis(const Path& path, const std::vector<int>& rows);
   ~PathAnalysis();
   PathAnalysis(const PathAnalysis&) = delete;
@@ -96,8 +104,9 @@ class PathAnalysis {
   // weightings stacked. A modal path without weightings takes the modal
   // closed form (ModalOutputCovarianceMatrix), with weightings its
   // state-space form.
-  // @throws InputError as Exact (measured data, a weighted modal path too
-  //   large to solve densely, poles, feedthrough, an unreliable solution).
+  // @throws InputError as Exact (measured data, a weighted modal path or
+  //   a weighted diagram kept as parts (too large to solve densely), poles,
+  //   feedthrough, an unreliable solution).
   Eigen::MatrixXd ExactCovariance(const std::vector<int>& rows, const std::vector<const StateSpace*>& weightings,
                                   const Eigen::MatrixXd& w_two_sided) const;
 
@@ -139,9 +148,18 @@ class PathAnalysis {
   std::shared_ptr<const CoupledSpectrum> coupled_;
   std::string coupled_why_;
   // The coupled form's covariance of `rows` where it holds (D W D^T = 0,
-  // every estimate within kCoupledVarianceTolerance), else nullopt.
-  std::optional<Eigen::MatrixXd> CoupledCovarianceOf(const std::vector<int>& rows,
-                                                     const Eigen::MatrixXd& w_two_sided) const;
+  // every estimate within kCoupledVarianceTolerance), else nullopt and, if
+  // `why`, the reason.
+  std::optional<Eigen::MatrixXd> CoupledCovarianceOf(const std::vector<int>& rows, const Eigen::MatrixXd& w_two_sided,
+                                                     std::string* why = nullptr) const;
+  // The coupled form's covariance of `rows` with, per row, why its variance
+  // does not hold ("" where it does); nullopt where none is computed (then
+  // every row has the reason).
+  std::optional<CoupledCovariance> CoupledCovarianceRows(const std::vector<int>& rows,
+                                                         const Eigen::MatrixXd& w_two_sided,
+                                                         std::vector<std::string>* why) const;
+  // The InputError for a variance a path kept as parts cannot give.
+  [[noreturn]] void RefuseKeptVariance(const std::string& why) const;
   // All evaluated rows under the last W asked for (no weighting).
   struct Cached {
     Eigen::MatrixXd w;
@@ -149,6 +167,11 @@ class PathAnalysis {
     std::vector<std::string> errors;
   };
   mutable std::optional<Cached> cache_;
+  // Fills c's rows from the coupled form's covariance where every row holds,
+  // or for a path kept as parts (rows that do not hold get their reason);
+  // false: the dense realisation solves them instead.
+  bool CoupledCovarianceHolds(Cached& c, const std::optional<CoupledCovariance>& cov,
+                              const std::vector<std::string>& why_rows) const;
   const Cached& AllRows(const Eigen::MatrixXd& w_two_sided) const;
 };
 

@@ -39,18 +39,28 @@ Eigen::MatrixXd ScaleBetween(const std::string& key_path, const std::vector<std:
 // evaluated per frequency when a part holds measured data, delays, sampled
 // blocks or modes (path.h), with as `system` the combination of the parts'
 // realisations where there are no measured data (Path::SystemApproximates),
-// or a zero gain of the result's size. p may be a or b.
+// or a zero gain of the result's size: with measured data, and for a
+// diagram of more than limits::kMaxDenseStates states, which is kept as its
+// parts (Path::KeptAsParts). p may be a or b.
+// @throws InputError for a diagram kept as parts of more than
+//   limits::kMaxCoupledStates states.
 template <typename StateSpaceOp, typename ModelOp>
 void Combine(Path* p, const Path& a, const Path& b, StateSpaceOp rational, ModelOp diagram) {
   std::shared_ptr<const FrequencyModel> model;
   if (a.measured || b.measured || a.modal || b.modal)
     model = std::make_shared<const FrequencyModel>(diagram(a.Model(), b.Model()));
-  StateSpace system = model && model->HasData()
+  const int states = a.States() + b.States();
+  const bool kept = model && !model->HasData() && (a.KeptAsParts() || b.KeptAsParts() || states > limits::kMaxDenseStates);
+  if (kept && states > limits::kMaxCoupledStates)
+    throw InputError("the combination has " + std::to_string(states) + " states (2 per mode), more than the " +
+                     std::to_string(limits::kMaxCoupledStates) + " deb keeps as coupled parts");
+  StateSpace system = model && (model->HasData() || kept)
                           ? StateSpace::Gain(Eigen::MatrixXd::Zero(model->outputs(), model->inputs()))
                           : rational(a.Rational(), b.Rational());
   p->modal.reset();  // a combination is realised in state space (path.h)
   p->system = std::move(system);
   p->measured = std::move(model);
+  p->unrealised_states = kept ? states : 0;
 }
 
 // p's transfer = b after a (H = H_b H_a).
@@ -74,17 +84,10 @@ Path Scaled(const Eigen::MatrixXd& g_in, const Path& part, const Eigen::MatrixXd
   return p;
 }
 
-// A modal path joined with others is realised in state space (path.h):
-// refused beyond limits::kMaxDenseStates states.
-const Path& DenseRealisable(const PathPart& part) {
+// A part of a composition, checked to be there.
+const Path& PartPath(const PathPart& part) {
   DEB_DEMAND(part.path != nullptr);
-  const Path& p = *part.path;
-  if (p.IsModal() && 2 * p.modal->modes() > limits::kMaxDenseStates)
-    Fail(part.key_path, "path '" + p.name + "' has " + std::to_string(p.modal->modes()) +
-                            " modes; joined with other paths it is realised in state space, 2 states per mode, and "
-                            "at most " + std::to_string(limits::kMaxDenseStates) +
-                            " states are formed (use it directly in a contributor)");
-  return p;
+  return *part.path;
 }
 
 // The transfer and channels of `acc` under the caller's name.
@@ -92,6 +95,7 @@ Path Composed(const Path& acc) {
   Path p;
   p.system = acc.system;
   p.measured = acc.measured;
+  p.unrealised_states = acc.unrealised_states;
   p.input_units = acc.input_units;
   p.output_units = acc.output_units;
   p.input_names = acc.input_names;
@@ -111,9 +115,9 @@ void RequireTwo(const std::vector<PathPart>& parts) {
 
 Path SeriesOfPaths(const std::vector<PathPart>& parts) {
   RequireTwo(parts);
-  Path acc = DenseRealisable(parts[0]);
+  Path acc = PartPath(parts[0]);
   for (std::size_t i = 1; i < parts.size(); ++i) {
-    const Path& next = DenseRealisable(parts[i]);
+    const Path& next = PartPath(parts[i]);
     if (next.system.inputs() != acc.system.outputs())
       Fail(parts[i].key_path, "path '" + next.name + "' has " + std::to_string(next.system.inputs()) +
                                   " input(s) but follows " + std::to_string(acc.system.outputs()) + " output(s)");
@@ -130,9 +134,9 @@ Path SeriesOfPaths(const std::vector<PathPart>& parts) {
 
 Path ParallelOfPaths(const std::vector<PathPart>& parts) {
   RequireTwo(parts);
-  Path acc = DenseRealisable(parts[0]);
+  Path acc = PartPath(parts[0]);
   for (std::size_t i = 1; i < parts.size(); ++i) {
-    const Path& next = DenseRealisable(parts[i]);
+    const Path& next = PartPath(parts[i]);
     if (next.system.inputs() != acc.system.inputs() || next.system.outputs() != acc.system.outputs())
       Fail(parts[i].key_path, "parallel paths must have the same numbers of inputs and outputs");
     const Eigen::MatrixXd gi = ScaleBetween(parts[i].key_path, acc.input_units, next.input_units, "parallel inputs");
@@ -187,7 +191,7 @@ Path SelectPathInputs(const Path& path, const std::vector<std::string>& inputs) 
     for (int i = 0; i < k; ++i) selector(columns[i], i) = 1.0;
     p.measured = std::make_shared<const FrequencyModel>(
         FrequencyModel::Series(FrequencyModel(StateSpace::Gain(selector)), *path.measured));
-    if (path.HasMeasuredData()) {
+    if (path.HasMeasuredData() || path.KeptAsParts()) {
       p.system = StateSpace::Gain(Eigen::MatrixXd::Zero(path.system.outputs(), k));
       return p;
     }
@@ -241,7 +245,7 @@ Path AddCombinedOutput(const Path& path, const std::string& name, const std::vec
     stack.row(p) = weights;
     q.measured = std::make_shared<const FrequencyModel>(
         FrequencyModel::Series(*path.measured, FrequencyModel(StateSpace::Gain(stack))));
-    if (path.HasMeasuredData()) {
+    if (path.HasMeasuredData() || path.KeptAsParts()) {
       q.system = StateSpace::Gain(Eigen::MatrixXd::Zero(p + 1, m));
       return q;
     }
@@ -262,8 +266,8 @@ void CheckFeedbackSign(int sign) {
 
 Path FeedbackOfPaths(const PathPart& plant_part, const PathPart& controller_part, int sign) {
   CheckFeedbackSign(sign);
-  const Path& plant = DenseRealisable(plant_part);
-  const Path& ctrl = DenseRealisable(controller_part);
+  const Path& plant = PartPath(plant_part);
+  const Path& ctrl = PartPath(controller_part);
   const std::string& at = controller_part.key_path;
   if (ctrl.system.inputs() != plant.system.outputs() || ctrl.system.outputs() != plant.system.inputs())
     Fail(at, "controller '" + ctrl.name + "' must have " + std::to_string(plant.system.outputs()) + " input(s) and " +

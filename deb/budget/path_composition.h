@@ -6,7 +6,9 @@
 // evaluated per frequency (frequency_model.h). A modal part makes it a
 // diagram too, for H (the modal form at each frequency), and is realised
 // in state space beside it, 2 states per mode, up to
-// limits::kMaxDenseStates states, for poles and the exact variance.
+// limits::kMaxDenseStates states, for poles and the exact variance; a
+// larger one is kept as its parts only (Path::KeptAsParts), up to
+// limits::kMaxCoupledStates states.
 //   series    H = H_n ... H_2 H_1
 //   parallel  H = H_1 + ... + H_n
 //   feedback  H = (I - sign G K)^-1 G   (sign = -1: negative feedback)
@@ -30,8 +32,8 @@ struct PathPart {
 // last part's outputs (series) or the first part's outputs (parallel); the
 // caller sets its name and description.
 // @throws InputError (at a part's key path) for fewer than two parts, sizes
-//   that do not fit, units that differ by more than a scale, or a modal part
-//   too large to realise.
+//   that do not fit, units that differ by more than a scale, or (without
+//   one) a result of more than limits::kMaxCoupledStates states.
 Path SeriesOfPaths(const std::vector<PathPart>& parts);
 Path ParallelOfPaths(const std::vector<PathPart>& parts);
 // The loop closed by `controller` around `plant`: the plant's inputs and

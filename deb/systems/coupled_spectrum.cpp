@@ -19,6 +19,12 @@ using Eigen::MatrixXcd;
 using Eigen::MatrixXd;
 using Eigen::VectorXcd;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
+// The relative rounding error of one term of the closed form
+// (CoupledOutputCovariance): C~, B~ W B~^H and G, each a product or sum.
+constexpr double kRoundingPerTerm = 4.0 * kEps;
+// The eigenvectors' own accuracy, eps times the largest eigenvalue
+// condition, times this margin (CoupledOutputCovariance).
+constexpr double kConditionMargin = 16.0;
 
 // A ~ D + U V^T in the basis X that diagonalises each block; B and C with it.
 struct Diagonal {
@@ -402,17 +408,19 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
   }
   f = g.cwiseProduct(f);
   const MatrixXcd correction = ch * Product(f, ch_adj);
-  // Rounding: the sums' absolute values.
+  // Rounding: each term of the closed form carries a relative error of a
+  // few eps, summed here without the cancellation the terms have
+  // (coupled_spectrum.h).
   const MatrixXd abs_c = Product(MatrixXd(cr.cwiseAbs()), MatrixXd(sp.right.cwiseAbs()));
   const MatrixXd abs_b = MatrixXd(sp.left.cwiseAbs()) * MatrixXd(sp.b.cwiseAbs());
   const MatrixXd abs_k = Product(MatrixXd(abs_b * w_two_sided.cwiseAbs()), MatrixXd(abs_b.transpose()));
   const MatrixXd abs_x = g.cwiseAbs().cwiseProduct(abs_k);
   const MatrixXd abs_cov = abs_c * Product(abs_x, MatrixXd(abs_c.transpose()));
-  const double rounding = 4.0 * kEps * std::sqrt(static_cast<double>(2 * n + w.rows()));
   out.relative_error.resize(p);
   for (Index i = 0; i < p; ++i) {
     const double v = out.covariance(i, i);
-    const double e = std::abs(correction(i, i)) + std::abs(cov(i, i).imag()) + rounding * abs_cov(i, i);
+    const double e = std::abs(correction(i, i)) + std::abs(cov(i, i).imag()) + kRoundingPerTerm * abs_cov(i, i) +
+                     kConditionMargin * kEps * sp.eigenvalue_condition * std::abs(v);
     out.relative_error(i) = v > 0.0 ? e / v : (e == 0.0 ? 0.0 : std::numeric_limits<double>::infinity());
   }
   return out;

@@ -17,7 +17,9 @@
 #include <vector>
 
 #include "deb/budget/path_composition.h"
+#include "deb/core/limits.h"
 #include "deb/systems/frequency_response.h"
+#include "deb/systems/interconnect.h"
 #include "deb/systems/lyapunov.h"
 
 namespace deb {
@@ -222,6 +224,82 @@ TEST_CASE("a chain of a modal path and measured data takes its poles from the mo
   // H: 2 (the data, flat) times the modal plant.
   const Eigen::MatrixXcd h = chain.Model().At(3.0), g = plant.Model().At(3.0);
   CHECK((h - 2.0 * g).norm() <= 1e-14 * g.norm());
+}
+
+TEST_CASE("a loop of more than 2000 states is kept as its parts: no dense realisation, its figures from coupled blocks") {
+  const Path plant = ModalPlant(1001, 5u);
+  const Path controller = Controller(*plant.modal);
+  const Path loop = FeedbackOfPaths({&plant, "plant"}, {&controller, "controller"});
+  REQUIRE(loop.KeptAsParts());
+  CHECK(!loop.SystemApproximates());
+  CHECK(loop.system.states() == 0);  // only its size
+  CHECK(loop.system.inputs() == 3);
+  CHECK(loop.States() == 2 * 1001 + 2);
+  const PathAnalysis analysis(loop, {0, 1, 2});
+  CHECK(analysis.ResponseForm().find("poles of its 2004 states from 1002 block(s) coupled at rank 4 (no dense "
+                                     "realisation: more than 2000 states)") != std::string::npos);
+  CHECK(analysis.StateSpacePoles().size() == 2004);
+  CHECK(analysis.unstable_poles().empty());
+  CHECK(analysis.marginal_poles().empty());
+
+  // Against the same loop realised by hand (the junction's m -> um is a
+  // gain of 1e6 at the controller's input) and the whole Bartels-Stewart
+  // solve: the dense work deb no longer does.
+  const StateSpace& k = controller.system;
+  const StateSpace dense = Feedback(ModalStateSpace(*plant.modal), StateSpace(k.A(), 1e6 * k.B(), k.C(), 1e6 * k.D()));
+  REQUIRE(dense.states() == 2004);
+  const Eigen::MatrixXd w = Eigen::Vector3d(1.0, 0.5, 2.0).asDiagonal();
+  const Eigen::MatrixXd reference =
+      dense.C() * SolveLyapunov(dense.A(), dense.B() * w * dense.B().transpose()) * dense.C().transpose();
+  double worst = 0.0;
+  for (int row = 0; row < 3; ++row)
+    worst = std::max(worst, std::abs(analysis.Exact(row, w, nullptr).variance - reference(row, row)) / reference(row, row));
+  MESSAGE("loop around 1001 modes kept as parts: exact variances within " << worst << " of the whole Bartels-Stewart solve");
+  CHECK(worst <= 1e-9);
+
+  // A combined output's variance is the weighted covariance: its cross
+  // terms are exact.
+  const Path combined = AddCombinedOutput(loop, "x1_minus_x2", {{"x1", 1.0, "1"}, {"x2", -1.0, "1"}});
+  REQUIRE(combined.KeptAsParts());
+  const PathAnalysis difference(combined, {3});
+  const double want = reference(0, 0) + reference(1, 1) - 2.0 * reference(0, 1);
+  CHECK(std::abs(difference.Exact(3, w, nullptr).variance - want) <= 1e-9 * want);
+  // One input of it: still kept as parts.
+  const Path one = SelectPathInputs(loop, {"f3"});
+  REQUIRE(one.KeptAsParts());
+  CHECK(one.system.inputs() == 1);
+
+  // An output weighting needs a realisation: refused, with the reason.
+  const StateSpace weighting((Eigen::MatrixXd(1, 1) << -100.0).finished(), Eigen::MatrixXd::Ones(1, 1),
+                             (Eigen::MatrixXd(1, 1) << 100.0).finished(), Eigen::MatrixXd::Zero(1, 1));
+  CHECK_THROWS_WITH_AS(analysis.Exact(0, w, &weighting),
+                       "its 2004 states are more than the 2000 deb realises densely for a Lyapunov "
+                       "solve, and an output weighting is solved in state space with the path's realisation",
+                       InputError);
+}
+
+TEST_CASE("a loop kept as parts that its parts cannot solve, or too large to keep, is refused with the reason") {
+  const Path plant = ModalPlant(1001, 5u);
+  // A controller of 40 states: one block of more than kMaxCoupledBlock.
+  Path wide = Controller(*plant.modal);
+  Eigen::MatrixXd a = -kTwoPi * 80.0 * Eigen::MatrixXd::Identity(40, 40), b = Eigen::MatrixXd::Zero(40, 3),
+                  c = Eigen::MatrixXd::Zero(3, 40);
+  for (int i = 0; i < 40; ++i) {
+    b(i, i % 2) = 1.0;
+    c(i % 2, i) = 1e-3;
+  }
+  wide.system = StateSpace(a, b, c, Eigen::MatrixXd::Zero(3, 3));
+  const Path loop = FeedbackOfPaths({&plant, "plant"}, {&wide, "controller"});
+  REQUIRE(loop.KeptAsParts());
+  CHECK_THROWS_WITH_AS(PathAnalysis(loop, {0}),
+                       doctest::Contains("its 2042 states are more than the 2000 deb realises densely, and its parts "
+                                         "do not hold as coupled blocks ("),
+                       InputError);
+
+  const Path huge = ModalPlant(limits::kMaxCoupledStates / 2, 1u);
+  CHECK_THROWS_WITH_AS(FeedbackOfPaths({&huge, "plant"}, {&wide, "controller"}),
+                       "the combination has 8040 states (2 per mode), more than the 8000 deb keeps as coupled parts",
+                       InputError);
 }
 
 }  // namespace
