@@ -94,6 +94,33 @@ std::string TooManyToRealise(const Path& path) {
          std::to_string(limits::kMaxDenseStates) + " deb realises densely";
 }
 
+// The coupled form's covariance of `rows` with, per row, why its variance
+// does not hold ("" where it does); nullopt where none is computed (then
+// every row has the reason).
+std::optional<CoupledCovariance> CoupledRows(const CoupledSpectrum& sp, const std::vector<int>& rows,
+                                             const Eigen::MatrixXd& w_two_sided, std::vector<std::string>* why) {
+  why->assign(rows.size(), "");
+  const auto all = [&](const std::string& reason) {
+    why->assign(rows.size(), reason);
+    return std::nullopt;
+  };
+  // Feedthrough of white noise: the dense solve's message says so.
+  for (int r : rows)
+    if ((sp.d.row(r) * w_two_sided * sp.d.row(r).transpose())(0, 0) != 0.0)
+      return all("white noise passes straight through (D W D^T is not 0): the variance is infinite");
+  if (!(sp.poles.real().maxCoeff() < 0.0)) return all("a pole is not in the left half-plane");
+  CoupledCovariance cov = CoupledOutputCovariance(sp, rows, w_two_sided);
+  if (!cov.covariance.allFinite()) return all("the coupled form's covariance is not finite");
+  for (Eigen::Index i = 0; i < cov.relative_error.size(); ++i)
+    if (!(cov.relative_error(i) <= kCoupledVarianceTolerance) || !(cov.covariance(i, i) >= 0.0)) {
+      std::ostringstream os;
+      os << std::setprecision(2) << "the coupled form's variance is uncertain to " << cov.relative_error(i)
+         << " relative, more than " << kCoupledVarianceTolerance;
+      (*why)[static_cast<std::size_t>(i)] = os.str();
+    }
+  return cov;
+}
+
 }  // namespace
 
 PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : path_(path) {
@@ -327,10 +354,13 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
                      std::to_string(limits::kMaxDenseStates) + " deb solves densely");
   const bool unweighted =
       std::all_of(weightings.begin(), weightings.end(), [](const StateSpace* w) { return w == nullptr; });
-  std::string why = "an output weighting is solved in state space with the path's realisation";
+  std::string why;
   if (unweighted)
     if (std::optional<Eigen::MatrixXd> cov = CoupledCovarianceOf(rows, w_two_sided, &why)) return *cov;
-  if (path_.KeptAsParts()) RefuseKeptVariance(why);
+  if (path_.KeptAsParts()) {
+    if (unweighted) RefuseKeptVariance(why);
+    return WeightedCoupledCovariance(rows, weightings, w_two_sided);
+  }
   // The reduced realisation (its rows numbered as the evaluated rows) where
   // it holds every row asked for; else the path's own.
   const bool reduced =
@@ -366,27 +396,11 @@ bool PathAnalysis::CoupledCovarianceHolds(Cached& c, const std::optional<Coupled
 std::optional<CoupledCovariance> PathAnalysis::CoupledCovarianceRows(const std::vector<int>& rows,
                                                                    const Eigen::MatrixXd& w_two_sided,
                                                                    std::vector<std::string>* why) const {
-  why->assign(rows.size(), "");
-  const auto all = [&](const std::string& reason) {
-    why->assign(rows.size(), reason);
+  if (!coupled_ || reduced_) {
+    why->assign(rows.size(), "the path is not kept as coupled blocks");
     return std::nullopt;
-  };
-  if (!coupled_ || reduced_) return all("the path is not kept as coupled blocks");
-  // Feedthrough of white noise: the dense solve's message says so.
-  for (int r : rows)
-    if ((coupled_->d.row(r) * w_two_sided * coupled_->d.row(r).transpose())(0, 0) != 0.0)
-      return all("white noise passes straight through (D W D^T is not 0): the variance is infinite");
-  if (!(coupled_->poles.real().maxCoeff() < 0.0)) return all("a pole is not in the left half-plane");
-  CoupledCovariance cov = CoupledOutputCovariance(*coupled_, rows, w_two_sided);
-  if (!cov.covariance.allFinite()) return all("the coupled form's covariance is not finite");
-  for (Eigen::Index i = 0; i < cov.relative_error.size(); ++i)
-    if (!(cov.relative_error(i) <= kCoupledVarianceTolerance) || !(cov.covariance(i, i) >= 0.0)) {
-      std::ostringstream os;
-      os << std::setprecision(2) << "the coupled form's variance is uncertain to " << cov.relative_error(i)
-         << " relative, more than " << kCoupledVarianceTolerance;
-      (*why)[static_cast<std::size_t>(i)] = os.str();
-    }
-  return cov;
+  }
+  return CoupledRows(*coupled_, rows, w_two_sided, why);
 }
 
 std::optional<Eigen::MatrixXd> PathAnalysis::CoupledCovarianceOf(const std::vector<int>& rows,
@@ -400,6 +414,34 @@ std::optional<Eigen::MatrixXd> PathAnalysis::CoupledCovarianceOf(const std::vect
       return std::nullopt;
     }
   return std::move(cov->covariance);
+}
+
+Eigen::MatrixXd PathAnalysis::WeightedCoupledCovariance(const std::vector<int>& rows,
+                                                        const std::vector<const StateSpace*>& weightings,
+                                                        const Eigen::MatrixXd& w_two_sided) const {
+  std::string why;
+  const std::optional<CoupledRealisation> loop = path_.measured->Coupled(&why);
+  if (!loop) RefuseKeptVariance(why);
+  // The rows, each through its weighting (none: a unit gain), as one block
+  // after the loop.
+  std::optional<StateSpace> filters;
+  for (const StateSpace* w : weightings) {
+    const StateSpace f = w ? *w : StateSpace::Gain(Eigen::MatrixXd::Identity(1, 1));
+    filters = filters ? Append(*filters, f) : f;
+  }
+  if (filters->states() > kMaxCoupledBlock)
+    RefuseKeptVariance("the output weightings have " + std::to_string(filters->states()) +
+                       " states together, more than the " + std::to_string(kMaxCoupledBlock) +
+                       " of one coupled block");
+  const CoupledSolve solved = SolveCoupled(CoupledSeries(CoupledSelectOutputs(*loop, rows), CoupledOf(*filters)));
+  if (!solved.spectrum) RefuseKeptVariance("with its output weighting, " + solved.why_not);
+  std::vector<int> all(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) all[i] = static_cast<int>(i);
+  std::vector<std::string> why_rows;
+  const std::optional<CoupledCovariance> cov = CoupledRows(*solved.spectrum, all, w_two_sided, &why_rows);
+  for (const std::string& reason : why_rows)
+    if (!reason.empty()) RefuseKeptVariance("with its output weighting, " + reason);
+  return cov->covariance;
 }
 
 void PathAnalysis::RefuseKeptVariance(const std::string& why) const {

@@ -158,6 +158,13 @@ class PathAnalysis {
   std::optional<CoupledCovariance> CoupledCovarianceRows(const std::vector<int>& rows,
                                                          const Eigen::MatrixXd& w_two_sided,
                                                          std::vector<std::string>* why) const;
+  // The covariance of `rows` through their weightings for a path kept as
+  // parts: the weightings joined in series to its coupled form and solved
+  // again (coupled_spectrum.h).
+  // @throws InputError (RefuseKeptVariance) where that does not hold.
+  Eigen::MatrixXd WeightedCoupledCovariance(const std::vector<int>& rows,
+                                            const std::vector<const StateSpace*>& weightings,
+                                            const Eigen::MatrixXd& w_two_sided) const;
   // The InputError for a variance a path kept as parts cannot give.
   [[noreturn]] void RefuseKeptVariance(const std::string& why) const;
   // All evaluated rows under the last W asked for (no weighting).
