@@ -121,6 +121,13 @@ std::optional<CoupledCovariance> CoupledRows(const CoupledSpectrum& sp, const st
   return cov;
 }
 
+// The first row's reason not to hold in `why_rows` (CoupledRows), or null
+// where every row holds.
+const std::string* FirstRefusal(const std::vector<std::string>& why_rows) {
+  const auto it = std::find_if(why_rows.begin(), why_rows.end(), [](const std::string& w) { return !w.empty(); });
+  return it == why_rows.end() ? nullptr : &*it;
+}
+
 }  // namespace
 
 PathAnalysis::PathAnalysis(const Path& path, const std::vector<int>& rows) : path_(path) {
@@ -306,10 +313,8 @@ const PathAnalysis::Cached& PathAnalysis::AllRows(const Eigen::MatrixXd& w_two_s
         return ExactVariance{one.variance(0), one.share.row(0).transpose()};
       });
     }
-  } else if (std::vector<std::string> why_rows;
-             coupled_ && CoupledCovarianceHolds(c, CoupledCovarianceRows(rows_, w_two_sided, &why_rows), why_rows)) {
-    // c holds the rows whose estimate holds; a path kept as parts has no
-    // other solve for the rest, and a realised one solves them all densely.
+  } else if (coupled_ && CoupledRowsInto(c, w_two_sided)) {
+    // Filled from the coupled form (CoupledRowsInto).
   } else if (rational_ || path_.SystemApproximates()) {
     try {
       const StateSpace all = Realisation();
@@ -343,17 +348,16 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
                                               const Eigen::MatrixXd& w_two_sided) const {
   DEB_DEMAND(!rows.empty() && rows.size() == weightings.size());
   if (measured_ && !path_.SystemApproximates() && !path_.KeptAsParts()) throw InputError("the path holds measured frequency data (no state-space model for a Lyapunov solution)");
+  const bool unweighted =
+      std::all_of(weightings.begin(), weightings.end(), [](const StateSpace* w) { return w == nullptr; });
   // Unweighted rows of a modal path: the modal covariance's closed form, as
   // their variances (AllRows), O(n^2 p) instead of a 2n-state Lyapunov solve.
-  if (modal_ && std::all_of(weightings.begin(), weightings.end(), [](const StateSpace* w) { return w == nullptr; }))
-    return ModalOutputCovarianceMatrix(*path_.modal, rows, w_two_sided);
+  if (modal_ && unweighted) return ModalOutputCovarianceMatrix(*path_.modal, rows, w_two_sided);
   if (modal_ && 2 * path_.modal->modes() > limits::kMaxDenseStates)
     throw InputError("a weighted output of a modal path is solved in state space, and " +
                      std::to_string(path_.modal->modes()) + " modes make " +
                      std::to_string(2 * path_.modal->modes()) + " states, more than the " +
                      std::to_string(limits::kMaxDenseStates) + " deb solves densely");
-  const bool unweighted =
-      std::all_of(weightings.begin(), weightings.end(), [](const StateSpace* w) { return w == nullptr; });
   std::string why;
   if (unweighted)
     if (std::optional<Eigen::MatrixXd> cov = CoupledCovarianceOf(rows, w_two_sided, &why)) return *cov;
@@ -375,20 +379,15 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
   return OutputCovariance(*stacked, w_two_sided);
 }
 
-bool PathAnalysis::CoupledCovarianceHolds(Cached& c, const std::optional<CoupledCovariance>& cov,
-                                          const std::vector<std::string>& why_rows) const {
-  const bool every = cov && std::all_of(why_rows.begin(), why_rows.end(), [](const std::string& w) { return w.empty(); });
-  if (!every && !path_.KeptAsParts()) return false;
+bool PathAnalysis::CoupledRowsInto(Cached& c, const Eigen::MatrixXd& w_two_sided) const {
+  std::vector<std::string> why_rows;
+  const std::optional<CoupledCovariance> cov = CoupledCovarianceRows(rows_, w_two_sided, &why_rows);
+  if (!(cov && !FirstRefusal(why_rows)) && !path_.KeptAsParts()) return false;
   for (std::size_t i = 0; i < rows_.size(); ++i) {
-    if (cov && why_rows[i].empty()) {
+    if (cov && why_rows[i].empty())
       c.rows[i] = ExactVariance{cov->covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), {}};
-      continue;
-    }
-    try {
-      RefuseKeptVariance(why_rows[i]);
-    } catch (const InputError& e) {
-      c.errors[i] = e.what();
-    }
+    else
+      c.errors[i] = KeptVarianceRefusal(why_rows[i]);
   }
   return true;
 }
@@ -408,11 +407,10 @@ std::optional<Eigen::MatrixXd> PathAnalysis::CoupledCovarianceOf(const std::vect
                                                                std::string* why) const {
   std::vector<std::string> why_rows;
   std::optional<CoupledCovariance> cov = CoupledCovarianceRows(rows, w_two_sided, &why_rows);
-  for (const std::string& reason : why_rows)
-    if (!reason.empty()) {
-      if (why) *why = reason;
-      return std::nullopt;
-    }
+  if (const std::string* reason = FirstRefusal(why_rows)) {
+    if (why) *why = *reason;
+    return std::nullopt;
+  }
   return std::move(cov->covariance);
 }
 
@@ -439,13 +437,14 @@ Eigen::MatrixXd PathAnalysis::WeightedCoupledCovariance(const std::vector<int>& 
   for (std::size_t i = 0; i < rows.size(); ++i) all[i] = static_cast<int>(i);
   std::vector<std::string> why_rows;
   const std::optional<CoupledCovariance> cov = CoupledRows(*solved.spectrum, all, w_two_sided, &why_rows);
-  for (const std::string& reason : why_rows)
-    if (!reason.empty()) RefuseKeptVariance("with its output weighting, " + reason);
+  if (const std::string* reason = FirstRefusal(why_rows)) RefuseKeptVariance("with its output weighting, " + *reason);
   return cov->covariance;
 }
 
-void PathAnalysis::RefuseKeptVariance(const std::string& why) const {
-  throw InputError(TooManyToRealise(path_) + " for a Lyapunov solve, and " + why);
+std::string PathAnalysis::KeptVarianceRefusal(const std::string& why) const {
+  return TooManyToRealise(path_) + " for a Lyapunov solve, and " + why;
 }
+
+void PathAnalysis::RefuseKeptVariance(const std::string& why) const { throw InputError(KeptVarianceRefusal(why)); }
 
 }  // namespace deb

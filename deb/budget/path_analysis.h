@@ -104,9 +104,10 @@ class PathAnalysis {
   // weightings stacked. A modal path without weightings takes the modal
   // closed form (ModalOutputCovarianceMatrix), with weightings its
   // state-space form.
-  // @throws InputError as Exact (measured data, a weighted modal path or
-  //   a weighted diagram kept as parts (too large to solve densely), poles,
-  //   feedthrough, an unreliable solution).
+  // @throws InputError as Exact (measured data, a weighted modal path too
+  //   large to solve densely, a diagram kept as parts whose coupled form
+  //   does not hold with the weightings, poles, feedthrough, an unreliable
+  //   solution).
   Eigen::MatrixXd ExactCovariance(const std::vector<int>& rows, const std::vector<const StateSpace*>& weightings,
                                   const Eigen::MatrixXd& w_two_sided) const;
 
@@ -165,7 +166,9 @@ class PathAnalysis {
   Eigen::MatrixXd WeightedCoupledCovariance(const std::vector<int>& rows,
                                             const std::vector<const StateSpace*>& weightings,
                                             const Eigen::MatrixXd& w_two_sided) const;
-  // The InputError for a variance a path kept as parts cannot give.
+  // Why a path kept as parts gives no variance, with the reason `why`; and
+  // the InputError that says so.
+  std::string KeptVarianceRefusal(const std::string& why) const;
   [[noreturn]] void RefuseKeptVariance(const std::string& why) const;
   // All evaluated rows under the last W asked for (no weighting).
   struct Cached {
@@ -174,11 +177,10 @@ class PathAnalysis {
     std::vector<std::string> errors;
   };
   mutable std::optional<Cached> cache_;
-  // Fills c's rows from the coupled form's covariance where every row holds,
-  // or for a path kept as parts (rows that do not hold get their reason);
-  // false: the dense realisation solves them instead.
-  bool CoupledCovarianceHolds(Cached& c, const std::optional<CoupledCovariance>& cov,
-                              const std::vector<std::string>& why_rows) const;
+  // Fills c's rows from the coupled form's covariance under W where every
+  // row holds, or for a path kept as parts (rows that do not hold get their
+  // reason); false: the dense realisation solves them instead.
+  bool CoupledRowsInto(Cached& c, const Eigen::MatrixXd& w_two_sided) const;
   const Cached& AllRows(const Eigen::MatrixXd& w_two_sided) const;
 };
 
