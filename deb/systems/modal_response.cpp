@@ -16,13 +16,21 @@ namespace {
 using Complex = std::complex<double>;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Entries of the per-block matrix of weighted output shapes (rows x modes x
-// frequencies) a worker holds: 3.2 MB of doubles per part, so that it and the
-// product's packed copies stay in cache (16 MB ran 1.6x slower).
+// frequencies) a worker holds in the row form: 3.2 MB of doubles per part, so
+// that it and the product's packed copies stay in cache (16 MB ran 1.6x
+// slower).
 constexpr double kBlockEntries = 4e5;
+// The pair form holds (rows x inputs) x modes shape products: up to 2^24 of
+// them (128 MiB); a larger model is evaluated in the row form.
+constexpr double kMaxPairEntries = 16777216.0;
+// Frequencies per block of the pair form: the gains (modes x 2 x this) and
+// the product (pairs x 2 x this) of a block, a few MB at 1000 modes and 400
+// pairs; the product's packing of the pair shapes is 1/(2 x this) of its work.
+constexpr int kPairBlock = 128;
 
 }  // namespace
 
-ModalResponse::ModalResponse(const ModalModel& model, const std::vector<int>& rows)
+ModalResponse::ModalResponse(const ModalModel& model, const std::vector<int>& rows, Form form)
     : derivative_(DerivativeOrder(model.quantity)) {
   model.Validate();
   const int n = model.modes();
@@ -42,6 +50,19 @@ ModalResponse::ModalResponse(const ModalModel& model, const std::vector<int>& ro
     residual_t_.resize(model.phi_in.rows(), static_cast<Eigen::Index>(rows.size()));
     for (std::size_t i = 0; i < rows.size(); ++i)
       residual_t_.col(static_cast<Eigen::Index>(i)) = model.residual.row(rows[i]).transpose();
+  }
+  const Eigen::Index p = outputs(), m = inputs();
+  if (form == Form::kAuto && static_cast<double>(p) * static_cast<double>(m) * static_cast<double>(n) <= kMaxPairEntries) {
+    // pair_shapes_(r + p j, k) = phi_out(r, k) phi_in(j, k)
+    pair_shapes_.resize(p * m, n);
+    for (Eigen::Index j = 0; j < m; ++j)
+      for (Eigen::Index r = 0; r < p; ++r)
+        pair_shapes_.row(r + p * j) = phi_out_t_.col(r).transpose().cwiseProduct(phi_in_.row(j));
+    if (residual_t_.size() > 0) {
+      pair_residual_.resize(p * m);
+      for (Eigen::Index j = 0; j < m; ++j)
+        for (Eigen::Index r = 0; r < p; ++r) pair_residual_(r + p * j) = residual_t_(j, r);
+    }
   }
 }
 
@@ -101,7 +122,31 @@ void ModalResponse::EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd
     for (int i = 0; i < count; ++i) hr.middleCols(i * p, p) += residual_t_;
 }
 
+void ModalResponse::EvaluatePairs(const double* f_hz, int count, Eigen::MatrixXd& g, Eigen::MatrixXd& h) const {
+  const Eigen::Index n = modes();
+  g.resize(n, 2 * count);
+  for (int i = 0; i < count; ++i) Gains(f_hz[i], g.col(2 * i).data(), g.col(2 * i + 1).data());
+  h.noalias() = pair_shapes_ * g;
+  if (pair_residual_.size() > 0)
+    for (int i = 0; i < count; ++i) h.col(2 * i) += pair_residual_;
+}
+
+void ModalResponse::PairColumnsTo(const Eigen::MatrixXd& h, int i, Eigen::MatrixXcd& out) const {
+  const Eigen::Index p = outputs(), m = inputs();
+  const double* re = h.col(2 * i).data();
+  const double* im = h.col(2 * i + 1).data();
+  Complex* o = out.data();  // column-major p x m: entry r + p j
+  for (Eigen::Index q = 0; q < p * m; ++q) o[q] = Complex(re[q], im[q]);
+}
+
 Eigen::MatrixXcd ModalResponse::At(double f_hz) const {
+  if (PairForm()) {
+    Eigen::MatrixXd g, hp;
+    EvaluatePairs(&f_hz, 1, g, hp);
+    Eigen::MatrixXcd h(outputs(), inputs());
+    PairColumnsTo(hp, 0, h);
+    return h;
+  }
   Eigen::MatrixXd xr, xi, hr, hi;
   EvaluateBlock(&f_hz, 1, xr, xi, hr, hi);
   Eigen::MatrixXcd h(hr.cols(), hr.rows());
@@ -112,6 +157,27 @@ Eigen::MatrixXcd ModalResponse::At(double f_hz) const {
 
 void ModalResponse::ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads) const {
   const Eigen::Index p = outputs(), m = inputs();
+  if (PairForm()) {
+    // Blocks fixed by the frequency count alone, as below.
+    const std::size_t blocks = (f_hz.size() + kPairBlock - 1) / kPairBlock;
+    ParallelFor(
+        blocks,
+        [&](std::size_t b0, std::size_t b1) {
+          Eigen::MatrixXd g, hp;
+          Eigen::MatrixXcd h(p, m);
+          for (std::size_t b = b0; b < b1; ++b) {
+            const std::size_t k0 = b * kPairBlock;
+            const int count = static_cast<int>(std::min<std::size_t>(kPairBlock, f_hz.size() - k0));
+            EvaluatePairs(f_hz.data() + k0, count, g, hp);
+            for (int i = 0; i < count; ++i) {
+              PairColumnsTo(hp, i, h);
+              fn(k0 + i, h);
+            }
+          }
+        },
+        threads, 1);
+    return;
+  }
   const double per_frequency = std::max<double>(1.0, static_cast<double>(p) * std::max(1, modes()));
   const std::size_t block = static_cast<std::size_t>(std::clamp(kBlockEntries / per_frequency, 1.0, 256.0));
   // The blocks are fixed by the frequency count alone and handed out whole:

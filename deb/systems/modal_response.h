@@ -6,9 +6,16 @@
 //   H(j w) = Phi_out diag(g(j w)) Phi_in^T  (+ the static residual, if any),
 // which costs p n m complex-by-real multiply-adds per frequency for p output
 // rows, n modes and m inputs. Frequencies are taken in blocks so that the
-// product is one matrix product per block, H^T = Phi_in X^T with X^T holding
-// one column phi_out(r,:) .* g per output row and frequency (the orientation
-// Eigen's product runs fastest in: measured 1.6x the other one).
+// product is one matrix product per block. The pair form: every entry
+// h_rj = sum_k phi_out(r,k) phi_in(j,k) g_k, so with the products of the
+// shapes formed once as a (p m) x n matrix P, a block's H is P [Re g, Im g]
+// over its frequencies: a product whose small factor (the gains, n x 2 per
+// frequency) is formed per block while the large one is fixed, which runs
+// near the processor's peak (the row form below formed and packed n p values
+// per frequency, for m multiply-adds each: memory-bound, 3x slower at 1000
+// modes x 20 x 20). Models whose P would exceed 2^24 entries use the row
+// form: H^T = Phi_in X^T with X^T holding one column phi_out(r,:) .* g per
+// output row and frequency.
 // w_k^2 - w^2 is formed as (w_k - w)(w_k + w), so a lightly damped peak keeps
 // full relative accuracy.
 //
@@ -33,9 +40,13 @@ namespace deb {
 
 class ModalResponse {
  public:
+  // kAuto: the pair form where its (rows x inputs) x modes shape products
+  // fit 2^24 entries, else the row form; kRows: the row form always (for
+  // tests and benchmarks).
+  enum class Form { kAuto, kRows };
   // The output rows `rows` of the model (indices into phi_out; may repeat).
   // Calls model.Validate().
-  ModalResponse(const ModalModel& model, const std::vector<int>& rows);
+  ModalResponse(const ModalModel& model, const std::vector<int>& rows, Form form = Form::kAuto);
 
   int modes() const { return static_cast<int>(w_.size()); }
   int inputs() const { return static_cast<int>(phi_in_.rows()); }
@@ -71,12 +82,20 @@ class ModalResponse {
   // hr, hi: H^T of the block, inputs x (count * rows), column i * rows + r.
   void EvaluateBlock(const double* f_hz, int count, Eigen::MatrixXd& xr, Eigen::MatrixXd& xi,
                      Eigen::MatrixXd& hr, Eigen::MatrixXd& hi) const;
+  // The pair form: g the gains (modes x 2 count, Re and Im of frequency i in
+  // columns 2i, 2i+1) and h = P g (+ the residual in the real columns).
+  bool PairForm() const { return pair_shapes_.size() > 0; }
+  void EvaluatePairs(const double* f_hz, int count, Eigen::MatrixXd& g, Eigen::MatrixXd& h) const;
+  // H of the block's frequency i from h into out (outputs x inputs).
+  void PairColumnsTo(const Eigen::MatrixXd& h, int i, Eigen::MatrixXcd& out) const;
 
   int derivative_ = 0;
   std::vector<double> w_, two_zeta_w_;  // per mode [rad/s]
   Eigen::MatrixXd phi_out_t_;           // modes x rows (Phi_out^T of the rows)
   Eigen::MatrixXd phi_in_;              // inputs x modes
   Eigen::MatrixXd residual_t_;          // inputs x rows: the static residual's rows, transposed (or empty)
+  Eigen::MatrixXd pair_shapes_;         // (rows x inputs) x modes, row r + rows j: phi_out(r,.) .* phi_in(j,.); empty: row form
+  Eigen::VectorXd pair_residual_;       // the residual's entries in the same order (or empty)
 };
 
 // The exact variance of each output row of `model` under white input noise
