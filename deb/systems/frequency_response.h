@@ -110,7 +110,9 @@ class FrequencyResponse {
   // Calls fn(k, H(j 2 pi f_hz[k])) for every k without storing the matrices:
   // for callers that only need a reduction per frequency (output PSDs). fn is
   // called concurrently from several threads, with distinct k; the matrix
-  // reference is valid only during the call.
+  // reference is valid only during the call. The residue sums of a block of
+  // frequencies are one matrix product, so H equals At() to rounding (not to
+  // the bit), and is independent of the thread count.
   using Visitor = std::function<void(std::size_t k, const Eigen::MatrixXcd& h)>;
   void ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads = 0) const;
 
@@ -125,8 +127,9 @@ class FrequencyResponse {
     int start, size;
   };
   void EvaluateInto(double f_hz, Workspace& w, Eigen::MatrixXcd& h) const;
-  // Complex weight of every residue column at omega; throws on a pole.
-  void ComputeWeights(double omega, Workspace& w) const;
+  // Complex weight of every residue column at omega into wr, wi (columns_
+  // entries each); throws on a pole.
+  void ComputeWeights(double omega, double* wr, double* wi) const;
   // g += L_c (j omega I - T_c)^-1 R_c for a large block, by substitution.
   void AddLargeBlock(const Term& term, double omega, Workspace& w,
                      std::complex<double>* g) const;
