@@ -1,6 +1,7 @@
 #include "deb/formats/hdf5_file.h"
 
 #include <hdf5.h>
+#define ZLIB_CONST  // z_stream reads its input through a const pointer
 #include <zlib.h>
 
 #include <algorithm>
@@ -215,6 +216,28 @@ std::vector<hsize_t> ChunkOf(const std::vector<hsize_t>& dims) {
   return chunk;
 }
 
+// `bytes` as one zlib stream (RFC 1950, what HDF5's deflate filter reads)
+// at level 1: with its usual search, or matches only of the byte just
+// before (zlib's run-length strategy) for Packing::kRuns.
+std::vector<unsigned char> Deflated(const std::vector<unsigned char>& bytes, Packing packing) {
+  const int strategy = packing == Packing::kRuns ? Z_RLE : Z_DEFAULT_STRATEGY;
+  z_stream z{};
+  if (deflateInit2(&z, static_cast<int>(kDeflateLevel), Z_DEFLATED, 15, 8, strategy) != Z_OK) throw std::bad_alloc();
+  std::vector<unsigned char> out(deflateBound(&z, static_cast<uLong>(bytes.size())));
+  z.next_in = bytes.data();
+  z.avail_in = static_cast<uInt>(bytes.size());
+  z.next_out = out.data();
+  z.avail_out = static_cast<uInt>(out.size());
+  const int done = deflate(&z, Z_FINISH);
+  const uLong size = z.total_out;
+  deflateEnd(&z);
+  // With deflateBound's room, Z_FINISH completes in one call; anything
+  // else is a want of memory.
+  if (done != Z_STREAM_END) throw std::bad_alloc();
+  out.resize(size);
+  return out;
+}
+
 // Writes the doubles `data` (row-major, `dims`) into the chunked dataset
 // `set` chunk by chunk as the shuffle and deflate filters would store them:
 // each chunk (edge chunks padded with zeros, the fill value) byte-shuffled
@@ -223,7 +246,7 @@ std::vector<hsize_t> ChunkOf(const std::vector<hsize_t>& dims) {
 // other: a 200 MB store took 4.5 s so. The values are stored as the file's
 // F64LE, converted first where this machine's doubles differ (the inverse of
 // ReadCompressed). Returns false if HDF5 refused a chunk or the conversion.
-bool WriteShuffledDeflated(hid_t set, const std::vector<hsize_t>& dims, const double* data) {
+bool WriteShuffledDeflated(hid_t set, const std::vector<hsize_t>& dims, const double* data, Packing packing) {
   std::vector<double> little_endian;
   if (H5Tequal(H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE) <= 0) {
     hsize_t count = 1;
@@ -256,12 +279,7 @@ bool WriteShuffledDeflated(hid_t set, const std::vector<hsize_t>& dims, const do
       std::vector<unsigned char> shuffled(bytes);
       for (std::size_t i = 0; i < values; ++i)
         for (std::size_t y = 0; y < sizeof(double); ++y) shuffled[y * values + i] = in[i * sizeof(double) + y];
-      uLongf size = compressBound(static_cast<uLong>(bytes));
-      out[b].resize(size);
-      if (compress2(out[b].data(), &size, shuffled.data(), static_cast<uLong>(bytes), static_cast<int>(kDeflateLevel)) !=
-          Z_OK)
-        throw std::bad_alloc();  // compress2 fails only for want of memory here
-      out[b].resize(size);
+      out[b] = Deflated(shuffled, packing);
     });
     for (std::size_t b = 0; b < count; ++b) {
       const std::array<hsize_t, 2> offset = origin(first + b);  // a vector's offset is its column
@@ -274,9 +292,11 @@ bool WriteShuffledDeflated(hid_t set, const std::vector<hsize_t>& dims, const do
 
 // Writes one dataset of `type_in_file` and `dims` (empty: a scalar) from
 // `data` in `type_in_memory` under `file`, creating the groups above it;
-// `compress`: numbers, compressed when there are enough of them.
+// `compress`: numbers, compressed (as `packing` says) when there are enough
+// of them.
 void WriteDataset(Hdf5Writer::Handle& h, const std::string& path, const std::string& object, hid_t type_in_file,
-                  hid_t type_in_memory, const std::vector<hsize_t>& dims, const void* data, bool compress = false) {
+                  hid_t type_in_memory, const std::vector<hsize_t>& dims, const void* data, bool compress = false,
+                  Packing packing = Packing::kSearch) {
   const std::vector<std::string> parts = Split(object);
   DEB_DEMAND(!parts.empty());
   const auto fail = [&](const std::string& what) {
@@ -323,7 +343,7 @@ void WriteDataset(Hdf5Writer::Handle& h, const std::string& path, const std::str
   for (hsize_t d : dims) empty |= d == 0;
   if (!empty && chunked) {
     DEB_DEMAND(type_in_memory == H5T_NATIVE_DOUBLE);
-    if (!WriteShuffledDeflated(set.get(), dims, static_cast<const double*>(data))) fail("cannot write its data");
+    if (!WriteShuffledDeflated(set.get(), dims, static_cast<const double*>(data), packing)) fail("cannot write its data");
   } else if (!empty && H5Dwrite(set.get(), type_in_memory, H5S_ALL, H5S_ALL, h.transfer, data) < 0) {
     fail("cannot write its data");
   }
@@ -362,7 +382,7 @@ void Hdf5Writer::Texts(const std::string& object, const std::vector<std::string>
   WriteDataset(*handle_, path_, object, type.get(), type.get(), {values.size()}, texts.data());
 }
 
-void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<double>>& rows) {
+void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<double>>& rows, Packing packing) {
   const std::size_t columns = rows.empty() ? 0 : rows.front().size();
   std::vector<double> data;
   data.reserve(rows.size() * columns);
@@ -370,14 +390,15 @@ void Hdf5Writer::Rows(const std::string& object, const std::vector<std::vector<d
     DEB_DEMAND(r.size() == columns);
     data.insert(data.end(), r.begin(), r.end());
   }
-  Matrix(object, rows.size(), rows.empty() ? 0 : columns, data);
+  Matrix(object, rows.size(), rows.empty() ? 0 : columns, data, packing);
 }
 
 void Hdf5Writer::Matrix(const std::string& object, std::size_t rows, std::size_t columns,
-                        const std::vector<double>& row_major) {
+                        const std::vector<double>& row_major, Packing packing) {
   DEB_DEMAND(row_major.size() == rows * columns);
   const Locked lock;
-  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {rows, columns}, row_major.data(), true);
+  WriteDataset(*handle_, path_, object, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {rows, columns}, row_major.data(), true,
+               packing);
 }
 
 // ---------------------------------------------------------------- reading

@@ -69,6 +69,17 @@ struct AtMost {
 //         objects.
 void RequireSelfContainedHdf5(const std::string& path);
 
+// How a writer deflates a dataset of numbers (both at zlib's level 1, both
+// read by any HDF5 reader). kSearch: zlib's usual search for repeated
+// strings, for smooth data (spectra, CPS, grids), which compresses by 1.5 to
+// 3 so. kRuns: matches only of the byte just before (zlib's run-length
+// strategy), for values whose mantissas are noise to deflate, such as a
+// path's gains and phases over a fine grid: the runs in their sign and
+// exponent bytes are all there is to find, and searching the mantissas costs
+// most of the time. Measured on the responses of a 1000-mode path (20 x 20,
+// 10 958 frequencies): 67.4 MB either way, 0.45 s of CPU instead of 1.45 s.
+enum class Packing { kSearch, kRuns };
+
 class Hdf5Writer {
  public:
   // Creates (or truncates) `path`.
@@ -86,10 +97,12 @@ class Hdf5Writer {
   void Numbers(const std::string& object, const std::vector<double>& values);
   void Texts(const std::string& object, const std::vector<std::string>& values);
   // @pre every row has the same length (DEB_DEMAND); no rows: a 0 x 0 matrix.
-  void Rows(const std::string& object, const std::vector<std::vector<double>>& rows);
+  void Rows(const std::string& object, const std::vector<std::vector<double>>& rows,
+            Packing packing = Packing::kSearch);
   // A rows x columns matrix from its entries row after row (no copy of a
   // large table). @pre row_major.size() == rows * columns (DEB_DEMAND).
-  void Matrix(const std::string& object, std::size_t rows, std::size_t columns, const std::vector<double>& row_major);
+  void Matrix(const std::string& object, std::size_t rows, std::size_t columns, const std::vector<double>& row_major,
+              Packing packing = Packing::kSearch);
 
   // Flushes and closes the file.
   // @throws WriteError if it cannot be completed.

@@ -725,8 +725,8 @@ void WriteResultStore(const BudgetResult& result, const RunInfo& info, const std
         continue;
       }
       if (!p.f_hz.empty()) w.Numbers(at + "/f_hz", p.f_hz);
-      w.Rows(at + "/gain2", p.gain2);
-      w.Rows(at + "/phase_rad", p.phase_rad);
+      w.Rows(at + "/gain2", p.gain2, formats::Packing::kRuns);
+      w.Rows(at + "/phase_rad", p.phase_rad, formats::Packing::kRuns);
     }
   w.Close();
 }

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <random>
 #include <string>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -140,6 +141,14 @@ TEST_CASE("numbers are written compressed in chunks and read back exactly, whate
   for (std::size_t r = 0; r < tall.size(); ++r)
     for (std::size_t c = 0; c < 7; ++c) tall[r][c] = std::exp(-1e-3 * double(r)) * double(c + 1);
   const std::vector<double> few = {1.0, 2.0, 3.0};
+  // Packing::kRuns: values whose low bytes are noise (a response's gains:
+  // random numbers over 12 decades), in a file of their own to measure it.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> decades(-12.0, 0.0);
+  std::vector<std::vector<double>> noisy(4, std::vector<double>(30000));
+  for (auto& row : noisy)
+    for (double& v : row) v = std::pow(10.0, decades(rng));
+  const std::string runs_file = dir.File("runs.h5");
   {
     formats::Hdf5Writer w(file);
     w.Numbers("a/spectrum", spectrum);
@@ -147,15 +156,24 @@ TEST_CASE("numbers are written compressed in chunks and read back exactly, whate
     w.Rows("a/tall", tall);
     w.Numbers("a/few", few);
     w.Close();
+    formats::Hdf5Writer runs(runs_file);
+    runs.Rows("a/noisy", noisy, formats::Packing::kRuns);
+    runs.Close();
   }
   const std::uintmax_t raw = (spectrum.size() + 3 * 40000 + 5000 * 7) * sizeof(double);
   CHECK(fs::file_size(file) < raw * 7 / 10);  // deflate level 1: 0.67 of it
   MESSAGE("compressed " << raw << " bytes of doubles into a file of " << fs::file_size(file));
+  // Only the exponent bytes compress: about 1 - 1/8 of the raw size is left
+  // (observed 0.91, the file's own structure included).
+  const std::uintmax_t noisy_raw = 4 * 30000 * sizeof(double);
+  CHECK(fs::file_size(runs_file) < noisy_raw * 95 / 100);
+  MESSAGE("kRuns: " << noisy_raw << " bytes of noisy doubles into a file of " << fs::file_size(runs_file));
   const formats::Hdf5Reader r(file);
   CHECK(r.Numbers("a/spectrum", formats::AtMost(200000)) == spectrum);
   CHECK(r.Rows("a/wide", formats::AtMost(3), 40000) == wide);
   CHECK(r.Rows("a/tall", formats::AtMost(5000), 7) == tall);
   CHECK(r.Numbers("a/few", formats::AtMost(3)) == few);
+  CHECK(formats::Hdf5Reader(runs_file).Rows("a/noisy", formats::AtMost(4), 30000) == noisy);
   // Each compressed dataset is chunked, shuffled and deflated, as h5py sees
   // it, and HDF5's own filters give back every value (deb compresses the
   // chunks itself, edge chunks padded: hdf5_file.cpp).
@@ -175,6 +193,18 @@ TEST_CASE("numbers are written compressed in chunks and read back exactly, whate
     H5Dclose(set);
   }
   H5Fclose(f);
+  // The same for the run-length deflated dataset.
+  const hid_t g = H5Fopen(runs_file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(g >= 0);
+  const hid_t set = H5Dopen2(g, "a/noisy", H5P_DEFAULT);
+  const hid_t create = H5Dget_create_plist(set);
+  CHECK(H5Pget_nfilters(create) == 2);
+  std::vector<double> read(4 * 30000);
+  CHECK(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, read.data()) >= 0);
+  CHECK(read == Flat(noisy));
+  H5Pclose(create);
+  H5Dclose(set);
+  H5Fclose(g);
 }
 
 // A dataset of `n` doubles in chunks of `chunk`, shuffled and deflated as deb
