@@ -17,9 +17,12 @@
 //   70    internal error (a bug)                    any other exception
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,6 +31,7 @@
 #include "deb/core/input_file.h"
 #include "deb/core/process_heap.h"
 #include "deb/core/suggest.h"
+#include "deb/systems/lapack.h"
 #include "deb/version.h"
 #include "tools/check_command.h"
 #include "tools/compare_command.h"
@@ -87,9 +91,24 @@ int RunMapped(CLI::App& app, F&& parse_and_run) {
   }
 }
 
+// Where OpenBLAS picked kernels older than the processor runs
+// (deb::BetterBlasKernel), deb starts itself again with OPENBLAS_CORETYPE
+// set, the only way to choose them: OpenBLAS reads it once, when it is
+// loaded. The same program and arguments, before anything else has run (no
+// thread, no MPI); the variable being set, the second start goes on. If the
+// restart fails, this one goes on with OpenBLAS's kernels.
+void RestartForBlasKernel(char** argv) {
+  const std::optional<std::string> kernel = deb::BetterBlasKernel();
+  if (!kernel) return;
+  if (setenv("OPENBLAS_CORETYPE", kernel->c_str(), 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  unsetenv("OPENBLAS_CORETYPE");  // still here: the restart failed
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  RestartForBlasKernel(argv);
   deb::KeepHeapForLargeBlocks();
 #ifdef DEB_MPI
   // Started by mpirun: one MPI session for the run, ended at exit.
@@ -100,7 +119,9 @@ int main(int argc, char** argv) {
   // SIGXFSZ halfway through a report.
   std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"deb: frequency-domain dynamic error budgeting for precision machines"};
-  app.set_version_flag("--version", std::string("deb ") + DEB_VERSION);
+  const std::string blas = deb::BlasKernel();
+  app.set_version_flag("--version", std::string("deb ") + DEB_VERSION +
+                                        (blas.empty() ? std::string() : "\nBLAS: OpenBLAS, " + blas + " kernels"));
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 2 usage error, 3 invalid input (budget, data file, model), "

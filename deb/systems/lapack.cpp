@@ -1,6 +1,9 @@
 #include "deb/systems/lapack.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -230,6 +233,40 @@ double UnitUpperTriangularCondition(const Eigen::MatrixXd& y) {
       LAPACKE_dtrcon_work(LAPACK_COL_MAJOR, '1', 'U', 'U', n, y.data(), n, &rcond, work.data(), iwork.data());
   DEB_DEMAND(info == 0);
   return rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
+}
+
+namespace {
+
+// OpenBLAS's openblas_get_corename, looked up in the loaded libraries: null
+// when the BLAS is another one.
+using CoreName = char* (*)();
+CoreName OpenBlasCoreName() {
+  return reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
+}
+
+}  // namespace
+
+std::string BlasKernel() {
+  const CoreName name = OpenBlasCoreName();
+  const char* text = name ? name() : nullptr;
+  return text ? text : "";
+}
+
+std::optional<std::string> BetterBlasKernel() {
+  if (std::getenv("OPENBLAS_CORETYPE") != nullptr) return std::nullopt;
+  const std::string now = BlasKernel();
+  if (now.empty()) return std::nullopt;
+  // OpenBLAS's names of AVX2 kernels and later ones (0.3.21 and since).
+  for (const char* fine : {"Haswell", "Zen", "SkylakeX", "Cooperlake", "SapphireRapids"})
+    if (now == fine) return std::nullopt;
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512bw") &&
+      __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl"))
+    return "SkylakeX";
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "Haswell";
+#endif
+  return std::nullopt;
 }
 
 }  // namespace deb

@@ -19,6 +19,8 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace deb {
@@ -94,5 +96,24 @@ double UnitUpperTriangularCondition(const Eigen::MatrixXd& y);
 // @throws InputError if LAPACK could not swap two blocks (eigenvalues too
 //         close: info 1); the form is then unchanged.
 int ReorderRealSchur(RealSchurForm& form, const std::vector<bool>& lead);
+
+// The kernels of the BLAS under LAPACK. OpenBLAS picks them by the
+// processor's model number when it is loaded; 0.3.21 (Debian 12) does not
+// know the newest processors and falls back to its oldest, SSE3 kernels on
+// them ("Prescott", on a Xeon of model 207 with AVX-512): dgees on 2000
+// states then took 6.9 s instead of 3.6 s with its AVX-512 kernels
+// ("SkylakeX"), and the whole dense 1000-mode budget 9.5 s instead of 7.1 s.
+//
+// BlasKernel: the kernels in use, as OpenBLAS names them ("SkylakeX"), or
+// empty when the BLAS is not OpenBLAS (asked at run time: deb links whatever
+// BLAS the system provides).
+std::string BlasKernel();
+// The kernels OpenBLAS should be told to use (its OPENBLAS_CORETYPE, read
+// only when it is loaded): "SkylakeX" where the processor runs AVX-512 (F,
+// CD, BW, DQ, VL), else "Haswell" where it runs AVX2 and FMA, when OpenBLAS
+// picked kernels older than both. nullopt when the BLAS is not OpenBLAS,
+// OPENBLAS_CORETYPE is set already (the user's choice, or deb's own after a
+// restart), or OpenBLAS's choice stands.
+std::optional<std::string> BetterBlasKernel();
 
 }  // namespace deb

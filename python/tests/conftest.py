@@ -27,6 +27,27 @@ def cli_summary(budget, out_dir, *args):
         return json.load(f)
 
 
+def _the_cli_blas_kernels():
+    """This process loads OpenBLAS with the kernels the CLI uses.
+
+    Where OpenBLAS picks kernels older than the processor runs, the CLI
+    starts itself again with OPENBLAS_CORETYPE set (`deb --version` names
+    the kernels); this module cannot, and without the same kernels the
+    results that go through LAPACK differ from the CLI's in their last
+    digits. Set here, at the suite's start, before numpy loads OpenBLAS.
+    """
+    if "OPENBLAS_CORETYPE" in os.environ:
+        return
+    version = subprocess.run([deb_binary(), "--version"], capture_output=True, text=True, check=True).stdout
+    prefix, suffix = "BLAS: OpenBLAS, ", " kernels"
+    for line in version.splitlines():
+        if line.startswith(prefix) and line.endswith(suffix):
+            os.environ["OPENBLAS_CORETYPE"] = line[len(prefix):-len(suffix)]
+
+
+_the_cli_blas_kernels()
+
+
 @pytest.fixture
 def source_dir():
     return SOURCE_DIR

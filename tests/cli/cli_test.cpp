@@ -117,6 +117,24 @@ TEST_CASE("usage errors exit 2 and --help exits 0") {
   CHECK(RunDeb("--help").out.find("Exit codes") != std::string::npos);
 }
 
+TEST_CASE("--version names the BLAS kernels, which are AVX2 or later wherever the processor runs AVX2") {
+  // deb starts itself again with OPENBLAS_CORETYPE where OpenBLAS picked
+  // older kernels (deb::BetterBlasKernel): the started deb reports them.
+  const Command v = RunDeb("--version");
+  CHECK(v.exit_code == 0);
+  CHECK(v.out.rfind("deb ", 0) == 0);
+  const std::size_t at = v.out.find("BLAS: OpenBLAS, ");
+  if (at == std::string::npos) return;  // another BLAS: nothing to choose
+  const std::string kernel = v.out.substr(at + 16, v.out.find(" kernels", at) - at - 16);
+  MESSAGE("deb --version: " << kernel << " kernels");
+#if defined(__x86_64__)
+  __builtin_cpu_init();
+  if (std::getenv("OPENBLAS_CORETYPE") == nullptr && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    CHECK((kernel == "Haswell" || kernel == "Zen" || kernel == "SkylakeX" || kernel == "Cooperlake" ||
+           kernel == "SapphireRapids"));
+#endif
+}
+
 TEST_CASE("an unknown command exits 2, names the commands and offers the nearest") {
   const Command typo = RunDeb("runn budget.yaml");
   CHECK(typo.exit_code == 2);

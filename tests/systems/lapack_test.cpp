@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdlib>
 #include <limits>
+#include <optional>
+#include <string>
 #include <random>
 #include <vector>
 
@@ -137,4 +140,26 @@ TEST_CASE("the LAPACK functions refuse a matrix that is not square or not finite
   c(0, 0) = std::numeric_limits<double>::infinity();
   CHECK(deb::SolveQuasiTriangularSylvester(MatrixXd::Identity(3, 3), MatrixXd::Identity(1, 1), c)
             .x.hasNaN());
+}
+
+TEST_CASE("the BLAS kernels: named when the BLAS is OpenBLAS; a better choice only where it picked pre-AVX2 ones") {
+  // Which kernels OpenBLAS picked depends on the machine; what holds on any:
+  const std::string now = deb::BlasKernel();
+  const std::vector<std::string> avx2_or_later = {"Haswell", "Zen", "SkylakeX", "Cooperlake", "SapphireRapids"};
+  const bool fine = std::find(avx2_or_later.begin(), avx2_or_later.end(), now) != avx2_or_later.end();
+  const char* set = std::getenv("OPENBLAS_CORETYPE");
+  const std::optional<std::string> better = deb::BetterBlasKernel();
+  MESSAGE("OpenBLAS kernels: '" << now << "', OPENBLAS_CORETYPE " << std::string(set ? set : "unset") << ", better: "
+                                << (better ? *better : "none"));
+  if (now.empty() || fine || set != nullptr) CHECK(!better);
+  if (better) CHECK((*better == "SkylakeX" || *better == "Haswell"));
+  // Once OPENBLAS_CORETYPE is set (by the user, or by deb before it starts
+  // itself again), the choice stands: no second restart.
+  const std::string before = set ? set : "";
+  ::setenv("OPENBLAS_CORETYPE", "Prescott", 1);
+  CHECK(!deb::BetterBlasKernel());
+  if (set)
+    ::setenv("OPENBLAS_CORETYPE", before.c_str(), 1);
+  else
+    ::unsetenv("OPENBLAS_CORETYPE");
 }
