@@ -17,6 +17,7 @@
 #define lapack_complex_float std::complex<float>
 #define lapack_complex_double std::complex<double>
 #include <lapacke.h>
+#include <cblas.h>
 
 #include "deb/core/error.h"
 
@@ -267,6 +268,30 @@ std::optional<std::string> BetterBlasKernel() {
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "Haswell";
 #endif
   return std::nullopt;
+}
+
+bool BlasProductIsFaster() {
+  static const bool faster = [] {
+    const std::string now = BlasKernel();
+    return now == "SkylakeX" || now == "Cooperlake" || now == "SapphireRapids";
+  }();
+  return faster;
+}
+
+void BlasProduct(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b,
+                 Eigen::Ref<Eigen::MatrixXd> out) {
+  DEB_DEMAND(a.cols() == b.rows() && out.rows() == a.rows() && out.cols() == b.cols());
+  constexpr Eigen::Index kMax = std::numeric_limits<int>::max();
+  DEB_DEMAND(a.rows() <= kMax && a.cols() <= kMax && b.cols() <= kMax && a.outerStride() <= kMax &&
+             b.outerStride() <= kMax && out.outerStride() <= kMax);
+  if (out.size() == 0) return;
+  if (a.cols() == 0) {
+    out.setZero();
+    return;
+  }
+  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, static_cast<int>(a.rows()), static_cast<int>(b.cols()),
+              static_cast<int>(a.cols()), 1.0, a.data(), static_cast<int>(a.outerStride()), b.data(),
+              static_cast<int>(b.outerStride()), 0.0, out.data(), static_cast<int>(out.outerStride()));
 }
 
 }  // namespace deb

@@ -116,4 +116,15 @@ std::string BlasKernel();
 // restart), or OpenBLAS's choice stands.
 std::optional<std::string> BetterBlasKernel();
 
+// Whether the BLAS's matrix product beats Eigen's as deb compiles it: true
+// for OpenBLAS's AVX-512 kernels (SkylakeX and later: dgemm of 2000 x 2000
+// by 2000 x 128 at 59 GFlop/s, Eigen's AVX2 product 30), false otherwise
+// (Haswell's: 30, as Eigen; Prescott's: 9.5). Decided once per process.
+bool BlasProductIsFaster();
+// out = a * b through the BLAS's dgemm (column-major blocks of matrices, as
+// Eigen keeps them). @pre a.cols() == b.rows(), out is a.rows() x b.cols()
+// (DEB_DEMAND), and the sizes fit the BLAS's int.
+void BlasProduct(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b,
+                 Eigen::Ref<Eigen::MatrixXd> out);
+
 }  // namespace deb

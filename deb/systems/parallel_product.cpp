@@ -4,6 +4,7 @@
 
 #include "deb/core/error.h"
 #include "deb/core/parallel.h"
+#include "deb/systems/lapack.h"
 
 namespace deb {
 
@@ -18,8 +19,12 @@ void ForColumnBlocks(Eigen::Index cols, const std::function<void(Eigen::Index fi
 Eigen::MatrixXd ParallelProduct(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   DEB_DEMAND(a.cols() == b.rows());
   Eigen::MatrixXd out(a.rows(), b.cols());
+  const bool blas = BlasProductIsFaster();
   ForColumnBlocks(b.cols(), [&](Eigen::Index first, Eigen::Index count) {
-    out.middleCols(first, count).noalias() = a * b.middleCols(first, count);
+    if (blas)
+      BlasProduct(a, b.middleCols(first, count), out.middleCols(first, count));
+    else
+      out.middleCols(first, count).noalias() = a * b.middleCols(first, count);
   });
   return out;
 }

@@ -15,7 +15,8 @@ namespace deb {
 inline constexpr Eigen::Index kProductColumns = 128;
 void ForColumnBlocks(Eigen::Index cols, const std::function<void(Eigen::Index first, Eigen::Index count)>& fn);
 
-// a * b.
+// a * b: each block of columns by the BLAS's dgemm where that is faster
+// than Eigen's product (BlasProductIsFaster, lapack.h), else by Eigen's.
 Eigen::MatrixXd ParallelProduct(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
 
 }  // namespace deb
