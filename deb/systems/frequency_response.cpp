@@ -11,6 +11,7 @@
 #include "deb/core/math_constants.h"
 #include "deb/core/parallel.h"
 #include "deb/systems/block_triangular.h"
+#include "deb/systems/lapack.h"
 #include "deb/systems/real_block_diagonal.h"
 
 namespace deb {
@@ -480,6 +481,7 @@ void FrequencyResponse::ForEach(const std::vector<double>& f_hz, const Visitor& 
   // do not depend on the thread count (see ModalResponse::ForEach).
   const std::size_t blocks = (f_hz.size() + kFrequencyBlock - 1) / kFrequencyBlock;
   const Eigen::Index size = static_cast<Eigen::Index>(rows_) * cols_;
+  const bool blas = BlasProductIsFaster();
   ParallelFor(
       blocks,
       [&](std::size_t b0, std::size_t b1) {
@@ -492,7 +494,11 @@ void FrequencyResponse::ForEach(const std::vector<double>& f_hz, const Visitor& 
           weights.resize(columns_, 2 * count);
           for (int i = 0; i < count; ++i)
             ComputeWeights(CheckedOmega(f_hz[k0 + i]), weights.col(2 * i).data(), weights.col(2 * i + 1).data());
-          sums.noalias() = residues_ * weights;
+          sums.resize(residues_.rows(), 2 * count);
+          if (blas)
+            BlasProduct(residues_, weights, sums);
+          else
+            sums.noalias() = residues_ * weights;
           for (int i = 0; i < count; ++i) {
             Complex* g = transposed_ ? w.g.data() : h.data();
             const double* re = sums.col(2 * i).data();

@@ -9,6 +9,7 @@
 #include "deb/core/error.h"
 #include "deb/core/math_constants.h"
 #include "deb/core/parallel.h"
+#include "deb/systems/lapack.h"
 
 namespace deb {
 namespace {
@@ -126,7 +127,11 @@ void ModalResponse::EvaluatePairs(const double* f_hz, int count, Eigen::MatrixXd
   const Eigen::Index n = modes();
   g.resize(n, 2 * count);
   for (int i = 0; i < count; ++i) Gains(f_hz[i], g.col(2 * i).data(), g.col(2 * i + 1).data());
-  h.noalias() = pair_shapes_ * g;
+  h.resize(pair_shapes_.rows(), 2 * count);
+  if (BlasProductIsFaster())
+    BlasProduct(pair_shapes_, g, h);
+  else
+    h.noalias() = pair_shapes_ * g;
   if (pair_residual_.size() > 0)
     for (int i = 0; i < count; ++i) h.col(2 * i) += pair_residual_;
 }
