@@ -353,11 +353,16 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
   // Unweighted rows of a modal path: the modal covariance's closed form, as
   // their variances (AllRows), O(n^2 p) instead of a 2n-state Lyapunov solve.
   if (modal_ && unweighted) return ModalOutputCovarianceMatrix(*path_.modal, rows, w_two_sided);
-  if (modal_ && 2 * path_.modal->modes() > limits::kMaxDenseStates)
-    throw InputError("a weighted output of a modal path is solved in state space, and " +
-                     std::to_string(path_.modal->modes()) + " modes make " +
-                     std::to_string(2 * path_.modal->modes()) + " states, more than the " +
-                     std::to_string(limits::kMaxDenseStates) + " deb solves densely");
+  // Weighted rows of a modal path too large to realise densely: its modes as
+  // coupled blocks, the weighting in series (as for a path kept as parts).
+  if (modal_ && path_.States() > limits::kMaxDenseStates) {
+    if (path_.States() > limits::kMaxCoupledStates)
+      throw InputError("a weighted output of a modal path is solved in state space, and " +
+                       std::to_string(path_.modal->modes()) + " modes make " + std::to_string(path_.States()) +
+                       " states, more than the " + std::to_string(limits::kMaxCoupledStates) +
+                       " deb keeps as coupled blocks");
+    return WeightedCoupledCovariance(rows, weightings, w_two_sided);
+  }
   std::string why;
   if (unweighted)
     if (std::optional<Eigen::MatrixXd> cov = CoupledCovarianceOf(rows, w_two_sided, &why)) return *cov;
@@ -418,7 +423,7 @@ Eigen::MatrixXd PathAnalysis::WeightedCoupledCovariance(const std::vector<int>& 
                                                         const std::vector<const StateSpace*>& weightings,
                                                         const Eigen::MatrixXd& w_two_sided) const {
   std::string why;
-  const std::optional<CoupledRealisation> loop = path_.measured->Coupled(&why);
+  const std::optional<CoupledRealisation> loop = path_.modal ? CoupledOf(*path_.modal) : path_.measured->Coupled(&why);
   if (!loop) RefuseKeptVariance(why);
   // The rows, each through its weighting (none: a unit gain), as one block
   // after the loop.

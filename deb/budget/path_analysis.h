@@ -160,8 +160,9 @@ class PathAnalysis {
                                                          const Eigen::MatrixXd& w_two_sided,
                                                          std::vector<std::string>* why) const;
   // The covariance of `rows` through their weightings for a path kept as
-  // parts: the weightings joined in series to its coupled form and solved
-  // again (coupled_spectrum.h).
+  // parts, or a modal path of more than limits::kMaxDenseStates states: the
+  // weightings joined in series to its coupled form (the modes as 2 x 2
+  // blocks, for a modal path) and solved again (coupled_spectrum.h).
   // @throws InputError (RefuseKeptVariance) where that does not hold.
   Eigen::MatrixXd WeightedCoupledCovariance(const std::vector<int>& rows,
                                             const std::vector<const StateSpace*>& weightings,

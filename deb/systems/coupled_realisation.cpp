@@ -95,16 +95,16 @@ CoupledRealisation CoupledOf(const StateSpace& rational) {
 }
 
 CoupledRealisation CoupledOf(const ModalModel& model) {
-  // The modal realisation (ModalStateSpace), each mode's states scaled by
-  // diag(w, 1): x = [w q, q'].
-  const StateSpace plain = ModalStateSpace(model);
+  // The modal realisation (ModalRealisation: no dense A), each mode's states
+  // scaled by diag(w, 1): x = [w q, q'].
+  ModalRealisationParts plain = ModalRealisation(model);
   CoupledRealisation sys;
   const int n = model.modes();
-  sys.b = plain.B();
-  sys.c = plain.C();
-  sys.d = plain.D();
+  sys.b = std::move(plain.b);
+  sys.c = std::move(plain.c);
+  sys.d = std::move(plain.d);
   for (int k = 0; k < n; ++k) {
-    MatrixXd blk = plain.A().block(2 * k, 2 * k, 2, 2);
+    MatrixXd blk = plain.blocks[static_cast<std::size_t>(k)];
     const double w = kTwoPi * model.f_hz[k];
     if (w > 0.0) {  // T^-1 A T with T = diag(1 / w, 1): x_T = [w q, q']
       blk(0, 1) *= w;

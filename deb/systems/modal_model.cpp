@@ -144,31 +144,40 @@ std::complex<double> ModalPole(double f_hz, double zeta) {
   return {-zeta * w, w * std::sqrt((1.0 - zeta) * (1.0 + zeta))};
 }
 
-StateSpace ModalStateSpace(const ModalModel& model) {
+ModalRealisationParts ModalRealisation(const ModalModel& model) {
   model.Validate();
   const int n = model.modes();
   const Eigen::Index m = model.phi_in.rows(), p = model.phi_out.rows();
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n), b = Eigen::MatrixXd::Zero(2 * n, m),
-                  c = Eigen::MatrixXd::Zero(p, 2 * n), d = Eigen::MatrixXd::Zero(p, m);
+  ModalRealisationParts parts;
+  parts.blocks.resize(static_cast<std::size_t>(n));
+  parts.b = Eigen::MatrixXd::Zero(2 * n, m);
+  parts.c = Eigen::MatrixXd::Zero(p, 2 * n);
+  parts.d = Eigen::MatrixXd::Zero(p, m);
   for (int k = 0; k < n; ++k) {
     const double w = kTwoPi * model.f_hz[k];
     const double w2 = w * w, two_zeta_w = model.f_hz[k] > 0.0 ? 2.0 * model.zeta[k] * w : 0.0;
-    a(2 * k, 2 * k + 1) = 1.0;
-    a(2 * k + 1, 2 * k) = -w2;
-    a(2 * k + 1, 2 * k + 1) = -two_zeta_w;
-    b.row(2 * k + 1) = model.phi_in.col(k).transpose();
+    parts.blocks[static_cast<std::size_t>(k)] << 0.0, 1.0, -w2, -two_zeta_w;
+    parts.b.row(2 * k + 1) = model.phi_in.col(k).transpose();
     switch (model.quantity) {
-      case ModalQuantity::kDisplacement: c.col(2 * k) = model.phi_out.col(k); break;
-      case ModalQuantity::kVelocity: c.col(2 * k + 1) = model.phi_out.col(k); break;
+      case ModalQuantity::kDisplacement: parts.c.col(2 * k) = model.phi_out.col(k); break;
+      case ModalQuantity::kVelocity: parts.c.col(2 * k + 1) = model.phi_out.col(k); break;
       case ModalQuantity::kAcceleration:
-        c.col(2 * k) = -w2 * model.phi_out.col(k);
-        c.col(2 * k + 1) = -two_zeta_w * model.phi_out.col(k);
+        parts.c.col(2 * k) = -w2 * model.phi_out.col(k);
+        parts.c.col(2 * k + 1) = -two_zeta_w * model.phi_out.col(k);
         break;
     }
   }
-  if (model.quantity == ModalQuantity::kAcceleration) d = model.phi_out * model.phi_in.transpose();
-  if (model.residual.size() > 0) d += model.residual;
-  return StateSpace(std::move(a), std::move(b), std::move(c), std::move(d));
+  if (model.quantity == ModalQuantity::kAcceleration) parts.d = model.phi_out * model.phi_in.transpose();
+  if (model.residual.size() > 0) parts.d += model.residual;
+  return parts;
+}
+
+StateSpace ModalStateSpace(const ModalModel& model) {
+  ModalRealisationParts parts = ModalRealisation(model);
+  const int n = model.modes();
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  for (int k = 0; k < n; ++k) a.block<2, 2>(2 * k, 2 * k) = parts.blocks[static_cast<std::size_t>(k)];
+  return StateSpace(std::move(a), std::move(parts.b), std::move(parts.c), std::move(parts.d));
 }
 
 }  // namespace deb

@@ -100,4 +100,14 @@ struct ModalModel {
 // Calls Validate().
 StateSpace ModalStateSpace(const ModalModel& model);
 
+// The same realisation without its 2n x 2n A (4 n^2 zeros): mode k's 2 x 2
+// block [[0, 1], [-w_k^2, -2 zeta_k w_k]] and B, C, D as above, for the
+// coupled form of models too large for a dense A (coupled_realisation.h).
+// Calls Validate().
+struct ModalRealisationParts {
+  std::vector<Eigen::Matrix2d> blocks;
+  Eigen::MatrixXd b, c, d;
+};
+ModalRealisationParts ModalRealisation(const ModalModel& model);
+
 }  // namespace deb
