@@ -28,7 +28,10 @@ constexpr int kMaxExpandedBlock = 4;
 // Frequencies per block of ForEach: the weights (columns x 2 x this) and the
 // sums (entries of H x 2 x this) of a block, a few MB at 2000 states and 20 x
 // 20; the product's packing of the residues is 1/(2 x this) of its work.
+// Fewer where the sums would exceed kMaxBlockSums values (16 MB) per worker:
+// a path of many channels and few states.
 constexpr std::size_t kFrequencyBlock = 128;
+constexpr double kMaxBlockSums = 2097152.0;
 
 // omega = 2 pi f [rad/s].
 // @throws InputError if f_hz is not finite.
@@ -479,8 +482,11 @@ void FrequencyResponse::ForEach(const std::vector<double>& f_hz, const Visitor& 
   // 6.4 MB per frequency at 2000 states and 20 x 20). The blocks are fixed by
   // the frequency count alone and handed out whole, so that the last digits
   // do not depend on the thread count (see ModalResponse::ForEach).
-  const std::size_t blocks = (f_hz.size() + kFrequencyBlock - 1) / kFrequencyBlock;
   const Eigen::Index size = static_cast<Eigen::Index>(rows_) * cols_;
+  const std::size_t block = static_cast<std::size_t>(
+      std::clamp(std::floor(kMaxBlockSums / std::max(1.0, 2.0 * static_cast<double>(size))), 1.0,
+                 static_cast<double>(kFrequencyBlock)));
+  const std::size_t blocks = (f_hz.size() + block - 1) / block;
   const bool blas = BlasProductIsFaster();
   ParallelFor(
       blocks,
@@ -489,8 +495,8 @@ void FrequencyResponse::ForEach(const std::vector<double>& f_hz, const Visitor& 
         Eigen::MatrixXd weights, sums;
         Eigen::MatrixXcd h(p_, m_);
         for (std::size_t b = b0; b < b1; ++b) {
-          const std::size_t k0 = b * kFrequencyBlock;
-          const int count = static_cast<int>(std::min(kFrequencyBlock, f_hz.size() - k0));
+          const std::size_t k0 = b * block;
+          const int count = static_cast<int>(std::min(block, f_hz.size() - k0));
           weights.resize(columns_, 2 * count);
           for (int i = 0; i < count; ++i)
             ComputeWeights(CheckedOmega(f_hz[k0 + i]), weights.col(2 * i).data(), weights.col(2 * i + 1).data());

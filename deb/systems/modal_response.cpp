@@ -27,7 +27,10 @@ constexpr double kMaxPairEntries = 16777216.0;
 // Frequencies per block of the pair form: the gains (modes x 2 x this) and
 // the product (pairs x 2 x this) of a block, a few MB at 1000 modes and 400
 // pairs; the product's packing of the pair shapes is 1/(2 x this) of its work.
+// Fewer where the product would exceed kMaxPairBlockValues (16 MB) per
+// worker: many channels and few modes.
 constexpr int kPairBlock = 128;
+constexpr double kMaxPairBlockValues = 2097152.0;
 
 }  // namespace
 
@@ -163,16 +166,19 @@ Eigen::MatrixXcd ModalResponse::At(double f_hz) const {
 void ModalResponse::ForEach(const std::vector<double>& f_hz, const Visitor& fn, int threads) const {
   const Eigen::Index p = outputs(), m = inputs();
   if (PairForm()) {
-    // Blocks fixed by the frequency count alone, as below.
-    const std::size_t blocks = (f_hz.size() + kPairBlock - 1) / kPairBlock;
+    // Blocks fixed by the frequency count and the model alone, as below.
+    const std::size_t block = static_cast<std::size_t>(std::clamp(
+        std::floor(kMaxPairBlockValues / std::max(1.0, 2.0 * static_cast<double>(p * m))), 1.0,
+        static_cast<double>(kPairBlock)));
+    const std::size_t blocks = (f_hz.size() + block - 1) / block;
     ParallelFor(
         blocks,
         [&](std::size_t b0, std::size_t b1) {
           Eigen::MatrixXd g, hp;
           Eigen::MatrixXcd h(p, m);
           for (std::size_t b = b0; b < b1; ++b) {
-            const std::size_t k0 = b * kPairBlock;
-            const int count = static_cast<int>(std::min<std::size_t>(kPairBlock, f_hz.size() - k0));
+            const std::size_t k0 = b * block;
+            const int count = static_cast<int>(std::min(block, f_hz.size() - k0));
             EvaluatePairs(f_hz.data() + k0, count, g, hp);
             for (int i = 0; i < count; ++i) {
               PairColumnsTo(hp, i, h);

@@ -135,6 +135,29 @@ TEST_CASE("ForEach visits every frequency once with the batch matrices, to round
   }
 }
 
+TEST_CASE("ForEach of a path of many channels and few states: smaller blocks, the same H") {
+  // 200 x 110 entries of H: the block of frequencies shrinks from 128 to 47
+  // (16 MB of sums per worker); 300 frequencies leave a last block of 18.
+  std::mt19937 rng(31);
+  testing::ModalSpec spec;
+  spec.real_poles_rad_s = {-3.0};
+  spec.pairs = {{40.0, 0.02}};
+  const StateSpace sys = testing::RandomSystem(spec, 200, 110, rng);
+  const FrequencyResponse h(sys);
+  const std::vector<double> f = testing::LogSpace(0.01, 100.0, 300);
+  std::vector<MatrixXcd> one(f.size()), two(f.size());
+  h.ForEach(f, [&](std::size_t k, const MatrixXcd& hk) { one[k] = hk; }, 1);
+  h.ForEach(f, [&](std::size_t k, const MatrixXcd& hk) { two[k] = hk; }, 2);
+  int close = 0, same = 0;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    const MatrixXcd at = h.At(f[k]);
+    close += (one[k] - at).norm() <= 1e-13 * at.norm();
+    same += one[k] == two[k];
+  }
+  CHECK(close == static_cast<int>(f.size()));
+  CHECK(same == static_cast<int>(f.size()));
+}
+
 TEST_CASE("a defective A (double pole) is one group of the block-diagonal form and stays exact") {
   // 1/(s + 2)^2 realised as a Jordan chain: cond(V) is infinite or huge.
   Eigen::MatrixXd a(2, 2), b(2, 1), c(1, 2), d = Eigen::MatrixXd::Zero(1, 1);

@@ -98,6 +98,23 @@ TEST_CASE("the pair form and the row form give the same H, static residual inclu
   CHECK(std::abs(h0(0, 3) - by_rows.At(0.0)(0, 3)) <= 1e-13 * std::abs(h0(0, 3)));
 }
 
+TEST_CASE("the pair form of many channels and few modes takes smaller blocks, with the same H") {
+  // 150 x 120 pairs: blocks of 58 frequencies (16 MB per worker), not 128.
+  const ModalModel model = Clustered(4, 120, 150, ModalQuantity::kVelocity, 17);
+  std::vector<int> rows(150);
+  for (int r = 0; r < 150; ++r) rows[static_cast<std::size_t>(r)] = r;
+  const ModalResponse pairs(model, rows), by_rows(model, rows, ModalResponse::Form::kRows);
+  std::vector<double> f;
+  for (int i = 0; i < 200; ++i) f.push_back(0.5 * std::pow(1e4, i / 199.0));
+  std::vector<Eigen::MatrixXcd> a(f.size()), b(f.size());
+  pairs.ForEach(f, [&](std::size_t k, const Eigen::MatrixXcd& h) { a[k] = h; }, 2);
+  by_rows.ForEach(f, [&](std::size_t k, const Eigen::MatrixXcd& h) { b[k] = h; }, 2);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < f.size(); ++k)
+    worst = std::max(worst, (a[k] - b[k]).cwiseAbs().maxCoeff() / b[k].cwiseAbs().maxCoeff());
+  CHECK(worst <= 1e-13);
+}
+
 TEST_CASE("ForEach gives bit-identical responses on 1, 2 and 3 threads") {
   // 200 modes and one output make blocks of 256 frequencies. With 2562
   // frequencies a block cut where a thread's range ends left a block of one
