@@ -294,4 +294,14 @@ void BlasProduct(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<co
               static_cast<int>(b.outerStride()), 0.0, out.data(), static_cast<int>(out.outerStride()));
 }
 
+void BlasUnitUpperSolve(const Eigen::Ref<const Eigen::MatrixXd>& y, Eigen::Ref<Eigen::MatrixXd> x) {
+  DEB_DEMAND(y.rows() == y.cols() && y.rows() == x.rows());
+  constexpr Eigen::Index kMax = std::numeric_limits<int>::max();
+  DEB_DEMAND(x.rows() <= kMax && x.cols() <= kMax && y.outerStride() <= kMax && x.outerStride() <= kMax);
+  if (x.size() == 0) return;
+  cblas_dtrsm(CblasColMajor, CblasLeft, CblasUpper, CblasNoTrans, CblasUnit, static_cast<int>(x.rows()),
+              static_cast<int>(x.cols()), 1.0, y.data(), static_cast<int>(y.outerStride()), x.data(),
+              static_cast<int>(x.outerStride()));
+}
+
 }  // namespace deb

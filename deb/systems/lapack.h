@@ -126,5 +126,9 @@ bool BlasProductIsFaster();
 // (DEB_DEMAND), and the sizes fit the BLAS's int.
 void BlasProduct(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b,
                  Eigen::Ref<Eigen::MatrixXd> out);
+// x := Y^-1 x for the unit upper triangular part of Y (its diagonal and
+// lower part are not read), through the BLAS's dtrsm. @pre Y square with
+// as many rows as x (DEB_DEMAND), sizes that fit the BLAS's int.
+void BlasUnitUpperSolve(const Eigen::Ref<const Eigen::MatrixXd>& y, Eigen::Ref<Eigen::MatrixXd> x);
 
 }  // namespace deb

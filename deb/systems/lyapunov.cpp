@@ -349,10 +349,24 @@ std::optional<Eigen::MatrixXd> BlockDiagonalCovariance(const RealBlockDiagonalFo
   // The n^3 products on all threads (ParallelProduct): most of this
   // function's time at 2000 states.
   const auto upper = form.y.triangularView<Eigen::UnitUpper>();
-  Eigen::MatrixXd e = ParallelProduct(form.u.transpose(), ParallelProduct(bal.A(), form.u));  // U^T A U
-  e = ParallelProduct(e, form.y);
+  const Eigen::MatrixXd uau = ParallelProduct(form.u.transpose(), ParallelProduct(bal.A(), form.u));  // U^T A U
+  // (U^T A U) Y, Y upper triangular (zero below its diagonal): a block of
+  // Y's columns has entries in its first first + count rows only, half
+  // the multiplications of the full product.
+  const bool blas = BlasProductIsFaster();
+  Eigen::MatrixXd e(n, n);
+  ForColumnBlocks(n, [&](Eigen::Index first, Eigen::Index count) {
+    const Eigen::Index rows = first + count;
+    if (blas)
+      BlasProduct(uau.leftCols(rows), form.y.block(0, first, rows, count), e.middleCols(first, count));
+    else
+      e.middleCols(first, count).noalias() = uau.leftCols(rows) * form.y.block(0, first, rows, count);
+  });
   ForColumnBlocks(n, [&](Eigen::Index first, Eigen::Index count) {  // Y^-1 (U^T A U) Y
-    upper.solveInPlace(e.middleCols(first, count));
+    if (blas)
+      BlasUnitUpperSolve(form.y, e.middleCols(first, count));
+    else
+      upper.solveInPlace(e.middleCols(first, count));
   });
   for (int g = 0; g < groups; ++g)
     e.block(form.start[g], form.start[g], form.group_size(g), form.group_size(g)) -=
