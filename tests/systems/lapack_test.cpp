@@ -185,3 +185,19 @@ TEST_CASE("BlasProduct equals Eigen's product to rounding, on blocks with stride
   deb::BlasProduct(MatrixXd(0, 5), MatrixXd::Ones(5, 4), none);
   CHECK(none.size() == 0);
 }
+
+TEST_CASE("BlasUnitUpperSolve solves with Y's unit upper triangle only, as Eigen's triangular solve") {
+  // Y's diagonal and lower part hold numbers that must not be read; its
+  // strict upper part is scaled by 0.1, so that Y stays well conditioned
+  // (a unit triangle of Gaussian entries grows its condition exponentially).
+  const MatrixXd y = 0.1 * Gaussian(60, 60, 23);
+  const MatrixXd rhs = Gaussian(60, 25, 24);
+  const MatrixXd want = y.triangularView<Eigen::UnitUpper>().solve(rhs);
+  MatrixXd wide = MatrixXd::Zero(60, 40);
+  wide.middleCols(10, 25) = rhs;
+  deb::BlasUnitUpperSolve(y, wide.middleCols(10, 25));
+  // Relative to the solution: observed about 1e-15.
+  CHECK((wide.middleCols(10, 25) - want).norm() <= 1e-12 * want.norm());
+  CHECK(wide.leftCols(10).norm() == 0.0);
+  CHECK(wide.rightCols(5).norm() == 0.0);
+}
