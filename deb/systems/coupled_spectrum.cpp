@@ -91,8 +91,10 @@ Diagonal Diagonalise(const CoupledRealisation& sys) {
     const Index s = x.rows();
     const Eigen::PartialPivLU<MatrixXcd> lu(x);
     out.d.segment(at, s) = evs[i];
-    out.u.middleRows(at, s) = lu.solve(u.middleRows(at, s).cast<cd>());
-    out.v.middleRows(at, s) = x.transpose() * v.middleRows(at, s).cast<cd>();
+    if (u.cols() > 0) {  // no coupling (SolveCoupled): no columns to slice
+      out.u.middleRows(at, s) = lu.solve(u.middleRows(at, s).cast<cd>());
+      out.v.middleRows(at, s) = x.transpose() * v.middleRows(at, s).cast<cd>();
+    }
     out.b.middleRows(at, s) = lu.solve(sys.b.middleRows(at, s).cast<cd>());
     out.c.middleCols(at, s) = sys.c.middleCols(at, s).cast<cd>() * x;
     at += s;
@@ -223,14 +225,22 @@ std::optional<VectorXcd> Aberth(const Diagonal& dg, const Secular& sec, int thre
 CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
   CoupledSolve out;
   Diagonal dg = Diagonalise(sys);
-  const Index n = dg.d.size(), r = dg.u.cols();
+  const Index n = dg.d.size();
   if (n == 0) {
     out.why_not = "no states";
     return out;
   }
   CoupledSpectrum sp;
   sp.blocks = static_cast<int>(sys.blocks.size());
-  sp.rank = static_cast<int>(r);
+  sp.rank = static_cast<int>(dg.u.cols());
+  // No coupling at all (a modal path in series with a gain): a coupling of
+  // one zero column, which leaves every pole its block's, so that the rows
+  // and columns below are never slices of empty matrices.
+  if (dg.u.cols() == 0) {
+    dg.u = MatrixXcd::Zero(n, 1);
+    dg.v = MatrixXcd::Zero(n, 1);
+  }
+  const Index r = dg.u.cols();
   // A row of U or of V whose part of U V^T is at the level of rounding in A
   // is made zero: the pole of a mode the loop does not drive (U) or does
   // not see (V) is then exactly its block's, and stays out of the iteration.
