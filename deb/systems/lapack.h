@@ -122,7 +122,8 @@ std::optional<std::string> BetterBlasKernel();
 // (Haswell's: 30, as Eigen; Prescott's: 9.5). Decided once per process.
 bool BlasProductIsFaster();
 // out = a * b through the BLAS's dgemm (column-major blocks of matrices, as
-// Eigen keeps them). @pre a.cols() == b.rows(), out is a.rows() x b.cols()
+// Eigen keeps them). Calls from several threads take turns (the BLAS may not
+// be safe to call concurrently); so does BlasUnitUpperSolve. @pre a.cols() == b.rows(), out is a.rows() x b.cols()
 // (DEB_DEMAND), and the sizes fit the BLAS's int.
 void BlasProduct(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b,
                  Eigen::Ref<Eigen::MatrixXd> out);

@@ -362,12 +362,12 @@ std::optional<Eigen::MatrixXd> BlockDiagonalCovariance(const RealBlockDiagonalFo
     else
       e.middleCols(first, count).noalias() = uau.leftCols(rows) * form.y.block(0, first, rows, count);
   });
-  ForColumnBlocks(n, [&](Eigen::Index first, Eigen::Index count) {  // Y^-1 (U^T A U) Y
-    if (blas)
-      BlasUnitUpperSolve(form.y, e.middleCols(first, count));
-    else
-      upper.solveInPlace(e.middleCols(first, count));
-  });
+  // Y^-1 (U^T A U) Y: one call to the BLAS (whose calls take turns), or
+  // Eigen's solve by blocks of columns on all threads.
+  if (blas)
+    BlasUnitUpperSolve(form.y, e);
+  else
+    ForColumnBlocks(n, [&](Eigen::Index first, Eigen::Index count) { upper.solveInPlace(e.middleCols(first, count)); });
   for (int g = 0; g < groups; ++g)
     e.block(form.start[g], form.start[g], form.group_size(g), form.group_size(g)) -=
         form.t.block(form.start[g], form.start[g], form.group_size(g), form.group_size(g));

@@ -15,8 +15,9 @@ namespace deb {
 inline constexpr Eigen::Index kProductColumns = 128;
 void ForColumnBlocks(Eigen::Index cols, const std::function<void(Eigen::Index first, Eigen::Index count)>& fn);
 
-// a * b: each block of columns by the BLAS's dgemm where that is faster
-// than Eigen's product (BlasProductIsFaster, lapack.h), else by Eigen's.
+// a * b: by the BLAS's dgemm in one call where that is faster than Eigen's
+// product (BlasProductIsFaster, lapack.h), else by Eigen's, each block of
+// columns on a worker thread.
 Eigen::MatrixXd ParallelProduct(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
 
 }  // namespace deb
