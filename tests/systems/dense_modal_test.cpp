@@ -111,9 +111,12 @@ TEST_CASE("a rotated modal model through the dense path: H at every resonance an
     // moves a lightly damped pole in these coordinates (|A| ~ w_max^2 =
     // 1e7 rad^2/s^2) more than the Hessenberg solve's backward error does:
     // measured 5.8e-7 against 6.6e-8 at 200 modes, at the peak of a 295 Hz
-    // mode with zeta = 1.3e-3. The variances integrate that out.
+    // mode with zeta = 1.3e-3. The variances integrate that out: 2.5e-9
+    // with GCC, 1.25e-8 with clang's sanitizer build under OpenBLAS's
+    // AVX-512 kernels (the rounding of the same ill-conditioned A in
+    // another order); 3e-8 allowed.
     CHECK(worst_h <= 1e-6);
-    CHECK(worst_v <= 1e-8);
+    CHECK(worst_v <= 3e-8);
   }
 }
 
