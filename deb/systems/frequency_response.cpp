@@ -494,12 +494,16 @@ void FrequencyResponse::ForEach(const std::vector<double>& f_hz, const Visitor& 
         Workspace w(*this);
         Eigen::MatrixXd weights, sums;
         Eigen::MatrixXcd h(p_, m_);
+        std::vector<double> omega;
         for (std::size_t b = b0; b < b1; ++b) {
           const std::size_t k0 = b * block;
           const int count = static_cast<int>(std::min(block, f_hz.size() - k0));
           weights.resize(columns_, 2 * count);
-          for (int i = 0; i < count; ++i)
-            ComputeWeights(CheckedOmega(f_hz[k0 + i]), weights.col(2 * i).data(), weights.col(2 * i + 1).data());
+          omega.resize(static_cast<std::size_t>(count));
+          for (int i = 0; i < count; ++i) {
+            omega[static_cast<std::size_t>(i)] = CheckedOmega(f_hz[k0 + i]);
+            ComputeWeights(omega[static_cast<std::size_t>(i)], weights.col(2 * i).data(), weights.col(2 * i + 1).data());
+          }
           sums.resize(residues_.rows(), 2 * count);
           if (blas)
             BlasProduct(residues_, weights, sums);
@@ -513,7 +517,7 @@ void FrequencyResponse::ForEach(const std::vector<double>& f_hz, const Visitor& 
             for (Eigen::Index e = 0; e < size; ++e) g[e] = Complex(d[e] + re[e], im[e]);
             if (largest_block_ > kMaxExpandedBlock)
               for (const Term& t : terms_)
-                if (t.kind == TermKind::kLargeBlock) AddLargeBlock(t, CheckedOmega(f_hz[k0 + i]), w, g);
+                if (t.kind == TermKind::kLargeBlock) AddLargeBlock(t, omega[static_cast<std::size_t>(i)], w, g);
             if (transposed_) h = w.g.transpose();
             fn(k0 + i, h);
           }

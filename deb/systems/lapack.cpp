@@ -3,9 +3,9 @@
 #include <dlfcn.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <complex>
+#include <cstdlib>
 #include <limits>
 #include <mutex>
 #include <new>
@@ -246,6 +246,17 @@ CoreName OpenBlasCoreName() {
   return reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
 }
 
+// What OpenBLAS's kernels named `name` run (its names in 0.3.21 and since):
+// AVX-512, AVX2 and FMA, or older instructions (also for unknown names).
+enum class KernelWidth { kOlder, kAvx2, kAvx512 };
+KernelWidth WidthOf(const std::string& name) {
+  for (const char* avx512 : {"SkylakeX", "Cooperlake", "SapphireRapids"})
+    if (name == avx512) return KernelWidth::kAvx512;
+  for (const char* avx2 : {"Haswell", "Zen"})
+    if (name == avx2) return KernelWidth::kAvx2;
+  return KernelWidth::kOlder;
+}
+
 }  // namespace
 
 std::string BlasKernel() {
@@ -257,10 +268,7 @@ std::string BlasKernel() {
 std::optional<std::string> BetterBlasKernel() {
   if (std::getenv("OPENBLAS_CORETYPE") != nullptr) return std::nullopt;
   const std::string now = BlasKernel();
-  if (now.empty()) return std::nullopt;
-  // OpenBLAS's names of AVX2 kernels and later ones (0.3.21 and since).
-  for (const char* fine : {"Haswell", "Zen", "SkylakeX", "Cooperlake", "SapphireRapids"})
-    if (now == fine) return std::nullopt;
+  if (now.empty() || WidthOf(now) != KernelWidth::kOlder) return std::nullopt;
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
   __builtin_cpu_init();
   if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512bw") &&
@@ -272,21 +280,19 @@ std::optional<std::string> BetterBlasKernel() {
 }
 
 bool BlasProductIsFaster() {
-  static const bool faster = [] {
-    const std::string now = BlasKernel();
-    return now == "SkylakeX" || now == "Cooperlake" || now == "SapphireRapids";
-  }();
+  static const bool faster = WidthOf(BlasKernel()) == KernelWidth::kAvx512;
   return faster;
 }
 
 namespace {
 
-// OpenBLAS's single-threaded build (the one deb installs) is not built to be
-// called from several threads at once unless it was built with locking,
-// which its package does not say; one dense run in a dozen took 58 s
-// instead of 6 while two threads called dgemm together (its exact
-// variance's error estimate failed and the whole equation was solved). The
-// products deb hands to the BLAS from its worker threads take turns.
+// OpenBLAS's single-threaded build (the one deb installs) is safe to call
+// from several threads at once only if it was built with locking, which its
+// package does not say. One dense run in a dozen took 58 s instead of 6
+// while two threads could call dgemm together, as if its exact variance's
+// error estimate had failed and the whole equation been solved; that was
+// not reproduced, so the cause is suspected, not shown. The products deb
+// hands to the BLAS from its worker threads take turns.
 std::mutex& BlasTurn() {
   static std::mutex turn;
   return turn;

@@ -346,8 +346,8 @@ std::optional<Eigen::MatrixXd> BlockDiagonalCovariance(const RealBlockDiagonalFo
   Eigen::MatrixXd y = l * (x * l.transpose());
   y = 0.5 * (y + y.transpose()).eval();
   const Eigen::MatrixXd abs_y = l.cwiseAbs() * (x.cwiseAbs() * l.cwiseAbs().transpose());
-  // The n^3 products on all threads (ParallelProduct): most of this
-  // function's time at 2000 states.
+  // The n^3 products (ParallelProduct: Eigen's on all threads, or the
+  // BLAS's AVX-512 one on one): most of this function's time at 2000 states.
   const auto upper = form.y.triangularView<Eigen::UnitUpper>();
   const Eigen::MatrixXd uau = ParallelProduct(form.u.transpose(), ParallelProduct(bal.A(), form.u));  // U^T A U
   // (U^T A U) Y, Y upper triangular (zero below its diagonal): a block of
