@@ -233,21 +233,42 @@ std::vector<std::size_t> FigurePoints(const std::vector<double>& f_hz,
                                       const std::vector<const std::vector<double>*>& log_series,
                                       const std::vector<const std::vector<double>*>& linear_series,
                                       std::size_t max_points) {
-  // `keep` (indices into f_hz) thinned at `tolerance`: PlotPoints over the
-  // points kept so far, for log and linear series, united.
+  if (f_hz.empty()) return {};
+  // The drawn coordinates of the whole grid (PlotPoints' own), taken once:
+  // every thinning below works on a subset of them.
+  std::vector<double> x_all(f_hz.size());
+  for (std::size_t k = 0; k < f_hz.size(); ++k) x_all[k] = std::log10(f_hz[k]);
+  std::vector<std::vector<double>> log_y;
+  for (const auto* s : log_series) log_y.push_back(LogCoordinates(*s));
+  const auto gather = [](const std::vector<double>& v, const std::vector<std::size_t>& keep) {
+    std::vector<double> out(keep.size());
+    for (std::size_t k = 0; k < keep.size(); ++k) out[k] = v[keep[k]];
+    return out;
+  };
+  // `keep` (indices into f_hz) thinned at `tolerance`: PlotPoints' rule over
+  // the points kept so far, for log and linear series, united. A linear
+  // series is scaled by the largest |value| among the points kept, as
+  // PlotPoints scales by the largest it is given.
   const auto thin = [&](const std::vector<std::size_t>& keep, double tolerance) {
-    std::vector<double> f(keep.size());
-    for (std::size_t k = 0; k < keep.size(); ++k) f[k] = f_hz[keep[k]];
-    const auto pass = [&](const std::vector<const std::vector<double>*>& series, PlotScale scale) {
-      std::vector<std::vector<double>> values(series.size(), std::vector<double>(keep.size()));
-      std::vector<const std::vector<double>*> view;
-      for (std::size_t c = 0; c < series.size(); ++c) {
-        for (std::size_t k = 0; k < keep.size(); ++k) values[c][k] = (*series[c])[keep[k]];
-        view.push_back(&values[c]);
+    const std::vector<double> x = gather(x_all, keep);
+    std::vector<std::size_t> a, b;
+    if (!log_y.empty()) {
+      std::vector<std::vector<double>> ys;
+      for (const auto& y : log_y) ys.push_back(gather(y, keep));
+      a = DrawnPoints(x, ys, tolerance);
+    }
+    if (!linear_series.empty()) {
+      std::vector<std::vector<double>> ys;
+      double largest = 0.0;
+      for (const auto* s : linear_series) {
+        ys.push_back(gather(*s, keep));
+        for (double v : ys.back()) largest = std::max(largest, std::abs(v));
       }
-      return series.empty() ? std::vector<std::size_t>{} : PlotPoints(f, view, f.front(), f.back(), scale, tolerance);
-    };
-    const std::vector<std::size_t> a = pass(log_series, PlotScale::kLog), b = pass(linear_series, PlotScale::kLinear);
+      const double scale = largest > 0.0 ? largest : 1.0;
+      for (auto& y : ys)
+        for (double& v : y) v /= scale;
+      b = DrawnPoints(x, ys, tolerance);
+    }
     std::vector<std::size_t> both, out;
     std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(both));
     for (std::size_t k : both) out.push_back(keep[k]);
@@ -255,7 +276,6 @@ std::vector<std::size_t> FigurePoints(const std::vector<double>& f_hz,
   };
   std::vector<std::size_t> keep(f_hz.size());
   for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = i;
-  if (keep.empty()) return keep;
   keep = thin(keep, 2e-3);
   // Each doubling thins what the last kept: the points a doubled tolerance
   // drops lie within it of the chords through the points it keeps, so the

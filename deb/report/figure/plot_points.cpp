@@ -5,6 +5,12 @@
 
 namespace deb::report {
 
+std::vector<double> LogCoordinates(const std::vector<double>& values) {
+  std::vector<double> y(values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) y[k] = values[k] > 0.0 ? std::log10(values[k]) : NAN;
+  return y;
+}
+
 std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
                                     const std::vector<const std::vector<double>*>& series, double lo_hz,
                                     double hi_hz, PlotScale y_scale, double tolerance) {
@@ -13,8 +19,7 @@ std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
   std::size_t last = std::upper_bound(f_hz.begin(), f_hz.end(), hi_hz) - f_hz.begin();
   if (first > 0) --first;
   if (last < n) ++last;  // one past the last index kept
-  std::vector<std::size_t> keep;
-  if (last <= first) return keep;
+  if (last <= first) return {};
 
   double scale = 1.0;  // kLinear: tolerance relative to the largest value shown
   if (y_scale == PlotScale::kLinear) {
@@ -24,8 +29,7 @@ std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
     scale = largest > 0.0 ? largest : 1.0;
   }
   // Drawn coordinates, computed once: x = log10 f; y per series (NaN where a
-  // log axis cannot show the value). The chord test below visits each point
-  // many times, so no logarithm is taken inside it.
+  // log axis cannot show the value).
   const std::size_t m = last - first;
   std::vector<double> x(m);
   for (std::size_t k = 0; k < m; ++k) x[k] = std::log10(f_hz[first + k]);
@@ -35,10 +39,19 @@ std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
       const double v = (*series[c])[first + k];
       ys[c][k] = y_scale == PlotScale::kLog ? (v > 0.0 ? std::log10(v) : NAN) : v / scale;
     }
+  std::vector<std::size_t> keep = DrawnPoints(x, ys, tolerance);
+  for (std::size_t& k : keep) k += first;
+  return keep;
+}
 
+std::vector<std::size_t> DrawnPoints(const std::vector<double>& x, const std::vector<std::vector<double>>& ys,
+                                     double tolerance) {
+  const std::size_t m = x.size();
+  std::vector<std::size_t> keep;
+  if (m == 0) return keep;
   // Extend the drawn segment from the last kept point a to b while every point
   // between them stays within tolerance of the chord; segments span at most
-  // kMaxSpanDecades. Indices are relative to first. A point i between a and b
+  // kMaxSpanDecades. A point i between a and b
   // is within tolerance of the chord exactly when the chord's slope
   // s = (y_b - y_a) / (x_b - x_a) satisfies |y_i - y_a - s (x_i - x_a)| <= tol,
   // an interval of slopes per point: their intersection, kept per series as
@@ -50,13 +63,12 @@ std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
     double slope_lo = -INFINITY, slope_hi = INFINITY;  // from the points between a and b with values
     bool has_nan = false, has_value = false;           // among the points between a and b
   };
-  std::vector<Segment> seg(series.size());
+  std::vector<Segment> seg(ys.size());
   std::size_t a = 0;
   // Point k joins the segment from a; then whether it can end at b = k + 1.
   const auto extends = [&](std::size_t k) {
     const std::size_t b = k + 1;
     if (x[b] - x[a] > kMaxSpanDecades) return false;
-    bool ok = true;
     for (std::size_t c = 0; c < ys.size(); ++c) {
       const std::vector<double>& yc = ys[c];
       Segment& g = seg[c];
@@ -71,15 +83,16 @@ std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
           g.slope_hi = std::min(g.slope_hi, (yk - ya + tolerance) / dx);
         }
       }
-      // Where a curve starts or stops being drawable, keep the point.
-      if ((std::isnan(ya) ? g.has_value : g.has_nan) || (std::isnan(yb) ? g.has_value : g.has_nan)) {
-        ok = false;
-      } else if (!std::isnan(ya) && !std::isnan(yb)) {
+      // Where a curve starts or stops being drawable, keep the point. Once
+      // one series ends the segment, the others need no update: every
+      // segment starts again at k.
+      if ((std::isnan(ya) ? g.has_value : g.has_nan) || (std::isnan(yb) ? g.has_value : g.has_nan)) return false;
+      if (!std::isnan(ya) && !std::isnan(yb)) {
         const double slope = (yb - ya) / (x[b] - x[a]);
-        ok = ok && slope >= g.slope_lo && slope <= g.slope_hi;
+        if (!(slope >= g.slope_lo && slope <= g.slope_hi)) return false;
       }
     }
-    return ok;
+    return true;
   };
   keep.push_back(0);
   for (std::size_t k = 1; k + 1 < m; ++k) {
@@ -89,7 +102,6 @@ std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
     std::fill(seg.begin(), seg.end(), Segment{});
   }
   if (m > 1) keep.push_back(m - 1);
-  for (std::size_t& k : keep) k += first;
   return keep;
 }
 

@@ -22,4 +22,15 @@ std::vector<std::size_t> PlotPoints(const std::vector<double>& f_hz,
                                     const std::vector<const std::vector<double>*>& series, double lo_hz,
                                     double hi_hz, PlotScale y_scale = PlotScale::kLog, double tolerance = 2e-3);
 
+// The same rule on coordinates as drawn: x = log10 f (increasing), ys per
+// series (log10 of a value on a log axis, NaN where it cannot be shown;
+// value / largest |value| on a linear one), all of x's length. Returns
+// indices into x, its first and last included. For callers that thin the
+// same series more than once (FigurePoints): the logarithms are taken once.
+std::vector<std::size_t> DrawnPoints(const std::vector<double>& x, const std::vector<std::vector<double>>& ys,
+                                     double tolerance);
+
+// log10 of each value, NaN where a log axis cannot show it (v <= 0).
+std::vector<double> LogCoordinates(const std::vector<double>& values);
+
 }  // namespace deb::report

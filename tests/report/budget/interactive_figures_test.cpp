@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "deb/budget/engine.h"
@@ -12,6 +13,7 @@
 #include "deb/report/budget/band_plots.h"
 #include "deb/report/budget/report_documents.h"
 #include "deb/report/budget/spectrum_plots.h"
+#include "deb/report/figure/plot_points.h"
 #include "tests/support/cli_harness.h"
 
 namespace deb::report {
@@ -60,6 +62,30 @@ TEST_CASE("a figure keeps at most kMaxFigurePoints of a dense grid, with a narro
   CHECK(std::binary_search(keep.begin(), keep.end(), peak));
   // A tighter limit still holds.
   CHECK(FigurePoints(f, {&psd}, {&cps}, 300).size() <= 300);
+  // The same points as PlotPoints on the values themselves, pass by pass
+  // (FigurePoints takes each logarithm once and thins the coordinates).
+  const auto by_values = [&](std::size_t max_points) {
+    std::vector<std::size_t> keep(f.size());
+    for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = i;
+    for (double tolerance = 2e-3; tolerance == 2e-3 || (keep.size() > max_points && tolerance <= 1.0);
+         tolerance *= 2.0) {
+      std::vector<double> fk, pk, ck;
+      for (std::size_t i : keep) {
+        fk.push_back(f[i]);
+        pk.push_back(psd[i]);
+        ck.push_back(cps[i]);
+      }
+      const std::vector<std::size_t> a = PlotPoints(fk, {&pk}, fk.front(), fk.back(), PlotScale::kLog, tolerance);
+      const std::vector<std::size_t> b = PlotPoints(fk, {&ck}, fk.front(), fk.back(), PlotScale::kLinear, tolerance);
+      std::vector<std::size_t> both, next;
+      std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(both));
+      for (std::size_t k : both) next.push_back(keep[k]);
+      keep = next;
+    }
+    return keep;
+  };
+  CHECK(keep == by_values(kMaxFigurePoints));
+  CHECK(FigurePoints(f, {&psd}, {&cps}, 300) == by_values(300));
 }
 
 TEST_CASE("the figure data give every output's spectra by share, its bands and every path, thinned and rounded") {
