@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <iterator>
 #include <thread>
 #include <filesystem>
@@ -148,7 +149,17 @@ TEST_CASE("numbers are written compressed in chunks and read back exactly, whate
   std::vector<std::vector<double>> noisy(4, std::vector<double>(30000));
   for (auto& row : noisy)
     for (double& v : row) v = std::pow(10.0, decades(rng));
-  const std::string runs_file = dir.File("runs.h5");
+  // And values whose byte planes alternate between noise and runs (bytes 1
+  // and 3 zero, 7 constant, the rest random; in [1, 2)), and a row of
+  // zeros: planes stored and planes run-length deflated within one chunk.
+  std::uniform_int_distribution<std::uint64_t> bits;
+  std::vector<std::vector<double>> mixed(3, std::vector<double>(20000, 0.0));
+  for (std::size_t r = 0; r < 2; ++r)
+    for (double& v : mixed[r]) {
+      const std::uint64_t u = (bits(rng) & 0x000FFFFF00FF00FFull) | 0x3FF0000000000000ull;
+      std::memcpy(&v, &u, sizeof v);
+    }
+  const std::string runs_file = dir.File("runs.h5"), mixed_file = dir.File("mixed.h5");
   {
     formats::Hdf5Writer w(file);
     w.Numbers("a/spectrum", spectrum);
@@ -159,6 +170,9 @@ TEST_CASE("numbers are written compressed in chunks and read back exactly, whate
     formats::Hdf5Writer runs(runs_file);
     runs.Rows("a/noisy", noisy, formats::Packing::kRuns);
     runs.Close();
+    formats::Hdf5Writer planes(mixed_file);
+    planes.Rows("a/mixed", mixed, formats::Packing::kRuns);
+    planes.Close();
   }
   const std::uintmax_t raw = (spectrum.size() + 3 * 40000 + 5000 * 7) * sizeof(double);
   CHECK(fs::file_size(file) < raw * 7 / 10);  // deflate level 1: 0.67 of it
@@ -168,12 +182,18 @@ TEST_CASE("numbers are written compressed in chunks and read back exactly, whate
   const std::uintmax_t noisy_raw = 4 * 30000 * sizeof(double);
   CHECK(fs::file_size(runs_file) < noisy_raw * 95 / 100);
   MESSAGE("kRuns: " << noisy_raw << " bytes of noisy doubles into a file of " << fs::file_size(runs_file));
+  // Of the mixed values 5 planes in 8 are noise, stored as they are; the
+  // others and the row of zeros deflate to almost nothing: about 0.42.
+  const std::uintmax_t mixed_raw = 3 * 20000 * sizeof(double);
+  CHECK(fs::file_size(mixed_file) < mixed_raw / 2);
+  MESSAGE("kRuns, mixed planes: " << mixed_raw << " bytes into a file of " << fs::file_size(mixed_file));
   const formats::Hdf5Reader r(file);
   CHECK(r.Numbers("a/spectrum", formats::AtMost(200000)) == spectrum);
   CHECK(r.Rows("a/wide", formats::AtMost(3), 40000) == wide);
   CHECK(r.Rows("a/tall", formats::AtMost(5000), 7) == tall);
   CHECK(r.Numbers("a/few", formats::AtMost(3)) == few);
   CHECK(formats::Hdf5Reader(runs_file).Rows("a/noisy", formats::AtMost(4), 30000) == noisy);
+  CHECK(formats::Hdf5Reader(mixed_file).Rows("a/mixed", formats::AtMost(3), 20000) == mixed);
   // Each compressed dataset is chunked, shuffled and deflated, as h5py sees
   // it, and HDF5's own filters give back every value (deb compresses the
   // chunks itself, edge chunks padded: hdf5_file.cpp).
@@ -205,6 +225,14 @@ TEST_CASE("numbers are written compressed in chunks and read back exactly, whate
   H5Pclose(create);
   H5Dclose(set);
   H5Fclose(g);
+  const hid_t h = H5Fopen(mixed_file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(h >= 0);
+  const hid_t mixed_set = H5Dopen2(h, "a/mixed", H5P_DEFAULT);
+  std::vector<double> mixed_read(3 * 20000);
+  CHECK(H5Dread(mixed_set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, mixed_read.data()) >= 0);
+  CHECK(mixed_read == Flat(mixed));
+  H5Dclose(mixed_set);
+  H5Fclose(h);
 }
 
 // A dataset of `n` doubles in chunks of `chunk`, shuffled and deflated as deb
