@@ -25,6 +25,27 @@
 namespace deb {
 namespace {
 
+// OpenBLAS's single-threaded build (openblas_get_parallel() == 0, the one
+// deb installs) keeps its work buffers in a table it does not lock unless
+// built with USE_LOCKING, which Debian's is not (it imports no mutex): two
+// threads in it at once can share a buffer. Four threads calling dgees
+// together on one 300 x 300 matrix got Schur forms off by up to 34 (1 to 24
+// calls in 80, tests/systems/lapack_test.cpp), where each call alone gives
+// the same form to the bit. Its threaded builds lock, and other BLAS keep no
+// such state. So every call deb makes into the BLAS or LAPACK takes this
+// turn where the library is OpenBLAS's single-threaded build: the exact
+// variances and responses of paths analysed at once, and the products of
+// worker threads.
+std::unique_lock<std::mutex> BlasTurn() {
+  static const bool needed = [] {
+    using Parallel = int (*)();
+    const auto parallel = reinterpret_cast<Parallel>(dlsym(RTLD_DEFAULT, "openblas_get_parallel"));
+    return parallel != nullptr && parallel() == 0;
+  }();
+  static std::mutex turn;
+  return needed ? std::unique_lock<std::mutex>(turn) : std::unique_lock<std::mutex>();
+}
+
 // A square, finite, column-major A that LAPACK's int indices can address.
 lapack_int RequireSquare(const Eigen::MatrixXd& a, const char* routine) {
   std::ostringstream os;
@@ -72,6 +93,7 @@ RealSchurForm RealSchur(const Eigen::MatrixXd& a) {
   if (n == 0) return form;
   Eigen::VectorXd wr(n), wi(n);
   lapack_int sdim = 0;
+  const std::unique_lock<std::mutex> turn = BlasTurn();
   const lapack_int info =
       LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'N', nullptr, n, form.t.data(), n, &sdim, wr.data(),
                     wi.data(), form.u.data(), n);
@@ -87,6 +109,7 @@ Eigen::VectorXcd RealEigenvalues(const Eigen::MatrixXd& a) {
   Eigen::VectorXd wr(n), wi(n);
   lapack_int sdim = 0;
   double no_vectors = 0.0;
+  const std::unique_lock<std::mutex> turn = BlasTurn();
   const lapack_int info = LAPACKE_dgees(LAPACK_COL_MAJOR, 'N', 'N', nullptr, n, t.data(), n, &sdim, wr.data(),
                                         wi.data(), &no_vectors, 1);
   CheckEigenInfo(info, "eigenvalues (dgees)", n);
@@ -115,6 +138,7 @@ SylvesterSolution SolveSylvester(const Eigen::MatrixXd& t1, const Eigen::MatrixX
   // dtrsyl3 (level 3) for large equations: dtrsyl's dot products make an
   // n x n solve O(n^3) at memory speed (a 2000-state loop: minutes).
   const bool blocked = std::min(n1, n2) >= kBlockedSylvester;
+  const std::unique_lock<std::mutex> turn = BlasTurn();
   const lapack_int info =
       blocked ? LAPACKE_dtrsyl3(LAPACK_COL_MAJOR, 'N', trans2, isgn, n1, n2, t1.data(), n1, t2.data(), n2,
                                 s.x.data(), n1, &scale)
@@ -157,6 +181,7 @@ int ReorderRealSchur(RealSchurForm& form, const std::vector<bool>& lead) {
   // Debian 12. For job 'N': lwork >= n, liwork >= 1.
   std::vector<double> work(static_cast<std::size_t>(n));
   lapack_int iwork = 0;
+  const std::unique_lock<std::mutex> turn = BlasTurn();
   const lapack_int info = LAPACKE_dtrsen_work(LAPACK_COL_MAJOR, 'N', 'V', select.data(), n, t.data(), n, u.data(),
                                               n, wr.data(), wi.data(), &m, &s, &sep, work.data(), n, &iwork, 1);
   if (info == LAPACK_WORK_MEMORY_ERROR || info == LAPACK_TRANSPOSE_MEMORY_ERROR)
@@ -185,6 +210,7 @@ SylvesterSolution SolveSchurCoupling(const Eigen::MatrixXd& t, int lo, int s, in
   const double* t2 = t.data() + static_cast<Eigen::Index>(s) * n + s;
   // The _work form for dtrsyl: LAPACKE's NaN scan of the whole leading
   // block would cost as much as the solve (T comes from dgees: finite).
+  const std::unique_lock<std::mutex> turn = BlasTurn();
   const lapack_int info =
       blocked ? LAPACKE_dtrsyl3(LAPACK_COL_MAJOR, 'N', 'N', -1, s - lo, e - s, t1, n, t2, n, out.x.data(), s - lo,
                                 &scale)
@@ -203,6 +229,7 @@ bool MoveRealSchurBlock(RealSchurForm& form, int& from, int& to) {
              to < n);
   lapack_int ifst = from + 1, ilst = to + 1;
   std::vector<double> work(static_cast<std::size_t>(n));
+  const std::unique_lock<std::mutex> turn = BlasTurn();
   const lapack_int info = LAPACKE_dtrexc_work(LAPACK_COL_MAJOR, 'V', n, form.t.data(), n, form.u.data(), n, &ifst,
                                               &ilst, work.data());
   DEB_DEMAND(info >= 0);
@@ -231,6 +258,7 @@ double UnitUpperTriangularCondition(const Eigen::MatrixXd& y) {
   double rcond = 0.0;
   std::vector<double> work(3 * static_cast<std::size_t>(n));
   std::vector<lapack_int> iwork(static_cast<std::size_t>(n));
+  const std::unique_lock<std::mutex> turn = BlasTurn();
   const lapack_int info =
       LAPACKE_dtrcon_work(LAPACK_COL_MAJOR, '1', 'U', 'U', n, y.data(), n, &rcond, work.data(), iwork.data());
   DEB_DEMAND(info == 0);
@@ -284,22 +312,6 @@ bool BlasProductIsFaster() {
   return faster;
 }
 
-namespace {
-
-// OpenBLAS's single-threaded build (the one deb installs) is safe to call
-// from several threads at once only if it was built with locking, which its
-// package does not say. One dense run in a dozen took 58 s instead of 6
-// while two threads could call dgemm together, as if its exact variance's
-// error estimate had failed and the whole equation been solved; that was
-// not reproduced, so the cause is suspected, not shown. The products deb
-// hands to the BLAS from its worker threads take turns.
-std::mutex& BlasTurn() {
-  static std::mutex turn;
-  return turn;
-}
-
-}  // namespace
-
 void BlasProduct(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b,
                  Eigen::Ref<Eigen::MatrixXd> out) {
   DEB_DEMAND(a.cols() == b.rows() && out.rows() == a.rows() && out.cols() == b.cols());
@@ -311,7 +323,7 @@ void BlasProduct(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<co
     out.setZero();
     return;
   }
-  const std::lock_guard<std::mutex> lock(BlasTurn());
+  const std::unique_lock<std::mutex> turn = BlasTurn();
   cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, static_cast<int>(a.rows()), static_cast<int>(b.cols()),
               static_cast<int>(a.cols()), 1.0, a.data(), static_cast<int>(a.outerStride()), b.data(),
               static_cast<int>(b.outerStride()), 0.0, out.data(), static_cast<int>(out.outerStride()));
@@ -322,7 +334,7 @@ void BlasUnitUpperSolve(const Eigen::Ref<const Eigen::MatrixXd>& y, Eigen::Ref<E
   constexpr Eigen::Index kMax = std::numeric_limits<int>::max();
   DEB_DEMAND(x.rows() <= kMax && x.cols() <= kMax && y.outerStride() <= kMax && x.outerStride() <= kMax);
   if (x.size() == 0) return;
-  const std::lock_guard<std::mutex> lock(BlasTurn());
+  const std::unique_lock<std::mutex> turn = BlasTurn();
   cblas_dtrsm(CblasColMajor, CblasLeft, CblasUpper, CblasNoTrans, CblasUnit, static_cast<int>(x.rows()),
               static_cast<int>(x.cols()), 1.0, y.data(), static_cast<int>(y.outerStride()), x.data(),
               static_cast<int>(x.outerStride()));
