@@ -51,13 +51,13 @@ std::vector<std::size_t> DrawnPoints(const std::vector<double>& x, const std::ve
   if (m == 0) return keep;
   // Extend the drawn segment from the last kept point a to b while every point
   // between them stays within tolerance of the chord; segments span at most
-  // kMaxSpanDecades. A point i between a and b
-  // is within tolerance of the chord exactly when the chord's slope
-  // s = (y_b - y_a) / (x_b - x_a) satisfies |y_i - y_a - s (x_i - x_a)| <= tol,
-  // an interval of slopes per point: their intersection, kept per series as
-  // points join the segment, decides each b in constant time (testing every
-  // skipped point again for every b made this quadratic in the points per
-  // segment: 60 % of a wafer-stage run without plots).
+  // kMaxSpanDecades. A point i between a and b is within tolerance of the
+  // chord exactly when the chord's slope s = (y_b - y_a) / (x_b - x_a)
+  // satisfies |y_i - y_a - s (x_i - x_a)| <= tol, an interval of slopes per
+  // point: their intersection, kept per series as points join the segment,
+  // decides each b in constant time (testing every skipped point again for
+  // every b made this quadratic in the points per segment: 60 % of a
+  // wafer-stage run without plots).
   constexpr double kMaxSpanDecades = 0.05;
   struct Segment {
     double slope_lo = -INFINITY, slope_hi = INFINITY;  // from the points between a and b with values
