@@ -355,14 +355,9 @@ Eigen::MatrixXd PathAnalysis::ExactCovariance(const std::vector<int>& rows,
   if (modal_ && unweighted) return ModalOutputCovarianceMatrix(*path_.modal, rows, w_two_sided);
   // Weighted rows of a modal path too large to realise densely: its modes as
   // coupled blocks, the weighting in series (as for a path kept as parts).
-  if (modal_ && path_.States() > limits::kMaxDenseStates) {
-    if (path_.States() > limits::kMaxCoupledStates)
-      throw InputError("a weighted output of a modal path is solved in state space, and " +
-                       std::to_string(path_.modal->modes()) + " modes make " + std::to_string(path_.States()) +
-                       " states, more than the " + std::to_string(limits::kMaxCoupledStates) +
-                       " deb keeps as coupled blocks");
-    return WeightedCoupledCovariance(rows, weightings, w_two_sided);
-  }
+  // The largest modal path with the largest weighting fits.
+  static_assert(2 * limits::kMaxModes + kMaxCoupledBlock <= limits::kMaxCoupledStates);
+  if (modal_ && path_.States() > limits::kMaxDenseStates) return WeightedCoupledCovariance(rows, weightings, w_two_sided);
   std::string why;
   if (unweighted)
     if (std::optional<Eigen::MatrixXd> cov = CoupledCovarianceOf(rows, w_two_sided, &why)) return *cov;

@@ -34,9 +34,11 @@ inline constexpr int kMaxDenseStates = 2'000;
 // States of a diagram beyond kMaxDenseStates, kept as its parts (a loop
 // around a large modal plant: its modes' 2x2 blocks, the controller's few
 // states and a low-rank coupling): its poles and exact variance cost
-// O(n^2 r) time and O(n^2) memory (deb/systems/coupled_spectrum.h); a PID
-// loop around 3000 modes (6004 states) took 17 s and 3.5 GB.
-inline constexpr int kMaxCoupledStates = 8'000;
+// O(n^2 (m + p + r)) time and O(n (m + p + r)) memory
+// (deb/systems/coupled_spectrum.h). A loop around the largest modal path
+// (kMaxModes) fits: a PID loop around 5000 modes (10 004 states, 20 x 20)
+// took 22 s and 464 MB, around 3000 modes 9.2 s and 367 MB.
+inline constexpr int kMaxCoupledStates = 12'000;
 // States of a state_space path, or a transfer function's realisation
 // (the order of its denominator), checked from the sizes given before any
 // O(n^3) work: a dense model's frequency response, poles and exact

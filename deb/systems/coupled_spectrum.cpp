@@ -8,7 +8,6 @@
 #include "deb/core/error.h"
 #include "deb/core/math_constants.h"
 #include "deb/core/parallel.h"
-#include "deb/systems/parallel_product.h"
 
 namespace deb {
 namespace {
@@ -101,16 +100,6 @@ Diagonal Diagonalise(const CoupledRealisation& sys) {
   }
   return out;
 }
-
-// a * b on all threads, b's columns in fixed blocks.
-MatrixXcd Product(const MatrixXcd& a, const MatrixXcd& b) {
-  MatrixXcd out(a.rows(), b.cols());
-  ForColumnBlocks(b.cols(), [&](Index first, Index count) {
-    out.middleCols(first, count).noalias() = a * b.middleCols(first, count);
-  });
-  return out;
-}
-MatrixXd Product(const MatrixXd& a, const MatrixXd& b) { return ParallelProduct(a, b); }
 
 // 1 / z without the library's care for infinities (__divdc3): a pole on a
 // block's own pole gives inf or nan here, which the callers test for.
@@ -284,13 +273,31 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
       return out;
     }
   }
-  // Eigenvectors, in blocks of poles.
-  sp.right = MatrixXcd::Zero(n, n);
-  sp.left = MatrixXcd::Zero(n, n);
+  // Eigenvectors, in blocks of poles. They are not kept (two n x n complex
+  // matrices, 512 MB for a loop around 2000 modes): only what the closed
+  // form needs of them, C~ = C V, B~ = W^T B, W^T U and their absolute
+  // sums |C| |V|, |W|^T |B|, formed block by block as products.
+  const Index p = dg.c.rows(), m = dg.b.cols();
+  sp.c_tilde = MatrixXcd::Zero(p, n);
+  sp.abs_c_tilde = MatrixXd::Zero(p, n);
+  sp.b_tilde = MatrixXcd::Zero(n, m);
+  sp.abs_b_tilde = MatrixXd::Zero(n, m);
+  sp.wu = MatrixXcd::Zero(n, r);
   sp.y = MatrixXcd::Zero(r, n);
   sp.x = MatrixXcd::Zero(r, n);
   sp.rho = MatrixXcd::Zero(r, n);
   sp.sigma = MatrixXcd::Zero(r, n);
+  const MatrixXd abs_c = dg.c.cwiseAbs(), abs_b = dg.b.cwiseAbs();
+  // Poles first .. first + count - 1, their right eigenvectors the columns
+  // of v (n x count) and left ones the rows of w (count x n).
+  const auto keep = [&](Index first, const MatrixXcd& v, const MatrixXcd& w) {
+    const Index count = v.cols();
+    sp.c_tilde.middleCols(first, count).noalias() = dg.c * v;
+    sp.abs_c_tilde.middleCols(first, count).noalias() = abs_c * v.cwiseAbs();
+    sp.b_tilde.middleRows(first, count).noalias() = w * dg.b;
+    sp.abs_b_tilde.middleRows(first, count).noalias() = w.cwiseAbs() * abs_b;
+    sp.wu.middleRows(first, count).noalias() = w * dg.u;
+  };
   std::vector<double> kappa(static_cast<std::size_t>(n), 1.0);
   std::vector<char> bad(static_cast<std::size_t>(n), 0);
   // A pole the loop does not move: with U_k = 0 its left eigenvector is e_k
@@ -299,37 +306,40 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
   // satisfy w^T v = 1 as they stand.
   for (std::size_t i = 0; i < fixed.size(); ++i) {
     const Index k = fixed[i], j = nf + static_cast<Index>(i);
-    sp.right(k, j) = 1.0;
-    sp.left(j, k) = 1.0;
+    VectorXcd v = VectorXcd::Zero(n), w = VectorXcd::Zero(n);
+    v(k) = 1.0;
+    w(k) = 1.0;
     const bool driven = dg.u.row(k).squaredNorm() > 0.0, seen = dg.v.row(k).squaredNorm() > 0.0;
-    if (!driven && !seen) continue;
-    VectorXcd cz = sec.Resolvents(&dg.d(k), 1).col(0);
-    cz(k) = 0.0;
-    const MatrixXcd m = sec.M(cz);
-    const Eigen::PartialPivLU<MatrixXcd> lu(m);
-    if (seen) {
-      const VectorXcd s_k = lu.solve(VectorXcd(dg.v.row(k).transpose()));
-      VectorXcd v = cz.cwiseProduct(dg.u * s_k);
-      v(k) = 1.0;
-      sp.right.col(j) = v;
-    } else {
-      const VectorXcd t = lu.transpose().solve(VectorXcd(dg.u.row(k).transpose()));
-      VectorXcd w = cz.cwiseProduct(dg.v * t);
-      w(k) = 1.0;
-      sp.left.row(j) = w.transpose();
+    if (driven || seen) {
+      VectorXcd cz = sec.Resolvents(&dg.d(k), 1).col(0);
+      cz(k) = 0.0;
+      const MatrixXcd mk = sec.M(cz);
+      const Eigen::PartialPivLU<MatrixXcd> lu(mk);
+      if (seen) {
+        const VectorXcd s_k = lu.solve(VectorXcd(dg.v.row(k).transpose()));
+        v = cz.cwiseProduct(dg.u * s_k);
+        v(k) = 1.0;
+      } else {
+        const VectorXcd t = lu.transpose().solve(VectorXcd(dg.u.row(k).transpose()));
+        w = cz.cwiseProduct(dg.v * t);
+        w(k) = 1.0;
+      }
     }
-    kappa[static_cast<std::size_t>(j)] = sp.right.col(j).norm() * sp.left.row(j).norm();
+    keep(j, v, w.transpose());
+    kappa[static_cast<std::size_t>(j)] = v.norm() * w.norm();
     if (!std::isfinite(kappa[static_cast<std::size_t>(j)])) bad[static_cast<std::size_t>(j)] = 1;
   }
   ParallelForBlocks(
       static_cast<std::size_t>(nf), 64,
       [&](std::size_t lo, std::size_t hi) {
-        const MatrixXcd cz = sec.Resolvents(sp.poles.data() + lo, static_cast<Index>(hi - lo));
+        const Index count = static_cast<Index>(hi - lo);
+        const MatrixXcd cz = sec.Resolvents(sp.poles.data() + lo, count);
+        MatrixXcd right = MatrixXcd::Zero(n, count), left = MatrixXcd::Zero(count, n);
         for (std::size_t i = lo; i < hi; ++i) {
-          const Index j = static_cast<Index>(i);
-          const auto czj = cz.col(static_cast<Index>(i - lo));
-          const MatrixXcd m = sec.M(czj);
-          const Eigen::JacobiSVD<MatrixXcd> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+          const Index j = static_cast<Index>(i), at = static_cast<Index>(i - lo);
+          const auto czj = cz.col(at);
+          const MatrixXcd mj = sec.M(czj);
+          const Eigen::JacobiSVD<MatrixXcd> svd(mj, Eigen::ComputeFullU | Eigen::ComputeFullV);
           VectorXcd yj = svd.matrixV().col(r - 1), xj = svd.matrixU().col(r - 1);
           VectorXcd v = czj.cwiseProduct(dg.u * yj);
           const double norm = v.norm();
@@ -347,14 +357,15 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
           }
           w /= wv;
           xj /= std::conj(wv);
-          sp.right.col(j) = v;
-          sp.left.row(j) = w.transpose();
+          right.col(at) = v;
+          left.row(at) = w.transpose();
           sp.y.col(j) = yj;
           sp.x.col(j) = xj;
-          sp.rho.col(j) = -(m * yj);
-          sp.sigma.col(j) = -(m.adjoint() * xj);
+          sp.rho.col(j) = -(mj * yj);
+          sp.sigma.col(j) = -(mj.adjoint() * xj);
           kappa[i] = w.norm();
         }
+        keep(static_cast<Index>(lo), right, left);
       },
       threads);
   if (std::any_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) {
@@ -366,10 +377,7 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
     out.why_not = "an eigenvector is not finite";
     return out;
   }
-  sp.c = std::move(dg.c);
-  sp.b = std::move(dg.b);
   sp.d = std::move(dg.d_feed);
-  sp.u = std::move(dg.u);
   out.spectrum = std::move(sp);
   return out;
 }
@@ -377,55 +385,111 @@ CoupledSolve SolveCoupled(const CoupledRealisation& sys, int threads) {
 CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::vector<int>& rows,
                                           const Eigen::MatrixXd& w_two_sided) {
   const Index n = sp.poles.size(), p = static_cast<Index>(rows.size()), r = sp.y.rows();
-  DEB_DEMAND(w_two_sided.rows() == sp.b.cols() && w_two_sided.cols() == sp.b.cols());
-  MatrixXcd cr(p, n);
-  for (Index i = 0; i < p; ++i) cr.row(i) = sp.c.row(rows[static_cast<std::size_t>(i)]);
-  const MatrixXcd w = w_two_sided.cast<cd>();
-  const MatrixXcd ch = Product(cr, sp.right);         // C~ (p x N)
-  const MatrixXcd bh = sp.left * sp.b;                // B~ (N x m)
-  const MatrixXcd bw = bh * w;
-  const MatrixXcd bh_adj = bh.adjoint();
-  MatrixXcd k = Product(bw, bh_adj);                  // B~ W B~^H
-  MatrixXcd g(n, n);
-  for (Index j = 0; j < n; ++j)
-    for (Index i = 0; i < n; ++i) g(i, j) = -Reciprocal(sp.poles(i) + std::conj(sp.poles(j)));
-  MatrixXcd x = g.cwiseProduct(k);
-  const MatrixXcd ch_adj = ch.adjoint();
+  DEB_DEMAND(w_two_sided.rows() == sp.b_tilde.cols() && w_two_sided.cols() == sp.b_tilde.cols());
   CoupledCovariance out;
-  const MatrixXcd cov = (ch * Product(x, ch_adj));
+  if (n == 0) {
+    out.covariance = MatrixXd::Zero(p, p);
+    out.relative_error = Eigen::VectorXd::Zero(p);
+    return out;
+  }
+  MatrixXcd ch(p, n);  // C~ (p x N)
+  MatrixXd abs_c(p, n);
+  for (Index i = 0; i < p; ++i) {
+    ch.row(i) = sp.c_tilde.row(rows[static_cast<std::size_t>(i)]);
+    abs_c.row(i) = sp.abs_c_tilde.row(rows[static_cast<std::size_t>(i)]);
+  }
+  const MatrixXcd w = w_two_sided.cast<cd>();
+  const MatrixXcd& bh = sp.b_tilde;  // B~ (N x m)
+  const MatrixXcd bw = bh * w, bh_adj = bh.adjoint(), ch_adj = ch.adjoint();
+  const MatrixXd abs_bw = sp.abs_b_tilde * w_two_sided.cwiseAbs(), abs_bt = sp.abs_b_tilde.transpose(),
+                 abs_ct = abs_c.transpose();
+
+  // The closed form's n x n matrices, G o (B~ W B~^H) and those of its error
+  // estimate, are formed a slab of rows at a time and used at once: O(n) of
+  // memory per slab instead of O(n^2) (a loop around 2000 modes: 1.66 GB
+  // before). The slabs are fixed by n alone, and their sums are added in
+  // order, so that the result does not depend on the thread count.
+  constexpr Index kSlab = 128;
+  const Index slabs = (n + kSlab - 1) / kSlab;
+  const auto rows_of = [&](Index s) { return std::pair<Index, Index>{s * kSlab, std::min(kSlab, n - s * kSlab)}; };
+  // G's rows first .. first + count - 1: G_ij = -1 / (mu_i + conj mu_j).
+  const auto g_rows = [&](Index first, Index count) {
+    MatrixXcd g(count, n);
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i < count; ++i) g(i, j) = -Reciprocal(sp.poles(first + i) + std::conj(sp.poles(j)));
+    return g;
+  };
+  // A sum over slabs, added in slab order.
+  const auto total = [](const auto& parts) {
+    auto sum = parts.front();
+    for (std::size_t s = 1; s < parts.size(); ++s) sum += parts[s];
+    return sum;
+  };
+
+  // Pass 1: C~ X C~^H, rho X and the rounding's |C~| |X| |C~|^T, X = G o K,
+  // K = B~ W B~^H.
+  std::vector<MatrixXcd> cov_parts(static_cast<std::size_t>(slabs), MatrixXcd::Zero(p, p));
+  std::vector<MatrixXcd> px_parts(static_cast<std::size_t>(slabs), MatrixXcd::Zero(r, n));
+  std::vector<MatrixXd> abs_parts(static_cast<std::size_t>(slabs), MatrixXd::Zero(p, p));
+  ParallelForEach(static_cast<std::size_t>(slabs), [&](std::size_t s) {
+    const auto [first, count] = rows_of(static_cast<Index>(s));
+    const MatrixXcd g = g_rows(first, count);
+    MatrixXcd x = bw.middleRows(first, count) * bh_adj;
+    x = g.cwiseProduct(x);
+    const MatrixXcd x_ch = x * ch_adj;
+    cov_parts[s].noalias() = ch.middleCols(first, count) * x_ch;
+    if (r > 0) px_parts[s].noalias() = sp.rho.middleCols(first, count) * x;
+    MatrixXd abs_x = abs_bw.middleRows(first, count) * abs_bt;
+    abs_x = g.cwiseAbs().cwiseProduct(abs_x);
+    const MatrixXd abs_x_ct = abs_x * abs_ct;
+    abs_parts[s].noalias() = abs_c.middleCols(first, count) * abs_x_ct;
+  });
+  const MatrixXcd cov = total(cov_parts);
   out.covariance = cov.real();
+  const MatrixXd abs_cov = total(abs_parts);
 
   // The first-order correction L^-1(-R) of the residual R of the computed
-  // P, seen through C (coupled_spectrum.h). The n x n matrices are freed
-  // as soon as they are used (1000 modes: 64 MB each).
-  const MatrixXcd px = sp.rho * x;  // rho X (r x N)
-  x.resize(0, 0);
-  MatrixXcd f = std::move(k);
+  // P, seen through C (coupled_spectrum.h):
+  //   C~ (G o (K - Z W Z^H + T + T^H)) C~^H,
+  // delta_ij = (-x_i^H rho_j + sigma_i^H y_j) / (mu_j - mu_i) (0 for i = j),
+  // Z = B~ + delta B~, T = (W^T U) (rho X + rho X delta^H).
+  MatrixXcd correction = MatrixXcd::Zero(p, p);
   if (r > 0) {
-    MatrixXcd delta = Product(MatrixXcd(-sp.x.adjoint()), sp.rho);  // -x_i^H rho_j
-    delta += Product(MatrixXcd(sp.sigma.adjoint()), sp.y);          // + sigma_i^H y_j
-    for (Index j = 0; j < n; ++j)
-      for (Index i = 0; i < n; ++i) delta(i, j) = i == j ? cd(0.0) : delta(i, j) / (sp.poles(j) - sp.poles(i));
-    const MatrixXcd zb = bh + Product(delta, bh);
-    const MatrixXcd pxz = px + Product(delta, MatrixXcd(px.adjoint())).adjoint();  // rho X (I + delta)^H
-    delta.resize(0, 0);
-    f -= Product(MatrixXcd(zb * w), MatrixXcd(zb.adjoint()));
-    const MatrixXcd wu = sp.left * sp.u;  // W^T U (N x r)
-    const MatrixXcd t = Product(wu, pxz);
-    f += t + t.adjoint();
-  } else {
-    f.setZero();
+    const MatrixXcd px = total(px_parts);  // rho X (r x N)
+    px_parts.clear();
+    const MatrixXcd x_adj = sp.x.adjoint(), sigma_adj = sp.sigma.adjoint();
+    // Pass 2: Z and rho X (I + delta)^H, by slabs of delta's rows.
+    MatrixXcd z(n, bh.cols()), pxz(r, n);
+    ParallelForEach(static_cast<std::size_t>(slabs), [&](std::size_t s) {
+      const auto [first, count] = rows_of(static_cast<Index>(s));
+      MatrixXcd delta = -(x_adj.middleRows(first, count) * sp.rho);
+      delta.noalias() += sigma_adj.middleRows(first, count) * sp.y;
+      for (Index j = 0; j < n; ++j)
+        for (Index i = 0; i < count; ++i)
+          delta(i, j) = first + i == j ? cd(0.0) : delta(i, j) / (sp.poles(j) - sp.poles(first + i));
+      z.middleRows(first, count) = bh.middleRows(first, count);
+      z.middleRows(first, count).noalias() += delta * bh;
+      pxz.middleCols(first, count) = px.middleCols(first, count);
+      pxz.middleCols(first, count).noalias() += px * delta.adjoint();
+    });
+    const MatrixXcd zw = z * w, z_adj = z.adjoint(), wu_adj = sp.wu.adjoint();
+    // Pass 3: the correction, by slabs of rows.
+    std::vector<MatrixXcd> parts(static_cast<std::size_t>(slabs), MatrixXcd::Zero(p, p));
+    ParallelForEach(static_cast<std::size_t>(slabs), [&](std::size_t s) {
+      const auto [first, count] = rows_of(static_cast<Index>(s));
+      MatrixXcd f = bw.middleRows(first, count) * bh_adj;
+      f.noalias() -= zw.middleRows(first, count) * z_adj;
+      f.noalias() += sp.wu.middleRows(first, count) * pxz;
+      f.noalias() += pxz.middleCols(first, count).adjoint() * wu_adj;
+      f = g_rows(first, count).cwiseProduct(f);
+      const MatrixXcd f_ch = f * ch_adj;
+      parts[s].noalias() = ch.middleCols(first, count) * f_ch;
+    });
+    correction = total(parts);
   }
-  f = g.cwiseProduct(f);
-  const MatrixXcd correction = ch * Product(f, ch_adj);
   // Rounding: each term of the closed form carries a relative error of a
   // few eps, summed here without the cancellation the terms have
   // (coupled_spectrum.h).
-  const MatrixXd abs_c = Product(MatrixXd(cr.cwiseAbs()), MatrixXd(sp.right.cwiseAbs()));
-  const MatrixXd abs_b = MatrixXd(sp.left.cwiseAbs()) * MatrixXd(sp.b.cwiseAbs());
-  const MatrixXd abs_k = Product(MatrixXd(abs_b * w_two_sided.cwiseAbs()), MatrixXd(abs_b.transpose()));
-  const MatrixXd abs_x = g.cwiseAbs().cwiseProduct(abs_k);
-  const MatrixXd abs_cov = abs_c * Product(abs_x, MatrixXd(abs_c.transpose()));
   out.relative_error.resize(p);
   for (Index i = 0; i < p; ++i) {
     const double v = out.covariance(i, i);

@@ -70,12 +70,15 @@ struct CoupledSpectrum {
   // Largest eigenvalue condition number |v| |w| / |w^T v| over the poles.
   double eigenvalue_condition = 1.0;
 
-  // In the basis that diagonalises the blocks (n states, N = n poles):
-  Eigen::MatrixXcd right;  // n x N, column i: v_i
-  Eigen::MatrixXcd left;   // N x n, row i: w_i^T, w_i^T v_i = 1
-  Eigen::MatrixXcd c, b;   // C X (p x n) and X^-1 B (n x m)
-  Eigen::MatrixXd d;       // D (p x m)
-  Eigen::MatrixXcd u;      // X^-1 U (n x r)
+  // With the right eigenvectors v_i (columns of V) and left ones w_i^T
+  // (rows of W^T, w_i^T v_i = 1) in the basis X that diagonalises the
+  // blocks (n states, N = n poles), which are not kept (O(n^2) memory):
+  Eigen::MatrixXcd c_tilde;     // C X V (p x N)
+  Eigen::MatrixXd abs_c_tilde;  // |C X| |V| (p x N), for the rounding
+  Eigen::MatrixXcd b_tilde;     // W^T X^-1 B (N x m)
+  Eigen::MatrixXd abs_b_tilde;  // |W^T| |X^-1 B| (N x m)
+  Eigen::MatrixXcd wu;          // W^T X^-1 U (N x r)
+  Eigen::MatrixXd d;            // D (p x m)
   // Per pole (r x N): y_i, x_i (scaled with w_i), rho_i = -M(mu_i) y_i,
   // sigma_i = -M(mu_i)^H x_i: the eigenvectors' residuals.
   Eigen::MatrixXcd y, x, rho, sigma;
