@@ -109,6 +109,7 @@ void RestartForBlasKernel(char** argv) {
 
 int main(int argc, char** argv) {
   RestartForBlasKernel(argv);
+  deb::UseOneBlasThreadPerCall();
   deb::KeepHeapForLargeBlocks();
 #ifdef DEB_MPI
   // Started by mpirun: one MPI session for the run, ended at exit.

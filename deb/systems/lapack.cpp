@@ -25,24 +25,42 @@
 namespace deb {
 namespace {
 
-// OpenBLAS's single-threaded build (openblas_get_parallel() == 0, the one
-// deb installs) keeps its work buffers in a table it does not lock unless
-// built with USE_LOCKING, which Debian's is not (it imports no mutex): two
-// threads in it at once can share a buffer. Four threads calling dgees
-// together on one 300 x 300 matrix got Schur forms off by up to 34 (1 to 24
-// calls in 80, tests/systems/lapack_test.cpp), where each call alone gives
-// the same form to the bit. Its threaded builds lock, and other BLAS keep no
-// such state. So every call deb makes into the BLAS or LAPACK takes this
-// turn where the library is OpenBLAS's single-threaded build: the exact
-// variances and responses of paths analysed at once, and the products of
-// worker threads.
-std::unique_lock<std::mutex> BlasTurn() {
-  static const bool needed = [] {
-    using Parallel = int (*)();
-    const auto parallel = reinterpret_cast<Parallel>(dlsym(RTLD_DEFAULT, "openblas_get_parallel"));
-    return parallel != nullptr && parallel() == 0;
+// OpenBLAS's controls, looked up in the loaded libraries: null where the
+// BLAS is another one.
+struct OpenBlasControls {
+  char* (*corename)() = nullptr;  // its kernels' name
+  int (*parallel)() = nullptr;    // 0: its single-threaded build
+  int (*threads)() = nullptr;
+  void (*set_threads)(int) = nullptr;
+};
+const OpenBlasControls& OpenBlas() {
+  static const OpenBlasControls c = [] {
+    OpenBlasControls o;
+    o.corename = reinterpret_cast<char* (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
+    o.parallel = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_parallel"));
+    o.threads = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    o.set_threads = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    return o;
   }();
+  return c;
+}
+
+// OpenBLAS's single-threaded build (openblas_get_parallel() == 0) keeps its
+// work buffers in a table it does not lock unless built with USE_LOCKING,
+// which Debian's is not (it imports no mutex): two threads in it at once
+// can share a buffer. Four threads calling dgees together on one 300 x 300
+// matrix got Schur forms off by up to 34 (1 to 24 calls in 80,
+// tests/systems/lapack_test.cpp), where each call alone gives the same form
+// to the bit. Its threaded build locks (none of over 2000 such calls differed);
+// other BLAS keep no such state. So every call deb makes into the BLAS or
+// LAPACK takes this turn where the library is OpenBLAS's single-threaded
+// build, or its threaded one running several threads per call (where calls
+// at once would only compete for the cores): the exact variances and
+// responses of paths analysed at once, and the products of worker threads.
+std::unique_lock<std::mutex> BlasTurn() {
   static std::mutex turn;
+  const OpenBlasControls& ob = OpenBlas();
+  const bool needed = ob.parallel != nullptr && (ob.parallel() == 0 || (ob.threads != nullptr && ob.threads() > 1));
   return needed ? std::unique_lock<std::mutex>(turn) : std::unique_lock<std::mutex>();
 }
 
@@ -267,13 +285,6 @@ double UnitUpperTriangularCondition(const Eigen::MatrixXd& y) {
 
 namespace {
 
-// OpenBLAS's openblas_get_corename, looked up in the loaded libraries: null
-// when the BLAS is another one.
-using CoreName = char* (*)();
-CoreName OpenBlasCoreName() {
-  return reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
-}
-
 // What OpenBLAS's kernels named `name` run (its names in 0.3.21 and since):
 // AVX-512, AVX2 and FMA, or older instructions (also for unknown names).
 enum class KernelWidth { kOlder, kAvx2, kAvx512 };
@@ -288,7 +299,7 @@ KernelWidth WidthOf(const std::string& name) {
 }  // namespace
 
 std::string BlasKernel() {
-  const CoreName name = OpenBlasCoreName();
+  char* (*const name)() = OpenBlas().corename;
   const char* text = name ? name() : nullptr;
   return text ? text : "";
 }
@@ -310,6 +321,10 @@ std::optional<std::string> BetterBlasKernel() {
 bool BlasProductIsFaster() {
   static const bool faster = WidthOf(BlasKernel()) == KernelWidth::kAvx512;
   return faster;
+}
+
+void UseOneBlasThreadPerCall() {
+  if (OpenBlas().set_threads != nullptr) OpenBlas().set_threads(1);
 }
 
 void BlasProduct(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b,

@@ -121,9 +121,19 @@ std::optional<std::string> BetterBlasKernel();
 // by 2000 x 128 at 59 GFlop/s, Eigen's AVX2 product 30), false otherwise
 // (Haswell's: 30, as Eigen; Prescott's: 9.5). Decided once per process.
 bool BlasProductIsFaster();
+// One thread per call of OpenBLAS (openblas_set_num_threads(1); nothing for
+// another BLAS). deb runs its own threads, across frequencies and paths, and
+// calls the BLAS and LAPACK from each of them. With one thread per call,
+// OpenBLAS's threaded build (which locks) runs calls from several threads
+// at once, each on its core; its single-threaded build (which does not
+// lock), and its threaded one at several threads per call, have the calls
+// take turns (lapack.cpp, BlasTurn). The command line calls this at start;
+// the Python module does not (numpy shares the library and its threads).
+void UseOneBlasThreadPerCall();
 // out = a * b through the BLAS's dgemm (column-major blocks of matrices, as
-// Eigen keeps them). Calls from several threads take turns (the BLAS may not
-// be safe to call concurrently); so does BlasUnitUpperSolve. @pre a.cols() == b.rows(), out is a.rows() x b.cols()
+// Eigen keeps them). Calls from several threads take turns where the BLAS is
+// not safe to call at once (UseOneBlasThreadPerCall); so do
+// BlasUnitUpperSolve and the LAPACK calls above. @pre a.cols() == b.rows(), out is a.rows() x b.cols()
 // (DEB_DEMAND), and the sizes fit the BLAS's int.
 void BlasProduct(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b,
                  Eigen::Ref<Eigen::MatrixXd> out);

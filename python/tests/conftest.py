@@ -34,8 +34,12 @@ def _the_cli_blas_kernels():
     starts itself again with OPENBLAS_CORETYPE set (`deb --version` names
     the kernels); this module cannot, and without the same kernels the
     results that go through LAPACK differ from the CLI's in their last
-    digits. Set here, at the suite's start, before numpy loads OpenBLAS.
+    digits. Set here, at the suite's start, before numpy loads OpenBLAS;
+    so is one thread per call, as the CLI runs OpenBLAS
+    (deb::UseOneBlasThreadPerCall), whose products round alike only on
+    the same threads.
     """
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     if "OPENBLAS_CORETYPE" in os.environ:
         return
     version = subprocess.run([deb_binary(), "--version"], capture_output=True, text=True, check=True).stdout
