@@ -10,12 +10,15 @@
 // block-diagonal form (real_block_diagonal.h) in real arithmetic, conjugate
 // pairs together in 2x2 blocks, where Eigen has only ComplexSchur (complex
 // QR iterations) and no Sylvester solver. deb is linked against the system's
-// LAPACK and BLAS; tools/install-deps installs OpenBLAS's single-threaded
-// build (libopenblas0-serial), which provides both: dgees on a 2000 x 2000
+// LAPACK and BLAS; tools/install-deps installs OpenBLAS's threaded build
+// (libopenblas0-pthread), which provides both: dgees on a 2000 x 2000
 // matrix took 3.6 s against about 30 s with the reference BLAS and 26 s with
-// Eigen's RealSchur. Single-threaded, because deb runs its own threads
-// across paths and frequencies (the threaded build, sharing 2 cores with
-// them, took 15 s). Eigenvalues alone stay with Eigen's EigenSolver.
+// Eigen's RealSchur. The command line runs it at one thread per call
+// (UseOneBlasThreadPerCall), because deb runs its own threads across paths
+// and frequencies (at its default thread count, sharing 2 cores with them,
+// it took 15 s); its threaded build, unlike its single-threaded one, may be
+// called from those threads at once. Eigenvalues alone stay with Eigen's
+// EigenSolver.
 #pragma once
 
 #include <Eigen/Dense>
