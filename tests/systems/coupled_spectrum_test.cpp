@@ -7,8 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdlib>
 #include <memory>
+#include <optional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "deb/core/math_constants.h"
@@ -144,6 +147,30 @@ TEST_CASE("coupled realisation: a PID loop around modes is the dense loop, poles
     const CoupledSpectrum sp = CheckAgainstDense(MakeLoop(modes, c.second));
     CHECK(sp.rank == 4);  // two actuated and two sensed channels
   }
+}
+
+TEST_CASE("coupled realisation: the covariance, formed by slabs of rows, is the same on one thread or four") {
+  // 604 poles: five slabs of 128 rows, summed in order whatever the threads.
+  const Loop l = MakeLoop(300, 3);
+  std::string why;
+  const std::optional<CoupledRealisation> coupled = l.diagram.Coupled(&why);
+  REQUIRE(coupled);
+  const CoupledSolve solved = SolveCoupled(*coupled);
+  REQUIRE(solved.spectrum);
+  const Eigen::MatrixXd w = 0.5 * Eigen::MatrixXd::Identity(4, 4);
+  const char* before = std::getenv("DEB_THREADS");
+  const std::string kept = before ? before : "";
+  const auto on = [&](const char* threads) {
+    ::setenv("DEB_THREADS", threads, 1);
+    return CoupledOutputCovariance(*solved.spectrum, {0, 1, 2}, w);
+  };
+  const CoupledCovariance one = on("1"), four = on("4");
+  if (before)
+    ::setenv("DEB_THREADS", kept.c_str(), 1);
+  else
+    ::unsetenv("DEB_THREADS");
+  CHECK(one.covariance == four.covariance);
+  CHECK(one.relative_error == four.relative_error);
 }
 
 // The loop of MakeLoop with mode `k`'s shapes at the loop's channels (inputs
