@@ -427,9 +427,10 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
   };
 
   // Pass 1: C~ X C~^H, rho X and the rounding's |C~| |X| |C~|^T, X = G o K,
-  // K = B~ W B~^H.
+  // K = B~ W B~^H. X is Hermitian (G_ji = conj G_ij, K too), so a slab of
+  // its rows gives the same columns of rho X = rho (X's rows)^H: no sum.
   std::vector<MatrixXcd> cov_parts(static_cast<std::size_t>(slabs), MatrixXcd::Zero(p, p));
-  std::vector<MatrixXcd> px_parts(static_cast<std::size_t>(slabs), MatrixXcd::Zero(r, n));
+  MatrixXcd px = MatrixXcd::Zero(r, n);  // rho X (r x N)
   std::vector<MatrixXd> abs_parts(static_cast<std::size_t>(slabs), MatrixXd::Zero(p, p));
   ParallelForEach(static_cast<std::size_t>(slabs), [&](std::size_t s) {
     const auto [first, count] = rows_of(static_cast<Index>(s));
@@ -438,7 +439,7 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
     x = g.cwiseProduct(x);
     const MatrixXcd x_ch = x * ch_adj;
     cov_parts[s].noalias() = ch.middleCols(first, count) * x_ch;
-    if (r > 0) px_parts[s].noalias() = sp.rho.middleCols(first, count) * x;
+    if (r > 0) px.middleCols(first, count).noalias() = sp.rho * x.adjoint();
     MatrixXd abs_x = abs_bw.middleRows(first, count) * abs_bt;
     abs_x = g.cwiseAbs().cwiseProduct(abs_x);
     const MatrixXd abs_x_ct = abs_x * abs_ct;
@@ -455,8 +456,6 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
   // Z = B~ + delta B~, T = (W^T U) (rho X + rho X delta^H).
   MatrixXcd correction = MatrixXcd::Zero(p, p);
   if (r > 0) {
-    const MatrixXcd px = total(px_parts);  // rho X (r x N)
-    px_parts.clear();
     const MatrixXcd x_adj = sp.x.adjoint(), sigma_adj = sp.sigma.adjoint();
     // Pass 2: Z and rho X (I + delta)^H, by slabs of delta's rows.
     MatrixXcd z(n, bh.cols()), pxz(r, n);
