@@ -362,8 +362,8 @@ std::optional<Eigen::MatrixXd> BlockDiagonalCovariance(const RealBlockDiagonalFo
     else
       e.middleCols(first, count).noalias() = uau.leftCols(rows) * form.y.block(0, first, rows, count);
   });
-  // Y^-1 (U^T A U) Y: one call to the BLAS (whose calls take turns), or
-  // Eigen's solve by blocks of columns on all threads.
+  // Y^-1 (U^T A U) Y: one call to the BLAS (as ParallelProduct), or Eigen's
+  // solve by blocks of columns on all threads.
   if (blas)
     BlasUnitUpperSolve(form.y, e);
   else
