@@ -2,18 +2,24 @@
 """The script an engineer would write with numpy/scipy instead of deb, on the
 same model and the same frequencies: the peer of bench/versus_numpy.
 
-    peer_numpy.py CASE_DIR GRID_CSV
+    peer_numpy.py CASE_DIR GRID_CSV [REFINE [RULE]]
 
 CASE_DIR is a case written by `bench_modal --keep` (modes.csv, phi_in.csv,
 phi_out.csv, b.yaml; with `--loop`, b.yaml's PID closed around the modal
-plant) or by `bench_dense --fe ... --keep` (plant.mat). GRID_CSV is any CSV
-whose first column, after comment lines (#) and one header line, holds deb's grid (an output CSV
-of `deb run --export csv`). Flat uncorrelated forces of 1 N^2/Hz (one-sided)
+plant) or by `bench_dense --fe ... --keep` (plant.mat). GRID_CSV is any
+CSV whose first column, after comment lines (#) and one header line, holds
+deb's grid (an output CSV of `deb run --export csv`). REFINE (default 1)
+divides every interval of that grid into REFINE equal ones; RULE
+(trapezoid, the default, or simpson) is scipy's rule for the variance on
+them. Flat uncorrelated forces of 1 N^2/Hz (one-sided)
 on every input, as the cases' budgets say. It prints one line of JSON: the
 seconds (wall and CPU) of its own work, and for every output the grid
-variance (trapezoid of the PSD) and the exact variance (modal closed form, or
+variance (RULE on the PSD) and the exact variance (modal closed form, or
 scipy's solve_continuous_lyapunov, and for those also the closed form by A's
 eigenvectors, a second method, whose seconds it prints apart), in nm^2.
+For a modal case it also prints the exact variance over the grid's band
+(first to last frequency), by a closed form, also apart: the reference for
+the band integral the grid variance approximates.
 
 Needs Debian's python3-scipy (numpy, scipy); deb itself never does.
 """
@@ -77,6 +83,31 @@ def modal_exact(w, z, pin, pout):
     return np.einsum("ok,kl,ol->o", pout, m, pout) * NM2
 
 
+def modal_band_exact(w, z, pin, pout, f1, f2):
+    """The exact variance over [f1, f2] Hz, in closed form: each mode's g is
+    r/(j omega - l) - r/(j omega - conj l), and the integral over omega of
+    1/((j omega - p)(-j omega - conj q)) is
+    -j (dL_p - conj dL_q) / (-p - conj q), dL_p = log(j omega - p) between
+    the band's ends (principal logarithms: j omega - p stays in the right
+    half plane). Over the whole axis it is modal_exact."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    lam = -z * w + 1j * w * np.sqrt(1 - z ** 2)
+    poles = np.stack([lam, lam.conj()], axis=1)  # n x 2
+    r = 1 / (lam - lam.conj())
+    rho = np.stack([r, -r], axis=1)  # residues of g at its two poles
+    dl = np.log(2j * np.pi * f2 - poles) - np.log(2j * np.pi * f1 - poles)
+    m = np.zeros((len(w), len(w)))
+    for a in range(2):
+        for b in range(2):
+            m += np.real(rho[:, a, None] * rho[None, :, b].conj() / (-poles[:, a, None] - poles[None, :, b].conj())
+                         * -1j * (dl[:, a, None] - dl[None, :, b].conj()))
+    m *= (pin.T @ pin) * S0 / (2 * np.pi)  # one-sided PSD in Hz: d omega / (2 pi)
+    result = np.einsum("ok,kl,ol->o", pout, m, pout) * NM2
+    CHECK_SECONDS[0] += time.perf_counter() - wall
+    CHECK_SECONDS[1] += time.process_time() - cpu
+    return result
+
+
 CHECK_SECONDS = [0.0, 0.0]  # wall, CPU of the second method: not the peer's work
 
 
@@ -98,11 +129,20 @@ def eigen_exact_untimed(a, b, c):
     return np.real(np.einsum("ik,kl,il->i", ct, x, ct.conj(), optimize=True)) * NM2
 
 
-def psd_and_variance(h_of_block, f, outputs):
+def refined(f, parts):
+    """f with every interval divided into `parts` equal ones."""
+    t = np.arange(parts) / parts
+    inner = f[:-1, None] + (f[1:] - f[:-1])[:, None] * t[None, :]
+    return np.concatenate([inner.ravel(), f[-1:]])
+
+
+def psd_and_variance(h_of_block, f, outputs, rule):
     psd = np.zeros((len(f), outputs))
     for s in range(0, len(f), 64):
         h = h_of_block(2 * np.pi * f[s:s + 64])
         psd[s:s + 64] = S0 * np.sum(np.abs(h) ** 2, axis=2) * NM2
+    if rule == "simpson":
+        return scipy.integrate.simpson(psd, x=f, axis=0)
     return scipy.integrate.trapezoid(psd, f, axis=0)
 
 
@@ -116,9 +156,14 @@ def pid_controller(d):
 
 def main():
     d, grid = sys.argv[1], sys.argv[2]
+    parts = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+    rule = sys.argv[4] if len(sys.argv) > 4 else "trapezoid"
+    if parts < 1 or rule not in ("trapezoid", "simpson"):
+        sys.exit("peer_numpy.py: REFINE must be 1 or more and RULE trapezoid or simpson")
     lines = [line for line in open(grid).read().splitlines() if line.strip() and not line.startswith("#")]
-    f = np.array([float(line.split(",")[0]) for line in lines[1:]])
+    f = refined(np.array([float(line.split(",")[0]) for line in lines[1:]]), parts)
     wall, cpu = time.perf_counter(), time.process_time()
+    band_exact = None
     text = open(d + "/b.yaml").read()
     if "plant.mat" in text:  # dense: eigendecomposition for H, Lyapunov for the exact variance
         m = scipy.io.loadmat(d + "/plant.mat")
@@ -126,7 +171,7 @@ def main():
         lam, v = np.linalg.eig(a)
         left, right = c @ v, np.linalg.solve(v, b)
         h = lambda om: (left[None, :, :] * (1 / (1j * om[:, None] - lam[None, :]))[:, None, :]) @ right
-        grid_var = psd_and_variance(h, f, c.shape[0])
+        grid_var = psd_and_variance(h, f, c.shape[0], rule)
         x = scipy.linalg.solve_continuous_lyapunov(a, -b @ b.T * S0 / 2)
         exact = np.diag(c @ x @ c.T) * NM2
         by_eigenvectors = eigen_exact(a, b, c)
@@ -144,7 +189,7 @@ def main():
                 loop[:, :, 0:2] = g[:, :, 0:2] * k(om)[:, None, None]
                 return np.linalg.solve(np.eye(g.shape[1])[None] + loop, g)
 
-            grid_var = psd_and_variance(h, f, pout.shape[0])
+            grid_var = psd_and_variance(h, f, pout.shape[0], rule)
             ap, bp, cp = modal_realisation(w, z, pin, pout)
             ak, bk, ck, dk = scipy.signal.tf2ss(num, den)
             nk = ak.shape[0]
@@ -162,13 +207,15 @@ def main():
             exact = np.diag(ccl @ x @ ccl.T) * NM2
             by_eigenvectors = eigen_exact(acl, bcl, ccl)
         else:
-            grid_var = psd_and_variance(lambda om: modal_h(w, z, pin, pout, om), f, pout.shape[0])
+            grid_var = psd_and_variance(lambda om: modal_h(w, z, pin, pout, om), f, pout.shape[0], rule)
             exact = modal_exact(w, z, pin, pout)
             by_eigenvectors = exact  # the modal closed form is the eigenvector form
+            band_exact = modal_band_exact(w, z, pin, pout, f[0], f[-1])
     print(json.dumps({"wall_s": time.perf_counter() - wall, "cpu_s": time.process_time() - cpu, "points": len(f),
                       "check_wall_s": CHECK_SECONDS[0], "check_cpu_s": CHECK_SECONDS[1],
                       "grid_variance_nm2": list(grid_var), "exact_variance_nm2": list(exact),
-                      "eigenvector_variance_nm2": list(by_eigenvectors)}))
+                      "eigenvector_variance_nm2": list(by_eigenvectors),
+                      "band_exact_variance_nm2": None if band_exact is None else list(band_exact)}))
 
 
 if __name__ == "__main__":
