@@ -2,16 +2,17 @@
 """The script an engineer would write with numpy/scipy instead of deb, on the
 same model and the same frequencies: the peer of bench/versus_numpy.
 
-    peer_numpy.py CASE_DIR GRID_CSV [REFINE [RULE]]
+    peer_numpy.py CASE_DIR GRID_CSV [POINTS [RULE]]
 
 CASE_DIR is a case written by `bench_modal --keep` (modes.csv, phi_in.csv,
 phi_out.csv, b.yaml; with `--loop`, b.yaml's PID closed around the modal
 plant) or by `bench_dense --fe ... --keep` (plant.mat). GRID_CSV is any
 CSV whose first column, after comment lines (#) and one header line, holds
-deb's grid (an output CSV of `deb run --export csv`). REFINE (default 1)
-divides every interval of that grid into REFINE equal ones; RULE
-(trapezoid, the default, or simpson) is scipy's rule for the variance on
-them. Flat uncorrelated forces of 1 N^2/Hz (one-sided)
+deb's grid (an output CSV of `deb run --export csv`). POINTS R (default 1)
+divides every interval of that grid into R equal ones; POINTS log:N takes
+instead N points spaced evenly in log f over the same band, as a script on
+its own grid would. RULE (trapezoid, the default, or simpson) is scipy's
+rule for the variance on them. Flat uncorrelated forces of 1 N^2/Hz (one-sided)
 on every input, as the cases' budgets say. It prints one line of JSON: the
 seconds (wall and CPU) of its own work, and for every output the grid
 variance (RULE on the PSD) and the exact variance (modal closed form, or
@@ -157,12 +158,16 @@ def pid_controller(d):
 
 def main():
     d, grid = sys.argv[1], sys.argv[2]
-    parts = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+    points = sys.argv[3] if len(sys.argv) > 3 else "1"
     rule = sys.argv[4] if len(sys.argv) > 4 else "trapezoid"
-    if parts < 1 or rule not in ("trapezoid", "simpson"):
-        sys.exit("peer_numpy.py: REFINE must be 1 or more and RULE trapezoid or simpson")
+    log_points = int(points[4:]) if points.startswith("log:") else 0
+    parts = 1 if log_points else int(points)
+    if parts < 1 or (points.startswith("log:") and log_points < 2) or rule not in ("trapezoid", "simpson"):
+        sys.exit("peer_numpy.py: POINTS must be R >= 1 or log:N with N >= 2, RULE trapezoid or simpson")
     lines = [line for line in open(grid).read().splitlines() if line.strip() and not line.startswith("#")]
     f = refined(np.array([float(line.split(",")[0]) for line in lines[1:]]), parts)
+    if log_points:
+        f = np.logspace(np.log10(f[0]), np.log10(f[-1]), log_points)
     wall, cpu = time.perf_counter(), time.process_time()
     band_exact = None
     band_form_check = None
