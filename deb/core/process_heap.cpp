@@ -14,7 +14,7 @@ namespace deb {
 bool KeepHeapForLargeBlocks() {
 #if DEB_GLIBC_HEAP
   constexpr int kMiB = 1 << 20;
-  return mallopt(M_MMAP_THRESHOLD, 16 * kMiB) == 1 && mallopt(M_TRIM_THRESHOLD, 32 * kMiB) == 1 &&
+  return mallopt(M_MMAP_THRESHOLD, 32 * kMiB) == 1 && mallopt(M_TRIM_THRESHOLD, 128 * kMiB) == 1 &&
          mallopt(M_TOP_PAD, 8 * kMiB) == 1;
 #else
   return false;
