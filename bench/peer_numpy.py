@@ -110,7 +110,7 @@ def modal_band_exact(w, z, pin, pout, f1, f2):
     return result
 
 
-CHECK_SECONDS = [0.0, 0.0]  # wall, CPU of the second method: not the peer's work
+CHECK_SECONDS = [0.0, 0.0]  # wall, CPU of the checks (second method, band form): not the peer's work
 
 
 def eigen_exact(a, b, c):
