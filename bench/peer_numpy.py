@@ -25,6 +25,7 @@ largest |variance / exact - 1| of the same form over 1e-9 to 1e12 Hz.
 
 Needs Debian's python3-scipy (numpy, scipy); deb itself never does.
 """
+import functools
 import json
 import re
 import sys
@@ -72,11 +73,33 @@ def modal_realisation(w, z, pin, pout):
     return a, b, c
 
 
+def mode_poles(w, z):
+    """Each mode's two poles and the residues there of 1/((s - l)(s - conj l)),
+    both n x 2."""
+    lam = -z * w + 1j * w * np.sqrt(1 - z ** 2)
+    r = 1 / (lam - lam.conj())
+    return np.stack([lam, lam.conj()], axis=1), np.stack([r, -r], axis=1)
+
+
+CHECK_SECONDS = [0.0, 0.0]  # wall, CPU of the checks (second method, band form): not the peer's work
+
+
+def timed_as_check(function):
+    """`function`, its seconds counted in CHECK_SECONDS, not the peer's."""
+    @functools.wraps(function)
+    def timed(*args):
+        wall, cpu = time.perf_counter(), time.process_time()
+        try:
+            return function(*args)
+        finally:
+            CHECK_SECONDS[0] += time.perf_counter() - wall
+            CHECK_SECONDS[1] += time.process_time() - cpu
+    return timed
+
+
 def modal_exact(w, z, pin, pout):
     """Closed form: E[q_k q_l] from the poles of each mode, O(n^2) per output."""
-    lam = -z * w + 1j * w * np.sqrt(1 - z ** 2)
-    poles = np.stack([lam, lam.conj()], axis=1)  # n x 2
-    res = np.stack([1 / (lam - lam.conj()), 1 / (lam.conj() - lam)], axis=1)  # residues of 1/(s-a)(s-b)
+    poles, res = mode_poles(w, z)
     m = np.zeros((len(w), len(w)))
     for a in range(2):
         for b in range(2):
@@ -85,6 +108,7 @@ def modal_exact(w, z, pin, pout):
     return np.einsum("ok,kl,ol->o", pout, m, pout) * NM2
 
 
+@timed_as_check
 def modal_band_exact(w, z, pin, pout, f1, f2):
     """The exact variance over [f1, f2] Hz, in closed form: each mode's g is
     r/(j omega - l) - r/(j omega - conj l), and the integral over omega of
@@ -92,11 +116,7 @@ def modal_band_exact(w, z, pin, pout, f1, f2):
     -j (dL_p - conj dL_q) / (-p - conj q), dL_p = log(j omega - p) between
     the band's ends (principal logarithms: j omega - p stays in the right
     half plane). Over the whole axis it is modal_exact."""
-    wall, cpu = time.perf_counter(), time.process_time()
-    lam = -z * w + 1j * w * np.sqrt(1 - z ** 2)
-    poles = np.stack([lam, lam.conj()], axis=1)  # n x 2
-    r = 1 / (lam - lam.conj())
-    rho = np.stack([r, -r], axis=1)  # residues of g at its two poles
+    poles, rho = mode_poles(w, z)
     dl = np.log(2j * np.pi * f2 - poles) - np.log(2j * np.pi * f1 - poles)
     m = np.zeros((len(w), len(w)))
     for a in range(2):
@@ -104,27 +124,13 @@ def modal_band_exact(w, z, pin, pout, f1, f2):
             m += np.real(rho[:, a, None] * rho[None, :, b].conj() / (-poles[:, a, None] - poles[None, :, b].conj())
                          * -1j * (dl[:, a, None] - dl[None, :, b].conj()))
     m *= (pin.T @ pin) * S0 / (2 * np.pi)  # one-sided PSD in Hz: d omega / (2 pi)
-    result = np.einsum("ok,kl,ol->o", pout, m, pout) * NM2
-    CHECK_SECONDS[0] += time.perf_counter() - wall
-    CHECK_SECONDS[1] += time.process_time() - cpu
-    return result
+    return np.einsum("ok,kl,ol->o", pout, m, pout) * NM2
 
 
-CHECK_SECONDS = [0.0, 0.0]  # wall, CPU of the checks (second method, band form): not the peer's work
-
-
+@timed_as_check
 def eigen_exact(a, b, c):
     """The exact variances by A's eigenvectors, a second method beside the
     Lyapunov solve: X = V (B~ B~^H W / -(l_i + conj l_j)) V^H, B~ = V^-1 B."""
-    wall, cpu = time.perf_counter(), time.process_time()
-    try:
-        return eigen_exact_untimed(a, b, c)
-    finally:
-        CHECK_SECONDS[0] += time.perf_counter() - wall
-        CHECK_SECONDS[1] += time.process_time() - cpu
-
-
-def eigen_exact_untimed(a, b, c):
     lam, v = np.linalg.eig(a)
     bt, ct = np.linalg.solve(v, b), c @ v
     x = (bt @ bt.conj().T * S0 / 2) / (-(lam[:, None] + lam[None, :].conj()))
