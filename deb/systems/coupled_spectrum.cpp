@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <limits>
 
 #include "deb/core/error.h"
@@ -407,11 +408,16 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
   // The closed form's n x n matrices, G o (B~ W B~^H) and those of its error
   // estimate, are formed a slab of rows at a time and used at once: O(n) of
   // memory per slab instead of O(n^2) (a loop around 2000 modes: 1.66 GB
-  // before). The slabs are fixed by n alone, and their sums are added in
-  // order, so that the result does not depend on the thread count.
-  constexpr Index kSlab = 128;
-  const Index slabs = (n + kSlab - 1) / kSlab;
-  const auto rows_of = [&](Index s) { return std::pair<Index, Index>{s * kSlab, std::min(kSlab, n - s * kSlab)}; };
+  // before). The slabs are fixed by n alone (ParallelForBlocks), and their
+  // sums are added in order, so that the result does not depend on the
+  // thread count. for_slabs: body(slab, first row, rows).
+  constexpr std::size_t kSlab = 128;
+  const std::size_t slabs = (static_cast<std::size_t>(n) + kSlab - 1) / kSlab;
+  const auto for_slabs = [&](const std::function<void(std::size_t, Index, Index)>& body) {
+    ParallelForBlocks(static_cast<std::size_t>(n), kSlab, [&](std::size_t begin, std::size_t end) {
+      body(begin / kSlab, static_cast<Index>(begin), static_cast<Index>(end - begin));
+    });
+  };
   // G's rows first .. first + count - 1: G_ij = -1 / (mu_i + conj mu_j).
   const auto g_rows = [&](Index first, Index count) {
     MatrixXcd g(count, n);
@@ -429,11 +435,10 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
   // Pass 1: C~ X C~^H, rho X and the rounding's |C~| |X| |C~|^T, X = G o K,
   // K = B~ W B~^H. X is Hermitian (G_ji = conj G_ij, K too), so a slab of
   // its rows gives the same columns of rho X = rho (X's rows)^H: no sum.
-  std::vector<MatrixXcd> cov_parts(static_cast<std::size_t>(slabs), MatrixXcd::Zero(p, p));
+  std::vector<MatrixXcd> cov_parts(slabs, MatrixXcd::Zero(p, p));
   MatrixXcd px = MatrixXcd::Zero(r, n);  // rho X (r x N)
-  std::vector<MatrixXd> abs_parts(static_cast<std::size_t>(slabs), MatrixXd::Zero(p, p));
-  ParallelForEach(static_cast<std::size_t>(slabs), [&](std::size_t s) {
-    const auto [first, count] = rows_of(static_cast<Index>(s));
+  std::vector<MatrixXd> abs_parts(slabs, MatrixXd::Zero(p, p));
+  for_slabs([&](std::size_t s, Index first, Index count) {
     const MatrixXcd g = g_rows(first, count);
     MatrixXcd x = bw.middleRows(first, count) * bh_adj;
     x = g.cwiseProduct(x);
@@ -459,8 +464,7 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
     const MatrixXcd x_adj = sp.x.adjoint(), sigma_adj = sp.sigma.adjoint();
     // Pass 2: Z and rho X (I + delta)^H, by slabs of delta's rows.
     MatrixXcd z(n, bh.cols()), pxz(r, n);
-    ParallelForEach(static_cast<std::size_t>(slabs), [&](std::size_t s) {
-      const auto [first, count] = rows_of(static_cast<Index>(s));
+    for_slabs([&](std::size_t, Index first, Index count) {
       MatrixXcd delta = -(x_adj.middleRows(first, count) * sp.rho);
       delta.noalias() += sigma_adj.middleRows(first, count) * sp.y;
       for (Index j = 0; j < n; ++j)
@@ -473,9 +477,8 @@ CoupledCovariance CoupledOutputCovariance(const CoupledSpectrum& sp, const std::
     });
     const MatrixXcd zw = z * w, z_adj = z.adjoint(), wu_adj = sp.wu.adjoint();
     // Pass 3: the correction, by slabs of rows.
-    std::vector<MatrixXcd> parts(static_cast<std::size_t>(slabs), MatrixXcd::Zero(p, p));
-    ParallelForEach(static_cast<std::size_t>(slabs), [&](std::size_t s) {
-      const auto [first, count] = rows_of(static_cast<Index>(s));
+    std::vector<MatrixXcd> parts(slabs, MatrixXcd::Zero(p, p));
+    for_slabs([&](std::size_t s, Index first, Index count) {
       MatrixXcd f = bw.middleRows(first, count) * bh_adj;
       f.noalias() -= zw.middleRows(first, count) * z_adj;
       f.noalias() += sp.wu.middleRows(first, count) * pxz;
