@@ -11,7 +11,8 @@
 //   4     cannot write the output (report, CSV,     deb::WriteError
 //         plots), gnuplot missing or failing
 //   5     a requirement failed (run --strict; the   RunCommand's return value
-//         report is written)                        (kExitRequirement)
+//         report is written), or no design met      (kExitRequirement), also
+//         every requirement (optimise)              OptimiseCommand's
 //   6     compared figures moved beyond            deb::tools::FiguresMoved
 //         compare --tolerance (reports written)
 //   70    internal error (a bug)                    any other exception
@@ -126,7 +127,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 2 usage error, 3 invalid input (budget, data file, model), "
-      "4 cannot write the report, 5 a requirement failed (run --strict), 6 compared figures moved "
+      "4 cannot write the report, 5 a requirement failed (run --strict) or no design met every requirement "
+      "(optimise), 6 compared figures moved "
       "(compare --tolerance), 70 internal error.");
 
   // Registered in the order of `deb --help`.

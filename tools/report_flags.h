@@ -73,7 +73,8 @@ inline void AddReportFlags(CLI::App* app, ReportFlags* flags) {
              }
            }
          },
-         "Also write the result for MATLAB (mat: result.mat) or Excel (xlsx: result.xlsx) into the report "
+         "Also write a CSV table per output (csv: <output>.csv), the result for MATLAB (mat: result.mat) or Excel "
+         "(xlsx: result.xlsx) into the report "
          "directory; repeatable or comma-separated")
       ->delimiter(',');
 }

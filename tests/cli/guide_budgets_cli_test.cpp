@@ -70,3 +70,16 @@ TEST_CASE("the guide budgets print the figures the guide and the README quote") 
     fs::remove_all(dir);
   }
 }
+
+TEST_CASE("docs/guide.md quotes deb check of the first budget as it prints it") {
+  const std::string guide = ReadAll(fs::path(DEB_SOURCE_DIR) / "docs" / "guide.md");
+  const std::string command = "deb check budgets/guide/first_budget.yaml\n```\n\n```text\n";
+  const std::size_t start = guide.find(command);
+  REQUIRE_MESSAGE(start != std::string::npos, "guide.md no longer quotes `deb check` of first_budget.yaml");
+  const std::size_t from = start + command.size();
+  const std::size_t end = guide.find("```", from);
+  REQUIRE(end != std::string::npos);
+  const Command check = RunDeb("check \"" + (kGuide / "first_budget.yaml").string() + "\"");
+  REQUIRE_MESSAGE(check.exit_code == 0, check.err);
+  CHECK(guide.substr(from, end - from) == check.out);
+}
