@@ -31,7 +31,7 @@ inline CLI::Option* AddOverridesOption(CLI::App* app, std::vector<BudgetOverride
             }
           },
           "Change " + what + " before loading it: KEY.PATH=VALUE, the key path as in error messages "
-          "(e.g. sources[0].spectrum.level=2e-3, 'paths[0].control.gains=[0, 50]'); repeatable")
+          "(e.g. sources[0].spectrum.class=VC-E, 'paths[0].control.gains=[50, 50, 80, 0, 0, 0]'); repeatable")
       ->allow_extra_args(false)
       ->type_name("KEY.PATH=VALUE");
 }
